@@ -1,0 +1,72 @@
+/* core: logging, seeded RNG, stateless hashes, file I/O with atomic writes,
+ * and 8-bit RGBA images. GL-free; every other module may use it. */
+#ifndef MEADOW_CORE_H
+#define MEADOW_CORE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* ---- logging ------------------------------------------------------------
+ * One line per call on stderr, prefixed "meadow: " and the level.
+ * core_log_set_quiet(true) drops info lines (tests, benchmarks). */
+void core_log_info(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void core_log_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void core_log_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void core_log_set_quiet(bool quiet);
+/* Number of warnings/errors logged so far (tests assert on these). */
+int core_log_warn_count(void);
+int core_log_error_count(void);
+
+/* ---- random numbers -----------------------------------------------------
+ * PCG32: deterministic for a given seed on every platform. */
+typedef struct core_rng_t {
+    uint64_t state;
+    uint64_t inc;
+} core_rng_t;
+
+void core_rng_seed(core_rng_t *rng, uint64_t seed, uint64_t stream);
+uint32_t core_rng_u32(core_rng_t *rng);
+float core_rng_float(core_rng_t *rng);                  /* [0,1) */
+float core_rng_range(core_rng_t *rng, float lo, float hi); /* [lo,hi) */
+
+/* Stateless integer hash (lowbias32). The GLSL twin is hash_u32() in
+ * shaders/common/hash.glsl; both give identical bits. */
+uint32_t core_hash_u32(uint32_t x);
+/* Hash to [0,1) using the top 24 bits: exact in float on CPU and GPU. */
+float core_hash_float(uint32_t x);
+/* FNV-1a over bytes, for state hashes in determinism tests. */
+uint64_t core_hash_bytes(const void *data, size_t size, uint64_t h);
+
+/* ---- files ---------------------------------------------------------------
+ * core_fs_read reads a whole file into a malloc'd, NUL-terminated buffer.
+ * On failure it returns NULL and writes a reason into err (if non-NULL). */
+char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size);
+/* Writes to "<path>.tmp.<pid>" then renames into place, so an interrupted
+ * run never leaves a truncated file. Returns false and logs on failure. */
+bool core_fs_write_atomic(const char *path, const void *data, size_t size);
+/* mkdir -p. Returns false and logs on failure. */
+bool core_fs_mkdirs(const char *path);
+/* Creates dir (mkdir -p) and proves it is writable by writing and removing a
+ * probe file. Returns false with a reason in err. */
+bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size);
+/* Resolves a repository-relative path (e.g. "shaders/gfx/x.vert") by trying,
+ * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel. Writes
+ * the first that exists into out. Returns false if none exists. */
+bool core_fs_resolve(const char *rel, char *out, size_t out_size);
+
+/* ---- images --------------------------------------------------------------
+ * Tightly packed 8-bit images, row 0 at the top. */
+typedef struct core_image_t {
+    int w, h, channels; /* channels: 1..4 */
+    uint8_t *px;
+} core_image_t;
+
+bool core_image_alloc(core_image_t *img, int w, int h, int channels);
+void core_image_free(core_image_t *img);
+/* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's). */
+bool core_image_load(core_image_t *img, const char *path, int channels);
+/* Writes PNG atomically (tmp + rename). */
+bool core_image_write_png(const core_image_t *img, const char *path);
+
+#endif

@@ -1,0 +1,146 @@
+/* core_fs: whole-file reads, atomic writes (tmp + rename), directory checks
+ * and lookup of repository files (shaders/, models/, textures/, scenes/). */
+#include "core.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        if (err) snprintf(err, err_size, "%s", strerror(errno));
+        return NULL;
+    }
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || S_ISDIR(st.st_mode)) {
+        if (err) snprintf(err, err_size, "%s", S_ISDIR(st.st_mode) ? "is a directory" : strerror(errno));
+        fclose(f);
+        return NULL;
+    }
+    size_t cap = (size_t)st.st_size + 1, len = 0;
+    char *buf = malloc(cap);
+    if (!buf) {
+        if (err) snprintf(err, err_size, "out of memory (%zu bytes)", cap);
+        fclose(f);
+        return NULL;
+    }
+    for (;;) {
+        size_t n = fread(buf + len, 1, cap - 1 - len, f);
+        len += n;
+        if (len < cap - 1) break;
+        char *grown = realloc(buf, cap * 2);
+        if (!grown) {
+            free(buf);
+            fclose(f);
+            if (err) snprintf(err, err_size, "out of memory");
+            return NULL;
+        }
+        buf = grown;
+        cap *= 2;
+    }
+    if (ferror(f)) {
+        if (err) snprintf(err, err_size, "read error: %s", strerror(errno));
+        free(buf);
+        fclose(f);
+        return NULL;
+    }
+    fclose(f);
+    buf[len] = 0;
+    if (size) *size = len;
+    return buf;
+}
+
+bool core_fs_write_atomic(const char *path, const void *data, size_t size)
+{
+    char tmp[4096];
+    snprintf(tmp, sizeof tmp, "%s.tmp.%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        core_log_error("%s: cannot write: %s", path, strerror(errno));
+        return false;
+    }
+    bool ok = fwrite(data, 1, size, f) == size;
+    ok = (fflush(f) == 0) && ok;
+    ok = (fclose(f) == 0) && ok;
+    if (!ok || rename(tmp, path) != 0) {
+        core_log_error("%s: write failed: %s", path, strerror(errno));
+        remove(tmp);
+        return false;
+    }
+    return true;
+}
+
+bool core_fs_mkdirs(const char *path)
+{
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", path);
+    size_t n = strlen(buf);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == 0) {
+            char c = buf[i];
+            buf[i] = 0;
+            if (mkdir(buf, 0755) != 0 && errno != EEXIST) {
+                core_log_error("%s: cannot create directory: %s", buf, strerror(errno));
+                return false;
+            }
+            buf[i] = c;
+        }
+    }
+    return true;
+}
+
+bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size)
+{
+    struct stat st;
+    if (stat(dir, &st) == 0 && !S_ISDIR(st.st_mode)) {
+        snprintf(err, err_size, "%s exists and is not a directory", dir);
+        return false;
+    }
+    char buf[4096];
+    snprintf(buf, sizeof buf, "%s", dir);
+    for (size_t i = 1, n = strlen(buf); i <= n; i++) {
+        if (buf[i] == '/' || buf[i] == 0) {
+            char c = buf[i];
+            buf[i] = 0;
+            if (mkdir(buf, 0755) != 0 && errno != EEXIST) {
+                snprintf(err, err_size, "cannot create %s: %s", buf, strerror(errno));
+                return false;
+            }
+            buf[i] = c;
+        }
+    }
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/.meadow-probe.%ld", dir, (long)getpid());
+    FILE *f = fopen(probe, "wb");
+    if (!f) {
+        snprintf(err, err_size, "%s is not writable: %s", dir, strerror(errno));
+        return false;
+    }
+    char block[4096] = {0};
+    bool ok = fwrite(block, 1, sizeof block, f) == sizeof block;
+    ok = (fflush(f) == 0) && ok;
+    ok = (fclose(f) == 0) && ok;
+    remove(probe);
+    if (!ok) {
+        snprintf(err, err_size, "%s is full or not writable: %s", dir, strerror(errno));
+        return false;
+    }
+    return true;
+}
+
+bool core_fs_resolve(const char *rel, char *out, size_t out_size)
+{
+    const char *roots[3] = {getenv("MEADOW_ROOT"), ".", MEADOW_SOURCE_DIR};
+    for (int i = 0; i < 3; i++) {
+        if (!roots[i]) continue;
+        snprintf(out, out_size, "%s/%s", roots[i], rel);
+        if (access(out, R_OK) == 0) return true;
+    }
+    snprintf(out, out_size, "%s", rel);
+    return access(out, R_OK) == 0;
+}

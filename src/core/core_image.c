@@ -1,0 +1,98 @@
+/* core_image: 8-bit images loaded with stb_image and written as PNG with
+ * stb_image_write (atomically, through core_fs_write_atomic). */
+#include "core.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* Third-party code: its own warnings are not ours to fix. */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-but-set-variable"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_TGA
+#define STBI_FAILURE_USERMSG
+#include <stb_image.h>
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+#pragma GCC diagnostic pop
+
+bool core_image_alloc(core_image_t *img, int w, int h, int channels)
+{
+    memset(img, 0, sizeof *img);
+    if (w <= 0 || h <= 0 || channels < 1 || channels > 4) return false;
+    img->px = calloc((size_t)w * (size_t)h, (size_t)channels);
+    if (!img->px) return false;
+    img->w = w;
+    img->h = h;
+    img->channels = channels;
+    return true;
+}
+
+void core_image_free(core_image_t *img)
+{
+    free(img->px);
+    memset(img, 0, sizeof *img);
+}
+
+bool core_image_load(core_image_t *img, const char *path, int channels)
+{
+    memset(img, 0, sizeof *img);
+    int w, h, n;
+    uint8_t *px = stbi_load(path, &w, &h, &n, channels);
+    if (!px) {
+        core_log_error("%s: cannot load image: %s", path, stbi_failure_reason());
+        return false;
+    }
+    size_t bytes = (size_t)w * (size_t)h * (size_t)(channels ? channels : n);
+    img->px = malloc(bytes);
+    if (!img->px) {
+        stbi_image_free(px);
+        return false;
+    }
+    memcpy(img->px, px, bytes);
+    stbi_image_free(px);
+    img->w = w;
+    img->h = h;
+    img->channels = channels ? channels : n;
+    return true;
+}
+
+typedef struct png_buf_t {
+    uint8_t *data;
+    size_t size, cap;
+    bool failed;
+} png_buf_t;
+
+static void png_append(void *ctx, void *data, int size)
+{
+    png_buf_t *b = ctx;
+    if (b->failed) return;
+    if (b->size + (size_t)size > b->cap) {
+        size_t cap = b->cap ? b->cap * 2 : 65536;
+        while (cap < b->size + (size_t)size) cap *= 2;
+        uint8_t *grown = realloc(b->data, cap);
+        if (!grown) {
+            b->failed = true;
+            return;
+        }
+        b->data = grown;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->size, data, (size_t)size);
+    b->size += (size_t)size;
+}
+
+bool core_image_write_png(const core_image_t *img, const char *path)
+{
+    png_buf_t b = {0};
+    int ok = stbi_write_png_to_func(png_append, &b, img->w, img->h, img->channels, img->px,
+                                    img->w * img->channels);
+    bool done = ok && !b.failed && core_fs_write_atomic(path, b.data, b.size);
+    if (!ok || b.failed) core_log_error("%s: PNG encoding failed", path);
+    free(b.data);
+    return done;
+}
