@@ -1,0 +1,382 @@
+/* gfx: object registry with debug labels, buffers, textures, render targets
+ * with MSAA resolve, vertex arrays, queries and screenshots. */
+#include "gfx/gfx_local.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct gfx_obj_t {
+    GLenum kind;
+    GLuint id;
+    char label[64];
+} gfx_obj_t;
+
+static struct {
+    gfx_obj_t *objs;
+    int count, cap;
+} g;
+
+bool gfx_init(void)
+{
+    memset(&g, 0, sizeof g);
+    return true;
+}
+
+void gfx_track(GLenum kind, GLuint id, const char *label)
+{
+    if (!id) return;
+    if (g.count == g.cap) {
+        int cap = g.cap ? g.cap * 2 : 256;
+        gfx_obj_t *grown = realloc(g.objs, (size_t)cap * sizeof *grown);
+        if (!grown) abort();
+        g.objs = grown;
+        g.cap = cap;
+    }
+    gfx_obj_t *o = &g.objs[g.count++];
+    o->kind = kind;
+    o->id = id;
+    snprintf(o->label, sizeof o->label, "%s", label ? label : "?");
+    glObjectLabel(kind, id, -1, o->label);
+}
+
+void gfx_untrack(GLenum kind, GLuint id)
+{
+    for (int i = g.count - 1; i >= 0; i--) {
+        if (g.objs[i].kind == kind && g.objs[i].id == id) {
+            g.objs[i] = g.objs[--g.count];
+            return;
+        }
+    }
+}
+
+void gfx_delete_object(GLenum kind, GLuint id)
+{
+    switch (kind) {
+    case GL_BUFFER: glDeleteBuffers(1, &id); break;
+    case GL_TEXTURE: glDeleteTextures(1, &id); break;
+    case GL_PROGRAM: glDeleteProgram(id); break;
+    case GL_FRAMEBUFFER: glDeleteFramebuffers(1, &id); break;
+    case GL_VERTEX_ARRAY: glDeleteVertexArrays(1, &id); break;
+    case GL_QUERY: glDeleteQueries(1, &id); break;
+    case GL_TRANSFORM_FEEDBACK: glDeleteTransformFeedbacks(1, &id); break;
+    default: break;
+    }
+}
+
+static void release(GLenum kind, GLuint id)
+{
+    if (!id) return;
+    gfx_untrack(kind, id);
+    gfx_delete_object(kind, id);
+}
+
+int gfx_live_objects(void) { return g.count; }
+
+void gfx_shutdown(bool report_leaks)
+{
+    gfx_text_shutdown();
+    gfx_timer_shutdown();
+    if (report_leaks && g.count)
+        for (int i = 0; i < g.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", g.objs[i].label);
+    while (g.count) {
+        gfx_obj_t o = g.objs[--g.count];
+        gfx_delete_object(o.kind, o.id);
+    }
+    free(g.objs);
+    memset(&g, 0, sizeof g);
+}
+
+int gfx_check_errors(const char *where)
+{
+    int n = 0;
+    for (GLenum e; (e = glGetError()) != GL_NO_ERROR && n < 64; n++)
+        core_log_error("%s: GL error 0x%04x", where, (unsigned)e);
+    return n;
+}
+
+/* ---- buffers ---------------------------------------------------------------- */
+
+gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
+{
+    gfx_buffer_t b = {0};
+    while (glGetError() != GL_NO_ERROR) {}
+    GLbitfield flags = 0;
+    if (desc->dynamic) flags |= GL_DYNAMIC_STORAGE_BIT;
+    if (desc->persistent) flags |= GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    if (desc->readable) flags |= GL_MAP_READ_BIT;
+    glCreateBuffers(1, &b.id);
+    glNamedBufferStorage(b.id, (GLsizeiptr)desc->size, desc->data, flags);
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        core_log_error("gfx: cannot allocate buffer '%s' of %.1f MB: %s", desc->label,
+                       (double)desc->size / (1024.0 * 1024.0), e == GL_OUT_OF_MEMORY ? "GL_OUT_OF_MEMORY" : "GL error");
+        glDeleteBuffers(1, &b.id);
+        return (gfx_buffer_t){0};
+    }
+    b.size = desc->size;
+    if (desc->persistent)
+        b.mapped = glMapNamedBufferRange(b.id, 0, (GLsizeiptr)desc->size,
+                                         GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT);
+    gfx_track(GL_BUFFER, b.id, desc->label);
+    return b;
+}
+
+void gfx_buffer_destroy(gfx_buffer_t *buf)
+{
+    if (buf->mapped) glUnmapNamedBuffer(buf->id);
+    release(GL_BUFFER, buf->id);
+    memset(buf, 0, sizeof *buf);
+}
+
+void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data)
+{
+    if (buf.mapped)
+        memcpy((char *)buf.mapped + offset, data, size);
+    else
+        glNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, data);
+}
+
+void gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glGetNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, out);
+}
+
+/* ---- textures ----------------------------------------------------------------- */
+
+static int mip_count(int w, int h)
+{
+    int n = 1;
+    while ((w | h) >> n) n++;
+    return n;
+}
+
+gfx_texture_t gfx_texture_make(const gfx_texture_desc_t *d)
+{
+    gfx_texture_t t = {0};
+    t.target = d->target ? d->target : GL_TEXTURE_2D;
+    t.w = d->w;
+    t.h = d->h;
+    t.layers = d->layers > 0 ? d->layers : 1;
+    t.samples = d->samples > 0 ? d->samples : 4;
+    t.format = d->format ? d->format : GL_RGBA8;
+    int mips = d->mip_levels < 0 ? mip_count(d->w, d->h) : (d->mip_levels ? d->mip_levels : 1);
+    while (glGetError() != GL_NO_ERROR) {}
+    glCreateTextures(t.target, 1, &t.id);
+    switch (t.target) {
+    case GL_TEXTURE_2D_MULTISAMPLE:
+        glTextureStorage2DMultisample(t.id, t.samples, t.format, t.w, t.h, GL_TRUE);
+        break;
+    case GL_TEXTURE_2D_ARRAY:
+        glTextureStorage3D(t.id, mips, t.format, t.w, t.h, t.layers);
+        break;
+    default:
+        glTextureStorage2D(t.id, mips, t.format, t.w, t.h);
+        break;
+    }
+    if (t.target != GL_TEXTURE_2D_MULTISAMPLE) {
+        GLenum filter = d->filter ? d->filter : GL_LINEAR;
+        GLenum wrap = d->wrap ? d->wrap : GL_CLAMP_TO_EDGE;
+        glTextureParameteri(t.id, GL_TEXTURE_MIN_FILTER,
+                            mips > 1 && filter == GL_LINEAR ? GL_LINEAR_MIPMAP_LINEAR : (GLint)filter);
+        glTextureParameteri(t.id, GL_TEXTURE_MAG_FILTER, (GLint)filter);
+        glTextureParameteri(t.id, GL_TEXTURE_WRAP_S, (GLint)wrap);
+        glTextureParameteri(t.id, GL_TEXTURE_WRAP_T, (GLint)wrap);
+        if (d->data) {
+            GLenum fmt = d->upload_format ? d->upload_format : GL_RGBA;
+            GLenum type = d->upload_type ? d->upload_type : GL_UNSIGNED_BYTE;
+            glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+            if (t.target == GL_TEXTURE_2D_ARRAY)
+                glTextureSubImage3D(t.id, 0, 0, 0, 0, t.w, t.h, t.layers, fmt, type, d->data);
+            else
+                glTextureSubImage2D(t.id, 0, 0, 0, t.w, t.h, fmt, type, d->data);
+            if (mips > 1) glGenerateTextureMipmap(t.id);
+        }
+    }
+    GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        core_log_error("gfx: cannot create texture '%s' (%dx%dx%d): GL error 0x%04x%s", d->label, t.w, t.h, t.layers,
+                       (unsigned)e, e == GL_OUT_OF_MEMORY ? " (GL_OUT_OF_MEMORY)" : "");
+        glDeleteTextures(1, &t.id);
+        return (gfx_texture_t){0};
+    }
+    gfx_track(GL_TEXTURE, t.id, d->label);
+    return t;
+}
+
+void gfx_texture_destroy(gfx_texture_t *tex)
+{
+    release(GL_TEXTURE, tex->id);
+    memset(tex, 0, sizeof *tex);
+}
+
+/* ---- render targets --------------------------------------------------------------- */
+
+static GLuint make_fbo(const char *label, const char *suffix, GLuint color, GLuint depth)
+{
+    char name[96];
+    snprintf(name, sizeof name, "%s.%s", label, suffix);
+    GLuint fbo;
+    glCreateFramebuffers(1, &fbo);
+    if (color) glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+    if (depth) glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
+    GLenum st = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) {
+        core_log_error("gfx: framebuffer '%s' incomplete (0x%04x)", name, (unsigned)st);
+        glDeleteFramebuffers(1, &fbo);
+        return 0;
+    }
+    gfx_track(GL_FRAMEBUFFER, fbo, name);
+    return fbo;
+}
+
+gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
+{
+    gfx_target_t t = {0};
+    t.w = d->w;
+    t.h = d->h;
+    t.samples = d->samples > 0 ? d->samples : 4;
+    GLenum cf = d->color_format ? d->color_format : GL_RGBA8;
+    char name[96];
+    bool ms = t.samples > 1;
+    GLenum target = ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
+    snprintf(name, sizeof name, "%s.color", d->label);
+    t.color = gfx_texture_make(&(gfx_texture_desc_t){.target = target, .w = t.w, .h = t.h, .samples = t.samples,
+                                                     .format = cf, .label = name});
+    if (!d->no_depth) {
+        snprintf(name, sizeof name, "%s.depth", d->label);
+        t.depth = gfx_texture_make(&(gfx_texture_desc_t){.target = target, .w = t.w, .h = t.h,
+                                                         .samples = t.samples, .format = GL_DEPTH_COMPONENT32F,
+                                                         .filter = GL_NEAREST, .label = name});
+    }
+    t.fbo = make_fbo(d->label, "fbo", t.color.id, t.depth.id);
+    if (ms) {
+        snprintf(name, sizeof name, "%s.resolve_color", d->label);
+        t.resolve_color = gfx_texture_make(&(gfx_texture_desc_t){.w = t.w, .h = t.h, .format = cf, .label = name});
+        if (!d->no_depth) {
+            snprintf(name, sizeof name, "%s.resolve_depth", d->label);
+            t.resolve_depth = gfx_texture_make(&(gfx_texture_desc_t){
+                .w = t.w, .h = t.h, .format = GL_DEPTH_COMPONENT32F, .filter = GL_NEAREST, .label = name});
+        }
+        t.resolve_fbo = make_fbo(d->label, "resolve", t.resolve_color.id, t.resolve_depth.id);
+    } else {
+        t.resolve_color = t.color;
+        t.resolve_depth = t.depth;
+        t.resolve_fbo = t.fbo;
+    }
+    if (!t.fbo || !t.resolve_fbo || !t.color.id) {
+        gfx_target_destroy(&t);
+        return (gfx_target_t){0};
+    }
+    return t;
+}
+
+void gfx_target_destroy(gfx_target_t *t)
+{
+    if (t->resolve_fbo != t->fbo) {
+        release(GL_FRAMEBUFFER, t->resolve_fbo);
+        release(GL_TEXTURE, t->resolve_color.id);
+        release(GL_TEXTURE, t->resolve_depth.id);
+    }
+    release(GL_FRAMEBUFFER, t->fbo);
+    release(GL_TEXTURE, t->color.id);
+    release(GL_TEXTURE, t->depth.id);
+    memset(t, 0, sizeof *t);
+}
+
+void gfx_target_bind(const gfx_target_t *t)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);
+    glViewport(0, 0, t->w, t->h);
+}
+
+void gfx_target_resolve(const gfx_target_t *t)
+{
+    if (t->resolve_fbo == t->fbo) return;
+    glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_COLOR_BUFFER_BIT,
+                           GL_NEAREST);
+    if (t->depth.id)
+        glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_DEPTH_BUFFER_BIT,
+                               GL_NEAREST);
+}
+
+bool gfx_target_read(const gfx_target_t *t, core_image_t *out)
+{
+    gfx_target_resolve(t);
+    if (!core_image_alloc(out, t->w, t->h, 4)) return false;
+    size_t row = (size_t)t->w * 4;
+    uint8_t *tmp = malloc(row * (size_t)t->h);
+    if (!tmp) {
+        core_image_free(out);
+        return false;
+    }
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t->resolve_fbo);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, t->w, t->h, GL_RGBA, GL_UNSIGNED_BYTE, tmp);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    for (int y = 0; y < t->h; y++) memcpy(out->px + (size_t)y * row, tmp + (size_t)(t->h - 1 - y) * row, row);
+    free(tmp);
+    return true;
+}
+
+bool gfx_target_screenshot(const gfx_target_t *t, const char *path)
+{
+    core_image_t img;
+    if (!gfx_target_read(t, &img)) return false;
+    for (size_t i = 3; i < (size_t)img.w * (size_t)img.h * 4; i += 4) img.px[i] = 255;
+    bool ok = core_image_write_png(&img, path);
+    core_image_free(&img);
+    return ok;
+}
+
+void gfx_target_present(const gfx_target_t *t, int win_w, int win_h)
+{
+    gfx_target_resolve(t);
+    glBlitNamedFramebuffer(t->resolve_fbo, 0, 0, 0, t->w, t->h, 0, 0, win_w, win_h, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+}
+
+/* ---- vertex arrays, queries, transform feedback --------------------------------------- */
+
+GLuint gfx_vertex_array_make(const char *label)
+{
+    GLuint id;
+    glCreateVertexArrays(1, &id);
+    gfx_track(GL_VERTEX_ARRAY, id, label);
+    return id;
+}
+
+void gfx_vertex_array_destroy(GLuint *vao)
+{
+    release(GL_VERTEX_ARRAY, *vao);
+    *vao = 0;
+}
+
+GLuint gfx_query_make(GLenum target, const char *label)
+{
+    GLuint id;
+    glCreateQueries(target, 1, &id);
+    gfx_track(GL_QUERY, id, label);
+    return id;
+}
+
+void gfx_query_destroy(GLuint *q)
+{
+    release(GL_QUERY, *q);
+    *q = 0;
+}
+
+GLuint gfx_transform_feedback_make(const char *label)
+{
+    GLuint id;
+    glCreateTransformFeedbacks(1, &id);
+    gfx_track(GL_TRANSFORM_FEEDBACK, id, label);
+    return id;
+}
+
+void gfx_transform_feedback_destroy(GLuint *tf)
+{
+    release(GL_TRANSFORM_FEEDBACK, *tf);
+    *tf = 0;
+}

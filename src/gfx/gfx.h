@@ -1,0 +1,161 @@
+/* gfx: the only layer that creates and destroys GL objects. Every object
+ * gets a debug label and is tracked, so shutdown can release everything and
+ * tests can count what is still alive. Also: shader programs from files with
+ * #include and file:line errors, FBOs with MSAA resolve, per-pass GPU timer
+ * queries read back without stalling, screenshots and a text HUD. */
+#ifndef MEADOW_GFX_H
+#define MEADOW_GFX_H
+
+#include <epoxy/gl.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "core/core.h"
+
+/* ---- lifetime ------------------------------------------------------------ */
+bool gfx_init(void);
+/* Releases every object still alive (logging each label in debug builds when
+ * `report_leaks`), then the gfx-internal objects. */
+void gfx_shutdown(bool report_leaks);
+/* Number of live GL objects created through gfx (user objects only). */
+int gfx_live_objects(void);
+/* Returns the number of GL errors seen by glGetError since the last call,
+ * logging each with `where`. Cheap enough for tests, not for the frame. */
+int gfx_check_errors(const char *where);
+
+/* ---- buffers -------------------------------------------------------------- */
+typedef struct gfx_buffer_t {
+    GLuint id;
+    size_t size;
+    void *mapped; /* persistent mapping, when desc.persistent */
+} gfx_buffer_t;
+
+typedef struct gfx_buffer_desc_t {
+    size_t size;        /* bytes, required */
+    const void *data;   /* initial contents, optional */
+    bool dynamic;       /* GL_DYNAMIC_STORAGE_BIT (glNamedBufferSubData) */
+    bool persistent;    /* mapped write-coherent for the buffer's life */
+    bool readable;      /* GL_MAP_READ_BIT (tests read back) */
+    const char *label;  /* required: debug label */
+} gfx_buffer_desc_t;
+
+/* Returns id 0 and logs (naming the label and size) on failure, including
+ * GL_OUT_OF_MEMORY. */
+gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc);
+void gfx_buffer_destroy(gfx_buffer_t *buf);
+void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data);
+/* Blocking read (tests, one-off): glGetNamedBufferSubData. */
+void gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out);
+
+/* ---- textures ------------------------------------------------------------- */
+typedef struct gfx_texture_t {
+    GLuint id;
+    GLenum target;
+    int w, h, layers, samples;
+    GLenum format;
+} gfx_texture_t;
+
+typedef struct gfx_texture_desc_t {
+    GLenum target;        /* default GL_TEXTURE_2D; GL_TEXTURE_2D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE */
+    int w, h;             /* required */
+    int layers;           /* arrays: default 1 */
+    int samples;          /* multisample: default 4 */
+    GLenum format;        /* sized internal format, default GL_RGBA8 */
+    int mip_levels;       /* default 1; -1 = full chain (generated after upload) */
+    GLenum filter;        /* default GL_LINEAR (GL_LINEAR_MIPMAP_LINEAR with mips) */
+    GLenum wrap;          /* default GL_CLAMP_TO_EDGE */
+    const void *data;     /* optional; upload_format/type describe it */
+    GLenum upload_format; /* default GL_RGBA */
+    GLenum upload_type;   /* default GL_UNSIGNED_BYTE */
+    const char *label;    /* required */
+} gfx_texture_desc_t;
+
+gfx_texture_t gfx_texture_make(const gfx_texture_desc_t *desc);
+void gfx_texture_destroy(gfx_texture_t *tex);
+
+/* ---- render targets ------------------------------------------------------- */
+/* An MSAA colour + depth FBO and a single-sample resolve FBO. With samples
+ * == 1 the draw FBO is already single-sample and resolve is a no-op copy. */
+typedef struct gfx_target_t {
+    int w, h, samples;
+    GLuint fbo, resolve_fbo;
+    gfx_texture_t color, depth, resolve_color, resolve_depth;
+} gfx_target_t;
+
+typedef struct gfx_target_desc_t {
+    int w, h;            /* required */
+    int samples;         /* default 4; 1 = no MSAA */
+    GLenum color_format; /* default GL_RGBA8 */
+    bool no_depth;       /* default: depth attachment present (DEPTH32F) */
+    const char *label;   /* required */
+} gfx_target_desc_t;
+
+gfx_target_t gfx_target_make(const gfx_target_desc_t *desc);
+void gfx_target_destroy(gfx_target_t *t);
+void gfx_target_bind(const gfx_target_t *t); /* binds fbo and sets viewport */
+/* Resolves colour (and depth, for occlusion culling) into the resolve FBO. */
+void gfx_target_resolve(const gfx_target_t *t);
+/* Reads the resolved colour as RGBA8, row 0 at the top. */
+bool gfx_target_read(const gfx_target_t *t, core_image_t *out);
+/* Resolve + read + write PNG (atomic). */
+bool gfx_target_screenshot(const gfx_target_t *t, const char *path);
+
+/* ---- programs ------------------------------------------------------------- */
+/* Paths are relative to shaders/ (resolved with core_fs_resolve). Sources may
+ * `#include "common/x.glsl"` (relative to shaders/). Compile and link errors
+ * are logged as "shaders/<file>:<line>: <message>" and give id 0. */
+typedef struct gfx_program_desc_t {
+    const char *vs, *tcs, *tes, *gs, *fs, *cs;
+    const char *defines;            /* inserted after #version, e.g. "#define N 4\n" */
+    const char *const *tf_varyings; /* transform feedback outputs, NULL-terminated */
+    bool tf_separate;               /* default interleaved */
+    const char *label;              /* default: first stage's path */
+} gfx_program_desc_t;
+
+typedef struct gfx_program_t {
+    GLuint id;
+} gfx_program_t;
+
+gfx_program_t gfx_program_make(const gfx_program_desc_t *desc);
+void gfx_program_destroy(gfx_program_t *p);
+/* Uniform location helper (-1 logged once per name when missing is fine). */
+GLint gfx_uniform(gfx_program_t p, const char *name);
+/* The preprocessed source of a file (tests): #include expanded with #line. */
+char *gfx_shader_preprocess(const char *rel_path, const char *defines, char *err, size_t err_size);
+
+/* ---- vertex arrays, queries ---------------------------------------------- */
+GLuint gfx_vertex_array_make(const char *label);
+void gfx_vertex_array_destroy(GLuint *vao);
+GLuint gfx_query_make(GLenum target, const char *label);
+void gfx_query_destroy(GLuint *q);
+GLuint gfx_transform_feedback_make(const char *label);
+void gfx_transform_feedback_destroy(GLuint *tf);
+
+/* ---- GPU timers ------------------------------------------------------------
+ * Named passes timed with GL_TIME_ELAPSED queries. Results are read
+ * GFX_TIMER_LATENCY frames later, only when available: no stall. Passes may
+ * not nest. */
+#define GFX_TIMER_MAX_PASSES 32
+#define GFX_TIMER_LATENCY 4
+void gfx_timer_frame_begin(void);
+void gfx_timer_begin(const char *pass);
+void gfx_timer_end(void);
+int gfx_timer_count(void);
+const char *gfx_timer_name(int i);
+double gfx_timer_last_ms(int i);  /* latest available result */
+double gfx_timer_avg_ms(int i);   /* mean over every result so far */
+double gfx_timer_median_ms(int i); /* median of the last 256 results */
+/* Drains all outstanding queries (blocking). For end-of-run summaries. */
+void gfx_timer_flush(void);
+void gfx_timer_reset_stats(void);
+
+/* ---- text HUD (stb_easy_font) ----------------------------------------------
+ * Draws text in pixels from the top-left of the current viewport. */
+void gfx_text_draw(const char *text, float x, float y, float scale, const float rgba[4]);
+
+/* ---- fullscreen helpers ------------------------------------------------------ */
+/* Blits the resolved target to the default framebuffer (window mode). */
+void gfx_target_present(const gfx_target_t *t, int win_w, int win_h);
+
+#endif

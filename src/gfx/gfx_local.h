@@ -1,0 +1,15 @@
+/* gfx_local: the live-object registry shared by the gfx files (private). */
+#ifndef MEADOW_GFX_LOCAL_H
+#define MEADOW_GFX_LOCAL_H
+
+#include "gfx/gfx.h"
+
+/* kind is the glObjectLabel identifier: GL_BUFFER, GL_TEXTURE, GL_PROGRAM,
+ * GL_FRAMEBUFFER, GL_VERTEX_ARRAY, GL_QUERY, GL_TRANSFORM_FEEDBACK. */
+void gfx_track(GLenum kind, GLuint id, const char *label);
+void gfx_untrack(GLenum kind, GLuint id);
+void gfx_delete_object(GLenum kind, GLuint id);
+void gfx_timer_shutdown(void);
+void gfx_text_shutdown(void);
+
+#endif

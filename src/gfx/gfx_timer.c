@@ -1,0 +1,142 @@
+/* gfx_timer: per-pass GPU timings with GL_TIME_ELAPSED queries in a ring of
+ * GFX_TIMER_LATENCY frames. A slot is read only when its result is
+ * available, so the CPU never waits on the GPU. */
+#include "gfx/gfx_local.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define HISTORY 256
+
+typedef struct pass_t {
+    char name[32];
+    GLuint q[GFX_TIMER_LATENCY];
+    bool pending[GFX_TIMER_LATENCY];
+    double last, sum;
+    long n;
+    double hist[HISTORY];
+    int hist_n, hist_i;
+} pass_t;
+
+static struct {
+    pass_t passes[GFX_TIMER_MAX_PASSES];
+    int count;
+    int frame;
+    int open;
+    bool warned_full;
+} t = {.open = -1};
+
+static void record(pass_t *p, double ms)
+{
+    p->last = ms;
+    p->sum += ms;
+    p->n++;
+    p->hist[p->hist_i] = ms;
+    p->hist_i = (p->hist_i + 1) % HISTORY;
+    if (p->hist_n < HISTORY) p->hist_n++;
+}
+
+static void harvest(pass_t *p, int slot, bool wait)
+{
+    if (!p->pending[slot]) return;
+    GLint avail = 0;
+    if (!wait) glGetQueryObjectiv(p->q[slot], GL_QUERY_RESULT_AVAILABLE, &avail);
+    if (!wait && !avail) return;
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(p->q[slot], GL_QUERY_RESULT, &ns);
+    p->pending[slot] = false;
+    record(p, (double)ns * 1e-6);
+}
+
+void gfx_timer_frame_begin(void)
+{
+    t.frame++;
+    int slot = t.frame % GFX_TIMER_LATENCY;
+    for (int i = 0; i < t.count; i++) {
+        for (int s = 0; s < GFX_TIMER_LATENCY; s++)
+            if (s != slot) harvest(&t.passes[i], s, false);
+        /* The slot about to be reused: its result is LATENCY frames old. */
+        harvest(&t.passes[i], slot, false);
+    }
+}
+
+void gfx_timer_begin(const char *pass)
+{
+    int i;
+    for (i = 0; i < t.count; i++)
+        if (strcmp(t.passes[i].name, pass) == 0) break;
+    if (i == t.count) {
+        if (t.count == GFX_TIMER_MAX_PASSES) {
+            if (!t.warned_full) core_log_warn("gfx: more than %d timed passes; '%s' not timed", GFX_TIMER_MAX_PASSES, pass);
+            t.warned_full = true;
+            return;
+        }
+        pass_t *p = &t.passes[t.count++];
+        memset(p, 0, sizeof *p);
+        snprintf(p->name, sizeof p->name, "%s", pass);
+        glGenQueries(GFX_TIMER_LATENCY, p->q);
+    }
+    int slot = t.frame % GFX_TIMER_LATENCY;
+    pass_t *p = &t.passes[i];
+    if (p->pending[slot]) {
+        /* Still in flight after LATENCY frames: drop this frame's sample
+         * rather than stall. */
+        return;
+    }
+    glBeginQuery(GL_TIME_ELAPSED, p->q[slot]);
+    t.open = i;
+}
+
+void gfx_timer_end(void)
+{
+    if (t.open < 0) return;
+    glEndQuery(GL_TIME_ELAPSED);
+    t.passes[t.open].pending[t.frame % GFX_TIMER_LATENCY] = true;
+    t.open = -1;
+}
+
+int gfx_timer_count(void) { return t.count; }
+const char *gfx_timer_name(int i) { return t.passes[i].name; }
+double gfx_timer_last_ms(int i) { return t.passes[i].last; }
+double gfx_timer_avg_ms(int i) { return t.passes[i].n ? t.passes[i].sum / (double)t.passes[i].n : 0.0; }
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double gfx_timer_median_ms(int i)
+{
+    pass_t *p = &t.passes[i];
+    if (!p->hist_n) return 0.0;
+    double tmp[HISTORY];
+    memcpy(tmp, p->hist, sizeof(double) * (size_t)p->hist_n);
+    qsort(tmp, (size_t)p->hist_n, sizeof(double), cmp_double);
+    return tmp[p->hist_n / 2];
+}
+
+void gfx_timer_flush(void)
+{
+    for (int i = 0; i < t.count; i++)
+        for (int s = 0; s < GFX_TIMER_LATENCY; s++) harvest(&t.passes[i], s, true);
+}
+
+void gfx_timer_reset_stats(void)
+{
+    gfx_timer_flush();
+    for (int i = 0; i < t.count; i++) {
+        pass_t *p = &t.passes[i];
+        p->sum = 0;
+        p->n = 0;
+        p->hist_n = p->hist_i = 0;
+    }
+}
+
+void gfx_timer_shutdown(void)
+{
+    for (int i = 0; i < t.count; i++) glDeleteQueries(GFX_TIMER_LATENCY, t.passes[i].q);
+    memset(&t, 0, sizeof t);
+    t.open = -1;
+}
