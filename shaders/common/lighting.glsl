@@ -1,0 +1,26 @@
+// lighting.glsl: the sun, sky ambient and distance fog shared by terrain,
+// grass and characters, so every representation is lit the same way.
+const vec3 SKY_ZENITH = vec3(0.36, 0.55, 0.85);
+const vec3 SKY_HORIZON = vec3(0.78, 0.85, 0.92);
+const vec3 SUN_COLOR = vec3(1.0, 0.95, 0.85);
+
+vec3 sky_color(vec3 dir)
+{
+    float t = clamp(dir.y * 1.5, 0.0, 1.0);
+    return mix(SKY_HORIZON, SKY_ZENITH, t);
+}
+
+// Lambert sun + hemispheric sky ambient. two_sided flips the normal toward
+// the viewer (grass is lit from both faces).
+vec3 shade(vec3 albedo, vec3 n, vec3 sun_dir, float ao)
+{
+    float ndl = max(dot(n, sun_dir), 0.0);
+    vec3 ambient = mix(vec3(0.18, 0.17, 0.14), vec3(0.35, 0.42, 0.55), n.y * 0.5 + 0.5);
+    return albedo * (SUN_COLOR * ndl * 0.85 + ambient * ao);
+}
+
+vec3 apply_fog(vec3 c, float dist, vec3 view_dir)
+{
+    float f = 1.0 - exp(-dist * 0.006);
+    return mix(c, sky_color(view_dir), clamp(f, 0.0, 0.6));
+}

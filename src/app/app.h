@@ -1,0 +1,55 @@
+/* app: the meadow program: command line, main loop, world (terrain, grass,
+ * colliders, characters), HUD, screenshots and the run summary. */
+#ifndef MEADOW_APP_H
+#define MEADOW_APP_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum app_mode_t {
+    APP_MODE_SCENE = 0, /* whatever the scene file says */
+    APP_MODE_BILLBOARD,
+    APP_MODE_BLADE,
+    APP_MODE_HYBRID,
+} app_mode_t;
+
+typedef enum app_command_t {
+    APP_CMD_RUN = 0,
+    APP_CMD_BENCH,
+    APP_CMD_COMPARE,
+} app_command_t;
+
+/* Parsed command line. Zero means "not given" (the scene or the defaults
+ * decide). Bounds are checked by app_parse_args. */
+typedef struct app_options_t {
+    app_command_t command;
+    const char *scene;        /* default scenes/meadow.json */
+    bool headless;            /* force EGL */
+    int frames;               /* default: 300 headless, unlimited windowed */
+    bool frames_set;
+    uint64_t seed;
+    bool seed_set;
+    int width, height;        /* --size WxH, 16..8192 */
+    const char *out;          /* default "out" */
+    int screenshot_every;     /* default: frames/3 headless (3 shots), 0 windowed */
+    app_mode_t mode;
+    const char *character;    /* --character PATH: replaces the scene's models */
+    const char *clip;         /* --clip NAME|INDEX|START:END */
+    bool quick;               /* bench --quick */
+    bool quiet;
+} app_options_t;
+
+#define APP_MAX_FRAMES 10000000
+#define APP_MAX_SIZE 8192
+#define APP_MIN_SIZE 16
+
+/* Returns 0 to run, 1 when --help was printed, 2 on a bad argument (err
+ * holds one line saying which and why). */
+int app_parse_args(int argc, char **argv, app_options_t *opts, char *err, size_t err_size);
+void app_print_usage(void);
+
+/* Runs the program; returns the process exit code. */
+int app_run(const app_options_t *opts);
+
+#endif

@@ -1,0 +1,148 @@
+/* app_cli: parsing and validation of the meadow command line. Every bad
+ * value gets one line naming the option, the value and the allowed range. */
+#include "app/app.h"
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void app_print_usage(void)
+{
+    printf("usage: meadow [bench|compare] [options]\n"
+           "  --scene FILE          scene description (default scenes/meadow.json)\n"
+           "  --headless            render offscreen through EGL (automatic without a display)\n"
+           "  --frames N            frames to run (default 300 headless, unlimited in a window)\n"
+           "  --seed N              random seed (default: the scene's)\n"
+           "  --size WxH            framebuffer size, %d..%d per side (default: the scene's)\n"
+           "  --out DIR             output folder for screenshots and summary (default out)\n"
+           "  --screenshot-every N  write a PNG every N frames (default: 3 per headless run)\n"
+           "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
+           "  --character PATH      walk this assimp-loadable model through the field\n"
+           "  --clip SPEC           clip by name, index or frame range START:END\n"
+           "  --quick               bench: small sweep for CI\n"
+           "  --quiet               only warnings and errors\n"
+           "  --help                this text\n"
+           "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
+           "      F wireframe, 1/2/3 billboard/blade/hybrid, O overlays, H HUD, Esc quit\n",
+           APP_MIN_SIZE, APP_MAX_SIZE);
+}
+
+static bool parse_int(const char *s, long lo, long hi, long *out)
+{
+    if (!s || !*s) return false;
+    errno = 0;
+    char *end;
+    long v = strtol(s, &end, 10);
+    if (errno || *end || v < lo || v > hi) return false;
+    *out = v;
+    return true;
+}
+
+int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t err_size)
+{
+    memset(o, 0, sizeof *o);
+    int i = 1;
+    if (argc > 1 && argv[1][0] != '-') {
+        if (strcmp(argv[1], "bench") == 0) o->command = APP_CMD_BENCH;
+        else if (strcmp(argv[1], "compare") == 0) o->command = APP_CMD_COMPARE;
+        else {
+            snprintf(err, err_size, "unknown command '%s' (expected bench or compare; see --help)", argv[1]);
+            return 2;
+        }
+        i = 2;
+    }
+    for (; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        long n;
+#define NEED_VALUE()                                                              \
+    do {                                                                          \
+        if (!v) {                                                                 \
+            snprintf(err, err_size, "option %s needs a value (see --help)", a); \
+            return 2;                                                             \
+        }                                                                         \
+        i++;                                                                      \
+    } while (0)
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+            app_print_usage();
+            return 1;
+        } else if (strcmp(a, "--headless") == 0) {
+            o->headless = true;
+        } else if (strcmp(a, "--quick") == 0) {
+            o->quick = true;
+        } else if (strcmp(a, "--quiet") == 0) {
+            o->quiet = true;
+        } else if (strcmp(a, "--scene") == 0) {
+            NEED_VALUE();
+            o->scene = v;
+        } else if (strcmp(a, "--out") == 0) {
+            NEED_VALUE();
+            if (!*v) {
+                snprintf(err, err_size, "--out: empty folder name");
+                return 2;
+            }
+            o->out = v;
+        } else if (strcmp(a, "--character") == 0) {
+            NEED_VALUE();
+            o->character = v;
+        } else if (strcmp(a, "--clip") == 0) {
+            NEED_VALUE();
+            o->clip = v;
+        } else if (strcmp(a, "--frames") == 0) {
+            NEED_VALUE();
+            if (!parse_int(v, 1, APP_MAX_FRAMES, &n)) {
+                snprintf(err, err_size, "--frames '%s': expected an integer in 1..%d", v, APP_MAX_FRAMES);
+                return 2;
+            }
+            o->frames = (int)n;
+            o->frames_set = true;
+        } else if (strcmp(a, "--screenshot-every") == 0) {
+            NEED_VALUE();
+            if (!parse_int(v, 0, APP_MAX_FRAMES, &n)) {
+                snprintf(err, err_size, "--screenshot-every '%s': expected an integer in 0..%d (0 = never)", v,
+                         APP_MAX_FRAMES);
+                return 2;
+            }
+            o->screenshot_every = (int)n;
+        } else if (strcmp(a, "--seed") == 0) {
+            NEED_VALUE();
+            errno = 0;
+            char *end;
+            unsigned long long s = strtoull(v, &end, 10);
+            if (errno || *end || !*v || v[0] == '-') {
+                snprintf(err, err_size, "--seed '%s': expected an unsigned 64-bit integer", v);
+                return 2;
+            }
+            o->seed = s;
+            o->seed_set = true;
+        } else if (strcmp(a, "--size") == 0) {
+            NEED_VALUE();
+            char extra;
+            long w, h;
+            if (sscanf(v, "%ldx%ld%c", &w, &h, &extra) != 2 || w < APP_MIN_SIZE || h < APP_MIN_SIZE ||
+                w > APP_MAX_SIZE || h > APP_MAX_SIZE) {
+                snprintf(err, err_size, "--size '%s': expected WxH with each side in %d..%d", v, APP_MIN_SIZE,
+                         APP_MAX_SIZE);
+                return 2;
+            }
+            o->width = (int)w;
+            o->height = (int)h;
+        } else if (strcmp(a, "--mode") == 0) {
+            NEED_VALUE();
+            if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;
+            else if (strcmp(v, "blade") == 0) o->mode = APP_MODE_BLADE;
+            else if (strcmp(v, "hybrid") == 0) o->mode = APP_MODE_HYBRID;
+            else {
+                snprintf(err, err_size, "--mode '%s': expected billboard, blade or hybrid", v);
+                return 2;
+            }
+        } else {
+            snprintf(err, err_size, "unknown option '%s' (see --help)", a);
+            return 2;
+        }
+#undef NEED_VALUE
+    }
+    return 0;
+}

@@ -1,0 +1,251 @@
+/* app_run: the meadow main loop. Loads the scene, creates the context (a
+ * window, or headless EGL), simulates with a fixed timestep, renders into an
+ * MSAA target, writes screenshots and the run summary. */
+#include "app/app_world.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/core.h"
+#include "platform/plat.h"
+#include "scene/scene.h"
+
+typedef struct app_t {
+    const app_options_t *opts;
+    scene_desc_t scene;
+    terrain_mesh_t terrain_mesh;
+    app_terrain_t terrain;
+    gfx_target_t target;
+    cam_t cam;
+    bool follow_path;
+    bool paused, step_once, wireframe, hud;
+    int frames, shot_every, shots_written;
+    char out[1024];
+    char shots[16][1100];
+    double frame_ms_avg;
+} app_t;
+
+static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
+{
+    switch (m) {
+    case APP_MODE_BILLBOARD: return SCENE_MODE_BILLBOARD;
+    case APP_MODE_BLADE: return SCENE_MODE_BLADE;
+    case APP_MODE_HYBRID: return SCENE_MODE_HYBRID;
+    default: return scene_mode;
+    }
+}
+
+/* Scene, CLI overrides and terrain. Errors are one line and exit code 2. */
+static int load_inputs(app_t *app)
+{
+    const app_options_t *o = app->opts;
+    char err[1024], path[1024];
+    const char *scene = o->scene ? o->scene : "scenes/meadow.json";
+    if (!o->scene) core_fs_resolve(scene, path, sizeof path);
+    else snprintf(path, sizeof path, "%s", scene);
+    if (!scene_load(&app->scene, path, err, sizeof err)) return 2;
+    scene_desc_t *s = &app->scene;
+    if (o->seed_set) s->seed = (uint32_t)o->seed;
+    if (o->width) {
+        s->size[0] = o->width;
+        s->size[1] = o->height;
+    }
+    s->mode = mode_from_cli(o->mode, s->mode);
+    if (s->terrain.type == TERRAIN_MESH) {
+        char mesh[1024];
+        if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
+        if (!terrain_load_mesh(&app->terrain_mesh, mesh, s->terrain.scale, err, sizeof err)) {
+            core_log_error("%s: terrain.mesh: %s", path, err);
+            return 2;
+        }
+    } else if (!terrain_make_heightfield(&app->terrain_mesh, &s->terrain, s->seed)) {
+        core_log_error("%s: cannot build the heightfield terrain", path);
+        return 2;
+    }
+    return 0;
+}
+
+static void build_view(const app_t *app, app_view_t *v, float time, float dt)
+{
+    cam_t cam = app->cam;
+    cam.aspect = (float)app->target.w / (float)app->target.h;
+    cam_view(&cam, v->view);
+    cam_proj(&cam, v->proj);
+    glm_mat4_mul(v->proj, v->view, v->viewproj);
+    glm_mat4_inv(v->viewproj, v->inv_viewproj);
+    cam_frustum_planes(v->viewproj, v->planes);
+    glm_vec3_copy(cam.position, v->camera);
+    glm_vec3_normalize_to((vec3){0.45f, 0.8f, 0.35f}, v->sun_dir);
+    v->width = app->target.w;
+    v->height = app->target.h;
+    v->time = time;
+    v->dt = dt;
+}
+
+static void handle_keys(app_t *app, float real_dt)
+{
+    if (plat_key_pressed(PLAT_KEY_ESCAPE)) plat_request_close();
+    if (plat_key_pressed(PLAT_KEY_P)) app->paused = !app->paused;
+    if (plat_key_pressed(PLAT_KEY_N)) app->step_once = true;
+    if (plat_key_pressed(PLAT_KEY_F)) app->wireframe = !app->wireframe;
+    if (plat_key_pressed(PLAT_KEY_H)) app->hud = !app->hud;
+    float speed = (plat_key_down(PLAT_KEY_SHIFT) ? 15.0f : 4.0f) * real_dt;
+    float fwd = (float)(plat_key_down(PLAT_KEY_W) - plat_key_down(PLAT_KEY_S));
+    float right = (float)(plat_key_down(PLAT_KEY_D) - plat_key_down(PLAT_KEY_A));
+    float up = (float)(plat_key_down(PLAT_KEY_E) - plat_key_down(PLAT_KEY_Q));
+    float yaw = (float)(plat_key_down(PLAT_KEY_LEFT) - plat_key_down(PLAT_KEY_RIGHT)) * 1.5f * real_dt;
+    float pitch = (float)(plat_key_down(PLAT_KEY_UP) - plat_key_down(PLAT_KEY_DOWN)) * 1.0f * real_dt;
+    if (fwd != 0 || right != 0 || up != 0 || yaw != 0 || pitch != 0) {
+        app->follow_path = false;
+        cam_move(&app->cam, fwd * speed, right * speed, up * speed);
+        cam_rotate(&app->cam, yaw, pitch);
+    }
+}
+
+static void draw_hud(const app_t *app, double sim_time)
+{
+    char text[2048];
+    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s\n", scene_mode_name(app->scene.mode),
+                     app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "");
+    for (int i = 0; i < gfx_timer_count() && n < (int)sizeof text - 64; i++)
+        n += snprintf(text + n, sizeof text - (size_t)n, "%-12s %7.3f ms\n", gfx_timer_name(i), gfx_timer_last_ms(i));
+    static const float white[4] = {1, 1, 1, 1}, shadow[4] = {0, 0, 0, 0.8f};
+    gfx_text_draw(text, 11, 11, 2.0f, shadow);
+    gfx_text_draw(text, 10, 10, 2.0f, white);
+}
+
+static void screenshot(app_t *app, int frame)
+{
+    char path[1100];
+    snprintf(path, sizeof path, "%s/shot-%06d.png", app->out, frame);
+    if (gfx_target_screenshot(&app->target, path)) {
+        if (app->shots_written < 16) snprintf(app->shots[app->shots_written], sizeof app->shots[0], "%s", path);
+        app->shots_written++;
+        core_log_info("wrote %s", path);
+    }
+}
+
+static void write_summary(const app_t *app, double wall_s)
+{
+    char buf[8192];
+    int n = snprintf(buf, sizeof buf,
+                     "meadow run summary\n"
+                     "renderer: %s\n"
+                     "gl_version: %s\n"
+                     "platform: %s\n"
+                     "scene: %s\n"
+                     "mode: %s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
+                     "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
+                     "screenshots: %d\n"
+                     "gpu passes (median ms over last <=256 frames, mean ms):\n",
+                     (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
+                     plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
+                     scene_mode_name(app->scene.mode), app->scene.seed, app->frames, app->target.w, app->target.h,
+                     app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
+                     app->shots_written);
+    for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++)
+        n += snprintf(buf + n, sizeof buf - (size_t)n, "  %-14s %9.4f %9.4f\n", gfx_timer_name(i),
+                      gfx_timer_median_ms(i), gfx_timer_avg_ms(i));
+    char path[1100];
+    snprintf(path, sizeof path, "%s/summary.txt", app->out);
+    if (core_fs_write_atomic(path, buf, (size_t)n)) core_log_info("wrote %s", path);
+    fputs(buf, stdout);
+}
+
+int app_run(const app_options_t *o)
+{
+    app_t app = {.opts = o, .follow_path = true};
+    core_log_set_quiet(o->quiet);
+    snprintf(app.out, sizeof app.out, "%s", o->out ? o->out : "out");
+    char err[1024];
+    if (!core_fs_check_writable_dir(app.out, err, sizeof err)) {
+        core_log_error("--out: %s", err);
+        return 2;
+    }
+    int rc = load_inputs(&app);
+    if (rc) {
+        terrain_free(&app.terrain_mesh);
+        return rc;
+    }
+    scene_desc_t *s = &app.scene;
+    plat_desc_t pd = {.backend = o->headless ? PLAT_BACKEND_EGL : PLAT_BACKEND_AUTO,
+                      .width = s->size[0], .height = s->size[1]};
+    if (!plat_init(&pd, err, sizeof err)) {
+        core_log_error("no OpenGL 4.5 context: %s", err);
+        terrain_free(&app.terrain_mesh);
+        return 1;
+    }
+    bool headless = plat_is_headless();
+    app.frames = o->frames_set ? o->frames : (headless ? s->frames : 0);
+    app.shot_every = o->screenshot_every;
+    if (!app.shot_every && headless && o->screenshot_every == 0 && app.frames >= 3) app.shot_every = app.frames / 3;
+    app.hud = !headless;
+    gfx_init();
+    app.target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
+                                                      .samples = s->msaa, .label = "main"});
+    scene_camera_init(s, &app.cam);
+    bool ok = app.target.fbo && app_terrain_make(&app.terrain, &app.terrain_mesh);
+    if (!ok) {
+        core_log_error("cannot create the renderer (see messages above)");
+        rc = 1;
+    }
+    scene_clock_t clock;
+    scene_clock_init(&clock, s->dt, headless);
+    double t0 = plat_time(), last = t0;
+    int frame = 0;
+    while (ok && !plat_should_close() && (app.frames == 0 || frame < app.frames)) {
+        plat_poll_events();
+        double now = plat_time(), real_dt = now - last;
+        last = now;
+        if (!headless) handle_keys(&app, (float)real_dt);
+        int steps = scene_clock_advance(&clock, real_dt);
+        if (app.paused && !app.step_once) steps = 0;
+        if (app.paused && app.step_once) steps = 1;
+        app.step_once = false;
+        (void)steps;
+        float sim_t = (float)scene_clock_time(&clock);
+        if (app.follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, sim_t, &app.cam);
+
+        gfx_timer_frame_begin();
+        app_view_t view;
+        build_view(&app, &view, sim_t, (float)s->dt);
+        gfx_target_bind(&app.target);
+        glClearColor(0, 0, 0, 1);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glPolygonMode(GL_FRONT_AND_BACK, app.wireframe ? GL_LINE : GL_FILL);
+        gfx_timer_begin("terrain");
+        app_terrain_draw(&app.terrain, &view);
+        gfx_timer_end();
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        if (app.hud) draw_hud(&app, sim_t);
+        frame++;
+        app.frame_ms_avg = app.frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
+        bool shot = (app.shot_every && frame % app.shot_every == 0) || (!headless && plat_key_pressed(PLAT_KEY_C));
+        if (shot) screenshot(&app, frame);
+        if (!headless) {
+            int w, h;
+            plat_framebuffer_size(&w, &h);
+            gfx_target_present(&app.target, w, h);
+            plat_swap();
+        }
+        if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
+    }
+    app.frames = frame;
+    if (ok) {
+        gfx_timer_flush();
+        write_summary(&app, plat_time() - t0);
+    }
+    app_terrain_destroy(&app.terrain);
+    gfx_target_destroy(&app.target);
+    gfx_shutdown(true);
+    int gl_errors = plat_gl_error_count();
+    plat_shutdown();
+    terrain_free(&app.terrain_mesh);
+    if (gl_errors) {
+        core_log_error("%d GL error(s) during the run", gl_errors);
+        return 1;
+    }
+    return rc;
+}

@@ -1,0 +1,70 @@
+/* app_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
+ * ground), and draws the sky gradient behind everything. */
+#include "app/app_world.h"
+
+#include <string.h>
+
+bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
+{
+    memset(t, 0, sizeof *t);
+    size_t nv = mesh->vertex_count;
+    float *interleaved = malloc(nv * 8 * sizeof(float));
+    if (!interleaved) return false;
+    for (size_t i = 0; i < nv; i++) {
+        memcpy(interleaved + i * 8, mesh->positions + i * 3, 3 * sizeof(float));
+        memcpy(interleaved + i * 8 + 3, mesh->normals + i * 3, 3 * sizeof(float));
+        memcpy(interleaved + i * 8 + 6, mesh->uvs + i * 2, 2 * sizeof(float));
+    }
+    t->vbo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = nv * 8 * sizeof(float), .data = interleaved,
+                                                  .label = "terrain.vertices"});
+    free(interleaved);
+    t->ibo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = mesh->index_count * sizeof(uint32_t),
+                                                  .data = mesh->indices, .label = "terrain.indices"});
+    t->index_count = (int)mesh->index_count;
+    t->vao = gfx_vertex_array_make("terrain.vao");
+    glVertexArrayVertexBuffer(t->vao, 0, t->vbo.id, 0, 8 * sizeof(float));
+    glVertexArrayElementBuffer(t->vao, t->ibo.id);
+    for (int a = 0; a < 3; a++) {
+        static const int sizes[3] = {3, 3, 2}, offsets[3] = {0, 3, 6};
+        glEnableVertexArrayAttrib(t->vao, (GLuint)a);
+        glVertexArrayAttribFormat(t->vao, (GLuint)a, sizes[a], GL_FLOAT, GL_FALSE,
+                                  (GLuint)(offsets[a] * sizeof(float)));
+        glVertexArrayAttribBinding(t->vao, (GLuint)a, 0);
+    }
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain.vert", .fs = "app/terrain.frag",
+                                                     .label = "terrain.program"});
+    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
+                                                    .label = "sky.program"});
+    t->empty_vao = gfx_vertex_array_make("sky.vao");
+    return t->vbo.id && t->ibo.id && t->prog.id && t->sky.id;
+}
+
+void app_terrain_destroy(app_terrain_t *t)
+{
+    gfx_buffer_destroy(&t->vbo);
+    gfx_buffer_destroy(&t->ibo);
+    gfx_vertex_array_destroy(&t->vao);
+    gfx_vertex_array_destroy(&t->empty_vao);
+    gfx_program_destroy(&t->prog);
+    gfx_program_destroy(&t->sky);
+}
+
+void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
+{
+    glDepthMask(GL_FALSE);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(t->sky.id);
+    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, (const float *)v->inv_viewproj);
+    glBindVertexArray(t->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+
+    glUseProgram(t->prog.id);
+    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
+    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
+    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    glBindVertexArray(t->vao);
+    glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+}

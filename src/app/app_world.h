@@ -1,0 +1,35 @@
+/* app_world: everything the program simulates and draws each frame: the
+ * terrain, analytic colliders, characters, and the grass systems selected by
+ * the mode. Private to the app module. */
+#ifndef MEADOW_APP_WORLD_H
+#define MEADOW_APP_WORLD_H
+
+#include <cglm/cglm.h>
+
+#include "app/app.h"
+#include "gfx/gfx.h"
+#include "scene/camera.h"
+#include "scene/terrain.h"
+
+/* Per-frame view, shared by every draw. */
+typedef struct app_view_t {
+    mat4 view, proj, viewproj, inv_viewproj;
+    vec4 planes[6];
+    vec3 camera;
+    vec3 sun_dir;
+    int width, height;
+    float time, dt;
+} app_view_t;
+
+typedef struct app_terrain_t {
+    gfx_buffer_t vbo, ibo;
+    GLuint vao, empty_vao;
+    int index_count;
+    gfx_program_t prog, sky;
+} app_terrain_t;
+
+bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh);
+void app_terrain_destroy(app_terrain_t *t);
+void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
+
+#endif

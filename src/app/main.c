@@ -1,0 +1,17 @@
+/* main: entry point of the meadow program (see app.h and --help). */
+#include "app/app.h"
+
+#include "core/core.h"
+
+int main(int argc, char **argv)
+{
+    app_options_t opts;
+    char err[512];
+    int rc = app_parse_args(argc, argv, &opts, err, sizeof err);
+    if (rc == 1) return 0;
+    if (rc == 2) {
+        core_log_error("%s", err);
+        return 2;
+    }
+    return app_run(&opts);
+}

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# cli_errors: every bad command line, scene file or terrain mesh gives exactly
+# one error line on stderr and exit code 2, with no crash and no GL error.
+# Usage: cli_errors.sh MEADOW_BINARY
+set -u
+bin=$1
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fail=0
+
+expect2() { # expect2 "pattern in message" args...
+  local pat=$1; shift
+  "$bin" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+  local rc=$?
+  local errs
+  errs=$(grep -c 'error' "$tmp/stderr")
+  if [ "$rc" != 2 ] || [ "$errs" != 1 ] || ! grep -q -- "$pat" "$tmp/stderr"; then
+    echo "FAIL: meadow $* -> exit $rc, $errs error line(s), want exit 2 and one line matching '$pat':"
+    sed 's/^/    /' "$tmp/stderr"
+    fail=1
+  else
+    echo "ok: meadow $* -> $(grep error "$tmp/stderr")"
+  fi
+}
+
+expect2 "unknown option '--bogus'" --bogus
+expect2 "--frames '-5'" --frames -5
+expect2 "--frames 'abc'" --frames abc
+expect2 "--size '0x100'" --size 0x100
+expect2 "--size '-640x480'" --size -640x480
+expect2 "--size '100000x100'" --size 100000x100
+expect2 "--seed 'x1'" --seed x1
+expect2 "--mode 'grass'" --mode grass
+expect2 "needs a value" --scene
+expect2 "unknown command 'fly'" fly
+expect2 "missing.json" --headless --scene "$tmp/missing.json"
+printf '{ "seed": 1,\n  "terrain": { "size": 10,\n' >"$tmp/truncated.json"
+expect2 "truncated.json:3" --headless --scene "$tmp/truncated.json"
+printf '{\n  "seed": 1,\n  "grass": { "density": "lots" }\n}\n' >"$tmp/wrongtype.json"
+expect2 'wrongtype.json:3.*grass.density' --headless --scene "$tmp/wrongtype.json"
+printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"
+expect2 'unknown.json:2.*sed' --headless --scene "$tmp/unknown.json"
+printf '{ "terrain": { "type": "mesh", "mesh": "%s/nope.obj" } }\n' "$tmp" >"$tmp/badmesh.json"
+expect2 'nope.obj' --headless --scene "$tmp/badmesh.json"
+printf 'this is not a mesh\n' >"$tmp/garbage.obj"
+printf '{ "terrain": { "type": "mesh", "mesh": "%s/garbage.obj" } }\n' "$tmp" >"$tmp/garbagemesh.json"
+expect2 'garbage.obj' --headless --scene "$tmp/garbagemesh.json"
+mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
+expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"
+exit $fail

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# window_xvfb: opens the real GLFW window under Xvfb, takes a screenshot with
+# the C key, toggles wireframe with F through xdotool, takes another, and
+# checks that both screenshots exist and differ.
+# Usage: window_xvfb.sh MEADOW_BINARY
+set -u
+bin=$1
+root=$(cd "$(dirname "$0")/.." && pwd)
+command -v Xvfb >/dev/null && command -v xdotool >/dev/null || { echo "SKIP: Xvfb or xdotool missing"; exit 77; }
+tmp=$(mktemp -d)
+disp=:$((90 + RANDOM % 100))
+Xvfb "$disp" -screen 0 640x480x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
+xpid=$!
+cleanup() { kill "$mpid" 2>/dev/null; kill "$xpid" 2>/dev/null; wait 2>/dev/null; rm -rf "$tmp"; }
+trap cleanup EXIT
+export DISPLAY=$disp
+for _ in $(seq 50); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.1; done
+cd "$root"
+"$bin" --scene scenes/tiny.json --size 320x240 --frames 100000 --out "$tmp/out" --screenshot-every 0 \
+  >"$tmp/meadow.log" 2>&1 &
+mpid=$!
+wid=""
+for _ in $(seq 300); do
+  wid=$(xdotool search --name '^meadow' 2>/dev/null | head -1)
+  [ -n "$wid" ] && break
+  sleep 0.2
+done
+[ -n "$wid" ] || { echo "FAIL: no meadow window"; cat "$tmp/meadow.log"; exit 1; }
+grep -q "platform: glfw" "$tmp/meadow.log" || { echo "FAIL: not the GLFW back end"; cat "$tmp/meadow.log"; exit 1; }
+shot() { # shot N: press C and wait for the Nth screenshot
+  xdotool key --window "$wid" c
+  for _ in $(seq 150); do
+    [ "$(ls "$tmp/out"/shot-*.png 2>/dev/null | wc -l)" -ge "$1" ] && return 0
+    sleep 0.2
+  done
+  return 1
+}
+sleep 1
+shot 1 || { echo "FAIL: key C wrote no screenshot"; cat "$tmp/meadow.log"; exit 1; }
+xdotool key --window "$wid" f
+sleep 1
+shot 2 || { echo "FAIL: second screenshot missing"; cat "$tmp/meadow.log"; exit 1; }
+a=$(ls "$tmp/out"/shot-*.png | head -1); b=$(ls "$tmp/out"/shot-*.png | tail -1)
+if cmp -s "$a" "$b"; then echo "FAIL: wireframe key changed nothing ($a == $b)"; exit 1; fi
+xdotool key --window "$wid" Escape
+for _ in $(seq 100); do kill -0 "$mpid" 2>/dev/null || break; sleep 0.1; done
+if kill -0 "$mpid" 2>/dev/null; then echo "FAIL: Escape did not close the window"; exit 1; fi
+wait "$mpid"; rc=$?
+[ "$rc" = 0 ] || { echo "FAIL: meadow exited $rc"; cat "$tmp/meadow.log"; exit 1; }
+echo "ok: window screenshots differ after wireframe toggle ($a, $b)"
