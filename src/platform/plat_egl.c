@@ -3,6 +3,8 @@
  * EGL_MESA_platform_surfaceless (Mesa llvmpipe). Rendering goes to FBOs. */
 #include "platform/plat_local.h"
 
+#include "core/core.h"
+
 #include <epoxy/egl.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -37,8 +39,9 @@ static bool try_display(EGLDisplay dpy, const char *name, char *err, size_t err_
         eglTerminate(dpy);
         return false;
     }
-    static const EGLint cfg_attr[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                      EGL_NONE};
+    /* No surface is ever made, but some drivers (NVIDIA) still want a
+     * config: the first OpenGL-renderable one, else EGL_NO_CONFIG_KHR. */
+    static const EGLint cfg_attr[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
     EGLConfig cfg = NULL;
     EGLint ncfg = 0;
     if (!eglChooseConfig(dpy, cfg_attr, &cfg, 1, &ncfg) || ncfg == 0) cfg = EGL_NO_CONFIG_KHR;
@@ -72,7 +75,8 @@ bool plat_egl_init(const plat_desc_t *desc, char *err, size_t err_size)
         return false;
     }
     if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device") &&
-        epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration")) {
+        (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_enumeration") ||
+         epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_device_base"))) {
         EGLDeviceEXT devices[16];
         EGLint n = 0;
         if (eglQueryDevicesEXT(16, devices, &n) && n > 0) {
@@ -92,7 +96,10 @@ bool plat_egl_init(const plat_desc_t *desc, char *err, size_t err_size)
     }
     if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
         EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
-        if (try_display(dpy, "egl-surfaceless", err, err_size)) return true;
+        if (try_display(dpy, "egl-surfaceless", err, err_size)) {
+            if (err[0]) core_log_info("EGL fell back to surfaceless: %s", err);
+            return true;
+        }
     } else {
         append(err, err_size, "egl-surfaceless: EGL_MESA_platform_surfaceless not offered; ");
     }
