@@ -1,0 +1,267 @@
+/* bb.glsl: GLSL twins of src/billboard/bb_ref.c and bb_layout.c for the
+ * billboard grass of Orthmann, Rezk-Salama & Kolb 2009: the stored billboard
+ * struct, depth cube map lookup, inside test (eq. 1-3), push-out (eq. 4-5),
+ * spring relaxation (eq. 6-7), recovery (eq. 8), the procedural wind pose
+ * and the generation rule. Each function mirrors the C function of the same
+ * name (bb_ref_x -> bb_x) statement by statement; see bb_ref.h for the cube
+ * map face table and texel addressing. Integer results match the C code bit
+ * for bit; float results to rounding (sin/sqrt precision, fma contraction).
+ *
+ * Requires hash_u32(uint) (common/hash.glsl, twin of core_hash_u32) to be
+ * declared before this file when bb_generate is used (define BB_NO_GENERATE
+ * to leave it out). Mesh size: define BB_N (columns) and BB_M (rows) before
+ * including, default 4 x 4; BB_MAX_CUBES (default 4) bounds the objects per
+ * bb_collide call. */
+#ifndef BB_GLSL
+#define BB_GLSL
+
+#ifndef BB_N
+#define BB_N 4
+#endif
+#ifndef BB_M
+#define BB_M 4
+#endif
+#ifndef BB_MAX_CUBES
+#define BB_MAX_CUBES 4
+#endif
+
+#define BB_STATE_IDLE 0u
+#define BB_STATE_COLLIDING 1u
+#define BB_STATE_RECOVERING 2u
+
+/* One stored billboard; std430, 64 bytes, mirrors bb_point_t. As a vertex
+ * buffer (stride 64) the attributes are:
+ *   location 0: vec4  position.xyz, angle        offset 0
+ *   location 1: vec4  growth.xyz, messiness      offset 16
+ *   location 2: vec2  size                       offset 32
+ *   location 3: uvec2 layer, state (IPointer)    offset 40
+ *   location 4: float recover_time               offset 48
+ *   location 5: uint  seed (IPointer)            offset 52 */
+struct bb_point {
+    vec3 position;
+    float angle;
+    vec3 growth;
+    float messiness;
+    vec2 size;
+    uint layer;
+    uint state;
+    float recover_time;
+    uint seed;
+    uint pad0;
+    uint pad1;
+};
+
+/* Mirrors bb_cubemap_t; the texels live in a sampler2DArray (RGBA32F,
+ * layer = layer0 + face, texel (i, j) = texelFetch(ivec3(i, j, layer), 0)). */
+struct bb_cube {
+    vec3 centre;
+    float half_size;
+    int res;
+    int layer0;
+};
+
+/* ---- cube map (bb_cubemap_face_basis, bb_ref_lookup/inside/push_out) ---- */
+
+const vec3 bb_face_u[6] = vec3[6](vec3(0, 0, -1), vec3(0, 0, 1), vec3(1, 0, 0),
+                                  vec3(1, 0, 0), vec3(1, 0, 0), vec3(-1, 0, 0));
+const vec3 bb_face_v[6] = vec3[6](vec3(0, 1, 0), vec3(0, 1, 0), vec3(0, 0, -1),
+                                  vec3(0, 0, 1), vec3(0, 1, 0), vec3(0, 1, 0));
+const vec3 bb_face_in[6] = vec3[6](vec3(-1, 0, 0), vec3(1, 0, 0), vec3(0, -1, 0),
+                                   vec3(0, 1, 0), vec3(0, 0, -1), vec3(0, 0, 1));
+
+float bb_lookup(sampler2DArray tex, bb_cube cube, int face, vec3 q, out vec4 texel)
+{
+    vec3 rel = q - cube.centre;
+    float pu = dot(rel, bb_face_u[face]);
+    float pv = dot(rel, bb_face_v[face]);
+    float depth = dot(rel, bb_face_in[face]) + cube.half_size;
+    float scale = float(cube.res) / (2.0 * cube.half_size);
+    int i = int(floor((pu + cube.half_size) * scale));
+    int j = int(floor((pv + cube.half_size) * scale));
+    i = clamp(i, 0, cube.res - 1);
+    j = clamp(j, 0, cube.res - 1);
+    texel = texelFetch(tex, ivec3(i, j, cube.layer0 + face), 0);
+    return depth;
+}
+
+bool bb_inside(sampler2DArray tex, bb_cube cube, vec3 q)
+{
+    for (int f = 0; f < 6; f++) {
+        vec4 tx;
+        float d = bb_lookup(tex, cube, f, q, tx);
+        if (!(d > tx.x)) return false;
+    }
+    return true;
+}
+
+bool bb_push_out(sampler2DArray tex, bb_cube cube, vec3 q, out vec3 o)
+{
+    float best = 3.402823e38;
+    vec3 n = vec3(0.0);
+    for (int f = 0; f < 6; f++) {
+        vec4 tx;
+        float pen = bb_lookup(tex, cube, f, q, tx) - tx.x;
+        if (!(pen > 0.0)) {
+            o = q;
+            return false;
+        }
+        if (pen < best) {
+            best = pen;
+            n = tx.yzw;
+        }
+    }
+    o = q + best * n;
+    return true;
+}
+
+/* ---- billboard mesh (bb_mesh_t): vertex (i, j) at j*BB_N + i, row 0 fixed ---- */
+
+vec3 bb_pos[BB_N * BB_M];
+vec3 bb_rest[BB_N * BB_M];
+
+void bb_spring(int a, int b, float r)
+{
+    bool fa = a < BB_N, fb = b < BB_N;
+    if (fa && fb) return;
+    vec3 delta = bb_pos[b] - bb_pos[a];
+    float l = length(delta);
+    if (l < 1e-12) return;
+    float l0 = distance(bb_rest[a], bb_rest[b]);
+    vec3 c = delta * ((l - l0) / l);
+    if (fa) {
+        bb_pos[b] += c * -r;
+    } else if (fb) {
+        bb_pos[a] += c * r;
+    } else {
+        bb_pos[a] += c * (0.5 * r);
+        bb_pos[b] += c * (-0.5 * r);
+    }
+}
+
+void bb_relax_springs(float r1, float r2, int iterations)
+{
+    for (int it = 0; it < iterations; it++) {
+        for (int j = 1; j < BB_M; j++)
+            for (int i = 0; i < BB_N - 1; i++) bb_spring(j * BB_N + i, j * BB_N + i + 1, r1);
+        for (int i = 0; i < BB_N; i++)
+            for (int j = 0; j < BB_M - 1; j++) bb_spring(j * BB_N + i, (j + 1) * BB_N + i, r1);
+        for (int j = 0; j < BB_M - 1; j++) {
+            for (int i = 0; i < BB_N - 1; i++) {
+                bb_spring(j * BB_N + i, (j + 1) * BB_N + i + 1, r2);
+                bb_spring(j * BB_N + i + 1, (j + 1) * BB_N + i, r2);
+            }
+        }
+    }
+}
+
+void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
+                  mat4 c2w[BB_MAX_CUBES], int count)
+{
+    for (int v = BB_N; v < BB_N * BB_M; v++) {
+        for (int c = 0; c < count; c++) {
+            vec3 q = (w2c[c] * vec4(bb_pos[v], 1.0)).xyz;
+            vec3 o;
+            if (bb_push_out(tex, cubes[c], q, o)) bb_pos[v] = (c2w[c] * vec4(o, 1.0)).xyz;
+        }
+    }
+}
+
+/* bb_ref_collide: push-out, then K x (one relaxation sweep, push-out).
+ * c2w[c] must be inverse(w2c[c]) (computed once on the CPU). */
+void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
+                mat4 c2w[BB_MAX_CUBES], int count, float r1, float r2, int iterations)
+{
+    bb_push_mesh(tex, cubes, w2c, c2w, count);
+    for (int it = 0; it < iterations; it++) {
+        bb_relax_springs(r1, r2, 1);
+        bb_push_mesh(tex, cubes, w2c, c2w, count);
+    }
+}
+
+/* Eq. 8 with the wind pose w (bb_wind_pose output). */
+void bb_recover(vec3 w[BB_N * BB_M], float t)
+{
+    t = clamp(t, 0.0, 1.0);
+    float t3 = t * t * t;
+    for (int v = 0; v < BB_N * BB_M; v++) bb_pos[v] = (1.0 - t3) * w[v] + t3 * bb_pos[v];
+}
+
+/* ---- wind (bb_ref_wind_vertex / bb_ref_wind_pose) ---- */
+
+struct bb_wind {
+    vec2 dir;          /* normalised xz */
+    float strength;
+    float omega;
+    float wavenumber;
+};
+
+vec3 bb_wind_vertex(bb_wind wind, vec3 rest, vec3 root, float h, float time)
+{
+    float ph = wind.wavenumber * (root.x * wind.dir.x + root.z * wind.dir.y);
+    float wt = wind.omega * time;
+    float s = 0.6 * sin(wt - ph) + 0.3 * sin(2.3 * wt - 1.7 * ph + 1.3) +
+              0.1 * sin(5.1 * wt - 2.9 * ph + 0.7);
+    float bend = wind.strength * h * h * (0.4 + 0.6 * s);
+    return vec3(rest.x + bend * wind.dir.x, rest.y, rest.z + bend * wind.dir.y);
+}
+
+void bb_wind_pose(bb_wind wind, float time, out vec3 w[BB_N * BB_M])
+{
+    vec3 root = mix(bb_rest[0], bb_rest[BB_N - 1], 0.5);
+    for (int j = 0; j < BB_M; j++) {
+        float h = float(j) / float(BB_M - 1);
+        for (int i = 0; i < BB_N; i++) w[j * BB_N + i] = bb_wind_vertex(wind, bb_rest[j * BB_N + i], root, h, time);
+    }
+}
+
+/* ---- generation rule (bb_layout_sample) ----
+ * Layout images are uploaded row 0 first without a flip, so
+ * texelFetch(ivec2(tx, tz)) reads core_image px[tz * W + tx]. */
+#ifndef BB_NO_GENERATE
+
+struct bb_gen {
+    float spacing;
+    vec2 origin;
+    int cells_per_texel;
+    float width;
+    float height;
+    uint seed;
+    uint layers;
+};
+
+float bb_hash_float(uint x) { return float(hash_u32(x) >> 8) * (1.0 / 16777216.0); }
+
+int bb_floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
+
+/* extent / messiness: R8 unorm; direction: RGB8 unorm. */
+bool bb_generate(sampler2D extent, sampler2D direction, sampler2D messiness, bb_gen d, int ix,
+                 int iz, out bb_point p)
+{
+    uint h = hash_u32(uint(ix) * 0x8da6b343u ^ hash_u32(uint(iz) ^ hash_u32(d.seed)));
+    ivec2 wh = textureSize(extent, 0);
+    int tx = bb_mod(bb_floor_div(ix, d.cells_per_texel), wh.x);
+    int tz = bb_mod(bb_floor_div(iz, d.cells_per_texel), wh.y);
+    uint e = uint(round(texelFetch(extent, ivec2(tx, tz), 0).r * 255.0));
+    p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
+    if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
+    p.position.x = d.origin.x + (float(ix) + bb_hash_float(h + 1u)) * d.spacing;
+    p.position.y = 0.0;
+    p.position.z = d.origin.y + (float(iz) + bb_hash_float(h + 2u)) * d.spacing;
+    p.size.x = d.width * (0.8 + 0.4 * bb_hash_float(h + 3u));
+    p.size.y = d.height * (0.6 + 0.8 * bb_hash_float(h + 4u)) * (0.5 + 0.5 * float(e) / 255.0);
+    p.angle = 6.2831853 * bb_hash_float(h + 5u);
+    p.layer = ((hash_u32(h + 6u) >> 8) * d.layers) >> 24;
+    vec3 g = round(texelFetch(direction, ivec2(tx, tz), 0).rgb * 255.0) / 255.0 * 2.0 - 1.0;
+    p.growth = g * (1.0 / sqrt(dot(g, g)));
+    p.messiness = round(texelFetch(messiness, ivec2(tx, tz), 0).r * 255.0) / 255.0;
+    p.seed = h;
+    p.state = BB_STATE_IDLE;
+    p.recover_time = 0.0;
+    return true;
+}
+
+#endif /* BB_NO_GENERATE */
+
+#endif /* BB_GLSL */

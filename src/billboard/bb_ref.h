@@ -1,0 +1,171 @@
+/* bb_ref: GL-free reference of the billboard collision model of Orthmann,
+ * Rezk-Salama & Kolb 2009, "GPU-based Responsive Grass": depth cube maps of
+ * animated objects (rasterised on the CPU), the inside test (eq. 1-3), the
+ * push-out response (eq. 4-5), spring relaxation of the refined billboard
+ * mesh (eq. 6-7), recovery towards the wind pose (eq. 8) and the procedural
+ * wind pose. shaders/common/bb.glsl mirrors every function here line by line.
+ *
+ * ---- depth cube map convention (shared with the GPU side) -----------------
+ * A cube map surrounds an object's bounding cube [centre-half, centre+half]^3
+ * given in the object's local ("cube") space. Face f (0..5 = +X,-X,+Y,-Y,+Z,-Z)
+ * is the plane at centre + half*outward; its camera looks inward. Texel (i,j)
+ * of face f (i along u, j along v, j = 0 at v = -half, i.e. GL's bottom row
+ * when rendered with an orthographic camera whose right = u and up = v) has
+ * its centre at face-local (u,v) = -half + (i+0.5, j+0.5) * 2*half/res.
+ *
+ *   face | outward | u  | v  | inward
+ *   -----+---------+----+----+-------
+ *   0 +X |   +X    | -Z | +Y |  -X
+ *   1 -X |   -X    | +Z | +Y |  +X
+ *   2 +Y |   +Y    | +X | -Z |  -Y
+ *   3 -Y |   -Y    | +X | +Z |  +Y
+ *   4 +Z |   +Z    | +X | +Y |  -Z
+ *   5 -Z |   -Z    | -X | +Y |  +Z
+ *   (u x v = outward for every face.)
+ *
+ * texels[((f*res + j)*res + i)*4 + k], k = 0: distance from the face plane
+ * along `inward` to the first surface hit, k = 1..3: the object's outward
+ * surface normal there (cube space). No hit: distance = 2*half (the far face;
+ * chosen over +infinity so GPU float textures never hold inf), normal =
+ * outward of the face. On the GPU this is a 2D array texture, layer = face.
+ *
+ * A point q (cube space) projects on face f to (u,v) = ((q-c).u, (q-c).v) and
+ * to the projected depth d_f = (q-c).inward + half (0 on the face plane, 2*half
+ * on the opposite face). Lookups are NEAREST texel (no bilinear filtering), so
+ * the GPU side can use texelFetch and match bit for bit. */
+#ifndef MEADOW_BB_REF_H
+#define MEADOW_BB_REF_H
+
+#include <cglm/cglm.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+enum { BB_FACE_PX, BB_FACE_NX, BB_FACE_PY, BB_FACE_NY, BB_FACE_PZ, BB_FACE_NZ, BB_FACE_COUNT };
+
+typedef struct bb_cubemap_t {
+    int res;        /* texels per face side */
+    float *texels;  /* 6*res*res*4 floats: distance, nx, ny, nz */
+    vec3 centre;    /* cube centre, cube space */
+    float half;     /* half edge length */
+} bb_cubemap_t;
+
+/* Allocates the texels and clears every texel to "no hit". */
+bool bb_cubemap_init(bb_cubemap_t *cube, int res, const vec3 centre, float half);
+void bb_cubemap_free(bb_cubemap_t *cube);
+/* Resets every texel to "no hit" (distance 2*half, normal = face outward). */
+void bb_cubemap_clear(bb_cubemap_t *cube);
+/* The table above: u, v and inward unit axes of face f. */
+void bb_cubemap_face_basis(int face, vec3 axis_u, vec3 axis_v, vec3 inward);
+/* Cube-space centre of texel (i,j) on face f's plane (the ray origin). */
+void bb_cubemap_texel_origin(const bb_cubemap_t *cube, int face, int i, int j, vec3 out);
+
+/* CPU rasterisation: one ray per texel centre from the face plane inward.
+ * Each call depth-tests (keeps the nearer hit), so several calls build the
+ * union of shapes (e.g. the capsules of a character proxy). A shape poking
+ * out through a face plane gives distance 0 there, normal = face outward.
+ * Shape parameters are in cube space. */
+void bb_cubemap_render_sphere(bb_cubemap_t *cube, const vec3 centre, float radius);
+void bb_cubemap_render_capsule(bb_cubemap_t *cube, const vec3 a, const vec3 b, float radius);
+/* Axis-aligned box (cube space) given by centre and half extents. */
+void bb_cubemap_render_box(bb_cubemap_t *cube, const vec3 centre, const vec3 half_extents);
+
+/* Nearest-texel lookup of q (cube space) on face f. Writes the stored texel
+ * (distance, normal) to texel and returns the projected depth d_f of q. */
+float bb_ref_lookup(const bb_cubemap_t *cube, int face, const vec3 q, vec4 texel);
+/* Eq. 1-3: q is inside the object iff q lies in the cube and, on every face,
+ * its projected depth exceeds the stored distance (d_f > D_f). */
+bool bb_ref_inside(const bb_cubemap_t *cube, const vec3 q);
+/* Eq. 4-5: if q is inside, pick the face with the smallest penetration
+ * p_f = d_f - D_f and move q along that texel's stored normal by p_f; else
+ * return q unchanged. Returns true if q was moved. */
+bool bb_ref_push_out(const bb_cubemap_t *cube, const vec3 q, vec3 out);
+
+/* ---- billboard mesh ------------------------------------------------------
+ * N columns x M rows, vertex (i,j) at index j*N + i, row j = 0 the roots
+ * (fixed). rest holds the undeformed quad; spring rest lengths come from it. */
+typedef struct bb_mesh_t {
+    int n, m;
+    vec3 *pos;   /* current positions, world space */
+    vec3 *rest;  /* rest positions (the undeformed quad) */
+} bb_mesh_t;
+
+/* Quad of width x height centred on root_centre along `right`, rising along
+ * `up` (both normalised here). n, m >= 2. Returns false on allocation failure. */
+bool bb_mesh_init_quad(bb_mesh_t *mesh, const vec3 root_centre, const vec3 right,
+                       const vec3 up, float width, float height, int n, int m);
+void bb_mesh_free(bb_mesh_t *mesh);
+
+/* Eq. 6-7: `iterations` Gauss-Seidel sweeps over, in this order, horizontal
+ * structural springs (row by row), vertical structural springs (column by
+ * column), then shear springs (both diagonals of each cell, "/" then "\").
+ * A spring a-b with rest length l0 and current length l has correction
+ * c = (l - l0)/l * (b - a): free ends move a += r/2 c, b -= r/2 c; if a is
+ * a root only b moves, b -= r c (and vice versa). r = r1 structural, r2 shear. */
+void bb_ref_relax_springs(bb_mesh_t *mesh, float r1, float r2, int iterations);
+/* Mean |l - l0| / l0 over all structural and shear springs. */
+float bb_ref_spring_error(const bb_mesh_t *mesh);
+
+typedef struct bb_collide_desc_t {
+    float r1;       /* structural responsiveness, default 1.0 */
+    float r2;       /* shear responsiveness, default 0.5 */
+    int iterations; /* relaxation sweeps K, default 4 */
+} bb_collide_desc_t;
+bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
+
+/* Push every non-root vertex out of each cube (eq. 4-5), then K times: one
+ * relaxation sweep (eq. 6-7) followed by another push-out. Departure from
+ * the paper, which relaxes once after the push-out: re-projecting after each
+ * sweep keeps springs from pulling vertices back inside the object.
+ * world_to_cube[k] maps world space into cube k's space. desc may be NULL. */
+void bb_ref_collide(bb_mesh_t *mesh, const bb_cubemap_t *cubes, const mat4 *world_to_cube,
+                    int count, const bb_collide_desc_t *desc);
+
+/* Eq. 8: v <- (1 - t^3) w + t^3 v for every vertex, t = remaining recover
+ * time / recover duration, clamped to [0,1]. */
+void bb_ref_recover(bb_mesh_t *mesh, const vec3 *wind_pose, float t);
+
+/* ---- procedural wind ------------------------------------------------------
+ * For a vertex with rest position p, billboard root r (rest row-0 centre),
+ * height fraction h = j/(M-1), wind direction d (xz, normalised):
+ *   ph   = k * dot(r.xz, d)
+ *   s    = 0.6 sin(w t - ph) + 0.3 sin(2.3 w t - 1.7 ph + 1.3)
+ *        + 0.1 sin(5.1 w t - 2.9 ph + 0.7)
+ *   bend = strength * h^2 * (0.4 + 0.6 s)
+ *   out  = p + bend * (d.x, 0, d.y)
+ * Only the upper vertices move (h = 0 at the roots); the displacement is
+ * horizontal, so the vertical springs stretch slightly under strong wind. */
+typedef struct bb_wind_desc_t {
+    float dir[2];      /* xz direction, normalised here; default (1, 0) */
+    float strength;    /* metres of tip displacement, default 0.1 */
+    float omega;       /* angular frequency w (rad/s), default 1.5 */
+    float wavenumber;  /* k (rad/m), default 0.4 */
+} bb_wind_desc_t;
+bb_wind_desc_t bb_wind_desc_defaults(const bb_wind_desc_t *desc);
+
+/* One vertex of the formula above (wind must be resolved by the defaults). */
+void bb_ref_wind_vertex(const bb_wind_desc_t *wind, const vec3 rest, const vec3 root,
+                        float h, float time, vec3 out);
+/* Wind pose of the whole mesh into out[n*m]. desc may be NULL. */
+void bb_ref_wind_pose(const bb_mesh_t *mesh, const bb_wind_desc_t *desc, float time, vec3 *out);
+
+/* ---- stored billboard ------------------------------------------------------
+ * One generated billboard (a point in the billboard buffer). Mirrors
+ * struct bb_point in shaders/common/bb.glsl (std430, 64 bytes); used both as
+ * an SSBO element and as a vertex buffer with the attribute layout listed
+ * there. */
+enum { BB_STATE_IDLE = 0, BB_STATE_COLLIDING = 1, BB_STATE_RECOVERING = 2 };
+
+typedef struct bb_point_t {
+    float position[3];   /* root centre, world space (y = terrain height)  offset 0 */
+    float angle;         /* rotation of the quad about `growth`, radians       12 */
+    float growth[3];     /* growth direction (unit), from the direction map    16 */
+    float messiness;     /* 0..1 from the messiness map                        28 */
+    float size[2];       /* width, height in metres                            32 */
+    uint32_t layer;      /* clump texture array layer                          40 */
+    uint32_t state;      /* BB_STATE_*                                         44 */
+    float recover_time;  /* seconds of recovery left                           48 */
+    uint32_t seed;       /* per-billboard hash                                 52 */
+    uint32_t pad[2];     /*                                                    56 */
+} bb_point_t;
+
+#endif
