@@ -1,0 +1,176 @@
+/* scene: the scene description (JSON files in scenes/) that drives every run:
+ * terrain, grass parameters for the billboard (Orthmann et al. 2009), blade
+ * (Jahrmann & Wimmer 2017) and hybrid renderers, camera, wind, analytic
+ * colliders and walking characters. GL-free.
+ *
+ * Parsing is strict: unknown keys, wrong types, out-of-range values, too many
+ * entries and malformed JSON are errors of the form
+ *     scenes/x.json:12: field "grass.density": expected number, got string
+ * (file, line, field path, reason). Limits are never capped silently.
+ *
+ * Every field is optional; absent or 0 means the default written below (the
+ * meadow "zero means default" rule; an explicit 0 therefore also selects the
+ * default). Ranges in [] are the accepted JSON values. File paths inside a
+ * scene (terrain.mesh, characters[].model) are repository-relative and are
+ * resolved by the consumer with core_fs_resolve. */
+#ifndef MEADOW_SCENE_H
+#define MEADOW_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cglm/cglm.h>
+
+#include "scene/camera.h"
+#include "scene/path.h"
+#include "scene/terrain.h"
+
+#define SCENE_MAX_WIND 16
+#define SCENE_MAX_COLLIDERS 128
+#define SCENE_MAX_CHARACTERS 16
+/* Paths (camera.path, colliders[].path, characters[].path) hold at most
+ * SCENE_MAX_PATH_KEYS (64) keys or waypoints; see path.h. */
+#define SCENE_PATH_MAX 256 /* bytes of a file path, including the NUL */
+#define SCENE_NAME_MAX 64  /* bytes of a clip name, including the NUL */
+
+typedef enum scene_mode_t {
+    SCENE_MODE_HYBRID = 0, /* "hybrid" (default): blades near, billboards far */
+    SCENE_MODE_BILLBOARD,  /* "billboard": Orthmann et al. 2009 only */
+    SCENE_MODE_BLADE,      /* "blade": Jahrmann & Wimmer 2017 only */
+} scene_mode_t;
+
+/* Blade shape functions of Jahrmann & Wimmer 2017, section 5. */
+typedef enum scene_blade_shape_t {
+    SCENE_SHAPE_QUADRATIC = 0, /* "quadratic" (default) */
+    SCENE_SHAPE_QUAD,          /* "quad" */
+    SCENE_SHAPE_TRIANGLE,      /* "triangle" */
+    SCENE_SHAPE_TRIANGLE_TIP,  /* "triangle_tip" */
+    SCENE_SHAPE_DANDELION,     /* "dandelion" */
+} scene_blade_shape_t;
+
+/* "grass" object. */
+typedef struct scene_grass_desc_t {
+    float density;           /* blades per m^2 [0, 10000]; default 200 */
+    vec2 height;             /* blade height [min, max] m, each [0, 10]; default [0.35, 0.7] */
+    vec2 width;              /* blade width [min, max] m, each [0, 1]; default [0.02, 0.05] */
+    vec2 stiffness;          /* blade stiffness [min, max], each [0, 100]; default [0.5, 1.0] */
+    float billboard_density; /* billboards per m^2 [0, 1000]; default 6 */
+    vec2 billboard_size;     /* billboard [w, h] m, each [0, 20]; default [1.0, 0.6] */
+    float switch_distance;   /* hybrid blade->billboard distance m [0, 1000]; default 12 */
+    float tile_size;         /* grass tile side m [0, 1000]; default 4 */
+    scene_blade_shape_t shape; /* default quadratic */
+    int subdiv[2];           /* billboard mesh subdivision [N, M], each [0, 64]; default [4, 4] */
+    int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
+    int cube_resolution;     /* collision cube-map resolution [0, 4096]; default 32 */
+    float recover_time;      /* seconds to stand up after a push [0, 3600]; default 3 */
+} scene_grass_desc_t;
+/* For [min, max] pairs, [0, 0] (or absent) means default; otherwise
+ * min <= max is required. */
+
+/* "camera" object. position/target each component [-1e6, 1e6]; when both are
+ * zero the camera sits at (0, 8, 24) looking at the origin. */
+typedef struct scene_camera_desc_t {
+    vec3 position;
+    vec3 target;
+    float fov;       /* vertical degrees [0, 179]; default 60 */
+    float near;      /* m [0, 1e4]; default 0.1 */
+    float far;       /* m [0, 1e6]; default 200; must exceed near */
+    cam_path_t path; /* "path": [{"t", "position", "target"}...], t strictly increasing */
+} scene_camera_desc_t;
+
+typedef enum scene_wind_type_t {
+    SCENE_WIND_DIRECTIONAL = 0, /* "directional" (default) */
+    SCENE_WIND_POINT,           /* "point" */
+} scene_wind_type_t;
+
+/* "wind" array entry. Directional keys: type, direction, strength,
+ * wavelength, speed. Point keys: type, position, strength, radius. */
+typedef struct scene_wind_t {
+    scene_wind_type_t type;
+    vec2 direction;   /* directional: (x, z), normalised on load; default (1, 0) */
+    float strength;   /* [0, 100]; default 1 */
+    float wavelength; /* directional: gust wavelength m [0, 1e4]; default 10 */
+    float speed;      /* directional: gust speed m/s [0, 1000]; default 2 */
+    vec3 position;    /* point: centre, components [-1e6, 1e6] */
+    float radius;     /* point: falloff radius m [0, 1e4]; default 5 */
+} scene_wind_t;
+
+typedef enum scene_collider_type_t {
+    SCENE_COLLIDER_SPHERE = 0, /* "sphere" (default); keys radius */
+    SCENE_COLLIDER_CAPSULE,    /* "capsule"; keys radius, length (vertical axis) */
+    SCENE_COLLIDER_BOX,        /* "box"; keys half_extents (axis aligned) */
+} scene_collider_type_t;
+
+/* "colliders" array entry. Common keys: type, position, path, loop.
+ * "position": [x,y,z] is a static collider (stored as a one-key path);
+ * "path": [{"t", "position"}...] moves it (scene_path_eval); not both. */
+typedef struct scene_collider_t {
+    scene_collider_type_t type;
+    float radius;      /* sphere/capsule m [0, 100]; default 0.5 (sphere), 0.3 (capsule) */
+    float length;      /* capsule segment length m [0, 100]; default 1 */
+    vec3 half_extents; /* box m, each [0, 100]; default (0.5, 0.5, 0.5) */
+    scene_path_t path; /* centre over time */
+    bool loop;         /* default false; see scene_path_eval */
+} scene_collider_t;
+
+/* "characters" array entry. Keys: model (required), clip, speed, scale, path,
+ * loop. */
+typedef struct scene_character_t {
+    char model[SCENE_PATH_MAX];    /* model file, e.g. "models/humanoid.gltf" */
+    char clip_name[SCENE_NAME_MAX]; /* "clip": "walk" -> name, clip_index = -1 */
+    int clip_index;                /* "clip": 2 -> index [0, 1000]; default 0 (first clip) */
+    float speed;                   /* walking speed m/s [0, 100]; default 1.2 */
+    float scale;                   /* uniform model scale [0, 1000]; default 1 */
+    int waypoint_count;            /* "path": [[x, z], ...]; none = stands at the origin */
+    vec2 waypoints[SCENE_MAX_PATH_KEYS];
+    bool loop;                     /* closed walk, default false; see scene_walk_eval */
+} scene_character_t;
+
+/* The whole scene. Top-level keys: seed, frames, dt, size, msaa, mode,
+ * terrain, grass, camera, wind, colliders, characters.
+ * "terrain" keys: type ("heightfield" | "mesh"), size [0, 10000],
+ * resolution [0, 4096], height [0, 1000], mesh (required for type mesh),
+ * scale [0, 1e6]; defaults in terrain.h (40 m, 64 cells, 1.5 m, scale 1). */
+typedef struct scene_desc_t {
+    uint32_t seed;        /* [0, 2^32-1]; default 0 (a valid seed) */
+    int frames;           /* frames of a headless run [0, 1e7]; default 300 */
+    float dt;             /* fixed timestep s [0, 1]; default 1/60 */
+    int size[2];          /* framebuffer [w, h] px, each [0, 16384]; default [1280, 720] */
+    int msaa;             /* samples, one of 0, 1, 2, 4, 8, 16 (1 = off); default 4 */
+    scene_mode_t mode;    /* default hybrid */
+    terrain_desc_t terrain;
+    scene_grass_desc_t grass;
+    scene_camera_desc_t camera;
+    int wind_count;
+    scene_wind_t wind[SCENE_MAX_WIND];
+    int collider_count;
+    scene_collider_t colliders[SCENE_MAX_COLLIDERS];
+    int character_count;
+    scene_character_t characters[SCENE_MAX_CHARACTERS];
+} scene_desc_t;
+
+/* Replaces every zero field (including those of the first *_count entries of
+ * wind, colliders and characters) with its default, in place. */
+void scene_desc_defaults(scene_desc_t *d);
+
+/* Reads and parses a scene file. On failure: err gets the message (also
+ * logged with core_log_error), *out is zeroed, returns false. */
+bool scene_load(scene_desc_t *out, const char *path, char *err, size_t err_size);
+/* Parses scene JSON text; name_for_errors prefixes messages (a file name).
+ * On success *out is fully resolved (scene_desc_defaults applied). */
+bool scene_parse(scene_desc_t *out, const char *text, const char *name_for_errors, char *err,
+                 size_t err_size);
+/* Releases the desc. It owns no heap memory today; this clears it so a freed
+ * desc never looks valid. */
+void scene_free(scene_desc_t *d);
+
+/* Camera at t = 0 from a resolved desc: position/target/fov/near/far, aspect
+ * from size, then the camera path (if any) evaluated at 0. */
+void scene_camera_init(const scene_desc_t *d, cam_t *cam);
+
+/* Names used in scene files, for logs and UIs. */
+const char *scene_mode_name(scene_mode_t mode);
+const char *scene_blade_shape_name(scene_blade_shape_t shape);
+
+#endif

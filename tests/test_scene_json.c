@@ -1,0 +1,346 @@
+/* test_scene_json: scene files parse; every malformed input fails with
+ * file:line and the field in the message; parsed values and defaults match
+ * hand-written expectations; the JSON parser decodes escapes and rejects
+ * non-JSON. */
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/core.h"
+#include "scene/scene.h"
+#include "test.h"
+
+#define DATA MEADOW_SOURCE_DIR "/tests/data/scenes/"
+
+static scene_desc_t desc; /* large: keep off the stack */
+
+static void expect_parse_fail(const char *text, const char *what, const char *sub1, const char *sub2)
+{
+    char err[512] = "";
+    bool ok = scene_parse(&desc, text, "inline.json", err, sizeof err);
+    CHECK_MSG(!ok, "%s: parsed but should fail", what);
+    CHECK_MSG(strstr(err, sub1) != NULL, "%s: \"%s\" not in \"%s\"", what, sub1, err);
+    if (sub2) CHECK_MSG(strstr(err, sub2) != NULL, "%s: \"%s\" not in \"%s\"", what, sub2, err);
+}
+
+static void expect_load_fail(const char *file, const char *sub1, const char *sub2)
+{
+    char err[512] = "", path[1024];
+    snprintf(path, sizeof path, DATA "%s", file);
+    bool ok = scene_load(&desc, path, err, sizeof err);
+    CHECK_MSG(!ok, "%s: loaded but should fail", file);
+    CHECK_MSG(strstr(err, sub1) != NULL, "%s: \"%s\" not in \"%s\"", file, sub1, err);
+    if (sub2) CHECK_MSG(strstr(err, sub2) != NULL, "%s: \"%s\" not in \"%s\"", file, sub2, err);
+    printf("  %s -> %s\n", file, err);
+}
+
+static bool parse_ok(const char *text)
+{
+    char err[512] = "";
+    bool ok = scene_parse(&desc, text, "inline.json", err, sizeof err);
+    CHECK_MSG(ok, "should parse: %s: %s", text, err);
+    return ok;
+}
+
+static void test_scene_files(void)
+{
+    DIR *dir = opendir(MEADOW_SOURCE_DIR "/scenes");
+    CHECK(dir != NULL);
+    if (!dir) return;
+    int n = 0;
+    struct dirent *e;
+    while ((e = readdir(dir))) {
+        size_t len = strlen(e->d_name);
+        if (len < 5 || strcmp(e->d_name + len - 5, ".json") != 0) continue;
+        char path[1024], err[512] = "";
+        snprintf(path, sizeof path, MEADOW_SOURCE_DIR "/scenes/%s", e->d_name);
+        CHECK_MSG(scene_load(&desc, path, err, sizeof err), "%s", err);
+        n++;
+    }
+    closedir(dir);
+    CHECK_MSG(n >= 5, "only %d scene files", n);
+
+    char err[512];
+    CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/meadow.json", err, sizeof err));
+    CHECK(desc.mode == SCENE_MODE_HYBRID);
+    CHECK(desc.terrain.type == TERRAIN_HEIGHTFIELD);
+    CHECK_NEAR(desc.terrain.size, 40, 0);
+    CHECK(desc.character_count == 2);
+    CHECK(strcmp(desc.characters[0].model, "models/humanoid.gltf") == 0);
+    CHECK(strcmp(desc.characters[1].model, "models/quadruped.gltf") == 0);
+    CHECK(desc.characters[0].loop && desc.characters[1].loop);
+    CHECK(desc.characters[0].waypoint_count >= 3);
+    CHECK(desc.wind_count >= 1 && desc.wind[0].type == SCENE_WIND_DIRECTIONAL);
+    CHECK(desc.camera.path.count >= 2);
+
+    CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/billboards.json", err, sizeof err));
+    CHECK(desc.mode == SCENE_MODE_BILLBOARD);
+    CHECK(desc.collider_count >= 1 && desc.colliders[0].type == SCENE_COLLIDER_SPHERE);
+    CHECK(desc.colliders[0].path.count >= 2);
+
+    CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/blades.json", err, sizeof err));
+    CHECK(desc.mode == SCENE_MODE_BLADE);
+    CHECK(desc.collider_count >= 1 && desc.colliders[0].path.count >= 2);
+
+    CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/closed_mesh.json", err, sizeof err));
+    CHECK(desc.terrain.type == TERRAIN_MESH);
+    CHECK(strcmp(desc.terrain.mesh, "models/torus.obj") == 0);
+
+    CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/tiny.json", err, sizeof err));
+    CHECK_NEAR(desc.terrain.size, 8, 0);
+    CHECK(desc.grass.density <= 50);
+}
+
+static void test_bad_files(void)
+{
+    expect_load_fail("does_not_exist.json", "does_not_exist.json: cannot read", "No such file");
+    expect_load_fail("bad_truncated.json", "bad_truncated.json:5:", "unexpected end of file");
+    expect_load_fail("bad_truncated.json", "unclosed '[' from line 5", NULL);
+    expect_load_fail("bad_malformed.json", "bad_malformed.json:5:", "expected ',' or '}'");
+    expect_load_fail("bad_wrong_type.json",
+                     "bad_wrong_type.json:4: field \"grass.density\": expected number, got string",
+                     NULL);
+    expect_load_fail("bad_unknown_key.json", "bad_unknown_key.json:5: field \"grass.densty\"",
+                     "unknown key \"densty\"");
+    expect_load_fail("bad_out_of_range.json", "bad_out_of_range.json:4: field \"camera.fov\"",
+                     "200 is out of range [0, 179]");
+    expect_load_fail("bad_too_many.json", "bad_too_many.json:2: field \"wind\"",
+                     "17 entries, more than the maximum 16");
+    expect_load_fail("bad_trailing.json", "bad_trailing.json:4:", "end of file after the top-level");
+    expect_load_fail("bad_wrong_type_vec.json",
+                     "bad_wrong_type_vec.json:5: field \"characters[0].path[1][1]\": expected number, "
+                     "got string",
+                     NULL);
+    /* A failed load leaves nothing behind. */
+    CHECK(desc.character_count == 0 && desc.frames == 0);
+}
+
+static void test_bad_inline(void)
+{
+    expect_parse_fail("", "empty", "inline.json:1:", "unexpected end of file");
+    expect_parse_fail("[1, 2]", "top array", "inline.json:1:", "expected object, got array");
+    expect_parse_fail("{\"seed\": 1,}", "trailing comma", "inline.json:1:", "string key after ','");
+    expect_parse_fail("{\"seed\": 1,\n\"seed\": 2}", "duplicate", "inline.json:2:",
+                      "duplicate key \"seed\" (first on line 1)");
+    expect_parse_fail("{\"seed\": 01}", "leading zero", "inline.json:1:", "expected ',' or '}'");
+    expect_parse_fail("{\"dt\": 1.}", "bare dot", "inline.json:1:", "digit after '.'");
+    expect_parse_fail("{\"dt\": .5}", "leading dot", "inline.json:1:", "unexpected character '.'");
+    expect_parse_fail("{\"dt\": +1}", "plus", "inline.json:1:", "unexpected character '+'");
+    expect_parse_fail("{\"dt\": 1e}", "bad exponent", "inline.json:1:", "exponent digit");
+    expect_parse_fail("{\"dt\": 1e999}", "huge", "inline.json:1:", "out of double range");
+    expect_parse_fail("{\"msaa\": tru}", "literal", "inline.json:1:", "unexpected character 't'");
+    expect_parse_fail("{\"msaa\": nulls}", "literal tail", "inline.json:1:", NULL);
+    expect_parse_fail("{\"mode\": \"bla\nde\"}", "newline in string", "inline.json:1:",
+                      "unterminated string");
+    expect_parse_fail("{\"mode\": \"a\\qb\"}", "bad escape", "inline.json:1:", "invalid escape '\\q'");
+    expect_parse_fail("{\"mode\": \"\\ud800x\"}", "lone high surrogate", "inline.json:1:",
+                      "not followed by a low surrogate");
+    expect_parse_fail("{\"mode\": \"\\udc00\"}", "lone low surrogate", "inline.json:1:",
+                      "lone low surrogate");
+    expect_parse_fail("{\"mode\": \"\\u12\"}", "short \\u", "inline.json:1:", "4 hex digits");
+    expect_parse_fail("{\"mode\": \"\\u0000\"}", "nul", "inline.json:1:", "\\u0000");
+    expect_parse_fail("{\n// comment\n}", "comment", "inline.json:2:", "unexpected character '/'");
+    expect_parse_fail("{\"a\" 1}", "no colon", "inline.json:1:", "':' after key");
+    expect_parse_fail("{\"seed\": [1 2]}", "array comma", "inline.json:1:", "',' or ']'");
+    expect_parse_fail("{\"mode\": \"abc", "eof in string", "inline.json:1:", "closing '\"'");
+    {
+        char deep[256] = "{\"grass\": ";
+        for (int i = 0; i < 70; i++) strcat(deep, "[");
+        expect_parse_fail(deep, "deep", "inline.json:1:", "nesting deeper than 64");
+    }
+
+    expect_parse_fail("{\n\"seed\": -1}", "negative seed", "inline.json:2: field \"seed\"",
+                      "-1 is out of range [0, 4.29497e+09]");
+    expect_parse_fail("{\"frames\": 2.5}", "fraction", "field \"frames\": expected an integer, got 2.5",
+                      NULL);
+    expect_parse_fail("{\"msaa\": 3}", "msaa", "field \"msaa\"", "3 is not one of");
+    expect_parse_fail("{\"mode\": \"grass\"}", "mode", "field \"mode\": unknown value \"grass\"",
+                      "billboard, blade");
+    expect_parse_fail("{\"size\": [1, 2, 3]}", "size len", "field \"size\"",
+                      "expected an array of 2 numbers, got 3 elements");
+    expect_parse_fail("{\"grass\": {\"height\": [0.7, 0.35]}}", "min>max", "field \"grass.height\"",
+                      "min 0.7 is greater than max 0.35");
+    expect_parse_fail("{\"grass\": {\"shape\": \"round\"}}", "shape", "field \"grass.shape\"",
+                      "dandelion");
+    expect_parse_fail("{\"grass\": 5}", "grass type", "field \"grass\": expected object, got number",
+                      NULL);
+    expect_parse_fail("{\"terrain\": {\"type\": \"mesh\"}}", "mesh required", "field \"terrain.mesh\"",
+                      "required");
+    expect_parse_fail("{\"terrain\": {\"resolution\": 5000}}", "res range",
+                      "field \"terrain.resolution\"", "[0, 4096]");
+    expect_parse_fail("{\"camera\": {\"near\": 5, \"far\": 2}}", "far<near", "field \"camera.far\"",
+                      "must be greater than near");
+    expect_parse_fail("{\"camera\": {\"path\": [\n{\"t\": 1, \"position\": [0,0,0], \"target\": "
+                      "[0,0,0]},\n{\"t\": 1, \"position\": [0,0,0], \"target\": [0,0,0]}]}}",
+                      "t order", "inline.json:3: field \"camera.path[1].t\"", "strictly increasing");
+    expect_parse_fail("{\"camera\": {\"path\": [{\"t\": 1, \"position\": [0,0,0]}]}}", "missing target",
+                      "field \"camera.path[0].target\"", "required");
+    expect_parse_fail("{\"wind\": [{\"type\": \"directional\",\n \"radius\": 3}]}", "wind key",
+                      "inline.json:2: field \"wind[0].radius\"",
+                      "unknown key \"radius\" for wind type \"directional\"");
+    expect_parse_fail("{\"wind\": [{\"type\": \"gust\"}]}", "wind type", "field \"wind[0].type\"",
+                      "unknown value \"gust\"");
+    expect_parse_fail("{\"colliders\": [{\"type\": \"box\", \"radius\": 1}]}", "box radius",
+                      "field \"colliders[0].radius\"", "for collider type \"box\"");
+    expect_parse_fail("{\"colliders\": [{\"position\": [0,0,0], \"path\": []}]}", "pos+path",
+                      "field \"colliders[0]\"", "not both");
+    expect_parse_fail("{\"colliders\": [{\"half_extents\": [1, 1]}]}", "sphere half",
+                      "field \"colliders[0].half_extents\"", "unknown key");
+    expect_parse_fail("{\"characters\": [{\"clip\": 1}]}", "model required",
+                      "field \"characters[0].model\": required", NULL);
+    expect_parse_fail("{\"characters\": [{\"model\": \"m\", \"clip\": [1]}]}", "clip type",
+                      "field \"characters[0].clip\": expected string or number, got array", NULL);
+    expect_parse_fail("{\"characters\": [{\"model\": \"m\", \"loop\": 1}]}", "loop type",
+                      "field \"characters[0].loop\": expected boolean, got number", NULL);
+    {
+        /* 65 waypoints: one more than SCENE_MAX_PATH_KEYS. */
+        static char text[4096];
+        strcpy(text, "{\"characters\": [{\"model\": \"m\", \"path\": [");
+        for (int i = 0; i <= SCENE_MAX_PATH_KEYS; i++) strcat(text, i ? ",[0,0]" : "[0,0]");
+        strcat(text, "]}]}");
+        expect_parse_fail(text, "waypoints", "field \"characters[0].path\"",
+                          "65 entries, more than the maximum 64 (SCENE_MAX_PATH_KEYS)");
+    }
+    {
+        static char text[65536];
+        strcpy(text, "{\"colliders\": [");
+        for (int i = 0; i <= SCENE_MAX_COLLIDERS; i++) strcat(text, i ? ",{}" : "{}");
+        strcat(text, "]}");
+        expect_parse_fail(text, "colliders", "field \"colliders\"", "129 entries, more than the maximum 128");
+        strcpy(text, "{\"characters\": [");
+        for (int i = 0; i <= SCENE_MAX_CHARACTERS; i++) strcat(text, i ? ",{\"model\":\"m\"}" : "{\"model\":\"m\"}");
+        strcat(text, "]}");
+        expect_parse_fail(text, "characters", "field \"characters\"", "17 entries, more than the maximum 16");
+    }
+    {
+        static char text[1024];
+        strcpy(text, "{\"terrain\": {\"mesh\": \"");
+        for (int i = 0; i < 300; i++) strcat(text, "a");
+        strcat(text, "\"}}");
+        expect_parse_fail(text, "long path", "field \"terrain.mesh\"", "longer than the maximum 255");
+    }
+}
+
+static void test_good_full(void)
+{
+    char err[512] = "";
+    bool ok = scene_load(&desc, DATA "good_full.json", err, sizeof err);
+    CHECK_MSG(ok, "%s", err);
+    if (!ok) return;
+    CHECK(desc.seed == 4294967295u);
+    CHECK(desc.frames == 42);
+    CHECK_NEAR(desc.dt, 0.025, 1e-7);
+    CHECK(desc.size[0] == 640 && desc.size[1] == 360);
+    CHECK(desc.msaa == 8);
+    CHECK(desc.mode == SCENE_MODE_BLADE);
+    CHECK(desc.terrain.type == TERRAIN_MESH);
+    CHECK(strcmp(desc.terrain.mesh, "models/torus.obj") == 0);
+    CHECK_NEAR(desc.terrain.scale, 2.5, 0);
+    const scene_grass_desc_t *g = &desc.grass;
+    CHECK_NEAR(g->density, 55.5, 0);
+    CHECK_NEAR(g->height[0], 0.1, 1e-7);
+    CHECK_NEAR(g->height[1], 0.2, 1e-7);
+    CHECK_NEAR(g->width[1], 0.03, 1e-7);
+    CHECK_NEAR(g->stiffness[0], 2, 0);
+    CHECK_NEAR(g->billboard_density, 3, 0);
+    CHECK_NEAR(g->billboard_size[0], 0.8, 1e-7);
+    CHECK_NEAR(g->switch_distance, 9, 0);
+    CHECK_NEAR(g->tile_size, 2, 0);
+    CHECK(g->shape == SCENE_SHAPE_TRIANGLE_TIP);
+    CHECK(g->subdiv[0] == 6 && g->subdiv[1] == 3);
+    CHECK(g->spring_iterations == 5 && g->cube_resolution == 64);
+    CHECK_NEAR(g->recover_time, 1.5, 0);
+    const scene_camera_desc_t *c = &desc.camera;
+    CHECK(c->position[0] == 1 && c->position[2] == 3 && c->target[1] == 5);
+    CHECK(c->fov == 45 && c->near == 0.5f && c->far == 50);
+    CHECK(c->path.count == 2);
+    CHECK_NEAR(c->path.keys[1].t, 2.5, 0);
+    CHECK(c->path.keys[1].position[0] == 3 && c->path.keys[1].target[0] == 1);
+    CHECK(desc.wind_count == 2);
+    CHECK(desc.wind[0].type == SCENE_WIND_DIRECTIONAL);
+    CHECK_NEAR(desc.wind[0].direction[0], 0.6, 1e-6); /* (3,4) normalised */
+    CHECK_NEAR(desc.wind[0].direction[1], 0.8, 1e-6);
+    CHECK(desc.wind[0].strength == 2 && desc.wind[0].wavelength == 7 && desc.wind[0].speed == 3);
+    CHECK(desc.wind[1].type == SCENE_WIND_POINT);
+    CHECK(desc.wind[1].position[2] == 3 && desc.wind[1].radius == 4);
+    CHECK_NEAR(desc.wind[1].strength, 0.5, 0);
+    CHECK(desc.collider_count == 2);
+    CHECK(desc.colliders[0].type == SCENE_COLLIDER_BOX);
+    CHECK(desc.colliders[0].half_extents[2] == 3);
+    CHECK(desc.colliders[0].path.count == 1 && desc.colliders[0].path.keys[0].position[0] == 5);
+    CHECK(desc.colliders[1].type == SCENE_COLLIDER_CAPSULE && desc.colliders[1].loop);
+    CHECK_NEAR(desc.colliders[1].radius, 0.2, 1e-7);
+    CHECK_NEAR(desc.colliders[1].length, 1.8, 1e-7);
+    CHECK(desc.colliders[1].path.count == 2 && desc.colliders[1].path.keys[1].position[0] == 2);
+    CHECK(desc.character_count == 2);
+    CHECK_MSG(strcmp(desc.characters[0].model, "models/h\xc3\xa9\"q/x.gltf") == 0, "decoded: %s",
+              desc.characters[0].model);
+    CHECK(strcmp(desc.characters[0].clip_name, "walk") == 0 && desc.characters[0].clip_index == -1);
+    CHECK(desc.characters[0].speed == 2 && desc.characters[0].scale == 0.5f);
+    CHECK(desc.characters[0].waypoint_count == 3 && desc.characters[0].waypoints[2][1] == 2);
+    CHECK(desc.characters[0].loop);
+    CHECK(desc.characters[1].clip_index == 3 && desc.characters[1].clip_name[0] == 0);
+    CHECK_NEAR(desc.characters[1].speed, 1.2, 1e-7); /* default */
+    CHECK(!desc.characters[1].loop);
+}
+
+static void test_defaults_and_values(void)
+{
+    if (parse_ok("{}")) {
+        CHECK(desc.seed == 0 && desc.frames == 300);
+        CHECK_NEAR(desc.dt, 1.0 / 60.0, 1e-9);
+        CHECK(desc.size[0] == 1280 && desc.size[1] == 720 && desc.msaa == 4);
+        CHECK(desc.mode == SCENE_MODE_HYBRID);
+        CHECK(desc.terrain.type == TERRAIN_HEIGHTFIELD && desc.terrain.size == 40);
+        CHECK(desc.terrain.resolution == 64 && desc.terrain.height == 1.5f && desc.terrain.scale == 1);
+        CHECK(desc.grass.density == 200 && desc.grass.billboard_density == 6);
+        CHECK(desc.grass.height[0] == 0.35f && desc.grass.height[1] == 0.7f);
+        CHECK(desc.grass.switch_distance == 12 && desc.grass.tile_size == 4);
+        CHECK(desc.grass.shape == SCENE_SHAPE_QUADRATIC);
+        CHECK(desc.grass.subdiv[0] == 4 && desc.grass.subdiv[1] == 4);
+        CHECK(desc.grass.spring_iterations == 2 && desc.grass.cube_resolution == 32);
+        CHECK(desc.grass.recover_time == 3);
+        CHECK(desc.camera.fov == 60 && desc.camera.near == 0.1f && desc.camera.far == 200);
+        CHECK(desc.camera.position[1] == 8 && desc.camera.position[2] == 24);
+        CHECK(desc.wind_count == 0 && desc.collider_count == 0 && desc.character_count == 0);
+        cam_t cam;
+        scene_camera_init(&desc, &cam);
+        CHECK_NEAR(cam.aspect, 1280.0 / 720.0, 1e-6);
+        CHECK(cam.position[2] == 24 && cam.fov == 60);
+    }
+    /* Entry defaults, number grammar, explicit zero = default. */
+    if (parse_ok("{\"msaa\": 0, \"dt\": 0, \"camera\": {\"position\": [-0.5e1, 1E2, 0.125], "
+                 "\"target\": [-0, 0.0, 2e-1]},\n"
+                 " \"wind\": [{}, {\"type\": \"point\"}], \"colliders\": [{}, {\"type\": \"capsule\"}],"
+                 " \"characters\": [{\"model\": \"a\\u00e9\\ud83d\\ude00\\t\"}]}")) {
+        CHECK(desc.msaa == 4);
+        CHECK_NEAR(desc.dt, 1.0 / 60.0, 1e-9);
+        CHECK(desc.camera.position[0] == -5 && desc.camera.position[1] == 100);
+        CHECK(desc.camera.position[2] == 0.125f);
+        CHECK_NEAR(desc.camera.target[2], 0.2, 1e-7);
+        CHECK(desc.wind[0].direction[0] == 1 && desc.wind[0].strength == 1);
+        CHECK(desc.wind[0].wavelength == 10 && desc.wind[0].speed == 2);
+        CHECK(desc.wind[1].radius == 5);
+        CHECK(desc.colliders[0].radius == 0.5f && desc.colliders[1].radius == 0.3f);
+        CHECK(desc.colliders[0].path.count == 0);
+        CHECK(strcmp(desc.characters[0].model, "a\xc3\xa9\xf0\x9f\x98\x80\t") == 0);
+        CHECK(desc.characters[0].clip_index == 0 && desc.characters[0].scale == 1);
+    }
+    /* Whitespace and a trailing newline after the value are fine. */
+    parse_ok(" \r\n\t{ \"seed\" : 7 }\n\n");
+    CHECK(desc.seed == 7);
+    CHECK(strcmp(scene_mode_name(SCENE_MODE_BLADE), "blade") == 0);
+    CHECK(strcmp(scene_blade_shape_name(SCENE_SHAPE_DANDELION), "dandelion") == 0);
+}
+
+int main(void)
+{
+    core_log_set_quiet(true);
+    test_scene_files();
+    test_bad_files();
+    test_bad_inline();
+    test_good_full();
+    test_defaults_and_values();
+    TEST_END();
+}
