@@ -334,6 +334,31 @@ static void test_defaults_and_values(void)
     CHECK(strcmp(scene_blade_shape_name(SCENE_SHAPE_DANDELION), "dandelion") == 0);
 }
 
+/* Every proper prefix of a real scene file is rejected with a line number
+ * inside the file (no crash, no success on truncated input). */
+static void test_all_truncations(void)
+{
+    char *text = core_fs_read(MEADOW_SOURCE_DIR "/scenes/meadow.json", NULL, NULL, 0);
+    CHECK(text != NULL);
+    if (!text) return;
+    size_t len = strlen(text);
+    int lines = 1;
+    for (size_t i = 0; i < len; i++) lines += text[i] == '\n';
+    int bad = 0;
+    for (size_t cut = 0; cut + 1 < len; cut++) {
+        char saved = text[cut], err[512] = "";
+        text[cut] = 0;
+        int line = 0;
+        bool ok = scene_parse(&desc, text, "cut", err, sizeof err);
+        if (ok || sscanf(err, "cut:%d:", &line) != 1 || line < 1 || line > lines) {
+            if (bad++ < 3) fprintf(stderr, "prefix %zu: ok=%d err=%s\n", cut, ok, err);
+        }
+        text[cut] = saved;
+    }
+    CHECK_MSG(bad == 0, "%d of %zu prefixes misreported", bad, len - 1);
+    free(text);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -342,5 +367,6 @@ int main(void)
     test_bad_inline();
     test_good_full();
     test_defaults_and_values();
+    test_all_truncations();
     TEST_END();
 }
