@@ -51,8 +51,8 @@ struct bb_point {
     uint pad1;
 };
 
-/* Mirrors bb_cubemap_t; the texels live in a sampler2DArray (RGBA32F,
- * layer = layer0 + face, texel (i, j) = texelFetch(ivec3(i, j, layer), 0)). */
+/* Mirrors bb_cubemap_t (half -> half_size: "half" is reserved in GLSL); the
+ * texels live in a sampler2DArray (RGBA32F, layer = layer0 + face, texel (i, j) = texelFetch(ivec3(i, j, layer), 0)). */
 struct bb_cube {
     vec3 centre;
     float half_size;
