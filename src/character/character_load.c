@@ -1,0 +1,653 @@
+/* character_load: assimp -> character_model_t (see character_load.h).
+ * Node hierarchy flattened depth-first (parents first), meshes merged,
+ * weights limited to the 4 largest and renormalised, clips converted to
+ * seconds and repaired by character_clip_fixup. No paper equations. */
+#include "character/character_load.h"
+
+#include "character/character_ref.h"
+#include "core/core.h"
+
+#include <assimp/cimport.h>
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+static char *dup_str(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+/* assimp matrices are row-major (a1..a4 is the first row). */
+static void mat_from_ai(const struct aiMatrix4x4 *m, float out[16])
+{
+    const float rows[4][4] = {{m->a1, m->a2, m->a3, m->a4},
+                              {m->b1, m->b2, m->b3, m->b4},
+                              {m->c1, m->c2, m->c3, m->c4},
+                              {m->d1, m->d2, m->d3, m->d4}};
+    for (int r = 0; r < 4; r++)
+        for (int c = 0; c < 4; c++) out[c * 4 + r] = rows[r][c];
+}
+
+static void mat_identity(float m[16])
+{
+    memset(m, 0, sizeof(float) * 16);
+    m[0] = m[5] = m[10] = m[15] = 1.0f;
+}
+
+/* Normal matrix (inverse transpose of the upper 3x3) applied to n. */
+static void transform_normal(const float m[16], const float n[3], float out[3])
+{
+    float inv[16];
+    if (!character_mat4_invert(m, inv)) mat_identity(inv);
+    float len = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        out[k] = inv[k * 4 + 0] * n[0] + inv[k * 4 + 1] * n[1] + inv[k * 4 + 2] * n[2];
+        len += out[k] * out[k];
+    }
+    len = sqrtf(len);
+    if (len > 0.0f)
+        for (int k = 0; k < 3; k++) out[k] /= len;
+}
+
+void character_model_free(character_model_t *model)
+{
+    if (!model) return;
+    for (int i = 0; i < model->bone_count; i++) free(model->bones[i].name);
+    for (int c = 0; c < model->clip_count; c++) {
+        character_clip_t *clip = &model->clips[c];
+        for (int b = 0; clip->channels && b < model->bone_count; b++) {
+            free(clip->channels[b].pos.keys);
+            free(clip->channels[b].rot.keys);
+            free(clip->channels[b].scale.keys);
+        }
+        free(clip->channels);
+        free(clip->name);
+    }
+    free(model->clips);
+    free(model->bones);
+    free(model->vertices);
+    free(model->indices);
+    memset(model, 0, sizeof *model);
+}
+
+int character_bone_find(const character_model_t *model, const char *name)
+{
+    for (int i = 0; i < model->bone_count; i++)
+        if (!strcmp(model->bones[i].name, name)) return i;
+    return -1;
+}
+
+/* ---- clip repair ------------------------------------------------------------ */
+static int key_cmp(const void *a, const void *b)
+{
+    float ta = ((const character_key_t *)a)->time, tb = ((const character_key_t *)b)->time;
+    return (ta > tb) - (ta < tb);
+}
+
+typedef struct fix_counts_t {
+    int nan, zero_quat, negative, unsorted, unnormalised;
+    float max_time;
+} fix_counts_t;
+
+static void fix_track(character_track_t *t, bool rot, fix_counts_t *fc)
+{
+    int n = 0, ncomp = rot ? 4 : 3;
+    for (int i = 0; i < t->count; i++) {
+        character_key_t k = t->keys[i];
+        bool finite = isfinite(k.time);
+        for (int c = 0; c < ncomp; c++) finite &= isfinite(k.v[c]);
+        if (!finite) {
+            fc->nan++;
+            continue;
+        }
+        if (rot) {
+            float len = sqrtf(k.v[0] * k.v[0] + k.v[1] * k.v[1] + k.v[2] * k.v[2] + k.v[3] * k.v[3]);
+            if (len < 1e-6f) {
+                fc->zero_quat++;
+                continue;
+            }
+            if (fabsf(len - 1.0f) > 1e-3f) fc->unnormalised++;
+            for (int c = 0; c < 4; c++) k.v[c] /= len;
+        }
+        if (k.time < 0.0f) {
+            fc->negative++;
+            k.time = 0.0f;
+        }
+        t->keys[n++] = k;
+    }
+    t->count = n;
+    for (int i = 1; i < n; i++)
+        if (t->keys[i].time < t->keys[i - 1].time) {
+            fc->unsorted++;
+            qsort(t->keys, (size_t)n, sizeof *t->keys, key_cmp);
+            break;
+        }
+    if (n && t->keys[n - 1].time > fc->max_time) fc->max_time = t->keys[n - 1].time;
+}
+
+int character_clip_fixup(character_clip_t *clip, int bone_count, const char *context)
+{
+    fix_counts_t fc = {0};
+    int keys = 0;
+    for (int b = 0; b < bone_count; b++) {
+        character_channel_t *ch = &clip->channels[b];
+        fix_track(&ch->pos, false, &fc);
+        fix_track(&ch->rot, true, &fc);
+        fix_track(&ch->scale, false, &fc);
+        keys += ch->pos.count + ch->rot.count + ch->scale.count;
+    }
+    const char *name = clip->name ? clip->name : "?";
+    int fixes = 0;
+    if (fc.nan) core_log_warn("%s: clip '%s': dropped %d key(s) with a NaN/inf time or value", context, name, fc.nan);
+    if (fc.zero_quat) core_log_warn("%s: clip '%s': dropped %d zero-length rotation key(s)", context, name, fc.zero_quat);
+    if (fc.unnormalised) core_log_warn("%s: clip '%s': normalised %d rotation key(s)", context, name, fc.unnormalised);
+    if (fc.negative) core_log_warn("%s: clip '%s': clamped %d negative key time(s) to 0", context, name, fc.negative);
+    if (fc.unsorted) core_log_warn("%s: clip '%s': sorted %d track(s) with unordered key times", context, name, fc.unsorted);
+    fixes += fc.nan + fc.zero_quat + fc.unnormalised + fc.negative + fc.unsorted;
+    if (keys == 0) {
+        core_log_warn("%s: clip '%s' has no keys; it holds the bind pose", context, name);
+        fixes++;
+    }
+    if (!(clip->duration > 0.0f) || !isfinite(clip->duration)) {
+        float d = fc.max_time > 0.0f ? fc.max_time : 1.0f;
+        core_log_warn("%s: clip '%s': duration %g is not positive; using %g s", context, name,
+                      (double)clip->duration, (double)d);
+        clip->duration = d;
+        fixes++;
+    } else if (fc.max_time > clip->duration * (1.0f + 1e-5f)) {
+        core_log_warn("%s: clip '%s': keys run to %g s past the duration %g s; duration extended", context, name,
+                      (double)fc.max_time, (double)clip->duration);
+        clip->duration = fc.max_time;
+        fixes++;
+    }
+    return fixes;
+}
+
+/* ---- clip selection ------------------------------------------------------------- */
+static bool slice_track(const character_track_t *src, bool rot, float t0, float t1, character_track_t *dst)
+{
+    dst->count = 0;
+    dst->keys = NULL;
+    if (src->count == 0) return true;
+    dst->keys = malloc(sizeof *dst->keys * (size_t)(src->count + 2));
+    if (!dst->keys) return false;
+    character_key_t k = {0};
+    k.time = 0.0f;
+    character_track_sample(src, t0, rot, k.v);
+    dst->keys[dst->count++] = k;
+    for (int i = 0; i < src->count; i++)
+        if (src->keys[i].time > t0 && src->keys[i].time < t1) {
+            k = src->keys[i];
+            k.time -= t0;
+            dst->keys[dst->count++] = k;
+        }
+    k.time = t1 - t0;
+    character_track_sample(src, t1, rot, k.v);
+    dst->keys[dst->count++] = k;
+    return true;
+}
+
+static int clip_from_range(character_model_t *model, const char *spec, double a, double b)
+{
+    const character_clip_t *src = &model->clips[0];
+    float tps = src->ticks_per_second > 0.0f ? src->ticks_per_second : 1.0f;
+    float t0 = (float)(a / tps), t1 = (float)(b / tps);
+    if (t0 < 0.0f) t0 = 0.0f;
+    if (t1 > src->duration) {
+        core_log_warn("character: frame range '%s' ends past the timeline (%g ticks); clamped", spec,
+                      (double)(src->duration * tps));
+        t1 = src->duration;
+    }
+    if (!(t1 > t0)) {
+        core_log_warn("character: frame range '%s' is empty", spec);
+        return -1;
+    }
+    character_clip_t *grown = realloc(model->clips, sizeof *grown * (size_t)(model->clip_count + 1));
+    if (!grown) return -1;
+    model->clips = grown;
+    src = &model->clips[0];
+    character_clip_t *c = &model->clips[model->clip_count];
+    memset(c, 0, sizeof *c);
+    c->name = dup_str(spec);
+    c->duration = t1 - t0;
+    c->ticks_per_second = src->ticks_per_second;
+    c->channels = calloc((size_t)model->bone_count, sizeof *c->channels);
+    bool ok = c->name && c->channels;
+    for (int i = 0; ok && i < model->bone_count; i++) {
+        ok &= slice_track(&src->channels[i].pos, false, t0, t1, &c->channels[i].pos);
+        ok &= slice_track(&src->channels[i].rot, true, t0, t1, &c->channels[i].rot);
+        ok &= slice_track(&src->channels[i].scale, false, t0, t1, &c->channels[i].scale);
+    }
+    model->clip_count++;
+    if (!ok) core_log_error("%s:%d: out of memory slicing clip '%s'", __FILE__, __LINE__, spec);
+    return ok ? model->clip_count - 1 : -1;
+}
+
+int character_clip_find(character_model_t *model, const char *spec)
+{
+    if (!spec || !*spec) return model->clip_count > 0 ? 0 : -1;
+    for (int i = 0; i < model->clip_count; i++)
+        if (!strcmp(model->clips[i].name, spec)) return i;
+    for (int i = 0; i < model->clip_count; i++)
+        if (!strcasecmp(model->clips[i].name, spec)) return i;
+    for (int i = 0; i < model->clip_count; i++) {
+        const char *bar = strrchr(model->clips[i].name, '|');
+        if (bar && !strcasecmp(bar + 1, spec)) return i;
+    }
+    char *end;
+    long idx = strtol(spec, &end, 10);
+    if (end != spec && *end == 0) {
+        if (idx >= 0 && idx < model->clip_count) return (int)idx;
+        core_log_warn("character: clip index %ld out of range (%d clips)", idx, model->clip_count);
+        return -1;
+    }
+    const char *colon = strchr(spec, ':');
+    if (colon && model->clip_count > 0) {
+        char *e1, *e2;
+        double a = strtod(spec, &e1), b = strtod(colon + 1, &e2);
+        if (e1 == colon && e2 != colon + 1 && *e2 == 0) return clip_from_range(model, spec, a, b);
+    }
+    core_log_warn("character: no clip matches '%s' (%d clips)", spec, model->clip_count);
+    return -1;
+}
+
+/* ---- import ------------------------------------------------------------------- */
+typedef struct load_ctx_t {
+    const char *path;
+    const struct aiScene *scene;
+    const struct aiNode **nodes;
+    int node_count;
+    float (*global)[16];
+    bool *has_offset;
+} load_ctx_t;
+
+static int count_nodes(const struct aiNode *n)
+{
+    int c = 1;
+    for (unsigned i = 0; i < n->mNumChildren; i++) c += count_nodes(n->mChildren[i]);
+    return c;
+}
+
+static void flatten(load_ctx_t *ctx, character_model_t *m, const struct aiNode *n, int parent)
+{
+    int idx = ctx->node_count++;
+    ctx->nodes[idx] = n;
+    character_bone_t *b = &m->bones[idx];
+    b->parent = parent;
+    b->name = dup_str(n->mName.length ? n->mName.data : "node");
+    mat_from_ai(&n->mTransformation, b->bind_local);
+    struct aiVector3D s, p;
+    struct aiQuaternion q;
+    aiDecomposeMatrix(&n->mTransformation, &s, &q, &p);
+    b->bind_t[0] = p.x, b->bind_t[1] = p.y, b->bind_t[2] = p.z;
+    b->bind_r[0] = q.x, b->bind_r[1] = q.y, b->bind_r[2] = q.z, b->bind_r[3] = q.w;
+    b->bind_s[0] = s.x, b->bind_s[1] = s.y, b->bind_s[2] = s.z;
+    if (parent >= 0) character_mat4_mul(ctx->global[parent], b->bind_local, ctx->global[idx]);
+    else memcpy(ctx->global[idx], b->bind_local, sizeof ctx->global[idx]);
+    for (unsigned i = 0; i < n->mNumChildren; i++) flatten(ctx, m, n->mChildren[i], idx);
+}
+
+static bool is_triangle_mesh(const struct aiMesh *mesh)
+{
+    return mesh->mNumVertices > 0 && mesh->mPrimitiveTypes == aiPrimitiveType_TRIANGLE;
+}
+
+/* Inserts (bone, w) into the 4 slots, keeping the largest weights.
+ * Returns true when a weight was dropped. */
+static bool add_influence(character_vertex_t *v, int bone, float w)
+{
+    int smallest = 0;
+    for (int k = 1; k < CHARACTER_MAX_INFLUENCES; k++)
+        if (v->weights[k] < v->weights[smallest]) smallest = k;
+    bool dropped = v->weights[smallest] > 0.0f;
+    if (w > v->weights[smallest]) {
+        v->weights[smallest] = w;
+        v->joints[smallest] = (uint16_t)bone;
+    }
+    return dropped;
+}
+
+static void load_material(character_model_t *m, const struct aiScene *scene, const struct aiMesh *mesh,
+                          const char *path)
+{
+    m->base_color[0] = m->base_color[1] = m->base_color[2] = 0.8f;
+    m->base_color[3] = 1.0f;
+    m->texture_path[0] = 0;
+    if (!scene->mMaterials || mesh->mMaterialIndex >= scene->mNumMaterials) return;
+    const struct aiMaterial *mat = scene->mMaterials[mesh->mMaterialIndex];
+    struct aiColor4D c;
+    if (aiGetMaterialColor(mat, AI_MATKEY_BASE_COLOR, &c) == aiReturn_SUCCESS ||
+        aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == aiReturn_SUCCESS) {
+        m->base_color[0] = c.r, m->base_color[1] = c.g, m->base_color[2] = c.b, m->base_color[3] = c.a;
+    }
+    struct aiString tex;
+    if (aiGetMaterialTexture(mat, aiTextureType_BASE_COLOR, 0, &tex, NULL, NULL, NULL, NULL, NULL, NULL) !=
+            aiReturn_SUCCESS &&
+        aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &tex, NULL, NULL, NULL, NULL, NULL, NULL) !=
+            aiReturn_SUCCESS)
+        return;
+    if (tex.data[0] == '*') {
+        core_log_warn("%s: embedded texture '%s' is not supported; using the plain base colour", path, tex.data);
+        return;
+    }
+    char full[sizeof m->texture_path];
+    const char *slash = strrchr(path, '/');
+    int dir_len = slash ? (int)(slash - path) + 1 : 0;
+    int n = tex.data[0] == '/' ? snprintf(full, sizeof full, "%s", tex.data)
+                               : snprintf(full, sizeof full, "%.*s%s", dir_len, path, tex.data);
+    if (n < 0 || (size_t)n >= sizeof full) {
+        core_log_warn("%s: texture path '%s' too long; using the plain base colour", path, tex.data);
+        return;
+    }
+    if (access(full, R_OK) != 0) {
+        core_log_warn("%s: texture '%s' not found; using the plain base colour", path, full);
+        return;
+    }
+    memcpy(m->texture_path, full, sizeof full);
+}
+
+static bool load_clips(load_ctx_t *ctx, character_model_t *m)
+{
+    const struct aiScene *sc = ctx->scene;
+    if (sc->mNumAnimations == 0) return true;
+    m->clips = calloc(sc->mNumAnimations, sizeof *m->clips);
+    if (!m->clips) return false;
+    for (unsigned a = 0; a < sc->mNumAnimations; a++) {
+        const struct aiAnimation *an = sc->mAnimations[a];
+        character_clip_t *c = &m->clips[m->clip_count++];
+        char name[64];
+        snprintf(name, sizeof name, "clip%u", a);
+        c->name = dup_str(an->mName.length ? an->mName.data : name);
+        double tps = an->mTicksPerSecond > 0.0 ? an->mTicksPerSecond : 25.0;
+        c->ticks_per_second = (float)tps;
+        c->duration = (float)(an->mDuration / tps);
+        c->channels = calloc((size_t)m->bone_count, sizeof *c->channels);
+        if (!c->name || !c->channels) return false;
+        if (an->mNumMeshChannels || an->mNumMorphMeshChannels)
+            core_log_warn("%s: clip '%s': mesh/morph animation channels are ignored", ctx->path, c->name);
+        for (unsigned i = 0; i < an->mNumChannels; i++) {
+            const struct aiNodeAnim *na = an->mChannels[i];
+            int b = character_bone_find(m, na->mNodeName.data);
+            if (b < 0) {
+                core_log_warn("%s: clip '%s': channel for unknown node '%s' ignored", ctx->path, c->name,
+                              na->mNodeName.data);
+                continue;
+            }
+            character_channel_t *ch = &c->channels[b];
+            if (ch->pos.count || ch->rot.count || ch->scale.count) {
+                core_log_warn("%s: clip '%s': second channel for node '%s' ignored", ctx->path, c->name,
+                              na->mNodeName.data);
+                continue;
+            }
+            if (!na->mNumPositionKeys && !na->mNumRotationKeys && !na->mNumScalingKeys)
+                core_log_warn("%s: clip '%s': channel for '%s' has zero keys; bone keeps its bind pose", ctx->path,
+                              c->name, na->mNodeName.data);
+            ch->pos.keys = calloc(na->mNumPositionKeys + 1, sizeof *ch->pos.keys);
+            ch->rot.keys = calloc(na->mNumRotationKeys + 1, sizeof *ch->rot.keys);
+            ch->scale.keys = calloc(na->mNumScalingKeys + 1, sizeof *ch->scale.keys);
+            if (!ch->pos.keys || !ch->rot.keys || !ch->scale.keys) return false;
+            for (unsigned k = 0; na->mPositionKeys && k < na->mNumPositionKeys; k++) {
+                const struct aiVectorKey *key = &na->mPositionKeys[k];
+                ch->pos.keys[ch->pos.count++] =
+                    (character_key_t){(float)(key->mTime / tps), {key->mValue.x, key->mValue.y, key->mValue.z, 0}};
+            }
+            for (unsigned k = 0; na->mRotationKeys && k < na->mNumRotationKeys; k++) {
+                const struct aiQuatKey *key = &na->mRotationKeys[k];
+                ch->rot.keys[ch->rot.count++] = (character_key_t){
+                    (float)(key->mTime / tps), {key->mValue.x, key->mValue.y, key->mValue.z, key->mValue.w}};
+            }
+            for (unsigned k = 0; na->mScalingKeys && k < na->mNumScalingKeys; k++) {
+                const struct aiVectorKey *key = &na->mScalingKeys[k];
+                ch->scale.keys[ch->scale.count++] =
+                    (character_key_t){(float)(key->mTime / tps), {key->mValue.x, key->mValue.y, key->mValue.z, 0}};
+            }
+        }
+        character_clip_fixup(c, m->bone_count, ctx->path);
+    }
+    return true;
+}
+
+/* Inverse bind matrices from every mesh's aiBones (first one wins). */
+static void load_offsets(load_ctx_t *ctx, character_model_t *m)
+{
+    for (int n = 0; n < ctx->node_count; n++) {
+        const struct aiNode *node = ctx->nodes[n];
+        for (unsigned mi = 0; mi < node->mNumMeshes; mi++) {
+            const struct aiMesh *mesh = ctx->scene->mMeshes[node->mMeshes[mi]];
+            if (!is_triangle_mesh(mesh)) continue;
+            for (unsigned bi = 0; bi < mesh->mNumBones; bi++) {
+                const struct aiBone *bone = mesh->mBones[bi];
+                int b = character_bone_find(m, bone->mName.data);
+                if (b < 0) {
+                    core_log_warn("%s: mesh '%s': bone '%s' has no node; its weights are dropped", ctx->path,
+                                  mesh->mName.data, bone->mName.data);
+                    continue;
+                }
+                float off[16];
+                mat_from_ai(&bone->mOffsetMatrix, off);
+                if (ctx->has_offset[b]) {
+                    float diff = 0.0f;
+                    for (int e = 0; e < 16; e++) diff = fmaxf(diff, fabsf(off[e] - m->bones[b].inverse_bind[e]));
+                    if (diff > 1e-4f)
+                        core_log_warn("%s: bone '%s' has different bind matrices in two meshes; keeping the first",
+                                      ctx->path, bone->mName.data);
+                    continue;
+                }
+                memcpy(m->bones[b].inverse_bind, off, sizeof off);
+                ctx->has_offset[b] = true;
+            }
+        }
+    }
+}
+
+/* Appends one mesh instance (mesh on node n) and adds to the warning
+ * counters. */
+static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, int *dropped,
+                      int *unbound, int *bad_weights)
+{
+    int base = m->vertex_count;
+    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+        character_vertex_t *vx = &m->vertices[base + (int)v];
+        memset(vx, 0, sizeof *vx);
+        vx->pos[0] = mesh->mVertices[v].x, vx->pos[1] = mesh->mVertices[v].y, vx->pos[2] = mesh->mVertices[v].z;
+        if (mesh->mNormals)
+            vx->normal[0] = mesh->mNormals[v].x, vx->normal[1] = mesh->mNormals[v].y,
+            vx->normal[2] = mesh->mNormals[v].z;
+        else
+            vx->normal[1] = 1.0f;
+        if (mesh->mTextureCoords[0])
+            vx->uv[0] = mesh->mTextureCoords[0][v].x, vx->uv[1] = mesh->mTextureCoords[0][v].y;
+    }
+    bool *dropped_v = calloc(mesh->mNumVertices, sizeof(bool));
+    for (unsigned bi = 0; bi < mesh->mNumBones; bi++) {
+        const struct aiBone *bone = mesh->mBones[bi];
+        int b = character_bone_find(m, bone->mName.data);
+        if (b < 0) continue;
+        for (unsigned w = 0; w < bone->mNumWeights; w++) {
+            const struct aiVertexWeight *vw = &bone->mWeights[w];
+            if (vw->mVertexId >= mesh->mNumVertices) {
+                (*bad_weights)++;
+                continue;
+            }
+            float wt = vw->mWeight;
+            if (!isfinite(wt) || wt < 0.0f) {
+                (*bad_weights)++;
+                continue;
+            }
+            if (wt == 0.0f) continue;
+            if (add_influence(&m->vertices[base + (int)vw->mVertexId], b, wt) && dropped_v)
+                dropped_v[vw->mVertexId] = true;
+        }
+    }
+    /* the node's bind matrix for rigidly bound vertices: p' = inverse_bind^-1 p
+     * makes skinning at bind reproduce the node's transform of p */
+    float to_bind[16];
+    if (!character_mat4_invert(m->bones[n].inverse_bind, to_bind)) mat_identity(to_bind);
+    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+        character_vertex_t *vx = &m->vertices[base + (int)v];
+        if (dropped_v && dropped_v[v]) (*dropped)++;
+        float sum = 0.0f;
+        for (int k = 0; k < CHARACTER_MAX_INFLUENCES; k++) sum += vx->weights[k];
+        if (sum > 0.0f) {
+            for (int k = 0; k < CHARACTER_MAX_INFLUENCES; k++) vx->weights[k] /= sum;
+            continue;
+        }
+        if (mesh->mNumBones) (*unbound)++;
+        float p[3], nn[3];
+        character_mat4_point(to_bind, vx->pos, p);
+        transform_normal(to_bind, vx->normal, nn);
+        memcpy(vx->pos, p, sizeof p), memcpy(vx->normal, nn, sizeof nn);
+        memset(vx->joints, 0, sizeof vx->joints);
+        memset(vx->weights, 0, sizeof vx->weights);
+        vx->joints[0] = (uint16_t)n;
+        vx->weights[0] = 1.0f;
+    }
+    free(dropped_v);
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3) continue;
+        bool ok = true;
+        for (int k = 0; k < 3; k++) ok &= face->mIndices[k] < mesh->mNumVertices;
+        if (!ok) continue;
+        for (int k = 0; k < 3; k++) m->indices[m->index_count++] = (uint32_t)base + face->mIndices[k];
+    }
+    m->vertex_count += (int)mesh->mNumVertices;
+}
+
+/* No clips: bake the bind pose (skinned) into the vertices, keep one bone. */
+static bool collapse_to_rigid(character_model_t *m)
+{
+    character_pose_t pose;
+    float *p = malloc(sizeof(float) * 3 * (size_t)m->vertex_count);
+    float *n = malloc(sizeof(float) * 3 * (size_t)m->vertex_count);
+    if (!p || !n || !character_pose_init(&pose, m)) {
+        free(p), free(n);
+        return false;
+    }
+    character_skin_cpu(m, &pose, p, n);
+    character_pose_free(&pose);
+    for (int v = 0; v < m->vertex_count; v++) {
+        character_vertex_t *vx = &m->vertices[v];
+        memcpy(vx->pos, p + 3 * v, sizeof vx->pos);
+        memcpy(vx->normal, n + 3 * v, sizeof vx->normal);
+        memset(vx->joints, 0, sizeof vx->joints);
+        memset(vx->weights, 0, sizeof vx->weights);
+        vx->weights[0] = 1.0f;
+    }
+    free(p), free(n);
+    for (int i = 1; i < m->bone_count; i++) free(m->bones[i].name);
+    free(m->bones[0].name);
+    character_bone_t *b = &m->bones[0];
+    memset(b, 0, sizeof *b);
+    b->name = dup_str("root");
+    b->parent = -1;
+    mat_identity(b->inverse_bind);
+    mat_identity(b->bind_local);
+    b->bind_r[3] = 1.0f;
+    b->bind_s[0] = b->bind_s[1] = b->bind_s[2] = 1.0f;
+    m->bone_count = 1;
+    m->rigid = true;
+    return b->name != NULL;
+}
+
+static bool fail(char *err, size_t err_size, const char *path, int line, const char *fmt, const char *arg)
+{
+    char msg[512];
+    snprintf(msg, sizeof msg, fmt, arg);
+    if (err && err_size) snprintf(err, err_size, "%s", msg);
+    core_log_error("%s:%d: %s: %s", __FILE__, line, path, msg);
+    return false;
+}
+
+bool character_load(character_model_t *model, const char *path, char *err, size_t err_size)
+{
+    memset(model, 0, sizeof *model);
+    /* no aiProcess_ValidateDataStructure: inconsistent files are repaired
+     * here with warnings instead of rejected */
+    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
+                           aiProcess_SortByPType;
+    const struct aiScene *sc = aiImportFile(path, flags);
+    if (!sc || !sc->mRootNode) {
+        return fail(err, err_size, path, __LINE__, "assimp: %s", aiGetErrorString());
+    }
+    load_ctx_t ctx = {.path = path, .scene = sc};
+    int nn = count_nodes(sc->mRootNode);
+    if (nn > 65535) {
+        aiReleaseImport(sc);
+        return fail(err, err_size, path, __LINE__, "%s", "more than 65535 nodes");
+    }
+    ctx.nodes = calloc((size_t)nn, sizeof *ctx.nodes);
+    ctx.global = calloc((size_t)nn, sizeof *ctx.global);
+    ctx.has_offset = calloc((size_t)nn, sizeof *ctx.has_offset);
+    model->bones = calloc((size_t)nn, sizeof *model->bones);
+    bool ok = ctx.nodes && ctx.global && ctx.has_offset && model->bones;
+    if (ok) {
+        model->bone_count = nn;
+        flatten(&ctx, model, sc->mRootNode, -1);
+        for (int i = 0; i < nn; i++)
+            if (!character_mat4_invert(ctx.global[i], model->bones[i].inverse_bind)) {
+                core_log_warn("%s: node '%s' has a singular transform", path, model->bones[i].name);
+                mat_identity(model->bones[i].inverse_bind);
+            }
+        load_offsets(&ctx, model);
+        /* count mesh instances */
+        size_t nv = 0, ni = 0;
+        for (int n = 0; n < nn; n++)
+            for (unsigned mi = 0; mi < ctx.nodes[n]->mNumMeshes; mi++) {
+                const struct aiMesh *mesh = sc->mMeshes[ctx.nodes[n]->mMeshes[mi]];
+                if (!is_triangle_mesh(mesh)) continue;
+                nv += mesh->mNumVertices;
+                ni += 3 * (size_t)mesh->mNumFaces;
+            }
+        if (nv == 0) {
+            free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
+            character_model_free(model);
+            aiReleaseImport(sc);
+            return fail(err, err_size, path, __LINE__, "%s", "no triangle vertices in the file");
+        }
+        if (nv > INT32_MAX || ni > INT32_MAX) {
+            free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
+            character_model_free(model);
+            aiReleaseImport(sc);
+            return fail(err, err_size, path, __LINE__, "%s", "too many vertices");
+        }
+        model->vertices = calloc(nv, sizeof *model->vertices);
+        model->indices = calloc(ni, sizeof *model->indices);
+        ok = model->vertices && model->indices;
+        int dropped = 0, unbound = 0, bad = 0;
+        bool material = false;
+        for (int n = 0; ok && n < nn; n++)
+            for (unsigned mi = 0; mi < ctx.nodes[n]->mNumMeshes; mi++) {
+                const struct aiMesh *mesh = sc->mMeshes[ctx.nodes[n]->mMeshes[mi]];
+                if (!is_triangle_mesh(mesh)) continue;
+                if (!material) load_material(model, sc, mesh, path);
+                material = true;
+                load_mesh(model, n, mesh, &dropped, &unbound, &bad);
+            }
+        if (dropped)
+            core_log_warn("%s: %d vertices had more than %d influences; kept the largest", path, dropped,
+                          CHARACTER_MAX_INFLUENCES);
+        if (unbound) core_log_warn("%s: %d skinned vertices had zero total weight; bound to their mesh node", path, unbound);
+        if (bad) core_log_warn("%s: dropped %d invalid vertex weights (NaN, negative or bad vertex id)", path, bad);
+        ok = ok && load_clips(&ctx, model);
+        if (ok && model->clip_count == 0) ok = collapse_to_rigid(model);
+    }
+    free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
+    aiReleaseImport(sc);
+    if (!ok) {
+        character_model_free(model);
+        return fail(err, err_size, path, __LINE__, "%s", "out of memory");
+    }
+    core_log_info("%s: %d vertices, %d triangles, %d bones, %d clips%s", path, model->vertex_count,
+                  model->index_count / 3, model->bone_count, model->clip_count, model->rigid ? " (rigid)" : "");
+    return true;
+}

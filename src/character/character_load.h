@@ -1,0 +1,106 @@
+/* character_load: imports skinned, animated characters through assimp into a
+ * flat, GL-free model: one merged vertex array, a bone list in
+ * parent-before-child order, and animation clips with per-bone key tracks.
+ * Inconsistent files are repaired with a warning rather than rejected
+ * (aiProcess_ValidateDataStructure is deliberately not used): unsorted, NaN
+ * or negative key times, keys past the clip duration, zero quaternions,
+ * NaN/negative weights, vertices with no weight. No paper equations here;
+ * the sampling/skinning maths is in character_ref.h. */
+#ifndef MEADOW_CHARACTER_LOAD_H
+#define MEADOW_CHARACTER_LOAD_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#define CHARACTER_MAX_INFLUENCES 4
+
+/* Interleaved vertex (56 bytes), usable as-is as a GL vertex buffer.
+ * pos/normal are the bind pose in model space. weights sum to 1; unused
+ * slots have weight 0 and joint 0. */
+typedef struct character_vertex_t {
+    float pos[3];
+    float normal[3];
+    float uv[2];
+    uint16_t joints[CHARACTER_MAX_INFLUENCES];
+    float weights[CHARACTER_MAX_INFLUENCES];
+} character_vertex_t;
+
+/* One node of the flattened hierarchy. Every scene node becomes a bone (so
+ * non-joint nodes such as an armature root are animated too); a rigid file
+ * collapses to one bone named "root". Matrices are column-major 4x4. */
+typedef struct character_bone_t {
+    char *name;
+    int parent;               /* -1 for a root; always smaller than own index */
+    float inverse_bind[16];   /* model space -> bone space at bind pose */
+    float bind_t[3];          /* local bind transform as TRS */
+    float bind_r[4];          /* quaternion x, y, z, w */
+    float bind_s[3];
+    float bind_local[16];     /* the same as a matrix (exact, incl. shear) */
+} character_bone_t;
+
+/* A key: time in seconds; v = x,y,z for translation/scale, x,y,z,w for a
+ * rotation quaternion. */
+typedef struct character_key_t {
+    float time;
+    float v[4];
+} character_key_t;
+
+typedef struct character_track_t {
+    int count;
+    character_key_t *keys; /* sorted by time after loading */
+} character_track_t;
+
+/* Empty tracks keep the bone's bind value. */
+typedef struct character_channel_t {
+    character_track_t pos, rot, scale;
+} character_channel_t;
+
+typedef struct character_clip_t {
+    char *name;
+    float duration;          /* seconds, > 0 */
+    float ticks_per_second;  /* the file's timeline rate (frame ranges) */
+    character_channel_t *channels; /* bone_count entries */
+} character_clip_t;
+
+typedef struct character_model_t {
+    character_vertex_t *vertices;
+    int vertex_count;
+    uint32_t *indices; /* triangles */
+    int index_count;
+    character_bone_t *bones;
+    int bone_count;
+    character_clip_t *clips;
+    int clip_count;
+    float base_color[4];      /* from the first mesh's material; default 0.8 grey */
+    char texture_path[1024];  /* diffuse/base-colour texture, "" when none */
+    bool rigid;               /* no skin and no animation: one bone */
+} character_model_t;
+
+/* Loads `path`. On failure returns false, logs one error line and writes the
+ * reason into err. Repairs are logged with core_log_warn. The model must be
+ * released with character_model_free. */
+bool character_load(character_model_t *model, const char *path, char *err, size_t err_size);
+void character_model_free(character_model_t *model);
+
+/* Bone index by exact name, or -1. */
+int character_bone_find(const character_model_t *model, const char *name);
+
+/* Clip selection. spec may be:
+ *   NULL or ""     the first clip
+ *   a name         exact match, then case-insensitive, then the part after
+ *                  the last '|' (assimp writes "Armature|walk" for FBX)
+ *   "N"            clip index N
+ *   "A:B"          frames/ticks A..B of the first clip (files with a single
+ *                  timeline); a new clip named "A:B" is appended (once)
+ * Returns the clip index or -1 (and logs a warning). */
+int character_clip_find(character_model_t *model, const char *spec);
+
+/* Repairs one clip in place: drops keys with NaN time or value and zero
+ * quaternions, clamps negative times to 0, sorts keys by time, normalises
+ * quaternions, and extends the duration to cover the last key (a duration
+ * <= 0 becomes the last key time, or 1 s if that is 0 too). Logs one warning
+ * per kind of repair naming `context`. Returns the number of repairs. */
+int character_clip_fixup(character_clip_t *clip, int bone_count, const char *context);
+
+#endif
