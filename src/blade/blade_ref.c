@@ -1,0 +1,397 @@
+/* blade_ref: CPU reference of the blade simulation (Jahrmann & Wimmer 2017
+ * eq. 1-13) and culling (eq. 14-20). Every function mirrors, statement by
+ * statement, its twin in shaders/common/blade.glsl (same names without the
+ * ref_ prefix), so the GPU result can be compared with an epsilon. */
+#include "blade/blade_ref.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+#include <cglm/cglm.h>
+
+/* vec3 by value, so the code reads like the GLSL twin. */
+typedef struct v3 {
+    float x, y, z;
+} v3;
+
+static inline v3 v3_make(float x, float y, float z) { return (v3){x, y, z}; }
+static inline v3 v3_load(const float *p) { return (v3){p[0], p[1], p[2]}; }
+static inline void v3_store(float *p, v3 a) { p[0] = a.x; p[1] = a.y; p[2] = a.z; }
+static inline v3 v3_add(v3 a, v3 b) { return (v3){a.x + b.x, a.y + b.y, a.z + b.z}; }
+static inline v3 v3_sub(v3 a, v3 b) { return (v3){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static inline v3 v3_scale(v3 a, float s) { return (v3){a.x * s, a.y * s, a.z * s}; }
+static inline float v3_dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline float v3_len(v3 a) { return sqrtf(v3_dot(a, a)); }
+static inline v3 v3_cross(v3 a, v3 b)
+{
+    return (v3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+/* Normalize with a zero result for (near-)zero vectors; GLSL twin: safe_normalize. */
+static inline v3 v3_safe_normalize(v3 a)
+{
+    float l = v3_len(a);
+    return l > 1e-6f ? v3_scale(a, 1.0f / l) : v3_make(0.0f, 0.0f, 0.0f);
+}
+
+blade_env_t blade_env_defaults(const blade_env_t *env)
+{
+    blade_env_t e = *env;
+    v3 d = v3_load(e.gravity_dir);
+    d = v3_len(d) > 1e-6f ? v3_scale(d, 1.0f / v3_len(d)) : v3_make(0.0f, -1.0f, 0.0f);
+    v3_store(e.gravity_dir, d);
+    if (e.gravity_off) e.gravity = 0.0f;
+    else if (e.gravity == 0.0f) e.gravity = 9.81f;
+    if (e.collision_decay == 0.0f) e.collision_decay = 1.0f;
+    assert(e.wind_count >= 0 && e.wind_count <= BLADE_MAX_WINDS);
+    assert(e.sphere_count >= 0 && e.sphere_count <= BLADE_MAX_SPHERES);
+    assert(e.length_mode == BLADE_LENGTH_QUADRATURE || e.length_mode == BLADE_LENGTH_PAPER);
+    return e;
+}
+
+blade_wind_t blade_wind_wave(float dir_x, float dir_z, float strength, float wavelength,
+                             float speed)
+{
+    assert(wavelength > 0.0f);
+    return (blade_wind_t){{dir_x, dir_z, wavelength, speed}, {strength, BLADE_WIND_WAVE, 0, 0}};
+}
+
+blade_wind_t blade_wind_point(const float position[3], float strength, float radius)
+{
+    assert(radius > 0.0f);
+    return (blade_wind_t){{position[0], position[1], position[2], radius},
+                          {strength, BLADE_WIND_POINT, 0, 0}};
+}
+
+static void frame(const blade_t *b, v3 *width_dir, v3 *front)
+{
+    v3 up = v3_load(b->up);
+    float a = b->v0[3];
+    v3 d = v3_make(cosf(a), 0.0f, sinf(a));
+    v3 t = v3_sub(d, v3_scale(up, v3_dot(d, up)));
+    if (v3_len(t) < 1e-3f) {
+        d = v3_make(-sinf(a), 0.0f, cosf(a));
+        t = v3_sub(d, v3_scale(up, v3_dot(d, up)));
+    }
+    *width_dir = v3_safe_normalize(t);
+    *front = v3_safe_normalize(v3_cross(up, *width_dir));
+}
+
+void blade_ref_frame(const blade_t *b, float width_dir[3], float front[3])
+{
+    v3 w, f;
+    frame(b, &w, &f);
+    v3_store(width_dir, w);
+    v3_store(front, f);
+}
+
+static v3 recovery(const blade_t *b, float eta)
+{
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    float h = b->v1[3];
+    float s = b->up[3];
+    v3 iv2 = v3_add(v0, v3_scale(up, h));
+    return v3_scale(v3_sub(iv2, v3_load(b->v2)), s * fmaxf(1.0f - eta, 0.1f));
+}
+
+void blade_ref_recovery(const blade_t *b, float eta, float out[3])
+{
+    v3_store(out, recovery(b, eta));
+}
+
+static v3 gravity(const blade_t *b, const blade_env_t *env)
+{
+    v3 v0 = v3_load(b->v0);
+    float t = env->gravity_centre_mix;
+    v3 to_centre = v3_safe_normalize(v3_sub(v3_load(env->gravity_centre), v0));
+    v3 dir = v3_add(v3_scale(v3_load(env->gravity_dir), 1.0f - t), v3_scale(to_centre, t));
+    v3 ge = v3_scale(dir, env->gravity);
+    v3 width_dir, front;
+    frame(b, &width_dir, &front);
+    v3 gf = v3_scale(front, 0.25f * v3_len(ge));
+    return v3_add(ge, gf);
+}
+
+void blade_ref_gravity(const blade_t *b, const blade_env_t *env, float out[3])
+{
+    v3_store(out, gravity(b, env));
+}
+
+static v3 wind_field(const blade_wind_t *w, v3 p, float time)
+{
+    float strength = w->b[0];
+    if (w->b[1] < 0.5f) {
+        v3 d = v3_safe_normalize(v3_make(w->a[0], 0.0f, w->a[1]));
+        float wavelength = w->a[2];
+        float speed = w->a[3];
+        float phase = 6.28318531f * (v3_dot(d, p) - speed * time) / wavelength;
+        return v3_scale(d, strength * (0.5f + 0.5f * sinf(phase)));
+    }
+    v3 rel = v3_sub(p, v3_load(w->a));
+    float radius = w->a[3];
+    float falloff = fmaxf(1.0f - v3_len(rel) / radius, 0.0f);
+    return v3_scale(v3_safe_normalize(rel), strength * falloff);
+}
+
+void blade_ref_wind_field(const blade_wind_t *w, const float p[3], float time, float out[3])
+{
+    v3_store(out, wind_field(w, v3_load(p), time));
+}
+
+static v3 wind(const blade_t *b, const blade_env_t *env)
+{
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    float h = b->v1[3];
+    v3 wi = v3_make(0.0f, 0.0f, 0.0f);
+    for (int i = 0; i < env->wind_count; i++) wi = v3_add(wi, wind_field(&env->winds[i], v0, env->time));
+    v3 tip = v3_sub(v3_load(b->v2), v0);
+    float fd = 1.0f - fabsf(v3_dot(v3_safe_normalize(wi), v3_safe_normalize(tip)));
+    float fr = v3_dot(tip, up) / h;
+    return v3_scale(wi, fd * fr);
+}
+
+void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3])
+{
+    v3_store(out, wind(b, env));
+}
+
+static v3 midpoint(const blade_t *b)
+{
+    return v3_add(v3_add(v3_scale(v3_load(b->v0), 0.25f), v3_scale(v3_load(b->v1), 0.5f)),
+                  v3_scale(v3_load(b->v2), 0.25f));
+}
+
+void blade_ref_midpoint(const blade_t *b, float m[3])
+{
+    v3_store(m, midpoint(b));
+}
+
+/* Push-out of point p from sphere s: min(|c - p| - r, 0) normalize(c - p). */
+static v3 sphere_push(const blade_sphere_t *s, v3 p)
+{
+    v3 c = v3_load(s->centre_radius);
+    v3 to_c = v3_sub(c, p);
+    float pen = fminf(v3_len(to_c) - s->centre_radius[3], 0.0f);
+    return v3_scale(v3_safe_normalize(to_c), pen);
+}
+
+static v3 collide(blade_t *b, const blade_sphere_t *spheres, int count)
+{
+    v3 d = v3_make(0.0f, 0.0f, 0.0f);
+    for (int i = 0; i < count; i++) {
+        v3 dv2 = sphere_push(&spheres[i], v3_load(b->v2));
+        v3_store(b->v2, v3_add(v3_load(b->v2), dv2));
+        v3 dm = v3_scale(sphere_push(&spheres[i], midpoint(b)), 4.0f);
+        v3_store(b->v2, v3_add(v3_load(b->v2), dm));
+        d = v3_add(d, v3_add(dv2, dm));
+    }
+    return d;
+}
+
+void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, float d[3])
+{
+    v3_store(d, collide(b, spheres, count));
+}
+
+/* Gauss-Legendre 3-point nodes on [0,1] and weights (summing to 1). */
+static const float gl3_t[3] = {0.11270166f, 0.5f, 0.88729833f};
+static const float gl3_w[3] = {0.27777778f, 0.44444444f, 0.27777778f};
+
+/* Integral of |B'(t)| over [t0, t1] by 3-point Gauss-Legendre; B'(t) = 2(e0 + t a). */
+static float speed_integral(v3 e0, v3 a, float t0, float t1)
+{
+    float s = 0.0f;
+    for (int i = 0; i < 3; i++) {
+        float t = t0 + (t1 - t0) * gl3_t[i];
+        s += gl3_w[i] * v3_len(v3_add(e0, v3_scale(a, t)));
+    }
+    return 2.0f * (t1 - t0) * s;
+}
+
+static float length_estimate(v3 v0, v3 v1, v3 v2, int mode)
+{
+    if (mode == BLADE_LENGTH_PAPER) {
+        float l0 = v3_len(v3_sub(v2, v0));
+        float l1 = v3_len(v3_sub(v1, v0)) + v3_len(v3_sub(v2, v1));
+        return (2.0f * l0 + l1) / 3.0f;
+    }
+    v3 e0 = v3_sub(v1, v0);
+    v3 a = v3_add(v3_sub(v0, v3_scale(v1, 2.0f)), v2);
+    float aa = v3_dot(a, a);
+    float ts = aa > 1e-12f ? fminf(fmaxf(-v3_dot(a, e0) / aa, 0.0f), 1.0f) : 0.0f;
+    return speed_integral(e0, a, 0.0f, ts) + speed_integral(e0, a, ts, 1.0f);
+}
+
+float blade_ref_length_estimate(const blade_t *b, int mode)
+{
+    return length_estimate(v3_load(b->v0), v3_load(b->v1), v3_load(b->v2), mode);
+}
+
+void blade_ref_validate(blade_t *b, int length_mode)
+{
+    float h = b->v1[3];
+    if (h <= 0.0f) return;
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    v3 v2 = v3_load(b->v2);
+    /* eq. 9: keep the tip above the ground plane through the root */
+    v2 = v3_sub(v2, v3_scale(up, fminf(v3_dot(up, v3_sub(v2, v0)), 0.0f)));
+    /* eq. 10-11: v1 from the length of the tip's projection on the ground */
+    v3 tip = v3_sub(v2, v0);
+    float lproj = v3_len(v3_sub(tip, v3_scale(up, v3_dot(tip, up))));
+    v3 v1 = v3_add(v0, v3_scale(up, h * fmaxf(1.0f - lproj / h, 0.05f * fmaxf(lproj / h, 1.0f))));
+    /* eq. 12-13: rescale v1 and v2 so the curve length is h. The rescale
+     * is a uniform scaling about v0, so the length is exact when the
+     * estimate is. */
+    float r = h / length_estimate(v0, v1, v2, length_mode);
+    v3 v1c = v3_add(v0, v3_scale(v3_sub(v1, v0), r));
+    v3 v2c = v3_add(v1c, v3_scale(v3_sub(v2, v1), r));
+    v3_store(b->v1, v1c);
+    v3_store(b->v2, v2c);
+}
+
+void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
+{
+    float h = b->v1[3];
+    if (h <= 0.0f) return;
+    float dt = env->dt;
+    v3 r = recovery(b, *eta);
+    v3 g = gravity(b, env);
+    v3 w = wind(b, env);
+    v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), dt)));
+    blade_ref_validate(b, env->length_mode);
+    v3 d = collide(b, env->spheres, env->sphere_count);
+    if (v3_dot(d, d) > 0.0f) blade_ref_validate(b, env->length_mode);
+    float e = *eta + v3_dot(d, d);
+    *eta = fmaxf(e - env->collision_decay * dt, 0.0f);
+}
+
+void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env)
+{
+    blade_env_t e = blade_env_defaults(env);
+    for (size_t i = 0; i < n; i++) blade_ref_step_one(&b[i], &eta[i], &e);
+}
+
+float blade_ref_curve_length(const blade_t *b, int samples)
+{
+    assert(samples > 0);
+    double len = 0.0;
+    double prev[3] = {b->v0[0], b->v0[1], b->v0[2]};
+    for (int i = 1; i <= samples; i++) {
+        double t = (double)i / samples, u = 1.0 - t;
+        double p[3];
+        for (int k = 0; k < 3; k++)
+            p[k] = u * u * b->v0[k] + 2.0 * u * t * b->v1[k] + t * t * b->v2[k];
+        double dx = p[0] - prev[0], dy = p[1] - prev[1], dz = p[2] - prev[2];
+        len += sqrt(dx * dx + dy * dy + dz * dz);
+        memcpy(prev, p, sizeof prev);
+    }
+    return (float)len;
+}
+
+/* ---- culling --------------------------------------------------------------- */
+
+blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc)
+{
+    blade_cull_desc_t d = *desc;
+    if (d.max_distance == 0.0f) d.max_distance = 60.0f;
+    if (d.distance_levels == 0) d.distance_levels = 8;
+    if (d.orientation_threshold == 0.0f) d.orientation_threshold = 0.9f;
+    if (d.frustum_tolerance == 0.0f) d.frustum_tolerance = 0.1f;
+    if (d.depth_bias == 0.0f) d.depth_bias = 1e-3f;
+    assert(d.distance_levels > 0);
+    assert(!d.depth || (d.depth_w > 0 && d.depth_h > 0));
+    return d;
+}
+
+static void to_clip(const blade_cull_desc_t *desc, v3 p, float clip[4])
+{
+    vec4 in = {p.x, p.y, p.z, 1.0f};
+    mat4 m;
+    memcpy(m, desc->view_proj, sizeof m);
+    glm_mat4_mulv(m, in, clip);
+}
+
+static bool in_frustum(const float clip[4], float tolerance)
+{
+    float h = clip[3] + tolerance;
+    return fabsf(clip[0]) <= h && fabsf(clip[1]) <= h && fabsf(clip[2]) <= h;
+}
+
+static bool occluded(const blade_cull_desc_t *desc, const float clip[4])
+{
+    if (clip[3] <= 0.0f) return false;
+    float x = clip[0] / clip[3], y = clip[1] / clip[3], z = clip[2] / clip[3];
+    if (fabsf(x) > 1.0f || fabsf(y) > 1.0f) return false;
+    int px = (int)floorf((x * 0.5f + 0.5f) * (float)desc->depth_w);
+    int py = (int)floorf((y * 0.5f + 0.5f) * (float)desc->depth_h);
+    px = px < 0 ? 0 : (px > desc->depth_w - 1 ? desc->depth_w - 1 : px);
+    py = py < 0 ? 0 : (py > desc->depth_h - 1 ? desc->depth_h - 1 : py);
+    return z > desc->depth[(size_t)py * (size_t)desc->depth_w + (size_t)px] + desc->depth_bias;
+}
+
+int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc)
+{
+    float h = b->v1[3];
+    if (h <= 0.0f) return BLADE_CULL_PADDING;
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    v3 view = v3_sub(v0, v3_load(desc->cam_pos));
+    v3 view_ground = v3_sub(view, v3_scale(up, v3_dot(view, up)));
+
+    if (!(desc->disable & BLADE_CULL_ORIENTATION)) {
+        v3 width_dir, front;
+        frame(b, &width_dir, &front);
+        v3 dir_c = v3_safe_normalize(view_ground);
+        if (fabsf(v3_dot(dir_c, width_dir)) > desc->orientation_threshold)
+            return BLADE_CULL_ORIENTATION;
+    }
+
+    float c0[4], cm[4], c2[4];
+    to_clip(desc, v0, c0);
+    to_clip(desc, midpoint(b), cm);
+    to_clip(desc, v3_load(b->v2), c2);
+    if (!(desc->disable & BLADE_CULL_FRUSTUM)) {
+        float t = desc->frustum_tolerance;
+        if (!in_frustum(c0, t) && !in_frustum(cm, t) && !in_frustum(c2, t))
+            return BLADE_CULL_FRUSTUM;
+    }
+
+    if (!(desc->disable & BLADE_CULL_DISTANCE)) {
+        float dproj = v3_len(view_ground);
+        int n = desc->distance_levels;
+        if (dproj > desc->max_distance) return BLADE_CULL_DISTANCE;
+        int level = (int)floorf((float)n * (1.0f - dproj / desc->max_distance));
+        if ((int)(index % (uint32_t)n) > level) return BLADE_CULL_DISTANCE;
+    }
+
+    if (desc->depth && !(desc->disable & BLADE_CULL_OCCLUSION)) {
+        if (occluded(desc, c0) && occluded(desc, cm) && occluded(desc, c2))
+            return BLADE_CULL_OCCLUSION;
+    }
+    return BLADE_CULL_VISIBLE;
+}
+
+size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
+                      uint32_t *survivors, blade_cull_stats_t *stats)
+{
+    blade_cull_desc_t d = blade_cull_desc_defaults(desc);
+    blade_cull_stats_t s = {{0, 0, 0, 0}, 0};
+    size_t count = 0;
+    for (size_t i = 0; i < n; i++) {
+        int why = blade_ref_cull_one(&b[i], (uint32_t)i, &d);
+        switch (why) {
+        case BLADE_CULL_VISIBLE: survivors[count++] = (uint32_t)i; break;
+        case BLADE_CULL_ORIENTATION: s.culled[0]++; break;
+        case BLADE_CULL_FRUSTUM: s.culled[1]++; break;
+        case BLADE_CULL_DISTANCE: s.culled[2]++; break;
+        case BLADE_CULL_OCCLUSION: s.culled[3]++; break;
+        default: break;
+        }
+    }
+    s.visible = (uint32_t)count;
+    if (stats) *stats = s;
+    return count;
+}

@@ -1,0 +1,102 @@
+/* blade_seed: places Bézier grass blades (Jahrmann & Wimmer 2017, sec. 4)
+ * on any triangle mesh and groups them into spatially ordered patches.
+ * GL-free, deterministic from desc.seed (core_rng_t).
+ *
+ * Modes:
+ *   BLADE_SEED_UNIFORM: N = round(density * area) roots, each on a triangle
+ *     picked with probability proportional to its area, uniform inside it.
+ *   BLADE_SEED_TUFTS: tuft centres by dart throwing (uniform candidates as
+ *     above, rejected when closer than tuft_min_distance to an accepted one)
+ *     until round(density * area / tuft_blades) centres or
+ *     tuft_attempts_per_centre * target candidates were tried (a warning is
+ *     logged when the target is not reached); then tuft_blades roots around
+ *     each centre, uniform in a disc of tuft_radius on the plane of the
+ *     centre's triangle. An offset that leaves the triangle is redrawn up to 8
+ *     times, then replaced by the closest point of the triangle, so every
+ *     root lies on the mesh.
+ * Every blade: up = interpolated vertex normal (face normal when normals is
+ * NULL or the interpolation degenerates), height/width/stiffness/direction
+ * angle uniform in their ranges, rest pose v1 = v2 = v0 + up * height.
+ *
+ * Patches: all blades are sorted by the 63-bit Morton code (21 bits per
+ * axis) of their root, quantized in the cube that bounds the mesh, ties
+ * broken by creation order; consecutive runs of patch_size blades form the
+ * patches, so blades inside a patch are in Morton order and patches follow
+ * the Morton curve. The last patch is padded with copies of its last blade
+ * at height 0 and width 0 (v1 = v2 = v0): the simulation and the culling
+ * skip blades of height <= 0. A patch AABB bounds the roots grown by the
+ * patch's max(height + width/2) on every side: the whole blade, whatever the
+ * forces, stays within its height of the root (curve length = height) plus
+ * half its width. */
+#ifndef MEADOW_BLADE_SEED_H
+#define MEADOW_BLADE_SEED_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "blade/blade_ref.h"
+
+/* Input mesh, borrowed. */
+typedef struct blade_mesh_t {
+    const float *positions; /* xyz per vertex */
+    const float *normals;   /* xyz per vertex, or NULL for face normals */
+    size_t vertex_count;
+    const uint32_t *indices; /* 3 per triangle */
+    size_t index_count;
+} blade_mesh_t;
+
+enum { BLADE_SEED_UNIFORM = 0, BLADE_SEED_TUFTS = 1 };
+
+/* Zero means default:
+ *   density 100 blades/m^2; height [0.3, 0.6] m; width [0.01, 0.02] m;
+ *   stiffness [4, 8]; angle [0, 2 pi) (both 0 means the full circle);
+ *   tuft_min_distance 0.25 m; tuft_blades 8; tuft_radius 0.06 m;
+ *   tuft_attempts_per_centre 30; max_blades 4,194,304 (seeding fails with a
+ *   logged error when the count, before padding, would exceed it);
+ *   patch_size 256. seed 0 is a valid seed. */
+typedef struct blade_seed_desc_t {
+    uint64_t seed;
+    int mode;
+    float density;
+    float height_min, height_max;
+    float width_min, width_max;
+    float stiffness_min, stiffness_max;
+    float angle_min, angle_max;
+    float tuft_min_distance;
+    int tuft_blades;
+    float tuft_radius;
+    int tuft_attempts_per_centre;
+    size_t max_blades;
+    int patch_size;
+} blade_seed_desc_t;
+
+typedef struct blade_aabb_t {
+    float min[3], max[3];
+} blade_aabb_t;
+
+typedef struct blade_field_t {
+    blade_t *blades;        /* padded_count blades, patch after patch */
+    float *eta;             /* padded_count collision strengths, all 0 */
+    blade_aabb_t *patch_aabbs; /* patch_count */
+    size_t blade_count;     /* real blades (the first blade_count entries) */
+    size_t padded_count;    /* patch_count * patch_size */
+    size_t patch_count;
+    int patch_size;
+    float morton_origin[3]; /* Morton quantization: cell = (p - origin) * scale */
+    float morton_scale;     /* cells per metre (2^21 cells over the cube) */
+} blade_field_t;
+
+blade_seed_desc_t blade_seed_desc_defaults(const blade_seed_desc_t *desc);
+
+/* Seeds a field on mesh. Returns false (one logged error, *out zeroed) on
+ * an invalid mesh or a count above max_blades. An empty result (zero area
+ * or zero blades) is a success with all counts 0. */
+bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, blade_field_t *out);
+
+void blade_field_free(blade_field_t *field);
+
+/* 63-bit Morton code of a root as used for the ordering. */
+uint64_t blade_seed_morton(const blade_field_t *field, const float p[3]);
+
+#endif
