@@ -92,7 +92,8 @@ int character_bone_find(const character_model_t *model, const char *name);
  *                  the last '|' (assimp writes "Armature|walk" for FBX)
  *   "N"            clip index N
  *   "A:B"          frames/ticks A..B of the first clip (files with a single
- *                  timeline); a new clip named "A:B" is appended (once)
+ *                  timeline); a new clip named "A:B" is appended (once),
+ *                  which may move model->clips (re-read pointers after)
  * Returns the clip index or -1 (and logs a warning). */
 int character_clip_find(character_model_t *model, const char *spec);
 
