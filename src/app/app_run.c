@@ -16,6 +16,7 @@ typedef struct app_t {
     scene_desc_t scene;
     terrain_mesh_t terrain_mesh;
     app_terrain_t terrain;
+    app_colliders_t colliders;
     gfx_target_t target;
     cam_t cam;
     bool follow_path;
@@ -185,7 +186,8 @@ int app_run(const app_options_t *o)
     app.target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
                                                       .samples = s->msaa, .label = "main"});
     scene_camera_init(s, &app.cam);
-    bool ok = app.target.fbo && app_terrain_make(&app.terrain, &app.terrain_mesh);
+    bool ok = app.target.fbo && app_terrain_make(&app.terrain, &app.terrain_mesh) &&
+              app_colliders_make(&app.colliders, s);
     if (!ok) {
         core_log_error("cannot create the renderer (see messages above)");
         rc = 1;
@@ -206,6 +208,7 @@ int app_run(const app_options_t *o)
         (void)steps;
         float sim_t = (float)scene_clock_time(&clock);
         if (app.follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, sim_t, &app.cam);
+        app_colliders_update(&app.colliders, sim_t);
 
         gfx_timer_frame_begin();
         app_view_t view;
@@ -217,6 +220,7 @@ int app_run(const app_options_t *o)
         glPolygonMode(GL_FRONT_AND_BACK, app.wireframe ? GL_LINE : GL_FILL);
         gfx_timer_begin("terrain");
         app_terrain_draw(&app.terrain, &view);
+        app_colliders_draw(&app.colliders, &view);
         gfx_timer_end();
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         if (app.hud) draw_hud(&app, sim_t);
@@ -237,6 +241,7 @@ int app_run(const app_options_t *o)
         gfx_timer_flush();
         write_summary(&app, plat_time() - t0);
     }
+    app_colliders_destroy(&app.colliders);
     app_terrain_destroy(&app.terrain);
     gfx_target_destroy(&app.target);
     gfx_shutdown(true);

@@ -33,3 +33,28 @@ void app_terrain_destroy(app_terrain_t *t);
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
 #endif
+
+/* ---- analytic colliders (scene "colliders") ---------------------------------- */
+#include "scene/scene.h"
+#include "scene/shapes.h"
+
+typedef struct app_collider_t {
+    scene_collider_t desc;
+    shape_mesh_t mesh;
+    gfx_buffer_t vbo, ibo;
+    GLuint vao;
+    vec3 position, velocity; /* this frame */
+    float bound_radius;
+} app_collider_t;
+
+typedef struct app_colliders_t {
+    app_collider_t items[SCENE_MAX_COLLIDERS];
+    int count;
+    gfx_program_t prog;
+} app_colliders_t;
+
+bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s);
+void app_colliders_destroy(app_colliders_t *c);
+/* Places every collider at time t on its path. */
+void app_colliders_update(app_colliders_t *c, float t);
+void app_colliders_draw(const app_colliders_t *c, const app_view_t *v);
