@@ -1,0 +1,113 @@
+#version 450
+/* blade_cull.comp: per-blade culling (Jahrmann & Wimmer 2017 sec. 6,
+ * eq. 14-20), the twin of blade_ref_cull_one in src/blade/blade_ref.c.
+ * Tests in order: orientation, frustum, distance, occlusion; the first that
+ * fails culls the blade and increments its counter (counters[0..3] in that
+ * order). A survivor appends its index to `survivors` and increments the
+ * draw command: instanceCount when u_count_instances != 0 (one instance per
+ * blade, count = vertices per blade set by the host), else count (one
+ * vertex / patch per blade, instanceCount = 1). Padding blades (height <= 0)
+ * are dropped without counting. The host resets instanceCount (or count)
+ * and the four counters with glClearBufferSubData before the dispatch;
+ * nothing here synchronizes across work groups. Survivor order is
+ * arbitrary: compare with the CPU list as a set. */
+#include "common/blade.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = 1) writeonly buffer Survivors { uint survivors[]; };
+layout(std430, binding = 2) buffer Command {
+    uint count;
+    uint instanceCount;
+    uint first;
+    uint baseInstance;
+} cmd;
+layout(std430, binding = 3) buffer Counters { uint counters[4]; };
+
+/* Window depth of the previous frame (or a depth pre-pass); NDC = 2 d - 1. */
+layout(binding = 0) uniform sampler2D u_depth;
+
+uniform uint u_blade_count;
+uniform vec3 u_cam_pos;
+uniform mat4 u_view_proj;
+uniform float u_max_distance;
+uniform int u_distance_levels;
+uniform float u_orientation_threshold;
+uniform float u_frustum_tolerance;
+uniform float u_depth_bias;
+uniform int u_use_depth;
+uniform uint u_disable;          /* BLADE_CULL_* bits */
+uniform int u_count_instances;
+
+bool occluded(vec4 clip, ivec2 size)
+{
+    if (clip.w <= 0.0) return false;
+    float x = clip.x / clip.w, y = clip.y / clip.w, z = clip.z / clip.w;
+    if (abs(x) > 1.0 || abs(y) > 1.0) return false;
+    int px = int(floor((x * 0.5 + 0.5) * float(size.x)));
+    int py = int(floor((y * 0.5 + 0.5) * float(size.y)));
+    px = clamp(px, 0, size.x - 1);
+    py = clamp(py, 0, size.y - 1);
+    float ndc = texelFetch(u_depth, ivec2(px, py), 0).r * 2.0 - 1.0;
+    return z > ndc + u_depth_bias;
+}
+
+uint cull(Blade b, uint index)
+{
+    float h = b.v1.w;
+    if (h <= 0.0) return BLADE_CULL_PADDING;
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    vec3 view = v0 - u_cam_pos;
+    vec3 view_ground = view - up * dot(view, up);
+
+    if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
+        vec3 width_dir, front;
+        blade_frame(b, width_dir, front);
+        vec3 dir_c = blade_safe_normalize(view_ground);
+        if (abs(dot(dir_c, width_dir)) > u_orientation_threshold) return BLADE_CULL_ORIENTATION;
+    }
+
+    vec4 c0 = u_view_proj * vec4(v0, 1.0);
+    vec4 cm = u_view_proj * vec4(blade_midpoint(b), 1.0);
+    vec4 c2 = u_view_proj * vec4(b.v2.xyz, 1.0);
+    if ((u_disable & BLADE_CULL_FRUSTUM) == 0u) {
+        float t = u_frustum_tolerance;
+        if (!blade_in_frustum(c0, t) && !blade_in_frustum(cm, t) && !blade_in_frustum(c2, t))
+            return BLADE_CULL_FRUSTUM;
+    }
+
+    if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
+        float dproj = length(view_ground);
+        int n = u_distance_levels;
+        if (dproj > u_max_distance) return BLADE_CULL_DISTANCE;
+        int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
+        if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
+    }
+
+    if (u_use_depth != 0 && (u_disable & BLADE_CULL_OCCLUSION) == 0u) {
+        ivec2 size = textureSize(u_depth, 0);
+        if (occluded(c0, size) && occluded(cm, size) && occluded(c2, size)) return BLADE_CULL_OCCLUSION;
+    }
+    return BLADE_CULL_VISIBLE;
+}
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_blade_count) return;
+    uint why = cull(blades[i], i);
+    if (why == BLADE_CULL_VISIBLE) {
+        uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);
+        survivors[slot] = i;
+    } else if (why == BLADE_CULL_ORIENTATION) {
+        atomicAdd(counters[0], 1u);
+    } else if (why == BLADE_CULL_FRUSTUM) {
+        atomicAdd(counters[1], 1u);
+    } else if (why == BLADE_CULL_DISTANCE) {
+        atomicAdd(counters[2], 1u);
+    } else if (why == BLADE_CULL_OCCLUSION) {
+        atomicAdd(counters[3], 1u);
+    }
+}

@@ -1,0 +1,48 @@
+#version 450
+/* blade_physics.comp: one simulation step per blade (Jahrmann & Wimmer
+ * 2017 eq. 1-13), the twin of blade_ref_step_one in src/blade/blade_ref.c:
+ * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
+ * validation, sphere collision, validation again only after a contact,
+ * eta += d.d then eta = max(eta - a dt, 0). Blades of height <= 0 (patch
+ * padding) are left untouched. One invocation per blade. */
+#include "common/blade.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(std430, binding = 0) buffer Blades { Blade blades[]; };
+layout(std430, binding = 1) buffer Eta { float eta[]; };
+layout(std430, binding = 2) readonly buffer Winds { BladeWind winds[]; };
+layout(std430, binding = 3) readonly buffer Spheres { BladeSphere spheres[]; };
+
+uniform uint u_blade_count;
+uniform float u_dt;
+uniform float u_time;
+uniform vec4 u_gravity;        /* xyz unit direction, w magnitude (0: off) */
+uniform vec4 u_gravity_centre; /* xyz centre, w mix t */
+uniform float u_collision_decay;
+uniform int u_wind_count;
+uniform int u_sphere_count;
+uniform int u_length_mode;     /* BLADE_LENGTH_QUADRATURE or BLADE_LENGTH_PAPER */
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_blade_count) return;
+    Blade b = blades[i];
+    float h = b.v1.w;
+    if (h <= 0.0) return;
+    float e = eta[i];
+    vec3 r = blade_recovery(b, e);
+    vec3 g = blade_gravity(b, u_gravity, u_gravity_centre);
+    vec3 wi = vec3(0.0);
+    for (int k = 0; k < u_wind_count; k++) wi = wi + blade_wind_field(winds[k], b.v0.xyz, u_time);
+    vec3 w = blade_wind(b, wi);
+    b.v2.xyz = b.v2.xyz + ((r + g) + w) * u_dt;
+    blade_validate(b, u_length_mode);
+    vec3 d = vec3(0.0);
+    for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k]);
+    if (dot(d, d) > 0.0) blade_validate(b, u_length_mode);
+    e = e + dot(d, d);
+    eta[i] = max(e - u_collision_decay * u_dt, 0.0);
+    blades[i] = b;
+}

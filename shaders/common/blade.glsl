@@ -1,0 +1,203 @@
+/* blade.glsl: GLSL twins of src/blade/blade_ref.c for the Bézier grass
+ * blades of Jahrmann & Wimmer 2017: blade frame, recovery (eq. 1), gravity
+ * (eq. 2-4), wind (eq. 5-8), sphere collision (sec. 5.2), state validation
+ * (eq. 9-13) and the culling tests (eq. 14-20). Each function mirrors the C
+ * function of the same name (blade_ref_x -> blade_x) statement by
+ * statement, in the same order of operations; see blade_ref.h for the
+ * step order and the departures from the paper (quadrature length, second
+ * validation only after a contact). Results match the C code to rounding
+ * (sin/sqrt precision, fma contraction).
+ *
+ * Structs are std430 and vec4-packed; C mirrors in blade_ref.h:
+ *   Blade       = blade_t        (64 bytes)
+ *   BladeWind   = blade_wind_t   (32 bytes)
+ *   BladeSphere = blade_sphere_t (16 bytes) */
+#ifndef BLADE_GLSL
+#define BLADE_GLSL
+
+struct Blade {
+    vec4 v0; /* xyz root, w direction angle */
+    vec4 v1; /* xyz control point, w height */
+    vec4 v2; /* xyz tip, w width */
+    vec4 up; /* xyz unit up, w stiffness */
+};
+
+/* kind b.y: 0 wave a = (dir.x, dir.z, wavelength, speed);
+ *           1 point a = (position.xyz, radius); b.x strength */
+struct BladeWind {
+    vec4 a;
+    vec4 b;
+};
+
+struct BladeSphere {
+    vec4 centre_radius;
+};
+
+#define BLADE_LENGTH_QUADRATURE 0
+#define BLADE_LENGTH_PAPER 1
+
+#define BLADE_CULL_VISIBLE 0u
+#define BLADE_CULL_ORIENTATION 1u
+#define BLADE_CULL_FRUSTUM 2u
+#define BLADE_CULL_DISTANCE 4u
+#define BLADE_CULL_OCCLUSION 8u
+#define BLADE_CULL_PADDING 16u
+
+vec3 blade_safe_normalize(vec3 a)
+{
+    float l = length(a);
+    return l > 1e-6 ? a * (1.0 / l) : vec3(0.0);
+}
+
+/* Width direction and front direction f = normalize(cross(up, width)). */
+void blade_frame(Blade b, out vec3 width_dir, out vec3 front)
+{
+    vec3 up = b.up.xyz;
+    float a = b.v0.w;
+    vec3 d = vec3(cos(a), 0.0, sin(a));
+    vec3 t = d - up * dot(d, up);
+    if (length(t) < 1e-3) {
+        d = vec3(-sin(a), 0.0, cos(a));
+        t = d - up * dot(d, up);
+    }
+    width_dir = blade_safe_normalize(t);
+    front = blade_safe_normalize(cross(up, width_dir));
+}
+
+/* Eq. 1: r = (I_v2 - v2) s max(1 - eta, 0.1). */
+vec3 blade_recovery(Blade b, float eta)
+{
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    float h = b.v1.w;
+    float s = b.up.w;
+    vec3 iv2 = v0 + up * h;
+    return (iv2 - b.v2.xyz) * (s * max(1.0 - eta, 0.1));
+}
+
+/* Eq. 2-4. gravity: xyz unit direction, w magnitude (0 when off);
+ * centre: xyz gravity centre, w mix t. */
+vec3 blade_gravity(Blade b, vec4 gravity, vec4 centre)
+{
+    vec3 v0 = b.v0.xyz;
+    float t = centre.w;
+    vec3 to_centre = blade_safe_normalize(centre.xyz - v0);
+    vec3 dir = gravity.xyz * (1.0 - t) + to_centre * t;
+    vec3 ge = dir * gravity.w;
+    vec3 width_dir, front;
+    blade_frame(b, width_dir, front);
+    vec3 gf = front * (0.25 * length(ge));
+    return ge + gf;
+}
+
+/* w_i(p, time) of one field. */
+vec3 blade_wind_field(BladeWind w, vec3 p, float time)
+{
+    float strength = w.b.x;
+    if (w.b.y < 0.5) {
+        vec3 d = blade_safe_normalize(vec3(w.a.x, 0.0, w.a.y));
+        float wavelength = w.a.z;
+        float speed = w.a.w;
+        float phase = 6.28318531 * (dot(d, p) - speed * time) / wavelength;
+        return d * (strength * (0.5 + 0.5 * sin(phase)));
+    }
+    vec3 rel = p - w.a.xyz;
+    float radius = w.a.w;
+    float falloff = max(1.0 - length(rel) / radius, 0.0);
+    return blade_safe_normalize(rel) * (strength * falloff);
+}
+
+/* Eq. 5-8: w = w_sum theta, theta = f_d f_r. w_sum = sum of
+ * blade_wind_field(field_i, v0, time), summed by the caller in field order. */
+vec3 blade_wind(Blade b, vec3 wi)
+{
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    float h = b.v1.w;
+    vec3 tip = b.v2.xyz - v0;
+    float fd = 1.0 - abs(dot(blade_safe_normalize(wi), blade_safe_normalize(tip)));
+    float fr = dot(tip, up) / h;
+    return wi * (fd * fr);
+}
+
+vec3 blade_midpoint(Blade b)
+{
+    return b.v0.xyz * 0.25 + b.v1.xyz * 0.5 + b.v2.xyz * 0.25;
+}
+
+/* Push-out of p from a sphere: min(|c - p| - r, 0) normalize(c - p). */
+vec3 blade_sphere_push(BladeSphere s, vec3 p)
+{
+    vec3 c = s.centre_radius.xyz;
+    vec3 to_c = c - p;
+    float pen = min(length(to_c) - s.centre_radius.w, 0.0);
+    return blade_safe_normalize(to_c) * pen;
+}
+
+/* Sec. 5.2 for one sphere: v2 pushed out, then 4x the push-out of the
+ * recomputed midpoint. Updates b.v2, returns the displacement. The caller
+ * loops over the spheres in order and sums the results. */
+vec3 blade_collide_sphere(inout Blade b, BladeSphere s)
+{
+    vec3 dv2 = blade_sphere_push(s, b.v2.xyz);
+    b.v2.xyz = b.v2.xyz + dv2;
+    vec3 dm = blade_sphere_push(s, blade_midpoint(b)) * 4.0;
+    b.v2.xyz = b.v2.xyz + dm;
+    return dv2 + dm;
+}
+
+/* Integral of |B'(t)| over [t0, t1], 3-point Gauss-Legendre; B'(t) = 2(e0 + t a). */
+float blade_speed_integral(vec3 e0, vec3 a, float t0, float t1)
+{
+    const float gl3_t[3] = float[3](0.11270166, 0.5, 0.88729833);
+    const float gl3_w[3] = float[3](0.27777778, 0.44444444, 0.27777778);
+    float s = 0.0;
+    for (int i = 0; i < 3; i++) {
+        float t = t0 + (t1 - t0) * gl3_t[i];
+        s += gl3_w[i] * length(e0 + a * t);
+    }
+    return 2.0 * (t1 - t0) * s;
+}
+
+float blade_length_estimate(vec3 v0, vec3 v1, vec3 v2, int mode)
+{
+    if (mode == BLADE_LENGTH_PAPER) {
+        float l0 = length(v2 - v0);
+        float l1 = length(v1 - v0) + length(v2 - v1);
+        return (2.0 * l0 + l1) / 3.0;
+    }
+    vec3 e0 = v1 - v0;
+    vec3 a = (v0 - v1 * 2.0) + v2;
+    float aa = dot(a, a);
+    float ts = aa > 1e-12 ? min(max(-dot(a, e0) / aa, 0.0), 1.0) : 0.0;
+    return blade_speed_integral(e0, a, 0.0, ts) + blade_speed_integral(e0, a, ts, 1.0);
+}
+
+/* Eq. 9-13. */
+void blade_validate(inout Blade b, int length_mode)
+{
+    float h = b.v1.w;
+    if (h <= 0.0) return;
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    vec3 v2 = b.v2.xyz;
+    v2 = v2 - up * min(dot(up, v2 - v0), 0.0);
+    vec3 tip = v2 - v0;
+    float lproj = length(tip - up * dot(tip, up));
+    vec3 v1 = v0 + up * (h * max(1.0 - lproj / h, 0.05 * max(lproj / h, 1.0)));
+    float r = h / blade_length_estimate(v0, v1, v2, length_mode);
+    vec3 v1c = v0 + (v1 - v0) * r;
+    vec3 v2c = v1c + (v2 - v1) * r;
+    b.v1.xyz = v1c;
+    b.v2.xyz = v2c;
+}
+
+/* ---- culling (blade_ref_cull_one) ---------------------------------------- */
+
+bool blade_in_frustum(vec4 clip, float tolerance)
+{
+    float h = clip.w + tolerance;
+    return abs(clip.x) <= h && abs(clip.y) <= h && abs(clip.z) <= h;
+}
+
+#endif
