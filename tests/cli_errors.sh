@@ -36,7 +36,7 @@ expect2 "needs a value" --scene
 expect2 "unknown command 'fly'" fly
 expect2 "missing.json" --headless --scene "$tmp/missing.json"
 printf '{ "seed": 1,\n  "terrain": { "size": 10,\n' >"$tmp/truncated.json"
-expect2 "truncated.json:3" --headless --scene "$tmp/truncated.json"
+expect2 "truncated.json:2: unexpected end of file" --headless --scene "$tmp/truncated.json"
 printf '{\n  "seed": 1,\n  "grass": { "density": "lots" }\n}\n' >"$tmp/wrongtype.json"
 expect2 'wrongtype.json:3.*grass.density' --headless --scene "$tmp/wrongtype.json"
 printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"

@@ -21,14 +21,14 @@ cd "$root"
 mpid=$!
 wid=""
 for _ in $(seq 300); do
-  wid=$(xdotool search --name '^meadow' 2>/dev/null | head -1)
+  wid=$(xdotool search --onlyvisible --name '^meadow' 2>/dev/null | head -1)
   [ -n "$wid" ] && break
   sleep 0.2
 done
 [ -n "$wid" ] || { echo "FAIL: no meadow window"; cat "$tmp/meadow.log"; exit 1; }
 grep -q "platform: glfw" "$tmp/meadow.log" || { echo "FAIL: not the GLFW back end"; cat "$tmp/meadow.log"; exit 1; }
 shot() { # shot N: press C and wait for the Nth screenshot
-  xdotool key --window "$wid" c
+  xdotool key --window "$wid" c 2>/dev/null
   for _ in $(seq 150); do
     [ "$(ls "$tmp/out"/shot-*.png 2>/dev/null | wc -l)" -ge "$1" ] && return 0
     sleep 0.2
@@ -36,13 +36,21 @@ shot() { # shot N: press C and wait for the Nth screenshot
   return 1
 }
 sleep 1
+# Hide the HUD (it shows changing frame times) and pause: the image must
+# then stay identical until F toggles wireframe.
+xdotool key --window "$wid" h 2>/dev/null
+xdotool key --window "$wid" p 2>/dev/null
+sleep 0.5
 shot 1 || { echo "FAIL: key C wrote no screenshot"; cat "$tmp/meadow.log"; exit 1; }
-xdotool key --window "$wid" f
-sleep 1
 shot 2 || { echo "FAIL: second screenshot missing"; cat "$tmp/meadow.log"; exit 1; }
-a=$(ls "$tmp/out"/shot-*.png | head -1); b=$(ls "$tmp/out"/shot-*.png | tail -1)
-if cmp -s "$a" "$b"; then echo "FAIL: wireframe key changed nothing ($a == $b)"; exit 1; fi
-xdotool key --window "$wid" Escape
+xdotool key --window "$wid" f 2>/dev/null
+sleep 0.5
+shot 3 || { echo "FAIL: third screenshot missing"; cat "$tmp/meadow.log"; exit 1; }
+mapfile -t s < <(ls "$tmp/out"/shot-*.png)
+if ! cmp -s "${s[0]}" "${s[1]}"; then echo "FAIL: paused frames differ (${s[0]} vs ${s[1]})"; exit 1; fi
+if cmp -s "${s[1]}" "${s[2]}"; then echo "FAIL: wireframe key F changed nothing"; exit 1; fi
+a=${s[1]}; b=${s[2]}
+xdotool key --window "$wid" Escape 2>/dev/null
 for _ in $(seq 100); do kill -0 "$mpid" 2>/dev/null || break; sleep 0.1; done
 if kill -0 "$mpid" 2>/dev/null; then echo "FAIL: Escape did not close the window"; exit 1; fi
 wait "$mpid"; rc=$?

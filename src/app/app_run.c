@@ -201,9 +201,14 @@ int app_run(const app_options_t *o)
         double now = plat_time(), real_dt = now - last;
         last = now;
         if (!headless) handle_keys(&app, (float)real_dt);
-        int steps = scene_clock_advance(&clock, real_dt);
-        if (app.paused && !app.step_once) steps = 0;
-        if (app.paused && app.step_once) steps = 1;
+        int steps;
+        if (!app.paused) {
+            steps = scene_clock_advance(&clock, real_dt);
+        } else {
+            /* Paused: time stands still; N advances exactly one step. */
+            steps = app.step_once ? 1 : 0;
+            clock.steps += (uint64_t)steps;
+        }
         app.step_once = false;
         (void)steps;
         float sim_t = (float)scene_clock_time(&clock);
