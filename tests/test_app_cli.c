@@ -1,0 +1,46 @@
+/* test_app_cli: option parsing accepts good values and rejects each bad one
+ * with a message naming the option and the bound. */
+#include "app/app.h"
+#include "test.h"
+
+#include <string.h>
+
+static int parse(app_options_t *o, char *err, int n, char **argv)
+{
+    return app_parse_args(n, argv, o, err, 256);
+}
+
+int main(void)
+{
+    app_options_t o;
+    char err[256];
+    char *good[] = {"meadow", "--headless", "--frames", "10", "--seed", "18446744073709551615", "--size",
+                    "640x480", "--out", "o", "--screenshot-every", "5", "--mode", "blade", "--scene", "s.json"};
+    CHECK(parse(&o, err, 16, good) == 0);
+    CHECK(o.headless && o.frames == 10 && o.frames_set && o.seed == 18446744073709551615ULL && o.seed_set);
+    CHECK(o.width == 640 && o.height == 480 && strcmp(o.out, "o") == 0 && o.screenshot_every == 5);
+    CHECK(o.mode == APP_MODE_BLADE && strcmp(o.scene, "s.json") == 0 && o.command == APP_CMD_RUN);
+    char *bench[] = {"meadow", "bench", "--quick"};
+    CHECK(parse(&o, err, 3, bench) == 0 && o.command == APP_CMD_BENCH && o.quick);
+
+    struct {
+        char *a, *b;
+        const char *msg;
+    } bad[] = {
+        {"--frames", "0", "1..10000000"},        {"--frames", "10000001", "1..10000000"},
+        {"--frames", "1e3", "--frames '1e3'"},   {"--size", "15x100", "16..8192"},
+        {"--size", "100x8193", "16..8192"},      {"--size", "100", "WxH"},
+        {"--size", "100x100x", "WxH"},           {"--seed", "-1", "unsigned"},
+        {"--seed", "99999999999999999999", "unsigned"}, {"--mode", "", "billboard, blade or hybrid"},
+        {"--screenshot-every", "-1", "0..10000000"}, {"--out", "", "empty"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char *argv[] = {"meadow", bad[i].a, bad[i].b};
+        err[0] = 0;
+        CHECK_MSG(parse(&o, err, 3, argv) == 2 && strstr(err, bad[i].msg), "%s %s -> '%s'", bad[i].a, bad[i].b,
+                  err);
+    }
+    char *missing[] = {"meadow", "--frames"};
+    CHECK(parse(&o, err, 2, missing) == 2 && strstr(err, "needs a value"));
+    TEST_END();
+}
