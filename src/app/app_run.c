@@ -13,10 +13,7 @@
 
 typedef struct app_t {
     const app_options_t *opts;
-    scene_desc_t scene;
-    terrain_mesh_t terrain_mesh;
-    app_terrain_t terrain;
-    app_colliders_t colliders;
+    app_world_t world;
     gfx_target_t target;
     cam_t cam;
     bool follow_path;
@@ -26,63 +23,6 @@ typedef struct app_t {
     char shots[16][1100];
     double frame_ms_avg;
 } app_t;
-
-static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
-{
-    switch (m) {
-    case APP_MODE_BILLBOARD: return SCENE_MODE_BILLBOARD;
-    case APP_MODE_BLADE: return SCENE_MODE_BLADE;
-    case APP_MODE_HYBRID: return SCENE_MODE_HYBRID;
-    default: return scene_mode;
-    }
-}
-
-/* Scene, CLI overrides and terrain. Errors are one line and exit code 2. */
-static int load_inputs(app_t *app)
-{
-    const app_options_t *o = app->opts;
-    char err[1024], path[1024];
-    const char *scene = o->scene ? o->scene : "scenes/meadow.json";
-    if (!o->scene) core_fs_resolve(scene, path, sizeof path);
-    else snprintf(path, sizeof path, "%s", scene);
-    if (!scene_load(&app->scene, path, err, sizeof err)) return 2;
-    scene_desc_t *s = &app->scene;
-    if (o->seed_set) s->seed = (uint32_t)o->seed;
-    if (o->width) {
-        s->size[0] = o->width;
-        s->size[1] = o->height;
-    }
-    s->mode = mode_from_cli(o->mode, s->mode);
-    if (s->terrain.type == TERRAIN_MESH) {
-        char mesh[1024];
-        if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
-        if (!terrain_load_mesh(&app->terrain_mesh, mesh, s->terrain.scale, err, sizeof err)) {
-            core_log_error("%s: terrain.mesh: %s", path, err);
-            return 2;
-        }
-    } else if (!terrain_make_heightfield(&app->terrain_mesh, &s->terrain, s->seed)) {
-        core_log_error("%s: cannot build the heightfield terrain", path);
-        return 2;
-    }
-    return 0;
-}
-
-static void build_view(const app_t *app, app_view_t *v, float time, float dt)
-{
-    cam_t cam = app->cam;
-    cam.aspect = (float)app->target.w / (float)app->target.h;
-    cam_view(&cam, v->view);
-    cam_proj(&cam, v->proj);
-    glm_mat4_mul(v->proj, v->view, v->viewproj);
-    glm_mat4_inv(v->viewproj, v->inv_viewproj);
-    cam_frustum_planes(v->viewproj, v->planes);
-    glm_vec3_copy(cam.position, v->camera);
-    glm_vec3_normalize_to((vec3){0.45f, 0.8f, 0.35f}, v->sun_dir);
-    v->width = app->target.w;
-    v->height = app->target.h;
-    v->time = time;
-    v->dt = dt;
-}
 
 static void handle_keys(app_t *app, float real_dt)
 {
@@ -107,7 +47,7 @@ static void handle_keys(app_t *app, float real_dt)
 static void draw_hud(const app_t *app, double sim_time)
 {
     char text[2048];
-    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s\n", scene_mode_name(app->scene.mode),
+    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s\n", scene_mode_name(app->world.scene.mode),
                      app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "");
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof text - 64; i++)
         n += snprintf(text + n, sizeof text - (size_t)n, "%-12s %7.3f ms\n", gfx_timer_name(i), gfx_timer_last_ms(i));
@@ -142,7 +82,7 @@ static void write_summary(const app_t *app, double wall_s)
                      "gpu passes (median ms over last <=256 frames, mean ms):\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
-                     scene_mode_name(app->scene.mode), app->scene.seed, app->frames, app->target.w, app->target.h,
+                     scene_mode_name(app->world.scene.mode), app->world.scene.seed, app->frames, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written);
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++)
@@ -164,17 +104,18 @@ int app_run(const app_options_t *o)
         core_log_error("--out: %s", err);
         return 2;
     }
-    int rc = load_inputs(&app);
+    app_world_t *w = &app.world;
+    int rc = app_world_load(w, o);
     if (rc) {
-        terrain_free(&app.terrain_mesh);
+        app_world_destroy(w);
         return rc;
     }
-    scene_desc_t *s = &app.scene;
+    scene_desc_t *s = &w->scene;
     plat_desc_t pd = {.backend = o->headless ? PLAT_BACKEND_EGL : PLAT_BACKEND_AUTO,
                       .width = s->size[0], .height = s->size[1]};
     if (!plat_init(&pd, err, sizeof err)) {
         core_log_error("no OpenGL 4.5 context: %s", err);
-        terrain_free(&app.terrain_mesh);
+        app_world_destroy(w);
         return 1;
     }
     bool headless = plat_is_headless();
@@ -186,8 +127,7 @@ int app_run(const app_options_t *o)
     app.target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
                                                       .samples = s->msaa, .label = "main"});
     scene_camera_init(s, &app.cam);
-    bool ok = app.target.fbo && app_terrain_make(&app.terrain, &app.terrain_mesh) &&
-              app_colliders_make(&app.colliders, s);
+    bool ok = app.target.fbo && app_world_make_gpu(w);
     if (!ok) {
         core_log_error("cannot create the renderer (see messages above)");
         rc = 1;
@@ -210,33 +150,28 @@ int app_run(const app_options_t *o)
             clock.steps += (uint64_t)steps;
         }
         app.step_once = false;
-        (void)steps;
-        float sim_t = (float)scene_clock_time(&clock);
-        if (app.follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, sim_t, &app.cam);
-        app_colliders_update(&app.colliders, sim_t);
-
         gfx_timer_frame_begin();
+        double end_t = scene_clock_time(&clock);
+        for (int i = steps - 1; i >= 0; i--) app_world_update(w, (float)(end_t - i * s->dt), (float)s->dt);
+        float sim_t = (float)end_t;
+        if (app.follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, sim_t, &app.cam);
+
         app_view_t view;
-        build_view(&app, &view, sim_t, (float)s->dt);
+        app_view_make(&view, &app.cam, app.target.w, app.target.h, sim_t, (float)s->dt);
         gfx_target_bind(&app.target);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        glPolygonMode(GL_FRONT_AND_BACK, app.wireframe ? GL_LINE : GL_FILL);
-        gfx_timer_begin("terrain");
-        app_terrain_draw(&app.terrain, &view);
-        app_colliders_draw(&app.colliders, &view);
-        gfx_timer_end();
-        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+        app_world_draw(w, &view, app.wireframe);
         if (app.hud) draw_hud(&app, sim_t);
         frame++;
         app.frame_ms_avg = app.frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
         bool shot = (app.shot_every && frame % app.shot_every == 0) || (!headless && plat_key_pressed(PLAT_KEY_C));
         if (shot) screenshot(&app, frame);
         if (!headless) {
-            int w, h;
-            plat_framebuffer_size(&w, &h);
-            gfx_target_present(&app.target, w, h);
+            int fw, fh;
+            plat_framebuffer_size(&fw, &fh);
+            gfx_target_present(&app.target, fw, fh);
             plat_swap();
         }
         if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
@@ -246,13 +181,11 @@ int app_run(const app_options_t *o)
         gfx_timer_flush();
         write_summary(&app, plat_time() - t0);
     }
-    app_colliders_destroy(&app.colliders);
-    app_terrain_destroy(&app.terrain);
+    app_world_destroy(w);
     gfx_target_destroy(&app.target);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
-    terrain_free(&app.terrain_mesh);
     if (gl_errors) {
         core_log_error("%d GL error(s) during the run", gl_errors);
         return 1;

@@ -58,3 +58,31 @@ void app_colliders_destroy(app_colliders_t *c);
 /* Places every collider at time t on its path. */
 void app_colliders_update(app_colliders_t *c, float t);
 void app_colliders_draw(const app_colliders_t *c, const app_view_t *v);
+
+/* ---- the world ------------------------------------------------------------------ */
+typedef struct app_world_t {
+    scene_desc_t scene; /* resolved, CLI overrides applied */
+    char scene_path[1024];
+    terrain_mesh_t terrain_mesh;
+    app_terrain_t terrain;
+    app_colliders_t colliders;
+    scene_mode_t mode;
+    bool gpu_ready;
+} app_world_t;
+
+/* Scene file, CLI overrides and terrain (no GL). Returns 0, or 2 after one
+ * error line (bad scene file or terrain mesh). */
+int app_world_load(app_world_t *w, const app_options_t *o);
+/* GPU resources for every system the scene needs. */
+bool app_world_make_gpu(app_world_t *w);
+/* Simulates one fixed step at simulated time t. */
+void app_world_update(app_world_t *w, float t, float dt);
+/* Draws into the bound target; `depth_source` is the target whose resolved
+ * depth the occlusion culling may read (previous frame). */
+void app_world_draw(app_world_t *w, const app_view_t *v, bool wireframe);
+/* Switches the grass mode at run time, keeping the simulation state. */
+void app_world_set_mode(app_world_t *w, scene_mode_t mode);
+void app_world_destroy(app_world_t *w);
+
+/* Fills the per-frame view from a camera and target size. */
+void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
