@@ -53,6 +53,30 @@ int main(void)
     CHECK(back.w == 7 && back.h == 5 && memcmp(img.px, back.px, 7 * 5 * 4) == 0);
     core_image_free(&img);
     core_image_free(&back);
+    /* Drawing: text lands inside its box, blit copies, fill clips. */
+    core_image_t canvas, tile;
+    CHECK(core_image_alloc(&canvas, 64, 32, 4) && core_image_alloc(&tile, 4, 4, 1));
+    memset(tile.px, 200, 16);
+    core_image_blit(&canvas, &tile, 62, 30);
+    CHECK(canvas.px[(31 * 64 + 63) * 4] == 200 && canvas.px[(31 * 64 + 63) * 4 + 3] == 255);
+    CHECK(canvas.px[(29 * 64 + 63) * 4] == 0);
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    core_image_fill(&canvas, -5, -5, 10, 10, white);
+    CHECK(canvas.px[(4 * 64 + 4) * 4] == 255 && canvas.px[(5 * 64 + 5) * 4] == 0);
+    core_image_t label;
+    CHECK(core_image_alloc(&label, 64, 16, 4));
+    core_image_text(&label, 2, 2, 1, "HI", white);
+    int lit = 0, outside = 0;
+    for (int j = 0; j < 16; j++)
+        for (int i = 0; i < 64; i++) {
+            bool on = label.px[(j * 64 + i) * 4] == 255;
+            lit += on;
+            outside += on && (i >= 20 || j >= 12);
+        }
+    CHECK(lit > 10 && outside == 0);
+    core_image_free(&label);
+    core_image_free(&canvas);
+    core_image_free(&tile);
     char probe[300];
     CHECK(core_fs_resolve("CMakeLists.txt", probe, sizeof probe));
     TEST_END();

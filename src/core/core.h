@@ -69,4 +69,13 @@ bool core_image_load(core_image_t *img, const char *path, int channels);
 /* Writes PNG atomically (tmp + rename). */
 bool core_image_write_png(const core_image_t *img, const char *path);
 
+/* Copies src (any channels, expanded to RGBA) into dst (RGBA) at (x, y),
+ * clipped. */
+void core_image_blit(core_image_t *dst, const core_image_t *src, int x, int y);
+/* Fills a rectangle of an RGBA image, clipped. */
+void core_image_fill(core_image_t *img, int x, int y, int w, int h, const uint8_t rgba[4]);
+/* Draws text (stb_easy_font glyphs, `scale` pixels per font unit) into an
+ * RGBA image with its top-left at (x, y). */
+void core_image_text(core_image_t *img, int x, int y, int scale, const char *text, const uint8_t rgba[4]);
+
 #endif
