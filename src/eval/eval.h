@@ -1,0 +1,37 @@
+/* eval: GL-free evaluation helpers for `meadow bench` and `meadow compare`:
+ * image error (mean absolute difference, SSIM), diff heatmaps, Pareto fronts,
+ * and CSV/JSON/gnuplot output written atomically. */
+#ifndef MEADOW_EVAL_H
+#define MEADOW_EVAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "core/core.h"
+
+/* Mean absolute difference of the RGB channels, in [0, 1]. */
+double eval_image_mad(const core_image_t *a, const core_image_t *b);
+/* Mean SSIM of the luminance (Wang et al. 2004: 8x8 windows with stride 4,
+ * C1 = (0.01*255)^2, C2 = (0.03*255)^2), in [-1, 1]; 1 = identical. */
+double eval_image_ssim(const core_image_t *a, const core_image_t *b);
+/* Heatmap of the per-pixel luminance difference (black -> red -> yellow ->
+ * white over 0 .. `full_scale` levels). */
+bool eval_image_heatmap(const core_image_t *a, const core_image_t *b, int full_scale, core_image_t *out);
+
+/* Marks the Pareto-optimal points (minimise both x and y). */
+void eval_pareto(const double *x, const double *y, int n, bool *on_front);
+
+/* Text accumulated in memory, then written atomically. */
+typedef struct eval_text_t {
+    char *s;
+    size_t n, cap;
+} eval_text_t;
+void eval_text_printf(eval_text_t *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+bool eval_text_write(eval_text_t *t, const char *path);
+void eval_text_free(eval_text_t *t);
+
+/* Runs gnuplot on a script file (PNG + SVG terminals are the script's
+ * business). Returns false, with a warning, when gnuplot is missing or fails. */
+bool eval_gnuplot(const char *script_path);
+
+#endif

@@ -1,0 +1,38 @@
+/* test_eval: SSIM and MAD on known images, heatmap, Pareto front. */
+#include "eval/eval.h"
+#include "test.h"
+
+#include <string.h>
+
+int main(void)
+{
+    core_image_t a, b, h;
+    CHECK(core_image_alloc(&a, 32, 32, 4) && core_image_alloc(&b, 32, 32, 4));
+    core_rng_t rng;
+    core_rng_seed(&rng, 1, 1);
+    for (int i = 0; i < 32 * 32 * 4; i++) a.px[i] = (uint8_t)(core_rng_u32(&rng) & 255);
+    memcpy(b.px, a.px, 32 * 32 * 4);
+    CHECK_NEAR(eval_image_ssim(&a, &b), 1.0, 1e-9);
+    CHECK_NEAR(eval_image_mad(&a, &b), 0.0, 1e-12);
+    for (int i = 0; i < 32 * 32 * 4; i++) b.px[i] = (uint8_t)(255 - a.px[i]);
+    CHECK(eval_image_ssim(&a, &b) < 0.0); /* inverted noise is anti-correlated */
+    memset(b.px, 0, 32 * 32 * 4);
+    for (int i = 0; i < 32 * 32; i++) b.px[i * 4 + 0] = b.px[i * 4 + 1] = b.px[i * 4 + 2] = 51;
+    memset(a.px, 0, 32 * 32 * 4);
+    CHECK_NEAR(eval_image_mad(&a, &b), 0.2, 1e-9);
+    CHECK(eval_image_heatmap(&a, &b, 51, &h));
+    CHECK(h.px[0] >= 254 && h.px[1] >= 254 && h.px[2] >= 254);
+    core_image_free(&h);
+    double x[5] = {1, 2, 3, 2, 4}, y[5] = {5, 3, 1, 4, 0.5};
+    bool f[5];
+    eval_pareto(x, y, 5, f);
+    CHECK(f[0] && f[1] && f[2] && !f[3] && f[4]);
+    eval_text_t t = {0};
+    eval_text_printf(&t, "a,%d\n", 1);
+    eval_text_printf(&t, "%s", "b,2\n");
+    CHECK(t.n == 8 && strcmp(t.s, "a,1\nb,2\n") == 0);
+    eval_text_free(&t);
+    core_image_free(&a);
+    core_image_free(&b);
+    TEST_END();
+}
