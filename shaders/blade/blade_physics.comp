@@ -2,7 +2,8 @@
 /* blade_physics.comp: one simulation step per blade (Jahrmann & Wimmer
  * 2017 eq. 1-13), the twin of blade_ref_step_one in src/blade/blade_ref.c:
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
- * validation, sphere collision, validation again only after a contact,
+ * validation, sphere collision, validation again and the collision exit
+ * (departure, see blade_ref.h) only after a contact,
  * eta += d.d then eta = max(eta - a dt, 0). Blades of height <= 0 (patch
  * padding) are left untouched. One invocation per blade. */
 #include "common/blade.glsl"
@@ -41,7 +42,16 @@ void main()
     blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
     for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k]);
-    if (dot(d, d) > 0.0) blade_validate(b, u_length_mode);
+    if (dot(d, d) > 0.0) {
+        blade_validate(b, u_length_mode);
+        for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
+            for (int k = 0; k < u_sphere_count; k++) {
+                blade_exit_rotate(b, spheres[k], b.v2.xyz);
+                blade_exit_rotate(b, spheres[k], blade_midpoint(b));
+            }
+        }
+        for (int k = 0; k < u_sphere_count; k++) blade_exit_straight(b, spheres[k]);
+    }
     e = e + dot(d, d);
     eta[i] = max(e - u_collision_decay * u_dt, 0.0);
     blades[i] = b;

@@ -5,7 +5,7 @@
  * function of the same name (blade_ref_x -> blade_x) statement by
  * statement, in the same order of operations; see blade_ref.h for the
  * step order and the departures from the paper (quadrature length, second
- * validation only after a contact). Results match the C code to rounding
+ * validation only after a contact, collision exit). Results match the C code to rounding
  * (sin/sqrt precision, fma contraction).
  *
  * Structs are std430 and vec4-packed; C mirrors in blade_ref.h:
@@ -144,6 +144,88 @@ vec3 blade_collide_sphere(inout Blade b, BladeSphere s)
     vec3 dm = blade_sphere_push(s, blade_midpoint(b)) * 4.0;
     b.v2.xyz = b.v2.xyz + dm;
     return dv2 + dm;
+}
+
+/* ---- collision exit (departure from the paper; blade_ref_exit) ------------ */
+#define BLADE_EXIT_ROUNDS 3
+#define BLADE_EXIT_MARGIN 1.0001
+
+float blade_cos_exit(float rho, float dist, float r)
+{
+    float rt = r * BLADE_EXIT_MARGIN;
+    return min(max((rho * rho + dist * dist - rt * rt) / (2.0 * rho * dist), -1.0), 1.0);
+}
+
+vec3 blade_exit_side(vec3 ch, vec3 pd, vec3 up)
+{
+    vec3 e = pd - ch * dot(pd, ch);
+    if (length(e) < 1e-4 * length(pd)) {
+        e = up - ch * dot(up, ch);
+        if (length(e) < 1e-4) e = cross(ch, vec3(0.0, 0.0, 1.0));
+        if (length(e) < 1e-4) e = cross(ch, vec3(1.0, 0.0, 0.0));
+    }
+    return blade_safe_normalize(e);
+}
+
+bool blade_inside_sphere(BladeSphere s, vec3 p)
+{
+    vec3 pc = p - s.centre_radius.xyz;
+    return dot(pc, pc) < s.centre_radius.w * s.centre_radius.w;
+}
+
+void blade_exit_rotate(inout Blade b, BladeSphere s, vec3 p)
+{
+    if (!blade_inside_sphere(s, p)) return;
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    vec3 cd = s.centre_radius.xyz - v0;
+    float dist = length(cd);
+    vec3 pd = p - v0;
+    float rho = length(pd);
+    if (dist <= s.centre_radius.w || rho < 1e-6) return;
+    vec3 ch = cd * (1.0 / dist);
+    vec3 e = blade_exit_side(ch, pd, up);
+    float ca = dot(pd, ch) / rho;
+    float sa = sqrt(max(1.0 - ca * ca, 0.0));
+    float ct = blade_cos_exit(rho, dist, s.centre_radius.w);
+    float st = sqrt(max(1.0 - ct * ct, 0.0));
+    float cth = ct * ca + st * sa;
+    float sth = st * ca - ct * sa;
+    vec3 k = cross(ch, e);
+    vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
+    vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
+    vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
+    if (dot(r2, up) < 0.0) return;
+    b.v1.xyz = v0 + r1;
+    b.v2.xyz = v0 + r2;
+}
+
+void blade_exit_straight(inout Blade b, BladeSphere s)
+{
+    float h = b.v1.w;
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    if (!blade_inside_sphere(s, b.v2.xyz) && !blade_inside_sphere(s, blade_midpoint(b))) return;
+    vec3 cd = s.centre_radius.xyz - v0;
+    float dist = length(cd);
+    float r = s.centre_radius.w;
+    if (dist <= r) return;
+    vec3 ch = cd * (1.0 / dist);
+    vec3 td = b.v2.xyz - v0;
+    float ct = min(blade_cos_exit(h, dist, r), blade_cos_exit(0.5 * h, dist, r));
+    float st = sqrt(max(1.0 - ct * ct, 0.0));
+    vec3 u = ch * ct + blade_exit_side(ch, td, up) * st;
+    if (dot(u, up) < 0.0) {
+        vec3 gp = ch - up * dot(ch, up);
+        float gl = length(gp);
+        vec3 g = blade_safe_normalize(gp);
+        vec3 w = cross(up, g);
+        float x = gl > 1e-6 ? min(max(ct / gl, -1.0), 1.0) : 0.0;
+        float y = sqrt(max(1.0 - x * x, 0.0));
+        u = g * x + w * (dot(w, td) < 0.0 ? -y : y);
+    }
+    b.v1.xyz = v0 + u * (0.5 * h);
+    b.v2.xyz = v0 + u * h;
 }
 
 /* Integral of |B'(t)| over [t0, t1], 3-point Gauss-Legendre; B'(t) = 2(e0 + t a). */

@@ -195,6 +195,123 @@ void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, flo
     v3_store(d, collide(b, spheres, count));
 }
 
+/* Departure from the paper (see blade_ref.h). Sphere s seen from the root:
+ * unit direction ch to the centre, distance dist. A point at distance rho
+ * from v0 is outside s (at distance rt = r * BLADE_EXIT_MARGIN from the
+ * centre, law of cosines) when its angle a to ch has cos a <= cos_exit. */
+static float cos_exit(float rho, float dist, float r)
+{
+    float rt = r * BLADE_EXIT_MARGIN;
+    return fminf(fmaxf((rho * rho + dist * dist - rt * rt) / (2.0f * rho * dist), -1.0f), 1.0f);
+}
+
+/* Unit vector orthogonal to ch in the plane of ch and pd (or of ch and up
+ * when pd is along ch). */
+static v3 exit_side(v3 ch, v3 pd, v3 up)
+{
+    v3 e = v3_sub(pd, v3_scale(ch, v3_dot(pd, ch)));
+    if (v3_len(e) < 1e-4f * v3_len(pd)) {
+        e = v3_sub(up, v3_scale(ch, v3_dot(up, ch)));
+        if (v3_len(e) < 1e-4f) e = v3_cross(ch, v3_make(0.0f, 0.0f, 1.0f));
+        if (v3_len(e) < 1e-4f) e = v3_cross(ch, v3_make(1.0f, 0.0f, 0.0f));
+    }
+    return v3_safe_normalize(e);
+}
+
+static bool inside_sphere(const blade_sphere_t *s, v3 p)
+{
+    v3 pc = v3_sub(p, v3_load(s->centre_radius));
+    return v3_dot(pc, pc) < s->centre_radius[3] * s->centre_radius[3];
+}
+
+/* Rigid rotation of v1 and v2 about v0, in the plane of ch and (p - v0),
+ * that brings p (v2 or m) onto the exit distance. The rotation keeps the
+ * curve length; it is built from cosines and sines by algebra only (no
+ * trig), so the GLSL twin matches up to sqrt rounding. Skipped when p is
+ * outside, when the root is inside s, and when it would put v2 under the
+ * ground plane (exit_straight handles those contacts). */
+static void exit_rotate(blade_t *b, const blade_sphere_t *s, v3 p)
+{
+    if (!inside_sphere(s, p)) return;
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    v3 cd = v3_sub(v3_load(s->centre_radius), v0);
+    float dist = v3_len(cd);
+    v3 pd = v3_sub(p, v0);
+    float rho = v3_len(pd);
+    if (dist <= s->centre_radius[3] || rho < 1e-6f) return;
+    v3 ch = v3_scale(cd, 1.0f / dist);
+    v3 e = exit_side(ch, pd, up);
+    float ca = v3_dot(pd, ch) / rho;
+    float sa = sqrtf(fmaxf(1.0f - ca * ca, 0.0f));
+    float ct = cos_exit(rho, dist, s->centre_radius[3]);
+    float st = sqrtf(fmaxf(1.0f - ct * ct, 0.0f));
+    float cth = ct * ca + st * sa;
+    float sth = st * ca - ct * sa;
+    v3 k = v3_cross(ch, e);
+    v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
+    v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
+                   v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
+    v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
+                   v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
+    if (v3_dot(r2, up) < 0.0f) return;
+    v3_store(b->v1, v3_add(v0, r1));
+    v3_store(b->v2, v3_add(v0, r2));
+}
+
+/* Last resort for a sphere that still holds v2 or m (root outside): the
+ * blade becomes the straight segment v0 + u [0, h] (v1 at its middle, so
+ * the curve length is exactly h and m = v0 + u h/2) with u the direction
+ * closest to the tip's that keeps both v2 (rho = h) and m (rho = h/2)
+ * outside: u is rotated from ch, in the plane of ch and the tip, to the
+ * larger of the two exit angles; when that u points under the ground plane,
+ * u is the ground-plane direction on the same cone (dot(u, up) = 0,
+ * dot(u, ch) = cos_exit), on the tip's side. */
+static void exit_straight(blade_t *b, const blade_sphere_t *s)
+{
+    float h = b->v1[3];
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    if (!inside_sphere(s, v3_load(b->v2)) && !inside_sphere(s, midpoint(b))) return;
+    v3 cd = v3_sub(v3_load(s->centre_radius), v0);
+    float dist = v3_len(cd);
+    float r = s->centre_radius[3];
+    if (dist <= r) return;
+    v3 ch = v3_scale(cd, 1.0f / dist);
+    v3 td = v3_sub(v3_load(b->v2), v0);
+    float ct = fminf(cos_exit(h, dist, r), cos_exit(0.5f * h, dist, r));
+    float st = sqrtf(fmaxf(1.0f - ct * ct, 0.0f));
+    v3 u = v3_add(v3_scale(ch, ct), v3_scale(exit_side(ch, td, up), st));
+    if (v3_dot(u, up) < 0.0f) {
+        v3 gp = v3_sub(ch, v3_scale(up, v3_dot(ch, up)));
+        float gl = v3_len(gp);
+        v3 g = v3_safe_normalize(gp);
+        v3 w = v3_cross(up, g);
+        float x = gl > 1e-6f ? fminf(fmaxf(ct / gl, -1.0f), 1.0f) : 0.0f;
+        float y = sqrtf(fmaxf(1.0f - x * x, 0.0f));
+        u = v3_add(v3_scale(g, x), v3_scale(w, v3_dot(w, td) < 0.0f ? -y : y));
+    }
+    v3_store(b->v1, v3_add(v0, v3_scale(u, 0.5f * h)));
+    v3_store(b->v2, v3_add(v0, v3_scale(u, h)));
+}
+
+static void exit_spheres(blade_t *b, const blade_sphere_t *spheres, int count)
+{
+    for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
+        for (int i = 0; i < count; i++) {
+            exit_rotate(b, &spheres[i], v3_load(b->v2));
+            exit_rotate(b, &spheres[i], midpoint(b));
+        }
+    }
+    for (int i = 0; i < count; i++) exit_straight(b, &spheres[i]);
+}
+
+void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count)
+{
+    if (b->v1[3] <= 0.0f) return;
+    exit_spheres(b, spheres, count);
+}
+
 /* Gauss-Legendre 3-point nodes on [0,1] and weights (summing to 1). */
 static const float gl3_t[3] = {0.11270166f, 0.5f, 0.88729833f};
 static const float gl3_w[3] = {0.27777778f, 0.44444444f, 0.27777778f};
@@ -263,7 +380,10 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), dt)));
     blade_ref_validate(b, env->length_mode);
     v3 d = collide(b, env->spheres, env->sphere_count);
-    if (v3_dot(d, d) > 0.0f) blade_ref_validate(b, env->length_mode);
+    if (v3_dot(d, d) > 0.0f) {
+        blade_ref_validate(b, env->length_mode);
+        exit_spheres(b, env->spheres, env->sphere_count);
+    }
     float e = *eta + v3_dot(d, d);
     *eta = fmaxf(e - env->collision_decay * dt, 0.0f);
 }

@@ -18,6 +18,7 @@
  *   6. validation (eq. 9-13) again, only when step 5 moved v2 (the
  *      validation is not idempotent: eq. 11 places v1 from the rescaled
  *      tip, so a second pass would change a blade nothing touched).
+ *   6b. only after a contact: blade_ref_exit (departure, below).
  *   7. eta += d.d, then eta = max(eta - a dt, 0).
  * The paper's total translation is delta = (r + g + w) dt + d; here it is
  * applied in two parts with a validation in between (steps 3 and 5).
@@ -31,12 +32,17 @@
  * root (measured by tests/test_blade_ref.c); it is kept as
  * BLADE_LENGTH_PAPER for comparisons.
  *
- * Collision residual: the paper's one radial push per step is followed by
- * the length correction, which pulls a tip pushed away from the root back
- * towards it, so after a step with a contact v2 and m may still be inside
- * the sphere: on the test scene (blades 0.2-0.8 m, spheres r 0.4-0.5 m,
- * roots outside) the mean penetration drops from 0.15 h to 0.09 h per step,
- * worst 0.56 h; the blade clears the sphere over the following steps. */
+ * Departure from the paper, collision exit: the paper's one radial push per
+ * step is followed by the length correction, which pulls a tip pushed away
+ * from the root back towards it, so after a step with a contact v2 and m
+ * could stay inside the sphere (measured on the test scene: blades
+ * 0.2-0.8 m, spheres r 0.4-0.5 m, roots outside: mean penetration 0.09 h,
+ * worst 0.56 h). The requirement is that no sample point (v2, m) stays
+ * inside a sphere after the update that detected the contact, so step 6 is
+ * followed by blade_ref_exit (rigid rotations about v0, which keep the
+ * length, then a straight-blade fallback that also keeps v2 above the
+ * ground). After it v2 and m are outside every sphere that does not contain
+ * the root (spheres overlapping each other can still trap a point). */
 #ifndef MEADOW_BLADE_REF_H
 #define MEADOW_BLADE_REF_H
 
@@ -137,6 +143,20 @@ void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3]);
  * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter).
  * Applies the displacement to b->v2 and writes the total into d. */
 void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, float d[3]);
+
+/* Departure from the paper (collision exit, see the banner); no-op for a
+ * padding blade. Rounds: BLADE_EXIT_ROUNDS passes over the spheres in
+ * order, each moving first v2 then m onto the distance r * BLADE_EXIT_MARGIN
+ * from the centre by a rigid rotation of v1 and v2 about v0 in the plane of
+ * (c - v0) and (p - v0); a rotation that would put v2 under the ground plane
+ * is skipped. Then, per sphere still holding v2 or m, the blade is made the
+ * straight segment v0 + u [0, h] (length exactly h) along the direction
+ * nearest the tip that clears both points, on the ground plane when needed.
+ * Spheres that contain the root are skipped. eta is not changed (d stays
+ * the paper's push). */
+#define BLADE_EXIT_ROUNDS 3
+#define BLADE_EXIT_MARGIN 1.0001f
+void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
 
 /* Curve length as used by the validation: BLADE_LENGTH_PAPER is eq. 12
  * with n = 2, BLADE_LENGTH_QUADRATURE the split Gauss-Legendre arc length. */
