@@ -98,3 +98,9 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     v->time = time;
     v->dt = dt;
 }
+
+void app_world_metrics(app_world_t *w, app_metrics_t *m)
+{
+    (void)w;
+    (void)m;
+}

@@ -59,6 +59,13 @@ void app_colliders_destroy(app_colliders_t *c);
 void app_colliders_update(app_colliders_t *c, float t);
 void app_colliders_draw(const app_colliders_t *c, const app_view_t *v);
 
+/* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
+typedef struct app_tuning_t {
+    int tess_max;           /* blade tessellation level cap; default the blade module's */
+    int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
+    unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
+} app_tuning_t;
+
 /* ---- the world ------------------------------------------------------------------ */
 typedef struct app_world_t {
     scene_desc_t scene; /* resolved, CLI overrides applied */
@@ -67,6 +74,8 @@ typedef struct app_world_t {
     app_terrain_t terrain;
     app_colliders_t colliders;
     scene_mode_t mode;
+    bool reference; /* blades everywhere, maximum tessellation, no culling */
+    app_tuning_t tuning;
     bool gpu_ready;
 } app_world_t;
 
@@ -86,3 +95,41 @@ void app_world_destroy(app_world_t *w);
 
 /* Fills the per-frame view from a camera and target size. */
 void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
+
+/* ---- offscreen sessions (bench, compare) ------------------------------------------ */
+typedef struct app_metrics_t {
+    double frame_ms;         /* sum of the medians of every GPU pass */
+    double pass_ms[GFX_TIMER_MAX_PASSES];
+    char pass_name[GFX_TIMER_MAX_PASSES][32];
+    int pass_count;
+    double cpu_ms;           /* mean CPU time per frame (wall clock) */
+    /* Accuracy (filled by the systems that exist in the scene; -1 = n/a). */
+    double penetration_fraction; /* grass sample points inside colliders */
+    double penetration_max;      /* deepest sample, metres */
+    double blade_length_error;   /* mean |L - h| / h */
+    double spring_error;         /* billboard mean |l - l0| / l0 */
+} app_metrics_t;
+
+typedef struct app_session_desc_t {
+    const app_options_t *opts; /* scene, seed, size */
+    scene_mode_t mode;
+    bool mode_set;
+    int frames;       /* simulated and drawn; default 60 */
+    int warmup;       /* frames excluded from timings; default frames/4 */
+    int msaa;         /* 0 = the scene's */
+    bool reference;   /* the reference rendering (see app_world_t) */
+    app_tuning_t tuning;
+    void (*tweak)(scene_desc_t *s, void *user); /* parameter overrides */
+    void *user;
+} app_session_desc_t;
+
+/* Runs one scene offscreen in the current context: builds the world, runs
+ * the frames, reads the last frame into `last` (if non-NULL) and fills
+ * `metrics`. Returns 0, or the exit code of the failure. */
+int app_session_run(const app_session_desc_t *desc, core_image_t *last, app_metrics_t *metrics);
+
+/* Accuracy metrics of the world's current state (reads GPU buffers back). */
+void app_world_metrics(app_world_t *w, app_metrics_t *m);
+
+int app_compare(const app_options_t *o);
+int app_bench(const app_options_t *o);

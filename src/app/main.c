@@ -1,5 +1,6 @@
 /* main: entry point of the meadow program (see app.h and --help). */
 #include "app/app.h"
+#include "app/app_world.h"
 
 #include "core/core.h"
 
@@ -13,5 +14,9 @@ int main(int argc, char **argv)
         core_log_error("%s", err);
         return 2;
     }
-    return app_run(&opts);
+    switch (opts.command) {
+    case APP_CMD_COMPARE: return app_compare(&opts);
+    case APP_CMD_BENCH: return app_bench(&opts);
+    default: return app_run(&opts);
+    }
 }

@@ -123,7 +123,10 @@ bool eval_gnuplot(const char *script_path)
         return false;
     }
     char line[512];
-    while (fgets(line, sizeof line, p)) core_log_warn("gnuplot: %s", line);
+    while (fgets(line, sizeof line, p)) {
+        line[strcspn(line, "\n")] = 0;
+        if (line[0]) core_log_info("gnuplot: %s", line);
+    }
     int rc = pclose(p);
     if (rc != 0) core_log_warn("gnuplot %s failed (exit %d): charts missing", script_path, rc);
     return rc == 0;

@@ -237,6 +237,13 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
     t.w = d->w;
     t.h = d->h;
     t.samples = d->samples > 0 ? d->samples : 4;
+    GLint max_samples = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (t.samples > max_samples) {
+        core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label, t.samples,
+                      max_samples, max_samples);
+        t.samples = max_samples;
+    }
     GLenum cf = d->color_format ? d->color_format : GL_RGBA8;
     char name[96];
     bool ms = t.samples > 1;

@@ -1,0 +1,96 @@
+/* app_compare: `meadow compare` renders the same frame (scene, seed, time,
+ * camera) in billboard, blade and hybrid modes and as the reference (blades
+ * everywhere, maximum tessellation, no culling, 8x MSAA), then writes a
+ * labelled montage, diff heatmaps against the reference, and the image
+ * errors (MAD, SSIM) with GPU frame times as JSON. */
+#include "app/app_world.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "eval/eval.h"
+#include "platform/plat.h"
+
+#define PANELS 4
+
+int app_compare(const app_options_t *o)
+{
+    char out[1024], err[1024], path[1200];
+    snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
+    if (!core_fs_check_writable_dir(out, err, sizeof err)) {
+        core_log_error("--out: %s", err);
+        return 2;
+    }
+    if (!plat_init(&(plat_desc_t){.backend = PLAT_BACKEND_EGL}, err, sizeof err)) {
+        core_log_error("no OpenGL 4.5 context: %s", err);
+        return 1;
+    }
+    gfx_init();
+    static const struct {
+        const char *name;
+        scene_mode_t mode;
+        bool reference;
+    } panels[PANELS] = {{"billboard", SCENE_MODE_BILLBOARD, false},
+                        {"blade", SCENE_MODE_BLADE, false},
+                        {"hybrid", SCENE_MODE_HYBRID, false},
+                        {"reference", SCENE_MODE_BLADE, true}};
+    core_image_t img[PANELS] = {0};
+    app_metrics_t met[PANELS];
+    int rc = 0;
+    int frames = o->frames_set ? o->frames : 60;
+    for (int i = 0; i < PANELS && rc == 0; i++) {
+        core_log_info("compare: %d/%d %s (%d frames)", i + 1, PANELS, panels[i].name, frames);
+        app_session_desc_t d = {.opts = o, .mode = panels[i].mode, .mode_set = true, .frames = frames,
+                                .reference = panels[i].reference, .msaa = panels[i].reference ? 8 : 0};
+        rc = app_session_run(&d, &img[i], &met[i]);
+        if (rc == 0) {
+            snprintf(path, sizeof path, "%s/compare-%s.png", out, panels[i].name);
+            core_image_write_png(&img[i], path);
+        }
+    }
+    if (rc == 0) {
+        int w = img[0].w, h = img[0].h, label = 28;
+        core_image_t montage, heat;
+        core_image_alloc(&montage, w * PANELS, (h + label) * 2, 4);
+        static const uint8_t bg[4] = {20, 20, 20, 255}, fg[4] = {255, 255, 255, 255};
+        core_image_fill(&montage, 0, 0, montage.w, montage.h, bg);
+        eval_text_t json = {0};
+        eval_text_printf(&json, "{\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"size\": [%d, %d],\n  \"panels\": [\n",
+                         o->scene ? o->scene : "scenes/meadow.json", frames, w, h);
+        for (int i = 0; i < PANELS; i++) {
+            double mad = eval_image_mad(&img[i], &img[PANELS - 1]);
+            double ssim = eval_image_ssim(&img[i], &img[PANELS - 1]);
+            char text[160];
+            snprintf(text, sizeof text, "%s  %.2f ms GPU\nMAD %.4f  SSIM %.4f", panels[i].name, met[i].frame_ms, mad,
+                     ssim);
+            core_image_text(&montage, i * w + 6, 4, 2, text, fg);
+            core_image_blit(&montage, &img[i], i * w, label);
+            if (eval_image_heatmap(&img[i], &img[PANELS - 1], 64, &heat)) {
+                core_image_blit(&montage, &heat, i * w, 2 * label + h);
+                core_image_free(&heat);
+            }
+            core_image_text(&montage, i * w + 6, h + label + 6, 2, "diff vs reference", fg);
+            eval_text_printf(&json,
+                             "    { \"mode\": \"%s\", \"gpu_ms\": %.4f, \"cpu_ms\": %.3f, \"mad\": %.6f, "
+                             "\"ssim\": %.6f }%s\n",
+                             panels[i].name, met[i].frame_ms, met[i].cpu_ms, mad, ssim, i + 1 < PANELS ? "," : "");
+        }
+        eval_text_printf(&json, "  ]\n}\n");
+        snprintf(path, sizeof path, "%s/compare.png", out);
+        if (!core_image_write_png(&montage, path)) rc = 1;
+        snprintf(path, sizeof path, "%s/compare.json", out);
+        if (!eval_text_write(&json, path)) rc = 1;
+        if (rc == 0) core_log_info("wrote %s/compare.png and compare.json", out);
+        eval_text_free(&json);
+        core_image_free(&montage);
+    }
+    for (int i = 0; i < PANELS; i++) core_image_free(&img[i]);
+    gfx_shutdown(true);
+    int gl_errors = plat_gl_error_count();
+    plat_shutdown();
+    if (gl_errors) {
+        core_log_error("%d GL error(s) during compare", gl_errors);
+        return 1;
+    }
+    return rc;
+}

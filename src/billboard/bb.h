@@ -1,0 +1,139 @@
+/* bb: the GPU half of the responsive billboard grass of Orthmann,
+ * Rezk-Salama & Kolb 2009 ("GPU-based Responsive Grass") on OpenGL 4.5.
+ *
+ *   make:    layout textures + clump texture array (bb_layout), then a
+ *            geometry shader that runs once per tile of candidate cells and
+ *            emits one point per billboard (bb_generate), captured with
+ *            transform feedback into ONE buffer ordered by octree leaf
+ *            (generated leaf by leaf; per-leaf counts from SSBO atomics).
+ *   update:  CPU broad phase (bb_octree_update on the objects' bounding
+ *            spheres); for COLLIDING leaves only: depth cube maps of the
+ *            objects (eq. 1-3 lookups), the collision geometry shader
+ *            (push-out eq. 4-5, springs eq. 6-7) with transform feedback in
+ *            and out; for COLLIDING and RECOVERING leaves: the recovery
+ *            geometry shader (eq. 8). Idle leaves cost nothing.
+ *   draw:    frustum-culled octree leaves, one point per billboard expanded
+ *            by a geometry shader into a wind-animated quad or its deformed
+ *            N x M mesh; alpha-to-coverage, two-sided lighting, distance fade.
+ *
+ * Terrain heights on the GPU: a height texture. For a heightfield it holds
+ * the grid vertices and the shader interpolates the same two triangles per
+ * cell as terrain_height_at; a mesh terrain is resampled on the CPU with
+ * terrain_height_at onto a grid of candidate spacing (cells with no ground
+ * under them get no billboards).
+ *
+ * Deformed meshes live in a fixed pool (desc.max_deformed slots of N*M vec4);
+ * a billboard's slot index is stored in bb_point_t.pad[0] (BB_NO_SLOT when
+ * plain). Allocation failures are counted on the GPU and logged. */
+#ifndef MEADOW_BB_H
+#define MEADOW_BB_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "billboard/bb_layout.h"
+#include "billboard/bb_octree.h"
+#include "billboard/bb_ref.h"
+#include "gfx/gfx.h"
+#include "scene/terrain.h"
+
+#define BB_NO_SLOT 0xffffffffu
+
+typedef struct bb_field_desc_t {
+    const terrain_mesh_t *terrain; /* required; only read during make */
+    uint32_t seed;                 /* any value (0 included) */
+    float density;                 /* candidate billboards per m^2 (the extent map
+                                      accepts a fraction), default 16 (0.25 m grid) */
+    float size[2];                 /* base width, height in m, default 0.5 x 0.4 */
+    int subdiv[2];                 /* refined mesh N columns x M rows, default 4 x 4,
+                                      each in [2, 8], limited by the GPU's geometry
+                                      shader output (checked, logged) */
+    int iterations;                /* spring sweeps K, default 4 */
+    float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
+    int cube_res;                  /* depth cube map side in texels, default 64 */
+    float recover_time;            /* seconds to recover, default 2 */
+    int max_objects;               /* objects per update, default 8, at most 16 */
+    int max_deformed;              /* deformed-mesh pool slots, default 4096 */
+    int octree_depth;              /* default 4, at most BB_OCTREE_MAX_DEPTH */
+    bb_wind_desc_t wind;           /* see bb_wind_desc_defaults */
+    bb_layout_desc_t layout;       /* layout textures; its seed is replaced by `seed` */
+} bb_field_desc_t;
+bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc);
+
+/* A collider: any mesh whose VAO has attribute 0 = vec3 position and
+ * attribute 1 = vec3 normal (object space), drawn with glDrawElements
+ * (index_count, index_type). model maps object to world space and should be
+ * rigid with uniform scale. centre/radius: the bounding sphere in OBJECT space;
+ * the cube map covers the cube [centre - radius, centre + radius]^3 of object
+ * space ("cube space" = object space). vao == 0: no mesh; the cube map given
+ * to bb_field_set_cube for this object index is used instead (CPU-rasterised
+ * proxies, tests). */
+typedef struct bb_object_t {
+    GLuint vao;
+    GLsizei index_count;
+    GLenum index_type;
+    float model[16]; /* column-major */
+    float centre[3];
+    float radius;
+} bb_object_t;
+
+typedef struct bb_draw_desc_t {
+    float viewproj[16];
+    float camera[3];
+    float sun_dir[3];    /* unit, towards the sun */
+    float planes[6][4];  /* frustum planes, inside when a*x+b*y+c*z+d >= 0 */
+    float time;
+    float fade_start;    /* invisible nearer than this (0 = fade off) */
+    float fade_end;      /* fully visible beyond this */
+} bb_draw_desc_t;
+
+typedef struct bb_stats_t {
+    int billboards;
+    int leaves[3];        /* non-empty leaves per BB_NODE_* state */
+    int deformed;         /* pool slots in use (last update) */
+    int pool_capacity;
+    int pool_exhausted;   /* allocations refused so far */
+} bb_stats_t;
+
+typedef struct bb_field_t {
+    bb_field_desc_t desc; /* resolved */
+    bb_octree_t tree;
+    bb_gen_desc_t gen;
+    int cells[2];          /* candidate cells along x, z */
+    int billboards;
+    int capacity;          /* points buffer size in billboards (upper bound) */
+    gfx_texture_t extent, direction, messiness, clumps, heights;
+    gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
+    gfx_target_t cube_target; /* res x 6res scratch the faces are drawn into */
+    gfx_buffer_t points, scratch, pool, objects, counts;
+    GLuint points_vao, empty_vao, tf;
+    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, cube_prog;
+    bb_range_t *ranges;    /* leaf_count scratch */
+    GLint *firsts;
+    GLsizei *counts_gl;
+    float cube_half[16], cube_centre[16][3];
+    bool cube_external[16];
+    int objects_last;
+    int deformed_last, exhausted_last;
+    float time;
+} bb_field_t;
+
+bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
+void bb_field_destroy(bb_field_t *f);
+/* Broad phase, cube maps, collision, recovery (timers "bb.cubemaps",
+ * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). */
+void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt);
+/* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
+ * timer "bb.render". */
+void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
+void bb_field_stats(const bb_field_t *f, bb_stats_t *out);
+
+/* Uploads a CPU cube map for object index `object` (used when that object's
+ * vao is 0). res must equal desc.cube_res. */
+void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube);
+/* The quad frame of a billboard (twin of bb_frame in
+ * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
+ * direction (cos angle, 0, sin angle) made orthogonal to up. */
+void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up);
+
+#endif

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# bench_quick: `meadow bench --quick` and `meadow compare` run on llvmpipe
+# and produce every file they promise (CSV, JSON, charts, montage).
+# Usage: bench_quick.sh MEADOW_BINARY OUTDIR
+set -u
+bin=$1; out=$2
+rm -rf "$out"; mkdir -p "$out"
+fail=0
+"$bin" bench --quick --quiet --scene scenes/tiny.json --out "$out/bench" || { echo "FAIL: bench exit $?"; fail=1; }
+for f in bench.csv bench.json; do
+  [ -s "$out/bench/$f" ] || { echo "FAIL: missing $f"; fail=1; }
+done
+for g in billboard_collision blade_tessellation blade_distance_levels hybrid_switch_distance modes; do
+  for ext in dat png svg; do
+    [ -s "$out/bench/bench_$g.$ext" ] || { echo "FAIL: missing bench_$g.$ext"; fail=1; }
+  done
+done
+rows=$(($(wc -l <"$out/bench/bench.csv") - 1))
+[ "$rows" -ge 11 ] || { echo "FAIL: bench.csv has $rows rows"; fail=1; }
+python3 -c "import json,sys; d=json.load(open('$out/bench/bench.json')); assert len(d['configs'])==$rows" 2>/dev/null \
+  || { echo "FAIL: bench.json does not parse or disagrees with the CSV"; fail=1; }
+"$bin" compare --quiet --scene scenes/tiny.json --frames 4 --out "$out/compare" || { echo "FAIL: compare exit $?"; fail=1; }
+for f in compare.png compare.json compare-billboard.png compare-blade.png compare-hybrid.png compare-reference.png; do
+  [ -s "$out/compare/$f" ] || { echo "FAIL: missing $f"; fail=1; }
+done
+[ $fail = 0 ] && echo "ok: bench and compare wrote every file"
+exit $fail
