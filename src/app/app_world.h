@@ -131,5 +131,9 @@ int app_session_run(const app_session_desc_t *desc, core_image_t *last, app_metr
 /* Accuracy metrics of the world's current state (reads GPU buffers back). */
 void app_world_metrics(app_world_t *w, app_metrics_t *m);
 
+/* GPU ms to draw `triangles` trivial triangles from a prebuilt buffer into a
+ * w x h target with `samples` MSAA (median of 12 draws); -1 on failure. */
+double app_floor_ms(long triangles, int w, int h, int samples);
+
 int app_compare(const app_options_t *o);
 int app_bench(const app_options_t *o);
