@@ -1,0 +1,176 @@
+/* hybrid: tile representation with hysteresis, Fan et al. 2015 activation
+ * with a fixed pool of simulation slots, and per-tile object lists. */
+#include "hybrid/hybrid.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/core.h"
+
+hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *in)
+{
+    hybrid_desc_t d = *in;
+    if (d.tile_size <= 0) d.tile_size = 4.0f;
+    if (d.grass_height <= 0) d.grass_height = 1.0f;
+    if (d.switch_distance <= 0) d.switch_distance = 12.0f;
+    if (d.hysteresis <= 0) d.hysteresis = 1.0f;
+    if (d.recover_timeout <= 0) d.recover_timeout = 5.0f;
+    if (d.motion_epsilon <= 0) d.motion_epsilon = 1e-3f;
+    if (d.pool_slots <= 0) d.pool_slots = 64;
+    return d;
+}
+
+bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc)
+{
+    memset(g, 0, sizeof *g);
+    g->desc = hybrid_desc_defaults(desc);
+    const hybrid_desc_t *d = &g->desc;
+    if (d->size_x <= 0 || d->size_z <= 0) {
+        core_log_error("hybrid: field size %gx%g m must be positive", d->size_x, d->size_z);
+        return false;
+    }
+    g->nx = (int)ceilf(d->size_x / d->tile_size);
+    g->nz = (int)ceilf(d->size_z / d->tile_size);
+    g->tiles = calloc((size_t)g->nx * (size_t)g->nz, sizeof *g->tiles);
+    g->free_slots = malloc((size_t)d->pool_slots * sizeof(int));
+    if (!g->tiles || !g->free_slots) {
+        hybrid_grid_free(g);
+        return false;
+    }
+    for (int j = 0; j < g->nz; j++)
+        for (int i = 0; i < g->nx; i++) {
+            hybrid_tile_t *t = &g->tiles[j * g->nx + i];
+            t->min[0] = d->min_x + (float)i * d->tile_size;
+            t->min[2] = d->min_z + (float)j * d->tile_size;
+            t->max[0] = fminf(t->min[0] + d->tile_size, d->min_x + d->size_x);
+            t->max[2] = fminf(t->min[2] + d->tile_size, d->min_z + d->size_z);
+            t->min[1] = d->min_y;
+            t->max[1] = d->max_y + d->grass_height;
+            t->slot = -1;
+            t->rep = HYBRID_REP_BILLBOARD;
+        }
+    for (int s = 0; s < d->pool_slots; s++) g->free_slots[s] = d->pool_slots - 1 - s;
+    g->free_count = d->pool_slots;
+    return true;
+}
+
+void hybrid_grid_free(hybrid_grid_t *g)
+{
+    free(g->tiles);
+    free(g->free_slots);
+    memset(g, 0, sizeof *g);
+}
+
+int hybrid_tile_at(const hybrid_grid_t *g, float x, float z)
+{
+    int i = (int)floorf((x - g->desc.min_x) / g->desc.tile_size);
+    int j = (int)floorf((z - g->desc.min_z) / g->desc.tile_size);
+    if (i < 0 || j < 0 || i >= g->nx || j >= g->nz) return -1;
+    return j * g->nx + i;
+}
+
+static float sphere_box_dist2(const float c[3], const float mn[3], const float mx[3])
+{
+    float d2 = 0;
+    for (int k = 0; k < 3; k++) {
+        float v = c[k] < mn[k] ? mn[k] - c[k] : (c[k] > mx[k] ? c[k] - mx[k] : 0.0f);
+        d2 += v * v;
+    }
+    return d2;
+}
+
+bool hybrid_tile_touched_brute(const hybrid_grid_t *g, int i, const hybrid_object_t *o, int count)
+{
+    const hybrid_tile_t *t = &g->tiles[i];
+    for (int k = 0; k < count; k++) {
+        float r = o[k].sphere[3];
+        if (sphere_box_dist2(o[k].sphere, t->min, t->max) <= r * r) return true;
+    }
+    return false;
+}
+
+static void release_slot(hybrid_grid_t *g, hybrid_tile_t *t)
+{
+    if (t->slot < 0) return;
+    g->free_slots[g->free_count++] = t->slot;
+    t->slot = -1;
+}
+
+void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_object_t *objects, int count,
+                        const float *motion, float dt)
+{
+    const hybrid_desc_t *d = &g->desc;
+    hybrid_stats_t st = {.tiles = g->nx * g->nz, .slots_total = d->pool_slots};
+    int ntiles = g->nx * g->nz;
+    for (int i = 0; i < ntiles; i++) g->tiles[i].object_count = 0;
+    /* Object lists: visit only the tiles under each object's bounds (one
+     * tile of margin so spheres touching a tile edge exactly are found by
+     * the exact test below). */
+    for (int k = 0; k < count; k++) {
+        const float *s = objects[k].sphere;
+        int i0 = (int)floorf((s[0] - s[3] - d->min_x) / d->tile_size) - 1;
+        int i1 = (int)floorf((s[0] + s[3] - d->min_x) / d->tile_size) + 1;
+        int j0 = (int)floorf((s[2] - s[3] - d->min_z) / d->tile_size) - 1;
+        int j1 = (int)floorf((s[2] + s[3] - d->min_z) / d->tile_size) + 1;
+        for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < g->nz; j++)
+            for (int i = i0 < 0 ? 0 : i0; i <= i1 && i < g->nx; i++) {
+                hybrid_tile_t *t = &g->tiles[j * g->nx + i];
+                if (sphere_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
+                if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
+                    core_log_warn("hybrid: tile %d touched by more than %d objects; object %d not listed",
+                                  j * g->nx + i, HYBRID_TILE_MAX_OBJECTS, k);
+                    continue;
+                }
+                t->objects[t->object_count++] = (uint16_t)k;
+            }
+    }
+    for (int i = 0; i < ntiles; i++) {
+        hybrid_tile_t *t = &g->tiles[i];
+        /* Representation with hysteresis on the xz distance to the tile. */
+        float dx = fmaxf(fmaxf(t->min[0] - cam[0], cam[0] - t->max[0]), 0.0f);
+        float dz = fmaxf(fmaxf(t->min[2] - cam[2], cam[2] - t->max[2]), 0.0f);
+        float dist = sqrtf(dx * dx + dz * dz);
+        hybrid_rep_t rep = t->rep;
+        if (dist < d->switch_distance - d->hysteresis) rep = HYBRID_REP_BLADE;
+        else if (dist > d->switch_distance + d->hysteresis) rep = HYBRID_REP_BILLBOARD;
+        if (rep != t->rep) st.rep_switches++;
+        t->rep = rep;
+        /* Activation. */
+        if (motion) t->motion = motion[i];
+        if (t->object_count > 0) {
+            if (t->slot < 0) {
+                if (g->free_count > 0) {
+                    t->slot = g->free_slots[--g->free_count];
+                } else {
+                    st.pool_denied++;
+                }
+            }
+            t->state = t->slot >= 0 ? HYBRID_ACTIVE : HYBRID_IDLE;
+            t->recover_left = d->recover_timeout;
+        } else if (t->state == HYBRID_ACTIVE) {
+            t->state = HYBRID_RECOVERING;
+            t->recover_left = d->recover_timeout;
+        } else if (t->state == HYBRID_RECOVERING) {
+            t->recover_left -= dt;
+            bool settled = motion && t->motion < d->motion_epsilon;
+            if (t->recover_left <= 0 || settled) {
+                t->state = HYBRID_IDLE;
+                t->recover_left = 0;
+                release_slot(g, t);
+            }
+        }
+        st.blade_tiles += t->rep == HYBRID_REP_BLADE;
+        st.idle += t->state == HYBRID_IDLE;
+        st.active += t->state == HYBRID_ACTIVE;
+        st.recovering += t->state == HYBRID_RECOVERING;
+    }
+    st.billboard_tiles = st.tiles - st.blade_tiles;
+    st.slots_used = d->pool_slots - g->free_count;
+    if (st.pool_denied && !g->warned_pool)
+        core_log_warn("hybrid: simulation pool exhausted: %d tile(s) touched by objects got no state slot "
+                      "(%d slots); raise pool_slots",
+                      st.pool_denied, d->pool_slots);
+    g->warned_pool = st.pool_denied > 0;
+    g->stats = st;
+}

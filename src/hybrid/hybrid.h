@@ -1,0 +1,95 @@
+/* hybrid: the tiled field shared by both grass models (GL-free).
+ * - Representation per tile: blades within switch_distance of the camera,
+ *   billboards beyond, with hysteresis so a tile near the boundary does not
+ *   flip every frame.
+ * - Activation per tile (Fan et al. 2015): a tile is ACTIVE while an object
+ *   touches it, RECOVERING after the last object left until its measured
+ *   motion died down (or recover_timeout passed), then IDLE. Only ACTIVE and
+ *   RECOVERING tiles hold per-blade simulation state, taken from a
+ *   preallocated pool of slots; when the pool is exhausted the tile is
+ *   reported (hybrid_stats_t.pool_denied and a warning), never dropped
+ *   silently.
+ * - Per-tile object lists, built every update. */
+#ifndef MEADOW_HYBRID_H
+#define MEADOW_HYBRID_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define HYBRID_TILE_MAX_OBJECTS 16
+
+typedef enum hybrid_state_t {
+    HYBRID_IDLE = 0,
+    HYBRID_ACTIVE,
+    HYBRID_RECOVERING,
+} hybrid_state_t;
+
+typedef enum hybrid_rep_t {
+    HYBRID_REP_BILLBOARD = 0,
+    HYBRID_REP_BLADE,
+} hybrid_rep_t;
+
+typedef struct hybrid_tile_t {
+    float min[3], max[3];   /* AABB: ground extent, y grown by grass height */
+    hybrid_state_t state;
+    hybrid_rep_t rep;
+    float recover_left;     /* seconds until forced IDLE while RECOVERING */
+    float motion;           /* last measured motion (m), from the simulation */
+    int slot;               /* pool slot of its simulation state, -1 = none */
+    int object_count;       /* objects touching it this update */
+    uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
+} hybrid_tile_t;
+
+/* Zero means default. */
+typedef struct hybrid_desc_t {
+    float min_x, min_z;       /* field origin (m); required */
+    float size_x, size_z;     /* field extent (m); required */
+    float min_y, max_y;       /* ground height range (m) */
+    float tile_size;          /* default 4 m */
+    float grass_height;       /* AABB growth above the ground; default 1 m */
+    float switch_distance;    /* blade/billboard boundary; default 12 m */
+    float hysteresis;         /* half width of the dead band; default 1 m */
+    float recover_timeout;    /* default 5 s */
+    float motion_epsilon;     /* RECOVERING -> IDLE below this; default 1 mm */
+    int pool_slots;           /* simulation-state slots; default 64 */
+} hybrid_desc_t;
+
+hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *d);
+
+typedef struct hybrid_stats_t {
+    int tiles, blade_tiles, billboard_tiles;
+    int idle, active, recovering;
+    int slots_used, slots_total;
+    int pool_denied;        /* tiles that wanted a slot this update and got none */
+    int rep_switches;       /* representation changes this update */
+} hybrid_stats_t;
+
+typedef struct hybrid_grid_t {
+    hybrid_desc_t desc;
+    int nx, nz;
+    hybrid_tile_t *tiles;
+    int *free_slots;
+    int free_count;
+    bool warned_pool;
+    hybrid_stats_t stats;
+} hybrid_grid_t;
+
+/* A bounding sphere of a moving object: xyz centre, w radius. */
+typedef struct hybrid_object_t {
+    float sphere[4];
+} hybrid_object_t;
+
+bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc);
+void hybrid_grid_free(hybrid_grid_t *g);
+/* One update: representation from the camera (xz distance to the tile's
+ * nearest point), object lists and activation. `motion` (may be NULL) gives
+ * the measured motion per tile from the last simulation step. */
+void hybrid_grid_update(hybrid_grid_t *g, const float camera[3], const hybrid_object_t *objects, int count,
+                        const float *motion, float dt);
+/* Tile index of a world position, -1 outside. */
+int hybrid_tile_at(const hybrid_grid_t *g, float x, float z);
+/* Independent brute-force activity test (tests): does any object touch
+ * tile i? */
+bool hybrid_tile_touched_brute(const hybrid_grid_t *g, int i, const hybrid_object_t *objects, int count);
+
+#endif
