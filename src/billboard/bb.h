@@ -105,16 +105,19 @@ typedef struct bb_field_t {
     gfx_texture_t extent, direction, messiness, clumps, heights;
     gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
     gfx_target_t cube_target; /* res x 6res scratch the faces are drawn into */
-    gfx_buffer_t points, scratch, pool, objects, counts;
+    gfx_buffer_t points;   /* capacity bb_point_t, leaf-ordered; first `billboards` valid */
+    gfx_buffer_t scratch;  /* transform-feedback target of the collide/recover passes */
+    gfx_buffer_t pool;     /* int free_top, uint exhausted, 2 pad, uint free_stack[max_deformed] */
+    gfx_buffer_t meshes;   /* max_deformed * N*M vec4, world space */
+    gfx_buffer_t objects, counts;
     GLuint points_vao, empty_vao, tf;
     gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, cube_prog;
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;
     float cube_half[16], cube_centre[16][3];
-    bool cube_external[16];
-    int objects_last;
-    int deformed_last, exhausted_last;
+    int deformed_last, exhausted_last; /* pool header read back one update late */
+    bool gpu_pending;
     float time;
 } bb_field_t;
 
@@ -126,6 +129,7 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
  * timer "bb.render". */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
+/* Reads the pool header back (blocks until the last update finished). */
 void bb_field_stats(const bb_field_t *f, bb_stats_t *out);
 
 /* Uploads a CPU cube map for object index `object` (used when that object's

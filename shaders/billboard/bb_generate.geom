@@ -1,0 +1,89 @@
+#version 450
+/* bb_generate.geom: billboard generation of Orthmann et al. 2009 (sec. 3,
+ * layout textures). One invocation per tile of BB_TILE x BB_TILE candidate
+ * cells of the current octree leaf's footprint; emits one point per accepted
+ * candidate (bb_generate, twin of bb_layout_sample) whose root, placed on the
+ * terrain height texture, lies in leaf u_leaf. Drawing leaf after leaf in
+ * Morton order inside one transform feedback makes the buffer ordered by
+ * leaf; the per-leaf count goes to an SSBO with atomics. */
+#include "common/hash.glsl"
+#include "common/bb.glsl"
+#define BB_POINTS_OUT
+#include "billboard/bb_points.glsl"
+
+layout(points) in;
+layout(points, max_vertices = BB_TILE_POINTS) out;
+
+flat in int v_tile[];
+
+uniform sampler2D u_extent;
+uniform sampler2D u_direction;
+uniform sampler2D u_messiness;
+uniform sampler2D u_heights;   /* R32F grid vertex heights */
+uniform bb_gen u_gen;
+uniform ivec4 u_cells;         /* candidate cells [x0, z0] .. (x1, z1) of this leaf */
+uniform int u_tiles_x;
+uniform uint u_leaf;
+uniform vec3 u_tree_min;
+uniform vec3 u_tree_max;
+uniform int u_side;
+uniform vec2 u_hmin;           /* height grid: first vertex (x, z) */
+uniform vec2 u_hmax;           /* height grid: clamp bound (x, z) */
+uniform float u_hcell;         /* height grid cell size */
+
+layout(std430, binding = 0) buffer LeafCounts { uint leaf_count[]; };
+
+/* Twin of grid_height in src/scene/terrain.c (same two triangles per cell). */
+float terrain_height(float x, float z)
+{
+    ivec2 res = textureSize(u_heights, 0) - 1;
+    float fx = (clamp(x, u_hmin.x, u_hmax.x) - u_hmin.x) / u_hcell;
+    float fz = (clamp(z, u_hmin.y, u_hmax.y) - u_hmin.y) / u_hcell;
+    int i = clamp(int(floor(fx)), 0, res.x - 1);
+    int j = clamp(int(floor(fz)), 0, res.y - 1);
+    float u = fx - float(i), v = fz - float(j);
+    float p00 = texelFetch(u_heights, ivec2(i, j), 0).r;
+    float p10 = texelFetch(u_heights, ivec2(i + 1, j), 0).r;
+    float p01 = texelFetch(u_heights, ivec2(i, j + 1), 0).r;
+    float p11 = texelFetch(u_heights, ivec2(i + 1, j + 1), 0).r;
+    if (min(min(p00, p10), min(p01, p11)) < -1e29) return -3.0e38; /* no ground (mesh hole) */
+    if (v >= u) return p00 + u * (p11 - p01) + v * (p01 - p00);
+    return p00 + u * (p10 - p00) + v * (p11 - p10);
+}
+
+/* Twin of bb_leaf_coord / bb_leaf_of in src/billboard/bb_octree.c. */
+uint leaf_of(vec3 p)
+{
+    uint m = 0u;
+    for (int a = 0; a < 3; a++) {
+        float f = (p[a] - u_tree_min[a]) / (u_tree_max[a] - u_tree_min[a]) * float(u_side);
+        int c = int(floor(f));
+        if (!(f >= 0.0)) c = 0;
+        else if (c >= u_side) c = u_side - 1;
+        uint r = 0u;
+        for (int b = 0; b < 6; b++) r |= ((uint(c) >> b) & 1u) << (3 * b);
+        m |= r << a;
+    }
+    return m;
+}
+
+void main()
+{
+    int tx = v_tile[0] % u_tiles_x, tz = v_tile[0] / u_tiles_x;
+    for (int dz = 0; dz < BB_TILE; dz++) {
+        for (int dx = 0; dx < BB_TILE; dx++) {
+            int ix = u_cells.x + tx * BB_TILE + dx, iz = u_cells.y + tz * BB_TILE + dz;
+            if (ix >= u_cells.z || iz >= u_cells.w) continue;
+            bb_point p;
+            if (!bb_generate(u_extent, u_direction, u_messiness, u_gen, ix, iz, p)) continue;
+            if (p.position.x > u_tree_max.x || p.position.z > u_tree_max.z) continue;
+            float y = terrain_height(p.position.x, p.position.z);
+            if (y < -1e37) continue;
+            p.position.y = y;
+            if (leaf_of(p.position) != u_leaf) continue;
+            p.pad0 = BB_NO_SLOT;
+            atomicAdd(leaf_count[u_leaf], 1u);
+            bb_emit_point(p);
+        }
+    }
+}

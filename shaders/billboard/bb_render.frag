@@ -1,0 +1,39 @@
+#version 450
+/* bb_render.frag: billboard shading of Orthmann et al. 2009: clump texture
+ * array, two-sided lighting (normal flipped towards the viewer), fog, and
+ * alpha-to-coverage without sorting. The hybrid distance fade multiplies
+ * alpha by a ramp from fade_start to fade_end plus an interleaved-gradient
+ * dither, so the MSAA coverage cross-fades instead of blending. */
+#include "common/lighting.glsl"
+
+uniform sampler2DArray u_clumps;
+uniform vec3 u_camera;
+uniform vec3 u_sun;
+uniform float u_fade_start;
+uniform float u_fade_end;
+
+in vec3 g_world;
+in vec3 g_normal;
+in vec3 g_uvl;
+flat in float g_tint;
+
+out vec4 frag;
+
+void main()
+{
+    vec4 tex = texture(u_clumps, g_uvl);
+    vec3 to_eye = u_camera - g_world;
+    float dist = length(to_eye);
+    vec3 n = normalize(g_normal);
+    if (dot(n, to_eye) < 0.0) n = -n;
+    vec3 c = shade(tex.rgb * g_tint, n, u_sun, mix(0.45, 1.0, 1.0 - g_uvl.y));
+    c = apply_fog(c, dist, -to_eye / max(dist, 1e-6));
+    float a = tex.a;
+    if (u_fade_end > 0.0) {
+        float fade = clamp((dist - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);
+        float ign = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
+        if (fade < 1.0) a = clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0);
+    }
+    if (a < 1.0 / 255.0) discard;
+    frag = vec4(c, a);
+}

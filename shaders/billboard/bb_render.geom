@@ -1,0 +1,77 @@
+#version 450
+/* bb_render.geom: billboard rendering of Orthmann et al. 2009. A plain
+ * billboard becomes a quad whose two upper vertices follow the procedural
+ * wind (bb_wind_vertex, h = 1); a deformed one (pool slot set) draws its
+ * stored N x M mesh as M-1 triangle strips with normals from central
+ * differences. Billboards wholly nearer than the hybrid fade band are
+ * dropped here. */
+#define BB_NO_GENERATE
+#include "common/bb.glsl"
+#define BB_POINTS_IN
+#include "billboard/bb_points.glsl"
+#include "billboard/bb_pool.glsl"
+
+layout(points) in;
+layout(triangle_strip, max_vertices = BB_RENDER_VERTS) out;
+
+uniform mat4 u_viewproj;
+uniform vec3 u_camera;
+uniform float u_time;
+uniform float u_fade_start;
+uniform float u_fade_end;
+uniform bb_wind u_wind;
+
+out vec3 g_world;
+out vec3 g_normal;
+out vec3 g_uvl; /* u, v (0 at the top of the clump image), layer */
+flat out float g_tint;
+
+void put(vec3 pos, vec3 n, float u, float h, float layer)
+{
+    g_world = pos;
+    g_normal = n;
+    g_uvl = vec3(u, 1.0 - h, layer);
+    gl_Position = u_viewproj * vec4(pos, 1.0);
+    EmitVertex();
+}
+
+void main()
+{
+    bb_point p = bb_load_point();
+    if (u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start) return;
+    vec3 right, up;
+    bb_frame(p, right, up);
+    float layer = float(p.layer);
+    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    if (p.pad0 == BB_NO_SLOT) {
+        vec3 n = cross(right, up);
+        vec3 a = p.position - 0.5 * p.size.x * right, b = p.position + 0.5 * p.size.x * right;
+        vec3 c = bb_wind_vertex(u_wind, a + p.size.y * up, p.position, 1.0, u_time);
+        vec3 d = bb_wind_vertex(u_wind, b + p.size.y * up, p.position, 1.0, u_time);
+        put(a, n, 0.0, 0.0, layer);
+        put(b, n, 1.0, 0.0, layer);
+        put(c, n, 0.0, 1.0, layer);
+        put(d, n, 1.0, 1.0, layer);
+        EndPrimitive();
+        return;
+    }
+    bb_load_mesh(p.pad0);
+    vec3 nrm[BB_N * BB_M];
+    for (int j = 0; j < BB_M; j++) {
+        for (int i = 0; i < BB_N; i++) {
+            vec3 du = bb_pos[j * BB_N + min(i + 1, BB_N - 1)] - bb_pos[j * BB_N + max(i - 1, 0)];
+            vec3 dv = bb_pos[min(j + 1, BB_M - 1) * BB_N + i] - bb_pos[max(j - 1, 0) * BB_N + i];
+            vec3 n = cross(du, dv);
+            float l = length(n);
+            nrm[j * BB_N + i] = l > 1e-12 ? n / l : cross(right, up);
+        }
+    }
+    for (int j = 0; j < BB_M - 1; j++) {
+        for (int i = 0; i < BB_N; i++) {
+            float u = float(i) / float(BB_N - 1);
+            put(bb_pos[j * BB_N + i], nrm[j * BB_N + i], u, float(j) / float(BB_M - 1), layer);
+            put(bb_pos[(j + 1) * BB_N + i], nrm[(j + 1) * BB_N + i], u, float(j + 1) / float(BB_M - 1), layer);
+        }
+        EndPrimitive();
+    }
+}

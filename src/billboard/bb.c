@@ -1,0 +1,705 @@
+/* bb: GL driver of the responsive billboard grass of Orthmann, Rezk-Salama &
+ * Kolb 2009: GPU generation from layout textures into one leaf-ordered
+ * buffer, the CPU octree broad phase, depth cube maps, the collision pass
+ * (eq. 1-7) and the recovery pass (eq. 8) as geometry shaders with
+ * transform feedback, and rendering. See bb.h for the overview. */
+#include "billboard/bb.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define BB_MAX_OBJECTS 16
+/* The octree keeps a leaf RECOVERING this much longer than a billboard's own
+ * recovery (bb_recover.geom), so float drift in the two timers can never
+ * leave a billboard deformed in a leaf that already went IDLE. */
+#define BB_LEAF_RECOVER_SLACK 0.25f
+
+static const char *const bb_tf_varyings[] = {"o_pos_angle", "o_growth_mess", "o_size", "o_layer_state",
+                                             "o_recover",   "o_seed",        "o_pad",  NULL};
+
+typedef struct bb_object_gpu_t {
+    float w2c[16];
+    float c2w[16];
+    float cube[4];
+    float sphere[4];
+} bb_object_gpu_t;
+
+bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
+{
+    bb_field_desc_t d = desc ? *desc : (bb_field_desc_t){0};
+    if (d.density <= 0) d.density = 16.0f;
+    if (d.size[0] <= 0) d.size[0] = 0.5f;
+    if (d.size[1] <= 0) d.size[1] = 0.4f;
+    if (d.subdiv[0] <= 0) d.subdiv[0] = 4;
+    if (d.subdiv[1] <= 0) d.subdiv[1] = 4;
+    if (d.iterations <= 0) d.iterations = 4;
+    if (d.r1 <= 0) d.r1 = 1.0f;
+    if (d.r2 <= 0) d.r2 = 0.5f;
+    if (d.cube_res <= 0) d.cube_res = 64;
+    if (d.recover_time <= 0) d.recover_time = 2.0f;
+    if (d.max_objects <= 0) d.max_objects = 8;
+    if (d.max_deformed <= 0) d.max_deformed = 4096;
+    if (d.octree_depth <= 0) d.octree_depth = 4;
+    d.wind = bb_wind_desc_defaults(&d.wind);
+    d.layout.seed = d.seed;
+    d.layout = bb_layout_desc_defaults(&d.layout);
+    return d;
+}
+
+void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up)
+{
+    glm_vec3_copy((float *)p->growth, up);
+    vec3 t = {cosf(p->angle), 0.0f, sinf(p->angle)};
+    float d = glm_vec3_dot(t, up);
+    for (int k = 0; k < 3; k++) right[k] = t[k] - up[k] * d;
+    glm_vec3_scale(right, 1.0f / sqrtf(glm_vec3_dot(right, right)), right);
+}
+
+static void set_wind(GLuint prog, const bb_wind_desc_t *w)
+{
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_wind.dir"), w->dir[0], w->dir[1]);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.strength"), w->strength);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.omega"), w->omega);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.wavenumber"), w->wavenumber);
+}
+
+static GLint loc(gfx_program_t p, const char *name) { return glGetUniformLocation(p.id, name); }
+
+/* ---- make ------------------------------------------------------------------ */
+
+static bool upload_layout(bb_field_t *f)
+{
+    bb_layout_t lay;
+    if (!bb_layout_generate(&lay, &f->desc.layout)) return false;
+    int s = lay.extent.w;
+    f->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = s, .h = s, .format = GL_R8, .filter = GL_NEAREST,
+                                                       .wrap = GL_REPEAT, .data = lay.extent.px,
+                                                       .upload_format = GL_RED, .label = "bb.extent"});
+    f->direction = gfx_texture_make(&(gfx_texture_desc_t){.w = s, .h = s, .format = GL_RGB8, .filter = GL_NEAREST,
+                                                          .wrap = GL_REPEAT, .data = lay.direction.px,
+                                                          .upload_format = GL_RGB, .label = "bb.direction"});
+    f->messiness = gfx_texture_make(&(gfx_texture_desc_t){.w = s, .h = s, .format = GL_R8, .filter = GL_NEAREST,
+                                                          .wrap = GL_REPEAT, .data = lay.messiness.px,
+                                                          .upload_format = GL_RED, .label = "bb.messiness"});
+    int cs = lay.clumps[0].w, layers = lay.clump_layers;
+    size_t layer_bytes = (size_t)cs * (size_t)cs * 4;
+    uint8_t *all = malloc(layer_bytes * (size_t)layers);
+    if (all) {
+        for (int k = 0; k < layers; k++) memcpy(all + layer_bytes * (size_t)k, lay.clumps[k].px, layer_bytes);
+        f->clumps = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = cs, .h = cs,
+                                                           .layers = layers, .mip_levels = -1, .data = all,
+                                                           .label = "bb.clumps"});
+    } else {
+        core_log_error("%s:%d: out of memory for %d clump layers", __FILE__, __LINE__, layers);
+    }
+    free(all);
+    f->gen.layers = (uint32_t)layers;
+    bb_layout_free(&lay);
+    return f->extent.id && f->direction.id && f->messiness.id && f->clumps.id;
+}
+
+/* Height grid on the GPU: the heightfield's own vertices, or a mesh terrain
+ * resampled with terrain_height_at at the candidate spacing (-1e30 where no
+ * ground lies under a grid vertex). */
+static bool upload_heights(bb_field_t *f, const terrain_mesh_t *t, float hgrid[5])
+{
+    int nx, nz;
+    float *h;
+    if (t->grid_res > 0) {
+        nx = nz = t->grid_res;
+        float half = t->grid_size * 0.5f, cell = t->grid_size / (float)t->grid_res;
+        h = malloc(sizeof *h * (size_t)(nx + 1) * (size_t)(nz + 1));
+        if (!h) return false;
+        for (uint32_t k = 0; k < (uint32_t)((nx + 1) * (nz + 1)); k++) h[k] = t->positions[3 * k + 1];
+        hgrid[0] = -half, hgrid[1] = -half, hgrid[2] = half, hgrid[3] = half, hgrid[4] = cell;
+    } else {
+        float cell = f->gen.spacing;
+        nx = (int)ceilf((t->aabb_max[0] - t->aabb_min[0]) / cell);
+        nz = (int)ceilf((t->aabb_max[2] - t->aabb_min[2]) / cell);
+        nx = nx < 1 ? 1 : nx;
+        nz = nz < 1 ? 1 : nz;
+        h = malloc(sizeof *h * (size_t)(nx + 1) * (size_t)(nz + 1));
+        if (!h) return false;
+        for (int j = 0; j <= nz; j++) {
+            for (int i = 0; i <= nx; i++) {
+                float y = terrain_height_at(t, t->aabb_min[0] + (float)i * cell, t->aabb_min[2] + (float)j * cell, NULL);
+                h[j * (nx + 1) + i] = y < -1e30f ? -1e30f : y;
+            }
+        }
+        hgrid[0] = t->aabb_min[0], hgrid[1] = t->aabb_min[2];
+        hgrid[2] = t->aabb_min[0] + (float)nx * cell, hgrid[3] = t->aabb_min[2] + (float)nz * cell;
+        hgrid[4] = cell;
+    }
+    f->heights = gfx_texture_make(&(gfx_texture_desc_t){.w = nx + 1, .h = nz + 1, .format = GL_R32F,
+                                                        .filter = GL_NEAREST, .data = h, .upload_format = GL_RED,
+                                                        .upload_type = GL_FLOAT, .label = "bb.heights"});
+    free(h);
+    return f->heights.id != 0;
+}
+
+/* Terrain height range under each column of leaves (side x side, x-major),
+ * from the triangles whose xz bounds overlap the column. */
+static void column_ranges(const bb_field_t *f, const terrain_mesh_t *t, float *lo, float *hi)
+{
+    int side = f->tree.side;
+    for (int k = 0; k < side * side; k++) lo[k] = INFINITY, hi[k] = -INFINITY;
+    const float *mn = f->tree.desc.min, *mx = f->tree.desc.max;
+    for (uint32_t tri = 0; tri < t->index_count / 3; tri++) {
+        float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int v = 0; v < 3; v++) {
+            const float *p = &t->positions[3 * t->indices[3 * tri + (uint32_t)v]];
+            for (int a = 0; a < 3; a++) bmin[a] = fminf(bmin[a], p[a]), bmax[a] = fmaxf(bmax[a], p[a]);
+        }
+        int c0[2], c1[2];
+        for (int q = 0; q < 2; q++) {
+            int a = q * 2;
+            float s = (float)side / (mx[a] - mn[a]);
+            c0[q] = (int)floorf((bmin[a] - mn[a]) * s) - 1;
+            c1[q] = (int)floorf((bmax[a] - mn[a]) * s) + 1;
+            c0[q] = c0[q] < 0 ? 0 : c0[q];
+            c1[q] = c1[q] > side - 1 ? side - 1 : c1[q];
+        }
+        for (int z = c0[1]; z <= c1[1]; z++) {
+            for (int x = c0[0]; x <= c1[0]; x++) {
+                lo[z * side + x] = fminf(lo[z * side + x], bmin[1]);
+                hi[z * side + x] = fmaxf(hi[z * side + x], bmax[1]);
+            }
+        }
+    }
+}
+
+static uint32_t compact3(uint32_t m)
+{
+    uint32_t r = 0;
+    for (int b = 0; b < BB_OCTREE_MAX_DEPTH; b++) r |= ((m >> (3 * b)) & 1u) << b;
+    return r;
+}
+
+static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5], int tile)
+{
+    bb_octree_t *tr = &f->tree;
+    int side = tr->side;
+    float *clo = malloc(sizeof *clo * (size_t)(side * side)), *chi = malloc(sizeof *chi * (size_t)(side * side));
+    uint32_t *counts = calloc((size_t)tr->leaf_count, sizeof *counts);
+    if (!clo || !chi || !counts) {
+        free(clo), free(chi), free(counts);
+        core_log_error("%s:%d: out of memory for generation", __FILE__, __LINE__);
+        return false;
+    }
+    column_ranges(f, t, clo, chi);
+    f->counts = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof *counts * (size_t)tr->leaf_count,
+                                                     .data = counts, .label = "bb.leaf_counts"});
+    GLuint query = gfx_query_make(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, "bb.generate.written");
+    gfx_program_t p = f->gen_prog;
+    glUseProgram(p.id);
+    glBindTextureUnit(0, f->extent.id);
+    glBindTextureUnit(1, f->direction.id);
+    glBindTextureUnit(2, f->messiness.id);
+    glBindTextureUnit(3, f->heights.id);
+    glUniform1i(loc(p, "u_extent"), 0);
+    glUniform1i(loc(p, "u_direction"), 1);
+    glUniform1i(loc(p, "u_messiness"), 2);
+    glUniform1i(loc(p, "u_heights"), 3);
+    const bb_gen_desc_t *g = &f->gen;
+    glUniform1f(loc(p, "u_gen.spacing"), g->spacing);
+    glUniform2f(loc(p, "u_gen.origin"), g->origin[0], g->origin[1]);
+    glUniform1i(loc(p, "u_gen.cells_per_texel"), g->cells_per_texel);
+    glUniform1f(loc(p, "u_gen.width"), g->width);
+    glUniform1f(loc(p, "u_gen.height"), g->height);
+    glUniform1ui(loc(p, "u_gen.seed"), g->seed);
+    glUniform1ui(loc(p, "u_gen.layers"), g->layers);
+    glUniform3fv(loc(p, "u_tree_min"), 1, tr->desc.min);
+    glUniform3fv(loc(p, "u_tree_max"), 1, tr->desc.max);
+    glUniform1i(loc(p, "u_side"), side);
+    glUniform2f(loc(p, "u_hmin"), hgrid[0], hgrid[1]);
+    glUniform2f(loc(p, "u_hmax"), hgrid[2], hgrid[3]);
+    glUniform1f(loc(p, "u_hcell"), hgrid[4]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, f->counts.id);
+    glBindVertexArray(f->empty_vao);
+    GLint fbo = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo); /* draws need a complete framebuffer */
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->points.id);
+    gfx_timer_begin("bb.generate");
+    glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
+    glBeginTransformFeedback(GL_POINTS);
+    int drawn = 0;
+    for (int leaf = 0; leaf < tr->leaf_count; leaf++) {
+        int node = bb_octree_leaf_node(tr, (uint32_t)leaf);
+        int cx = (int)compact3((uint32_t)leaf), cz = (int)compact3((uint32_t)leaf >> 2);
+        float ylo = clo[cz * side + cx], yhi = chi[cz * side + cx];
+        float eps = 1e-3f * (tr->desc.max[1] - tr->desc.min[1]);
+        if (yhi < tr->lo[node][1] - eps || ylo > tr->hi[node][1] + eps) continue;
+        int c[4];
+        for (int q = 0; q < 2; q++) {
+            int a = q * 2;
+            c[q] = (int)floorf((tr->lo[node][a] - g->origin[q]) / g->spacing) - 1;
+            c[q + 2] = (int)floorf((tr->hi[node][a] - g->origin[q]) / g->spacing) + 2;
+            c[q] = c[q] < 0 ? 0 : c[q];
+            c[q + 2] = c[q + 2] > f->cells[q] ? f->cells[q] : c[q + 2];
+        }
+        int tx = (c[2] - c[0] + tile - 1) / tile, tz = (c[3] - c[1] + tile - 1) / tile;
+        if (tx <= 0 || tz <= 0) continue;
+        glUniform4i(loc(p, "u_cells"), c[0], c[1], c[2], c[3]);
+        glUniform1i(loc(p, "u_tiles_x"), tx);
+        glUniform1ui(loc(p, "u_leaf"), (uint32_t)leaf);
+        glDrawArrays(GL_POINTS, 0, tx * tz);
+        drawn++;
+    }
+    glEndTransformFeedback();
+    glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+    gfx_timer_end();
+    glDisable(GL_RASTERIZER_DISCARD);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    GLuint written = 0;
+    glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
+    gfx_query_destroy(&query);
+    gfx_buffer_read(f->counts, 0, sizeof *counts * (size_t)tr->leaf_count, counts);
+    uint64_t total = 0;
+    for (int k = 0; k < tr->leaf_count; k++) total += counts[k];
+    bool ok = true;
+    if (total != written || total > (uint64_t)f->capacity) {
+        core_log_error("%s:%d: billboard generation overflow: %llu billboards counted, %u captured, "
+                       "buffer holds %d", __FILE__, __LINE__, (unsigned long long)total, written, f->capacity);
+        ok = false;
+    }
+    f->billboards = (int)written;
+    /* Node ranges: bb_octree_assign on each leaf's cell centre, repeated
+     * count times, gives the same prefix sums the GPU order has. */
+    float (*pos)[3] = malloc(sizeof *pos * (size_t)(total ? total : 1));
+    uint32_t *order = malloc(sizeof *order * (size_t)(total ? total : 1));
+    if (ok && pos && order) {
+        size_t s = 0;
+        for (int k = 0; k < tr->leaf_count; k++) {
+            int node = bb_octree_leaf_node(tr, (uint32_t)k);
+            for (uint32_t q = 0; q < counts[k]; q++, s++)
+                for (int a = 0; a < 3; a++) pos[s][a] = 0.5f * (tr->lo[node][a] + tr->hi[node][a]);
+        }
+        bb_octree_assign(tr, (const float (*)[3])pos, (int)total, order);
+        for (size_t q = 0; q < total; q++) assert(order[q] == q);
+    } else if (ok) {
+        core_log_error("%s:%d: out of memory for %llu billboard ranges", __FILE__, __LINE__,
+                       (unsigned long long)total);
+        ok = false;
+    }
+    core_log_info("bb: generated %u billboards from %d x %d candidates in %d leaf draws", written, f->cells[0],
+                  f->cells[1], drawn);
+    free(pos), free(order), free(clo), free(chi), free(counts);
+    return ok;
+}
+
+static void setup_points_vao(GLuint vao, GLuint buffer)
+{
+    glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(bb_point_t));
+    static const struct { int n; GLenum type; bool integer; GLuint offset; } at[7] = {
+        {4, GL_FLOAT, false, 0}, {4, GL_FLOAT, false, 16}, {2, GL_FLOAT, false, 32}, {2, GL_UNSIGNED_INT, true, 40},
+        {1, GL_FLOAT, false, 48}, {1, GL_UNSIGNED_INT, true, 52}, {2, GL_UNSIGNED_INT, true, 56}};
+    for (GLuint k = 0; k < 7; k++) {
+        glEnableVertexArrayAttrib(vao, k);
+        if (at[k].integer) glVertexArrayAttribIFormat(vao, k, at[k].n, at[k].type, at[k].offset);
+        else glVertexArrayAttribFormat(vao, k, at[k].n, at[k].type, GL_FALSE, at[k].offset);
+        glVertexArrayAttribBinding(vao, k, 0);
+    }
+}
+
+bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
+{
+    memset(f, 0, sizeof *f);
+    f->desc = bb_field_desc_defaults(desc);
+    bb_field_desc_t *d = &f->desc;
+    const terrain_mesh_t *t = d->terrain;
+    assert(t && t->positions && t->index_count >= 3);
+    if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < 2 || d->subdiv[0] > 8 || d->subdiv[1] < 2 ||
+        d->subdiv[1] > 8 || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
+        core_log_error("%s:%d: bb_field_make: max_objects %d (at most %d), subdiv %dx%d (2..8), octree depth %d "
+                       "(at most %d) out of range", __FILE__, __LINE__, d->max_objects, BB_MAX_OBJECTS,
+                       d->subdiv[0], d->subdiv[1], d->octree_depth, BB_OCTREE_MAX_DEPTH);
+        return false;
+    }
+    int n = d->subdiv[0], m = d->subdiv[1];
+    GLint max_verts = 0, max_comps = 0;
+    glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &max_verts);
+    glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &max_comps);
+    int render_verts = (m - 1) * 2 * n > 4 ? (m - 1) * 2 * n : 4;
+    if (render_verts > max_verts || render_verts * 15 > max_comps) {
+        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components); "
+                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 15,
+                       max_verts, max_comps);
+        return false;
+    }
+    int tile_points = max_comps / 16 < max_verts ? max_comps / 16 : max_verts;
+    int tile = (int)floorf(sqrtf((float)tile_points));
+    tile = tile > 8 ? 8 : tile;
+
+    f->gen = bb_gen_desc_defaults(&(bb_gen_desc_t){
+        .spacing = 1.0f / sqrtf(d->density), .origin = {t->aabb_min[0], t->aabb_min[2]}, .width = d->size[0],
+        .height = d->size[1], .seed = d->seed});
+    if (!upload_layout(f)) goto fail;
+    float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];
+    f->cells[0] = (int)ceilf(ext_x / f->gen.spacing);
+    f->cells[1] = (int)ceilf(ext_z / f->gen.spacing);
+    double cap = (double)f->cells[0] * (double)f->cells[1];
+    if (cap > (double)(1u << 26)) {
+        core_log_error("%s:%d: bb_field_make: %.0f candidate billboards exceed the limit of %u; lower the density",
+                       __FILE__, __LINE__, cap, 1u << 26);
+        goto fail;
+    }
+    f->capacity = (int)cap > 0 ? (int)cap : 1;
+
+    float ymin = t->aabb_min[1], ymax = t->aabb_max[1];
+    float pad = 0.01f + 1e-3f * (ymax - ymin);
+    float margin = 1.4f * d->size[1] + 0.6f * d->size[0] + d->wind.strength + 0.05f;
+    bb_octree_desc_t od = {.min = {t->aabb_min[0], ymin - pad, t->aabb_min[2]},
+                           .max = {t->aabb_max[0], ymax + pad, t->aabb_max[2]},
+                           .max_depth = d->octree_depth,
+                           .margin = margin > 1.0f ? margin : 1.0f};
+    if (!bb_octree_build(&f->tree, &od)) goto fail;
+    f->ranges = malloc(sizeof *f->ranges * (size_t)f->tree.leaf_count);
+    f->firsts = malloc(sizeof *f->firsts * (size_t)f->tree.leaf_count);
+    f->counts_gl = malloc(sizeof *f->counts_gl * (size_t)f->tree.leaf_count);
+    if (!f->ranges || !f->firsts || !f->counts_gl) {
+        core_log_error("%s:%d: out of memory", __FILE__, __LINE__);
+        goto fail;
+    }
+
+    float hgrid[5];
+    if (!upload_heights(f, t, hgrid)) goto fail;
+
+    char defines[256];
+    snprintf(defines, sizeof defines,
+             "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
+             "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n",
+             n, m, d->max_objects, tile, tile * tile, render_verts);
+    f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
+                                                         .gs = "billboard/bb_generate.geom", .defines = defines,
+                                                         .tf_varyings = bb_tf_varyings, .label = "bb.generate"});
+    f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
+                                                             .gs = "billboard/bb_collide.geom", .defines = defines,
+                                                             .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
+    f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
+                                                             .gs = "billboard/bb_recover.geom", .defines = defines,
+                                                             .tf_varyings = bb_tf_varyings, .label = "bb.recover"});
+    f->render_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
+                                                            .gs = "billboard/bb_render.geom",
+                                                            .fs = "billboard/bb_render.frag", .defines = defines,
+                                                            .label = "bb.render"});
+    f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",
+                                                          .fs = "billboard/bb_cube.frag", .defines = defines,
+                                                          .label = "bb.cube"});
+    if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id)
+        goto fail;
+
+    size_t pool_words = 4 + (size_t)d->max_deformed;
+    uint32_t *pool = calloc(pool_words, sizeof *pool);
+    if (!pool) goto fail;
+    pool[0] = (uint32_t)d->max_deformed;
+    for (int s = 0; s < d->max_deformed; s++) pool[4 + s] = (uint32_t)(d->max_deformed - 1 - s);
+    f->pool = gfx_buffer_make(&(gfx_buffer_desc_t){.size = pool_words * 4, .data = pool, .label = "bb.pool"});
+    free(pool);
+    f->meshes = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)d->max_deformed * (size_t)(n * m) * 16,
+                                                     .label = "bb.meshes"});
+    f->points = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
+                                                     .label = "bb.points"});
+    f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
+                                                      .label = "bb.points_scratch"});
+    f->objects = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(bb_object_gpu_t) * (size_t)d->max_objects,
+                                                      .dynamic = true, .label = "bb.objects"});
+    f->cubes = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = d->cube_res,
+                                                      .h = d->cube_res, .layers = 6 * d->max_objects,
+                                                      .format = GL_RGBA32F, .filter = GL_NEAREST,
+                                                      .label = "bb.cubes"});
+    f->cube_target = gfx_target_make(&(gfx_target_desc_t){.w = d->cube_res, .h = 6 * d->cube_res, .samples = 1,
+                                                          .color_format = GL_RGBA32F, .label = "bb.cube_target"});
+    f->points_vao = gfx_vertex_array_make("bb.points_vao");
+    f->empty_vao = gfx_vertex_array_make("bb.empty_vao");
+    f->tf = gfx_transform_feedback_make("bb.tf");
+    if (!f->pool.id || !f->meshes.id || !f->points.id || !f->scratch.id || !f->objects.id || !f->cubes.id ||
+        !f->cube_target.fbo)
+        goto fail;
+    setup_points_vao(f->points_vao, f->points.id);
+    if (!generate(f, t, hgrid, tile)) goto fail;
+    return true;
+fail:
+    bb_field_destroy(f);
+    return false;
+}
+
+void bb_field_destroy(bb_field_t *f)
+{
+    gfx_texture_destroy(&f->extent);
+    gfx_texture_destroy(&f->direction);
+    gfx_texture_destroy(&f->messiness);
+    gfx_texture_destroy(&f->clumps);
+    gfx_texture_destroy(&f->heights);
+    gfx_texture_destroy(&f->cubes);
+    if (f->cube_target.fbo) gfx_target_destroy(&f->cube_target);
+    gfx_buffer_destroy(&f->points);
+    gfx_buffer_destroy(&f->scratch);
+    gfx_buffer_destroy(&f->pool);
+    gfx_buffer_destroy(&f->meshes);
+    gfx_buffer_destroy(&f->objects);
+    gfx_buffer_destroy(&f->counts);
+    gfx_vertex_array_destroy(&f->points_vao);
+    gfx_vertex_array_destroy(&f->empty_vao);
+    gfx_transform_feedback_destroy(&f->tf);
+    gfx_program_destroy(&f->gen_prog);
+    gfx_program_destroy(&f->collide_prog);
+    gfx_program_destroy(&f->recover_prog);
+    gfx_program_destroy(&f->render_prog);
+    gfx_program_destroy(&f->cube_prog);
+    bb_octree_free(&f->tree);
+    free(f->ranges);
+    free(f->firsts);
+    free(f->counts_gl);
+    memset(f, 0, sizeof *f);
+}
+
+/* ---- update ---------------------------------------------------------------- */
+
+void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube)
+{
+    assert(object >= 0 && object < f->desc.max_objects && cube->res == f->desc.cube_res);
+    glTextureSubImage3D(f->cubes.id, 0, 0, 0, 6 * object, cube->res, cube->res, 6, GL_RGBA, GL_FLOAT, cube->texels);
+    glm_vec3_copy((float *)cube->centre, f->cube_centre[object]);
+    f->cube_half[object] = cube->half;
+}
+
+/* Merges leaf ranges that are adjacent in the buffer into draw ranges. */
+static int merge_ranges(bb_field_t *f, int count)
+{
+    int k = 0;
+    for (int i = 0; i < count; i++) {
+        const bb_range_t *r = &f->ranges[i];
+        if (k > 0 && (uint32_t)(f->firsts[k - 1] + f->counts_gl[k - 1]) == r->first) {
+            f->counts_gl[k - 1] += (GLsizei)r->count;
+        } else {
+            f->firsts[k] = (GLint)r->first;
+            f->counts_gl[k] = (GLsizei)r->count;
+            k++;
+        }
+    }
+    return k;
+}
+
+static void render_cube(bb_field_t *f, const bb_object_t *o, int k)
+{
+    int res = f->desc.cube_res;
+    float half = o->radius;
+    glUniform3fv(loc(f->cube_prog, "u_centre"), 1, o->centre);
+    glUniform1f(loc(f->cube_prog, "u_half"), half);
+    glBindVertexArray(o->vao);
+    for (int face = 0; face < 6; face++) {
+        vec3 u, v, in;
+        bb_cubemap_face_basis(face, u, v, in);
+        float clear[4] = {2.0f * half, -in[0], -in[1], -in[2]}, one = 1.0f;
+        glViewport(0, face * res, res, res);
+        glScissor(0, face * res, res, res);
+        glClearBufferfv(GL_COLOR, 0, clear);
+        glClearBufferfv(GL_DEPTH, 0, &one);
+        glUniform1i(loc(f->cube_prog, "u_face"), face);
+        glDrawElements(GL_TRIANGLES, o->index_count, o->index_type, NULL);
+        glCopyImageSubData(f->cube_target.color.id, GL_TEXTURE_2D, 0, 0, face * res, 0, f->cubes.id,
+                           GL_TEXTURE_2D_ARRAY, 0, 0, 0, 6 * k + face, res, res, 1);
+    }
+    glm_vec3_copy((float *)o->centre, f->cube_centre[k]);
+    f->cube_half[k] = half;
+}
+
+/* Runs one transform-feedback pass of `prog` over the merged ranges: points
+ * -> scratch (appended in draw order), then copied back in place. */
+static void tf_pass(bb_field_t *f, gfx_program_t prog, int nranges)
+{
+    glUseProgram(prog.id);
+    glBindVertexArray(f->points_vao);
+    GLint fbo = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo); /* draws need a complete framebuffer */
+    glEnable(GL_RASTERIZER_DISCARD);
+    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->scratch.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+    glBeginTransformFeedback(GL_POINTS);
+    glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nranges);
+    glEndTransformFeedback();
+    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    size_t off = 0;
+    for (int i = 0; i < nranges; i++) {
+        size_t bytes = (size_t)f->counts_gl[i] * sizeof(bb_point_t);
+        glCopyNamedBufferSubData(f->scratch.id, f->points.id, (GLintptr)off,
+                                 (GLintptr)((size_t)f->firsts[i] * sizeof(bb_point_t)), (GLsizeiptr)bytes);
+        off += bytes;
+    }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+static float max_scale(const float *m)
+{
+    float s = 0.0f;
+    for (int c = 0; c < 3; c++) s = fmaxf(s, sqrtf(m[4 * c] * m[4 * c] + m[4 * c + 1] * m[4 * c + 1] + m[4 * c + 2] * m[4 * c + 2]));
+    return s;
+}
+
+void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt)
+{
+    assert(count >= 0 && count <= f->desc.max_objects);
+    const bb_field_desc_t *d = &f->desc;
+    f->time = time;
+    if (f->gpu_pending) {
+        uint32_t hdr[2];
+        gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
+        f->deformed_last = d->max_deformed - (int32_t)hdr[0];
+        if ((int)hdr[1] > f->exhausted_last)
+            core_log_warn("bb: deformed-mesh pool of %d slots exhausted: %d collisions left undeformed so far "
+                          "(raise max_deformed)", d->max_deformed, (int)hdr[1]);
+        f->exhausted_last = (int)hdr[1];
+        f->gpu_pending = false;
+    }
+    bb_bound_t bounds[BB_MAX_OBJECTS];
+    bb_object_gpu_t gpu[BB_MAX_OBJECTS];
+    for (int k = 0; k < count; k++) {
+        mat4 model, inv;
+        memcpy(model, objs[k].model, sizeof model);
+        glm_mat4_inv(model, inv);
+        vec3 c;
+        glm_mat4_mulv3(model, (float *)objs[k].centre, 1.0f, c);
+        bounds[k] = (bb_bound_t){.kind = BB_BOUND_SPHERE, .centre = {c[0], c[1], c[2]},
+                                 .radius = objs[k].radius * max_scale(objs[k].model)};
+        memcpy(gpu[k].w2c, inv, sizeof inv);
+        memcpy(gpu[k].c2w, model, sizeof model);
+        memcpy(gpu[k].sphere, c, sizeof c);
+        gpu[k].sphere[3] = -1.0f;
+    }
+    bb_octree_update(&f->tree, bounds, count, dt, d->recover_time + BB_LEAF_RECOVER_SLACK);
+    int ncol = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING), NULL, f->ranges, f->tree.leaf_count);
+    if (ncol > 0) {
+        /* Cube maps only for objects touching a colliding leaf. */
+        bool need[BB_MAX_OBJECTS] = {0};
+        int nneed = 0;
+        for (int k = 0; k < count; k++) {
+            for (int i = 0; i < ncol && !need[k]; i++) {
+                int node = bb_octree_leaf_node(&f->tree, f->ranges[i].leaf);
+                need[k] = bb_bound_overlaps_box(&bounds[k], f->tree.lo[node], f->tree.hi[node], f->tree.desc.margin);
+            }
+            nneed += need[k] && objs[k].vao;
+        }
+        if (nneed > 0) {
+            GLint fbo = 0, vp[4];
+            glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+            glGetIntegerv(GL_VIEWPORT, vp);
+            gfx_timer_begin("bb.cubemaps");
+            glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo);
+            glEnable(GL_DEPTH_TEST);
+            glDepthFunc(GL_LESS);
+            glDepthMask(GL_TRUE);
+            glDisable(GL_CULL_FACE);
+            glDisable(GL_BLEND);
+            glEnable(GL_SCISSOR_TEST);
+            glUseProgram(f->cube_prog.id);
+            for (int k = 0; k < count; k++)
+                if (need[k] && objs[k].vao) render_cube(f, &objs[k], k);
+            glDisable(GL_SCISSOR_TEST);
+            gfx_timer_end();
+            glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+            glViewport(vp[0], vp[1], vp[2], vp[3]);
+        }
+        for (int k = 0; k < count; k++) {
+            if (!need[k]) continue;
+            glm_vec3_copy(f->cube_centre[k], gpu[k].cube);
+            gpu[k].cube[3] = f->cube_half[k];
+            gpu[k].sphere[3] = bounds[k].radius;
+        }
+        if (count > 0) gfx_buffer_update(f->objects, 0, sizeof(bb_object_gpu_t) * (size_t)count, gpu);
+
+        gfx_program_t p = f->collide_prog;
+        glUseProgram(p.id);
+        glBindBufferBase(GL_UNIFORM_BUFFER, 0, f->objects.id);
+        glBindTextureUnit(0, f->cubes.id);
+        glUniform1i(loc(p, "u_cubes"), 0);
+        glUniform1i(loc(p, "u_count"), count);
+        glUniform1i(loc(p, "u_res"), d->cube_res);
+        glUniform1f(loc(p, "u_time"), time);
+        glUniform1f(loc(p, "u_recover"), d->recover_time);
+        glUniform1f(loc(p, "u_r1"), d->r1);
+        glUniform1f(loc(p, "u_r2"), d->r2);
+        glUniform1i(loc(p, "u_iterations"), d->iterations);
+        set_wind(p.id, &d->wind);
+        int nr = merge_ranges(f, ncol);
+        gfx_timer_begin("bb.collide");
+        tf_pass(f, p, nr);
+        gfx_timer_end();
+        f->gpu_pending = true;
+    }
+    int nrec = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), NULL,
+                                 f->ranges, f->tree.leaf_count);
+    if (nrec > 0) {
+        gfx_program_t p = f->recover_prog;
+        glUseProgram(p.id);
+        glUniform1f(loc(p, "u_time"), time);
+        glUniform1f(loc(p, "u_dt"), dt);
+        glUniform1f(loc(p, "u_recover"), d->recover_time);
+        set_wind(p.id, &d->wind);
+        int nr = merge_ranges(f, nrec);
+        gfx_timer_begin("bb.recover");
+        tf_pass(f, p, nr);
+        gfx_timer_end();
+        f->gpu_pending = true;
+    }
+}
+
+/* ---- draw ------------------------------------------------------------------ */
+
+void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
+{
+    int n = bb_octree_collect(&f->tree, 7u, (const float (*)[4])dd->planes, f->ranges, f->tree.leaf_count);
+    if (n <= 0) return;
+    int nr = merge_ranges(f, n);
+    gfx_program_t p = f->render_prog;
+    glUseProgram(p.id);
+    glUniformMatrix4fv(loc(p, "u_viewproj"), 1, GL_FALSE, dd->viewproj);
+    glUniform3fv(loc(p, "u_camera"), 1, dd->camera);
+    glUniform3fv(loc(p, "u_sun"), 1, dd->sun_dir);
+    glUniform1f(loc(p, "u_time"), dd->time);
+    glUniform1f(loc(p, "u_fade_start"), dd->fade_start);
+    glUniform1f(loc(p, "u_fade_end"), dd->fade_end);
+    glUniform1i(loc(p, "u_clumps"), 0);
+    set_wind(p.id, &f->desc.wind);
+    glBindTextureUnit(0, f->clumps.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+    glBindVertexArray(f->points_vao);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    gfx_timer_begin("bb.render");
+    glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
+    gfx_timer_end();
+    glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+}
+
+void bb_field_stats(const bb_field_t *f, bb_stats_t *out)
+{
+    memset(out, 0, sizeof *out);
+    out->billboards = f->billboards;
+    const bb_octree_t *t = &f->tree;
+    for (int k = 0; k < t->leaf_count; k++) {
+        int node = bb_octree_leaf_node(t, (uint32_t)k);
+        if (t->count[node]) out->leaves[t->state[node]]++;
+    }
+    uint32_t hdr[2];
+    gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
+    out->deformed = f->desc.max_deformed - (int32_t)hdr[0];
+    out->pool_capacity = f->desc.max_deformed;
+    out->pool_exhausted = (int)hdr[1];
+}
