@@ -10,7 +10,10 @@
  * are dropped without counting. The host resets instanceCount (or count)
  * and the four counters with glClearBufferSubData before the dispatch;
  * nothing here synchronizes across work groups. Survivor order is
- * arbitrary: compare with the CPU list as a set. */
+ * arbitrary: compare with the CPU list as a set. With u_use_patches the
+ * invocations cover only the patches listed in `patches` (the CPU patch
+ * frustum test): invocation i handles blade patches[i / P] * P + i % P,
+ * P = u_patch_size; the distance test still uses the global blade index. */
 #include "common/blade.glsl"
 
 layout(local_size_x = 256) in;
@@ -24,11 +27,12 @@ layout(std430, binding = 2) buffer Command {
     uint baseInstance;
 } cmd;
 layout(std430, binding = 3) buffer Counters { uint counters[4]; };
+layout(std430, binding = 4) readonly buffer Patches { uint patches[]; };
 
 /* Window depth of the previous frame (or a depth pre-pass); NDC = 2 d - 1. */
 layout(binding = 0) uniform sampler2D u_depth;
 
-uniform uint u_blade_count;
+uniform uint u_blade_count;    /* invocations: blades, or listed patches * P */
 uniform vec3 u_cam_pos;
 uniform mat4 u_view_proj;
 uniform float u_max_distance;
@@ -39,6 +43,8 @@ uniform float u_depth_bias;
 uniform int u_use_depth;
 uniform uint u_disable;          /* BLADE_CULL_* bits */
 uniform int u_count_instances;
+uniform int u_use_patches;
+uniform uint u_patch_size;
 
 bool occluded(vec4 clip, ivec2 size)
 {
@@ -97,6 +103,7 @@ void main()
 {
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_blade_count) return;
+    if (u_use_patches != 0) i = patches[i / u_patch_size] * u_patch_size + i % u_patch_size;
     uint why = cull(blades[i], i);
     if (why == BLADE_CULL_VISIBLE) {
         uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);

@@ -1,0 +1,39 @@
+#version 450
+/* blade.frag: two-sided blade shading with the shared sun, sky ambient and
+ * fog (common/lighting.glsl), and the hybrid cross-fade: alpha 1 nearer than
+ * u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of the pixel) and
+ * turned into MSAA coverage by alpha-to-coverage (enabled by the host). */
+#include "common/hash.glsl"
+#include "common/lighting.glsl"
+
+in vec3 f_pos;
+in vec3 f_normal;
+in float f_v;
+in flat float f_root_dist;
+
+uniform vec3 u_camera;
+uniform vec3 u_sun;
+uniform vec2 u_fade; /* start, end; end <= start: no fade */
+uniform vec3 u_albedo_root;
+uniform vec3 u_albedo_tip;
+
+out vec4 o_color;
+
+void main()
+{
+    float alpha = 1.0;
+    if (u_fade.y > u_fade.x) {
+        alpha = 1.0 - smoothstep(u_fade.x, u_fade.y, f_root_dist);
+        uvec2 px = uvec2(gl_FragCoord.xy);
+        float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
+        alpha = clamp(alpha + dither * 0.25, 0.0, 1.0);
+        if (alpha <= 0.0) discard;
+    }
+    vec3 view = u_camera - f_pos;
+    vec3 n = normalize(f_normal);
+    if (dot(n, view) < 0.0) n = -n;
+    vec3 albedo = mix(u_albedo_root, u_albedo_tip, f_v);
+    vec3 c = shade(albedo, n, u_sun, mix(0.45, 1.0, f_v));
+    c = apply_fog(c, length(view), normalize(-view));
+    o_color = vec4(c, alpha);
+}

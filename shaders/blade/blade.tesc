@@ -1,0 +1,25 @@
+#version 450
+/* blade.tesc: tessellation level by distance (Jahrmann & Wimmer 2017
+ * sec. 6.3): quads domain, u across the width (1 segment), v along the
+ * blade (blade_lod segments, the same count the vertex-pulling path uses). */
+#include "common/blade.glsl"
+#include "blade/blade_geom.glsl"
+
+layout(vertices = 1) out;
+layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
+
+in flat uint vs_blade[];
+patch out uint tc_blade;
+
+void main()
+{
+    uint i = vs_blade[gl_InvocationID];
+    tc_blade = i;
+    float n = float(blade_lod(blades[i]));
+    gl_TessLevelOuter[0] = n;
+    gl_TessLevelOuter[1] = 1.0;
+    gl_TessLevelOuter[2] = n;
+    gl_TessLevelOuter[3] = 1.0;
+    gl_TessLevelInner[0] = 1.0;
+    gl_TessLevelInner[1] = n;
+}

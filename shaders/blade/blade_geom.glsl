@@ -1,0 +1,76 @@
+/* blade_geom.glsl: the blade geometry of Jahrmann & Wimmer 2017 sec. 6.3,
+ * shared by the tessellation evaluation shader (blade.tese) and the
+ * vertex-pulling path (blade_pull.vert) so both build the same surface.
+ *   eq. 21 De Casteljau on the curve v0 v1 v2 at height parameter v:
+ *     a = v0 + v (v1 - v0), b = v1 + v (v2 - v1), c = a + v (b - a),
+ *     c0 = c - w/2 t1, c1 = c + w/2 t1 (t1 the width direction),
+ *     p = (1 - t) c0 + t c1, n = normalize(cross(b - a, t1)).
+ *   shape: t = 0.5 + (u - 0.5) f(v), f the width profile:
+ *     quad 1; triangle 1 - v (the paper's u + 0.5v - uv); quadratic 1 - v^2
+ *     (centred: the tip ends on the midrib); triangle_tip
+ *     1 - max(v - tau, 0) / (1 - tau), tau = 0.5; dandelion (1 - v) times
+ *     a tooth pattern 0.35 + 0.65 |2 fract(4v) - 1| (own profile after the
+ *     paper's figure: teeth show from 8 segments on).
+ *   eq. 23 (optional): p += n displacement w (0.5 - |u - 0.5|) (1 - v),
+ *     a raised midrib fading to the tip.
+ *   eq. 24 (optional, this project's reading): width w /
+ *     max(|n . view|, width_correction), at most 4 w, so blades seen
+ *     edge-on do not fall below a pixel and alias.
+ * Level of detail: segments along the blade, from u_max_level at the
+ * camera down to max(u_max_level / 4, 1) at u_lod_distance (root distance). */
+#ifndef BLADE_GEOM_GLSL
+#define BLADE_GEOM_GLSL
+
+#define SHAPE_QUADRATIC 0
+#define SHAPE_QUAD 1
+#define SHAPE_TRIANGLE 2
+#define SHAPE_TRIANGLE_TIP 3
+#define SHAPE_DANDELION 4
+
+uniform int u_shape;
+uniform float u_displacement;
+uniform float u_width_correction;
+uniform vec3 u_camera;
+uniform int u_max_level;
+uniform float u_lod_distance;
+
+int blade_lod(Blade b)
+{
+    float d = clamp(length(b.v0.xyz - u_camera) / u_lod_distance, 0.0, 1.0);
+    float lo = float(max(u_max_level / 4, 1));
+    return int(floor(mix(float(u_max_level), lo, d) + 0.5));
+}
+
+float blade_profile(float v)
+{
+    if (u_shape == SHAPE_QUAD) return 1.0;
+    if (u_shape == SHAPE_TRIANGLE) return 1.0 - v;
+    if (u_shape == SHAPE_TRIANGLE_TIP) return 1.0 - max(v - 0.5, 0.0) / 0.5;
+    if (u_shape == SHAPE_DANDELION) return (1.0 - v) * (0.35 + 0.65 * abs(2.0 * fract(4.0 * v) - 1.0));
+    return 1.0 - v * v;
+}
+
+void blade_build(Blade b, float u, float v, out vec3 pos, out vec3 normal)
+{
+    vec3 v0 = b.v0.xyz, v1 = b.v1.xyz, v2 = b.v2.xyz;
+    float w = b.v2.w;
+    vec3 t1, front;
+    blade_frame(b, t1, front);
+    vec3 a = v0 + v * (v1 - v0);
+    vec3 bb = v1 + v * (v2 - v1);
+    vec3 c = a + v * (bb - a);
+    vec3 n = blade_safe_normalize(cross(bb - a, t1));
+    if (dot(n, n) == 0.0) n = front;
+    if (u_width_correction > 0.0) {
+        float nv = abs(dot(n, blade_safe_normalize(u_camera - c)));
+        w = w * min(1.0 / max(nv, u_width_correction), 4.0);
+    }
+    vec3 c0 = c - t1 * (0.5 * w);
+    vec3 c1 = c + t1 * (0.5 * w);
+    float t = 0.5 + (u - 0.5) * blade_profile(v);
+    pos = mix(c0, c1, t);
+    if (u_displacement > 0.0) pos += n * (u_displacement * w * (0.5 - abs(u - 0.5)) * (1.0 - v));
+    normal = n;
+}
+
+#endif

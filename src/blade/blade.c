@@ -1,0 +1,382 @@
+/* blade: GPU driver of the Jahrmann & Wimmer 2017 blades: upload, physics
+ * dispatch (eq. 1-13), CPU patch culling and per-blade culling dispatch
+ * (eq. 14-20) into an indirect command, tessellated or vertex-pulled
+ * drawing (eq. 21-24), statistics read back a frame late. GL objects come
+ * from gfx only. */
+#include "blade/blade.h"
+
+#include <assert.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
+{
+    blade_gpu_desc_t d = *desc;
+    if (d.max_tess_level == 0) d.max_tess_level = 8;
+    if (d.lod_distance == 0.0f) d.lod_distance = 30.0f;
+    if (!d.label) d.label = "blade";
+    d.cull = blade_cull_desc_defaults(&d.cull);
+    assert(d.max_tess_level >= 1 && d.max_tess_level <= 64);
+    assert(d.shape >= SCENE_SHAPE_QUADRATIC && d.shape <= SCENE_SHAPE_DANDELION);
+    assert(d.path == BLADE_PATH_TESSELLATION || d.path == BLADE_PATH_PULLING);
+    return d;
+}
+
+static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t size, const void *data,
+                                bool readable)
+{
+    char label[128];
+    snprintf(label, sizeof label, "%s.%s", g->desc.label, what);
+    return gfx_buffer_make(&(gfx_buffer_desc_t){.size = size ? size : 16, .data = data, .dynamic = true,
+                                                .readable = readable, .label = label});
+}
+
+/* Indirect command layout: {count, instanceCount, first, baseInstance}. The
+ * tessellation path counts patches (count, one instance), vertex pulling
+ * counts instances of one strip of 2 (levels + 1) vertices. */
+static void command_initial(const blade_gpu_t *g, uint32_t cmd[4])
+{
+    bool pull = g->desc.path == BLADE_PATH_PULLING;
+    cmd[0] = pull ? 2u * (uint32_t)(g->desc.max_tess_level + 1) : 0u;
+    cmd[1] = pull ? 0u : 1u;
+    cmd[2] = 0u;
+    cmd[3] = 0u;
+}
+
+bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
+{
+    memset(g, 0, sizeof *g);
+    assert(desc->field);
+    const blade_field_t *f = desc->field;
+    g->desc = blade_gpu_desc_defaults(desc);
+    g->desc.field = NULL;
+    g->desc.cull.depth = NULL;
+    g->blade_count = (uint32_t)f->blade_count;
+    g->padded_count = (uint32_t)f->padded_count;
+    g->patch_count = (uint32_t)f->patch_count;
+    g->patch_size = (uint32_t)(f->patch_size > 0 ? f->patch_size : 1);
+    size_t np = g->patch_count ? g->patch_count : 1;
+    g->patch_aabbs = calloc(np, sizeof *g->patch_aabbs);
+    g->patch_real = calloc(np, sizeof *g->patch_real);
+    g->visible_patches = calloc(np, sizeof *g->visible_patches);
+    if (!g->patch_aabbs || !g->patch_real || !g->visible_patches) {
+        core_log_error("%s:%d: blade_gpu_make: out of memory (%u patches)", __FILE__, __LINE__,
+                       g->patch_count);
+        blade_gpu_destroy(g);
+        return false;
+    }
+    if (g->patch_count) memcpy(g->patch_aabbs, f->patch_aabbs, g->patch_count * sizeof *g->patch_aabbs);
+    for (uint32_t i = 0; i < g->padded_count; i++)
+        if (f->blades[i].v1[3] > 0.0f) g->patch_real[i / g->patch_size]++;
+
+    size_t nb = g->padded_count;
+    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades, true);
+    g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta, true);
+    g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL, false);
+    g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL, false);
+    g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL, true);
+    uint32_t cmd[4];
+    command_initial(g, cmd);
+    g->command = make_buffer(g, "command", sizeof cmd, cmd, true);
+    g->counters = make_buffer(g, "counters", 4 * sizeof(uint32_t), NULL, true);
+    g->patches = make_buffer(g, "patches", np * sizeof(uint32_t), NULL, false);
+    bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id &&
+              g->command.id && g->counters.id && g->patches.id;
+    char label[128];
+    for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
+        g->readback[i] = make_buffer(g, "readback", 8 * sizeof(uint32_t), NULL, true);
+        snprintf(label, sizeof label, "%s.readback_query", g->desc.label);
+        g->readback_query[i] = gfx_query_make(GL_TIMESTAMP, label);
+        ok = ok && g->readback[i].id && g->readback_query[i];
+    }
+    snprintf(label, sizeof label, "%s.physics", g->desc.label);
+    g->physics = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .label = label});
+    snprintf(label, sizeof label, "%s.cull", g->desc.label);
+    g->cull = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_cull.comp", .label = label});
+    if (g->desc.path == BLADE_PATH_TESSELLATION) {
+        snprintf(label, sizeof label, "%s.draw_tess", g->desc.label);
+        g->draw_tess = gfx_program_make(&(gfx_program_desc_t){.vs = "blade/blade_tess.vert",
+                                                              .tcs = "blade/blade.tesc",
+                                                              .tes = "blade/blade.tese",
+                                                              .fs = "blade/blade.frag",
+                                                              .label = label});
+        ok = ok && g->draw_tess.id;
+    } else {
+        snprintf(label, sizeof label, "%s.draw_pull", g->desc.label);
+        g->draw_pull = gfx_program_make(&(gfx_program_desc_t){.vs = "blade/blade_pull.vert",
+                                                              .fs = "blade/blade.frag", .label = label});
+        ok = ok && g->draw_pull.id;
+    }
+    snprintf(label, sizeof label, "%s.vao", g->desc.label);
+    g->vao = gfx_vertex_array_make(label);
+    ok = ok && g->physics.id && g->cull.id && g->vao;
+    if (!ok) {
+        core_log_error("%s:%d: blade_gpu_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
+                       g->desc.label);
+        blade_gpu_destroy(g);
+        return false;
+    }
+    g->stats.total = g->blade_count;
+    return true;
+}
+
+void blade_gpu_destroy(blade_gpu_t *g)
+{
+    gfx_buffer_t *bufs[] = {&g->blades, &g->eta, &g->winds, &g->spheres, &g->survivors,
+                            &g->command, &g->counters, &g->patches};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
+    for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
+        if (g->readback[i].id) gfx_buffer_destroy(&g->readback[i]);
+        if (g->readback_query[i]) gfx_query_destroy(&g->readback_query[i]);
+    }
+    gfx_program_t *progs[] = {&g->physics, &g->cull, &g->draw_tess, &g->draw_pull};
+    for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
+        if (progs[i]->id) gfx_program_destroy(progs[i]);
+    if (g->vao) gfx_vertex_array_destroy(&g->vao);
+    free(g->patch_aabbs);
+    free(g->patch_real);
+    free(g->visible_patches);
+    memset(g, 0, sizeof *g);
+}
+
+void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
+{
+    blade_env_t e = blade_env_defaults(env);
+    gfx_timer_begin("blade.physics");
+    if (e.wind_count) gfx_buffer_update(g->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
+    if (e.sphere_count)
+        gfx_buffer_update(g->spheres, 0, (size_t)e.sphere_count * sizeof(blade_sphere_t), e.spheres);
+    gfx_program_t p = g->physics;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_blade_count"), g->padded_count);
+    glUniform1f(gfx_uniform(p, "u_dt"), e.dt);
+    glUniform1f(gfx_uniform(p, "u_time"), e.time);
+    glUniform4f(gfx_uniform(p, "u_gravity"), e.gravity_dir[0], e.gravity_dir[1], e.gravity_dir[2], e.gravity);
+    glUniform4f(gfx_uniform(p, "u_gravity_centre"), e.gravity_centre[0], e.gravity_centre[1],
+                e.gravity_centre[2], e.gravity_centre_mix);
+    glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
+    glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
+    glUniform1i(gfx_uniform(p, "u_sphere_count"), e.sphere_count);
+    glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->eta.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->winds.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->spheres.id);
+    if (g->padded_count) glDispatchCompute((g->padded_count + 255u) / 256u, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_timer_end();
+}
+
+/* Conservative AABB-vs-frustum: culled when all 8 corners are outside one
+ * clip plane grown by the tolerance (w +- x + t < 0 for x, y, z). */
+static bool aabb_outside(const blade_aabb_t *b, const float *m, float tol)
+{
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        float sign = (plane & 1) ? -1.0f : 1.0f;
+        bool all_out = true;
+        for (int c = 0; c < 8 && all_out; c++) {
+            float p[3] = {(c & 1) ? b->max[0] : b->min[0], (c & 2) ? b->max[1] : b->min[1],
+                          (c & 4) ? b->max[2] : b->min[2]};
+            float clip[4];
+            for (int r = 0; r < 4; r++) clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+            if (clip[3] + sign * clip[axis] + tol >= 0.0f) all_out = false;
+        }
+        if (all_out) return true;
+    }
+    return false;
+}
+
+void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture)
+{
+    blade_cull_desc_t d = desc ? blade_cull_desc_defaults(desc) : g->desc.cull;
+    gfx_timer_begin("blade.cull");
+    uint32_t visible = 0, patch_culled = 0;
+    bool use_patches = !g->desc.no_patch_cull;
+    if (use_patches) {
+        for (uint32_t p = 0; p < g->patch_count; p++) {
+            if ((d.disable & BLADE_CULL_FRUSTUM) == 0 &&
+                aabb_outside(&g->patch_aabbs[p], d.view_proj, d.frustum_tolerance))
+                patch_culled += g->patch_real[p];
+            else
+                g->visible_patches[visible++] = p;
+        }
+        if (visible) gfx_buffer_update(g->patches, 0, visible * sizeof(uint32_t), g->visible_patches);
+    } else {
+        visible = g->patch_count;
+    }
+    /* reset: the command's counted field and the four counters, each its
+     * own command before the dispatch */
+    bool pull = g->desc.path == BLADE_PATH_PULLING;
+    uint32_t zero = 0;
+    glClearNamedBufferSubData(g->command.id, GL_R32UI, pull ? 4 : 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferSubData(g->counters.id, GL_R32UI, 0, 16, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    gfx_program_t p = g->cull;
+    uint32_t invocations = use_patches ? visible * g->patch_size : g->padded_count;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_blade_count"), invocations);
+    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.cam_pos);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view_proj);
+    glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
+    glUniform1i(gfx_uniform(p, "u_distance_levels"), d.distance_levels);
+    glUniform1f(gfx_uniform(p, "u_orientation_threshold"), d.orientation_threshold);
+    glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), d.frustum_tolerance);
+    glUniform1f(gfx_uniform(p, "u_depth_bias"), d.depth_bias);
+    glUniform1i(gfx_uniform(p, "u_use_depth"), depth_texture != 0);
+    glUniform1ui(gfx_uniform(p, "u_disable"), d.disable);
+    glUniform1i(gfx_uniform(p, "u_count_instances"), pull);
+    glUniform1i(gfx_uniform(p, "u_use_patches"), use_patches);
+    glUniform1ui(gfx_uniform(p, "u_patch_size"), g->patch_size);
+    glUniform1i(gfx_uniform(p, "u_depth"), 0);
+    glBindTextureUnit(0, depth_texture);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->survivors.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->command.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->counters.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->patches.id);
+    if (invocations) glDispatchCompute((invocations + 255u) / 256u, 1, 1);
+    glBindTextureUnit(0, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    /* statistics: copy the counters and the command into a ring slot and
+     * mark it with a timestamp query; read once the query is available */
+    int slot = g->readback_next;
+    g->readback_next = (slot + 1) % BLADE_GPU_READBACK_SLOTS;
+    glCopyNamedBufferSubData(g->counters.id, g->readback[slot].id, 0, 0, 16);
+    glCopyNamedBufferSubData(g->command.id, g->readback[slot].id, 0, 16, 16);
+    glQueryCounter(g->readback_query[slot], GL_TIMESTAMP);
+    g->readback_patch[slot][0] = patch_culled;
+    g->readback_patch[slot][1] = visible;
+    g->readback_patch[slot][2] = 1;
+    g->culled_once = true;
+    gfx_timer_end();
+}
+
+static void read_slot(blade_gpu_t *g, int slot)
+{
+    uint32_t v[8];
+    gfx_buffer_read(g->readback[slot], 0, sizeof v, v);
+    bool pull = g->desc.path == BLADE_PATH_PULLING;
+    for (int i = 0; i < 4; i++) g->stats.culled[i] = v[i];
+    g->stats.survivors = pull ? v[5] : v[4];
+    g->stats.patch_culled = g->readback_patch[slot][0];
+    g->stats.patches_drawn = g->readback_patch[slot][1];
+    g->stats.total = g->blade_count;
+    g->stats.valid = true;
+    g->readback_patch[slot][2] = 0;
+}
+
+blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
+{
+    /* newest first: slots readback_next - 1, - 2, ... */
+    for (int k = 1; k <= BLADE_GPU_READBACK_SLOTS; k++) {
+        int slot = (g->readback_next - k + BLADE_GPU_READBACK_SLOTS) % BLADE_GPU_READBACK_SLOTS;
+        if (!g->readback_patch[slot][2]) continue;
+        GLint available = 0;
+        if (wait) {
+            GLuint64 t;
+            glGetQueryObjectui64v(g->readback_query[slot], GL_QUERY_RESULT, &t);
+            available = 1;
+        } else {
+            glGetQueryObjectiv(g->readback_query[slot], GL_QUERY_RESULT_AVAILABLE, &available);
+        }
+        if (!available) continue;
+        read_slot(g, slot);
+        /* older slots are stale now */
+        for (int j = 0; j < BLADE_GPU_READBACK_SLOTS; j++) g->readback_patch[j][2] = 0;
+        break;
+    }
+    return g->stats;
+}
+
+void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
+{
+    gfx_timer_begin("blade.draw");
+    if (!g->culled_once) {
+        gfx_timer_end();
+        return;
+    }
+    bool pull = g->desc.path == BLADE_PATH_PULLING;
+    gfx_program_t p = pull ? g->draw_pull : g->draw_tess;
+    float sun[3] = {desc->sun[0], desc->sun[1], desc->sun[2]};
+    float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+    if (sl < 1e-6f) {
+        sun[0] = 0.4f, sun[1] = 0.8f, sun[2] = 0.3f;
+        sl = sqrtf(0.89f);
+    }
+    for (int i = 0; i < 3; i++) sun[i] /= sl;
+    const float *root = desc->albedo_root, *tip = desc->albedo_tip;
+    static const float root_def[3] = {0.10f, 0.25f, 0.05f}, tip_def[3] = {0.45f, 0.65f, 0.20f};
+    if (root[0] == 0.0f && root[1] == 0.0f && root[2] == 0.0f) root = root_def;
+    if (tip[0] == 0.0f && tip[1] == 0.0f && tip[2] == 0.0f) tip = tip_def;
+    bool fade = desc->fade_end > desc->fade_start;
+
+    glUseProgram(p.id);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->camera);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
+    glUniform2f(gfx_uniform(p, "u_fade"), desc->fade_start, desc->fade_end);
+    glUniform3fv(gfx_uniform(p, "u_albedo_root"), 1, root);
+    glUniform3fv(gfx_uniform(p, "u_albedo_tip"), 1, tip);
+    glUniform1i(gfx_uniform(p, "u_shape"), (int)g->desc.shape);
+    glUniform1f(gfx_uniform(p, "u_displacement"), g->desc.displacement);
+    glUniform1f(gfx_uniform(p, "u_width_correction"), g->desc.width_correction);
+    glUniform1i(gfx_uniform(p, "u_max_level"), g->desc.max_tess_level);
+    glUniform1f(gfx_uniform(p, "u_lod_distance"), g->desc.lod_distance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->survivors.id);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, g->command.id);
+    glBindVertexArray(g->vao);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    if (fade) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (pull) {
+        glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+    } else {
+        glPatchParameteri(GL_PATCH_VERTICES, 1);
+        glDrawArraysIndirect(GL_PATCHES, NULL);
+    }
+    if (fade) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gfx_timer_end();
+}
+
+void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (out) gfx_buffer_read(g->blades, 0, g->padded_count * sizeof(blade_t), out);
+    if (eta_out) gfx_buffer_read(g->eta, 0, g->padded_count * sizeof(float), eta_out);
+}
+
+uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out)
+{
+    uint32_t cmd[4];
+    blade_gpu_read_command(g, cmd);
+    uint32_t n = g->desc.path == BLADE_PATH_PULLING ? cmd[1] : cmd[0];
+    assert(n <= g->padded_count);
+    if (n) gfx_buffer_read(g->survivors, 0, n * sizeof(uint32_t), out);
+    return n;
+}
+
+void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4])
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(g->command, 0, 4 * sizeof(uint32_t), out);
+}
+
+void blade_gpu_write_blades(blade_gpu_t *g, const blade_t *blades, const float *eta)
+{
+    gfx_buffer_update(g->blades, 0, g->padded_count * sizeof(blade_t), blades);
+    if (eta) {
+        gfx_buffer_update(g->eta, 0, g->padded_count * sizeof(float), eta);
+    } else {
+        float zero = 0.0f;
+        glClearNamedBufferData(g->eta.id, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    }
+}

@@ -1,0 +1,151 @@
+/* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
+ * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
+ * simulates it in a compute shader (eq. 1-13 plus the collision exit of
+ * blade_ref.h), culls it per patch on the CPU and per blade in a compute
+ * shader (eq. 14-20) into an indirect draw command, and draws the
+ * survivors either through tessellation (GL_PATCHES; the control shader
+ * picks the level by distance, the evaluation shader builds the blade by
+ * De Casteljau, eq. 21, with the shape functions of sec. 6.3 and the
+ * optional displacement and width correction, eq. 23-24) or by vertex
+ * pulling (instanced triangle strips reading the blade SSBO and the
+ * survivor list: same geometry function, same levels), two-sided lighting
+ * from shaders/common/lighting.glsl.
+ *
+ * Timer passes: "blade.physics", "blade.cull", "blade.draw".
+ *
+ * Patch-level culling is on the CPU: each patch AABB (blade_field_t) is
+ * tested against the six clip planes grown by frustum_tolerance (the same
+ * slack the per-blade test uses), and only the blades of the patches that
+ * pass are dispatched. A patch outside one grown plane holds only blades
+ * whose three sample points are outside that plane, so the survivors equal
+ * blade_ref_cull's; the blades of a culled patch are counted in
+ * blade_gpu_stats_t.patch_culled (the per-blade counters never see them,
+ * while blade_ref_cull may count some of them as orientation-culled:
+ * compare per-test counts with no_patch_cull). The per-blade counters and
+ * the draw command are reset with glClearBufferSubData before the
+ * dispatch; the shader has no barrier. */
+#ifndef MEADOW_BLADE_H
+#define MEADOW_BLADE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "blade/blade_ref.h"
+#include "blade/blade_seed.h"
+#include "gfx/gfx.h"
+#include "scene/scene.h"
+
+typedef enum blade_render_path_t {
+    BLADE_PATH_TESSELLATION = 0, /* default */
+    BLADE_PATH_PULLING = 1,      /* instanced strips, vertex pulling */
+} blade_render_path_t;
+
+/* Zero means default:
+ *   field          required; copied to the GPU (the caller may free it)
+ *   shape          SCENE_SHAPE_QUADRATIC (the enum's 0)
+ *   max_tess_level 8 segments along the blade at the nearest LOD (1..64)
+ *   lod_distance   30 m: the level falls linearly from max_tess_level at
+ *                  the camera to max(max_tess_level / 4, 1) at lod_distance
+ *   cull           per-blade culling defaults for blade_gpu_cull calls with
+ *                  desc NULL (blade_cull_desc_defaults)
+ *   path           BLADE_PATH_TESSELLATION
+ *   displacement   0: flat blades; > 0: eq. 23, the midrib raised along
+ *                  the normal by displacement * width at the root
+ *   width_correction 0: off; > 0: eq. 24, a blade seen edge-on is widened
+ *                  by 1 / max(|n.view|, width_correction) (clamped at 4x)
+ *   no_patch_cull  false: CPU patch frustum test on
+ *   label          "blade" (prefix of every GL object label) */
+typedef struct blade_gpu_desc_t {
+    const blade_field_t *field;
+    scene_blade_shape_t shape;
+    int max_tess_level;
+    float lod_distance;
+    blade_cull_desc_t cull;
+    blade_render_path_t path;
+    float displacement;
+    float width_correction;
+    bool no_patch_cull;
+    const char *label;
+} blade_gpu_desc_t;
+
+#define BLADE_GPU_READBACK_SLOTS 3
+
+/* Latest culling statistics. */
+typedef struct blade_gpu_stats_t {
+    uint32_t total;        /* real blades (padding excluded) */
+    uint32_t survivors;    /* blades in the draw command */
+    uint32_t culled[4];    /* orientation, frustum, distance, occlusion (per blade) */
+    uint32_t patch_culled; /* real blades of patches culled on the CPU */
+    uint32_t patches_drawn;
+    bool valid;            /* false until a cull result has been read */
+} blade_gpu_stats_t;
+
+typedef struct blade_gpu_t {
+    blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
+    uint32_t blade_count, padded_count, patch_count, patch_size;
+    blade_aabb_t *patch_aabbs;
+    uint32_t *patch_real;    /* real blades per patch */
+    uint32_t *visible_patches;
+    gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
+    gfx_buffer_t readback[BLADE_GPU_READBACK_SLOTS];
+    GLuint readback_query[BLADE_GPU_READBACK_SLOTS];
+    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][3]; /* patch_culled, patches drawn, in use */
+    int readback_next;
+    blade_gpu_stats_t stats;
+    gfx_program_t physics, cull, draw_tess, draw_pull;
+    GLuint vao;
+    bool culled_once;
+} blade_gpu_t;
+
+/* Per-frame drawing parameters. Zero means default:
+ *   view_proj, camera required; sun (0,0,0) -> normalize(0.4, 0.8, 0.3);
+ *   fade_start = fade_end = 0: no fade; otherwise blades are fully drawn
+ *   nearer than fade_start (distance from the camera to the root), absent
+ *   beyond fade_end, and cross-faded in between by a dithered alpha that
+ *   drives alpha-to-coverage (enable MSAA on the target for a smooth fade).
+ *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20). */
+typedef struct blade_draw_desc_t {
+    float view_proj[16];
+    float camera[3];
+    float sun[3];
+    float time;
+    float fade_start, fade_end;
+    float albedo_root[3], albedo_tip[3];
+} blade_draw_desc_t;
+
+blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc);
+
+/* Uploads the field and builds the programs. Returns false (logged, *g
+ * zeroed and every object released) on failure. */
+bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc);
+void blade_gpu_destroy(blade_gpu_t *g);
+
+/* One physics step of every blade (timer "blade.physics"). env is resolved
+ * with blade_env_defaults. */
+void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env);
+
+/* Culls for one frame (timer "blade.cull"). desc NULL uses the make-time
+ * cull desc; desc->depth is ignored: depth_texture is a GL_TEXTURE_2D of
+ * window depth (single sample, e.g. the resolved depth of the previous
+ * frame's opaque pass), 0 for no occlusion test. */
+void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture);
+
+/* Draws the survivors of the latest cull into the bound framebuffer (timer
+ * "blade.draw"). Depth test on, no face culling (two-sided). */
+void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
+
+/* Latest culling statistics without stalling (a result is read once its
+ * GPU copy has completed, typically a frame or two late); with wait, the
+ * latest cull is waited for and read (tests). */
+blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait);
+
+/* Blocking reads for tests: blades (padded_count), eta, and the survivor
+ * list of the latest cull (returns the count; out holds padded_count). */
+void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out);
+uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out);
+/* Blocking read of the indirect command {count, instanceCount, first, base}. */
+void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4]);
+/* Replaces the blade state (tests): padded_count blades and eta (NULL: 0). */
+void blade_gpu_write_blades(blade_gpu_t *g, const blade_t *blades, const float *eta);
+
+#endif
