@@ -1,0 +1,67 @@
+/* bb_gpu_test_util: helpers shared by the billboard GPU tests (Orthmann et
+ * al. 2009): an uploaded collider mesh and the CPU twin of one billboard's
+ * refined mesh (bb_mesh_init_quad + wind pose). */
+#ifndef MEADOW_BB_GPU_TEST_UTIL_H
+#define MEADOW_BB_GPU_TEST_UTIL_H
+
+#include "billboard/bb.h"
+#include "scene/shapes.h"
+
+#include <string.h>
+
+typedef struct test_mesh_t {
+    shape_mesh_t shape;
+    gfx_buffer_t pos, nrm, idx;
+    GLuint vao;
+} test_mesh_t;
+
+static inline void test_mesh_make(test_mesh_t *m, const scene_collider_t *c)
+{
+    shape_mesh_make(&m->shape, c);
+    m->pos = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
+                                                  .data = m->shape.positions, .label = "test.pos"});
+    m->nrm = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
+                                                  .data = m->shape.normals, .label = "test.nrm"});
+    m->idx = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 4 * (size_t)m->shape.index_count,
+                                                  .data = m->shape.indices, .label = "test.idx"});
+    m->vao = gfx_vertex_array_make("test.vao");
+    glVertexArrayVertexBuffer(m->vao, 0, m->pos.id, 0, 12);
+    glVertexArrayVertexBuffer(m->vao, 1, m->nrm.id, 0, 12);
+    glVertexArrayElementBuffer(m->vao, m->idx.id);
+    for (GLuint a = 0; a < 2; a++) {
+        glEnableVertexArrayAttrib(m->vao, a);
+        glVertexArrayAttribFormat(m->vao, a, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(m->vao, a, a);
+    }
+}
+
+static inline void test_mesh_destroy(test_mesh_t *m)
+{
+    gfx_vertex_array_destroy(&m->vao);
+    gfx_buffer_destroy(&m->pos);
+    gfx_buffer_destroy(&m->nrm);
+    gfx_buffer_destroy(&m->idx);
+    shape_mesh_free(&m->shape);
+}
+
+static inline bb_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)
+{
+    bb_object_t o = {.vao = m ? m->vao : 0, .index_count = m ? (GLsizei)m->shape.index_count : 0,
+                     .index_type = GL_UNSIGNED_INT, .radius = radius};
+    mat4 model;
+    glm_translate_make(model, (float *)centre);
+    memcpy(o.model, model, sizeof model);
+    return o;
+}
+
+/* CPU twin of a billboard's mesh as the collision pass starts it: the rest
+ * quad, moved to the wind pose at `time`. */
+static inline void test_cpu_mesh(const bb_field_t *f, const bb_point_t *p, float time, bb_mesh_t *mesh)
+{
+    vec3 right, up;
+    bb_point_frame(p, right, up);
+    bb_mesh_init_quad(mesh, p->position, right, up, p->size[0], p->size[1], f->desc.subdiv[0], f->desc.subdiv[1]);
+    bb_ref_wind_pose(mesh, &f->desc.wind, time, mesh->pos);
+}
+
+#endif

@@ -1,0 +1,163 @@
+/* test_bb_gpu_collide: the collision pass of Orthmann et al. 2009 on the GPU
+ * (bb_collide.geom, eq. 1-7) against the CPU reference bb_ref_collide.
+ *  A: the CPU cube map of the sphere (bb_cubemap_render_sphere) uploaded with
+ *     bb_field_set_cube: GPU meshes equal bb_ref_collide to float rounding.
+ *  B: the GPU cube map of the sphere mesh from shapes.h: its texels against
+ *     the CPU ones, the GPU meshes against bb_ref_collide on the CPU cube,
+ *     and no refined vertex deeper than one texel inside the analytic sphere. */
+#include "test.h"
+#include "test_gl.h"
+
+#include "bb_gpu_test_util.h"
+
+#include <string.h>
+
+#define RES 48
+
+static float sphere_y(const terrain_mesh_t *t, float x, float z) { return terrain_height_at(t, x, z, NULL) + 0.3f; }
+
+/* Returns the number of deformed billboards; fills max/mean vertex error
+ * against bb_ref_collide(cpu_cube) and the deepest penetration. */
+static int compare(bb_field_t *f, const bb_cubemap_t *cube, const float centre[3], float radius, float time,
+                   double *max_err, double *mean_err, double *deepest, int *cpu_hits)
+{
+    int n = f->billboards, nm = f->desc.subdiv[0] * f->desc.subdiv[1];
+    bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
+    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)f->desc.max_deformed);
+    gfx_buffer_read(f->points, 0, sizeof *pts * (size_t)n, pts);
+    gfx_buffer_read(f->meshes, 0, sizeof(float) * 4 * (size_t)nm * (size_t)f->desc.max_deformed, meshes);
+    mat4 w2c;
+    glm_translate_make(w2c, (vec3){-centre[0], -centre[1], -centre[2]});
+    scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
+    int deformed = 0, sum_n = 0;
+    *max_err = 0, *mean_err = 0, *deepest = 0, *cpu_hits = 0;
+    for (int i = 0; i < n; i++) {
+        const bb_point_t *p = &pts[i];
+        vec3 right, up;
+        bb_point_frame(p, right, up);
+        float bc[3], br = 0.5f * sqrtf(p->size[0] * p->size[0] + p->size[1] * p->size[1]) + f->desc.wind.strength;
+        for (int k = 0; k < 3; k++) bc[k] = p->position[k] + up[k] * 0.5f * p->size[1];
+        float dist = sqrtf(glm_vec3_distance2(bc, (float *)centre));
+        bool hit = dist < br + radius;
+        *cpu_hits += hit;
+        if (p->pad[0] == BB_NO_SLOT) {
+            CHECK_MSG(!hit || fabsf(dist - (br + radius)) < 1e-4f, "billboard %d hit on the CPU only", i);
+            continue;
+        }
+        CHECK(hit || fabsf(dist - (br + radius)) < 1e-4f);
+        CHECK(p->state == BB_STATE_RECOVERING && fabsf(p->recover_time - f->desc.recover_time) < 1e-6f);
+        deformed++;
+        bb_mesh_t mesh;
+        test_cpu_mesh(f, p, time, &mesh);
+        bb_ref_collide(&mesh, cube, (const mat4 *)&w2c, 1,
+                       &(bb_collide_desc_t){.r1 = f->desc.r1, .r2 = f->desc.r2, .iterations = f->desc.iterations});
+        const float *g = &meshes[(size_t)p->pad[0] * (size_t)nm * 4];
+        for (int v = 0; v < nm; v++) {
+            double e = 0;
+            for (int k = 0; k < 3; k++) e = fmax(e, fabs(g[4 * v + k] - mesh.pos[v][k]));
+            *max_err = fmax(*max_err, e);
+            *mean_err += e;
+            sum_n++;
+            float rel[3] = {g[4 * v] - centre[0], g[4 * v + 1] - centre[1], g[4 * v + 2] - centre[2]};
+            if (v >= f->desc.subdiv[0]) /* roots are fixed (and may sit inside a sphere sunk into the ground) */
+                *deepest = fmin(*deepest, shape_signed_distance(&sph, rel));
+        }
+        bb_mesh_free(&mesh);
+    }
+    if (sum_n) *mean_err /= sum_n;
+    free(pts);
+    free(meshes);
+    return deformed;
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    terrain_mesh_t terrain;
+    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 3));
+    bb_field_desc_t desc = {.terrain = &terrain, .seed = 99, .density = 36, .octree_depth = 3, .cube_res = RES,
+                            .layout = {.size = 32, .clump_size = 32}};
+    const float radius = 0.5f, time = 0.7f;
+    float centre[3] = {0.3f, 0, -0.2f};
+    centre[1] = sphere_y(&terrain, centre[0], centre[2]);
+
+    bb_cubemap_t cpu_cube;
+    CHECK(bb_cubemap_init(&cpu_cube, RES, (vec3){0, 0, 0}, radius));
+    bb_cubemap_render_sphere(&cpu_cube, (vec3){0, 0, 0}, radius);
+
+    /* A: CPU cube map uploaded: same inputs on both sides. */
+    bb_field_t fa;
+    CHECK(bb_field_make(&fa, &desc));
+    bb_field_set_cube(&fa, 0, &cpu_cube);
+    bb_object_t oa = test_object(NULL, centre, radius);
+    gfx_timer_frame_begin();
+    bb_field_update(&fa, &oa, 1, time, 1.0f / 30.0f);
+    double max_err, mean_err, deepest;
+    int cpu_hits;
+    int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
+    printf("A (CPU cube): %d of %d billboards deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m\n",
+           da, fa.billboards, cpu_hits, max_err, mean_err, deepest);
+    CHECK(da > 10 && da == cpu_hits);
+    CHECK(max_err < 1e-4);
+    bb_stats_t st;
+    bb_field_stats(&fa, &st);
+    CHECK(st.deformed == da && st.pool_exhausted == 0);
+    CHECK(st.leaves[BB_NODE_COLLIDING] > 0);
+    bb_field_destroy(&fa);
+
+    /* B: GPU cube map of the sphere mesh. */
+    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
+    test_mesh_t mesh;
+    test_mesh_make(&mesh, &sc);
+    bb_field_t fb;
+    CHECK(bb_field_make(&fb, &desc));
+    bb_object_t ob = test_object(&mesh, centre, radius);
+    gfx_timer_frame_begin();
+    bb_field_update(&fb, &ob, 1, time, 1.0f / 30.0f);
+    float *tex = malloc(sizeof(float) * 4 * 6 * RES * RES);
+    glGetTextureSubImage(fb.cubes.id, 0, 0, 0, 0, RES, RES, 6, GL_RGBA, GL_FLOAT, sizeof(float) * 4 * 6 * RES * RES,
+                         tex);
+    int both = 0, disagree = 0, far = 0;
+    double max_dd = 0, max_dn = 0, mean_dd = 0;
+    for (int t = 0; t < 6 * RES * RES; t++) {
+        const float *g = &tex[4 * t], *c = &cpu_cube.texels[4 * t];
+        bool gh = g[0] < 2 * radius - 1e-5f, ch = c[0] < 2 * radius - 1e-5f;
+        if (gh != ch) {
+            disagree++;
+            continue;
+        }
+        if (!gh) {
+            CHECK(fabsf(g[0] - c[0]) < 1e-6f && fabsf(g[1] - c[1]) + fabsf(g[2] - c[2]) + fabsf(g[3] - c[3]) < 1e-6f);
+            continue;
+        }
+        both++;
+        max_dd = fmax(max_dd, fabs(g[0] - c[0]));
+        far += fabs(g[0] - c[0]) > 0.03;
+        mean_dd += fabs(g[0] - c[0]);
+        for (int k = 1; k < 4; k++) max_dn = fmax(max_dn, fabs(g[k] - c[k]));
+    }
+    printf("B cube texels: %d hit on both, %d hit/miss disagree (silhouette), mean |dD| %.3g m, max %.3g m (%d over 3 cm), "
+           "max |dn| %.3g\n", both, disagree, mean_dd / both, max_dd, far, max_dn);
+    CHECK(both > 6 * RES * RES / 2);
+    CHECK(disagree < 6 * 4 * RES); /* only a ring of texels along each face's silhouette */
+    CHECK(max_dd < 0.1);           /* 24x16 UV sphere vs the exact sphere: grazing texels differ most */
+    CHECK(far < both / 20);
+    CHECK(mean_dd / both < 0.01); /* the flat facets lie up to ~1.4 cm inside the sphere */
+    CHECK(max_dn < 0.15);
+    int db = compare(&fb, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
+    float texel = 2 * radius / RES;
+    printf("B (GPU cube): %d deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m (texel %.3g m)\n",
+           db, cpu_hits, max_err, mean_err, deepest, texel);
+    CHECK(db == cpu_hits);
+    CHECK(mean_err < 0.01);
+    CHECK(max_err < 0.1);
+    CHECK(deepest > -texel);
+    free(tex);
+    bb_field_destroy(&fb);
+    test_mesh_destroy(&mesh);
+    bb_cubemap_free(&cpu_cube);
+    terrain_free(&terrain);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
