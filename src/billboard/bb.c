@@ -221,10 +221,10 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo); /* draws need a complete framebuffer */
+    gfx_timer_begin("bb.generate");
     glEnable(GL_RASTERIZER_DISCARD);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->points.id);
-    gfx_timer_begin("bb.generate");
     glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
     glBeginTransformFeedback(GL_POINTS);
     int drawn = 0;
@@ -252,8 +252,8 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     }
     glEndTransformFeedback();
     glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-    gfx_timer_end();
     glDisable(GL_RASTERIZER_DISCARD);
+    gfx_timer_end();
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
