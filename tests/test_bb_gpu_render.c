@@ -1,0 +1,96 @@
+/* test_bb_gpu_render: golden image of the billboard grass of Orthmann et
+ * al. 2009 after a sphere rolled through it: the trail of pushed-out,
+ * still-recovering billboards must be visible. Rendered at 192x128 with 4x
+ * MSAA and alpha-to-coverage (tests/golden/bb_trail.png; regenerate with
+ * MEADOW_UPDATE_GOLDEN=1). Also checks the distance fade hides near grass. */
+#include "test.h"
+#include "test_gl.h"
+
+#include "bb_gpu_test_util.h"
+
+#include <string.h>
+
+static void draw(bb_field_t *f, const gfx_target_t *tgt, const mat4 vp, const vec3 eye, float time, float fs,
+                 float fe)
+{
+    bb_draw_desc_t d = {.time = time, .fade_start = fs, .fade_end = fe, .sun_dir = {0.4f, 0.8f, 0.3f}};
+    memcpy(d.viewproj, vp, sizeof d.viewproj);
+    memcpy(d.camera, eye, sizeof d.camera);
+    glm_vec3_normalize(d.sun_dir);
+    vec4 planes[6];
+    glm_frustum_planes((vec4 *)vp, planes);
+    memcpy(d.planes, planes, sizeof d.planes);
+    gfx_target_bind(tgt);
+    glClearColor(0.33f, 0.27f, 0.2f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    bb_field_draw(f, &d);
+}
+
+static double green(const core_image_t *img)
+{
+    double g = 0;
+    for (int i = 0; i < img->w * img->h; i++) g += img->px[4 * i + 1] - img->px[4 * i];
+    return g / (img->w * img->h);
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    terrain_mesh_t terrain;
+    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11));
+    bb_field_t f;
+    CHECK(bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 11, .density = 64, .octree_depth = 3,
+                                               .cube_res = 32, .recover_time = 30, .size = {0.5f, 0.5f},
+                                               .layout = {.size = 32, .clump_size = 64}}));
+    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
+    test_mesh_t mesh;
+    test_mesh_make(&mesh, &sc);
+    float time = 0;
+    for (int frame = 0; frame < 24; frame++) {
+        time += 1.0f / 30.0f;
+        float x = -3.5f + 7.0f * (float)frame / 23.0f, z = 0.5f;
+        float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.4f, z};
+        bb_object_t o = test_object(&mesh, c, sc.radius);
+        gfx_timer_frame_begin();
+        bb_field_update(&f, &o, 1, time, 1.0f / 30.0f);
+    }
+    bb_stats_t st;
+    bb_field_stats(&f, &st);
+    printf("%d billboards, %d deformed after the roll\n", st.billboards, st.deformed);
+    CHECK(st.deformed > 50);
+
+    gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
+    mat4 view, proj, vp;
+    vec3 eye = {0.0f, 3.2f, 5.5f};
+    glm_lookat(eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(50.0f), 192.0f / 128.0f, 0.1f, 50.0f, proj);
+    glm_mat4_mul(proj, view, vp);
+    gfx_timer_frame_begin();
+    draw(&f, &tgt, vp, eye, time, 0, 0);
+    core_image_t img;
+    CHECK(gfx_target_read(&tgt, &img));
+    CHECK(test_image_check(&img, "bb_trail", NULL));
+    double g_full = green(&img);
+
+    /* Distance fade: everything nearer than 20 m is invisible. */
+    draw(&f, &tgt, vp, eye, time, 20, 25);
+    core_image_t faded;
+    CHECK(gfx_target_read(&tgt, &faded));
+    double g_fade = green(&faded);
+    printf("mean green-red: full %.2f, faded %.2f\n", g_full, g_fade);
+    CHECK(g_full > g_fade + 5.0);
+    CHECK(fabs(g_fade - (0.27 - 0.33) * 255) < 1.0);
+    gfx_timer_flush();
+    for (int i = 0; i < gfx_timer_count(); i++)
+        printf("timer %-12s median %.3f ms\n", gfx_timer_name(i), gfx_timer_median_ms(i));
+
+    core_image_free(&img);
+    core_image_free(&faded);
+    gfx_target_destroy(&tgt);
+    bb_field_destroy(&f);
+    test_mesh_destroy(&mesh);
+    terrain_free(&terrain);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
