@@ -118,7 +118,10 @@ int main(void)
            st.leaves[0]);
     CHECK(released > 20);
     CHECK(max_release < 1e-3);
-    CHECK(max_before < 1e-3);
+    /* One frame before release the stored mesh is (dt/T)^3-close to the
+     * wind pose of the previous frame; the wind moved since, so allow the
+     * wind's per-frame travel. */
+    CHECK(max_before < 5e-3);
     CHECK(st.deformed == 0 && hdr[0] == (uint32_t)st.pool_capacity && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] == 0 && st.leaves[BB_NODE_RECOVERING] == 0);
 

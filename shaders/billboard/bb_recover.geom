@@ -3,7 +3,7 @@
  * billboards of COLLIDING and RECOVERING leaves (transform feedback in and
  * out). A billboard hit this frame (state COLLIDING) only turns RECOVERING.
  * Otherwise its timer runs down and its stored mesh blends towards the wind
- * pose w by eq. 8, v <- (1 - t^3) w + t^3 v, t = time left / recover time;
+ * pose w by eq. 8, v = (1 - t^3) w + t^3 v_c, t = time left / recover time;
  * when t reaches 0 the mesh equals w, the slot goes back to the pool and the
  * billboard is a plain wind-animated quad again. */
 #define BB_NO_GENERATE
@@ -29,6 +29,13 @@ void main()
         if (p.state == BB_STATE_COLLIDING) {
             p.state = BB_STATE_RECOVERING;
         } else {
+            /* Eq. 8 blends the pose of the last collision v_c with the wind
+             * pose: v(t) = (1 - (t/T)^3) w + (t/T)^3 v_c. The stored mesh is
+             * updated in place every frame, so each step blends by the ratio
+             * of successive t^3 (t_new / t_old, cubed in bb_recover); applying
+             * t/T itself every frame would compound and recover far faster
+             * than T. */
+            float t_old = p.recover_time;
             p.recover_time = max(p.recover_time - u_dt, 0.0);
             vec3 right, up;
             bb_frame(p, right, up);
@@ -36,7 +43,7 @@ void main()
             bb_load_mesh(slot);
             vec3 w[BB_N * BB_M];
             bb_wind_pose(u_wind, u_time, w);
-            bb_recover(w, p.recover_time / u_recover);
+            bb_recover(w, t_old > 0.0 ? p.recover_time / t_old : 0.0);
             bb_store_mesh(slot);
             if (p.recover_time <= 0.0) {
                 int top = atomicAdd(free_top, 1);

@@ -52,11 +52,12 @@ void app_colliders_destroy(app_colliders_t *c)
     c->count = 0;
 }
 
-void app_colliders_update(app_colliders_t *c, float t)
+void app_colliders_update(app_colliders_t *c, const terrain_mesh_t *terrain, float t)
 {
     for (int i = 0; i < c->count; i++) {
         app_collider_t *a = &c->items[i];
         scene_path_eval(&a->desc.path, t, a->desc.loop, a->position, a->velocity);
+        if (terrain->grid_res > 0) a->position[1] += terrain_height_at(terrain, a->position[0], a->position[2], NULL);
     }
 }
 

@@ -3,6 +3,7 @@
  * main loop, `meadow bench` and `meadow compare` alike. */
 #include "app/app_world.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -47,16 +48,91 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     return 0;
 }
 
+static bool make_bb(app_world_t *w)
+{
+    const scene_desc_t *s = &w->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    bb_wind_desc_t wind = {0};
+    if (s->wind_count && s->wind[0].type == SCENE_WIND_DIRECTIONAL) {
+        const scene_wind_t *sw = &s->wind[0];
+        wind = (bb_wind_desc_t){.dir = {sw->direction[0], sw->direction[1]}, .strength = 0.08f * sw->strength,
+                                .omega = 2.0f * GLM_PIf * sw->speed / sw->wavelength,
+                                .wavenumber = 2.0f * GLM_PIf / sw->wavelength};
+    }
+    /* One layout texel per candidate cell over the terrain, so the extent
+     * map's clearings are sized relative to the field, not to a fixed
+     * texture. */
+    float extent = fmaxf(w->terrain_mesh.aabb_max[0] - w->terrain_mesh.aabb_min[0],
+                         w->terrain_mesh.aabb_max[2] - w->terrain_mesh.aabb_min[2]);
+    int cells = (int)ceilf(extent * sqrtf(g->billboard_density));
+    int layout_size = ((cells + 15) / 16) * 16;
+    layout_size = layout_size < 32 ? 32 : (layout_size > 1024 ? 1024 : layout_size);
+    int objects = w->colliders.count;
+    if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
+    w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
+                                           .terrain = &w->terrain_mesh,
+                                           .seed = s->seed,
+                                           .density = g->billboard_density,
+                                           .size = {g->billboard_size[0], g->billboard_size[1]},
+                                           .subdiv = {g->subdiv[0], g->subdiv[1]},
+                                           .iterations = g->spring_iterations,
+                                           .cube_res = g->cube_resolution,
+                                           .recover_time = g->recover_time,
+                                           .max_objects = objects > 0 ? objects : 1,
+                                           .wind = wind,
+                                           .layout = {.size = layout_size},
+                                       });
+    return w->have_bb;
+}
+
+static bool wants_bb(scene_mode_t m) { return m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID; }
+
 bool app_world_make_gpu(app_world_t *w)
 {
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
+    if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     return w->gpu_ready;
+}
+
+/* Objects for the billboard narrow phase: every analytic collider (its mesh
+ * VAO has position at attribute 0 and normal at 1). More objects than the
+ * field holds are reported once, then the nearest to the field centre win
+ * by order. */
+static int bb_objects(app_world_t *w, bb_object_t *out, int max)
+{
+    int n = 0;
+    for (int i = 0; i < w->colliders.count; i++) {
+        if (n == max) {
+            if (!w->warned_objects)
+                core_log_warn("billboards: %d colliders, the field takes %d per update: the rest do not bend "
+                              "billboards",
+                              w->colliders.count, max);
+            w->warned_objects = true;
+            break;
+        }
+        const app_collider_t *c = &w->colliders.items[i];
+        bb_object_t *o = &out[n++];
+        o->vao = c->vao;
+        o->index_count = (GLsizei)c->mesh.index_count;
+        o->index_type = GL_UNSIGNED_INT;
+        mat4 m;
+        glm_translate_make(m, (float *)c->position);
+        memcpy(o->model, m, sizeof o->model);
+        o->centre[0] = o->centre[1] = o->centre[2] = 0.0f;
+        o->radius = c->bound_radius;
+    }
+    return n;
 }
 
 void app_world_update(app_world_t *w, float t, float dt)
 {
-    (void)dt;
-    app_colliders_update(&w->colliders, t);
+    w->time = t;
+    app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+    if (w->have_bb) {
+        bb_object_t objs[BB_MAX_OBJECTS];
+        int n = bb_objects(w, objs, w->bb.desc.max_objects);
+        bb_field_update(&w->bb, objs, n, t, dt);
+    }
 }
 
 void app_world_draw(app_world_t *w, const app_view_t *v, bool wireframe)
@@ -66,6 +142,18 @@ void app_world_draw(app_world_t *w, const app_view_t *v, bool wireframe)
     app_terrain_draw(&w->terrain, v);
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
+    if (w->have_bb && wants_bb(w->mode)) {
+        bb_draw_desc_t d = {.time = v->time};
+        memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
+        memcpy(d.camera, v->camera, sizeof d.camera);
+        memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
+        memcpy(d.planes, v->planes, sizeof d.planes);
+        if (w->mode == SCENE_MODE_HYBRID) {
+            d.fade_start = w->scene.grass.switch_distance - 1.0f;
+            d.fade_end = w->scene.grass.switch_distance + 1.0f;
+        }
+        bb_field_draw(&w->bb, &d);
+    }
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
@@ -73,10 +161,13 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
 {
     w->mode = mode;
     w->scene.mode = mode;
+    if (w->gpu_ready && wants_bb(mode) && !w->have_bb && !w->reference) make_bb(w);
 }
 
 void app_world_destroy(app_world_t *w)
 {
+    if (w->have_bb) bb_field_destroy(&w->bb);
+    w->have_bb = false;
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);

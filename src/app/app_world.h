@@ -10,6 +10,7 @@
 #include "gfx/gfx.h"
 #include "scene/camera.h"
 #include "scene/terrain.h"
+#include "billboard/bb.h"
 
 /* Per-frame view, shared by every draw. */
 typedef struct app_view_t {
@@ -55,8 +56,10 @@ typedef struct app_colliders_t {
 
 bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s);
 void app_colliders_destroy(app_colliders_t *c);
-/* Places every collider at time t on its path. */
-void app_colliders_update(app_colliders_t *c, float t);
+/* Places every collider at time t on its path. Path y is the height of the
+ * collider's centre above the ground under it (heightfield terrains), so a
+ * ball rolls over hills; on mesh terrains y is absolute. */
+void app_colliders_update(app_colliders_t *c, const terrain_mesh_t *terrain, float t);
 void app_colliders_draw(const app_colliders_t *c, const app_view_t *v);
 
 /* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
@@ -77,6 +80,12 @@ typedef struct app_world_t {
     bool reference; /* blades everywhere, maximum tessellation, no culling */
     app_tuning_t tuning;
     bool gpu_ready;
+    /* Billboards (Orthmann et al. 2009), built for billboard and hybrid
+     * modes (and on the first switch to them). */
+    bb_field_t bb;
+    bool have_bb;
+    bool warned_objects;
+    float time;
 } app_world_t;
 
 /* Scene file, CLI overrides and terrain (no GL). Returns 0, or 2 after one

@@ -10,7 +10,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define BB_MAX_OBJECTS 16
 /* The octree keeps a leaf RECOVERING this much longer than a billboard's own
  * recovery (bb_recover.geom), so float drift in the two timers can never
  * leave a billboard deformed in a leaf that already went IDLE. */

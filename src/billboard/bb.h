@@ -37,6 +37,9 @@
 #include "gfx/gfx.h"
 #include "scene/terrain.h"
 
+/* Objects one field can collide against per update. */
+#define BB_MAX_OBJECTS 16
+
 #define BB_NO_SLOT 0xffffffffu
 
 typedef struct bb_field_desc_t {

@@ -103,6 +103,8 @@ typedef enum scene_collider_type_t {
 } scene_collider_type_t;
 
 /* "colliders" array entry. Common keys: type, position, path, loop.
+ * On heightfield terrains the program reads y as the height of the centre
+ * above the ground under it; on mesh terrains y is absolute.
  * "position": [x,y,z] is a static collider (stored as a one-key path);
  * "path": [{"t", "position"}...] moves it (scene_path_eval); not both. */
 typedef struct scene_collider_t {
