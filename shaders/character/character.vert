@@ -1,0 +1,19 @@
+// character.vert: skinned characters (positions/normals from skin.comp, in
+// model space) placed with a world-from-model matrix.
+#version 450 core
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;
+uniform mat4 u_viewproj;
+uniform mat4 u_model;
+out vec3 v_pos;
+out vec3 v_normal;
+out vec2 v_uv;
+void main()
+{
+    vec4 w = u_model * vec4(a_pos, 1.0);
+    v_pos = w.xyz;
+    v_normal = mat3(u_model) * a_normal; // uniform scale: renormalised per fragment
+    v_uv = a_uv;
+    gl_Position = u_viewproj * w;
+}

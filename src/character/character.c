@@ -1,0 +1,443 @@
+/* character: GPU skinning (skin.comp, linear blend skinning, the twin of
+ * character_skin_cpu), lit drawing, walking characters and their collision
+ * proxies for the blades (spheres, Jahrmann & Wimmer 2017) and the
+ * billboards (skinned mesh + bounding sphere, Orthmann et al. 2009). All GL
+ * objects come from gfx. See character.h. */
+#include "character/character.h"
+#include "character/character_walk.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+character_set_desc_t character_set_desc_defaults(const character_set_desc_t *d)
+{
+    character_set_desc_t r = *d;
+    if (!r.capsules) r.capsules = CHARACTER_DEFAULT_CAPSULES;
+    return r;
+}
+
+/* ---- assets ------------------------------------------------------------------ */
+static void asset_free(character_asset_t *a)
+{
+    gfx_buffer_destroy(&a->vertices);
+    gfx_buffer_destroy(&a->indices);
+    if (a->texture.id) gfx_texture_destroy(&a->texture);
+    free(a->bone_spheres);
+    character_model_free(&a->model);
+    memset(a, 0, sizeof *a);
+}
+
+/* Per bone: a sphere around every vertex it influences, in bind model space.
+ * A skinned vertex is a convex combination of S_i p over its bones, so the
+ * spheres moved by S_i bound the skinned mesh (see instance_bounds). */
+static bool asset_bone_spheres(character_asset_t *a)
+{
+    const character_model_t *m = &a->model;
+    a->bone_spheres = malloc((size_t)m->bone_count * sizeof *a->bone_spheres);
+    double(*sum)[4] = calloc((size_t)m->bone_count, sizeof *sum);
+    if (!a->bone_spheres || !sum) {
+        free(sum);
+        core_log_error("%s: out of memory", a->path);
+        return false;
+    }
+    for (int v = 0; v < m->vertex_count; v++)
+        for (int k = 0; k < CHARACTER_MAX_INFLUENCES; k++) {
+            if (m->vertices[v].weights[k] <= 0.0f) continue;
+            double *s = sum[m->vertices[v].joints[k]];
+            for (int c = 0; c < 3; c++) s[c] += m->vertices[v].pos[c];
+            s[3] += 1.0;
+        }
+    for (int b = 0; b < m->bone_count; b++) {
+        float *bs = a->bone_spheres[b];
+        bs[3] = -1.0f;
+        if (sum[b][3] == 0.0) continue;
+        for (int c = 0; c < 3; c++) bs[c] = (float)(sum[b][c] / sum[b][3]);
+        bs[3] = 0.0f;
+    }
+    for (int v = 0; v < m->vertex_count; v++)
+        for (int k = 0; k < CHARACTER_MAX_INFLUENCES; k++) {
+            if (m->vertices[v].weights[k] <= 0.0f) continue;
+            float *bs = a->bone_spheres[m->vertices[v].joints[k]];
+            const float *p = m->vertices[v].pos;
+            float d = sqrtf((p[0] - bs[0]) * (p[0] - bs[0]) + (p[1] - bs[1]) * (p[1] - bs[1]) +
+                            (p[2] - bs[2]) * (p[2] - bs[2]));
+            bs[3] = fmaxf(bs[3], d * 1.0001f + 1e-6f);
+        }
+    free(sum);
+    return true;
+}
+
+static bool asset_load(character_asset_t *a, const char *resolved)
+{
+    char err[512];
+    snprintf(a->path, sizeof a->path, "%s", resolved);
+    if (!character_load(&a->model, resolved, err, sizeof err)) return false; /* logged by the loader */
+    const character_model_t *m = &a->model;
+    a->vertices = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->vertex_count * sizeof(character_vertex_t),
+                                                       .data = m->vertices, .label = "character.bind_vertices"});
+    a->indices = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->index_count * sizeof(uint32_t),
+                                                      .data = m->indices, .label = "character.indices"});
+    if (!a->vertices.id || !a->indices.id) return false;
+    if (m->texture_path[0]) {
+        core_image_t img;
+        if (core_image_load(&img, m->texture_path, 4)) {
+            a->texture = gfx_texture_make(&(gfx_texture_desc_t){.w = img.w, .h = img.h, .mip_levels = -1,
+                                                                .wrap = GL_REPEAT, .format = GL_SRGB8_ALPHA8,
+                                                                .data = img.px, .label = "character.texture"});
+            core_image_free(&img);
+        } else {
+            core_log_warn("%s: texture %s unreadable; using the base colour", a->path, m->texture_path);
+        }
+    }
+    return asset_bone_spheres(a);
+}
+
+/* Finds the asset for a (repository-relative or absolute) path, loading it
+ * the first time. Returns its index or -1 after one error line. */
+static int asset_get(character_set_t *set, const char *path, int index)
+{
+    char resolved[1024];
+    if (!core_fs_resolve(path, resolved, sizeof resolved)) {
+        core_log_error("character %d: model file %s not found", index, path);
+        return -1;
+    }
+    for (int i = 0; i < set->asset_count; i++)
+        if (strcmp(set->assets[i].path, resolved) == 0) return i;
+    character_asset_t *a = &set->assets[set->asset_count++];
+    return asset_load(a, resolved) ? set->asset_count - 1 : -1;
+}
+
+/* ---- instances ------------------------------------------------------------------ */
+static bool instance_make(character_set_t *set, character_instance_t *inst, int index, const char *clip_override)
+{
+    character_asset_t *a = &set->assets[inst->asset];
+    character_model_t *m = &a->model;
+    char spec[SCENE_NAME_MAX + 16];
+    if (clip_override && clip_override[0]) snprintf(spec, sizeof spec, "%s", clip_override);
+    else if (inst->desc.clip_name[0]) snprintf(spec, sizeof spec, "%s", inst->desc.clip_name);
+    else snprintf(spec, sizeof spec, "%d", inst->desc.clip_index);
+    if (m->clip_count == 0) {
+        inst->clip = -1; /* rigid or unanimated: bind pose */
+    } else {
+        inst->clip = character_clip_find(m, spec);
+        if (inst->clip < 0) {
+            core_log_error("character %d: no clip \"%s\" in %s (%d clips)", index, spec, a->path, m->clip_count);
+            return false;
+        }
+    }
+    if (inst->clip >= 0) character_clip_stride(m, inst->clip, &inst->stride);
+    inst->rate = character_walk_rate(&inst->stride, inst->desc.speed, inst->desc.scale);
+
+    inst->index_count = m->index_count;
+    if (!character_pose_init(&inst->pose, m)) return false;
+    inst->bones = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->bone_count * 16 * sizeof(float),
+                                                       .dynamic = true, .label = "character.bones"});
+    inst->skinned = gfx_buffer_make(&(gfx_buffer_desc_t){
+        .size = (size_t)m->vertex_count * sizeof(character_skinned_vertex_t), .readable = true,
+        .label = "character.skinned"});
+    if (!inst->bones.id || !inst->skinned.id) return false;
+    inst->vao = gfx_vertex_array_make("character.vao");
+    glVertexArrayVertexBuffer(inst->vao, 0, inst->skinned.id, 0, sizeof(character_skinned_vertex_t));
+    glVertexArrayVertexBuffer(inst->vao, 1, a->vertices.id, 0, sizeof(character_vertex_t));
+    glVertexArrayElementBuffer(inst->vao, a->indices.id);
+    for (GLuint k = 0; k < 2; k++) {
+        glEnableVertexArrayAttrib(inst->vao, k);
+        glVertexArrayAttribFormat(inst->vao, k, 3, GL_FLOAT, GL_FALSE, k * 4 * sizeof(float));
+        glVertexArrayAttribBinding(inst->vao, k, 0);
+    }
+    glEnableVertexArrayAttrib(inst->vao, 2);
+    glVertexArrayAttribFormat(inst->vao, 2, 2, GL_FLOAT, GL_FALSE, offsetof(character_vertex_t, uv));
+    glVertexArrayAttribBinding(inst->vao, 2, 1);
+
+    /* Capsules fitted once at the bind pose (straight limbs give the best
+     * principal axes); later frames move their bone-space ends rigidly. */
+    float *bind = malloc((size_t)m->vertex_count * 3 * sizeof(float));
+    inst->capsules = malloc((size_t)set->capsules * sizeof *inst->capsules);
+    if (!bind || !inst->capsules) {
+        free(bind);
+        core_log_error("character %d: out of memory", index);
+        return false;
+    }
+    character_skin_cpu(m, &inst->pose, bind, NULL);
+    inst->capsule_count = character_fit_capsules(m, &inst->pose, bind, inst->capsules, set->capsules);
+    free(bind);
+    inst->capsule_first_sphere = malloc((size_t)(inst->capsule_count + 1) * sizeof(int));
+    if (!inst->capsule_first_sphere) return false;
+    inst->sphere_count = 0;
+    for (int c = 0; c < inst->capsule_count; c++) {
+        inst->capsule_first_sphere[c] = inst->sphere_count;
+        inst->sphere_count += character_capsule_sphere_count(&inst->capsules[c]);
+    }
+    inst->capsule_first_sphere[inst->capsule_count] = inst->sphere_count;
+    inst->spheres = calloc((size_t)inst->sphere_count + 1, sizeof *inst->spheres);
+    inst->sphere_now = calloc((size_t)inst->sphere_count + 1, sizeof *inst->sphere_now);
+    if (!inst->spheres || !inst->sphere_now) {
+        core_log_error("character %d: out of memory", index);
+        return false;
+    }
+    return true;
+}
+
+static void instance_free(character_instance_t *inst)
+{
+    character_pose_free(&inst->pose);
+    gfx_buffer_destroy(&inst->bones);
+    gfx_buffer_destroy(&inst->skinned);
+    if (inst->vao) gfx_vertex_array_destroy(&inst->vao);
+    free(inst->capsules);
+    free(inst->capsule_first_sphere);
+    free(inst->spheres);
+    free(inst->sphere_now);
+}
+
+bool character_set_make(character_set_t *set, const character_set_desc_t *desc_in)
+{
+    character_set_desc_t d = character_set_desc_defaults(desc_in);
+    memset(set, 0, sizeof *set);
+    set->terrain = d.terrain;
+    set->capsules = d.capsules;
+    int count = d.count;
+    bool synthetic = count == 0 && d.model_override && d.model_override[0];
+    if (synthetic) count = 1;
+    if (count == 0) return true;
+    set->items = calloc((size_t)count, sizeof *set->items);
+    set->assets = calloc((size_t)count, sizeof *set->assets);
+    if (!set->items || !set->assets) {
+        core_log_error("characters: out of memory for %d characters", count);
+        character_set_destroy(set);
+        return false;
+    }
+    set->skin_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "character/skin.comp", .label = "character.skin"});
+    set->draw_prog = gfx_program_make(&(gfx_program_desc_t){
+        .vs = "character/character.vert", .fs = "character/character.frag", .label = "character.draw"});
+    if (!set->skin_prog.id || !set->draw_prog.id) {
+        character_set_destroy(set);
+        return false;
+    }
+    for (int i = 0; i < count; i++) {
+        character_instance_t *inst = &set->items[i];
+        set->count = i + 1;
+        if (synthetic) {
+            inst->desc = (scene_character_t){.speed = 1.2f, .scale = 1.0f};
+        } else {
+            inst->desc = d.characters[i];
+        }
+        if (d.model_override && d.model_override[0])
+            snprintf(inst->desc.model, sizeof inst->desc.model, "%s", d.model_override);
+        if (inst->desc.scale <= 0.0f) inst->desc.scale = 1.0f;
+        inst->asset = asset_get(set, inst->desc.model, i);
+        if (inst->asset < 0 || !instance_make(set, inst, i, d.clip_override)) {
+            character_set_destroy(set);
+            return false;
+        }
+    }
+    character_set_update(set, 0.0f, 0.0f);
+    return true;
+}
+
+void character_set_destroy(character_set_t *set)
+{
+    for (int i = 0; i < set->count; i++) instance_free(&set->items[i]);
+    for (int i = 0; i < set->asset_count; i++) asset_free(&set->assets[i]);
+    if (set->skin_prog.id) gfx_program_destroy(&set->skin_prog);
+    if (set->draw_prog.id) gfx_program_destroy(&set->draw_prog);
+    free(set->items);
+    free(set->assets);
+    memset(set, 0, sizeof *set);
+}
+
+/* ---- per frame ------------------------------------------------------------------ */
+static void mat4_point(const float m[16], const float p[3], float out[3])
+{
+    float r[3];
+    for (int k = 0; k < 3; k++) r[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
+    memcpy(out, r, sizeof r);
+}
+
+/* Upper bound of the stretch of a 3x3 block: sqrt of the Gershgorin bound on
+ * the largest eigenvalue of M^T M (exact for rotations times a scale). */
+static float mat3_stretch(const float m[16])
+{
+    float g[3][3], best = 0.0f;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            g[i][j] = m[4 * i] * m[4 * j] + m[4 * i + 1] * m[4 * j + 1] + m[4 * i + 2] * m[4 * j + 2];
+    for (int i = 0; i < 3; i++) best = fmaxf(best, fabsf(g[i][0]) + fabsf(g[i][1]) + fabsf(g[i][2]));
+    return sqrtf(best);
+}
+
+/* World bounding sphere: each bone's vertex sphere moved by its skinning
+ * matrix then the model matrix; the skinned mesh lies in their convex hull,
+ * so a sphere holding all of them holds every skinned vertex. */
+static void instance_bounds(const character_set_t *set, character_instance_t *inst)
+{
+    const character_asset_t *a = &set->assets[inst->asset];
+    int nb = a->model.bone_count, used = 0;
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    float(*ws)[4] = malloc((size_t)nb * sizeof *ws);
+    if (!ws) return;
+    for (int b = 0; b < nb; b++) {
+        if (a->bone_spheres[b][3] < 0.0f) continue;
+        float full[16];
+        character_mat4_mul(inst->model, inst->pose.skin[b], full);
+        mat4_point(full, a->bone_spheres[b], ws[used]);
+        ws[used][3] = a->bone_spheres[b][3] * mat3_stretch(full);
+        for (int k = 0; k < 3; k++)
+            lo[k] = fminf(lo[k], ws[used][k] - ws[used][3]), hi[k] = fmaxf(hi[k], ws[used][k] + ws[used][3]);
+        used++;
+    }
+    float r = 0.0f;
+    for (int k = 0; k < 3; k++) inst->centre[k] = 0.5f * (lo[k] + hi[k]);
+    for (int i = 0; i < used; i++) {
+        float dx = ws[i][0] - inst->centre[0], dy = ws[i][1] - inst->centre[1], dz = ws[i][2] - inst->centre[2];
+        r = fmaxf(r, sqrtf(dx * dx + dy * dy + dz * dz) + ws[i][3]);
+    }
+    inst->radius = r;
+    free(ws);
+}
+
+/* Blade spheres. The blade physics runs once per frame, so a limb that moves
+ * more than a blade's width in one frame could pass through it. Each sphere
+ * is therefore swept: centred halfway between its previous and current
+ * centre, radius grown by half the distance, so it holds everything the
+ * unswept sphere covered during the step (and its current position). */
+static void instance_spheres(character_instance_t *inst, bool sweep)
+{
+    for (int c = 0; c < inst->capsule_count; c++) {
+        const character_capsule_t *cap = &inst->capsules[c];
+        float full[16], a[3], b[3];
+        character_mat4_mul(inst->model, inst->pose.global[cap->bone], full);
+        mat4_point(full, cap->local_a, a);
+        mat4_point(full, cap->local_b, b);
+        int first = inst->capsule_first_sphere[c], n = inst->capsule_first_sphere[c + 1] - first;
+        character_capsule_spheres(a, b, cap->radius * inst->desc.scale, n, inst->spheres + first);
+        for (int i = first; i < first + n; i++) {
+            float cur[4], *out = inst->spheres[i], *prev = inst->sphere_now[i];
+            memcpy(cur, out, sizeof cur);
+            if (sweep) {
+                float d2 = 0.0f;
+                for (int k = 0; k < 3; k++) {
+                    d2 += (cur[k] - prev[k]) * (cur[k] - prev[k]);
+                    out[k] = 0.5f * (cur[k] + prev[k]);
+                }
+                out[3] = cur[3] + 0.5f * sqrtf(d2);
+            }
+            memcpy(prev, cur, sizeof cur);
+        }
+    }
+}
+
+void character_set_update(character_set_t *set, float time, float dt)
+{
+    if (!set->count) return;
+    for (int i = 0; i < set->count; i++) {
+        character_instance_t *inst = &set->items[i];
+        const character_model_t *m = &set->assets[inst->asset].model;
+        character_walk_place(&inst->desc, set->terrain, inst->rate, time, &inst->clip_time, inst->position,
+                             inst->dir, inst->model);
+        if (inst->clip >= 0) character_sample_clip(m, inst->clip, inst->clip_time, true, &inst->pose);
+        else character_pose_bind(m, &inst->pose);
+        character_pose_globals(m, &inst->pose);
+        gfx_buffer_update(inst->bones, 0, (size_t)m->bone_count * 16 * sizeof(float), inst->pose.skin);
+        instance_spheres(inst, inst->have_previous && dt > 0.0f);
+        inst->have_previous = true;
+        instance_bounds(set, inst);
+    }
+    gfx_timer_begin("character.skin");
+    glUseProgram(set->skin_prog.id);
+    GLint loc = gfx_uniform(set->skin_prog, "u_vertex_count");
+    for (int i = 0; i < set->count; i++) {
+        const character_instance_t *inst = &set->items[i];
+        const character_asset_t *a = &set->assets[inst->asset];
+        glUniform1ui(loc, (GLuint)a->model.vertex_count);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, a->vertices.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, inst->bones.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, inst->skinned.id);
+        glDispatchCompute((GLuint)(a->model.vertex_count + 63) / 64, 1, 1);
+    }
+    glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    for (GLuint k = 0; k < 3; k++) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, k, 0);
+    glUseProgram(0);
+    gfx_timer_end();
+}
+
+void character_set_draw(const character_set_t *set, const float viewproj[16], const float camera[3],
+                        const float sun[3])
+{
+    if (!set->count) return;
+    gfx_timer_begin("character.draw");
+    gfx_program_t p = set->draw_prog;
+    glUseProgram(p.id);
+    glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, viewproj);
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, camera);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
+    for (int i = 0; i < set->count; i++) {
+        const character_instance_t *inst = &set->items[i];
+        const character_asset_t *a = &set->assets[inst->asset];
+        glUniformMatrix4fv(gfx_uniform(p, "u_model"), 1, GL_FALSE, inst->model);
+        glUniform4fv(gfx_uniform(p, "u_base_color"), 1, a->model.base_color);
+        glUniform1i(gfx_uniform(p, "u_use_texture"), a->texture.id != 0);
+        if (a->texture.id) glBindTextureUnit(0, a->texture.id);
+        glBindVertexArray(inst->vao);
+        glDrawElements(GL_TRIANGLES, a->model.index_count, GL_UNSIGNED_INT, NULL);
+    }
+    glBindVertexArray(0);
+    glUseProgram(0);
+    gfx_timer_end();
+}
+
+/* ---- proxies ------------------------------------------------------------------ */
+int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max)
+{
+    static bool warned;
+    int n = inst->sphere_count < max ? inst->sphere_count : max;
+    if (n > 0) memcpy(out, inst->spheres, (size_t)n * sizeof *out);
+    if (inst->sphere_count > max && !warned) {
+        core_log_warn("character: %d proxy spheres needed, room for %d (logged once)", inst->sphere_count, max);
+        warned = true;
+    }
+    return inst->sphere_count;
+}
+
+int character_set_spheres(const character_set_t *set, float (*out)[4], int max)
+{
+    static bool warned;
+    int total = 0;
+    for (int i = 0; i < set->count; i++) {
+        const character_instance_t *inst = &set->items[i];
+        int room = max - total > 0 ? max - total : 0, n = inst->sphere_count < room ? inst->sphere_count : room;
+        if (n > 0) memcpy(out + total, inst->spheres, (size_t)n * sizeof *out);
+        total += inst->sphere_count;
+    }
+    if (total > max && !warned) {
+        core_log_warn("characters: %d proxy spheres needed, room for %d (logged once)", total, max);
+        warned = true;
+    }
+    return total;
+}
+
+void character_bb_object(const character_instance_t *inst, character_object_t *out)
+{
+    out->vao = inst->vao;
+    out->index_count = inst->index_count;
+    out->index_type = GL_UNSIGNED_INT;
+    memcpy(out->model, inst->model, sizeof out->model);
+    memcpy(out->centre, inst->centre, sizeof out->centre);
+    out->radius = inst->radius;
+}
+
+int character_set_objects(const character_set_t *set, character_object_t *out, int max)
+{
+    static bool warned;
+    for (int i = 0; i < set->count && i < max; i++) {
+        character_bb_object(&set->items[i], &out[i]);
+    }
+    if (set->count > max && !warned) {
+        core_log_warn("characters: %d billboard objects, room for %d (logged once)", set->count, max);
+        warned = true;
+    }
+    return set->count;
+}

@@ -1,0 +1,32 @@
+/* character_walk: GL-free helpers behind character.h (private to the
+ * character module and its tests): playback rate from the clip's stride,
+ * placement on the walk path and terrain, spheres along a capsule. */
+#ifndef MEADOW_CHARACTER_WALK_H
+#define MEADOW_CHARACTER_WALK_H
+
+#include "character/character.h"
+
+/* Strides slower than this (m/s) are "no stride": the clip plays at rate 1. */
+#define CHARACTER_MIN_STRIDE_SPEED 1e-3f
+
+/* Clip seconds per second of walking: speed / (natural_speed * scale),
+ * negative for clips that walk backwards in model space (played in
+ * reverse); 1 when the clip has no stride. */
+float character_walk_rate(const character_stride_t *stride, float speed, float scale);
+
+/* Position on the walk at `time` (scene_walk_eval), y from the terrain under
+ * the root (0 without terrain or off a mesh terrain), walking direction,
+ * world-from-model matrix T(position) Ry(yaw) S(scale) with the model's +Z
+ * along dir, and the clip time: distance walked / speed * rate (frozen when
+ * a non-looping walk has ended; `time` itself when there is no path). */
+void character_walk_place(const scene_character_t *c, const terrain_mesh_t *terrain, float rate, float time,
+                          float *clip_time, float position[3], float dir[2], float model[16]);
+
+/* Number of spheres laid along a capsule: ceil(length / radius) + 1, so the
+ * spacing is at most the radius. */
+int character_capsule_sphere_count(const character_capsule_t *c);
+/* n spheres from a to b whose union contains the capsule (a, b, radius):
+ * radii are inflated to sqrt(radius^2 + (spacing/2)^2). */
+void character_capsule_spheres(const float a[3], const float b[3], float radius, int n, float (*out)[4]);
+
+#endif

@@ -1,0 +1,181 @@
+/* test_character_gpu: GPU skinning (skin.comp) read back and compared with
+ * character_skin_cpu for the humanoid and the quadruped at several
+ * animation times; the billboard object's bounding sphere holds every
+ * skinned vertex; 8 characters share 2 models and update without GL errors;
+ * bad model files and unknown clips fail with exactly one error line; a
+ * 128x128 golden image of the humanoid mid-stride (character_walk.png). */
+#include "test.h"
+#include "test_gl.h"
+
+#include "character/character.h"
+
+#include <string.h>
+
+static scene_character_t walker(const char *model, float x0, float z0, float x1, float z1)
+{
+    scene_character_t c = {.speed = 1.2f, .scale = 1.0f, .waypoint_count = 2, .loop = true};
+    snprintf(c.model, sizeof c.model, "%s", model);
+    c.waypoints[0][0] = x0, c.waypoints[0][1] = z0, c.waypoints[1][0] = x1, c.waypoints[1][1] = z1;
+    return c;
+}
+
+/* GPU vs CPU skinning at several times; also checks the bounding sphere. */
+static void check_skinning(const char *model)
+{
+    scene_character_t c = walker(model, -3, 1, 4, -2);
+    character_set_t set;
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    if (!set.count) return;
+    const character_instance_t *inst = &set.items[0];
+    const character_model_t *m = &set.assets[0].model;
+    int n = m->vertex_count;
+    float *pos = malloc((size_t)n * 3 * sizeof(float)), *nrm = malloc((size_t)n * 3 * sizeof(float));
+    character_skinned_vertex_t *gpu = malloc((size_t)n * sizeof *gpu);
+    const float times[] = {0.0f, 0.13f, 0.41f, 0.77f, 1.9f, 3.3f};
+    double max_pos = 0.0, max_nrm = 0.0, max_out = -1e9;
+    for (size_t ti = 0; ti < sizeof times / sizeof times[0]; ti++) {
+        character_set_update(&set, times[ti], 1.0f / 60.0f);
+        gfx_buffer_read(inst->skinned, 0, (size_t)n * sizeof *gpu, gpu);
+        character_skin_cpu(m, &inst->pose, pos, nrm);
+        for (int v = 0; v < n; v++) {
+            float w[3];
+            for (int k = 0; k < 3; k++) {
+                max_pos = fmax(max_pos, fabs(gpu[v].pos[k] - pos[3 * v + k]));
+                max_nrm = fmax(max_nrm, fabs(gpu[v].normal[k] - nrm[3 * v + k]));
+            }
+            CHECK(gpu[v].pos[3] == 1.0f && gpu[v].normal[3] == 0.0f);
+            character_mat4_point(inst->model, &gpu[v].pos[0], w);
+            double d = sqrt((w[0] - inst->centre[0]) * (w[0] - inst->centre[0]) +
+                            (w[1] - inst->centre[1]) * (w[1] - inst->centre[1]) +
+                            (w[2] - inst->centre[2]) * (w[2] - inst->centre[2]));
+            max_out = fmax(max_out, d - inst->radius);
+        }
+    }
+    printf("%s: GPU vs CPU skinning max |dpos| %.3g m, max |dnormal| %.3g; bounding sphere r %.3f m, "
+           "max (dist - r) %.3g m; %d capsules, %d spheres\n",
+           model, max_pos, max_nrm, inst->radius, max_out, inst->capsule_count, inst->sphere_count);
+    CHECK(max_pos < 1e-4);
+    CHECK(max_nrm < 1e-3);
+    CHECK(max_out <= 1e-4);
+    CHECK(inst->radius < 1.5f); /* not absurdly loose: models are < 1.8 m */
+    character_object_t obj;
+    character_bb_object(inst, &obj);
+    CHECK(obj.vao == inst->vao && obj.index_count == m->index_count && obj.index_type == GL_UNSIGNED_INT);
+    CHECK(obj.radius == inst->radius && memcmp(obj.model, inst->model, sizeof obj.model) == 0);
+    free(pos), free(nrm), free(gpu);
+    character_set_destroy(&set);
+}
+
+static void check_errors(void)
+{
+    const char *bad = "/tmp/meadow_character_bad.gltf";
+    FILE *f = fopen(bad, "w");
+    if (f) {
+        fputs("{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ { \"primitives\": [ {", f);
+        fclose(f);
+    }
+    scene_character_t c = walker(bad, 0, 0, 1, 0);
+    character_set_t set;
+    int before = core_log_error_count();
+    CHECK(!character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    CHECK_NEAR(core_log_error_count() - before, 1, 0);
+    CHECK(gfx_live_objects() == 0);
+
+    c = walker("models/no_such_model.gltf", 0, 0, 1, 0);
+    before = core_log_error_count();
+    CHECK(!character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    CHECK_NEAR(core_log_error_count() - before, 1, 0);
+
+    c = walker("models/humanoid.gltf", 0, 0, 1, 0);
+    before = core_log_error_count();
+    CHECK(!character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1, .clip_override = "run"}));
+    CHECK_NEAR(core_log_error_count() - before, 1, 0);
+    CHECK(gfx_live_objects() == 0);
+
+    /* --character/--clip overrides with an empty scene: one character. */
+    CHECK(character_set_make(&set, &(character_set_desc_t){.model_override = "models/quadruped.gltf",
+                                                           .clip_override = "walk"}));
+    CHECK(set.count == 1 && set.items[0].clip == 0 && strstr(set.assets[0].path, "quadruped.gltf"));
+    character_set_destroy(&set);
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1, .clip_override = "idle"}));
+    CHECK(set.count == 1 && set.items[0].clip == 1);
+    character_set_destroy(&set);
+}
+
+static void check_eight(void)
+{
+    scene_character_t cs[9];
+    for (int i = 0; i < 9; i++)
+        cs[i] = walker(i % 2 ? "models/quadruped.gltf" : "models/humanoid.gltf", (float)i - 4, -3, (float)i - 4, 3);
+    cs[2].clip_index = 1, cs[2].clip_name[0] = 0; /* humanoid idle by index */
+    cs[5].scale = 2.0f;
+    character_set_t set;
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = cs, .count = 9, .capsules = 6}));
+    CHECK(set.count == 9 && set.asset_count == 2);
+    for (int f = 1; f <= 10; f++) character_set_update(&set, (float)f / 60.0f, 1.0f / 60.0f);
+    CHECK(gfx_check_errors("eight characters") == 0);
+    float spheres[512][4];
+    int need = character_set_spheres(&set, spheres, 512), sum = 0;
+    for (int i = 0; i < set.count; i++) {
+        CHECK(set.items[i].capsule_count <= 6);
+        sum += set.items[i].sphere_count;
+    }
+    CHECK(need == sum && need <= 512);
+    int warns = core_log_warn_count();
+    CHECK(character_set_spheres(&set, spheres, 3) == need); /* too small: full count back, one warning */
+    CHECK(core_log_warn_count() == warns + 1);
+    character_object_t objs[9];
+    CHECK(character_set_objects(&set, objs, 9) == 9);
+    CHECK(objs[5].radius > 1.9f * objs[3].radius); /* scale 2 vs 1, same quadruped */
+    printf("9 characters: %d proxy spheres with 6 capsules each\n", need);
+    character_set_destroy(&set);
+}
+
+static void check_golden(void)
+{
+    /* The humanoid walks along +Z through the origin; seen from its left. */
+    scene_character_t c = walker("models/humanoid.gltf", 0, -10, 0, 10);
+    c.loop = false;
+    character_set_t set;
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    if (!set.count) return;
+    float t = 10.0f / 1.2f + 0.25f / fabsf(set.items[0].rate); /* a quarter cycle past the origin */
+    character_set_update(&set, t, 0.0f);
+    gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 128, .h = 128, .samples = 4, .label = "golden"});
+    mat4 view, proj, vp;
+    glm_lookat((vec3){3.2f, 1.2f, set.items[0].position[2]}, (vec3){0, 0.85f, set.items[0].position[2]},
+               (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(40.0f), 1.0f, 0.1f, 50.0f, proj);
+    glm_mat4_mul(proj, view, vp);
+    gfx_target_bind(&tgt);
+    glClearColor(0.6f, 0.7f, 0.8f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    vec3 sun;
+    glm_vec3_normalize_to((vec3){0.4f, 0.8f, 0.3f}, sun);
+    character_set_draw(&set, (const float *)vp, (vec3){3.2f, 1.2f, 0}, sun);
+    glDisable(GL_DEPTH_TEST);
+    core_image_t img;
+    CHECK(gfx_target_read(&tgt, &img));
+    int body = 0;
+    for (int i = 0; i < 128 * 128; i++) body += img.px[4 * i] > img.px[4 * i + 2] + 20; /* brownish, not sky */
+    printf("golden: %d character pixels of %d\n", body, 128 * 128);
+    CHECK(body > 600 && body < 6000);
+    CHECK(test_image_check(&img, "character_walk", NULL));
+    core_image_free(&img);
+    gfx_target_destroy(&tgt);
+    character_set_destroy(&set);
+}
+
+int main(void)
+{
+    core_log_set_quiet(true);
+    test_gl_init();
+    check_skinning("models/humanoid.gltf");
+    check_skinning("models/quadruped.gltf");
+    check_errors();
+    check_eight();
+    check_golden();
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
