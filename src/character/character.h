@@ -141,7 +141,7 @@ void character_set_destroy(character_set_t *set);
 
 /* Blade proxies of one character: spheres (xyz centre, radius) compatible
  * with blade_sphere_t. Writes at most max and returns the number needed;
- * when that exceeds max a warning is logged. */
+ * when that exceeds max a warning is logged (once per process). */
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max);
 /* The same for every character of the set, concatenated. */
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max);
