@@ -21,6 +21,7 @@ uniform float u_time;
 uniform vec4 u_gravity;        /* xyz unit direction, w magnitude (0: off) */
 uniform vec4 u_gravity_centre; /* xyz centre, w mix t */
 uniform float u_collision_decay;
+uniform float u_collision_gain;
 uniform int u_wind_count;
 uniform int u_sphere_count;
 uniform int u_length_mode;     /* BLADE_LENGTH_QUADRATURE or BLADE_LENGTH_PAPER */
@@ -52,7 +53,7 @@ void main()
         }
         for (int k = 0; k < u_sphere_count; k++) blade_exit_straight(b, spheres[k]);
     }
-    e = e + dot(d, d);
+    e = e + u_collision_gain * dot(d, d);
     eta[i] = max(e - u_collision_decay * u_dt, 0.0);
     blades[i] = b;
 }

@@ -36,6 +36,7 @@ typedef struct app_options_t {
     app_mode_t mode;
     const char *character;    /* --character PATH: replaces the scene's models */
     const char *clip;         /* --clip NAME|INDEX|START:END */
+    int blade_render;         /* 0 = vertex pulling (default), 1 = tessellation */
     bool quick;               /* bench --quick */
     bool quiet;
 } app_options_t;

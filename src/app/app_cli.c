@@ -21,6 +21,7 @@ void app_print_usage(void)
            "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
+           "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
            "  --quick               bench: small sweep for CI\n"
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
@@ -129,6 +130,14 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             }
             o->width = (int)w;
             o->height = (int)h;
+        } else if (strcmp(a, "--blade-render") == 0) {
+            NEED_VALUE();
+            if (strcmp(v, "pull") == 0) o->blade_render = 0;
+            else if (strcmp(v, "tess") == 0) o->blade_render = 1;
+            else {
+                snprintf(err, err_size, "--blade-render '%s': expected pull or tess", v);
+                return 2;
+            }
         } else if (strcmp(a, "--mode") == 0) {
             NEED_VALUE();
             if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;

@@ -162,7 +162,7 @@ int app_run(const app_options_t *o)
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &view, app.wireframe);
+        app_world_draw(w, &view, &app.target, app.wireframe);
         if (app.hud) draw_hud(&app, sim_t);
         frame++;
         app.frame_ms_avg = app.frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;

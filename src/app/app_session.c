@@ -52,7 +52,7 @@ int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &view, false);
+        app_world_draw(w, &view, &target, false);
     }
     glFinish();
     double cpu = plat_time() - cpu0;

@@ -34,6 +34,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     }
     s->mode = mode_from_cli(o->mode, s->mode);
     w->mode = s->mode;
+    w->blade_render = o->blade_render;
     if (s->terrain.type == TERRAIN_MESH) {
         char mesh[1024];
         if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
@@ -86,11 +87,95 @@ static bool make_bb(app_world_t *w)
 }
 
 static bool wants_bb(scene_mode_t m) { return m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID; }
+static bool wants_blades(scene_mode_t m) { return m == SCENE_MODE_BLADE || m == SCENE_MODE_HYBRID; }
+
+/* Blade gravity in the paper's units: forces are displacement rates (m/s),
+ * so with eq. 1's stiffness s the tip settles where s * deflection balances
+ * gravity. 1 m/s with stiffness 8-12 bends a 0.5 m blade by ~0.1 m. */
+#define APP_BLADE_GRAVITY 1.0f
+
+static bool make_blades(app_world_t *w)
+{
+    const scene_desc_t *s = &w->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    const terrain_mesh_t *t = &w->terrain_mesh;
+    blade_field_t field;
+    blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
+                         .indices = t->indices, .index_count = t->index_count};
+    blade_seed_desc_t sd = {.seed = s->seed,
+                            .density = g->density,
+                            .height_min = g->height[0], .height_max = g->height[1],
+                            .width_min = g->width[0], .width_max = g->width[1],
+                            .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
+                            .max_blades = 50000000};
+    if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
+    blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
+                           .path = w->blade_render ? BLADE_PATH_TESSELLATION : BLADE_PATH_PULLING};
+    if (w->tuning.tess_max) gd.max_tess_level = w->tuning.tess_max;
+    if (w->reference) {
+        gd.max_tess_level = 16;
+        gd.no_patch_cull = true;
+    }
+    w->have_blades = blade_gpu_make(&w->blades, &gd);
+    core_log_info("blades: %zu blades in %zu patches", field.blade_count, field.patch_count);
+    blade_field_free(&field);
+    /* A push of a tenth of the mean height counts fully towards eta, and
+     * eta decays over the scene's recover time: a trail stays down about
+     * that long, like the billboards' (departure from the paper's k = 1,
+     * see blade_env_t.collision_gain). */
+    float h = 0.5f * (g->height[0] + g->height[1]);
+    w->blade_env = (blade_env_t){.gravity = APP_BLADE_GRAVITY,
+                                 .collision_gain = 1.0f / (0.01f * h * h),
+                                 .collision_decay = 1.0f / g->recover_time};
+    for (int i = 0; i < s->wind_count && i < BLADE_MAX_WINDS; i++) {
+        const scene_wind_t *sw = &s->wind[i];
+        w->blade_env.winds[w->blade_env.wind_count++] =
+            sw->type == SCENE_WIND_POINT
+                ? blade_wind_point(sw->position, sw->strength, sw->radius)
+                : blade_wind_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
+    }
+    if (s->wind_count > BLADE_MAX_WINDS)
+        core_log_warn("blades: %d wind fields, the blade physics takes %d: the rest are ignored", s->wind_count,
+                      BLADE_MAX_WINDS);
+    return w->have_blades;
+}
+
+/* Sphere proxies for the blade physics: spheres exactly, capsules as
+ * overlapping spheres along the axis, boxes by their bounding sphere (a
+ * conservative approximation). More than BLADE_MAX_SPHERES is reported once. */
+static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
+{
+    int n = 0;
+    bool full = false;
+    for (int i = 0; i < w->colliders.count; i++) {
+        const app_collider_t *c = &w->colliders.items[i];
+        int k = 1;
+        float r = c->bound_radius, step = 0;
+        if (c->desc.type == SCENE_COLLIDER_CAPSULE) {
+            r = c->desc.radius;
+            k = 1 + (int)ceilf(c->desc.length / r);
+            step = c->desc.length / (float)(k - 1);
+        }
+        for (int j = 0; j < k; j++) {
+            if (n == max) {
+                full = true;
+                break;
+            }
+            float y = k > 1 ? -0.5f * c->desc.length + step * (float)j : 0.0f;
+            out[n++] = (blade_sphere_t){{c->position[0], c->position[1] + y, c->position[2], r}};
+        }
+    }
+    if (full && !w->warned_spheres)
+        core_log_warn("blades: colliders need more than %d spheres: the rest do not bend blades", max);
+    w->warned_spheres = w->warned_spheres || full;
+    return n;
+}
 
 bool app_world_make_gpu(app_world_t *w)
 {
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
+    if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
     return w->gpu_ready;
 }
 
@@ -133,24 +218,53 @@ void app_world_update(app_world_t *w, float t, float dt)
         int n = bb_objects(w, objs, w->bb.desc.max_objects);
         bb_field_update(&w->bb, objs, n, t, dt);
     }
+    if (w->have_blades) {
+        blade_env_t *env = &w->blade_env;
+        env->dt = dt;
+        env->time = t;
+        env->sphere_count = blade_spheres(w, env->spheres, BLADE_MAX_SPHERES);
+        blade_gpu_simulate(&w->blades, env);
+    }
 }
 
-void app_world_draw(app_world_t *w, const app_view_t *v, bool wireframe)
+void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
     gfx_timer_begin("terrain");
     app_terrain_draw(&w->terrain, v);
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
-    if (w->have_bb && wants_bb(w->mode)) {
+    float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
+    if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
+        /* Occlusion culling reads the resolved depth of the opaque pass. */
+        gfx_target_resolve(target);
+        blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
+                                .distance_levels = w->tuning.distance_levels,
+                                .disable = w->reference ? 0xffu : w->tuning.cull_disable};
+        memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
+        memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
+        blade_gpu_cull(&w->blades, &cd, w->reference ? 0 : target->resolve_depth.id);
+        glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
+        glViewport(0, 0, target->w, target->h);
+        blade_draw_desc_t dd = {.time = v->time};
+        memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
+        memcpy(dd.camera, v->camera, sizeof dd.camera);
+        memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+        if (w->mode == SCENE_MODE_HYBRID && !w->reference) {
+            dd.fade_start = fade_lo;
+            dd.fade_end = fade_hi;
+        }
+        blade_gpu_draw(&w->blades, &dd);
+    }
+    if (w->have_bb && wants_bb(w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time};
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
         memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
         memcpy(d.planes, v->planes, sizeof d.planes);
         if (w->mode == SCENE_MODE_HYBRID) {
-            d.fade_start = w->scene.grass.switch_distance - 1.0f;
-            d.fade_end = w->scene.grass.switch_distance + 1.0f;
+            d.fade_start = fade_lo;
+            d.fade_end = fade_hi;
         }
         bb_field_draw(&w->bb, &d);
     }
@@ -162,12 +276,14 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
     w->mode = mode;
     w->scene.mode = mode;
     if (w->gpu_ready && wants_bb(mode) && !w->have_bb && !w->reference) make_bb(w);
+    if (w->gpu_ready && wants_blades(mode) && !w->have_blades) make_blades(w);
 }
 
 void app_world_destroy(app_world_t *w)
 {
     if (w->have_bb) bb_field_destroy(&w->bb);
-    w->have_bb = false;
+    if (w->have_blades) blade_gpu_destroy(&w->blades);
+    w->have_bb = w->have_blades = false;
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);

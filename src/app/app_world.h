@@ -11,6 +11,7 @@
 #include "scene/camera.h"
 #include "scene/terrain.h"
 #include "billboard/bb.h"
+#include "blade/blade.h"
 
 /* Per-frame view, shared by every draw. */
 typedef struct app_view_t {
@@ -84,6 +85,12 @@ typedef struct app_world_t {
      * modes (and on the first switch to them). */
     bb_field_t bb;
     bool have_bb;
+    /* Blades (Jahrmann & Wimmer 2017), built for blade and hybrid modes. */
+    blade_gpu_t blades;
+    bool have_blades;
+    blade_env_t blade_env; /* winds fixed at load; spheres per update */
+    bool warned_spheres;
+    int blade_render; /* app_options_t.blade_render */
     bool warned_objects;
     float time;
 } app_world_t;
@@ -95,9 +102,9 @@ int app_world_load(app_world_t *w, const app_options_t *o);
 bool app_world_make_gpu(app_world_t *w);
 /* Simulates one fixed step at simulated time t. */
 void app_world_update(app_world_t *w, float t, float dt);
-/* Draws into the bound target; `depth_source` is the target whose resolved
- * depth the occlusion culling may read (previous frame). */
-void app_world_draw(app_world_t *w, const app_view_t *v, bool wireframe);
+/* Draws into `target` (bound by the caller): opaque objects first, then
+ * their depth is resolved for the blades' occlusion culling, then grass. */
+void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe);
 /* Switches the grass mode at run time, keeping the simulation state. */
 void app_world_set_mode(app_world_t *w, scene_mode_t mode);
 void app_world_destroy(app_world_t *w);

@@ -158,6 +158,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
     glUniform4f(gfx_uniform(p, "u_gravity_centre"), e.gravity_centre[0], e.gravity_centre[1],
                 e.gravity_centre[2], e.gravity_centre_mix);
     glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
+    glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
     glUniform1i(gfx_uniform(p, "u_sphere_count"), e.sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);

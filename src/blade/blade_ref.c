@@ -43,6 +43,7 @@ blade_env_t blade_env_defaults(const blade_env_t *env)
     if (e.gravity_off) e.gravity = 0.0f;
     else if (e.gravity == 0.0f) e.gravity = 9.81f;
     if (e.collision_decay == 0.0f) e.collision_decay = 1.0f;
+    if (e.collision_gain == 0.0f) e.collision_gain = 1.0f;
     assert(e.wind_count >= 0 && e.wind_count <= BLADE_MAX_WINDS);
     assert(e.sphere_count >= 0 && e.sphere_count <= BLADE_MAX_SPHERES);
     assert(e.length_mode == BLADE_LENGTH_QUADRATURE || e.length_mode == BLADE_LENGTH_PAPER);
@@ -384,7 +385,7 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
         blade_ref_validate(b, env->length_mode);
         exit_spheres(b, env->spheres, env->sphere_count);
     }
-    float e = *eta + v3_dot(d, d);
+    float e = *eta + env->collision_gain * v3_dot(d, d);
     *eta = fmaxf(e - env->collision_decay * dt, 0.0f);
 }
 

@@ -94,6 +94,11 @@ typedef struct blade_sphere_t {
  *   gravity_centre_mix t in [0,1]: 0 (default) pure direction gravity,
  *                      1 pure centre gravity towards gravity_centre
  *   collision_decay    a, 0 -> 1.0 per second (eta loses a*dt per step)
+ *   collision_gain     k, 0 -> 1 (the paper): eta += k d.d. d is in metres,
+ *                      so with k = 1 a push of a few cm leaves eta ~1e-3 and
+ *                      the blade stands up at full speed; k ~ 1/(0.1 h)^2
+ *                      makes a push of a tenth of the height count fully,
+ *                      which keeps a trodden trail down while eta decays
  *   length_mode        BLADE_LENGTH_QUADRATURE (0) or BLADE_LENGTH_PAPER
  * dt and time are used as given (seconds). */
 typedef struct blade_env_t {
@@ -105,6 +110,7 @@ typedef struct blade_env_t {
     float gravity_centre[3];
     float gravity_centre_mix;
     float collision_decay;
+    float collision_gain;
     int length_mode;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;

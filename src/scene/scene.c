@@ -45,7 +45,7 @@ void scene_desc_defaults(scene_desc_t *d)
     if (g->density <= 0) g->density = 200.0f;
     pair_default(g->height, 0.35f, 0.7f);
     pair_default(g->width, 0.02f, 0.05f);
-    pair_default(g->stiffness, 0.5f, 1.0f);
+    pair_default(g->stiffness, 8.0f, 12.0f);
     if (g->billboard_density <= 0) g->billboard_density = 6.0f;
     if (g->billboard_size[0] <= 0) g->billboard_size[0] = 1.0f;
     if (g->billboard_size[1] <= 0) g->billboard_size[1] = 0.6f;
