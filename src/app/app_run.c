@@ -129,8 +129,8 @@ int app_run(const app_options_t *o)
     scene_camera_init(s, &app.cam);
     bool ok = app.target.fbo && app_world_make_gpu(w);
     if (!ok) {
-        core_log_error("cannot create the renderer (see messages above)");
-        rc = 1;
+        if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
+        rc = w->input_error ? 2 : 1;
     }
     scene_clock_t clock;
     scene_clock_init(&clock, s->dt, headless);

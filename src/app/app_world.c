@@ -35,6 +35,8 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     s->mode = mode_from_cli(o->mode, s->mode);
     w->mode = s->mode;
     w->blade_render = o->blade_render;
+    w->character_override = o->character;
+    w->clip_override = o->clip;
     if (s->terrain.type == TERRAIN_MESH) {
         char mesh[1024];
         if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
@@ -49,6 +51,54 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     return 0;
 }
 
+/* The layout shared by both grass models (so hybrid tiles cover the same
+ * ground): one layout texel per billboard candidate cell over the terrain,
+ * so the extent map's clearings are sized relative to the field. */
+static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
+{
+    const scene_grass_desc_t *g = &w->scene.grass;
+    float extent = fmaxf(w->terrain_mesh.aabb_max[0] - w->terrain_mesh.aabb_min[0],
+                         w->terrain_mesh.aabb_max[2] - w->terrain_mesh.aabb_min[2]);
+    int cells = (int)ceilf(extent * sqrtf(g->billboard_density));
+    int layout_size = ((cells + 15) / 16) * 16;
+    layout_size = layout_size < 32 ? 32 : (layout_size > 1024 ? 1024 : layout_size);
+    *gen = bb_gen_desc_defaults(&(bb_gen_desc_t){.spacing = 1.0f / sqrtf(g->billboard_density),
+                                                 .origin = {w->terrain_mesh.aabb_min[0], w->terrain_mesh.aabb_min[2]},
+                                                 .seed = w->scene.seed});
+    return layout_size;
+}
+
+/* Thins seeded blades by the extent map with the billboards' acceptance
+ * rule (accept with probability E/255, see bb_layout.h), so both
+ * representations share clearings and density ratio. A rejected blade gets
+ * height and width 0: the physics and culling skip it like patch padding,
+ * and the patch layout stays intact. */
+static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
+{
+    bb_gen_desc_t gen;
+    int size = layout_for(w, &gen);
+    bb_layout_t lay;
+    if (!bb_layout_generate(&lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
+                                                      .clump_size = 8, .blades = 1}))
+        return 0;
+    size_t dropped = 0;
+    for (size_t i = 0; i < field->blade_count; i++) {
+        blade_t *b = &field->blades[i];
+        int ix = (int)floorf((b->v0[0] - gen.origin[0]) / gen.spacing);
+        int iz = (int)floorf((b->v0[2] - gen.origin[1]) / gen.spacing);
+        int tx = ((ix / gen.cells_per_texel) % lay.extent.w + lay.extent.w) % lay.extent.w;
+        int tz = ((iz / gen.cells_per_texel) % lay.extent.h + lay.extent.h) % lay.extent.h;
+        uint32_t e = lay.extent.px[(size_t)tz * (size_t)lay.extent.w + (size_t)tx];
+        if (core_hash_u32((uint32_t)i ^ core_hash_u32(w->scene.seed ^ 0x5bd1e995u)) % 255u >= e) {
+            b->v1[3] = 0.0f;
+            b->v2[3] = 0.0f;
+            dropped++;
+        }
+    }
+    bb_layout_free(&lay);
+    return dropped;
+}
+
 static bool make_bb(app_world_t *w)
 {
     const scene_desc_t *s = &w->scene;
@@ -60,15 +110,9 @@ static bool make_bb(app_world_t *w)
                                 .omega = 2.0f * GLM_PIf * sw->speed / sw->wavelength,
                                 .wavenumber = 2.0f * GLM_PIf / sw->wavelength};
     }
-    /* One layout texel per candidate cell over the terrain, so the extent
-     * map's clearings are sized relative to the field, not to a fixed
-     * texture. */
-    float extent = fmaxf(w->terrain_mesh.aabb_max[0] - w->terrain_mesh.aabb_min[0],
-                         w->terrain_mesh.aabb_max[2] - w->terrain_mesh.aabb_min[2]);
-    int cells = (int)ceilf(extent * sqrtf(g->billboard_density));
-    int layout_size = ((cells + 15) / 16) * 16;
-    layout_size = layout_size < 32 ? 32 : (layout_size > 1024 ? 1024 : layout_size);
-    int objects = w->colliders.count;
+    bb_gen_desc_t gen;
+    int layout_size = layout_for(w, &gen);
+    int objects = w->colliders.count + (w->have_chars ? w->chars.count : 0);
     if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
     w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
                                            .terrain = &w->terrain_mesh,
@@ -109,6 +153,7 @@ static bool make_blades(app_world_t *w)
                             .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
                             .max_blades = 50000000};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
+    size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
                            .path = w->blade_render ? BLADE_PATH_TESSELLATION : BLADE_PATH_PULLING};
     if (w->tuning.tess_max) gd.max_tess_level = w->tuning.tess_max;
@@ -117,7 +162,8 @@ static bool make_blades(app_world_t *w)
         gd.no_patch_cull = true;
     }
     w->have_blades = blade_gpu_make(&w->blades, &gd);
-    core_log_info("blades: %zu blades in %zu patches", field.blade_count, field.patch_count);
+    core_log_info("blades: %zu blades in %zu patches (%zu in clearings of the extent map)",
+                  field.blade_count - dropped, field.patch_count, dropped);
     blade_field_free(&field);
     /* A push of a tenth of the mean height counts fully towards eta, and
      * eta decays over the scene's recover time: a trail stays down about
@@ -165,15 +211,36 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
             out[n++] = (blade_sphere_t){{c->position[0], c->position[1] + y, c->position[2], r}};
         }
     }
+    if (w->have_chars && !full) {
+        int want = character_set_spheres(&w->chars, (float (*)[4])out[n].centre_radius, max - n);
+        full = want > max - n;
+        n += full ? max - n : want;
+    }
     if (full && !w->warned_spheres)
         core_log_warn("blades: colliders need more than %d spheres: the rest do not bend blades", max);
     w->warned_spheres = w->warned_spheres || full;
     return n;
 }
 
+/* Capsules per character for the blade proxies: 8 keeps a humanoid near 35
+ * spheres (see character_proxy_spheres). */
+#define APP_CHARACTER_CAPSULES 8
+
 bool app_world_make_gpu(app_world_t *w)
 {
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
+    if (w->gpu_ready && (w->scene.character_count || w->character_override)) {
+        w->have_chars = character_set_make(&w->chars, &(character_set_desc_t){
+                                                          .characters = w->scene.characters,
+                                                          .count = w->scene.character_count,
+                                                          .terrain = &w->terrain_mesh,
+                                                          .capsules = APP_CHARACTER_CAPSULES,
+                                                          .model_override = w->character_override,
+                                                          .clip_override = w->clip_override,
+                                                      });
+        w->input_error = !w->have_chars;
+        w->gpu_ready = w->have_chars;
+    }
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
     return w->gpu_ready;
@@ -206,6 +273,26 @@ static int bb_objects(app_world_t *w, bb_object_t *out, int max)
         o->centre[0] = o->centre[1] = o->centre[2] = 0.0f;
         o->radius = c->bound_radius;
     }
+    if (w->have_chars && n < max) {
+        character_object_t co[BB_MAX_OBJECTS];
+        int want = character_set_objects(&w->chars, co, max - n);
+        for (int i = 0; i < want && i < max - n; i++) {
+            bb_object_t *o = &out[n + i];
+            o->vao = co[i].vao;
+            o->index_count = co[i].index_count;
+            o->index_type = co[i].index_type;
+            memcpy(o->model, co[i].model, sizeof o->model);
+            memcpy(o->centre, co[i].centre, sizeof o->centre);
+            o->radius = co[i].radius;
+        }
+        if (want > max - n && !w->warned_objects) {
+            core_log_warn("billboards: %d colliders and characters, the field takes %d per update: the rest do "
+                          "not bend billboards",
+                          w->colliders.count + w->chars.count, max);
+            w->warned_objects = true;
+        }
+        n += want < max - n ? want : max - n;
+    }
     return n;
 }
 
@@ -213,6 +300,7 @@ void app_world_update(app_world_t *w, float t, float dt)
 {
     w->time = t;
     app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+    if (w->have_chars) character_set_update(&w->chars, t, dt);
     if (w->have_bb) {
         bb_object_t objs[BB_MAX_OBJECTS];
         int n = bb_objects(w, objs, w->bb.desc.max_objects);
@@ -234,6 +322,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     app_terrain_draw(&w->terrain, v);
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
+    if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
     float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
     if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
@@ -283,6 +372,8 @@ void app_world_destroy(app_world_t *w)
 {
     if (w->have_bb) bb_field_destroy(&w->bb);
     if (w->have_blades) blade_gpu_destroy(&w->blades);
+    if (w->have_chars) character_set_destroy(&w->chars);
+    w->have_chars = false;
     w->have_bb = w->have_blades = false;
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);

@@ -12,6 +12,7 @@
 #include "scene/terrain.h"
 #include "billboard/bb.h"
 #include "blade/blade.h"
+#include "character/character.h"
 
 /* Per-frame view, shared by every draw. */
 typedef struct app_view_t {
@@ -91,6 +92,11 @@ typedef struct app_world_t {
     blade_env_t blade_env; /* winds fixed at load; spheres per update */
     bool warned_spheres;
     int blade_render; /* app_options_t.blade_render */
+    /* Walking characters (scene "characters" or --character). */
+    character_set_t chars;
+    bool have_chars;
+    const char *character_override, *clip_override;
+    bool input_error; /* a model file failed to load: exit code 2 */
     bool warned_objects;
     float time;
 } app_world_t;

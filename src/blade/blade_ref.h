@@ -86,7 +86,7 @@ typedef struct blade_sphere_t {
 #define BLADE_MAX_WINDS 8
 #define BLADE_LENGTH_QUADRATURE 0 /* default: see the banner */
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
-#define BLADE_MAX_SPHERES 64
+#define BLADE_MAX_SPHERES 512
 
 /* Per-frame environment. Zero means default:
  *   gravity_dir        (0,0,0) -> (0,-1,0); normalized when resolved
