@@ -38,6 +38,7 @@ typedef struct app_options_t {
     const char *clip;         /* --clip NAME|INDEX|START:END */
     int blade_render;         /* 0 = vertex pulling (default), 1 = tessellation */
     bool quick;               /* bench --quick */
+    bool floor;               /* --floor: measure the hardware floor at the end */
     bool quiet;
 } app_options_t;
 

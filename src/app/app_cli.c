@@ -23,6 +23,7 @@ void app_print_usage(void)
            "  --clip SPEC           clip by name, index or frame range START:END\n"
            "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
            "  --quick               bench: small sweep for CI\n"
+           "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
@@ -73,6 +74,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->headless = true;
         } else if (strcmp(a, "--quick") == 0) {
             o->quick = true;
+        } else if (strcmp(a, "--floor") == 0) {
+            o->floor = true;
         } else if (strcmp(a, "--quiet") == 0) {
             o->quiet = true;
         } else if (strcmp(a, "--scene") == 0) {

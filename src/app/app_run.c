@@ -67,8 +67,10 @@ static void screenshot(app_t *app, int frame)
     }
 }
 
-static void write_summary(const app_t *app, double wall_s)
+static void write_summary(app_t *app, double wall_s)
 {
+    app_world_stats_t st;
+    app_world_stats(&app->world, &st);
     char buf[8192];
     int n = snprintf(buf, sizeof buf,
                      "meadow run summary\n"
@@ -85,9 +87,26 @@ static void write_summary(const app_t *app, double wall_s)
                      scene_mode_name(app->world.scene.mode), app->world.scene.seed, app->frames, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written);
-    for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++)
+    double frame_gpu = 0;
+    for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++) {
         n += snprintf(buf + n, sizeof buf - (size_t)n, "  %-14s %9.4f %9.4f\n", gfx_timer_name(i),
                       gfx_timer_median_ms(i), gfx_timer_avg_ms(i));
+        if (strcmp(gfx_timer_name(i), "bb.generate") != 0) frame_gpu += gfx_timer_median_ms(i);
+    }
+    n += snprintf(buf + n, sizeof buf - (size_t)n,
+                  "gpu_frame_ms (sum of pass medians): %.4f\n"
+                  "gpu_memory_mb: %.1f\n"
+                  "blades: %ld\nblade_survivors: %ld\nblade_culled (orientation frustum distance occlusion "
+                  "patch): %u %u %u %u %ld\n"
+                  "billboards: %ld\nbillboards_deformed: %d\ncharacters: %d\ngrass_triangles_max: %ld\n",
+                  frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
+                  st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
+                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.characters, st.triangles);
+    if (app->opts->floor) {
+        double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
+        n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
+                      st.triangles, floor_ms, floor_ms > 0 ? frame_gpu / floor_ms : 0.0);
+    }
     char path[1100];
     snprintf(path, sizeof path, "%s/summary.txt", app->out);
     if (core_fs_write_atomic(path, buf, (size_t)n)) core_log_info("wrote %s", path);

@@ -402,3 +402,28 @@ void app_world_metrics(app_world_t *w, app_metrics_t *m)
     (void)w;
     (void)m;
 }
+
+void app_world_stats(app_world_t *w, app_world_stats_t *st)
+{
+    memset(st, 0, sizeof *st);
+    if (w->have_blades) {
+        blade_gpu_stats_t b = blade_gpu_stats(&w->blades, true);
+        st->blades = b.total;
+        st->blade_survivors = b.survivors;
+        memcpy(st->blade_culled, b.culled, sizeof st->blade_culled);
+        st->blade_patch_culled = b.patch_culled;
+        /* Both render paths draw up to max_tess_level segments of two
+         * triangles per blade; level of detail lowers it with distance, so
+         * this is an upper bound. */
+        st->triangles += (long)b.survivors * 2 * w->blades.desc.max_tess_level;
+    }
+    if (w->have_bb) {
+        bb_stats_t s;
+        bb_field_stats(&w->bb, true, &s);
+        st->billboards = s.billboards;
+        st->bb_deformed = s.deformed;
+        int nm = (w->bb.desc.subdiv[0] - 1) * (w->bb.desc.subdiv[1] - 1) * 2;
+        st->triangles += (long)(s.billboards - s.deformed) * 2 + (long)s.deformed * nm;
+    }
+    st->characters = w->have_chars ? w->chars.count : 0;
+}

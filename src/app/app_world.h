@@ -115,6 +115,20 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
 void app_world_set_mode(app_world_t *w, scene_mode_t mode);
 void app_world_destroy(app_world_t *w);
 
+typedef struct app_world_stats_t {
+    long blades;            /* real blades on the GPU */
+    long blade_survivors;   /* in the last draw command */
+    unsigned blade_culled[4]; /* orientation, frustum, distance, occlusion */
+    long blade_patch_culled;
+    long billboards;
+    int bb_deformed;
+    int characters;
+    long triangles;         /* estimated triangles drawn by the grass */
+} app_world_stats_t;
+
+/* Counts of the last frame (blocking reads: for summaries, not the frame). */
+void app_world_stats(app_world_t *w, app_world_stats_t *st);
+
 /* Fills the per-frame view from a camera and target size. */
 void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
 

@@ -9,6 +9,7 @@
 typedef struct gfx_obj_t {
     GLenum kind;
     GLuint id;
+    size_t bytes; /* buffers and textures: storage allocated */
     char label[64];
 } gfx_obj_t;
 
@@ -36,6 +37,7 @@ void gfx_track(GLenum kind, GLuint id, const char *label)
     gfx_obj_t *o = &g.objs[g.count++];
     o->kind = kind;
     o->id = id;
+    o->bytes = 0;
     snprintf(o->label, sizeof o->label, "%s", label ? label : "?");
     glObjectLabel(kind, id, -1, o->label);
 }
@@ -72,6 +74,34 @@ static void release(GLenum kind, GLuint id)
 }
 
 int gfx_live_objects(void) { return g.count; }
+
+static void set_bytes(GLenum kind, GLuint id, size_t bytes)
+{
+    for (int i = g.count - 1; i >= 0; i--)
+        if (g.objs[i].kind == kind && g.objs[i].id == id) {
+            g.objs[i].bytes = bytes;
+            return;
+        }
+}
+
+size_t gfx_memory_bytes(void)
+{
+    size_t total = 0;
+    for (int i = 0; i < g.count; i++) total += g.objs[i].bytes;
+    return total;
+}
+
+static size_t format_bytes(GLenum f)
+{
+    switch (f) {
+    case GL_RGBA32F: return 16;
+    case GL_RGBA16F: case GL_RG32F: return 8;
+    case GL_R8: return 1;
+    case GL_RG8: case GL_R16F: return 2;
+    case GL_RGB8: return 3;
+    default: return 4;
+    }
+}
 
 void gfx_shutdown(bool report_leaks)
 {
@@ -119,6 +149,7 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
         b.mapped = glMapNamedBufferRange(b.id, 0, (GLsizeiptr)desc->size,
                                          GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT);
     gfx_track(GL_BUFFER, b.id, desc->label);
+    set_bytes(GL_BUFFER, b.id, desc->size);
     return b;
 }
 
@@ -202,6 +233,9 @@ gfx_texture_t gfx_texture_make(const gfx_texture_desc_t *d)
         return (gfx_texture_t){0};
     }
     gfx_track(GL_TEXTURE, t.id, d->label);
+    size_t texels = (size_t)t.w * (size_t)t.h * (size_t)t.layers *
+                    (t.target == GL_TEXTURE_2D_MULTISAMPLE ? (size_t)t.samples : 1);
+    set_bytes(GL_TEXTURE, t.id, texels * format_bytes(t.format) * (mips > 1 ? 4 : 3) / 3);
     return t;
 }
 

@@ -20,6 +20,9 @@ bool gfx_init(void);
 void gfx_shutdown(bool report_leaks);
 /* Number of live GL objects created through gfx (user objects only). */
 int gfx_live_objects(void);
+/* Bytes of buffer and texture storage those objects hold (textures:
+ * texels x format size x samples, +1/3 with mipmaps). */
+size_t gfx_memory_bytes(void);
 /* Returns the number of GL errors seen by glGetError since the last call,
  * logging each with `where`. Cheap enough for tests, not for the frame. */
 int gfx_check_errors(const char *where);
