@@ -140,12 +140,15 @@ __attribute__((format(printf, 4, 5))) static bool sp_fail(sp_t *sp, int line, co
     return false;
 }
 
-/* parent.key, or parent[index] when key is NULL. */
+/* parent.key, or parent[index] when key is NULL. Field paths longer than
+ * the buffer are cut (they only label messages). */
 static const char *field_join(char *buf, size_t size, const char *parent, const char *key, int index)
 {
-    if (!key) snprintf(buf, size, "%s[%d]", parent, index);
-    else if (parent[0]) snprintf(buf, size, "%s.%s", parent, key);
-    else snprintf(buf, size, "%s", key);
+    int n;
+    if (!key) n = snprintf(buf, size, "%s[%d]", parent, index);
+    else if (parent[0]) n = snprintf(buf, size, "%s.%s", parent, key);
+    else n = snprintf(buf, size, "%s", key);
+    if (n < 0 || (size_t)n >= size) buf[size - 1] = 0;
     return buf;
 }
 
@@ -203,7 +206,7 @@ static bool get_vec(sp_t *sp, const json_t *v, const char *field, int n, double 
     for (const json_t *e = v->child; e; e = e->next, i++) {
         char f[160];
         field_join(f, sizeof f, field, NULL, i);
-        double d;
+        double d = 0;
         if (!get_double(sp, e, f, lo, hi, ints != NULL, &d)) return false;
         if (ints) ints[i] = (int)d;
         else floats[i] = (float)d;

@@ -203,13 +203,13 @@ static bool parse_string(parser_t *ps, const char **out, size_t *out_len)
         case 'r': *o++ = '\r'; break;
         case 't': *o++ = '\t'; break;
         case 'u': {
-            uint32_t cp;
+            uint32_t cp = 0;
             if (!read_hex4(ps, s, &cp)) return false;
             s += 4;
             if (cp == 0) return fail(ps, "\\u0000 is not allowed in strings");
             if (cp >= 0xdc00 && cp <= 0xdfff) return fail(ps, "lone low surrogate \\u%04x", cp);
             if (cp >= 0xd800 && cp <= 0xdbff) {
-                uint32_t lo;
+                uint32_t lo = 0;
                 if (q - s < 6 || s[0] != '\\' || s[1] != 'u')
                     return fail(ps, "high surrogate \\u%04x not followed by a low surrogate", cp);
                 if (!read_hex4(ps, s + 2, &lo)) return false;
