@@ -101,7 +101,7 @@ int main(void)
     CHECK(da > 10 && da == cpu_hits);
     CHECK(max_err < 1e-4);
     bb_stats_t st;
-    bb_field_stats(&fa, &st);
+    bb_field_stats(&fa, true, &st);
     CHECK(st.deformed == da && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] > 0);
     bb_field_destroy(&fa);

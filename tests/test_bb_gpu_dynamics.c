@@ -3,7 +3,10 @@
  * roots never move, no NaN/Inf, pool bookkeeping stays consistent; then,
  * with the sphere gone, every deformed billboard recovers: the mesh stored at
  * release equals the CPU wind pose (< 1 mm), the slots return to the pool and
- * the leaves go IDLE. Also prints per-pass timings on this GPU. */
+ * the leaves go IDLE. A field with an 8-slot pool checks the non-blocking
+ * pool readback: bb_field_update never waits, yet within a few updates the
+ * late stats (bb_field_stats without wait) reach the exact refused count and
+ * exhaustion is logged as a warning. Also prints per-pass timings. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -66,7 +69,7 @@ int main(void)
             bb_mesh_free(&cpu);
         }
         bb_stats_t st;
-        bb_field_stats(&f, &st);
+        bb_field_stats(&f, true, &st);
         CHECK(st.deformed == deformed);
         max_deformed = deformed > max_deformed ? deformed : max_deformed;
     }
@@ -109,7 +112,7 @@ int main(void)
         }
     }
     bb_stats_t st;
-    bb_field_stats(&f, &st);
+    bb_field_stats(&f, true, &st);
     uint32_t hdr[2];
     gfx_buffer_read(f.pool, 0, sizeof hdr, hdr);
     printf("recovery: %d released, max |mesh - wind pose| at release %.3g m, one frame before %.3g m; "
@@ -124,6 +127,33 @@ int main(void)
     CHECK(max_before < 5e-3);
     CHECK(st.deformed == 0 && hdr[0] == (uint32_t)st.pool_capacity && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] == 0 && st.leaves[BB_NODE_RECOVERING] == 0);
+
+    /* Pool exhaustion through the non-blocking readback. */
+    bb_field_t small;
+    CHECK(bb_field_make(&small, &(bb_field_desc_t){.terrain = &terrain, .seed = 5, .density = 36, .octree_depth = 3,
+                                                   .cube_res = 32, .recover_time = T, .max_deformed = 8,
+                                                   .layout = {.size = 32, .clump_size = 32}}));
+    int warns = core_log_warn_count();
+    bb_stats_t late = {0}, exact = {0};
+    for (int frame = 0; frame < 12; frame++) {
+        time += 1.0f / 30.0f;
+        float x = -2.0f + 0.3f * (float)frame, c[3] = {x, terrain_height_at(&terrain, x, 0.0f, NULL) + 0.25f, 0.0f};
+        bb_object_t o = test_object(&mesh, c, sc.radius);
+        bb_field_update(&small, &o, 1, time, 1.0f / 30.0f);
+    }
+    bb_field_stats(&small, true, &exact);
+    /* No more GPU work: updates only poll, so the late numbers settle. */
+    for (int frame = 0; frame < 6 && late.pool_exhausted != exact.pool_exhausted; frame++) {
+        glFinish();
+        bb_field_update(&small, NULL, 0, time, 0.0f);
+        bb_field_stats(&small, false, &late);
+    }
+    printf("8-slot pool: exact %d deformed, %d refused; late %d deformed, %d refused; %d warnings\n",
+           exact.deformed, exact.pool_exhausted, late.deformed, late.pool_exhausted, core_log_warn_count() - warns);
+    CHECK(exact.deformed == 8 && exact.pool_exhausted > 0);
+    CHECK(late.pool_exhausted == exact.pool_exhausted && late.deformed == exact.deformed);
+    CHECK(core_log_warn_count() > warns);
+    bb_field_destroy(&small);
 
     gfx_timer_flush();
     for (int i = 0; i < gfx_timer_count(); i++)

@@ -99,9 +99,13 @@ int main(void)
     CHECK(f.tree.count[0] == (uint32_t)f.billboards);
 
     bb_stats_t st;
-    bb_field_stats(&f, &st);
+    bb_field_stats(&f, true, &st);
     CHECK(st.billboards == f.billboards && st.deformed == 0 && st.pool_capacity == 4096);
     CHECK(st.leaves[BB_NODE_IDLE] > 1 && st.leaves[BB_NODE_COLLIDING] == 0);
+    /* Generation timing: GPU timestamps inside the CPU wall time of make. */
+    printf("generation pass %.2f ms (GPU timestamps), make %.2f ms (wall)\n", st.generate_ms, st.make_ms);
+    CHECK(st.make_ms > 0 && st.make_ms < 60000);
+    CHECK(st.generate_ms == -1.0f || (st.generate_ms >= 0 && st.generate_ms <= st.make_ms));
 
     free(cpu);
     free(gpu);

@@ -50,19 +50,19 @@ int main(void)
     for (int frame = 0; frame < 24; frame++) {
         time += 1.0f / 30.0f;
         float x = -3.5f + 7.0f * (float)frame / 23.0f, z = 0.5f;
-        float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.4f, z};
+        float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.5f, z};
         bb_object_t o = test_object(&mesh, c, sc.radius);
         gfx_timer_frame_begin();
         bb_field_update(&f, &o, 1, time, 1.0f / 30.0f);
     }
     bb_stats_t st;
-    bb_field_stats(&f, &st);
+    bb_field_stats(&f, true, &st);
     printf("%d billboards, %d deformed after the roll\n", st.billboards, st.deformed);
     CHECK(st.deformed > 50);
 
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
     mat4 view, proj, vp;
-    vec3 eye = {0.0f, 3.2f, 5.5f};
+    vec3 eye = {0.0f, 4.5f, 4.0f};
     glm_lookat(eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
     glm_perspective(glm_rad(50.0f), 192.0f / 128.0f, 0.1f, 50.0f, proj);
     glm_mat4_mul(proj, view, vp);

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 /* The octree keeps a leaf RECOVERING this much longer than a billboard's own
  * recovery (bb_recover.geom), so float drift in the two timers can never
@@ -191,6 +192,12 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     f->counts = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof *counts * (size_t)tr->leaf_count,
                                                      .data = counts, .label = "bb.leaf_counts"});
     GLuint query = gfx_query_make(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, "bb.generate.written");
+    /* Timed with two timestamps rather than gfx_timer: the pass runs once,
+     * outside any frame, and llvmpipe's GL_TIME_ELAPSED around it returned
+     * ~3e6 ms. */
+    GLint stamp_bits = 0;
+    glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &stamp_bits);
+    GLuint stamps[2] = {gfx_query_make(GL_TIMESTAMP, "bb.generate.t0"), gfx_query_make(GL_TIMESTAMP, "bb.generate.t1")};
     gfx_program_t p = f->gen_prog;
     glUseProgram(p.id);
     glBindTextureUnit(0, f->extent.id);
@@ -220,7 +227,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo); /* draws need a complete framebuffer */
-    gfx_timer_begin("bb.generate");
+    glQueryCounter(stamps[0], GL_TIMESTAMP);
     glEnable(GL_RASTERIZER_DISCARD);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->points.id);
@@ -252,13 +259,22 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     glEndTransformFeedback();
     glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     glDisable(GL_RASTERIZER_DISCARD);
-    gfx_timer_end();
+    glQueryCounter(stamps[1], GL_TIMESTAMP);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     GLuint written = 0;
     glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
     gfx_query_destroy(&query);
+    f->generate_ms = -1.0f;
+    if (stamp_bits > 0) {
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(stamps[0], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(stamps[1], GL_QUERY_RESULT, &t1);
+        f->generate_ms = t1 >= t0 ? (float)((double)(t1 - t0) * 1e-6) : -1.0f;
+    }
+    gfx_query_destroy(&stamps[0]);
+    gfx_query_destroy(&stamps[1]);
     gfx_buffer_read(f->counts, 0, sizeof *counts * (size_t)tr->leaf_count, counts);
     uint64_t total = 0;
     for (int k = 0; k < tr->leaf_count; k++) total += counts[k];
@@ -307,8 +323,16 @@ static void setup_points_vao(GLuint vao, GLuint buffer)
     }
 }
 
+static double wall_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
 {
+    double t_start = wall_ms();
     memset(f, 0, sizeof *f);
     f->desc = bb_field_desc_defaults(desc);
     bb_field_desc_t *d = &f->desc;
@@ -421,8 +445,14 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     if (!f->pool.id || !f->meshes.id || !f->points.id || !f->scratch.id || !f->objects.id || !f->cubes.id ||
         !f->cube_target.fbo)
         goto fail;
+    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
+        f->readback[k] = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 16, .label = "bb.pool_readback"});
+        f->readback_query[k] = gfx_query_make(GL_TIMESTAMP, "bb.pool_readback");
+        if (!f->readback[k].id || !f->readback_query[k]) goto fail;
+    }
     setup_points_vao(f->points_vao, f->points.id);
     if (!generate(f, t, hgrid, tile)) goto fail;
+    f->make_ms = (float)(wall_ms() - t_start);
     return true;
 fail:
     bb_field_destroy(f);
@@ -444,6 +474,10 @@ void bb_field_destroy(bb_field_t *f)
     gfx_buffer_destroy(&f->meshes);
     gfx_buffer_destroy(&f->objects);
     gfx_buffer_destroy(&f->counts);
+    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
+        gfx_buffer_destroy(&f->readback[k]);
+        if (f->readback_query[k]) gfx_query_destroy(&f->readback_query[k]);
+    }
     gfx_vertex_array_destroy(&f->points_vao);
     gfx_vertex_array_destroy(&f->empty_vao);
     gfx_transform_feedback_destroy(&f->tf);
@@ -548,21 +582,52 @@ static float max_scale(const float *m)
     return s;
 }
 
+/* Reads every readback slot whose timestamp query is available (the copy
+ * before it has completed, so the read does not wait), oldest first, and
+ * logs pool exhaustion the first time and whenever the refused count has
+ * doubled since the last warning (no per-frame spam). */
+static void poll_readbacks(bb_field_t *f)
+{
+    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
+        int slot = (f->readback_next + k) % BB_READBACK_SLOTS;
+        if (!f->readback_busy[slot]) continue;
+        GLint available = 0;
+        glGetQueryObjectiv(f->readback_query[slot], GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!available) continue;
+        uint32_t hdr[2];
+        glGetNamedBufferSubData(f->readback[slot].id, 0, sizeof hdr, hdr);
+        f->readback_busy[slot] = false;
+        f->deformed_last = f->desc.max_deformed - (int32_t)hdr[0];
+        f->exhausted_last = (int)hdr[1] > f->exhausted_last ? (int)hdr[1] : f->exhausted_last;
+        if (f->exhausted_last > 0 && f->exhausted_last >= 2 * f->exhausted_logged) {
+            core_log_warn("bb: deformed-mesh pool of %d slots exhausted: %d collisions left undeformed so far "
+                          "(raise max_deformed)", f->desc.max_deformed, f->exhausted_last);
+            f->exhausted_logged = f->exhausted_last;
+        }
+    }
+}
+
+/* Queues a copy of the pool header and a timestamp after it. When every
+ * slot is still in flight the copy is skipped (a later one reports the
+ * same running counters). */
+static void queue_readback(bb_field_t *f)
+{
+    int slot = f->readback_next;
+    if (f->readback_busy[slot]) return;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glCopyNamedBufferSubData(f->pool.id, f->readback[slot].id, 0, 0, 16);
+    glQueryCounter(f->readback_query[slot], GL_TIMESTAMP);
+    f->readback_busy[slot] = true;
+    f->readback_next = (slot + 1) % BB_READBACK_SLOTS;
+}
+
 void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt)
 {
     assert(count >= 0 && count <= f->desc.max_objects);
     const bb_field_desc_t *d = &f->desc;
     f->time = time;
-    if (f->gpu_pending) {
-        uint32_t hdr[2];
-        gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
-        f->deformed_last = d->max_deformed - (int32_t)hdr[0];
-        if ((int)hdr[1] > f->exhausted_last)
-            core_log_warn("bb: deformed-mesh pool of %d slots exhausted: %d collisions left undeformed so far "
-                          "(raise max_deformed)", d->max_deformed, (int)hdr[1]);
-        f->exhausted_last = (int)hdr[1];
-        f->gpu_pending = false;
-    }
+    poll_readbacks(f);
+    bool gpu_work = false;
     bb_bound_t bounds[BB_MAX_OBJECTS];
     bb_object_gpu_t gpu[BB_MAX_OBJECTS];
     for (int k = 0; k < count; k++) {
@@ -636,7 +701,7 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
         gfx_timer_begin("bb.collide");
         tf_pass(f, p, nr);
         gfx_timer_end();
-        f->gpu_pending = true;
+        gpu_work = true;
     }
     int nrec = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), NULL,
                                  f->ranges, f->tree.leaf_count);
@@ -651,8 +716,9 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
         gfx_timer_begin("bb.recover");
         tf_pass(f, p, nr);
         gfx_timer_end();
-        f->gpu_pending = true;
+        gpu_work = true;
     }
+    if (gpu_work) queue_readback(f);
 }
 
 /* ---- draw ------------------------------------------------------------------ */
@@ -687,7 +753,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
 }
 
-void bb_field_stats(const bb_field_t *f, bb_stats_t *out)
+void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
 {
     memset(out, 0, sizeof *out);
     out->billboards = f->billboards;
@@ -696,9 +762,16 @@ void bb_field_stats(const bb_field_t *f, bb_stats_t *out)
         int node = bb_octree_leaf_node(t, (uint32_t)k);
         if (t->count[node]) out->leaves[t->state[node]]++;
     }
+    out->pool_capacity = f->desc.max_deformed;
+    out->generate_ms = f->generate_ms;
+    out->make_ms = f->make_ms;
+    if (!wait) {
+        out->deformed = f->deformed_last;
+        out->pool_exhausted = f->exhausted_last;
+        return;
+    }
     uint32_t hdr[2];
     gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
     out->deformed = f->desc.max_deformed - (int32_t)hdr[0];
-    out->pool_capacity = f->desc.max_deformed;
     out->pool_exhausted = (int)hdr[1];
 }

@@ -39,6 +39,9 @@
 
 /* Objects one field can collide against per update. */
 #define BB_MAX_OBJECTS 16
+/* Pool-header readbacks in flight (see bb_field_update): the CPU reads a
+ * copy once its timestamp query is available, never waiting on the GPU. */
+#define BB_READBACK_SLOTS 3
 
 #define BB_NO_SLOT 0xffffffffu
 
@@ -93,9 +96,14 @@ typedef struct bb_draw_desc_t {
 typedef struct bb_stats_t {
     int billboards;
     int leaves[3];        /* non-empty leaves per BB_NODE_* state */
-    int deformed;         /* pool slots in use (last update) */
+    int deformed;         /* pool slots in use (see bb_field_stats: exact or late) */
     int pool_capacity;
     int pool_exhausted;   /* allocations refused so far */
+    float generate_ms;    /* GPU time of the make-time generation pass: two
+                             GL_TIMESTAMP queries around it; -1 when the GPU
+                             has no timestamp counter */
+    float make_ms;        /* CPU wall time of bb_field_make (ends after the
+                             generation results were read back) */
 } bb_stats_t;
 
 typedef struct bb_field_t {
@@ -119,21 +127,34 @@ typedef struct bb_field_t {
     GLint *firsts;
     GLsizei *counts_gl;
     float cube_half[16], cube_centre[16][3];
-    int deformed_last, exhausted_last; /* pool header read back one update late */
-    bool gpu_pending;
+    /* Pool header copies (16 bytes each) and the timestamp query written
+     * after each copy; busy[k] while slot k's copy is in flight. */
+    gfx_buffer_t readback[BB_READBACK_SLOTS];
+    GLuint readback_query[BB_READBACK_SLOTS];
+    bool readback_busy[BB_READBACK_SLOTS];
+    int readback_next;
+    int deformed_last, exhausted_last; /* newest pool header that reached the CPU */
+    int exhausted_logged;              /* refused count of the last warning */
+    float generate_ms, make_ms;
     float time;
 } bb_field_t;
 
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
 void bb_field_destroy(bb_field_t *f);
 /* Broad phase, cube maps, collision, recovery (timers "bb.cubemaps",
- * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). */
+ * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). Never
+ * waits for the GPU: after GPU work the pool header is copied into a
+ * readback slot followed by a timestamp query, and later updates read the
+ * slots whose query is available (typically one or two updates late); pool
+ * exhaustion is logged from those copies. */
 void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt);
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
  * timer "bb.render". */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
-/* Reads the pool header back (blocks until the last update finished). */
-void bb_field_stats(const bb_field_t *f, bb_stats_t *out);
+/* wait: reads the pool header now (blocks until the last update finished;
+ * exact, for tests). !wait: pool numbers from the newest readback that
+ * already reached the CPU (no stall, a few updates late; HUDs). */
+void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out);
 
 /* Uploads a CPU cube map for object index `object` (used when that object's
  * vao is 0). res must equal desc.cube_res. */
