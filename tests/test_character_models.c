@@ -1,6 +1,7 @@
 /* test_character_models: the generated models in models/ load through
  * assimp with the expected skeletons, clips and weights; the walk clip moves
- * the feet and loops; bind-pose skinning reproduces the vertices; fitted
+ * the feet and loops, each foot on the ground while it moves back and lifted
+ * while it swings forward (quadruped: diagonal pairs); bind-pose skinning reproduces the vertices; fitted
  * capsules hold >= 95% of their bones' skinned vertices; and
  * meadow_gen_models regenerates the committed files byte for byte. */
 #include "character/character_ref.h"
@@ -69,6 +70,40 @@ static void bone_position(const character_model_t *m, int clip, float t, int bon
 static float dist3(const float a[3], const float b[3])
 {
     return sqrtf((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* Gait direction, brute force from the bone positions: over 200 samples of
+ * the loop, a foot near the bottom of its height range (lowest 10%: on the
+ * ground) moves backwards (-Z) relative to the root at a speed within
+ * [lo, hi] m/s, and near the top (highest half: lifted) moves forwards. */
+static void check_gait(const character_model_t *m, int clip, const char *foot, double lo, double hi)
+{
+    enum { N = 200 };
+    int b = character_bone_find(m, foot);
+    CHECK_MSG(b >= 0, "%s", foot);
+    if (b < 0) return;
+    float dur = m->clips[clip].duration, y[N], z[N];
+    for (int i = 0; i < N; i++) {
+        float p[3];
+        bone_position(m, clip, dur * (float)i / N, b, p);
+        y[i] = p[1], z[i] = p[2];
+    }
+    float ymin = y[0], ymax = y[0];
+    for (int i = 1; i < N; i++) ymin = fminf(ymin, y[i]), ymax = fmaxf(ymax, y[i]);
+    double ground_v = 0.0, lifted_v = 0.0;
+    int ground_n = 0, lifted_n = 0;
+    for (int i = 0; i < N; i++) {
+        double v = (z[(i + 1) % N] - z[(i + N - 1) % N]) / (2.0 * dur / N);
+        double h = (y[i] - ymin) / (ymax - ymin);
+        if (h < 0.1) ground_v += v, ground_n++;
+        if (h > 0.5) lifted_v += v, lifted_n++;
+    }
+    ground_v /= ground_n > 0 ? ground_n : 1, lifted_v /= lifted_n > 0 ? lifted_n : 1;
+    printf("%s: lift %.3f m, mean z speed on the ground %.3f m/s (%d samples), lifted %.3f m/s (%d samples)\n", foot,
+           (double)(ymax - ymin), ground_v, ground_n, lifted_v, lifted_n);
+    CHECK(ymax - ymin > 0.03f);
+    CHECK_MSG(-ground_v >= lo && -ground_v <= hi, "%s: ground speed %.3f m/s", foot, -ground_v);
+    CHECK_MSG(lifted_v > 0.0, "%s: lifted speed %.3f m/s", foot, lifted_v);
 }
 
 /* Per-bone containment (no merging) and union containment after merging. */
@@ -202,6 +237,8 @@ static void test_humanoid(void)
             for (int e = 0; e < 3; e++) worst = fmax(worst, fabs(acc[e] - p[3 * v + e]));
         }
         CHECK_MSG(worst < 1e-5, "LBS mismatch %g", worst);
+        check_gait(&m, walk, "foot_l", 0.6, 2.0);
+        check_gait(&m, walk, "foot_r", 0.6, 2.0);
         check_capsules(&m, walk, 0.3f);
         /* frame range in ticks (1000/s): the first half of the walk */
         int half = character_clip_find(&m, "0:500");
@@ -243,6 +280,18 @@ static void test_quadruped(void)
         bone_position(&m, walk, 0.0f, fl, a);
         bone_position(&m, walk, 0.4f, fl, b);
         CHECK(dist3(a, b) > 0.1f);
+        const char *paws[] = {"frontpaw_l", "frontpaw_r", "backpaw_l", "backpaw_r"};
+        for (int i = 0; i < 4; i++) check_gait(&m, walk, paws[i], 0.3, 1.2);
+        /* diagonal gait: front-left and back-right touch down together */
+        int bl = character_bone_find(&m, "backpaw_l"), br = character_bone_find(&m, "backpaw_r");
+        float c[3], d[3];
+        for (int i = 0; i < 8; i++) {
+            float t = m.clips[walk].duration * (float)i / 8;
+            bone_position(&m, walk, t, fl, a), bone_position(&m, walk, t, br, b);
+            bone_position(&m, walk, t, fr, c), bone_position(&m, walk, t, bl, d);
+            CHECK_NEAR(a[1], b[1], 1e-3);
+            CHECK_NEAR(c[1], d[1], 1e-3);
+        }
         check_capsules(&m, walk, 0.2f);
     }
     free(p);

@@ -468,28 +468,101 @@ enum {
     H_COUNT
 };
 
+/* ---- walk cycles ------------------------------------------------------------ */
+/* A leg is a two-bone chain in the sagittal (y, z) plane: upper bone of
+ * length a, lower bone of length b, both hanging straight down at bind, each
+ * bent by a rotation about X (negative X swings the end towards +Z). The
+ * foot target follows a fixed path relative to the hip: during stance
+ * (phase [0, duty)) it slides straight back from +stride/2 to -stride/2 at
+ * the ground height, at constant speed stride / (duty * duration); during
+ * swing (u in [0, 1]) it is lifted by lift * sqrt(sin(pi u)) and carried
+ * forward on a cubic Hermite curve whose end velocities equal the stance
+ * velocity. The steep lift clears the lowest quarter of the lift height
+ * within u < 0.02, while the foot still moves back at nearly the stance
+ * speed, so a stride estimate from the lowest part of the foot path (see
+ * character_clip_stride) sees the stance speed. Keys every 1/40 cycle
+ * land on the stance boundaries (multiples of 0.1). */
+typedef struct gen_gait_t {
+    float duty;   /* fraction of the cycle a foot is on the ground */
+    float stride; /* foot travel relative to the hip during stance, metres */
+    float lift;   /* peak foot lift during swing, metres */
+} gen_gait_t;
+
+/* Foot target relative to its stance path: z along the body (+Z forward),
+ * y above the ground, for a leg at local phase ph in [0, 1). */
+static void gait_foot(const gen_gait_t *g, float ph, float *y, float *z)
+{
+    float half = 0.5f * g->stride;
+    if (ph < g->duty) {
+        *y = 0.0f;
+        *z = half - g->stride * ph / g->duty;
+        return;
+    }
+    float u = (ph - g->duty) / (1.0f - g->duty);
+    float m = -g->stride * (1.0f - g->duty) / g->duty; /* stance dz/du in swing units */
+    float u2 = u * u, u3 = u2 * u;
+    float h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+    *z = -half * h00 + m * h10 + half * h01 + m * h11;
+    *y = g->lift * sqrtf(sinf(PI_F * u));
+}
+
+/* Two-bone IK: rotations about X of the upper bone (*upper) and the lower
+ * bone relative to it (*lower, >= 0: the knee points forward) that put the
+ * chain's end at (dy, dz) from its root. Targets beyond reach are pulled in
+ * to 99.8% of a + b. */
+static void leg_ik(float a, float b, float dy, float dz, float *upper, float *lower)
+{
+    float r = sqrtf(dy * dy + dz * dz);
+    float rmax = 0.998f * (a + b);
+    if (r > rmax) dy *= rmax / r, dz *= rmax / r, r = rmax;
+    float ck = (r * r - a * a - b * b) / (2.0f * a * b);
+    ck = ck > 1.0f ? 1.0f : ck < -1.0f ? -1.0f : ck;
+    *lower = acosf(ck);
+    /* a bone hanging down, rotated by x about X, points along (-cos x, -sin x) in (y, z) */
+    float phi = atan2f(-dz, -dy);
+    *upper = phi - atan2f(b * sinf(*lower), a + b * cosf(*lower));
+}
+
+/* Poses the leg whose upper joint is `u` (lower u + 1, foot u + 2) so the
+ * foot joint follows the gait at local phase ph, with the foot kept level.
+ * hip_y: the upper joint's height; ground_y: the foot joint's height at
+ * bind (the foot rests on the ground there). The stance path is centred
+ * under the hip. */
+static void gait_leg(const gen_gait_t *g, float ph, int u, float a, float b, float hip_y, float ground_y,
+                     gen_anim_t *o)
+{
+    float fy, fz, up, lo;
+    gait_foot(g, ph - floorf(ph), &fy, &fz);
+    leg_ik(a, b, ground_y + fy - hip_y, fz, &up, &lo);
+    quat_xyz(up, 0, 0, o->r[u]);
+    quat_xyz(lo, 0, 0, o->r[u + 1]);
+    quat_xyz(-(up + lo), 0, 0, o->r[u + 2]);
+}
+
+/* Humanoid: stance 60% of a 1 s cycle, 0.6 m of foot travel (1.0 m/s),
+ * left foot touching down at phase 0 at +0.3 m, the right half a cycle
+ * later. Leg bones 0.42 + 0.40 m, hip joints 0.82 m above the ankles at
+ * bind: the hips ride 1.5 to 6.5 cm lower, highest at mid-stance (phases 0.3
+ * and 0.8), so both feet reach the ground in double support; the stance
+ * knee flexes 10 to 34 degrees. */
+static const gen_gait_t g_humanoid_gait = {0.6f, 0.6f, 0.1f};
+
 static void humanoid_walk(float ph, gen_anim_t *o)
 {
-    float c = cosf(2.0f * PI_F * ph), s = sinf(2.0f * PI_F * ph);
-    /* left leg forward at phase 0 (negative X rotation swings the foot to +Z),
-     * the right leg half a cycle later; knees bend on the swing phase */
-    float knee_l = 5.0f + 40.0f * fmaxf(0.0f, s);
-    float knee_r = 5.0f + 40.0f * fmaxf(0.0f, -s);
-    quat_xyz(-28.0f * DEG * c, 0, 0, o->r[H_ULEG_L]);
-    quat_xyz(28.0f * DEG * c, 0, 0, o->r[H_ULEG_R]);
-    quat_xyz(knee_l * DEG, 0, 0, o->r[H_LLEG_L]);
-    quat_xyz(knee_r * DEG, 0, 0, o->r[H_LLEG_R]);
-    quat_xyz(-10.0f * DEG * fmaxf(0.0f, s), 0, 0, o->r[H_FOOT_L]);
-    quat_xyz(-10.0f * DEG * fmaxf(0.0f, -s), 0, 0, o->r[H_FOOT_R]);
-    /* arms swing against the legs; elbows stay a little bent */
+    float c = cosf(2.0f * PI_F * ph);
+    float hip_drop = -0.04f + 0.025f * cosf(4.0f * PI_F * (ph - 0.3f));
+    o->t[1] = hip_drop;
+    float hip_y = 0.88f + hip_drop;
+    gait_leg(&g_humanoid_gait, ph, H_ULEG_L, 0.42f, 0.40f, hip_y, 0.06f, o);
+    gait_leg(&g_humanoid_gait, ph + 0.5f, H_ULEG_R, 0.42f, 0.40f, hip_y, 0.06f, o);
+    /* arms swing against the legs (left arm back while the left foot is
+     * forward); elbows stay a little bent */
     quat_xyz(22.0f * DEG * c, 0, 4.0f * DEG, o->r[H_UARM_L]);
     quat_xyz(-22.0f * DEG * c, 0, -4.0f * DEG, o->r[H_UARM_R]);
     quat_xyz(-(15.0f + 10.0f * c) * DEG, 0, 0, o->r[H_LARM_L]);
     quat_xyz(-(15.0f - 10.0f * c) * DEG, 0, 0, o->r[H_LARM_R]);
     quat_xyz(0, 6.0f * DEG * c, 0, o->r[H_SPINE]);
     quat_xyz(0, -4.0f * DEG * c, 0, o->r[H_CHEST]);
-    /* hips bob twice per cycle, lowest at mid-stride */
-    o->t[1] = -0.025f * (0.5f + 0.5f * cosf(4.0f * PI_F * ph));
 }
 
 static void humanoid_idle(float ph, gen_anim_t *o)
@@ -574,7 +647,7 @@ static void build_humanoid(gen_rig_t *r)
     seg_joints(r, H_FOOT_R, H_LLEG_R, -1, -1, toe, 0.05f, 0.7f);
 
     r->clip_count = 2;
-    r->clips[0] = (gen_clip_t){"walk", 1.0f, 17, humanoid_walk};
+    r->clips[0] = (gen_clip_t){"walk", 1.0f, 41, humanoid_walk};
     r->clips[1] = (gen_clip_t){"idle", 2.0f, 9, humanoid_idle};
 }
 
@@ -586,23 +659,26 @@ enum {
     Q_COUNT
 };
 
+/* Quadruped: diagonal gait, front-left with back-right, front-right with
+ * back-left half a cycle later; stance 60% of a 0.8 s cycle, 0.3 m of paw
+ * travel (0.625 m/s), 6 cm paw lift. Hip joints sit 0.35 m above the paws
+ * at bind (legs 0.18 + 0.17 front, 0.19 + 0.16 back); the body rides 1.1 to
+ * 4.1 cm lower, highest at mid-stance. The chest does not roll so the front
+ * hips stay where the IK expects them. */
+static const gen_gait_t g_quadruped_gait = {0.6f, 0.3f, 0.06f};
+
 static void quadruped_walk(float ph, gen_anim_t *o)
 {
-    /* diagonal gait: front-left with back-right, front-right with back-left */
-    static const int upper[4] = {Q_FL_U, Q_BR_U, Q_FR_U, Q_BL_U};
-    for (int leg = 0; leg < 4; leg++) {
-        float p = 2.0f * PI_F * (ph + (leg >= 2 ? 0.5f : 0.0f));
-        float swing = -25.0f * DEG * cosf(p);
-        float lift = fmaxf(0.0f, sinf(p));
-        int u = upper[leg];
-        quat_xyz(swing, 0, 0, o->r[u]);
-        quat_xyz(35.0f * DEG * lift, 0, 0, o->r[u + 1]);
-        quat_xyz(-20.0f * DEG * lift, 0, 0, o->r[u + 2]);
-    }
+    float drop = -0.026f + 0.015f * cosf(4.0f * PI_F * (ph - 0.3f));
+    o->t[1] = drop;
+    float hip_y = 0.39f + drop;
+    const gen_gait_t *g = &g_quadruped_gait;
+    gait_leg(g, ph, Q_FL_U, 0.18f, 0.17f, hip_y, 0.04f, o);
+    gait_leg(g, ph, Q_BR_U, 0.19f, 0.16f, hip_y, 0.04f, o);
+    gait_leg(g, ph + 0.5f, Q_FR_U, 0.18f, 0.17f, hip_y, 0.04f, o);
+    gait_leg(g, ph + 0.5f, Q_BL_U, 0.19f, 0.16f, hip_y, 0.04f, o);
     quat_xyz(0, 20.0f * DEG * sinf(4.0f * PI_F * ph), 0, o->r[Q_TAIL]);
     quat_xyz(4.0f * DEG * sinf(4.0f * PI_F * ph), 0, 0, o->r[Q_HEAD]);
-    quat_xyz(0, 0, 3.0f * DEG * sinf(2.0f * PI_F * ph), o->r[Q_CHEST]);
-    o->t[1] = -0.012f * (0.5f + 0.5f * cosf(4.0f * PI_F * ph));
 }
 
 static void build_quadruped(gen_rig_t *r)
@@ -644,7 +720,7 @@ static void build_quadruped(gen_rig_t *r)
         seg_joints(r, u + 2, u + 1, -1, -1, paw_off, 0.035f, 0);
     }
     r->clip_count = 1;
-    r->clips[0] = (gen_clip_t){"walk", 0.8f, 17, quadruped_walk};
+    r->clips[0] = (gen_clip_t){"walk", 0.8f, 41, quadruped_walk};
 }
 
 /* ---- OBJ meshes --------------------------------------------------------------- */
