@@ -397,12 +397,6 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     v->dt = dt;
 }
 
-void app_world_metrics(app_world_t *w, app_metrics_t *m)
-{
-    (void)w;
-    (void)m;
-}
-
 void app_world_stats(app_world_t *w, app_world_stats_t *st)
 {
     memset(st, 0, sizeof *st);
