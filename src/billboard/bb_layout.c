@@ -82,8 +82,9 @@ static void bb_layout_maps(bb_layout_t *l, uint32_t seed)
         for (int x = 0; x < n; x++) {
             float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
             size_t i = (size_t)y * n + x;
-            /* Clearings where the fBm field dips below ~0.5. */
-            float cover = bb_smoothstep(0.47f, 0.56f, bb_fbm(u, v, s_ext));
+            /* Clearings where the fBm field dips below ~0.45 (about a tenth to a
+             * quarter of a field, depending on the seed). */
+            float cover = bb_smoothstep(0.42f, 0.51f, bb_fbm(u, v, s_ext));
             cover *= 0.8f + 0.2f * bb_fbm(2.0f * u, 2.0f * v, s_det);
             l->extent.px[i] = bb_byte(cover);
             float dir[3] = {(bb_fbm(u, v, s_dx) - 0.5f) * 0.8f, 1.0f, (bb_fbm(u, v, s_dz) - 0.5f) * 0.8f};
