@@ -6,6 +6,7 @@
 
 #include "character/character_ref.h"
 #include "core/core.h"
+#include "scene/mesh_import.h"
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
@@ -559,12 +560,12 @@ static bool collapse_to_rigid(character_model_t *m)
     return b->name != NULL;
 }
 
-static bool fail(char *err, size_t err_size, const char *path, int line, const char *fmt, const char *arg)
+static bool fail(char *err, size_t err_size, const char *path, const char *fmt, const char *arg)
 {
     char msg[512];
     snprintf(msg, sizeof msg, fmt, arg);
     if (err && err_size) snprintf(err, err_size, "%s", msg);
-    core_log_error("%s:%d: %s: %s", __FILE__, line, path, msg);
+    core_log_error("%s: %s", path, msg);
     return false;
 }
 
@@ -575,15 +576,18 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
      * here with warnings instead of rejected */
     const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                            aiProcess_SortByPType;
-    const struct aiScene *sc = aiImportFile(path, flags);
-    if (!sc || !sc->mRootNode) {
-        return fail(err, err_size, path, __LINE__, "assimp: %s", aiGetErrorString());
+    char why[512];
+    const struct aiScene *sc = mesh_import(path, flags, why, sizeof why);
+    if (!sc) return fail(err, err_size, path, "%s", why);
+    if (!sc->mRootNode) {
+        aiReleaseImport(sc);
+        return fail(err, err_size, path, "%s", "no scene nodes");
     }
     load_ctx_t ctx = {.path = path, .scene = sc};
     int nn = count_nodes(sc->mRootNode);
     if (nn > 65535) {
         aiReleaseImport(sc);
-        return fail(err, err_size, path, __LINE__, "%s", "more than 65535 nodes");
+        return fail(err, err_size, path, "%s", "more than 65535 nodes");
     }
     ctx.nodes = calloc((size_t)nn, sizeof *ctx.nodes);
     ctx.global = calloc((size_t)nn, sizeof *ctx.global);
@@ -612,13 +616,13 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
             free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
             character_model_free(model);
             aiReleaseImport(sc);
-            return fail(err, err_size, path, __LINE__, "%s", "no triangle vertices in the file");
+            return fail(err, err_size, path, "%s", "no triangle vertices in the file");
         }
         if (nv > INT32_MAX || ni > INT32_MAX) {
             free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
             character_model_free(model);
             aiReleaseImport(sc);
-            return fail(err, err_size, path, __LINE__, "%s", "too many vertices");
+            return fail(err, err_size, path, "%s", "too many vertices");
         }
         model->vertices = calloc(nv, sizeof *model->vertices);
         model->indices = calloc(ni, sizeof *model->indices);
@@ -645,7 +649,7 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
     aiReleaseImport(sc);
     if (!ok) {
         character_model_free(model);
-        return fail(err, err_size, path, __LINE__, "%s", "out of memory");
+        return fail(err, err_size, path, "%s", "out of memory");
     }
     core_log_info("%s: %d vertices, %d triangles, %d bones, %d clips%s", path, model->vertex_count,
                   model->index_count / 3, model->bone_count, model->clip_count, model->rigid ? " (rigid)" : "");

@@ -2,6 +2,7 @@
  * ground-height queries (barycentric on the grid, vertical ray casts through a
  * uniform 2D triangle grid for meshes). See terrain.h. */
 #include "scene/terrain.h"
+#include "scene/mesh_import.h"
 
 #include <assert.h>
 #include <assimp/cimport.h>
@@ -183,12 +184,13 @@ bool terrain_load_mesh(terrain_mesh_t *mesh, const char *path, float scale, char
         snprintf(err, err_size, "%s: cannot read: %s", path, strerror(errno));
         return false;
     }
+    char why[512];
     const struct aiScene *sc =
-        aiImportFile(full, aiProcess_Triangulate | aiProcess_GenSmoothNormals |
-                               aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                               aiProcess_SortByPType);
+        mesh_import(full, aiProcess_Triangulate | aiProcess_GenSmoothNormals | aiProcess_JoinIdenticalVertices |
+                              aiProcess_PreTransformVertices | aiProcess_SortByPType,
+                    why, sizeof why);
     if (!sc) {
-        snprintf(err, err_size, "%s: assimp: %s", path, aiGetErrorString());
+        snprintf(err, err_size, "%s: %s", path, why);
         return false;
     }
     uint64_t nv = 0, ni = 0;
