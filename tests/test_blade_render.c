@@ -234,7 +234,11 @@ static void test_torus(void)
            mesh.index_count / 3, mesh.aabb_min[0], mesh.aabb_min[1], mesh.aabb_min[2], mesh.aabb_max[0],
            mesh.aabb_max[1], mesh.aabb_max[2], f.blade_count);
     blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "torus"}));
+    /* Vertex pulling: on llvmpipe the tessellation path renders this torus
+     * differently from run to run (the same survivors, in a different order,
+     * give 30-35k different bytes; the pulled path gives 0), so its golden
+     * would be flaky. Both paths are compared with each other above. */
+    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "torus", .path = BLADE_PATH_PULLING}));
     /* gravity towards the torus centre plane keeps the blades standing */
     blade_env_t env = {.dt = 1.0f / 60.0f, .gravity = 2.0f, .wind_count = 1};
     env.winds[0] = blade_wind_wave(1.0f, 0.0f, 2.0f, 1.0f, 1.0f);
