@@ -31,6 +31,13 @@ static void handle_keys(app_t *app, float real_dt)
     if (plat_key_pressed(PLAT_KEY_N)) app->step_once = true;
     if (plat_key_pressed(PLAT_KEY_F)) app->wireframe = !app->wireframe;
     if (plat_key_pressed(PLAT_KEY_H)) app->hud = !app->hud;
+    static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
+    static const plat_key_t mode_keys[3] = {PLAT_KEY_1, PLAT_KEY_2, PLAT_KEY_3};
+    for (int i = 0; i < 3; i++)
+        if (plat_key_pressed(mode_keys[i]) && app->world.mode != modes[i]) {
+            app_world_set_mode(&app->world, modes[i]);
+            core_log_info("mode: %s", scene_mode_name(modes[i]));
+        }
     float speed = (plat_key_down(PLAT_KEY_SHIFT) ? 15.0f : 4.0f) * real_dt;
     float fwd = (float)(plat_key_down(PLAT_KEY_W) - plat_key_down(PLAT_KEY_S));
     float right = (float)(plat_key_down(PLAT_KEY_D) - plat_key_down(PLAT_KEY_A));
