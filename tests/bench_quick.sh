@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# bench_quick: `meadow bench --quick` and `meadow compare` run on llvmpipe
-# and produce every file they promise (CSV, JSON, charts, montage).
+# bench_quick: `meadow bench --quick`, its stability suite
+# (MEADOW_BENCH_STABILITY=1) and `meadow compare` run on llvmpipe and
+# produce every file they promise (CSV, JSON, charts, tables, screenshots,
+# montage).
 # Usage: bench_quick.sh MEADOW_BINARY OUTDIR
 set -u
 bin=$1; out=$2
@@ -10,15 +12,27 @@ fail=0
 for f in bench.csv bench.json; do
   [ -s "$out/bench/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
-for g in billboard_collision blade_tessellation blade_distance_levels hybrid_switch_distance modes; do
+for g in billboard_collision billboard_springs blade_proxies blade_tessellation blade_distance_levels hybrid_switch_distance modes; do
   for ext in dat png svg; do
     [ -s "$out/bench/bench_$g.$ext" ] || { echo "FAIL: missing bench_$g.$ext"; fail=1; }
   done
 done
 rows=$(($(wc -l <"$out/bench/bench.csv") - 1))
-[ "$rows" -ge 11 ] || { echo "FAIL: bench.csv has $rows rows"; fail=1; }
+[ "$rows" -ge 13 ] || { echo "FAIL: bench.csv has $rows rows"; fail=1; }
 python3 -c "import json,sys; d=json.load(open('$out/bench/bench.json')); assert len(d['configs'])==$rows" 2>/dev/null \
   || { echo "FAIL: bench.json does not parse or disagrees with the CSV"; fail=1; }
+MEADOW_BENCH_STABILITY=1 "$bin" bench --quick --quiet --scene scenes/tiny.json --out "$out/stability" \
+  || { echo "FAIL: bench stability exit $?"; fail=1; }
+for f in stability.csv stability.md; do
+  [ -s "$out/stability/$f" ] || { echo "FAIL: missing $f"; fail=1; }
+done
+cases="tunnelling framerate_blade framerate_bb thin_bb concave_bb concave_blade large_bb squeeze_blade squeeze_bb
+       resting_blade steep_blade many_bb many_blade"
+for c in $cases; do
+  [ -s "$out/stability/stability_$c.png" ] || { echo "FAIL: missing stability_$c.png"; fail=1; }
+  grep -q "^$c," "$out/stability/stability.csv" || { echo "FAIL: stability.csv has no $c rows"; fail=1; }
+  grep -q "^| $c |" "$out/stability/stability.md" || { echo "FAIL: stability.md has no $c row"; fail=1; }
+done
 "$bin" compare --quiet --scene scenes/tiny.json --frames 4 --out "$out/compare" || { echo "FAIL: compare exit $?"; fail=1; }
 for f in compare.png compare.json compare-billboard.png compare-blade.png compare-hybrid.png compare-reference.png; do
   [ -s "$out/compare/$f" ] || { echo "FAIL: missing $f"; fail=1; }

@@ -1,16 +1,40 @@
 /* app_bench: `meadow bench` sweeps configurations of deterministic scenes
  * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
- * times, CPU time, accuracy metrics and image error against the reference
- * rendering to bench.csv and bench.json, plus a speed-vs-accuracy chart per
- * sweep (PNG and SVG, gnuplot) with the Pareto front marked. --quick runs a
- * small sweep for CI. */
-#include "app/app_world.h"
+ * times, CPU time, accuracy metrics (app_metrics.c, docs/METRICS.md) and
+ * image error against the reference rendering (1 - SSIM) to bench.csv and
+ * bench.json, plus speed-vs-accuracy charts (x GPU ms, y the chart's
+ * accuracy measure; PNG and SVG through gnuplot) with the Pareto front.
+ *
+ * Sweeps (one chart each, y in parentheses):
+ *   billboard_collision  cube-map res x subdivision x spring iterations K
+ *                        (Orthmann et al. 2009 eq. 1-7; penetration depth),
+ *   billboard_springs    the same runs (spring error, eq. 6-7),
+ *   blade_proxies        sphere sets standing in for a box collider
+ *                        (Jahrmann & Wimmer 2017 sec. 5.3; penetration depth
+ *                        against the exact box),
+ *   blade_tessellation, blade_distance_levels (eq. 19-20),
+ *   hybrid_switch_distance, modes (mode x density x render path) (image error).
+ * --quick runs two configurations per sweep for CI. The stability suite
+ * (app_stability.c) runs with MEADOW_BENCH_STABILITY=1; MEADOW_BENCH_REPORT=DIR
+ * runs the sweep, the stability suite and `meadow compare`, and writes
+ * DIR/RESULTS.md with its charts and screenshots in DIR/images. */
+#include "app/app_eval.h"
 
+#include <assert.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "eval/eval.h"
 #include "platform/plat.h"
+
+typedef enum bench_proxy_t {
+    PROXY_WORLD = 0,  /* app_world's own (not replaced) */
+    PROXY_BOUND,      /* one sphere: the box's bounding sphere */
+    PROXY_INSCRIBED,  /* one sphere: the largest inside the box */
+    PROXY_COVER,      /* a grid of spheres, each through its cell's corners */
+    PROXY_INNER,      /* a grid of spheres, each inscribed in its cell */
+} bench_proxy_t;
 
 typedef struct bench_config_t {
     const char *group; /* one chart per group */
@@ -18,8 +42,15 @@ typedef struct bench_config_t {
     scene_mode_t mode;
     int cube_resolution, subdiv, springs; /* billboard knobs, 0 = scene */
     float switch_distance;                /* hybrid knob, 0 = scene */
+    float density_scale;                  /* grass and billboard density factor, 0 = 1 */
+    int blade_render;                     /* 0 = the options', 1 pull, 2 tess */
+    bench_proxy_t proxy;
+    int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
+
+/* The box that blade_proxies runs on the first collider's path. */
+static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -28,77 +59,344 @@ static void tweak(scene_desc_t *s, void *user)
     if (c->subdiv) s->grass.subdiv[0] = s->grass.subdiv[1] = c->subdiv;
     if (c->springs) s->grass.spring_iterations = c->springs;
     if (c->switch_distance > 0) s->grass.switch_distance = c->switch_distance;
+    if (c->density_scale > 0) {
+        s->grass.density *= c->density_scale;
+        s->grass.billboard_density *= c->density_scale;
+    }
+    if (c->proxy != PROXY_WORLD && s->collider_count > 0) {
+        scene_collider_t *k = &s->colliders[0];
+        k->type = SCENE_COLLIDER_BOX;
+        glm_vec3_copy((float *)proxy_box, k->half_extents);
+        for (int i = 0; i < k->path.count; i++) k->path.keys[i].position[1] = proxy_box[1];
+        s->collider_count = 1;
+    }
 }
 
-#define MAX_CONFIGS 96
-
-static int build_configs(bench_config_t *c, bool quick)
+/* Sphere proxies of the blade_proxies sweep for box colliders (other
+ * colliders get their bounding sphere). */
+static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
 {
+    const bench_config_t *c = user;
     int n = 0;
-    static const int cubes_full[] = {16, 32, 64}, subdivs_full[] = {2, 4, 6}, springs_full[] = {1, 2, 4};
-    static const int cubes_quick[] = {16}, subdivs_quick[] = {2, 4}, springs_quick[] = {2};
-    const int *cubes = quick ? cubes_quick : cubes_full, *subdivs = quick ? subdivs_quick : subdivs_full;
-    const int *springs = quick ? springs_quick : springs_full;
-    int nc = quick ? 1 : 3, ns = quick ? 2 : 3, nk = quick ? 1 : 3;
-    for (int a = 0; a < nc; a++)
-        for (int b = 0; b < ns; b++)
-            for (int k = 0; k < nk; k++) {
-                bench_config_t *x = &c[n++];
-                *x = (bench_config_t){.group = "billboard_collision", .mode = SCENE_MODE_BILLBOARD,
-                                      .cube_resolution = cubes[a], .subdiv = subdivs[b], .springs = springs[k]};
-                snprintf(x->label, sizeof x->label, "cube%d_sub%d_k%d", cubes[a], subdivs[b], springs[k]);
-            }
-    static const int tess_full[] = {1, 2, 3, 5, 7, 10}, levels_full[] = {1, 2, 4, 8, 16, 32};
-    int nt = quick ? 2 : 6;
-    for (int i = 0; i < nt; i++) {
-        bench_config_t *x = &c[n++];
-        *x = (bench_config_t){.group = "blade_tessellation", .mode = SCENE_MODE_BLADE,
-                              .tuning = {.tess_max = tess_full[i]}};
-        snprintf(x->label, sizeof x->label, "tess%d", tess_full[i]);
-    }
-    for (int i = 0; i < nt; i++) {
-        bench_config_t *x = &c[n++];
-        *x = (bench_config_t){.group = "blade_distance_levels", .mode = SCENE_MODE_BLADE,
-                              .tuning = {.distance_levels = levels_full[i]}};
-        snprintf(x->label, sizeof x->label, "levels%d", levels_full[i]);
-    }
-    static const float sw_full[] = {2, 4, 8, 12, 20, 40};
-    for (int i = 0; i < nt; i++) {
-        bench_config_t *x = &c[n++];
-        *x = (bench_config_t){.group = "hybrid_switch_distance", .mode = SCENE_MODE_HYBRID,
-                              .switch_distance = sw_full[i]};
-        snprintf(x->label, sizeof x->label, "switch%gm", sw_full[i]);
-    }
-    static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
-    for (int i = 0; i < 3; i++) {
-        bench_config_t *x = &c[n++];
-        *x = (bench_config_t){.group = "modes", .mode = modes[i]};
-        snprintf(x->label, sizeof x->label, "%s", scene_mode_name(modes[i]));
+    for (int i = 0; i < w->colliders.count && n < max; i++) {
+        const app_collider_t *k = &w->colliders.items[i];
+        const float *p = k->position;
+        if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
+            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], k->bound_radius}};
+            continue;
+        }
+        const float *h = k->desc.half_extents;
+        if (c->proxy == PROXY_INSCRIBED) {
+            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
+            continue;
+        }
+        float cell[3] = {h[0] / (float)c->grid[0], h[1] / (float)c->grid[1], h[2] / (float)c->grid[2]};
+        float r = c->proxy == PROXY_COVER ? sqrtf(cell[0] * cell[0] + cell[1] * cell[1] + cell[2] * cell[2])
+                                          : fminf(cell[0], fminf(cell[1], cell[2]));
+        for (int a = 0; a < c->grid[0]; a++)
+            for (int b = 0; b < c->grid[1]; b++)
+                for (int d = 0; d < c->grid[2] && n < max; d++)
+                    out[n++] = (blade_sphere_t){{p[0] - h[0] + cell[0] * (2 * a + 1), p[1] - h[1] + cell[1] * (2 * b + 1),
+                                                 p[2] - h[2] + cell[2] * (2 * d + 1), r}};
     }
     return n;
 }
 
-static void write_chart(const char *out, const char *group, const char *ylabel, int ycol)
+#define MAX_CONFIGS 96
+
+static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_mode_t mode)
+{
+    assert(*n < MAX_CONFIGS);
+    bench_config_t *x = &c[(*n)++];
+    *x = (bench_config_t){.group = group, .mode = mode};
+    return x;
+}
+
+static int build_configs(bench_config_t *c, bool quick)
+{
+    int n = 0;
+    static const int cubes[] = {8, 16, 32}, subdivs[] = {2, 4, 6}, springs[] = {1, 2, 4};
+    int nc = quick ? 1 : 3, ns = quick ? 2 : 3, nk = quick ? 1 : 3;
+    for (int a = 0; a < nc; a++)
+        for (int b = 0; b < ns; b++)
+            for (int k = 0; k < nk; k++) {
+                int cube = cubes[quick ? 1 : a], sub = subdivs[b], spr = springs[quick ? 1 : k];
+                bench_config_t *x = add(c, &n, "billboard_collision", SCENE_MODE_BILLBOARD);
+                x->cube_resolution = cube;
+                x->subdiv = sub;
+                x->springs = spr;
+                snprintf(x->label, sizeof x->label, "cube%d_sub%d_k%d", cube, sub, spr);
+            }
+    static const struct {
+        bench_proxy_t p;
+        int g[3];
+        const char *name;
+    } proxies[] = {{PROXY_BOUND, {1, 1, 1}, "bound_1"},     {PROXY_COVER, {4, 2, 2}, "cover_16"},
+                   {PROXY_INSCRIBED, {1, 1, 1}, "inscribed_1"}, {PROXY_COVER, {2, 1, 1}, "cover_2"},
+                   {PROXY_COVER, {8, 4, 4}, "cover_128"},   {PROXY_INNER, {4, 2, 2}, "inner_16"},
+                   {PROXY_INNER, {8, 4, 4}, "inner_128"}};
+    int np = quick ? 2 : (int)(sizeof proxies / sizeof proxies[0]);
+    for (int i = 0; i < np; i++) {
+        bench_config_t *x = add(c, &n, "blade_proxies", SCENE_MODE_BLADE);
+        x->proxy = proxies[i].p;
+        memcpy(x->grid, proxies[i].g, sizeof x->grid);
+        snprintf(x->label, sizeof x->label, "%s", proxies[i].name);
+    }
+    static const int tess[] = {1, 2, 3, 5, 7, 10}, levels[] = {1, 2, 4, 8, 16, 32};
+    static const float sw[] = {2, 4, 8, 12, 20, 40};
+    int nt = quick ? 2 : 6;
+    for (int i = 0; i < nt; i++) {
+        bench_config_t *x = add(c, &n, "blade_tessellation", SCENE_MODE_BLADE);
+        x->tuning.tess_max = tess[i];
+        snprintf(x->label, sizeof x->label, "tess%d", tess[i]);
+    }
+    for (int i = 0; i < nt; i++) {
+        bench_config_t *x = add(c, &n, "blade_distance_levels", SCENE_MODE_BLADE);
+        x->tuning.distance_levels = levels[i];
+        snprintf(x->label, sizeof x->label, "levels%d", levels[i]);
+    }
+    for (int i = 0; i < nt; i++) {
+        bench_config_t *x = add(c, &n, "hybrid_switch_distance", SCENE_MODE_HYBRID);
+        x->switch_distance = sw[i];
+        snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
+    }
+    static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
+    for (int d = 0; d < (quick ? 1 : 2); d++)
+        for (int i = 0; i < 3; i++) {
+            bench_config_t *x = add(c, &n, "modes", modes[i]);
+            x->density_scale = (float)(d + 1);
+            snprintf(x->label, sizeof x->label, "%s_x%d", scene_mode_name(modes[i]), d + 1);
+        }
+    for (int i = 1; i < 3 && !quick; i++) {
+        bench_config_t *x = add(c, &n, "modes", modes[i]);
+        x->blade_render = 2;
+        snprintf(x->label, sizeof x->label, "%s_x1_tess", scene_mode_name(modes[i]));
+    }
+    return n;
+}
+
+/* One chart: a group's runs with y taken from one measure. */
+typedef enum bench_y_t { Y_IMAGE = 0, Y_PEN_MAX, Y_SPRING } bench_y_t;
+typedef struct bench_chart_t {
+    const char *name, *group, *ylabel;
+    bench_y_t y;
+} bench_chart_t;
+
+static const bench_chart_t charts[] = {
+    {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX},
+    {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING},
+    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX},
+    {"blade_tessellation", "blade_tessellation", "image error (1 - SSIM vs reference)", Y_IMAGE},
+    {"blade_distance_levels", "blade_distance_levels", "image error (1 - SSIM vs reference)", Y_IMAGE},
+    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (1 - SSIM vs reference)", Y_IMAGE},
+    {"modes", "modes", "image error (1 - SSIM vs reference)", Y_IMAGE},
+};
+#define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
+
+static double y_of(const bench_chart_t *ch, const app_metrics_t *m, double image_error)
+{
+    switch (ch->y) {
+    case Y_PEN_MAX: return m->penetration_max;
+    case Y_SPRING: return m->spring_error;
+    default: return image_error;
+    }
+}
+
+static void write_chart(const char *out, const bench_chart_t *ch)
 {
     char path[1200], data[1200];
-    snprintf(data, sizeof data, "%s/bench_%s.dat", out, group);
+    snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
     eval_text_t g = {0};
     for (int term = 0; term < 2; term++) {
         eval_text_printf(&g, term ? "set terminal svg size 800,500\nset output '%s/bench_%s.svg'\n"
                                   : "set terminal pngcairo size 800,500\nset output '%s/bench_%s.png'\n",
-                         out, group);
+                         out, ch->name);
         eval_text_printf(&g,
                          "set title '%s: speed vs accuracy'\nset xlabel 'GPU ms per frame'\nset ylabel '%s'\n"
-                         "set grid\nset key top right\n"
+                         "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
                          "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
                          "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
                          "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'\n",
-                         group, ylabel, data, data);
+                         ch->name, ch->ylabel, data, data);
     }
-    (void)ycol;
-    snprintf(path, sizeof path, "%s/bench_%s.gp", out, group);
+    snprintf(path, sizeof path, "%s/bench_%s.gp", out, ch->name);
     if (eval_text_write(&g, path)) eval_gnuplot(path);
     eval_text_free(&g);
+}
+
+typedef struct bench_run_t {
+    int n;
+    bench_config_t *cfg;
+    app_metrics_t *met;
+    double *err;
+    char renderer[256];
+    int frames;
+} bench_run_t;
+
+static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
+{
+    char path[1200];
+    b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
+    b->met = calloc(MAX_CONFIGS, sizeof *b->met);
+    b->err = calloc(MAX_CONFIGS, sizeof(double));
+    if (!b->cfg || !b->met || !b->err) return 1;
+    b->n = build_configs(b->cfg, quick);
+    int n = b->n;
+    b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
+    int frames = b->frames;
+    core_image_t ref = {0}, img = {0};
+    app_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+                             .reference = true, .msaa = 8};
+    core_log_info("bench: reference rendering (%d frames)", frames);
+    int rc = app_session_run(&rd, &ref, NULL);
+    double t0 = plat_time();
+    for (int i = 0; i < n && rc == 0; i++) {
+        bench_config_t *c = &b->cfg[i];
+        app_options_t oc = *o;
+        if (c->blade_render) oc.blade_render = c->blade_render - 1;
+        app_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
+                                .tweak = tweak, .user = c, .tuning = c->tuning};
+        app_session_hooks_t h = {.blade_spheres = c->proxy != PROXY_WORLD ? proxy_spheres : NULL, .user = c};
+        rc = app_session_run_hooks(&d, &h, &img, &b->met[i]);
+        if (rc) break;
+        b->err[i] = 1.0 - eval_image_ssim(&img, &ref);
+        core_image_free(&img);
+        double el = plat_time() - t0;
+        fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  1-SSIM %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,
+                c->group, c->label, b->met[i].frame_ms, b->err[i], b->met[i].penetration_max,
+                el / (i + 1) * (n - i - 1));
+    }
+    fputc('\n', stderr);
+    core_image_free(&ref);
+    if (rc) return rc;
+    snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    eval_text_t csv = {0}, json = {0};
+    eval_text_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
+                           "blade_length_error,spring_error,passes\n");
+    eval_text_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
+    for (int i = 0; i < n; i++) {
+        const app_metrics_t *m = &b->met[i];
+        const bench_config_t *c = &b->cfg[i];
+        eval_text_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
+                         scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
+                         m->penetration_max, m->blade_length_error, m->spring_error);
+        eval_text_printf(&json,
+                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
+                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
+                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
+                         "\"passes\": {",
+                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
+                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+        for (int p = 0; p < m->pass_count; p++) {
+            eval_text_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
+            eval_text_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
+        }
+        eval_text_printf(&csv, "\n");
+        eval_text_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
+    }
+    eval_text_printf(&json, "  ]\n}\n");
+    snprintf(path, sizeof path, "%s/bench.csv", out);
+    if (!eval_text_write(&csv, path)) rc = 1;
+    snprintf(path, sizeof path, "%s/bench.json", out);
+    if (!eval_text_write(&json, path)) rc = 1;
+    eval_text_free(&csv);
+    eval_text_free(&json);
+    /* One data file and chart per chart entry: x GPU ms, y its measure. */
+    for (int ci = 0; ci < CHART_COUNT && rc == 0; ci++) {
+        const bench_chart_t *ch = &charts[ci];
+        double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
+        bool front[MAX_CONFIGS];
+        int idx[MAX_CONFIGS], k = 0;
+        for (int i = 0; i < n; i++)
+            if (strcmp(b->cfg[i].group, ch->group) == 0) {
+                idx[k] = i;
+                xs[k] = b->met[i].frame_ms;
+                ys[k] = y_of(ch, &b->met[i], b->err[i]);
+                k++;
+            }
+        eval_pareto(xs, ys, k, front);
+        eval_text_t dat = {0};
+        eval_text_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
+        for (int j = 0; j < k; j++)
+            eval_text_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
+        snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
+        if (!eval_text_write(&dat, path)) rc = 1;
+        eval_text_free(&dat);
+        write_chart(out, ch);
+    }
+    if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
+    return rc;
+}
+
+static bool copy_file(const char *from, const char *to)
+{
+    char err[256];
+    size_t size;
+    char *data = core_fs_read(from, &size, err, sizeof err);
+    if (!data) {
+        core_log_error("report: %s", err);
+        return false;
+    }
+    bool ok = core_fs_write_atomic(to, data, size);
+    free(data);
+    return ok;
+}
+
+/* RESULTS.md: every chart with its numbers, the stability table, the
+ * comparison montage. */
+static int write_report(const char *dir, const char *out, const bench_run_t *b, const char *stability_md)
+{
+    char path[1200], to[1200];
+    snprintf(path, sizeof path, "%s/images", dir);
+    if (!core_fs_mkdirs(path)) return 1;
+    eval_text_t r = {0};
+    eval_text_printf(&r,
+                     "# meadow results\n\n"
+                     "Generated by one command (do not edit by hand):\n\n"
+                     "    MEADOW_BENCH_REPORT=%s ./build/meadow bench --scene SCENE [--quick] [--frames N]\n\n"
+                     "It runs the bench sweep, the stability suite and `meadow compare`, writes the raw data "
+                     "(bench.csv, bench.json, stability.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
+                     "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
+                     "- renderer: `%s`\n- frames per configuration: %d\n\n"
+                     "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are coarse); "
+                     "rerun on a GPU for real timings. Accuracy columns do not depend on the renderer.\n\n",
+                     dir, dir, b->renderer[0] ? b->renderer : "?", b->frames);
+    eval_text_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
+                         "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
+    for (int ci = 0; ci < CHART_COUNT; ci++) {
+        const bench_chart_t *ch = &charts[ci];
+        for (int e = 0; e < 2; e++) {
+            snprintf(path, sizeof path, "%s/bench_%s.%s", out, ch->name, e ? "svg" : "png");
+            snprintf(to, sizeof to, "%s/images/bench_%s.%s", dir, ch->name, e ? "svg" : "png");
+            if (!copy_file(path, to)) core_log_warn("report: no chart %s (gnuplot missing?)", path);
+        }
+        eval_text_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
+                             "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
+                         ch->name, ch->name, ch->name, ch->ylabel);
+        for (int i = 0; i < b->n; i++) {
+            if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
+            const app_metrics_t *m = &b->met[i];
+            eval_text_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
+                             y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
+        }
+        eval_text_printf(&r, "\n");
+    }
+    eval_text_printf(&r, "Missing: blades have no depth-cube-map proxies (only sphere sets), so blade_proxies "
+                         "compares sphere sets only; characters are measured against their own proxy spheres.\n\n");
+    eval_text_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
+                         "(src/app/app_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
+                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
+                     stability_md ? stability_md : "(not run)\n");
+    snprintf(path, sizeof path, "%s/compare/compare.png", out);
+    snprintf(to, sizeof to, "%s/images/bench_compare.png", dir);
+    if (copy_file(path, to))
+        eval_text_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
+                             "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
+    snprintf(path, sizeof path, "%s/RESULTS.md", dir);
+    int rc = eval_text_write(&r, path) ? 0 : 1;
+    eval_text_free(&r);
+    if (rc == 0) core_log_info("report: wrote %s", path);
+    return rc;
 }
 
 int app_bench(const app_options_t *o)
@@ -109,100 +407,45 @@ int app_bench(const app_options_t *o)
         core_log_error("--out: %s", err);
         return 2;
     }
+    const char *report = getenv("MEADOW_BENCH_REPORT");
+    const char *stab_env = getenv("MEADOW_BENCH_STABILITY");
+    bool stability = (stab_env && *stab_env && strcmp(stab_env, "0") != 0) || (report && *report);
+    bool sweep = !stability || (report && *report);
+    if (report && *report && (!core_fs_mkdirs(report) || !core_fs_check_writable_dir(report, err, sizeof err))) {
+        core_log_error("MEADOW_BENCH_REPORT: %s", err);
+        return 2;
+    }
     if (!plat_init(&(plat_desc_t){.backend = PLAT_BACKEND_EGL}, err, sizeof err)) {
         core_log_error("no OpenGL 4.5 context: %s", err);
         return 1;
     }
     gfx_init();
-    bench_config_t *cfg = calloc(MAX_CONFIGS, sizeof *cfg);
-    app_metrics_t *met = calloc(MAX_CONFIGS, sizeof *met);
-    double *err_img = calloc(MAX_CONFIGS, sizeof(double));
-    int n = build_configs(cfg, o->quick);
-    int frames = o->frames_set ? o->frames : (o->quick ? 8 : 120);
-    core_image_t ref = {0}, img = {0};
-    app_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
-                             .reference = true, .msaa = 8};
-    core_log_info("bench: reference rendering (%d frames)", frames);
-    int rc = app_session_run(&rd, &ref, NULL);
-    double t0 = plat_time();
-    for (int i = 0; i < n && rc == 0; i++) {
-        app_session_desc_t d = {.opts = o, .mode = cfg[i].mode, .mode_set = true, .frames = frames,
-                                .tweak = tweak, .user = &cfg[i], .tuning = cfg[i].tuning};
-        rc = app_session_run(&d, &img, &met[i]);
-        if (rc) break;
-        err_img[i] = 1.0 - eval_image_ssim(&img, &ref);
-        core_image_free(&img);
-        double el = plat_time() - t0;
-        fprintf(stderr, "\rbench: %d/%d %-22s %-26s %8.3f ms  1-SSIM %.4f  (eta %.0f s)   ", i + 1, n,
-                cfg[i].group, cfg[i].label, met[i].frame_ms, err_img[i], el / (i + 1) * (n - i - 1));
+    bench_run_t b = {0};
+    eval_text_t md = {0};
+    if (report && *report) {
+        snprintf(path, sizeof path, "%s/images", report);
+        if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
-    fputc('\n', stderr);
-    if (rc == 0) {
-        eval_text_t csv = {0}, json = {0};
-        eval_text_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
-                               "blade_length_error,spring_error,passes\n");
-        eval_text_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n",
-                         (const char *)glGetString(GL_RENDERER), frames);
-        for (int i = 0; i < n; i++) {
-            const app_metrics_t *m = &met[i];
-            eval_text_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", cfg[i].group, cfg[i].label,
-                             scene_mode_name(cfg[i].mode), m->frame_ms, m->cpu_ms, err_img[i],
-                             m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
-            eval_text_printf(&json,
-                             "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
-                             "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
-                             "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
-                             "\"passes\": {",
-                             cfg[i].group, cfg[i].label, scene_mode_name(cfg[i].mode), m->frame_ms, m->cpu_ms,
-                             err_img[i], m->penetration_fraction, m->penetration_max, m->blade_length_error,
-                             m->spring_error);
-            for (int p = 0; p < m->pass_count; p++) {
-                eval_text_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
-                eval_text_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
-            }
-            eval_text_printf(&csv, "\n");
-            eval_text_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
-        }
-        eval_text_printf(&json, "  ]\n}\n");
-        snprintf(path, sizeof path, "%s/bench.csv", out);
-        if (!eval_text_write(&csv, path)) rc = 1;
-        snprintf(path, sizeof path, "%s/bench.json", out);
-        if (!eval_text_write(&json, path)) rc = 1;
-        eval_text_free(&csv);
-        eval_text_free(&json);
-        /* One data file and chart per group: x GPU ms, y image error. */
-        for (int i = 0; i < n && rc == 0; i++) {
-            if (i > 0 && strcmp(cfg[i].group, cfg[i - 1].group) == 0) continue;
-            int j = i;
-            double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
-            bool front[MAX_CONFIGS];
-            while (j < n && strcmp(cfg[j].group, cfg[i].group) == 0) {
-                xs[j - i] = met[j].frame_ms;
-                ys[j - i] = err_img[j];
-                j++;
-            }
-            eval_pareto(xs, ys, j - i, front);
-            eval_text_t dat = {0};
-            eval_text_printf(&dat, "# gpu_ms image_error label pareto\n");
-            for (int k = i; k < j; k++)
-                eval_text_printf(&dat, "%.5f %.6f %s %d\n", xs[k - i], ys[k - i], cfg[k].label, front[k - i]);
-            snprintf(path, sizeof path, "%s/bench_%s.dat", out, cfg[i].group);
-            if (!eval_text_write(&dat, path)) rc = 1;
-            eval_text_free(&dat);
-            write_chart(out, cfg[i].group, "image error (1 - SSIM vs reference)", 2);
-        }
-        if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
-    }
-    core_image_free(&ref);
-    free(cfg);
-    free(met);
-    free(err_img);
+    int rc = sweep ? run_sweep(o, o->quick, out, &b) : 0;
+    if (rc == 0 && stability) rc = app_stability_run(o, out, o->quick, &md, report && *report ? report : NULL);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
     if (gl_errors) {
         core_log_error("%d GL error(s) during bench", gl_errors);
-        return 1;
+        rc = rc ? rc : 1;
     }
+    if (rc == 0 && report && *report) {
+        app_options_t oc = *o;
+        snprintf(path, sizeof path, "%s/compare", out);
+        oc.out = path;
+        if (!core_fs_mkdirs(path)) rc = 1;
+        if (rc == 0) rc = app_compare(&oc);
+        if (rc == 0) rc = write_report(report, out, &b, md.s);
+    }
+    eval_text_free(&md);
+    free(b.cfg);
+    free(b.met);
+    free(b.err);
     return rc;
 }

@@ -1,8 +1,344 @@
-/* app_metrics: accuracy metrics of a world's state for `meadow bench`. */
-#include "app/app_world.h"
+/* app_metrics: accuracy metrics of a world's state for `meadow bench` and
+ * the stability suite (definitions and formulas in docs/METRICS.md).
+ *
+ * Penetration is measured against the EXACT analytic collider
+ * (shape_signed_distance at the collider's current position), never against
+ * the proxy a method collides with (blade spheres, billboard cube maps):
+ *   - blades (Jahrmann & Wimmer 2017): 8 points per Bézier curve,
+ *     p(t) = (1-t)^2 v0 + 2(1-t)t v1 + t^2 v2 at t = k/8, k = 1..8 (eq. 21's
+ *     curve; the root t = 0 is fixed and excluded);
+ *   - billboards (Orthmann et al. 2009): every non-root vertex and every
+ *     cell centre of each deformed N x M mesh (the meshes pool); a billboard
+ *     without a mesh is sampled on its wind pose (bb_ref_wind_vertex) at
+ *     the same points, so a collision the method missed counts.
+ * Characters have no exact signed distance here: their blade proxy spheres
+ * (character_set_spheres) stand in for the exact shape.
+ * Only samples whose root lies within reach of a collider (horizontal
+ * distance < bounding radius + grass height) count towards the fraction,
+ * and a collider is ignored for samples anchored inside it (blade root v0;
+ * for a billboard sample, the row-0 vertex of its column), since no method
+ * can move grass rooted inside a collider.
+ *
+ * Shape errors: blade length |L - h| / h with L = blade_ref_curve_length
+ * (32 samples), mean over real blades; billboard spring error |l - l0| / l0
+ * over the structural springs (eq. 6-7) of the deformed meshes, l0 from the
+ * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)). */
+#include "app/app_eval.h"
 
-void app_world_metrics(app_world_t *w, app_metrics_t *m)
+#include <math.h>
+#include <string.h>
+
+#define SAMPLES_PER_BLADE 8
+#define MAX_EXACT (SCENE_MAX_COLLIDERS + BLADE_MAX_SPHERES)
+
+typedef struct exact_t {
+    scene_collider_t shape;
+    vec3 pos;
+    float reach; /* bounding radius */
+} exact_t;
+
+static int gather_exact(app_world_t *w, exact_t *out)
 {
-    (void)w;
-    (void)m;
+    int n = 0;
+    for (int i = 0; i < w->colliders.count; i++) {
+        const app_collider_t *c = &w->colliders.items[i];
+        out[n].shape = c->desc;
+        glm_vec3_copy((float *)c->position, out[n].pos);
+        out[n].reach = c->bound_radius;
+        n++;
+    }
+    if (w->have_chars) {
+        float (*s)[4] = malloc(sizeof(float[4]) * BLADE_MAX_SPHERES);
+        int k = s ? character_set_spheres(&w->chars, s, BLADE_MAX_SPHERES) : 0;
+        if (k > BLADE_MAX_SPHERES) k = BLADE_MAX_SPHERES;
+        for (int i = 0; i < k; i++, n++) {
+            out[n] = (exact_t){.shape = {.type = SCENE_COLLIDER_SPHERE, .radius = s[i][3]}, .reach = s[i][3]};
+            glm_vec3_copy(s[i], out[n].pos);
+        }
+        free(s);
+    }
+    return n;
+}
+
+typedef struct pen_acc_t {
+    long near, inside;
+    double max_depth;
+} pen_acc_t;
+
+/* Depth of p inside the deepest collider among those within reach of the
+ * root (0 when outside all). *near is set when any collider is in reach.
+ * A collider that contains the sample's anchor (the fixed root point below
+ * it) is skipped: no method can move grass rooted inside a collider. */
+static float depth_at(const exact_t *ex, int n, const float root[3], float reach_extra, const float anchor[3],
+                      const float p[3], bool *near)
+{
+    float depth = 0.0f;
+    *near = false;
+    for (int i = 0; i < n; i++) {
+        float dx = root[0] - ex[i].pos[0], dz = root[2] - ex[i].pos[2];
+        float r = ex[i].reach + reach_extra;
+        if (dx * dx + dz * dz >= r * r) continue;
+        float qa[3] = {anchor[0] - ex[i].pos[0], anchor[1] - ex[i].pos[1], anchor[2] - ex[i].pos[2]};
+        if (shape_signed_distance(&ex[i].shape, qa) < 0.0f) continue;
+        *near = true;
+        float q[3] = {p[0] - ex[i].pos[0], p[1] - ex[i].pos[1], p[2] - ex[i].pos[2]};
+        float d = -shape_signed_distance(&ex[i].shape, q);
+        if (d > depth) depth = d;
+    }
+    return depth;
+}
+
+static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra,
+                   const float anchor[3], const float p[3])
+{
+    bool near;
+    float d = depth_at(ex, n, root, reach_extra, anchor, p, &near);
+    if (!near) return;
+    acc->near++;
+    if (d > 0.0f) {
+        acc->inside++;
+        if (d > acc->max_depth) acc->max_depth = d;
+    }
+}
+
+static void bezier(const blade_t *b, float t, float out[3])
+{
+    float a = (1 - t) * (1 - t), c = 2 * (1 - t) * t, d = t * t;
+    for (int k = 0; k < 3; k++) out[k] = a * b->v0[k] + c * b->v1[k] + d * b->v2[k];
+}
+
+static bool blade_finite(const blade_t *b)
+{
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(b->v1[k]) || !isfinite(b->v2[k])) return false;
+    return true;
+}
+
+static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, app_metrics_t *m,
+                          app_metrics_ext_t *x)
+{
+    uint32_t count = w->blades.padded_count;
+    blade_t *b = malloc(sizeof *b * count);
+    if (!b) return;
+    blade_gpu_read_blades(&w->blades, b, NULL);
+    double len_sum = 0;
+    long real = 0, below = 0;
+    for (uint32_t i = 0; i < count; i++) {
+        float h = b[i].v1[3];
+        if (h <= 0.0f) continue;
+        real++;
+        if (!blade_finite(&b[i])) {
+            x->nonfinite++;
+            continue;
+        }
+        len_sum += fabs(blade_ref_curve_length(&b[i], 32) - h) / h;
+        float ground = terrain_height_at(&w->terrain_mesh, b[i].v2[0], b[i].v2[2], NULL);
+        if (isfinite(ground) && b[i].v2[1] < ground - 0.01f && w->scene.terrain.type == TERRAIN_HEIGHTFIELD)
+            below++;
+        for (int k = 1; k <= SAMPLES_PER_BLADE; k++) {
+            float p[3];
+            bezier(&b[i], (float)k / SAMPLES_PER_BLADE, p);
+            sample(acc, ex, n, b[i].v0, h, b[i].v0, p);
+        }
+    }
+    if (real) {
+        m->blade_length_error = len_sum / (double)real;
+        x->below_ground = (double)below / (double)real;
+    }
+    free(b);
+}
+
+static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, app_metrics_t *m,
+                       app_metrics_ext_t *x)
+{
+    bb_field_t *f = &w->bb;
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    bb_point_t *pts = malloc(sizeof *pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
+    float (*mesh)[4] = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * (size_t)nv);
+    vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
+    if (!pts || !mesh || !grid) goto done;
+    glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof *pts * (size_t)f->billboards), pts);
+    glGetNamedBufferSubData(f->meshes.id, 0, (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv),
+                            mesh);
+    double spring_sum = 0;
+    long springs = 0;
+    for (int i = 0; i < f->billboards; i++) {
+        const bb_point_t *p = &pts[i];
+        uint32_t slot = p->pad[0];
+        bool deformed = slot != BB_NO_SLOT && slot < (uint32_t)f->desc.max_deformed;
+        vec3 right, up;
+        bb_point_frame(p, right, up);
+        if (deformed) {
+            x->deformed++;
+            for (int v = 0; v < nv; v++) {
+                glm_vec3_copy(mesh[(size_t)slot * nv + v], grid[v]);
+                if (!isfinite(grid[v][0]) || !isfinite(grid[v][1]) || !isfinite(grid[v][2])) x->nonfinite++;
+            }
+            float l0x = p->size[0] / (float)(nn - 1), l0y = p->size[1] / (float)(mm - 1);
+            for (int j = 0; j < mm; j++)
+                for (int c = 0; c < nn; c++) {
+                    if (c + 1 < nn) {
+                        spring_sum += fabsf(glm_vec3_distance(grid[j * nn + c], grid[j * nn + c + 1]) - l0x) / l0x;
+                        springs++;
+                    }
+                    if (j + 1 < mm) {
+                        spring_sum +=
+                            fabsf(glm_vec3_distance(grid[j * nn + c], grid[(j + 1) * nn + c]) - l0y) / l0y;
+                        springs++;
+                    }
+                }
+        } else {
+            for (int j = 0; j < mm; j++)
+                for (int c = 0; c < nn; c++) {
+                    float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
+                    float yo = p->size[1] * (float)j / (float)(mm - 1);
+                    vec3 rest;
+                    for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
+                    bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1),
+                                       f->time, grid[j * nn + c]);
+                }
+        }
+        float reach = fmaxf(p->size[0], p->size[1]);
+        for (int j = 1; j < mm; j++)
+            for (int c = 0; c < nn; c++) {
+                sample(acc, ex, n, p->position, reach, grid[c], grid[j * nn + c]);
+                if (c + 1 < nn) {
+                    vec3 q;
+                    for (int k = 0; k < 3; k++)
+                        q[k] = 0.25f * (grid[j * nn + c][k] + grid[j * nn + c + 1][k] + grid[(j - 1) * nn + c][k] +
+                                        grid[(j - 1) * nn + c + 1][k]);
+                    sample(acc, ex, n, p->position, reach, grid[c], q);
+                }
+            }
+    }
+    m->spring_error = springs ? spring_sum / (double)springs : 0.0;
+done:
+    free(pts);
+    free(mesh);
+    free(grid);
+}
+
+void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *x)
+{
+    app_metrics_ext_t dummy;
+    if (!x) x = &dummy;
+    memset(x, 0, sizeof *x);
+    m->penetration_fraction = m->penetration_max = m->blade_length_error = m->spring_error = -1;
+    exact_t *ex = malloc(sizeof *ex * MAX_EXACT);
+    if (!ex) return;
+    int n = gather_exact(w, ex);
+    pen_acc_t acc = {0};
+    bool blades = w->have_blades && (w->mode != SCENE_MODE_BILLBOARD || w->reference);
+    bool bbs = w->have_bb && w->mode != SCENE_MODE_BLADE && !w->reference;
+    if (blades) blade_metrics(w, ex, n, &acc, m, x);
+    if (bbs) bb_metrics(w, ex, n, &acc, m, x);
+    if (blades || bbs) {
+        m->penetration_fraction = acc.near ? (double)acc.inside / (double)acc.near : 0.0;
+        m->penetration_max = acc.max_depth;
+    }
+    x->near_samples = acc.near;
+    x->inside_samples = acc.inside;
+    free(ex);
+}
+
+void app_world_metrics(app_world_t *w, app_metrics_t *m) { app_world_metrics_ext(w, m, NULL); }
+
+static blade_t *read_blades(app_world_t *w)
+{
+    blade_t *b = malloc(sizeof *b * w->blades.padded_count);
+    if (b) blade_gpu_read_blades(&w->blades, b, NULL);
+    return b;
+}
+
+double app_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter)
+{
+    if (!w->have_blades || !twin->have_blades || w->blades.padded_count != twin->blades.padded_count) return 0;
+    blade_t *a = read_blades(w), *b = read_blades(twin);
+    double worst = 0, jit = 0;
+    bool first = prev && !*primed;
+    for (uint32_t i = 0; a && b && i < w->blades.padded_count; i++) {
+        if (a[i].v1[3] <= 0.0f) continue;
+        float d[3];
+        for (int k = 0; k < 3; k++) d[k] = a[i].v2[k] - b[i].v2[k];
+        double len = sqrt((double)d[0] * d[0] + (double)d[1] * d[1] + (double)d[2] * d[2]);
+        if (!isfinite(len)) worst = INFINITY;
+        else if (len > worst) worst = len;
+        if (prev) {
+            if (!first) {
+                double dj = sqrt((double)(d[0] - prev[3 * i]) * (d[0] - prev[3 * i]) +
+                                 (double)(d[1] - prev[3 * i + 1]) * (d[1] - prev[3 * i + 1]) +
+                                 (double)(d[2] - prev[3 * i + 2]) * (d[2] - prev[3 * i + 2]));
+                if (dj > jit) jit = dj;
+            }
+            memcpy(&prev[3 * i], d, sizeof d);
+        }
+    }
+    if (prev) *primed = true;
+    if (jitter) *jitter = jit;
+    free(a);
+    free(b);
+    return worst;
+}
+
+double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+                                  float radius, float frac, long *corridor)
+{
+    *corridor = 0;
+    if (!w->have_blades || !twin->have_blades || w->blades.padded_count != twin->blades.padded_count) return 0;
+    blade_t *x = read_blades(w), *y = read_blades(twin);
+    long hit = 0;
+    float ab[2] = {b[0] - a[0], b[1] - a[1]};
+    float ab2 = ab[0] * ab[0] + ab[1] * ab[1];
+    for (uint32_t i = 0; x && y && i < w->blades.padded_count; i++) {
+        float h = x[i].v1[3];
+        if (h <= 0.0f) continue;
+        float ap[2] = {x[i].v0[0] - a[0], x[i].v0[2] - a[1]};
+        float t = (ap[0] * ab[0] + ap[1] * ab[1]) / ab2;
+        if (t <= 0.0f || t >= 1.0f) continue;
+        float dx = ap[0] - t * ab[0], dz = ap[1] - t * ab[1];
+        if (dx * dx + dz * dz > radius * radius) continue;
+        (*corridor)++;
+        float dd = glm_vec3_distance(x[i].v2, y[i].v2);
+        if (!isfinite(dd) || dd > frac * h) hit++;
+    }
+    free(x);
+    free(y);
+    return *corridor ? (double)hit / (double)*corridor : 0.0;
+}
+
+double app_metrics_bb_offset(app_world_t *w)
+{
+    if (!w->have_bb) return 0;
+    bb_field_t *f = &w->bb;
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    bb_point_t *pts = malloc(sizeof *pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
+    float (*mesh)[4] = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * (size_t)nv);
+    double worst = 0;
+    if (pts && mesh) {
+        glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof *pts * (size_t)f->billboards), pts);
+        glGetNamedBufferSubData(f->meshes.id, 0,
+                                (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv), mesh);
+        for (int i = 0; i < f->billboards; i++) {
+            const bb_point_t *p = &pts[i];
+            uint32_t slot = p->pad[0];
+            if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) continue;
+            vec3 right, up;
+            bb_point_frame(p, right, up);
+            for (int j = 1; j < mm; j++)
+                for (int c = 0; c < nn; c++) {
+                    float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
+                    float yo = p->size[1] * (float)j / (float)(mm - 1);
+                    vec3 rest, wind;
+                    for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
+                    bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1),
+                                       f->time, wind);
+                    double d = glm_vec3_distance(wind, mesh[(size_t)slot * nv + j * nn + c]);
+                    if (!isfinite(d)) d = INFINITY;
+                    if (d > worst) worst = d;
+                }
+        }
+    }
+    free(pts);
+    free(mesh);
+    return worst;
 }

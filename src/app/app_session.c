@@ -1,38 +1,85 @@
 /* app_session: one offscreen run of a scene in an existing GL context, for
- * `meadow compare` and `meadow bench`: world, frames, timings, last frame. */
-#include "app/app_world.h"
+ * `meadow compare`, `meadow bench` and the stability suite: world, frames,
+ * timings, last frame, accuracy metrics (app_metrics.c), and optional
+ * per-frame hooks (app_eval.h). */
+#include "app/app_eval.h"
 
 #include <string.h>
 
 #include "platform/plat.h"
 
-int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics_t *m)
+/* The world update of a blade-only world with the hook's sphere proxies in
+ * place of app_world's (same order: colliders, then one blade step). */
+static void update_with_proxies(app_world_t *w, const app_session_hooks_t *h, float t, float dt)
 {
-    app_world_t *w = calloc(1, sizeof *w);
-    if (!w) return 1;
+    w->time = t;
+    app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+    blade_env_t *env = &w->blade_env;
+    env->dt = dt;
+    env->time = t;
+    env->sphere_count = h->blade_spheres(w, env->spheres, BLADE_MAX_SPHERES, h->user);
+    blade_gpu_simulate(&w->blades, env);
+}
+
+int app_session_world(const app_session_desc_t *d, app_world_t *w)
+{
     int rc = app_world_load(w, d->opts);
     if (rc) {
         app_world_destroy(w);
+        return rc;
+    }
+    scene_desc_t *s = &w->scene;
+    if (d->mode_set) {
+        w->mode = d->mode;
+        s->mode = d->mode;
+    }
+    if (d->msaa) s->msaa = d->msaa;
+    w->reference = d->reference;
+    w->tuning = d->tuning;
+    terrain_desc_t terrain_before = s->terrain;
+    if (d->tweak) d->tweak(s, d->user);
+    /* A tweak of a heightfield rebuilds the terrain app_world_load made. */
+    if (memcmp(&terrain_before, &s->terrain, sizeof terrain_before) != 0 && s->terrain.type == TERRAIN_HEIGHTFIELD) {
+        terrain_free(&w->terrain_mesh);
+        if (!terrain_make_heightfield(&w->terrain_mesh, &s->terrain, s->seed)) {
+            core_log_error("session: cannot build the tweaked heightfield of %s", w->scene_path);
+            app_world_destroy(w);
+            return 1;
+        }
+    }
+    if (!app_world_make_gpu(w)) {
+        core_log_error("session: cannot build the renderer for %s", w->scene_path);
+        rc = w->input_error ? 2 : 1;
+        app_world_destroy(w);
+        return rc;
+    }
+    return 0;
+}
+
+int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t *h, core_image_t *last,
+                          app_metrics_t *m)
+{
+    static const app_session_hooks_t none = {0};
+    if (!h) h = &none;
+    app_world_t *w = calloc(1, sizeof *w);
+    if (!w) return 1;
+    int rc = app_session_world(d, w);
+    if (rc) {
         free(w);
         return rc;
     }
     scene_desc_t *s = &w->scene;
-    if (d->mode_set) app_world_set_mode(w, d->mode);
-    if (d->msaa) s->msaa = d->msaa;
-    w->reference = d->reference;
-    w->tuning = d->tuning;
-    if (d->tweak) d->tweak(s, d->user);
     int frames = d->frames > 0 ? d->frames : 60;
     int warmup = d->warmup > 0 ? d->warmup : frames / 4;
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
                                                                .samples = s->msaa, .label = "session"});
-    if (!target.fbo || !app_world_make_gpu(w)) {
-        core_log_error("session: cannot build the renderer for %s", w->scene_path);
-        gfx_target_destroy(&target);
+    if (!target.fbo) {
+        core_log_error("session: cannot make the %dx%d target for %s", s->size[0], s->size[1], w->scene_path);
         app_world_destroy(w);
         free(w);
         return 1;
     }
+    bool own_update = h->blade_spheres && w->have_blades && !w->have_bb && !w->have_chars;
     cam_t cam;
     scene_camera_init(s, &cam);
     double cpu0 = 0;
@@ -44,7 +91,10 @@ int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics
         }
         gfx_timer_frame_begin();
         float t = (float)((f + 1) * s->dt);
-        app_world_update(w, t, s->dt);
+        if (own_update) update_with_proxies(w, h, t, s->dt);
+        else app_world_update(w, t, s->dt);
+        if (h->frame) h->frame(w, f, t, h->user);
+        if (h->draw_last_only && f + 1 < frames) continue;
         if (s->camera.path.count) cam_path_eval(&s->camera.path, t, &cam);
         app_view_t view;
         app_view_make(&view, &cam, target.w, target.h, t, s->dt);
@@ -59,7 +109,6 @@ int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics
     gfx_timer_flush();
     if (m) {
         memset(m, 0, sizeof *m);
-        m->penetration_fraction = m->penetration_max = m->blade_length_error = m->spring_error = -1;
         m->cpu_ms = cpu * 1000.0 / (frames - warmup > 0 ? frames - warmup : 1);
         m->pass_count = gfx_timer_count();
         for (int i = 0; i < m->pass_count; i++) {
@@ -67,11 +116,16 @@ int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics
             snprintf(m->pass_name[i], sizeof m->pass_name[i], "%s", gfx_timer_name(i));
             m->frame_ms += m->pass_ms[i];
         }
-        app_world_metrics(w, m);
+        app_world_metrics_ext(w, m, h->ext);
     }
     bool ok = !last || gfx_target_read(&target, last);
     gfx_target_destroy(&target);
     app_world_destroy(w);
     free(w);
     return ok ? 0 : 1;
+}
+
+int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics_t *m)
+{
+    return app_session_run_hooks(d, NULL, last, m);
 }

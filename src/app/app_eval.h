@@ -1,0 +1,63 @@
+/* app_eval: private interface between the evaluation files of the meadow
+ * program: app_metrics.c (accuracy metrics, docs/METRICS.md), app_session.c
+ * (offscreen runs with per-frame hooks), app_bench.c (sweeps and charts) and
+ * app_stability.c (where each method breaks). */
+#ifndef MEADOW_APP_EVAL_H
+#define MEADOW_APP_EVAL_H
+
+#include "app/app_world.h"
+#include "eval/eval.h"
+
+/* Metrics beyond app_metrics_t (filled next to it by app_world_metrics_ext). */
+typedef struct app_metrics_ext_t {
+    long near_samples;   /* grass sample points within reach of a collider */
+    long inside_samples; /* of those, inside the exact shape */
+    long nonfinite;      /* blade or billboard values that are NaN or infinite */
+    double below_ground; /* fraction of blade tips more than 1 cm under the terrain */
+    int deformed;        /* billboards with a deformed mesh */
+} app_metrics_ext_t;
+
+/* app_world_metrics plus the extra counts (x may be NULL). */
+void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *x);
+/* Largest tip offset max |v2 - v2_twin| (m) between two blade worlds built
+ * from the same scene and seed; INFINITY when a value is not finite. When
+ * prev (w->blades.padded_count x 3 floats, NULL to skip) is given, *jitter
+ * gets the largest change of (v2 - v2_twin) since the previous call with
+ * the same prev (0 while *primed is false), prev is updated and *primed set. */
+double app_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter);
+/* Fraction of real blades whose tips lie inside `radius` of the line from a
+ * to b (xz plane, roots between the ends) that are deflected from the twin
+ * by more than frac x their height; *corridor gets their count. */
+double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+                                  float radius, float frac, long *corridor);
+/* Largest distance (m) of a deformed billboard mesh vertex from its wind
+ * pose at the field's time; 0 when no mesh is deformed. */
+double app_metrics_bb_offset(app_world_t *w);
+
+/* Per-frame hooks of an offscreen session (all optional). */
+typedef struct app_session_hooks_t {
+    /* Replaces the world's blade sphere proxies; only for blade-mode worlds
+     * without characters (the world update is then done here). */
+    int (*blade_spheres)(app_world_t *w, blade_sphere_t *out, int max, void *user);
+    /* Called after every simulated step. */
+    void (*frame)(app_world_t *w, int frame, float t, void *user);
+    void *user;
+    bool draw_last_only;    /* simulate every frame, draw the last one only */
+    app_metrics_ext_t *ext; /* filled with the metrics when non-NULL */
+} app_session_hooks_t;
+
+/* Loads the world of a session (scene, mode, tweak; a tweaked heightfield is
+ * rebuilt) and makes its GPU resources. Returns 0, or the exit code with w
+ * destroyed. */
+int app_session_world(const app_session_desc_t *desc, app_world_t *w);
+int app_session_run_hooks(const app_session_desc_t *desc, const app_session_hooks_t *hooks, core_image_t *last,
+                          app_metrics_t *metrics);
+
+/* Stability suite: writes stability.csv, stability.md and
+ * stability_<case>.png into out; with report (a folder) the screenshots
+ * also go to report/images and md (when non-NULL) gets the table with links
+ * relative to report. Needs a current GL context (gfx_init done). Returns 0
+ * or 1. */
+int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md, const char *report);
+
+#endif

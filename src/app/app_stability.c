@@ -1,0 +1,438 @@
+/* app_stability: `meadow bench --stability`: for each case, sweeps one
+ * parameter over small scenes built here (6 m heightfield, a few thousand
+ * blades or a few hundred billboards), applies the case's failure
+ * criterion and reports the first value where the method breaks, with a
+ * screenshot of that run (or of the last value when none broke). The
+ * measures come from app_metrics.c (docs/METRICS.md): penetration against
+ * the exact collider shapes, blade length error, recovery time after a
+ * collider leaves (offset from an undisturbed twin world for blades, from
+ * the wind pose of eq. 8 for billboards), jitter of a resting collider,
+ * and trail coverage of a fast collider (tunnelling). */
+#include "app/app_eval.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "platform/plat.h"
+
+#define STAB_VALUES 6
+#define RECOVERY_EPS 0.01 /* m: back within 1 cm of the undisturbed pose */
+#define PASS_FROM -2.5f
+#define PASS_TO 2.5f
+
+typedef enum stab_measure_t {
+    MEASURE_STATIC = 0, /* metrics of the last frame */
+    MEASURE_PASS,       /* a ball passes once and leaves: recovery, coverage */
+    MEASURE_JITTER,     /* a ball rests: frame-to-frame offset change */
+} stab_measure_t;
+
+typedef struct stab_result_t {
+    app_metrics_t m;
+    app_metrics_ext_t x;
+    double recovery;  /* s after the collider left; INFINITY: not recovered */
+    double coverage;  /* trail coverage right after the pass */
+    double jitter;    /* m per frame over the last 0.5 s */
+    double measure;   /* the case's measure */
+    bool fails;
+} stab_result_t;
+
+typedef struct stab_case_t {
+    const char *name;
+    scene_mode_t mode;
+    const char *param;
+    float values[STAB_VALUES];
+    stab_measure_t measure;
+    const char *measure_name;
+    const char *criterion;
+    const char *note;
+    void (*setup)(scene_desc_t *s, float v);
+    /* Fills r->measure and r->fails; first is the run of values[0]. */
+    void (*judge)(stab_result_t *r, const stab_result_t *first, float v, float dt);
+} stab_case_t;
+
+/* ---- scenes ----------------------------------------------------------------- */
+
+static void base_scene(scene_desc_t *s)
+{
+    s->terrain = (terrain_desc_t){.type = TERRAIN_HEIGHTFIELD, .size = 6, .resolution = 16, .height = 0.05f};
+    terrain_desc_t td = terrain_desc_defaults(&s->terrain);
+    s->terrain = td;
+    s->grass.density = 60;
+    s->grass.height[0] = 0.35f;
+    s->grass.height[1] = 0.5f;
+    s->grass.billboard_density = 6;
+    s->grass.billboard_size[0] = 0.6f;
+    s->grass.billboard_size[1] = 0.4f;
+    s->grass.subdiv[0] = s->grass.subdiv[1] = 4;
+    s->grass.cube_resolution = 16;
+    s->grass.spring_iterations = 2;
+    s->grass.recover_time = 1.0f;
+    s->dt = 1.0f / 60.0f;
+    s->size[0] = 240;
+    s->size[1] = 160;
+    s->msaa = 1;
+    s->wind_count = 1;
+    s->wind[0] = (scene_wind_t){.type = SCENE_WIND_DIRECTIONAL, .direction = {1, 0}, .strength = 0.5f,
+                                .wavelength = 4, .speed = 1};
+    s->camera.path.count = 0;
+    glm_vec3_copy((vec3){0.0f, 1.8f, 3.0f}, s->camera.position);
+    glm_vec3_copy((vec3){0.0f, 0.1f, 0.0f}, s->camera.target);
+    s->collider_count = 0;
+    s->character_count = 0;
+}
+
+static scene_collider_t *add_sphere(scene_desc_t *s, float r, float x, float y, float z)
+{
+    scene_collider_t *c = &s->colliders[s->collider_count++];
+    *c = (scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = r};
+    c->path.count = 1;
+    glm_vec3_copy((vec3){x, y, z}, c->path.keys[0].position);
+    return c;
+}
+
+/* A ball crossing the field along x at z = 0 from t = 0 to t_pass, then
+ * lifted 30 m within a millisecond (it leaves). */
+static void add_pass(scene_desc_t *s, float r, float t_pass)
+{
+    scene_collider_t *c = add_sphere(s, r, PASS_FROM, r, 0);
+    c->path.count = 3;
+    c->path.keys[1] = (scene_path_key_t){.t = t_pass, .position = {PASS_TO, r, 0}};
+    c->path.keys[2] = (scene_path_key_t){.t = t_pass + 0.001f, .position = {PASS_TO, 30.0f, 0}};
+}
+
+#define PASS_SPEED 5.0f
+#define PASS_TIME ((PASS_TO - PASS_FROM) / PASS_SPEED)
+
+static void setup_tunnel(scene_desc_t *s, float v) { add_pass(s, 0.3f, (PASS_TO - PASS_FROM) / v); }
+static void setup_rate(scene_desc_t *s, float v)
+{
+    s->dt = 1.0f / v;
+    add_pass(s, 0.3f, PASS_TIME);
+}
+static void setup_thin(scene_desc_t *s, float v)
+{
+    scene_collider_t *c = add_sphere(s, 0, 0, 0.3f, 0);
+    c->type = SCENE_COLLIDER_BOX;
+    glm_vec3_copy((vec3){0.6f, 0.3f, v}, c->half_extents);
+}
+static void setup_concave(scene_desc_t *s, float v)
+{
+    add_sphere(s, 0.35f, -0.5f * v, 0.3f, 0);
+    add_sphere(s, 0.35f, 0.5f * v, 0.3f, 0);
+}
+static void setup_large(scene_desc_t *s, float v)
+{
+    add_sphere(s, v, 0, v - 0.15f, 0);
+    glm_vec3_copy((vec3){0.0f, 1.2f + v, 3.0f + 1.2f * v}, s->camera.position);
+}
+static void setup_squeeze(scene_desc_t *s, float v)
+{
+    add_sphere(s, 0.35f, -(0.35f + 0.5f * v), 0.3f, 0);
+    add_sphere(s, 0.35f, 0.35f + 0.5f * v, 0.3f, 0);
+}
+static void setup_resting(scene_desc_t *s, float v)
+{
+    s->grass.stiffness[0] = s->grass.stiffness[1] = v;
+    add_sphere(s, 0.35f, 0, 0.3f, 0);
+}
+static void setup_steep(scene_desc_t *s, float v)
+{
+    s->terrain.height = v;
+    add_pass(s, 0.3f, 1.5f);
+    glm_vec3_copy((vec3){0.0f, 1.5f + 1.5f * v, 3.5f + v}, s->camera.position);
+}
+static void setup_many(scene_desc_t *s, float v)
+{
+    int n = (int)v, side = (int)ceilf(sqrtf((float)n));
+    for (int i = 0; i < n; i++)
+        add_sphere(s, 0.12f, -2.2f + 4.4f * ((float)(i % side) + 0.5f) / (float)side, 0.08f,
+                   -2.2f + 4.4f * ((float)(i / side) + 0.5f) / (float)side);
+    glm_vec3_copy((vec3){0.0f, 4.0f, 4.0f}, s->camera.position);
+}
+
+/* ---- failure criteria ------------------------------------------------------------- */
+
+static void judge_tunnel(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)first, (void)v, (void)dt;
+    r->measure = r->coverage;
+    r->fails = r->coverage < 0.9;
+}
+static void judge_rate(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)v;
+    r->measure = r->recovery;
+    double tol = fmax(0.15 * first->recovery, 2.0 * dt);
+    r->fails = r->x.nonfinite > 0 || !isfinite(r->recovery) || fabs(r->recovery - first->recovery) > tol;
+}
+static void judge_thin(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)v, (void)dt;
+    r->measure = r->m.penetration_fraction;
+    r->fails = r->measure > fmax(0.01, 2.0 * first->m.penetration_fraction);
+}
+/* Depth criteria are relative to the case's easiest value (values[0]):
+ * a method fails when the deepest sample exceeds both the absolute limit
+ * and twice its depth at the easy value (the baseline of the method, e.g.
+ * blades test only v2 and the midpoint). */
+static void judge_depth5(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)v, (void)dt;
+    r->measure = r->m.penetration_max;
+    r->fails = r->x.nonfinite > 0 || r->m.penetration_max > fmax(0.05, 2.0 * first->m.penetration_max);
+}
+static void judge_depth2(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)v, (void)dt;
+    r->measure = r->m.penetration_max;
+    r->fails = r->x.nonfinite > 0 || r->m.penetration_max > fmax(0.02, 2.0 * first->m.penetration_max);
+}
+static void judge_jitter(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)first, (void)v, (void)dt;
+    r->measure = r->jitter;
+    r->fails = r->x.nonfinite > 0 || r->jitter > 0.005;
+}
+static void judge_steep(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)first, (void)v, (void)dt;
+    r->measure = fmax(r->m.blade_length_error, r->x.below_ground);
+    r->fails = r->x.nonfinite > 0 || r->measure > 0.05 || r->m.penetration_max > 0.05;
+}
+
+static const stab_case_t cases[] = {
+    {"tunnelling", SCENE_MODE_BLADE, "ball speed m/s (r 0.3 m, dt 1/60)", {2, 5, 10, 20, 40, 80}, MEASURE_PASS,
+     "trail coverage", "coverage < 0.9 (blades within r/2 of the path deflected > 0.2 h)",
+     "collision is tested at the sampled positions only (no swept test): blades between two frames' spheres "
+     "are never touched once the step exceeds about 2 r",
+     setup_tunnel, judge_tunnel},
+    {"framerate_blade", SCENE_MODE_BLADE, "simulation rate Hz (dt = 1/Hz)", {144, 60, 30, 15, 8, 4}, MEASURE_PASS,
+     "recovery s", "abs(recovery - recovery at 144 Hz) > max(15%, 2 dt), or NaN",
+     "eq. 1 integrated explicitly; eta grows by collision_gain |d|^2 per step without an upper bound and decays by dt / recover_time, so blades pressed flat keep eta >> 1 and recovery at 10% (max(1 - eta, 0.1)) loses to gravity: they stay down (\"never\" = still > 1 cm off the undisturbed twin at the end of the run)", setup_rate, judge_rate},
+    {"framerate_bb", SCENE_MODE_BILLBOARD, "simulation rate Hz (dt = 1/Hz)", {144, 60, 30, 15, 8, 4},
+     MEASURE_PASS, "recovery s", "abs(recovery - recovery at 144 Hz) > max(15%, 2 dt), or NaN",
+     "eq. 8 recovery is a function of the remaining time, not of the step count", setup_rate, judge_rate},
+    {"thin_bb", SCENE_MODE_BILLBOARD, "box half-thickness m (cube 16, texel ~0.084 m)",
+     {0.2f, 0.1f, 0.05f, 0.025f, 0.0125f, 0.006f}, MEASURE_STATIC, "penetration fraction",
+     "fraction inside > max(1%, 2 x first value's)",
+     "a wall thinner than a cube-map texel falls between texel centres of the side faces", setup_thin,
+     judge_thin},
+    {"concave_bb", SCENE_MODE_BILLBOARD, "centre separation of two r 0.35 m spheres (notch)",
+     {0, 0.2f, 0.35f, 0.5f, 0.6f, 0.65f}, MEASURE_STATIC, "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
+     "each sphere has its own cube map; a push out of one can end inside the other", setup_concave,
+     judge_depth5},
+    {"concave_blade", SCENE_MODE_BLADE, "centre separation of two r 0.35 m spheres (notch)",
+     {0, 0.2f, 0.35f, 0.5f, 0.6f, 0.65f}, MEASURE_STATIC, "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
+     "blade_ref_exit handles several spheres; only v2 and the midpoint are tested", setup_concave, judge_depth5},
+    {"large_bb", SCENE_MODE_BILLBOARD, "sphere radius m (cube 16)", {0.25f, 0.5f, 1, 2, 3, 4}, MEASURE_STATIC,
+     "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
+     "the cube covers the bounding sphere: its texel grows with the collider (2 r / 16)", setup_large,
+     judge_depth5},
+    {"squeeze_blade", SCENE_MODE_BLADE, "gap between two r 0.35 m spheres m", {0.4f, 0.2f, 0.1f, 0.05f, 0.02f, 0},
+     MEASURE_STATIC, "max depth m", "deepest sample > max(0.02 m, 2 x first value's), or NaN",
+     "a blade between two spheres is pushed by both", setup_squeeze, judge_depth2},
+    {"squeeze_bb", SCENE_MODE_BILLBOARD, "gap between two r 0.35 m spheres m", {0.4f, 0.2f, 0.1f, 0.05f, 0.02f, 0},
+     MEASURE_STATIC, "max depth m", "deepest sample > max(0.02 m, 2 x first value's), or NaN",
+     "eq. 5 pushes along one face's normal per object and pass", setup_squeeze, judge_depth2},
+    {"resting_blade", SCENE_MODE_BLADE, "blade stiffness (r 0.35 m ball resting, 5 cm sunk)",
+     {100, 50, 20, 10, 5, 2}, MEASURE_JITTER, "jitter m/frame", "frame-to-frame tip change > 5 mm (wind removed)",
+     "recovery (eq. 1) and collision push alternate every step", setup_resting, judge_jitter},
+    {"steep_blade", SCENE_MODE_BLADE, "heightfield amplitude m (6 m terrain)", {0.5f, 1, 2, 4, 8, 16},
+     MEASURE_STATIC, "max(length error, tips under ground)", "> 5%, or a sample > 0.05 m deep, or NaN",
+     "gravity (eq. 2-4) pulls tips downhill; blades stand along the surface normal", setup_steep, judge_steep},
+    {"many_bb", SCENE_MODE_BILLBOARD, "resting r 0.12 m balls", {1, 4, 16, 17, 32, 128}, MEASURE_STATIC,
+     "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
+     "the field collides with BB_MAX_OBJECTS (16) objects per update; the rest are ignored (warned)", setup_many,
+     judge_depth5},
+    {"many_blade", SCENE_MODE_BLADE, "resting r 0.12 m balls", {1, 4, 16, 17, 32, 128}, MEASURE_STATIC,
+     "max depth m", "deepest sample > max(0.05 m, 2 x first value's)", "BLADE_MAX_SPHERES (512) sphere proxies per step", setup_many,
+     judge_depth5},
+};
+#define CASE_COUNT ((int)(sizeof cases / sizeof cases[0]))
+
+/* ---- one run --------------------------------------------------------------------------- */
+
+typedef struct stab_run_t {
+    const stab_case_t *c;
+    float v;
+    bool twin_wanted, no_colliders;
+    const app_options_t *o;
+    app_world_t *twin;
+    float t_exit, t_end;
+    float *prev;
+    bool primed, covered;
+    double last_over, jitter, coverage;
+} stab_run_t;
+
+static void tweak(scene_desc_t *s, void *user)
+{
+    const stab_run_t *r = user;
+    base_scene(s);
+    r->c->setup(s, r->v);
+    if (r->no_colliders) s->collider_count = 0;
+}
+
+static void frame(app_world_t *w, int f, float t, void *user)
+{
+    stab_run_t *r = user;
+    if (f == 0 && r->twin_wanted) {
+        stab_run_t tw = *r;
+        tw.no_colliders = true;
+        r->twin = calloc(1, sizeof *r->twin);
+        app_session_desc_t d = {.opts = r->o, .mode = r->c->mode, .mode_set = true, .tweak = tweak, .user = &tw};
+        if (r->twin && app_session_world(&d, r->twin) != 0) {
+            free(r->twin);
+            r->twin = NULL;
+        }
+        r->prev = calloc((size_t)w->blades.padded_count * 3, sizeof(float));
+    }
+    if (r->twin) app_world_update(r->twin, t, w->scene.dt);
+    if (r->c->measure == MEASURE_PASS && t > r->t_exit) {
+        double off = r->twin ? app_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : app_metrics_bb_offset(w);
+        if (!(off <= RECOVERY_EPS)) r->last_over = t;
+        if (!r->covered && r->twin) {
+            long corridor;
+            r->coverage = app_metrics_blade_coverage(w, r->twin, (float[2]){PASS_FROM + 0.3f, 0},
+                                                     (float[2]){PASS_TO - 0.3f, 0}, 0.15f, 0.2f, &corridor);
+            r->covered = true;
+        }
+    }
+    if (r->c->measure == MEASURE_JITTER && r->twin && r->prev && t > r->t_end - 0.5f) {
+        double j = 0;
+        app_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
+        if (j > r->jitter) r->jitter = j;
+    }
+}
+
+static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool quick, core_image_t *img,
+                   stab_result_t *res)
+{
+    memset(res, 0, sizeof *res);
+    stab_run_t r = {.c = c, .v = v, .o = o};
+    scene_desc_t probe;
+    memset(&probe, 0, sizeof probe);
+    base_scene(&probe);
+    c->setup(&probe, v);
+    float dt = probe.dt;
+    float duration = 0.5f;
+    if (c->measure == MEASURE_PASS) {
+        r.t_exit = probe.colliders[0].path.keys[1].t;
+        duration = r.t_exit + (c == &cases[0] ? 0.1f : (quick ? 2.0f : 3.5f));
+    } else if (c->measure == MEASURE_JITTER) {
+        duration = quick ? 1.0f : 1.5f;
+    } else if (quick) {
+        duration = 0.25f;
+    }
+    if (c->setup == setup_steep) duration = 1.6f;
+    r.t_end = duration;
+    r.twin_wanted = c->mode == SCENE_MODE_BLADE && c->measure != MEASURE_STATIC;
+    int frames = (int)ceilf(duration / dt);
+    app_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
+                            .user = &r};
+    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = true, .ext = &res->x};
+    int rc = app_session_run_hooks(&d, &h, img, &res->m);
+    res->recovery = r.last_over >= (float)frames * dt - 0.5f * dt ? INFINITY : fmax(r.last_over - r.t_exit, 0.0);
+    res->coverage = r.coverage;
+    res->jitter = r.jitter;
+    if (r.twin) {
+        app_world_destroy(r.twin);
+        free(r.twin);
+    }
+    free(r.prev);
+    return rc;
+}
+
+/* ---- the suite ---------------------------------------------------------------------------- */
+
+static void fmt_value(char *buf, size_t n, double v)
+{
+    if (isinf(v)) snprintf(buf, n, "never");
+    else snprintf(buf, n, "%.4g", v);
+}
+
+int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md_out, const char *report)
+{
+    char path[1200], buf[32];
+    eval_text_t csv = {0}, md = {0}, mdr = {0};
+    eval_text_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
+                           "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground\n");
+    static const char *head = "| case | method | parameter | values | measure | measured | failure criterion | "
+                              "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    eval_text_printf(&md, "%s", head);
+    eval_text_printf(&mdr, "%s", head);
+    int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0;
+    double t0 = plat_time();
+    for (int ci = 0; ci < CASE_COUNT && rc == 0; ci++) {
+        const stab_case_t *c = &cases[ci];
+        stab_result_t res[STAB_VALUES], first = {0};
+        core_image_t shot = {0}, img = {0};
+        int broke = -1;
+        char values[160] = "", measured[200] = "";
+        for (int k = 0; k < runs && rc == 0; k++) {
+            int vi = quick && k == 1 ? STAB_VALUES - 1 : k;
+            float v = c->values[vi];
+            rc = run_one(o, c, v, quick, &img, &res[k]);
+            if (rc) break;
+            if (k == 0) first = res[0];
+            float dt = 1.0f / 60.0f;
+            if (c->setup == setup_rate) dt = 1.0f / v;
+            c->judge(&res[k], &first, v, dt);
+            if (res[k].fails && broke < 0) broke = vi;
+            if ((res[k].fails && broke == vi) || (broke < 0 && k == runs - 1) || !shot.px) {
+                core_image_free(&shot);
+                shot = img;
+                img = (core_image_t){0};
+            }
+            core_image_free(&img);
+            const app_metrics_t *m = &res[k].m;
+            const app_metrics_ext_t *x = &res[k].x;
+            eval_text_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f\n", c->name,
+                             scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
+                             m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
+                             res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite, x->below_ground);
+            size_t lv = strlen(values), lm = strlen(measured);
+            fmt_value(buf, sizeof buf, res[k].measure);
+            snprintf(values + lv, sizeof values - lv, "%s%g", k ? ", " : "", v);
+            snprintf(measured + lm, sizeof measured - lm, "%s%s%s", k ? ", " : "", buf, res[k].fails ? "*" : "");
+            done++;
+            fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, CASE_COUNT * runs, c->name,
+                    v, buf, res[k].fails ? "FAILS" : "ok", plat_time() - t0);
+        }
+        if (rc) {
+            core_image_free(&shot);
+            break;
+        }
+        snprintf(path, sizeof path, "%s/stability_%s.png", out, c->name);
+        if (shot.px && !core_image_write_png(&shot, path)) rc = 1;
+        snprintf(path, sizeof path, "%s/images/stability_%s.png", report ? report : ".", c->name);
+        if (report && shot.px && !core_image_write_png(&shot, path)) rc = 1;
+        core_image_free(&shot);
+        char brk[64];
+        if (broke >= 0) snprintf(brk, sizeof brk, "**%g**", c->values[broke]);
+        else snprintf(brk, sizeof brk, "none in range");
+        for (int e = 0; e < 2; e++)
+            eval_text_printf(e ? &mdr : &md, "| %s | %s | %s | %s | %s | %s | %s | %s | ![](%sstability_%s.png) |\n",
+                             c->name, scene_mode_name(c->mode), c->param, values, c->measure_name, measured,
+                             c->criterion, brk, e ? "images/" : "", c->name);
+    }
+    fputc('\n', stderr);
+    if (rc == 0) {
+        for (int e = 0; e < 2; e++) {
+            eval_text_t *t = e ? &mdr : &md;
+            eval_text_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
+            for (int ci = 0; ci < CASE_COUNT; ci++)
+                eval_text_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
+        }
+        if (md_out) eval_text_printf(md_out, "%s", mdr.s);
+        snprintf(path, sizeof path, "%s/stability.csv", out);
+        if (!eval_text_write(&csv, path)) rc = 1;
+        snprintf(path, sizeof path, "%s/stability.md", out);
+        if (!eval_text_write(&md, path)) rc = 1;
+        if (rc == 0) core_log_info("stability: wrote %s/stability.csv, stability.md and screenshots", out);
+    }
+    eval_text_free(&csv);
+    eval_text_free(&md);
+    eval_text_free(&mdr);
+    return rc;
+}
