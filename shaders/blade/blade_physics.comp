@@ -4,7 +4,7 @@
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
  * validation, sphere collision, validation again and the collision exit
  * (departure, see blade_ref.h) only after a contact,
- * eta += d.d then eta = max(eta - a dt, 0). Blades of height <= 0 (patch
+ * eta += k d.d then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch
  * padding) are left untouched. One invocation per blade. */
 #include "common/blade.glsl"
 
@@ -54,6 +54,6 @@ void main()
         for (int k = 0; k < u_sphere_count; k++) blade_exit_straight(b, spheres[k]);
     }
     e = e + u_collision_gain * dot(d, d);
-    eta[i] = max(e - u_collision_decay * u_dt, 0.0);
+    eta[i] = clamp(e - u_collision_decay * u_dt, 0.0, 1.0);
     blades[i] = b;
 }

@@ -386,7 +386,7 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
         exit_spheres(b, env->spheres, env->sphere_count);
     }
     float e = *eta + env->collision_gain * v3_dot(d, d);
-    *eta = fmaxf(e - env->collision_decay * dt, 0.0f);
+    *eta = fminf(fmaxf(e - env->collision_decay * dt, 0.0f), 1.0f);
 }
 
 void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env)

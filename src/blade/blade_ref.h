@@ -19,7 +19,10 @@
  *      validation is not idempotent: eq. 11 places v1 from the rescaled
  *      tip, so a second pass would change a blade nothing touched).
  *   6b. only after a contact: blade_ref_exit (departure, below).
- *   7. eta += d.d, then eta = max(eta - a dt, 0).
+ *   7. eta += k d.d, then eta = clamp(eta - a dt, 0, 1): eq. 1 only uses
+ *      max(1 - eta, 0.1), so eta above 1 would only delay recovery without
+ *      bound (measured: one strong push added ~90 and flattened blades never
+ *      stood up again).
  * The paper's total translation is delta = (r + g + w) dt + d; here it is
  * applied in two parts with a validation in between (steps 3 and 5).
  *

@@ -1,0 +1,112 @@
+/* test_app_modes: the hybrid field's two representations agree, and mode
+ * switches keep the simulation consistent.
+ * 1. The same seed gives the same layout: a top-down coverage mask of
+ *    billboard mode and of blade mode (grass vs ground per 8x8 block)
+ *    agree in most blocks, and both have clearings where the other has.
+ * 2. Switching modes at run time resets nothing: blade state keeps evolving
+ *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
+#include "app/app_world.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <math.h>
+#include <string.h>
+
+static void top_down(scene_desc_t *s, void *user)
+{
+    (void)user;
+    s->camera.path.count = 0;
+    glm_vec3_copy((vec3){0.0f, 9.0f, 0.01f}, s->camera.position);
+    glm_vec3_zero(s->camera.target);
+    s->camera.fov = 50.0f;
+    s->size[0] = s->size[1] = 192;
+    s->colliders[0].path.count = 1; /* park the ball off the field */
+    glm_vec3_copy((vec3){40.0f, 0.4f, 40.0f}, s->colliders[0].path.keys[0].position);
+}
+
+/* Fraction of grass pixels per 8x8 block (grass: green clearly above red). */
+static void coverage(const core_image_t *img, float *blocks, int nb)
+{
+    memset(blocks, 0, sizeof(float) * (size_t)(nb * nb));
+    int bs = img->w / nb;
+    for (int y = 0; y < nb * bs; y++)
+        for (int x = 0; x < nb * bs; x++) {
+            const uint8_t *p = img->px + ((size_t)y * (size_t)img->w + (size_t)x) * 4;
+            if (p[1] > p[0] + 25) blocks[(y / bs) * nb + x / bs] += 1.0f / (float)(bs * bs);
+        }
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
+    core_image_t bb, bl;
+    app_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
+                            .tweak = top_down};
+    CHECK(app_session_run(&d, &bb, NULL) == 0);
+    d.mode = SCENE_MODE_BLADE;
+    CHECK(app_session_run(&d, &bl, NULL) == 0);
+    enum { NB = 12 };
+    float cb[NB * NB], cl[NB * NB];
+    coverage(&bb, cb, NB);
+    coverage(&bl, cl, NB);
+    /* Blocks that are clearly grass or clearly ground in one mode. */
+    int agree = 0, decided = 0;
+    double mb = 0, ml = 0, sbb = 0, sll = 0, sbl = 0;
+    for (int i = 0; i < NB * NB; i++) {
+        mb += cb[i];
+        ml += cl[i];
+    }
+    mb /= NB * NB;
+    ml /= NB * NB;
+    for (int i = 0; i < NB * NB; i++) {
+        sbb += (cb[i] - mb) * (cb[i] - mb);
+        sll += (cl[i] - ml) * (cl[i] - ml);
+        sbl += (cb[i] - mb) * (cl[i] - ml);
+        bool gb = cb[i] > mb, gl = cl[i] > ml;
+        decided++;
+        agree += gb == gl;
+    }
+    double corr = sbl / sqrt(sbb * sll + 1e-12);
+    printf("coverage: billboard mean %.2f, blade mean %.2f, block correlation %.2f, agreement %d/%d\n", mb, ml, corr,
+           agree, decided);
+    CHECK(mb > 0.05 && ml > 0.05);
+    CHECK(corr > 0.5);
+    CHECK(agree >= decided * 7 / 10);
+    core_image_free(&bb);
+    core_image_free(&bl);
+
+    /* Live switches. */
+    app_world_t *w = calloc(1, sizeof *w);
+    CHECK(app_world_load(w, &o) == 0);
+    CHECK(app_world_make_gpu(w));
+    CHECK(w->have_blades && w->have_bb);
+    size_t n = w->blades.padded_count;
+    blade_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
+    blade_gpu_read_blades(&w->blades, a, NULL);
+    static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID,
+                                        SCENE_MODE_BILLBOARD};
+    int f = 0;
+    for (int k = 0; k < 4; k++) {
+        app_world_set_mode(w, seq[k]);
+        for (int i = 0; i < 20; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+    }
+    blade_gpu_read_blades(&w->blades, b, NULL);
+    int moved = 0, bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (a[i].v1[3] <= 0.0f) continue;
+        bad += memcmp(a[i].v0, b[i].v0, sizeof a[i].v0) != 0;
+        for (int c = 0; c < 3; c++) bad += !isfinite(b[i].v2[c]);
+        moved += fabsf(a[i].v2[0] - b[i].v2[0]) + fabsf(a[i].v2[2] - b[i].v2[2]) > 1e-4f;
+    }
+    printf("mode switches: %d blades moved (wind, ball), %d bad\n", moved, bad);
+    CHECK(bad == 0 && moved > 0);
+    CHECK(w->have_bb && w->have_blades && w->mode == SCENE_MODE_BILLBOARD);
+    free(a);
+    free(b);
+    app_world_destroy(w);
+    free(w);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
