@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # bench_quick: `meadow bench --quick`, its stability suite
-# (MEADOW_BENCH_STABILITY=1) and `meadow compare` run on llvmpipe and
+# (--stability) and `meadow compare` run on llvmpipe and
 # produce every file they promise (CSV, JSON, charts, tables, screenshots,
 # montage).
 # Usage: bench_quick.sh MEADOW_BINARY OUTDIR
@@ -21,7 +21,7 @@ rows=$(($(wc -l <"$out/bench/bench.csv") - 1))
 [ "$rows" -ge 13 ] || { echo "FAIL: bench.csv has $rows rows"; fail=1; }
 python3 -c "import json,sys; d=json.load(open('$out/bench/bench.json')); assert len(d['configs'])==$rows" 2>/dev/null \
   || { echo "FAIL: bench.json does not parse or disagrees with the CSV"; fail=1; }
-MEADOW_BENCH_STABILITY=1 "$bin" bench --quick --quiet --scene scenes/tiny.json --out "$out/stability" \
+"$bin" bench --stability --quick --quiet --scene scenes/tiny.json --out "$out/stability" \
   || { echo "FAIL: bench stability exit $?"; fail=1; }
 for f in stability.csv stability.md; do
   [ -s "$out/stability/$f" ] || { echo "FAIL: missing $f"; fail=1; }

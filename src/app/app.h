@@ -39,6 +39,8 @@ typedef struct app_options_t {
     int blade_render;         /* 0 = vertex pulling (default), 1 = tessellation */
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
+    bool stability;           /* bench --stability: the stability suite only */
+    const char *report;       /* bench --report DIR: sweep + stability + compare, RESULTS.md into DIR */
     bool quiet;
 } app_options_t;
 

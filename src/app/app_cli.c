@@ -24,6 +24,8 @@ void app_print_usage(void)
            "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
+           "  --stability           bench: run the stability suite (where each method breaks)\n"
+           "  --report DIR          bench: sweep + stability + compare, charts and RESULTS.md into DIR\n"
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
@@ -76,6 +78,15 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->quick = true;
         } else if (strcmp(a, "--floor") == 0) {
             o->floor = true;
+        } else if (strcmp(a, "--stability") == 0) {
+            o->stability = true;
+        } else if (strcmp(a, "--report") == 0) {
+            NEED_VALUE();
+            if (!*v) {
+                snprintf(err, err_size, "--report: empty folder name");
+                return 2;
+            }
+            o->report = v;
         } else if (strcmp(a, "--quiet") == 0) {
             o->quiet = true;
         } else if (strcmp(a, "--scene") == 0) {
