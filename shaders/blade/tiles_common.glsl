@@ -1,0 +1,136 @@
+/* tiles_common.glsl: shared by the tiled blade field shaders (Fan et al.
+ * 2015 tiles over Jahrmann & Wimmer 2017 blades; src/blade/blade_tiles.h).
+ *   tiles_rest   template blade k placed in tile `tile`: the template and
+ *                the symmetry of the square (4 rotations x mirror) from
+ *                a hash of the world tile coordinates, root on the heightfield by the
+ *                barycentric interpolation of terrain_height_at, up the
+ *                interpolated vertex normal, rest pose v1 = v2 = v0 + up h.
+ *                Roots outside the field and template padding get h = 0.
+ *   tiles_pose   the procedural pose: quasi-static equilibrium of eq. 1-13
+ *                (eta = 0) under gravity (eq. 2-4) and the wind of u_time
+ *                (eq. 5-8), by relaxed fixed-point iteration
+ *                v2 <- validate(v2 + 0.7 (v0 + up h + (g + w(v2)) / s - v2)).
+ * Twins on the CPU: blade_tiles_root / blade_tiles_instance. Bindings:
+ * SSBO 0 templates, 3 winds; texture unit 0 the ground (xyz normal, w
+ * height per grid vertex). */
+#ifndef TILES_COMMON_GLSL
+#define TILES_COMMON_GLSL
+
+#include "common/blade.glsl"
+#include "common/hash.glsl"
+
+#define TILES_POSE_ITERATIONS 6
+#define TILES_POSE_RELAX 0.7
+#define TILES_POSE_STEPS 24
+#define TILES_NO_SLOT 0xffffffffu
+
+layout(std430, binding = 0) readonly buffer Templates { Blade templates[]; };
+layout(std430, binding = 3) readonly buffer Winds { BladeWind winds[]; };
+layout(binding = 0) uniform sampler2D u_ground;
+
+uniform uint u_template_blades;  /* padded blades per template */
+uniform uint u_template_count;
+uniform uint u_seed_hash;
+uniform int u_tiles_x;
+uniform ivec2 u_tile_offset;     /* world tile coordinates of tile 0 */
+uniform float u_tile_size;
+uniform float u_half;            /* heightfield half size (centred on the origin) */
+uniform int u_grid_res;
+uniform float u_time;
+uniform vec4 u_gravity;          /* xyz unit direction, w magnitude (0: off) */
+uniform vec4 u_gravity_centre;   /* xyz centre, w mix t */
+uniform int u_wind_count;
+uniform int u_length_mode;
+uniform float u_pose_dt;         /* the physics step the pose settles for */
+
+/* Hash of the tile's world coordinates (tile index + u_tile_offset), so a
+ * world tile looks the same in fields of any size. */
+void tiles_instance(uint tile, out uint tmpl, out uint sym)
+{
+    int wi = int(tile) % u_tiles_x + u_tile_offset.x, wj = int(tile) / u_tiles_x + u_tile_offset.y;
+    uint h = hash_u32(uint(wi) * 0x8da6b343u ^ hash_u32(uint(wj) ^ u_seed_hash));
+    tmpl = h % u_template_count;
+    sym = (h >> 8) & 7u;
+}
+
+/* Ground height and interpolated normal at (x, z), as terrain_height_at. */
+float tiles_ground(float x, float z, out vec3 n)
+{
+    int res = u_grid_res;
+    float cell = (2.0 * u_half) / float(res);
+    float fx = (clamp(x, -u_half, u_half) + u_half) / cell;
+    float fz = (clamp(z, -u_half, u_half) + u_half) / cell;
+    int i = clamp(int(floor(fx)), 0, res - 1);
+    int j = clamp(int(floor(fz)), 0, res - 1);
+    float u = fx - float(i), v = fz - float(j);
+    vec4 p00 = texelFetch(u_ground, ivec2(i, j), 0), p10 = texelFetch(u_ground, ivec2(i + 1, j), 0);
+    vec4 p01 = texelFetch(u_ground, ivec2(i, j + 1), 0), p11 = texelFetch(u_ground, ivec2(i + 1, j + 1), 0);
+    vec4 r;
+    if (v >= u) {
+        r = p00 + u * (p11 - p01) + v * (p01 - p00);
+    } else {
+        r = p00 + u * (p10 - p00) + v * (p11 - p10);
+    }
+    n = blade_safe_normalize(r.xyz);
+    return r.w;
+}
+
+Blade tiles_rest(uint tile, uint k)
+{
+    uint tmpl, sym;
+    tiles_instance(tile, tmpl, sym);
+    Blade t = templates[tmpl * u_template_blades + k];
+    Blade b;
+    float half_tile = 0.5 * u_tile_size;
+    float x = t.v0.x - half_tile, z = t.v0.z - half_tile;
+    float a = t.v0.w;
+    for (uint r = 0u; r < (sym & 3u); r++) {
+        float nx = -z;
+        z = x;
+        x = nx;
+        a = a + 1.57079633;
+    }
+    if ((sym & 4u) != 0u) {
+        x = -x;
+        a = 3.14159265 - a;
+    }
+    int ti = int(tile) % u_tiles_x, tj = int(tile) / u_tiles_x;
+    x = x + half_tile + (-u_half + float(ti) * u_tile_size);
+    z = z + half_tile + (-u_half + float(tj) * u_tile_size);
+    float h = t.v1.w;
+    if (x > u_half || z > u_half) h = 0.0;
+    vec3 up;
+    float y = tiles_ground(x, z, up);
+    b.v0 = vec4(x, y, z, a);
+    vec3 tip = b.v0.xyz + up * h;
+    b.v1 = vec4(tip, h);
+    b.v2 = vec4(tip, t.v2.w);
+    b.up = vec4(up, t.up.w);
+    return b;
+}
+
+vec3 tiles_wind_sum(vec3 p)
+{
+    vec3 wi = vec3(0.0);
+    for (int k = 0; k < u_wind_count; k++) wi = wi + blade_wind_field(winds[k], p, u_time);
+    return wi;
+}
+
+/* b in the rest pose (tiles_rest); returns the procedural pose. */
+Blade tiles_pose(Blade b)
+{
+    if (b.v1.w <= 0.0) return b;
+    vec3 wi = tiles_wind_sum(b.v0.xyz);
+    vec3 g = blade_gravity(b, u_gravity, u_gravity_centre);
+    vec3 iv2 = b.v0.xyz + b.up.xyz * b.v1.w;
+    float inv_s = 1.0 / b.up.w;
+    float relax_step = min(b.up.w * u_pose_dt, TILES_POSE_RELAX);
+    for (int it = 0; it < TILES_POSE_ITERATIONS + TILES_POSE_STEPS; it++) {
+        vec3 target = iv2 + (g + blade_wind(b, wi)) * inv_s;
+        b.v2.xyz = b.v2.xyz + (target - b.v2.xyz) * (it < TILES_POSE_ITERATIONS ? TILES_POSE_RELAX : relax_step);
+        blade_validate(b, u_length_mode);
+    }
+    return b;
+}
+
+#endif

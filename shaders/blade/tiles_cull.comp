@@ -1,0 +1,88 @@
+#version 450
+/* tiles_cull.comp: per-blade culling of the tiled field (Jahrmann & Wimmer
+ * 2017 eq. 14-20: orientation, frustum, distance levels; the tests and
+ * their order of blade_cull.comp, no occlusion). Invocation i: entry
+ * list[i / B] = (tile, slot), blade k = i % B: the blade is the pool state
+ * of the slot, or, for an idle tile (slot TILES_NO_SLOT), the procedural
+ * pose of the template blade. The distance level uses k (templates are
+ * Morton ordered, so the thinning is spatially even). A survivor is
+ * appended as a whole blade (and its id tile * B + k) and counted in
+ * cmd.instanceCount; beyond u_capacity it is dropped and counted in
+ * cmd.overflow. The host zeroes both before the dispatch. */
+#include "blade/tiles_common.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(std430, binding = 1) readonly buffer Pool { Blade pool[]; };
+layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
+layout(std430, binding = 8) writeonly buffer Drawn { Blade drawn[]; };
+layout(std430, binding = 9) buffer Command {
+    uint count;
+    uint instanceCount;
+    uint first;
+    uint baseInstance;
+    uint overflow;
+} cmd;
+layout(std430, binding = 10) writeonly buffer DrawnIds { uint drawn_ids[]; };
+
+uniform uint u_count; /* entries * B */
+uniform uint u_capacity;
+uniform vec3 u_cam_pos;
+uniform mat4 u_view_proj;
+uniform float u_max_distance;
+uniform int u_distance_levels;
+uniform float u_orientation_threshold;
+uniform float u_frustum_tolerance;
+uniform uint u_disable;
+
+bool visible(Blade b, uint index)
+{
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    vec3 view = v0 - u_cam_pos;
+    vec3 view_ground = view - up * dot(view, up);
+    if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
+        vec3 width_dir, front;
+        blade_frame(b, width_dir, front);
+        if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > u_orientation_threshold) return false;
+    }
+    if ((u_disable & BLADE_CULL_FRUSTUM) == 0u) {
+        float t = u_frustum_tolerance;
+        if (!blade_in_frustum(u_view_proj * vec4(v0, 1.0), t) &&
+            !blade_in_frustum(u_view_proj * vec4(blade_midpoint(b), 1.0), t) &&
+            !blade_in_frustum(u_view_proj * vec4(b.v2.xyz, 1.0), t))
+            return false;
+    }
+    if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
+        float dproj = length(view_ground);
+        int n = u_distance_levels;
+        if (dproj > u_max_distance) return false;
+        int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
+        if (int(index % uint(n)) > level) return false;
+    }
+    return true;
+}
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count) return;
+    uvec2 e = list[i / u_template_blades];
+    uint k = i % u_template_blades;
+    Blade b;
+    if (e.y != TILES_NO_SLOT) {
+        b = pool[e.y * u_template_blades + k];
+    } else {
+        b = tiles_rest(e.x, k);
+        if (b.v1.w <= 0.0) return;
+        b = tiles_pose(b);
+    }
+    if (b.v1.w <= 0.0 || !visible(b, k)) return;
+    uint slot = atomicAdd(cmd.instanceCount, 1u);
+    if (slot < u_capacity) {
+        drawn[slot] = b;
+        drawn_ids[slot] = e.x * u_template_blades + k;
+    } else {
+        atomicAdd(cmd.overflow, 1u);
+    }
+}

@@ -1,0 +1,709 @@
+/* blade_tiles: tiled blade field of Fan et al. 2015 over the Jahrmann &
+ * Wimmer 2017 blades (eq. 1-13 physics on active slots only, eq. 14-20
+ * culling, eq. 21 drawing): template seeding, ground texture, slot pool,
+ * activation through src/hybrid, motion readback, per-tile CPU frustum
+ * test, cull + vertex-pulled draw. See blade_tiles.h. GL objects come from
+ * gfx only. */
+#include "blade/blade_tiles.h"
+
+#include <assert.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
+#define NO_SLOT 0xffffffffu
+#define RECOVERING_BIT 0x80000000u
+#define HYSTERESIS 1.0f /* hybrid's default dead band, used for the draw capacity */
+
+blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
+{
+    blade_tiles_desc_t d = *desc;
+    if (d.tile_size <= 0.0f) d.tile_size = 8.0f;
+    if (d.template_count <= 0) d.template_count = 4;
+    blade_seed_desc_t sd = blade_seed_desc_defaults(&(blade_seed_desc_t){
+        .density = d.density, .height_min = d.height_min, .height_max = d.height_max, .width_min = d.width_min,
+        .width_max = d.width_max, .stiffness_min = d.stiffness_min, .stiffness_max = d.stiffness_max});
+    d.density = sd.density;
+    d.height_min = sd.height_min, d.height_max = sd.height_max;
+    d.width_min = sd.width_min, d.width_max = sd.width_max;
+    d.stiffness_min = sd.stiffness_min, d.stiffness_max = sd.stiffness_max;
+    if (d.pool_slots <= 0) d.pool_slots = 64;
+    if (d.switch_distance <= 0.0f) d.switch_distance = 12.0f;
+    if (d.recover_timeout <= 0.0f) d.recover_timeout = 5.0f;
+    if (d.motion_epsilon <= 0.0f) d.motion_epsilon = 2e-3f;
+    if (d.max_level == 0) d.max_level = 8;
+    if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
+    d.cull = blade_cull_desc_defaults(&d.cull);
+    if (!d.label) d.label = "tiles";
+    assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
+    assert(d.wind_count >= 0 && d.wind_count <= BLADE_MAX_WINDS);
+    assert(d.max_level >= 1 && d.max_level <= 64);
+    return d;
+}
+
+/* Blades per template before padding (blade_seed UNIFORM: round(density *
+ * area)), padded to the seeding patch size. */
+static uint32_t template_blades(const blade_tiles_desc_t *d)
+{
+    uint32_t n = (uint32_t)lroundf(d->density * d->tile_size * d->tile_size);
+    uint32_t p = (uint32_t)blade_seed_desc_defaults(&(blade_seed_desc_t){0}).patch_size;
+    return (n + p - 1) / p * p;
+}
+
+/* Most tiles whose nearest point can be within r of one camera position:
+ * offsets (di, dj) from the camera's tile whose gap T * max(|d| - 1, 0)
+ * per axis stays below r. */
+static int max_tiles_within(float r, float tile, int nx, int nz)
+{
+    int k = (int)ceilf(r / tile) + 1, count = 0;
+    for (int dj = -k; dj <= k; dj++)
+        for (int di = -k; di <= k; di++) {
+            float gx = tile * fmaxf((float)abs(di) - 1.0f, 0.0f), gz = tile * fmaxf((float)abs(dj) - 1.0f, 0.0f);
+            count += gx * gx + gz * gz < r * r;
+        }
+    return count < nx * nz ? count : nx * nz;
+}
+
+typedef struct layout_t {
+    uint32_t blades; /* per template, padded */
+    int tiles_x, tiles_z, draw_tiles;
+    uint32_t draw_capacity;
+    size_t bytes;
+} layout_t;
+
+static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int grid_res)
+{
+    layout_t l = {.blades = template_blades(d)};
+    l.tiles_x = l.tiles_z = (int)ceilf(field_size / d->tile_size);
+    l.draw_tiles = max_tiles_within(d->switch_distance + HYSTERESIS, d->tile_size, l.tiles_x, l.tiles_z);
+    l.draw_capacity = d->draw_capacity ? d->draw_capacity : (uint32_t)l.draw_tiles * l.blades;
+    size_t S = (size_t)d->pool_slots, B = l.blades, side = (size_t)grid_res + 1;
+    l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
+              + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */
+              + S * sizeof(uint32_t) * (1 + SLOT_STRIDE + 1 + 2)       /* motion, sphere lists, slot / init lists */
+              + BLADE_MAX_WINDS * sizeof(blade_wind_t) + BLADE_MAX_SPHERES * sizeof(blade_sphere_t)
+              + (size_t)l.draw_tiles * 2 * sizeof(uint32_t)            /* tile list */
+              + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
+              + 8 * sizeof(uint32_t)                                   /* command */
+              + (size_t)BLADE_TILES_READBACK_SLOTS * (S + 2) * sizeof(uint32_t) /* readback rings */
+              + side * side * 4 * sizeof(float);                       /* ground texture */
+    return l;
+}
+
+size_t blade_tiles_estimate_bytes(const blade_tiles_desc_t *desc, uint32_t *template_blades_out)
+{
+    assert(desc->terrain && desc->terrain->grid_res > 0);
+    blade_tiles_desc_t d = blade_tiles_desc_defaults(desc);
+    layout_t l = layout_of(&d, desc->terrain->grid_size, desc->terrain->grid_res);
+    if (template_blades_out) *template_blades_out = l.blades;
+    return l.bytes;
+}
+
+void blade_tiles_instance(const blade_tiles_t *t, int tile, int *template_index, int *symmetry)
+{
+    int wi = tile % t->grid.nx + t->tile_offset[0], wj = tile / t->grid.nx + t->tile_offset[1];
+    uint32_t h = core_hash_u32((uint32_t)wi * 0x8da6b343u ^
+                               core_hash_u32((uint32_t)wj ^ (uint32_t)(t->desc.seed * 0x9e3779b9u)));
+    *template_index = (int)(h % (uint32_t)t->desc.template_count);
+    *symmetry = (int)((h >> 8) & 7u);
+}
+
+void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2], float root[3], float up[3])
+{
+    int tmpl, sym;
+    blade_tiles_instance(t, tile, &tmpl, &sym);
+    float half_tile = 0.5f * t->desc.tile_size, x = local_xz[0] - half_tile, z = local_xz[1] - half_tile;
+    for (int r = 0; r < (sym & 3); r++) {
+        float nx = -z;
+        z = x;
+        x = nx;
+    }
+    if (sym & 4) x = -x;
+    int ti = tile % t->grid.nx, tj = tile / t->grid.nx;
+    float half = 0.5f * t->field_size;
+    root[0] = x + half_tile + (-half + (float)ti * t->desc.tile_size);
+    root[2] = z + half_tile + (-half + (float)tj * t->desc.tile_size);
+    /* ground: the height of terrain_height_at, the normal interpolated
+     * from the vertex normals with the same weights */
+    const float *g = t->ground_cpu;
+    int res = t->grid_res, side = res + 1;
+    float cell = (2.0f * half) / (float)res;
+    float fx = (fminf(fmaxf(root[0], -half), half) + half) / cell;
+    float fz = (fminf(fmaxf(root[2], -half), half) + half) / cell;
+    int i = (int)floorf(fx), j = (int)floorf(fz);
+    i = i < 0 ? 0 : i > res - 1 ? res - 1 : i;
+    j = j < 0 ? 0 : j > res - 1 ? res - 1 : j;
+    float u = fx - (float)i, v = fz - (float)j;
+    const float *p00 = &g[4 * (j * side + i)], *p10 = p00 + 4, *p01 = p00 + 4 * side, *p11 = p01 + 4;
+    float r4[4];
+    for (int c = 0; c < 4; c++)
+        r4[c] = v >= u ? p00[c] + u * (p11[c] - p01[c]) + v * (p01[c] - p00[c])
+                       : p00[c] + u * (p10[c] - p00[c]) + v * (p11[c] - p10[c]);
+    float l = sqrtf(r4[0] * r4[0] + r4[1] * r4[1] + r4[2] * r4[2]);
+    for (int c = 0; c < 3; c++) up[c] = r4[c] / l;
+    root[1] = r4[3];
+}
+
+static gfx_buffer_t make_buffer(const blade_tiles_t *t, const char *what, size_t size, const void *data)
+{
+    char label[128];
+    snprintf(label, sizeof label, "%s.%s", t->desc.label, what);
+    return gfx_buffer_make(&(gfx_buffer_desc_t){
+        .size = size ? size : 16, .data = data, .dynamic = true, .readable = true, .label = label});
+}
+
+static gfx_program_t make_program(const blade_tiles_t *t, const char *what, const gfx_program_desc_t *pd)
+{
+    char label[128];
+    snprintf(label, sizeof label, "%s.%s", t->desc.label, what);
+    gfx_program_desc_t d = *pd;
+    d.label = label;
+    return gfx_program_make(&d);
+}
+
+static bool ring_make(blade_tiles_t *t, blade_tiles_ring_t *r, const char *what, size_t size)
+{
+    bool ok = true;
+    char label[128];
+    snprintf(label, sizeof label, "%s.%s_query", t->desc.label, what);
+    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
+        r->buf[i] = make_buffer(t, what, size, NULL);
+        r->query[i] = gfx_query_make(GL_TIMESTAMP, label);
+        ok = ok && r->buf[i].id && r->query[i];
+    }
+    return ok;
+}
+
+static void ring_destroy(blade_tiles_ring_t *r)
+{
+    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
+        if (r->buf[i].id) gfx_buffer_destroy(&r->buf[i]);
+        if (r->query[i]) gfx_query_destroy(&r->query[i]);
+    }
+}
+
+/* Takes the next ring buffer: the caller copies into it, then fences it
+ * with ring_fence. */
+static int ring_take(blade_tiles_ring_t *r)
+{
+    int i = r->next;
+    r->next = (i + 1) % BLADE_TILES_READBACK_SLOTS;
+    return i;
+}
+
+static void ring_fence(blade_tiles_ring_t *r, int i)
+{
+    glQueryCounter(r->query[i], GL_TIMESTAMP);
+    r->pending[i] = true;
+}
+
+/* Oldest pending entry whose copy has completed (wait: the oldest pending,
+ * blocking), or -1. */
+static int ring_poll(blade_tiles_ring_t *r, bool wait)
+{
+    for (int k = 0; k < BLADE_TILES_READBACK_SLOTS; k++) {
+        int i = (r->next + k) % BLADE_TILES_READBACK_SLOTS;
+        if (!r->pending[i]) continue;
+        GLint available = 0;
+        if (wait) {
+            GLuint64 ts;
+            glGetQueryObjectui64v(r->query[i], GL_QUERY_RESULT, &ts);
+            available = 1;
+        } else {
+            glGetQueryObjectiv(r->query[i], GL_QUERY_RESULT_AVAILABLE, &available);
+        }
+        if (!available) return -1;
+        r->pending[i] = false;
+        return i;
+    }
+    return -1;
+}
+
+static bool seed_templates(blade_tiles_t *t)
+{
+    const blade_tiles_desc_t *d = &t->desc;
+    float s = d->tile_size;
+    float pos[] = {0, 0, 0, s, 0, 0, s, 0, s, 0, 0, s};
+    static const uint32_t idx[] = {0, 2, 1, 0, 3, 2};
+    blade_mesh_t mesh = {pos, NULL, 4, idx, 6};
+    uint32_t B = t->template_blades;
+    t->template_cpu = calloc((size_t)d->template_count * B, sizeof(blade_t));
+    if (!t->template_cpu) return false;
+    for (int k = 0; k < d->template_count; k++) {
+        blade_field_t f;
+        blade_seed_desc_t sd = {.seed = d->seed + (uint64_t)k, .density = d->density,
+                                .height_min = d->height_min, .height_max = d->height_max,
+                                .width_min = d->width_min, .width_max = d->width_max,
+                                .stiffness_min = d->stiffness_min, .stiffness_max = d->stiffness_max};
+        if (!blade_seed_mesh(&mesh, &sd, &f)) return false;
+        if (f.padded_count != B) {
+            core_log_error("%s:%d: blade_tiles: template %d has %zu blades, expected %u", __FILE__, __LINE__, k,
+                           f.padded_count, B);
+            blade_field_free(&f);
+            return false;
+        }
+        memcpy(&t->template_cpu[(size_t)k * B], f.blades, B * sizeof(blade_t));
+        blade_field_free(&f);
+    }
+    return true;
+}
+
+bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
+{
+    memset(t, 0, sizeof *t);
+    t->desc = blade_tiles_desc_defaults(desc);
+    const terrain_mesh_t *m = desc->terrain;
+    t->desc.terrain = NULL;
+    t->desc.cull.depth = NULL;
+    if (!m || m->grid_res <= 0) {
+        core_log_error("%s:%d: blade_tiles_make: the terrain must be a heightfield (mesh terrains: use blade_gpu)",
+                       __FILE__, __LINE__);
+        return false;
+    }
+    const blade_tiles_desc_t *d = &t->desc;
+    t->field_size = m->grid_size;
+    t->field_min[0] = t->field_min[1] = -0.5f * m->grid_size;
+    t->grid_res = m->grid_res;
+    t->reach = d->height_max + 0.5f * d->width_max;
+    t->tile_offset[0] = t->tile_offset[1] = (int)lroundf(t->field_min[0] / d->tile_size);
+    layout_t l = layout_of(d, t->field_size, t->grid_res);
+    t->template_blades = l.blades;
+    t->draw_capacity = l.draw_capacity;
+    t->max_draw_tiles = l.draw_tiles;
+    t->env = blade_env_defaults(&(blade_env_t){0});
+    memcpy(t->env.winds, d->winds, sizeof d->winds);
+    t->env.wind_count = d->wind_count;
+
+    bool ok = hybrid_grid_make(&t->grid, &(hybrid_desc_t){.min_x = t->field_min[0],
+                                                          .min_z = t->field_min[1],
+                                                          .size_x = t->field_size,
+                                                          .size_z = t->field_size,
+                                                          .min_y = m->aabb_min[1],
+                                                          .max_y = m->aabb_max[1],
+                                                          .tile_size = d->tile_size,
+                                                          .grass_height = t->reach,
+                                                          .switch_distance = d->switch_distance,
+                                                          .hysteresis = HYSTERESIS,
+                                                          .recover_timeout = d->recover_timeout,
+                                                          .motion_epsilon = d->motion_epsilon,
+                                                          .pool_slots = d->pool_slots});
+    int ntiles = t->grid.nx * t->grid.nz;
+    size_t side = (size_t)t->grid_res + 1;
+    t->slot_owner = malloc((size_t)d->pool_slots * sizeof(int));
+    t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
+    t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
+    t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 3) + 2 * l.draw_tiles) * sizeof(uint32_t));
+    t->ground_cpu = malloc(side * side * 4 * sizeof(float));
+    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
+        t->motion_owner[i] = malloc((size_t)d->pool_slots * sizeof(int));
+        ok = ok && t->motion_owner[i];
+    }
+    ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->ground_cpu;
+    if (!ok || !seed_templates(t)) {
+        core_log_error("%s:%d: blade_tiles_make: out of memory or seeding failed", __FILE__, __LINE__);
+        blade_tiles_destroy(t);
+        return false;
+    }
+    for (int s = 0; s < d->pool_slots; s++) t->slot_owner[s] = -1, t->slot_motion[s] = 0.0f;
+    for (int i = 0; i < ntiles; i++) t->tile_motion[i] = FLT_MAX;
+    for (size_t v = 0; v < side * side; v++) {
+        memcpy(&t->ground_cpu[4 * v], &m->normals[3 * v], 3 * sizeof(float));
+        t->ground_cpu[4 * v + 3] = m->positions[3 * v + 1];
+    }
+
+    uint32_t B = t->template_blades;
+    size_t S = (size_t)d->pool_slots;
+    t->templates = make_buffer(t, "templates", (size_t)d->template_count * B * sizeof(blade_t), t->template_cpu);
+    t->pool = make_buffer(t, "pool", S * B * sizeof(blade_t), NULL);
+    t->eta = make_buffer(t, "eta", S * B * sizeof(float), NULL);
+    t->motion = make_buffer(t, "motion", S * sizeof(uint32_t), NULL);
+    t->slot_spheres = make_buffer(t, "slot_spheres", S * SLOT_STRIDE * sizeof(uint32_t), NULL);
+    t->slot_list = make_buffer(t, "slot_list", S * sizeof(uint32_t), NULL);
+    t->init_list = make_buffer(t, "init_list", S * 2 * sizeof(uint32_t), NULL);
+    t->winds = make_buffer(t, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
+    t->spheres = make_buffer(t, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
+    t->tile_list = make_buffer(t, "tile_list", (size_t)l.draw_tiles * 2 * sizeof(uint32_t), NULL);
+    t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
+    t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
+    uint32_t cmd[8] = {2u * (uint32_t)(d->max_level + 1), 0, 0, 0, 0, 0, 0, 0};
+    t->command = make_buffer(t, "command", sizeof cmd, cmd);
+    ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
+         t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id && t->drawn_ids.id &&
+         t->command.id;
+    ok = ring_make(t, &t->motion_ring, "motion_readback", S * sizeof(uint32_t)) && ok;
+    ok = ring_make(t, &t->draw_ring, "draw_readback", 2 * sizeof(uint32_t)) && ok;
+    char label[128];
+    snprintf(label, sizeof label, "%s.ground", d->label);
+    t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
+                                                       .filter = GL_NEAREST, .data = t->ground_cpu,
+                                                       .upload_format = GL_RGBA, .upload_type = GL_FLOAT,
+                                                       .label = label});
+    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
+    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
+    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
+    t->draw = make_program(t, "draw", &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag"});
+    snprintf(label, sizeof label, "%s.vao", d->label);
+    t->vao = gfx_vertex_array_make(label);
+    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->vao;
+    if (!ok) {
+        core_log_error("%s:%d: blade_tiles_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
+                       d->label);
+        blade_tiles_destroy(t);
+        return false;
+    }
+    uint32_t zero = 0;
+    glClearNamedBufferData(t->pool.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->eta.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    t->stats.gpu_bytes = l.bytes;
+    t->stats.slots_total = d->pool_slots;
+    t->stats.blades_per_template = B;
+    t->stats.tiles = ntiles;
+    return true;
+}
+
+void blade_tiles_destroy(blade_tiles_t *t)
+{
+    gfx_buffer_t *bufs[] = {&t->templates, &t->pool, &t->eta, &t->motion, &t->winds, &t->spheres,
+                            &t->slot_spheres, &t->slot_list, &t->init_list, &t->tile_list, &t->drawn,
+                            &t->drawn_ids, &t->command};
+    for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
+        if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
+    ring_destroy(&t->motion_ring);
+    ring_destroy(&t->draw_ring);
+    gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw};
+    for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
+        if (progs[i]->id) gfx_program_destroy(progs[i]);
+    if (t->ground.id) gfx_texture_destroy(&t->ground);
+    if (t->vao) gfx_vertex_array_destroy(&t->vao);
+    hybrid_grid_free(&t->grid);
+    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]);
+    free(t->slot_owner);
+    free(t->slot_motion);
+    free(t->tile_motion);
+    free(t->scratch);
+    free(t->template_cpu);
+    free(t->ground_cpu);
+    memset(t, 0, sizeof *t);
+}
+
+/* Uniforms of tiles_common.glsl, and the shared bindings. */
+static void set_common(const blade_tiles_t *t, gfx_program_t p)
+{
+    const blade_env_t *e = &t->env;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_template_blades"), t->template_blades);
+    glUniform1ui(gfx_uniform(p, "u_template_count"), (GLuint)t->desc.template_count);
+    glUniform1ui(gfx_uniform(p, "u_seed_hash"), (uint32_t)(t->desc.seed * 0x9e3779b9u));
+    glUniform1i(gfx_uniform(p, "u_tiles_x"), t->grid.nx);
+    glUniform2i(gfx_uniform(p, "u_tile_offset"), t->tile_offset[0], t->tile_offset[1]);
+    glUniform1f(gfx_uniform(p, "u_tile_size"), t->desc.tile_size);
+    glUniform1f(gfx_uniform(p, "u_half"), 0.5f * t->field_size);
+    glUniform1i(gfx_uniform(p, "u_grid_res"), t->grid_res);
+    glUniform1f(gfx_uniform(p, "u_time"), t->time);
+    glUniform4f(gfx_uniform(p, "u_gravity"), e->gravity_dir[0], e->gravity_dir[1], e->gravity_dir[2], e->gravity);
+    glUniform4f(gfx_uniform(p, "u_gravity_centre"), e->gravity_centre[0], e->gravity_centre[1],
+                e->gravity_centre[2], e->gravity_centre_mix);
+    glUniform1i(gfx_uniform(p, "u_wind_count"), e->wind_count);
+    glUniform1i(gfx_uniform(p, "u_length_mode"), e->length_mode);
+    glUniform1f(gfx_uniform(p, "u_pose_dt"), e->dt > 0.0f ? e->dt : 1.0f / 60.0f);
+    glUniform1i(gfx_uniform(p, "u_ground"), 0);
+    glBindTextureUnit(0, t->ground.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t->templates.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, t->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, t->eta.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, t->winds.id);
+}
+
+/* Applies every completed motion readback, oldest first: a value counts
+ * only for the tile that still owns the slot it was measured on. */
+static void poll_motion(blade_tiles_t *t)
+{
+    int S = t->desc.pool_slots, r;
+    uint32_t *bits = t->scratch;
+    while ((r = ring_poll(&t->motion_ring, false)) >= 0) {
+        gfx_buffer_read(t->motion_ring.buf[r], 0, (size_t)S * sizeof(uint32_t), bits);
+        for (int s = 0; s < S; s++) {
+            int owner = t->motion_owner[r][s];
+            if (owner < 0 || t->slot_owner[s] != owner) continue;
+            float v;
+            memcpy(&v, &bits[s], sizeof v);
+            t->slot_motion[s] = v;
+            if (t->grid.tiles[owner].state == HYBRID_RECOVERING) t->tile_motion[owner] = v;
+        }
+    }
+}
+
+void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*spheres)[4], int sphere_count,
+                        const blade_env_t *env)
+{
+    blade_env_t e = blade_env_defaults(env);
+    if (e.wind_count == 0) {
+        memcpy(e.winds, t->env.winds, sizeof e.winds);
+        e.wind_count = t->env.wind_count;
+    }
+    e.sphere_count = 0;
+    t->env = e;
+    t->time = e.time;
+    if (sphere_count > BLADE_MAX_SPHERES) {
+        core_log_warn("blade_tiles: %d spheres, %d taken: the rest do not bend blades", sphere_count,
+                      BLADE_MAX_SPHERES);
+        sphere_count = BLADE_MAX_SPHERES;
+    }
+    poll_motion(t);
+
+    /* activation bound: spheres grown by the blade reach (see the header) */
+    static hybrid_object_t objs[BLADE_MAX_SPHERES];
+    for (int k = 0; k < sphere_count; k++) {
+        memcpy(objs[k].sphere, spheres[k], sizeof objs[k].sphere);
+        objs[k].sphere[3] += t->reach;
+    }
+    hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
+
+    const int S = t->desc.pool_slots, ntiles = t->grid.nx * t->grid.nz;
+    for (int s = 0; s < S; s++) {
+        int o = t->slot_owner[s];
+        if (o >= 0 && t->grid.tiles[o].slot != s) t->slot_owner[s] = -1;
+    }
+    uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
+    uint32_t *list = init + 2 * S;
+    int ninit = 0, nslots = 0;
+    for (int i = 0; i < ntiles; i++) {
+        hybrid_tile_t *tile = &t->grid.tiles[i];
+        if (tile->state != HYBRID_RECOVERING) t->tile_motion[i] = FLT_MAX;
+        if (tile->slot < 0) continue;
+        int s = tile->slot;
+        if (t->slot_owner[s] != i) {
+            t->slot_owner[s] = i;
+            t->slot_motion[s] = FLT_MAX;
+            t->tile_motion[i] = FLT_MAX;
+            init[2 * ninit] = (uint32_t)s;
+            init[2 * ninit + 1] = (uint32_t)i;
+            ninit++;
+        }
+        list[nslots++] = (uint32_t)s | (tile->state == HYBRID_RECOVERING ? RECOVERING_BIT : 0u);
+        uint32_t *ss = &slot_spheres[s * SLOT_STRIDE];
+        ss[0] = (uint32_t)tile->object_count;
+        for (int k = 0; k < tile->object_count; k++) ss[1 + k] = tile->objects[k];
+    }
+    uint32_t B = t->template_blades;
+    t->stats.slots_dispatched = nslots;
+    t->stats.blades_dispatched = (uint32_t)nslots * B;
+
+    gfx_timer_begin("tiles.physics");
+    if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
+    if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * 4 * sizeof(float), spheres);
+    if (ninit) {
+        gfx_buffer_update(t->init_list, 0, (size_t)ninit * 2 * sizeof(uint32_t), init);
+        set_common(t, t->init);
+        glUniform1ui(gfx_uniform(t->init, "u_count"), (GLuint)ninit * B);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->init_list.id);
+        glDispatchCompute(((GLuint)ninit * B + 255u) / 256u, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    uint32_t zero = 0;
+    glClearNamedBufferData(t->motion.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    if (nslots) {
+        gfx_buffer_update(t->slot_spheres, 0, (size_t)S * SLOT_STRIDE * sizeof(uint32_t), slot_spheres);
+        gfx_buffer_update(t->slot_list, 0, (size_t)nslots * sizeof(uint32_t), list);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        gfx_program_t p = t->physics;
+        set_common(t, p);
+        glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)nslots * B);
+        glUniform1ui(gfx_uniform(p, "u_slot_stride"), SLOT_STRIDE);
+        glUniform1f(gfx_uniform(p, "u_dt"), e.dt);
+        glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
+        glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, t->spheres.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, t->slot_spheres.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->slot_list.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, t->motion.id);
+        glDispatchCompute(((GLuint)nslots * B + 255u) / 256u, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        int r = ring_take(&t->motion_ring);
+        glCopyNamedBufferSubData(t->motion.id, t->motion_ring.buf[r].id, 0, 0, (GLsizeiptr)S * 4);
+        ring_fence(&t->motion_ring, r);
+        for (int s = 0; s < S; s++) {
+            int o = t->slot_owner[s];
+            t->motion_owner[r][s] = o >= 0 && t->grid.tiles[o].state == HYBRID_RECOVERING ? o : -1;
+        }
+    }
+    glBindTextureUnit(0, 0);
+    gfx_timer_end();
+}
+
+/* Conservative box-vs-frustum (blade.c's patch test): outside when all 8
+ * corners are outside one clip plane grown by the tolerance. */
+static bool box_outside(const float mn[3], const float mx[3], const float *m, float tol)
+{
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        float sign = (plane & 1) ? -1.0f : 1.0f;
+        bool all_out = true;
+        for (int c = 0; c < 8 && all_out; c++) {
+            float p[3] = {(c & 1) ? mx[0] : mn[0], (c & 2) ? mx[1] : mn[1], (c & 4) ? mx[2] : mn[2]};
+            float clip[4];
+            for (int r = 0; r < 4; r++) clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+            if (clip[3] + sign * clip[axis] + tol >= 0.0f) all_out = false;
+        }
+        if (all_out) return true;
+    }
+    return false;
+}
+
+static void resolve_colours(const blade_draw_desc_t *desc, float sun[3], const float **root, const float **tip)
+{
+    static const float root_def[3] = {0.10f, 0.25f, 0.05f}, tip_def[3] = {0.45f, 0.65f, 0.20f};
+    memcpy(sun, desc->sun, 3 * sizeof(float));
+    float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
+    if (sl < 1e-6f) {
+        sun[0] = 0.4f, sun[1] = 0.8f, sun[2] = 0.3f;
+        sl = sqrtf(0.89f);
+    }
+    for (int i = 0; i < 3; i++) sun[i] /= sl;
+    *root = desc->albedo_root;
+    *tip = desc->albedo_tip;
+    if ((*root)[0] == 0.0f && (*root)[1] == 0.0f && (*root)[2] == 0.0f) *root = root_def;
+    if ((*tip)[0] == 0.0f && (*tip)[1] == 0.0f && (*tip)[2] == 0.0f) *tip = tip_def;
+}
+
+void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
+{
+    const blade_cull_desc_t *c = &t->desc.cull;
+    uint32_t B = t->template_blades;
+    gfx_timer_begin("tiles.cull");
+    int ntiles = t->grid.nx * t->grid.nz, n = 0;
+    uint32_t *list = t->scratch;
+    for (int i = 0; i < ntiles; i++) {
+        const hybrid_tile_t *tile = &t->grid.tiles[i];
+        if (tile->rep != HYBRID_REP_BLADE) continue;
+        float mn[3] = {tile->min[0] - t->reach, tile->min[1], tile->min[2] - t->reach};
+        float mx[3] = {tile->max[0] + t->reach, tile->max[1], tile->max[2] + t->reach};
+        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view_proj, c->frustum_tolerance))
+            continue;
+        if (n == t->max_draw_tiles) {
+            core_log_warn("blade_tiles: more than %d blade tiles in view; the rest are not drawn", n);
+            break;
+        }
+        list[2 * n] = (uint32_t)i;
+        list[2 * n + 1] = tile->slot >= 0 ? (uint32_t)tile->slot : NO_SLOT;
+        n++;
+    }
+    t->stats.tiles_drawn = n;
+    uint32_t zero[2] = {0, 0};
+    glClearNamedBufferSubData(t->command.id, GL_R32UI, 4, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+    glClearNamedBufferSubData(t->command.id, GL_R32UI, 16, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+    if (n) gfx_buffer_update(t->tile_list, 0, (size_t)n * 2 * sizeof(uint32_t), list);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_program_t p = t->cull;
+    set_common(t, p);
+    glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)n * B);
+    glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
+    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, desc->camera);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
+    glUniform1f(gfx_uniform(p, "u_max_distance"), c->max_distance);
+    glUniform1i(gfx_uniform(p, "u_distance_levels"), c->distance_levels);
+    glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);
+    glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
+    glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->tile_list.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, t->command.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
+    if (n) glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
+    glBindTextureUnit(0, 0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    /* instanceCount and overflow */
+    int r = ring_take(&t->draw_ring);
+    glCopyNamedBufferSubData(t->command.id, t->draw_ring.buf[r].id, 4, 0, 4);
+    glCopyNamedBufferSubData(t->command.id, t->draw_ring.buf[r].id, 16, 4, 4);
+    ring_fence(&t->draw_ring, r);
+    t->culled_once = true;
+    gfx_timer_end();
+
+    gfx_timer_begin("tiles.draw");
+    float sun[3];
+    const float *root, *tip;
+    resolve_colours(desc, sun, &root, &tip);
+    bool fade = desc->fade_end > desc->fade_start;
+    p = t->draw;
+    glUseProgram(p.id);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
+    glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->camera);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
+    glUniform2f(gfx_uniform(p, "u_fade"), desc->fade_start, desc->fade_end);
+    glUniform3fv(gfx_uniform(p, "u_albedo_root"), 1, root);
+    glUniform3fv(gfx_uniform(p, "u_albedo_tip"), 1, tip);
+    glUniform1i(gfx_uniform(p, "u_shape"), (int)t->desc.shape);
+    glUniform1f(gfx_uniform(p, "u_displacement"), 0.0f);
+    glUniform1f(gfx_uniform(p, "u_width_correction"), 0.0f);
+    glUniform1i(gfx_uniform(p, "u_max_level"), t->desc.max_level);
+    glUniform1f(gfx_uniform(p, "u_lod_distance"), t->desc.lod_distance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, t->command.id);
+    glBindVertexArray(t->vao);
+    glEnable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+    if (fade) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
+    if (fade) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glBindVertexArray(0);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gfx_timer_end();
+}
+
+blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)
+{
+    int r;
+    while ((r = ring_poll(&t->draw_ring, wait)) >= 0) {
+        uint32_t v[2];
+        gfx_buffer_read(t->draw_ring.buf[r], 0, sizeof v, v);
+        t->stats.blades_drawn = v[0] < t->draw_capacity ? v[0] : t->draw_capacity;
+        t->stats.draw_overflow = v[1];
+        if (v[1] && !t->warned_overflow)
+            core_log_warn("blade_tiles: %u blades did not fit the draw buffer (%u); raise draw_capacity", v[1],
+                          t->draw_capacity);
+        t->warned_overflow = t->warned_overflow || v[1];
+    }
+    const hybrid_stats_t *h = &t->grid.stats;
+    t->stats.idle = h->idle;
+    t->stats.active = h->active;
+    t->stats.recovering = h->recovering;
+    t->stats.blade_tiles = h->blade_tiles;
+    t->stats.slots_used = h->slots_used;
+    t->stats.pool_denied = h->pool_denied;
+    return t->stats;
+}
+
+void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float *eta_out)
+{
+    size_t B = t->template_blades;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (out) gfx_buffer_read(t->pool, (size_t)slot * B * sizeof(blade_t), B * sizeof(blade_t), out);
+    if (eta_out) gfx_buffer_read(t->eta, (size_t)slot * B * sizeof(float), B * sizeof(float), eta_out);
+}
+
+void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(t->pool, 0, (size_t)t->desc.pool_slots * t->template_blades * sizeof(blade_t), out);
+}
+
+uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids)
+{
+    uint32_t n;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(t->command, 4, sizeof n, &n);
+    if (n > t->draw_capacity) n = t->draw_capacity;
+    if (n && out) gfx_buffer_read(t->drawn, 0, n * sizeof(blade_t), out);
+    if (n && ids) gfx_buffer_read(t->drawn_ids, 0, n * sizeof(uint32_t), ids);
+    return n;
+}
+
+float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)
+{
+    return t->slot_motion[slot];
+}

@@ -1,0 +1,221 @@
+/* blade_tiles: "simulate only what the scene needs" (Fan et al. 2015,
+ * "Simulating and rendering a large-scale grass field") for the Bézier
+ * blades of Jahrmann & Wimmer 2017.
+ *
+ * The field is a grid of square tiles (src/hybrid keeps the bookkeeping:
+ * representation with hysteresis, ACTIVE / RECOVERING / IDLE, slot pool,
+ * per-tile object lists). Every tile is an instance of one of a few
+ * template tiles, seeded once on a flat tile (blade_seed, Morton order,
+ * tile-local xz, rest pose) and shared by all instances; an instance picks
+ * its template and one of the 8 symmetries of the square (4 rotations x
+ * mirror) by hashing its world tile coordinates, and its roots sit on the heightfield,
+ * sampled on the GPU from an RGBA32F texture of the grid (xyz vertex
+ * normal, w height) with the exact barycentric interpolation of
+ * terrain_height_at (up = interpolated vertex normal, as blade_seed).
+ * Mesh terrains are rejected (logged error): use blade_gpu for them.
+ *
+ * Idle tiles have no per-blade state: they are drawn from the templates in
+ * the procedural pose P(t), the equilibrium of the blade physics (eq. 1-13
+ * with eta = 0) under gravity and the wind of time t. One physics step is
+ *   v2 <- validate(v2 + a (T(v2) - v2)),  T(v2) = v0 + up h + (g + w(v2)) / s,
+ * with a = s dt (eq. 1's recovery rate times dt), g of eq. 2-4,
+ * w(v2) = (sum_i w_i(v0, t)) theta(v2) of eq. 5-8, validate = eq. 9-13.
+ * P(t) iterates this map from the rest pose: TILES_POSE_ITERATIONS (6)
+ * times with a = 0.7 (fast approach), then TILES_POSE_STEPS (24) times
+ * with a = s dt of the latest update (the validation is not a radial
+ * projection, so the fixed point depends on a: this phase lands on the
+ * physics' own fixed point). Under static wind a freshly activated slot
+ * therefore stays where the template drawing put it (test: tips move
+ * < 2e-4 m in 1 s); under travelling waves the simulated blades lag P(t)
+ * by about 1/s seconds.
+ *
+ * Active and recovering tiles own a slot of a preallocated pool of
+ * template-sized per-blade state (blade_t + eta). On activation the slot
+ * is initialised with P(t) (no pop); the Jahrmann step (the twin of
+ * blade_physics.comp) runs in one dispatch over the blades of the listed
+ * slots only, each slot testing only the spheres of its tile's object
+ * list. Every step writes the slot's motion max |v2 - P(t)| (atomicMax of
+ * the float bits); it is read back through a ring of copies fenced by
+ * timestamp queries, typically 1-2 frames late, never stalling. A
+ * RECOVERING tile goes IDLE (slot released) when its motion falls below
+ * motion_epsilon or after recover_timeout. Active tiles simulate whether
+ * on screen or not. Pool exhaustion is reported (stats.pool_denied and a
+ * warning from hybrid).
+ *
+ * Activation bound: a sphere (c, r) touches a tile when the sphere grown by
+ * height_max + width_max / 2 (how far a blade reaches from its root)
+ * touches the tile's box (hybrid_tile_touched_brute on the grown spheres).
+ *
+ * Drawing: CPU frustum test per tile (box of the tile grown by the blade
+ * reach), then tiles_cull.comp over the blades of the listed blade-
+ * representation tiles: orientation, frustum and distance-level tests of
+ * blade_cull (eq. 14-20; the distance level uses the template index, and
+ * templates are Morton ordered, so thinning stays hole-free); survivors are
+ * appended as whole blades to a per-frame buffer (capacity: the blades of
+ * every tile within switch_distance + hysteresis, counted at make; an
+ * overflow is logged and counted) and drawn by vertex pulling with the
+ * geometry of blade_geom.glsl and blade.frag (fade band of
+ * blade_draw_desc_t). No occlusion test.
+ *
+ * GPU memory: templates + pool + draw buffer, independent of the field
+ * size; the tile table lives on the CPU (hybrid_grid_t), plus the height
+ * texture of the terrain grid.
+ *
+ * Timer passes: "tiles.physics", "tiles.cull", "tiles.draw". */
+#ifndef MEADOW_BLADE_TILES_H
+#define MEADOW_BLADE_TILES_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "blade/blade.h"
+#include "hybrid/hybrid.h"
+#include "scene/terrain.h"
+
+#define BLADE_TILES_MAX_TEMPLATES 8
+#define BLADE_TILES_READBACK_SLOTS 4
+
+/* A ring of small readback buffers fenced by timestamp queries. */
+typedef struct blade_tiles_ring_t {
+    gfx_buffer_t buf[BLADE_TILES_READBACK_SLOTS];
+    GLuint query[BLADE_TILES_READBACK_SLOTS];
+    bool pending[BLADE_TILES_READBACK_SLOTS];
+    int next;
+} blade_tiles_ring_t;
+
+/* Zero means default:
+ *   terrain          required, a heightfield (grid_res > 0); borrowed
+ *                    during make only
+ *   tile_size        8 m
+ *   template_count   4 (1..BLADE_TILES_MAX_TEMPLATES)
+ *   density          100 blades/m^2; height [0.3, 0.6] m; width
+ *                    [0.01, 0.02] m; stiffness [4, 8] (blade_seed defaults)
+ *   seed             0 is a valid seed (templates use seed + k)
+ *   pool_slots       64 simulation slots of one template each
+ *   switch_distance  12 m: tiles nearer are drawn as blades (hybrid rule,
+ *                    with hysteresis 1 m); far tiles are left to billboards
+ *   recover_timeout  5 s; motion_epsilon 2 mm (see the banner)
+ *   winds            the procedural wind and the physics' winds; an env
+ *                    passed to blade_tiles_update with wind_count > 0
+ *                    replaces them from then on
+ *   shape, max_level (8 segments at the camera, vertex pulling),
+ *   lod_distance (30 m): as blade_gpu_desc_t
+ *   cull             max_distance, distance_levels, orientation_threshold,
+ *                    frustum_tolerance, disable (blade_cull_desc_defaults);
+ *                    view_proj and cam_pos come from the draw desc
+ *   draw_capacity    blades the per-frame draw buffer holds; 0: every
+ *                    blade of every tile that can be within
+ *                    switch_distance + 1 m of the camera (worst case)
+ *   label            "tiles" */
+typedef struct blade_tiles_desc_t {
+    const terrain_mesh_t *terrain;
+    float tile_size;
+    int template_count;
+    float density;
+    float height_min, height_max;
+    float width_min, width_max;
+    float stiffness_min, stiffness_max;
+    uint64_t seed;
+    int pool_slots;
+    float switch_distance;
+    float recover_timeout;
+    float motion_epsilon;
+    blade_wind_t winds[BLADE_MAX_WINDS];
+    int wind_count;
+    scene_blade_shape_t shape;
+    int max_level;
+    float lod_distance;
+    blade_cull_desc_t cull;
+    uint32_t draw_capacity;
+    const char *label;
+} blade_tiles_desc_t;
+
+typedef struct blade_tiles_stats_t {
+    int tiles, idle, active, recovering;
+    int blade_tiles;            /* tiles in blade representation */
+    int slots_used, slots_total;
+    int pool_denied;            /* tiles wanting a slot this update that got none */
+    int slots_dispatched;       /* slots simulated by the latest update */
+    uint32_t blades_dispatched; /* physics invocations of the latest update */
+    int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */
+    uint32_t blades_drawn;      /* survivors of the latest cull read back (-1..2 frames late) */
+    uint32_t draw_overflow;     /* survivors dropped for lack of capacity (logged) */
+    uint32_t blades_per_template; /* padded */
+    size_t gpu_bytes;           /* buffers + textures held */
+} blade_tiles_stats_t;
+
+typedef struct blade_tiles_t {
+    blade_tiles_desc_t desc; /* resolved; desc.terrain is NULL after make */
+    hybrid_grid_t grid;
+    float field_min[2], field_size; /* heightfield square */
+    int grid_res;
+    int tile_offset[2];             /* world tile coordinates of tile 0 (template hash) */
+    float reach;                    /* height_max + width_max / 2 */
+    uint32_t template_blades;       /* padded blades per template */
+    uint32_t draw_capacity;
+    int *slot_owner;                /* tile per slot, -1 free */
+    float *tile_motion;             /* per tile, for hybrid */
+    uint32_t *scratch;              /* per-frame upload lists */
+    blade_t *template_cpu;          /* template_count * template_blades, tile-local */
+    float *ground_cpu;              /* the ground texture: xyz normal, w height per grid vertex */
+    int max_draw_tiles;
+    blade_env_t env;                /* latest resolved env (gravity, winds) */
+    float time;
+    gfx_buffer_t templates, pool, eta, motion, winds, spheres, slot_spheres, slot_list, init_list,
+        tile_list, drawn, drawn_ids, command;
+    blade_tiles_ring_t motion_ring, draw_ring;
+    int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
+    float *slot_motion;                            /* latest read back, per slot */
+    gfx_texture_t ground;
+    gfx_program_t init, physics, cull, draw;
+    GLuint vao;
+    blade_tiles_stats_t stats;
+    bool culled_once, warned_overflow;
+} blade_tiles_t;
+
+blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc);
+
+/* Seeds the templates, uploads templates and ground, allocates the pool.
+ * Returns false (one logged error, *t zeroed, nothing held) for a mesh
+ * terrain, bad sizes, or GL failure. */
+bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc);
+void blade_tiles_destroy(blade_tiles_t *t);
+
+/* One frame: representation from camera, activation from the spheres
+ * (xyz centre, w radius; at most BLADE_MAX_SPHERES, the rest logged and
+ * ignored), motion read back without stalling, slot initialisation, and
+ * one physics step over the active and recovering slots (timer
+ * "tiles.physics"). env: dt, time, gravity, collision and length settings
+ * (resolved with blade_env_defaults; its spheres are ignored). */
+void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*spheres)[4], int sphere_count,
+                        const blade_env_t *env);
+
+/* Culls (timer "tiles.cull") and draws (timer "tiles.draw") the blade-
+ * representation tiles into the bound framebuffer; procedural pose at the
+ * time of the latest update. Depth test on, two-sided. */
+void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
+
+/* Statistics; blades_drawn without stalling unless wait (tests). */
+blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);
+
+/* ---- test helpers (blocking) ---------------------------------------------- */
+/* The template_blades blades (and eta, may be NULL) of a pool slot. */
+void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float *eta_out);
+/* The whole pool: pool_slots * template_blades blades. */
+void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out);
+/* Survivors of the latest cull (whole blades, count returned; out holds
+ * draw_capacity); ids (may be NULL) receives tile * template_blades + blade
+ * per survivor. */
+uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids);
+/* Latest motion per slot as read back (m). */
+float blade_tiles_slot_motion(const blade_tiles_t *t, int slot);
+/* CPU twin of the GPU root placement: world root and up of template blade
+ * `b` (as seeded, tile-local) in tile `tile`. */
+void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2], float root[3], float up[3]);
+/* The template (0..template_count-1) and symmetry (0..7) of a tile. */
+void blade_tiles_instance(const blade_tiles_t *t, int tile, int *template_index, int *symmetry);
+/* GPU bytes a field would hold (what stats.gpu_bytes reports), without
+ * making it: for the memory comparison with blade_gpu. */
+size_t blade_tiles_estimate_bytes(const blade_tiles_desc_t *desc, uint32_t *template_blades_out);
+
+#endif

@@ -1,0 +1,367 @@
+/* test_blade_tiles: the tiled blade field (Fan et al. 2015 activation over
+ * Jahrmann & Wimmer 2017 blades, src/blade/blade_tiles.h) on small fields:
+ *   a) no pop: the blades of an idle tile as drawn from the templates
+ *      (procedural pose, read back from the draw buffer) equal the slot
+ *      state right after activation; roots equal the CPU twin and
+ *      terrain_height_at; the procedural pose is a fixed point of the
+ *      physics under static wind (a slot left alone for 1 s barely moves);
+ *   b) physics only on active slots: pool slots outside the dispatch list
+ *      keep their bytes; a dispatched slot equals blade_ref_step (eq. 1-13)
+ *      with ALL spheres (so the per-tile sphere lists lose nothing); the
+ *      slots dispatched per frame are the same for a 16 m and a 64 m
+ *      field (16x the tiles) with the same ball;
+ *   c) a ball crossing tiles: ACTIVE exactly where the brute-force
+ *      hybrid test (spheres grown by the blade reach) says; released by
+ *      measured motion before the timeout; a 2-slot pool reports
+ *      exhaustion;
+ *   d) over the run: no NaN, v0 bit-identical since activation, curve
+ *      length within 2% of the height. */
+#include "blade/blade_tiles.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <string.h>
+
+#define B_MAX 1024
+
+static terrain_mesh_t make_terrain(float size, int res, bool flat)
+{
+    terrain_mesh_t m;
+    CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = size, .resolution = res, .height = 0.4f}, 7));
+    if (flat) {
+        for (uint32_t v = 0; v < m.vertex_count; v++) {
+            m.positions[3 * v + 1] = 0.0f;
+            m.normals[3 * v + 0] = m.normals[3 * v + 2] = 0.0f;
+            m.normals[3 * v + 1] = 1.0f;
+        }
+        m.aabb_min[1] = m.aabb_max[1] = 0.0f;
+    }
+    return m;
+}
+
+static bool make_tiles(blade_tiles_t *t, const terrain_mesh_t *m, int pool, float speed)
+{
+    blade_tiles_desc_t d = {.terrain = m, .tile_size = 2.0f, .density = 64.0f, .height_min = 0.3f,
+                            .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
+                            .stiffness_max = 12.0f, .seed = 3, .pool_slots = pool, .switch_distance = 12.0f,
+                            .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
+    d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, speed);
+    d.wind_count = 1;
+    return blade_tiles_make(t, &d);
+}
+
+static blade_env_t make_env(float time, float dt)
+{
+    return (blade_env_t){.dt = dt, .time = time, .gravity = 1.0f};
+}
+
+static void draw_all(blade_tiles_t *t, const float cam[3])
+{
+    blade_draw_desc_t dd = {0};
+    mat4 view, proj, vp;
+    glm_lookat((float *)cam, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(60.0f), 1.0f, 0.05f, 100.0f, proj);
+    glm_mat4_mul(proj, view, vp);
+    memcpy(dd.view_proj, vp, sizeof vp);
+    memcpy(dd.camera, cam, sizeof dd.camera);
+    blade_tiles_draw(t, &dd);
+}
+
+static float dist3(const float *a, const float *b)
+{
+    float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return sqrtf(dx * dx + dy * dy + dz * dz);
+}
+
+/* ---- a) ------------------------------------------------------------------ */
+static void test_no_pop(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, false);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    uint32_t B = t.template_blades;
+    CHECK(B == 256);
+    int tile = hybrid_tile_at(&t.grid, 1.0f, 1.0f);
+    const float cam[3] = {1.0f, 3.0f, 6.0f};
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, cam, NULL, 0, &env);
+    draw_all(&t, cam);
+    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
+    blade_t idle[B_MAX], slot_b[B_MAX], again[B_MAX];
+    memset(idle, 0, sizeof idle);
+    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids), found = 0;
+    for (uint32_t i = 0; i < n; i++)
+        if (ids[i] / B == (uint32_t)tile) idle[ids[i] % B] = drawn[i], found++;
+    CHECK_MSG(found == 64 * 4, "tile %d drew %u blades (expected the 256 of the template)", tile, found);
+
+    /* roots: GPU placement = CPU twin = terrain_height_at */
+    int tmpl, sym;
+    blade_tiles_instance(&t, tile, &tmpl, &sym);
+    float worst_root = 0, worst_ground = 0, bend = 0;
+    for (uint32_t k = 0; k < B; k++) {
+        const blade_t *tb = &t.template_cpu[(size_t)tmpl * B + k];
+        if (tb->v1[3] <= 0) continue;
+        float root[3], up[3];
+        blade_tiles_root(&t, tile, (float[2]){tb->v0[0], tb->v0[2]}, root, up);
+        worst_root = fmaxf(worst_root, dist3(root, idle[k].v0));
+        worst_ground = fmaxf(worst_ground, fabsf(terrain_height_at(&m, root[0], root[2], NULL) - root[1]));
+        float rest[3] = {idle[k].v0[0] + idle[k].up[0] * idle[k].v1[3], idle[k].v0[1] + idle[k].up[1] * idle[k].v1[3],
+                         idle[k].v0[2] + idle[k].up[2] * idle[k].v1[3]};
+        bend += dist3(rest, idle[k].v2) / (float)found;
+    }
+    printf("a) roots: GPU vs CPU twin %.2g m, vs terrain_height_at %.2g m; mean tip bend of the pose %.3f m\n",
+           worst_root, worst_ground, bend);
+    CHECK(worst_root < 1e-5f);
+    CHECK(worst_ground < 1e-5f);
+    CHECK(bend > 0.01f); /* the pose is not the rest pose: the test compares something */
+
+    /* activate the tile with a sphere above its blades (touches the grown
+     * bound, not the blades): init + one step at the same time */
+    float top = m.aabb_max[1] + t.reach;
+    const float ball[1][4] = {{1.0f, top + 0.4f, 1.0f, 0.1f}};
+    blade_tiles_update(&t, cam, ball, 1, &env);
+    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    CHECK(st.active == 1 && st.slots_used == 1);
+    int slot = t.grid.tiles[tile].slot;
+    CHECK(slot >= 0);
+    blade_tiles_read_slot(&t, slot, slot_b, NULL);
+    draw_all(&t, cam);
+    n = blade_tiles_read_drawn(&t, drawn, ids);
+    for (uint32_t i = 0; i < n; i++)
+        if (ids[i] / B == (uint32_t)tile) again[ids[i] % B] = drawn[i];
+    float pop = 0, pop_drawn = 0;
+    for (uint32_t k = 0; k < B; k++) {
+        if (idle[k].v1[3] <= 0) continue;
+        for (int c = 0; c < 3; c++) {
+            pop = fmaxf(pop, dist3(&idle[k].v0[0] + 4 * c, &slot_b[k].v0[0] + 4 * c));
+            pop_drawn = fmaxf(pop_drawn, dist3(&idle[k].v0[0] + 4 * c, &again[k].v0[0] + 4 * c));
+        }
+    }
+    printf("a) pop at activation: idle drawn vs slot %.2g m, vs drawn from the slot %.2g m\n", pop, pop_drawn);
+    CHECK(pop < 5e-5f);
+    CHECK(pop_drawn < 5e-5f);
+
+    /* fixed point: 60 steps of 1/60 s under the static wind */
+    env.dt = 1.0f / 60.0f;
+    for (int f = 0; f < 60; f++) {
+        env.time += env.dt;
+        blade_tiles_update(&t, cam, ball, 1, &env);
+    }
+    blade_t later[B_MAX];
+    blade_tiles_read_slot(&t, slot, later, NULL);
+    float drift = 0;
+    for (uint32_t k = 0; k < B; k++)
+        if (slot_b[k].v1[3] > 0) drift = fmaxf(drift, dist3(slot_b[k].v2, later[k].v2));
+    printf("a) a slot left alone for 1 s under static wind moved its tips by at most %.2g m\n", drift);
+    CHECK(drift < 2e-4f);
+    free(drawn);
+    free(ids);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
+/* ---- b, c, d: a ball through the field -------------------------------------- */
+#define BALL_FRAMES 300
+#define RUN_FRAMES 700
+
+typedef struct run_t {
+    int dispatched[RUN_FRAMES];
+    int max_active, releases, timeouts;
+    float worst_ref, worst_len;
+    int ref_over, ref_blades, frozen_checked;
+    bool nan, v0_moved, idle_written, active_mismatch;
+} run_t;
+
+static void ball_at(int f, float out[4])
+{
+    float x = -5.0f + 10.0f * (float)f / (float)BALL_FRAMES;
+    out[0] = x, out[1] = 0.3f, out[2] = 0.5f, out[3] = 0.45f;
+}
+
+static void run_ball(float size, int res, run_t *r, bool check_ref)
+{
+    memset(r, 0, sizeof *r);
+    terrain_mesh_t m = make_terrain(size, res, true);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 16, 0.0f));
+    uint32_t B = t.template_blades;
+    int S = t.desc.pool_slots, ntiles = t.grid.nx * t.grid.nz;
+    size_t pool_n = (size_t)S * B;
+    blade_t *before = malloc(pool_n * sizeof *before), *after = malloc(pool_n * sizeof *after);
+    float *eta_before = malloc(pool_n * sizeof(float)), *eta_gpu = malloc(B * sizeof(float));
+    blade_t *v0_at = malloc(pool_n * sizeof *v0_at);
+    int *v0_owner = malloc((size_t)S * sizeof(int));
+    int *recover_start = malloc((size_t)ntiles * sizeof(int));
+    for (int s = 0; s < S; s++) v0_owner[s] = -1;
+    for (int i = 0; i < ntiles; i++) recover_start[i] = -1;
+    const float cam[3] = {0.0f, 3.0f, 6.0f};
+    for (int f = 0; f < RUN_FRAMES; f++) {
+        blade_env_t env = make_env((float)f / 60.0f, 1.0f / 60.0f);
+        float ball[1][4];
+        ball_at(f, ball[0]);
+        int nb = f < BALL_FRAMES ? 1 : 0;
+        bool probe = f % 10 == 5;
+        int owner_before[64];
+        if (probe) {
+            blade_tiles_read_pool(&t, before);
+            for (int s = 0; s < S; s++) {
+                owner_before[s] = t.slot_owner[s];
+                blade_tiles_read_slot(&t, s, NULL, &eta_before[(size_t)s * B]);
+            }
+        }
+        blade_tiles_update(&t, cam, (const float (*)[4])ball, nb, &env);
+        blade_tiles_stats_t st = blade_tiles_stats(&t, false);
+        r->dispatched[f] = st.slots_dispatched;
+        r->max_active = st.active > r->max_active ? st.active : r->max_active;
+        /* c) activation = brute force on the grown spheres */
+        hybrid_object_t obj = {{ball[0][0], ball[0][1], ball[0][2], ball[0][3] + t.reach}};
+        int live = 0;
+        for (int i = 0; i < ntiles; i++) {
+            const hybrid_tile_t *tl = &t.grid.tiles[i];
+            bool touched = nb && hybrid_tile_touched_brute(&t.grid, i, &obj, 1);
+            if ((tl->state == HYBRID_ACTIVE) != touched) r->active_mismatch = true;
+            if ((tl->slot >= 0) != (tl->state != HYBRID_IDLE)) r->active_mismatch = true;
+            live += tl->slot >= 0;
+            if (tl->state == HYBRID_RECOVERING && recover_start[i] < 0) recover_start[i] = f;
+            if (tl->state != HYBRID_RECOVERING && recover_start[i] >= 0) {
+                if (tl->state == HYBRID_IDLE) {
+                    r->releases++;
+                    if (f - recover_start[i] >= 60 * 5) r->timeouts++;
+                }
+                recover_start[i] = -1;
+            }
+        }
+        if (live != st.slots_dispatched) r->active_mismatch = true;
+        if (!probe) continue;
+        blade_tiles_read_pool(&t, after);
+        for (int s = 0; s < S; s++) {
+            int o = t.slot_owner[s];
+            blade_t *a = &after[(size_t)s * B], *b = &before[(size_t)s * B];
+            if (o < 0) {
+                /* b) free slots are never written */
+                if (memcmp(a, b, B * sizeof *a) != 0) r->idle_written = true;
+                v0_owner[s] = -1;
+                continue;
+            }
+            /* d) invariants */
+            if (v0_owner[s] != o) {
+                memcpy(&v0_at[(size_t)s * B], a, B * sizeof *a);
+                v0_owner[s] = o;
+            }
+            for (uint32_t k = 0; k < B; k++) {
+                if (a[k].v1[3] <= 0) continue;
+                for (int c = 0; c < 16; c++)
+                    if (!isfinite((&a[k].v0[0])[c])) r->nan = true;
+                if (memcmp(a[k].v0, v0_at[(size_t)s * B + k].v0, sizeof a[k].v0) != 0) r->v0_moved = true;
+                float len = blade_ref_curve_length(&a[k], 64);
+                r->worst_len = fmaxf(r->worst_len, fabsf(len - a[k].v1[3]) / a[k].v1[3]);
+            }
+            r->frozen_checked++;
+            /* b) the step of a slot that kept its tile equals the CPU
+             * reference with every sphere */
+            if (!check_ref || owner_before[s] != o) continue;
+            blade_env_t ce = env;
+            ce.winds[0] = t.env.winds[0];
+            ce.wind_count = 1;
+            if (nb) {
+                memcpy(ce.spheres[0].centre_radius, ball[0], sizeof ball[0]);
+                ce.sphere_count = 1;
+            }
+            float *eta = &eta_before[(size_t)s * B];
+            blade_ref_step(b, eta, B, &ce);
+            blade_tiles_read_slot(&t, s, NULL, eta_gpu);
+            for (uint32_t k = 0; k < B; k++) {
+                if (b[k].v1[3] <= 0) continue;
+                float d = fmaxf(dist3(b[k].v2, a[k].v2), dist3(b[k].v1, a[k].v1));
+                d = fmaxf(d, fabsf(eta[k] - eta_gpu[k]));
+                r->ref_blades++;
+                if (d > 1e-4f) r->ref_over++;
+                else r->worst_ref = fmaxf(r->worst_ref, d);
+            }
+        }
+    }
+    free(before);
+    free(after);
+    free(eta_before);
+    free(eta_gpu);
+    free(v0_at);
+    free(v0_owner);
+    free(recover_start);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
+static void test_ball(void)
+{
+    static run_t small, large;
+    run_ball(16.0f, 32, &small, true);
+    run_ball(64.0f, 128, &large, false);
+    printf("b) CPU reference vs GPU slots: %d blade steps, worst %.2g m, %d over 1e-4 m\n", small.ref_blades,
+           small.worst_ref, small.ref_over);
+    CHECK(small.ref_blades > 1000);
+    CHECK(small.worst_ref < 2e-5f);
+    CHECK(small.ref_over * 200 <= small.ref_blades); /* branch-boundary blades (fma contraction) */
+    CHECK(!small.idle_written && !large.idle_written);
+    int same = 0, peak = 0, total_s = 0, total_l = 0;
+    for (int f = 0; f < RUN_FRAMES; f++) {
+        same += small.dispatched[f] == large.dispatched[f];
+        peak = small.dispatched[f] > peak ? small.dispatched[f] : peak;
+        total_s += small.dispatched[f];
+        total_l += large.dispatched[f];
+    }
+    printf("b) slots dispatched, 16 m (64 tiles) vs 64 m (1024 tiles): peak %d, total %d vs %d, %d/%d frames "
+           "equal\n",
+           peak, total_s, total_l, same, RUN_FRAMES);
+    CHECK(same == RUN_FRAMES);
+    CHECK(peak >= 4 && peak <= 8);
+    printf("c) max active %d, releases %d (by timeout %d), activation mismatches: %s\n", small.max_active,
+           small.releases, small.timeouts, small.active_mismatch || large.active_mismatch ? "yes" : "none");
+    CHECK(!small.active_mismatch && !large.active_mismatch);
+    CHECK(small.releases >= 5 && small.timeouts == 0);
+    CHECK(small.dispatched[RUN_FRAMES - 1] == 0);
+    printf("d) %d slot checks: NaN %s, v0 moved %s, worst |len - h| / h %.4f\n", small.frozen_checked,
+           small.nan ? "yes" : "no", small.v0_moved ? "yes" : "no", small.worst_len);
+    CHECK(!small.nan && !small.v0_moved && small.frozen_checked > 50);
+    CHECK(small.worst_len < 0.02f);
+}
+
+static void test_exhaustion(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 2, 0.0f));
+    int warns = core_log_warn_count();
+    const float ball[1][4] = {{0.0f, 0.3f, 0.0f, 0.5f}}; /* on a tile corner: 4 tiles */
+    blade_env_t env = make_env(0.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, (float[3]){0, 3, 6}, ball, 1, &env);
+    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    printf("c) pool of 2 slots, 4 tiles touched: active %d, slots %d/%d, denied %d, warnings %d\n", st.active,
+           st.slots_used, st.slots_total, st.pool_denied, core_log_warn_count() - warns);
+    CHECK(st.active == 2 && st.slots_used == 2 && st.pool_denied == 2);
+    CHECK(core_log_warn_count() > warns);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
+int main(void)
+{
+    test_gl_init();
+    gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 32, .h = 32, .samples = 1, .label = "tiles.test"});
+    gfx_target_bind(&target);
+    test_no_pop();
+    test_ball();
+    test_exhaustion();
+    /* a mesh terrain is rejected */
+    terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
+    mesh.grid_res = 0;
+    blade_tiles_t t;
+    int errors = core_log_error_count();
+    CHECK(!blade_tiles_make(&t, &(blade_tiles_desc_t){.terrain = &mesh}));
+    CHECK(core_log_error_count() == errors + 1);
+    mesh.grid_res = 8;
+    terrain_free(&mesh);
+    gfx_target_destroy(&target);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
