@@ -40,6 +40,7 @@ typedef struct app_options_t {
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */
+    bool montage;             /* --montage: end a headless run with the mode montage */
     const char *report;       /* bench --report DIR: sweep + stability + compare, RESULTS.md into DIR */
     bool quiet;
 } app_options_t;

@@ -15,7 +15,7 @@
 
 int app_compare(const app_options_t *o)
 {
-    char out[1024], err[1024], path[1200];
+    char out[1024], err[1024];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
     if (!core_fs_check_writable_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
@@ -26,6 +26,20 @@ int app_compare(const app_options_t *o)
         return 1;
     }
     gfx_init();
+    int rc = app_compare_write(o, out, o->frames_set ? o->frames : 60);
+    gfx_shutdown(true);
+    int gl_errors = plat_gl_error_count();
+    plat_shutdown();
+    if (gl_errors) {
+        core_log_error("%d GL error(s) during compare", gl_errors);
+        return 1;
+    }
+    return rc;
+}
+
+int app_compare_write(const app_options_t *o, const char *out, int frames)
+{
+    char path[1200];
     static const struct {
         const char *name;
         scene_mode_t mode;
@@ -37,7 +51,6 @@ int app_compare(const app_options_t *o)
     core_image_t img[PANELS] = {0};
     app_metrics_t met[PANELS];
     int rc = 0;
-    int frames = o->frames_set ? o->frames : 60;
     for (int i = 0; i < PANELS && rc == 0; i++) {
         core_log_info("compare: %d/%d %s (%d frames)", i + 1, PANELS, panels[i].name, frames);
         app_session_desc_t d = {.opts = o, .mode = panels[i].mode, .mode_set = true, .frames = frames,
@@ -85,12 +98,5 @@ int app_compare(const app_options_t *o)
         core_image_free(&montage);
     }
     for (int i = 0; i < PANELS; i++) core_image_free(&img[i]);
-    gfx_shutdown(true);
-    int gl_errors = plat_gl_error_count();
-    plat_shutdown();
-    if (gl_errors) {
-        core_log_error("%d GL error(s) during compare", gl_errors);
-        return 1;
-    }
     return rc;
 }

@@ -105,10 +105,14 @@ static void write_summary(app_t *app, double wall_s)
                   "gpu_memory_mb: %.1f\n"
                   "blades: %ld\nblade_survivors: %ld\nblade_culled (orientation frustum distance occlusion "
                   "patch): %u %u %u %u %ld\n"
-                  "billboards: %ld\nbillboards_deformed: %d\ncharacters: %d\ngrass_triangles_max: %ld\n",
+                  "billboards: %ld\nbillboards_deformed: %d\ncharacters: %d\n"
+                  "blade_tiles (near) %d, active %d, recovering %d, state slots %d/%d, blades simulated %ld\n"
+                  "grass_triangles_max: %ld\n",
                   frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
                   st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
-                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.characters, st.triangles);
+                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.characters, st.tiles_blade,
+                  st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
+                  st.tile_blades_simulated, st.triangles);
     if (app->opts->floor) {
         double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
@@ -206,6 +210,13 @@ int app_run(const app_options_t *o)
     if (ok) {
         gfx_timer_flush();
         write_summary(&app, plat_time() - t0);
+    }
+    if (ok && headless && o->montage) {
+        /* The same frame in billboard, blade and hybrid modes (and the
+         * reference), side by side: compare.png in the output folder. */
+        int mframes = app.frames < 120 ? app.frames : 120;
+        core_log_info("montage: rendering frame %d in every mode", mframes);
+        if (app_compare_write(o, app.out, mframes) != 0) rc = 1;
     }
     app_world_destroy(w);
     gfx_target_destroy(&app.target);

@@ -133,6 +133,13 @@ static bool make_bb(app_world_t *w)
 static bool wants_bb(scene_mode_t m) { return m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID; }
 static bool wants_blades(scene_mode_t m) { return m == SCENE_MODE_BLADE || m == SCENE_MODE_HYBRID; }
 
+/* Hybrid mode on a heightfield draws its near blades from tiles; blade mode
+ * (and the reference) simulates every blade of the field, as the paper. */
+static bool uses_tiles(const app_world_t *w)
+{
+    return w->mode == SCENE_MODE_HYBRID && !w->reference && w->terrain_mesh.grid_res > 0;
+}
+
 /* Blade gravity in the paper's units: forces are displacement rates (m/s),
  * so with eq. 1's stiffness s the tip settles where s * deflection balances
  * gravity. 1 m/s with stiffness 8-12 bends a 0.5 m blade by ~0.1 m. */
@@ -165,6 +172,14 @@ static bool make_blades(app_world_t *w)
     core_log_info("blades: %zu blades in %zu patches (%zu in clearings of the extent map)",
                   field.blade_count - dropped, field.patch_count, dropped);
     blade_field_free(&field);
+    return w->have_blades;
+}
+
+/* The blade environment shared by the full field and the tiles. */
+static void make_blade_env(app_world_t *w)
+{
+    const scene_desc_t *s = &w->scene;
+    const scene_grass_desc_t *g = &s->grass;
     /* A push of a tenth of the mean height counts fully towards eta, and
      * eta decays over the scene's recover time: a trail stays down about
      * that long, like the billboards' (departure from the paper's k = 1,
@@ -183,7 +198,27 @@ static bool make_blades(app_world_t *w)
     if (s->wind_count > BLADE_MAX_WINDS)
         core_log_warn("blades: %d wind fields, the blade physics takes %d: the rest are ignored", s->wind_count,
                       BLADE_MAX_WINDS);
-    return w->have_blades;
+}
+
+static bool make_tiles(app_world_t *w)
+{
+    const scene_desc_t *s = &w->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    blade_tiles_desc_t td = {.terrain = &w->terrain_mesh,
+                             .tile_size = g->tile_size,
+                             .density = g->density,
+                             .height_min = g->height[0], .height_max = g->height[1],
+                             .width_min = g->width[0], .width_max = g->width[1],
+                             .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
+                             .seed = s->seed,
+                             .switch_distance = g->switch_distance,
+                             .shape = g->shape,
+                             .wind_count = w->blade_env.wind_count,
+                             .cull = {.max_distance = g->switch_distance + 1.0f},
+                             .label = "tiles"};
+    memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
+    w->have_tiles = blade_tiles_make(&w->tiles, &td);
+    return w->have_tiles;
 }
 
 /* Sphere proxies for the blade physics: spheres exactly, capsules as
@@ -242,7 +277,9 @@ bool app_world_make_gpu(app_world_t *w)
         w->gpu_ready = w->have_chars;
     }
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
-    if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
+    make_blade_env(w);
+    if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
+    else if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
     return w->gpu_ready;
 }
 
@@ -306,12 +343,14 @@ void app_world_update(app_world_t *w, float t, float dt)
         int n = bb_objects(w, objs, w->bb.desc.max_objects);
         bb_field_update(&w->bb, objs, n, t, dt);
     }
-    if (w->have_blades) {
+    if (w->have_blades || w->have_tiles) {
         blade_env_t *env = &w->blade_env;
         env->dt = dt;
         env->time = t;
         env->sphere_count = blade_spheres(w, env->spheres, BLADE_MAX_SPHERES);
-        blade_gpu_simulate(&w->blades, env);
+        if (w->have_blades) blade_gpu_simulate(&w->blades, env);
+        if (w->have_tiles)
+            blade_tiles_update(&w->tiles, w->camera, (const float (*)[4])env->spheres, env->sphere_count, env);
     }
 }
 
@@ -324,7 +363,14 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     gfx_timer_end();
     if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
     float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
-    if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
+    glm_vec3_copy((float *)v->camera, w->camera);
+    if (w->have_tiles && uses_tiles(w)) {
+        blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi};
+        memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
+        memcpy(dd.camera, v->camera, sizeof dd.camera);
+        memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+        blade_tiles_draw(&w->tiles, &dd);
+    } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
         gfx_target_resolve(target);
         blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
@@ -365,13 +411,16 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
     w->mode = mode;
     w->scene.mode = mode;
     if (w->gpu_ready && wants_bb(mode) && !w->have_bb && !w->reference) make_bb(w);
-    if (w->gpu_ready && wants_blades(mode) && !w->have_blades) make_blades(w);
+    if (w->gpu_ready && uses_tiles(w) && !w->have_tiles) make_tiles(w);
+    else if (w->gpu_ready && wants_blades(mode) && !uses_tiles(w) && !w->have_blades) make_blades(w);
 }
 
 void app_world_destroy(app_world_t *w)
 {
     if (w->have_bb) bb_field_destroy(&w->bb);
     if (w->have_blades) blade_gpu_destroy(&w->blades);
+    if (w->have_tiles) blade_tiles_destroy(&w->tiles);
+    w->have_tiles = false;
     if (w->have_chars) character_set_destroy(&w->chars);
     w->have_chars = false;
     w->have_bb = w->have_blades = false;
@@ -418,6 +467,18 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->bb_deformed = s.deformed;
         int nm = (w->bb.desc.subdiv[0] - 1) * (w->bb.desc.subdiv[1] - 1) * 2;
         st->triangles += (long)(s.billboards - s.deformed) * 2 + (long)s.deformed * nm;
+    }
+    if (w->have_tiles) {
+        blade_tiles_stats_t ts = blade_tiles_stats(&w->tiles, true);
+        st->blades += (long)ts.blades_drawn;
+        st->blade_survivors += (long)ts.blades_drawn;
+        st->tiles_active = ts.active;
+        st->tiles_recovering = ts.recovering;
+        st->tiles_blade = ts.blade_tiles;
+        st->tile_slots_used = ts.slots_used;
+        st->tile_slots_total = ts.slots_total;
+        st->tile_blades_simulated = (long)ts.blades_dispatched;
+        st->triangles += (long)ts.blades_drawn * 2 * w->tiles.desc.max_level;
     }
     st->characters = w->have_chars ? w->chars.count : 0;
 }

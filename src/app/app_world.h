@@ -12,6 +12,7 @@
 #include "scene/terrain.h"
 #include "billboard/bb.h"
 #include "blade/blade.h"
+#include "blade/blade_tiles.h"
 #include "character/character.h"
 
 /* Per-frame view, shared by every draw. */
@@ -92,6 +93,11 @@ typedef struct app_world_t {
     blade_env_t blade_env; /* winds fixed at load; spheres per update */
     bool warned_spheres;
     int blade_render; /* app_options_t.blade_render */
+    /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
+     * per-blade state only for tiles objects touch. */
+    blade_tiles_t tiles;
+    bool have_tiles;
+    float camera[3]; /* of the last draw (activation and representation) */
     /* Walking characters (scene "characters" or --character). */
     character_set_t chars;
     bool have_chars;
@@ -123,6 +129,8 @@ typedef struct app_world_stats_t {
     long billboards;
     int bb_deformed;
     int characters;
+    int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
+    long tile_blades_simulated;
     long triangles;         /* estimated triangles drawn by the grass */
 } app_world_stats_t;
 
@@ -172,4 +180,7 @@ void app_world_metrics(app_world_t *w, app_metrics_t *m);
 double app_floor_ms(long triangles, int w, int h, int samples);
 
 int app_compare(const app_options_t *o);
+/* The montage of `meadow compare` in the current context: the scene's frame
+ * `frames` rendered in every mode and as the reference, written to `out`. */
+int app_compare_write(const app_options_t *o, const char *out, int frames);
 int app_bench(const app_options_t *o);

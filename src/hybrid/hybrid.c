@@ -118,8 +118,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
                 hybrid_tile_t *t = &g->tiles[j * g->nx + i];
                 if (sphere_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
                 if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
-                    core_log_warn("hybrid: tile %d touched by more than %d objects; object %d not listed",
-                                  j * g->nx + i, HYBRID_TILE_MAX_OBJECTS, k);
+                    st.list_overflow++;
                     continue;
                 }
                 t->objects[t->object_count++] = (uint16_t)k;
@@ -172,5 +171,11 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
                       "(%d slots); raise pool_slots",
                       st.pool_denied, d->pool_slots);
     g->warned_pool = st.pool_denied > 0;
+    if (st.list_overflow > 2 * g->warned_overflow) {
+        core_log_warn("hybrid: %d object(s) left out of per-tile lists full at %d objects (warned again when "
+                      "this doubles)",
+                      st.list_overflow, HYBRID_TILE_MAX_OBJECTS);
+        g->warned_overflow = st.list_overflow;
+    }
     g->stats = st;
 }

@@ -16,7 +16,9 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#define HYBRID_TILE_MAX_OBJECTS 16
+/* Objects listed per tile: a walking character is ~35 proxy spheres, so a
+ * tile under two characters and a ball needs about 80. */
+#define HYBRID_TILE_MAX_OBJECTS 128
 
 typedef enum hybrid_state_t {
     HYBRID_IDLE = 0,
@@ -62,6 +64,7 @@ typedef struct hybrid_stats_t {
     int slots_used, slots_total;
     int pool_denied;        /* tiles that wanted a slot this update and got none */
     int rep_switches;       /* representation changes this update */
+    int list_overflow;      /* objects left out of full per-tile lists this update */
 } hybrid_stats_t;
 
 typedef struct hybrid_grid_t {
@@ -71,6 +74,7 @@ typedef struct hybrid_grid_t {
     int *free_slots;
     int free_count;
     bool warned_pool;
+    int warned_overflow; /* overflow count last warned about (warns again on doubling) */
     hybrid_stats_t stats;
 } hybrid_grid_t;
 
