@@ -77,17 +77,21 @@ int main(void)
     core_image_free(&bb);
     core_image_free(&bl);
 
-    /* Live switches. */
+    /* Live switches: blade mode builds the full field; billboard and
+     * hybrid (tiles) come and go around it without resetting it. */
     app_world_t *w = calloc(1, sizeof *w);
     CHECK(app_world_load(w, &o) == 0);
     CHECK(app_world_make_gpu(w));
-    CHECK(w->have_blades && w->have_bb);
+    CHECK(w->have_tiles && w->have_bb && !w->have_blades);
+    app_world_set_mode(w, SCENE_MODE_BLADE);
+    CHECK(w->have_blades);
+    int f = 0;
+    for (int i = 0; i < 10; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     size_t n = w->blades.padded_count;
     blade_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
     blade_gpu_read_blades(&w->blades, a, NULL);
-    static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID,
+    static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_HYBRID, SCENE_MODE_BLADE,
                                         SCENE_MODE_BILLBOARD};
-    int f = 0;
     for (int k = 0; k < 4; k++) {
         app_world_set_mode(w, seq[k]);
         for (int i = 0; i < 20; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
@@ -102,7 +106,7 @@ int main(void)
     }
     printf("mode switches: %d blades moved (wind, ball), %d bad\n", moved, bad);
     CHECK(bad == 0 && moved > 0);
-    CHECK(w->have_bb && w->have_blades && w->mode == SCENE_MODE_BILLBOARD);
+    CHECK(w->have_bb && w->have_blades && w->have_tiles && w->mode == SCENE_MODE_BILLBOARD);
     free(a);
     free(b);
     app_world_destroy(w);

@@ -34,6 +34,21 @@ uniform int u_distance_levels;
 uniform float u_orientation_threshold;
 uniform float u_frustum_tolerance;
 uniform uint u_disable;
+/* Shared coverage map (blade_tiles_desc_t.extent): the billboards' rule. */
+uniform bool u_extent_on;
+uniform sampler2D u_extent;
+uniform vec2 u_extent_origin;
+uniform float u_extent_spacing;
+uniform uint u_extent_seed;
+
+bool extent_keep(vec3 v0, uint id)
+{
+    ivec2 size = textureSize(u_extent, 0);
+    ivec2 cell = ivec2(floor((v0.xz - u_extent_origin) / u_extent_spacing));
+    ivec2 texel = ((cell % size) + size) % size;
+    uint e = uint(texelFetch(u_extent, texel, 0).r * 255.0 + 0.5);
+    return hash_u32(id ^ hash_u32(u_extent_seed ^ 0x5bd1e995u)) % 255u < e;
+}
 
 bool visible(Blade b, uint index)
 {
@@ -78,6 +93,7 @@ void main()
         b = tiles_pose(b);
     }
     if (b.v1.w <= 0.0 || !visible(b, k)) return;
+    if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
     uint slot = atomicAdd(cmd.instanceCount, 1u);
     if (slot < u_capacity) {
         drawn[slot] = b;

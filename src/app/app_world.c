@@ -217,7 +217,21 @@ static bool make_tiles(app_world_t *w)
                              .cull = {.max_distance = g->switch_distance + 1.0f},
                              .label = "tiles"};
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
+    /* The billboards' extent map thins the tiles too (same clearings). */
+    bb_gen_desc_t gen;
+    int size = layout_for(w, &gen);
+    bb_layout_t lay;
+    bool have_layout = bb_layout_generate(&lay, &(bb_layout_desc_t){.seed = s->seed, .size = size,
+                                                                     .clump_layers = 1, .clump_size = 8,
+                                                                     .blades = 1});
+    if (have_layout) {
+        td.extent = &lay.extent;
+        memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);
+        td.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
+        td.extent_seed = s->seed;
+    }
     w->have_tiles = blade_tiles_make(&w->tiles, &td);
+    if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
 }
 

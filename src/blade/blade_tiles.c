@@ -341,6 +341,13 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
                                                        .filter = GL_NEAREST, .data = t->ground_cpu,
                                                        .upload_format = GL_RGBA, .upload_type = GL_FLOAT,
                                                        .label = label});
+    if (d->extent) {
+        snprintf(label, sizeof label, "%s.extent", d->label);
+        t->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = d->extent->w, .h = d->extent->h, .format = GL_R8,
+                                                           .filter = GL_NEAREST, .data = d->extent->px,
+                                                           .upload_format = GL_RED, .label = label});
+        ok = ok && t->extent.id;
+    }
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
@@ -377,6 +384,7 @@ void blade_tiles_destroy(blade_tiles_t *t)
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (t->ground.id) gfx_texture_destroy(&t->ground);
+    if (t->extent.id) gfx_texture_destroy(&t->extent);
     if (t->vao) gfx_vertex_array_destroy(&t->vao);
     hybrid_grid_free(&t->grid);
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]);
@@ -608,12 +616,19 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
+    glUniform1i(gfx_uniform(p, "u_extent_on"), t->extent.id != 0);
+    glUniform1i(gfx_uniform(p, "u_extent"), 1);
+    glUniform2fv(gfx_uniform(p, "u_extent_origin"), 1, t->desc.extent_origin);
+    glUniform1f(gfx_uniform(p, "u_extent_spacing"), t->desc.extent_spacing);
+    glUniform1ui(gfx_uniform(p, "u_extent_seed"), t->desc.extent_seed);
+    glBindTextureUnit(1, t->extent.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->tile_list.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, t->command.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
     if (n) glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
     glBindTextureUnit(0, 0);
+    glBindTextureUnit(1, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* instanceCount and overflow */
     int r = ring_take(&t->draw_ring);

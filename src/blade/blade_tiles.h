@@ -127,6 +127,16 @@ typedef struct blade_tiles_desc_t {
     float lod_distance;
     blade_cull_desc_t cull;
     uint32_t draw_capacity;
+    /* Optional coverage map shared with the billboards (bb_layout's extent
+     * map, one channel): a blade with world id i (tile * B + k) is drawn
+     * only if core_hash_u32(i ^ core_hash_u32(extent_seed ^ 0x5bd1e995)) %
+     * 255 < E, E the extent byte of the texel
+     * (floor((x - origin.x) / spacing) mod W, same for z): the billboards'
+     * acceptance rule, so both representations share clearings. NULL: off. */
+    const core_image_t *extent;
+    float extent_origin[2];
+    float extent_spacing;
+    uint32_t extent_seed;
     const char *label;
 } blade_tiles_desc_t;
 
@@ -167,6 +177,7 @@ typedef struct blade_tiles_t {
     int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
     float *slot_motion;                            /* latest read back, per slot */
     gfx_texture_t ground;
+    gfx_texture_t extent; /* R8, id 0 when the desc gave none */
     gfx_program_t init, physics, cull, draw;
     GLuint vao;
     blade_tiles_stats_t stats;
