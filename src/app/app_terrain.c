@@ -51,20 +51,22 @@ void app_terrain_destroy(app_terrain_t *t)
 
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
 {
-    glDepthMask(GL_FALSE);
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(t->sky.id);
-    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, (const float *)v->inv_viewproj);
-    glBindVertexArray(t->empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-
     glUseProgram(t->prog.id);
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
     glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
     glBindVertexArray(t->vao);
     glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
+
+    /* Sky after the ground, at the far plane with LEQUAL and no depth write:
+     * only pixels the terrain left empty run the sky shader. */
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glUseProgram(t->sky.id);
+    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, (const float *)v->inv_viewproj);
+    glBindVertexArray(t->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
     glBindVertexArray(0);
 }
