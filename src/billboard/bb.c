@@ -412,10 +412,14 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
                                                             .gs = "billboard/bb_render.geom",
                                                             .fs = "billboard/bb_render.frag", .defines = defines,
                                                             .label = "bb.render"});
+    f->quad_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_quad.vert",
+                                                          .fs = "billboard/bb_render.frag", .defines = defines,
+                                                          .label = "bb.quad"});
     f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",
                                                           .fs = "billboard/bb_cube.frag", .defines = defines,
                                                           .label = "bb.cube"});
-    if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id)
+    if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
+        !f->quad_prog.id)
         goto fail;
 
     size_t pool_words = 4 + (size_t)d->max_deformed;
@@ -485,6 +489,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->collide_prog);
     gfx_program_destroy(&f->recover_prog);
     gfx_program_destroy(&f->render_prog);
+    gfx_program_destroy(&f->quad_prog);
     gfx_program_destroy(&f->cube_prog);
     bb_octree_free(&f->tree);
     free(f->ranges);
@@ -723,12 +728,8 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
 
 /* ---- draw ------------------------------------------------------------------ */
 
-void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
+static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd)
 {
-    int n = bb_octree_collect(&f->tree, 7u, (const float (*)[4])dd->planes, f->ranges, f->tree.leaf_count);
-    if (n <= 0) return;
-    int nr = merge_ranges(f, n);
-    gfx_program_t p = f->render_prog;
     glUseProgram(p.id);
     glUniformMatrix4fv(loc(p, "u_viewproj"), 1, GL_FALSE, dd->viewproj);
     glUniform3fv(loc(p, "u_camera"), 1, dd->camera);
@@ -738,9 +739,18 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glUniform1f(loc(p, "u_fade_end"), dd->fade_end);
     glUniform1i(loc(p, "u_clumps"), 0);
     set_wind(p.id, &f->desc.wind);
+}
+
+/* Idle leaves (only plain quads) are drawn by vertex pulling, six vertices
+ * per billboard, with no geometry shader; colliding and recovering leaves,
+ * which hold deformed meshes, go through bb_render.geom. Both share
+ * bb_render.frag. */
+void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
+{
     glBindTextureUnit(0, f->clumps.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
     glBindVertexArray(f->points_vao);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
@@ -748,9 +758,27 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDisable(GL_BLEND);
     glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     gfx_timer_begin("bb.render");
-    glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
+    const float(*planes)[4] = (const float (*)[4])dd->planes;
+    int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
+    if (n > 0) {
+        int nr = merge_ranges(f, n);
+        for (int i = 0; i < nr; i++) {
+            f->firsts[i] *= 6;
+            f->counts_gl[i] *= 6;
+        }
+        render_uniforms(f, f->quad_prog, dd);
+        glMultiDrawArrays(GL_TRIANGLES, f->firsts, f->counts_gl, nr);
+    }
+    n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
+                          f->ranges, f->tree.leaf_count);
+    if (n > 0) {
+        int nr = merge_ranges(f, n);
+        render_uniforms(f, f->render_prog, dd);
+        glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
+    }
     gfx_timer_end();
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    glBindVertexArray(0);
 }
 
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)

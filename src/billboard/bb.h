@@ -122,7 +122,7 @@ typedef struct bb_field_t {
     gfx_buffer_t meshes;   /* max_deformed * N*M vec4, world space */
     gfx_buffer_t objects, counts;
     GLuint points_vao, empty_vao, tf;
-    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, cube_prog;
+    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog;
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;

@@ -1,0 +1,50 @@
+#version 450
+/* bb_quad.vert: the plain billboards of idle octree leaves without a
+ * geometry shader (vertex pulling): six vertices per billboard read the
+ * point from the points buffer and build the same wind-animated quad as
+ * bb_render.geom (two upper vertices moved by bb_wind_vertex). Idle leaves
+ * hold no deformed billboard; a point that does, or that lies wholly nearer
+ * than the hybrid fade band, is emitted degenerate. Outputs match
+ * bb_render.frag's inputs. */
+#define BB_NO_GENERATE
+#include "common/bb.glsl"
+#include "billboard/bb_points.glsl"
+
+layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
+
+uniform mat4 u_viewproj;
+uniform vec3 u_camera;
+uniform float u_time;
+uniform float u_fade_start;
+uniform float u_fade_end;
+uniform bb_wind u_wind;
+
+out vec3 g_world;
+out vec3 g_normal;
+out vec3 g_uvl;
+flat out float g_tint;
+
+void main()
+{
+    bb_point p = points[gl_VertexID / 6];
+    const int corners[6] = int[](0, 1, 2, 2, 1, 3);
+    int c = corners[gl_VertexID % 6];
+    bool near = u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start;
+    if (p.pad0 != BB_NO_SLOT || near) {
+        g_world = vec3(0.0);
+        g_normal = vec3(0.0, 1.0, 0.0);
+        g_uvl = vec3(0.0);
+        g_tint = 0.0;
+        gl_Position = vec4(0.0, 0.0, 2.0, 1.0); /* beyond the far plane */
+        return;
+    }
+    vec3 right, up;
+    bb_frame(p, right, up);
+    vec3 base = p.position + (float(c & 1) - 0.5) * p.size.x * right;
+    vec3 pos = c < 2 ? base : bb_wind_vertex(u_wind, base + p.size.y * up, p.position, 1.0, u_time);
+    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    g_world = pos;
+    g_normal = cross(right, up);
+    g_uvl = vec3(float(c & 1), 1.0 - float(c >> 1), float(p.layer));
+    gl_Position = u_viewproj * vec4(pos, 1.0);
+}
