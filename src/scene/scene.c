@@ -173,7 +173,7 @@ static bool get_double(sp_t *sp, const json_t *v, const char *field, double lo, 
 
 static bool get_float(sp_t *sp, const json_t *v, const char *field, double lo, double hi, float *out)
 {
-    double d;
+    double d = 0;
     if (!get_double(sp, v, field, lo, hi, false, &d)) return false;
     *out = (float)d;
     return true;
@@ -181,7 +181,7 @@ static bool get_float(sp_t *sp, const json_t *v, const char *field, double lo, d
 
 static bool get_int(sp_t *sp, const json_t *v, const char *field, double lo, double hi, int *out)
 {
-    double d;
+    double d = 0;
     if (!get_double(sp, v, field, lo, hi, true, &d)) return false;
     *out = (int)d;
     return true;
