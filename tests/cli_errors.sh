@@ -49,6 +49,13 @@ expect2 'garbage.obj' --headless --scene "$tmp/garbagemesh.json"
 # Fuzz regressions that once hung or crashed assimp, fed through the program.
 exts=(obj ply gltf glb stl)
 for reg in "$root"/tests/data/fuzz_regressions/mesh_*; do
+  # Under ASan (MEADOW_SANITIZED=1, set by .ci/sanitize) a throwing operator
+  # new that cannot allocate aborts the process instead of throwing
+  # std::bad_alloc for assimp to catch; the normal run covers this file.
+  if [ "${MEADOW_SANITIZED:-0}" = 1 ] && [[ $reg == *huge_allocation* ]]; then
+    echo "skipped under ASan: $(basename "$reg")"
+    continue
+  fi
   b=$(head -c1 "$reg" | od -An -tu1 | tr -d ' ')
   e=${exts[$((b % 5))]}
   tail -c +2 "$reg" >"$tmp/fz.$e"
