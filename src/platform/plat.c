@@ -20,6 +20,8 @@ plat_desc_t plat_desc_defaults(const plat_desc_t *desc)
 #ifndef NDEBUG
     d.debug = true;
 #endif
+    const char *env = getenv("MEADOW_GL_DEBUG");
+    if (env && env[0] == '1') d.debug = true;
     if (d.no_debug) d.debug = false;
     return d;
 }

@@ -19,7 +19,8 @@ typedef struct plat_desc_t {
     int width, height;      /* window size; default 1280x720 */
     const char *title;      /* default "meadow" */
     bool debug;             /* GL debug context + callback; default: on in
-                               debug builds (NDEBUG undefined) */
+                               debug builds (NDEBUG undefined) or when the
+                               environment has MEADOW_GL_DEBUG=1 */
     bool no_debug;          /* force the debug callback off */
     bool visible;           /* unused for EGL */
 } plat_desc_t;
