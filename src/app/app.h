@@ -54,6 +54,11 @@ typedef struct app_options_t {
 int app_parse_args(int argc, char **argv, app_options_t *opts, char *err, size_t err_size);
 void app_print_usage(void);
 
+/* Ctrl-C / SIGTERM: the first one asks long runs to stop after the current
+ * frame or configuration and write what they have (app_signal.c). */
+void app_signal_install(void);
+bool app_interrupted(void);
+
 /* Runs the program; returns the process exit code. */
 int app_run(const app_options_t *opts);
 

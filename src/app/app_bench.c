@@ -208,8 +208,8 @@ static void write_chart(const char *out, const bench_chart_t *ch)
     snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
     eval_text_t g = {0};
     for (int term = 0; term < 2; term++) {
-        eval_text_printf(&g, term ? "set terminal svg size 800,500\nset output '%s/bench_%s.svg'\n"
-                                  : "set terminal pngcairo size 800,500\nset output '%s/bench_%s.png'\n",
+        eval_text_printf(&g, term ? "set terminal svg size 800,500 noenhanced\nset output '%s/bench_%s.svg'\n"
+                                  : "set terminal pngcairo size 800,500 noenhanced\nset output '%s/bench_%s.png'\n",
                          out, ch->name);
         eval_text_printf(&g,
                          "set title '%s: speed vs accuracy'\nset xlabel 'GPU ms per frame'\nset ylabel '%s'\n"
@@ -251,6 +251,11 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     int rc = app_session_run(&rd, &ref, NULL);
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
+        if (app_interrupted()) {
+            core_log_warn("bench: interrupted after %d of %d configurations; writing those", i, n);
+            b->n = n = i;
+            break;
+        }
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = *o;
         if (c->blade_render) oc.blade_render = c->blade_render - 1;

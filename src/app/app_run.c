@@ -105,12 +105,14 @@ static void write_summary(app_t *app, double wall_s)
                   "gpu_memory_mb: %.1f\n"
                   "blades: %ld\nblade_survivors: %ld\nblade_culled (orientation frustum distance occlusion "
                   "patch): %u %u %u %u %ld\n"
-                  "billboards: %ld\nbillboards_deformed: %d\ncharacters: %d\n"
+                  "billboards: %ld\nbillboards_deformed: %d\n"
+                  "billboard generation (once): GPU %.3f ms, make %.1f ms\ncharacters: %d\n"
                   "blade_tiles (near) %d, active %d, recovering %d, state slots %d/%d, blades simulated %ld\n"
                   "grass_triangles_max: %ld\n",
                   frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
                   st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
-                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.characters, st.tiles_blade,
+                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.bb_generate_ms, st.bb_make_ms,
+                  st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.triangles);
     if (app->opts->floor) {
@@ -166,7 +168,7 @@ int app_run(const app_options_t *o)
     scene_clock_init(&clock, s->dt, headless);
     double t0 = plat_time(), last = t0;
     int frame = 0;
-    while (ok && !plat_should_close() && (app.frames == 0 || frame < app.frames)) {
+    while (ok && !plat_should_close() && !app_interrupted() && (app.frames == 0 || frame < app.frames)) {
         plat_poll_events();
         double now = plat_time(), real_dt = now - last;
         last = now;
@@ -206,6 +208,7 @@ int app_run(const app_options_t *o)
         }
         if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
     }
+    if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", frame);
     app.frames = frame;
     if (ok) {
         gfx_timer_flush();

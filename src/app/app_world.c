@@ -479,6 +479,8 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         bb_field_stats(&w->bb, true, &s);
         st->billboards = s.billboards;
         st->bb_deformed = s.deformed;
+        st->bb_generate_ms = s.generate_ms;
+        st->bb_make_ms = s.make_ms;
         int nm = (w->bb.desc.subdiv[0] - 1) * (w->bb.desc.subdiv[1] - 1) * 2;
         st->triangles += (long)(s.billboards - s.deformed) * 2 + (long)s.deformed * nm;
     }

@@ -128,6 +128,7 @@ typedef struct app_world_stats_t {
     long blade_patch_culled;
     long billboards;
     int bb_deformed;
+    double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */
     int characters;
     int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
     long tile_blades_simulated;

@@ -14,6 +14,7 @@ int main(int argc, char **argv)
         core_log_error("%s", err);
         return 2;
     }
+    app_signal_install();
     switch (opts.command) {
     case APP_CMD_COMPARE: return app_compare(&opts);
     case APP_CMD_BENCH: return app_bench(&opts);
