@@ -3,10 +3,17 @@
 
 #include <assimp/cimport.h>
 #include <assimp/scene.h>
+#include <errno.h>
 #include <math.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+/* Seconds the probe may take before the file is declared to hang assimp. */
+#define MESH_IMPORT_PROBE_SECONDS 120
 
 /* A file that assimp may read as PLY (whatever its extension: assimp tries
  * every importer whose signature matches when the first fails) must have
@@ -73,9 +80,44 @@ static bool faces_ok(const struct aiScene *sc, char *err, size_t err_size)
     return true;
 }
 
+/* Imports the file once in a child process first. assimp 5.2 has crashes
+ * and endless loops inside its readers that no check of ours can foresee
+ * (fuzzing keeps finding new ones, e.g. a malformed glTF that dereferences
+ * NULL in the glTF2 reader); a child that dies or runs past the time limit
+ * costs only the child. The real import then runs in this process, which
+ * assimp does deterministically the same way. */
+static bool probe_in_child(const char *path, unsigned flags, char *err, size_t err_size)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid < 0) return true; /* cannot probe: import directly */
+    if (pid == 0) {
+        alarm(MESH_IMPORT_PROBE_SECONDS);
+        const struct aiScene *sc = aiImportFile(path, 0);
+        char why[8];
+        bool ok = sc && faces_ok(sc, why, sizeof why);
+        if (sc && ok) sc = aiApplyPostProcessing(sc, flags);
+        _exit(sc && ok ? 0 : 3);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == 0 || WEXITSTATUS(status) == 3)) return true;
+    if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
+        snprintf(err, err_size, "assimp did not finish reading the file within %d s (it hangs on this input)",
+                 MESH_IMPORT_PROBE_SECONDS);
+    else if (WIFSIGNALED(status))
+        snprintf(err, err_size, "assimp crashed reading the file (signal %d); the file is malformed",
+                 WTERMSIG(status));
+    else
+        snprintf(err, err_size, "assimp crashed reading the file (exit %d); the file is malformed",
+                 WEXITSTATUS(status));
+    return false;
+}
+
 const struct aiScene *mesh_import(const char *path, unsigned flags, char *err, size_t err_size)
 {
     if (!ply_header_ok(path, err, err_size)) return NULL;
+    if (!probe_in_child(path, flags, err, err_size)) return NULL;
     const struct aiScene *sc = aiImportFile(path, 0);
     if (!sc) {
         snprintf(err, err_size, "assimp: %s", aiGetErrorString());
