@@ -23,6 +23,19 @@
 #define TERRAIN_GRID_MAX_CELLS 512
 #define TERRAIN_GRID_TRIS_PER_CELL 4.0
 
+/* Unit normal, or +y for a degenerate (zero) one. */
+static void normalize_or_up(float *n)
+{
+    float len = glm_vec3_norm(n);
+    if (len > 0) {
+        glm_vec3_scale(n, 1.0f / len, n);
+    } else {
+        n[0] = 0;
+        n[1] = 1;
+        n[2] = 0;
+    }
+}
+
 terrain_desc_t terrain_desc_defaults(const terrain_desc_t *d)
 {
     terrain_desc_t r = *d;
@@ -101,14 +114,7 @@ static void compute_normals(terrain_mesh_t *m)
     }
     for (uint32_t i = 0; i < m->vertex_count; i++) {
         float *n = &m->normals[3 * i];
-        float len = glm_vec3_norm(n);
-        if (len > 0) {
-            glm_vec3_scale(n, 1.0f / len, n);
-        } else {
-            n[0] = 0;
-            n[1] = 1;
-            n[2] = 0;
-        }
+        normalize_or_up(n);
     }
 }
 
@@ -239,14 +245,7 @@ bool terrain_load_mesh(terrain_mesh_t *mesh, const char *path, float scale, char
                 terrain_free(mesh);
                 return false;
             }
-            float len = glm_vec3_norm(n);
-            if (len > 0) {
-                glm_vec3_scale(n, 1.0f / len, n);
-            } else {
-                n[0] = 0;
-                n[1] = 1;
-                n[2] = 0;
-            }
+            normalize_or_up(n);
         }
         for (unsigned f = 0; f < am->mNumFaces; f++)
             for (int k = 0; k < 3; k++) *ix++ = base + am->mFaces[f].mIndices[k];
