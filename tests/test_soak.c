@@ -1,0 +1,115 @@
+/* test_soak: a long run of a small scene with a walking character and a
+ * rolling ball, switching billboard/blade/hybrid every 150 frames. After
+ * every mode has been built once (warm-up), the GL object count and GPU
+ * memory must stay constant and resident memory within 5%; at the end no
+ * GPU buffer holds NaN/Inf and the driver reported no GL error.
+ * MEADOW_SOAK_FRAMES sets the length (default 2000, the CI version; the long
+ * version is MEADOW_SOAK_FRAMES=100000). */
+#include "app/app_world.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+static long rss_kb(void)
+{
+    long pages = 0, resident = 0;
+    FILE *f = fopen("/proc/self/statm", "r");
+    if (!f) return 0;
+    if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = 0;
+    fclose(f);
+    return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+static int non_finite(const float *v, size_t n)
+{
+    int bad = 0;
+    for (size_t i = 0; i < n; i++) bad += !isfinite(v[i]);
+    return bad;
+}
+
+int main(void)
+{
+    const char *env = getenv("MEADOW_SOAK_FRAMES");
+    int frames = env && atoi(env) > 0 ? atoi(env) : 2000;
+    test_gl_init();
+    core_log_set_quiet(true);
+    app_options_t o = {.scene = "scenes/tiny.json", .headless = true, .character = "models/humanoid.gltf"};
+    app_world_t *w = calloc(1, sizeof *w);
+    CHECK(app_world_load(w, &o) == 0);
+    CHECK(app_world_make_gpu(w));
+    gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 96, .h = 64, .samples = 4, .label = "soak"});
+    cam_t cam;
+    scene_camera_init(&w->scene, &cam);
+    static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
+    int objects_after_warmup = -1;
+    size_t memory_after_warmup = 0;
+    long rss_warm = 0, rss_max = 0, rss_min = 0;
+    const int period = 150, warmup = 3 * period + 50;
+    double t0 = plat_time();
+    for (int f = 0; f < frames; f++) {
+        if (f % period == 0) app_world_set_mode(w, modes[(f / period) % 3]);
+        float t = (float)(f + 1) / 60.0f;
+        app_world_update(w, t, 1.0f / 60.0f);
+        app_view_t view;
+        app_view_make(&view, &cam, target.w, target.h, t, 1.0f / 60.0f);
+        gfx_target_bind(&target);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        app_world_draw(w, &view, &target, false);
+        if (f == warmup) {
+            glFinish();
+            objects_after_warmup = gfx_live_objects();
+            memory_after_warmup = gfx_memory_bytes();
+            rss_warm = rss_min = rss_max = rss_kb();
+        } else if (f > warmup && f % 50 == 0) {
+            long r = rss_kb();
+            rss_min = r < rss_min ? r : rss_min;
+            rss_max = r > rss_max ? r : rss_max;
+            CHECK_MSG(gfx_live_objects() == objects_after_warmup, "frame %d: %d GL objects, %d after warm-up", f,
+                      gfx_live_objects(), objects_after_warmup);
+            CHECK(gfx_memory_bytes() == memory_after_warmup);
+        }
+        if (f % 500 == 0) fprintf(stderr, "soak: frame %d/%d (%.1f s)\n", f, frames, plat_time() - t0);
+    }
+    glFinish();
+    /* No NaN anywhere the simulation writes. */
+    int bad = 0;
+    size_t n = w->blades.padded_count;
+    if (w->have_blades && n) {
+        blade_t *b = malloc(n * sizeof *b);
+        float *eta = malloc(n * sizeof *eta);
+        blade_gpu_read_blades(&w->blades, b, eta);
+        bad += non_finite((const float *)b, n * 16) + non_finite(eta, n);
+        free(b);
+        free(eta);
+    }
+    if (w->have_tiles) {
+        size_t pool = (size_t)w->tiles.desc.pool_slots * w->tiles.template_blades;
+        blade_t *b = malloc(pool * sizeof *b);
+        blade_tiles_read_pool(&w->tiles, b);
+        bad += non_finite((const float *)b, pool * 16);
+        free(b);
+    }
+    if (w->have_bb) {
+        float *m = malloc(w->bb.meshes.size);
+        gfx_buffer_read(w->bb.meshes, 0, w->bb.meshes.size, m);
+        bad += non_finite(m, w->bb.meshes.size / sizeof(float));
+        free(m);
+    }
+    printf("soak: %d frames in %.1f s; GL objects %d; GPU memory %.1f MB; RSS %ld kB at warm-up, %ld..%ld kB after; "
+           "%d non-finite values\n",
+           frames, plat_time() - t0, objects_after_warmup, (double)memory_after_warmup / 1048576.0, rss_warm, rss_min,
+           rss_max, bad);
+    CHECK(bad == 0);
+    CHECK(w->have_bb && w->have_blades && w->have_tiles && w->have_chars);
+    if (frames > warmup + 100) CHECK(rss_max <= rss_warm * 105 / 100 && rss_min >= rss_warm * 95 / 100);
+    gfx_target_destroy(&target);
+    app_world_destroy(w);
+    free(w);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
