@@ -1,0 +1,71 @@
+/* test_hybrid_switch: moving the camera across the hybrid switch distance
+ * gives no frame-to-frame image jump beyond what the camera motion itself
+ * gives. The camera dollies back across the blade/billboard band of
+ * scenes/tiny.json (switch distance 4 m) in 48 frames; the largest mean
+ * absolute difference between consecutive frames in hybrid mode is compared
+ * with the same dolly in blade-only mode (no switch). Both maxima are
+ * printed (the per-frame series too). */
+#include "app/app_world.h"
+#include "eval/eval.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <string.h>
+
+static double max_jump(scene_mode_t mode, double *series)
+{
+    app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
+    app_world_t *w = calloc(1, sizeof *w);
+    CHECK(app_world_load(w, &o) == 0);
+    app_world_set_mode(w, mode);
+    w->scene.colliders[0].path.count = 1; /* ball parked off the field */
+    glm_vec3_copy((vec3){40.0f, 0.4f, 40.0f}, w->scene.colliders[0].path.keys[0].position);
+    CHECK(app_world_make_gpu(w));
+    gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 128, .h = 96, .samples = 4, .label = "switch"});
+    core_image_t prev = {0}, cur = {0};
+    double worst = 0;
+    for (int f = 0; f < 48; f++) {
+        float d = 1.5f + 5.0f * (float)f / 47.0f; /* horizontal distance to the origin: 1.5 .. 6.5 m */
+        cam_t cam = {.position = {0.0f, 1.6f, d}, .target = {0.0f, 0.2f, d - 4.0f}, .fov = 60.0f};
+        cam_defaults(&cam);
+        app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+        app_view_t v;
+        app_view_make(&v, &cam, t.w, t.h, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+        gfx_target_bind(&t);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        app_world_draw(w, &v, &t, false);
+        CHECK(gfx_target_read(&t, &cur));
+        if (prev.px) {
+            double m = eval_image_mad(&prev, &cur);
+            series[f] = m;
+            if (m > worst) worst = m;
+        }
+        core_image_free(&prev);
+        prev = cur;
+        memset(&cur, 0, sizeof cur);
+    }
+    core_image_free(&prev);
+    gfx_target_destroy(&t);
+    app_world_destroy(w);
+    free(w);
+    return worst;
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    double sh[48] = {0}, sb[48] = {0};
+    double hybrid = max_jump(SCENE_MODE_HYBRID, sh);
+    double blade = max_jump(SCENE_MODE_BLADE, sb);
+    printf("frame-to-frame mean abs difference (x1000), frames 1..47:\n  hybrid:");
+    for (int f = 1; f < 48; f++) printf(" %.0f", sh[f] * 1000);
+    printf("\n  blade: ");
+    for (int f = 1; f < 48; f++) printf(" %.0f", sb[f] * 1000);
+    printf("\nmax jump: hybrid %.4f, blade-only %.4f\n", hybrid, blade);
+    CHECK(hybrid > 0 && blade > 0);
+    CHECK(hybrid <= 1.5 * blade + 0.005);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
