@@ -37,5 +37,15 @@ done
 for f in compare.png compare.json compare-billboard.png compare-blade.png compare-hybrid.png compare-reference.png; do
   [ -s "$out/compare/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
+if command -v ffmpeg >/dev/null; then
+  "$bin" compare --video --quiet --scene scenes/tiny.json --frames 12 --out "$out/video" \
+    || { echo "FAIL: compare --video exit $?"; fail=1; }
+  for m in billboard blade hybrid; do
+    [ -s "$out/video/clip-$m.mp4" ] || { echo "FAIL: missing clip-$m.mp4"; fail=1; }
+    [ "$(ls "$out/video/clip-$m" 2>/dev/null | wc -l)" = 12 ] || { echo "FAIL: clip-$m has not 12 frames"; fail=1; }
+  done
+else
+  echo "note: ffmpeg not installed, compare --video not checked"
+fi
 [ $fail = 0 ] && echo "ok: bench and compare wrote every file"
 exit $fail

@@ -41,6 +41,7 @@ typedef struct app_options_t {
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */
     bool montage;             /* --montage: end a headless run with the mode montage */
+    bool video;               /* compare --video: a clip per mode (ffmpeg) */
     const char *report;       /* bench --report DIR: sweep + stability + compare, RESULTS.md into DIR */
     bool quiet;
 } app_options_t;

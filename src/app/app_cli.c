@@ -25,6 +25,7 @@ void app_print_usage(void)
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
+           "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
            "  --stability           bench: run the stability suite (where each method breaks)\n"
            "  --report DIR          bench: sweep + stability + compare, charts and RESULTS.md into DIR\n"
            "  --quiet               only warnings and errors\n"
@@ -81,6 +82,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->floor = true;
         } else if (strcmp(a, "--montage") == 0) {
             o->montage = true;
+        } else if (strcmp(a, "--video") == 0) {
+            o->video = true;
         } else if (strcmp(a, "--stability") == 0) {
             o->stability = true;
         } else if (strcmp(a, "--report") == 0) {

@@ -3,9 +3,11 @@
  * everywhere, maximum tessellation, no culling, 8x MSAA), then writes a
  * labelled montage, diff heatmaps against the reference, and the image
  * errors (MAD, SSIM) with GPU frame times as JSON. */
+#include "app/app_eval.h"
 #include "app/app_world.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "eval/eval.h"
@@ -26,7 +28,8 @@ int app_compare(const app_options_t *o)
         return 1;
     }
     gfx_init();
-    int rc = app_compare_write(o, out, o->frames_set ? o->frames : 60);
+    int rc = o->video ? app_compare_clip(o, out, o->frames_set ? o->frames : 120)
+                     : app_compare_write(o, out, o->frames_set ? o->frames : 60);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -99,4 +102,66 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
     }
     for (int i = 0; i < PANELS; i++) core_image_free(&img[i]);
     return rc;
+}
+
+/* ---- clips ------------------------------------------------------------------- */
+
+typedef struct clip_ctx_t {
+    char dir[1100];
+    int written;
+    bool failed;
+} clip_ctx_t;
+
+static void clip_frame(const gfx_target_t *target, int frame, void *user)
+{
+    clip_ctx_t *c = user;
+    char path[1200];
+    core_image_t img;
+    snprintf(path, sizeof path, "%s/frame_%05d.png", c->dir, frame);
+    if (c->failed || !gfx_target_read(target, &img)) return;
+    for (size_t i = 3; i < (size_t)img.w * (size_t)img.h * 4; i += 4) img.px[i] = 255;
+    if (core_image_write_png(&img, path)) c->written++;
+    else c->failed = true;
+    core_image_free(&img);
+}
+
+int app_compare_clip(const app_options_t *o, const char *out, int frames)
+{
+    if (system("ffmpeg -version >/dev/null 2>&1") != 0) {
+        core_log_error("compare --video: ffmpeg not found (install the Debian package ffmpeg)");
+        return 2;
+    }
+    static const struct {
+        const char *name;
+        scene_mode_t mode;
+    } modes[3] = {{"billboard", SCENE_MODE_BILLBOARD}, {"blade", SCENE_MODE_BLADE}, {"hybrid", SCENE_MODE_HYBRID}};
+    for (int i = 0; i < 3; i++) {
+        clip_ctx_t c = {0};
+        snprintf(c.dir, sizeof c.dir, "%s/clip-%s", out, modes[i].name);
+        if (!core_fs_mkdirs(c.dir)) return 1;
+        core_log_info("clip %d/3: %s, %d frames", i + 1, modes[i].name, frames);
+        app_session_desc_t d = {.opts = o, .mode = modes[i].mode, .mode_set = true, .frames = frames};
+        app_session_hooks_t h = {.drawn = clip_frame, .user = &c};
+        int rc = app_session_run_hooks(&d, &h, NULL, NULL);
+        if (rc) return rc;
+        if (c.failed || c.written != frames) {
+            core_log_error("clip %s: wrote %d of %d frames", modes[i].name, c.written, frames);
+            return 1;
+        }
+        /* Encoded to a temporary name and renamed, like every other output. */
+        char cmd[4096], tmp[1200], mp4[1200];
+        snprintf(tmp, sizeof tmp, "%s/clip-%s.tmp.mp4", out, modes[i].name);
+        snprintf(mp4, sizeof mp4, "%s/clip-%s.mp4", out, modes[i].name);
+        snprintf(cmd, sizeof cmd,
+                 "ffmpeg -loglevel error -y -framerate 60 -i '%s/frame_%%05d.png' -c:v libx264 -pix_fmt yuv420p "
+                 "-vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '%s'",
+                 c.dir, tmp);
+        if (system(cmd) != 0 || rename(tmp, mp4) != 0) {
+            core_log_error("clip %s: ffmpeg failed (%s)", modes[i].name, cmd);
+            remove(tmp);
+            return 1;
+        }
+        core_log_info("wrote %s", mp4);
+    }
+    return 0;
 }

@@ -41,6 +41,8 @@ typedef struct app_session_hooks_t {
     int (*blade_spheres)(app_world_t *w, blade_sphere_t *out, int max, void *user);
     /* Called after every simulated step. */
     void (*frame)(app_world_t *w, int frame, float t, void *user);
+    /* Called after every drawn frame with the target it went into. */
+    void (*drawn)(const gfx_target_t *target, int frame, void *user);
     void *user;
     bool draw_last_only;    /* simulate every frame, draw the last one only */
     app_metrics_ext_t *ext; /* filled with the metrics when non-NULL */

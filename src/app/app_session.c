@@ -103,6 +103,7 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
         app_world_draw(w, &view, &target, false);
+        if (h->drawn) h->drawn(&target, f, h->user);
     }
     glFinish();
     double cpu = plat_time() - cpu0;

@@ -36,7 +36,7 @@ bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh);
 void app_terrain_destroy(app_terrain_t *t);
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
-#endif
+
 
 /* ---- analytic colliders (scene "colliders") ---------------------------------- */
 #include "scene/scene.h"
@@ -184,4 +184,9 @@ int app_compare(const app_options_t *o);
 /* The montage of `meadow compare` in the current context: the scene's frame
  * `frames` rendered in every mode and as the reference, written to `out`. */
 int app_compare_write(const app_options_t *o, const char *out, int frames);
+/* `meadow compare --video`: the scene in billboard, blade and hybrid modes as
+ * PNG frames and an H.264 clip per mode (ffmpeg), written to `out`. */
+int app_compare_clip(const app_options_t *o, const char *out, int frames);
 int app_bench(const app_options_t *o);
+
+#endif

@@ -15,6 +15,7 @@ int main(int argc, char **argv)
         return 2;
     }
     app_signal_install();
+    core_log_set_quiet(opts.quiet);
     switch (opts.command) {
     case APP_CMD_COMPARE: return app_compare(&opts);
     case APP_CMD_BENCH: return app_bench(&opts);
