@@ -23,6 +23,7 @@ out vec3 g_world;
 out vec3 g_normal;
 out vec3 g_uvl;
 flat out float g_tint;
+flat out vec4 g_overlay; /* idle leaves: never tinted */
 
 void main()
 {
@@ -35,6 +36,7 @@ void main()
         g_normal = vec3(0.0, 1.0, 0.0);
         g_uvl = vec3(0.0);
         g_tint = 0.0;
+        g_overlay = vec4(0.0);
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); /* beyond the far plane */
         return;
     }
@@ -43,6 +45,7 @@ void main()
     vec3 base = p.position + (float(c & 1) - 0.5) * p.size.x * right;
     vec3 pos = c < 2 ? base : bb_wind_vertex(u_wind, base + p.size.y * up, p.position, 1.0, u_time);
     g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    g_overlay = vec4(0.0);
     g_world = pos;
     g_normal = cross(right, up);
     g_uvl = vec3(float(c & 1), 1.0 - float(c >> 1), float(p.layer));

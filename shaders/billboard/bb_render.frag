@@ -16,6 +16,7 @@ in vec3 g_world;
 in vec3 g_normal;
 in vec3 g_uvl;
 flat in float g_tint;
+flat in vec4 g_overlay;
 
 out vec4 frag;
 
@@ -27,6 +28,7 @@ void main()
     vec3 n = normalize(g_normal);
     if (dot(n, to_eye) < 0.0) n = -n;
     vec3 c = shade(tex.rgb * g_tint, n, u_sun, mix(0.45, 1.0, 1.0 - g_uvl.y));
+    c = mix(c, g_overlay.rgb, g_overlay.a);
     c = apply_fog(c, dist, -to_eye / max(dist, 1e-6));
     float a = tex.a;
     if (u_fade_end > 0.0) {

@@ -10,6 +10,9 @@ in vec3 f_pos;
 in vec3 f_normal;
 in float f_v;
 in flat float f_root_dist;
+#ifdef BLADE_OVERLAY
+in flat vec4 f_overlay; /* debug overlay colour and weight (tiled field) */
+#endif
 
 uniform vec3 u_camera;
 uniform vec3 u_sun;
@@ -34,6 +37,9 @@ void main()
     if (dot(n, view) < 0.0) n = -n;
     vec3 albedo = mix(u_albedo_root, u_albedo_tip, f_v);
     vec3 c = shade(albedo, n, u_sun, mix(0.45, 1.0, f_v));
+#ifdef BLADE_OVERLAY
+    c = mix(c, f_overlay.rgb, f_overlay.a);
+#endif
     c = apply_fog(c, length(view), normalize(-view));
     o_color = vec4(c, alpha);
 }

@@ -3,19 +3,43 @@
  * tiles_cull.comp: one instance per blade, a triangle strip of
  * 2 (u_max_level + 1) vertices built by blade_geom.glsl (Jahrmann & Wimmer
  * 2017 eq. 21, 23, 24), as blade_pull.vert. Instances past u_capacity
- * (overflow, counted and logged by the host) collapse to a point. */
+ * (overflow, counted and logged by the host) collapse to a point. The
+ * debug overlays (blade_tiles_set_overlay) tint blades by tile state, level
+ * of detail or collision strength. */
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(std430, binding = 8) readonly buffer Drawn { Blade drawn[]; };
+layout(std430, binding = 10) readonly buffer DrawnIds { uint drawn_ids[]; };
+layout(std430, binding = 11) readonly buffer TileInfo { uint tile_info[]; }; /* state | slot << 2 */
+layout(std430, binding = 12) readonly buffer Eta { float eta[]; };
 
 uniform mat4 u_view_proj;
 uniform uint u_capacity;
+uniform uint u_template_blades;
+uniform int u_overlay; /* BLADE_TILES_OVERLAY_*: 0 off, 1 tile state, 2 LOD, 3 eta */
 
 out vec3 f_pos;
 out vec3 f_normal;
 out float f_v;
 out flat float f_root_dist;
+out flat vec4 f_overlay; /* rgb over the shaded colour with weight a */
+
+vec4 overlay(int lod)
+{
+    if (u_overlay == 0) return vec4(0.0);
+    uint id = drawn_ids[gl_InstanceID];
+    uint info = tile_info[id / u_template_blades];
+    uint state = info & 3u, slot = info >> 2;
+    if (u_overlay == 1)
+        return state == 1u ? vec4(1.0, 0.1, 0.1, 0.75) : (state == 2u ? vec4(1.0, 0.85, 0.1, 0.75) : vec4(0.0));
+    if (u_overlay == 2) {
+        float l = float(lod) / float(max(u_max_level, 1));
+        return vec4(l, 1.0 - abs(2.0 * l - 1.0), 1.0 - l, 0.75);
+    }
+    float e = slot == 0xffffu ? 0.0 : eta[slot * u_template_blades + id % u_template_blades];
+    return vec4(1.0, 1.0 - e, 1.0 - e, 0.8);
+}
 
 void main()
 {
@@ -24,6 +48,7 @@ void main()
         f_normal = vec3(0.0, 1.0, 0.0);
         f_v = 0.0;
         f_root_dist = 0.0;
+        f_overlay = vec4(0.0);
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         return;
     }
@@ -36,5 +61,6 @@ void main()
     f_normal = nrm;
     f_v = v;
     f_root_dist = length(b.v0.xyz - u_camera);
+    f_overlay = overlay(n);
     gl_Position = u_view_proj * vec4(p, 1.0);
 }

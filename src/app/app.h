@@ -42,6 +42,7 @@ typedef struct app_options_t {
     bool stability;           /* bench --stability: the stability suite only */
     bool montage;             /* --montage: end a headless run with the mode montage */
     bool video;               /* compare --video: a clip per mode (ffmpeg) */
+    int overlay;              /* --overlay 0..3: debug overlay at start (key O cycles) */
     const char *report;       /* bench --report DIR: sweep + stability + compare, RESULTS.md into DIR */
     bool quiet;
 } app_options_t;

@@ -25,13 +25,14 @@ void app_print_usage(void)
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
+           "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
            "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
            "  --stability           bench: run the stability suite (where each method breaks)\n"
            "  --report DIR          bench: sweep + stability + compare, charts and RESULTS.md into DIR\n"
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
-           "      F wireframe, 1/2/3 billboard/blade/hybrid, O overlays, H HUD, Esc quit\n",
+           "      F wireframe, 1/2/3 billboard/blade/hybrid, O overlays (state, LOD, collision), H HUD, Esc quit\n",
            APP_MIN_SIZE, APP_MAX_SIZE);
 }
 
@@ -82,6 +83,13 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->floor = true;
         } else if (strcmp(a, "--montage") == 0) {
             o->montage = true;
+        } else if (strcmp(a, "--overlay") == 0) {
+            NEED_VALUE();
+            if (!parse_int(v, 0, 3, &n)) {
+                snprintf(err, err_size, "--overlay '%s': expected 0 (off), 1 (state), 2 (LOD) or 3 (collision)", v);
+                return 2;
+            }
+            o->overlay = (int)n;
         } else if (strcmp(a, "--video") == 0) {
             o->video = true;
         } else if (strcmp(a, "--stability") == 0) {

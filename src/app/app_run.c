@@ -18,6 +18,7 @@ typedef struct app_t {
     cam_t cam;
     bool follow_path;
     bool paused, step_once, wireframe, hud;
+    int overlay;
     int frames, shot_every, shots_written;
     char out[1024];
     char shots[16][1100];
@@ -31,6 +32,7 @@ static void handle_keys(app_t *app, float real_dt)
     if (plat_key_pressed(PLAT_KEY_N)) app->step_once = true;
     if (plat_key_pressed(PLAT_KEY_F)) app->wireframe = !app->wireframe;
     if (plat_key_pressed(PLAT_KEY_H)) app->hud = !app->hud;
+    if (plat_key_pressed(PLAT_KEY_O)) app->overlay = (app->overlay + 1) % 4;
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     static const plat_key_t mode_keys[3] = {PLAT_KEY_1, PLAT_KEY_2, PLAT_KEY_3};
     for (int i = 0; i < 3; i++)
@@ -54,8 +56,10 @@ static void handle_keys(app_t *app, float real_dt)
 static void draw_hud(const app_t *app, double sim_time)
 {
     char text[2048];
-    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s\n", scene_mode_name(app->world.scene.mode),
-                     app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "");
+    static const char *overlays[4] = {"", "  [overlay: tile/leaf state]", "  [overlay: LOD]",
+                                      "  [overlay: collision strength]"};
+    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s%s\n", scene_mode_name(app->world.scene.mode),
+                     app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "", overlays[app->overlay]);
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof text - 64; i++)
         n += snprintf(text + n, sizeof text - (size_t)n, "%-12s %7.3f ms\n", gfx_timer_name(i), gfx_timer_last_ms(i));
     static const float white[4] = {1, 1, 1, 1}, shadow[4] = {0, 0, 0, 0.8f};
@@ -128,7 +132,7 @@ static void write_summary(app_t *app, double wall_s)
 
 int app_run(const app_options_t *o)
 {
-    app_t app = {.opts = o, .follow_path = true};
+    app_t app = {.opts = o, .follow_path = true, .overlay = o->overlay};
     core_log_set_quiet(o->quiet);
     snprintf(app.out, sizeof app.out, "%s", o->out ? o->out : "out");
     char err[1024];
@@ -190,6 +194,7 @@ int app_run(const app_options_t *o)
 
         app_view_t view;
         app_view_make(&view, &app.cam, app.target.w, app.target.h, sim_t, (float)s->dt);
+        view.overlay = app.overlay;
         gfx_target_bind(&app.target);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -383,6 +383,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+        blade_tiles_set_overlay(&w->tiles, v->overlay);
         blade_tiles_draw(&w->tiles, &dd);
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
@@ -406,7 +407,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         blade_gpu_draw(&w->blades, &dd);
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
-        bb_draw_desc_t d = {.time = v->time};
+        bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1};
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
         memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);

@@ -23,6 +23,7 @@ typedef struct app_view_t {
     vec3 sun_dir;
     int width, height;
     float time, dt;
+    int overlay; /* debug overlay, key O: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength */
 } app_view_t;
 
 typedef struct app_terrain_t {

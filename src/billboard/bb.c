@@ -738,6 +738,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(loc(p, "u_fade_start"), dd->fade_start);
     glUniform1f(loc(p, "u_fade_end"), dd->fade_end);
     glUniform1i(loc(p, "u_clumps"), 0);
+    glUniform1i(loc(p, "u_overlay"), dd->overlay);
     set_wind(p.id, &f->desc.wind);
 }
 

@@ -91,6 +91,7 @@ typedef struct bb_draw_desc_t {
     float time;
     float fade_start;    /* invisible nearer than this (0 = fade off) */
     float fade_end;      /* fully visible beyond this */
+    int overlay;         /* 1: tint colliding (red) and recovering (yellow) billboards */
 } bb_draw_desc_t;
 
 typedef struct bb_stats_t {

@@ -351,7 +351,10 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
-    t->draw = make_program(t, "draw", &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag"});
+    t->draw = make_program(t, "draw", &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                                            .defines = "#define BLADE_OVERLAY 1\n"});
+    t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
+    ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
     t->vao = gfx_vertex_array_make(label);
     ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->vao;
@@ -385,6 +388,7 @@ void blade_tiles_destroy(blade_tiles_t *t)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (t->ground.id) gfx_texture_destroy(&t->ground);
     if (t->extent.id) gfx_texture_destroy(&t->extent);
+    if (t->tile_info.id) gfx_buffer_destroy(&t->tile_info);
     if (t->vao) gfx_vertex_array_destroy(&t->vao);
     hybrid_grid_free(&t->grid);
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]);
@@ -657,7 +661,22 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glUniform1f(gfx_uniform(p, "u_width_correction"), 0.0f);
     glUniform1i(gfx_uniform(p, "u_max_level"), t->desc.max_level);
     glUniform1f(gfx_uniform(p, "u_lod_distance"), t->desc.lod_distance);
+    glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
+    glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
+    if (t->overlay) {
+        int ntiles_all = t->grid.nx * t->grid.nz;
+        uint32_t *info = malloc((size_t)ntiles_all * sizeof(uint32_t));
+        for (int i = 0; info && i < ntiles_all; i++) {
+            const hybrid_tile_t *tile = &t->grid.tiles[i];
+            info[i] = (uint32_t)tile->state | ((tile->slot >= 0 ? (uint32_t)tile->slot : 0xffffu) << 2);
+        }
+        if (info) gfx_buffer_update(t->tile_info, 0, (size_t)ntiles_all * sizeof(uint32_t), info);
+        free(info);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, t->tile_info.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, t->eta.id);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, t->command.id);
     glBindVertexArray(t->vao);
     glEnable(GL_DEPTH_TEST);
@@ -722,3 +741,5 @@ float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)
 {
     return t->slot_motion[slot];
 }
+
+void blade_tiles_set_overlay(blade_tiles_t *t, int overlay) { t->overlay = overlay; }

@@ -178,6 +178,8 @@ typedef struct blade_tiles_t {
     float *slot_motion;                            /* latest read back, per slot */
     gfx_texture_t ground;
     gfx_texture_t extent; /* R8, id 0 when the desc gave none */
+    gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
+    int overlay;            /* BLADE_TILES_OVERLAY_* */
     gfx_program_t init, physics, cull, draw;
     GLuint vao;
     blade_tiles_stats_t stats;
@@ -190,6 +192,13 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc);
  * Returns false (one logged error, *t zeroed, nothing held) for a mesh
  * terrain, bad sizes, or GL failure. */
 bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc);
+/* Debug overlays drawn over the tiled blades:
+ *   STATE  tile state: active red, recovering yellow, idle unchanged
+ *   LOD    level of detail: blue (1 segment) .. red (max_level)
+ *   ETA    collision strength of simulated blades: white (0) .. red (1) */
+enum { BLADE_TILES_OVERLAY_OFF = 0, BLADE_TILES_OVERLAY_STATE, BLADE_TILES_OVERLAY_LOD, BLADE_TILES_OVERLAY_ETA };
+void blade_tiles_set_overlay(blade_tiles_t *t, int overlay);
+
 void blade_tiles_destroy(blade_tiles_t *t);
 
 /* One frame: representation from camera, activation from the spheres
