@@ -62,6 +62,8 @@ for reg in "$root"/tests/data/fuzz_regressions/mesh_*; do
   printf '{ "terrain": { "type": "mesh", "mesh": "%s/fz.%s" } }\n' "$tmp" "$e" >"$tmp/fz.json"
   expect2 "fz.$e" --headless --scene "$tmp/fz.json"
 done
+printf '{ "mode": "blade", "terrain": { "size": 2000 }, "grass": { "density": 10000 } }\n' >"$tmp/huge.json"
+expect2 "more than the 50000000 a full blade field holds" --headless --scene "$tmp/huge.json"
 expect2 "nope.gltf" --headless --scene "$root/scenes/tiny.json" --character "$tmp/nope.gltf"
 mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
 expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"

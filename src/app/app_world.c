@@ -145,6 +145,9 @@ static bool uses_tiles(const app_world_t *w)
  * gravity. 1 m/s with stiffness 8-12 bends a 0.5 m blade by ~0.1 m. */
 #define APP_BLADE_GRAVITY 1.0f
 
+/* Blades of a full (blade-mode) field: 50M x 68 B = 3.4 GB of GPU state. */
+#define APP_MAX_FIELD_BLADES 50000000
+
 static bool make_blades(app_world_t *w)
 {
     const scene_desc_t *s = &w->scene;
@@ -158,7 +161,27 @@ static bool make_blades(app_world_t *w)
                             .height_min = g->height[0], .height_max = g->height[1],
                             .width_min = g->width[0], .width_max = g->width[1],
                             .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
-                            .max_blades = 50000000};
+                            .max_blades = APP_MAX_FIELD_BLADES};
+    /* The full field keeps every blade on the GPU: refuse, with the numbers,
+     * fields beyond APP_MAX_FIELD_BLADES instead of failing deep inside. */
+    double area = 0;
+    for (uint32_t i = 0; i + 2 < t->index_count; i += 3) {
+        const float *a = t->positions + 3 * t->indices[i], *b = t->positions + 3 * t->indices[i + 1],
+                    *c = t->positions + 3 * t->indices[i + 2];
+        vec3 e1, e2, n;
+        glm_vec3_sub((float *)b, (float *)a, e1);
+        glm_vec3_sub((float *)c, (float *)a, e2);
+        glm_vec3_cross(e1, e2, n);
+        area += 0.5 * glm_vec3_norm(n);
+    }
+    if (area * g->density > (double)APP_MAX_FIELD_BLADES) {
+        core_log_error("%s: grass.density %g over %.0f m^2 of terrain is %.3g blades, more than the %d a full blade "
+                       "field holds (%.1f GB): lower grass.density or terrain.size, or use mode hybrid",
+                       w->scene_path, g->density, area, area * g->density, APP_MAX_FIELD_BLADES,
+                       (double)APP_MAX_FIELD_BLADES * 68.0 / 1e9);
+        w->input_error = true;
+        return false;
+    }
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
