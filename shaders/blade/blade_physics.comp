@@ -3,9 +3,14 @@
  * 2017 eq. 1-13), the twin of blade_ref_step_one in src/blade/blade_ref.c:
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
  * validation, sphere collision, validation again and the collision exit
- * (departure, see blade_ref.h) only after a contact,
+ * (departure, see blade_ref.h) only after a contact, and, beyond both
+ * papers, the same for the cube-map colliders of blade_gpu_set_cubes
+ * (collision after the spheres, exit after the sphere exit; twins of
+ * blade_ref.c's collide_cubes / exit_cubes),
  * eta += k d.d then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch
  * padding) are left untouched. One invocation per blade. */
+#define BB_NO_GENERATE
+#include "common/bb.glsl"
 #include "common/blade.glsl"
 
 layout(local_size_x = 256) in;
@@ -14,6 +19,7 @@ layout(std430, binding = 0) buffer Blades { Blade blades[]; };
 layout(std430, binding = 1) buffer Eta { float eta[]; };
 layout(std430, binding = 2) readonly buffer Winds { BladeWind winds[]; };
 layout(std430, binding = 3) readonly buffer Spheres { BladeSphere spheres[]; };
+layout(std430, binding = 4) readonly buffer Cubes { BladeCube cubes[]; };
 
 uniform uint u_blade_count;
 uniform float u_dt;
@@ -25,6 +31,47 @@ uniform float u_collision_gain;
 uniform int u_wind_count;
 uniform int u_sphere_count;
 uniform int u_length_mode;     /* BLADE_LENGTH_QUADRATURE or BLADE_LENGTH_PAPER */
+uniform int u_cube_count;      /* cube-map colliders (0: none) */
+uniform int u_cube_res;
+uniform sampler2DArray u_cube_tex; /* layers 6k .. 6k+5: object k */
+
+bb_cube cube_of(int k)
+{
+    return bb_cube(cubes[k].cube.xyz, cubes[k].cube.w, u_cube_res, 6 * k);
+}
+
+/* Does any object whose cube map does not hold the root hold v2 or m? */
+bool cube_holds(Blade b, vec3 v2, vec3 m)
+{
+    for (int k = 0; k < u_cube_count; k++) {
+        bb_cube c = cube_of(k);
+        if (blade_inside_cube(u_cube_tex, cubes[k], c, b.v0.xyz)) continue;
+        if (blade_inside_cube(u_cube_tex, cubes[k], c, v2) || blade_inside_cube(u_cube_tex, cubes[k], c, m))
+            return true;
+    }
+    return false;
+}
+
+void cube_exit_straight(inout Blade b)
+{
+    if (!cube_holds(b, b.v2.xyz, blade_midpoint(b))) return;
+    float h = b.v1.w;
+    vec3 v0 = b.v0.xyz;
+    vec3 td = blade_safe_normalize(b.v2.xyz - v0);
+    float best = -2.0;
+    vec3 bu = vec3(0.0);
+    for (int i = 0; i < BLADE_CUBE_DIRECTIONS; i++) {
+        vec3 u = blade_cube_direction(b, i);
+        float c = dot(u, td);
+        if (c <= best) continue;
+        if (cube_holds(b, v0 + u * h, v0 + u * (0.5 * h))) continue;
+        best = c;
+        bu = u;
+    }
+    if (best < -1.5) return;
+    b.v1.xyz = v0 + bu * (0.5 * h);
+    b.v2.xyz = v0 + bu * h;
+}
 
 void main()
 {
@@ -43,6 +90,7 @@ void main()
     blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
     for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k]);
+    for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
     if (dot(d, d) > 0.0) {
         blade_validate(b, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
@@ -52,6 +100,13 @@ void main()
             }
         }
         for (int k = 0; k < u_sphere_count; k++) blade_exit_straight(b, spheres[k]);
+        for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
+            for (int k = 0; k < u_cube_count; k++) {
+                blade_cube_exit_rotate(b, u_cube_tex, cubes[k], cube_of(k), b.v2.xyz);
+                blade_cube_exit_rotate(b, u_cube_tex, cubes[k], cube_of(k), blade_midpoint(b));
+            }
+        }
+        cube_exit_straight(b);
     }
     e = e + u_collision_gain * dot(d, d);
     eta[i] = clamp(e - u_collision_decay * u_dt, 0.0, 1.0);

@@ -11,7 +11,11 @@
  * Structs are std430 and vec4-packed; C mirrors in blade_ref.h:
  *   Blade       = blade_t        (64 bytes)
  *   BladeWind   = blade_wind_t   (32 bytes)
- *   BladeSphere = blade_sphere_t (16 bytes) */
+ *   BladeSphere = blade_sphere_t (16 bytes)
+ *   BladeCube   = blade_cube_object_t (160 bytes)
+ *
+ * The cube-map collider functions (beyond both papers; blade_ref.h banner)
+ * are compiled only when common/bb.glsl is included before this file. */
 #ifndef BLADE_GLSL
 #define BLADE_GLSL
 
@@ -31,6 +35,13 @@ struct BladeWind {
 
 struct BladeSphere {
     vec4 centre_radius;
+};
+
+struct BladeCube {
+    mat4 w2c;
+    mat4 c2w;
+    vec4 cube;   /* xyz centre (cube space), w half */
+    vec4 sphere; /* xyz world centre, w radius (<= 0: skipped) */
 };
 
 #define BLADE_LENGTH_QUADRATURE 0
@@ -227,6 +238,97 @@ void blade_exit_straight(inout Blade b, BladeSphere s)
     b.v1.xyz = v0 + u * (0.5 * h);
     b.v2.xyz = v0 + u * h;
 }
+
+/* ---- cube-map colliders (beyond both papers; blade_ref.c cube_*) ---------- */
+#ifdef BB_GLSL
+#define BLADE_CUBE_MARGIN 1e-3
+#define BLADE_CUBE_DIRECTIONS 33
+
+bool blade_cube_near(BladeCube o, vec3 p)
+{
+    vec3 pc = p - o.sphere.xyz;
+    return o.sphere.w > 0.0 && dot(pc, pc) < o.sphere.w * o.sphere.w;
+}
+
+float blade_cube_pen(sampler2DArray tex, bb_cube c, vec3 q, out vec3 n)
+{
+    float best = 3.402823e38;
+    n = vec3(0.0);
+    for (int f = 0; f < 6; f++) {
+        vec4 tx;
+        float pen = bb_lookup(tex, c, f, q, tx) - tx.x;
+        if (!(pen > 0.0)) return 0.0;
+        if (pen < best) {
+            best = pen;
+            n = tx.yzw;
+        }
+    }
+    return best;
+}
+
+bool blade_inside_cube(sampler2DArray tex, BladeCube o, bb_cube c, vec3 p)
+{
+    if (!blade_cube_near(o, p)) return false;
+    vec3 n;
+    return blade_cube_pen(tex, c, (o.w2c * vec4(p, 1.0)).xyz, n) > 0.0;
+}
+
+vec3 blade_cube_push(sampler2DArray tex, BladeCube o, bb_cube c, vec3 p, float margin)
+{
+    if (!blade_cube_near(o, p)) return vec3(0.0);
+    vec3 q = (o.w2c * vec4(p, 1.0)).xyz;
+    vec3 n;
+    float pen = blade_cube_pen(tex, c, q, n);
+    if (!(pen > 0.0)) return vec3(0.0);
+    vec3 t = q + n * (pen + margin * o.cube.w);
+    return (o.c2w * vec4(t, 1.0)).xyz - p;
+}
+
+vec3 blade_collide_cube(inout Blade b, sampler2DArray tex, BladeCube o, bb_cube c)
+{
+    vec3 dv2 = blade_cube_push(tex, o, c, b.v2.xyz, 0.0);
+    b.v2.xyz = b.v2.xyz + dv2;
+    vec3 dm = blade_cube_push(tex, o, c, blade_midpoint(b), 0.0) * 4.0;
+    b.v2.xyz = b.v2.xyz + dm;
+    return dv2 + dm;
+}
+
+void blade_cube_exit_rotate(inout Blade b, sampler2DArray tex, BladeCube o, bb_cube c, vec3 p)
+{
+    vec3 v0 = b.v0.xyz;
+    vec3 up = b.up.xyz;
+    vec3 push = blade_cube_push(tex, o, c, p, BLADE_CUBE_MARGIN);
+    if (dot(push, push) == 0.0 || blade_inside_cube(tex, o, c, v0)) return;
+    vec3 a = p - v0;
+    vec3 t = a + push;
+    float la = length(a), lt = length(t);
+    if (la < 1e-6 || lt < 1e-6) return;
+    vec3 ax = cross(a, t);
+    float s = length(ax);
+    if (s < 1e-9 * la * lt) return;
+    vec3 k = ax * (1.0 / s);
+    float cth = dot(a, t) / (la * lt);
+    float sth = s / (la * lt);
+    vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
+    vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
+    vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
+    if (dot(r2, up) < 0.0) return;
+    b.v1.xyz = v0 + r1;
+    b.v2.xyz = v0 + r2;
+}
+
+vec3 blade_cube_direction(Blade b, int i)
+{
+    vec3 up = b.up.xyz;
+    if (i == 0) return up;
+    vec3 wd, fr;
+    blade_frame(b, wd, fr);
+    int ring = (i - 1) / 8 + 1, az = (i - 1) % 8;
+    float th = 0.39269908 * float(ring), ph = 0.78539816 * float(az);
+    vec3 side = wd * cos(ph) + fr * sin(ph);
+    return up * cos(th) + side * sin(th);
+}
+#endif
 
 /* Integral of |B'(t)| over [t0, t1], 3-point Gauss-Legendre; B'(t) = 2(e0 + t a). */
 float blade_speed_integral(vec3 e0, vec3 a, float t0, float t1)

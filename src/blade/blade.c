@@ -1,8 +1,9 @@
 /* blade: GPU driver of the Jahrmann & Wimmer 2017 blades: upload, physics
  * dispatch (eq. 1-13), CPU patch culling and per-blade culling dispatch
  * (eq. 14-20) into an indirect command, tessellated or vertex-pulled
- * drawing (eq. 21-24), statistics read back a frame late. GL objects come
- * from gfx only. */
+ * drawing (eq. 21-24), statistics read back a frame late; beyond both
+ * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
+ * eq. 1-5). GL objects come from gfx only. */
 #include "blade/blade.h"
 
 #include <assert.h>
@@ -77,12 +78,13 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL, false);
     g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL, false);
     g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL, true);
+    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(blade_cube_object_t), NULL, false);
     uint32_t cmd[4];
     command_initial(g, cmd);
     g->command = make_buffer(g, "command", sizeof cmd, cmd, true);
     g->counters = make_buffer(g, "counters", 4 * sizeof(uint32_t), NULL, true);
     g->patches = make_buffer(g, "patches", np * sizeof(uint32_t), NULL, false);
-    bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id &&
+    bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id && g->cube_objects.id &&
               g->command.id && g->counters.id && g->patches.id;
     char label[128];
     for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
@@ -124,8 +126,8 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
 
 void blade_gpu_destroy(blade_gpu_t *g)
 {
-    gfx_buffer_t *bufs[] = {&g->blades, &g->eta, &g->winds, &g->spheres, &g->survivors,
-                            &g->command, &g->counters, &g->patches};
+    gfx_buffer_t *bufs[] = {&g->blades,  &g->eta,     &g->winds,    &g->spheres,     &g->survivors,
+                            &g->command, &g->counters, &g->patches, &g->cube_objects};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
@@ -136,6 +138,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (g->vao) gfx_vertex_array_destroy(&g->vao);
+    if (g->own_cubes.id) gfx_texture_destroy(&g->own_cubes);
     free(g->patch_aabbs);
     free(g->patch_real);
     free(g->visible_patches);
@@ -162,13 +165,56 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
     glUniform1i(gfx_uniform(p, "u_sphere_count"), e.sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
+    int cubes = g->cube_texture ? g->cube_count : 0;
+    glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
+    glUniform1i(gfx_uniform(p, "u_cube_res"), g->cube_res);
+    glUniform1i(gfx_uniform(p, "u_cube_tex"), 0);
+    glBindTextureUnit(0, cubes ? g->cube_texture : 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->eta.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->winds.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->spheres.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->cube_objects.id);
     if (g->padded_count) glDispatchCompute((g->padded_count + 255u) / 256u, 1, 1);
+    glBindTextureUnit(0, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_timer_end();
+}
+
+void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const blade_cube_object_t *objects,
+                         int count)
+{
+    assert(count >= 0 && count <= BLADE_MAX_CUBES);
+    assert(count == 0 || (cube_texture && res > 0 && objects));
+    g->cube_texture = count ? cube_texture : 0;
+    g->cube_res = res;
+    g->cube_count = count;
+    if (count) gfx_buffer_update(g->cube_objects, 0, (size_t)count * sizeof(blade_cube_object_t), objects);
+}
+
+GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const bb_cubemap_t *cubes, int count)
+{
+    assert(count >= 1 && count <= BLADE_MAX_CUBES);
+    int res = cubes[0].res;
+    if (g->own_cubes.id && (g->own_cubes.w != res || g->own_cubes.layers != 6 * count))
+        gfx_texture_destroy(&g->own_cubes);
+    if (!g->own_cubes.id) {
+        char label[128];
+        snprintf(label, sizeof label, "%s.cubes", g->desc.label);
+        g->own_cubes = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = res, .h = res,
+                                                               .layers = 6 * count, .format = GL_RGBA32F,
+                                                               .filter = GL_NEAREST, .label = label});
+        if (!g->own_cubes.id) {
+            core_log_error("%s:%d: blade_gpu_upload_cubes: cannot make a %dx%d x %d texture", __FILE__, __LINE__,
+                           res, res, 6 * count);
+            return 0;
+        }
+    }
+    for (int k = 0; k < count; k++) {
+        assert(cubes[k].res == res);
+        glTextureSubImage3D(g->own_cubes.id, 0, 0, 0, 6 * k, res, res, 6, GL_RGBA, GL_FLOAT, cubes[k].texels);
+    }
+    return g->own_cubes.id;
 }
 
 /* Conservative AABB-vs-frustum: culled when all 8 corners are outside one

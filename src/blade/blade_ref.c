@@ -1,7 +1,9 @@
 /* blade_ref: CPU reference of the blade simulation (Jahrmann & Wimmer 2017
  * eq. 1-13) and culling (eq. 14-20). Every function mirrors, statement by
  * statement, its twin in shaders/common/blade.glsl (same names without the
- * ref_ prefix), so the GPU result can be compared with an epsilon. */
+ * ref_ prefix), so the GPU result can be compared with an epsilon. Beyond
+ * both papers: collision against depth cube maps (Orthmann et al. 2009
+ * eq. 1-5 through bb_ref) with its own collision exit. */
 #include "blade/blade_ref.h"
 
 #include <assert.h>
@@ -46,6 +48,8 @@ blade_env_t blade_env_defaults(const blade_env_t *env)
     if (e.collision_gain == 0.0f) e.collision_gain = 1.0f;
     assert(e.wind_count >= 0 && e.wind_count <= BLADE_MAX_WINDS);
     assert(e.sphere_count >= 0 && e.sphere_count <= BLADE_MAX_SPHERES);
+    assert(e.cube_count >= 0 && e.cube_count <= BLADE_MAX_CUBES);
+    assert(e.cube_count == 0 || (e.cube_objects && e.cubes));
     assert(e.length_mode == BLADE_LENGTH_QUADRATURE || e.length_mode == BLADE_LENGTH_PAPER);
     return e;
 }
@@ -313,6 +317,179 @@ void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count)
     exit_spheres(b, spheres, count);
 }
 
+/* ---- cube-map colliders (beyond both papers; see blade_ref.h) ------------- */
+
+/* Column-major m (x, 1); GLSL twin: (m * vec4(p, 1.0)).xyz. */
+static v3 mat4_point(const float *m, v3 p)
+{
+    return v3_make(m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
+                   m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]);
+}
+
+static bool cube_near(const blade_cube_object_t *o, v3 p)
+{
+    v3 pc = v3_sub(p, v3_load(o->sphere));
+    return o->sphere[3] > 0.0f && v3_dot(pc, pc) < o->sphere[3] * o->sphere[3];
+}
+
+/* bb_ref_push_out's choice for q (cube space): the smallest penetration
+ * p_f = d_f - D_f over the faces and that texel's normal; 0 when q is not
+ * inside (some p_f <= 0). */
+static float cube_pen(const bb_cubemap_t *c, v3 q, v3 *n)
+{
+    float best = 3.402823e38f;
+    *n = v3_make(0.0f, 0.0f, 0.0f);
+    vec3 qq = {q.x, q.y, q.z};
+    for (int f = 0; f < 6; f++) {
+        vec4 tx;
+        float pen = bb_ref_lookup(c, f, qq, tx) - tx[0];
+        if (!(pen > 0.0f)) return 0.0f;
+        if (pen < best) {
+            best = pen;
+            *n = v3_make(tx[1], tx[2], tx[3]);
+        }
+    }
+    return best;
+}
+
+static bool inside_cube(const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p)
+{
+    if (!cube_near(o, p)) return false;
+    v3 n;
+    return cube_pen(c, mat4_point(o->w2c, p), &n) > 0.0f;
+}
+
+bool blade_ref_inside_cube(const blade_cube_object_t *object, const bb_cubemap_t *cube, const float p[3])
+{
+    return inside_cube(object, cube, v3_load(p));
+}
+
+/* World displacement moving p out of the object by pen + margin * half
+ * along the stored normal (zero when p is outside). */
+static v3 cube_push(const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p, float margin)
+{
+    if (!cube_near(o, p)) return v3_make(0.0f, 0.0f, 0.0f);
+    v3 q = mat4_point(o->w2c, p);
+    v3 n;
+    float pen = cube_pen(c, q, &n);
+    if (!(pen > 0.0f)) return v3_make(0.0f, 0.0f, 0.0f);
+    v3 t = v3_add(q, v3_scale(n, pen + margin * o->cube[3]));
+    return v3_sub(mat4_point(o->c2w, t), p);
+}
+
+static v3 collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+{
+    v3 d = v3_make(0.0f, 0.0f, 0.0f);
+    for (int k = 0; k < count; k++) {
+        v3 dv2 = cube_push(&objects[k], &cubes[k], v3_load(b->v2), 0.0f);
+        v3_store(b->v2, v3_add(v3_load(b->v2), dv2));
+        v3 dm = v3_scale(cube_push(&objects[k], &cubes[k], midpoint(b), 0.0f), 4.0f);
+        v3_store(b->v2, v3_add(v3_load(b->v2), dm));
+        d = v3_add(d, v3_add(dv2, dm));
+    }
+    return d;
+}
+
+void blade_ref_collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+                             int count, float d[3])
+{
+    v3_store(d, collide_cubes(b, objects, cubes, count));
+}
+
+/* Rigid rotation of v1, v2 about v0 turning p - v0 towards the push-out
+ * target of p (margin BLADE_CUBE_MARGIN); cosine and sine from the dot and
+ * cross products (no trig). Skipped when p is outside, when the root is
+ * inside, and when v2 would go under the ground plane. */
+static void cube_exit_rotate(blade_t *b, const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p)
+{
+    v3 v0 = v3_load(b->v0);
+    v3 up = v3_load(b->up);
+    v3 push = cube_push(o, c, p, BLADE_CUBE_MARGIN);
+    if (v3_dot(push, push) == 0.0f || inside_cube(o, c, v0)) return;
+    v3 a = v3_sub(p, v0);
+    v3 t = v3_add(a, push);
+    float la = v3_len(a), lt = v3_len(t);
+    if (la < 1e-6f || lt < 1e-6f) return;
+    v3 ax = v3_cross(a, t);
+    float s = v3_len(ax);
+    if (s < 1e-9f * la * lt) return;
+    v3 k = v3_scale(ax, 1.0f / s);
+    float cth = v3_dot(a, t) / (la * lt);
+    float sth = s / (la * lt);
+    v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
+    v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
+                   v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
+    v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
+                   v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
+    if (v3_dot(r2, up) < 0.0f) return;
+    v3_store(b->v1, v3_add(v0, r1));
+    v3_store(b->v2, v3_add(v0, r2));
+}
+
+/* Candidate direction i of the straight fallback: 0 = up, then rings of 8
+ * azimuths (about the blade frame) at 22.5, 45, 67.5 and 90 degrees. */
+static v3 cube_direction(const blade_t *b, int i)
+{
+    v3 up = v3_load(b->up);
+    if (i == 0) return up;
+    v3 wd, fr;
+    frame(b, &wd, &fr);
+    int ring = (i - 1) / 8 + 1, az = (i - 1) % 8;
+    float th = 0.39269908f * (float)ring, ph = 0.78539816f * (float)az;
+    v3 side = v3_add(v3_scale(wd, cosf(ph)), v3_scale(fr, sinf(ph)));
+    return v3_add(v3_scale(up, cosf(th)), v3_scale(side, sinf(th)));
+}
+
+static bool cube_holds(const blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+                       int count, v3 v2, v3 m)
+{
+    for (int k = 0; k < count; k++) {
+        if (inside_cube(&objects[k], &cubes[k], v3_load(b->v0))) continue;
+        if (inside_cube(&objects[k], &cubes[k], v2) || inside_cube(&objects[k], &cubes[k], m)) return true;
+    }
+    return false;
+}
+
+static void cube_exit_straight(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+                               int count)
+{
+    if (!cube_holds(b, objects, cubes, count, v3_load(b->v2), midpoint(b))) return;
+    float h = b->v1[3];
+    v3 v0 = v3_load(b->v0);
+    v3 td = v3_safe_normalize(v3_sub(v3_load(b->v2), v0));
+    float best = -2.0f;
+    v3 bu = v3_make(0.0f, 0.0f, 0.0f);
+    for (int i = 0; i < BLADE_CUBE_DIRECTIONS; i++) {
+        v3 u = cube_direction(b, i);
+        float c = v3_dot(u, td);
+        if (c <= best) continue;
+        if (cube_holds(b, objects, cubes, count, v3_add(v0, v3_scale(u, h)), v3_add(v0, v3_scale(u, 0.5f * h))))
+            continue;
+        best = c;
+        bu = u;
+    }
+    if (best < -1.5f) return;
+    v3_store(b->v1, v3_add(v0, v3_scale(bu, 0.5f * h)));
+    v3_store(b->v2, v3_add(v0, v3_scale(bu, h)));
+}
+
+static void exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+{
+    for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
+        for (int k = 0; k < count; k++) {
+            cube_exit_rotate(b, &objects[k], &cubes[k], v3_load(b->v2));
+            cube_exit_rotate(b, &objects[k], &cubes[k], midpoint(b));
+        }
+    }
+    cube_exit_straight(b, objects, cubes, count);
+}
+
+void blade_ref_exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+{
+    if (b->v1[3] <= 0.0f) return;
+    exit_cubes(b, objects, cubes, count);
+}
+
 /* Gauss-Legendre 3-point nodes on [0,1] and weights (summing to 1). */
 static const float gl3_t[3] = {0.11270166f, 0.5f, 0.88729833f};
 static const float gl3_w[3] = {0.27777778f, 0.44444444f, 0.27777778f};
@@ -381,9 +558,11 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), dt)));
     blade_ref_validate(b, env->length_mode);
     v3 d = collide(b, env->spheres, env->sphere_count);
+    d = v3_add(d, collide_cubes(b, env->cube_objects, env->cubes, env->cube_count));
     if (v3_dot(d, d) > 0.0f) {
         blade_ref_validate(b, env->length_mode);
         exit_spheres(b, env->spheres, env->sphere_count);
+        exit_cubes(b, env->cube_objects, env->cubes, env->cube_count);
     }
     float e = *eta + env->collision_gain * v3_dot(d, d);
     *eta = fminf(fmaxf(e - env->collision_decay * dt, 0.0f), 1.0f);
