@@ -370,6 +370,91 @@ static int bb_objects(app_world_t *w, bb_object_t *out, int max)
     return n;
 }
 
+/* Cube-map proxies of the blade physics (tuning.blade_cube_proxies; beyond
+ * both papers). With the billboard field: its cube maps of every object
+ * (colliders and characters, in bb_objects order) as rendered by this
+ * frame's bb_field_update; an object whose cube map was never rendered
+ * (never near a colliding billboard leaf) is skipped, and a character's map
+ * keeps the pose of its last render. Blade mode (no field): the analytic
+ * colliders rasterised once on the CPU (bb_cubemap_render_*) at the scene's
+ * cube resolution, the first BLADE_MAX_CUBES of them; further colliders by
+ * their bounding sphere and characters by their proxy spheres, written to
+ * env. */
+static void blade_cube_proxies(app_world_t *w, blade_env_t *env)
+{
+    blade_cube_object_t objs[BLADE_MAX_CUBES];
+    int n = 0;
+    env->sphere_count = 0;
+    if (w->have_bb) {
+        bb_object_t bo[BB_MAX_OBJECTS];
+        int nb = bb_objects(w, bo, w->bb.desc.max_objects);
+        for (int k = 0; k < nb && n < BLADE_MAX_CUBES; k++) {
+            float half = w->bb.cube_half[k];
+            if (half <= 0.0f) continue;
+            mat4 model, inv;
+            memcpy(model, bo[k].model, sizeof model);
+            glm_mat4_inv(model, inv);
+            blade_cube_object_t *o = &objs[n++];
+            memcpy(o->w2c, inv, sizeof o->w2c);
+            memcpy(o->c2w, model, sizeof o->c2w);
+            glm_vec3_copy(w->bb.cube_centre[k], o->cube);
+            o->cube[3] = half;
+            glm_mat4_mulv3(model, w->bb.cube_centre[k], 1.0f, o->sphere);
+            float sc = fmaxf(glm_vec3_norm(model[0]), fmaxf(glm_vec3_norm(model[1]), glm_vec3_norm(model[2])));
+            o->sphere[3] = half * sqrtf(3.0f) * sc;
+        }
+        blade_gpu_set_cubes(&w->blades, w->bb.cubes.id, w->bb.desc.cube_res, objs, n);
+        return;
+    }
+    int nc = w->colliders.count < BLADE_MAX_CUBES ? w->colliders.count : BLADE_MAX_CUBES;
+    if (nc > 0 && !w->blades.own_cubes.id) {
+        bb_cubemap_t cubes[BLADE_MAX_CUBES];
+        bool ok = true;
+        for (int k = 0; k < nc; k++) {
+            const app_collider_t *c = &w->colliders.items[k];
+            ok = ok && bb_cubemap_init(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
+            if (!ok) {
+                nc = k;
+                break;
+            }
+            if (c->desc.type == SCENE_COLLIDER_CAPSULE)
+                bb_cubemap_render_capsule(&cubes[k], (vec3){0, -0.5f * c->desc.length, 0},
+                                          (vec3){0, 0.5f * c->desc.length, 0}, c->desc.radius);
+            else if (c->desc.type == SCENE_COLLIDER_BOX)
+                bb_cubemap_render_box(&cubes[k], (vec3){0, 0, 0}, (float *)c->desc.half_extents);
+            else
+                bb_cubemap_render_sphere(&cubes[k], (vec3){0, 0, 0}, c->desc.radius);
+        }
+        if (!ok || (nc > 0 && !blade_gpu_upload_cubes(&w->blades, cubes, nc))) nc = 0;
+        for (int k = 0; k < nc; k++) bb_cubemap_free(&cubes[k]);
+    }
+    if (!w->blades.own_cubes.id) nc = 0;
+    for (int k = 0; k < nc; k++) {
+        const app_collider_t *c = &w->colliders.items[k];
+        blade_cube_object_t *o = &objs[n++];
+        mat4 model, inv;
+        glm_translate_make(model, (float *)c->position);
+        glm_mat4_inv(model, inv);
+        memcpy(o->w2c, inv, sizeof o->w2c);
+        memcpy(o->c2w, model, sizeof o->c2w);
+        o->cube[0] = o->cube[1] = o->cube[2] = 0.0f;
+        o->cube[3] = c->bound_radius;
+        glm_vec3_copy((float *)c->position, o->sphere);
+        o->sphere[3] = c->bound_radius * sqrtf(3.0f);
+    }
+    blade_gpu_set_cubes(&w->blades, w->blades.own_cubes.id, w->scene.grass.cube_resolution, objs, n);
+    for (int k = nc; k < w->colliders.count && env->sphere_count < BLADE_MAX_SPHERES; k++) {
+        const app_collider_t *c = &w->colliders.items[k];
+        env->spheres[env->sphere_count++] =
+            (blade_sphere_t){{c->position[0], c->position[1], c->position[2], c->bound_radius}};
+    }
+    if (w->have_chars) {
+        int room = BLADE_MAX_SPHERES - env->sphere_count;
+        int want = character_set_spheres(&w->chars, (float (*)[4])env->spheres[env->sphere_count].centre_radius, room);
+        env->sphere_count += want < room ? want : room;
+    }
+}
+
 void app_world_update(app_world_t *w, float t, float dt)
 {
     w->time = t;
@@ -384,7 +469,8 @@ void app_world_update(app_world_t *w, float t, float dt)
         blade_env_t *env = &w->blade_env;
         env->dt = dt;
         env->time = t;
-        env->sphere_count = blade_spheres(w, env->spheres, BLADE_MAX_SPHERES);
+        if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, env);
+        else env->sphere_count = blade_spheres(w, env->spheres, BLADE_MAX_SPHERES);
         if (w->have_blades) blade_gpu_simulate(&w->blades, env);
         if (w->have_tiles)
             blade_tiles_update(&w->tiles, w->camera, (const float (*)[4])env->spheres, env->sphere_count, env);

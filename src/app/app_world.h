@@ -71,6 +71,8 @@ typedef struct app_tuning_t {
     int tess_max;           /* blade tessellation level cap; default the blade module's */
     int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
     unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
+    bool blade_cube_proxies; /* blades collide against depth cube maps instead of
+                                sphere proxies (blade_gpu_set_cubes; not the tiles) */
 } app_tuning_t;
 
 /* ---- the world ------------------------------------------------------------------ */
