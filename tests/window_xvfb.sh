@@ -8,13 +8,16 @@ bin=$1
 root=$(cd "$(dirname "$0")/.." && pwd)
 command -v Xvfb >/dev/null && command -v xdotool >/dev/null || { echo "SKIP: Xvfb or xdotool missing"; exit 77; }
 tmp=$(mktemp -d)
-disp=:$((90 + RANDOM % 100))
-Xvfb "$disp" -screen 0 640x480x24 -nolisten tcp >"$tmp/xvfb.log" 2>&1 &
+# Xvfb picks a free display itself and writes its number to fd 3 once it
+# accepts connections (no collision with stale locks, no guessing when ready).
+Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
 xpid=$!
-cleanup() { kill "$mpid" 2>/dev/null; kill "$xpid" 2>/dev/null; wait 2>/dev/null; rm -rf "$tmp"; }
+mpid=""
+cleanup() { [ -n "$mpid" ] && kill "$mpid" 2>/dev/null; kill "$xpid" 2>/dev/null; wait 2>/dev/null; rm -rf "$tmp"; }
 trap cleanup EXIT
-export DISPLAY=$disp
-for _ in $(seq 50); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.1; done
+for _ in $(seq 300); do [ -s "$tmp/display" ] && break; sleep 0.1; done
+[ -s "$tmp/display" ] || { echo "FAIL: Xvfb did not start"; cat "$tmp/xvfb.log"; exit 1; }
+export DISPLAY=:$(head -1 "$tmp/display")
 cd "$root"
 "$bin" --scene scenes/tiny.json --size 320x240 --frames 100000 --out "$tmp/out" --screenshot-every 0 \
   >"$tmp/meadow.log" 2>&1 &
