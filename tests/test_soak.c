@@ -106,7 +106,14 @@ int main(void)
            rss_max, bad);
     CHECK(bad == 0);
     CHECK(w->have_bb && w->have_blades && w->have_tiles && w->have_chars);
-    if (frames > warmup + 100) CHECK(rss_max <= rss_warm * 105 / 100 && rss_min >= rss_warm * 95 / 100);
+    /* Under ASan (.ci/sanitize sets MEADOW_SANITIZED=1) freed memory sits in
+     * the allocator's quarantine and RSS creeps by design; LeakSanitizer
+     * checks leaks there instead. */
+    const char *san = getenv("MEADOW_SANITIZED");
+    if (san && san[0] == '1')
+        printf("soak: RSS bound not checked under ASan\n");
+    else if (frames > warmup + 100)
+        CHECK(rss_max <= rss_warm * 105 / 100 && rss_min >= rss_warm * 95 / 100);
     gfx_target_destroy(&target);
     app_world_destroy(w);
     free(w);
