@@ -27,7 +27,7 @@ for f in stability.csv stability.md; do
   [ -s "$out/stability/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
 cases="tunnelling framerate_blade framerate_bb thin_bb concave_bb concave_blade large_bb squeeze_blade squeeze_bb
-       resting_blade steep_blade many_bb many_blade"
+       resting_blade spikes_blade spikes_bb steep_blade many_bb many_blade"
 for c in $cases; do
   [ -s "$out/stability/stability_$c.png" ] || { echo "FAIL: missing stability_$c.png"; fail=1; }
   grep -q "^$c," "$out/stability/stability.csv" || { echo "FAIL: stability.csv has no $c rows"; fail=1; }

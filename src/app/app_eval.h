@@ -41,6 +41,9 @@ typedef struct app_session_hooks_t {
     int (*blade_spheres)(app_world_t *w, blade_sphere_t *out, int max, void *user);
     /* Called after every simulated step. */
     void (*frame)(app_world_t *w, int frame, float t, void *user);
+    /* Step length of frame `frame` (default: the scene's dt every step);
+     * lets the stability suite inject frame spikes. */
+    float (*step_dt)(int frame, float dt, void *user);
     /* Called after every drawn frame with the target it went into. */
     void (*drawn)(const gfx_target_t *target, int frame, void *user);
     void *user;

@@ -82,7 +82,7 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
     bool own_update = h->blade_spheres && w->have_blades && !w->have_bb && !w->have_chars;
     cam_t cam;
     scene_camera_init(s, &cam);
-    double cpu0 = 0;
+    double cpu0 = 0, t_acc = 0;
     for (int f = 0; f < frames; f++) {
         if (f == warmup) {
             gfx_timer_reset_stats();
@@ -90,9 +90,11 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
             cpu0 = plat_time();
         }
         gfx_timer_frame_begin();
-        float t = (float)((f + 1) * s->dt);
-        if (own_update) update_with_proxies(w, h, t, s->dt);
-        else app_world_update(w, t, s->dt);
+        float dt = h->step_dt ? h->step_dt(f, s->dt, h->user) : s->dt;
+        t_acc += dt;
+        float t = (float)t_acc;
+        if (own_update) update_with_proxies(w, h, t, dt);
+        else app_world_update(w, t, dt);
         if (h->frame) h->frame(w, f, t, h->user);
         if (h->draw_last_only && f + 1 < frames) continue;
         if (s->camera.path.count) cam_path_eval(&s->camera.path, t, &cam);

@@ -136,6 +136,12 @@ static void setup_resting(scene_desc_t *s, float v)
     s->grass.stiffness[0] = s->grass.stiffness[1] = v;
     add_sphere(s, 0.35f, 0, 0.3f, 0);
 }
+/* A ball resting on the grass; the spike itself comes from spike_dt. */
+static void setup_spikes(scene_desc_t *s, float v)
+{
+    (void)v;
+    add_sphere(s, 0.35f, 0, 0.3f, 0);
+}
 static void setup_steep(scene_desc_t *s, float v)
 {
     s->terrain.height = v;
@@ -194,6 +200,13 @@ static void judge_jitter(stab_result_t *r, const stab_result_t *first, float v, 
     r->measure = r->jitter;
     r->fails = r->x.nonfinite > 0 || r->jitter > 0.005;
 }
+static void judge_spikes(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)v, (void)dt;
+    r->measure = r->m.penetration_max;
+    r->fails = r->x.nonfinite > 0 || r->m.blade_length_error > 0.05 ||
+               r->m.penetration_max > fmax(0.05, 2.0 * first->m.penetration_max);
+}
 static void judge_steep(stab_result_t *r, const stab_result_t *first, float v, float dt)
 {
     (void)first, (void)v, (void)dt;
@@ -238,6 +251,17 @@ static const stab_case_t cases[] = {
     {"resting_blade", SCENE_MODE_BLADE, "blade stiffness (r 0.35 m ball resting, 5 cm sunk)",
      {100, 50, 20, 10, 5, 2}, MEASURE_JITTER, "jitter m/frame", "frame-to-frame tip change > 5 mm (wind removed)",
      "recovery (eq. 1) and collision push alternate every step", setup_resting, judge_jitter},
+    {"spikes_blade", SCENE_MODE_BLADE, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball resting)",
+     {16.7f, 33, 66, 100, 250, 500}, MEASURE_STATIC, "max depth m (after a spike)",
+     "NaN, length error > 5%, or deepest sample > max(0.05 m, 2 x first value's)",
+     "forces are displacement rates times dt (eq. 1-8): one long step moves a tip by (r + g + w) dt at once, "
+     "then validation (eq. 9-13) and the collision exit put it back on a valid curve outside the sphere",
+     setup_spikes, judge_spikes},
+    {"spikes_bb", SCENE_MODE_BILLBOARD, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball resting)",
+     {16.7f, 33, 66, 100, 250, 500}, MEASURE_STATIC, "max depth m (after a spike)",
+     "NaN, or deepest sample > max(0.05 m, 2 x first value's)",
+     "collision is positional (push-out, springs): a long step only shortens the recover time left (eq. 8)",
+     setup_spikes, judge_spikes},
     {"steep_blade", SCENE_MODE_BLADE, "heightfield amplitude m (6 m terrain)", {0.5f, 1, 2, 4, 8, 16},
      MEASURE_STATIC, "max(length error, tips under ground)", "> 5%, or a sample > 0.05 m deep, or NaN",
      "gravity (eq. 2-4) pulls tips downhill; blades stand along the surface normal", setup_steep, judge_steep},
@@ -305,6 +329,13 @@ static void frame(app_world_t *w, int f, float t, void *user)
     }
 }
 
+/* Frame spikes: every 10th step (the last one included) lasts v ms. */
+static float spike_dt(int frame, float dt, void *user)
+{
+    const stab_run_t *r = user;
+    return (frame + 1) % 10 == 0 ? r->v / 1000.0f : dt;
+}
+
 static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool quick, core_image_t *img,
                    stab_result_t *res)
 {
@@ -328,9 +359,11 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
     r.t_end = duration;
     r.twin_wanted = c->mode == SCENE_MODE_BLADE && c->measure != MEASURE_STATIC;
     int frames = (int)ceilf(duration / dt);
+    if (c->setup == setup_spikes) frames = (frames + 9) / 10 * 10; /* the last step is a spike */
     app_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
                             .user = &r};
-    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = true, .ext = &res->x};
+    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = true, .ext = &res->x,
+                             .step_dt = c->setup == setup_spikes ? spike_dt : NULL};
     int rc = app_session_run_hooks(&d, &h, img, &res->m);
     res->recovery = r.last_over >= (float)frames * dt - 0.5f * dt ? INFINITY : fmax(r.last_over - r.t_exit, 0.0);
     res->coverage = r.coverage;
