@@ -68,6 +68,15 @@ static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
     return layout_size;
 }
 
+/* The shared layout's extent map alone (the clump texture is the billboard
+ * field's business): one tiny clump layer is enough for bb_layout. */
+static bool extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
+{
+    int size = layout_for(w, gen);
+    return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
+                                                        .clump_size = 8, .blades = 1});
+}
+
 /* Thins seeded blades by the extent map with the billboards' acceptance
  * rule (accept with probability E/255, see bb_layout.h), so both
  * representations share clearings and density ratio. A rejected blade gets
@@ -76,11 +85,8 @@ static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
 static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
 {
     bb_gen_desc_t gen;
-    int size = layout_for(w, &gen);
     bb_layout_t lay;
-    if (!bb_layout_generate(&lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
-                                                      .clump_size = 8, .blades = 1}))
-        return 0;
+    if (!extent_layout(w, &lay, &gen)) return 0;
     size_t dropped = 0;
     for (size_t i = 0; i < field->blade_count; i++) {
         blade_t *b = &field->blades[i];
@@ -242,11 +248,8 @@ static bool make_tiles(app_world_t *w)
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
     /* The billboards' extent map thins the tiles too (same clearings). */
     bb_gen_desc_t gen;
-    int size = layout_for(w, &gen);
     bb_layout_t lay;
-    bool have_layout = bb_layout_generate(&lay, &(bb_layout_desc_t){.seed = s->seed, .size = size,
-                                                                     .clump_layers = 1, .clump_size = 8,
-                                                                     .blades = 1});
+    bool have_layout = extent_layout(w, &lay, &gen);
     if (have_layout) {
         td.extent = &lay.extent;
         memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);

@@ -229,6 +229,21 @@ static bool inside_sphere(const blade_sphere_t *s, v3 p)
     return v3_dot(pc, pc) < s->centre_radius[3] * s->centre_radius[3];
 }
 
+/* Rodrigues rotation of v1 and v2 about the root v0 (axis k, cos cth, sin
+ * sth): the length is kept exactly. Skipped when it would put v2 under the
+ * ground plane. */
+static void rotate_about_root(blade_t *b, v3 v0, v3 up, v3 k, float cth, float sth)
+{
+    v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
+    v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
+                   v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
+    v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
+                   v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
+    if (v3_dot(r2, up) < 0.0f) return;
+    v3_store(b->v1, v3_add(v0, r1));
+    v3_store(b->v2, v3_add(v0, r2));
+}
+
 /* Rigid rotation of v1 and v2 about v0, in the plane of ch and (p - v0),
  * that brings p (v2 or m) onto the exit distance. The rotation keeps the
  * curve length; it is built from cosines and sines by algebra only (no
@@ -254,14 +269,7 @@ static void exit_rotate(blade_t *b, const blade_sphere_t *s, v3 p)
     float cth = ct * ca + st * sa;
     float sth = st * ca - ct * sa;
     v3 k = v3_cross(ch, e);
-    v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
-    v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
-                   v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
-    v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
-                   v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
-    if (v3_dot(r2, up) < 0.0f) return;
-    v3_store(b->v1, v3_add(v0, r1));
-    v3_store(b->v2, v3_add(v0, r2));
+    rotate_about_root(b, v0, up, k, cth, sth);
 }
 
 /* Last resort for a sphere that still holds v2 or m (root outside): the
@@ -416,14 +424,7 @@ static void cube_exit_rotate(blade_t *b, const blade_cube_object_t *o, const bb_
     v3 k = v3_scale(ax, 1.0f / s);
     float cth = v3_dot(a, t) / (la * lt);
     float sth = s / (la * lt);
-    v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
-    v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
-                   v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
-    v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
-                   v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
-    if (v3_dot(r2, up) < 0.0f) return;
-    v3_store(b->v1, v3_add(v0, r1));
-    v3_store(b->v2, v3_add(v0, r2));
+    rotate_about_root(b, v0, up, k, cth, sth);
 }
 
 /* Candidate direction i of the straight fallback: 0 = up, then rings of 8
