@@ -18,6 +18,9 @@ trap cleanup EXIT
 for _ in $(seq 300); do [ -s "$tmp/display" ] && break; sleep 0.1; done
 [ -s "$tmp/display" ] || { echo "FAIL: Xvfb did not start"; cat "$tmp/xvfb.log"; exit 1; }
 export DISPLAY=:$(head -1 "$tmp/display")
+# Make sure the server answers before the program connects.
+for _ in $(seq 100); do xdotool getdisplaygeometry >/dev/null 2>&1 && break; sleep 0.1; done
+xdotool getdisplaygeometry >/dev/null 2>&1 || { echo "FAIL: Xvfb on $DISPLAY does not answer"; cat "$tmp/xvfb.log"; exit 1; }
 cd "$root"
 "$bin" --scene scenes/tiny.json --size 320x240 --frames 100000 --out "$tmp/out" --screenshot-every 0 \
   >"$tmp/meadow.log" 2>&1 &
@@ -28,7 +31,7 @@ for _ in $(seq 300); do
   [ -n "$wid" ] && break
   sleep 0.2
 done
-[ -n "$wid" ] || { echo "FAIL: no meadow window"; cat "$tmp/meadow.log"; exit 1; }
+[ -n "$wid" ] || { echo "FAIL: no meadow window on $DISPLAY"; cat "$tmp/meadow.log" "$tmp/xvfb.log"; exit 1; }
 grep -q "platform: glfw" "$tmp/meadow.log" || { echo "FAIL: not the GLFW back end"; cat "$tmp/meadow.log"; exit 1; }
 shot() { # shot N: press C and wait for the Nth screenshot
   xdotool key --window "$wid" c 2>/dev/null
