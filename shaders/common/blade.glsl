@@ -184,6 +184,18 @@ bool blade_inside_sphere(BladeSphere s, vec3 p)
     return dot(pc, pc) < s.centre_radius.w * s.centre_radius.w;
 }
 
+/* Twin of rotate_about_root (blade_ref.c): Rodrigues rotation of v1 and v2
+ * about the root, skipped when it would put v2 under the ground plane. */
+void blade_rotate_about_root(inout Blade b, vec3 v0, vec3 up, vec3 k, float cth, float sth)
+{
+    vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
+    vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
+    vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
+    if (dot(r2, up) < 0.0) return;
+    b.v1.xyz = v0 + r1;
+    b.v2.xyz = v0 + r2;
+}
+
 void blade_exit_rotate(inout Blade b, BladeSphere s, vec3 p)
 {
     if (!blade_inside_sphere(s, p)) return;
@@ -203,12 +215,7 @@ void blade_exit_rotate(inout Blade b, BladeSphere s, vec3 p)
     float cth = ct * ca + st * sa;
     float sth = st * ca - ct * sa;
     vec3 k = cross(ch, e);
-    vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
-    vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
-    vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
-    if (dot(r2, up) < 0.0) return;
-    b.v1.xyz = v0 + r1;
-    b.v2.xyz = v0 + r2;
+    blade_rotate_about_root(b, v0, up, k, cth, sth);
 }
 
 void blade_exit_straight(inout Blade b, BladeSphere s)
@@ -309,12 +316,7 @@ void blade_cube_exit_rotate(inout Blade b, sampler2DArray tex, BladeCube o, bb_c
     vec3 k = ax * (1.0 / s);
     float cth = dot(a, t) / (la * lt);
     float sth = s / (la * lt);
-    vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
-    vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
-    vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
-    if (dot(r2, up) < 0.0) return;
-    b.v1.xyz = v0 + r1;
-    b.v2.xyz = v0 + r2;
+    blade_rotate_about_root(b, v0, up, k, cth, sth);
 }
 
 vec3 blade_cube_direction(Blade b, int i)
