@@ -34,6 +34,21 @@ double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float
  * pose at the field's time; 0 when no mesh is deformed. */
 double app_metrics_bb_offset(app_world_t *w);
 
+/* Texture distortion of the deformed billboard meshes (docs/METRICS.md). */
+typedef struct app_bb_distortion_t {
+    double max_stretch; /* max |l / l0 - 1| over structural springs; INFINITY when not finite */
+    long folded;        /* cells with signed area ratio <= 0 against their reference normal */
+    long cells;         /* cells of the deformed meshes */
+    long nonfinite;     /* mesh coordinates that are NaN or infinite */
+    int deformed;       /* billboards with a deformed mesh */
+} app_bb_distortion_t;
+/* Measures the deformed billboards of w now (all zero without billboards). */
+void app_metrics_bb_distortion(app_world_t *w, app_bb_distortion_t *out);
+
+/* Grass roots inside the world-space box lo..hi: real blade roots v0 in
+ * blade mode, billboard root centres in billboard mode (0 otherwise). */
+long app_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]);
+
 /* Per-frame hooks of an offscreen session (all optional). */
 typedef struct app_session_hooks_t {
     /* Replaces the world's blade sphere proxies; only for blade-mode worlds

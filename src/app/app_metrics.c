@@ -22,7 +22,13 @@
  * Shape errors: blade length |L - h| / h with L = blade_ref_curve_length
  * (32 samples), mean over real blades; billboard spring error |l - l0| / l0
  * over the structural springs (eq. 6-7) of the deformed meshes, l0 from the
- * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)). */
+ * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)).
+ *
+ * Texture distortion of deformed billboards (app_metrics_bb_distortion):
+ * the largest structural-spring stretch |l / l0 - 1| and the folded cells,
+ * a cell being folded when its signed area ratio against a reference
+ * normal is <= 0: the rest normal right x up for the root row, the normals
+ * of the neighbouring cells below and to the left above it. */
 #include "app/app_eval.h"
 
 #include <math.h>
@@ -148,18 +154,36 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
     free(b);
 }
 
+/* Reads the billboard points and the deformed-mesh pool back from the GPU
+ * (false, with both NULL, when out of memory; the caller frees both). */
+static bool read_bb(bb_field_t *f, bb_point_t **pts, float (**mesh)[4])
+{
+    size_t nv = (size_t)f->desc.subdiv[0] * (size_t)f->desc.subdiv[1];
+    *pts = malloc(sizeof **pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
+    *mesh = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv);
+    if (!*pts || !*mesh) {
+        free(*pts);
+        free(*mesh);
+        *pts = NULL;
+        *mesh = NULL;
+        return false;
+    }
+    glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof **pts * (size_t)f->billboards), *pts);
+    glGetNamedBufferSubData(f->meshes.id, 0, (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv),
+                            *mesh);
+    return true;
+}
+
 static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, app_metrics_t *m,
                        app_metrics_ext_t *x)
 {
     bb_field_t *f = &w->bb;
     int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
-    bb_point_t *pts = malloc(sizeof *pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
-    float (*mesh)[4] = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * (size_t)nv);
+    bb_point_t *pts;
+    float (*mesh)[4];
+    bool have = read_bb(f, &pts, &mesh);
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
-    if (!pts || !mesh || !grid) goto done;
-    glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof *pts * (size_t)f->billboards), pts);
-    glGetNamedBufferSubData(f->meshes.id, 0, (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv),
-                            mesh);
+    if (!have || !grid) goto done;
     double spring_sum = 0;
     long springs = 0;
     for (int i = 0; i < f->billboards; i++) {
@@ -311,13 +335,10 @@ double app_metrics_bb_offset(app_world_t *w)
     if (!w->have_bb) return 0;
     bb_field_t *f = &w->bb;
     int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
-    bb_point_t *pts = malloc(sizeof *pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
-    float (*mesh)[4] = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * (size_t)nv);
+    bb_point_t *pts;
+    float (*mesh)[4];
     double worst = 0;
-    if (pts && mesh) {
-        glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof *pts * (size_t)f->billboards), pts);
-        glGetNamedBufferSubData(f->meshes.id, 0,
-                                (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv), mesh);
+    if (read_bb(f, &pts, &mesh)) {
         for (int i = 0; i < f->billboards; i++) {
             const bb_point_t *p = &pts[i];
             uint32_t slot = p->pad[0];
@@ -341,4 +362,92 @@ double app_metrics_bb_offset(app_world_t *w)
     free(pts);
     free(mesh);
     return worst;
+}
+
+/* Area vector (e - a) x (d - b) / 2 of the cell with lower corners a, b and
+ * upper corners d, e (left to right). */
+static void cell_area(const float *a, const float *b, const float *d, const float *e, vec3 out)
+{
+    vec3 p, q;
+    glm_vec3_sub((float *)e, (float *)a, p);
+    glm_vec3_sub((float *)d, (float *)b, q);
+    glm_vec3_cross(p, q, out);
+    glm_vec3_scale(out, 0.5f, out);
+}
+
+void app_metrics_bb_distortion(app_world_t *w, app_bb_distortion_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!w->have_bb) return;
+    bb_field_t *f = &w->bb;
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    bb_point_t *pts;
+    float (*mesh)[4];
+    vec3 *unit = malloc(sizeof(vec3) * (size_t)nv); /* unit cell normals of the billboard at hand */
+    if (!unit || !read_bb(f, &pts, &mesh)) {
+        free(unit);
+        return;
+    }
+    for (int i = 0; i < f->billboards; i++) {
+        const bb_point_t *p = &pts[i];
+        uint32_t slot = p->pad[0];
+        if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) continue;
+        out->deformed++;
+        float (*g)[4] = &mesh[(size_t)slot * nv];
+        vec3 right, up, rest;
+        bb_point_frame(p, right, up);
+        glm_vec3_cross(right, up, rest);
+        glm_vec3_normalize(rest);
+        float l0x = p->size[0] / (float)(nn - 1), l0y = p->size[1] / (float)(mm - 1), a0 = l0x * l0y;
+        for (int j = 0; j < mm; j++)
+            for (int c = 0; c < nn; c++) {
+                float *v = g[j * nn + c];
+                if (!isfinite(v[0]) || !isfinite(v[1]) || !isfinite(v[2])) out->nonfinite++;
+                double s = 0;
+                if (c + 1 < nn) s = fmax(s, fabs(glm_vec3_distance(v, g[j * nn + c + 1]) / l0x - 1.0));
+                if (j + 1 < mm) s = fmax(s, fabs(glm_vec3_distance(v, g[(j + 1) * nn + c]) / l0y - 1.0));
+                if (!isfinite(glm_vec3_norm(v))) s = INFINITY;
+                if (s > out->max_stretch) out->max_stretch = s;
+            }
+        for (int j = 0; j + 1 < mm; j++)
+            for (int c = 0; c + 1 < nn; c++) {
+                vec3 area;
+                cell_area(g[j * nn + c], g[j * nn + c + 1], g[(j + 1) * nn + c], g[(j + 1) * nn + c + 1], area);
+                float below = glm_vec3_dot(area, j ? unit[(j - 1) * nn + c] : rest) / a0;
+                float left = c ? glm_vec3_dot(area, unit[j * nn + c - 1]) / a0 : 1.0f;
+                out->cells++;
+                if (!(below > 0.0f && left > 0.0f)) out->folded++;
+                glm_vec3_normalize_to(area, unit[j * nn + c]);
+            }
+    }
+    free(pts);
+    free(mesh);
+    free(unit);
+}
+
+long app_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3])
+{
+    long n = 0;
+    if (w->mode == SCENE_MODE_BLADE && w->have_blades) {
+        blade_t *b = read_blades(w);
+        for (uint32_t i = 0; b && i < w->blades.padded_count; i++) {
+            const float *p = b[i].v0;
+            if (b[i].v1[3] > 0.0f && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
+                p[2] >= lo[2] && p[2] <= hi[2])
+                n++;
+        }
+        free(b);
+    } else if (w->mode == SCENE_MODE_BILLBOARD && w->have_bb) {
+        bb_point_t *pts;
+        float (*mesh)[4];
+        if (!read_bb(&w->bb, &pts, &mesh)) return 0;
+        for (int i = 0; i < w->bb.billboards; i++) {
+            const float *p = pts[i].position;
+            if (p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2])
+                n++;
+        }
+        free(pts);
+        free(mesh);
+    }
+    return n;
 }

@@ -1,13 +1,17 @@
 /* app_stability: `meadow bench --stability`: for each case, sweeps one
  * parameter over small scenes built here (6 m heightfield, a few thousand
- * blades or a few hundred billboards), applies the case's failure
+ * blades or a few hundred billboards; the wall cases write a small mesh
+ * terrain and its scene file into the output folder for the run and remove
+ * them afterwards), applies the case's failure
  * criterion and reports the first value where the method breaks, with a
  * screenshot of that run (or of the last value when none broke). The
  * measures come from app_metrics.c (docs/METRICS.md): penetration against
  * the exact collider shapes, blade length error, recovery time after a
  * collider leaves (offset from an undisturbed twin world for blades, from
  * the wind pose of eq. 8 for billboards), jitter of a resting collider,
- * and trail coverage of a fast collider (tunnelling). */
+ * trail coverage of a fast collider (tunnelling), texture distortion of
+ * deformed billboard meshes (worst frame; its rendering is the screenshot)
+ * and root density on a mesh face relative to the floor. */
 #include "app/app_eval.h"
 
 #include <math.h>
@@ -25,6 +29,7 @@ typedef enum stab_measure_t {
     MEASURE_STATIC = 0, /* metrics of the last frame */
     MEASURE_PASS,       /* a ball passes once and leaves: recovery, coverage */
     MEASURE_JITTER,     /* a ball rests: frame-to-frame offset change */
+    MEASURE_DISTORTION, /* billboard texture distortion, worst frame of the run */
 } stab_measure_t;
 
 typedef struct stab_result_t {
@@ -33,6 +38,7 @@ typedef struct stab_result_t {
     double recovery;  /* s after the collider left; INFINITY: not recovered */
     double coverage;  /* trail coverage right after the pass */
     double jitter;    /* m per frame over the last 0.5 s */
+    app_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
     double measure;   /* the case's measure */
     bool fails;
 } stab_result_t;
@@ -156,6 +162,67 @@ static void setup_many(scene_desc_t *s, float v)
                    -2.2f + 4.4f * ((float)(i / side) + 0.5f) / (float)side);
     glm_vec3_copy((vec3){0.0f, 4.0f, 4.0f}, s->camera.position);
 }
+/* Sparse billboards at the field border: a ball of radius v (on the
+ * ground) rolls along the edge z = +3 of the 6 m field, 0.3 m inside it,
+ * through the outermost billboards of a 1.5 billboards/m^2 layout (one
+ * candidate per 0.82 m cell), and stops 0.25 s before the end of the run;
+ * the camera looks from inside the field across the ball's path to the
+ * edge. */
+#define BORDER_Z 2.7f
+#define BORDER_TIME 2.0f
+static void setup_border(scene_desc_t *s, float v)
+{
+    s->grass.billboard_density = 1.5f;
+    scene_collider_t *c = add_sphere(s, v, -2.6f, v, BORDER_Z);
+    c->path.count = 2;
+    c->path.keys[1] = (scene_path_key_t){.t = BORDER_TIME, .position = {0.6f, v, BORDER_Z}};
+    s->size[0] = 360;
+    s->size[1] = 240;
+    glm_vec3_copy((vec3){-0.4f, 1.6f, BORDER_Z - 1.7f}, s->camera.position);
+    glm_vec3_copy((vec3){-1.3f, 0.1f, BORDER_Z - 0.1f}, s->camera.target);
+}
+
+/* A wall: a mesh terrain (written by write_wall) with a floor at y = 0
+ * for x < 0, a face rising at v degrees from x = 0 to WALL_H and a
+ * plateau beyond, 4 m deep along z. No collider: the question is whether
+ * the grass grows on the face at all, and stays valid there. */
+#define WALL_H 1.0f
+#define WALL_Z 2.0f
+static float wall_run(float deg) { return fmaxf(0.0f, WALL_H * cosf(glm_rad(deg)) / sinf(glm_rad(deg))); }
+static void setup_wall(scene_desc_t *s, float v)
+{
+    (void)v;
+    glm_vec3_copy((vec3){-2.6f, 1.6f, 2.4f}, s->camera.position);
+    glm_vec3_copy((vec3){0.2f, 0.5f, 0.0f}, s->camera.target);
+}
+
+/* Writes the wall of v degrees as an OBJ (flat normals, one quad per part)
+ * and a scene file naming it, both into dir; scene gets the scene's path. */
+static bool write_wall(const char *dir, float v, char *scene, size_t n)
+{
+    char obj[1100];
+    snprintf(obj, sizeof obj, "%s/stability_wall.obj", dir);
+    snprintf(scene, n, "%s/stability_wall.json", dir);
+    float xf = wall_run(v), sn = sinf(glm_rad(v)), cs = cosf(glm_rad(v));
+    float quads[3][4][2] = {{{-3, 0}, {0, 0}, {0, 0}, {-3, 0}},
+                            {{0, 0}, {xf, WALL_H}, {xf, WALL_H}, {0, 0}},
+                            {{xf, WALL_H}, {3, WALL_H}, {3, WALL_H}, {xf, WALL_H}}};
+    float normals[3][3] = {{0, 1, 0}, {-sn, cs, 0}, {0, 1, 0}};
+    eval_text_t t = {0};
+    for (int q = 0; q < 3; q++) {
+        for (int k = 0; k < 4; k++)
+            eval_text_printf(&t, "v %.6f %.6f %.6f\n", quads[q][k][0], quads[q][k][1], k < 2 ? WALL_Z : -WALL_Z);
+        eval_text_printf(&t, "vn %.6f %.6f %.6f\n", normals[q][0], normals[q][1], normals[q][2]);
+        eval_text_printf(&t, "f %d//%d %d//%d %d//%d %d//%d\n", 4 * q + 1, q + 1, 4 * q + 2, q + 1, 4 * q + 3, q + 1,
+                         4 * q + 4, q + 1);
+    }
+    bool ok = eval_text_write(&t, obj);
+    eval_text_free(&t);
+    eval_text_printf(&t, "{ \"seed\": 7, \"terrain\": { \"type\": \"mesh\", \"mesh\": \"%s\" } }\n", obj);
+    ok = ok && eval_text_write(&t, scene);
+    eval_text_free(&t);
+    return ok;
+}
 
 /* ---- failure criteria ------------------------------------------------------------- */
 
@@ -212,6 +279,18 @@ static void judge_steep(stab_result_t *r, const stab_result_t *first, float v, f
     (void)first, (void)v, (void)dt;
     r->measure = fmax(r->m.blade_length_error, r->x.below_ground);
     r->fails = r->x.nonfinite > 0 || r->measure > 0.05 || r->m.penetration_max > 0.05;
+}
+static void judge_border(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)first, (void)v, (void)dt;
+    r->measure = r->distortion.max_stretch;
+    r->fails = r->distortion.nonfinite > 0 || r->distortion.folded > 0 || !(r->measure <= 0.25);
+}
+static void judge_wall(stab_result_t *r, const stab_result_t *first, float v, float dt)
+{
+    (void)first, (void)v, (void)dt;
+    r->measure = r->coverage;
+    r->fails = r->x.nonfinite > 0 || r->m.blade_length_error > 0.05 || !(r->coverage >= 0.5);
 }
 
 static const stab_case_t cases[] = {
@@ -272,6 +351,29 @@ static const stab_case_t cases[] = {
     {"many_blade", SCENE_MODE_BLADE, "resting r 0.12 m balls", {1, 4, 16, 17, 32, 128}, MEASURE_STATIC,
      "max depth m", "deepest sample > max(0.05 m, 2 x first value's)", "BLADE_MAX_SPHERES (512) sphere proxies per step", setup_many,
      judge_depth5},
+    {"bb_border", SCENE_MODE_BILLBOARD, "ball radius m (billboards 0.6 x 0.4 m, mesh 4 x 4, 1.5 /m^2 at the border)",
+     {0.05f, 0.1f, 0.2f, 0.3f, 0.5f, 0.8f}, MEASURE_DISTORTION, "max stretch abs(l/l0 - 1) (folded cells)",
+     "stretch > 25%, any folded cell, or NaN (worst frame of the pass)",
+     "a ball wider than the billboards are tall presses their upper rows down towards the roots; the push-out "
+     "(eq. 4-5) comes last, after every spring sweep (eq. 6-7), so vertical springs shortened under the ball stay "
+     "short: more than 25% from r 0.5 m, and at 0.8 m cells fold over the ones below. Billboards are simulated one "
+     "by one, so a pass through the middle of the field breaks at the same radius (checked on llvmpipe); the "
+     "sparse border (its last candidate row, z 2.71 to 3.53 m, is cut by the terrain edge at 3 m) only leaves the "
+     "distorted billboards in plain view",
+     setup_border, judge_border},
+    {"wall_blade", SCENE_MODE_BLADE, "face angle deg (mesh terrain, 1 m high face)", {30, 45, 55, 70, 80, 90},
+     MEASURE_STATIC, "face coverage (roots/m^2 on the face / on the floor)",
+     "coverage < 0.5, length error > 5%, or NaN",
+     "blades are seeded on the mesh triangles by area, up = the interpolated vertex normal (blade_seed), so a "
+     "vertical face gets as many roots per m^2 as the floor and its blades grow out of it horizontally",
+     setup_wall, judge_wall},
+    {"wall_bb", SCENE_MODE_BILLBOARD, "face angle deg (mesh terrain, 1 m high face)", {30, 45, 55, 70, 80, 90},
+     MEASURE_STATIC, "face coverage (roots/m^2 on the face / on the floor)", "coverage < 0.5, or NaN",
+     "billboards come from a horizontal candidate grid (0.41 m) over heights resampled from the mesh "
+     "(terrain_height_at): their density per m^2 of face falls with its plan area (about cos angle), and a vertical "
+     "face has none; the few roots near it stand on the interpolated ramp of one grid cell, in the air in front of "
+     "the face or inside the step",
+     setup_wall, judge_wall},
 };
 #define CASE_COUNT ((int)(sizeof cases / sizeof cases[0]))
 
@@ -287,12 +389,18 @@ typedef struct stab_run_t {
     float *prev;
     bool primed, covered;
     double last_over, jitter, coverage;
+    app_bb_distortion_t distortion;
+    app_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
+    bool worst_now;                  /* this frame is it */
+    core_image_t worst;              /* its rendering */
 } stab_run_t;
 
 static void tweak(scene_desc_t *s, void *user)
 {
     const stab_run_t *r = user;
+    terrain_desc_t terrain = s->terrain;
     base_scene(s);
+    if (r->c->setup == setup_wall) s->terrain = terrain;
     r->c->setup(s, r->v);
     if (r->no_colliders) s->collider_count = 0;
 }
@@ -322,11 +430,44 @@ static void frame(app_world_t *w, int f, float t, void *user)
             r->covered = true;
         }
     }
+    if (r->c->measure == MEASURE_DISTORTION) {
+        app_bb_distortion_t d;
+        app_metrics_bb_distortion(w, &d);
+        app_bb_distortion_t *m = &r->distortion;
+        const app_bb_distortion_t *b = &r->worst_frame;
+        r->worst_now = f == 0 || d.folded > b->folded || (d.folded == b->folded && d.max_stretch > b->max_stretch);
+        if (r->worst_now) r->worst_frame = d;
+        m->max_stretch = fmax(m->max_stretch, d.max_stretch);
+        if (d.folded > m->folded) m->folded = d.folded;
+        if (d.cells > m->cells) m->cells = d.cells;
+        if (d.deformed > m->deformed) m->deformed = d.deformed;
+        m->nonfinite += d.nonfinite;
+    }
+    if (r->c->setup == setup_wall && f == 0) {
+        /* Root density on the face (its middle 80 % in height, 10 % from
+         * the sides) over that on the floor away from the face. */
+        float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
+        long face = app_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
+                                         (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
+        long floor = app_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
+        double face_area = 0.8 * WALL_H / sin(glm_rad(r->v)) * 2.0 * zr, floor_area = 2.7 * 2.0 * zr;
+        r->coverage = floor ? ((double)face / face_area) / ((double)floor / floor_area) : 0.0;
+    }
     if (r->c->measure == MEASURE_JITTER && r->twin && r->prev && t > r->t_end - 0.5f) {
         double j = 0;
         app_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
         if (j > r->jitter) r->jitter = j;
     }
+}
+
+/* Keeps the rendering of the most distorted frame (MEASURE_DISTORTION). */
+static void drawn(const gfx_target_t *target, int f, void *user)
+{
+    (void)f;
+    stab_run_t *r = user;
+    if (!r->worst_now) return;
+    core_image_free(&r->worst);
+    if (!gfx_target_read(target, &r->worst)) core_image_free(&r->worst);
 }
 
 /* Frame spikes: every 10th step (the last one included) lasts v ms. */
@@ -336,10 +477,17 @@ static float spike_dt(int frame, float dt, void *user)
     return (frame + 1) % 10 == 0 ? r->v / 1000.0f : dt;
 }
 
-static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool quick, core_image_t *img,
-                   stab_result_t *res)
+static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool quick, const char *out,
+                   core_image_t *img, stab_result_t *res)
 {
     memset(res, 0, sizeof *res);
+    app_options_t wall = *o;
+    char scene[1100];
+    if (c->setup == setup_wall) {
+        if (!write_wall(out, v, scene, sizeof scene)) return 1;
+        wall.scene = scene;
+        o = &wall;
+    }
     stab_run_t r = {.c = c, .v = v, .o = o};
     scene_desc_t probe;
     memset(&probe, 0, sizeof probe);
@@ -356,18 +504,32 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
         duration = 0.25f;
     }
     if (c->setup == setup_steep) duration = 1.6f;
+    if (c->setup == setup_border) duration = BORDER_TIME + 0.25f;
     r.t_end = duration;
     r.twin_wanted = c->mode == SCENE_MODE_BLADE && c->measure != MEASURE_STATIC;
     int frames = (int)ceilf(duration / dt);
     if (c->setup == setup_spikes) frames = (frames + 9) / 10 * 10; /* the last step is a spike */
     app_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
                             .user = &r};
-    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = true, .ext = &res->x,
-                             .step_dt = c->setup == setup_spikes ? spike_dt : NULL};
+    bool distortion = c->measure == MEASURE_DISTORTION;
+    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = !distortion, .ext = &res->x,
+                             .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
+                             .drawn = distortion ? drawn : NULL};
     int rc = app_session_run_hooks(&d, &h, img, &res->m);
+    if (r.worst.px) {
+        core_image_free(img);
+        *img = r.worst;
+    }
     res->recovery = r.last_over >= (float)frames * dt - 0.5f * dt ? INFINITY : fmax(r.last_over - r.t_exit, 0.0);
     res->coverage = r.coverage;
     res->jitter = r.jitter;
+    res->distortion = r.distortion;
+    if (c->setup == setup_wall) {
+        char obj[1100];
+        snprintf(obj, sizeof obj, "%s/stability_wall.obj", out);
+        remove(obj);
+        remove(scene);
+    }
     if (r.twin) {
         app_world_destroy(r.twin);
         free(r.twin);
@@ -389,7 +551,8 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
     char path[1200], buf[32];
     eval_text_t csv = {0}, md = {0}, mdr = {0};
     eval_text_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
-                           "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground\n");
+                           "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground,"
+                           "bb_max_stretch,bb_folded_cells\n");
     static const char *head = "| case | method | parameter | values | measure | measured | failure criterion | "
                               "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     eval_text_printf(&md, "%s", head);
@@ -401,11 +564,11 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
         stab_result_t res[STAB_VALUES], first = {0};
         core_image_t shot = {0}, img = {0};
         int broke = -1;
-        char values[160] = "", measured[200] = "";
+        char values[160] = "", measured[320] = "";
         for (int k = 0; k < runs && rc == 0; k++) {
             int vi = quick && k == 1 ? STAB_VALUES - 1 : k;
             float v = c->values[vi];
-            rc = run_one(o, c, v, quick, &img, &res[k]);
+            rc = run_one(o, c, v, quick, out, &img, &res[k]);
             if (rc) break;
             if (k == 0) first = res[0];
             float dt = 1.0f / 60.0f;
@@ -420,14 +583,20 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
             core_image_free(&img);
             const app_metrics_t *m = &res[k].m;
             const app_metrics_ext_t *x = &res[k].x;
-            eval_text_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f\n", c->name,
-                             scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
+            const app_bb_distortion_t *dd = &res[k].distortion;
+            bool distortion = c->measure == MEASURE_DISTORTION;
+            eval_text_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
+                             c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
                              m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
-                             res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite, x->below_ground);
+                             res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite + dd->nonfinite,
+                             x->below_ground, distortion ? dd->max_stretch : -1.0, distortion ? dd->folded : -1L);
             size_t lv = strlen(values), lm = strlen(measured);
             fmt_value(buf, sizeof buf, res[k].measure);
             snprintf(values + lv, sizeof values - lv, "%s%g", k ? ", " : "", v);
-            snprintf(measured + lm, sizeof measured - lm, "%s%s%s", k ? ", " : "", buf, res[k].fails ? "*" : "");
+            char folds[48] = "";
+            if (distortion && dd->folded) snprintf(folds, sizeof folds, " (%ld folded)", dd->folded);
+            snprintf(measured + lm, sizeof measured - lm, "%s%s%s%s", k ? ", " : "", buf, folds,
+                     res[k].fails ? "*" : "");
             done++;
             fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, CASE_COUNT * runs, c->name,
                     v, buf, res[k].fails ? "FAILS" : "ok", plat_time() - t0);
