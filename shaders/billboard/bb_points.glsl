@@ -60,6 +60,17 @@ void bb_frame(bb_point p, out vec3 right, out vec3 up)
     right = r * (1.0 / sqrt(dot(r, r)));
 }
 
+/* The bottom corners a, b and wind-posed top corners ta, tb of plain
+ * billboard p (bb_wind_vertex with h = 1 on the rest quad's top edge). */
+void bb_plain_corners(bb_point p, vec3 right, vec3 up, bb_wind wind, float time, out vec3 a, out vec3 b,
+                      out vec3 ta, out vec3 tb)
+{
+    a = p.position - 0.5 * p.size.x * right;
+    b = p.position + 0.5 * p.size.x * right;
+    ta = bb_wind_vertex(wind, a + p.size.y * up, p.position, 1.0, time);
+    tb = bb_wind_vertex(wind, b + p.size.y * up, p.position, 1.0, time);
+}
+
 /* bb_mesh_init_quad into bb_rest. */
 void bb_build_rest(bb_point p, vec3 right, vec3 up)
 {

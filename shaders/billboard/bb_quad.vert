@@ -4,11 +4,13 @@
  * point from the points buffer and build the same wind-animated quad as
  * bb_render.geom (two upper vertices moved by bb_wind_vertex). Idle leaves
  * hold no deformed billboard; a point that does, or that lies wholly nearer
- * than the hybrid fade band, is emitted degenerate. Outputs match
+ * than the hybrid fade band, is emitted degenerate. The top edge takes the
+ * handed-over slope of its cell (bb_slope.glsl). Outputs match
  * bb_render.frag's inputs. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
+#include "billboard/bb_slope.glsl"
 
 layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
 
@@ -42,8 +44,10 @@ void main()
     }
     vec3 right, up;
     bb_frame(p, right, up);
-    vec3 base = p.position + (float(c & 1) - 0.5) * p.size.x * right;
-    vec3 pos = c < 2 ? base : bb_wind_vertex(u_wind, base + p.size.y * up, p.position, 1.0, u_time);
+    vec3 a, b, ta, tb;
+    bb_plain_corners(p, right, up, u_wind, u_time, a, b, ta, tb);
+    vec3 shift = bb_slope_shift(p, ta, tb);
+    vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb) + shift);
     g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
     g_overlay = vec4(0.0);
     g_world = pos;

@@ -4,12 +4,14 @@
  * wind (bb_wind_vertex, h = 1); a deformed one (pool slot set) draws its
  * stored N x M mesh as M-1 triangle strips with normals from central
  * differences. Billboards wholly nearer than the hybrid fade band are
- * dropped here. */
+ * dropped here. Plain quads and deformed meshes take the handed-over slope
+ * of their cell (bb_slope.glsl). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #define BB_POINTS_IN
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
+#include "billboard/bb_slope.glsl"
 
 layout(points) in;
 layout(triangle_strip, max_vertices = BB_RENDER_VERTS) out;
@@ -50,9 +52,11 @@ void main()
                                                : (p.state == BB_STATE_RECOVERING ? vec4(1.0, 0.85, 0.1, 0.75) : vec4(0.0)));
     if (p.pad0 == BB_NO_SLOT) {
         vec3 n = cross(right, up);
-        vec3 a = p.position - 0.5 * p.size.x * right, b = p.position + 0.5 * p.size.x * right;
-        vec3 c = bb_wind_vertex(u_wind, a + p.size.y * up, p.position, 1.0, u_time);
-        vec3 d = bb_wind_vertex(u_wind, b + p.size.y * up, p.position, 1.0, u_time);
+        vec3 a, b, c, d;
+        bb_plain_corners(p, right, up, u_wind, u_time, a, b, c, d);
+        vec3 shift = bb_slope_shift(p, c, d);
+        c = c + shift;
+        d = d + shift;
         put(a, n, 0.0, 0.0, layer);
         put(b, n, 1.0, 0.0, layer);
         put(c, n, 0.0, 1.0, layer);
@@ -61,6 +65,11 @@ void main()
         return;
     }
     bb_load_mesh(p.pad0);
+    if (u_slope_on != 0) {
+        vec3 a, b, ta, tb;
+        bb_plain_corners(p, right, up, u_wind, u_time, a, b, ta, tb);
+        bb_slope_mesh(p, ta, tb);
+    }
     vec3 nrm[BB_N * BB_M];
     for (int j = 0; j < BB_M; j++) {
         for (int i = 0; i < BB_N; i++) {

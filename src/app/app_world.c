@@ -229,6 +229,14 @@ static void make_blade_env(app_world_t *w)
                       BLADE_MAX_WINDS);
 }
 
+/* Billboards -> blades hand-over: the deformed billboards of the moment
+ * seed the blades of tiles turning to blades (blade_tiles.h). */
+static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
+{
+    app_world_t *w = user;
+    if (w->have_bb) bb_field_add_slopes(&w->bb, grid, sums);
+}
+
 static bool make_tiles(app_world_t *w)
 {
     const scene_desc_t *s = &w->scene;
@@ -244,6 +252,7 @@ static bool make_tiles(app_world_t *w)
                              .shape = g->shape,
                              .wind_count = w->blade_env.wind_count,
                              .cull = {.max_distance = g->switch_distance + 1.0f},
+                             .slope_recover = g->recover_time,
                              .label = "tiles"};
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
     /* The billboards' extent map thins the tiles too (same clearings). */
@@ -257,6 +266,7 @@ static bool make_tiles(app_world_t *w)
         td.extent_seed = s->seed;
     }
     w->have_tiles = blade_tiles_make(&w->tiles, &td);
+    if (w->have_tiles) blade_tiles_set_slope_source(&w->tiles, bb_slope_source, w);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
 }
@@ -527,6 +537,11 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (w->mode == SCENE_MODE_HYBRID) {
             d.fade_start = fade_lo;
             d.fade_end = fade_hi;
+        }
+        if (w->have_tiles && uses_tiles(w)) {
+            d.slope_map = w->tiles.slope_map;
+            d.slope_grid = w->tiles.slope_grid;
+            d.slope_recover = w->tiles.desc.slope_recover;
         }
         bb_field_draw(&w->bb, &d);
     }

@@ -418,8 +418,10 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",
                                                           .fs = "billboard/bb_cube.frag", .defines = defines,
                                                           .label = "bb.cube"});
+    f->slope_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_slope.comp", .defines = defines,
+                                                           .label = "bb.slope"});
     if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
-        !f->quad_prog.id)
+        !f->quad_prog.id || !f->slope_prog.id)
         goto fail;
 
     size_t pool_words = 4 + (size_t)d->max_deformed;
@@ -491,6 +493,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->render_prog);
     gfx_program_destroy(&f->quad_prog);
     gfx_program_destroy(&f->cube_prog);
+    gfx_program_destroy(&f->slope_prog);
     bb_octree_free(&f->tree);
     free(f->ranges);
     free(f->firsts);
@@ -740,6 +743,32 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1i(loc(p, "u_clumps"), 0);
     glUniform1i(loc(p, "u_overlay"), dd->overlay);
     set_wind(p.id, &f->desc.wind);
+    const hybrid_slope_grid_t *g = &dd->slope_grid;
+    glUniform1i(loc(p, "u_slope_on"), dd->slope_map.id != 0);
+    glUniform1f(loc(p, "u_slope_time"), dd->time);
+    glUniform1f(loc(p, "u_slope_recover"), dd->slope_recover > 0.0f ? dd->slope_recover : f->desc.recover_time);
+    glUniform2fv(loc(p, "u_slope_origin"), 1, g->origin);
+    glUniform1f(loc(p, "u_slope_cell"), g->cell);
+    glUniform2i(loc(p, "u_slope_dims"), g->nx, g->nz);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, dd->slope_map.id);
+}
+
+void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)
+{
+    if (f->billboards == 0) return;
+    gfx_program_t p = f->slope_prog;
+    glUseProgram(p.id);
+    glUniform1ui(loc(p, "u_count"), (GLuint)f->billboards);
+    glUniform1f(loc(p, "u_time"), f->time);
+    glUniform2fv(loc(p, "u_slope_origin"), 1, g->origin);
+    glUniform1f(loc(p, "u_slope_cell"), g->cell);
+    glUniform2i(loc(p, "u_slope_dims"), g->nx, g->nz);
+    set_wind(p.id, &f->desc.wind);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, sums.id);
+    glDispatchCompute(((GLuint)f->billboards + 255u) / 256u, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 /* Idle leaves (only plain quads) are drawn by vertex pulling, six vertices

@@ -35,6 +35,7 @@
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
 #include "gfx/gfx.h"
+#include "hybrid/hybrid_slope.h"
 #include "scene/terrain.h"
 
 /* Objects one field can collide against per update. */
@@ -92,6 +93,12 @@ typedef struct bb_draw_desc_t {
     float fade_start;    /* invisible nearer than this (0 = fade off) */
     float fade_end;      /* fully visible beyond this */
     int overlay;         /* 1: tint colliding (red) and recovering (yellow) billboards */
+    /* Slope cells handed over by blades (hybrid_slope.h), drawn on plain
+     * billboards: a buffer of hybrid_slope_cell_t per cell of slope_grid
+     * (slope_map.id 0: off), slope_recover R (0: desc.recover_time). */
+    gfx_buffer_t slope_map;
+    hybrid_slope_grid_t slope_grid;
+    float slope_recover;
 } bb_draw_desc_t;
 
 typedef struct bb_stats_t {
@@ -123,7 +130,7 @@ typedef struct bb_field_t {
     gfx_buffer_t meshes;   /* max_deformed * N*M vec4, world space */
     gfx_buffer_t objects, counts;
     GLuint points_vao, empty_vao, tf;
-    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog;
+    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog, slope_prog;
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;
@@ -156,6 +163,12 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
  * exact, for tests). !wait: pool numbers from the newest readback that
  * already reached the CPU (no stall, a few updates late; HUDs). */
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out);
+
+/* Billboards -> blades hand-over (hybrid_slope.h): adds the tilt offset of
+ * every deformed billboard (top row centre against the wind pose of the
+ * latest update's time) to `sums` (hybrid_slope_sum_t per cell of g). Fits
+ * blade_tiles_slope_source_fn through a one-line adapter. */
+void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums);
 
 /* Uploads a CPU cube map for object index `object` (used when that object's
  * vao is 0). res must equal desc.cube_res. */

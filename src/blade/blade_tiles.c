@@ -17,6 +17,9 @@
 #define NO_SLOT 0xffffffffu
 #define RECOVERING_BIT 0x80000000u
 #define HYSTERESIS 1.0f /* hybrid's default dead band, used for the draw capacity */
+#define TILES_POSE_ITERATIONS 6 /* tiles_common.glsl */
+#define TILES_POSE_RELAX 0.7f
+#define TILES_POSE_STEPS 24
 
 blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
 {
@@ -37,6 +40,8 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     if (d.max_level == 0) d.max_level = 8;
     if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
     d.cull = blade_cull_desc_defaults(&d.cull);
+    if (d.slope_cells_per_tile <= 0) d.slope_cells_per_tile = (int)fmaxf(1.0f, roundf(d.tile_size / 0.5f));
+    if (d.slope_recover <= 0.0f) d.slope_recover = 2.0f;
     if (!d.label) d.label = "tiles";
     assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
     assert(d.wind_count >= 0 && d.wind_count <= BLADE_MAX_WINDS);
@@ -89,7 +94,9 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
               + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
               + 8 * sizeof(uint32_t)                                   /* command */
               + (size_t)BLADE_TILES_READBACK_SLOTS * (S + 2) * sizeof(uint32_t) /* readback rings */
-              + side * side * 4 * sizeof(float);                       /* ground texture */
+              + side * side * 4 * sizeof(float)                        /* ground texture */
+              + (size_t)l.tiles_x * l.tiles_z * (size_t)d->slope_cells_per_tile * d->slope_cells_per_tile *
+                    (sizeof(hybrid_slope_cell_t) + 2 * sizeof(hybrid_slope_sum_t)); /* slope cells + sums */
     return l;
 }
 
@@ -145,6 +152,39 @@ void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2],
     float l = sqrtf(r4[0] * r4[0] + r4[1] * r4[1] + r4[2] * r4[2]);
     for (int c = 0; c < 3; c++) up[c] = r4[c] / l;
     root[1] = r4[3];
+}
+
+void blade_tiles_pose(const blade_tiles_t *t, int tile, uint32_t k, blade_t *out)
+{
+    int tmpl, sym;
+    blade_tiles_instance(t, tile, &tmpl, &sym);
+    const blade_t *src = &t->template_cpu[(size_t)tmpl * t->template_blades + k];
+    float a = src->v0[3];
+    for (int r = 0; r < (sym & 3); r++) a = a + 1.57079633f;
+    if (sym & 4) a = 3.14159265f - a;
+    float root[3], up[3], local[2] = {src->v0[0], src->v0[2]};
+    blade_tiles_root(t, tile, local, root, up);
+    float half = 0.5f * t->field_size, h = src->v1[3];
+    if (root[0] > half || root[2] > half) h = 0.0f;
+    blade_t b = {.v0 = {root[0], root[1], root[2], a}, .up = {up[0], up[1], up[2], src->up[3]}};
+    for (int c = 0; c < 3; c++) b.v1[c] = b.v2[c] = root[c] + up[c] * h;
+    b.v1[3] = h;
+    b.v2[3] = src->v2[3];
+    if (h > 0.0f) {
+        blade_env_t e = t->env;
+        e.time = t->time;
+        float relax = fminf(b.up[3] * (e.dt > 0.0f ? e.dt : 1.0f / 60.0f), TILES_POSE_RELAX), g[3], w[3];
+        blade_ref_gravity(&b, &e, g);
+        for (int it = 0; it < TILES_POSE_ITERATIONS + TILES_POSE_STEPS; it++) {
+            blade_ref_wind(&b, &e, w);
+            for (int c = 0; c < 3; c++) {
+                float target = root[c] + up[c] * h + (g[c] + w[c]) / b.up[3];
+                b.v2[c] += (target - b.v2[c]) * (it < TILES_POSE_ITERATIONS ? TILES_POSE_RELAX : relax);
+            }
+            blade_ref_validate(&b, e.length_mode);
+        }
+    }
+    *out = b;
 }
 
 static gfx_buffer_t make_buffer(const blade_tiles_t *t, const char *what, size_t size, const void *data)
@@ -289,13 +329,15 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
                                                           .hysteresis = HYSTERESIS,
                                                           .recover_timeout = d->recover_timeout,
                                                           .motion_epsilon = d->motion_epsilon,
-                                                          .pool_slots = d->pool_slots});
+                                                          .pool_slots = d->pool_slots,
+                                                          .memory = d->slope_recover,
+                                                          .keep_state = d->keep_state});
     int ntiles = t->grid.nx * t->grid.nz;
     size_t side = (size_t)t->grid_res + 1;
     t->slot_owner = malloc((size_t)d->pool_slots * sizeof(int));
     t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
-    t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 3) + 2 * l.draw_tiles) * sizeof(uint32_t));
+    t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
     t->ground_cpu = malloc(side * side * 4 * sizeof(float));
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
         t->motion_owner[i] = malloc((size_t)d->pool_slots * sizeof(int));
@@ -348,6 +390,24 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
                                                            .upload_format = GL_RED, .label = label});
         ok = ok && t->extent.id;
     }
+    int cpt = d->slope_cells_per_tile;
+    t->slope_grid = hybrid_slope_grid(t->field_min[0], t->field_min[1], d->tile_size, t->grid.nx, t->grid.nz, cpt);
+    float per_cell = d->density * t->slope_grid.cell * t->slope_grid.cell;
+    if (per_cell > (float)HYBRID_SLOPE_MAX_PER_CELL) {
+        core_log_error("%s:%d: blade_tiles_make: %.0f blades per slope cell, at most %d: raise "
+                       "slope_cells_per_tile",
+                       __FILE__, __LINE__, per_cell, HYBRID_SLOPE_MAX_PER_CELL);
+        blade_tiles_destroy(t);
+        return false;
+    }
+    size_t cells = (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz;
+    t->slope_map = make_buffer(t, "slope_map", cells * sizeof(hybrid_slope_cell_t), NULL);
+    t->slope_sums = make_buffer(t, "slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
+    t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
+    ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
+    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp"});
+    t->resolve = make_program(t, "slope_resolve", &(gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp"});
+    ok = ok && t->handover.id && t->resolve.id;
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
@@ -367,6 +427,9 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     uint32_t zero = 0;
     glClearNamedBufferData(t->pool.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glClearNamedBufferData(t->eta.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->slope_map.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->slope_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     t->stats.gpu_bytes = l.bytes;
     t->stats.slots_total = d->pool_slots;
     t->stats.blades_per_template = B;
@@ -378,12 +441,12 @@ void blade_tiles_destroy(blade_tiles_t *t)
 {
     gfx_buffer_t *bufs[] = {&t->templates, &t->pool, &t->eta, &t->motion, &t->winds, &t->spheres,
                             &t->slot_spheres, &t->slot_list, &t->init_list, &t->tile_list, &t->drawn,
-                            &t->drawn_ids, &t->command};
+                            &t->drawn_ids, &t->command, &t->slope_map, &t->slope_sums, &t->bb_sums};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     ring_destroy(&t->motion_ring);
     ring_destroy(&t->draw_ring);
-    gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw};
+    gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw, &t->handover, &t->resolve};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (t->ground.id) gfx_texture_destroy(&t->ground);
@@ -399,6 +462,14 @@ void blade_tiles_destroy(blade_tiles_t *t)
     free(t->template_cpu);
     free(t->ground_cpu);
     memset(t, 0, sizeof *t);
+}
+
+/* Uniforms of slope.glsl. */
+static void set_slope_grid(gfx_program_t p, const hybrid_slope_grid_t *g)
+{
+    glUniform2fv(gfx_uniform(p, "u_slope_origin"), 1, g->origin);
+    glUniform1f(gfx_uniform(p, "u_slope_cell"), g->cell);
+    glUniform2i(gfx_uniform(p, "u_slope_dims"), g->nx, g->nz);
 }
 
 /* Uniforms of tiles_common.glsl, and the shared bindings. */
@@ -421,6 +492,7 @@ static void set_common(const blade_tiles_t *t, gfx_program_t p)
     glUniform1i(gfx_uniform(p, "u_wind_count"), e->wind_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e->length_mode);
     glUniform1f(gfx_uniform(p, "u_pose_dt"), e->dt > 0.0f ? e->dt : 1.0f / 60.0f);
+    set_slope_grid(p, &t->slope_grid);
     glUniform1i(gfx_uniform(p, "u_ground"), 0);
     glBindTextureUnit(0, t->ground.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t->templates.id);
@@ -446,6 +518,33 @@ static void poll_motion(blade_tiles_t *t)
             if (t->grid.tiles[owner].state == HYBRID_RECOVERING) t->tile_motion[owner] = v;
         }
     }
+}
+
+/* Blades -> billboards: sums of the handed-over slots' tilt offsets per
+ * slope cell, then the cells of their tiles (entries: slot, tile). Runs
+ * before this update's initialisations, which may reuse the slots. */
+static void hand_over(blade_tiles_t *t, const uint32_t *entries, int n)
+{
+    uint32_t B = t->template_blades;
+    GLuint per = (GLuint)(t->desc.slope_cells_per_tile * t->desc.slope_cells_per_tile);
+    gfx_buffer_update(t->init_list, 0, (size_t)n * 2 * sizeof(uint32_t), entries);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    set_common(t, t->handover);
+    glUniform1ui(gfx_uniform(t->handover, "u_count"), (GLuint)n * B);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->init_list.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, t->slope_sums.id);
+    glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    gfx_program_t p = t->resolve;
+    glUseProgram(p.id);
+    set_slope_grid(p, &t->slope_grid);
+    glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)n * per);
+    glUniform1i(gfx_uniform(p, "u_cells_per_tile"), t->desc.slope_cells_per_tile);
+    glUniform1i(gfx_uniform(p, "u_tiles_x"), t->grid.nx);
+    glUniform1f(gfx_uniform(p, "u_time"), t->time);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, t->slope_map.id);
+    glDispatchCompute(((GLuint)n * per + 63u) / 64u, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*spheres)[4], int sphere_count,
@@ -480,10 +579,15 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
         if (o >= 0 && t->grid.tiles[o].slot != s) t->slot_owner[s] = -1;
     }
     uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
-    uint32_t *list = init + 2 * S;
-    int ninit = 0, nslots = 0;
+    uint32_t *list = init + 2 * S, *handover = list + S;
+    int ninit = 0, nslots = 0, nhand = 0, nseed = 0;
     for (int i = 0; i < ntiles; i++) {
         hybrid_tile_t *tile = &t->grid.tiles[i];
+        if (tile->handover_slot >= 0) {
+            handover[2 * nhand] = (uint32_t)tile->handover_slot;
+            handover[2 * nhand + 1] = (uint32_t)i;
+            nhand++;
+        }
         if (tile->state != HYBRID_RECOVERING) t->tile_motion[i] = FLT_MAX;
         if (tile->slot < 0) continue;
         int s = tile->slot;
@@ -492,8 +596,9 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
             t->slot_motion[s] = FLT_MAX;
             t->tile_motion[i] = FLT_MAX;
             init[2 * ninit] = (uint32_t)s;
-            init[2 * ninit + 1] = (uint32_t)i;
+            init[2 * ninit + 1] = (uint32_t)i | (tile->seed ? RECOVERING_BIT : 0u);
             ninit++;
+            nseed += tile->seed;
         }
         list[nslots++] = (uint32_t)s | (tile->state == HYBRID_RECOVERING ? RECOVERING_BIT : 0u);
         uint32_t *ss = &slot_spheres[s * SLOT_STRIDE];
@@ -503,17 +608,32 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
     uint32_t B = t->template_blades;
     t->stats.slots_dispatched = nslots;
     t->stats.blades_dispatched = (uint32_t)nslots * B;
+    t->stats.handovers = nhand;
+    t->stats.seeded = nseed;
 
     gfx_timer_begin("tiles.physics");
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * 4 * sizeof(float), spheres);
+    if (nhand) hand_over(t, handover, nhand);
     if (ninit) {
+        if (nseed && t->source) {
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            t->source(t->source_user, &t->slope_grid, t->bb_sums);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
         gfx_buffer_update(t->init_list, 0, (size_t)ninit * 2 * sizeof(uint32_t), init);
         set_common(t, t->init);
         glUniform1ui(gfx_uniform(t->init, "u_count"), (GLuint)ninit * B);
+        glUniform1f(gfx_uniform(t->init, "u_slope_recover"), t->desc.slope_recover);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->init_list.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, t->slope_map.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, t->bb_sums.id);
         glDispatchCompute(((GLuint)ninit * B + 255u) / 256u, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        if (nseed && t->source) {
+            uint32_t zero = 0;
+            glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        }
     }
     uint32_t zero = 0;
     glClearNamedBufferData(t->motion.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -743,3 +863,16 @@ float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)
 }
 
 void blade_tiles_set_overlay(blade_tiles_t *t, int overlay) { t->overlay = overlay; }
+
+void blade_tiles_set_slope_source(blade_tiles_t *t, blade_tiles_slope_source_fn fn, void *user)
+{
+    t->source = fn;
+    t->source_user = user;
+}
+
+void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(t->slope_map, 0,
+                    (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz * sizeof(hybrid_slope_cell_t), out);
+}

@@ -61,7 +61,17 @@
  * size; the tile table lives on the CPU (hybrid_grid_t), plus the height
  * texture of the terrain grid.
  *
- * Timer passes: "tiles.physics", "tiles.cull", "tiles.draw". */
+ * Hand-over (after Qiu et al.; formulas in src/hybrid/hybrid_slope.h): a
+ * tile that turns to billboards while RECOVERING gives its blades' tilt
+ * offsets against P(t) to the slope cells of the tile (tiles_handover.comp
+ * sums, tiles_slope_resolve.comp means) and frees its slot; the billboards
+ * draw the cells (bb_draw_desc_t.slopes). A tile that turns to blades
+ * within slope_recover seconds of its last touch or hand-over takes a slot
+ * whose blades are seeded from the cells and from the deformed billboards
+ * of the moment (the slope source callback) in tiles_init.comp.
+ *
+ * Timer passes: "tiles.physics" (hand-over and seeding included),
+ * "tiles.cull", "tiles.draw". */
 #ifndef MEADOW_BLADE_TILES_H
 #define MEADOW_BLADE_TILES_H
 
@@ -70,6 +80,7 @@
 
 #include "blade/blade.h"
 #include "hybrid/hybrid.h"
+#include "hybrid/hybrid_slope.h"
 #include "scene/terrain.h"
 
 #define BLADE_TILES_MAX_TEMPLATES 8
@@ -106,6 +117,14 @@ typedef struct blade_tiles_ring_t {
  *   draw_capacity    blades the per-frame draw buffer holds; 0: every
  *                    blade of every tile that can be within
  *                    switch_distance + 1 m of the camera (worst case)
+ *   slope_cells_per_tile  slope cells per tile side: default the nearest
+ *                    count to 0.5 m cells (at least 1); more than
+ *                    HYBRID_SLOPE_MAX_PER_CELL blades per cell is an error
+ *   slope_recover    R of the hand-over (the billboards' recover time) and
+ *                    how long a tile may carry deformation: default 2 s
+ *   keep_state       false (default): hand-over on; true: recovering tiles
+ *                    keep their slot in any representation, nothing is
+ *                    handed over (hybrid_desc_t.keep_state)
  *   label            "tiles" */
 typedef struct blade_tiles_desc_t {
     const terrain_mesh_t *terrain;
@@ -137,6 +156,9 @@ typedef struct blade_tiles_desc_t {
     float extent_origin[2];
     float extent_spacing;
     uint32_t extent_seed;
+    int slope_cells_per_tile;
+    float slope_recover;
+    bool keep_state;
     const char *label;
 } blade_tiles_desc_t;
 
@@ -145,6 +167,7 @@ typedef struct blade_tiles_stats_t {
     int blade_tiles;            /* tiles in blade representation */
     int slots_used, slots_total;
     int pool_denied;            /* tiles wanting a slot this update that got none */
+    int handovers, seeded;      /* hand-overs to billboards / seedings from them, this update */
     int slots_dispatched;       /* slots simulated by the latest update */
     uint32_t blades_dispatched; /* physics invocations of the latest update */
     int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */
@@ -153,6 +176,11 @@ typedef struct blade_tiles_stats_t {
     uint32_t blades_per_template; /* padded */
     size_t gpu_bytes;           /* buffers + textures held */
 } blade_tiles_stats_t;
+
+/* Billboards -> blades: called inside blade_tiles_update when tiles are
+ * seeded, to add the deformed billboards' tilt offsets to `sums` (zeroed,
+ * hybrid_slope_sum_t per cell of `grid`; bb_field_add_slopes does this). */
+typedef void (*blade_tiles_slope_source_fn)(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums);
 
 typedef struct blade_tiles_t {
     blade_tiles_desc_t desc; /* resolved; desc.terrain is NULL after make */
@@ -180,7 +208,11 @@ typedef struct blade_tiles_t {
     gfx_texture_t extent; /* R8, id 0 when the desc gave none */
     gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
     int overlay;            /* BLADE_TILES_OVERLAY_* */
-    gfx_program_t init, physics, cull, draw;
+    gfx_program_t init, physics, cull, draw, handover, resolve;
+    hybrid_slope_grid_t slope_grid;
+    gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
+    blade_tiles_slope_source_fn source;
+    void *source_user;
     GLuint vao;
     blade_tiles_stats_t stats;
     bool culled_once, warned_overflow;
@@ -200,6 +232,9 @@ enum { BLADE_TILES_OVERLAY_OFF = 0, BLADE_TILES_OVERLAY_STATE, BLADE_TILES_OVERL
 void blade_tiles_set_overlay(blade_tiles_t *t, int overlay);
 
 void blade_tiles_destroy(blade_tiles_t *t);
+/* The billboards' side of the billboards -> blades hand-over (NULL: only
+ * the slope cells seed blades). */
+void blade_tiles_set_slope_source(blade_tiles_t *t, blade_tiles_slope_source_fn fn, void *user);
 
 /* One frame: representation from camera, activation from the spheres
  * (xyz centre, w radius; at most BLADE_MAX_SPHERES, the rest logged and
@@ -227,11 +262,16 @@ void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out);
  * draw_capacity); ids (may be NULL) receives tile * template_blades + blade
  * per survivor. */
 uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids);
+/* The slope cells (slope_grid.nx * slope_grid.nz). */
+void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out);
 /* Latest motion per slot as read back (m). */
 float blade_tiles_slot_motion(const blade_tiles_t *t, int slot);
 /* CPU twin of the GPU root placement: world root and up of template blade
  * `b` (as seeded, tile-local) in tile `tile`. */
 void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2], float root[3], float up[3]);
+/* CPU twin of tiles_pose(tiles_rest(tile, k)) at the time of the latest
+ * update: template blade k of tile `tile` in the procedural pose. */
+void blade_tiles_pose(const blade_tiles_t *t, int tile, uint32_t k, blade_t *out);
 /* The template (0..template_count-1) and symmetry (0..7) of a tile. */
 void blade_tiles_instance(const blade_tiles_t *t, int tile, int *template_index, int *symmetry);
 /* GPU bytes a field would hold (what stats.gpu_bytes reports), without

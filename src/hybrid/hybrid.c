@@ -18,6 +18,7 @@ hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *in)
     if (d.recover_timeout <= 0) d.recover_timeout = 5.0f;
     if (d.motion_epsilon <= 0) d.motion_epsilon = 1e-3f;
     if (d.pool_slots <= 0) d.pool_slots = 64;
+    if (d.memory <= 0) d.memory = 2.0f;
     return d;
 }
 
@@ -48,6 +49,7 @@ bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc)
             t->min[1] = d->min_y;
             t->max[1] = d->max_y + d->grass_height;
             t->slot = -1;
+            t->handover_slot = -1;
             t->rep = HYBRID_REP_BILLBOARD;
         }
     for (int s = 0; s < d->pool_slots; s++) g->free_slots[s] = d->pool_slots - 1 - s;
@@ -137,6 +139,9 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
         t->rep = rep;
         /* Activation. */
         if (motion) t->motion = motion[i];
+        t->handover_slot = -1;
+        t->seed = false;
+        t->memory_left = fmaxf(t->memory_left - dt, 0.0f);
         if (t->object_count > 0) {
             if (t->slot < 0) {
                 if (g->free_count > 0) {
@@ -147,6 +152,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
             }
             t->state = t->slot >= 0 ? HYBRID_ACTIVE : HYBRID_IDLE;
             t->recover_left = d->recover_timeout;
+            t->memory_left = d->memory;
         } else if (t->state == HYBRID_ACTIVE) {
             t->state = HYBRID_RECOVERING;
             t->recover_left = d->recover_timeout;
@@ -156,7 +162,27 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
             if (t->recover_left <= 0 || settled) {
                 t->state = HYBRID_IDLE;
                 t->recover_left = 0;
+                t->memory_left = 0; /* the blades were the newest state, and it died down */
                 release_slot(g, t);
+            }
+        }
+        if (!d->keep_state && t->state == HYBRID_RECOVERING && t->rep == HYBRID_REP_BILLBOARD) {
+            t->handover_slot = t->slot;
+            release_slot(g, t);
+            t->state = HYBRID_IDLE;
+            t->recover_left = 0;
+            t->memory_left = d->memory;
+            st.handovers++;
+        } else if (!d->keep_state && t->state == HYBRID_IDLE && t->rep == HYBRID_REP_BLADE && t->slot < 0 &&
+                   t->object_count == 0 && t->memory_left > 0) {
+            if (g->free_count > 0) {
+                t->slot = g->free_slots[--g->free_count];
+                t->state = HYBRID_RECOVERING;
+                t->recover_left = d->recover_timeout;
+                t->seed = true;
+                st.seeded++;
+            } else {
+                st.pool_denied++;
             }
         }
         st.blade_tiles += t->rep == HYBRID_REP_BLADE;

@@ -9,6 +9,13 @@
  *   preallocated pool of slots; when the pool is exhausted the tile is
  *   reported (hybrid_stats_t.pool_denied and a warning), never dropped
  *   silently.
+ * - Hand-over (after Qiu et al.; the data path is hybrid_slope.h): a
+ *   RECOVERING tile drawn as billboards gives its blade state to the
+ *   billboards' slope cells and frees its slot (handover_slot names the
+ *   slot for that one update); a tile drawn as blades that has no slot but
+ *   may still carry deformation (memory_left > 0: touched, or handed over,
+ *   less than `memory` seconds ago) takes a slot to be seeded from the
+ *   slope cells (seed, for that one update) and turns RECOVERING.
  * - Per-tile object lists, built every update. */
 #ifndef MEADOW_HYBRID_H
 #define MEADOW_HYBRID_H
@@ -38,6 +45,9 @@ typedef struct hybrid_tile_t {
     float recover_left;     /* seconds until forced IDLE while RECOVERING */
     float motion;           /* last measured motion (m), from the simulation */
     int slot;               /* pool slot of its simulation state, -1 = none */
+    float memory_left;      /* s it may still carry deformation without a slot */
+    int handover_slot;      /* slot handed over to billboards this update, else -1 */
+    bool seed;              /* slot taken this update, to be seeded from the slope cells */
     int object_count;       /* objects touching it this update */
     uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
 } hybrid_tile_t;
@@ -54,6 +64,12 @@ typedef struct hybrid_desc_t {
     float recover_timeout;    /* default 5 s */
     float motion_epsilon;     /* RECOVERING -> IDLE below this; default 1 mm */
     int pool_slots;           /* simulation-state slots; default 64 */
+    float memory;             /* s a tile carries deformation after its last touch
+                                 or hand-over (the billboards' recover time);
+                                 default 2 s */
+    bool keep_state;          /* false (default): hand over (see the banner);
+                                 true: RECOVERING tiles keep their slot whatever
+                                 their representation, nothing is handed over */
 } hybrid_desc_t;
 
 hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *d);
@@ -64,6 +80,8 @@ typedef struct hybrid_stats_t {
     int slots_used, slots_total;
     int pool_denied;        /* tiles that wanted a slot this update and got none */
     int rep_switches;       /* representation changes this update */
+    int handovers;          /* tiles handed from blades to billboards this update */
+    int seeded;             /* tiles taking a slot to be seeded from billboards this update */
     int list_overflow;      /* objects left out of full per-tile lists this update */
 } hybrid_stats_t;
 
