@@ -112,13 +112,14 @@ static void write_summary(app_t *app, double wall_s)
                   "billboards: %ld\nbillboards_deformed: %d\n"
                   "billboard generation (once): GPU %.3f ms, make %.1f ms\ncharacters: %d\n"
                   "blade_tiles (near) %d, active %d, recovering %d, state slots %d/%d, blades simulated %ld\n"
+                  "tile hand-overs (run totals): blades -> billboards %ld, billboards -> blades %ld\n"
                   "grass_triangles_max: %ld\n",
                   frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
                   st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
                   st.blade_patch_culled, st.billboards, st.bb_deformed, st.bb_generate_ms, st.bb_make_ms,
                   st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
-                  st.tile_blades_simulated, st.triangles);
+                  st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
     if (app->opts->floor) {
         double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",

@@ -622,6 +622,8 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->tile_slots_used = ts.slots_used;
         st->tile_slots_total = ts.slots_total;
         st->tile_blades_simulated = (long)ts.blades_dispatched;
+        st->tile_handovers = ts.handovers_total;
+        st->tile_seeded = ts.seeded_total;
         st->triangles += (long)ts.blades_drawn * 2 * w->tiles.desc.max_level;
     }
     st->characters = w->have_chars ? w->chars.count : 0;

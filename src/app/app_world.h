@@ -135,6 +135,7 @@ typedef struct app_world_stats_t {
     int characters;
     int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
     long tile_blades_simulated;
+    long tile_handovers, tile_seeded; /* blades -> billboards, billboards -> blades, run totals */
     long triangles;         /* estimated triangles drawn by the grass */
 } app_world_stats_t;
 

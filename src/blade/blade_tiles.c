@@ -610,6 +610,8 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
     t->stats.blades_dispatched = (uint32_t)nslots * B;
     t->stats.handovers = nhand;
     t->stats.seeded = nseed;
+    t->stats.handovers_total += nhand;
+    t->stats.seeded_total += nseed;
 
     gfx_timer_begin("tiles.physics");
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);

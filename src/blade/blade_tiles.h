@@ -168,6 +168,7 @@ typedef struct blade_tiles_stats_t {
     int slots_used, slots_total;
     int pool_denied;            /* tiles wanting a slot this update that got none */
     int handovers, seeded;      /* hand-overs to billboards / seedings from them, this update */
+    long handovers_total, seeded_total; /* the same since make */
     int slots_dispatched;       /* slots simulated by the latest update */
     uint32_t blades_dispatched; /* physics invocations of the latest update */
     int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */

@@ -1,32 +1,68 @@
 #!/bin/bash
-# Usage (GPU machine): bundle the Release build with ../shared/gpu/bundle.sh into
-# .bundle (meadow and the GL test binaries), copy this file to .bundle/run.sh,
-# and run it from the repository root with OUT set to a folder for results.
-# Device run: renderer, GPU-vs-CPU tests on NVIDIA, benchmark scenes with the
-# floor, field-size scaling, and the bench report.
+# Device run (GPU machine): bundle the Release build with
+# ../shared/gpu/bundle.sh into .bundle (meadow and the GL test binaries),
+# copy this file to .bundle/run.sh and run it from the repository root with
+# OUT set to a folder for results:
+#   .bundle/run.sh [SECTION...]
+# Sections (default: tests bench scaling report):
+#   tests        renderer, GPU-vs-CPU tests on NVIDIA
+#   bench        benchmark scenes with the floor (summary per scene)
+#   scaling      tiled vs full-field blades, field 25..200 m
+#   report       `meadow bench --report` on scenes/meadow.json at 1280x720
+#                (RESULTS.md, charts' data, stability) -> $OUT/report.tgz
+#   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
+#                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
 export LD_LIBRARY_PATH=$PWD/.bundle/lib
 M=.bundle/bin/meadow
 R=$OUT/report.txt
-{
-echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
-for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide test_bb_gpu_dynamics test_character_gpu test_app_modes; do
-  echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"; grep -E "CHECK|max|worst|differ|coverage|mode sw|ok$|FAIL|test_image" /tmp/$t.log | head -8
-done
-} > $R 2>&1
-for s in orthmann nature helicopter fan128 meadow_large; do
-  echo "== bench $s" >> $R
-  timeout 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 400 --floor --out /tmp/b-$s > /tmp/b-$s.log 2>&1
-  echo "rc=$?" >> $R; sed -n '/gpu passes/,$p' /tmp/b-$s/summary.txt >> $R 2>/dev/null; grep -E "error|warn" /tmp/b-$s.log | head -5 >> $R
-done
-echo "== scaling: one ball crossing the centre, field 25..200 m" >> $R
-for mode in hybrid blade; do for size in 25 50 100 200; do
-  sed -e "s/\"size\": 200/\"size\": $size/" -e "s/\"mode\": \"hybrid\"/\"mode\": \"$mode\"/" scenes/bench/scaling.json > /tmp/scale.json
-  timeout 100 $M --headless --quiet --scene /tmp/scale.json --frames 300 --screenshot-every 0 --out /tmp/s-$mode-$size > /dev/null 2>&1
-  echo "-- $mode $size m: $(grep -E 'physics|gpu_memory|blades:|blade_tiles' /tmp/s-$mode-$size/summary.txt | tr -s ' ' | tr '\n' ';')" >> $R
-done; done
-cp /tmp/b-meadow_large/shot-000400.png $OUT/meadow_large.png 2>/dev/null
-cp /tmp/b-nature/shot-000400.png $OUT/nature.png 2>/dev/null
-echo "== bench report" >> $R
-( time timeout 330 $M bench --report /tmp/rep/docs --scene scenes/bench/nature.json --frames 90 --quiet --out /tmp/rep/out ) >> $R 2>&1
-tar czf $OUT/report.tgz -C /tmp/rep docs out 2>/dev/null
+
+tests() {
+  echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
+  for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
+           test_bb_gpu_dynamics test_character_gpu test_app_modes test_hybrid_trail test_hybrid_switch; do
+    echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
+    grep -E "CHECK|max|worst|differ|coverage|mode sw|ok$|FAIL|test_image|^[a-d]\)" /tmp/$t.log | head -10
+  done
+}
+
+bench() {
+  for s in orthmann nature helicopter fan128 meadow_large; do
+    echo "== bench $s"
+    timeout 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 400 --floor \
+      --out /tmp/b-$s > /tmp/b-$s.log 2>&1
+    echo "rc=$?"; sed -n '/gpu passes/,$p' /tmp/b-$s/summary.txt 2>/dev/null; grep -E "error|warn" /tmp/b-$s.log | head -5
+  done
+  cp /tmp/b-meadow_large/shot-000400.png $OUT/meadow_large.png 2>/dev/null
+}
+
+scaling() {
+  echo "== scaling: one ball crossing the centre, field 25..200 m"
+  for mode in hybrid blade; do for size in 25 50 100 200; do
+    sed -e "s/\"size\": 200/\"size\": $size/" -e "s/\"mode\": \"hybrid\"/\"mode\": \"$mode\"/" \
+      scenes/bench/scaling.json > /tmp/scale.json
+    timeout 100 $M --headless --quiet --scene /tmp/scale.json --frames 300 --screenshot-every 0 \
+      --out /tmp/s-$mode-$size > /dev/null 2>&1
+    echo "-- $mode $size m: $(grep -E 'physics|gpu_memory|blades:|blade_tiles' /tmp/s-$mode-$size/summary.txt | tr -s ' ' | tr '\n' ';')"
+  done; done
+}
+
+report() {
+  echo "== bench report"
+  ( time timeout 400 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
+      --quiet --out /tmp/rep/out ) 2>&1 | tail -20
+  tar czf $OUT/report.tgz -C /tmp/rep docs out 2>/dev/null
+}
+
+naturesweep() {
+  echo "== nature sweep with the GL debug callback"
+  command -v nvidia-smi > /dev/null && { nvidia-smi --query-gpu=memory.used --format=csv -l 5 > $OUT/gpumem.log & }
+  ( time MEADOW_GL_DEBUG=1 timeout 400 $M bench --scene scenes/bench/nature.json --frames 90 \
+      --out /tmp/ns > $OUT/naturesweep.log 2>&1 ) 2>&1 | tail -4
+  kill %1 2> /dev/null
+  echo "GL debug messages: $(grep -c "GL: " $OUT/naturesweep.log)"; grep -m8 -iE "error|GL: |0 billboards" $OUT/naturesweep.log
+  cp /tmp/ns/bench.csv $OUT/naturesweep.csv 2>/dev/null
+}
+
+sections=${*:-tests bench scaling report}
+for s in $sections; do $s >> $R 2>&1; done
