@@ -2,7 +2,9 @@
  * switches keep the simulation consistent.
  * 1. The same seed gives the same layout: a top-down coverage mask of
  *    billboard mode and of blade mode (grass vs ground per 8x8 block)
- *    agree in most blocks, and both have clearings where the other has.
+ *    agree in most blocks, and both have clearings where the other has;
+ *    the mean colour of their grass pixels agrees too (the session draws
+ *    with no debug overlay: app_view_make fills every view field).
  * 2. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
 #include "app/app_world.h"
@@ -24,6 +26,20 @@ static void top_down(scene_desc_t *s, void *user)
     glm_vec3_copy((vec3){40.0f, 0.4f, 40.0f}, s->colliders[0].path.keys[0].position);
 }
 
+/* Mean colour (0..1) of the grass pixels of an image. */
+static void grass_mean(const core_image_t *img, double rgb[3])
+{
+    double n = 0.0;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    for (size_t i = 0; i < (size_t)img->w * (size_t)img->h; i++) {
+        const uint8_t *p = img->px + i * 4;
+        if (p[1] <= p[0] + 25) continue;
+        for (int k = 0; k < 3; k++) rgb[k] += p[k] / 255.0;
+        n += 1.0;
+    }
+    for (int k = 0; k < 3; k++) rgb[k] /= n > 0.0 ? n : 1.0;
+}
+
 /* Fraction of grass pixels per 8x8 block (grass: green clearly above red). */
 static void coverage(const core_image_t *img, float *blocks, int nb)
 {
@@ -38,6 +54,12 @@ static void coverage(const core_image_t *img, float *blocks, int nb)
 
 int main(void)
 {
+    /* A view made over garbage has every field defined (overlay off). */
+    app_view_t view;
+    memset(&view, 0xA5, sizeof view);
+    app_view_make(&view, &(cam_t){.position = {0, 1, 5}, .fov = 60.0f, .near = 0.1f, .far = 100.0f}, 64, 32, 1.0f, 0.5f);
+    CHECK(view.overlay == 0 && view.width == 64 && view.time == 1.0f);
+
     test_gl_init();
     core_log_set_quiet(true);
     app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
@@ -74,6 +96,13 @@ int main(void)
     CHECK(mb > 0.05 && ml > 0.05);
     CHECK(corr > 0.5);
     CHECK(agree >= decided * 7 / 10);
+    double gb[3], gl[3];
+    grass_mean(&bb, gb);
+    grass_mean(&bl, gl);
+    double dcol = fabs(gb[0] - gl[0]) + fabs(gb[1] - gl[1]) + fabs(gb[2] - gl[2]);
+    printf("grass colour: billboard (%.3f %.3f %.3f), blade (%.3f %.3f %.3f), L1 difference %.3f\n", gb[0], gb[1],
+           gb[2], gl[0], gl[1], gl[2], dcol);
+    CHECK(dcol < 0.15);
     core_image_free(&bb);
     core_image_free(&bl);
 

@@ -575,6 +575,7 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
 {
     cam_t cam = *cam_in;
     cam.aspect = (float)width / (float)height;
+    *v = (app_view_t){0};
     cam_view(&cam, v->view);
     cam_proj(&cam, v->proj);
     glm_mat4_mul(v->proj, v->view, v->viewproj);

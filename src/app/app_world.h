@@ -142,7 +142,8 @@ typedef struct app_world_stats_t {
 /* Counts of the last frame (blocking reads: for summaries, not the frame). */
 void app_world_stats(app_world_t *w, app_world_stats_t *st);
 
-/* Fills the per-frame view from a camera and target size. */
+/* Fills the whole per-frame view from a camera and target size; every other
+ * field (overlay) is 0 = off. */
 void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
 
 /* ---- offscreen sessions (bench, compare) ------------------------------------------ */
