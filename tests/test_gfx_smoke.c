@@ -32,7 +32,7 @@ int main(void)
     for (int frame = 0; frame < 8; frame++) {
         gfx_timer_frame_begin();
         gfx_target_bind(&tgt);
-        glClearColor(0.0f, 0.0f, 1.0f, 1.0f);
+        glClearColor(0.0f, 0.0f, 1.0f, 0.25f); /* target alpha is not image alpha */
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         gfx_timer_begin("triangle");
         glUseProgram(prog.id);
@@ -51,6 +51,9 @@ int main(void)
     int mixed = 0;
     for (int i = 0; i < 64 * 32; i++) mixed += img.px[i * 4] > 40 && img.px[i * 4] < 215;
     CHECK(mixed > 0);
+    int translucent = 0;
+    for (int i = 0; i < 64 * 32; i++) translucent += img.px[i * 4 + 3] != 255;
+    CHECK_MSG(translucent == 0, "%d pixels read back with alpha below 255", translucent);
     core_image_free(&img);
 
     gfx_timer_flush();

@@ -359,6 +359,9 @@ bool gfx_target_read(const gfx_target_t *t, core_image_t *out)
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     for (int y = 0; y < t->h; y++) memcpy(out->px + (size_t)y * row, tmp + (size_t)(t->h - 1 - y) * row, row);
     free(tmp);
+    /* The frame is opaque: alpha-to-coverage leaves fragment alpha in the
+     * target, which image viewers would blend with their background. */
+    for (size_t i = 3; i < row * (size_t)t->h; i += 4) out->px[i] = 255;
     return true;
 }
 
@@ -366,7 +369,6 @@ bool gfx_target_screenshot(const gfx_target_t *t, const char *path)
 {
     core_image_t img;
     if (!gfx_target_read(t, &img)) return false;
-    for (size_t i = 3; i < (size_t)img.w * (size_t)img.h * 4; i += 4) img.px[i] = 255;
     bool ok = core_image_write_png(&img, path);
     core_image_free(&img);
     return ok;
