@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # bench_quick: `meadow bench --quick`, its stability suite
-# (--stability) and `meadow compare` run on llvmpipe and
+# (--stability), its tile scaling sweeps (--scaling) and `meadow compare`
+# run on llvmpipe and
 # produce every file they promise (CSV, JSON, charts, tables, screenshots,
 # montage).
 # Usage: bench_quick.sh MEADOW_BINARY OUTDIR
@@ -27,12 +28,20 @@ for f in stability.csv stability.md; do
   [ -s "$out/stability/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
 cases="tunnelling framerate_blade framerate_bb thin_bb concave_bb concave_blade large_bb squeeze_blade squeeze_bb
-       resting_blade spikes_blade spikes_bb steep_blade many_bb many_blade"
+       resting_blade spikes_blade spikes_bb steep_blade many_bb many_blade bb_border wall_blade wall_bb"
 for c in $cases; do
   [ -s "$out/stability/stability_$c.png" ] || { echo "FAIL: missing stability_$c.png"; fail=1; }
   grep -q "^$c," "$out/stability/stability.csv" || { echo "FAIL: stability.csv has no $c rows"; fail=1; }
   grep -q "^| $c |" "$out/stability/stability.md" || { echo "FAIL: stability.md has no $c row"; fail=1; }
 done
+"$bin" bench --scaling --quick --quiet --out "$out/scaling" || { echo "FAIL: bench scaling exit $?"; fail=1; }
+for f in scaling.csv scaling_field.dat scaling_field.png scaling_field.svg scaling_active.dat scaling_active.png \
+         scaling_active.svg; do
+  [ -s "$out/scaling/$f" ] || { echo "FAIL: missing $f"; fail=1; }
+done
+# 3 field sizes with 4 slots each, then 1, 2, 4, 8, 16 slots
+slots=$(awk -F, 'NR > 1 {printf "%s ", $5}' "$out/scaling/scaling.csv" 2>/dev/null)
+[ "$slots" = "4 4 4 1 2 4 8 16 " ] || { echo "FAIL: scaling.csv slots '$slots'"; fail=1; }
 "$bin" compare --quiet --scene scenes/tiny.json --frames 4 --out "$out/compare" || { echo "FAIL: compare exit $?"; fail=1; }
 for f in compare.png compare.json compare-billboard.png compare-blade.png compare-hybrid.png compare-reference.png; do
   [ -s "$out/compare/$f" ] || { echo "FAIL: missing $f"; fail=1; }

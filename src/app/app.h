@@ -40,6 +40,7 @@ typedef struct app_options_t {
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */
+    bool scaling;             /* bench --scaling: tile simulation vs field size and active tiles only */
     bool montage;             /* --montage: end a headless run with the mode montage */
     bool video;               /* compare --video: a clip per mode (ffmpeg) */
     int overlay;              /* --overlay 0..3: debug overlay at start (key O cycles) */

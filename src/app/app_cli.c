@@ -28,7 +28,8 @@ void app_print_usage(void)
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
            "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
            "  --stability           bench: run the stability suite (where each method breaks)\n"
-           "  --report DIR          bench: sweep + stability + compare, charts and RESULTS.md into DIR\n"
+           "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
+           "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
@@ -94,6 +95,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->video = true;
         } else if (strcmp(a, "--stability") == 0) {
             o->stability = true;
+        } else if (strcmp(a, "--scaling") == 0) {
+            o->scaling = true;
         } else if (strcmp(a, "--report") == 0) {
             NEED_VALUE();
             if (!*v) {

@@ -80,4 +80,30 @@ int app_session_run_hooks(const app_session_desc_t *desc, const app_session_hook
  * or 1. */
 int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md, const char *report);
 
+/* Simulation cost of the tiled blade field (app_scaling.c): one run. */
+typedef struct app_scaling_point_t {
+    float side;        /* terrain side, m */
+    int balls;         /* resting balls, each on its own tile */
+    int frames;
+    int slots;         /* slots simulated by the latest update */
+    long blades;       /* blades simulated by the latest update */
+    double physics_ms; /* median "tiles.physics" GPU time */
+    long full_blades;  /* the full-field blade mode (field sweep, not --quick) */
+    double full_ms;    /* its median "blade.physics"; -1 when not run */
+} app_scaling_point_t;
+
+#define APP_SCALING_MAX 6
+typedef struct app_scaling_t {
+    int field_count, active_count;
+    app_scaling_point_t field[APP_SCALING_MAX];  /* 1x, 4x, 16x (64x) area, 4 balls */
+    app_scaling_point_t active[APP_SCALING_MAX]; /* 1, 2, 4, 8, 16 (32) balls */
+    double slope, intercept, r2; /* least squares ms = intercept + slope * slots (active sweep) */
+    char renderer[256];
+} app_scaling_t;
+
+/* `bench --scaling`: the field and active sweeps; writes scaling.csv, the
+ * .dat files and charts into out, fills res and (when non-NULL) md with the
+ * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
+int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md);
+
 #endif

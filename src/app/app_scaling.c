@@ -1,0 +1,245 @@
+/* app_scaling: `meadow bench --scaling`: what the tiled blade field's
+ * simulation costs (Fan et al. 2015 tile activation over Jahrmann & Wimmer
+ * 2017 blades, src/blade/blade_tiles.h) against
+ *   field  the field size at a fixed active area: 4 resting balls on the 4
+ *          tiles around the centre, terrain side 1, 2, 4 (and 8) x the base
+ *          (1x, 4x, 16x, 64x area); the full-field blade mode beside it;
+ *   active the number of active tiles at a fixed field size: N resting
+ *          balls, each on its own tile, N = 1, 2, 4, 8, 16 (32); least
+ *          squares line of physics time against N.
+ * Scenes are built here (hybrid mode, 4 m tiles, a gentle heightfield).
+ * Each run simulates every frame and draws the last; the measure is the
+ * median of the "tiles.physics" (or "blade.physics") GPU timer over the
+ * frames after warm-up, next to the slots and blades dispatched by the
+ * latest update (blade_tiles_stats). Writes scaling.csv, scaling_field.dat,
+ * scaling_active.dat and their gnuplot charts (PNG and SVG) into out. */
+#include "app/app_eval.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define TILE_M 4.0f
+#define BALL_R 0.3f
+
+typedef struct scaling_run_t {
+    float side;        /* terrain side, m */
+    int balls;         /* resting balls, one per tile */
+    float density;     /* blades per m^2 */
+    bool full;         /* the full-field blade mode instead of the tiles */
+    app_scaling_point_t *point;
+} scaling_run_t;
+
+/* Tile centres in rings around the centre: the 4 tiles at (+-2, +-2) first,
+ * then outwards, so N balls always sit on N distinct tiles. */
+static void tile_centre(int i, float out[2])
+{
+    static const int order[][2] = {{0, 0},  {-1, 0}, {0, -1}, {-1, -1}, {1, 0},  {1, -1}, {1, 1},   {0, 1},
+                                   {-1, 1}, {-2, 1}, {-2, 0}, {-2, -1}, {-2, -2}, {-1, -2}, {0, -2}, {1, -2},
+                                   {2, -2}, {2, -1}, {2, 0},  {2, 1},   {2, 2},   {1, 2},   {0, 2},  {-1, 2},
+                                   {-2, 2}, {-3, 2}, {-3, 1}, {-3, 0},  {-3, -1}, {-3, -2}, {-3, -3}, {-2, -3}};
+    out[0] = ((float)order[i][0] + 0.5f) * TILE_M;
+    out[1] = ((float)order[i][1] + 0.5f) * TILE_M;
+}
+
+static void tweak(scene_desc_t *s, void *user)
+{
+    const scaling_run_t *r = user;
+    s->terrain = terrain_desc_defaults(&(terrain_desc_t){
+        .type = TERRAIN_HEIGHTFIELD, .size = r->side, .resolution = (int)fminf(256.0f, r->side), .height = 0.3f});
+    s->grass.density = r->density;
+    s->grass.billboard_density = 6;
+    s->grass.tile_size = TILE_M;
+    s->grass.switch_distance = 12;
+    s->dt = 1.0f / 60.0f;
+    s->size[0] = 320;
+    s->size[1] = 180;
+    s->msaa = 1;
+    s->camera.path.count = 0;
+    glm_vec3_copy((vec3){0.0f, 6.0f, 14.0f}, s->camera.position);
+    glm_vec3_zero(s->camera.target);
+    s->character_count = 0;
+    s->collider_count = r->balls;
+    for (int i = 0; i < r->balls; i++) {
+        float c[2];
+        tile_centre(i, c);
+        s->colliders[i] = (scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = BALL_R};
+        s->colliders[i].path.count = 1;
+        glm_vec3_copy((vec3){c[0], BALL_R, c[1]}, s->colliders[i].path.keys[0].position);
+    }
+}
+
+static void last_frame(app_world_t *w, int frame, float t, void *user)
+{
+    (void)t;
+    scaling_run_t *r = user;
+    if (frame + 1 < r->point->frames) return;
+    if (r->full) {
+        r->point->full_blades = blade_gpu_stats(&w->blades, false).total;
+    } else if (w->have_tiles) {
+        blade_tiles_stats_t st = blade_tiles_stats(&w->tiles, true);
+        r->point->slots = st.slots_dispatched;
+        r->point->blades = st.blades_dispatched;
+    }
+}
+
+static double pass_median(const app_metrics_t *m, const char *name)
+{
+    for (int p = 0; p < m->pass_count; p++)
+        if (strcmp(m->pass_name[p], name) == 0) return m->pass_ms[p];
+    return -1.0;
+}
+
+/* One session: hybrid (tiles) or, with r->full, the full-field blade mode. */
+static int measure(const app_options_t *o, scaling_run_t *r)
+{
+    app_scaling_point_t *p = r->point;
+    app_session_desc_t d = {.opts = o, .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
+                            .frames = p->frames, .tweak = tweak, .user = r};
+    app_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
+    app_metrics_t m;
+    int rc = app_session_run_hooks(&d, &h, NULL, &m);
+    if (rc) return rc;
+    if (r->full)
+        p->full_ms = pass_median(&m, "blade.physics");
+    else
+        p->physics_ms = pass_median(&m, "tiles.physics");
+    return 0;
+}
+
+static void write_chart(const char *out, const char *name, const char *title, const char *xlabel, const char *plot)
+{
+    char path[1200];
+    eval_text_t g = {0};
+    for (int term = 0; term < 2; term++) {
+        eval_text_printf(&g, term ? "set terminal svg size 800,500 noenhanced\nset output '%s/%s.svg'\n"
+                                  : "set terminal pngcairo size 800,500 noenhanced\nset output '%s/%s.png'\n",
+                         out, name);
+        eval_text_printf(&g, "set title '%s'\nset xlabel '%s'\nset ylabel 'physics GPU ms per frame (median)'\n"
+                             "set grid\nset key top left\nset yrange [0:*]\n%s\n",
+                         title, xlabel, plot);
+    }
+    snprintf(path, sizeof path, "%s/%s.gp", out, name);
+    if (eval_text_write(&g, path)) eval_gnuplot(path);
+    eval_text_free(&g);
+}
+
+int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md)
+{
+    memset(res, 0, sizeof *res);
+    snprintf(res->renderer, sizeof res->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    static const int balls[] = {1, 2, 4, 8, 16, 32};
+    float base = quick ? 16.0f : 32.0f; /* multiples of 2 tiles: tile centres at +-2 m */
+    float density = quick ? 120.0f : 250.0f;
+    int frames = o->frames_set ? o->frames : (quick ? 24 : 120);
+    res->field_count = quick ? 3 : 4;
+    res->active_count = quick ? 5 : 6;
+    int total = res->field_count * (quick ? 1 : 2) + res->active_count, done = 0;
+    int rc = 0;
+    for (int i = 0; i < res->field_count && rc == 0; i++) {
+        app_scaling_point_t *p = &res->field[i];
+        *p = (app_scaling_point_t){.side = base * (float)(1 << i), .balls = 4, .frames = frames, .full_ms = -1};
+        scaling_run_t r = {.side = p->side, .balls = 4, .density = density, .point = p};
+        rc = measure(o, &r);
+        fprintf(stderr, "\rscaling: %d/%d field %g m tiles %.4f ms   ", ++done, total, p->side, p->physics_ms);
+        if (rc == 0 && !quick) {
+            r.full = true;
+            rc = measure(o, &r);
+            fprintf(stderr, "\rscaling: %d/%d field %g m full %.4f ms   ", ++done, total, p->side, p->full_ms);
+        }
+        if (app_interrupted()) rc = 1;
+    }
+    for (int i = 0; i < res->active_count && rc == 0; i++) {
+        app_scaling_point_t *p = &res->active[i];
+        *p = (app_scaling_point_t){.side = base * 2.0f, .balls = balls[i], .frames = frames, .full_ms = -1};
+        scaling_run_t r = {.side = p->side, .balls = balls[i], .density = density, .point = p};
+        rc = measure(o, &r);
+        fprintf(stderr, "\rscaling: %d/%d active %d tiles %.4f ms   ", ++done, total, p->balls, p->physics_ms);
+        if (app_interrupted()) rc = 1;
+    }
+    fputc('\n', stderr);
+    if (rc) return rc;
+
+    /* Least squares physics_ms = intercept + slope * active tiles (slots). */
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, n = res->active_count;
+    for (int i = 0; i < res->active_count; i++) {
+        double x = res->active[i].slots, y = res->active[i].physics_ms;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+        syy += y * y;
+    }
+    double vx = n * sxx - sx * sx, vy = n * syy - sy * sy, cxy = n * sxy - sx * sy;
+    res->slope = vx > 0 ? cxy / vx : 0.0;
+    res->intercept = (sy - res->slope * sx) / n;
+    res->r2 = vx > 0 && vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
+
+    char path[1200];
+    eval_text_t csv = {0}, fd = {0}, ad = {0};
+    eval_text_printf(&csv, "sweep,field_m,area_x,balls,slots,blades_simulated,tiles_physics_ms,full_blades,"
+                           "full_physics_ms\n");
+    eval_text_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
+    eval_text_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
+    for (int s = 0; s < 2; s++) {
+        int cnt = s ? res->active_count : res->field_count;
+        for (int i = 0; i < cnt; i++) {
+            const app_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
+            double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
+            eval_text_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
+                             p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);
+            if (s)
+                eval_text_printf(&ad, "%d %.5f %.5f %d\n", p->slots, p->physics_ms,
+                                 res->intercept + res->slope * p->slots, p->balls);
+            else
+                eval_text_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
+        }
+    }
+    const char *names[3] = {"scaling.csv", "scaling_field.dat", "scaling_active.dat"};
+    eval_text_t *texts[3] = {&csv, &fd, &ad};
+    for (int k = 0; k < 3; k++) {
+        snprintf(path, sizeof path, "%s/%s", out, names[k]);
+        if (!eval_text_write(texts[k], path)) rc = 1;
+        eval_text_free(texts[k]);
+    }
+    if (rc) return rc;
+    char plot[1600];
+    snprintf(plot, sizeof plot,
+             "set logscale x 2\nplot '%s/scaling_field.dat' using 1:3 with linespoints lw 2 pt 7 title 'tiles "
+             "(hybrid, 4 active tiles)'%s",
+             out, quick ? "" : ", '' using 1:4 with linespoints lw 2 pt 5 title 'full-field blade mode'");
+    write_chart(out, "scaling_field", "simulation vs field size (fixed active area)", "field area (x base)", plot);
+    snprintf(plot, sizeof plot,
+             "plot '%s/scaling_active.dat' using 1:2 with points pt 7 ps 1.4 title 'measured', "
+             "'' using 1:3 with lines lw 2 title 'least squares: %.4f + %.5f ms/tile (R^2 %.3f)'",
+             out, res->intercept, res->slope, res->r2);
+    write_chart(out, "scaling_active", "simulation vs active tiles (fixed field)", "active tiles (slots simulated)",
+                plot);
+
+    if (md) {
+        eval_text_printf(md,
+                         "Renderer `%s`, %d frames per run (median of the frames after warm-up), %.0f blades/m^2, "
+                         "%g m tiles, r %.1f m balls resting on tile centres.\n\n"
+                         "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
+                         "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                         res->renderer, frames, density, TILE_M, BALL_R);
+        for (int s = 0; s < 2; s++) {
+            int cnt = s ? res->active_count : res->field_count;
+            for (int i = 0; i < cnt; i++) {
+                const app_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
+                double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
+                char full[32] = "-";
+                if (p->full_ms >= 0) snprintf(full, sizeof full, "%.4f", p->full_ms);
+                eval_text_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
+                                 p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
+            }
+        }
+        eval_text_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
+                         res->intercept, res->slope, res->r2);
+    }
+    core_log_info("scaling: wrote %s/scaling.csv and charts (tiles.physics %.4f -> %.4f ms from 1x to %gx area; "
+                  "%.5f ms per active tile, R^2 %.3f)",
+                  out, res->field[0].physics_ms, res->field[res->field_count - 1].physics_ms,
+                  (double)(1 << (2 * (res->field_count - 1))), res->slope, res->r2);
+    return 0;
+}

@@ -1,0 +1,131 @@
+/* test_tiles_scaling: what the tiled blade field's simulation costs
+ * (blade_tiles: Fan et al. 2015 activation over Jahrmann & Wimmer 2017
+ * blades). On llvmpipe GL timer queries do not see compute work, so the
+ * cost is the wall time of blade_tiles_update + glFinish (the physics
+ * dispatch, hand-over and activation bookkeeping), the least of 15 steps
+ * after 5 warm-up steps (the same work every step: the least is the one
+ * other processes disturbed least); on a GPU `meadow bench --scaling` charts the
+ * "tiles.physics" timer of the same sweeps.
+ *   a) fixed active area (4 resting balls on 4 tiles), field 16, 32, 64 m
+ *      (1x, 4x, 16x area): the same slots and blades are simulated, and
+ *      the time at 16x is within 1.5x (+0.5 ms) of the time at 1x;
+ *   b) fixed field (32 m), 1, 2, 4, 8, 16 balls, each on its own tile:
+ *      slots = balls, and the time grows about linearly with active tiles:
+ *      least-squares R^2 >= 0.9 and time(16) >= 4 time(1). */
+#include "blade/blade_tiles.h"
+#include "platform/plat.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define TILE 4.0f
+#define R 0.3f
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Least ms of one tiles update with `balls` resting balls on a flat
+ * field of side `side`; *slots and *blades of the latest update. */
+static double run(float side, int balls, int *slots, uint32_t *blades)
+{
+    terrain_mesh_t m;
+    CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = side, .resolution = (int)side / 2, .height = 0.1f},
+                                   5));
+    for (uint32_t v = 0; v < m.vertex_count; v++) {
+        m.positions[3 * v + 1] = 0.0f;
+        m.normals[3 * v + 0] = m.normals[3 * v + 2] = 0.0f;
+        m.normals[3 * v + 1] = 1.0f;
+    }
+    m.aabb_min[1] = m.aabb_max[1] = 0.0f;
+    blade_tiles_desc_t d = {.terrain = &m, .tile_size = TILE, .density = 512.0f, .height_min = 0.3f,
+                            .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
+                            .stiffness_max = 12.0f, .seed = 3, .pool_slots = 32, .switch_distance = 12.0f};
+    d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, 2.0f);
+    d.wind_count = 1;
+    blade_tiles_t t;
+    CHECK(blade_tiles_make(&t, &d));
+    /* tile centres in rings around the origin: distinct tiles */
+    static const int ring[16][2] = {{0, 0},  {-1, 0}, {0, -1}, {-1, -1}, {1, 0},  {1, -1}, {1, 1},  {0, 1},
+                                    {-1, 1}, {-2, 1}, {-2, 0}, {-2, -1}, {-2, -2}, {-1, -2}, {0, -2}, {1, -2}};
+    float spheres[16][4];
+    for (int i = 0; i < balls; i++) {
+        spheres[i][0] = ((float)ring[i][0] + 0.5f) * TILE;
+        spheres[i][1] = R;
+        spheres[i][2] = ((float)ring[i][1] + 0.5f) * TILE;
+        spheres[i][3] = R;
+    }
+    const float cam[3] = {0.0f, 6.0f, 14.0f};
+    double ms[15];
+    for (int f = 0; f < 20; f++) {
+        blade_env_t env = {.dt = 1.0f / 60.0f, .time = (float)f / 60.0f, .gravity = 1.0f};
+        glFinish();
+        double t0 = plat_time();
+        blade_tiles_update(&t, cam, (const float(*)[4])spheres, balls, &env);
+        glFinish();
+        if (f >= 5) ms[f - 5] = (plat_time() - t0) * 1e3;
+    }
+    qsort(ms, 15, sizeof ms[0], cmp_double);
+    double least = ms[0];
+    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    *slots = st.slots_dispatched;
+    *blades = st.blades_dispatched;
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+    return least;
+}
+
+int main(void)
+{
+    /* One llvmpipe thread: a step's time then does not depend on whether
+     * another process holds the second core (the least step is the one
+     * never preempted). No effect on a GPU driver. */
+    setenv("LP_NUM_THREADS", "1", 1);
+    test_gl_init();
+    core_log_set_quiet(true);
+
+    /* a) fixed active area */
+    static const float sides[3] = {16.0f, 32.0f, 64.0f};
+    double field_ms[3];
+    int field_slots[3];
+    uint32_t field_blades[3];
+    for (int i = 0; i < 3; i++) {
+        field_ms[i] = run(sides[i], 4, &field_slots[i], &field_blades[i]);
+        printf("a) field %2.0f m (%2dx area): %d slots, %u blades simulated, %.3f ms per update\n", sides[i],
+               1 << (2 * i), field_slots[i], field_blades[i], field_ms[i]);
+    }
+    CHECK(field_slots[0] == 4 && field_slots[1] == 4 && field_slots[2] == 4);
+    CHECK(field_blades[0] == field_blades[2] && field_blades[0] > 0);
+    CHECK_MSG(field_ms[2] <= 1.5 * field_ms[0] + 0.5, "16x the field: %.3f ms against %.3f ms at 1x", field_ms[2],
+              field_ms[0]);
+
+    /* b) fixed field, 1..16 active tiles */
+    static const int balls[5] = {1, 2, 4, 8, 16};
+    double x[5], y[5], sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    for (int i = 0; i < 5; i++) {
+        int slots;
+        uint32_t blades;
+        y[i] = run(32.0f, balls[i], &slots, &blades);
+        x[i] = slots;
+        printf("b) %2d balls: %2d slots, %6u blades simulated, %.3f ms per update\n", balls[i], slots, blades, y[i]);
+        CHECK(slots == balls[i]);
+        sx += x[i];
+        sy += y[i];
+        sxx += x[i] * x[i];
+        sxy += x[i] * y[i];
+        syy += y[i] * y[i];
+    }
+    double vx = 5 * sxx - sx * sx, vy = 5 * syy - sy * sy, cxy = 5 * sxy - sx * sy;
+    double slope = cxy / vx, r2 = vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
+    printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n",
+           (sy - slope * sx) / 5, slope, r2, y[4] / y[0]);
+    CHECK(r2 >= 0.9);
+    CHECK(y[4] >= 4.0 * y[0]);
+
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
