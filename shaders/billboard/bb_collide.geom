@@ -5,7 +5,9 @@
  * pool slot (its refined mesh starts from the current wind pose), then every
  * non-root vertex is pushed out of the objects' depth cube maps (eq. 1-5) and
  * the springs relaxed K times (eq. 6-7) by bb_collide from common/bb.glsl;
- * state becomes COLLIDING and the recovery timer restarts. */
+ * state becomes COLLIDING and the recovery timer restarts. Each draw sees
+ * one batch of at most BB_MAX_CUBES objects (bb.c: BB_PASS_OBJECTS, bound
+ * as a range of the objects buffer); entries carry their cube-array layer. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #define BB_POINTS_IN
@@ -21,6 +23,7 @@ struct bb_object {
     mat4 c2w;
     vec4 cube;   /* cube-space centre, half edge */
     vec4 sphere; /* world-space bounding sphere; radius < 0: skip */
+    ivec4 layer; /* x: first of the object's 6 cube-array layers */
 };
 layout(std140, binding = 0) uniform Objects { bb_object u_obj[BB_MAX_CUBES]; };
 
@@ -47,7 +50,7 @@ void main()
     for (int k = 0; k < u_count; k++) {
         vec4 s = u_obj[k].sphere;
         if (s.w < 0.0 || distance(bc, s.xyz) >= br + s.w) continue;
-        cubes[n] = bb_cube(u_obj[k].cube.xyz, u_obj[k].cube.w, u_res, 6 * k);
+        cubes[n] = bb_cube(u_obj[k].cube.xyz, u_obj[k].cube.w, u_res, u_obj[k].layer.x);
         w2c[n] = u_obj[k].w2c;
         c2w[n] = u_obj[k].c2w;
         n++;

@@ -343,8 +343,8 @@ static int bb_objects(app_world_t *w, bb_object_t *out, int max)
     for (int i = 0; i < w->colliders.count; i++) {
         if (n == max) {
             if (!w->warned_objects)
-                core_log_warn("billboards: %d colliders, the field takes %d per update: the rest do not bend "
-                              "billboards",
+                core_log_warn("billboards: %d colliders, the field holds at most %d (BB_MAX_OBJECTS, in "
+                              "collide batches of BB_PASS_OBJECTS): the rest do not bend billboards",
                               w->colliders.count, max);
             w->warned_objects = true;
             break;
@@ -373,8 +373,8 @@ static int bb_objects(app_world_t *w, bb_object_t *out, int max)
             o->radius = co[i].radius;
         }
         if (want > max - n && !w->warned_objects) {
-            core_log_warn("billboards: %d colliders and characters, the field takes %d per update: the rest do "
-                          "not bend billboards",
+            core_log_warn("billboards: %d colliders and characters, the field holds at most %d (BB_MAX_OBJECTS, "
+                          "in collide batches of BB_PASS_OBJECTS): the rest do not bend billboards",
                           w->colliders.count + w->chars.count, max);
             w->warned_objects = true;
         }

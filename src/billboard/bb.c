@@ -19,12 +19,20 @@
 static const char *const bb_tf_varyings[] = {"o_pos_angle", "o_growth_mess", "o_size", "o_layer_state",
                                              "o_recover",   "o_seed",        "o_pad",  NULL};
 
+/* std140 twin of struct bb_object in bb_collide.geom. */
 typedef struct bb_object_gpu_t {
     float w2c[16];
     float c2w[16];
     float cube[4];
     float sphere[4];
+    int32_t layer[4]; /* first cube-array layer (6 * object index), 3 pad */
 } bb_object_gpu_t;
+
+/* Objects one collide pass tests: the shader's BB_MAX_CUBES. */
+static int pass_objects(const bb_field_t *f)
+{
+    return f->desc.max_objects < BB_PASS_OBJECTS ? f->desc.max_objects : BB_PASS_OBJECTS;
+}
 
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
 {
@@ -309,6 +317,35 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     return ok;
 }
 
+/* Each billboard's bounding sphere as bb_collide.geom computes it (centre
+ * half way up the growth direction, radius half the diagonal plus the wind
+ * strength), read back once in chunks. */
+static bool read_spheres(bb_field_t *f)
+{
+    enum { CHUNK = 16384 };
+    f->spheres = malloc(sizeof *f->spheres * (size_t)(f->billboards ? f->billboards : 1));
+    bb_point_t *pts = malloc(sizeof *pts * CHUNK);
+    if (!f->spheres || !pts) {
+        free(pts);
+        core_log_error("%s:%d: out of memory for %d billboard spheres", __FILE__, __LINE__, f->billboards);
+        return false;
+    }
+    for (int i0 = 0; i0 < f->billboards; i0 += CHUNK) {
+        int n = f->billboards - i0 < CHUNK ? f->billboards - i0 : CHUNK;
+        gfx_buffer_read(f->points, sizeof *pts * (size_t)i0, sizeof *pts * (size_t)n, pts);
+        for (int i = 0; i < n; i++) {
+            const bb_point_t *p = &pts[i];
+            vec3 right, up;
+            bb_point_frame(p, right, up);
+            for (int a = 0; a < 3; a++) f->spheres[i0 + i][a] = p->position[a] + up[a] * (0.5f * p->size[1]);
+            f->spheres[i0 + i][3] = 0.5f * sqrtf(p->size[0] * p->size[0] + p->size[1] * p->size[1]) +
+                                    f->desc.wind.strength;
+        }
+    }
+    free(pts);
+    return true;
+}
+
 static void setup_points_vao(GLuint vao, GLuint buffer)
 {
     glVertexArrayVertexBuffer(vao, 0, buffer, 0, sizeof(bb_point_t));
@@ -398,7 +435,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     snprintf(defines, sizeof defines,
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
              "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n",
-             n, m, d->max_objects, tile, tile * tile, render_verts);
+             n, m, pass_objects(f), tile, tile * tile, render_verts);
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
                                                          .gs = "billboard/bb_generate.geom", .defines = defines,
                                                          .tf_varyings = bb_tf_varyings, .label = "bb.generate"});
@@ -437,8 +474,14 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
                                                      .label = "bb.points"});
     f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
                                                       .label = "bb.points_scratch"});
-    f->objects = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(bb_object_gpu_t) * (size_t)d->max_objects,
-                                                      .dynamic = true, .label = "bb.objects"});
+    GLint align = 256;
+    glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &align);
+    align = align > 0 ? align : 256;
+    f->objects_stride = sizeof(bb_object_gpu_t) * (size_t)pass_objects(f);
+    f->objects_stride = (f->objects_stride + (size_t)align - 1) / (size_t)align * (size_t)align;
+    f->objects_size = 4 * f->objects_stride;
+    f->objects = gfx_buffer_make(&(gfx_buffer_desc_t){.size = f->objects_size, .dynamic = true,
+                                                      .label = "bb.objects"});
     f->cubes = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = d->cube_res,
                                                       .h = d->cube_res, .layers = 6 * d->max_objects,
                                                       .format = GL_RGBA32F, .filter = GL_NEAREST,
@@ -457,7 +500,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
         if (!f->readback[k].id || !f->readback_query[k]) goto fail;
     }
     setup_points_vao(f->points_vao, f->points.id);
-    if (!generate(f, t, hgrid, tile)) goto fail;
+    if (!generate(f, t, hgrid, tile) || !read_spheres(f)) goto fail;
     f->make_ms = (float)(wall_ms() - t_start);
     return true;
 fail:
@@ -498,6 +541,9 @@ void bb_field_destroy(bb_field_t *f)
     free(f->ranges);
     free(f->firsts);
     free(f->counts_gl);
+    free(f->spheres);
+    bb_batch_plan_t *pl = &f->plan;
+    free(pl->range_start), free(pl->obj_count), free(pl->obj), free(pl->first), free(pl->size);
     memset(f, 0, sizeof *f);
 }
 
@@ -552,9 +598,152 @@ static void render_cube(bb_field_t *f, const bb_object_t *o, int k)
     f->cube_half[k] = half;
 }
 
-/* Runs one transform-feedback pass of `prog` over the merged ranges: points
- * -> scratch (appended in draw order), then copied back in place. */
-static void tf_pass(bb_field_t *f, gfx_program_t prog, int nranges)
+/* ---- collide batches ------------------------------------------------------ */
+
+static bool plan_reserve(bb_batch_plan_t *pl, int batches, int ranges)
+{
+    if (batches > pl->cap) {
+        int cap = batches > 2 * pl->cap ? batches : 2 * pl->cap;
+        int *rs = realloc(pl->range_start, sizeof *rs * (size_t)(cap + 1));
+        if (rs) pl->range_start = rs;
+        int *oc = realloc(pl->obj_count, sizeof *oc * (size_t)cap);
+        if (oc) pl->obj_count = oc;
+        int(*ob)[BB_PASS_OBJECTS] = realloc(pl->obj, sizeof *ob * (size_t)cap);
+        if (ob) pl->obj = ob;
+        if (!rs || !oc || !ob) return false;
+        pl->cap = cap;
+    }
+    if (ranges > pl->range_cap) {
+        int cap = ranges > 2 * pl->range_cap ? ranges : 2 * pl->range_cap;
+        GLint *fi = realloc(pl->first, sizeof *fi * (size_t)cap);
+        if (fi) pl->first = fi;
+        GLsizei *sz = realloc(pl->size, sizeof *sz * (size_t)cap);
+        if (sz) pl->size = sz;
+        if (!fi || !sz) return false;
+        pl->range_cap = cap;
+    }
+    return true;
+}
+
+/* Adds billboards [first, first+count) that must be tested against objs
+ * (n <= limit, ascending) to the open batch when the union of the two
+ * object lists stays within limit, else opens a new batch. Ranges adjacent
+ * in the buffer and in the same batch are merged. */
+static bool plan_add(bb_batch_plan_t *pl, int limit, GLint first, GLsizei count, const int *objs, int n)
+{
+    int b = pl->count - 1, merged[BB_PASS_OBJECTS], m = 0;
+    bool fits = b >= 0;
+    if (fits) {
+        const int *a = pl->obj[b];
+        int na = pl->obj_count[b], i = 0, j = 0;
+        while ((i < na || j < n) && fits) {
+            int v;
+            if (j == n || (i < na && a[i] < objs[j])) v = a[i++];
+            else if (i == na || objs[j] < a[i]) v = objs[j++];
+            else v = a[i++], j++;
+            fits = m < limit;
+            if (fits) merged[m++] = v;
+        }
+    }
+    if (!plan_reserve(pl, pl->count + 1, pl->range_count + 1)) return false;
+    if (!fits) {
+        b = pl->count++;
+        pl->range_start[b] = pl->range_count;
+        memcpy(pl->obj[b], objs, sizeof *objs * (size_t)n);
+        pl->obj_count[b] = n;
+    } else {
+        memcpy(pl->obj[b], merged, sizeof *merged * (size_t)m);
+        pl->obj_count[b] = m;
+    }
+    int r = pl->range_count - 1;
+    if (r >= pl->range_start[b] && pl->first[r] + pl->size[r] == first) {
+        pl->size[r] += count;
+    } else {
+        pl->first[++r] = first;
+        pl->size[r] = count;
+        pl->range_count++;
+    }
+    pl->range_start[pl->count] = pl->range_count;
+    return true;
+}
+
+static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(const int *)b; }
+
+/* A leaf whose box meets more than `limit` objects: each billboard's own
+ * objects (bounding spheres closer than the sum of the radii, 1 mm of slack
+ * over the shader's float test) join the plan one billboard at a time, so
+ * runs of billboards share batches; billboards that touch nothing are left
+ * out. More than `limit` objects on one billboard: the nearest (surface
+ * distance) are kept and the rest counted in f->dropped. */
+static bool plan_split_leaf(bb_field_t *f, int limit, const bb_range_t *r, const bb_bound_t *bounds,
+                            const int *objs, int n)
+{
+    for (uint32_t i = r->first; i < r->first + r->count; i++) {
+        const float *sp = f->spheres[i];
+        float dist[BB_MAX_OBJECTS];
+        int hit[BB_MAX_OBJECTS], h = 0;
+        for (int q = 0; q < n; q++) {
+            const bb_bound_t *b = &bounds[objs[q]];
+            float dd = sqrtf(glm_vec3_distance2((float *)sp, (float *)b->centre)) - b->radius - sp[3];
+            if (dd < 1e-3f) dist[h] = dd, hit[h++] = objs[q];
+        }
+        if (h == 0) continue;
+        if (h > limit) {
+            for (int a = 1; a < h; a++) /* insertion sort by distance, ties by index */
+                for (int c = a; c > 0 && dist[c] < dist[c - 1]; c--) {
+                    float td = dist[c];
+                    dist[c] = dist[c - 1], dist[c - 1] = td;
+                    int ti = hit[c];
+                    hit[c] = hit[c - 1], hit[c - 1] = ti;
+                }
+            f->dropped += h - limit;
+            h = limit;
+            qsort(hit, (size_t)h, sizeof *hit, cmp_int);
+        }
+        if (!plan_add(&f->plan, limit, (GLint)i, 1, hit, h)) return false;
+    }
+    return true;
+}
+
+/* Groups the colliding leaf ranges f->ranges[0..ncol) into batches of at
+ * most pass_objects(f) objects; need[k] is set for every object in a batch. */
+static bool plan_batches(bb_field_t *f, int ncol, const bb_bound_t *bounds, int count, bool *need)
+{
+    bb_batch_plan_t *pl = &f->plan;
+    pl->count = pl->range_count = 0;
+    int limit = pass_objects(f);
+    int dropped_before = f->dropped;
+    for (int i = 0; i < ncol; i++) {
+        const bb_range_t *r = &f->ranges[i];
+        int node = bb_octree_leaf_node(&f->tree, r->leaf), objs[BB_MAX_OBJECTS], n = 0;
+        for (int k = 0; k < count; k++)
+            if (bb_bound_overlaps_box(&bounds[k], f->tree.lo[node], f->tree.hi[node], f->tree.desc.margin))
+                objs[n++] = k;
+        bool ok = n <= limit ? n == 0 || plan_add(pl, limit, (GLint)r->first, (GLsizei)r->count, objs, n)
+                             : plan_split_leaf(f, limit, r, bounds, objs, n);
+        if (!ok) {
+            core_log_error("%s:%d: out of memory for %d collide batches", __FILE__, __LINE__, pl->count);
+            return false;
+        }
+    }
+    for (int b = 0; b < pl->count; b++)
+        for (int j = 0; j < pl->obj_count[b]; j++) need[pl->obj[b][j]] = true;
+    if (f->dropped > dropped_before && f->dropped_logged == 0) {
+        core_log_warn("bb: a billboard's bounding sphere meets more than %d objects; it collides with the nearest "
+                      "%d (%d object hits left out so far, see bb_stats_t.objects_dropped)",
+                      limit, limit, f->dropped);
+        f->dropped_logged = f->dropped;
+    }
+    return true;
+}
+
+/* Runs one transform-feedback pass of `prog` over the ranges first/size:
+ * points -> scratch (appended in draw order), then copied back in place.
+ * With a plan (collide), batch b binds its region of the objects buffer,
+ * sets u_count and draws its own ranges, all inside the one transform
+ * feedback. */
+static void tf_pass(bb_field_t *f, gfx_program_t prog, const GLint *first, const GLsizei *size, int nranges,
+                    const bb_batch_plan_t *pl)
 {
     glUseProgram(prog.id);
     glBindVertexArray(f->points_vao);
@@ -567,20 +756,61 @@ static void tf_pass(bb_field_t *f, gfx_program_t prog, int nranges)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
     glBeginTransformFeedback(GL_POINTS);
-    glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nranges);
+    if (!pl) {
+        glMultiDrawArrays(GL_POINTS, first, size, nranges);
+    } else {
+        GLint count_loc = loc(prog, "u_count");
+        for (int b = 0; b < pl->count; b++) {
+            glBindBufferRange(GL_UNIFORM_BUFFER, 0, f->objects.id, (GLintptr)(f->objects_stride * (size_t)b),
+                              (GLsizeiptr)f->objects_stride);
+            glUniform1i(count_loc, pl->obj_count[b]);
+            int r0 = pl->range_start[b];
+            glMultiDrawArrays(GL_POINTS, first + r0, size + r0, pl->range_start[b + 1] - r0);
+        }
+    }
     glEndTransformFeedback();
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
     glDisable(GL_RASTERIZER_DISCARD);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
     size_t off = 0;
     for (int i = 0; i < nranges; i++) {
-        size_t bytes = (size_t)f->counts_gl[i] * sizeof(bb_point_t);
+        size_t bytes = (size_t)size[i] * sizeof(bb_point_t);
         glCopyNamedBufferSubData(f->scratch.id, f->points.id, (GLintptr)off,
-                                 (GLintptr)((size_t)f->firsts[i] * sizeof(bb_point_t)), (GLsizeiptr)bytes);
+                                 (GLintptr)((size_t)first[i] * sizeof(bb_point_t)), (GLsizeiptr)bytes);
         off += bytes;
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                     GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* Uploads every batch's object entries (one aligned region per batch, all
+ * in a single update before the pass, so no batch waits on another's
+ * upload) and runs the collide pass over the batches. */
+static bool collide_batches(bb_field_t *f, const bb_object_gpu_t *gpu)
+{
+    bb_batch_plan_t *pl = &f->plan;
+    size_t need = f->objects_stride * (size_t)pl->count;
+    if (need > f->objects_size) {
+        size_t size = need > 2 * f->objects_size ? need : 2 * f->objects_size;
+        gfx_buffer_destroy(&f->objects);
+        f->objects = gfx_buffer_make(&(gfx_buffer_desc_t){.size = size, .dynamic = true, .label = "bb.objects"});
+        f->objects_size = f->objects.id ? size : 0;
+        if (!f->objects.id) return false;
+    }
+    uint8_t *staging = calloc(need, 1);
+    if (!staging) {
+        core_log_error("%s:%d: out of memory for %d collide batches", __FILE__, __LINE__, pl->count);
+        return false;
+    }
+    for (int b = 0; b < pl->count; b++) {
+        bb_object_gpu_t *dst = (bb_object_gpu_t *)(staging + f->objects_stride * (size_t)b);
+        for (int j = 0; j < pl->obj_count[b]; j++) dst[j] = gpu[pl->obj[b][j]];
+    }
+    gfx_buffer_update(f->objects, 0, need, staging);
+    free(staging);
+
+    tf_pass(f, f->collide_prog, f->plan.first, f->plan.size, f->plan.range_count, &f->plan);
+    return true;
 }
 
 static float max_scale(const float *m)
@@ -634,6 +864,7 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
     assert(count >= 0 && count <= f->desc.max_objects);
     const bb_field_desc_t *d = &f->desc;
     f->time = time;
+    f->batches_last = 0;
     poll_readbacks(f);
     bool gpu_work = false;
     bb_bound_t bounds[BB_MAX_OBJECTS];
@@ -650,20 +881,17 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
         memcpy(gpu[k].c2w, model, sizeof model);
         memcpy(gpu[k].sphere, c, sizeof c);
         gpu[k].sphere[3] = -1.0f;
+        gpu[k].layer[0] = 6 * k;
+        gpu[k].layer[1] = gpu[k].layer[2] = gpu[k].layer[3] = 0;
     }
     bb_octree_update(&f->tree, bounds, count, dt, d->recover_time + BB_LEAF_RECOVER_SLACK);
     int ncol = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING), NULL, f->ranges, f->tree.leaf_count);
     if (ncol > 0) {
-        /* Cube maps only for objects touching a colliding leaf. */
+        /* Cube maps only for objects in a collide batch. */
         bool need[BB_MAX_OBJECTS] = {0};
+        bool planned = plan_batches(f, ncol, bounds, count, need);
         int nneed = 0;
-        for (int k = 0; k < count; k++) {
-            for (int i = 0; i < ncol && !need[k]; i++) {
-                int node = bb_octree_leaf_node(&f->tree, f->ranges[i].leaf);
-                need[k] = bb_bound_overlaps_box(&bounds[k], f->tree.lo[node], f->tree.hi[node], f->tree.desc.margin);
-            }
-            nneed += need[k] && objs[k].vao;
-        }
+        for (int k = 0; k < count; k++) nneed += need[k] && objs[k].vao;
         if (nneed > 0) {
             GLint fbo = 0, vp[4];
             glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -690,14 +918,10 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
             gpu[k].cube[3] = f->cube_half[k];
             gpu[k].sphere[3] = bounds[k].radius;
         }
-        if (count > 0) gfx_buffer_update(f->objects, 0, sizeof(bb_object_gpu_t) * (size_t)count, gpu);
-
         gfx_program_t p = f->collide_prog;
         glUseProgram(p.id);
-        glBindBufferBase(GL_UNIFORM_BUFFER, 0, f->objects.id);
         glBindTextureUnit(0, f->cubes.id);
         glUniform1i(loc(p, "u_cubes"), 0);
-        glUniform1i(loc(p, "u_count"), count);
         glUniform1i(loc(p, "u_res"), d->cube_res);
         glUniform1f(loc(p, "u_time"), time);
         glUniform1f(loc(p, "u_recover"), d->recover_time);
@@ -705,11 +929,12 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
         glUniform1f(loc(p, "u_r2"), d->r2);
         glUniform1i(loc(p, "u_iterations"), d->iterations);
         set_wind(p.id, &d->wind);
-        int nr = merge_ranges(f, ncol);
-        gfx_timer_begin("bb.collide");
-        tf_pass(f, p, nr);
-        gfx_timer_end();
-        gpu_work = true;
+        f->batches_last = planned ? f->plan.count : 0;
+        if (f->batches_last > 0) {
+            gfx_timer_begin("bb.collide");
+            gpu_work = collide_batches(f, gpu);
+            gfx_timer_end();
+        }
     }
     int nrec = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), NULL,
                                  f->ranges, f->tree.leaf_count);
@@ -722,7 +947,7 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
         set_wind(p.id, &d->wind);
         int nr = merge_ranges(f, nrec);
         gfx_timer_begin("bb.recover");
-        tf_pass(f, p, nr);
+        tf_pass(f, p, f->firsts, f->counts_gl, nr, NULL);
         gfx_timer_end();
         gpu_work = true;
     }
@@ -823,6 +1048,8 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
     out->pool_capacity = f->desc.max_deformed;
     out->generate_ms = f->generate_ms;
     out->make_ms = f->make_ms;
+    out->batches = f->batches_last;
+    out->objects_dropped = f->dropped;
     if (!wait) {
         out->deformed = f->deformed_last;
         out->pool_exhausted = f->exhausted_last;

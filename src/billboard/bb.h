@@ -10,8 +10,9 @@
  *            spheres); for COLLIDING leaves only: depth cube maps of the
  *            objects (eq. 1-3 lookups), the collision geometry shader
  *            (push-out eq. 4-5, springs eq. 6-7) with transform feedback in
- *            and out; for COLLIDING and RECOVERING leaves: the recovery
- *            geometry shader (eq. 8). Idle leaves cost nothing.
+ *            and out, run over batches of leaves that each see at most
+ *            BB_PASS_OBJECTS objects; for COLLIDING and RECOVERING leaves:
+ *            the recovery geometry shader (eq. 8). Idle leaves cost nothing.
  *   draw:    frustum-culled octree leaves, one point per billboard expanded
  *            by a geometry shader into a wind-animated quad or its deformed
  *            N x M mesh; alpha-to-coverage, two-sided lighting, distance fade.
@@ -38,8 +39,15 @@
 #include "hybrid/hybrid_slope.h"
 #include "scene/terrain.h"
 
-/* Objects one field can collide against per update. */
-#define BB_MAX_OBJECTS 16
+/* Objects one field can collide against per update (desc.max_objects; the
+ * cube-map array holds 6 layers for each). */
+#define BB_MAX_OBJECTS 128
+/* Objects one collide pass (bb_collide.geom) tests. bb_field_update groups
+ * the colliding leaves into batches whose objects number at most this; a
+ * leaf that overlaps more is split into runs of billboards, and a single
+ * billboard whose bounding sphere meets more keeps the nearest ones
+ * (counted in bb_stats_t.objects_dropped, warned once). */
+#define BB_PASS_OBJECTS 16
 /* Pool-header readbacks in flight (see bb_field_update): the CPU reads a
  * copy once its timestamp query is available, never waiting on the GPU. */
 #define BB_READBACK_SLOTS 3
@@ -57,9 +65,12 @@ typedef struct bb_field_desc_t {
                                       shader output (checked, logged) */
     int iterations;                /* spring sweeps K, default 4 */
     float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
-    int cube_res;                  /* depth cube map side in texels, default 64 */
+    int cube_res;                  /* depth cube map side in texels, default 64; the
+                                      array takes 6 * max_objects * res^2 * 16 bytes
+                                      (128 objects at 32: 12 MiB) */
     float recover_time;            /* seconds to recover, default 2 */
-    int max_objects;               /* objects per update, default 8, at most 16 */
+    int max_objects;               /* objects per update, default 8, at most
+                                      BB_MAX_OBJECTS */
     int max_deformed;              /* deformed-mesh pool slots, default 4096 */
     int octree_depth;              /* default 4, at most BB_OCTREE_MAX_DEPTH */
     bb_wind_desc_t wind;           /* see bb_wind_desc_defaults */
@@ -107,12 +118,29 @@ typedef struct bb_stats_t {
     int deformed;         /* pool slots in use (see bb_field_stats: exact or late) */
     int pool_capacity;
     int pool_exhausted;   /* allocations refused so far */
+    int batches;          /* collide passes (object batches) of the last update */
+    int objects_dropped;  /* object hits left out so far: billboards whose
+                             bounding sphere met more than BB_PASS_OBJECTS
+                             objects, summed over the excess objects */
     float generate_ms;    /* GPU time of the make-time generation pass: two
                              GL_TIMESTAMP queries around it; -1 when the GPU
                              has no timestamp counter */
     float make_ms;        /* CPU wall time of bb_field_make (ends after the
                              generation results were read back) */
 } bb_stats_t;
+
+/* Object batches of one collide update (see BB_PASS_OBJECTS): batch b draws
+ * the ranges [range_start[b], range_start[b+1]) of first/count and tests
+ * objects obj[b][0..obj_count[b]) (global indices, ascending). Capacities
+ * grow on demand. */
+typedef struct bb_batch_plan_t {
+    int count, cap, range_count, range_cap;
+    int *range_start;              /* cap + 1 */
+    int *obj_count;                /* cap */
+    int (*obj)[BB_PASS_OBJECTS];   /* cap */
+    GLint *first;                  /* range_cap */
+    GLsizei *size;                 /* range_cap */
+} bb_batch_plan_t;
 
 typedef struct bb_field_t {
     bb_field_desc_t desc; /* resolved */
@@ -134,7 +162,17 @@ typedef struct bb_field_t {
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;
-    float cube_half[16], cube_centre[16][3];
+    float cube_half[BB_MAX_OBJECTS], cube_centre[BB_MAX_OBJECTS][3];
+    /* Collide batches: each billboard's bounding sphere (centre, radius, as
+     * bb_collide.geom computes it) read back once after generation, for
+     * splitting leaves that overlap more than BB_PASS_OBJECTS objects; the
+     * batch plan of one update (draw ranges, per-batch object lists) and the
+     * objects uniform buffer, one aligned region of BB_PASS_OBJECTS entries
+     * per batch (grown on demand). */
+    float (*spheres)[4];
+    bb_batch_plan_t plan;
+    size_t objects_stride, objects_size;
+    int batches_last, dropped, dropped_logged;
     /* Pool header copies (16 bytes each) and the timestamp query written
      * after each copy; busy[k] while slot k's copy is in flight. */
     gfx_buffer_t readback[BB_READBACK_SLOTS];
@@ -150,7 +188,13 @@ typedef struct bb_field_t {
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
 void bb_field_destroy(bb_field_t *f);
 /* Broad phase, cube maps, collision, recovery (timers "bb.cubemaps",
- * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). Never
+ * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). The
+ * colliding leaves are grouped greedily (Morton order) into batches whose
+ * objects number at most BB_PASS_OBJECTS; a leaf whose margin-grown box
+ * meets more is split into runs of billboards by their bounding spheres.
+ * All batches' object entries are uploaded at once (one aligned region
+ * each) and drawn in one transform feedback, each batch with its own
+ * range of the buffer bound. Never
  * waits for the GPU: after GPU work the pool header is copied into a
  * readback slot followed by a timestamp query, and later updates read the
  * slots whose query is available (typically one or two updates late); pool
