@@ -4,10 +4,14 @@
 # copy this file to .bundle/run.sh and run it from the repository root with
 # OUT set to a folder for results:
 #   .bundle/run.sh [SECTION...]
+# (When the working tree holds other uncommitted work, copy the build's
+# shaders/ scenes/ models/ tests/ and this file into .bundle/tree, link
+# .bundle/tree/.bundle to .. and run from .bundle/tree.)
 # Sections (default: tests bench scaling report):
 #   tests        renderer, GPU-vs-CPU tests on NVIDIA
 #   bench        benchmark scenes with the floor (summary per scene)
-#   scaling      tiled vs full-field blades, field 25..200 m
+#   scaling      tiled vs full-field blades, field 25..200 m (memory, counts)
+#   tilescaling  `meadow bench --scaling` (also part of report) -> $OUT/tilescaling.tgz
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
 #                (RESULTS.md, charts' data, stability) -> $OUT/report.tgz
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
@@ -20,9 +24,10 @@ R=$OUT/report.txt
 tests() {
   echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
   for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
-           test_bb_gpu_dynamics test_character_gpu test_app_modes test_hybrid_trail test_hybrid_switch; do
+           test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
+           test_hybrid_switch test_tiles_scaling; do
     echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
-    grep -E "CHECK|max|worst|differ|coverage|mode sw|ok$|FAIL|test_image|^[a-d]\)" /tmp/$t.log | head -10
+    grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)" /tmp/$t.log | head -14
   done
 }
 
@@ -45,6 +50,13 @@ scaling() {
       --out /tmp/s-$mode-$size > /dev/null 2>&1
     echo "-- $mode $size m: $(grep -E 'physics|gpu_memory|blades:|blade_tiles' /tmp/s-$mode-$size/summary.txt | tr -s ' ' | tr '\n' ';')"
   done; done
+}
+
+tilescaling() {
+  echo "== bench --scaling"
+  ( time timeout 300 $M bench --scaling --quiet --out /tmp/tsc ) 2>&1 | tail -8
+  cat /tmp/tsc/scaling.csv
+  tar czf $OUT/tilescaling.tgz -C /tmp tsc 2>/dev/null
 }
 
 report() {
