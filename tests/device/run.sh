@@ -13,7 +13,8 @@
 #   scaling      tiled vs full-field blades, field 25..200 m (memory, counts)
 #   tilescaling  `meadow bench --scaling` (also part of report) -> $OUT/tilescaling.tgz
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
-#                (RESULTS.md, charts' data, stability) -> $OUT/report.tgz
+#                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
+#                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
@@ -63,7 +64,9 @@ report() {
   echo "== bench report"
   ( time timeout 400 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
       --quiet --out /tmp/rep/out ) 2>&1 | tail -20
-  tar czf $OUT/report.tgz -C /tmp/rep docs out 2>/dev/null
+  tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
+  ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
+  ls -la $OUT
 }
 
 naturesweep() {
