@@ -25,7 +25,7 @@ out vec3 g_world;
 out vec3 g_normal;
 out vec3 g_uvl;
 flat out float g_tint;
-flat out vec4 g_overlay; /* idle leaves: never tinted */
+flat out uint g_overlay; /* packUnorm4x8; idle leaves: never tinted */
 
 void main()
 {
@@ -38,7 +38,7 @@ void main()
         g_normal = vec3(0.0, 1.0, 0.0);
         g_uvl = vec3(0.0);
         g_tint = 0.0;
-        g_overlay = vec4(0.0);
+        g_overlay = 0u;
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); /* beyond the far plane */
         return;
     }
@@ -49,7 +49,7 @@ void main()
     vec3 shift = bb_slope_shift(p, ta, tb);
     vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb) + shift);
     g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
-    g_overlay = vec4(0.0);
+    g_overlay = 0u;
     g_world = pos;
     g_normal = cross(right, up);
     g_uvl = vec3(float(c & 1), 1.0 - float(c >> 1), float(p.layer));

@@ -16,7 +16,7 @@ in vec3 g_world;
 in vec3 g_normal;
 in vec3 g_uvl;
 flat in float g_tint;
-flat in vec4 g_overlay;
+flat in uint g_overlay; /* packUnorm4x8 */
 
 out vec4 frag;
 
@@ -28,7 +28,8 @@ void main()
     vec3 n = normalize(g_normal);
     if (dot(n, to_eye) < 0.0) n = -n;
     vec3 c = shade(tex.rgb * g_tint, n, u_sun, mix(0.45, 1.0, 1.0 - g_uvl.y));
-    c = mix(c, g_overlay.rgb, g_overlay.a);
+    vec4 overlay = unpackUnorm4x8(g_overlay);
+    c = mix(c, overlay.rgb, overlay.a);
     c = apply_fog(c, dist, -to_eye / max(dist, 1e-6));
     float a = tex.a;
     if (u_fade_end > 0.0) {

@@ -27,7 +27,8 @@ out vec3 g_world;
 out vec3 g_normal;
 out vec3 g_uvl; /* u, v (0 at the top of the clump image), layer */
 flat out float g_tint;
-flat out vec4 g_overlay; /* debug overlay (u_overlay 1: colliding red, recovering yellow) */
+flat out uint g_overlay; /* debug overlay, packUnorm4x8 (u_overlay 1: colliding red, recovering yellow);
+                          one component: the vertex is 15 (bb.c checks the GPU's limit) */
 uniform int u_overlay;
 
 void put(vec3 pos, vec3 n, float u, float h, float layer)
@@ -47,9 +48,10 @@ void main()
     bb_frame(p, right, up);
     float layer = float(p.layer);
     g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
-    g_overlay = u_overlay != 1 ? vec4(0.0)
-              : (p.state == BB_STATE_COLLIDING ? vec4(1.0, 0.1, 0.1, 0.75)
-                                               : (p.state == BB_STATE_RECOVERING ? vec4(1.0, 0.85, 0.1, 0.75) : vec4(0.0)));
+    g_overlay = packUnorm4x8(u_overlay != 1 ? vec4(0.0)
+                           : (p.state == BB_STATE_COLLIDING ? vec4(1.0, 0.1, 0.1, 0.75)
+                                                            : (p.state == BB_STATE_RECOVERING ? vec4(1.0, 0.85, 0.1, 0.75)
+                                                                                              : vec4(0.0))));
     if (p.pad0 == BB_NO_SLOT) {
         vec3 n = cross(right, up);
         vec3 a, b, c, d;

@@ -387,6 +387,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &max_verts);
     glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &max_comps);
     int render_verts = (m - 1) * 2 * n > 4 ? (m - 1) * 2 * n : 4;
+    /* bb_render.geom's vertex: g_world, g_normal, g_uvl (3 each), g_tint,
+     * g_overlay (1 each) and gl_Position (4) = 15 components. */
     if (render_verts > max_verts || render_verts * 15 > max_comps) {
         core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components); "
                        "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 15,
