@@ -13,7 +13,8 @@
  *      the time at 1x;
  *   b) fixed field (32 m), 1, 2, 4, 8, 16 balls, each on its own tile:
  *      slots = balls, and the time grows about linearly with active tiles:
- *      least-squares R^2 >= 0.9 and time(16) >= 4 time(1). */
+ *      least-squares R^2 >= 0.9 with a positive slope, and on llvmpipe
+ *      time(16) >= 4 time(1). */
 #include "blade/blade_tiles.h"
 #include "platform/plat.h"
 #include "test.h"
@@ -141,8 +142,11 @@ int main(void)
     double slope = cxy / vx, r2 = vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
     printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n",
            (sy - slope * sx) / 5, slope, r2, y[4] / y[0]);
-    CHECK(r2 >= 0.9);
-    CHECK(y[4] >= 4.0 * y[0]);
+    CHECK(r2 >= 0.9 && slope > 0.0);
+    /* Wall time on llvmpipe is the work itself; a GPU's timer adds a
+     * dispatch floor that 131k blades do not outweigh (H100: 0.022 ms +
+     * 0.0005 ms per tile), so there only the line is checked. */
+    if (!gpu_timers) CHECK(y[4] >= 4.0 * y[0]);
 
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
