@@ -54,6 +54,16 @@ static inline bb_object_t test_object(const test_mesh_t *m, const float centre[3
     return o;
 }
 
+/* The collision tests' field: an 8 m heightfield (seed 3) and 36
+ * billboards/m^2 in an octree of depth 3, small layout textures. */
+static inline bb_field_desc_t test_field_desc(terrain_mesh_t *terrain, int cube_res, int max_objects)
+{
+    CHECK(terrain_make_heightfield(terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 3));
+    return (bb_field_desc_t){.terrain = terrain, .seed = 99, .density = 36, .octree_depth = 3,
+                             .cube_res = cube_res, .max_objects = max_objects,
+                             .layout = {.size = 32, .clump_size = 32}};
+}
+
 /* CPU twin of a billboard's mesh as the collision pass starts it: the rest
  * quad, moved to the wind pose at `time`. */
 static inline void test_cpu_mesh(const bb_field_t *f, const bb_point_t *p, float time, bb_mesh_t *mesh)

@@ -75,9 +75,7 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 3));
-    bb_field_desc_t desc = {.terrain = &terrain, .seed = 99, .density = 36, .octree_depth = 3, .cube_res = RES,
-                            .layout = {.size = 32, .clump_size = 32}};
+    bb_field_desc_t desc = test_field_desc(&terrain, RES, 0);
     const float radius = 0.5f, time = 0.7f;
     float centre[3] = {0.3f, 0, -0.2f};
     centre[1] = sphere_y(&terrain, centre[0], centre[2]);

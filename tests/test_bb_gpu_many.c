@@ -26,9 +26,7 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 3));
-    bb_field_desc_t desc = {.terrain = &terrain, .seed = 99, .density = 36, .octree_depth = 3, .cube_res = RES,
-                            .max_objects = OBJECTS, .layout = {.size = 32, .clump_size = 32}};
+    bb_field_desc_t desc = test_field_desc(&terrain, RES, OBJECTS);
     const float time = 0.7f;
     float centre[OBJECTS][3], radius[OBJECTS];
     for (int k = 0; k < OBJECTS; k++) {
