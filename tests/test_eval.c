@@ -1,7 +1,9 @@
-/* test_eval: SSIM and MAD on known images, heatmap, Pareto front. */
+/* test_eval: SSIM and MAD on known images, heatmap, Pareto front, least
+ * squares line. */
 #include "eval/eval.h"
 #include "test.h"
 
+#include <math.h>
 #include <string.h>
 
 int main(void)
@@ -27,6 +29,12 @@ int main(void)
     bool f[5];
     eval_pareto(x, y, 5, f);
     CHECK(f[0] && f[1] && f[2] && !f[3] && f[4]);
+    double slope, icpt, lx[4] = {1, 2, 4, 8}, ly[4] = {2.5, 4.5, 8.5, 16.5}, noisy[4] = {3, 4, 9, 16};
+    CHECK(fabs(eval_linear_fit(lx, ly, 4, &slope, &icpt) - 1.0) < 1e-12 && fabs(slope - 2.0) < 1e-12 &&
+          fabs(icpt - 0.5) < 1e-12);
+    double r2 = eval_linear_fit(lx, noisy, 4, &slope, &icpt);
+    CHECK(r2 > 0.9 && r2 < 1.0 && slope > 1.5 && slope < 2.0);
+    CHECK(eval_linear_fit(lx, (double[4]){1, 1, 1, 1}, 4, &slope, &icpt) == 0.0 && slope == 0.0 && icpt == 1.0);
     eval_text_t t = {0};
     eval_text_printf(&t, "a,%d\n", 1);
     eval_text_printf(&t, "%s", "b,2\n");

@@ -16,6 +16,7 @@
  *      least-squares R^2 >= 0.9 with a positive slope, and on llvmpipe
  *      time(16) >= 4 time(1). */
 #include "blade/blade_tiles.h"
+#include "eval/eval.h"
 #include "platform/plat.h"
 #include "test.h"
 #include "test_gl.h"
@@ -124,7 +125,7 @@ int main(void)
 
     /* b) fixed field, 1..16 active tiles */
     static const int balls[5] = {1, 2, 4, 8, 16};
-    double x[5], y[5], sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    double x[5], y[5];
     for (int i = 0; i < 5; i++) {
         int slots;
         uint32_t blades;
@@ -132,16 +133,10 @@ int main(void)
         x[i] = slots;
         printf("b) %2d balls: %2d slots, %6u blades simulated, %.4f ms per update\n", balls[i], slots, blades, y[i]);
         CHECK(slots == balls[i]);
-        sx += x[i];
-        sy += y[i];
-        sxx += x[i] * x[i];
-        sxy += x[i] * y[i];
-        syy += y[i] * y[i];
     }
-    double vx = 5 * sxx - sx * sx, vy = 5 * syy - sy * sy, cxy = 5 * sxy - sx * sy;
-    double slope = cxy / vx, r2 = vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
-    printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n",
-           (sy - slope * sx) / 5, slope, r2, y[4] / y[0]);
+    double slope, intercept, r2 = eval_linear_fit(x, y, 5, &slope, &intercept);
+    printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n", intercept,
+           slope, r2, y[4] / y[0]);
     CHECK(r2 >= 0.9 && slope > 0.0);
     /* Wall time on llvmpipe is the work itself; a GPU's timer adds a
      * dispatch floor that 131k blades do not outweigh (H100: 0.022 ms +

@@ -231,24 +231,17 @@ static double y_of(const bench_chart_t *ch, const app_metrics_t *m, double image
 
 static void write_chart(const char *out, const bench_chart_t *ch)
 {
-    char path[1200], data[1200];
+    char name[64], data[1200], body[4096];
+    snprintf(name, sizeof name, "bench_%s", ch->name);
     snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
-    eval_text_t g = {0};
-    for (int term = 0; term < 2; term++) {
-        eval_text_printf(&g, term ? "set terminal svg size 800,500 noenhanced\nset output '%s/bench_%s.svg'\n"
-                                  : "set terminal pngcairo size 800,500 noenhanced\nset output '%s/bench_%s.png'\n",
-                         out, ch->name);
-        eval_text_printf(&g,
-                         "set title '%s: speed vs accuracy'\nset xlabel 'GPU ms per frame'\nset ylabel '%s'\n"
-                         "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
-                         "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
-                         "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
-                         "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'\n",
-                         ch->name, ch->ylabel, data, data);
-    }
-    snprintf(path, sizeof path, "%s/bench_%s.gp", out, ch->name);
-    if (eval_text_write(&g, path)) eval_gnuplot(path);
-    eval_text_free(&g);
+    snprintf(body, sizeof body,
+             "set title '%s: speed vs accuracy'\nset xlabel 'GPU ms per frame'\nset ylabel '%s'\n"
+             "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
+             "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
+             "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
+             "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'",
+             ch->name, ch->ylabel, data, data);
+    eval_gnuplot_chart(out, name, body);
 }
 
 typedef struct bench_run_t {

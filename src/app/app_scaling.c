@@ -111,19 +111,12 @@ static int measure(const app_options_t *o, scaling_run_t *r)
 
 static void write_chart(const char *out, const char *name, const char *title, const char *xlabel, const char *plot)
 {
-    char path[1200];
-    eval_text_t g = {0};
-    for (int term = 0; term < 2; term++) {
-        eval_text_printf(&g, term ? "set terminal svg size 800,500 noenhanced\nset output '%s/%s.svg'\n"
-                                  : "set terminal pngcairo size 800,500 noenhanced\nset output '%s/%s.png'\n",
-                         out, name);
-        eval_text_printf(&g, "set title '%s'\nset xlabel '%s'\nset ylabel 'physics GPU ms per frame (median)'\n"
-                             "set grid\nset key top left\nset yrange [0:*]\n%s\n",
-                         title, xlabel, plot);
-    }
-    snprintf(path, sizeof path, "%s/%s.gp", out, name);
-    if (eval_text_write(&g, path)) eval_gnuplot(path);
-    eval_text_free(&g);
+    char body[4096];
+    snprintf(body, sizeof body,
+             "set title '%s'\nset xlabel '%s'\nset ylabel 'physics GPU ms per frame (median)'\n"
+             "set grid\nset key top left\nset yrange [0:*]\n%s",
+             title, xlabel, plot);
+    eval_gnuplot_chart(out, name, body);
 }
 
 int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md)
@@ -168,19 +161,12 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     if (rc) return rc;
 
     /* Least squares physics_ms = intercept + slope * active tiles (slots). */
-    double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0, n = res->active_count;
+    double xs[APP_SCALING_MAX], ys[APP_SCALING_MAX];
     for (int i = 0; i < res->active_count; i++) {
-        double x = res->active[i].slots, y = res->active[i].physics_ms;
-        sx += x;
-        sy += y;
-        sxx += x * x;
-        sxy += x * y;
-        syy += y * y;
+        xs[i] = res->active[i].slots;
+        ys[i] = res->active[i].physics_ms;
     }
-    double vx = n * sxx - sx * sx, vy = n * syy - sy * sy, cxy = n * sxy - sx * sy;
-    res->slope = vx > 0 ? cxy / vx : 0.0;
-    res->intercept = (sy - res->slope * sx) / n;
-    res->r2 = vx > 0 && vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
+    res->r2 = eval_linear_fit(xs, ys, res->active_count, &res->slope, &res->intercept);
 
     char path[1200];
     eval_text_t csv = {0}, fd = {0}, ad = {0};
@@ -188,6 +174,14 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
                            "full_physics_ms\n");
     eval_text_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
     eval_text_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
+    if (md)
+        eval_text_printf(md,
+                         "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
+                         "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
+                         "blades/m^2 in %g m tiles.\n\n"
+                         "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
+                         "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                         res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
     for (int s = 0; s < 2; s++) {
         int cnt = s ? res->active_count : res->field_count;
         for (int i = 0; i < cnt; i++) {
@@ -200,8 +194,16 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
                                  res->intercept + res->slope * p->slots, p->balls);
             else
                 eval_text_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
+            if (!md) continue;
+            char full[32] = "-";
+            if (p->full_ms >= 0) snprintf(full, sizeof full, "%.4f", p->full_ms);
+            eval_text_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
+                             p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
         }
     }
+    if (md)
+        eval_text_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
+                         res->intercept, res->slope, res->r2);
     const char *names[3] = {"scaling.csv", "scaling_field.dat", "scaling_active.dat"};
     eval_text_t *texts[3] = {&csv, &fd, &ad};
     for (int k = 0; k < 3; k++) {
@@ -223,28 +225,6 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     write_chart(out, "scaling_active", "simulation vs active tiles (fixed field)", "active tiles (slots simulated)",
                 plot);
 
-    if (md) {
-        eval_text_printf(md,
-                         "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
-                         "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
-                         "blades/m^2 in %g m tiles.\n\n"
-                         "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
-                         "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                         res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
-        for (int s = 0; s < 2; s++) {
-            int cnt = s ? res->active_count : res->field_count;
-            for (int i = 0; i < cnt; i++) {
-                const app_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
-                double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
-                char full[32] = "-";
-                if (p->full_ms >= 0) snprintf(full, sizeof full, "%.4f", p->full_ms);
-                eval_text_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
-                                 p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
-            }
-        }
-        eval_text_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
-                         res->intercept, res->slope, res->r2);
-    }
     core_log_info("scaling: wrote %s/scaling.csv and charts (tiles.physics %.4f -> %.4f ms from 1x to %gx area; "
                   "%.5f ms per active tile, R^2 %.3f)",
                   out, res->field[0].physics_ms, res->field[res->field_count - 1].physics_ms,

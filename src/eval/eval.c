@@ -81,6 +81,22 @@ void eval_pareto(const double *x, const double *y, int n, bool *on_front)
     }
 }
 
+double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    for (int i = 0; i < n; i++) {
+        sx += x[i];
+        sy += y[i];
+        sxx += x[i] * x[i];
+        sxy += x[i] * y[i];
+        syy += y[i] * y[i];
+    }
+    double vx = n * sxx - sx * sx, vy = n * syy - sy * sy, cxy = n * sxy - sx * sy;
+    *slope = vx > 0 ? cxy / vx : 0.0;
+    *intercept = n > 0 ? (sy - *slope * sx) / n : 0.0;
+    return vx > 0 && vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
+}
+
 void eval_text_printf(eval_text_t *t, const char *fmt, ...)
 {
     va_list ap;
@@ -130,4 +146,17 @@ bool eval_gnuplot(const char *script_path)
     int rc = pclose(p);
     if (rc != 0) core_log_warn("gnuplot %s failed (exit %d): charts missing", script_path, rc);
     return rc == 0;
+}
+
+bool eval_gnuplot_chart(const char *dir, const char *name, const char *body)
+{
+    char path[1200];
+    eval_text_t g = {0};
+    eval_text_printf(&g, "set terminal pngcairo size 800,500 noenhanced\nset output '%s/%s.png'\n%s\n", dir, name,
+                     body);
+    eval_text_printf(&g, "set terminal svg size 800,500 noenhanced\nset output '%s/%s.svg'\n%s\n", dir, name, body);
+    snprintf(path, sizeof path, "%s/%s.gp", dir, name);
+    bool ok = eval_text_write(&g, path) && eval_gnuplot(path);
+    eval_text_free(&g);
+    return ok;
 }

@@ -20,6 +20,9 @@ bool eval_image_heatmap(const core_image_t *a, const core_image_t *b, int full_s
 
 /* Marks the Pareto-optimal points (minimise both x and y). */
 void eval_pareto(const double *x, const double *y, int n, bool *on_front);
+/* Least squares line y = intercept + slope x over n points; returns R^2
+ * (0 when x or y does not vary, slope then 0). */
+double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept);
 
 /* Text accumulated in memory, then written atomically. */
 typedef struct eval_text_t {
@@ -33,5 +36,9 @@ void eval_text_free(eval_text_t *t);
 /* Runs gnuplot on a script file (PNG + SVG terminals are the script's
  * business). Returns false, with a warning, when gnuplot is missing or fails. */
 bool eval_gnuplot(const char *script_path);
+/* A chart as dir/name.png and dir/name.svg (800 x 500): writes dir/name.gp
+ * with `body` (settings and the plot command) under each terminal, then
+ * runs it through eval_gnuplot. */
+bool eval_gnuplot_chart(const char *dir, const char *name, const char *body);
 
 #endif
