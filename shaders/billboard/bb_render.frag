@@ -4,7 +4,7 @@
  * alpha-to-coverage without sorting. The hybrid distance fade multiplies
  * alpha by a ramp from fade_start to fade_end plus an interleaved-gradient
  * dither, so the MSAA coverage cross-fades instead of blending. */
-#include "common/lighting.glsl"
+#include "common/grass_shade.glsl"
 
 uniform sampler2DArray u_clumps;
 uniform vec3 u_camera;
@@ -23,14 +23,8 @@ out vec4 frag;
 void main()
 {
     vec4 tex = texture(u_clumps, g_uvl);
-    vec3 to_eye = u_camera - g_world;
-    float dist = length(to_eye);
-    vec3 n = normalize(g_normal);
-    if (dot(n, to_eye) < 0.0) n = -n;
-    vec3 c = shade(tex.rgb * g_tint, n, u_sun, mix(0.45, 1.0, 1.0 - g_uvl.y));
-    vec4 overlay = unpackUnorm4x8(g_overlay);
-    c = mix(c, overlay.rgb, overlay.a);
-    c = apply_fog(c, dist, -to_eye / max(dist, 1e-6));
+    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
+    float dist = distance(u_camera, g_world);
     float a = tex.a;
     if (u_fade_end > 0.0) {
         float fade = clamp((dist - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);

@@ -4,7 +4,7 @@
  * u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of the pixel) and
  * turned into MSAA coverage by alpha-to-coverage (enabled by the host). */
 #include "common/hash.glsl"
-#include "common/lighting.glsl"
+#include "common/grass_shade.glsl"
 
 in vec3 f_pos;
 in vec3 f_normal;
@@ -32,14 +32,11 @@ void main()
         alpha = clamp(alpha + dither * 0.25, 0.0, 1.0);
         if (alpha <= 0.0) discard;
     }
-    vec3 view = u_camera - f_pos;
-    vec3 n = normalize(f_normal);
-    if (dot(n, view) < 0.0) n = -n;
-    vec3 albedo = mix(u_albedo_root, u_albedo_tip, f_v);
-    vec3 c = shade(albedo, n, u_sun, mix(0.45, 1.0, f_v));
 #ifdef BLADE_OVERLAY
-    c = mix(c, f_overlay.rgb, f_overlay.a);
+    vec4 overlay = f_overlay;
+#else
+    vec4 overlay = vec4(0.0);
 #endif
-    c = apply_fog(c, length(view), normalize(-view));
+    vec3 c = blade_shade(f_pos, f_normal, f_v, u_camera, u_sun, u_albedo_root, u_albedo_tip, overlay);
     o_color = vec4(c, alpha);
 }

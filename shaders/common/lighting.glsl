@@ -1,5 +1,7 @@
 // lighting.glsl: the sun, sky ambient and distance fog shared by terrain,
 // grass and characters, so every representation is lit the same way.
+#ifndef LIGHTING_GLSL
+#define LIGHTING_GLSL
 const vec3 SKY_ZENITH = vec3(0.36, 0.55, 0.85);
 const vec3 SKY_HORIZON = vec3(0.78, 0.85, 0.92);
 const vec3 SUN_COLOR = vec3(1.0, 0.95, 0.85);
@@ -24,3 +26,5 @@ vec3 apply_fog(vec3 c, float dist, vec3 view_dir)
     float f = 1.0 - exp(-dist * 0.006);
     return mix(c, sky_color(view_dir), clamp(f, 0.0, 0.6));
 }
+
+#endif

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene.h"
+
 void app_print_usage(void)
 {
     printf("usage: meadow [bench|compare] [options]\n"
@@ -22,6 +24,8 @@ void app_print_usage(void)
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
            "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
+           "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
+           "                        of the two, measured at start-up); default: the scene's (hw)\n"
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
@@ -33,7 +37,8 @@ void app_print_usage(void)
            "  --quiet               only warnings and errors\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
-           "      F wireframe, 1/2/3 billboard/blade/hybrid, O overlays (state, LOD, collision), H HUD, Esc quit\n",
+           "      F wireframe, 1/2/3 billboard/blade/hybrid, R hardware/compute raster, O overlays (state, LOD,\n"
+           "      collision), H HUD, Esc quit\n",
            APP_MIN_SIZE, APP_MAX_SIZE);
 }
 
@@ -169,6 +174,14 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
                 snprintf(err, err_size, "--blade-render '%s': expected pull or tess", v);
                 return 2;
             }
+        } else if (strcmp(a, "--raster") == 0) {
+            NEED_VALUE();
+            scene_raster_t r;
+            if (!scene_raster_parse(v, &r)) {
+                snprintf(err, err_size, "--raster '%s': expected hw, compute or auto", v);
+                return 2;
+            }
+            o->raster = 1 + (int)r;
         } else if (strcmp(a, "--mode") == 0) {
             NEED_VALUE();
             if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;

@@ -33,6 +33,10 @@ static void handle_keys(app_t *app, float real_dt)
     if (plat_key_pressed(PLAT_KEY_F)) app->wireframe = !app->wireframe;
     if (plat_key_pressed(PLAT_KEY_H)) app->hud = !app->hud;
     if (plat_key_pressed(PLAT_KEY_O)) app->overlay = (app->overlay + 1) % 4;
+    if (plat_key_pressed(PLAT_KEY_R)) {
+        app_world_set_raster(&app->world, !app->world.raster_compute);
+        core_log_info("raster: %s", scene_raster_name(app->world.scene.raster));
+    }
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     static const plat_key_t mode_keys[3] = {PLAT_KEY_1, PLAT_KEY_2, PLAT_KEY_3};
     for (int i = 0; i < 3; i++)
@@ -58,7 +62,8 @@ static void draw_hud(const app_t *app, double sim_time)
     char text[2048];
     static const char *overlays[4] = {"", "  [overlay: tile/leaf state]", "  [overlay: LOD]",
                                       "  [overlay: collision strength]"};
-    int n = snprintf(text, sizeof text, "meadow  %s  %.2f ms/frame  t=%.2fs%s%s\n", scene_mode_name(app->world.scene.mode),
+    int n = snprintf(text, sizeof text, "meadow  %s  %s raster  %.2f ms/frame  t=%.2fs%s%s\n",
+                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw",
                      app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "", overlays[app->overlay]);
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof text - 64; i++)
         n += snprintf(text + n, sizeof text - (size_t)n, "%-12s %7.3f ms\n", gfx_timer_name(i), gfx_timer_last_ms(i));
@@ -89,13 +94,14 @@ static void write_summary(app_t *app, double wall_s)
                      "gl_version: %s\n"
                      "platform: %s\n"
                      "scene: %s\n"
-                     "mode: %s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
+                     "mode: %s\nraster: %s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
                      "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
                      "screenshots: %d\n"
                      "gpu passes (median ms over last <=256 frames, mean ms):\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
-                     scene_mode_name(app->world.scene.mode), app->world.scene.seed, app->frames, app->target.w, app->target.h,
+                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw",
+                     app->world.scene.seed, app->frames, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written);
     double frame_gpu = 0;

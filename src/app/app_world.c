@@ -35,6 +35,8 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     s->mode = mode_from_cli(o->mode, s->mode);
     w->mode = s->mode;
     w->blade_render = o->blade_render;
+    if (o->raster) s->raster = (scene_raster_t)(o->raster - 1);
+    w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
     w->character_override = o->character;
     w->clip_override = o->clip;
     if (s->terrain.type == TERRAIN_MESH) {
@@ -490,6 +492,20 @@ void app_world_update(app_world_t *w, float t, float dt)
     }
 }
 
+/* The visibility buffer at the target's size (made or remade here). */
+static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
+{
+    raster_t *r = &w->raster;
+    if (r->vis.id && r->desc.w == target->w && r->desc.h == target->h) return r;
+    raster_destroy(r);
+    if (!raster_make(r, &(raster_desc_t){.w = target->w, .h = target->h})) {
+        core_log_warn("compute rasterizer unavailable; drawing grass with the hardware path");
+        w->raster_compute = false;
+        return NULL;
+    }
+    return r;
+}
+
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
@@ -500,16 +516,20 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
     float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
     glm_vec3_copy((float *)v->camera, w->camera);
+    raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
+    /* raster_begin resolves the opaque depth (also read by occlusion culling). */
+    if (raster) raster_begin(raster, target);
     if (w->have_tiles && uses_tiles(w)) {
         blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi};
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
         blade_tiles_set_overlay(&w->tiles, v->overlay);
-        blade_tiles_draw(&w->tiles, &dd);
+        if (raster) blade_tiles_raster(&w->tiles, raster, &dd);
+        else blade_tiles_draw(&w->tiles, &dd);
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
-        gfx_target_resolve(target);
+        if (!raster) gfx_target_resolve(target);
         blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
                                 .distance_levels = w->tuning.distance_levels,
                                 .disable = w->reference ? 0xffu : w->tuning.cull_disable};
@@ -526,7 +546,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             dd.fade_start = fade_lo;
             dd.fade_end = fade_hi;
         }
-        blade_gpu_draw(&w->blades, &dd);
+        if (raster) blade_gpu_raster(&w->blades, raster, &dd);
+        else blade_gpu_draw(&w->blades, &dd);
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1};
@@ -543,9 +564,17 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             d.slope_grid = w->tiles.slope_grid;
             d.slope_recover = w->tiles.desc.slope_recover;
         }
-        bb_field_draw(&w->bb, &d);
+        if (raster) bb_field_raster(&w->bb, raster, &d);
+        else bb_field_draw(&w->bb, &d);
     }
+    if (raster) raster_end(raster, target);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void app_world_set_raster(app_world_t *w, bool compute)
+{
+    w->raster_compute = compute;
+    w->scene.raster = compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW;
 }
 
 void app_world_set_mode(app_world_t *w, scene_mode_t mode)
@@ -566,6 +595,7 @@ void app_world_destroy(app_world_t *w)
     if (w->have_chars) character_set_destroy(&w->chars);
     w->have_chars = false;
     w->have_bb = w->have_blades = false;
+    raster_destroy(&w->raster);
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);

@@ -14,6 +14,7 @@
 #include "blade/blade.h"
 #include "blade/blade_tiles.h"
 #include "character/character.h"
+#include "raster/raster.h"
 
 /* Per-frame view, shared by every draw. */
 typedef struct app_view_t {
@@ -96,6 +97,11 @@ typedef struct app_world_t {
     blade_env_t blade_env; /* winds fixed at load; spheres per update */
     bool warned_spheres;
     int blade_render; /* app_options_t.blade_render */
+    /* Grass through the compute rasterizer (scene "raster" compute, or auto
+     * when it measured faster); the visibility buffer follows the target's
+     * size. Wireframe and debug overlays always use the hardware path. */
+    bool raster_compute;
+    raster_t raster;
     /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
      * per-blade state only for tiles objects touch. */
     blade_tiles_t tiles;
@@ -120,6 +126,8 @@ void app_world_update(app_world_t *w, float t, float dt);
 /* Draws into `target` (bound by the caller): opaque objects first, then
  * their depth is resolved for the blades' occlusion culling, then grass. */
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe);
+/* Switches between the hardware and the compute rasterizer at run time. */
+void app_world_set_raster(app_world_t *w, bool compute);
 /* Switches the grass mode at run time, keeping the simulation state. */
 void app_world_set_mode(app_world_t *w, scene_mode_t mode);
 void app_world_destroy(app_world_t *w);

@@ -433,8 +433,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     float hgrid[5];
     if (!upload_heights(f, t, hgrid)) goto fail;
 
-    char defines[256];
-    snprintf(defines, sizeof defines,
+    char *defines = f->defines;
+    snprintf(f->defines, sizeof f->defines,
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
              "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n",
              n, m, pass_objects(f), tile, tile * tile, render_verts);
@@ -536,6 +536,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->collide_prog);
     gfx_program_destroy(&f->recover_prog);
     gfx_program_destroy(&f->render_prog);
+    raster_program_destroy(&f->raster_prog);
     gfx_program_destroy(&f->quad_prog);
     gfx_program_destroy(&f->cube_prog);
     gfx_program_destroy(&f->slope_prog);
@@ -1036,6 +1037,37 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     gfx_timer_end();
     glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glBindVertexArray(0);
+}
+
+typedef struct raster_bind_t {
+    const bb_field_t *f;
+    const bb_draw_desc_t *dd;
+} raster_bind_t;
+
+static void bind_raster(gfx_program_t p, void *user)
+{
+    const raster_bind_t *b = user;
+    render_uniforms(b->f, p, b->dd);
+    glUniform4fv(loc(p, "u_planes"), 6, &b->dd->planes[0][0]);
+    glUniform1ui(loc(p, "u_count"), (GLuint)b->f->billboards);
+    glBindTextureUnit(0, b->f->clumps.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b->f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b->f->points.id);
+}
+
+void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
+{
+    gfx_timer_begin("bb.raster");
+    raster_program_t *prog = &f->raster_prog;
+    if (prog->prim.id && prog->atomic64 != r->atomic64) raster_program_destroy(prog);
+    if (!prog->prim.id) *prog = raster_program_make(r, "billboard/bb_raster.comp", f->defines, "bb.raster");
+    if (prog->prim.id && f->billboards > 0) {
+        raster_bind_t b = {.f = f, .dd = dd};
+        raster_draw(r, prog, &(raster_items_t){.count = (uint32_t)f->billboards}, bind_raster, &b);
+    }
+    glBindTextureUnit(0, 0);
+    gfx_timer_end();
 }
 
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)

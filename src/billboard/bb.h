@@ -36,6 +36,7 @@
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
 #include "gfx/gfx.h"
+#include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
 #include "scene/terrain.h"
 
@@ -159,6 +160,8 @@ typedef struct bb_field_t {
     gfx_buffer_t objects, counts;
     GLuint points_vao, empty_vao, tf;
     gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog, slope_prog;
+    char defines[256];          /* the programs' mesh size and limits */
+    raster_program_t raster_prog; /* made on the first bb_field_raster */
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;
@@ -203,6 +206,11 @@ void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float ti
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
  * timer "bb.render". */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
+/* The same billboards as bb_field_draw, drawn by the compute rasterizer
+ * (timer "bb.raster"): every billboard is tested against the frustum on
+ * the GPU (no octree walk), coverage comes from r's supersamples instead
+ * of alpha-to-coverage. Between raster_begin and raster_end. */
+void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
 /* wait: reads the pool header now (blocks until the last update finished;
  * exact, for tests). !wait: pool numbers from the newest readback that
  * already reached the CPU (no stall, a few updates late; HUDs). */

@@ -134,6 +134,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
         if (g->readback[i].id) gfx_buffer_destroy(&g->readback[i]);
         if (g->readback_query[i]) gfx_query_destroy(&g->readback_query[i]);
     }
+    raster_program_destroy(&g->raster);
     gfx_program_t *progs[] = {&g->physics, &g->cull, &g->draw_tess, &g->draw_pull};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
@@ -341,15 +342,8 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
     return g->stats;
 }
 
-void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
+void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc)
 {
-    gfx_timer_begin("blade.draw");
-    if (!g->culled_once) {
-        gfx_timer_end();
-        return;
-    }
-    bool pull = g->desc.path == BLADE_PATH_PULLING;
-    gfx_program_t p = pull ? g->draw_pull : g->draw_tess;
     float sun[3] = {desc->sun[0], desc->sun[1], desc->sun[2]};
     float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
     if (sl < 1e-6f) {
@@ -361,20 +355,40 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
     static const float root_def[3] = {0.10f, 0.25f, 0.05f}, tip_def[3] = {0.45f, 0.65f, 0.20f};
     if (root[0] == 0.0f && root[1] == 0.0f && root[2] == 0.0f) root = root_def;
     if (tip[0] == 0.0f && tip[1] == 0.0f && tip[2] == 0.0f) tip = tip_def;
-    bool fade = desc->fade_end > desc->fade_start;
-
-    glUseProgram(p.id);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
     glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->camera);
     glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
     glUniform2f(gfx_uniform(p, "u_fade"), desc->fade_start, desc->fade_end);
     glUniform3fv(gfx_uniform(p, "u_albedo_root"), 1, root);
     glUniform3fv(gfx_uniform(p, "u_albedo_tip"), 1, tip);
-    glUniform1i(gfx_uniform(p, "u_shape"), (int)g->desc.shape);
-    glUniform1f(gfx_uniform(p, "u_displacement"), g->desc.displacement);
-    glUniform1f(gfx_uniform(p, "u_width_correction"), g->desc.width_correction);
-    glUniform1i(gfx_uniform(p, "u_max_level"), g->desc.max_tess_level);
-    glUniform1f(gfx_uniform(p, "u_lod_distance"), g->desc.lod_distance);
+    glUniform1i(gfx_uniform(p, "u_shape"), (int)surf->shape);
+    glUniform1f(gfx_uniform(p, "u_displacement"), surf->displacement);
+    glUniform1f(gfx_uniform(p, "u_width_correction"), surf->width_correction);
+    glUniform1i(gfx_uniform(p, "u_max_level"), surf->max_level);
+    glUniform1f(gfx_uniform(p, "u_lod_distance"), surf->lod_distance);
+}
+
+static blade_surface_t surface_of(const blade_gpu_desc_t *d)
+{
+    return (blade_surface_t){.shape = d->shape, .displacement = d->displacement,
+                             .width_correction = d->width_correction, .max_level = d->max_tess_level,
+                             .lod_distance = d->lod_distance};
+}
+
+void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
+{
+    gfx_timer_begin("blade.draw");
+    if (!g->culled_once) {
+        gfx_timer_end();
+        return;
+    }
+    bool pull = g->desc.path == BLADE_PATH_PULLING;
+    gfx_program_t p = pull ? g->draw_pull : g->draw_tess;
+    bool fade = desc->fade_end > desc->fade_start;
+
+    glUseProgram(p.id);
+    blade_surface_t surf = surface_of(&g->desc);
+    blade_set_surface_uniforms(p, &surf, desc);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->survivors.id);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, g->command.id);
@@ -391,6 +405,49 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
     if (fade) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gfx_timer_end();
+}
+
+typedef struct raster_bind_t {
+    const blade_surface_t *surf;
+    const blade_draw_desc_t *draw;
+    gfx_buffer_t blades, ids, count;
+    uint32_t count_index;
+} raster_bind_t;
+
+static void bind_raster(gfx_program_t p, void *user)
+{
+    const raster_bind_t *b = user;
+    blade_set_surface_uniforms(p, b->surf, b->draw);
+    glUniform1i(gfx_uniform(p, "u_use_ids"), b->ids.id != 0);
+    glUniform1ui(gfx_uniform(p, "u_count_index"), b->count_index);
+    glUniform1ui(gfx_uniform(p, "u_count_max"), 0xffffffffu);
+    glUniform1f(gfx_uniform(p, "u_segment_samples"), BLADE_RASTER_SEGMENT_SAMPLES);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b->ids.id ? b->ids.id : b->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->count.id);
+}
+
+void blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
+                       const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
+                       uint32_t count_index, uint32_t count_max)
+{
+    if (prog->prim.id && prog->atomic64 != r->atomic64) raster_program_destroy(prog);
+    if (!prog->prim.id) *prog = raster_program_make(r, "blade/blade_raster.comp", NULL, "blade.raster");
+    if (!prog->prim.id) return;
+    raster_bind_t b = {.surf = surf, .draw = desc, .blades = blades, .ids = ids, .count = count,
+                       .count_index = count_index};
+    raster_items_t items = {.count_buffer = count, .count_index = count_index, .count_max = count_max};
+    raster_draw(r, prog, &items, bind_raster, &b);
+}
+
+void blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc)
+{
+    gfx_timer_begin("blade.raster");
+    blade_surface_t surf = surface_of(&g->desc);
+    if (g->culled_once)
+        blade_raster_list(r, &g->raster, &surf, desc, g->blades, g->survivors, g->command,
+                          g->desc.path == BLADE_PATH_PULLING ? 1u : 0u, g->padded_count);
     gfx_timer_end();
 }
 

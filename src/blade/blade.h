@@ -37,6 +37,7 @@
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "gfx/gfx.h"
+#include "raster/raster.h"
 #include "scene/scene.h"
 
 typedef enum blade_render_path_t {
@@ -91,6 +92,7 @@ typedef struct blade_gpu_t {
     uint32_t *patch_real;    /* real blades per patch */
     uint32_t *visible_patches;
     gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
+    raster_program_t raster; /* made on the first blade_gpu_raster */
     gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES blade_cube_object_t */
     gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
     GLuint cube_texture;       /* of blade_gpu_set_cubes; 0: none */
@@ -155,6 +157,35 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
 /* Draws the survivors of the latest cull into the bound framebuffer (timer
  * "blade.draw"). Depth test on, no face culling (two-sided). */
 void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
+
+/* Blade length in visibility-buffer samples per segment of the compute
+ * rasterizer's level of detail (segments = ceil(projected length / this),
+ * 1 to max_tess_level). */
+#define BLADE_RASTER_SEGMENT_SAMPLES 8.0f
+
+/* Draws the survivors of the latest cull with the compute rasterizer
+ * (timer "blade.raster"); the same surface and shading as blade_gpu_draw,
+ * coverage from r's supersamples. Between raster_begin and raster_end. */
+void blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
+/* Module-internal (blade.c, blade_tiles.c). The surface of drawn blades
+ * (blade_geom.glsl uniforms). */
+typedef struct blade_surface_t {
+    scene_blade_shape_t shape;
+    float displacement, width_correction;
+    int max_level;
+    float lod_distance;
+} blade_surface_t;
+/* Sets the surface and shading uniforms (blade_geom.glsl,
+ * grass_shade.glsl) of program p (in use); zero sun and albedos take the
+ * blade_draw_desc_t defaults. */
+void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc);
+/* Rasterizes the blades of
+ * `blades` listed in `ids` (id 0: blades[i] directly), as many as the uint
+ * at word count_index of `count` (at most count_max); `prog` is made on
+ * first use and kept by the caller. */
+void blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
+                       const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
+                       uint32_t count_index, uint32_t count_max);
 
 /* Latest culling statistics without stalling (a result is read once its
  * GPU copy has completed, typically a frame or two late); with wait, the

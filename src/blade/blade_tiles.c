@@ -446,6 +446,7 @@ void blade_tiles_destroy(blade_tiles_t *t)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     ring_destroy(&t->motion_ring);
     ring_destroy(&t->draw_ring);
+    raster_program_destroy(&t->raster);
     gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw, &t->handover, &t->resolve};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
@@ -687,23 +688,9 @@ static bool box_outside(const float mn[3], const float mx[3], const float *m, fl
     return false;
 }
 
-static void resolve_colours(const blade_draw_desc_t *desc, float sun[3], const float **root, const float **tip)
-{
-    static const float root_def[3] = {0.10f, 0.25f, 0.05f}, tip_def[3] = {0.45f, 0.65f, 0.20f};
-    memcpy(sun, desc->sun, 3 * sizeof(float));
-    float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
-    if (sl < 1e-6f) {
-        sun[0] = 0.4f, sun[1] = 0.8f, sun[2] = 0.3f;
-        sl = sqrtf(0.89f);
-    }
-    for (int i = 0; i < 3; i++) sun[i] /= sl;
-    *root = desc->albedo_root;
-    *tip = desc->albedo_tip;
-    if ((*root)[0] == 0.0f && (*root)[1] == 0.0f && (*root)[2] == 0.0f) *root = root_def;
-    if ((*tip)[0] == 0.0f && (*tip)[1] == 0.0f && (*tip)[2] == 0.0f) *tip = tip_def;
-}
-
-void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
+/* The CPU tile frustum test and tiles_cull.comp: appends the drawn blades
+ * to t->drawn and their count to the draw command (timer "tiles.cull"). */
+static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
 {
     const blade_cull_desc_t *c = &t->desc.cull;
     uint32_t B = t->template_blades;
@@ -763,26 +750,25 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     ring_fence(&t->draw_ring, r);
     t->culled_once = true;
     gfx_timer_end();
+}
 
+static blade_surface_t tiles_surface(const blade_tiles_t *t)
+{
+    return (blade_surface_t){.shape = t->desc.shape, .max_level = t->desc.max_level,
+                             .lod_distance = t->desc.lod_distance};
+}
+
+void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
+{
+    cull_tiles(t, desc);
+    uint32_t B = t->template_blades;
     gfx_timer_begin("tiles.draw");
-    float sun[3];
-    const float *root, *tip;
-    resolve_colours(desc, sun, &root, &tip);
     bool fade = desc->fade_end > desc->fade_start;
-    p = t->draw;
+    gfx_program_t p = t->draw;
     glUseProgram(p.id);
-    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
+    blade_surface_t surf = tiles_surface(t);
+    blade_set_surface_uniforms(p, &surf, desc);
     glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
-    glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->camera);
-    glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
-    glUniform2f(gfx_uniform(p, "u_fade"), desc->fade_start, desc->fade_end);
-    glUniform3fv(gfx_uniform(p, "u_albedo_root"), 1, root);
-    glUniform3fv(gfx_uniform(p, "u_albedo_tip"), 1, tip);
-    glUniform1i(gfx_uniform(p, "u_shape"), (int)t->desc.shape);
-    glUniform1f(gfx_uniform(p, "u_displacement"), 0.0f);
-    glUniform1f(gfx_uniform(p, "u_width_correction"), 0.0f);
-    glUniform1i(gfx_uniform(p, "u_max_level"), t->desc.max_level);
-    glUniform1f(gfx_uniform(p, "u_lod_distance"), t->desc.lod_distance);
     glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
     glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
     if (t->overlay) {
@@ -808,6 +794,15 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     if (fade) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+    gfx_timer_end();
+}
+
+void blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc)
+{
+    cull_tiles(t, desc);
+    gfx_timer_begin("tiles.raster");
+    blade_surface_t surf = tiles_surface(t);
+    blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, 1, t->draw_capacity);
     gfx_timer_end();
 }
 

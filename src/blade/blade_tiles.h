@@ -210,6 +210,7 @@ typedef struct blade_tiles_t {
     gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
     int overlay;            /* BLADE_TILES_OVERLAY_* */
     gfx_program_t init, physics, cull, draw, handover, resolve;
+    raster_program_t raster; /* made on the first blade_tiles_raster */
     hybrid_slope_grid_t slope_grid;
     gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
     blade_tiles_slope_source_fn source;
@@ -250,6 +251,11 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
  * representation tiles into the bound framebuffer; procedural pose at the
  * time of the latest update. Depth test on, two-sided. */
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
+/* The same blades as blade_tiles_draw (same culling, timer "tiles.cull"),
+ * drawn by the compute rasterizer (timer "tiles.raster"); between
+ * raster_begin and raster_end. Debug overlays are drawn by the hardware
+ * path only. */
+void blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc);
 
 /* Statistics; blades_drawn without stalling unless wait (tests). */
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);

@@ -14,6 +14,7 @@
 typedef scene_json_t json_t;
 
 static const char *const mode_names[] = {"hybrid", "billboard", "blade"};
+static const char *const raster_names[] = {"hw", "compute", "auto"};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip",
                                           "dandelion"};
 static const char *const terrain_names[] = {"heightfield", "mesh"};
@@ -115,6 +116,17 @@ void scene_camera_init(const scene_desc_t *d, cam_t *cam)
 }
 
 const char *scene_mode_name(scene_mode_t mode) { return mode_names[mode]; }
+const char *scene_raster_name(scene_raster_t raster) { return raster_names[raster]; }
+
+bool scene_raster_parse(const char *name, scene_raster_t *out)
+{
+    for (int i = 0; i < (int)COUNT(raster_names); i++)
+        if (strcmp(name, raster_names[i]) == 0) {
+            *out = (scene_raster_t)i;
+            return true;
+        }
+    return false;
+}
 const char *scene_blade_shape_name(scene_blade_shape_t shape) { return shape_names[shape]; }
 
 /* ---- parse helpers --------------------------------------------------------
@@ -567,8 +579,8 @@ static bool parse_characters(sp_t *sp, const json_t *arr, scene_desc_t *d)
 
 static bool parse_root(sp_t *sp, const json_t *o, scene_desc_t *d)
 {
-    static const char *const keys[] = {"seed",    "frames", "dt",    "size",   "msaa",      "mode",
-                                       "terrain", "grass",  "camera", "wind",  "colliders", "characters"};
+    static const char *const keys[] = {"seed",    "frames", "dt",     "size", "msaa",      "mode",      "raster",
+                                       "terrain", "grass",  "camera", "wind", "colliders", "characters"};
     const char *p = "";
     char f[F_SIZE];
     const json_t *v;
@@ -590,6 +602,10 @@ static bool parse_root(sp_t *sp, const json_t *o, scene_desc_t *d)
     if ((v = MEMBER(o, p, "mode")) && !get_enum(sp, v, f, mode_names, COUNT(mode_names), &mode))
         return false;
     d->mode = (scene_mode_t)mode;
+    int raster = 0;
+    if ((v = MEMBER(o, p, "raster")) && !get_enum(sp, v, f, raster_names, COUNT(raster_names), &raster))
+        return false;
+    d->raster = (scene_raster_t)raster;
     if ((v = scene_json_get(o, "terrain")) && !parse_terrain(sp, v, &d->terrain)) return false;
     if ((v = scene_json_get(o, "grass")) && !parse_grass(sp, v, &d->grass)) return false;
     if ((v = scene_json_get(o, "camera")) && !parse_camera(sp, v, &d->camera)) return false;

@@ -40,6 +40,14 @@ typedef enum scene_mode_t {
     SCENE_MODE_BLADE,      /* "blade": Jahrmann & Wimmer 2017 only */
 } scene_mode_t;
 
+/* How grass is rasterized (docs/RASTER.md). */
+typedef enum scene_raster_t {
+    SCENE_RASTER_HW = 0,  /* "hw" (default): the hardware pipeline, the papers' reference path
+                             (tessellation / geometry shaders, alpha-to-coverage) */
+    SCENE_RASTER_COMPUTE, /* "compute": compute shaders into a visibility buffer (src/raster) */
+    SCENE_RASTER_AUTO,    /* "auto": the faster of the two, measured at start-up */
+} scene_raster_t;
+
 /* Blade shape functions of Jahrmann & Wimmer 2017, section 5. */
 typedef enum scene_blade_shape_t {
     SCENE_SHAPE_QUADRATIC = 0, /* "quadratic" (default) */
@@ -142,6 +150,7 @@ typedef struct scene_desc_t {
     int size[2];          /* framebuffer [w, h] px, each [0, 16384]; default [1280, 720] */
     int msaa;             /* samples, one of 0, 1, 2, 4, 8, 16 (1 = off); default 4 */
     scene_mode_t mode;    /* default hybrid */
+    scene_raster_t raster; /* "raster": "hw" (default) | "compute" | "auto" */
     terrain_desc_t terrain;
     scene_grass_desc_t grass;
     scene_camera_desc_t camera;
@@ -174,6 +183,9 @@ void scene_camera_init(const scene_desc_t *d, cam_t *cam);
 
 /* Names used in scene files, for logs and UIs. */
 const char *scene_mode_name(scene_mode_t mode);
+const char *scene_raster_name(scene_raster_t raster);
+/* "hw", "compute" or "auto" into *out; false for anything else. */
+bool scene_raster_parse(const char *name, scene_raster_t *out);
 const char *scene_blade_shape_name(scene_blade_shape_t shape);
 
 #endif

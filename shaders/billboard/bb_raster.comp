@@ -1,0 +1,178 @@
+#version 450
+/* bb_raster.comp: billboards of Orthmann et al. 2009 drawn by the compute
+ * rasterizer, the twin of bb_render.geom + bb_render.frag. One thread per
+ * billboard: frustum test of its bounding sphere, the hybrid near drop,
+ * then a plain quad (top edge in the wind pose, slope hand-over shift) or
+ * its deformed N x M mesh (normals from central differences), 2 or
+ * 2 (N-1)(M-1) triangles. Texels come from the clump array at the level of
+ * detail of the billboard's projected height (no derivatives in compute);
+ * alpha and the hybrid fade become sample coverage by fixed per-sample
+ * thresholds, as alpha-to-coverage does with MSAA. With RASTER_BIG one work
+ * group scans one queued triangle. */
+#define BB_NO_GENERATE
+#include "common/bb.glsl"
+#include "billboard/bb_points.glsl"
+#include "billboard/bb_pool.glsl"
+#include "billboard/bb_slope.glsl"
+#include "common/grass_shade.glsl"
+#include "raster/raster.glsl"
+
+#ifdef RASTER_BIG
+layout(local_size_x = RASTER_BIG_THREADS) in;
+#else
+layout(local_size_x = 64) in;
+#endif
+
+layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
+
+uniform sampler2DArray u_clumps;
+uniform mat4 u_viewproj;
+uniform vec4 u_planes[6];
+uniform vec3 u_camera;
+uniform vec3 u_sun;
+uniform float u_time;
+uniform float u_fade_start;
+uniform float u_fade_end;
+uniform bb_wind u_wind;
+uniform uint u_count;
+
+bb_point g_p;
+float g_layer, g_tint, g_lod;
+vec3 g_right, g_up;
+vec3 g_corner[4];
+vec3 g_pos[3];
+vec3 g_nrm[3];
+vec2 g_uv[3]; /* u, height h (0 root) */
+
+/* Loads billboard `prim`; false when it is culled or dropped. Sets the
+ * plain corners (a, b, c, d) or the mesh in bb_pos. */
+bool bb_setup(uint prim)
+{
+    g_p = points[prim];
+    bb_point p = g_p;
+    if (p.size.y <= 0.0) return false;
+    float r = 0.5 * length(vec2(p.size.x, p.size.y)) + u_wind.strength;
+    vec3 centre = p.position + 0.5 * p.size.y * p.growth;
+    for (int i = 0; i < 6; i++)
+        if (dot(u_planes[i].xyz, centre) + u_planes[i].w < -r) return false;
+    if (u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start) return false;
+    bb_frame(p, g_right, g_up);
+    g_layer = float(p.layer);
+    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    raster_vert r0, r1, r2;
+    bool ok = raster_project(u_viewproj * vec4(p.position, 1.0), r0);
+    ok = raster_project(u_viewproj * vec4(p.position + p.size.y * g_up, 1.0), r1) && ok;
+    ok = raster_project(u_viewproj * vec4(p.position + p.size.x * g_right, 1.0), r2) && ok;
+    vec2 texels = vec2(textureSize(u_clumps, 0).xy) * float(u_raster_ss);
+    vec2 extent = max(vec2(distance(r0.p.xy, r2.p.xy), distance(r0.p.xy, r1.p.xy)), vec2(1.0));
+    g_lod = ok ? max(log2(max(texels.x / extent.x, texels.y / extent.y)), 0.0) : 0.0;
+    vec3 a, b, ta, tb;
+    bb_plain_corners(p, g_right, g_up, u_wind, u_time, a, b, ta, tb);
+    if (p.pad0 == BB_NO_SLOT) {
+        vec3 shift = bb_slope_shift(p, ta, tb);
+        g_corner[0] = a;
+        g_corner[1] = b;
+        g_corner[2] = ta + shift;
+        g_corner[3] = tb + shift;
+    } else {
+        bb_load_mesh(p.pad0);
+        if (u_slope_on != 0) bb_slope_mesh(p, ta, tb);
+    }
+    return true;
+}
+
+int bb_triangles()
+{
+    return g_p.pad0 == BB_NO_SLOT ? 2 : 2 * (BB_N - 1) * (BB_M - 1);
+}
+
+vec3 bb_mesh_normal(int i, int j)
+{
+    vec3 du = bb_pos[j * BB_N + min(i + 1, BB_N - 1)] - bb_pos[j * BB_N + max(i - 1, 0)];
+    vec3 dv = bb_pos[min(j + 1, BB_M - 1) * BB_N + i] - bb_pos[max(j - 1, 0) * BB_N + i];
+    vec3 n = cross(du, dv);
+    float l = length(n);
+    return l > 1e-12 ? n / l : cross(g_right, g_up);
+}
+
+/* Grid vertex (i, j) (plain quad: corner) into triangle slot `slot`;
+ * returns its clip position. */
+vec4 bb_vertex(int i, int j, int slot)
+{
+    vec3 pos, n;
+    vec2 uv;
+    if (g_p.pad0 == BB_NO_SLOT) {
+        pos = g_corner[j * 2 + i];
+        n = cross(g_right, g_up);
+        uv = vec2(float(i), float(j));
+    } else {
+        pos = bb_pos[j * BB_N + i];
+        n = bb_mesh_normal(i, j);
+        uv = vec2(float(i) / float(BB_N - 1), float(j) / float(BB_M - 1));
+    }
+    g_pos[slot] = pos;
+    g_nrm[slot] = n;
+    g_uv[slot] = uv;
+    return u_viewproj * vec4(pos, 1.0);
+}
+
+void bb_triangle(int t, out vec4 a, out vec4 b, out vec4 c)
+{
+    int cols = g_p.pad0 == BB_NO_SLOT ? 1 : BB_N - 1;
+    int cell = t / 2, i = cell % cols, j = cell / cols;
+    if ((t & 1) == 0) {
+        a = bb_vertex(i, j, 0);
+        b = bb_vertex(i + 1, j, 1);
+        c = bb_vertex(i, j + 1, 2);
+    } else {
+        a = bb_vertex(i + 1, j, 0);
+        b = bb_vertex(i, j + 1, 1);
+        c = bb_vertex(i + 1, j + 1, 2);
+    }
+}
+
+void raster_fragment(int s, vec3 w, float depth)
+{
+    vec2 uv = w.x * g_uv[0] + w.y * g_uv[1] + w.z * g_uv[2];
+    vec4 tex = textureLod(u_clumps, vec3(uv.x, 1.0 - uv.y, g_layer), g_lod);
+    vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
+    float a = tex.a;
+    int pixel = s / (u_raster_ss * u_raster_ss);
+    if (u_fade_end > 0.0) {
+        float fade = clamp((distance(u_camera, world) - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);
+        vec2 frag = vec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x) + 0.5;
+        float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
+        if (fade < 1.0) a = clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0);
+    }
+    uint sub = uint(s - pixel * u_raster_ss * u_raster_ss);
+    if (a < 1.0 / 255.0 || a <= (float(sub) + 0.5) / float(u_raster_ss * u_raster_ss)) return;
+    uint rgba = 0u;
+    if (raster_color_pass()) {
+        vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
+        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
+        rgba = packUnorm4x8(vec4(c, 1.0));
+    }
+    raster_put(s, floatBitsToUint(depth), rgba);
+}
+
+void main()
+{
+#ifdef RASTER_BIG
+    uint q = gl_WorkGroupID.x;
+    if (q >= min(raster_queue_count, u_raster_queue_capacity)) return;
+    uvec2 item = raster_queue[q];
+    if (!bb_setup(item.x)) return;
+    vec4 a, b, c;
+    bb_triangle(int(item.y), a, b, c);
+    raster_triangle(a, b, c, int(gl_LocalInvocationID.x), RASTER_BIG_THREADS);
+#else
+    uint prim = gl_GlobalInvocationID.x;
+    if (prim >= u_count || !bb_setup(prim)) return;
+    int n = bb_triangles();
+    for (int t = 0; t < n; t++) {
+        vec4 a, b, c;
+        bb_triangle(t, a, b, c);
+        raster_triangle_or_queue(a, b, c, prim, uint(t));
+    }
+#endif
+}

@@ -1,0 +1,146 @@
+#version 450
+/* blade_raster.comp: Bezier blades (Jahrmann & Wimmer 2017) drawn by the
+ * compute rasterizer. One thread per listed blade (u_use_ids: blade
+ * ids[i], else blades[i]; the count is the uint at u_count_index of
+ * Count, written by the culling pass): the blade surface of blade_geom.glsl
+ * (eq. 21, 24) as a strip of n segments, n from the blade's projected
+ * length (u_segment_samples samples per segment, 1 to u_max_level). A blade
+ * narrower than a sample is widened to one sample and covers each sample
+ * with the probability of its true width, so a far blade is a thin line of
+ * the right average coverage. Hybrid fade: alpha as blade.frag, turned into
+ * coverage by fixed per-sample thresholds (what alpha-to-coverage does).
+ * With RASTER_BIG one work group scans one queued triangle. */
+#include "common/blade.glsl"
+#include "blade/blade_geom.glsl"
+#include "common/grass_shade.glsl"
+#include "common/hash.glsl"
+#include "raster/raster.glsl"
+
+#ifdef RASTER_BIG
+layout(local_size_x = RASTER_BIG_THREADS) in;
+#else
+layout(local_size_x = 64) in;
+#endif
+
+layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = 1) readonly buffer Ids { uint ids[]; };
+layout(std430, binding = 2) readonly buffer Count { uint count_words[]; };
+
+uniform mat4 u_view_proj;
+uniform int u_use_ids;
+uniform uint u_count_index;
+uniform uint u_count_max;
+uniform vec3 u_sun;
+uniform vec2 u_fade; /* start, end; end <= start: no fade */
+uniform vec3 u_albedo_root;
+uniform vec3 u_albedo_tip;
+uniform float u_segment_samples;
+
+/* The blade being drawn and its current triangle's vertex attributes. */
+Blade g_blade;
+float g_keep;      /* probability that a covered sample is drawn (thin blades) */
+float g_alpha;     /* hybrid fade alpha before the dither */
+uint g_seed;
+vec3 g_pos[3];
+vec3 g_nrm[3];
+float g_v[3];
+
+uint blade_count()
+{
+    return min(count_words[u_count_index], u_count_max);
+}
+
+/* Loads blade `prim` of the list and sets its width widening and fade. */
+int blade_setup(uint prim)
+{
+    uint index = u_use_ids != 0 ? ids[prim] : prim;
+    g_blade = blades[index];
+    g_seed = hash_u32(index * 0x9e3779b9u);
+    float root_dist = length(g_blade.v0.xyz - u_camera);
+    g_alpha = u_fade.y > u_fade.x ? 1.0 - smoothstep(u_fade.x, u_fade.y, root_dist) : 1.0;
+    raster_vert r0, r1, r2;
+    vec3 t1, front;
+    blade_frame(g_blade, t1, front);
+    bool ok = raster_project(u_view_proj * vec4(g_blade.v0.xyz, 1.0), r0);
+    ok = raster_project(u_view_proj * vec4(g_blade.v0.xyz + t1 * g_blade.v2.w, 1.0), r1) && ok;
+    ok = raster_project(u_view_proj * vec4(g_blade.v2.xyz, 1.0), r2) && ok;
+    float width = distance(r0.p.xy, r1.p.xy);
+    g_keep = 1.0;
+    if (ok && width < 1.0) {
+        g_keep = max(width, 1.0 / 64.0);
+        g_blade.v2.w /= g_keep;
+    }
+    float len = ok ? distance(r0.p.xy, r2.p.xy) : 1e9;
+    return clamp(int(ceil(len / u_segment_samples)), 1, max(u_max_level, 1));
+}
+
+vec4 blade_vertex(float u, float v, int slot)
+{
+    vec3 p, n;
+    blade_build(g_blade, u, v, p, n);
+    g_pos[slot] = p;
+    g_nrm[slot] = n;
+    g_v[slot] = v;
+    return u_view_proj * vec4(p, 1.0);
+}
+
+void raster_fragment(int s, vec3 w, float depth)
+{
+    uint sub = uint(s % (u_raster_ss * u_raster_ss));
+    float threshold = (float(sub) + 0.5) / float(u_raster_ss * u_raster_ss);
+    if (g_keep < 1.0 && hash_float(g_seed ^ uint(s) * 0x85ebca6bu) >= g_keep) return;
+    if (g_alpha < 1.0) {
+        int pixel = s / (u_raster_ss * u_raster_ss);
+        uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
+        float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
+        float alpha = clamp(g_alpha + dither * 0.25, 0.0, 1.0);
+        if (alpha <= threshold) return;
+    }
+    uint rgba = 0u;
+    if (raster_color_pass()) {
+        vec3 pos = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
+        vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
+        float v = dot(w, vec3(g_v[0], g_v[1], g_v[2]));
+        vec3 c = blade_shade(pos, nrm, v, u_camera, u_sun, u_albedo_root, u_albedo_tip, vec4(0.0));
+        rgba = packUnorm4x8(vec4(c, 1.0));
+    }
+    raster_put(s, floatBitsToUint(depth), rgba);
+}
+
+/* Triangle t of the strip: segment t / 2, lower (t even) or upper half. */
+void blade_triangle(int t, int n, out vec4 a, out vec4 b, out vec4 c)
+{
+    float v0 = float(t / 2) / float(n), v1 = float(t / 2 + 1) / float(n);
+    if ((t & 1) == 0) {
+        a = blade_vertex(0.0, v0, 0);
+        b = blade_vertex(1.0, v0, 1);
+        c = blade_vertex(0.0, v1, 2);
+    } else {
+        a = blade_vertex(1.0, v0, 0);
+        b = blade_vertex(0.0, v1, 1);
+        c = blade_vertex(1.0, v1, 2);
+    }
+}
+
+void main()
+{
+#ifdef RASTER_BIG
+    uint q = gl_WorkGroupID.x;
+    if (q >= min(raster_queue_count, u_raster_queue_capacity)) return;
+    uvec2 item = raster_queue[q];
+    int n = blade_setup(item.x);
+    vec4 a, b, c;
+    blade_triangle(int(item.y), n, a, b, c);
+    raster_triangle(a, b, c, int(gl_LocalInvocationID.x), RASTER_BIG_THREADS);
+#else
+    uint prim = gl_GlobalInvocationID.x;
+    if (prim >= blade_count()) return;
+    int n = blade_setup(prim);
+    if (g_blade.v1.w <= 0.0) return;
+    for (int t = 0; t < 2 * n; t++) {
+        vec4 a, b, c;
+        blade_triangle(t, n, a, b, c);
+        raster_triangle_or_queue(a, b, c, prim, uint(t));
+    }
+#endif
+}

@@ -1,0 +1,222 @@
+/* raster.glsl: the compute rasterizer's side of the visibility buffer
+ * (src/raster/raster.h). Grass shaders that draw in compute include this
+ * file, set up a primitive (a blade, a billboard), project its vertices
+ * with raster_project and scan its triangles with raster_triangle; each
+ * covered sample calls the including shader's raster_fragment, which
+ * decides coverage, shades (only when raster_color_pass()) and calls
+ * raster_put.
+ *
+ * Visibility buffer: one 64-bit word per sample, depth (float bits of the
+ * window depth, which order like uints for depth >= 0) in the high half and
+ * packed RGBA8 colour in the low half; the 2x2 (RASTER_SS^2) samples of a
+ * pixel are adjacent. With RASTER_ATOMIC64 (GL_NV_shader_atomic_int64) one
+ * atomicMin keeps the nearest sample. Without it (Mesa llvmpipe) the same
+ * memory is two uints per sample and every draw runs twice: pass 0 takes
+ * atomicMin of the depth, pass 1 stores the colour where its depth won.
+ *
+ * Work split: a triangle whose sample bounding box exceeds
+ * u_raster_big_samples is not scanned by its thread but queued (primitive,
+ * triangle) for the RASTER_BIG variant of the same shader, where one work
+ * group of RASTER_BIG_THREADS scans it, one row per thread in turn. */
+#ifndef RASTER_GLSL
+#define RASTER_GLSL
+
+#define RASTER_VIS_BINDING 20
+#define RASTER_QUEUE_BINDING 21
+#define RASTER_BIG_THREADS 64
+
+layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
+#ifdef RASTER_ATOMIC64
+    uint64_t raster_vis[];
+#else
+    uint raster_vis[];
+#endif
+};
+
+/* count, overflow, then (primitive, triangle) pairs; see raster.c. */
+layout(std430, binding = RASTER_QUEUE_BINDING) buffer RasterQueue {
+    uint raster_queue_count;
+    uint raster_queue_overflow;
+    uint raster_queue_pad[2];
+    uvec2 raster_queue[];
+};
+
+uniform ivec2 u_raster_pixels;      /* target size in pixels */
+uniform int u_raster_ss;            /* samples per pixel side */
+uniform int u_raster_pass;          /* without RASTER_ATOMIC64: 0 depth, 1 colour */
+uniform uint u_raster_big_samples;  /* bounding-box samples above which a triangle is queued */
+uniform uint u_raster_queue_capacity;
+
+bool raster_color_pass()
+{
+#ifdef RASTER_ATOMIC64
+    return true;
+#else
+    return u_raster_pass == 1;
+#endif
+}
+
+int raster_sample_index(int x, int y)
+{
+    int ss = u_raster_ss;
+    int px = x / ss, py = y / ss;
+    return ((py * u_raster_pixels.x + px) * ss + (y - py * ss)) * ss + (x - px * ss);
+}
+
+void raster_put(int s, uint depth_bits, uint rgba)
+{
+#ifdef RASTER_ATOMIC64
+    atomicMin(raster_vis[s], packUint2x32(uvec2(rgba, depth_bits)));
+#else
+    if (u_raster_pass == 0) {
+        atomicMin(raster_vis[2 * s + 1], depth_bits);
+    } else if (raster_vis[2 * s + 1] == depth_bits) {
+        raster_vis[2 * s] = rgba;
+    }
+#endif
+}
+
+/* A projected vertex: sample-space x, y, window depth z, and 1 / w. */
+struct raster_vert {
+    vec3 p;
+    float inv_w;
+};
+
+/* False behind the camera (w <= 0): v is then meaningless. */
+bool raster_project(vec4 clip, out raster_vert v)
+{
+    v.p = vec3(0.0);
+    v.inv_w = 0.0;
+    if (clip.w <= 0.0) return false;
+    float iw = 1.0 / clip.w;
+    vec3 ndc = clip.xyz * iw;
+    vec2 size = vec2(u_raster_pixels * u_raster_ss);
+    v.p = vec3((ndc.xy * 0.5 + 0.5) * size, ndc.z * 0.5 + 0.5);
+    v.inv_w = iw;
+    return true;
+}
+
+/* Sample-space area of a box clamped to the buffer, in samples. */
+float raster_box_samples(vec2 lo, vec2 hi)
+{
+    vec2 size = vec2(u_raster_pixels * u_raster_ss);
+    vec2 a = clamp(lo, vec2(0.0), size), b = clamp(hi, vec2(0.0), size);
+    return max(b.x - a.x + 1.0, 0.0) * max(b.y - a.y + 1.0, 0.0);
+}
+
+/* The including shader's fragment: sample s at perspective-correct
+ * weights w of the triangle's three vertices, window depth `depth`. */
+void raster_fragment(int s, vec3 w, float depth);
+
+/* Scans rows first_row, first_row + row_step, ... of the projected
+ * triangle a b c; fragment weights are to_tri * (weights of a, b, c).
+ * Sample centres at +0.5; a sample on a shared edge may be drawn by both
+ * triangles (same depth: no artefact). */
+void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int first_row, int row_step)
+{
+    vec2 p0 = a.p.xy, p1 = b.p.xy, p2 = c.p.xy;
+    float det = (p1.y - p2.y) * (p0.x - p2.x) + (p2.x - p1.x) * (p0.y - p2.y);
+    if (abs(det) < 1e-10) return;
+    float id = 1.0 / det;
+    vec3 A = vec3(p1.y - p2.y, p2.y - p0.y, 0.0) * id;
+    vec3 B = vec3(p2.x - p1.x, p0.x - p2.x, 0.0) * id;
+    A.z = -A.x - A.y;
+    B.z = -B.x - B.y;
+    vec3 C = vec3(-(A.x * p2.x + B.x * p2.y), -(A.y * p2.x + B.y * p2.y), 0.0);
+    C.z = 1.0 - C.x - C.y;
+    ivec2 size = u_raster_pixels * u_raster_ss;
+    float ylo = min(p0.y, min(p1.y, p2.y)), yhi = max(p0.y, max(p1.y, p2.y));
+    float xlo = min(p0.x, min(p1.x, p2.x)), xhi = max(p0.x, max(p1.x, p2.x));
+    int y0 = max(int(ceil(ylo - 0.5)), 0), y1 = min(int(floor(yhi - 0.5)), size.y - 1);
+    vec3 z = vec3(a.p.z, b.p.z, c.p.z), iw = vec3(a.inv_w, b.inv_w, c.inv_w);
+    for (int y = y0 + first_row; y <= y1; y += row_step) {
+        float yc = float(y) + 0.5;
+        vec3 K = B * yc + C;
+        float lo = xlo, hi = xhi;
+        for (int i = 0; i < 3; i++) {
+            if (A[i] > 0.0) lo = max(lo, -K[i] / A[i]);
+            else if (A[i] < 0.0) hi = min(hi, -K[i] / A[i]);
+            else if (K[i] < 0.0) hi = lo - 1.0;
+        }
+        int x0 = max(int(ceil(lo - 0.5)), 0), x1 = min(int(floor(hi - 0.5)), size.x - 1);
+        for (int x = x0; x <= x1; x++) {
+            vec3 l = max(A * (float(x) + 0.5) + K, vec3(0.0));
+            float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
+            if (!(depth >= 0.0 && depth <= 1.0)) continue;
+            vec3 q = l * iw;
+            raster_fragment(raster_sample_index(x, y), to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
+        }
+    }
+}
+
+/* Distance of a clip-space point in front of the near plane (z = -w). */
+float raster_near(vec4 c) { return c.z + c.w; }
+
+/* Scans the triangle with clip-space vertices c0 c1 c2 (rows as
+ * raster_scan), clipped against the near plane first when it crosses it:
+ * the clipped polygon (up to 4 vertices) is scanned as a fan whose weights
+ * map back to c0 c1 c2. */
+void raster_triangle(vec4 c0, vec4 c1, vec4 c2, int first_row, int row_step)
+{
+    vec4 c[3] = vec4[3](c0, c1, c2);
+    vec3 d = vec3(raster_near(c0), raster_near(c1), raster_near(c2));
+    raster_vert a, b, e;
+    if (all(greaterThanEqual(d, vec3(0.0))) && c0.w > 0.0 && c1.w > 0.0 && c2.w > 0.0) {
+        raster_project(c0, a);
+        raster_project(c1, b);
+        raster_project(c2, e);
+        raster_scan(a, b, e, mat3(1.0), first_row, row_step);
+        return;
+    }
+    vec4 poly[4];
+    vec3 bary[4];
+    int n = 0;
+    for (int i = 0; i < 3; i++) {
+        int j = (i + 1) % 3;
+        vec3 bi = vec3(0.0), bj = vec3(0.0);
+        bi[i] = 1.0;
+        bj[j] = 1.0;
+        if (d[i] >= 0.0) {
+            poly[n] = c[i];
+            bary[n] = bi;
+            n++;
+        }
+        if ((d[i] >= 0.0) != (d[j] >= 0.0)) {
+            float t = d[i] / (d[i] - d[j]);
+            poly[n] = mix(c[i], c[j], t);
+            bary[n] = mix(bi, bj, t);
+            n++;
+        }
+    }
+    if (n < 3) return;
+    raster_vert pv[4];
+    for (int i = 0; i < n; i++)
+        if (!raster_project(poly[i], pv[i])) return;
+    for (int i = 1; i + 1 < n; i++)
+        raster_scan(pv[0], pv[i], pv[i + 1], mat3(bary[0], bary[i], bary[i + 1]), first_row, row_step);
+}
+
+/* In the per-primitive pass: scans a small triangle now, or queues it
+ * (prim, tri) for the work-group pass when its sample box is large or it
+ * crosses the near plane. Triangles wholly behind the near plane vanish. */
+void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
+{
+    vec3 d = vec3(raster_near(c0), raster_near(c1), raster_near(c2));
+    if (all(lessThan(d, vec3(0.0)))) return;
+    if (all(greaterThanEqual(d, vec3(0.0))) && c0.w > 0.0 && c1.w > 0.0 && c2.w > 0.0) {
+        raster_vert a, b, c;
+        raster_project(c0, a);
+        raster_project(c1, b);
+        raster_project(c2, c);
+        vec2 lo = min(a.p.xy, min(b.p.xy, c.p.xy)), hi = max(a.p.xy, max(b.p.xy, c.p.xy));
+        if (raster_box_samples(lo, hi) <= float(u_raster_big_samples)) {
+            raster_scan(a, b, c, mat3(1.0), 0, 1);
+            return;
+        }
+    }
+    uint slot = atomicAdd(raster_queue_count, 1u);
+    if (slot < u_raster_queue_capacity) raster_queue[slot] = uvec2(prim, tri);
+    else atomicAdd(raster_queue_overflow, 1u);
+}
+
+#endif

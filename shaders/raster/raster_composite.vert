@@ -1,0 +1,8 @@
+#version 450
+/* raster_composite.vert: one triangle covering the viewport for the
+ * compute rasterizer's resolve and composite (raster_composite.frag). */
+void main()
+{
+    vec2 p = vec2(float((gl_VertexID & 1) << 2) - 1.0, float((gl_VertexID & 2) << 1) - 1.0);
+    gl_Position = vec4(p, 0.0, 1.0);
+}

@@ -1,0 +1,215 @@
+/* raster: the compute rasterizer's visibility buffer, its start from the
+ * opaque depth, the dispatch of the grass modules' raster shaders (per
+ * primitive, then per queued large triangle) and the composite. See
+ * raster.h; the shader side is shaders/raster/raster.glsl. */
+#include "raster/raster.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#define RASTER_VIS_BINDING 20   /* raster.glsl */
+#define RASTER_QUEUE_BINDING 21 /* raster.glsl */
+#define RASTER_BIG_THREADS 64   /* raster.glsl */
+#define RASTER_PRIM_THREADS 64  /* local size of the per-primitive variants */
+#define QUEUE_HEADER 16         /* count, overflow, two pads */
+
+bool raster_has_atomic64(void)
+{
+    return epoxy_has_gl_extension("GL_NV_shader_atomic_int64") && epoxy_has_gl_extension("GL_ARB_gpu_shader_int64");
+}
+
+bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out)
+{
+    raster_desc_t d = *in;
+    if (!d.supersample) d.supersample = 2;
+    if (!d.big_samples) d.big_samples = 256;
+    if (!d.queue_capacity) d.queue_capacity = 1 << 20;
+    if (!d.label) d.label = "raster";
+    if (d.w <= 0 || d.h <= 0 || d.supersample < 1 || d.supersample > 4 || d.big_samples < 1 ||
+        d.queue_capacity < 1) {
+        core_log_error("raster: bad desc (size %dx%d, supersample %d in 1..4, big_samples %d, queue %d)", d.w, d.h,
+                       d.supersample, d.big_samples, d.queue_capacity);
+        return false;
+    }
+    *out = d;
+    return true;
+}
+
+bool raster_make(raster_t *r, const raster_desc_t *desc)
+{
+    memset(r, 0, sizeof *r);
+    if (!raster_desc_resolve(desc, &r->desc)) return false;
+    const raster_desc_t *d = &r->desc;
+    r->atomic64 = !d->no_atomic64 && raster_has_atomic64();
+    size_t samples = (size_t)d->w * (size_t)d->h * (size_t)(d->supersample * d->supersample);
+    char label[128];
+    snprintf(label, sizeof label, "%s.visibility", d->label);
+    r->vis = gfx_buffer_make(&(gfx_buffer_desc_t){.size = samples * 8, .label = label});
+    snprintf(label, sizeof label, "%s.queue", d->label);
+    r->queue = gfx_buffer_make(&(gfx_buffer_desc_t){
+        .size = QUEUE_HEADER + (size_t)d->queue_capacity * 8, .readable = true, .label = label});
+    snprintf(label, sizeof label, "%s.args", d->label);
+    r->args = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 32, .label = label});
+    r->init = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_init.comp", .label = "raster.init"});
+    r->args_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_args.comp", .label = "raster.args"});
+    r->composite = gfx_program_make(&(gfx_program_desc_t){
+        .vs = "raster/raster_composite.vert", .fs = "raster/raster_composite.frag", .label = "raster.composite"});
+    r->empty_vao = gfx_vertex_array_make("raster.empty");
+    if (!r->vis.id || !r->queue.id || !r->args.id || !r->init.id || !r->args_prog.id || !r->composite.id) {
+        raster_destroy(r);
+        return false;
+    }
+    core_log_info("raster: %dx%d, %dx%d samples per pixel, %s visibility buffer (%.1f MB)", d->w, d->h,
+                  d->supersample, d->supersample, r->atomic64 ? "64-bit atomic" : "two-pass 32-bit",
+                  (double)(samples * 8) / (1024.0 * 1024.0));
+    return true;
+}
+
+void raster_destroy(raster_t *r)
+{
+    gfx_buffer_destroy(&r->vis);
+    gfx_buffer_destroy(&r->queue);
+    gfx_buffer_destroy(&r->args);
+    gfx_program_destroy(&r->init);
+    gfx_program_destroy(&r->args_prog);
+    gfx_program_destroy(&r->composite);
+    gfx_vertex_array_destroy(&r->empty_vao);
+}
+
+raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label)
+{
+    static const char ext64[] = "#extension GL_ARB_gpu_shader_int64 : require\n"
+                                "#extension GL_NV_shader_atomic_int64 : require\n"
+                                "#define RASTER_ATOMIC64 1\n";
+    char defs[2048], big_label[160];
+    raster_program_t p = {.atomic64 = r->atomic64};
+    int n = snprintf(defs, sizeof defs, "%s%s", r->atomic64 ? ext64 : "", defines ? defines : "");
+    if (n < 0 || (size_t)n + 32 >= sizeof defs) {
+        core_log_error("raster: defines of %s too long", cs);
+        return p;
+    }
+    p.prim = gfx_program_make(&(gfx_program_desc_t){.cs = cs, .defines = defs, .label = label});
+    snprintf(defs + n, sizeof defs - (size_t)n, "#define RASTER_BIG 1\n");
+    snprintf(big_label, sizeof big_label, "%s.big", label);
+    p.big = gfx_program_make(&(gfx_program_desc_t){.cs = cs, .defines = defs, .label = big_label});
+    if (!p.prim.id || !p.big.id) raster_program_destroy(&p);
+    return p;
+}
+
+void raster_program_destroy(raster_program_t *p)
+{
+    gfx_program_destroy(&p->prim);
+    gfx_program_destroy(&p->big);
+}
+
+static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
+{
+    glUniform2i(gfx_uniform(p, "u_raster_pixels"), r->desc.w, r->desc.h);
+    glUniform1i(gfx_uniform(p, "u_raster_ss"), r->desc.supersample);
+}
+
+void raster_begin(raster_t *r, const gfx_target_t *target)
+{
+    gfx_timer_begin("raster.init");
+    gfx_target_resolve(target);
+    glUseProgram(r->init.id);
+    set_frame_uniforms(r, r->init);
+    glBindTextureUnit(0, target->resolve_depth.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glDispatchCompute((GLuint)(r->desc.w + 15) / 16, (GLuint)(r->desc.h + 15) / 16, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindTextureUnit(0, 0);
+    gfx_timer_end();
+}
+
+/* Dispatch arguments from a GPU count into args slot `slot`. */
+static void write_args(raster_t *r, gfx_buffer_t src, uint32_t index, uint32_t max, uint32_t group, int slot)
+{
+    gfx_program_t p = r->args_prog;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_src_index"), index);
+    glUniform1ui(gfx_uniform(p, "u_max"), max);
+    glUniform1ui(gfx_uniform(p, "u_group"), group);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src.id);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, r->args.id, (GLintptr)slot * 16, 12);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+static void use_raster_program(const raster_t *r, gfx_program_t p, int pass, raster_bind_fn bind, void *user)
+{
+    glUseProgram(p.id);
+    set_frame_uniforms(r, p);
+    glUniform1i(gfx_uniform(p, "u_raster_pass"), pass);
+    glUniform1ui(gfx_uniform(p, "u_raster_big_samples"), (GLuint)r->desc.big_samples);
+    glUniform1ui(gfx_uniform(p, "u_raster_queue_capacity"), (GLuint)r->desc.queue_capacity);
+    bind(p, user);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_QUEUE_BINDING, r->queue.id);
+}
+
+void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *items, raster_bind_fn bind,
+                 void *user)
+{
+    if (!items->count_buffer.id && items->count == 0) return;
+    static const uint32_t zero = 0;
+    int passes = r->atomic64 ? 1 : 2;
+    for (int pass = 0; pass < passes; pass++) {
+        glClearNamedBufferSubData(r->queue.id, GL_R32UI, 0, 8, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        if (items->count_buffer.id)
+            write_args(r, items->count_buffer, items->count_index, items->count_max, RASTER_PRIM_THREADS, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        use_raster_program(r, p->prim, pass, bind, user);
+        if (items->count_buffer.id) {
+            glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->args.id);
+            glDispatchComputeIndirect(0);
+        } else {
+            glDispatchCompute((items->count + RASTER_PRIM_THREADS - 1) / RASTER_PRIM_THREADS, 1, 1);
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        write_args(r, r->queue, 0, (uint32_t)r->desc.queue_capacity, 1, 1);
+        use_raster_program(r, p->big, pass, bind, user);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->args.id);
+        glDispatchComputeIndirect(16);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+}
+
+void raster_end(raster_t *r, const gfx_target_t *target)
+{
+    gfx_timer_begin("raster.composite");
+    glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
+    glViewport(0, 0, target->w, target->h);
+    glUseProgram(r->composite.id);
+    set_frame_uniforms(r, r->composite);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glBindVertexArray(r->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+    glDisable(GL_BLEND);
+    glDepthFunc(GL_LESS);
+    gfx_timer_end();
+}
+
+void raster_read_stats(raster_t *r, raster_stats_t *out)
+{
+    uint32_t hdr[2];
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(r->queue, 0, sizeof hdr, hdr);
+    r->stats.queued = hdr[0];
+    r->stats.overflow = hdr[0] > (uint32_t)r->desc.queue_capacity ? hdr[0] - (uint32_t)r->desc.queue_capacity : 0;
+    if (r->stats.overflow && !r->warned_overflow) {
+        core_log_warn("raster: %u large triangles past the queue's %d were not drawn (raise queue_capacity)",
+                      r->stats.overflow, r->desc.queue_capacity);
+        r->warned_overflow = true;
+    }
+    *out = r->stats;
+}

@@ -1,0 +1,106 @@
+/* raster: grass drawn by compute shaders instead of the hardware rasterizer.
+ *
+ * On the H100 the vertex/tessellation/fragment stages run on a small part of
+ * the chip while compute runs on every SM, so millions of tiny grass
+ * triangles rasterize far faster in compute (issue 14; docs/RASTER.md).
+ * This module owns the visibility buffer (one 64-bit word per sample: depth
+ * high, RGBA8 colour low, kept by atomicMin), its start from the opaque
+ * depth, and the resolve + composite into the frame's target. The grass
+ * modules only say what to draw: each has a compute shader that includes
+ * shaders/raster/raster.glsl, made with raster_program_make and run with
+ * raster_draw, which binds their buffers and uniforms through a callback.
+ *
+ * A frame:
+ *   opaque scene drawn by the hardware into the target
+ *   raster_begin(r, target)      resolves depth, fills every sample with it
+ *   bb_field_raster / blade_gpu_raster / blade_tiles_raster   (raster_draw)
+ *   raster_end(r, target)        composites colour, coverage and depth
+ *
+ * Without GL_NV_shader_atomic_int64 (Mesa llvmpipe, CI) the buffer is two
+ * uints per sample and each draw runs twice (nearest depth, then colour
+ * where its depth won): same images, twice the work. */
+#ifndef MEADOW_RASTER_H
+#define MEADOW_RASTER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "gfx/gfx.h"
+
+typedef struct raster_desc_t {
+    int w, h;               /* target pixels, required */
+    int supersample;        /* samples per pixel side: default 2 (2x2), 1..4 */
+    int big_samples;        /* a triangle whose sample box exceeds this is scanned by a
+                               work group instead of one thread; default 256 */
+    int queue_capacity;     /* queued large triangles per draw; default 1 << 20 */
+    bool no_atomic64;       /* force the two-pass 32-bit variant (tests); default: 64-bit
+                               atomics when the GL has GL_NV_shader_atomic_int64 */
+    const char *label;      /* default "raster" */
+} raster_desc_t;
+
+typedef struct raster_stats_t {
+    uint32_t queued;        /* large triangles queued by the last draw */
+    uint32_t overflow;      /* of those, beyond queue_capacity (not drawn; logged) */
+} raster_stats_t;
+
+typedef struct raster_t {
+    raster_desc_t desc;     /* resolved */
+    bool atomic64;
+    gfx_buffer_t vis;       /* 8 bytes per sample */
+    gfx_buffer_t queue;     /* count, overflow, pad, pad, (primitive, triangle) pairs */
+    gfx_buffer_t args;      /* two glDispatchComputeIndirect argument triples */
+    gfx_program_t init, args_prog, composite;
+    GLuint empty_vao;
+    raster_stats_t stats;
+    bool warned_overflow;
+} raster_t;
+
+/* A grass module's compute rasterization shader, in two variants: one
+ * thread per primitive, and RASTER_BIG (one work group per queued large
+ * triangle). */
+typedef struct raster_program_t {
+    gfx_program_t prim, big;
+    bool atomic64; /* made for a one-pass (64-bit atomic) raster_t */
+} raster_program_t;
+
+/* True when the current context has 64-bit atomics for the one-pass buffer. */
+bool raster_has_atomic64(void);
+/* Fills defaults; false (and one log line) when w or h is not positive or a
+ * field is out of range. */
+bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out);
+
+bool raster_make(raster_t *r, const raster_desc_t *desc);
+void raster_destroy(raster_t *r);
+
+/* Compiles `cs` (path under shaders/) with `defines` for the raster
+ * variant of `r` (atomic64 or not). id 0 on failure (logged). */
+raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label);
+void raster_program_destroy(raster_program_t *p);
+
+/* What a draw covers: `count` primitives, or (count_buffer.id != 0) the
+ * uint at word `count_index` of count_buffer, at most `count_max`. */
+typedef struct raster_items_t {
+    uint32_t count;
+    gfx_buffer_t count_buffer;
+    uint32_t count_index;
+    uint32_t count_max;
+} raster_items_t;
+
+/* Binds the grass module's buffers, textures and uniforms on `prog`
+ * (already in use); called before every dispatch of a draw. */
+typedef void (*raster_bind_fn)(gfx_program_t prog, void *user);
+
+/* Starts a frame: resolves `target` (for its depth) and fills the
+ * visibility buffer. The target must have r's size. */
+void raster_begin(raster_t *r, const gfx_target_t *target);
+/* Runs a grass module's program over `items` (both passes without 64-bit
+ * atomics): threads per primitive, then the large triangles they queued. */
+void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *items, raster_bind_fn bind,
+                 void *user);
+/* Composites the grass into `target` (binds its FBO). */
+void raster_end(raster_t *r, const gfx_target_t *target);
+
+/* Large-triangle counts of the last draw (blocking read: tests, summaries). */
+void raster_read_stats(raster_t *r, raster_stats_t *out);
+
+#endif
