@@ -5,19 +5,19 @@
 #define MEADOW_BB_GPU_TEST_UTIL_H
 
 #include "billboard/bb.h"
-#include "scene/shapes.h"
+#include "collide/collide_shape.h"
 
 #include <string.h>
 
 typedef struct test_mesh_t {
-    shape_mesh_t shape;
+    collide_mesh_t shape;
     gfx_buffer_t pos, nrm, idx;
     GLuint vao;
 } test_mesh_t;
 
 static inline void test_mesh_make(test_mesh_t *m, const scene_collider_t *c)
 {
-    shape_mesh_make(&m->shape, c);
+    collide_make_mesh(&m->shape, c);
     m->pos = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
                                                   .data = m->shape.positions, .label = "test.pos"});
     m->nrm = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
@@ -41,7 +41,7 @@ static inline void test_mesh_destroy(test_mesh_t *m)
     gfx_buffer_destroy(&m->pos);
     gfx_buffer_destroy(&m->nrm);
     gfx_buffer_destroy(&m->idx);
-    shape_mesh_free(&m->shape);
+    collide_free_mesh(&m->shape);
 }
 
 static inline bb_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)

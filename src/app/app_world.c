@@ -271,30 +271,17 @@ static bool make_tiles(app_world_t *w)
     return w->have_tiles;
 }
 
-/* Sphere proxies for the blade physics: spheres exactly, capsules as
- * overlapping spheres along the axis, boxes by their bounding sphere (a
- * conservative approximation). More than BLADE_MAX_SPHERES is reported once. */
+/* Sphere proxies for the blade physics (collide_pack_spheres per collider,
+ * then the characters'). More than BLADE_MAX_SPHERES is reported once. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
     int n = 0;
     bool full = false;
-    for (int i = 0; i < w->colliders.count; i++) {
+    for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
-        int k = 1;
-        float r = c->bound_radius, step = 0;
-        if (c->desc.type == SCENE_COLLIDER_CAPSULE) {
-            r = c->desc.radius;
-            k = 1 + (int)ceilf(c->desc.length / r);
-            step = c->desc.length / (float)(k - 1);
-        }
-        for (int j = 0; j < k; j++) {
-            if (n == max) {
-                full = true;
-                break;
-            }
-            float y = k > 1 ? -0.5f * c->desc.length + step * (float)j : 0.0f;
-            out[n++] = (blade_sphere_t){{c->position[0], c->position[1] + y, c->position[2], r}};
-        }
+        int want = collide_pack_spheres(&c->desc, c->position, (float (*)[4])out[n].centre_radius, max - n);
+        full = want > max - n;
+        n += full ? max - n : want;
     }
     if (w->have_chars && !full) {
         int want = character_set_spheres(&w->chars, (float (*)[4])out[n].centre_radius, max - n);
@@ -389,13 +376,13 @@ static int bb_objects(app_world_t *w, bb_object_t *out, int max)
  * frame's bb_field_update; an object whose cube map was never rendered
  * (never near a colliding billboard leaf) is skipped, and a character's map
  * keeps the pose of its last render. Blade mode (no field): the analytic
- * colliders rasterised once on the CPU (bb_cubemap_render_*) at the scene's
+ * colliders rasterised once on the CPU (collide_render_*) at the scene's
  * cube resolution, the first BLADE_MAX_CUBES of them; further colliders by
  * their bounding sphere and characters by their proxy spheres, written to
  * env. */
 static void blade_cube_proxies(app_world_t *w, blade_env_t *env)
 {
-    blade_cube_object_t objs[BLADE_MAX_CUBES];
+    collide_cube_proxy_t objs[BLADE_MAX_CUBES];
     int n = 0;
     env->sphere_count = 0;
     if (w->have_bb) {
@@ -404,56 +391,33 @@ static void blade_cube_proxies(app_world_t *w, blade_env_t *env)
         for (int k = 0; k < nb && n < BLADE_MAX_CUBES; k++) {
             float half = w->bb.cube_half[k];
             if (half <= 0.0f) continue;
-            mat4 model, inv;
-            memcpy(model, bo[k].model, sizeof model);
-            glm_mat4_inv(model, inv);
-            blade_cube_object_t *o = &objs[n++];
-            memcpy(o->w2c, inv, sizeof o->w2c);
-            memcpy(o->c2w, model, sizeof o->c2w);
-            glm_vec3_copy(w->bb.cube_centre[k], o->cube);
-            o->cube[3] = half;
-            glm_mat4_mulv3(model, w->bb.cube_centre[k], 1.0f, o->sphere);
-            float sc = fmaxf(glm_vec3_norm(model[0]), fmaxf(glm_vec3_norm(model[1]), glm_vec3_norm(model[2])));
-            o->sphere[3] = half * sqrtf(3.0f) * sc;
+            collide_make_cube_proxy(bo[k].model, w->bb.cube_centre[k], half, &objs[n++]);
         }
         blade_gpu_set_cubes(&w->blades, w->bb.cubes.id, w->bb.desc.cube_res, objs, n);
         return;
     }
     int nc = w->colliders.count < BLADE_MAX_CUBES ? w->colliders.count : BLADE_MAX_CUBES;
     if (nc > 0 && !w->blades.own_cubes.id) {
-        bb_cubemap_t cubes[BLADE_MAX_CUBES];
+        collide_cubemap_t cubes[BLADE_MAX_CUBES];
         bool ok = true;
         for (int k = 0; k < nc; k++) {
             const app_collider_t *c = &w->colliders.items[k];
-            ok = ok && bb_cubemap_init(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
+            ok = ok && collide_init_cubemap(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
             if (!ok) {
                 nc = k;
                 break;
             }
-            if (c->desc.type == SCENE_COLLIDER_CAPSULE)
-                bb_cubemap_render_capsule(&cubes[k], (vec3){0, -0.5f * c->desc.length, 0},
-                                          (vec3){0, 0.5f * c->desc.length, 0}, c->desc.radius);
-            else if (c->desc.type == SCENE_COLLIDER_BOX)
-                bb_cubemap_render_box(&cubes[k], (vec3){0, 0, 0}, (float *)c->desc.half_extents);
-            else
-                bb_cubemap_render_sphere(&cubes[k], (vec3){0, 0, 0}, c->desc.radius);
+            collide_render_shape(&cubes[k], &c->desc);
         }
         if (!ok || (nc > 0 && !blade_gpu_upload_cubes(&w->blades, cubes, nc))) nc = 0;
-        for (int k = 0; k < nc; k++) bb_cubemap_free(&cubes[k]);
+        for (int k = 0; k < nc; k++) collide_free_cubemap(&cubes[k]);
     }
     if (!w->blades.own_cubes.id) nc = 0;
     for (int k = 0; k < nc; k++) {
         const app_collider_t *c = &w->colliders.items[k];
-        blade_cube_object_t *o = &objs[n++];
-        mat4 model, inv;
+        mat4 model;
         glm_translate_make(model, (float *)c->position);
-        glm_mat4_inv(model, inv);
-        memcpy(o->w2c, inv, sizeof o->w2c);
-        memcpy(o->c2w, model, sizeof o->c2w);
-        o->cube[0] = o->cube[1] = o->cube[2] = 0.0f;
-        o->cube[3] = c->bound_radius;
-        glm_vec3_copy((float *)c->position, o->sphere);
-        o->sphere[3] = c->bound_radius * sqrtf(3.0f);
+        collide_make_cube_proxy((const float *)model, (vec3){0, 0, 0}, c->bound_radius, &objs[n++]);
     }
     blade_gpu_set_cubes(&w->blades, w->blades.own_cubes.id, w->scene.grass.cube_resolution, objs, n);
     for (int k = nc; k < w->colliders.count && env->sphere_count < BLADE_MAX_SPHERES; k++) {

@@ -41,11 +41,11 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
 /* ---- analytic colliders (scene "colliders") ---------------------------------- */
 #include "scene/scene.h"
-#include "scene/shapes.h"
+#include "collide/collide_shape.h"
 
 typedef struct app_collider_t {
     scene_collider_t desc;
-    shape_mesh_t mesh;
+    collide_mesh_t mesh;
     gfx_buffer_t vbo, ibo;
     GLuint vao;
     vec3 position, velocity; /* this frame */

@@ -551,7 +551,7 @@ void bb_field_destroy(bb_field_t *f)
 
 /* ---- update ---------------------------------------------------------------- */
 
-void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube)
+void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube)
 {
     assert(object >= 0 && object < f->desc.max_objects && cube->res == f->desc.cube_res);
     glTextureSubImage3D(f->cubes.id, 0, 0, 0, 6 * object, cube->res, cube->res, 6, GL_RGBA, GL_FLOAT, cube->texels);
@@ -585,7 +585,7 @@ static void render_cube(bb_field_t *f, const bb_object_t *o, int k)
     glBindVertexArray(o->vao);
     for (int face = 0; face < 6; face++) {
         vec3 u, v, in;
-        bb_cubemap_face_basis(face, u, v, in);
+        collide_get_face_basis(face, u, v, in);
         float clear[4] = {2.0f * half, -in[0], -in[1], -in[2]}, one = 1.0f;
         glViewport(0, face * res, res, res);
         glScissor(0, face * res, res, res);

@@ -216,7 +216,7 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
 
 /* Uploads a CPU cube map for object index `object` (used when that object's
  * vao is 0). res must equal desc.cube_res. */
-void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube);
+void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube);
 /* The quad frame of a billboard (twin of bb_frame in
  * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
  * direction (cos angle, 0, sin angle) made orthogonal to up. */

@@ -78,7 +78,7 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL, false);
     g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL, false);
     g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL, true);
-    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(blade_cube_object_t), NULL, false);
+    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL, false);
     uint32_t cmd[4];
     command_initial(g, cmd);
     g->command = make_buffer(g, "command", sizeof cmd, cmd, true);
@@ -181,7 +181,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
     gfx_timer_end();
 }
 
-void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const blade_cube_object_t *objects,
+void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const collide_cube_proxy_t *objects,
                          int count)
 {
     assert(count >= 0 && count <= BLADE_MAX_CUBES);
@@ -189,10 +189,10 @@ void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const bla
     g->cube_texture = count ? cube_texture : 0;
     g->cube_res = res;
     g->cube_count = count;
-    if (count) gfx_buffer_update(g->cube_objects, 0, (size_t)count * sizeof(blade_cube_object_t), objects);
+    if (count) gfx_buffer_update(g->cube_objects, 0, (size_t)count * sizeof(collide_cube_proxy_t), objects);
 }
 
-GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const bb_cubemap_t *cubes, int count)
+GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, int count)
 {
     assert(count >= 1 && count <= BLADE_MAX_CUBES);
     int res = cubes[0].res;

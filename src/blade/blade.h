@@ -91,7 +91,7 @@ typedef struct blade_gpu_t {
     uint32_t *patch_real;    /* real blades per patch */
     uint32_t *visible_patches;
     gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
-    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES blade_cube_object_t */
+    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
     gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
     GLuint cube_texture;       /* of blade_gpu_set_cubes; 0: none */
     int cube_res, cube_count;
@@ -134,17 +134,17 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env);
 
 /* Cube-map colliders for the following blade_gpu_simulate calls (until
  * the next call; count 0 turns them off). cube_texture: RGBA32F
- * GL_TEXTURE_2D_ARRAY of res x res faces laid out as bb_ref.h describes,
+ * GL_TEXTURE_2D_ARRAY of res x res faces laid out as collide_cube.h describes,
  * object k in layers 6k .. 6k+5 (bb_field_t.cubes qualifies); objects: count
- * records (blade_cube_object_t, the layout of bb.c's object UBO), copied.
+ * records (collide_cube_proxy_t, the layout of bb.c's object UBO), copied.
  * count <= BLADE_MAX_CUBES. The texture is not owned. */
-void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const blade_cube_object_t *objects,
+void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const collide_cube_proxy_t *objects,
                          int count);
 /* Uploads CPU cube maps (all of one res) into a texture that g owns
  * (remade when the count or res changes; freed by blade_gpu_destroy), object
  * k in layers 6k .. 6k+5. Returns its name for blade_gpu_set_cubes, 0 on
  * failure (logged). count in 1..BLADE_MAX_CUBES. */
-GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const bb_cubemap_t *cubes, int count);
+GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, int count);
 
 /* Culls for one frame (timer "blade.cull"). desc NULL uses the make-time
  * cull desc; desc->depth is ignored: depth_texture is a GL_TEXTURE_2D of

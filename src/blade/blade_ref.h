@@ -49,16 +49,17 @@
  *
  * Beyond both papers, cube-map colliders: besides spheres, a blade can
  * collide against the depth cube maps of the billboard model (Orthmann et
- * al. 2009 eq. 1-5, bb_ref.h), so a complex shape needs no sphere packing.
+ * al. 2009 eq. 1-5, collide/collide_cube.h), so a complex shape needs no
+ * sphere packing.
  * Per object, in order after the spheres: v2 and then the recomputed m are
- * pushed out as by bb_ref_push_out (smallest-penetration face, along the
+ * pushed out as by collide_push_out (smallest-penetration face, along the
  * stored normal by the penetration; m's push is applied 4x to v2, as for
  * spheres) and the pushes join d (eta as for spheres). The exit after a
  * contact (after the sphere exit): BLADE_EXIT_ROUNDS passes over the
  * objects rotate v1, v2 rigidly about v0 so that the point (v2, then m)
  * points at its push-out target moved BLADE_CUBE_MARGIN * half further
  * along the normal (skipped when v2 would go under the ground plane); then,
- * if v2 or m is still inside an object (cube-map test, bb_ref_inside), the
+ * if v2 or m is still inside an object (cube-map test, collide_test_inside), the
  * blade becomes the straight segment v0 + u [0, h] along the first of
  * BLADE_CUBE_DIRECTIONS fixed directions (up, then rings of 8 at 22.5,
  * 45, 67.5, 90 degrees from up) ordered by closeness to the tip direction
@@ -72,7 +73,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "billboard/bb_ref.h"
+#include "collide/collide_cube.h"
 
 /* One blade, 64 bytes (4 vec4), std430; mirrors `struct Blade` in
  * shaders/common/blade.glsl. */
@@ -112,21 +113,6 @@ typedef struct blade_sphere_t {
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
 #define BLADE_MAX_SPHERES 512
 
-/* A cube-map collider, 160 bytes, std430; mirrors `struct BladeCube` in
- * shaders/common/blade.glsl and bb.c's per-object UBO record:
- *   w2c    world -> cube space (column-major), c2w its inverse
- *   cube   xyz cube centre (cube space), w half edge length
- *   sphere xyz world centre, w radius of a sphere holding the whole cube
- *          (broad phase: points farther are not tested); w <= 0: the
- *          object is skipped
- * Object k's faces are layers 6k .. 6k+5 of the cube texture (CPU: cubes[k]). */
-typedef struct blade_cube_object_t {
-    float w2c[16];
-    float c2w[16];
-    float cube[4];
-    float sphere[4];
-} blade_cube_object_t;
-
 #define BLADE_MAX_CUBES 16
 #define BLADE_CUBE_MARGIN 1e-3f  /* exit target beyond the surface, in units of half */
 #define BLADE_CUBE_DIRECTIONS 33 /* straight-blade candidates of the cube exit */
@@ -161,8 +147,8 @@ typedef struct blade_env_t {
     int sphere_count;
     /* Cube-map colliders of the CPU reference (the GPU takes them from
      * blade_gpu_set_cubes): cube_count objects and their cube maps. */
-    const blade_cube_object_t *cube_objects;
-    const bb_cubemap_t *cubes;
+    const collide_cube_proxy_t *cube_objects;
+    const collide_cubemap_t *cubes;
     int cube_count;
 } blade_env_t;
 
@@ -214,13 +200,13 @@ void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
 
 /* Cube-map collision of one blade (see the banner): every object's push of
  * v2 and then of m, applied to b->v2; the total goes into d. */
-void blade_ref_collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+void blade_ref_collide_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                              int count, float d[3]);
 /* The cube-map collision exit (see the banner); no-op for a padding blade. */
-void blade_ref_exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count);
+void blade_ref_exit_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count);
 /* Whether world point p is inside object k's shape per its cube map
- * (bb_ref_inside after the broad phase). */
-bool blade_ref_inside_cube(const blade_cube_object_t *object, const bb_cubemap_t *cube, const float p[3]);
+ * (collide_test_inside after the broad phase). */
+bool blade_ref_inside_cube(const collide_cube_proxy_t *object, const collide_cubemap_t *cube, const float p[3]);
 
 /* Curve length as used by the validation: BLADE_LENGTH_PAPER is eq. 12
  * with n = 2, BLADE_LENGTH_QUADRATURE the split Gauss-Legendre arc length. */
