@@ -44,14 +44,23 @@ static inline void test_mesh_destroy(test_mesh_t *m)
     collide_free_mesh(&m->shape);
 }
 
-static inline bb_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)
+static inline collide_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)
 {
-    bb_object_t o = {.vao = m ? m->vao : 0, .index_count = m ? (GLsizei)m->shape.index_count : 0,
+    collide_object_t o = {.vao = m ? m->vao : 0, .index_count = m ? (GLsizei)m->shape.index_count : 0,
                      .index_type = GL_UNSIGNED_INT, .radius = radius};
     mat4 model;
     glm_translate_make(model, (float *)centre);
     memcpy(o.model, model, sizeof model);
     return o;
+}
+
+/* The collide set of objs[0..n) (one static set, rebuilt by every call). */
+static inline const collide_set_t *test_set(const collide_object_t *objs, int n)
+{
+    static collide_set_t set;
+    collide_begin_set(&set);
+    for (int k = 0; k < n; k++) collide_add_object(&set, &objs[k], 0.0f);
+    return &set;
 }
 
 /* The collision tests' field: an 8 m heightfield (seed 3) and 36

@@ -88,9 +88,9 @@ int main(void)
     bb_field_t fa;
     CHECK(bb_field_make(&fa, &desc));
     bb_field_set_cube(&fa, 0, &cpu_cube);
-    bb_object_t oa = test_object(NULL, centre, radius);
+    collide_object_t oa = test_object(NULL, centre, radius);
     gfx_timer_frame_begin();
-    bb_field_update(&fa, &oa, 1, time, 1.0f / 30.0f);
+    bb_field_update(&fa, test_set(&oa, 1), time, 1.0f / 30.0f);
     double max_err, mean_err, deepest;
     int cpu_hits;
     int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
@@ -110,9 +110,9 @@ int main(void)
     test_mesh_make(&mesh, &sc);
     bb_field_t fb;
     CHECK(bb_field_make(&fb, &desc));
-    bb_object_t ob = test_object(&mesh, centre, radius);
+    collide_object_t ob = test_object(&mesh, centre, radius);
     gfx_timer_frame_begin();
-    bb_field_update(&fb, &ob, 1, time, 1.0f / 30.0f);
+    bb_field_update(&fb, test_set(&ob, 1), time, 1.0f / 30.0f);
     float *tex = malloc(sizeof(float) * 4 * 6 * RES * RES);
     glGetTextureSubImage(fb.cubes.id, 0, 0, 0, 0, RES, RES, 6, GL_RGBA, GL_FLOAT, sizeof(float) * 4 * 6 * RES * RES,
                          tex);

@@ -51,7 +51,7 @@ int main(void)
 
     bb_field_t f;
     CHECK(bb_field_make(&f, &desc));
-    bb_object_t objs[OBJECTS];
+    collide_object_t objs[OBJECTS];
     mat4 w2c[OBJECTS];
     for (int k = 0; k < OBJECTS; k++) {
         bb_field_set_cube(&f, k, &cube[radius[k] < 0.2f]);
@@ -59,7 +59,7 @@ int main(void)
         glm_translate_make(w2c[k], (vec3){-centre[k][0], -centre[k][1], -centre[k][2]});
     }
     gfx_timer_frame_begin();
-    bb_field_update(&f, objs, OBJECTS, time, 1.0f / 30.0f);
+    bb_field_update(&f, test_set(objs, OBJECTS), time, 1.0f / 30.0f);
     bb_stats_t st;
     bb_field_stats(&f, true, &st);
 
@@ -150,7 +150,7 @@ int main(void)
         objs[k] = test_object(NULL, cb[k], small);
     }
     gfx_timer_frame_begin();
-    bb_field_update(&f, objs, NB, time, 1.0f / 30.0f);
+    bb_field_update(&f, test_set(objs, NB), time, 1.0f / 30.0f);
     bb_field_stats(&f, true, &st);
     bb_point_t pb;
     gfx_buffer_read(f.points, sizeof pb * (size_t)i0, sizeof pb, &pb);

@@ -4,7 +4,7 @@
  * rasterised on the CPU into a 64^3 cube map (collide_render_sphere),
  * uploaded with blade_gpu_upload_cubes and placed by a rotated, moving
  * transform. Checks:
- *   1. blade_physics.comp against blade_ref_step (env.cubes) blade for
+ *   1. blade_physics.comp against blade_ref_step (the set's cube_maps) blade for
  *      blade over 6 steps: v1, v2, eta within tolerance, v0 unchanged.
  *   2. after every GPU update no v2 or m is inside the shape per the
  *      cube-map test (collide_test_inside through blade_ref_inside_cube), root
@@ -91,13 +91,11 @@ static void test_gpu_vs_cpu(blade_gpu_t *g, const blade_field_t *f, const collid
     for (int s = 20; s < 26; s++) {
         blade_env_t env = base_env();
         env.time = (float)s / 30.0f;
-        collide_cube_proxy_t o = object_at(s);
-        env.cube_objects = &o;
-        env.cubes = cube;
-        env.cube_count = 1;
-        blade_gpu_set_cubes(g, tex, RES, &o, 1);
-        blade_gpu_simulate(g, &env);
-        blade_ref_step(cpu, ecpu, n, &env);
+        static collide_set_t set;
+        set = (collide_set_t){.cubes[0] = object_at(s), .cube_count = 1, .cube_texture = tex, .cube_res = RES,
+                              .cube_maps = cube};
+        blade_gpu_simulate(g, &env, &set);
+        blade_ref_step(cpu, ecpu, n, &env, &set);
         blade_gpu_read_blades(g, gpu, egpu);
         for (size_t i = 0; i < n; i++) {
             double d = 0.0;
@@ -156,14 +154,14 @@ static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const collide_cubem
         collide_cube_proxy_t o = object_at(s);
         float c[3];
         centre_at(s, c);
+        static collide_set_t set;
         if (cubes) {
-            blade_gpu_set_cubes(g, tex, RES, &o, 1);
+            set = (collide_set_t){.cubes[0] = o, .cube_count = 1, .cube_texture = tex, .cube_res = RES};
         } else {
-            blade_gpu_set_cubes(g, 0, 0, NULL, 0);
-            env.sphere_count = kind == 2;
-            env.spheres[0] = (blade_sphere_t){{c[0], c[1], c[2], RADIUS}};
+            set = (collide_set_t){.sphere_count = kind == 2};
+            set.spheres[0] = (blade_sphere_t){{c[0], c[1], c[2], RADIUS}};
         }
-        blade_gpu_simulate(g, &env);
+        blade_gpu_simulate(g, &env, &set);
         blade_gpu_read_blades(g, b, NULL);
         blade_t *fr = &free_run[(size_t)s * n];
         if (kind == 0) memcpy(fr, b, n * sizeof *b);

@@ -3,12 +3,16 @@
  * values, the inside test (Orthmann et al. 2009 eq. 1-3) against analytic
  * inside-ness and the push-out (eq. 4-5) against the analytic surface.
  * Shapes (collide_shape.h): collider meshes lie on their analytic surfaces
- * and face outward, signed distances match hand values. */
+ * and face outward, signed distances match hand values, sphere packing and
+ * the CPU cube map of a collider. Sets (collide_set.h): cube proxies,
+ * previous positions and velocities. */
+#include "collide/collide_set.h"
 #include "collide/collide_shape.h"
 #include "core/core.h"
 #include "test.h"
 
 #include <math.h>
+#include <string.h>
 
 static void test_face_basis(void)
 {
@@ -184,8 +188,57 @@ static void check_mesh(const scene_collider_t *c)
     collide_free_mesh(&m);
 }
 
+static void test_pack_render(void)
+{
+    scene_collider_t cap = {.type = SCENE_COLLIDER_CAPSULE, .radius = 0.3f, .length = 1.0f};
+    float sp[8][4], pos[3] = {1, 2, 3};
+    int n = collide_pack_spheres(&cap, pos, sp, 8);
+    CHECK(n == 1 + 4); /* 1 + ceil(1 / 0.3) */
+    CHECK_NEAR(sp[0][1], 1.5, 1e-6);
+    CHECK_NEAR(sp[n - 1][1], 2.5, 1e-6);
+    CHECK(sp[2][3] == 0.3f && sp[2][0] == 1.0f && sp[2][2] == 3.0f);
+    CHECK(collide_pack_spheres(&cap, pos, sp, 2) == n); /* too small: full count back */
+    scene_collider_t box = {.type = SCENE_COLLIDER_BOX, .half_extents = {0.5f, 0.25f, 1.0f}};
+    CHECK(collide_pack_spheres(&box, pos, sp, 8) == 1 && sp[0][3] == collide_bounding_radius(&box));
+    /* the CPU cube map of a collider is its shape's rasterisation */
+    collide_cubemap_t a, b;
+    CHECK(collide_init_cubemap(&a, 16, (vec3){0, 0, 0}, 1.2f) && collide_init_cubemap(&b, 16, (vec3){0, 0, 0}, 1.2f));
+    collide_render_shape(&a, &box);
+    collide_render_box(&b, (vec3){0, 0, 0}, (vec3){0.5f, 0.25f, 1.0f});
+    CHECK(memcmp(a.texels, b.texels, sizeof(float) * 4 * 6 * 16 * 16) == 0);
+    collide_free_cubemap(&a);
+    collide_free_cubemap(&b);
+}
+
+static void test_set(void)
+{
+    mat4 m;
+    glm_translate_make(m, (vec3){1, 2, 3});
+    collide_cube_proxy_t p;
+    collide_make_cube_proxy((const float *)m, (float[3]){0, 0.5f, 0}, 0.5f, &p);
+    CHECK(p.sphere[0] == 1.0f && p.sphere[1] == 2.5f && p.sphere[2] == 3.0f);
+    CHECK_NEAR(p.sphere[3], 0.5 * sqrt(3.0), 1e-6);
+    CHECK_NEAR(p.w2c[12], -1.0, 1e-6);
+    static collide_set_t set;
+    collide_object_t o = {.centre = {0, 0.5f, 0}, .radius = 0.5f};
+    memcpy(o.model, m, sizeof o.model);
+    collide_begin_set(&set);
+    collide_object_t *a = collide_add_object(&set, &o, 0.1f);
+    CHECK(a && a->position[1] == 2.5f && a->prev_position[1] == 2.5f && a->velocity[0] == 0.0f);
+    o.model[12] = 1.5f;
+    collide_begin_set(&set);
+    a = collide_add_object(&set, &o, 0.1f);
+    CHECK(a->prev_position[0] == 1.0f && a->position[0] == 1.5f);
+    CHECK_NEAR(a->velocity[0], 5.0, 1e-5);
+    for (int k = 1; k < COLLIDE_MAX_OBJECTS; k++) CHECK(collide_add_object(&set, &o, 0.1f));
+    CHECK(collide_add_object(&set, &o, 0.1f) == NULL);
+    CHECK(set.object_count == COLLIDE_MAX_OBJECTS);
+}
+
 int main(void)
 {
+    test_pack_render();
+    test_set();
     test_face_basis();
     test_sphere_map();
     test_box_capsule_map();

@@ -72,7 +72,7 @@ typedef struct app_tuning_t {
     int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
     unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
     bool blade_cube_proxies; /* blades collide against depth cube maps instead of
-                                sphere proxies (blade_gpu_set_cubes; not the tiles) */
+                                sphere proxies (the set's cube proxies; not the tiles) */
 } app_tuning_t;
 
 /* ---- the world ------------------------------------------------------------------ */
@@ -93,7 +93,9 @@ typedef struct app_world_t {
     /* Blades (Jahrmann & Wimmer 2017), built for blade and hybrid modes. */
     blade_gpu_t blades;
     bool have_blades;
-    blade_env_t blade_env; /* winds fixed at load; spheres per update */
+    blade_env_t blade_env; /* winds fixed at load */
+    GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
+                              (blade_gpu_upload_cubes; owned by blades) */
     bool warned_spheres;
     int blade_render; /* app_options_t.blade_render */
     /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
@@ -101,6 +103,9 @@ typedef struct app_world_t {
     blade_tiles_t tiles;
     bool have_tiles;
     float camera[3]; /* of the last draw (activation and representation) */
+    /* The colliders of the latest step (app_world_update), taken by the
+     * billboards, the blades and the tiles. */
+    collide_set_t collide;
     /* Walking characters (scene "characters" or --character). */
     character_set_t chars;
     bool have_chars;

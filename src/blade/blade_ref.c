@@ -47,9 +47,6 @@ blade_env_t blade_env_defaults(const blade_env_t *env)
     if (e.collision_decay == 0.0f) e.collision_decay = 1.0f;
     if (e.collision_gain == 0.0f) e.collision_gain = 1.0f;
     assert(e.wind_count >= 0 && e.wind_count <= BLADE_MAX_WINDS);
-    assert(e.sphere_count >= 0 && e.sphere_count <= BLADE_MAX_SPHERES);
-    assert(e.cube_count >= 0 && e.cube_count <= BLADE_MAX_CUBES);
-    assert(e.cube_count == 0 || (e.cube_objects && e.cubes));
     assert(e.length_mode == BLADE_LENGTH_QUADRATURE || e.length_mode == BLADE_LENGTH_PAPER);
     return e;
 }
@@ -548,31 +545,34 @@ void blade_ref_validate(blade_t *b, int length_mode)
     v3_store(b->v2, v2c);
 }
 
-void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
+void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const collide_set_t *colliders)
 {
     float h = b->v1[3];
     if (h <= 0.0f) return;
+    static const collide_set_t none;
+    const collide_set_t *c = colliders ? colliders : &none;
+    assert(c->cube_count == 0 || c->cube_maps);
     float dt = env->dt;
     v3 r = recovery(b, *eta);
     v3 g = gravity(b, env);
     v3 w = wind(b, env);
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), dt)));
     blade_ref_validate(b, env->length_mode);
-    v3 d = collide(b, env->spheres, env->sphere_count);
-    d = v3_add(d, collide_cubes(b, env->cube_objects, env->cubes, env->cube_count));
+    v3 d = collide(b, c->spheres, c->sphere_count);
+    d = v3_add(d, collide_cubes(b, c->cubes, c->cube_maps, c->cube_count));
     if (v3_dot(d, d) > 0.0f) {
         blade_ref_validate(b, env->length_mode);
-        exit_spheres(b, env->spheres, env->sphere_count);
-        exit_cubes(b, env->cube_objects, env->cubes, env->cube_count);
+        exit_spheres(b, c->spheres, c->sphere_count);
+        exit_cubes(b, c->cubes, c->cube_maps, c->cube_count);
     }
     float e = *eta + env->collision_gain * v3_dot(d, d);
     *eta = fminf(fmaxf(e - env->collision_decay * dt, 0.0f), 1.0f);
 }
 
-void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env)
+void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env, const collide_set_t *colliders)
 {
     blade_env_t e = blade_env_defaults(env);
-    for (size_t i = 0; i < n; i++) blade_ref_step_one(&b[i], &eta[i], &e);
+    for (size_t i = 0; i < n; i++) blade_ref_step_one(&b[i], &eta[i], &e, colliders);
 }
 
 float blade_ref_curve_length(const blade_t *b, int samples)

@@ -73,7 +73,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "collide/collide_cube.h"
+#include "collide/collide_set.h"
 
 /* One blade, 64 bytes (4 vec4), std430; mirrors `struct Blade` in
  * shaders/common/blade.glsl. */
@@ -102,18 +102,16 @@ typedef struct blade_wind_t {
 #define BLADE_WIND_WAVE 0.0f
 #define BLADE_WIND_POINT 1.0f
 
-/* A sphere collider, 16 bytes (1 vec4), std430: xyz centre, w radius.
- * Mirrors `struct BladeSphere` in shaders/common/blade.glsl. */
-typedef struct blade_sphere_t {
-    float centre_radius[4];
-} blade_sphere_t;
+/* A sphere collider: the collide set's sphere proxy (xyz centre, w radius,
+ * std430), mirrored by `struct BladeSphere` in shaders/common/blade.glsl. */
+typedef collide_sphere_t blade_sphere_t;
 
 #define BLADE_MAX_WINDS 8
 #define BLADE_LENGTH_QUADRATURE 0 /* default: see the banner */
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
-#define BLADE_MAX_SPHERES 512
+#define BLADE_MAX_SPHERES COLLIDE_MAX_SPHERES
 
-#define BLADE_MAX_CUBES 16
+#define BLADE_MAX_CUBES COLLIDE_MAX_CUBES
 #define BLADE_CUBE_MARGIN 1e-3f  /* exit target beyond the surface, in units of half */
 #define BLADE_CUBE_DIRECTIONS 33 /* straight-blade candidates of the cube exit */
 
@@ -143,13 +141,6 @@ typedef struct blade_env_t {
     int length_mode;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;
-    blade_sphere_t spheres[BLADE_MAX_SPHERES];
-    int sphere_count;
-    /* Cube-map colliders of the CPU reference (the GPU takes them from
-     * blade_gpu_set_cubes): cube_count objects and their cube maps. */
-    const collide_cube_proxy_t *cube_objects;
-    const collide_cubemap_t *cubes;
-    int cube_count;
 } blade_env_t;
 
 blade_env_t blade_env_defaults(const blade_env_t *env);
@@ -217,12 +208,14 @@ float blade_ref_length_estimate(const blade_t *b, int length_mode);
  * (blade_ref_length_estimate) equals the height. No-op for height <= 0. */
 void blade_ref_validate(blade_t *b, int length_mode);
 
-/* One step of one blade (order in the banner). env must be resolved. */
-void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env);
+/* One step of one blade (order in the banner) against the spheres and the
+ * cube proxies of `colliders` (its cube_maps, required when cube_count > 0;
+ * NULL: no colliders). env must be resolved. */
+void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const collide_set_t *colliders);
 
 /* Applies blade_ref_step_one to n blades; resolves env first. Pure function
  * of its inputs, deterministic. */
-void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env);
+void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env, const collide_set_t *colliders);
 
 /* Arc length of the blade's Bézier curve by summing `samples` chords. */
 float blade_ref_curve_length(const blade_t *b, int samples);
