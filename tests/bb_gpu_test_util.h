@@ -5,19 +5,19 @@
 #define MEADOW_BB_GPU_TEST_UTIL_H
 
 #include "billboard/bb.h"
-#include "scene/shapes.h"
+#include "collide/collide_shape.h"
 
 #include <string.h>
 
 typedef struct test_mesh_t {
-    shape_mesh_t shape;
+    collide_mesh_t shape;
     gfx_buffer_t pos, nrm, idx;
     GLuint vao;
 } test_mesh_t;
 
 static inline void test_mesh_make(test_mesh_t *m, const scene_collider_t *c)
 {
-    shape_mesh_make(&m->shape, c);
+    collide_make_mesh(&m->shape, c);
     m->pos = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
                                                   .data = m->shape.positions, .label = "test.pos"});
     m->nrm = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,
@@ -41,17 +41,26 @@ static inline void test_mesh_destroy(test_mesh_t *m)
     gfx_buffer_destroy(&m->pos);
     gfx_buffer_destroy(&m->nrm);
     gfx_buffer_destroy(&m->idx);
-    shape_mesh_free(&m->shape);
+    collide_free_mesh(&m->shape);
 }
 
-static inline bb_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)
+static inline collide_object_t test_object(const test_mesh_t *m, const float centre[3], float radius)
 {
-    bb_object_t o = {.vao = m ? m->vao : 0, .index_count = m ? (GLsizei)m->shape.index_count : 0,
+    collide_object_t o = {.vao = m ? m->vao : 0, .index_count = m ? (GLsizei)m->shape.index_count : 0,
                      .index_type = GL_UNSIGNED_INT, .radius = radius};
     mat4 model;
     glm_translate_make(model, (float *)centre);
     memcpy(o.model, model, sizeof model);
     return o;
+}
+
+/* The collide set of objs[0..n) (one static set, rebuilt by every call). */
+static inline const collide_set_t *test_set(const collide_object_t *objs, int n)
+{
+    static collide_set_t set;
+    collide_begin_set(&set);
+    for (int k = 0; k < n; k++) collide_add_object(&set, &objs[k], 0.0f);
+    return &set;
 }
 
 /* The collision tests' field: an 8 m heightfield (seed 3) and 36

@@ -37,6 +37,14 @@ static int test_failures;
         }                                                                       \
     } while (0)
 
+/* Euclidean distance of two float[3] points, in double. */
+static inline double test_dist3(const float *a, const float *b)
+{
+    double s = 0;
+    for (int k = 0; k < 3; k++) s += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
+    return sqrt(s);
+}
+
 #define TEST_SKIP(...)                                                          \
     do {                                                                        \
         fprintf(stderr, "SKIP: " __VA_ARGS__);                                  \

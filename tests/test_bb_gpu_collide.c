@@ -1,6 +1,6 @@
 /* test_bb_gpu_collide: the collision pass of Orthmann et al. 2009 on the GPU
  * (bb_collide.geom, eq. 1-7) against the CPU reference bb_ref_collide.
- *  A: the CPU cube map of the sphere (bb_cubemap_render_sphere) uploaded with
+ *  A: the CPU cube map of the sphere (collide_render_sphere) uploaded with
  *     bb_field_set_cube: GPU meshes equal bb_ref_collide to float rounding.
  *  B: the GPU cube map of the sphere mesh from shapes.h: its texels against
  *     the CPU ones, the GPU meshes against bb_ref_collide on the CPU cube,
@@ -18,7 +18,7 @@ static float sphere_y(const terrain_mesh_t *t, float x, float z) { return terrai
 
 /* Returns the number of deformed billboards; fills max/mean vertex error
  * against bb_ref_collide(cpu_cube) and the deepest penetration. */
-static int compare(bb_field_t *f, const bb_cubemap_t *cube, const float centre[3], float radius, float time,
+static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float centre[3], float radius, float time,
                    double *max_err, double *mean_err, double *deepest, int *cpu_hits)
 {
     int n = f->billboards, nm = f->desc.subdiv[0] * f->desc.subdiv[1];
@@ -60,7 +60,7 @@ static int compare(bb_field_t *f, const bb_cubemap_t *cube, const float centre[3
             sum_n++;
             float rel[3] = {g[4 * v] - centre[0], g[4 * v + 1] - centre[1], g[4 * v + 2] - centre[2]};
             if (v >= f->desc.subdiv[0]) /* roots are fixed (and may sit inside a sphere sunk into the ground) */
-                *deepest = fmin(*deepest, shape_signed_distance(&sph, rel));
+                *deepest = fmin(*deepest, collide_signed_distance(&sph, rel));
         }
         bb_mesh_free(&mesh);
     }
@@ -80,17 +80,17 @@ int main(void)
     float centre[3] = {0.3f, 0, -0.2f};
     centre[1] = sphere_y(&terrain, centre[0], centre[2]);
 
-    bb_cubemap_t cpu_cube;
-    CHECK(bb_cubemap_init(&cpu_cube, RES, (vec3){0, 0, 0}, radius));
-    bb_cubemap_render_sphere(&cpu_cube, (vec3){0, 0, 0}, radius);
+    collide_cubemap_t cpu_cube;
+    CHECK(collide_init_cubemap(&cpu_cube, RES, (vec3){0, 0, 0}, radius));
+    collide_render_sphere(&cpu_cube, (vec3){0, 0, 0}, radius);
 
     /* A: CPU cube map uploaded: same inputs on both sides. */
     bb_field_t fa;
     CHECK(bb_field_make(&fa, &desc));
     bb_field_set_cube(&fa, 0, &cpu_cube);
-    bb_object_t oa = test_object(NULL, centre, radius);
+    collide_object_t oa = test_object(NULL, centre, radius);
     gfx_timer_frame_begin();
-    bb_field_update(&fa, &oa, 1, time, 1.0f / 30.0f);
+    bb_field_update(&fa, test_set(&oa, 1), time, 1.0f / 30.0f);
     double max_err, mean_err, deepest;
     int cpu_hits;
     int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
@@ -110,9 +110,9 @@ int main(void)
     test_mesh_make(&mesh, &sc);
     bb_field_t fb;
     CHECK(bb_field_make(&fb, &desc));
-    bb_object_t ob = test_object(&mesh, centre, radius);
+    collide_object_t ob = test_object(&mesh, centre, radius);
     gfx_timer_frame_begin();
-    bb_field_update(&fb, &ob, 1, time, 1.0f / 30.0f);
+    bb_field_update(&fb, test_set(&ob, 1), time, 1.0f / 30.0f);
     float *tex = malloc(sizeof(float) * 4 * 6 * RES * RES);
     glGetTextureSubImage(fb.cubes.id, 0, 0, 0, 0, RES, RES, 6, GL_RGBA, GL_FLOAT, sizeof(float) * 4 * 6 * RES * RES,
                          tex);
@@ -154,7 +154,7 @@ int main(void)
     free(tex);
     bb_field_destroy(&fb);
     test_mesh_destroy(&mesh);
-    bb_cubemap_free(&cpu_cube);
+    collide_free_cubemap(&cpu_cube);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -42,9 +42,9 @@ int main(void)
         /* 6 m/s zig-zag across the field, bouncing between x = -3.5 and 3.5 */
         float s = fmodf(time * 6.0f, 14.0f), x = s < 7.0f ? s - 3.5f : 10.5f - s, z = 1.5f * sinf(time * 3.0f);
         float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.25f, z};
-        bb_object_t o = test_object(&mesh, c, sc.radius);
+        collide_object_t o = test_object(&mesh, c, sc.radius);
         gfx_timer_frame_begin();
-        bb_field_update(&f, &o, 1, time, dt);
+        bb_field_update(&f, test_set(&o, 1), time, dt);
         if (frame % 6 != 5) continue;
         gfx_buffer_read(f.points, 0, sizeof *pts * (size_t)n, pts);
         gfx_buffer_read(f.meshes, 0, sizeof(float) * mesh_floats, meshes);
@@ -89,7 +89,7 @@ int main(void)
         float dt = 1.0f / 30.0f;
         time += dt;
         gfx_timer_frame_begin();
-        bb_field_update(&f, NULL, 0, time, dt);
+        bb_field_update(&f, NULL, time, dt);
         gfx_buffer_read(f.points, 0, sizeof *pts * (size_t)n, pts);
         gfx_buffer_read(f.meshes, 0, sizeof(float) * mesh_floats, meshes);
         for (int i = 0; i < n; i++) {
@@ -138,14 +138,14 @@ int main(void)
     for (int frame = 0; frame < 12; frame++) {
         time += 1.0f / 30.0f;
         float x = -2.0f + 0.3f * (float)frame, c[3] = {x, terrain_height_at(&terrain, x, 0.0f, NULL) + 0.25f, 0.0f};
-        bb_object_t o = test_object(&mesh, c, sc.radius);
-        bb_field_update(&small, &o, 1, time, 1.0f / 30.0f);
+        collide_object_t o = test_object(&mesh, c, sc.radius);
+        bb_field_update(&small, test_set(&o, 1), time, 1.0f / 30.0f);
     }
     bb_field_stats(&small, true, &exact);
     /* No more GPU work: updates only poll, so the late numbers settle. */
     for (int frame = 0; frame < 6 && late.pool_exhausted != exact.pool_exhausted; frame++) {
         glFinish();
-        bb_field_update(&small, NULL, 0, time, 0.0f);
+        bb_field_update(&small, NULL, time, 0.0f);
         bb_field_stats(&small, false, &late);
     }
     printf("8-slot pool: exact %d deformed, %d refused; late %d deformed, %d refused; %d warnings\n",

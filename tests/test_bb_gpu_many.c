@@ -42,16 +42,16 @@ int main(void)
         }
         centre[k][1] = terrain_height_at(&terrain, centre[k][0], centre[k][2], NULL) + 0.5f * radius[k];
     }
-    bb_cubemap_t cube[2];
+    collide_cubemap_t cube[2];
     const float radii[2] = {0.3f, 0.12f};
     for (int c = 0; c < 2; c++) {
-        CHECK(bb_cubemap_init(&cube[c], RES, (vec3){0, 0, 0}, radii[c]));
-        bb_cubemap_render_sphere(&cube[c], (vec3){0, 0, 0}, radii[c]);
+        CHECK(collide_init_cubemap(&cube[c], RES, (vec3){0, 0, 0}, radii[c]));
+        collide_render_sphere(&cube[c], (vec3){0, 0, 0}, radii[c]);
     }
 
     bb_field_t f;
     CHECK(bb_field_make(&f, &desc));
-    bb_object_t objs[OBJECTS];
+    collide_object_t objs[OBJECTS];
     mat4 w2c[OBJECTS];
     for (int k = 0; k < OBJECTS; k++) {
         bb_field_set_cube(&f, k, &cube[radius[k] < 0.2f]);
@@ -59,7 +59,7 @@ int main(void)
         glm_translate_make(w2c[k], (vec3){-centre[k][0], -centre[k][1], -centre[k][2]});
     }
     gfx_timer_frame_begin();
-    bb_field_update(&f, objs, OBJECTS, time, 1.0f / 30.0f);
+    bb_field_update(&f, test_set(objs, OBJECTS), time, 1.0f / 30.0f);
     bb_stats_t st;
     bb_field_stats(&f, true, &st);
 
@@ -76,7 +76,7 @@ int main(void)
         bb_point_frame(p, right, up);
         float bc[3], br = 0.5f * sqrtf(p->size[0] * p->size[0] + p->size[1] * p->size[1]) + f.desc.wind.strength;
         for (int a = 0; a < 3; a++) bc[a] = p->position[a] + up[a] * 0.5f * p->size[1];
-        bb_cubemap_t hc[OBJECTS];
+        collide_cubemap_t hc[OBJECTS];
         mat4 hw[OBJECTS];
         int h = 0, late = 0;
         for (int k = 0; k < OBJECTS; k++) {
@@ -107,7 +107,7 @@ int main(void)
             for (int k = 0; k < OBJECTS; k++) {
                 float rel[3] = {g[4 * v] - centre[k][0], g[4 * v + 1] - centre[k][1], g[4 * v + 2] - centre[k][2]};
                 scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius[k]};
-                double sd = shape_signed_distance(&sph, rel);
+                double sd = collide_signed_distance(&sph, rel);
                 deepest = fmin(deepest, sd);
                 worst = fmin(worst, sd / (2.0 * radius[k] / RES));
             }
@@ -135,9 +135,9 @@ int main(void)
     bb_point_frame(p0, right, up);
     float c0[3], small = 0.05f;
     for (int a = 0; a < 3; a++) c0[a] = p0->position[a] + up[a] * 0.7f * p0->size[1];
-    bb_cubemap_t sc;
-    CHECK(bb_cubemap_init(&sc, RES, (vec3){0, 0, 0}, small));
-    bb_cubemap_render_sphere(&sc, (vec3){0, 0, 0}, small);
+    collide_cubemap_t sc;
+    CHECK(collide_init_cubemap(&sc, RES, (vec3){0, 0, 0}, small));
+    collide_render_sphere(&sc, (vec3){0, 0, 0}, small);
     enum { NB = BB_PASS_OBJECTS + 4 };
     float cb[NB][3], db[NB];
     int order[NB];
@@ -150,7 +150,7 @@ int main(void)
         objs[k] = test_object(NULL, cb[k], small);
     }
     gfx_timer_frame_begin();
-    bb_field_update(&f, objs, NB, time, 1.0f / 30.0f);
+    bb_field_update(&f, test_set(objs, NB), time, 1.0f / 30.0f);
     bb_field_stats(&f, true, &st);
     bb_point_t pb;
     gfx_buffer_read(f.points, sizeof pb * (size_t)i0, sizeof pb, &pb);
@@ -166,7 +166,7 @@ int main(void)
         }
     bool keep[NB] = {false};
     for (int k = 0; k < BB_PASS_OBJECTS; k++) keep[order[k]] = true;
-    bb_cubemap_t kc[NB];
+    collide_cubemap_t kc[NB];
     mat4 kw[NB];
     int nk = 0;
     for (int k = 0; k < NB; k++) {
@@ -188,12 +188,12 @@ int main(void)
            "%.3g m\n", NB, i0, st.objects_dropped, st.batches, BB_PASS_OBJECTS, berr);
     CHECK(st.objects_dropped >= NB - BB_PASS_OBJECTS);
     CHECK(berr < 1e-4);
-    bb_cubemap_free(&sc);
+    collide_free_cubemap(&sc);
 
     free(pts);
     free(meshes);
     bb_field_destroy(&f);
-    for (int c = 0; c < 2; c++) bb_cubemap_free(&cube[c]);
+    for (int c = 0; c < 2; c++) collide_free_cubemap(&cube[c]);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -51,9 +51,9 @@ int main(void)
         time += 1.0f / 30.0f;
         float x = -3.5f + 7.0f * (float)frame / 23.0f, z = 0.5f;
         float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.5f, z};
-        bb_object_t o = test_object(&mesh, c, sc.radius);
+        collide_object_t o = test_object(&mesh, c, sc.radius);
         gfx_timer_frame_begin();
-        bb_field_update(&f, &o, 1, time, 1.0f / 30.0f);
+        bb_field_update(&f, test_set(&o, 1), time, 1.0f / 30.0f);
     }
     bb_stats_t st;
     bb_field_stats(&f, true, &st);

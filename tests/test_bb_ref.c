@@ -1,7 +1,6 @@
 /* test_bb_ref: the Orthmann et al. 2009 collision reference (bb_ref.c).
- * Checks the depth cube map of a sphere/box/capsule against analytic values,
- * the inside test (eq. 1-3) against analytic inside-ness, push-out and
- * collide (eq. 4-5) against the analytic surface, spring relaxation (eq. 6-7),
+ * Checks collide (eq. 4-5, the cube maps are tests/test_collide.c) against
+ * the analytic surface, spring relaxation (eq. 6-7),
  * recovery (eq. 8), the wind formula, a 1000-frame stress run, and the
  * bb_point_t layout against struct bb_point in shaders/common/bb.glsl. */
 #include "billboard/bb_ref.h"
@@ -12,157 +11,7 @@
 #include <stddef.h>
 #include <string.h>
 
-static double dist3(const float *a, const float *b)
-{
-    double s = 0;
-    for (int k = 0; k < 3; k++) s += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
-    return sqrt(s);
-}
-
-static void test_face_basis(void)
-{
-    for (int f = 0; f < 6; f++) {
-        vec3 u, v, in, c;
-        bb_cubemap_face_basis(f, u, v, in);
-        glm_vec3_cross(u, v, c);
-        int axis = f / 2;
-        float s = (f % 2 == 0) ? 1.0f : -1.0f;
-        for (int k = 0; k < 3; k++) {
-            CHECK_NEAR(c[k], -in[k], 1e-6);                 /* u x v = outward */
-            CHECK_NEAR(in[k], k == axis ? -s : 0.0f, 1e-6); /* inward per table */
-        }
-        CHECK_NEAR(glm_vec3_dot(u, v), 0.0, 1e-6);
-    }
-}
-
-/* Analytic depth of a sphere seen from face f at ray origin o: the ray runs
- * along axis a from the plane at coordinate P towards the cube centre. */
-static bool sphere_depth(const bb_cubemap_t *cube, int f, const float *o, const float *sc, float r,
-                         double *depth, double n[3])
-{
-    int a = f / 2, b = (a + 1) % 3, c = (a + 2) % 3;
-    double s = (f % 2 == 0) ? 1.0 : -1.0;
-    double P = cube->centre[a] + s * cube->half;
-    double rho2 = (o[b] - sc[b]) * (double)(o[b] - sc[b]) + (o[c] - sc[c]) * (double)(o[c] - sc[c]);
-    if (rho2 >= (double)r * r) return false;
-    double surf = sc[a] + s * sqrt((double)r * r - rho2);
-    *depth = s * (P - surf);
-    double hit[3] = {o[0], o[1], o[2]};
-    hit[a] = surf;
-    for (int k = 0; k < 3; k++) n[k] = (hit[k] - sc[k]) / r;
-    return true;
-}
-
-static void test_sphere_map(void)
-{
-    bb_cubemap_t cube;
-    vec3 cc = {0.1f, -0.05f, 0.2f}, sc = {0.15f, 0.0f, 0.1f};
-    float r = 0.7f;
-    CHECK(bb_cubemap_init(&cube, 64, cc, 1.0f));
-    bb_cubemap_render_sphere(&cube, sc, r);
-    int hits = 0, misses = 0;
-    double max_err = 0.0;
-    for (int f = 0; f < 6; f++) {
-        for (int j = 0; j < cube.res; j++) {
-            for (int i = 0; i < cube.res; i++) {
-                vec3 o;
-                bb_cubemap_texel_origin(&cube, f, i, j, o);
-                const float *tx = cube.texels + ((f * cube.res + j) * cube.res + i) * 4;
-                double depth, n[3];
-                if (sphere_depth(&cube, f, o, sc, r, &depth, n)) {
-                    hits++;
-                    max_err = fmax(max_err, fabs(tx[0] - depth));
-                    /* Near-grazing rays: sqrt amplifies float error in depth; normals stay good. */
-                    for (int k = 0; k < 3; k++) CHECK_NEAR(tx[1 + k], n[k], 2e-3);
-                } else {
-                    misses++;
-                    CHECK_NEAR(tx[0], 2.0f * cube.half, 1e-6);
-                }
-            }
-        }
-    }
-    printf("sphere map: %d hits, %d misses, max depth error %.2e m\n", hits, misses, max_err);
-    CHECK(hits > 6 * 64 * 64 / 3 && misses > 1000);
-    CHECK(max_err < 2e-3);
-
-    /* Eq. 1-3 against analytic inside-ness, away from the surface. */
-    float texel = 2.0f * cube.half / (float)cube.res;
-    core_rng_t rng;
-    core_rng_seed(&rng, 7, 1);
-    int wrong = 0, near = 0, inside_count = 0;
-    for (int t = 0; t < 20000; t++) {
-        vec3 q = {core_rng_range(&rng, -1.2f, 1.2f) + cc[0], core_rng_range(&rng, -1.2f, 1.2f) + cc[1],
-                  core_rng_range(&rng, -1.2f, 1.2f) + cc[2]};
-        double d = dist3(q, sc) - r;
-        bool in = bb_ref_inside(&cube, q);
-        if (fabs(d) <= texel) {
-            near++;
-            continue;
-        }
-        inside_count += in;
-        if (in != (d < 0)) wrong++;
-    }
-    printf("inside test: %d wrong of %d (%d near-surface skipped, %d inside)\n", wrong, 20000 - near, near,
-           inside_count);
-    CHECK(wrong == 0);
-    CHECK(inside_count > 1000);
-
-    /* Eq. 4-5: pushed points end outside (within a texel) and move along +normal. */
-    int pushed = 0;
-    for (int t = 0; t < 5000; t++) {
-        vec3 q = {core_rng_range(&rng, -0.7f, 0.7f) + sc[0], core_rng_range(&rng, -0.7f, 0.7f) + sc[1],
-                  core_rng_range(&rng, -0.7f, 0.7f) + sc[2]};
-        vec3 out;
-        bool moved = bb_ref_push_out(&cube, q, out);
-        CHECK(moved == bb_ref_inside(&cube, q));
-        if (!moved) {
-            CHECK(dist3(q, out) == 0.0);
-            continue;
-        }
-        pushed++;
-        CHECK_MSG(dist3(out, sc) >= r - texel, "pushed point %g inside", r - dist3(out, sc));
-        CHECK(dist3(out, sc) > dist3(q, sc));
-    }
-    CHECK(pushed > 1000);
-    bb_cubemap_free(&cube);
-}
-
-static void test_box_capsule_map(void)
-{
-    bb_cubemap_t cube;
-    CHECK(bb_cubemap_init(&cube, 32, (vec3){0, 0, 0}, 1.0f));
-    bb_cubemap_render_box(&cube, (vec3){0.1f, 0.2f, -0.1f}, (vec3){0.3f, 0.4f, 0.5f});
-    vec4 tx;
-    /* Face +X, a point in front of the box: distance = 1 - 0.4 = 0.6, normal +X. */
-    bb_ref_lookup(&cube, BB_FACE_PX, (vec3){0.9f, 0.2f, -0.1f}, tx);
-    CHECK_NEAR(tx[0], 0.6, 1e-5);
-    CHECK_NEAR(tx[1], 1.0, 1e-6);
-    /* Face -Z: distance = 1 - (0.1 + 0.5) = 0.4, normal -Z. */
-    bb_ref_lookup(&cube, BB_FACE_NZ, (vec3){0.1f, 0.2f, -0.9f}, tx);
-    CHECK_NEAR(tx[0], 0.4, 1e-5);
-    CHECK_NEAR(tx[3], -1.0, 1e-6);
-    CHECK(bb_ref_inside(&cube, (vec3){0.1f, 0.2f, -0.1f}));
-    CHECK(!bb_ref_inside(&cube, (vec3){0.5f, 0.2f, -0.1f}));
-
-    bb_cubemap_clear(&cube);
-    bb_cubemap_render_capsule(&cube, (vec3){0, -0.3f, 0}, (vec3){0, 0.3f, 0}, 0.25f);
-    bb_ref_lookup(&cube, BB_FACE_PY, (vec3){0.01f, 0.9f, 0.01f}, tx); /* top cap */
-    double rho = (1.0 / 32.0) * sqrt(2.0);                            /* texel centre offset */
-    CHECK_NEAR(tx[0], 1.0 - 0.3 - sqrt(0.25 * 0.25 - rho * rho), 1e-4);
-    vec3 o;
-    bb_cubemap_texel_origin(&cube, BB_FACE_PX, 16, 16, o); /* side: u = -z, v = +y */
-    CHECK_NEAR(o[0], 1.0, 1e-6);
-    bb_ref_lookup(&cube, BB_FACE_PX, o, tx);
-    CHECK_NEAR(tx[0], 1.0 - sqrt(0.25 * 0.25 - o[2] * o[2]), 1e-4);
-    CHECK_NEAR(tx[2], 0.0, 1e-5); /* side normal is horizontal */
-    /* Union of two shapes keeps the nearer hit. */
-    bb_cubemap_render_sphere(&cube, (vec3){0, 0.55f, 0}, 0.2f);
-    bb_ref_lookup(&cube, BB_FACE_PY, (vec3){0.01f, 0.9f, 0.01f}, tx);
-    CHECK_NEAR(tx[0], 1.0 - 0.55 - sqrt(0.2 * 0.2 - rho * rho), 1e-4);
-    bb_cubemap_free(&cube);
-}
-
-static void collide_field(bb_mesh_t *meshes, int count, const bb_cubemap_t *cube, const vec3 pos,
+static void collide_field(bb_mesh_t *meshes, int count, const collide_cubemap_t *cube, const vec3 pos,
                           const bb_collide_desc_t *desc)
 {
     mat4 w2c;
@@ -172,10 +21,10 @@ static void collide_field(bb_mesh_t *meshes, int count, const bb_cubemap_t *cube
 
 static void test_collide(void)
 {
-    bb_cubemap_t cube;
+    collide_cubemap_t cube;
     float r = 0.3f;
-    CHECK(bb_cubemap_init(&cube, 64, (vec3){0, 0, 0}, 0.35f));
-    bb_cubemap_render_sphere(&cube, (vec3){0, 0, 0}, r);
+    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
+    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
     float texel = 2.0f * cube.half / (float)cube.res;
     core_rng_t rng;
     core_rng_seed(&rng, 11, 2);
@@ -191,11 +40,11 @@ static void test_collide(void)
         vec3 roots[5];
         memcpy(roots, mesh.pos, sizeof roots);
         bool any_in = false;
-        for (int v = 0; v < mesh.n * mesh.m; v++) any_in |= dist3(mesh.pos[v], sp) < r;
+        for (int v = 0; v < mesh.n * mesh.m; v++) any_in |= test_dist3(mesh.pos[v], sp) < r;
         touched += any_in;
         collide_field(&mesh, 1, &cube, sp, NULL);
         for (int v = mesh.n; v < mesh.n * mesh.m; v++) {
-            double depth = r - dist3(mesh.pos[v], sp);
+            double depth = r - test_dist3(mesh.pos[v], sp);
             worst = fmax(worst, depth);
             CHECK_MSG(depth <= texel, "vertex %d is %g m inside (texel %g)", v, depth, texel);
         }
@@ -205,7 +54,7 @@ static void test_collide(void)
     printf("collide: %d of 200 meshes touched, deepest vertex %.4f m inside (texel %.4f)\n", touched, worst,
            texel);
     CHECK(touched > 100);
-    bb_cubemap_free(&cube);
+    collide_free_cubemap(&cube);
 }
 
 static void test_springs(void)
@@ -262,7 +111,7 @@ static void test_wind_recover(void)
     double bend = 0.1 * (0.4 + 0.6 * s);
     CHECK_NEAR(w[3 * 3 + 1][0] - mesh.rest[3 * 3 + 1][0], bend, 1e-6);
     CHECK_NEAR(w[2 * 3 + 1][0] - mesh.rest[2 * 3 + 1][0], bend * 4.0 / 9.0, 1e-6);
-    for (int i = 0; i < 3; i++) CHECK(dist3(w[i], mesh.rest[i]) == 0.0);
+    for (int i = 0; i < 3; i++) CHECK(test_dist3(w[i], mesh.rest[i]) == 0.0);
     for (int v = 0; v < 12; v++) CHECK(w[v][1] == mesh.rest[v][1] && w[v][2] == mesh.rest[v][2]);
 
     /* Eq. 8 by hand at t = 0.5: v' = 0.875 w + 0.125 v. */
@@ -279,7 +128,7 @@ static void test_wind_recover(void)
         bb_ref_recover(&mesh, (const vec3 *)w, left / dur);
     }
     double maxd = 0.0;
-    for (int v = 0; v < 12; v++) maxd = fmax(maxd, dist3(mesh.pos[v], w[v]));
+    for (int v = 0; v < 12; v++) maxd = fmax(maxd, test_dist3(mesh.pos[v], w[v]));
     printf("recovery: max distance to wind pose at t=0: %.2e m\n", maxd);
     CHECK(maxd < 1e-3);
     bb_mesh_free(&mesh);
@@ -294,10 +143,10 @@ static void test_stress(void)
     for (int b = 0; b < NB; b++)
         CHECK(bb_mesh_init_quad(&meshes[b], (vec3){(float)(b % 4) * 0.4f, 0, (float)(b / 4) * 0.4f},
                                 (vec3){1, 0, (float)b * 0.1f}, (vec3){0, 1, 0}, 0.5f, 0.5f, 5, 5));
-    bb_cubemap_t cube;
+    collide_cubemap_t cube;
     float r = 0.35f;
-    CHECK(bb_cubemap_init(&cube, 32, (vec3){0, 0, 0}, 0.4f));
-    bb_cubemap_render_sphere(&cube, (vec3){0, 0, 0}, r);
+    CHECK(collide_init_cubemap(&cube, 32, (vec3){0, 0, 0}, 0.4f));
+    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
     core_rng_t rng;
     core_rng_seed(&rng, 5, 5);
     vec3 p = {0.6f, 0.3f, 0.6f}, vel = {1, 0, 0};
@@ -327,7 +176,7 @@ static void test_stress(void)
             bb_mesh_t *m = &meshes[b];
             vec3 w[25];
             bb_ref_wind_pose(m, NULL, time, w);
-            bool near = dist3(m->rest[2], p) < r + 0.8;
+            bool near = test_dist3(m->rest[2], p) < r + 0.8;
             if (near) {
                 left[b] = recover;
                 collided++;
@@ -339,7 +188,7 @@ static void test_stress(void)
             }
             for (int v = 0; v < 25; v++) {
                 for (int k = 0; k < 3; k++) bad += !isfinite(m->pos[v][k]);
-                maxdev = fmax(maxdev, dist3(m->pos[v], m->rest[v]));
+                maxdev = fmax(maxdev, test_dist3(m->pos[v], m->rest[v]));
             }
         }
     }
@@ -349,7 +198,7 @@ static void test_stress(void)
     CHECK(collided > 1000);
     CHECK(maxdev < 2.0);
     for (int b = 0; b < NB; b++) bb_mesh_free(&meshes[b]);
-    bb_cubemap_free(&cube);
+    collide_free_cubemap(&cube);
 }
 
 /* std430 layout of `struct bb_point` parsed from the GLSL, compared with the
@@ -409,9 +258,6 @@ static void test_point_layout(void)
 int main(void)
 {
     core_log_set_quiet(true);
-    test_face_basis();
-    test_sphere_map();
-    test_box_capsule_map();
     test_collide();
     test_springs();
     test_wind_recover();

@@ -1,13 +1,13 @@
 /* test_blade_cube: blade collision against a depth cube map (beyond both
  * papers: the billboard model's cube maps, Orthmann et al. 2009 eq. 1-5,
  * used by the Jahrmann & Wimmer 2017 blades). A sphere of radius 0.5 is
- * rasterised on the CPU into a 64^3 cube map (bb_cubemap_render_sphere),
+ * rasterised on the CPU into a 64^3 cube map (collide_render_sphere),
  * uploaded with blade_gpu_upload_cubes and placed by a rotated, moving
  * transform. Checks:
- *   1. blade_physics.comp against blade_ref_step (env.cubes) blade for
+ *   1. blade_physics.comp against blade_ref_step (the set's cube_maps) blade for
  *      blade over 6 steps: v1, v2, eta within tolerance, v0 unchanged.
  *   2. after every GPU update no v2 or m is inside the shape per the
- *      cube-map test (bb_ref_inside through blade_ref_inside_cube), root
+ *      cube-map test (collide_test_inside through blade_ref_inside_cube), root
  *      outside.
  *   3. the same sweep with the analytic sphere as a sphere proxy: the
  *      penetration of v2 / m into the exact sphere stays below two texels
@@ -47,7 +47,7 @@ static void centre_at(int s, float c[3])
 /* Object record for the cube map centred on the sphere: model = translate(c)
  * * rotate_y(0.7) (the rotation must not matter for a sphere, but it tests
  * the transforms). */
-static blade_cube_object_t object_at(int s)
+static collide_cube_proxy_t object_at(int s)
 {
     float c[3];
     centre_at(s, c);
@@ -55,7 +55,7 @@ static blade_cube_object_t object_at(int s)
     glm_translate_make(model, c);
     glm_rotate_y(model, 0.7f, model);
     glm_mat4_inv(model, inv);
-    blade_cube_object_t o;
+    collide_cube_proxy_t o;
     memcpy(o.w2c, inv, sizeof o.w2c);
     memcpy(o.c2w, model, sizeof o.c2w);
     o.cube[0] = o.cube[1] = o.cube[2] = 0.0f;
@@ -78,7 +78,7 @@ static blade_env_t base_env(void)
     return env;
 }
 
-static void test_gpu_vs_cpu(blade_gpu_t *g, const blade_field_t *f, const bb_cubemap_t *cube, GLuint tex)
+static void test_gpu_vs_cpu(blade_gpu_t *g, const blade_field_t *f, const collide_cubemap_t *cube, GLuint tex)
 {
     size_t n = f->padded_count;
     blade_t *cpu = malloc(n * sizeof *cpu), *gpu = malloc(n * sizeof *gpu);
@@ -91,13 +91,11 @@ static void test_gpu_vs_cpu(blade_gpu_t *g, const blade_field_t *f, const bb_cub
     for (int s = 20; s < 26; s++) {
         blade_env_t env = base_env();
         env.time = (float)s / 30.0f;
-        blade_cube_object_t o = object_at(s);
-        env.cube_objects = &o;
-        env.cubes = cube;
-        env.cube_count = 1;
-        blade_gpu_set_cubes(g, tex, RES, &o, 1);
-        blade_gpu_simulate(g, &env);
-        blade_ref_step(cpu, ecpu, n, &env);
+        static collide_set_t set;
+        set = (collide_set_t){.cubes[0] = object_at(s), .cube_count = 1, .cube_texture = tex, .cube_res = RES,
+                              .cube_maps = cube};
+        blade_gpu_simulate(g, &env, &set);
+        blade_ref_step(cpu, ecpu, n, &env, &set);
         blade_gpu_read_blades(g, gpu, egpu);
         for (size_t i = 0; i < n; i++) {
             double d = 0.0;
@@ -141,7 +139,7 @@ typedef struct sweep_t {
 /* STEPS GPU steps of the sphere crossing the field; kind 0: no collider
  * (states stored into free_run), 1: through the cube map, 2: the analytic
  * sphere as a proxy. */
-static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const bb_cubemap_t *cube, GLuint tex, int kind,
+static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const collide_cubemap_t *cube, GLuint tex, int kind,
                      blade_t *free_run)
 {
     bool cubes = kind == 1;
@@ -153,17 +151,17 @@ static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const bb_cubemap_t 
     for (int s = 0; s < STEPS; s++) {
         blade_env_t env = base_env();
         env.time = (float)s / 30.0f;
-        blade_cube_object_t o = object_at(s);
+        collide_cube_proxy_t o = object_at(s);
         float c[3];
         centre_at(s, c);
+        static collide_set_t set;
         if (cubes) {
-            blade_gpu_set_cubes(g, tex, RES, &o, 1);
+            set = (collide_set_t){.cubes[0] = o, .cube_count = 1, .cube_texture = tex, .cube_res = RES};
         } else {
-            blade_gpu_set_cubes(g, 0, 0, NULL, 0);
-            env.sphere_count = kind == 2;
-            env.spheres[0] = (blade_sphere_t){{c[0], c[1], c[2], RADIUS}};
+            set = (collide_set_t){.sphere_count = kind == 2};
+            set.spheres[0] = (blade_sphere_t){{c[0], c[1], c[2], RADIUS}};
         }
-        blade_gpu_simulate(g, &env);
+        blade_gpu_simulate(g, &env, &set);
         blade_gpu_read_blades(g, b, NULL);
         blade_t *fr = &free_run[(size_t)s * n];
         if (kind == 0) memcpy(fr, b, n * sizeof *b);
@@ -199,9 +197,9 @@ int main(void)
     CHECK(seed_field(&f, 7));
     blade_gpu_t g;
     CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "cube_test"}));
-    bb_cubemap_t cube;
-    CHECK(bb_cubemap_init(&cube, RES, (vec3){0, 0, 0}, HALF));
-    bb_cubemap_render_sphere(&cube, (vec3){0, 0, 0}, RADIUS);
+    collide_cubemap_t cube;
+    CHECK(collide_init_cubemap(&cube, RES, (vec3){0, 0, 0}, HALF));
+    collide_render_sphere(&cube, (vec3){0, 0, 0}, RADIUS);
     GLuint tex = blade_gpu_upload_cubes(&g, &cube, 1);
     CHECK(tex != 0);
 
@@ -225,7 +223,7 @@ int main(void)
     CHECK(ss.pen_max < 1e-5);
     CHECK(sc.bent > 4 * ss.bent / 5 && sc.bent < 5 * ss.bent / 4);
 
-    bb_cubemap_free(&cube);
+    collide_free_cubemap(&cube);
     blade_gpu_destroy(&g);
     blade_field_free(&f);
     CHECK(test_gl_shutdown() == 0);

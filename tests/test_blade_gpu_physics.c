@@ -44,9 +44,10 @@ static float pen(const blade_sphere_t *s, const float p[3])
     return s->centre_radius[3] - sqrtf(dx * dx + dy * dy + dz * dz);
 }
 
-static void random_env(core_rng_t *rng, blade_env_t *env, int variant)
+static void random_env(core_rng_t *rng, blade_env_t *env, collide_set_t *set, int variant)
 {
     memset(env, 0, sizeof *env);
+    memset(set, 0, sizeof *set);
     env->dt = core_rng_range(rng, 1.0f / 240.0f, 1.0f / 10.0f);
     env->time = core_rng_range(rng, 0, 100);
     env->wind_count = 1 + (int)(core_rng_u32(rng) % 3);
@@ -59,9 +60,9 @@ static void random_env(core_rng_t *rng, blade_env_t *env, int variant)
             env->winds[i] = blade_wind_point((float[3]){core_rng_range(rng, -2, 2), 0.5f, core_rng_range(rng, -2, 7)},
                                              core_rng_range(rng, 1, 10), core_rng_range(rng, 1, 4));
     }
-    env->sphere_count = 3;
+    set->sphere_count = 3;
     for (int i = 0; i < 3; i++)
-        env->spheres[i] = (blade_sphere_t){{core_rng_range(rng, -2, 2), core_rng_range(rng, 0.1f, 0.8f),
+        set->spheres[i] = (blade_sphere_t){{core_rng_range(rng, -2, 2), core_rng_range(rng, 0.1f, 0.8f),
                                             core_rng_range(rng, -2, 7), core_rng_range(rng, 0.2f, 0.6f)}};
     if (variant == 1) env->gravity_off = true;
     if (variant == 2) {
@@ -93,9 +94,10 @@ static void test_against_reference(void)
         size_t over = 0;
         for (int step = 0; step < 6; step++) {
             blade_env_t env;
-            random_env(&rng, &env, variant);
-            blade_gpu_simulate(&g, &env);
-            blade_ref_step(cpu, ecpu, n, &env);
+            static collide_set_t set;
+            random_env(&rng, &env, &set, variant);
+            blade_gpu_simulate(&g, &env, &set);
+            blade_ref_step(cpu, ecpu, n, &env, &set);
             blade_gpu_read_blades(&g, gpu, egpu);
             for (size_t i = 0; i < n; i++) {
                 double d = 0.0;
@@ -139,7 +141,8 @@ static void test_invariants(double budget_s)
     blade_t *b = malloc(n * sizeof *b);
     core_rng_t rng;
     core_rng_seed(&rng, 9, 4);
-    blade_env_t env = {.wind_count = 2, .sphere_count = 2};
+    blade_env_t env = {.wind_count = 2};
+    static collide_set_t set = {.sphere_count = 2};
     env.winds[0] = blade_wind_wave(1.0f, 0.3f, 6.0f, 3.0f, 2.0f);
     env.winds[1] = blade_wind_point((float[3]){0, 0.5f, 2.5f}, 8.0f, 2.5f);
     double t = 0.0, worst_len = 0.0, worst_below = 0.0, worst_pen = -1.0;
@@ -151,10 +154,10 @@ static void test_invariants(double budget_s)
         env.dt = core_rng_range(&rng, 1.0f / 240.0f, 1.0f / 10.0f);
         env.time = (float)t;
         float a = (float)t * 0.7f;
-        env.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
+        set.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
-        env.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
-        blade_gpu_simulate(&g, &env);
+        set.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
+        blade_gpu_simulate(&g, &env, &set);
         blade_gpu_read_blades(&g, b, NULL);
         frames++;
         for (size_t i = 0; i < f.blade_count; i++) {
@@ -168,8 +171,8 @@ static void test_invariants(double budget_s)
             worst_below = fmax(worst_below, -(e[0] * x->up[0] + e[1] * x->up[1] + e[2] * x->up[2]));
             float m[3];
             blade_ref_midpoint(x, m);
-            for (int k = 0; k < env.sphere_count; k++) {
-                const blade_sphere_t *s = &env.spheres[k];
+            for (int k = 0; k < set.sphere_count; k++) {
+                const blade_sphere_t *s = &set.spheres[k];
                 if (pen(s, x->v0) >= 0.0f) continue; /* root inside: cannot leave */
                 /* any point that was inside at this update was a contact; both must now be outside */
                 float p = fmaxf(pen(s, x->v2), pen(s, m));

@@ -197,7 +197,7 @@ static void test_collision_and_step(void)
     blade_env_t env = {.dt = 0.01f, .gravity = 10.0f, .length_mode = BLADE_LENGTH_PAPER};
     b = upright(0, 0, 1, 0.0f, 2.0f);
     float eta = 0.0f;
-    blade_ref_step(&b, &eta, 1, &env);
+    blade_ref_step(&b, &eta, 1, &env, NULL);
     {
         double v2y = 1 - 0.1, v2z = -0.025; /* g = (0, -10, -2.5), dt 0.01 */
         double lproj = 0.025, v1y = 1 - lproj;
@@ -209,21 +209,23 @@ static void test_collision_and_step(void)
         CHECK_NEAR(eta, 0.0, 0);
     }
     /* step with a collision: eta = d.d - a dt; v0 untouched */
-    env = (blade_env_t){.dt = 0.01f, .gravity_off = true, .collision_decay = 2.0f, .sphere_count = 1};
-    env.spheres[0] = s;
+    env = (blade_env_t){.dt = 0.01f, .gravity_off = true, .collision_decay = 2.0f};
+    static collide_set_t set;
+    set.sphere_count = 1;
+    set.spheres[0] = s;
     b = upright(0, 0, 1, 0.0f, 2.0f);
     blade_t ref = b;
     blade_ref_collide(&ref, &s, 1, d);
     blade_ref_validate(&ref, BLADE_LENGTH_QUADRATURE);
     blade_ref_exit(&ref, &s, 1);
     eta = 0.0f;
-    blade_ref_step(&b, &eta, 1, &env);
+    blade_ref_step(&b, &eta, 1, &env, &set);
     CHECK_NEAR(eta, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 2.0 * 0.01, 1e-6);
     CHECK(memcmp(b.v0, ref.v0, sizeof b.v0) == 0);
     CHECK_V3(b.v2, ref.v2[0], ref.v2[1], ref.v2[2], 1e-6);
     /* eta decays to exactly zero, never below */
-    env.sphere_count = 0;
-    for (int i = 0; i < 1000; i++) blade_ref_step(&b, &eta, 1, &env);
+    set.sphere_count = 0;
+    for (int i = 0; i < 1000; i++) blade_ref_step(&b, &eta, 1, &env, &set);
     CHECK(eta == 0.0f);
     /* recovery brings it back upright */
     CHECK_V3(b.v2, 0, 1, 0, 1e-3);
@@ -280,7 +282,9 @@ static void run_invariants(int length_mode, int steps, double len_bound)
                          {up[0], up[1], up[2], core_rng_range(&rng, 1.0f, 9.0f)}};
     }
     memcpy(b0, b, N * sizeof *b);
-    blade_env_t env = {.gravity = 9.81f, .wind_count = 2, .sphere_count = 2, .length_mode = length_mode};
+    blade_env_t env = {.gravity = 9.81f, .wind_count = 2, .length_mode = length_mode};
+    static collide_set_t set;
+    set.sphere_count = 2;
     env.winds[0] = blade_wind_wave(1.0f, 0.3f, 6.0f, 3.0f, 2.0f);
     env.winds[1] = blade_wind_point((float[3]){0, 0.5f, 2.5f}, 8.0f, 2.5f);
     double t = 0.0, worst_len = 0.0, worst_pen_v2 = 0.0, worst_pen_m = 0.0, worst_below = 0.0;
@@ -295,9 +299,9 @@ static void run_invariants(int length_mode, int steps, double len_bound)
         env.time = (float)t;
         float a = (float)t * 0.7f;
         /* sphere 0 circles over the flat patch, sphere 1 sweeps the slope */
-        env.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
+        set.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
-        env.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
+        set.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
         blade_env_t res = blade_env_defaults(&env);
         for (int i = 0; i < N; i++) {
             /* the step composed by hand from the public pieces, to get d */
@@ -310,16 +314,16 @@ static void run_invariants(int length_mode, int steps, double len_bound)
             blade_ref_validate(&c, length_mode);
             float pre = 0.0f, cm[3];
             blade_ref_midpoint(&c, cm);
-            for (int k = 0; k < res.sphere_count; k++)
-                pre = fmaxf(pre, fmaxf(sphere_pen(&res.spheres[k], c.v2), sphere_pen(&res.spheres[k], cm)));
-            blade_ref_collide(&c, res.spheres, res.sphere_count, d);
+            for (int k = 0; k < set.sphere_count; k++)
+                pre = fmaxf(pre, fmaxf(sphere_pen(&set.spheres[k], c.v2), sphere_pen(&set.spheres[k], cm)));
+            blade_ref_collide(&c, set.spheres, set.sphere_count, d);
             bool hit = d[0] != 0.0f || d[1] != 0.0f || d[2] != 0.0f;
             if (hit) {
                 blade_ref_validate(&c, length_mode);
-                blade_ref_exit(&c, res.spheres, res.sphere_count);
+                blade_ref_exit(&c, set.spheres, set.sphere_count);
             }
 
-            blade_ref_step_one(&b[i], &eta[i], &res);
+            blade_ref_step_one(&b[i], &eta[i], &res, &set);
             composed &= memcmp(&c, &b[i], sizeof c) == 0;
             nan |= has_nan(&b[i]) || !isfinite(eta[i]);
             moved_root |= memcmp(b[i].v0, b0[i].v0, sizeof b[i].v0) != 0;
@@ -334,12 +338,12 @@ static void run_invariants(int length_mode, int steps, double len_bound)
             float m[3];
             blade_ref_midpoint(&b[i], m);
             bool inside = false;
-            for (int k = 0; k < res.sphere_count; k++) inside |= sphere_pen(&res.spheres[k], b[i].v0) >= 0.0f;
+            for (int k = 0; k < set.sphere_count; k++) inside |= sphere_pen(&set.spheres[k], b[i].v0) >= 0.0f;
             float worst_here = 0.0f;
-            for (int k = 0; k < res.sphere_count; k++) {
-                worst_here = fmaxf(worst_here, fmaxf(sphere_pen(&res.spheres[k], b[i].v2),
-                                                     sphere_pen(&res.spheres[k], m)) / h);
-                double pv2 = sphere_pen(&res.spheres[k], b[i].v2) / h, pm = sphere_pen(&res.spheres[k], m) / h;
+            for (int k = 0; k < set.sphere_count; k++) {
+                worst_here = fmaxf(worst_here, fmaxf(sphere_pen(&set.spheres[k], b[i].v2),
+                                                     sphere_pen(&set.spheres[k], m)) / h);
+                double pv2 = sphere_pen(&set.spheres[k], b[i].v2) / h, pm = sphere_pen(&set.spheres[k], m) / h;
                 if (inside) {
                     worst_root_inside = fmax(worst_root_inside, fmax(pv2, pm));
                     continue;
@@ -395,13 +399,13 @@ static void test_determinism(void)
         b[i] = upright(core_rng_range(&rng, -2, 2), core_rng_range(&rng, -2, 2), 0.5f,
                        core_rng_range(&rng, 0, 6.3f), 5.0f);
     memcpy(c, b, N * sizeof *b);
-    blade_env_t env = {.dt = 1.0f / 60.0f, .wind_count = 1, .sphere_count = 1};
+    blade_env_t env = {.dt = 1.0f / 60.0f, .wind_count = 1};
     env.winds[0] = blade_wind_wave(1, 1, 3, 2, 1);
-    env.spheres[0] = (blade_sphere_t){{0, 0.3f, 0, 0.6f}};
+    static collide_set_t set = {.sphere_count = 1, .spheres[0] = {{0, 0.3f, 0, 0.6f}}};
     for (int s = 0; s < 20; s++) {
         env.time = (float)s / 60.0f;
-        blade_ref_step(b, eb, N, &env);
-        blade_ref_step(c, ec, N, &env);
+        blade_ref_step(b, eb, N, &env, &set);
+        blade_ref_step(c, ec, N, &env, &set);
     }
     CHECK(core_hash_bytes(b, N * sizeof *b, 0) == core_hash_bytes(c, N * sizeof *c, 0));
     CHECK(core_hash_bytes(eb, N * sizeof *eb, 0) == core_hash_bytes(ec, N * sizeof *ec, 0));

@@ -80,14 +80,15 @@ static bool seed_square(blade_field_t *f, float half, float density, uint64_t se
  * trail, it is the furrow in the middle. */
 static void simulate_trail(blade_gpu_t *g)
 {
-    blade_env_t env = {.dt = 1.0f / 60.0f, .gravity = 1.0f, .collision_decay = 0.05f, .sphere_count = 1, .wind_count = 1};
+    blade_env_t env = {.dt = 1.0f / 60.0f, .gravity = 1.0f, .collision_decay = 0.05f, .wind_count = 1};
+    static collide_set_t set = {.sphere_count = 1};
     env.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.0f, 4.0f, 1.5f);
     for (int s = 0; s < 120; s++) {
         gfx_timer_frame_begin();
         float x = -2.5f + 3.2f * (float)s / 119.0f;
-        env.spheres[0] = (blade_sphere_t){{x, 0.3f, 0.0f, 0.45f}};
+        set.spheres[0] = (blade_sphere_t){{x, 0.3f, 0.0f, 0.45f}};
         env.time = (float)s * env.dt;
-        blade_gpu_simulate(g, &env);
+        blade_gpu_simulate(g, &env, &set);
     }
 }
 
@@ -244,7 +245,7 @@ static void test_torus(void)
     env.winds[0] = blade_wind_wave(1.0f, 0.0f, 2.0f, 1.0f, 1.0f);
     for (int s = 0; s < 10; s++) {
         env.time = (float)s * env.dt;
-        blade_gpu_simulate(&g, &env);
+        blade_gpu_simulate(&g, &env, NULL);
     }
     blade_t *b = malloc(f.padded_count * sizeof *b);
     blade_gpu_read_blades(&g, b, NULL);

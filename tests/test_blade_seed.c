@@ -274,13 +274,14 @@ int main(void)
 
     /* patch AABBs hold the whole simulated blade (curve samples) */
     {
-        blade_env_t env = {.dt = 1.0f / 30.0f, .gravity = 20.0f, .wind_count = 1, .sphere_count = 1};
+        blade_env_t env = {.dt = 1.0f / 30.0f, .gravity = 20.0f, .wind_count = 1};
+        static collide_set_t set = {.sphere_count = 1};
         env.winds[0] = blade_wind_wave(1, 0.5f, 12.0f, 4.0f, 3.0f);
         int outside = 0;
         for (int s = 0; s < 60; s++) {
             env.time = (float)s * env.dt;
-            env.spheres[0] = (blade_sphere_t){{(float)s / 6.0f, 0.3f, 5.0f, 1.0f}};
-            blade_ref_step(f.blades, f.eta, f.padded_count, &env);
+            set.spheres[0] = (blade_sphere_t){{(float)s / 6.0f, 0.3f, 5.0f, 1.0f}};
+            blade_ref_step(f.blades, f.eta, f.padded_count, &env, &set);
         }
         for (size_t i = 0; i < f.padded_count; i++) {
             const blade_t *b = &f.blades[i];

@@ -17,6 +17,7 @@
  *   d) over the run: no NaN, v0 bit-identical since activation, curve
  *      length within 2% of the height. */
 #include "blade/blade_tiles.h"
+#include "collide_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -84,7 +85,7 @@ static void test_no_pop(void)
     int tile = hybrid_tile_at(&t.grid, 1.0f, 1.0f);
     const float cam[3] = {1.0f, 3.0f, 6.0f};
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, 0, &env);
+    blade_tiles_update(&t, cam, NULL, &env);
     draw_all(&t, cam);
     blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
     uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
@@ -120,7 +121,7 @@ static void test_no_pop(void)
      * bound, not the blades): init + one step at the same time */
     float top = m.aabb_max[1] + t.reach;
     const float ball[1][4] = {{1.0f, top + 0.4f, 1.0f, 0.1f}};
-    blade_tiles_update(&t, cam, ball, 1, &env);
+    blade_tiles_update(&t, cam, test_sphere_set(ball, 1), &env);
     blade_tiles_stats_t st = blade_tiles_stats(&t, true);
     CHECK(st.active == 1 && st.slots_used == 1);
     int slot = t.grid.tiles[tile].slot;
@@ -146,7 +147,7 @@ static void test_no_pop(void)
     env.dt = 1.0f / 60.0f;
     for (int f = 0; f < 60; f++) {
         env.time += env.dt;
-        blade_tiles_update(&t, cam, ball, 1, &env);
+        blade_tiles_update(&t, cam, test_sphere_set(ball, 1), &env);
     }
     blade_t later[B_MAX];
     blade_tiles_read_slot(&t, slot, later, NULL);
@@ -210,7 +211,7 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
                 blade_tiles_read_slot(&t, s, NULL, &eta_before[(size_t)s * B]);
             }
         }
-        blade_tiles_update(&t, cam, (const float (*)[4])ball, nb, &env);
+        blade_tiles_update(&t, cam, test_sphere_set((const float (*)[4])ball, nb), &env);
         blade_tiles_stats_t st = blade_tiles_stats(&t, false);
         r->dispatched[f] = st.slots_dispatched;
         r->max_active = st.active > r->max_active ? st.active : r->max_active;
@@ -264,12 +265,8 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
             blade_env_t ce = env;
             ce.winds[0] = t.env.winds[0];
             ce.wind_count = 1;
-            if (nb) {
-                memcpy(ce.spheres[0].centre_radius, ball[0], sizeof ball[0]);
-                ce.sphere_count = 1;
-            }
             float *eta = &eta_before[(size_t)s * B];
-            blade_ref_step(b, eta, B, &ce);
+            blade_ref_step(b, eta, B, &ce, test_sphere_set((const float (*)[4])ball, nb ? 1 : 0));
             blade_tiles_read_slot(&t, s, NULL, eta_gpu);
             for (uint32_t k = 0; k < B; k++) {
                 if (b[k].v1[3] <= 0) continue;
@@ -339,7 +336,7 @@ static void test_exhaustion(void)
     int warns = core_log_warn_count();
     const float ball[1][4] = {{0.0f, 0.3f, 0.0f, 0.5f}}; /* on a tile corner: 4 tiles */
     blade_env_t env = make_env(0.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, (float[3]){0, 3, 6}, ball, 1, &env);
+    blade_tiles_update(&t, (float[3]){0, 3, 6}, test_sphere_set(ball, 1), &env);
     blade_tiles_stats_t st = blade_tiles_stats(&t, true);
     printf("c) pool of 2 slots, 4 tiles touched: active %d, slots %d/%d, denied %d, warnings %d\n", st.active,
            st.slots_used, st.slots_total, st.pool_denied, core_log_warn_count() - warns);

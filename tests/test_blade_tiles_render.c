@@ -8,6 +8,7 @@
  * blades/m^2, 8 m tiles, switch 25 m) from the buffer sizes, next to the
  * full-field blade_gpu (10.3M blades x (blade_t + eta + survivor index)). */
 #include "blade/blade_tiles.h"
+#include "collide_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -52,7 +53,7 @@ int main(void)
         env.dt = 1.0f / 60.0f;
         float x = -3.5f + 4.5f * (float)f / 120.0f;
         float ball[1][4] = {{x, terrain_height_at(&m, x, 0.0f, NULL) + 0.3f, 0.0f, 0.45f}};
-        blade_tiles_update(&t, eye, (const float (*)[4])ball, 1, &env);
+        blade_tiles_update(&t, eye, test_sphere_set((const float (*)[4])ball, 1), &env);
     }
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 160, .h = 96, .label = "tiles_render.target"});
     mat4 view, proj, vp;

@@ -18,6 +18,7 @@
 #include "blade/blade_tiles.h"
 #include "eval/eval.h"
 #include "platform/plat.h"
+#include "collide_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -80,7 +81,7 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
         glFinish();
         gfx_timer_frame_begin();
         double t0 = plat_time();
-        blade_tiles_update(&t, cam, (const float(*)[4])spheres, balls, &env);
+        blade_tiles_update(&t, cam, test_sphere_set((const float(*)[4])spheres, balls), &env);
         glFinish();
         double wall = (plat_time() - t0) * 1e3;
         gfx_timer_flush();

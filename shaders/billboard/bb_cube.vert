@@ -1,7 +1,7 @@
 #version 450
 /* bb_cube.vert: renders an object's triangles (object = cube space) into
  * face u_face of its depth cube map (Orthmann et al. 2009, sec. 5) with the
- * orthographic camera of bb_cubemap_face_basis: x = u, y = v, depth along
+ * orthographic camera of collide_get_face_basis: x = u, y = v, depth along
  * `inward`, all over [-half, half]. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"

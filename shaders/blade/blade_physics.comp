@@ -4,7 +4,7 @@
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
  * validation, sphere collision, validation again and the collision exit
  * (departure, see blade_ref.h) only after a contact, and, beyond both
- * papers, the same for the cube-map colliders of blade_gpu_set_cubes
+ * papers, the same for the cube proxies of the collide set
  * (collision after the spheres, exit after the sphere exit; twins of
  * blade_ref.c's collide_cubes / exit_cubes),
  * eta += k d.d then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch

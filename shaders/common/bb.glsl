@@ -1,10 +1,11 @@
-/* bb.glsl: GLSL twins of src/billboard/bb_ref.c and bb_layout.c for the
- * billboard grass of Orthmann, Rezk-Salama & Kolb 2009: the stored billboard
- * struct, depth cube map lookup, inside test (eq. 1-3), push-out (eq. 4-5),
- * spring relaxation (eq. 6-7), recovery (eq. 8), the procedural wind pose
- * and the generation rule. Each function mirrors the C function of the same
- * name (bb_ref_x -> bb_x) statement by statement; see bb_ref.h for the cube
- * map face table and texel addressing. Integer results match the C code bit
+/* bb.glsl: GLSL twins of src/billboard/bb_ref.c, bb_layout.c and
+ * src/collide/collide_cube.c for the billboard grass of Orthmann, Rezk-Salama
+ * & Kolb 2009: the stored billboard struct, depth cube map lookup, inside
+ * test (eq. 1-3), push-out (eq. 4-5), spring relaxation (eq. 6-7), recovery
+ * (eq. 8), the procedural wind pose and the generation rule. Each function
+ * mirrors the C function of the same name (bb_ref_x -> bb_x; the cube map
+ * functions as listed at their section) statement by statement; see
+ * collide_cube.h for the cube map face table and texel addressing. Integer results match the C code bit
  * for bit; float results to rounding (sin/sqrt precision, fma contraction).
  *
  * Requires hash_u32(uint) (common/hash.glsl, twin of core_hash_u32) to be
@@ -51,7 +52,7 @@ struct bb_point {
     uint pad1;
 };
 
-/* Mirrors bb_cubemap_t (half -> half_size: "half" is reserved in GLSL); the
+/* Mirrors collide_cubemap_t (half -> half_size: "half" is reserved in GLSL); the
  * texels live in a sampler2DArray (RGBA32F, layer = layer0 + face, texel (i, j) = texelFetch(ivec3(i, j, layer), 0)). */
 struct bb_cube {
     vec3 centre;
@@ -60,7 +61,9 @@ struct bb_cube {
     int layer0;
 };
 
-/* ---- cube map (bb_cubemap_face_basis, bb_ref_lookup/inside/push_out) ---- */
+/* ---- cube map: the face table of collide_get_face_basis; bb_lookup,
+ * bb_inside and bb_push_out mirror collide_lookup_texel, collide_test_inside
+ * and collide_push_out (collide/collide_cube.c) ---- */
 
 const vec3 bb_face_u[6] = vec3[6](vec3(0, 0, -1), vec3(0, 0, 1), vec3(1, 0, 0),
                                   vec3(1, 0, 0), vec3(1, 0, 0), vec3(-1, 0, 0));

@@ -12,7 +12,7 @@
  *   Blade       = blade_t        (64 bytes)
  *   BladeWind   = blade_wind_t   (32 bytes)
  *   BladeSphere = blade_sphere_t (16 bytes)
- *   BladeCube   = blade_cube_object_t (160 bytes)
+ *   BladeCube   = collide_cube_proxy_t (160 bytes, collide/collide_cube.h)
  *
  * The cube-map collider functions (beyond both papers; blade_ref.h banner)
  * are compiled only when common/bb.glsl is included before this file. */

@@ -11,7 +11,7 @@ bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s)
     for (int i = 0; i < c->count; i++) {
         app_collider_t *a = &c->items[i];
         a->desc = s->colliders[i];
-        if (!shape_mesh_make(&a->mesh, &a->desc)) return false;
+        if (!collide_make_mesh(&a->mesh, &a->desc)) return false;
         size_t nv = a->mesh.vertex_count;
         float *vn = malloc(nv * 6 * sizeof(float));
         if (!vn) return false;
@@ -32,7 +32,7 @@ bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s)
             glVertexArrayAttribFormat(a->vao, k, 3, GL_FLOAT, GL_FALSE, k * 3 * sizeof(float));
             glVertexArrayAttribBinding(a->vao, k, 0);
         }
-        a->bound_radius = shape_bounding_radius(&a->desc);
+        a->bound_radius = collide_bounding_radius(&a->desc);
     }
     c->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/object.vert", .fs = "app/object.frag",
                                                      .label = "collider.program"});
@@ -46,7 +46,7 @@ void app_colliders_destroy(app_colliders_t *c)
         gfx_buffer_destroy(&a->vbo);
         gfx_buffer_destroy(&a->ibo);
         gfx_vertex_array_destroy(&a->vao);
-        shape_mesh_free(&a->mesh);
+        collide_free_mesh(&a->mesh);
     }
     gfx_program_destroy(&c->prog);
     c->count = 0;

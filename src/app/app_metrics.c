@@ -2,7 +2,7 @@
  * the stability suite (definitions and formulas in docs/METRICS.md).
  *
  * Penetration is measured against the EXACT analytic collider
- * (shape_signed_distance at the collider's current position), never against
+ * (collide_signed_distance at the collider's current position), never against
  * the proxy a method collides with (blade spheres, billboard cube maps):
  *   - blades (Jahrmann & Wimmer 2017): 8 points per Bézier curve,
  *     p(t) = (1-t)^2 v0 + 2(1-t)t v1 + t^2 v2 at t = k/8, k = 1..8 (eq. 21's
@@ -85,10 +85,10 @@ static float depth_at(const exact_t *ex, int n, const float root[3], float reach
         float r = ex[i].reach + reach_extra;
         if (dx * dx + dz * dz >= r * r) continue;
         float qa[3] = {anchor[0] - ex[i].pos[0], anchor[1] - ex[i].pos[1], anchor[2] - ex[i].pos[2]};
-        if (shape_signed_distance(&ex[i].shape, qa) < 0.0f) continue;
+        if (collide_signed_distance(&ex[i].shape, qa) < 0.0f) continue;
         *near = true;
         float q[3] = {p[0] - ex[i].pos[0], p[1] - ex[i].pos[1], p[2] - ex[i].pos[2]};
-        float d = -shape_signed_distance(&ex[i].shape, q);
+        float d = -collide_signed_distance(&ex[i].shape, q);
         if (d > depth) depth = d;
     }
     return depth;

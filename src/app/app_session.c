@@ -17,8 +17,9 @@ static void update_with_proxies(app_world_t *w, const app_session_hooks_t *h, fl
     blade_env_t *env = &w->blade_env;
     env->dt = dt;
     env->time = t;
-    env->sphere_count = h->blade_spheres(w, env->spheres, BLADE_MAX_SPHERES, h->user);
-    blade_gpu_simulate(&w->blades, env);
+    collide_begin_set(&w->collide);
+    w->collide.sphere_count = h->blade_spheres(w, w->collide.spheres, BLADE_MAX_SPHERES, h->user);
+    blade_gpu_simulate(&w->blades, env, &w->collide);
 }
 
 int app_session_world(const app_session_desc_t *d, app_world_t *w)

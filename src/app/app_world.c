@@ -273,30 +273,17 @@ static bool make_tiles(app_world_t *w)
     return w->have_tiles;
 }
 
-/* Sphere proxies for the blade physics: spheres exactly, capsules as
- * overlapping spheres along the axis, boxes by their bounding sphere (a
- * conservative approximation). More than BLADE_MAX_SPHERES is reported once. */
+/* Sphere proxies for the blade physics (collide_pack_spheres per collider,
+ * then the characters'). More than BLADE_MAX_SPHERES is reported once. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
     int n = 0;
     bool full = false;
-    for (int i = 0; i < w->colliders.count; i++) {
+    for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
-        int k = 1;
-        float r = c->bound_radius, step = 0;
-        if (c->desc.type == SCENE_COLLIDER_CAPSULE) {
-            r = c->desc.radius;
-            k = 1 + (int)ceilf(c->desc.length / r);
-            step = c->desc.length / (float)(k - 1);
-        }
-        for (int j = 0; j < k; j++) {
-            if (n == max) {
-                full = true;
-                break;
-            }
-            float y = k > 1 ? -0.5f * c->desc.length + step * (float)j : 0.0f;
-            out[n++] = (blade_sphere_t){{c->position[0], c->position[1] + y, c->position[2], r}};
-        }
+        int want = collide_pack_spheres(&c->desc, c->position, (float (*)[4])out[n].centre_radius, max - n);
+        full = want > max - n;
+        n += full ? max - n : want;
     }
     if (w->have_chars && !full) {
         int want = character_set_spheres(&w->chars, (float (*)[4])out[n].centre_radius, max - n);
@@ -335,160 +322,111 @@ bool app_world_make_gpu(app_world_t *w)
     return w->gpu_ready;
 }
 
-/* Objects for the billboard narrow phase: every analytic collider (its mesh
- * VAO has position at attribute 0 and normal at 1). More objects than the
- * field holds are reported once, then the nearest to the field centre win
- * by order. */
-static int bb_objects(app_world_t *w, bb_object_t *out, int max)
+/* This step's objects of the collide set: every analytic collider (its
+ * mesh VAO has position at attribute 0 and normal at 1), then every
+ * character. More than the set holds are reported once; the first win. */
+static void add_objects(app_world_t *w, collide_set_t *set, float dt)
 {
-    int n = 0;
-    for (int i = 0; i < w->colliders.count; i++) {
-        if (n == max) {
-            if (!w->warned_objects)
-                core_log_warn("billboards: %d colliders, the field holds at most %d (BB_MAX_OBJECTS, in "
-                              "collide batches of BB_PASS_OBJECTS): the rest do not bend billboards",
-                              w->colliders.count, max);
-            w->warned_objects = true;
-            break;
-        }
+    int total = w->colliders.count + (w->have_chars ? w->chars.count : 0);
+    bool full = false;
+    for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
-        bb_object_t *o = &out[n++];
-        o->vao = c->vao;
-        o->index_count = (GLsizei)c->mesh.index_count;
-        o->index_type = GL_UNSIGNED_INT;
+        collide_object_t o = {.radius = c->bound_radius, .vao = c->vao,
+                              .index_count = (int32_t)c->mesh.index_count, .index_type = GL_UNSIGNED_INT};
         mat4 m;
         glm_translate_make(m, (float *)c->position);
-        memcpy(o->model, m, sizeof o->model);
-        o->centre[0] = o->centre[1] = o->centre[2] = 0.0f;
-        o->radius = c->bound_radius;
+        memcpy(o.model, m, sizeof o.model);
+        full = !collide_add_object(set, &o, dt);
     }
-    if (w->have_chars && n < max) {
-        character_object_t co[BB_MAX_OBJECTS];
-        int want = character_set_objects(&w->chars, co, max - n);
-        for (int i = 0; i < want && i < max - n; i++) {
-            bb_object_t *o = &out[n + i];
-            o->vao = co[i].vao;
-            o->index_count = co[i].index_count;
-            o->index_type = co[i].index_type;
-            memcpy(o->model, co[i].model, sizeof o->model);
-            memcpy(o->centre, co[i].centre, sizeof o->centre);
-            o->radius = co[i].radius;
+    if (w->have_chars && !full) {
+        character_object_t co[COLLIDE_MAX_OBJECTS];
+        int room = COLLIDE_MAX_OBJECTS - set->object_count;
+        int want = character_set_objects(&w->chars, co, room);
+        for (int i = 0; i < want && i < room; i++) {
+            collide_object_t o = {.radius = co[i].radius, .vao = co[i].vao, .index_count = co[i].index_count,
+                                  .index_type = co[i].index_type};
+            memcpy(o.model, co[i].model, sizeof o.model);
+            memcpy(o.centre, co[i].centre, sizeof o.centre);
+            collide_add_object(set, &o, dt);
         }
-        if (want > max - n && !w->warned_objects) {
-            core_log_warn("billboards: %d colliders and characters, the field holds at most %d (BB_MAX_OBJECTS, "
-                          "in collide batches of BB_PASS_OBJECTS): the rest do not bend billboards",
-                          w->colliders.count + w->chars.count, max);
-            w->warned_objects = true;
-        }
-        n += want < max - n ? want : max - n;
+        full = want > room;
     }
-    return n;
+    if (full && !w->warned_objects)
+        core_log_warn("colliders: %d colliders and characters, a collide set holds at most %d "
+                      "(COLLIDE_MAX_OBJECTS): the rest do not bend grass",
+                      total, COLLIDE_MAX_OBJECTS);
+    w->warned_objects = w->warned_objects || full;
 }
 
 /* Cube-map proxies of the blade physics (tuning.blade_cube_proxies; beyond
- * both papers). With the billboard field: its cube maps of every object
- * (colliders and characters, in bb_objects order) as rendered by this
- * frame's bb_field_update; an object whose cube map was never rendered
- * (never near a colliding billboard leaf) is skipped, and a character's map
- * keeps the pose of its last render. Blade mode (no field): the analytic
- * colliders rasterised once on the CPU (bb_cubemap_render_*) at the scene's
- * cube resolution, the first BLADE_MAX_CUBES of them; further colliders by
- * their bounding sphere and characters by their proxy spheres, written to
- * env. */
-static void blade_cube_proxies(app_world_t *w, blade_env_t *env)
+ * both papers), into the collide set. With the billboard field: its cube
+ * maps of the set's objects as rendered by this step's bb_field_update
+ * (bb_field_lend_cubes). Blade mode (no field): the analytic colliders
+ * rasterised once on the CPU (collide_render_shape) at the scene's cube
+ * resolution, the first BLADE_MAX_CUBES of them; further colliders by
+ * their bounding sphere and characters by their proxy spheres. */
+static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
 {
-    blade_cube_object_t objs[BLADE_MAX_CUBES];
-    int n = 0;
-    env->sphere_count = 0;
     if (w->have_bb) {
-        bb_object_t bo[BB_MAX_OBJECTS];
-        int nb = bb_objects(w, bo, w->bb.desc.max_objects);
-        for (int k = 0; k < nb && n < BLADE_MAX_CUBES; k++) {
-            float half = w->bb.cube_half[k];
-            if (half <= 0.0f) continue;
-            mat4 model, inv;
-            memcpy(model, bo[k].model, sizeof model);
-            glm_mat4_inv(model, inv);
-            blade_cube_object_t *o = &objs[n++];
-            memcpy(o->w2c, inv, sizeof o->w2c);
-            memcpy(o->c2w, model, sizeof o->c2w);
-            glm_vec3_copy(w->bb.cube_centre[k], o->cube);
-            o->cube[3] = half;
-            glm_mat4_mulv3(model, w->bb.cube_centre[k], 1.0f, o->sphere);
-            float sc = fmaxf(glm_vec3_norm(model[0]), fmaxf(glm_vec3_norm(model[1]), glm_vec3_norm(model[2])));
-            o->sphere[3] = half * sqrtf(3.0f) * sc;
-        }
-        blade_gpu_set_cubes(&w->blades, w->bb.cubes.id, w->bb.desc.cube_res, objs, n);
+        bb_field_lend_cubes(&w->bb, set);
         return;
     }
     int nc = w->colliders.count < BLADE_MAX_CUBES ? w->colliders.count : BLADE_MAX_CUBES;
-    if (nc > 0 && !w->blades.own_cubes.id) {
-        bb_cubemap_t cubes[BLADE_MAX_CUBES];
+    if (nc > 0 && !w->blade_cubes) {
+        collide_cubemap_t cubes[BLADE_MAX_CUBES];
         bool ok = true;
         for (int k = 0; k < nc; k++) {
             const app_collider_t *c = &w->colliders.items[k];
-            ok = ok && bb_cubemap_init(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
+            ok = ok && collide_init_cubemap(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
             if (!ok) {
                 nc = k;
                 break;
             }
-            if (c->desc.type == SCENE_COLLIDER_CAPSULE)
-                bb_cubemap_render_capsule(&cubes[k], (vec3){0, -0.5f * c->desc.length, 0},
-                                          (vec3){0, 0.5f * c->desc.length, 0}, c->desc.radius);
-            else if (c->desc.type == SCENE_COLLIDER_BOX)
-                bb_cubemap_render_box(&cubes[k], (vec3){0, 0, 0}, (float *)c->desc.half_extents);
-            else
-                bb_cubemap_render_sphere(&cubes[k], (vec3){0, 0, 0}, c->desc.radius);
+            collide_render_shape(&cubes[k], &c->desc);
         }
-        if (!ok || (nc > 0 && !blade_gpu_upload_cubes(&w->blades, cubes, nc))) nc = 0;
-        for (int k = 0; k < nc; k++) bb_cubemap_free(&cubes[k]);
+        if (ok && nc > 0) w->blade_cubes = blade_gpu_upload_cubes(&w->blades, cubes, nc);
+        for (int k = 0; k < nc; k++) collide_free_cubemap(&cubes[k]);
     }
-    if (!w->blades.own_cubes.id) nc = 0;
+    if (!w->blade_cubes) nc = 0;
     for (int k = 0; k < nc; k++) {
         const app_collider_t *c = &w->colliders.items[k];
-        blade_cube_object_t *o = &objs[n++];
-        mat4 model, inv;
+        mat4 model;
         glm_translate_make(model, (float *)c->position);
-        glm_mat4_inv(model, inv);
-        memcpy(o->w2c, inv, sizeof o->w2c);
-        memcpy(o->c2w, model, sizeof o->c2w);
-        o->cube[0] = o->cube[1] = o->cube[2] = 0.0f;
-        o->cube[3] = c->bound_radius;
-        glm_vec3_copy((float *)c->position, o->sphere);
-        o->sphere[3] = c->bound_radius * sqrtf(3.0f);
+        collide_make_cube_proxy((const float *)model, (vec3){0, 0, 0}, c->bound_radius, &set->cubes[set->cube_count++]);
     }
-    blade_gpu_set_cubes(&w->blades, w->blades.own_cubes.id, w->scene.grass.cube_resolution, objs, n);
-    for (int k = nc; k < w->colliders.count && env->sphere_count < BLADE_MAX_SPHERES; k++) {
+    set->cube_texture = w->blade_cubes;
+    set->cube_res = w->scene.grass.cube_resolution;
+    for (int k = nc; k < w->colliders.count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
         const app_collider_t *c = &w->colliders.items[k];
-        env->spheres[env->sphere_count++] =
-            (blade_sphere_t){{c->position[0], c->position[1], c->position[2], c->bound_radius}};
+        set->spheres[set->sphere_count++] =
+            (collide_sphere_t){{c->position[0], c->position[1], c->position[2], c->bound_radius}};
     }
     if (w->have_chars) {
-        int room = BLADE_MAX_SPHERES - env->sphere_count;
-        int want = character_set_spheres(&w->chars, (float (*)[4])env->spheres[env->sphere_count].centre_radius, room);
-        env->sphere_count += want < room ? want : room;
+        int room = BLADE_MAX_SPHERES - set->sphere_count;
+        int want = character_set_spheres(&w->chars, (float (*)[4])set->spheres[set->sphere_count].centre_radius, room);
+        set->sphere_count += want < room ? want : room;
     }
 }
 
+/* One step: colliders and characters move, the collide set is built from
+ * them, and every grass system takes it. */
 void app_world_update(app_world_t *w, float t, float dt)
 {
     w->time = t;
     app_colliders_update(&w->colliders, &w->terrain_mesh, t);
     if (w->have_chars) character_set_update(&w->chars, t, dt);
-    if (w->have_bb) {
-        bb_object_t objs[BB_MAX_OBJECTS];
-        int n = bb_objects(w, objs, w->bb.desc.max_objects);
-        bb_field_update(&w->bb, objs, n, t, dt);
-    }
+    collide_set_t *set = &w->collide;
+    collide_begin_set(set);
+    add_objects(w, set, dt);
+    if (w->have_bb) bb_field_update(&w->bb, set, t, dt);
     if (w->have_blades || w->have_tiles) {
         blade_env_t *env = &w->blade_env;
         env->dt = dt;
         env->time = t;
-        if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, env);
-        else env->sphere_count = blade_spheres(w, env->spheres, BLADE_MAX_SPHERES);
-        if (w->have_blades) blade_gpu_simulate(&w->blades, env);
-        if (w->have_tiles)
-            blade_tiles_update(&w->tiles, w->camera, (const float (*)[4])env->spheres, env->sphere_count, env);
+        if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, set);
+        else set->sphere_count = blade_spheres(w, set->spheres, BLADE_MAX_SPHERES);
+        if (w->have_blades) blade_gpu_simulate(&w->blades, env, set);
+        if (w->have_tiles) blade_tiles_update(&w->tiles, w->camera, set, env);
     }
 }
 
@@ -596,6 +534,7 @@ void app_world_destroy(app_world_t *w)
     w->have_chars = false;
     w->have_bb = w->have_blades = false;
     raster_destroy(&w->raster);
+    w->blade_cubes = 0;
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);

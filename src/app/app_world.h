@@ -42,11 +42,11 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
 /* ---- analytic colliders (scene "colliders") ---------------------------------- */
 #include "scene/scene.h"
-#include "scene/shapes.h"
+#include "collide/collide_shape.h"
 
 typedef struct app_collider_t {
     scene_collider_t desc;
-    shape_mesh_t mesh;
+    collide_mesh_t mesh;
     gfx_buffer_t vbo, ibo;
     GLuint vao;
     vec3 position, velocity; /* this frame */
@@ -73,7 +73,7 @@ typedef struct app_tuning_t {
     int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
     unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
     bool blade_cube_proxies; /* blades collide against depth cube maps instead of
-                                sphere proxies (blade_gpu_set_cubes; not the tiles) */
+                                sphere proxies (the set's cube proxies; not the tiles) */
 } app_tuning_t;
 
 /* ---- the world ------------------------------------------------------------------ */
@@ -94,7 +94,9 @@ typedef struct app_world_t {
     /* Blades (Jahrmann & Wimmer 2017), built for blade and hybrid modes. */
     blade_gpu_t blades;
     bool have_blades;
-    blade_env_t blade_env; /* winds fixed at load; spheres per update */
+    blade_env_t blade_env; /* winds fixed at load */
+    GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
+                              (blade_gpu_upload_cubes; owned by blades) */
     bool warned_spheres;
     int blade_render; /* app_options_t.blade_render */
     /* Grass through the compute rasterizer (scene "raster" compute, or auto
@@ -107,6 +109,9 @@ typedef struct app_world_t {
     blade_tiles_t tiles;
     bool have_tiles;
     float camera[3]; /* of the last draw (activation and representation) */
+    /* The colliders of the latest step (app_world_update), taken by the
+     * billboards, the blades and the tiles. */
+    collide_set_t collide;
     /* Walking characters (scene "characters" or --character). */
     character_set_t chars;
     bool have_chars;

@@ -552,12 +552,25 @@ void bb_field_destroy(bb_field_t *f)
 
 /* ---- update ---------------------------------------------------------------- */
 
-void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube)
+void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube)
 {
     assert(object >= 0 && object < f->desc.max_objects && cube->res == f->desc.cube_res);
     glTextureSubImage3D(f->cubes.id, 0, 0, 0, 6 * object, cube->res, cube->res, 6, GL_RGBA, GL_FLOAT, cube->texels);
     glm_vec3_copy((float *)cube->centre, f->cube_centre[object]);
     f->cube_half[object] = cube->half;
+}
+
+void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders)
+{
+    int count = colliders->object_count < f->desc.max_objects ? colliders->object_count : f->desc.max_objects;
+    for (int k = 0; k < count && colliders->cube_count < COLLIDE_MAX_CUBES; k++) {
+        float half = f->cube_half[k];
+        if (half <= 0.0f) continue;
+        collide_make_cube_proxy(colliders->objects[k].model, f->cube_centre[k], half,
+                                &colliders->cubes[colliders->cube_count++]);
+    }
+    colliders->cube_texture = f->cubes.id;
+    colliders->cube_res = f->desc.cube_res;
 }
 
 /* Merges leaf ranges that are adjacent in the buffer into draw ranges. */
@@ -577,7 +590,7 @@ static int merge_ranges(bb_field_t *f, int count)
     return k;
 }
 
-static void render_cube(bb_field_t *f, const bb_object_t *o, int k)
+static void render_cube(bb_field_t *f, const collide_object_t *o, int k)
 {
     int res = f->desc.cube_res;
     float half = o->radius;
@@ -586,7 +599,7 @@ static void render_cube(bb_field_t *f, const bb_object_t *o, int k)
     glBindVertexArray(o->vao);
     for (int face = 0; face < 6; face++) {
         vec3 u, v, in;
-        bb_cubemap_face_basis(face, u, v, in);
+        collide_get_face_basis(face, u, v, in);
         float clear[4] = {2.0f * half, -in[0], -in[1], -in[2]}, one = 1.0f;
         glViewport(0, face * res, res, res);
         glScissor(0, face * res, res, res);
@@ -862,8 +875,10 @@ static void queue_readback(bb_field_t *f)
     f->readback_next = (slot + 1) % BB_READBACK_SLOTS;
 }
 
-void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt)
+void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt)
 {
+    const collide_object_t *objs = colliders ? colliders->objects : NULL;
+    int count = colliders ? colliders->object_count : 0;
     assert(count >= 0 && count <= f->desc.max_objects);
     const bb_field_desc_t *d = &f->desc;
     f->time = time;

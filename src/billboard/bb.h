@@ -35,6 +35,7 @@
 #include "billboard/bb_layout.h"
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
+#include "collide/collide_set.h"
 #include "gfx/gfx.h"
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
@@ -42,7 +43,7 @@
 
 /* Objects one field can collide against per update (desc.max_objects; the
  * cube-map array holds 6 layers for each). */
-#define BB_MAX_OBJECTS 128
+#define BB_MAX_OBJECTS COLLIDE_MAX_OBJECTS
 /* Objects one collide pass (bb_collide.geom) tests. bb_field_update groups
  * the colliding leaves into batches whose objects number at most this; a
  * leaf that overlaps more is split into runs of billboards, and a single
@@ -78,23 +79,6 @@ typedef struct bb_field_desc_t {
     bb_layout_desc_t layout;       /* layout textures; its seed is replaced by `seed` */
 } bb_field_desc_t;
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc);
-
-/* A collider: any mesh whose VAO has attribute 0 = vec3 position and
- * attribute 1 = vec3 normal (object space), drawn with glDrawElements
- * (index_count, index_type). model maps object to world space and should be
- * rigid with uniform scale. centre/radius: the bounding sphere in OBJECT space;
- * the cube map covers the cube [centre - radius, centre + radius]^3 of object
- * space ("cube space" = object space). vao == 0: no mesh; the cube map given
- * to bb_field_set_cube for this object index is used instead (CPU-rasterised
- * proxies, tests). */
-typedef struct bb_object_t {
-    GLuint vao;
-    GLsizei index_count;
-    GLenum index_type;
-    float model[16]; /* column-major */
-    float centre[3];
-    float radius;
-} bb_object_t;
 
 typedef struct bb_draw_desc_t {
     float viewproj[16];
@@ -191,7 +175,13 @@ typedef struct bb_field_t {
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
 void bb_field_destroy(bb_field_t *f);
 /* Broad phase, cube maps, collision, recovery (timers "bb.cubemaps",
- * "bb.collide", "bb.recover"). count <= desc.max_objects (assert). The
+ * "bb.collide", "bb.recover") against the objects of `colliders` (NULL:
+ * none; at most desc.max_objects, assert; its spheres and cube proxies are
+ * not read).
+ * An object's cube map covers the cube [centre - radius, centre + radius]^3
+ * of its object space ("cube space" = object space) and is drawn from its
+ * mesh (vao), or, for vao 0, is the CPU cube map given to bb_field_set_cube
+ * for that object index (CPU-rasterised proxies, tests). The
  * colliding leaves are grouped greedily (Morton order) into batches whose
  * objects number at most BB_PASS_OBJECTS; a leaf whose margin-grown box
  * meets more is split into runs of billboards by their bounding spheres.
@@ -202,7 +192,7 @@ void bb_field_destroy(bb_field_t *f);
  * readback slot followed by a timestamp query, and later updates read the
  * slots whose query is available (typically one or two updates late); pool
  * exhaustion is logged from those copies. */
-void bb_field_update(bb_field_t *f, const bb_object_t *objs, int count, float time, float dt);
+void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt);
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
  * timer "bb.render". */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
@@ -224,7 +214,14 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
 
 /* Uploads a CPU cube map for object index `object` (used when that object's
  * vao is 0). res must equal desc.cube_res. */
-void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube);
+void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube);
+/* Lends the field's cube maps to the blades (beyond both papers): appends to
+ * colliders->cubes the cube proxy of every object of `colliders` (the set
+ * of the latest bb_field_update, in order, at most COLLIDE_MAX_CUBES) whose
+ * cube map an update has rendered, skipping the others, and names the
+ * field's cube array as colliders->cube_texture / cube_res. A character's
+ * map keeps the pose of its last render. */
+void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders);
 /* The quad frame of a billboard (twin of bb_frame in
  * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
  * direction (cos angle, 0, sin angle) made orthogonal to up. */

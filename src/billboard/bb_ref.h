@@ -1,38 +1,10 @@
 /* bb_ref: GL-free reference of the billboard collision model of Orthmann,
- * Rezk-Salama & Kolb 2009, "GPU-based Responsive Grass": depth cube maps of
- * animated objects (rasterised on the CPU), the inside test (eq. 1-3), the
- * push-out response (eq. 4-5), spring relaxation of the refined billboard
- * mesh (eq. 6-7), recovery towards the wind pose (eq. 8) and the procedural
- * wind pose. shaders/common/bb.glsl mirrors every function here line by line.
- *
- * ---- depth cube map convention (shared with the GPU side) -----------------
- * A cube map surrounds an object's bounding cube [centre-half, centre+half]^3
- * given in the object's local ("cube") space. Face f (0..5 = +X,-X,+Y,-Y,+Z,-Z)
- * is the plane at centre + half*outward; its camera looks inward. Texel (i,j)
- * of face f (i along u, j along v, j = 0 at v = -half, i.e. GL's bottom row
- * when rendered with an orthographic camera whose right = u and up = v) has
- * its centre at face-local (u,v) = -half + (i+0.5, j+0.5) * 2*half/res.
- *
- *   face | outward | u  | v  | inward
- *   -----+---------+----+----+-------
- *   0 +X |   +X    | -Z | +Y |  -X
- *   1 -X |   -X    | +Z | +Y |  +X
- *   2 +Y |   +Y    | +X | -Z |  -Y
- *   3 -Y |   -Y    | +X | +Z |  +Y
- *   4 +Z |   +Z    | +X | +Y |  -Z
- *   5 -Z |   -Z    | -X | +Y |  +Z
- *   (u x v = outward for every face.)
- *
- * texels[((f*res + j)*res + i)*4 + k], k = 0: distance from the face plane
- * along `inward` to the first surface hit, k = 1..3: the object's outward
- * surface normal there (cube space). No hit: distance = 2*half (the far face;
- * chosen over +infinity so GPU float textures never hold inf), normal =
- * outward of the face. On the GPU this is a 2D array texture, layer = face.
- *
- * A point q (cube space) projects on face f to (u,v) = ((q-c).u, (q-c).v) and
- * to the projected depth d_f = (q-c).inward + half (0 on the face plane, 2*half
- * on the opposite face). Lookups are NEAREST texel (no bilinear filtering), so
- * the GPU side can use texelFetch and match bit for bit. */
+ * Rezk-Salama & Kolb 2009, "GPU-based Responsive Grass": the collision of a
+ * refined billboard mesh with depth cube maps (the cube maps, inside test,
+ * eq. 1-3, and push-out, eq. 4-5, are collide/collide_cube.h), spring
+ * relaxation (eq. 6-7), recovery towards the wind pose (eq. 8) and the
+ * procedural wind pose. shaders/common/bb.glsl mirrors every function here
+ * line by line. */
 #ifndef MEADOW_BB_REF_H
 #define MEADOW_BB_REF_H
 
@@ -40,45 +12,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-enum { BB_FACE_PX, BB_FACE_NX, BB_FACE_PY, BB_FACE_NY, BB_FACE_PZ, BB_FACE_NZ, BB_FACE_COUNT };
-
-typedef struct bb_cubemap_t {
-    int res;        /* texels per face side */
-    float *texels;  /* 6*res*res*4 floats: distance, nx, ny, nz */
-    vec3 centre;    /* cube centre, cube space */
-    float half;     /* half edge length */
-} bb_cubemap_t;
-
-/* Allocates the texels and clears every texel to "no hit". */
-bool bb_cubemap_init(bb_cubemap_t *cube, int res, const vec3 centre, float half);
-void bb_cubemap_free(bb_cubemap_t *cube);
-/* Resets every texel to "no hit" (distance 2*half, normal = face outward). */
-void bb_cubemap_clear(bb_cubemap_t *cube);
-/* The table above: u, v and inward unit axes of face f. */
-void bb_cubemap_face_basis(int face, vec3 axis_u, vec3 axis_v, vec3 inward);
-/* Cube-space centre of texel (i,j) on face f's plane (the ray origin). */
-void bb_cubemap_texel_origin(const bb_cubemap_t *cube, int face, int i, int j, vec3 out);
-
-/* CPU rasterisation: one ray per texel centre from the face plane inward.
- * Each call depth-tests (keeps the nearer hit), so several calls build the
- * union of shapes (e.g. the capsules of a character proxy). A shape poking
- * out through a face plane gives distance 0 there, normal = face outward.
- * Shape parameters are in cube space. */
-void bb_cubemap_render_sphere(bb_cubemap_t *cube, const vec3 centre, float radius);
-void bb_cubemap_render_capsule(bb_cubemap_t *cube, const vec3 a, const vec3 b, float radius);
-/* Axis-aligned box (cube space) given by centre and half extents. */
-void bb_cubemap_render_box(bb_cubemap_t *cube, const vec3 centre, const vec3 half_extents);
-
-/* Nearest-texel lookup of q (cube space) on face f. Writes the stored texel
- * (distance, normal) to texel and returns the projected depth d_f of q. */
-float bb_ref_lookup(const bb_cubemap_t *cube, int face, const vec3 q, vec4 texel);
-/* Eq. 1-3: q is inside the object iff q lies in the cube and, on every face,
- * its projected depth exceeds the stored distance (d_f > D_f). */
-bool bb_ref_inside(const bb_cubemap_t *cube, const vec3 q);
-/* Eq. 4-5: if q is inside, pick the face with the smallest penetration
- * p_f = d_f - D_f and move q along that texel's stored normal by p_f; else
- * return q unchanged. Returns true if q was moved. */
-bool bb_ref_push_out(const bb_cubemap_t *cube, const vec3 q, vec3 out);
+#include "collide/collide_cube.h"
 
 /* ---- billboard mesh ------------------------------------------------------
  * N columns x M rows, vertex (i,j) at index j*N + i, row j = 0 the roots
@@ -117,7 +51,7 @@ bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
  * the paper, which relaxes once after the push-out: re-projecting after each
  * sweep keeps springs from pulling vertices back inside the object.
  * world_to_cube[k] maps world space into cube k's space. desc may be NULL. */
-void bb_ref_collide(bb_mesh_t *mesh, const bb_cubemap_t *cubes, const mat4 *world_to_cube,
+void bb_ref_collide(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *world_to_cube,
                     int count, const bb_collide_desc_t *desc);
 
 /* Eq. 8: v <- (1 - t^3) w + t^3 v for every vertex, t = remaining recover

@@ -78,7 +78,7 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL, false);
     g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL, false);
     g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL, true);
-    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(blade_cube_object_t), NULL, false);
+    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL, false);
     uint32_t cmd[4];
     command_initial(g, cmd);
     g->command = make_buffer(g, "command", sizeof cmd, cmd, true);
@@ -146,13 +146,20 @@ void blade_gpu_destroy(blade_gpu_t *g)
     memset(g, 0, sizeof *g);
 }
 
-void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
+void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders)
 {
     blade_env_t e = blade_env_defaults(env);
+    static const collide_set_t none;
+    const collide_set_t *c = colliders ? colliders : &none;
+    assert(c->sphere_count >= 0 && c->sphere_count <= BLADE_MAX_SPHERES);
+    assert(c->cube_count >= 0 && c->cube_count <= BLADE_MAX_CUBES);
+    assert(c->cube_count == 0 || (c->cube_texture && c->cube_res > 0));
+    int cubes = c->cube_texture ? c->cube_count : 0;
+    if (cubes) gfx_buffer_update(g->cube_objects, 0, (size_t)cubes * sizeof(collide_cube_proxy_t), c->cubes);
     gfx_timer_begin("blade.physics");
     if (e.wind_count) gfx_buffer_update(g->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
-    if (e.sphere_count)
-        gfx_buffer_update(g->spheres, 0, (size_t)e.sphere_count * sizeof(blade_sphere_t), e.spheres);
+    if (c->sphere_count)
+        gfx_buffer_update(g->spheres, 0, (size_t)c->sphere_count * sizeof(blade_sphere_t), c->spheres);
     gfx_program_t p = g->physics;
     glUseProgram(p.id);
     glUniform1ui(gfx_uniform(p, "u_blade_count"), g->padded_count);
@@ -164,13 +171,12 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
     glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
     glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
-    glUniform1i(gfx_uniform(p, "u_sphere_count"), e.sphere_count);
+    glUniform1i(gfx_uniform(p, "u_sphere_count"), c->sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
-    int cubes = g->cube_texture ? g->cube_count : 0;
     glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
-    glUniform1i(gfx_uniform(p, "u_cube_res"), g->cube_res);
+    glUniform1i(gfx_uniform(p, "u_cube_res"), c->cube_res);
     glUniform1i(gfx_uniform(p, "u_cube_tex"), 0);
-    glBindTextureUnit(0, cubes ? g->cube_texture : 0);
+    glBindTextureUnit(0, cubes ? c->cube_texture : 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->eta.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->winds.id);
@@ -182,18 +188,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env)
     gfx_timer_end();
 }
 
-void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const blade_cube_object_t *objects,
-                         int count)
-{
-    assert(count >= 0 && count <= BLADE_MAX_CUBES);
-    assert(count == 0 || (cube_texture && res > 0 && objects));
-    g->cube_texture = count ? cube_texture : 0;
-    g->cube_res = res;
-    g->cube_count = count;
-    if (count) gfx_buffer_update(g->cube_objects, 0, (size_t)count * sizeof(blade_cube_object_t), objects);
-}
-
-GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const bb_cubemap_t *cubes, int count)
+GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, int count)
 {
     assert(count >= 1 && count <= BLADE_MAX_CUBES);
     int res = cubes[0].res;

@@ -11,9 +11,9 @@
  * survivor list: same geometry function, same levels), two-sided lighting
  * from shaders/common/lighting.glsl.
  *
- * Beyond both papers: blade_gpu_set_cubes adds depth cube-map colliders
- * (the billboard model's, Orthmann et al. 2009 eq. 1-5) to the physics,
- * see the blade_ref.h banner.
+ * Beyond both papers: the cube proxies of the collide set add depth
+ * cube-map colliders (the billboard model's, Orthmann et al. 2009 eq. 1-5)
+ * to the physics, see the blade_ref.h banner.
  *
  * Timer passes: "blade.physics", "blade.cull", "blade.draw".
  *
@@ -93,10 +93,8 @@ typedef struct blade_gpu_t {
     uint32_t *visible_patches;
     gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
     raster_program_t raster; /* made on the first blade_gpu_raster */
-    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES blade_cube_object_t */
+    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
     gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
-    GLuint cube_texture;       /* of blade_gpu_set_cubes; 0: none */
-    int cube_res, cube_count;
     gfx_buffer_t readback[BLADE_GPU_READBACK_SLOTS];
     GLuint readback_query[BLADE_GPU_READBACK_SLOTS];
     uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][3]; /* patch_culled, patches drawn, in use */
@@ -130,23 +128,18 @@ blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc);
 bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc);
 void blade_gpu_destroy(blade_gpu_t *g);
 
-/* One physics step of every blade (timer "blade.physics"). env is resolved
- * with blade_env_defaults. */
-void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env);
+/* One physics step of every blade (timer "blade.physics") against the
+ * spheres and cube proxies of `colliders` (NULL: none; its cube_texture
+ * holds cubes[k]'s faces in layers 6k .. 6k+5 as collide_cube.h describes,
+ * e.g. bb_field_t's cube array or blade_gpu_upload_cubes'; its cube_maps
+ * are not read). env is resolved with blade_env_defaults. */
+void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders);
 
-/* Cube-map colliders for the following blade_gpu_simulate calls (until
- * the next call; count 0 turns them off). cube_texture: RGBA32F
- * GL_TEXTURE_2D_ARRAY of res x res faces laid out as bb_ref.h describes,
- * object k in layers 6k .. 6k+5 (bb_field_t.cubes qualifies); objects: count
- * records (blade_cube_object_t, the layout of bb.c's object UBO), copied.
- * count <= BLADE_MAX_CUBES. The texture is not owned. */
-void blade_gpu_set_cubes(blade_gpu_t *g, GLuint cube_texture, int res, const blade_cube_object_t *objects,
-                         int count);
 /* Uploads CPU cube maps (all of one res) into a texture that g owns
  * (remade when the count or res changes; freed by blade_gpu_destroy), object
- * k in layers 6k .. 6k+5. Returns its name for blade_gpu_set_cubes, 0 on
- * failure (logged). count in 1..BLADE_MAX_CUBES. */
-GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const bb_cubemap_t *cubes, int count);
+ * k in layers 6k .. 6k+5. Returns its name for a collide set's
+ * cube_texture, 0 on failure (logged). count in 1..BLADE_MAX_CUBES. */
+GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, int count);
 
 /* Culls for one frame (timer "blade.cull"). desc NULL uses the make-time
  * cull desc; desc->depth is ignored: depth_texture is a GL_TEXTURE_2D of

@@ -3,7 +3,7 @@
  * statement, its twin in shaders/common/blade.glsl (same names without the
  * ref_ prefix), so the GPU result can be compared with an epsilon. Beyond
  * both papers: collision against depth cube maps (Orthmann et al. 2009
- * eq. 1-5 through bb_ref) with its own collision exit. */
+ * eq. 1-5 through collide_cube) with its own collision exit. */
 #include "blade/blade_ref.h"
 
 #include <assert.h>
@@ -47,9 +47,6 @@ blade_env_t blade_env_defaults(const blade_env_t *env)
     if (e.collision_decay == 0.0f) e.collision_decay = 1.0f;
     if (e.collision_gain == 0.0f) e.collision_gain = 1.0f;
     assert(e.wind_count >= 0 && e.wind_count <= BLADE_MAX_WINDS);
-    assert(e.sphere_count >= 0 && e.sphere_count <= BLADE_MAX_SPHERES);
-    assert(e.cube_count >= 0 && e.cube_count <= BLADE_MAX_CUBES);
-    assert(e.cube_count == 0 || (e.cube_objects && e.cubes));
     assert(e.length_mode == BLADE_LENGTH_QUADRATURE || e.length_mode == BLADE_LENGTH_PAPER);
     return e;
 }
@@ -334,23 +331,23 @@ static v3 mat4_point(const float *m, v3 p)
                    m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]);
 }
 
-static bool cube_near(const blade_cube_object_t *o, v3 p)
+static bool cube_near(const collide_cube_proxy_t *o, v3 p)
 {
     v3 pc = v3_sub(p, v3_load(o->sphere));
     return o->sphere[3] > 0.0f && v3_dot(pc, pc) < o->sphere[3] * o->sphere[3];
 }
 
-/* bb_ref_push_out's choice for q (cube space): the smallest penetration
+/* collide_push_out's choice for q (cube space): the smallest penetration
  * p_f = d_f - D_f over the faces and that texel's normal; 0 when q is not
  * inside (some p_f <= 0). */
-static float cube_pen(const bb_cubemap_t *c, v3 q, v3 *n)
+static float cube_pen(const collide_cubemap_t *c, v3 q, v3 *n)
 {
     float best = 3.402823e38f;
     *n = v3_make(0.0f, 0.0f, 0.0f);
     vec3 qq = {q.x, q.y, q.z};
     for (int f = 0; f < 6; f++) {
         vec4 tx;
-        float pen = bb_ref_lookup(c, f, qq, tx) - tx[0];
+        float pen = collide_lookup_texel(c, f, qq, tx) - tx[0];
         if (!(pen > 0.0f)) return 0.0f;
         if (pen < best) {
             best = pen;
@@ -360,21 +357,21 @@ static float cube_pen(const bb_cubemap_t *c, v3 q, v3 *n)
     return best;
 }
 
-static bool inside_cube(const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p)
+static bool inside_cube(const collide_cube_proxy_t *o, const collide_cubemap_t *c, v3 p)
 {
     if (!cube_near(o, p)) return false;
     v3 n;
     return cube_pen(c, mat4_point(o->w2c, p), &n) > 0.0f;
 }
 
-bool blade_ref_inside_cube(const blade_cube_object_t *object, const bb_cubemap_t *cube, const float p[3])
+bool blade_ref_inside_cube(const collide_cube_proxy_t *object, const collide_cubemap_t *cube, const float p[3])
 {
     return inside_cube(object, cube, v3_load(p));
 }
 
 /* World displacement moving p out of the object by pen + margin * half
  * along the stored normal (zero when p is outside). */
-static v3 cube_push(const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p, float margin)
+static v3 cube_push(const collide_cube_proxy_t *o, const collide_cubemap_t *c, v3 p, float margin)
 {
     if (!cube_near(o, p)) return v3_make(0.0f, 0.0f, 0.0f);
     v3 q = mat4_point(o->w2c, p);
@@ -385,7 +382,7 @@ static v3 cube_push(const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p, f
     return v3_sub(mat4_point(o->c2w, t), p);
 }
 
-static v3 collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+static v3 collide_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count)
 {
     v3 d = v3_make(0.0f, 0.0f, 0.0f);
     for (int k = 0; k < count; k++) {
@@ -398,7 +395,7 @@ static v3 collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb
     return d;
 }
 
-void blade_ref_collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+void blade_ref_collide_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                              int count, float d[3])
 {
     v3_store(d, collide_cubes(b, objects, cubes, count));
@@ -408,7 +405,7 @@ void blade_ref_collide_cubes(blade_t *b, const blade_cube_object_t *objects, con
  * target of p (margin BLADE_CUBE_MARGIN); cosine and sine from the dot and
  * cross products (no trig). Skipped when p is outside, when the root is
  * inside, and when v2 would go under the ground plane. */
-static void cube_exit_rotate(blade_t *b, const blade_cube_object_t *o, const bb_cubemap_t *c, v3 p)
+static void cube_exit_rotate(blade_t *b, const collide_cube_proxy_t *o, const collide_cubemap_t *c, v3 p)
 {
     v3 v0 = v3_load(b->v0);
     v3 up = v3_load(b->up);
@@ -441,7 +438,7 @@ static v3 cube_direction(const blade_t *b, int i)
     return v3_add(v3_scale(up, cosf(th)), v3_scale(side, sinf(th)));
 }
 
-static bool cube_holds(const blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+static bool cube_holds(const blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                        int count, v3 v2, v3 m)
 {
     for (int k = 0; k < count; k++) {
@@ -451,7 +448,7 @@ static bool cube_holds(const blade_t *b, const blade_cube_object_t *objects, con
     return false;
 }
 
-static void cube_exit_straight(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+static void cube_exit_straight(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                                int count)
 {
     if (!cube_holds(b, objects, cubes, count, v3_load(b->v2), midpoint(b))) return;
@@ -474,7 +471,7 @@ static void cube_exit_straight(blade_t *b, const blade_cube_object_t *objects, c
     v3_store(b->v2, v3_add(v0, v3_scale(bu, h)));
 }
 
-static void exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+static void exit_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count)
 {
     for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
         for (int k = 0; k < count; k++) {
@@ -485,7 +482,7 @@ static void exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_
     cube_exit_straight(b, objects, cubes, count);
 }
 
-void blade_ref_exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count)
+void blade_ref_exit_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count)
 {
     if (b->v1[3] <= 0.0f) return;
     exit_cubes(b, objects, cubes, count);
@@ -548,31 +545,34 @@ void blade_ref_validate(blade_t *b, int length_mode)
     v3_store(b->v2, v2c);
 }
 
-void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env)
+void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const collide_set_t *colliders)
 {
     float h = b->v1[3];
     if (h <= 0.0f) return;
+    static const collide_set_t none;
+    const collide_set_t *c = colliders ? colliders : &none;
+    assert(c->cube_count == 0 || c->cube_maps);
     float dt = env->dt;
     v3 r = recovery(b, *eta);
     v3 g = gravity(b, env);
     v3 w = wind(b, env);
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), dt)));
     blade_ref_validate(b, env->length_mode);
-    v3 d = collide(b, env->spheres, env->sphere_count);
-    d = v3_add(d, collide_cubes(b, env->cube_objects, env->cubes, env->cube_count));
+    v3 d = collide(b, c->spheres, c->sphere_count);
+    d = v3_add(d, collide_cubes(b, c->cubes, c->cube_maps, c->cube_count));
     if (v3_dot(d, d) > 0.0f) {
         blade_ref_validate(b, env->length_mode);
-        exit_spheres(b, env->spheres, env->sphere_count);
-        exit_cubes(b, env->cube_objects, env->cubes, env->cube_count);
+        exit_spheres(b, c->spheres, c->sphere_count);
+        exit_cubes(b, c->cubes, c->cube_maps, c->cube_count);
     }
     float e = *eta + env->collision_gain * v3_dot(d, d);
     *eta = fminf(fmaxf(e - env->collision_decay * dt, 0.0f), 1.0f);
 }
 
-void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env)
+void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env, const collide_set_t *colliders)
 {
     blade_env_t e = blade_env_defaults(env);
-    for (size_t i = 0; i < n; i++) blade_ref_step_one(&b[i], &eta[i], &e);
+    for (size_t i = 0; i < n; i++) blade_ref_step_one(&b[i], &eta[i], &e, colliders);
 }
 
 float blade_ref_curve_length(const blade_t *b, int samples)

@@ -49,16 +49,17 @@
  *
  * Beyond both papers, cube-map colliders: besides spheres, a blade can
  * collide against the depth cube maps of the billboard model (Orthmann et
- * al. 2009 eq. 1-5, bb_ref.h), so a complex shape needs no sphere packing.
+ * al. 2009 eq. 1-5, collide/collide_cube.h), so a complex shape needs no
+ * sphere packing.
  * Per object, in order after the spheres: v2 and then the recomputed m are
- * pushed out as by bb_ref_push_out (smallest-penetration face, along the
+ * pushed out as by collide_push_out (smallest-penetration face, along the
  * stored normal by the penetration; m's push is applied 4x to v2, as for
  * spheres) and the pushes join d (eta as for spheres). The exit after a
  * contact (after the sphere exit): BLADE_EXIT_ROUNDS passes over the
  * objects rotate v1, v2 rigidly about v0 so that the point (v2, then m)
  * points at its push-out target moved BLADE_CUBE_MARGIN * half further
  * along the normal (skipped when v2 would go under the ground plane); then,
- * if v2 or m is still inside an object (cube-map test, bb_ref_inside), the
+ * if v2 or m is still inside an object (cube-map test, collide_test_inside), the
  * blade becomes the straight segment v0 + u [0, h] along the first of
  * BLADE_CUBE_DIRECTIONS fixed directions (up, then rings of 8 at 22.5,
  * 45, 67.5, 90 degrees from up) ordered by closeness to the tip direction
@@ -72,7 +73,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "billboard/bb_ref.h"
+#include "collide/collide_set.h"
 
 /* One blade, 64 bytes (4 vec4), std430; mirrors `struct Blade` in
  * shaders/common/blade.glsl. */
@@ -101,33 +102,16 @@ typedef struct blade_wind_t {
 #define BLADE_WIND_WAVE 0.0f
 #define BLADE_WIND_POINT 1.0f
 
-/* A sphere collider, 16 bytes (1 vec4), std430: xyz centre, w radius.
- * Mirrors `struct BladeSphere` in shaders/common/blade.glsl. */
-typedef struct blade_sphere_t {
-    float centre_radius[4];
-} blade_sphere_t;
+/* A sphere collider: the collide set's sphere proxy (xyz centre, w radius,
+ * std430), mirrored by `struct BladeSphere` in shaders/common/blade.glsl. */
+typedef collide_sphere_t blade_sphere_t;
 
 #define BLADE_MAX_WINDS 8
 #define BLADE_LENGTH_QUADRATURE 0 /* default: see the banner */
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
-#define BLADE_MAX_SPHERES 512
+#define BLADE_MAX_SPHERES COLLIDE_MAX_SPHERES
 
-/* A cube-map collider, 160 bytes, std430; mirrors `struct BladeCube` in
- * shaders/common/blade.glsl and bb.c's per-object UBO record:
- *   w2c    world -> cube space (column-major), c2w its inverse
- *   cube   xyz cube centre (cube space), w half edge length
- *   sphere xyz world centre, w radius of a sphere holding the whole cube
- *          (broad phase: points farther are not tested); w <= 0: the
- *          object is skipped
- * Object k's faces are layers 6k .. 6k+5 of the cube texture (CPU: cubes[k]). */
-typedef struct blade_cube_object_t {
-    float w2c[16];
-    float c2w[16];
-    float cube[4];
-    float sphere[4];
-} blade_cube_object_t;
-
-#define BLADE_MAX_CUBES 16
+#define BLADE_MAX_CUBES COLLIDE_MAX_CUBES
 #define BLADE_CUBE_MARGIN 1e-3f  /* exit target beyond the surface, in units of half */
 #define BLADE_CUBE_DIRECTIONS 33 /* straight-blade candidates of the cube exit */
 
@@ -157,13 +141,6 @@ typedef struct blade_env_t {
     int length_mode;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;
-    blade_sphere_t spheres[BLADE_MAX_SPHERES];
-    int sphere_count;
-    /* Cube-map colliders of the CPU reference (the GPU takes them from
-     * blade_gpu_set_cubes): cube_count objects and their cube maps. */
-    const blade_cube_object_t *cube_objects;
-    const bb_cubemap_t *cubes;
-    int cube_count;
 } blade_env_t;
 
 blade_env_t blade_env_defaults(const blade_env_t *env);
@@ -214,13 +191,13 @@ void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
 
 /* Cube-map collision of one blade (see the banner): every object's push of
  * v2 and then of m, applied to b->v2; the total goes into d. */
-void blade_ref_collide_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes,
+void blade_ref_collide_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                              int count, float d[3]);
 /* The cube-map collision exit (see the banner); no-op for a padding blade. */
-void blade_ref_exit_cubes(blade_t *b, const blade_cube_object_t *objects, const bb_cubemap_t *cubes, int count);
+void blade_ref_exit_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count);
 /* Whether world point p is inside object k's shape per its cube map
- * (bb_ref_inside after the broad phase). */
-bool blade_ref_inside_cube(const blade_cube_object_t *object, const bb_cubemap_t *cube, const float p[3]);
+ * (collide_test_inside after the broad phase). */
+bool blade_ref_inside_cube(const collide_cube_proxy_t *object, const collide_cubemap_t *cube, const float p[3]);
 
 /* Curve length as used by the validation: BLADE_LENGTH_PAPER is eq. 12
  * with n = 2, BLADE_LENGTH_QUADRATURE the split Gauss-Legendre arc length. */
@@ -231,12 +208,14 @@ float blade_ref_length_estimate(const blade_t *b, int length_mode);
  * (blade_ref_length_estimate) equals the height. No-op for height <= 0. */
 void blade_ref_validate(blade_t *b, int length_mode);
 
-/* One step of one blade (order in the banner). env must be resolved. */
-void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env);
+/* One step of one blade (order in the banner) against the spheres and the
+ * cube proxies of `colliders` (its cube_maps, required when cube_count > 0;
+ * NULL: no colliders). env must be resolved. */
+void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const collide_set_t *colliders);
 
 /* Applies blade_ref_step_one to n blades; resolves env first. Pure function
  * of its inputs, deterministic. */
-void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env);
+void blade_ref_step(blade_t *b, float *eta, size_t n, const blade_env_t *env, const collide_set_t *colliders);
 
 /* Arc length of the blade's Bézier curve by summing `samples` chords. */
 float blade_ref_curve_length(const blade_t *b, int samples);

@@ -548,28 +548,26 @@ static void hand_over(blade_tiles_t *t, const uint32_t *entries, int n)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
-void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*spheres)[4], int sphere_count,
+void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_set_t *colliders,
                         const blade_env_t *env)
 {
+    static const collide_set_t none;
+    const collide_set_t *c = colliders ? colliders : &none;
+    const collide_sphere_t *spheres = c->spheres;
+    int sphere_count = c->sphere_count;
     blade_env_t e = blade_env_defaults(env);
     if (e.wind_count == 0) {
         memcpy(e.winds, t->env.winds, sizeof e.winds);
         e.wind_count = t->env.wind_count;
     }
-    e.sphere_count = 0;
     t->env = e;
     t->time = e.time;
-    if (sphere_count > BLADE_MAX_SPHERES) {
-        core_log_warn("blade_tiles: %d spheres, %d taken: the rest do not bend blades", sphere_count,
-                      BLADE_MAX_SPHERES);
-        sphere_count = BLADE_MAX_SPHERES;
-    }
     poll_motion(t);
 
     /* activation bound: spheres grown by the blade reach (see the header) */
     static hybrid_object_t objs[BLADE_MAX_SPHERES];
     for (int k = 0; k < sphere_count; k++) {
-        memcpy(objs[k].sphere, spheres[k], sizeof objs[k].sphere);
+        memcpy(objs[k].sphere, spheres[k].centre_radius, sizeof objs[k].sphere);
         objs[k].sphere[3] += t->reach;
     }
     hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
@@ -616,7 +614,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*s
 
     gfx_timer_begin("tiles.physics");
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
-    if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * 4 * sizeof(float), spheres);
+    if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * sizeof(collide_sphere_t), spheres);
     if (nhand) hand_over(t, handover, nhand);
     if (ninit) {
         if (nseed && t->source) {

@@ -238,13 +238,13 @@ void blade_tiles_destroy(blade_tiles_t *t);
  * the slope cells seed blades). */
 void blade_tiles_set_slope_source(blade_tiles_t *t, blade_tiles_slope_source_fn fn, void *user);
 
-/* One frame: representation from camera, activation from the spheres
- * (xyz centre, w radius; at most BLADE_MAX_SPHERES, the rest logged and
- * ignored), motion read back without stalling, slot initialisation, and
- * one physics step over the active and recovering slots (timer
- * "tiles.physics"). env: dt, time, gravity, collision and length settings
- * (resolved with blade_env_defaults; its spheres are ignored). */
-void blade_tiles_update(blade_tiles_t *t, const float camera[3], const float (*spheres)[4], int sphere_count,
+/* One frame: representation from camera, activation from the spheres of
+ * `colliders` (NULL: none; its objects and cube proxies are not read),
+ * motion read back without stalling, slot initialisation, and one physics
+ * step over the active and recovering slots (timer "tiles.physics"). env:
+ * dt, time, gravity, collision and length settings (resolved with
+ * blade_env_defaults). */
+void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_set_t *colliders,
                         const blade_env_t *env);
 
 /* Culls (timer "tiles.cull") and draws (timer "tiles.draw") the blade-

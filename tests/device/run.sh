@@ -15,6 +15,9 @@
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
 #                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
+#   raster       every bench scene (and meadow_large in each mode) with
+#                --raster hw and --raster compute, 300 frames: pass medians
+#                side by side -> $OUT/raster.txt, screenshots -> $OUT/raster_png.tgz
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
@@ -77,6 +80,24 @@ naturesweep() {
   kill %1 2> /dev/null
   echo "GL debug messages: $(grep -c "GL: " $OUT/naturesweep.log)"; grep -m8 -iE "error|GL: |0 billboards" $OUT/naturesweep.log
   cp /tmp/ns/bench.csv $OUT/naturesweep.csv 2>/dev/null
+}
+
+raster() {
+  echo "== raster: hardware vs compute rasterizer"
+  run_pair() { # name scene extra-args...
+    local name=$1 scene=$2; shift 2
+    for r in hw compute; do
+      timeout 150 $M --headless --quiet --scene $scene --frames 300 --screenshot-every 300 --raster $r "$@" \
+        --out /tmp/r-$name-$r > /tmp/r-$name-$r.log 2>&1
+      echo "-- $name $r rc=$? $(grep -E '^raster:' /tmp/r-$name-$r/summary.txt)"
+      sed -n '/gpu passes/,/gpu_frame_ms/p' /tmp/r-$name-$r/summary.txt | grep -vE 'gpu passes'
+      grep -E "error|warn" /tmp/r-$name-$r.log | head -3
+    done
+  }
+  for s in orthmann nature helicopter fan128; do run_pair $s scenes/bench/$s.json; done
+  for m in hybrid billboard blade; do run_pair large_$m scenes/bench/meadow_large.json --mode $m; done
+  mkdir -p /tmp/rpng; for d in /tmp/r-*-*/; do n=$(basename $d); cp $d/shot-000300.png /tmp/rpng/$n.png 2>/dev/null; done
+  tar czf $OUT/raster_png.tgz -C /tmp rpng
 }
 
 sections=${*:-tests bench scaling report}

@@ -1,5 +1,6 @@
-/* shapes: analytic collider meshes and signed distances (see shapes.h). */
-#include "scene/shapes.h"
+/* collide_shape: analytic collider meshes, signed distances, bounding
+ * spheres, CPU cube maps and sphere proxies (see collide_shape.h). */
+#include "collide/collide_shape.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -7,7 +8,7 @@
 
 #define PI_F 3.14159265358979f
 
-static bool alloc_mesh(shape_mesh_t *m, uint32_t nv, uint32_t ni)
+static bool alloc_mesh(collide_mesh_t *m, uint32_t nv, uint32_t ni)
 {
     memset(m, 0, sizeof *m);
     m->positions = calloc(nv * 3, sizeof(float));
@@ -16,7 +17,7 @@ static bool alloc_mesh(shape_mesh_t *m, uint32_t nv, uint32_t ni)
     m->vertex_count = nv;
     m->index_count = ni;
     if (!m->positions || !m->normals || !m->indices) {
-        shape_mesh_free(m);
+        collide_free_mesh(m);
         return false;
     }
     return true;
@@ -24,7 +25,7 @@ static bool alloc_mesh(shape_mesh_t *m, uint32_t nv, uint32_t ni)
 
 /* UV sphere of radius r whose upper half is lifted by +h and lower half by
  * -h: a sphere for h = 0, a vertical capsule of segment length 2h else. */
-static bool make_round(shape_mesh_t *m, float r, float h)
+static bool make_round(collide_mesh_t *m, float r, float h)
 {
     const uint32_t slices = 24, stacks = 16;
     uint32_t nv = (slices + 1) * (stacks + 1), ni = slices * stacks * 6;
@@ -51,7 +52,7 @@ static bool make_round(shape_mesh_t *m, float r, float h)
     return true;
 }
 
-static bool make_box(shape_mesh_t *m, const float he[3])
+static bool make_box(collide_mesh_t *m, const float he[3])
 {
     if (!alloc_mesh(m, 24, 36)) return false;
     for (int f = 0; f < 6; f++) {
@@ -73,7 +74,7 @@ static bool make_box(shape_mesh_t *m, const float he[3])
     return true;
 }
 
-bool shape_mesh_make(shape_mesh_t *m, const scene_collider_t *c)
+bool collide_make_mesh(collide_mesh_t *m, const scene_collider_t *c)
 {
     switch (c->type) {
     case SCENE_COLLIDER_CAPSULE: return make_round(m, c->radius, c->length * 0.5f);
@@ -82,7 +83,7 @@ bool shape_mesh_make(shape_mesh_t *m, const scene_collider_t *c)
     }
 }
 
-void shape_mesh_free(shape_mesh_t *m)
+void collide_free_mesh(collide_mesh_t *m)
 {
     free(m->positions);
     free(m->normals);
@@ -90,7 +91,7 @@ void shape_mesh_free(shape_mesh_t *m)
     memset(m, 0, sizeof *m);
 }
 
-float shape_signed_distance(const scene_collider_t *c, const float p[3])
+float collide_signed_distance(const scene_collider_t *c, const float p[3])
 {
     switch (c->type) {
     case SCENE_COLLIDER_CAPSULE: {
@@ -111,7 +112,7 @@ float shape_signed_distance(const scene_collider_t *c, const float p[3])
     }
 }
 
-float shape_bounding_radius(const scene_collider_t *c)
+float collide_bounding_radius(const scene_collider_t *c)
 {
     switch (c->type) {
     case SCENE_COLLIDER_CAPSULE: return c->radius + c->length * 0.5f;
@@ -120,4 +121,34 @@ float shape_bounding_radius(const scene_collider_t *c)
                      c->half_extents[2] * c->half_extents[2]);
     default: return c->radius;
     }
+}
+
+void collide_render_shape(collide_cubemap_t *cube, const scene_collider_t *c)
+{
+    switch (c->type) {
+    case SCENE_COLLIDER_CAPSULE:
+        collide_render_capsule(cube, (vec3){0, -0.5f * c->length, 0}, (vec3){0, 0.5f * c->length, 0}, c->radius);
+        break;
+    case SCENE_COLLIDER_BOX: collide_render_box(cube, (vec3){0, 0, 0}, (float *)c->half_extents); break;
+    default: collide_render_sphere(cube, (vec3){0, 0, 0}, c->radius); break;
+    }
+}
+
+int collide_pack_spheres(const scene_collider_t *c, const float position[3], float (*out)[4], int max)
+{
+    int k = 1;
+    float r = collide_bounding_radius(c), step = 0;
+    if (c->type == SCENE_COLLIDER_CAPSULE) {
+        r = c->radius;
+        k = 1 + (int)ceilf(c->length / r);
+        step = c->length / (float)(k - 1);
+    }
+    for (int j = 0; j < k && j < max; j++) {
+        float y = k > 1 ? -0.5f * c->length + step * (float)j : 0.0f;
+        out[j][0] = position[0];
+        out[j][1] = position[1] + y;
+        out[j][2] = position[2];
+        out[j][3] = r;
+    }
+    return k;
 }
