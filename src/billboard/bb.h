@@ -219,7 +219,8 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
 void bb_field_set_cube(bb_field_t *f, int object, const bb_cubemap_t *cube);
 /* The quad frame of a billboard (twin of bb_frame in
  * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
- * direction (cos angle, 0, sin angle) made orthogonal to up. */
+ * direction (cos angle, 0, sin angle) made orthogonal to up, or
+ * (-sin angle, 0, cos angle) when up is (nearly) along the first. */
 void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up);
 
 #endif
