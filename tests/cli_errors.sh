@@ -41,6 +41,8 @@ printf '{\n  "seed": 1,\n  "grass": { "density": "lots" }\n}\n' >"$tmp/wrongtype
 expect2 'wrongtype.json:3.*grass.density' --headless --scene "$tmp/wrongtype.json"
 printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"
 expect2 'unknown.json:2.*sed' --headless --scene "$tmp/unknown.json"
+printf '{\n  "grass": { "stiffness": [0, 10] }\n}\n' >"$tmp/stiffness0.json"
+expect2 'stiffness0.json:2: field "grass.stiffness": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
 printf '{ "terrain": { "type": "mesh", "mesh": "%s/nope.obj" } }\n' "$tmp" >"$tmp/badmesh.json"
 expect2 'nope.obj' --headless --scene "$tmp/badmesh.json"
 printf 'this is not a mesh\n' >"$tmp/garbage.obj"

@@ -177,20 +177,30 @@ static void test_collision_and_step(void)
     blade_t b = upright(0, 0, 1, 0.0f, 1.0f);
     blade_sphere_t s = {{0.3f, 1.0f, 0.0f, 0.5f}};
     float d[3];
-    blade_ref_collide(&b, &s, 1, d);
-    /* v2 pushed to (-0.2, 1, 0); m = (-0.05, 0.75, 0); m's push-out */
+    blade_ref_collide(&b, &s, 1, BLADE_LENGTH_QUADRATURE, d);
+    /* v2 pushed to (-0.2, 1, 0); m = (-0.05, 0.75, 0); m's push-out, 4x
+     * (the paper), puts m exactly on the sphere before validation */
     double mx = 0.35, my = 0.25, ml = sqrt(mx * mx + my * my), pen = ml - 0.5;
     double dmx = 4 * pen * mx / ml, dmy = 4 * pen * my / ml;
-    CHECK_V3(d, -0.2 + dmx, dmy, 0, EPS);
-    CHECK_V3(b.v2, -0.2 + dmx, 1 + dmy, 0, EPS);
+    blade_t paper = upright(0, 0, 1, 0.0f, 1.0f);
+    paper.v2[0] = (float)(-0.2 + dmx);
+    paper.v2[1] = (float)(1 + dmy);
     float m[3];
-    blade_ref_midpoint(&b, m);
+    blade_ref_midpoint(&paper, m);
     double dm = sqrt((m[0] - 0.3) * (m[0] - 0.3) + (m[1] - 1.0) * (m[1] - 1.0));
-    CHECK_NEAR(dm, 0.5, 1e-5); /* m exactly on the sphere */
+    CHECK_NEAR(dm, 0.5, 1e-5);
+    /* validated, that m ends q outside: the push is scaled by p / (p + q) */
+    blade_ref_validate(&paper, BLADE_LENGTH_QUADRATURE);
+    blade_ref_midpoint(&paper, m);
+    double q = sqrt((m[0] - 0.3) * (m[0] - 0.3) + (m[1] - 1.0) * (m[1] - 1.0)) - 0.5;
+    double p = -pen, sc = q > 0 ? p / (p + q) : 1.0;
+    CHECK(q > 0.01);
+    CHECK_V3(d, -0.2 + sc * dmx, sc * dmy, 0, EPS);
+    CHECK_V3(b.v2, -0.2 + sc * dmx, 1 + sc * dmy, 0, EPS);
     /* no contact: no displacement */
     b = upright(0, 0, 1, 0.0f, 1.0f);
     blade_sphere_t far = {{3, 1, 0, 0.5f}};
-    blade_ref_collide(&b, &far, 1, d);
+    blade_ref_collide(&b, &far, 1, BLADE_LENGTH_QUADRATURE, d);
     CHECK_V3(d, 0, 0, 0, 0);
 
     /* a whole step, gravity only, hand-computed in double */
@@ -199,8 +209,11 @@ static void test_collision_and_step(void)
     float eta = 0.0f;
     blade_ref_step(&b, &eta, 1, &env, NULL);
     {
-        double v2y = 1 - 0.1, v2z = -0.025; /* g = (0, -10, -2.5), dt 0.01 */
-        double lproj = 0.025, v1y = 1 - lproj;
+        /* g = (0, -10, -2.5), gain k = (1 - exp(-s dt)) / s, s = 2, dt 0.01 */
+        double k = (1 - exp(-0.02)) / 2;
+        CHECK_NEAR(blade_ref_step_gain(2.0f, 0.0f, 0.01f), k, 1e-8);
+        double v2y = 1 - 10 * k, v2z = -2.5 * k;
+        double lproj = -v2z, v1y = 1 - lproj;
         double l0 = sqrt(v2y * v2y + v2z * v2z);
         double l1 = v1y + sqrt((v2y - v1y) * (v2y - v1y) + v2z * v2z);
         double r = 1 / ((2 * l0 + l1) / 3);
@@ -208,19 +221,19 @@ static void test_collision_and_step(void)
         CHECK_V3(b.v2, 0, v1y * r + r * (v2y - v1y), r * v2z, EPS);
         CHECK_NEAR(eta, 0.0, 0);
     }
-    /* step with a collision: eta = d.d - a dt; v0 untouched */
+    /* step with a collision: eta = d.d (1/60 / dt) - a dt; v0 untouched */
     env = (blade_env_t){.dt = 0.01f, .gravity_off = true, .collision_decay = 2.0f};
     static collide_set_t set;
     set.sphere_count = 1;
     set.spheres[0] = s;
     b = upright(0, 0, 1, 0.0f, 2.0f);
     blade_t ref = b;
-    blade_ref_collide(&ref, &s, 1, d);
+    blade_ref_collide(&ref, &s, 1, BLADE_LENGTH_QUADRATURE, d);
     blade_ref_validate(&ref, BLADE_LENGTH_QUADRATURE);
     blade_ref_exit(&ref, &s, 1);
     eta = 0.0f;
     blade_ref_step(&b, &eta, 1, &env, &set);
-    CHECK_NEAR(eta, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - 2.0 * 0.01, 1e-6);
+    CHECK_NEAR(eta, (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (1.0 / 60.0 / 0.01) - 2.0 * 0.01, 1e-5);
     CHECK(memcmp(b.v0, ref.v0, sizeof b.v0) == 0);
     CHECK_V3(b.v2, ref.v2[0], ref.v2[1], ref.v2[2], 1e-6);
     /* eta decays to exactly zero, never below */
@@ -310,13 +323,14 @@ static void run_invariants(int length_mode, int steps, double len_bound)
             blade_ref_recovery(&c, eta[i], r);
             blade_ref_gravity(&c, &res, g);
             blade_ref_wind(&c, &res, w);
-            for (int k = 0; k < 3; k++) c.v2[k] += (r[k] + g[k] + w[k]) * res.dt;
+            float kg = blade_ref_step_gain(c.up[3], eta[i], res.dt);
+            for (int k = 0; k < 3; k++) c.v2[k] += (r[k] + g[k] + w[k]) * kg;
             blade_ref_validate(&c, length_mode);
             float pre = 0.0f, cm[3];
             blade_ref_midpoint(&c, cm);
             for (int k = 0; k < set.sphere_count; k++)
                 pre = fmaxf(pre, fmaxf(sphere_pen(&set.spheres[k], c.v2), sphere_pen(&set.spheres[k], cm)));
-            blade_ref_collide(&c, set.spheres, set.sphere_count, d);
+            blade_ref_collide(&c, set.spheres, set.sphere_count, res.length_mode, d);
             bool hit = d[0] != 0.0f || d[1] != 0.0f || d[2] != 0.0f;
             if (hit) {
                 blade_ref_validate(&c, length_mode);

@@ -181,6 +181,44 @@ static void test_shapes(void)
     for (int i = 0; i < 5; i++) blade_gpu_destroy(&g[i]);
 }
 
+/* Eq. 23 in numbers: one upright blade (width 0.16 m, height 0.6 m, width
+ * along x) seen edge-on from +x. Flat, it is a line of no area; with the
+ * midrib raised (displacement 1: 0.08 m at the root, along the normal z)
+ * its side view is a triangle, in both render paths. Counts the pixels
+ * that differ from the clear colour. */
+static int midrib_pixels(blade_render_path_t path, float displacement)
+{
+    blade_t b = {{0, 0, 0, 0.0f}, {0, 0.6f, 0, 0.6f}, {0, 0.6f, 0, 0.16f}, {0, 1, 0, 3}};
+    float eta = 0.0f;
+    blade_aabb_t aabb = {{-0.6f, -0.6f, -0.6f}, {0.6f, 0.6f, 0.6f}};
+    blade_field_t f = {.blades = &b, .eta = &eta, .patch_aabbs = &aabb, .blade_count = 1, .padded_count = 1,
+                       .patch_count = 1, .patch_size = 1};
+    blade_gpu_t g, *gp = &g;
+    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .path = path, .displacement = displacement,
+                                                 .label = "midrib"}));
+    view_t v = {{1.5f, 0.3f, 0.0f}, {0.0f, 0.3f, 0.0f}, 128, 128};
+    core_image_t img = render(&gp, 1, &v, BLADE_CULL_ORIENTATION | BLADE_CULL_DISTANCE);
+    int n = 0;
+    for (size_t i = 0; img.px && i < (size_t)img.w * (size_t)img.h; i++) {
+        const uint8_t *p = img.px + i * 4;
+        n += abs(p[0] - 77) + abs(p[1] - 61) + abs(p[2] - 41) > 12;
+    }
+    core_image_free(&img);
+    blade_gpu_destroy(&g);
+    return n;
+}
+
+static void test_midrib(void)
+{
+    for (int path = 0; path < 2; path++) {
+        int flat = midrib_pixels((blade_render_path_t)path, 0.0f);
+        int raised = midrib_pixels((blade_render_path_t)path, 1.0f);
+        printf("midrib (%s): %d pixels flat, %d raised (eq. 23)\n", path ? "pulling" : "tessellation", flat, raised);
+        CHECK(flat < 100);
+        CHECK(raised > flat + 150);
+    }
+}
+
 /* Interpolated mesh normal at the closest point on the mesh (brute force). */
 static void mesh_normal_at(const terrain_mesh_t *m, const float p[3], float n[3])
 {
@@ -281,6 +319,7 @@ int main(void)
     core_log_set_quiet(true);
     test_trail_and_paths();
     test_shapes();
+    test_midrib();
     test_torus();
     gfx_timer_flush();
     for (int i = 0; i < gfx_timer_count(); i++)

@@ -152,6 +152,8 @@ static void test_bad_inline(void)
 
     expect_parse_fail("{\n\"seed\": -1}", "negative seed", "inline.json:2: field \"seed\"",
                       "-1 is out of range [0, 4.29497e+09]");
+    expect_parse_fail("{\n\"grass\": {\"stiffness\": [0, 10]}}", "stiffness 0", "inline.json:2: field \"grass.stiffness\"",
+                      "0 is out of range (0, 100]");
     expect_parse_fail("{\"frames\": 2.5}", "fraction", "field \"frames\": expected an integer, got 2.5",
                       NULL);
     expect_parse_fail("{\"msaa\": 3}", "msaa", "field \"msaa\"", "3 is not one of");

@@ -51,12 +51,18 @@ void bb_emit_point(bb_point p)
 }
 #endif
 
-/* up = growth; right = (cos a, 0, sin a) made orthogonal to up. */
+/* up = growth; right = (cos a, 0, sin a) made orthogonal to up, or
+ * (-sin a, 0, cos a) when the first is (nearly) along a horizontal up
+ * (it would normalise a zero vector). Twin: bb_point_frame. */
 void bb_frame(bb_point p, out vec3 right, out vec3 up)
 {
     up = p.growth;
     vec3 t = vec3(cos(p.angle), 0.0, sin(p.angle));
     vec3 r = t - up * dot(t, up);
+    if (dot(r, r) < 1e-6) {
+        t = vec3(-sin(p.angle), 0.0, cos(p.angle));
+        r = t - up * dot(t, up);
+    }
     right = r * (1.0 / sqrt(dot(r, r)));
 }
 

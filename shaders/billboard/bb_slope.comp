@@ -4,7 +4,9 @@
  * holding a deformed mesh adds the tilt offset of its top row's centre
  * against the wind pose (eq. 8's w) to the fixed-point sums of the slope
  * cell of its root, with eta 0; the blades seeded there read the sums
- * (shaders/blade/tiles_init.comp). Invocation i: billboard i. */
+ * (shaders/blade/tiles_init.comp). A billboard whose top row has
+ * collapsed onto its root (or with a zero-height wind pose) has no tilt
+ * direction and adds nothing. Invocation i: billboard i. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
@@ -35,7 +37,10 @@ void main()
     vec3 top = vec3(0.0);
     for (int k = 0; k < BB_N; k++) top = top + meshes[int(p.pad0) * BB_N * BB_M + (BB_M - 1) * BB_N + k].xyz;
     top = top * (1.0 / float(BB_N));
-    vec2 o = slope_offset(normalize(top - p.position), normalize(0.5 * (ta + tb) - p.position));
+    vec3 dir = top - p.position, pose = 0.5 * (ta + tb) - p.position;
+    float dl = length(dir), pl = length(pose);
+    if (dl < 1e-6 || pl < 1e-6) return;
+    vec2 o = slope_offset(dir * (1.0 / dl), pose * (1.0 / pl));
     atomicAdd(sums[c].a.x, slope_fixed(o.x));
     atomicAdd(sums[c].a.y, slope_fixed(o.y));
     atomicAdd(sums[c].a.z, slope_fixed(length(o)));

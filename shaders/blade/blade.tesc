@@ -1,6 +1,7 @@
 #version 450
 /* blade.tesc: tessellation level by distance (Jahrmann & Wimmer 2017
- * sec. 6.3): quads domain, u across the width (1 segment), v along the
+ * sec. 6.3): quads domain, u across the width (1 segment, 2 with the eq. 23
+ * displacement so the raised midrib u = 0.5 has vertices), v along the
  * blade (blade_lod segments, the same count the vertex-pulling path uses). */
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
@@ -16,10 +17,11 @@ void main()
     uint i = vs_blade[gl_InvocationID];
     tc_blade = i;
     float n = float(blade_lod(blades[i]));
+    float across = float(blade_columns());
     gl_TessLevelOuter[0] = n;
-    gl_TessLevelOuter[1] = 1.0;
+    gl_TessLevelOuter[1] = across;
     gl_TessLevelOuter[2] = n;
-    gl_TessLevelOuter[3] = 1.0;
-    gl_TessLevelInner[0] = 1.0;
+    gl_TessLevelOuter[3] = across;
+    gl_TessLevelInner[0] = across;
     gl_TessLevelInner[1] = n;
 }

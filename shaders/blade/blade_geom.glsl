@@ -12,7 +12,9 @@
  *     a tooth pattern 0.35 + 0.65 |2 fract(4v) - 1| (own profile after the
  *     paper's figure: teeth show from 8 segments on).
  *   eq. 23 (optional): p += n displacement w (0.5 - |u - 0.5|) (1 - v),
- *     a raised midrib fading to the tip.
+ *     a raised midrib fading to the tip; it needs vertices at u = 0.5, so
+ *     with displacement > 0 both paths build 2 columns across the width
+ *     (blade_columns).
  *   eq. 24 (optional, this project's reading): width w /
  *     max(|n . view|, width_correction), at most 4 w, so blades seen
  *     edge-on do not fall below a pixel and alias.
@@ -33,6 +35,9 @@ uniform float u_width_correction;
 uniform vec3 u_camera;
 uniform int u_max_level;
 uniform float u_lod_distance;
+
+/* Segments across the width: 2 when eq. 23 raises the midrib, else 1. */
+int blade_columns() { return u_displacement > 0.0 ? 2 : 1; }
 
 int blade_lod(Blade b)
 {

@@ -1,13 +1,14 @@
 #version 450
 /* blade_physics.comp: one simulation step per blade (Jahrmann & Wimmer
  * 2017 eq. 1-13), the twin of blade_ref_step_one in src/blade/blade_ref.c:
- * forces r + g + w on the start-of-step state, v2 += (r + g + w) dt,
+ * forces r + g + w on the start-of-step state, v2 += (r + g + w) k with
+ * k = blade_step_gain (exact for frozen g, w),
  * validation, sphere collision, validation again and the collision exit
  * (departure, see blade_ref.h) only after a contact, and, beyond both
  * papers, the same for the cube proxies of the collide set
  * (collision after the spheres, exit after the sphere exit; twins of
  * blade_ref.c's collide_cubes / exit_cubes),
- * eta += k d.d then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch
+ * eta += k d.d (BLADE_ETA_DT / dt) then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch
  * padding) are left untouched. One invocation per blade. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
@@ -86,10 +87,10 @@ void main()
     vec3 wi = vec3(0.0);
     for (int k = 0; k < u_wind_count; k++) wi = wi + blade_wind_field(winds[k], b.v0.xyz, u_time);
     vec3 w = blade_wind(b, wi);
-    b.v2.xyz = b.v2.xyz + ((r + g) + w) * u_dt;
+    b.v2.xyz = b.v2.xyz + ((r + g) + w) * blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
     blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
-    for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k]);
+    for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k], u_length_mode);
     for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
     if (dot(d, d) > 0.0) {
         blade_validate(b, u_length_mode);
@@ -108,7 +109,7 @@ void main()
         }
         cube_exit_straight(b);
     }
-    e = e + u_collision_gain * dot(d, d);
+    e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 ? BLADE_ETA_DT / u_dt : 1.0);
     eta[i] = clamp(e - u_collision_decay * u_dt, 0.0, 1.0);
     blades[i] = b;
 }

@@ -9,7 +9,9 @@
  *   tiles_pose   the procedural pose: quasi-static equilibrium of eq. 1-13
  *                (eta = 0) under gravity (eq. 2-4) and the wind of u_time
  *                (eq. 5-8), by relaxed fixed-point iteration
- *                v2 <- validate(v2 + 0.7 (v0 + up h + (g + w(v2)) / s - v2)).
+ *                v2 <- validate(v2 + 0.7 (v0 + up h + (g + w(v2)) / s - v2)),
+ *                then steps of the physics' gain 1 - exp(-s dt) (at most
+ *                0.7); s below BLADE_STIFFNESS_MIN counts as that minimum.
  * Twins on the CPU: blade_tiles_root / blade_tiles_instance. Bindings:
  * SSBO 0 templates, 3 winds; texture unit 0 the ground (xyz normal, w
  * height per grid vertex). */
@@ -123,8 +125,9 @@ Blade tiles_pose(Blade b)
     vec3 wi = tiles_wind_sum(b.v0.xyz);
     vec3 g = blade_gravity(b, u_gravity, u_gravity_centre);
     vec3 iv2 = b.v0.xyz + b.up.xyz * b.v1.w;
-    float inv_s = 1.0 / b.up.w;
-    float relax_step = min(b.up.w * u_pose_dt, TILES_POSE_RELAX);
+    float s = max(b.up.w, BLADE_STIFFNESS_MIN);
+    float inv_s = 1.0 / s;
+    float relax_step = min(1.0 - exp(-s * u_pose_dt), TILES_POSE_RELAX);
     for (int it = 0; it < TILES_POSE_ITERATIONS + TILES_POSE_STEPS; it++) {
         vec3 target = iv2 + (g + blade_wind(b, wi)) * inv_s;
         b.v2.xyz = b.v2.xyz + (target - b.v2.xyz) * (it < TILES_POSE_ITERATIONS ? TILES_POSE_RELAX : relax_step);

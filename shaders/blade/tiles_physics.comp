@@ -41,10 +41,10 @@ void main()
     vec3 r = blade_recovery(b, e);
     vec3 g = blade_gravity(b, u_gravity, u_gravity_centre);
     vec3 w = blade_wind(b, tiles_wind_sum(b.v0.xyz));
-    b.v2.xyz = b.v2.xyz + ((r + g) + w) * u_dt;
+    b.v2.xyz = b.v2.xyz + ((r + g) + w) * blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
     blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
-    for (int k = 0; k < ns; k++) d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + 1u + uint(k)]]);
+    for (int k = 0; k < ns; k++) d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + 1u + uint(k)]], u_length_mode);
     if (dot(d, d) > 0.0) {
         blade_validate(b, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
@@ -56,7 +56,7 @@ void main()
         }
         for (int k = 0; k < ns; k++) blade_exit_straight(b, spheres[slot_spheres[sbase + 1u + uint(k)]]);
     }
-    e = e + u_collision_gain * dot(d, d);
+    e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 ? BLADE_ETA_DT / u_dt : 1.0);
     eta[idx] = min(max(e - u_collision_decay * u_dt, 0.0), 1.0); /* clamp as blade_ref_step_one */
     pool[idx] = b;
     if ((entry & 0x80000000u) != 0u) {

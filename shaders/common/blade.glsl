@@ -46,6 +46,8 @@ struct BladeCube {
 
 #define BLADE_LENGTH_QUADRATURE 0
 #define BLADE_LENGTH_PAPER 1
+#define BLADE_ETA_DT (1.0 / 60.0)
+#define BLADE_STIFFNESS_MIN 1e-3
 
 #define BLADE_CULL_VISIBLE 0u
 #define BLADE_CULL_ORIENTATION 1u
@@ -84,6 +86,14 @@ vec3 blade_recovery(Blade b, float eta)
     float s = b.up.w;
     vec3 iv2 = v0 + up * h;
     return (iv2 - b.v2.xyz) * (s * max(1.0 - eta, 0.1));
+}
+
+/* Step gain k = (1 - exp(-s' dt)) / s' of v2 += (r + g + w) k, the exact
+ * solution of eq. 1 with g, w frozen (departure; blade_ref_step_gain). */
+float blade_step_gain(float s, float dt)
+{
+    float x = s * dt;
+    return x > 1e-3 ? (1.0 - exp(-x)) / s : dt * (1.0 - 0.5 * x);
 }
 
 /* Eq. 2-4. gravity: xyz unit direction, w magnitude (0 when off);
@@ -145,14 +155,33 @@ vec3 blade_sphere_push(BladeSphere s, vec3 p)
     return blade_safe_normalize(to_c) * pen;
 }
 
-/* Sec. 5.2 for one sphere: v2 pushed out, then 4x the push-out of the
- * recomputed midpoint. Updates b.v2, returns the displacement. The caller
- * loops over the spheres in order and sums the results. */
-vec3 blade_collide_sphere(inout Blade b, BladeSphere s)
+void blade_validate(inout Blade b, int length_mode);
+
+/* 4x the push-out of m, cut back to the secant root when a validated copy
+ * would carry m beyond the surface (twin of midpoint_push). */
+vec3 blade_midpoint_push(Blade b, BladeSphere s, int length_mode)
+{
+    vec3 pm = blade_sphere_push(s, blade_midpoint(b));
+    vec3 dm = pm * 4.0;
+    float p = length(pm);
+    if (p > 0.0) {
+        Blade t = b;
+        t.v2.xyz = t.v2.xyz + dm;
+        blade_validate(t, length_mode);
+        float q = length(blade_midpoint(t) - s.centre_radius.xyz) - s.centre_radius.w;
+        if (q > 0.0) dm = dm * (p / (p + q));
+    }
+    return dm;
+}
+
+/* Sec. 5.2 for one sphere: v2 pushed out, then the push of the recomputed
+ * midpoint (blade_midpoint_push). Updates b.v2, returns the displacement.
+ * The caller loops over the spheres in order and sums the results. */
+vec3 blade_collide_sphere(inout Blade b, BladeSphere s, int length_mode)
 {
     vec3 dv2 = blade_sphere_push(s, b.v2.xyz);
     b.v2.xyz = b.v2.xyz + dv2;
-    vec3 dm = blade_sphere_push(s, blade_midpoint(b)) * 4.0;
+    vec3 dm = blade_midpoint_push(b, s, length_mode);
     b.v2.xyz = b.v2.xyz + dm;
     return dv2 + dm;
 }

@@ -62,6 +62,11 @@ void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up)
     vec3 t = {cosf(p->angle), 0.0f, sinf(p->angle)};
     float d = glm_vec3_dot(t, up);
     for (int k = 0; k < 3; k++) right[k] = t[k] - up[k] * d;
+    if (glm_vec3_dot(right, right) < 1e-6f) {
+        glm_vec3_copy((vec3){-sinf(p->angle), 0.0f, cosf(p->angle)}, t);
+        d = glm_vec3_dot(t, up);
+        for (int k = 0; k < 3; k++) right[k] = t[k] - up[k] * d;
+    }
     glm_vec3_scale(right, 1.0f / sqrtf(glm_vec3_dot(right, right)), right);
 }
 

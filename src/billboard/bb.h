@@ -224,7 +224,8 @@ void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube)
 void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders);
 /* The quad frame of a billboard (twin of bb_frame in
  * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
- * direction (cos angle, 0, sin angle) made orthogonal to up. */
+ * direction (cos angle, 0, sin angle) made orthogonal to up, or
+ * (-sin angle, 0, cos angle) when up is (nearly) along the first. */
 void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up);
 
 #endif

@@ -55,7 +55,8 @@ typedef enum blade_render_path_t {
  *                  desc NULL (blade_cull_desc_defaults)
  *   path           BLADE_PATH_TESSELLATION
  *   displacement   0: flat blades; > 0: eq. 23, the midrib raised along
- *                  the normal by displacement * width at the root
+ *                  the normal by displacement * width / 2 at the root
+ *                  (both paths then build 2 columns across the width)
  *   width_correction 0: off; > 0: eq. 24, a blade seen edge-on is widened
  *                  by 1 / max(|n.view|, width_correction) (clamped at 4x)
  *   no_patch_cull  false: CPU patch frustum test on

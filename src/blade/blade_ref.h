@@ -10,16 +10,27 @@
  * One simulation step of blade_ref_step_one, in this order:
  *   1. height <= 0 (a padding blade): nothing happens.
  *   2. r, g, w are evaluated on the state at the start of the step.
- *   3. v2 += (r + g + w) dt.
+ *   3. v2 += (r + g + w) k, k = (1 - exp(-s' dt)) / s' with
+ *      s' = s max(1 - eta, 0.1) (blade_ref_step_gain): the exact solution
+ *      of eq. 1 with g and w frozen over the step, where the paper's
+ *      k = dt (explicit Euler) overshoots the rest pose for s' dt > 1 and
+ *      swings forever for s' dt >= 2 (departure; docs/BLADES.md).
  *   4. validation (eq. 9-13) so v1 and the curve are valid for step 5.
  *   5. collision: v2 += d, detected on v2 and on the midpoint m of the valid
  *      curve of step 4 (the paper tests m of a curve whose v1 still belongs
  *      to the previous position; validating first makes m the real midpoint).
+ *      m's 4x push is cut back when the validated result would carry m
+ *      beyond the surface (secant step, blade_ref.c midpoint_push).
  *   6. validation (eq. 9-13) again, only when step 5 moved v2 (the
  *      validation is not idempotent: eq. 11 places v1 from the rescaled
  *      tip, so a second pass would change a blade nothing touched).
  *   6b. only after a contact: blade_ref_exit (departure, below).
- *   7. eta += k d.d, then eta = clamp(eta - a dt, 0, 1): eq. 1 only uses
+ *   7. eta += k d.d (BLADE_ETA_DT / dt), then eta = clamp(eta - a dt, 0, 1).
+ *      The paper adds k d.d per step; the push d of a collider moving or
+ *      pressing at a given speed shrinks with dt, so d.d / dt is what is
+ *      rate-independent (one ball pass gave eta 0.20 at 240 Hz, 0.45 at
+ *      60 Hz, 0.70 at 30 Hz); the factor makes k mean the paper's k at
+ *      60 Hz (dt = 0: BLADE_ETA_DT / dt is taken as 1). eq. 1 only uses
  *      max(1 - eta, 0.1), so eta above 1 would only delay recovery without
  *      bound (measured: one strong push added ~90 and flattened blades never
  *      stood up again).
@@ -110,6 +121,8 @@ typedef collide_sphere_t blade_sphere_t;
 #define BLADE_LENGTH_QUADRATURE 0 /* default: see the banner */
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
 #define BLADE_MAX_SPHERES COLLIDE_MAX_SPHERES
+#define BLADE_ETA_DT (1.0f / 60.0f) /* step at which k d.d is the paper's eta gain */
+#define BLADE_STIFFNESS_MIN 1e-3f   /* the tile pose's 1/s takes at least this s */
 
 #define BLADE_MAX_CUBES COLLIDE_MAX_CUBES
 #define BLADE_CUBE_MARGIN 1e-3f  /* exit target beyond the surface, in units of half */
@@ -121,7 +134,8 @@ typedef collide_sphere_t blade_sphere_t;
  *   gravity_centre_mix t in [0,1]: 0 (default) pure direction gravity,
  *                      1 pure centre gravity towards gravity_centre
  *   collision_decay    a, 0 -> 1.0 per second (eta loses a*dt per step)
- *   collision_gain     k, 0 -> 1 (the paper): eta += k d.d. d is in metres,
+ *   collision_gain     k, 0 -> 1 (the paper): eta += k d.d (BLADE_ETA_DT / dt),
+ *                      the paper's k d.d at 60 Hz. d is in metres,
  *                      so with k = 1 a push of a few cm leaves eta ~1e-3 and
  *                      the blade stands up at full speed; k ~ 1/(0.1 h)^2
  *                      makes a push of a tenth of the height count fully,
@@ -171,9 +185,11 @@ void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3]);
 
 /* Sec. 5.2 collision, spheres in order (residual: see the banner). Per sphere: v2 is pushed out of the
  * sphere along (v2 - c); then m = 1/4 v0 + 1/2 v1 + 1/4 v2 is recomputed and
- * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter).
+ * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter),
+ * scaled by p / (p + q) when a validated copy (length_mode) would leave m
+ * q > 0 outside (p: m's penetration before the push).
  * Applies the displacement to b->v2 and writes the total into d. */
-void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, float d[3]);
+void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float d[3]);
 
 /* Departure from the paper (collision exit, see the banner); no-op for a
  * padding blade. Rounds: BLADE_EXIT_ROUNDS passes over the spheres in
@@ -207,6 +223,11 @@ float blade_ref_length_estimate(const blade_t *b, int length_mode);
  * projected length, then v1 and v2 rescaled about v0 so the curve length
  * (blade_ref_length_estimate) equals the height. No-op for height <= 0. */
 void blade_ref_validate(blade_t *b, int length_mode);
+
+/* Step 3's gain k = (1 - exp(-s' dt)) / s', s' = stiffness max(1 - eta, 0.1);
+ * dt (1 - s' dt / 2) below s' dt = 1e-3. 0 < k <= dt, and k s' < 1 for
+ * every s' and dt. */
+float blade_ref_step_gain(float stiffness, float eta, float dt);
 
 /* One step of one blade (order in the banner) against the spheres and the
  * cube proxies of `colliders` (its cube_maps, required when cube_count > 0;

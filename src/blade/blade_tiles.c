@@ -173,12 +173,13 @@ void blade_tiles_pose(const blade_tiles_t *t, int tile, uint32_t k, blade_t *out
     if (h > 0.0f) {
         blade_env_t e = t->env;
         e.time = t->time;
-        float relax = fminf(b.up[3] * (e.dt > 0.0f ? e.dt : 1.0f / 60.0f), TILES_POSE_RELAX), g[3], w[3];
+        float s = fmaxf(b.up[3], BLADE_STIFFNESS_MIN);
+        float relax = fminf(1.0f - expf(-s * (e.dt > 0.0f ? e.dt : 1.0f / 60.0f)), TILES_POSE_RELAX), g[3], w[3];
         blade_ref_gravity(&b, &e, g);
         for (int it = 0; it < TILES_POSE_ITERATIONS + TILES_POSE_STEPS; it++) {
             blade_ref_wind(&b, &e, w);
             for (int c = 0; c < 3; c++) {
-                float target = root[c] + up[c] * h + (g[c] + w[c]) / b.up[3];
+                float target = root[c] + up[c] * h + (g[c] + w[c]) / s;
                 b.v2[c] += (target - b.v2[c]) * (it < TILES_POSE_ITERATIONS ? TILES_POSE_RELAX : relax);
             }
             blade_ref_validate(&b, e.length_mode);

@@ -18,11 +18,12 @@
  * the procedural pose P(t), the equilibrium of the blade physics (eq. 1-13
  * with eta = 0) under gravity and the wind of time t. One physics step is
  *   v2 <- validate(v2 + a (T(v2) - v2)),  T(v2) = v0 + up h + (g + w(v2)) / s,
- * with a = s dt (eq. 1's recovery rate times dt), g of eq. 2-4,
+ * with a = 1 - exp(-s dt) (the exact step of eq. 1, blade_ref_step_gain
+ * times s; s at least BLADE_STIFFNESS_MIN), g of eq. 2-4,
  * w(v2) = (sum_i w_i(v0, t)) theta(v2) of eq. 5-8, validate = eq. 9-13.
  * P(t) iterates this map from the rest pose: TILES_POSE_ITERATIONS (6)
  * times with a = 0.7 (fast approach), then TILES_POSE_STEPS (24) times
- * with a = s dt of the latest update (the validation is not a radial
+ * with a = min(1 - exp(-s dt), 0.7), dt of the latest update (the validation is not a radial
  * projection, so the fixed point depends on a: this phase lands on the
  * physics' own fixed point). Under static wind a freshly activated slot
  * therefore stays where the template drawing put it (test: tips move

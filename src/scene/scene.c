@@ -361,6 +361,9 @@ static bool parse_grass(sp_t *sp, const json_t *o, scene_grass_desc_t *g)
     if ((v = MEMBER(o, p, "height")) && !get_pair(sp, v, f, 0, 10, g->height)) return false;
     if ((v = MEMBER(o, p, "width")) && !get_pair(sp, v, f, 0, 1, g->width)) return false;
     if ((v = MEMBER(o, p, "stiffness")) && !get_pair(sp, v, f, 0, 100, g->stiffness)) return false;
+    if (v && !(g->stiffness[0] > 0))
+        return sp_fail(sp, v->line, f, "%g is out of range (0, 100]: a blade of stiffness 0 never stands up (eq. 1)",
+                       (double)g->stiffness[0]);
     if ((v = MEMBER(o, p, "billboard_density")) && !get_float(sp, v, f, 0, 1000, &g->billboard_density))
         return false;
     if ((v = MEMBER(o, p, "billboard_size")) && !get_vec(sp, v, f, 2, 0, 20, g->billboard_size, NULL))
