@@ -1,0 +1,29 @@
+/* raster_ref: the CPU reference of the compute rasterizer's scan
+ * (shaders/raster/raster.glsl): near-plane clipping, the row scan with
+ * sample centres at +0.5, window depth interpolated in screen space, and
+ * the visibility buffer's rule (nearest depth wins; ties keep the smaller
+ * colour word, as atomicMin on depth << 32 | colour does). GL-free, for
+ * tests: same inputs, same samples up to float rounding at edges. */
+#ifndef MEADOW_RASTER_REF_H
+#define MEADOW_RASTER_REF_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/* Samples laid out as raster.glsl's raster_sample_index: the ss x ss
+ * samples of a pixel adjacent, pixels row by row. */
+typedef struct raster_ref_t {
+    int w, h, ss;       /* pixels, samples per pixel side */
+    uint32_t *colour;   /* per sample; 0 = no grass */
+    uint32_t *depth;    /* per sample, float bits of the window depth */
+} raster_ref_t;
+
+/* Allocates and fills every sample with `depth` and colour 0; false when
+ * out of memory. */
+bool raster_ref_init(raster_ref_t *r, int w, int h, int ss, float depth);
+void raster_ref_free(raster_ref_t *r);
+int raster_ref_sample_index(const raster_ref_t *r, int x, int y);
+/* Draws a flat-coloured triangle given in clip space. */
+void raster_ref_triangle(raster_ref_t *r, const float c0[4], const float c1[4], const float c2[4], uint32_t rgba);
+
+#endif
