@@ -5,16 +5,21 @@
  * then a plain quad (top edge in the wind pose, slope hand-over shift) or
  * its deformed N x M mesh (normals from central differences), 2 or
  * 2 (N-1)(M-1) triangles. Texels come from the clump array at the level of
- * detail of the billboard's projected height (no derivatives in compute);
- * alpha and the hybrid fade become sample coverage by fixed per-sample
- * thresholds, as alpha-to-coverage does with MSAA. With RASTER_BIG one work
- * group scans one queued triangle. */
+ * detail of the billboard's projected size (no derivatives in compute).
+ * Fragments are shaded at pixel rate (one texel fetch and one shading per
+ * pixel, as the hardware path's fragment shader); alpha and the hybrid fade
+ * then cover round(alpha n) of the pixel's n samples, starting at a sample
+ * chosen by a hash of the pixel, as alpha-to-coverage does with MSAA.
+ * Fragments behind what the samples already hold are skipped before the
+ * texel fetch. With RASTER_BIG one work group scans one queued triangle. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
 #include "billboard/bb_slope.glsl"
 #include "common/grass_shade.glsl"
+#include "common/hash.glsl"
+#define RASTER_PIXEL_RATE 1
 #include "raster/raster.glsl"
 
 #ifdef RASTER_BIG
@@ -63,7 +68,7 @@ bool bb_setup(uint prim)
     bool ok = raster_project(u_viewproj * vec4(p.position, 1.0), r0);
     ok = raster_project(u_viewproj * vec4(p.position + p.size.y * g_up, 1.0), r1) && ok;
     ok = raster_project(u_viewproj * vec4(p.position + p.size.x * g_right, 1.0), r2) && ok;
-    vec2 texels = vec2(textureSize(u_clumps, 0).xy) * float(u_raster_ss);
+    vec2 texels = vec2(textureSize(u_clumps, 0).xy);
     vec2 extent = max(vec2(distance(r0.p.xy, r2.p.xy), distance(r0.p.xy, r1.p.xy)), vec2(1.0));
     g_lod = ok ? max(log2(max(texels.x / extent.x, texels.y / extent.y)), 0.0) : 0.0;
     vec3 a, b, ta, tb;
@@ -131,28 +136,35 @@ void bb_triangle(int t, out vec4 a, out vec4 b, out vec4 c)
     }
 }
 
-void raster_fragment(int s, vec3 w, float depth)
+void raster_fragment(int s0, vec3 w, float depth)
 {
+    uint depth_bits = floatBitsToUint(depth);
+    int n = u_raster_ss * u_raster_ss;
+    bool hidden = true;
+    for (int k = 0; k < n; k++) hidden = hidden && raster_occluded(s0 + k, depth_bits);
+    if (hidden) return;
     vec2 uv = w.x * g_uv[0] + w.y * g_uv[1] + w.z * g_uv[2];
     vec4 tex = textureLod(u_clumps, vec3(uv.x, 1.0 - uv.y, g_layer), g_lod);
     vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
     float a = tex.a;
-    int pixel = s / (u_raster_ss * u_raster_ss);
+    int pixel = s0 / n;
+    uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
     if (u_fade_end > 0.0) {
         float fade = clamp((distance(u_camera, world) - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);
-        vec2 frag = vec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x) + 0.5;
-        float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
+        float ign = fract(52.9829189 * fract(dot(vec2(px) + 0.5, vec2(0.06711056, 0.00583715))));
         if (fade < 1.0) a = clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0);
     }
-    uint sub = uint(s - pixel * u_raster_ss * u_raster_ss);
-    if (a < 1.0 / 255.0 || a <= (float(sub) + 0.5) / float(u_raster_ss * u_raster_ss)) return;
+    if (a < 1.0 / 255.0) return;
+    int covered = min(int(a * float(n) + 0.5), n);
+    if (covered == 0) return;
     uint rgba = 0u;
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
         vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
         rgba = packUnorm4x8(vec4(c, 1.0));
     }
-    raster_put(s, floatBitsToUint(depth), rgba);
+    int first = int(hash_u32(px.x * 1973u + px.y * 9277u) % uint(n));
+    for (int k = 0; k < covered; k++) raster_put(s0 + (first + k) % n, depth_bits, rgba);
 }
 
 void main()

@@ -86,6 +86,7 @@ vec4 blade_vertex(float u, float v, int slot)
 
 void raster_fragment(int s, vec3 w, float depth)
 {
+    if (raster_occluded(s, floatBitsToUint(depth))) return;
     uint sub = uint(s % (u_raster_ss * u_raster_ss));
     float threshold = (float(sub) + 0.5) / float(u_raster_ss * u_raster_ss);
     if (g_keep < 1.0 && hash_float(g_seed ^ uint(s) * 0x85ebca6bu) >= g_keep) return;

@@ -14,6 +14,12 @@
  * memory is two uints per sample and every draw runs twice: pass 0 takes
  * atomicMin of the depth, pass 1 stores the colour where its depth won.
  *
+ * Pixel rate (RASTER_PIXEL_RATE defined before including): triangles are
+ * scanned at pixel centres and raster_fragment gets the pixel's first
+ * sample; the shader then covers some of the pixel's u_raster_ss^2 samples
+ * (alpha as coverage, as alpha-to-coverage does). For shaders whose cost is
+ * per fragment (texture, shading) and whose edges are soft anyway.
+ *
  * Work split: a triangle whose sample bounding box exceeds
  * u_raster_big_samples is not scanned by its thread but queued (primitive,
  * triangle) for the RASTER_BIG variant of the same shader, where one work
@@ -56,11 +62,46 @@ bool raster_color_pass()
 #endif
 }
 
+/* The scan grid: samples, or pixels with RASTER_PIXEL_RATE. */
+ivec2 raster_grid()
+{
+#ifdef RASTER_PIXEL_RATE
+    return u_raster_pixels;
+#else
+    return u_raster_pixels * u_raster_ss;
+#endif
+}
+
 int raster_sample_index(int x, int y)
 {
     int ss = u_raster_ss;
     int px = x / ss, py = y / ss;
     return ((py * u_raster_pixels.x + px) * ss + (y - py * ss)) * ss + (x - px * ss);
+}
+
+/* First sample of the pixel a grid point falls in (with RASTER_PIXEL_RATE
+ * the grid point is the pixel), else the sample itself. */
+int raster_grid_index(int x, int y)
+{
+#ifdef RASTER_PIXEL_RATE
+    return (y * u_raster_pixels.x + x) * u_raster_ss * u_raster_ss;
+#else
+    return raster_sample_index(x, y);
+#endif
+}
+
+/* True when sample s already holds something nearer than depth_bits: the
+ * fragment can be skipped before it is shaded (a plain read: the stored
+ * depth only decreases, so a stale value is only less useful). The colour
+ * pass of the two-pass variant keeps the equal depth it has to match. */
+bool raster_occluded(int s, uint depth_bits)
+{
+#ifdef RASTER_ATOMIC64
+    return depth_bits >= unpackUint2x32(raster_vis[s]).y;
+#else
+    uint stored = raster_vis[2 * s + 1];
+    return u_raster_pass == 0 ? depth_bits >= stored : depth_bits > stored;
+#endif
 }
 
 void raster_put(int s, uint depth_bits, uint rgba)
@@ -90,22 +131,23 @@ bool raster_project(vec4 clip, out raster_vert v)
     if (clip.w <= 0.0) return false;
     float iw = 1.0 / clip.w;
     vec3 ndc = clip.xyz * iw;
-    vec2 size = vec2(u_raster_pixels * u_raster_ss);
+    vec2 size = vec2(raster_grid());
     v.p = vec3((ndc.xy * 0.5 + 0.5) * size, ndc.z * 0.5 + 0.5);
     v.inv_w = iw;
     return true;
 }
 
-/* Sample-space area of a box clamped to the buffer, in samples. */
+/* Grid area of a box clamped to the buffer, in grid points. */
 float raster_box_samples(vec2 lo, vec2 hi)
 {
-    vec2 size = vec2(u_raster_pixels * u_raster_ss);
+    vec2 size = vec2(raster_grid());
     vec2 a = clamp(lo, vec2(0.0), size), b = clamp(hi, vec2(0.0), size);
     return max(b.x - a.x + 1.0, 0.0) * max(b.y - a.y + 1.0, 0.0);
 }
 
-/* The including shader's fragment: sample s at perspective-correct
- * weights w of the triangle's three vertices, window depth `depth`. */
+/* The including shader's fragment: sample s (pixel rate: the pixel's
+ * first sample) at perspective-correct weights w of the triangle's three
+ * vertices, window depth `depth`. */
 void raster_fragment(int s, vec3 w, float depth);
 
 /* Scans rows first_row, first_row + row_step, ... of the projected
@@ -124,7 +166,7 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
     B.z = -B.x - B.y;
     vec3 C = vec3(-(A.x * p2.x + B.x * p2.y), -(A.y * p2.x + B.y * p2.y), 0.0);
     C.z = 1.0 - C.x - C.y;
-    ivec2 size = u_raster_pixels * u_raster_ss;
+    ivec2 size = raster_grid();
     float ylo = min(p0.y, min(p1.y, p2.y)), yhi = max(p0.y, max(p1.y, p2.y));
     float xlo = min(p0.x, min(p1.x, p2.x)), xhi = max(p0.x, max(p1.x, p2.x));
     int y0 = max(int(ceil(ylo - 0.5)), 0), y1 = min(int(floor(yhi - 0.5)), size.y - 1);
@@ -144,7 +186,7 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
             float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
             if (!(depth >= 0.0 && depth <= 1.0)) continue;
             vec3 q = l * iw;
-            raster_fragment(raster_sample_index(x, y), to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
+            raster_fragment(raster_grid_index(x, y), to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
         }
     }
 }

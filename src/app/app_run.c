@@ -23,7 +23,47 @@ typedef struct app_t {
     char out[1024];
     char shots[16][1100];
     double frame_ms_avg;
+    double raster_calib_ms[2]; /* --raster auto: GPU ms of a frame, hardware and compute */
 } app_t;
+
+/* --raster auto: draws the first frame's view with each rasterizer (one
+ * warm-up draw, then the least of 5, GL timestamps around the whole draw)
+ * and keeps the faster. */
+static void calibrate_raster(app_t *app, float dt)
+{
+    app_world_t *w = &app->world;
+    app_view_t view;
+    app_view_make(&view, &app->cam, app->target.w, app->target.h, 0.0f, dt);
+    GLuint q[2] = {gfx_query_make(GL_TIMESTAMP, "raster.calibrate.begin"),
+                   gfx_query_make(GL_TIMESTAMP, "raster.calibrate.end")};
+    double best[2] = {1e30, 1e30};
+    for (int rep = 0; rep < 6; rep++) {
+        for (int c = 0; c < 2; c++) {
+            app_world_set_raster(w, c == 1);
+            gfx_timer_frame_begin();
+            gfx_target_bind(&app->target);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            glEnable(GL_DEPTH_TEST);
+            glQueryCounter(q[0], GL_TIMESTAMP);
+            app_world_draw(w, &view, &app->target, false);
+            glQueryCounter(q[1], GL_TIMESTAMP);
+            GLuint64 t0 = 0, t1 = 0;
+            glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
+            glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &t1);
+            if (rep > 0 && (double)(t1 - t0) * 1e-6 < best[c]) best[c] = (double)(t1 - t0) * 1e-6;
+        }
+    }
+    gfx_query_destroy(&q[0]);
+    gfx_query_destroy(&q[1]);
+    /* A path that fell back (no compute rasterizer) cannot be chosen. */
+    bool compute = best[1] < best[0] && w->raster_compute;
+    app_world_set_raster(w, compute);
+    app->raster_calib_ms[0] = best[0];
+    app->raster_calib_ms[1] = best[1];
+    gfx_timer_reset_stats();
+    core_log_info("raster auto: a frame takes %.3f ms with the hardware path, %.3f ms with compute: %s", best[0],
+                  best[1], compute ? "compute" : "hw");
+}
 
 static void handle_keys(app_t *app, float real_dt)
 {
@@ -87,6 +127,10 @@ static void write_summary(app_t *app, double wall_s)
 {
     app_world_stats_t st;
     app_world_stats(&app->world, &st);
+    char calib[128] = "";
+    if (app->raster_calib_ms[0] > 0.0)
+        snprintf(calib, sizeof calib, " (auto: frame %.3f ms hw, %.3f ms compute)", app->raster_calib_ms[0],
+                 app->raster_calib_ms[1]);
     char buf[8192];
     int n = snprintf(buf, sizeof buf,
                      "meadow run summary\n"
@@ -94,13 +138,13 @@ static void write_summary(app_t *app, double wall_s)
                      "gl_version: %s\n"
                      "platform: %s\n"
                      "scene: %s\n"
-                     "mode: %s\nraster: %s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
+                     "mode: %s\nraster: %s%s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
                      "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
                      "screenshots: %d\n"
                      "gpu passes (median ms over last <=256 frames, mean ms):\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
-                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw",
+                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw", calib,
                      app->world.scene.seed, app->frames, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written);
@@ -171,6 +215,7 @@ int app_run(const app_options_t *o)
                                                       .samples = s->msaa, .label = "main"});
     scene_camera_init(s, &app.cam);
     bool ok = app.target.fbo && app_world_make_gpu(w);
+    if (ok && s->raster == SCENE_RASTER_AUTO) calibrate_raster(&app, (float)s->dt);
     if (!ok) {
         if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
         rc = w->input_error ? 2 : 1;

@@ -17,7 +17,7 @@
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
-#                side by side -> $OUT/raster.txt, screenshots -> $OUT/raster_png.tgz
+#                side by side, and four meadow_large screenshots -> $OUT
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
@@ -29,9 +29,9 @@ tests() {
   echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
   for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
-           test_hybrid_switch test_tiles_scaling; do
+           test_hybrid_switch test_tiles_scaling test_raster test_raster_modes; do
     echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
-    grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)" /tmp/$t.log | head -14
+    grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)|variant|queued|mismatch|grass share" /tmp/$t.log | head -14
   done
 }
 
@@ -96,8 +96,11 @@ raster() {
   }
   for s in orthmann nature helicopter fan128; do run_pair $s scenes/bench/$s.json; done
   for m in hybrid billboard blade; do run_pair large_$m scenes/bench/meadow_large.json --mode $m; done
-  mkdir -p /tmp/rpng; for d in /tmp/r-*-*/; do n=$(basename $d); cp $d/shot-000300.png /tmp/rpng/$n.png 2>/dev/null; done
-  tar czf $OUT/raster_png.tgz -C /tmp rpng
+  timeout 150 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 60 --screenshot-every 0 \
+    --raster auto --out /tmp/r-auto > /dev/null 2>&1; echo "-- meadow_large auto: $(grep -E '^raster:' /tmp/r-auto/summary.txt)"
+  for n in large_hybrid-hw large_hybrid-compute large_billboard-compute large_blade-compute; do
+    cp /tmp/r-$n/shot-000300.png $OUT/$n.png 2>/dev/null
+  done
 }
 
 sections=${*:-tests bench scaling report}
