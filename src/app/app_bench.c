@@ -296,37 +296,37 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     core_image_free(&ref);
     if (rc) return rc;
     snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
-    eval_text_t csv = {0}, json = {0};
-    eval_text_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
-                           "blade_length_error,spring_error,passes\n");
-    eval_text_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
+    core_buf_t csv = {0}, json = {0};
+    core_buf_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
+                          "blade_length_error,spring_error,passes\n");
+    core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
     for (int i = 0; i < n; i++) {
         const app_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
-        eval_text_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
-                         scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
-                         m->penetration_max, m->blade_length_error, m->spring_error);
-        eval_text_printf(&json,
-                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
-                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
-                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
-                         "\"passes\": {",
-                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
-                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
+                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
+                        m->penetration_max, m->blade_length_error, m->spring_error);
+        core_buf_printf(&json,
+                        "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
+                        "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
+                        "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
+                        "\"passes\": {",
+                        c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
+                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
         for (int p = 0; p < m->pass_count; p++) {
-            eval_text_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
-            eval_text_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
+            core_buf_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
+            core_buf_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
         }
-        eval_text_printf(&csv, "\n");
-        eval_text_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
+        core_buf_printf(&csv, "\n");
+        core_buf_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
     }
-    eval_text_printf(&json, "  ]\n}\n");
+    core_buf_printf(&json, "  ]\n}\n");
     snprintf(path, sizeof path, "%s/bench.csv", out);
-    if (!eval_text_write(&csv, path)) rc = 1;
+    if (!core_buf_write(&csv, path)) rc = 1;
     snprintf(path, sizeof path, "%s/bench.json", out);
-    if (!eval_text_write(&json, path)) rc = 1;
-    eval_text_free(&csv);
-    eval_text_free(&json);
+    if (!core_buf_write(&json, path)) rc = 1;
+    core_buf_free(&csv);
+    core_buf_free(&json);
     /* One data file and chart per chart entry: x GPU ms, y its measure. */
     for (int ci = 0; ci < CHART_COUNT && rc == 0; ci++) {
         const bench_chart_t *ch = &charts[ci];
@@ -341,13 +341,13 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
                 k++;
             }
         eval_pareto(xs, ys, k, front);
-        eval_text_t dat = {0};
-        eval_text_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
+        core_buf_t dat = {0};
+        core_buf_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
         for (int j = 0; j < k; j++)
-            eval_text_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
+            core_buf_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
-        if (!eval_text_write(&dat, path)) rc = 1;
-        eval_text_free(&dat);
+        if (!core_buf_write(&dat, path)) rc = 1;
+        core_buf_free(&dat);
         write_chart(out, ch);
     }
     if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
@@ -389,65 +389,65 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
     if (!core_fs_mkdirs(path)) return 1;
     char size[32];
     snprintf(size, sizeof size, "%dx%d", o->width, o->height);
-    eval_text_t r = {0};
-    eval_text_printf(&r,
-                     "# meadow results\n\n"
-                     "Generated by one command (do not edit by hand):\n\n"
-                     "    ./build/meadow bench --report %s --scene SCENE [--quick] [--frames N]\n\n"
-                     "It runs the bench sweep, the stability suite, the tile scaling sweeps and `meadow compare`, writes the raw data "
-                     "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
-                     "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
-                     "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
-                     "- renderer: `%s`\n- frames per configuration: %d\n\n",
-                     dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
-                     o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
-                     b->renderer[0] ? b->renderer : "?", b->frames);
+    core_buf_t r = {0};
+    core_buf_printf(&r,
+                    "# meadow results\n\n"
+                    "Generated by one command (do not edit by hand):\n\n"
+                    "    ./build/meadow bench --report %s --scene SCENE [--quick] [--frames N]\n\n"
+                    "It runs the bench sweep, the stability suite, the tile scaling sweeps and `meadow compare`, writes the raw data "
+                    "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
+                    "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
+                    "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
+                    "- renderer: `%s`\n- frames per configuration: %d\n\n",
+                    dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
+                    o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
+                    b->renderer[0] ? b->renderer : "?", b->frames);
     if (strstr(b->renderer, "llvmpipe"))
-        eval_text_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
-                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
-                             "renderer.\n\n");
-    eval_text_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
-                         "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
+        core_buf_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
+                            "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
+                            "renderer.\n\n");
+    core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
+                        "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
     for (int ci = 0; ci < CHART_COUNT; ci++) {
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
         copy_chart(dir, out, path);
-        eval_text_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
-                             "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
-                         ch->name, ch->name, ch->name, ch->ylabel);
+        core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
+                            "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
+                        ch->name, ch->name, ch->name, ch->ylabel);
         for (int i = 0; i < b->n; i++) {
             if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
             const app_metrics_t *m = &b->met[i];
-            eval_text_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
-                             y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
+            core_buf_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
+                            y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
         }
-        eval_text_printf(&r, "\n");
+        core_buf_printf(&r, "\n");
     }
-    eval_text_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box (the scene's first collider's path, or a "
-                         "path across the view) with the scene's characters removed, and compares sphere sets with "
-                         "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
-    eval_text_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
-                         "(src/app/app_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
-                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
-                     stability_md ? stability_md : "(not run)\n");
+    core_buf_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box (the scene's first collider's path, or a "
+                        "path across the view) with the scene's characters removed, and compares sphere sets with "
+                        "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
+    core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
+                        "(src/app/app_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
+                        "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
+                    stability_md ? stability_md : "(not run)\n");
     if (scaling_md) {
         copy_chart(dir, out, "scaling_field");
         copy_chart(dir, out, "scaling_active");
-        eval_text_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
-                             "(src/app/app_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
-                             "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
-                             "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
-                             "scaling_active.png)\n\n%s\n",
-                         o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
+        core_buf_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
+                            "(src/app/app_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
+                            "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
+                            "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
+                            "scaling_active.png)\n\n%s\n",
+                        o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
     }
     snprintf(path, sizeof path, "%s/compare/compare.png", out);
     snprintf(to, sizeof to, "%s/images/bench_compare.png", dir);
     if (copy_file(path, to))
-        eval_text_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
-                             "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
+        core_buf_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
+                            "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
     snprintf(path, sizeof path, "%s/RESULTS.md", dir);
-    int rc = eval_text_write(&r, path) ? 0 : 1;
-    eval_text_free(&r);
+    int rc = core_buf_write(&r, path) ? 0 : 1;
+    core_buf_free(&r);
     if (rc == 0) core_log_info("report: wrote %s", path);
     return rc;
 }
@@ -474,7 +474,7 @@ int app_bench(const app_options_t *o)
     }
     gfx_init();
     bench_run_t b = {0};
-    eval_text_t md = {0}, scaling_md = {0};
+    core_buf_t md = {0}, scaling_md = {0};
     app_scaling_t sc;
     if (full) {
         snprintf(path, sizeof path, "%s/images", report);
@@ -496,10 +496,10 @@ int app_bench(const app_options_t *o)
         oc.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
         if (rc == 0) rc = app_compare(&oc);
-        if (rc == 0) rc = write_report(report, out, o, &b, md.s, scaling_md.s);
+        if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data);
     }
-    eval_text_free(&md);
-    eval_text_free(&scaling_md);
+    core_buf_free(&md);
+    core_buf_free(&scaling_md);
     free(b.cfg);
     free(b.met);
     free(b.err);

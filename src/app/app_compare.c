@@ -70,9 +70,9 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
         core_image_alloc(&montage, w * PANELS, (h + label) * 2, 4);
         static const uint8_t bg[4] = {20, 20, 20, 255}, fg[4] = {255, 255, 255, 255};
         core_image_fill(&montage, 0, 0, montage.w, montage.h, bg);
-        eval_text_t json = {0};
-        eval_text_printf(&json, "{\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"size\": [%d, %d],\n  \"panels\": [\n",
-                         o->scene ? o->scene : "scenes/meadow.json", frames, w, h);
+        core_buf_t json = {0};
+        core_buf_printf(&json, "{\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"size\": [%d, %d],\n  \"panels\": [\n",
+                        o->scene ? o->scene : "scenes/meadow.json", frames, w, h);
         for (int i = 0; i < PANELS; i++) {
             double mad = eval_image_mad(&img[i], &img[PANELS - 1]);
             double ssim = eval_image_ssim(&img[i], &img[PANELS - 1]);
@@ -86,18 +86,18 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
                 core_image_free(&heat);
             }
             core_image_text(&montage, i * w + 6, h + label + 6, 2, "diff vs reference", fg);
-            eval_text_printf(&json,
-                             "    { \"mode\": \"%s\", \"gpu_ms\": %.4f, \"cpu_ms\": %.3f, \"mad\": %.6f, "
-                             "\"ssim\": %.6f }%s\n",
-                             panels[i].name, met[i].frame_ms, met[i].cpu_ms, mad, ssim, i + 1 < PANELS ? "," : "");
+            core_buf_printf(&json,
+                            "    { \"mode\": \"%s\", \"gpu_ms\": %.4f, \"cpu_ms\": %.3f, \"mad\": %.6f, "
+                            "\"ssim\": %.6f }%s\n",
+                            panels[i].name, met[i].frame_ms, met[i].cpu_ms, mad, ssim, i + 1 < PANELS ? "," : "");
         }
-        eval_text_printf(&json, "  ]\n}\n");
+        core_buf_printf(&json, "  ]\n}\n");
         snprintf(path, sizeof path, "%s/compare.png", out);
         if (!core_image_write_png(&montage, path)) rc = 1;
         snprintf(path, sizeof path, "%s/compare.json", out);
-        if (!eval_text_write(&json, path)) rc = 1;
+        if (!core_buf_write(&json, path)) rc = 1;
         if (rc == 0) core_log_info("wrote %s/compare.png and compare.json", out);
-        eval_text_free(&json);
+        core_buf_free(&json);
         core_image_free(&montage);
     }
     for (int i = 0; i < PANELS; i++) core_image_free(&img[i]);

@@ -78,7 +78,7 @@ int app_session_run_hooks(const app_session_desc_t *desc, const app_session_hook
  * also go to report/images and md (when non-NULL) gets the table with links
  * relative to report. Needs a current GL context (gfx_init done). Returns 0
  * or 1. */
-int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md, const char *report);
+int app_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md, const char *report);
 
 /* Simulation cost of the tiled blade field (app_scaling.c): one run. */
 typedef struct app_scaling_point_t {
@@ -104,6 +104,6 @@ typedef struct app_scaling_t {
 /* `bench --scaling`: the field and active sweeps; writes scaling.csv, the
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
-int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md);
+int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, core_buf_t *md);
 
 #endif

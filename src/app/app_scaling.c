@@ -119,7 +119,7 @@ static void write_chart(const char *out, const char *name, const char *title, co
     eval_gnuplot_chart(out, name, body);
 }
 
-int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md)
+int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, core_buf_t *md)
 {
     memset(res, 0, sizeof *res);
     snprintf(res->renderer, sizeof res->renderer, "%s", (const char *)glGetString(GL_RENDERER));
@@ -169,47 +169,47 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     res->r2 = eval_linear_fit(xs, ys, res->active_count, &res->slope, &res->intercept);
 
     char path[1200];
-    eval_text_t csv = {0}, fd = {0}, ad = {0};
-    eval_text_printf(&csv, "sweep,field_m,area_x,balls,slots,blades_simulated,tiles_physics_ms,full_blades,"
-                           "full_physics_ms\n");
-    eval_text_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
-    eval_text_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
+    core_buf_t csv = {0}, fd = {0}, ad = {0};
+    core_buf_printf(&csv, "sweep,field_m,area_x,balls,slots,blades_simulated,tiles_physics_ms,full_blades,"
+                          "full_physics_ms\n");
+    core_buf_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
+    core_buf_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
     if (md)
-        eval_text_printf(md,
-                         "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
-                         "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
-                         "blades/m^2 in %g m tiles.\n\n"
-                         "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
-                         "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                         res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
+        core_buf_printf(md,
+                        "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
+                        "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
+                        "blades/m^2 in %g m tiles.\n\n"
+                        "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
+                        "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                        res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
     for (int s = 0; s < 2; s++) {
         int cnt = s ? res->active_count : res->field_count;
         for (int i = 0; i < cnt; i++) {
             const app_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
             double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
-            eval_text_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
-                             p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);
+            core_buf_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
+                            p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);
             if (s)
-                eval_text_printf(&ad, "%d %.5f %.5f %d\n", p->slots, p->physics_ms,
-                                 res->intercept + res->slope * p->slots, p->balls);
+                core_buf_printf(&ad, "%d %.5f %.5f %d\n", p->slots, p->physics_ms,
+                                res->intercept + res->slope * p->slots, p->balls);
             else
-                eval_text_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
+                core_buf_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
             if (!md) continue;
             char full[32] = "-";
             if (p->full_ms >= 0) snprintf(full, sizeof full, "%.4f", p->full_ms);
-            eval_text_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
-                             p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
+            core_buf_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
+                            p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
         }
     }
     if (md)
-        eval_text_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
-                         res->intercept, res->slope, res->r2);
+        core_buf_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
+                        res->intercept, res->slope, res->r2);
     const char *names[3] = {"scaling.csv", "scaling_field.dat", "scaling_active.dat"};
-    eval_text_t *texts[3] = {&csv, &fd, &ad};
+    core_buf_t *texts[3] = {&csv, &fd, &ad};
     for (int k = 0; k < 3; k++) {
         snprintf(path, sizeof path, "%s/%s", out, names[k]);
-        if (!eval_text_write(texts[k], path)) rc = 1;
-        eval_text_free(texts[k]);
+        if (!core_buf_write(texts[k], path)) rc = 1;
+        core_buf_free(texts[k]);
     }
     if (rc) return rc;
     char plot[1600];

@@ -208,19 +208,19 @@ static bool write_wall(const char *dir, float v, char *scene, size_t n)
                             {{0, 0}, {xf, WALL_H}, {xf, WALL_H}, {0, 0}},
                             {{xf, WALL_H}, {3, WALL_H}, {3, WALL_H}, {xf, WALL_H}}};
     float normals[3][3] = {{0, 1, 0}, {-sn, cs, 0}, {0, 1, 0}};
-    eval_text_t t = {0};
+    core_buf_t t = {0};
     for (int q = 0; q < 3; q++) {
         for (int k = 0; k < 4; k++)
-            eval_text_printf(&t, "v %.6f %.6f %.6f\n", quads[q][k][0], quads[q][k][1], k < 2 ? WALL_Z : -WALL_Z);
-        eval_text_printf(&t, "vn %.6f %.6f %.6f\n", normals[q][0], normals[q][1], normals[q][2]);
-        eval_text_printf(&t, "f %d//%d %d//%d %d//%d %d//%d\n", 4 * q + 1, q + 1, 4 * q + 2, q + 1, 4 * q + 3, q + 1,
-                         4 * q + 4, q + 1);
+            core_buf_printf(&t, "v %.6f %.6f %.6f\n", quads[q][k][0], quads[q][k][1], k < 2 ? WALL_Z : -WALL_Z);
+        core_buf_printf(&t, "vn %.6f %.6f %.6f\n", normals[q][0], normals[q][1], normals[q][2]);
+        core_buf_printf(&t, "f %d//%d %d//%d %d//%d %d//%d\n", 4 * q + 1, q + 1, 4 * q + 2, q + 1, 4 * q + 3, q + 1,
+                        4 * q + 4, q + 1);
     }
-    bool ok = eval_text_write(&t, obj);
-    eval_text_free(&t);
-    eval_text_printf(&t, "{ \"seed\": 7, \"terrain\": { \"type\": \"mesh\", \"mesh\": \"%s\" } }\n", obj);
-    ok = ok && eval_text_write(&t, scene);
-    eval_text_free(&t);
+    bool ok = core_buf_write(&t, obj);
+    core_buf_free(&t);
+    core_buf_printf(&t, "{ \"seed\": 7, \"terrain\": { \"type\": \"mesh\", \"mesh\": \"%s\" } }\n", obj);
+    ok = ok && core_buf_write(&t, scene);
+    core_buf_free(&t);
     return ok;
 }
 
@@ -549,17 +549,17 @@ static void fmt_value(char *buf, size_t n, double v)
     else snprintf(buf, n, "%.4g", v);
 }
 
-int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md_out, const char *report)
+int app_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md_out, const char *report)
 {
     char path[1200], buf[32];
-    eval_text_t csv = {0}, md = {0}, mdr = {0};
-    eval_text_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
-                           "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground,"
-                           "bb_max_stretch,bb_folded_cells\n");
+    core_buf_t csv = {0}, md = {0}, mdr = {0};
+    core_buf_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
+                          "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground,"
+                          "bb_max_stretch,bb_folded_cells\n");
     static const char *head = "| case | method | parameter | values | measure | measured | failure criterion | "
                               "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    eval_text_printf(&md, "%s", head);
-    eval_text_printf(&mdr, "%s", head);
+    core_buf_printf(&md, "%s", head);
+    core_buf_printf(&mdr, "%s", head);
     int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0;
     double t0 = plat_time();
     for (int ci = 0; ci < CASE_COUNT && rc == 0; ci++) {
@@ -588,11 +588,11 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
             const app_metrics_ext_t *x = &res[k].x;
             const app_bb_distortion_t *dd = &res[k].distortion;
             bool distortion = c->measure == MEASURE_DISTORTION;
-            eval_text_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
-                             c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
-                             m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
-                             res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite + dd->nonfinite,
-                             x->below_ground, distortion ? dd->max_stretch : -1.0, distortion ? dd->folded : -1L);
+            core_buf_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
+                            c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
+                            m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
+                            res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite + dd->nonfinite,
+                            x->below_ground, distortion ? dd->max_stretch : -1.0, distortion ? dd->folded : -1L);
             size_t lv = strlen(values), lm = strlen(measured);
             fmt_value(buf, sizeof buf, res[k].measure);
             snprintf(values + lv, sizeof values - lv, "%s%g", k ? ", " : "", v);
@@ -617,27 +617,27 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
         if (broke >= 0) snprintf(brk, sizeof brk, "**%g**", c->values[broke]);
         else snprintf(brk, sizeof brk, "none in range");
         for (int e = 0; e < 2; e++)
-            eval_text_printf(e ? &mdr : &md, "| %s | %s | %s | %s | %s | %s | %s | %s | ![](%sstability_%s.png) |\n",
-                             c->name, scene_mode_name(c->mode), c->param, values, c->measure_name, measured,
-                             c->criterion, brk, e ? "images/" : "", c->name);
+            core_buf_printf(e ? &mdr : &md, "| %s | %s | %s | %s | %s | %s | %s | %s | ![](%sstability_%s.png) |\n",
+                            c->name, scene_mode_name(c->mode), c->param, values, c->measure_name, measured,
+                            c->criterion, brk, e ? "images/" : "", c->name);
     }
     fputc('\n', stderr);
     if (rc == 0) {
         for (int e = 0; e < 2; e++) {
-            eval_text_t *t = e ? &mdr : &md;
-            eval_text_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
+            core_buf_t *t = e ? &mdr : &md;
+            core_buf_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
             for (int ci = 0; ci < CASE_COUNT; ci++)
-                eval_text_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
+                core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
         }
-        if (md_out) eval_text_printf(md_out, "%s", mdr.s);
+        if (md_out) core_buf_printf(md_out, "%s", mdr.data);
         snprintf(path, sizeof path, "%s/stability.csv", out);
-        if (!eval_text_write(&csv, path)) rc = 1;
+        if (!core_buf_write(&csv, path)) rc = 1;
         snprintf(path, sizeof path, "%s/stability.md", out);
-        if (!eval_text_write(&md, path)) rc = 1;
+        if (!core_buf_write(&md, path)) rc = 1;
         if (rc == 0) core_log_info("stability: wrote %s/stability.csv, stability.md and screenshots", out);
     }
-    eval_text_free(&csv);
-    eval_text_free(&md);
-    eval_text_free(&mdr);
+    core_buf_free(&csv);
+    core_buf_free(&md);
+    core_buf_free(&mdr);
     return rc;
 }

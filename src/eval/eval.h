@@ -24,15 +24,6 @@ void eval_pareto(const double *x, const double *y, int n, bool *on_front);
  * (0 when x or y does not vary, slope then 0). */
 double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept);
 
-/* Text accumulated in memory, then written atomically. */
-typedef struct eval_text_t {
-    char *s;
-    size_t n, cap;
-} eval_text_t;
-void eval_text_printf(eval_text_t *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-bool eval_text_write(eval_text_t *t, const char *path);
-void eval_text_free(eval_text_t *t);
-
 /* Runs gnuplot on a script file (PNG + SVG terminals are the script's
  * business). Returns false, with a warning, when gnuplot is missing or fails. */
 bool eval_gnuplot(const char *script_path);
