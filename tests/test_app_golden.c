@@ -18,7 +18,7 @@ static bool render(const char *dir, core_image_t *img)
     app_options_t o;
     char err[256];
     if (app_parse_args((int)(sizeof argv / sizeof argv[0]), argv, &o, err, sizeof err) != 0) return false;
-    int rc = app_run(&o);
+    int rc = app_run(&o, NULL);
     if (rc != 0) {
         fprintf(stderr, "app_run exited %d\n", rc);
         return false;

@@ -1,6 +1,6 @@
 /* eval: GL-free evaluation helpers for `meadow bench` and `meadow compare`:
  * image error (mean absolute difference, SSIM), diff heatmaps, Pareto fronts,
- * and CSV/JSON/gnuplot output written atomically. */
+ * least squares lines and gnuplot charts. */
 #ifndef MEADOW_EVAL_H
 #define MEADOW_EVAL_H
 

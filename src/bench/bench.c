@@ -1,6 +1,6 @@
-/* app_bench: `meadow bench` sweeps configurations of deterministic scenes
+/* bench_run: `meadow bench` sweeps configurations of deterministic scenes
  * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
- * times, CPU time, accuracy metrics (app_metrics.c, docs/METRICS.md) and
+ * times, CPU time, accuracy metrics (bench_metrics.c, docs/METRICS.md) and
  * image error against the reference rendering (1 - SSIM) to bench.csv and
  * bench.json, plus speed-vs-accuracy charts (x GPU ms, y the chart's
  * accuracy measure; PNG and SVG through gnuplot) with the Pareto front.
@@ -16,11 +16,11 @@
  *   blade_tessellation, blade_distance_levels (eq. 19-20),
  *   hybrid_switch_distance, modes (mode x density x render path) (image error).
  * --quick runs two configurations per sweep for CI. The stability suite
- * (app_stability.c) runs with --stability, the tile scaling sweeps
- * (app_scaling.c) with --scaling; --report DIR runs the sweep, both of
+ * (bench_stability.c) runs with --stability, the tile scaling sweeps
+ * (bench_scaling.c) with --scaling; --report DIR runs the sweep, both of
  * those and `meadow compare`, and writes
  * DIR/RESULTS.md with its charts and screenshots in DIR/images. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <assert.h>
 #include <math.h>
@@ -97,8 +97,9 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
 {
     const bench_config_t *c = user;
     int n = 0;
-    for (int i = 0; i < w->colliders.count && n < max; i++) {
-        const app_collider_t *k = &w->colliders.items[i];
+    const app_colliders_t *colliders = app_world_colliders(w);
+    for (int i = 0; i < colliders->count && n < max; i++) {
+        const app_collider_t *k = &colliders->items[i];
         const float *p = k->position;
         if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
             out[n++] = (blade_sphere_t){{p[0], p[1], p[2], k->bound_radius}};
@@ -220,7 +221,7 @@ static const bench_chart_t charts[] = {
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
 
-static double y_of(const bench_chart_t *ch, const app_metrics_t *m, double image_error)
+static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double image_error)
 {
     switch (ch->y) {
     case Y_PEN_MAX: return m->penetration_max;
@@ -247,7 +248,7 @@ static void write_chart(const char *out, const bench_chart_t *ch)
 typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
-    app_metrics_t *met;
+    bench_metrics_t *met;
     double *err;
     char renderer[256];
     int frames;
@@ -265,10 +266,10 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int frames = b->frames;
     core_image_t ref = {0}, img = {0};
-    app_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
-                             .reference = true, .msaa = 8};
+    bench_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+                               .reference = true, .msaa = 8};
     core_log_info("bench: reference rendering (%d frames)", frames);
-    int rc = app_session_run(&rd, &ref, NULL);
+    int rc = bench_session_run(&rd, &ref, NULL);
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
         if (app_interrupted()) {
@@ -279,11 +280,11 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = *o;
         if (c->blade_render) oc.blade_render = c->blade_render - 1;
-        app_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
-                                .tweak = tweak, .user = c, .tuning = c->tuning};
+        bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
+                                  .tweak = tweak, .user = c, .tuning = c->tuning};
         bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
-        app_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
-        rc = app_session_run_hooks(&d, &h, &img, &b->met[i]);
+        bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
+        rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
         if (rc) break;
         b->err[i] = 1.0 - eval_image_ssim(&img, &ref);
         core_image_free(&img);
@@ -301,7 +302,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
                           "blade_length_error,spring_error,passes\n");
     core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
     for (int i = 0; i < n; i++) {
-        const app_metrics_t *m = &b->met[i];
+        const bench_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
         core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
                         scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
@@ -417,7 +418,7 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         ch->name, ch->name, ch->name, ch->ylabel);
         for (int i = 0; i < b->n; i++) {
             if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
-            const app_metrics_t *m = &b->met[i];
+            const bench_metrics_t *m = &b->met[i];
             core_buf_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
                             y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
         }
@@ -427,14 +428,14 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         "path across the view) with the scene's characters removed, and compares sphere sets with "
                         "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
     core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
-                        "(src/app/app_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
+                        "(src/bench/bench_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
                     stability_md ? stability_md : "(not run)\n");
     if (scaling_md) {
         copy_chart(dir, out, "scaling_field");
         copy_chart(dir, out, "scaling_active");
         core_buf_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
-                            "(src/app/app_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
+                            "(src/bench/bench_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
                             "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
                             "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
                             "scaling_active.png)\n\n%s\n",
@@ -452,7 +453,7 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
     return rc;
 }
 
-int app_bench(const app_options_t *o)
+int bench_run(const app_options_t *o)
 {
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
@@ -475,14 +476,14 @@ int app_bench(const app_options_t *o)
     gfx_init();
     bench_run_t b = {0};
     core_buf_t md = {0}, scaling_md = {0};
-    app_scaling_t sc;
+    bench_scaling_t sc;
     if (full) {
         snprintf(path, sizeof path, "%s/images", report);
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
     int rc = sweep ? run_sweep(o, o->quick, out, &b) : 0;
-    if (rc == 0 && stability) rc = app_stability_run(o, out, o->quick, &md, full ? report : NULL);
-    if (rc == 0 && scaling) rc = app_scaling_run(o, out, o->quick, &sc, &scaling_md);
+    if (rc == 0 && stability) rc = bench_stability_run(o, out, o->quick, &md, full ? report : NULL);
+    if (rc == 0 && scaling) rc = bench_scaling_run(o, out, o->quick, &sc, &scaling_md);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -495,7 +496,7 @@ int app_bench(const app_options_t *o)
         snprintf(path, sizeof path, "%s/compare", out);
         oc.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
-        if (rc == 0) rc = app_compare(&oc);
+        if (rc == 0) rc = bench_compare(&oc);
         if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data);
     }
     core_buf_free(&md);

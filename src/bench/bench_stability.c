@@ -1,18 +1,18 @@
-/* app_stability: `meadow bench --stability`: for each case, sweeps one
+/* bench_stability: `meadow bench --stability`: for each case, sweeps one
  * parameter over small scenes built here (6 m heightfield, a few thousand
  * blades or a few hundred billboards; the wall cases write a small mesh
  * terrain and its scene file into the output folder for the run and remove
  * them afterwards), applies the case's failure
  * criterion and reports the first value where the method breaks, with a
  * screenshot of that run (or of the last value when none broke). The
- * measures come from app_metrics.c (docs/METRICS.md): penetration against
+ * measures come from bench_metrics.c (docs/METRICS.md): penetration against
  * the exact collider shapes, blade length error, recovery time after a
  * collider leaves (offset from an undisturbed twin world for blades, from
  * the wind pose of eq. 8 for billboards), jitter of a resting collider,
  * trail coverage of a fast collider (tunnelling), texture distortion of
  * deformed billboard meshes (worst frame; its rendering is the screenshot)
  * and root density on a mesh face relative to the floor. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -33,12 +33,12 @@ typedef enum stab_measure_t {
 } stab_measure_t;
 
 typedef struct stab_result_t {
-    app_metrics_t m;
-    app_metrics_ext_t x;
+    bench_metrics_t m;
+    bench_metrics_ext_t x;
     double recovery;  /* s after the collider left; INFINITY: not recovered */
     double coverage;  /* trail coverage right after the pass */
     double jitter;    /* m per frame over the last 0.5 s */
-    app_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
+    bench_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
     double measure;   /* the case's measure */
     bool fails;
 } stab_result_t;
@@ -392,8 +392,8 @@ typedef struct stab_run_t {
     float *prev;
     bool primed, covered;
     double last_over, jitter, coverage;
-    app_bb_distortion_t distortion;
-    app_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
+    bench_bb_distortion_t distortion;
+    bench_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
     bool worst_now;                  /* this frame is it */
     core_image_t worst;              /* its rendering */
 } stab_run_t;
@@ -415,29 +415,29 @@ static void frame(app_world_t *w, int f, float t, void *user)
         stab_run_t tw = *r;
         tw.no_colliders = true;
         r->twin = calloc(1, sizeof *r->twin);
-        app_session_desc_t d = {.opts = r->o, .mode = r->c->mode, .mode_set = true, .tweak = tweak, .user = &tw};
-        if (r->twin && app_session_world(&d, r->twin) != 0) {
+        bench_session_desc_t d = {.opts = r->o, .mode = r->c->mode, .mode_set = true, .tweak = tweak, .user = &tw};
+        if (r->twin && bench_session_world(&d, r->twin) != 0) {
             free(r->twin);
             r->twin = NULL;
         }
-        r->prev = calloc((size_t)w->blades.padded_count * 3, sizeof(float));
+        r->prev = calloc((size_t)app_world_blades(w)->padded_count * 3, sizeof(float));
     }
-    if (r->twin) app_world_update(r->twin, t, w->scene.dt);
+    if (r->twin) app_world_update(r->twin, t, app_world_scene(w)->dt);
     if (r->c->measure == MEASURE_PASS && t > r->t_exit) {
-        double off = r->twin ? app_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : app_metrics_bb_offset(w);
+        double off = r->twin ? bench_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : bench_metrics_bb_offset(w);
         if (!(off <= RECOVERY_EPS)) r->last_over = t;
         if (!r->covered && r->twin) {
             long corridor;
-            r->coverage = app_metrics_blade_coverage(w, r->twin, (float[2]){PASS_FROM + 0.3f, 0},
-                                                     (float[2]){PASS_TO - 0.3f, 0}, 0.15f, 0.2f, &corridor);
+            r->coverage = bench_metrics_blade_coverage(w, r->twin, (float[2]){PASS_FROM + 0.3f, 0},
+                                                       (float[2]){PASS_TO - 0.3f, 0}, 0.15f, 0.2f, &corridor);
             r->covered = true;
         }
     }
     if (r->c->measure == MEASURE_DISTORTION) {
-        app_bb_distortion_t d;
-        app_metrics_bb_distortion(w, &d);
-        app_bb_distortion_t *m = &r->distortion;
-        const app_bb_distortion_t *b = &r->worst_frame;
+        bench_bb_distortion_t d;
+        bench_metrics_bb_distortion(w, &d);
+        bench_bb_distortion_t *m = &r->distortion;
+        const bench_bb_distortion_t *b = &r->worst_frame;
         r->worst_now = f == 0 || d.folded > b->folded || (d.folded == b->folded && d.max_stretch > b->max_stretch);
         if (r->worst_now) r->worst_frame = d;
         m->max_stretch = fmax(m->max_stretch, d.max_stretch);
@@ -450,15 +450,15 @@ static void frame(app_world_t *w, int f, float t, void *user)
         /* Root density on the face (its middle 80 % in height, 10 % from
          * the sides) over that on the floor away from the face. */
         float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
-        long face = app_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
-                                         (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
-        long floor = app_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
+        long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
+                                           (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
+        long floor = bench_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
         double face_area = 0.8 * WALL_H / sin(glm_rad(r->v)) * 2.0 * zr, floor_area = 2.7 * 2.0 * zr;
         r->coverage = floor ? ((double)face / face_area) / ((double)floor / floor_area) : 0.0;
     }
     if (r->c->measure == MEASURE_JITTER && r->twin && r->prev && t > r->t_end - 0.5f) {
         double j = 0;
-        app_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
+        bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
         if (j > r->jitter) r->jitter = j;
     }
 }
@@ -512,13 +512,13 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
     r.twin_wanted = c->mode == SCENE_MODE_BLADE && c->measure != MEASURE_STATIC;
     int frames = (int)ceilf(duration / dt);
     if (c->setup == setup_spikes) frames = (frames + 9) / 10 * 10; /* the last step is a spike */
-    app_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
-                            .user = &r};
+    bench_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
+                              .user = &r};
     bool distortion = c->measure == MEASURE_DISTORTION;
-    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = !distortion, .ext = &res->x,
-                             .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
-                             .drawn = distortion ? drawn : NULL};
-    int rc = app_session_run_hooks(&d, &h, img, &res->m);
+    bench_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = !distortion, .ext = &res->x,
+                               .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
+                               .drawn = distortion ? drawn : NULL};
+    int rc = bench_session_run_hooks(&d, &h, img, &res->m);
     if (r.worst.px) {
         core_image_free(img);
         *img = r.worst;
@@ -549,7 +549,7 @@ static void fmt_value(char *buf, size_t n, double v)
     else snprintf(buf, n, "%.4g", v);
 }
 
-int app_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md_out, const char *report)
+int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md_out, const char *report)
 {
     char path[1200], buf[32];
     core_buf_t csv = {0}, md = {0}, mdr = {0};
@@ -584,9 +584,9 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, core_
                 img = (core_image_t){0};
             }
             core_image_free(&img);
-            const app_metrics_t *m = &res[k].m;
-            const app_metrics_ext_t *x = &res[k].x;
-            const app_bb_distortion_t *dd = &res[k].distortion;
+            const bench_metrics_t *m = &res[k].m;
+            const bench_metrics_ext_t *x = &res[k].x;
+            const bench_bb_distortion_t *dd = &res[k].distortion;
             bool distortion = c->measure == MEASURE_DISTORTION;
             core_buf_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
                             c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
