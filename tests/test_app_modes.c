@@ -8,6 +8,7 @@
  * 2. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
 #include "app/app_world.h"
+#include "bench/bench.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -64,11 +65,11 @@ int main(void)
     core_log_set_quiet(true);
     app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
     core_image_t bb, bl;
-    app_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
-                            .tweak = top_down};
-    CHECK(app_session_run(&d, &bb, NULL) == 0);
+    bench_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
+                              .tweak = top_down};
+    CHECK(bench_session_run(&d, &bb, NULL) == 0);
     d.mode = SCENE_MODE_BLADE;
-    CHECK(app_session_run(&d, &bl, NULL) == 0);
+    CHECK(bench_session_run(&d, &bl, NULL) == 0);
     enum { NB = 12 };
     float cb[NB * NB], cl[NB * NB];
     coverage(&bb, cb, NB);

@@ -1,4 +1,5 @@
-/* test_core: RNG determinism, hash bits, atomic file writes, PNG round trip. */
+/* test_core: RNG determinism, hash bits, atomic file writes, growable
+ * buffers, PNG round trip. */
 #include "core/core.h"
 #include "test.h"
 
@@ -43,6 +44,25 @@ int main(void)
     CHECK(core_fs_read("/nonexistent/file", NULL, err, sizeof err) == NULL);
     CHECK(strstr(err, "No such file") != NULL);
     CHECK(!core_fs_check_writable_dir("/proc/meadow-cannot", err, sizeof err));
+
+    /* Growable buffer: text and bytes, past the first 4096-byte block. */
+    core_buf_t buf = {0};
+    CHECK(strcmp(core_buf_str(&buf), "") == 0);
+    core_buf_printf(&buf, "a,%d\n", 1);
+    core_buf_printf(&buf, "%s", "b,2\n");
+    CHECK(buf.len == 8 && strcmp(buf.data, "a,1\nb,2\n") == 0);
+    static const char zeros[3] = {0};
+    core_buf_put(&buf, zeros, sizeof zeros);
+    CHECK(buf.len == 11 && buf.data[11] == 0);
+    for (int i = 0; i < 1000; i++) core_buf_printf(&buf, "%08d", i);
+    CHECK(buf.len == 8011 && buf.cap > 8011 && strcmp(buf.data + 8003, "00000999") == 0);
+    snprintf(path, sizeof path, "%s/buf.txt", dir);
+    CHECK(core_buf_write(&buf, path));
+    txt = core_fs_read(path, &n, err, sizeof err);
+    CHECK(txt && n == buf.len && memcmp(txt, buf.data, n) == 0);
+    free(txt);
+    core_buf_free(&buf);
+    CHECK(buf.data == NULL && buf.len == 0 && buf.cap == 0);
 
     core_image_t img, back;
     CHECK(core_image_alloc(&img, 7, 5, 4));

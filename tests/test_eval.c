@@ -35,11 +35,6 @@ int main(void)
     double r2 = eval_linear_fit(lx, noisy, 4, &slope, &icpt);
     CHECK(r2 > 0.9 && r2 < 1.0 && slope > 1.5 && slope < 2.0);
     CHECK(eval_linear_fit(lx, (double[4]){1, 1, 1, 1}, 4, &slope, &icpt) == 0.0 && slope == 0.0 && icpt == 1.0);
-    eval_text_t t = {0};
-    eval_text_printf(&t, "a,%d\n", 1);
-    eval_text_printf(&t, "%s", "b,2\n");
-    CHECK(t.n == 8 && strcmp(t.s, "a,1\nb,2\n") == 0);
-    eval_text_free(&t);
     core_image_free(&a);
     core_image_free(&b);
     TEST_END();

@@ -1,6 +1,6 @@
 /* test_gfx_smoke: a GL 4.5 context exists, shader errors name file:line,
- * #include works, an MSAA FBO resolves and reads back, timers report, and
- * nothing leaks. */
+ * #include works, an MSAA FBO resolves and reads back, timers report, a
+ * readback ring returns its copies in order, and nothing leaks. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -68,6 +68,35 @@ int main(void)
     CHECK(buf.id != 0);
     gfx_buffer_read(buf, 0, sizeof back, back);
     CHECK(memcmp(data, back, sizeof data) == 0);
+
+    /* Readback ring: one fenced copy per frame; poll takes the oldest
+     * completed, latest the newest (dropping the rest); busy while the slot
+     * about to be written is unread. */
+    gfx_readback_t rb = gfx_readback_make(sizeof(uint32_t), 3, "smoke.readback");
+    CHECK(rb.depth == 3);
+    for (uint32_t v = 1; v <= 3; v++) {
+        gfx_buffer_update(buf, 0, sizeof v, &v);
+        gfx_readback_copy(&rb, buf, 0, 0, sizeof v);
+        CHECK(gfx_readback_fence(&rb) == (int)v - 1);
+    }
+    CHECK(gfx_readback_busy(&rb));
+    uint32_t got = 0;
+    int slot = gfx_readback_poll(&rb, true);
+    CHECK(slot == 0);
+    gfx_readback_read(&rb, slot, 0, sizeof got, &got);
+    CHECK(got == 1);
+    CHECK(!gfx_readback_busy(&rb));
+    slot = gfx_readback_latest(&rb, true);
+    CHECK(slot == 2);
+    gfx_readback_read(&rb, slot, 0, sizeof got, &got);
+    CHECK(got == 3);
+    CHECK(gfx_readback_poll(&rb, false) == -1 && gfx_readback_latest(&rb, true) == -1);
+    gfx_readback_copy(&rb, buf, 0, 0, sizeof got);
+    CHECK(gfx_readback_fence(&rb) == 0);
+    glFinish();
+    CHECK(gfx_readback_poll(&rb, false) == 0);
+    gfx_readback_destroy(&rb);
+    CHECK(rb.depth == 0 && rb.buf[0].id == 0);
 
     CHECK(gfx_live_objects() > 0);
     gfx_buffer_destroy(&buf);

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-void test_gl_init(void)
+static void make_context(void)
 {
     char err[1024];
     plat_desc_t desc = {.backend = PLAT_BACKEND_EGL, .width = 256, .height = 256, .debug = true};
@@ -13,8 +13,19 @@ void test_gl_init(void)
         fprintf(stderr, "SKIP: no GL 4.5 context: %s\n", err);
         exit(77);
     }
+}
+
+void test_gl_init(void)
+{
+    make_context();
     plat_install_debug_callback();
     gfx_init();
+}
+
+void test_gl_require_context(void)
+{
+    make_context();
+    plat_shutdown();
 }
 
 int test_gl_shutdown(void)

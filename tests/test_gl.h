@@ -13,6 +13,10 @@
 /* Creates the context (EGL, debug callback on) and gfx; exits 77 if no GL
  * 4.5 context can be made. */
 void test_gl_init(void);
+/* For tests that make their own context (through app_run): creates and
+ * destroys one EGL context, and exits 77 if none can be made. After it, a
+ * failure to render is a failure, not a skip. */
+void test_gl_require_context(void);
 /* Returns the number of problems: GL errors seen, objects still alive. */
 int test_gl_shutdown(void);
 

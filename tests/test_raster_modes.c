@@ -6,6 +6,7 @@
  * single pixels may differ at edges: the check is on means). Writes both
  * images to the test output folder. */
 #include "app/app_world.h"
+#include "bench/bench.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -45,8 +46,8 @@ int main(void)
         double cov[2], rgb[2][3];
         for (int r = 0; r < 2; r++) {
             app_options_t o = {.scene = "scenes/tiny.json", .headless = true, .raster = 1 + r};
-            app_session_desc_t d = {.opts = &o, .mode = modes[m], .mode_set = true, .frames = 6, .tweak = msaa4};
-            CHECK(app_session_run(&d, &img[r], NULL) == 0);
+            bench_session_desc_t d = {.opts = &o, .mode = modes[m], .mode_set = true, .frames = 6, .tweak = msaa4};
+            CHECK(bench_session_run(&d, &img[r], NULL) == 0);
             cov[r] = grass(&img[r], rgb[r]);
             char path[1200];
             snprintf(path, sizeof path, "%s/%s_%s.png", test_out_dir(), scene_mode_name(modes[m]), r ? "compute" : "hw");

@@ -1,5 +1,6 @@
 /* app: the meadow program: command line, main loop, world (terrain, grass,
- * colliders, characters), HUD, screenshots and the run summary. */
+ * colliders, characters), HUD, screenshots and the run summary. `meadow
+ * bench` and `meadow compare` are the evaluation harness in src/bench. */
 #ifndef MEADOW_APP_H
 #define MEADOW_APP_H
 
@@ -63,7 +64,13 @@ void app_print_usage(void);
 void app_signal_install(void);
 bool app_interrupted(void);
 
-/* Runs the program; returns the process exit code. */
-int app_run(const app_options_t *opts);
+/* What --montage ends a headless run with, in the run's GL context: the
+ * `meadow compare` montage of frame `frames` into `out` (bench_compare_write,
+ * src/bench). Returns 0 or 1. */
+typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int frames);
+
+/* Runs the program; returns the process exit code. `montage` may be NULL
+ * when opts->montage is false. */
+int app_run(const app_options_t *opts, app_montage_fn montage);
 
 #endif

@@ -3,6 +3,7 @@
  * MSAA target, writes screenshots and the run summary. */
 #include "app/app_world.h"
 
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,8 +182,9 @@ static void write_summary(app_t *app, double wall_s)
     fputs(buf, stdout);
 }
 
-int app_run(const app_options_t *o)
+int app_run(const app_options_t *o, app_montage_fn montage)
 {
+    assert(montage || !o->montage);
     app_t app = {.opts = o, .follow_path = true, .overlay = o->overlay};
     core_log_set_quiet(o->quiet);
     snprintf(app.out, sizeof app.out, "%s", o->out ? o->out : "out");
@@ -276,7 +278,7 @@ int app_run(const app_options_t *o)
          * reference), side by side: compare.png in the output folder. */
         int mframes = app.frames < 120 ? app.frames : 120;
         core_log_info("montage: rendering frame %d in every mode", mframes);
-        if (app_compare_write(o, app.out, mframes) != 0) rc = 1;
+        if (montage(o, app.out, mframes) != 0) rc = 1;
     }
     app_world_destroy(w);
     gfx_target_destroy(&app.target);

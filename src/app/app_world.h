@@ -1,6 +1,7 @@
 /* app_world: everything the program simulates and draws each frame: the
  * terrain, analytic colliders, characters, and the grass systems selected by
- * the mode. Private to the app module. */
+ * the mode. Used by the app module and the evaluation harness (src/bench),
+ * which goes through the access functions at the end. */
 #ifndef MEADOW_APP_WORLD_H
 #define MEADOW_APP_WORLD_H
 
@@ -159,52 +160,46 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st);
  * field (overlay) is 0 = off. */
 void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
 
-/* ---- offscreen sessions (bench, compare) ------------------------------------------ */
-typedef struct app_metrics_t {
-    double frame_ms;         /* sum of the medians of every GPU pass */
-    double pass_ms[GFX_TIMER_MAX_PASSES];
-    char pass_name[GFX_TIMER_MAX_PASSES][32];
-    int pass_count;
-    double cpu_ms;           /* mean CPU time per frame (wall clock) */
-    /* Accuracy (filled by the systems that exist in the scene; -1 = n/a). */
-    double penetration_fraction; /* grass sample points inside colliders */
-    double penetration_max;      /* deepest sample, metres */
-    double blade_length_error;   /* mean |L - h| / h */
-    double spring_error;         /* billboard mean |l - l0| / l0 */
-} app_metrics_t;
-
-typedef struct app_session_desc_t {
-    const app_options_t *opts; /* scene, seed, size */
-    scene_mode_t mode;
-    bool mode_set;
-    int frames;       /* simulated and drawn; default 60 */
-    int warmup;       /* frames excluded from timings; default frames/4 */
-    int msaa;         /* 0 = the scene's */
-    bool reference;   /* the reference rendering (see app_world_t) */
-    app_tuning_t tuning;
-    void (*tweak)(scene_desc_t *s, void *user); /* parameter overrides */
-    void *user;
-} app_session_desc_t;
-
-/* Runs one scene offscreen in the current context: builds the world, runs
- * the frames, reads the last frame into `last` (if non-NULL) and fills
- * `metrics`. Returns 0, or the exit code of the failure. */
-int app_session_run(const app_session_desc_t *desc, core_image_t *last, app_metrics_t *metrics);
-
-/* Accuracy metrics of the world's current state (reads GPU buffers back). */
-void app_world_metrics(app_world_t *w, app_metrics_t *m);
-
 /* GPU ms to draw `triangles` trivial triangles from a prebuilt buffer into a
  * w x h target with `samples` MSAA (median of 12 draws); -1 on failure. */
 double app_floor_ms(long triangles, int w, int h, int samples);
 
-int app_compare(const app_options_t *o);
-/* The montage of `meadow compare` in the current context: the scene's frame
- * `frames` rendered in every mode and as the reference, written to `out`. */
-int app_compare_write(const app_options_t *o, const char *out, int frames);
-/* `meadow compare --video`: the scene in billboard, blade and hybrid modes as
- * PNG frames and an H.264 clip per mode (ffmpeg), written to `out`. */
-int app_compare_clip(const app_options_t *o, const char *out, int frames);
-int app_bench(const app_options_t *o);
+/* ---- access for the evaluation harness (src/bench; app_world_access.c) ------------ */
+const scene_desc_t *app_world_scene(const app_world_t *w);
+const char *app_world_scene_path(const app_world_t *w);
+const terrain_mesh_t *app_world_terrain(const app_world_t *w);
+const app_colliders_t *app_world_colliders(const app_world_t *w);
+scene_mode_t app_world_mode(const app_world_t *w);
+bool app_world_is_reference(const app_world_t *w);
+/* A model file failed to load (exit code 2 rather than 1). */
+bool app_world_input_error(const app_world_t *w);
+/* The systems the world has built, or NULL. */
+blade_gpu_t *app_world_blades(app_world_t *w);
+bb_field_t *app_world_billboards(app_world_t *w);
+blade_tiles_t *app_world_tiles(app_world_t *w);
+character_set_t *app_world_characters(app_world_t *w);
+
+/* What an offscreen session changes between app_world_load and
+ * app_world_make_gpu. Zero = keep what the scene and options say. */
+typedef struct app_world_setup_t {
+    scene_mode_t mode;
+    bool mode_set;
+    int msaa;       /* 0 = the scene's */
+    bool reference; /* the reference rendering (see app_world_t) */
+    app_tuning_t tuning;
+    void (*tweak)(scene_desc_t *s, void *user); /* scene parameter overrides */
+    void *user;
+} app_world_setup_t;
+/* Applies `setup`; a tweak that changes a heightfield terrain rebuilds it.
+ * Returns false after one error line when that fails. */
+bool app_world_setup(app_world_t *w, const app_world_setup_t *setup);
+
+/* Blade sphere proxies that replace the world's: writes at most max, returns
+ * the count. */
+typedef int (*app_world_spheres_fn)(app_world_t *w, blade_sphere_t *out, int max, void *user);
+/* app_world_update of a world with blades only (no billboards, characters or
+ * tiles) with the spheres of `spheres` in place of the world's (same order:
+ * colliders, then one blade step). */
+void app_world_update_spheres(app_world_t *w, float t, float dt, app_world_spheres_fn spheres, void *user);
 
 #endif

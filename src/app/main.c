@@ -1,6 +1,7 @@
-/* main: entry point of the meadow program (see app.h and --help). */
+/* main: entry point of the meadow program (see app.h and --help): runs the
+ * program (src/app) or its evaluation harness (src/bench). */
 #include "app/app.h"
-#include "app/app_world.h"
+#include "bench/bench.h"
 
 #include "core/core.h"
 
@@ -17,8 +18,8 @@ int main(int argc, char **argv)
     app_signal_install();
     core_log_set_quiet(opts.quiet);
     switch (opts.command) {
-    case APP_CMD_COMPARE: return app_compare(&opts);
-    case APP_CMD_BENCH: return app_bench(&opts);
-    default: return app_run(&opts);
+    case APP_CMD_COMPARE: return bench_compare(&opts);
+    case APP_CMD_BENCH: return bench_run(&opts);
+    default: return app_run(&opts, bench_compare_write);
     }
 }

@@ -501,11 +501,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     if (!f->pool.id || !f->meshes.id || !f->points.id || !f->scratch.id || !f->objects.id || !f->cubes.id ||
         !f->cube_target.fbo)
         goto fail;
-    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
-        f->readback[k] = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 16, .label = "bb.pool_readback"});
-        f->readback_query[k] = gfx_query_make(GL_TIMESTAMP, "bb.pool_readback");
-        if (!f->readback[k].id || !f->readback_query[k]) goto fail;
-    }
+    f->readback = gfx_readback_make(16, BB_READBACK_SLOTS, "bb.pool_readback");
+    if (!f->readback.depth) goto fail;
     setup_points_vao(f->points_vao, f->points.id);
     if (!generate(f, t, hgrid, tile) || !read_spheres(f)) goto fail;
     f->make_ms = (float)(wall_ms() - t_start);
@@ -530,10 +527,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_buffer_destroy(&f->meshes);
     gfx_buffer_destroy(&f->objects);
     gfx_buffer_destroy(&f->counts);
-    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
-        gfx_buffer_destroy(&f->readback[k]);
-        if (f->readback_query[k]) gfx_query_destroy(&f->readback_query[k]);
-    }
+    gfx_readback_destroy(&f->readback);
     gfx_vertex_array_destroy(&f->points_vao);
     gfx_vertex_array_destroy(&f->empty_vao);
     gfx_transform_feedback_destroy(&f->tf);
@@ -841,21 +835,16 @@ static float max_scale(const float *m)
     return s;
 }
 
-/* Reads every readback slot whose timestamp query is available (the copy
- * before it has completed, so the read does not wait), oldest first, and
- * logs pool exhaustion the first time and whenever the refused count has
- * doubled since the last warning (no per-frame spam). */
+/* Reads every readback slot whose fence has passed (the copy has completed,
+ * so the read does not wait), oldest first, and logs pool exhaustion the
+ * first time and whenever the refused count has doubled since the last
+ * warning (no per-frame spam). */
 static void poll_readbacks(bb_field_t *f)
 {
-    for (int k = 0; k < BB_READBACK_SLOTS; k++) {
-        int slot = (f->readback_next + k) % BB_READBACK_SLOTS;
-        if (!f->readback_busy[slot]) continue;
-        GLint available = 0;
-        glGetQueryObjectiv(f->readback_query[slot], GL_QUERY_RESULT_AVAILABLE, &available);
-        if (!available) continue;
+    int slot;
+    while ((slot = gfx_readback_poll(&f->readback, false)) >= 0) {
         uint32_t hdr[2];
-        glGetNamedBufferSubData(f->readback[slot].id, 0, sizeof hdr, hdr);
-        f->readback_busy[slot] = false;
+        gfx_readback_read(&f->readback, slot, 0, sizeof hdr, hdr);
         f->deformed_last = f->desc.max_deformed - (int32_t)hdr[0];
         f->exhausted_last = (int)hdr[1] > f->exhausted_last ? (int)hdr[1] : f->exhausted_last;
         if (f->exhausted_last > 0 && f->exhausted_last >= 2 * f->exhausted_logged) {
@@ -866,18 +855,15 @@ static void poll_readbacks(bb_field_t *f)
     }
 }
 
-/* Queues a copy of the pool header and a timestamp after it. When every
- * slot is still in flight the copy is skipped (a later one reports the
- * same running counters). */
+/* Queues a fenced copy of the pool header. When every slot is still in
+ * flight the copy is skipped (a later one reports the same running
+ * counters). */
 static void queue_readback(bb_field_t *f)
 {
-    int slot = f->readback_next;
-    if (f->readback_busy[slot]) return;
+    if (gfx_readback_busy(&f->readback)) return;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glCopyNamedBufferSubData(f->pool.id, f->readback[slot].id, 0, 0, 16);
-    glQueryCounter(f->readback_query[slot], GL_TIMESTAMP);
-    f->readback_busy[slot] = true;
-    f->readback_next = (slot + 1) % BB_READBACK_SLOTS;
+    gfx_readback_copy(&f->readback, f->pool, 0, 0, 16);
+    gfx_readback_fence(&f->readback);
 }
 
 void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt)

@@ -160,12 +160,8 @@ typedef struct bb_field_t {
     bb_batch_plan_t plan;
     size_t objects_stride, objects_size;
     int batches_last, dropped, dropped_logged;
-    /* Pool header copies (16 bytes each) and the timestamp query written
-     * after each copy; busy[k] while slot k's copy is in flight. */
-    gfx_buffer_t readback[BB_READBACK_SLOTS];
-    GLuint readback_query[BB_READBACK_SLOTS];
-    bool readback_busy[BB_READBACK_SLOTS];
-    int readback_next;
+    /* Pool header copies (16 bytes each), BB_READBACK_SLOTS deep. */
+    gfx_readback_t readback;
     int deformed_last, exhausted_last; /* newest pool header that reached the CPU */
     int exhausted_logged;              /* refused count of the last warning */
     float generate_ms, make_ms;

@@ -89,12 +89,9 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id && g->cube_objects.id &&
               g->command.id && g->counters.id && g->patches.id;
     char label[128];
-    for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
-        g->readback[i] = make_buffer(g, "readback", 8 * sizeof(uint32_t), NULL, true);
-        snprintf(label, sizeof label, "%s.readback_query", g->desc.label);
-        g->readback_query[i] = gfx_query_make(GL_TIMESTAMP, label);
-        ok = ok && g->readback[i].id && g->readback_query[i];
-    }
+    snprintf(label, sizeof label, "%s.readback", g->desc.label);
+    g->readback = gfx_readback_make(8 * sizeof(uint32_t), BLADE_GPU_READBACK_SLOTS, label);
+    ok = ok && g->readback.depth;
     snprintf(label, sizeof label, "%s.physics", g->desc.label);
     g->physics = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .label = label});
     snprintf(label, sizeof label, "%s.cull", g->desc.label);
@@ -132,10 +129,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
                             &g->command, &g->counters, &g->patches, &g->cube_objects};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
-    for (int i = 0; i < BLADE_GPU_READBACK_SLOTS; i++) {
-        if (g->readback[i].id) gfx_buffer_destroy(&g->readback[i]);
-        if (g->readback_query[i]) gfx_query_destroy(&g->readback_query[i]);
-    }
+    gfx_readback_destroy(&g->readback);
     raster_program_destroy(&g->raster);
     gfx_program_t *progs[] = {&g->physics, &g->cull, &g->draw_tess, &g->draw_pull};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
@@ -288,24 +282,23 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glBindTextureUnit(0, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 
-    /* statistics: copy the counters and the command into a ring slot and
-     * mark it with a timestamp query; read once the query is available */
-    int slot = g->readback_next;
-    g->readback_next = (slot + 1) % BLADE_GPU_READBACK_SLOTS;
-    glCopyNamedBufferSubData(g->counters.id, g->readback[slot].id, 0, 0, 16);
-    glCopyNamedBufferSubData(g->command.id, g->readback[slot].id, 0, 16, 16);
-    glQueryCounter(g->readback_query[slot], GL_TIMESTAMP);
+    /* statistics: the counters and the command into a fenced ring slot,
+     * read once the fence has passed */
+    gfx_readback_copy(&g->readback, g->counters, 0, 0, 16);
+    gfx_readback_copy(&g->readback, g->command, 0, 16, 16);
+    int slot = gfx_readback_fence(&g->readback);
     g->readback_patch[slot][0] = patch_culled;
     g->readback_patch[slot][1] = visible;
-    g->readback_patch[slot][2] = 1;
     g->culled_once = true;
     gfx_timer_end();
 }
 
-static void read_slot(blade_gpu_t *g, int slot)
+blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
 {
+    int slot = gfx_readback_latest(&g->readback, wait);
+    if (slot < 0) return g->stats;
     uint32_t v[8];
-    gfx_buffer_read(g->readback[slot], 0, sizeof v, v);
+    gfx_readback_read(&g->readback, slot, 0, sizeof v, v);
     bool pull = g->desc.path == BLADE_PATH_PULLING;
     for (int i = 0; i < 4; i++) g->stats.culled[i] = v[i];
     g->stats.survivors = pull ? v[5] : v[4];
@@ -313,29 +306,6 @@ static void read_slot(blade_gpu_t *g, int slot)
     g->stats.patches_drawn = g->readback_patch[slot][1];
     g->stats.total = g->blade_count;
     g->stats.valid = true;
-    g->readback_patch[slot][2] = 0;
-}
-
-blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
-{
-    /* newest first: slots readback_next - 1, - 2, ... */
-    for (int k = 1; k <= BLADE_GPU_READBACK_SLOTS; k++) {
-        int slot = (g->readback_next - k + BLADE_GPU_READBACK_SLOTS) % BLADE_GPU_READBACK_SLOTS;
-        if (!g->readback_patch[slot][2]) continue;
-        GLint available = 0;
-        if (wait) {
-            GLuint64 t;
-            glGetQueryObjectui64v(g->readback_query[slot], GL_QUERY_RESULT, &t);
-            available = 1;
-        } else {
-            glGetQueryObjectiv(g->readback_query[slot], GL_QUERY_RESULT_AVAILABLE, &available);
-        }
-        if (!available) continue;
-        read_slot(g, slot);
-        /* older slots are stale now */
-        for (int j = 0; j < BLADE_GPU_READBACK_SLOTS; j++) g->readback_patch[j][2] = 0;
-        break;
-    }
     return g->stats;
 }
 

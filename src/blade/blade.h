@@ -96,10 +96,8 @@ typedef struct blade_gpu_t {
     raster_program_t raster; /* made on the first blade_gpu_raster */
     gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
     gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
-    gfx_buffer_t readback[BLADE_GPU_READBACK_SLOTS];
-    GLuint readback_query[BLADE_GPU_READBACK_SLOTS];
-    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][3]; /* patch_culled, patches drawn, in use */
-    int readback_next;
+    gfx_readback_t readback;                              /* counters (16 bytes), then the command */
+    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
     blade_gpu_stats_t stats;
     gfx_program_t physics, cull, draw_tess, draw_pull;
     GLuint vao;

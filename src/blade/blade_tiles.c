@@ -205,64 +205,6 @@ static gfx_program_t make_program(const blade_tiles_t *t, const char *what, cons
     return gfx_program_make(&d);
 }
 
-static bool ring_make(blade_tiles_t *t, blade_tiles_ring_t *r, const char *what, size_t size)
-{
-    bool ok = true;
-    char label[128];
-    snprintf(label, sizeof label, "%s.%s_query", t->desc.label, what);
-    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
-        r->buf[i] = make_buffer(t, what, size, NULL);
-        r->query[i] = gfx_query_make(GL_TIMESTAMP, label);
-        ok = ok && r->buf[i].id && r->query[i];
-    }
-    return ok;
-}
-
-static void ring_destroy(blade_tiles_ring_t *r)
-{
-    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
-        if (r->buf[i].id) gfx_buffer_destroy(&r->buf[i]);
-        if (r->query[i]) gfx_query_destroy(&r->query[i]);
-    }
-}
-
-/* Takes the next ring buffer: the caller copies into it, then fences it
- * with ring_fence. */
-static int ring_take(blade_tiles_ring_t *r)
-{
-    int i = r->next;
-    r->next = (i + 1) % BLADE_TILES_READBACK_SLOTS;
-    return i;
-}
-
-static void ring_fence(blade_tiles_ring_t *r, int i)
-{
-    glQueryCounter(r->query[i], GL_TIMESTAMP);
-    r->pending[i] = true;
-}
-
-/* Oldest pending entry whose copy has completed (wait: the oldest pending,
- * blocking), or -1. */
-static int ring_poll(blade_tiles_ring_t *r, bool wait)
-{
-    for (int k = 0; k < BLADE_TILES_READBACK_SLOTS; k++) {
-        int i = (r->next + k) % BLADE_TILES_READBACK_SLOTS;
-        if (!r->pending[i]) continue;
-        GLint available = 0;
-        if (wait) {
-            GLuint64 ts;
-            glGetQueryObjectui64v(r->query[i], GL_QUERY_RESULT, &ts);
-            available = 1;
-        } else {
-            glGetQueryObjectiv(r->query[i], GL_QUERY_RESULT_AVAILABLE, &available);
-        }
-        if (!available) return -1;
-        r->pending[i] = false;
-        return i;
-    }
-    return -1;
-}
-
 static bool seed_templates(blade_tiles_t *t)
 {
     const blade_tiles_desc_t *d = &t->desc;
@@ -376,9 +318,12 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
          t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id && t->drawn_ids.id &&
          t->command.id;
-    ok = ring_make(t, &t->motion_ring, "motion_readback", S * sizeof(uint32_t)) && ok;
-    ok = ring_make(t, &t->draw_ring, "draw_readback", 2 * sizeof(uint32_t)) && ok;
     char label[128];
+    snprintf(label, sizeof label, "%s.motion_readback", d->label);
+    t->motion_ring = gfx_readback_make(S * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
+    snprintf(label, sizeof label, "%s.draw_readback", d->label);
+    t->draw_ring = gfx_readback_make(2 * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
+    ok = ok && t->motion_ring.depth && t->draw_ring.depth;
     snprintf(label, sizeof label, "%s.ground", d->label);
     t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
                                                        .filter = GL_NEAREST, .data = t->ground_cpu,
@@ -445,8 +390,8 @@ void blade_tiles_destroy(blade_tiles_t *t)
                             &t->drawn_ids, &t->command, &t->slope_map, &t->slope_sums, &t->bb_sums};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
-    ring_destroy(&t->motion_ring);
-    ring_destroy(&t->draw_ring);
+    gfx_readback_destroy(&t->motion_ring);
+    gfx_readback_destroy(&t->draw_ring);
     raster_program_destroy(&t->raster);
     gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw, &t->handover, &t->resolve};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
@@ -509,8 +454,8 @@ static void poll_motion(blade_tiles_t *t)
 {
     int S = t->desc.pool_slots, r;
     uint32_t *bits = t->scratch;
-    while ((r = ring_poll(&t->motion_ring, false)) >= 0) {
-        gfx_buffer_read(t->motion_ring.buf[r], 0, (size_t)S * sizeof(uint32_t), bits);
+    while ((r = gfx_readback_poll(&t->motion_ring, false)) >= 0) {
+        gfx_readback_read(&t->motion_ring, r, 0, (size_t)S * sizeof(uint32_t), bits);
         for (int s = 0; s < S; s++) {
             int owner = t->motion_owner[r][s];
             if (owner < 0 || t->slot_owner[s] != owner) continue;
@@ -656,9 +601,8 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, t->motion.id);
         glDispatchCompute(((GLuint)nslots * B + 255u) / 256u, 1, 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        int r = ring_take(&t->motion_ring);
-        glCopyNamedBufferSubData(t->motion.id, t->motion_ring.buf[r].id, 0, 0, (GLsizeiptr)S * 4);
-        ring_fence(&t->motion_ring, r);
+        gfx_readback_copy(&t->motion_ring, t->motion, 0, 0, (size_t)S * 4);
+        int r = gfx_readback_fence(&t->motion_ring);
         for (int s = 0; s < S; s++) {
             int o = t->slot_owner[s];
             t->motion_owner[r][s] = o >= 0 && t->grid.tiles[o].state == HYBRID_RECOVERING ? o : -1;
@@ -743,10 +687,9 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glBindTextureUnit(1, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* instanceCount and overflow */
-    int r = ring_take(&t->draw_ring);
-    glCopyNamedBufferSubData(t->command.id, t->draw_ring.buf[r].id, 4, 0, 4);
-    glCopyNamedBufferSubData(t->command.id, t->draw_ring.buf[r].id, 16, 4, 4);
-    ring_fence(&t->draw_ring, r);
+    gfx_readback_copy(&t->draw_ring, t->command, 4, 0, 4);
+    gfx_readback_copy(&t->draw_ring, t->command, 16, 4, 4);
+    gfx_readback_fence(&t->draw_ring);
     t->culled_once = true;
     gfx_timer_end();
 }
@@ -808,9 +751,9 @@ void blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)
 {
     int r;
-    while ((r = ring_poll(&t->draw_ring, wait)) >= 0) {
+    while ((r = gfx_readback_poll(&t->draw_ring, wait)) >= 0) {
         uint32_t v[2];
-        gfx_buffer_read(t->draw_ring.buf[r], 0, sizeof v, v);
+        gfx_readback_read(&t->draw_ring, r, 0, sizeof v, v);
         t->stats.blades_drawn = v[0] < t->draw_capacity ? v[0] : t->draw_capacity;
         t->stats.draw_overflow = v[1];
         if (v[1] && !t->warned_overflow)

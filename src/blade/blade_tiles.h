@@ -87,13 +87,6 @@
 #define BLADE_TILES_MAX_TEMPLATES 8
 #define BLADE_TILES_READBACK_SLOTS 4
 
-/* A ring of small readback buffers fenced by timestamp queries. */
-typedef struct blade_tiles_ring_t {
-    gfx_buffer_t buf[BLADE_TILES_READBACK_SLOTS];
-    GLuint query[BLADE_TILES_READBACK_SLOTS];
-    bool pending[BLADE_TILES_READBACK_SLOTS];
-    int next;
-} blade_tiles_ring_t;
 
 /* Zero means default:
  *   terrain          required, a heightfield (grid_res > 0); borrowed
@@ -203,7 +196,7 @@ typedef struct blade_tiles_t {
     float time;
     gfx_buffer_t templates, pool, eta, motion, winds, spheres, slot_spheres, slot_list, init_list,
         tile_list, drawn, drawn_ids, command;
-    blade_tiles_ring_t motion_ring, draw_ring;
+    gfx_readback_t motion_ring, draw_ring; /* BLADE_TILES_READBACK_SLOTS deep */
     int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
     float *slot_motion;                            /* latest read back, per slot */
     gfx_texture_t ground;

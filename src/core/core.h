@@ -1,5 +1,5 @@
 /* core: logging, seeded RNG, stateless hashes, file I/O with atomic writes,
- * and 8-bit RGBA images. GL-free; every other module may use it. */
+ * growable buffers and 8-bit RGBA images. GL-free; every other module may use it. */
 #ifndef MEADOW_CORE_H
 #define MEADOW_CORE_H
 
@@ -54,6 +54,23 @@ bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size);
  * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel. Writes
  * the first that exists into out. Returns false if none exists. */
 bool core_fs_resolve(const char *rel, char *out, size_t out_size);
+
+/* ---- growable buffers ------------------------------------------------------
+ * Bytes or text appended in memory, then written atomically. Zero-initialise
+ * (core_buf_t b = {0}); data stays NUL-terminated once anything was added
+ * (NULL before). Out of memory: logged, then abort(). */
+typedef struct core_buf_t {
+    char *data;
+    size_t len, cap;
+} core_buf_t;
+
+void core_buf_put(core_buf_t *b, const void *data, size_t size);
+void core_buf_printf(core_buf_t *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* The text so far; "" when nothing was added. */
+const char *core_buf_str(const core_buf_t *b);
+/* core_fs_write_atomic of the contents (an empty file when nothing was added). */
+bool core_buf_write(const core_buf_t *b, const char *path);
+void core_buf_free(core_buf_t *b);
 
 /* ---- images --------------------------------------------------------------
  * Tightly packed 8-bit images, row 0 at the top. */

@@ -2,7 +2,6 @@
 #include "eval/eval.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -97,38 +96,6 @@ double eval_linear_fit(const double *x, const double *y, int n, double *slope, d
     return vx > 0 && vy > 0 ? cxy * cxy / (vx * vy) : 0.0;
 }
 
-void eval_text_printf(eval_text_t *t, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int need = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (need < 0) return;
-    if (t->n + (size_t)need + 1 > t->cap) {
-        size_t cap = t->cap ? t->cap : 4096;
-        while (cap < t->n + (size_t)need + 1) cap *= 2;
-        char *grown = realloc(t->s, cap);
-        if (!grown) abort();
-        t->s = grown;
-        t->cap = cap;
-    }
-    va_start(ap, fmt);
-    vsnprintf(t->s + t->n, (size_t)need + 1, fmt, ap);
-    va_end(ap);
-    t->n += (size_t)need;
-}
-
-bool eval_text_write(eval_text_t *t, const char *path)
-{
-    return core_fs_write_atomic(path, t->s ? t->s : "", t->n);
-}
-
-void eval_text_free(eval_text_t *t)
-{
-    free(t->s);
-    memset(t, 0, sizeof *t);
-}
-
 bool eval_gnuplot(const char *script_path)
 {
     char cmd[1200];
@@ -151,12 +118,12 @@ bool eval_gnuplot(const char *script_path)
 bool eval_gnuplot_chart(const char *dir, const char *name, const char *body)
 {
     char path[1200];
-    eval_text_t g = {0};
-    eval_text_printf(&g, "set terminal pngcairo size 800,500 noenhanced\nset output '%s/%s.png'\n%s\n", dir, name,
-                     body);
-    eval_text_printf(&g, "set terminal svg size 800,500 noenhanced\nset output '%s/%s.svg'\n%s\n", dir, name, body);
+    core_buf_t g = {0};
+    core_buf_printf(&g, "set terminal pngcairo size 800,500 noenhanced\nset output '%s/%s.png'\n%s\n", dir, name,
+                    body);
+    core_buf_printf(&g, "set terminal svg size 800,500 noenhanced\nset output '%s/%s.svg'\n%s\n", dir, name, body);
     snprintf(path, sizeof path, "%s/%s.gp", dir, name);
-    bool ok = eval_text_write(&g, path) && eval_gnuplot(path);
-    eval_text_free(&g);
+    bool ok = core_buf_write(&g, path) && eval_gnuplot(path);
+    core_buf_free(&g);
     return ok;
 }

@@ -1,6 +1,6 @@
 /* eval: GL-free evaluation helpers for `meadow bench` and `meadow compare`:
  * image error (mean absolute difference, SSIM), diff heatmaps, Pareto fronts,
- * and CSV/JSON/gnuplot output written atomically. */
+ * least squares lines and gnuplot charts. */
 #ifndef MEADOW_EVAL_H
 #define MEADOW_EVAL_H
 
@@ -23,15 +23,6 @@ void eval_pareto(const double *x, const double *y, int n, bool *on_front);
 /* Least squares line y = intercept + slope x over n points; returns R^2
  * (0 when x or y does not vary, slope then 0). */
 double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept);
-
-/* Text accumulated in memory, then written atomically. */
-typedef struct eval_text_t {
-    char *s;
-    size_t n, cap;
-} eval_text_t;
-void eval_text_printf(eval_text_t *t, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-bool eval_text_write(eval_text_t *t, const char *path);
-void eval_text_free(eval_text_t *t);
 
 /* Runs gnuplot on a script file (PNG + SVG terminals are the script's
  * business). Returns false, with a warning, when gnuplot is missing or fails. */

@@ -2,7 +2,8 @@
  * gets a debug label and is tracked, so shutdown can release everything and
  * tests can count what is still alive. Also: shader programs from files with
  * #include and file:line errors, FBOs with MSAA resolve, per-pass GPU timer
- * queries read back without stalling, screenshots and a text HUD. */
+ * queries read back without stalling, fenced readback rings, screenshots and
+ * a text HUD. */
 #ifndef MEADOW_GFX_H
 #define MEADOW_GFX_H
 
@@ -134,6 +135,43 @@ GLuint gfx_query_make(GLenum target, const char *label);
 void gfx_query_destroy(GLuint *q);
 GLuint gfx_transform_feedback_make(const char *label);
 void gfx_transform_feedback_destroy(GLuint *tf);
+
+/* ---- readback rings ----------------------------------------------------------
+ * `depth` buffers of `size` bytes that GPU data is copied into, one slot per
+ * frame: gfx_readback_copy (any number of copies into the slot being
+ * written), then gfx_readback_fence (a GL_TIMESTAMP query after them; the
+ * slot is pending until read). Later frames read pending slots whose fence
+ * has passed, without stalling unless `wait`. The fence query and the
+ * buffers are labelled "<label>.fence" and "<label>". */
+#define GFX_READBACK_MAX_DEPTH 8
+typedef struct gfx_readback_t {
+    gfx_buffer_t buf[GFX_READBACK_MAX_DEPTH];
+    GLuint fence[GFX_READBACK_MAX_DEPTH];
+    bool pending[GFX_READBACK_MAX_DEPTH]; /* fenced and not read yet */
+    int depth, next;                      /* next: the slot being written (the oldest) */
+} gfx_readback_t;
+
+/* depth 1..GFX_READBACK_MAX_DEPTH. On failure (logged by gfx_buffer_make)
+ * returns a ring with depth 0; gfx_readback_destroy accepts either. */
+gfx_readback_t gfx_readback_make(size_t size, int depth, const char *label);
+void gfx_readback_destroy(gfx_readback_t *r);
+/* The slot being written is still pending: copying into it now would drop a
+ * copy nobody has read (callers that must not lose one skip the frame). */
+bool gfx_readback_busy(const gfx_readback_t *r);
+/* glCopyNamedBufferSubData from src into the slot being written. */
+void gfx_readback_copy(gfx_readback_t *r, gfx_buffer_t src, size_t src_offset, size_t dst_offset, size_t size);
+/* Fences the slot being written, moves on to the next and returns the fenced
+ * slot's index (for the caller's per-slot bookkeeping). */
+int gfx_readback_fence(gfx_readback_t *r);
+/* The oldest pending slot if its fence has passed (wait: blocks until it
+ * has), marked read; -1 when none. Call until -1 to take every completed
+ * slot in order. */
+int gfx_readback_poll(gfx_readback_t *r, bool wait);
+/* The newest pending slot whose fence has passed (wait: the newest pending
+ * slot, blocking), or -1; every pending slot is marked read. */
+int gfx_readback_latest(gfx_readback_t *r, bool wait);
+/* Copies bytes of a slot returned by poll or latest to out. */
+void gfx_readback_read(const gfx_readback_t *r, int slot, size_t offset, size_t size, void *out);
 
 /* ---- GPU timers ------------------------------------------------------------
  * Named passes timed with GL_TIME_ELAPSED queries. Results are read

@@ -5,43 +5,12 @@
 #include "gfx/gfx_local.h"
 
 #include <ctype.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #define MAX_FILES 32
 #define MAX_DEPTH 8
-
-typedef struct sb_t {
-    char *s;
-    size_t n, cap;
-} sb_t;
-
-static void sb_put(sb_t *b, const char *s, size_t n)
-{
-    if (b->n + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap * 2 : 4096;
-        while (cap < b->n + n + 1) cap *= 2;
-        char *grown = realloc(b->s, cap);
-        if (!grown) abort();
-        b->s = grown;
-        b->cap = cap;
-    }
-    memcpy(b->s + b->n, s, n);
-    b->n += n;
-    b->s[b->n] = 0;
-}
-
-static void sb_printf(sb_t *b, const char *fmt, ...)
-{
-    char tmp[512];
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    sb_put(b, tmp, (size_t)n);
-}
 
 typedef struct pp_t {
     char files[MAX_FILES][128];
@@ -50,7 +19,7 @@ typedef struct pp_t {
     size_t err_size;
 } pp_t;
 
-static bool pp_file(pp_t *pp, sb_t *out, const char *rel, const char *defines, int depth)
+static bool pp_file(pp_t *pp, core_buf_t *out, const char *rel, const char *defines, int depth)
 {
     if (depth > MAX_DEPTH) {
         snprintf(pp->err, pp->err_size, "shaders/%s: #include nested deeper than %d", rel, MAX_DEPTH);
@@ -78,10 +47,10 @@ static bool pp_file(pp_t *pp, sb_t *out, const char *rel, const char *defines, i
         const char *q = p;
         while (q < p + len && isspace((unsigned char)*q)) q++;
         if (depth == 0 && strncmp(q, "#version", 8) == 0) {
-            sb_put(out, p, len);
-            sb_put(out, "\n", 1);
-            if (defines) sb_put(out, defines, strlen(defines));
-            sb_printf(out, "#line %d %d\n", line + 1, idx);
+            core_buf_put(out, p, len);
+            core_buf_put(out, "\n", 1);
+            if (defines) core_buf_put(out, defines, strlen(defines));
+            core_buf_printf(out, "#line %d %d\n", line + 1, idx);
         } else if (strncmp(q, "#include", 8) == 0) {
             const char *a = strchr(q, '"'), *b = a ? strchr(a + 1, '"') : NULL;
             if (!a || !b || b > p + len) {
@@ -91,12 +60,12 @@ static bool pp_file(pp_t *pp, sb_t *out, const char *rel, const char *defines, i
             }
             char inc[128];
             snprintf(inc, sizeof inc, "%.*s", (int)(b - a - 1), a + 1);
-            sb_printf(out, "#line 1 %d\n", pp->nfiles);
+            core_buf_printf(out, "#line 1 %d\n", pp->nfiles);
             ok = pp_file(pp, out, inc, NULL, depth + 1);
-            sb_printf(out, "#line %d %d\n", line + 1, idx);
+            core_buf_printf(out, "#line %d %d\n", line + 1, idx);
         } else {
-            sb_put(out, p, len);
-            sb_put(out, "\n", 1);
+            core_buf_put(out, p, len);
+            core_buf_put(out, "\n", 1);
         }
         line++;
         p = eol ? eol + 1 : p + len;
@@ -110,12 +79,12 @@ static char *preprocess(pp_t *pp, const char *rel, const char *defines, char *er
     memset(pp, 0, sizeof *pp);
     pp->err = err;
     pp->err_size = err_size;
-    sb_t out = {0};
+    core_buf_t out = {0};
     if (!pp_file(pp, &out, rel, defines, 0)) {
-        free(out.s);
+        core_buf_free(&out);
         return NULL;
     }
-    return out.s;
+    return out.data;
 }
 
 char *gfx_shader_preprocess(const char *rel_path, const char *defines, char *err, size_t err_size)

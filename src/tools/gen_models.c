@@ -18,7 +18,6 @@
 #include "core/core.h"
 
 #include <math.h>
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,62 +29,14 @@
 #define MAX_SEGMENTS 32
 #define MAX_CLIPS 4
 
-/* ---- growable byte/string buffer ---------------------------------------- */
-typedef struct gen_buf_t {
-    char *data;
-    size_t len, cap;
-} gen_buf_t;
-
-static void buf_put(gen_buf_t *b, const void *src, size_t n)
-{
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 4096;
-        while (b->len + n + 1 > cap) cap *= 2;
-        char *grown = realloc(b->data, cap);
-        if (!grown) {
-            fprintf(stderr, "meadow_gen_models: out of memory\n");
-            exit(1);
-        }
-        b->data = grown;
-        b->cap = cap;
-    }
-    memcpy(b->data + b->len, src, n);
-    b->len += n;
-    b->data[b->len] = 0;
-}
-
-static void buf_printf(gen_buf_t *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void buf_printf(gen_buf_t *b, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int n = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    char *tmp = malloc((size_t)n + 1);
-    if (n < 0 || !tmp) {
-        fprintf(stderr, "meadow_gen_models: out of memory\n");
-        exit(1);
-    }
-    va_start(ap, fmt);
-    vsnprintf(tmp, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-    buf_put(b, tmp, (size_t)n);
-    free(tmp);
-}
-
-static void buf_align4(gen_buf_t *b)
+/* ---- byte buffers (core_buf_t) ------------------------------------------- */
+static void buf_align4(core_buf_t *b)
 {
     static const char zeros[4] = {0};
-    if (b->len % 4) buf_put(b, zeros, 4 - b->len % 4);
+    if (b->len % 4) core_buf_put(b, zeros, 4 - b->len % 4);
 }
 
-static void buf_free(gen_buf_t *b)
-{
-    free(b->data);
-    memset(b, 0, sizeof *b);
-}
-
-static void base64_append(gen_buf_t *out, const unsigned char *src, size_t n)
+static void base64_append(core_buf_t *out, const unsigned char *src, size_t n)
 {
     static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     for (size_t i = 0; i < n; i += 3) {
@@ -94,7 +45,7 @@ static void base64_append(gen_buf_t *out, const unsigned char *src, size_t n)
         if (i + 2 < n) v |= src[i + 2];
         char q[4] = {tab[(v >> 18) & 63], tab[(v >> 12) & 63], i + 1 < n ? tab[(v >> 6) & 63] : '=',
                      i + 2 < n ? tab[v & 63] : '='};
-        buf_put(out, q, 4);
+        core_buf_put(out, q, 4);
     }
 }
 
@@ -282,7 +233,7 @@ static void mesh_add_capsule(gen_mesh_t *m, const gen_segment_t *s)
 
 /* ---- glTF writer ----------------------------------------------------------- */
 typedef struct gltf_t {
-    gen_buf_t bin, views, accessors;
+    core_buf_t bin, views, accessors;
     int view_count, accessor_count;
 } gltf_t;
 
@@ -297,19 +248,19 @@ static int gltf_accessor(gltf_t *g, const void *data, int count, int ctype, cons
     size_t bytes = (size_t)count * (size_t)ncomp * (size_t)csize;
     buf_align4(&g->bin);
     size_t off = g->bin.len;
-    buf_put(&g->bin, data, bytes);
-    buf_printf(&g->views, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", g->view_count ? "," : "", off,
-               bytes);
-    buf_printf(&g->accessors, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%d,\"type\":\"%s\"",
-               g->accessor_count ? "," : "", g->view_count, ctype, count, type);
+    core_buf_put(&g->bin, data, bytes);
+    core_buf_printf(&g->views, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", g->view_count ? "," : "", off,
+                    bytes);
+    core_buf_printf(&g->accessors, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%d,\"type\":\"%s\"",
+                    g->accessor_count ? "," : "", g->view_count, ctype, count, type);
     if (min && max) {
-        buf_printf(&g->accessors, ",\"min\":[");
-        for (int k = 0; k < ncomp; k++) buf_printf(&g->accessors, "%s%.6g", k ? "," : "", (double)min[k]);
-        buf_printf(&g->accessors, "],\"max\":[");
-        for (int k = 0; k < ncomp; k++) buf_printf(&g->accessors, "%s%.6g", k ? "," : "", (double)max[k]);
-        buf_printf(&g->accessors, "]");
+        core_buf_printf(&g->accessors, ",\"min\":[");
+        for (int k = 0; k < ncomp; k++) core_buf_printf(&g->accessors, "%s%.6g", k ? "," : "", (double)min[k]);
+        core_buf_printf(&g->accessors, "],\"max\":[");
+        for (int k = 0; k < ncomp; k++) core_buf_printf(&g->accessors, "%s%.6g", k ? "," : "", (double)max[k]);
+        core_buf_printf(&g->accessors, "]");
     }
-    buf_printf(&g->accessors, "}");
+    core_buf_printf(&g->accessors, "}");
     g->view_count++;
     return g->accessor_count++;
 }
@@ -326,16 +277,17 @@ static void minmax(const float *data, int count, int ncomp, int stride, float *m
 
 /* Assembles the final document: `body` holds everything except the buffer,
  * bufferViews and accessors (and has no trailing brace). */
-static bool gltf_finish(gltf_t *g, gen_buf_t *body, const char *path)
+static bool gltf_finish(gltf_t *g, core_buf_t *body, const char *path)
 {
     buf_align4(&g->bin);
-    buf_printf(body, ",\"bufferViews\":[%s],\"accessors\":[%s]", g->views.data ? g->views.data : "",
-               g->accessors.data ? g->accessors.data : "");
-    buf_printf(body, ",\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,", g->bin.len);
+    core_buf_printf(body, ",\"bufferViews\":[%s],\"accessors\":[%s]", core_buf_str(&g->views),
+                    core_buf_str(&g->accessors));
+    core_buf_printf(body, ",\"buffers\":[{\"byteLength\":%zu,\"uri\":\"data:application/octet-stream;base64,",
+                    g->bin.len);
     base64_append(body, (const unsigned char *)g->bin.data, g->bin.len);
-    buf_printf(body, "\"}]}\n");
+    core_buf_printf(body, "\"}]}\n");
     bool ok = core_fs_write_atomic(path, body->data, body->len);
-    buf_free(&g->bin), buf_free(&g->views), buf_free(&g->accessors);
+    core_buf_free(&g->bin), core_buf_free(&g->views), core_buf_free(&g->accessors);
     return ok;
 }
 
@@ -378,39 +330,39 @@ static bool write_rig(const gen_rig_t *rig, const char *path)
 
     /* nodes: 0 = rig root, 1 = mesh node, 2.. = joints */
     const int J0 = 2;
-    gen_buf_t body = {0};
-    buf_printf(&body, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"meadow_gen_models\"},\"scene\":0,");
-    buf_printf(&body, "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"name\":\"%s\",\"children\":[1", rig->name);
+    core_buf_t body = {0};
+    core_buf_printf(&body, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"meadow_gen_models\"},\"scene\":0,");
+    core_buf_printf(&body, "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"name\":\"%s\",\"children\":[1", rig->name);
     for (int j = 0; j < rig->joint_count; j++)
-        if (rig->joints[j].parent < 0) buf_printf(&body, ",%d", J0 + j);
-    buf_printf(&body, "]},{\"name\":\"%s_mesh\",\"mesh\":0,\"skin\":0}", rig->name);
+        if (rig->joints[j].parent < 0) core_buf_printf(&body, ",%d", J0 + j);
+    core_buf_printf(&body, "]},{\"name\":\"%s_mesh\",\"mesh\":0,\"skin\":0}", rig->name);
     for (int j = 0; j < rig->joint_count; j++) {
         const gen_joint_t *jt_ = &rig->joints[j];
-        buf_printf(&body, ",{\"name\":\"%s\",\"translation\":[%.6g,%.6g,%.6g]", jt_->name, (double)jt_->t[0],
-                   (double)jt_->t[1], (double)jt_->t[2]);
+        core_buf_printf(&body, ",{\"name\":\"%s\",\"translation\":[%.6g,%.6g,%.6g]", jt_->name, (double)jt_->t[0],
+                        (double)jt_->t[1], (double)jt_->t[2]);
         int first = 1;
         for (int c = 0; c < rig->joint_count; c++)
             if (rig->joints[c].parent == j) {
-                buf_printf(&body, "%s%d", first ? ",\"children\":[" : ",", J0 + c);
+                core_buf_printf(&body, "%s%d", first ? ",\"children\":[" : ",", J0 + c);
                 first = 0;
             }
-        buf_printf(&body, "%s}", first ? "" : "]");
+        core_buf_printf(&body, "%s}", first ? "" : "]");
     }
-    buf_printf(&body, "],\"skins\":[{\"name\":\"%s_skin\",\"inverseBindMatrices\":%d,\"skeleton\":%d,\"joints\":[",
-               rig->name, a_ibm, J0);
-    for (int j = 0; j < rig->joint_count; j++) buf_printf(&body, "%s%d", j ? "," : "", J0 + j);
-    buf_printf(&body, "]}],\"meshes\":[{\"name\":\"%s_mesh\",\"primitives\":[{\"attributes\":{\"POSITION\":%d,"
-                      "\"NORMAL\":%d,\"TEXCOORD_0\":%d,\"JOINTS_0\":%d,\"WEIGHTS_0\":%d},\"indices\":%d,"
-                      "\"material\":0}]}]",
-               rig->name, a_pos, a_nor, a_uv, a_jt, a_wt, a_idx);
-    buf_printf(&body, ",\"materials\":[{\"name\":\"%s_skin\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
-                      "[%.4g,%.4g,%.4g,%.4g],\"metallicFactor\":0,\"roughnessFactor\":0.9}}]",
-               rig->name, (double)rig->color[0], (double)rig->color[1], (double)rig->color[2],
-               (double)rig->color[3]);
+    core_buf_printf(&body, "],\"skins\":[{\"name\":\"%s_skin\",\"inverseBindMatrices\":%d,\"skeleton\":%d,\"joints\":[",
+                    rig->name, a_ibm, J0);
+    for (int j = 0; j < rig->joint_count; j++) core_buf_printf(&body, "%s%d", j ? "," : "", J0 + j);
+    core_buf_printf(&body, "]}],\"meshes\":[{\"name\":\"%s_mesh\",\"primitives\":[{\"attributes\":{\"POSITION\":%d,"
+                           "\"NORMAL\":%d,\"TEXCOORD_0\":%d,\"JOINTS_0\":%d,\"WEIGHTS_0\":%d},\"indices\":%d,"
+                           "\"material\":0}]}]",
+                    rig->name, a_pos, a_nor, a_uv, a_jt, a_wt, a_idx);
+    core_buf_printf(&body, ",\"materials\":[{\"name\":\"%s_skin\",\"pbrMetallicRoughness\":{\"baseColorFactor\":"
+                           "[%.4g,%.4g,%.4g,%.4g],\"metallicFactor\":0,\"roughnessFactor\":0.9}}]",
+                    rig->name, (double)rig->color[0], (double)rig->color[1], (double)rig->color[2],
+                    (double)rig->color[3]);
 
     /* animations: one shared time accessor per clip; rotation channels for
      * every joint the clip moves, translation for the root joint */
-    buf_printf(&body, ",\"animations\":[");
+    core_buf_printf(&body, ",\"animations\":[");
     for (int c = 0; c < rig->clip_count; c++) {
         const gen_clip_t *clip = &rig->clips[c];
         int k = clip->keys;
@@ -424,9 +376,9 @@ static bool write_rig(const gen_rig_t *rig, const char *path)
         }
         float tmin = 0.0f, tmax = clip->duration;
         int a_time = gltf_accessor(&g, times, k, GL_FLOAT, "SCALAR", 1, &tmin, &tmax);
-        buf_printf(&body, "%s{\"name\":\"%s\",\"samplers\":[", c ? "," : "", clip->name);
+        core_buf_printf(&body, "%s{\"name\":\"%s\",\"samplers\":[", c ? "," : "", clip->name);
         int sampler = 0;
-        gen_buf_t channels = {0};
+        core_buf_t channels = {0};
         float *out = malloc(sizeof(float) * 4 * (size_t)k);
         if (!out) exit(1);
         for (int j = 0; j < rig->joint_count; j++) {
@@ -435,27 +387,27 @@ static bool write_rig(const gen_rig_t *rig, const char *path)
             if (!moves) continue;
             for (int i = 0; i < k; i++) memcpy(out + 4 * i, frames[i].r[j], 16);
             int a_out = gltf_accessor(&g, out, k, GL_FLOAT, "VEC4", 4, NULL, NULL);
-            buf_printf(&body, "%s{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", sampler ? "," : "",
-                       a_time, a_out);
-            buf_printf(&channels, "%s{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"rotation\"}}",
-                       sampler ? "," : "", sampler, J0 + j);
+            core_buf_printf(&body, "%s{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", sampler ? "," : "",
+                            a_time, a_out);
+            core_buf_printf(&channels, "%s{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"rotation\"}}",
+                            sampler ? "," : "", sampler, J0 + j);
             sampler++;
         }
         for (int i = 0; i < k; i++)
             for (int a = 0; a < 3; a++) out[3 * i + a] = rig->joints[0].t[a] + frames[i].t[a];
         int a_out = gltf_accessor(&g, out, k, GL_FLOAT, "VEC3", 3, NULL, NULL);
-        buf_printf(&body, ",{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", a_time, a_out);
-        buf_printf(&channels, ",{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"translation\"}}", sampler, J0);
-        buf_printf(&body, "],\"channels\":[%s]}", channels.data);
-        buf_free(&channels);
+        core_buf_printf(&body, ",{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", a_time, a_out);
+        core_buf_printf(&channels, ",{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"translation\"}}", sampler, J0);
+        core_buf_printf(&body, "],\"channels\":[%s]}", channels.data);
+        core_buf_free(&channels);
         free(out), free(times), free(frames);
     }
-    buf_printf(&body, "]");
+    core_buf_printf(&body, "]");
 
     bool ok = gltf_finish(&g, &body, path);
     printf("%s: %d vertices, %d triangles, %d joints, %d clips\n", path, n, mesh.icount / 3, rig->joint_count,
            rig->clip_count);
-    buf_free(&body);
+    core_buf_free(&body);
     free(pos), free(nor), free(uv), free(wt), free(jt), free(mesh.v), free(mesh.idx);
     return ok;
 }
@@ -750,38 +702,38 @@ static void sphere_fn(float u, float v, float p[3], float n[3])
  * skipped. */
 static bool write_obj(const char *path, const char *name, gen_surface_fn fn, int nu, int nv, bool poles)
 {
-    gen_buf_t b = {0};
-    buf_printf(&b, "# %s, written by meadow_gen_models\no %s\n", name, name);
+    core_buf_t b = {0};
+    core_buf_printf(&b, "# %s, written by meadow_gen_models\no %s\n", name, name);
     for (int j = 0; j <= nv; j++)
         for (int i = 0; i <= nu; i++) {
             float p[3], n[3];
             fn((float)i / nu, (float)j / nv, p, n);
-            buf_printf(&b, "v %.6f %.6f %.6f\n", (double)p[0], (double)p[1], (double)p[2]);
+            core_buf_printf(&b, "v %.6f %.6f %.6f\n", (double)p[0], (double)p[1], (double)p[2]);
         }
     for (int j = 0; j <= nv; j++)
         for (int i = 0; i <= nu; i++) {
             float p[3], n[3];
             fn((float)i / nu, (float)j / nv, p, n);
-            buf_printf(&b, "vn %.6f %.6f %.6f\n", (double)n[0], (double)n[1], (double)n[2]);
+            core_buf_printf(&b, "vn %.6f %.6f %.6f\n", (double)n[0], (double)n[1], (double)n[2]);
         }
     for (int j = 0; j <= nv; j++)
-        for (int i = 0; i <= nu; i++) buf_printf(&b, "vt %.6f %.6f\n", (double)i / nu, (double)j / nv);
+        for (int i = 0; i <= nu; i++) core_buf_printf(&b, "vt %.6f %.6f\n", (double)i / nu, (double)j / nv);
     int tris = 0;
     for (int j = 0; j < nv; j++)
         for (int i = 0; i < nu; i++) {
             int i0 = j * (nu + 1) + i + 1, i1 = i0 + 1, i2 = i0 + nu + 1, i3 = i2 + 1;
             if (!(poles && j == 0)) {
-                buf_printf(&b, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", i0, i0, i0, i2, i2, i2, i1, i1, i1);
+                core_buf_printf(&b, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", i0, i0, i0, i2, i2, i2, i1, i1, i1);
                 tris++;
             }
             if (!(poles && j == nv - 1)) {
-                buf_printf(&b, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", i1, i1, i1, i2, i2, i2, i3, i3, i3);
+                core_buf_printf(&b, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", i1, i1, i1, i2, i2, i2, i3, i3, i3);
                 tris++;
             }
         }
     bool ok = core_fs_write_atomic(path, b.data, b.len);
     printf("%s: %d vertices, %d triangles\n", path, (nu + 1) * (nv + 1), tris);
-    buf_free(&b);
+    core_buf_free(&b);
     return ok;
 }
 
@@ -819,25 +771,25 @@ static bool write_broken_fixture(const char *path)
     int a_tt = gltf_accessor(&g, tt, 2, GL_FLOAT, "SCALAR", 1, &tmin, &tmax);
     int a_tv = gltf_accessor(&g, tv, 2, GL_FLOAT, "VEC3", 3, NULL, NULL);
 
-    gen_buf_t body = {0};
-    buf_printf(&body, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"meadow_gen_models (broken fixture)\"},"
-                      "\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":["
-                      "{\"name\":\"quad\",\"mesh\":0,\"skin\":0},"
-                      "{\"name\":\"root\",\"children\":[2]},"
-                      "{\"name\":\"arm\",\"translation\":[0,1,0]}],"
-                      "\"skins\":[{\"inverseBindMatrices\":%d,\"joints\":[1,2]}],"
-                      "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,"
-                      "\"JOINTS_0\":%d,\"WEIGHTS_0\":%d},\"indices\":%d}]}],",
-               a_ibm, a_pos, a_nor, a_jt, a_wt, a_idx);
-    buf_printf(&body, "\"animations\":[{\"name\":\"bend\",\"samplers\":["
-                      "{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"},"
-                      "{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}],"
-                      "\"channels\":[{\"sampler\":0,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
-                      "{\"sampler\":1,\"target\":{\"node\":1,\"path\":\"translation\"}}]}]",
-               a_rt, a_rq, a_tt, a_tv);
+    core_buf_t body = {0};
+    core_buf_printf(&body, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"meadow_gen_models (broken fixture)\"},"
+                           "\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":["
+                           "{\"name\":\"quad\",\"mesh\":0,\"skin\":0},"
+                           "{\"name\":\"root\",\"children\":[2]},"
+                           "{\"name\":\"arm\",\"translation\":[0,1,0]}],"
+                           "\"skins\":[{\"inverseBindMatrices\":%d,\"joints\":[1,2]}],"
+                           "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,"
+                           "\"JOINTS_0\":%d,\"WEIGHTS_0\":%d},\"indices\":%d}]}],",
+                    a_ibm, a_pos, a_nor, a_jt, a_wt, a_idx);
+    core_buf_printf(&body, "\"animations\":[{\"name\":\"bend\",\"samplers\":["
+                           "{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"},"
+                           "{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}],"
+                           "\"channels\":[{\"sampler\":0,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
+                           "{\"sampler\":1,\"target\":{\"node\":1,\"path\":\"translation\"}}]}]",
+                    a_rt, a_rq, a_tt, a_tv);
     bool ok = gltf_finish(&g, &body, path);
     printf("%s: loader fixture\n", path);
-    buf_free(&body);
+    core_buf_free(&body);
     return ok;
 }
 

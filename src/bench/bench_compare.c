@@ -1,10 +1,9 @@
-/* app_compare: `meadow compare` renders the same frame (scene, seed, time,
+/* bench_compare: `meadow compare` renders the same frame (scene, seed, time,
  * camera) in billboard, blade and hybrid modes and as the reference (blades
  * everywhere, maximum tessellation, no culling, 8x MSAA), then writes a
  * labelled montage, diff heatmaps against the reference, and the image
  * errors (MAD, SSIM) with GPU frame times as JSON. */
-#include "app/app_eval.h"
-#include "app/app_world.h"
+#include "bench/bench_local.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,7 +14,11 @@
 
 #define PANELS 4
 
-int app_compare(const app_options_t *o)
+/* `meadow compare --video`: the scene in billboard, blade and hybrid modes as
+ * PNG frames and an H.264 clip per mode (ffmpeg), written to `out`. */
+static int write_clips(const app_options_t *o, const char *out, int frames);
+
+int bench_compare(const app_options_t *o)
 {
     char out[1024], err[1024];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
@@ -28,8 +31,8 @@ int app_compare(const app_options_t *o)
         return 1;
     }
     gfx_init();
-    int rc = o->video ? app_compare_clip(o, out, o->frames_set ? o->frames : 120)
-                     : app_compare_write(o, out, o->frames_set ? o->frames : 60);
+    int rc = o->video ? write_clips(o, out, o->frames_set ? o->frames : 120)
+                      : bench_compare_write(o, out, o->frames_set ? o->frames : 60);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -40,7 +43,7 @@ int app_compare(const app_options_t *o)
     return rc;
 }
 
-int app_compare_write(const app_options_t *o, const char *out, int frames)
+int bench_compare_write(const app_options_t *o, const char *out, int frames)
 {
     char path[1200];
     static const struct {
@@ -52,13 +55,13 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
                         {"hybrid", SCENE_MODE_HYBRID, false},
                         {"reference", SCENE_MODE_BLADE, true}};
     core_image_t img[PANELS] = {0};
-    app_metrics_t met[PANELS];
+    bench_metrics_t met[PANELS];
     int rc = 0;
     for (int i = 0; i < PANELS && rc == 0; i++) {
         core_log_info("compare: %d/%d %s (%d frames)", i + 1, PANELS, panels[i].name, frames);
-        app_session_desc_t d = {.opts = o, .mode = panels[i].mode, .mode_set = true, .frames = frames,
-                                .reference = panels[i].reference, .msaa = panels[i].reference ? 8 : 0};
-        rc = app_session_run(&d, &img[i], &met[i]);
+        bench_session_desc_t d = {.opts = o, .mode = panels[i].mode, .mode_set = true, .frames = frames,
+                                  .reference = panels[i].reference, .msaa = panels[i].reference ? 8 : 0};
+        rc = bench_session_run(&d, &img[i], &met[i]);
         if (rc == 0) {
             snprintf(path, sizeof path, "%s/compare-%s.png", out, panels[i].name);
             core_image_write_png(&img[i], path);
@@ -70,9 +73,9 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
         core_image_alloc(&montage, w * PANELS, (h + label) * 2, 4);
         static const uint8_t bg[4] = {20, 20, 20, 255}, fg[4] = {255, 255, 255, 255};
         core_image_fill(&montage, 0, 0, montage.w, montage.h, bg);
-        eval_text_t json = {0};
-        eval_text_printf(&json, "{\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"size\": [%d, %d],\n  \"panels\": [\n",
-                         o->scene ? o->scene : "scenes/meadow.json", frames, w, h);
+        core_buf_t json = {0};
+        core_buf_printf(&json, "{\n  \"scene\": \"%s\",\n  \"frames\": %d,\n  \"size\": [%d, %d],\n  \"panels\": [\n",
+                        o->scene ? o->scene : "scenes/meadow.json", frames, w, h);
         for (int i = 0; i < PANELS; i++) {
             double mad = eval_image_mad(&img[i], &img[PANELS - 1]);
             double ssim = eval_image_ssim(&img[i], &img[PANELS - 1]);
@@ -86,18 +89,18 @@ int app_compare_write(const app_options_t *o, const char *out, int frames)
                 core_image_free(&heat);
             }
             core_image_text(&montage, i * w + 6, h + label + 6, 2, "diff vs reference", fg);
-            eval_text_printf(&json,
-                             "    { \"mode\": \"%s\", \"gpu_ms\": %.4f, \"cpu_ms\": %.3f, \"mad\": %.6f, "
-                             "\"ssim\": %.6f }%s\n",
-                             panels[i].name, met[i].frame_ms, met[i].cpu_ms, mad, ssim, i + 1 < PANELS ? "," : "");
+            core_buf_printf(&json,
+                            "    { \"mode\": \"%s\", \"gpu_ms\": %.4f, \"cpu_ms\": %.3f, \"mad\": %.6f, "
+                            "\"ssim\": %.6f }%s\n",
+                            panels[i].name, met[i].frame_ms, met[i].cpu_ms, mad, ssim, i + 1 < PANELS ? "," : "");
         }
-        eval_text_printf(&json, "  ]\n}\n");
+        core_buf_printf(&json, "  ]\n}\n");
         snprintf(path, sizeof path, "%s/compare.png", out);
         if (!core_image_write_png(&montage, path)) rc = 1;
         snprintf(path, sizeof path, "%s/compare.json", out);
-        if (!eval_text_write(&json, path)) rc = 1;
+        if (!core_buf_write(&json, path)) rc = 1;
         if (rc == 0) core_log_info("wrote %s/compare.png and compare.json", out);
-        eval_text_free(&json);
+        core_buf_free(&json);
         core_image_free(&montage);
     }
     for (int i = 0; i < PANELS; i++) core_image_free(&img[i]);
@@ -125,7 +128,7 @@ static void clip_frame(const gfx_target_t *target, int frame, void *user)
     core_image_free(&img);
 }
 
-int app_compare_clip(const app_options_t *o, const char *out, int frames)
+static int write_clips(const app_options_t *o, const char *out, int frames)
 {
     if (system("ffmpeg -version >/dev/null 2>&1") != 0) {
         core_log_error("compare --video: ffmpeg not found (install the Debian package ffmpeg)");
@@ -140,9 +143,9 @@ int app_compare_clip(const app_options_t *o, const char *out, int frames)
         snprintf(c.dir, sizeof c.dir, "%s/clip-%s", out, modes[i].name);
         if (!core_fs_mkdirs(c.dir)) return 1;
         core_log_info("clip %d/3: %s, %d frames", i + 1, modes[i].name, frames);
-        app_session_desc_t d = {.opts = o, .mode = modes[i].mode, .mode_set = true, .frames = frames};
-        app_session_hooks_t h = {.drawn = clip_frame, .user = &c};
-        int rc = app_session_run_hooks(&d, &h, NULL, NULL);
+        bench_session_desc_t d = {.opts = o, .mode = modes[i].mode, .mode_set = true, .frames = frames};
+        bench_session_hooks_t h = {.drawn = clip_frame, .user = &c};
+        int rc = bench_session_run_hooks(&d, &h, NULL, NULL);
         if (rc) return rc;
         if (c.failed || c.written != frames) {
             core_log_error("clip %s: wrote %d of %d frames", modes[i].name, c.written, frames);

@@ -1,18 +1,18 @@
-/* app_stability: `meadow bench --stability`: for each case, sweeps one
+/* bench_stability: `meadow bench --stability`: for each case, sweeps one
  * parameter over small scenes built here (6 m heightfield, a few thousand
  * blades or a few hundred billboards; the wall cases write a small mesh
  * terrain and its scene file into the output folder for the run and remove
  * them afterwards), applies the case's failure
  * criterion and reports the first value where the method breaks, with a
  * screenshot of that run (or of the last value when none broke). The
- * measures come from app_metrics.c (docs/METRICS.md): penetration against
+ * measures come from bench_metrics.c (docs/METRICS.md): penetration against
  * the exact collider shapes, blade length error, recovery time after a
  * collider leaves (offset from an undisturbed twin world for blades, from
  * the wind pose of eq. 8 for billboards), jitter of a resting collider,
  * trail coverage of a fast collider (tunnelling), texture distortion of
  * deformed billboard meshes (worst frame; its rendering is the screenshot)
  * and root density on a mesh face relative to the floor. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -33,12 +33,12 @@ typedef enum stab_measure_t {
 } stab_measure_t;
 
 typedef struct stab_result_t {
-    app_metrics_t m;
-    app_metrics_ext_t x;
+    bench_metrics_t m;
+    bench_metrics_ext_t x;
     double recovery;  /* s after the collider left; INFINITY: not recovered */
     double coverage;  /* trail coverage right after the pass */
     double jitter;    /* m per frame over the last 0.5 s */
-    app_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
+    bench_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
     double measure;   /* the case's measure */
     bool fails;
 } stab_result_t;
@@ -208,19 +208,19 @@ static bool write_wall(const char *dir, float v, char *scene, size_t n)
                             {{0, 0}, {xf, WALL_H}, {xf, WALL_H}, {0, 0}},
                             {{xf, WALL_H}, {3, WALL_H}, {3, WALL_H}, {xf, WALL_H}}};
     float normals[3][3] = {{0, 1, 0}, {-sn, cs, 0}, {0, 1, 0}};
-    eval_text_t t = {0};
+    core_buf_t t = {0};
     for (int q = 0; q < 3; q++) {
         for (int k = 0; k < 4; k++)
-            eval_text_printf(&t, "v %.6f %.6f %.6f\n", quads[q][k][0], quads[q][k][1], k < 2 ? WALL_Z : -WALL_Z);
-        eval_text_printf(&t, "vn %.6f %.6f %.6f\n", normals[q][0], normals[q][1], normals[q][2]);
-        eval_text_printf(&t, "f %d//%d %d//%d %d//%d %d//%d\n", 4 * q + 1, q + 1, 4 * q + 2, q + 1, 4 * q + 3, q + 1,
-                         4 * q + 4, q + 1);
+            core_buf_printf(&t, "v %.6f %.6f %.6f\n", quads[q][k][0], quads[q][k][1], k < 2 ? WALL_Z : -WALL_Z);
+        core_buf_printf(&t, "vn %.6f %.6f %.6f\n", normals[q][0], normals[q][1], normals[q][2]);
+        core_buf_printf(&t, "f %d//%d %d//%d %d//%d %d//%d\n", 4 * q + 1, q + 1, 4 * q + 2, q + 1, 4 * q + 3, q + 1,
+                        4 * q + 4, q + 1);
     }
-    bool ok = eval_text_write(&t, obj);
-    eval_text_free(&t);
-    eval_text_printf(&t, "{ \"seed\": 7, \"terrain\": { \"type\": \"mesh\", \"mesh\": \"%s\" } }\n", obj);
-    ok = ok && eval_text_write(&t, scene);
-    eval_text_free(&t);
+    bool ok = core_buf_write(&t, obj);
+    core_buf_free(&t);
+    core_buf_printf(&t, "{ \"seed\": 7, \"terrain\": { \"type\": \"mesh\", \"mesh\": \"%s\" } }\n", obj);
+    ok = ok && core_buf_write(&t, scene);
+    core_buf_free(&t);
     return ok;
 }
 
@@ -401,8 +401,8 @@ typedef struct stab_run_t {
     bool primed, covered;
     double last_over, jitter, coverage;
     double last_off, next_t, next_off; /* offsets around the 1 cm crossing (recovery interpolation) */
-    app_bb_distortion_t distortion;
-    app_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
+    bench_bb_distortion_t distortion;
+    bench_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
     bool worst_now;                  /* this frame is it */
     core_image_t worst;              /* its rendering */
 } stab_run_t;
@@ -424,16 +424,16 @@ static void frame(app_world_t *w, int f, float t, void *user)
         stab_run_t tw = *r;
         tw.no_colliders = true;
         r->twin = calloc(1, sizeof *r->twin);
-        app_session_desc_t d = {.opts = r->o, .mode = r->c->mode, .mode_set = true, .tweak = tweak, .user = &tw};
-        if (r->twin && app_session_world(&d, r->twin) != 0) {
+        bench_session_desc_t d = {.opts = r->o, .mode = r->c->mode, .mode_set = true, .tweak = tweak, .user = &tw};
+        if (r->twin && bench_session_world(&d, r->twin) != 0) {
             free(r->twin);
             r->twin = NULL;
         }
-        r->prev = calloc((size_t)w->blades.padded_count * 3, sizeof(float));
+        r->prev = calloc((size_t)app_world_blades(w)->padded_count * 3, sizeof(float));
     }
-    if (r->twin) app_world_update(r->twin, t, w->scene.dt);
+    if (r->twin) app_world_update(r->twin, t, app_world_scene(w)->dt);
     if (r->c->measure == MEASURE_PASS && t > r->t_exit) {
-        double off = r->twin ? app_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : app_metrics_bb_offset(w);
+        double off = r->twin ? bench_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : bench_metrics_bb_offset(w);
         if (!(off <= RECOVERY_EPS)) {
             r->last_over = t, r->last_off = off, r->next_t = 0;
         } else if (r->next_t == 0) {
@@ -441,16 +441,16 @@ static void frame(app_world_t *w, int f, float t, void *user)
         }
         if (!r->covered && r->twin) {
             long corridor;
-            r->coverage = app_metrics_blade_coverage(w, r->twin, (float[2]){PASS_FROM + 0.3f, 0},
-                                                     (float[2]){PASS_TO - 0.3f, 0}, 0.15f, 0.2f, &corridor);
+            r->coverage = bench_metrics_blade_coverage(w, r->twin, (float[2]){PASS_FROM + 0.3f, 0},
+                                                       (float[2]){PASS_TO - 0.3f, 0}, 0.15f, 0.2f, &corridor);
             r->covered = true;
         }
     }
     if (r->c->measure == MEASURE_DISTORTION) {
-        app_bb_distortion_t d;
-        app_metrics_bb_distortion(w, &d);
-        app_bb_distortion_t *m = &r->distortion;
-        const app_bb_distortion_t *b = &r->worst_frame;
+        bench_bb_distortion_t d;
+        bench_metrics_bb_distortion(w, &d);
+        bench_bb_distortion_t *m = &r->distortion;
+        const bench_bb_distortion_t *b = &r->worst_frame;
         r->worst_now = f == 0 || d.folded > b->folded || (d.folded == b->folded && d.max_stretch > b->max_stretch);
         if (r->worst_now) r->worst_frame = d;
         m->max_stretch = fmax(m->max_stretch, d.max_stretch);
@@ -463,15 +463,15 @@ static void frame(app_world_t *w, int f, float t, void *user)
         /* Root density on the face (its middle 80 % in height, 10 % from
          * the sides) over that on the floor away from the face. */
         float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
-        long face = app_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
-                                         (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
-        long floor = app_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
+        long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
+                                           (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
+        long floor = bench_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
         double face_area = 0.8 * WALL_H / sin(glm_rad(r->v)) * 2.0 * zr, floor_area = 2.7 * 2.0 * zr;
         r->coverage = floor ? ((double)face / face_area) / ((double)floor / floor_area) : 0.0;
     }
     if (r->c->measure == MEASURE_JITTER && r->twin && r->prev && t > r->t_end - 0.5f) {
         double j = 0;
-        app_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
+        bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
         if (j > r->jitter) r->jitter = j;
     }
 }
@@ -525,13 +525,13 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
     r.twin_wanted = c->mode == SCENE_MODE_BLADE && c->measure != MEASURE_STATIC;
     int frames = (int)ceilf(duration / dt);
     if (c->setup == setup_spikes) frames = (frames + 9) / 10 * 10; /* the last step is a spike */
-    app_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
-                            .user = &r};
+    bench_session_desc_t d = {.opts = o, .mode = c->mode, .mode_set = true, .frames = frames, .tweak = tweak,
+                              .user = &r};
     bool distortion = c->measure == MEASURE_DISTORTION;
-    app_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = !distortion, .ext = &res->x,
-                             .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
-                             .drawn = distortion ? drawn : NULL};
-    int rc = app_session_run_hooks(&d, &h, img, &res->m);
+    bench_session_hooks_t h = {.frame = frame, .user = &r, .draw_last_only = !distortion, .ext = &res->x,
+                               .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
+                               .drawn = distortion ? drawn : NULL};
+    int rc = bench_session_run_hooks(&d, &h, img, &res->m);
     if (r.worst.px) {
         core_image_free(img);
         *img = r.worst;
@@ -568,17 +568,17 @@ static void fmt_value(char *buf, size_t n, double v)
     else snprintf(buf, n, "%.4g", v);
 }
 
-int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md_out, const char *report)
+int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md_out, const char *report)
 {
     char path[1200], buf[32];
-    eval_text_t csv = {0}, md = {0}, mdr = {0};
-    eval_text_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
-                           "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground,"
-                           "bb_max_stretch,bb_folded_cells\n");
+    core_buf_t csv = {0}, md = {0}, mdr = {0};
+    core_buf_printf(&csv, "case,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
+                          "blade_length_error,spring_error,recovery_s,jitter_m,coverage,nonfinite,below_ground,"
+                          "bb_max_stretch,bb_folded_cells\n");
     static const char *head = "| case | method | parameter | values | measure | measured | failure criterion | "
                               "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
-    eval_text_printf(&md, "%s", head);
-    eval_text_printf(&mdr, "%s", head);
+    core_buf_printf(&md, "%s", head);
+    core_buf_printf(&mdr, "%s", head);
     int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0;
     double t0 = plat_time();
     for (int ci = 0; ci < CASE_COUNT && rc == 0; ci++) {
@@ -603,15 +603,15 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
                 img = (core_image_t){0};
             }
             core_image_free(&img);
-            const app_metrics_t *m = &res[k].m;
-            const app_metrics_ext_t *x = &res[k].x;
-            const app_bb_distortion_t *dd = &res[k].distortion;
+            const bench_metrics_t *m = &res[k].m;
+            const bench_metrics_ext_t *x = &res[k].x;
+            const bench_bb_distortion_t *dd = &res[k].distortion;
             bool distortion = c->measure == MEASURE_DISTORTION;
-            eval_text_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
-                             c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
-                             m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
-                             res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite + dd->nonfinite,
-                             x->below_ground, distortion ? dd->max_stretch : -1.0, distortion ? dd->folded : -1L);
+            core_buf_printf(&csv, "%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%ld,%.4f,%.6g,%ld\n",
+                            c->name, scene_mode_name(c->mode), c->param, v, res[k].measure, res[k].fails,
+                            m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
+                            res[k].recovery, res[k].jitter, res[k].coverage, x->nonfinite + dd->nonfinite,
+                            x->below_ground, distortion ? dd->max_stretch : -1.0, distortion ? dd->folded : -1L);
             size_t lv = strlen(values), lm = strlen(measured);
             fmt_value(buf, sizeof buf, res[k].measure);
             snprintf(values + lv, sizeof values - lv, "%s%g", k ? ", " : "", v);
@@ -636,27 +636,27 @@ int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_
         if (broke >= 0) snprintf(brk, sizeof brk, "**%g**", c->values[broke]);
         else snprintf(brk, sizeof brk, "none in range");
         for (int e = 0; e < 2; e++)
-            eval_text_printf(e ? &mdr : &md, "| %s | %s | %s | %s | %s | %s | %s | %s | ![](%sstability_%s.png) |\n",
-                             c->name, scene_mode_name(c->mode), c->param, values, c->measure_name, measured,
-                             c->criterion, brk, e ? "images/" : "", c->name);
+            core_buf_printf(e ? &mdr : &md, "| %s | %s | %s | %s | %s | %s | %s | %s | ![](%sstability_%s.png) |\n",
+                            c->name, scene_mode_name(c->mode), c->param, values, c->measure_name, measured,
+                            c->criterion, brk, e ? "images/" : "", c->name);
     }
     fputc('\n', stderr);
     if (rc == 0) {
         for (int e = 0; e < 2; e++) {
-            eval_text_t *t = e ? &mdr : &md;
-            eval_text_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
+            core_buf_t *t = e ? &mdr : &md;
+            core_buf_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
             for (int ci = 0; ci < CASE_COUNT; ci++)
-                eval_text_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
+                core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
         }
-        if (md_out) eval_text_printf(md_out, "%s", mdr.s);
+        if (md_out) core_buf_printf(md_out, "%s", mdr.data);
         snprintf(path, sizeof path, "%s/stability.csv", out);
-        if (!eval_text_write(&csv, path)) rc = 1;
+        if (!core_buf_write(&csv, path)) rc = 1;
         snprintf(path, sizeof path, "%s/stability.md", out);
-        if (!eval_text_write(&md, path)) rc = 1;
+        if (!core_buf_write(&md, path)) rc = 1;
         if (rc == 0) core_log_info("stability: wrote %s/stability.csv, stability.md and screenshots", out);
     }
-    eval_text_free(&csv);
-    eval_text_free(&md);
-    eval_text_free(&mdr);
+    core_buf_free(&csv);
+    core_buf_free(&md);
+    core_buf_free(&mdr);
     return rc;
 }

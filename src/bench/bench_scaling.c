@@ -1,4 +1,4 @@
-/* app_scaling: `meadow bench --scaling`: what the tiled blade field's
+/* bench_scaling: `meadow bench --scaling`: what the tiled blade field's
  * simulation costs (Fan et al. 2015 tile activation over Jahrmann & Wimmer
  * 2017 blades, src/blade/blade_tiles.h) against
  *   field  the field size at a fixed active area: 4 resting balls on the 4
@@ -15,7 +15,7 @@
  * frames after warm-up, next to the slots and blades dispatched by the
  * latest update (blade_tiles_stats). Writes scaling.csv, scaling_field.dat,
  * scaling_active.dat and their gnuplot charts (PNG and SVG) into out. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,7 +29,7 @@ typedef struct scaling_run_t {
     float density;     /* blades per m^2 */
     float tile;        /* tile side, m */
     bool full;         /* the full-field blade mode instead of the tiles */
-    app_scaling_point_t *point;
+    bench_scaling_point_t *point;
 } scaling_run_t;
 
 /* Tile centres in rings around the centre: the 4 tiles at (+-2, +-2) first,
@@ -76,16 +76,17 @@ static void last_frame(app_world_t *w, int frame, float t, void *user)
     (void)t;
     scaling_run_t *r = user;
     if (frame + 1 < r->point->frames) return;
+    blade_tiles_t *tiles = app_world_tiles(w);
     if (r->full) {
-        r->point->full_blades = blade_gpu_stats(&w->blades, false).total;
-    } else if (w->have_tiles) {
-        blade_tiles_stats_t st = blade_tiles_stats(&w->tiles, true);
+        r->point->full_blades = blade_gpu_stats(app_world_blades(w), false).total;
+    } else if (tiles) {
+        blade_tiles_stats_t st = blade_tiles_stats(tiles, true);
         r->point->slots = st.slots_dispatched;
         r->point->blades = st.blades_dispatched;
     }
 }
 
-static double pass_median(const app_metrics_t *m, const char *name)
+static double pass_median(const bench_metrics_t *m, const char *name)
 {
     for (int p = 0; p < m->pass_count; p++)
         if (strcmp(m->pass_name[p], name) == 0) return m->pass_ms[p];
@@ -95,12 +96,12 @@ static double pass_median(const app_metrics_t *m, const char *name)
 /* One session: hybrid (tiles) or, with r->full, the full-field blade mode. */
 static int measure(const app_options_t *o, scaling_run_t *r)
 {
-    app_scaling_point_t *p = r->point;
-    app_session_desc_t d = {.opts = o, .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
-                            .frames = p->frames, .tweak = tweak, .user = r};
-    app_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
-    app_metrics_t m;
-    int rc = app_session_run_hooks(&d, &h, NULL, &m);
+    bench_scaling_point_t *p = r->point;
+    bench_session_desc_t d = {.opts = o, .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
+                              .frames = p->frames, .tweak = tweak, .user = r};
+    bench_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
+    bench_metrics_t m;
+    int rc = bench_session_run_hooks(&d, &h, NULL, &m);
     if (rc) return rc;
     if (r->full)
         p->full_ms = pass_median(&m, "blade.physics");
@@ -119,7 +120,7 @@ static void write_chart(const char *out, const char *name, const char *title, co
     eval_gnuplot_chart(out, name, body);
 }
 
-int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md)
+int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md)
 {
     memset(res, 0, sizeof *res);
     snprintf(res->renderer, sizeof res->renderer, "%s", (const char *)glGetString(GL_RENDERER));
@@ -136,8 +137,8 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     int total = res->field_count * (quick ? 1 : 2) + res->active_count, done = 0;
     int rc = 0;
     for (int i = 0; i < res->field_count && rc == 0; i++) {
-        app_scaling_point_t *p = &res->field[i];
-        *p = (app_scaling_point_t){.side = base * (float)(1 << i), .balls = 4, .frames = frames, .full_ms = -1};
+        bench_scaling_point_t *p = &res->field[i];
+        *p = (bench_scaling_point_t){.side = base * (float)(1 << i), .balls = 4, .frames = frames, .full_ms = -1};
         scaling_run_t r = {.side = p->side, .balls = 4, .density = density, .tile = tile, .point = p};
         rc = measure(o, &r);
         fprintf(stderr, "\rscaling: %d/%d field %g m tiles %.4f ms   ", ++done, total, p->side, p->physics_ms);
@@ -149,8 +150,8 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
         if (app_interrupted()) rc = 1;
     }
     for (int i = 0; i < res->active_count && rc == 0; i++) {
-        app_scaling_point_t *p = &res->active[i];
-        *p = (app_scaling_point_t){.side = base * 2.0f, .balls = balls[i], .frames = frames, .full_ms = -1};
+        bench_scaling_point_t *p = &res->active[i];
+        *p = (bench_scaling_point_t){.side = base * 2.0f, .balls = balls[i], .frames = frames, .full_ms = -1};
         scaling_run_t r = {.side = p->side, .balls = balls[i], .density = active_density, .tile = active_tile,
                            .point = p};
         rc = measure(o, &r);
@@ -161,7 +162,7 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     if (rc) return rc;
 
     /* Least squares physics_ms = intercept + slope * active tiles (slots). */
-    double xs[APP_SCALING_MAX], ys[APP_SCALING_MAX];
+    double xs[BENCH_SCALING_MAX], ys[BENCH_SCALING_MAX];
     for (int i = 0; i < res->active_count; i++) {
         xs[i] = res->active[i].slots;
         ys[i] = res->active[i].physics_ms;
@@ -169,47 +170,47 @@ int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_sca
     res->r2 = eval_linear_fit(xs, ys, res->active_count, &res->slope, &res->intercept);
 
     char path[1200];
-    eval_text_t csv = {0}, fd = {0}, ad = {0};
-    eval_text_printf(&csv, "sweep,field_m,area_x,balls,slots,blades_simulated,tiles_physics_ms,full_blades,"
-                           "full_physics_ms\n");
-    eval_text_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
-    eval_text_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
+    core_buf_t csv = {0}, fd = {0}, ad = {0};
+    core_buf_printf(&csv, "sweep,field_m,area_x,balls,slots,blades_simulated,tiles_physics_ms,full_blades,"
+                          "full_physics_ms\n");
+    core_buf_printf(&fd, "# area_x field_m tiles_physics_ms full_physics_ms slots\n");
+    core_buf_printf(&ad, "# slots tiles_physics_ms fit_ms balls\n");
     if (md)
-        eval_text_printf(md,
-                         "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
-                         "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
-                         "blades/m^2 in %g m tiles.\n\n"
-                         "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
-                         "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                         res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
+        core_buf_printf(md,
+                        "Renderer `%s`, %d frames per run (median of the frames after warm-up), r %.1f m balls "
+                        "resting on tile centres; field sweep %.0f blades/m^2 in %g m tiles, active sweep %.0f "
+                        "blades/m^2 in %g m tiles.\n\n"
+                        "| sweep | field | area | balls | slots simulated | blades simulated | tiles.physics ms | "
+                        "full-field blade.physics ms |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                        res->renderer, frames, BALL_R, density, tile, active_density, active_tile);
     for (int s = 0; s < 2; s++) {
         int cnt = s ? res->active_count : res->field_count;
         for (int i = 0; i < cnt; i++) {
-            const app_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
+            const bench_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
             double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
-            eval_text_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
-                             p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);
+            core_buf_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
+                            p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);
             if (s)
-                eval_text_printf(&ad, "%d %.5f %.5f %d\n", p->slots, p->physics_ms,
-                                 res->intercept + res->slope * p->slots, p->balls);
+                core_buf_printf(&ad, "%d %.5f %.5f %d\n", p->slots, p->physics_ms,
+                                res->intercept + res->slope * p->slots, p->balls);
             else
-                eval_text_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
+                core_buf_printf(&fd, "%g %g %.5f %.5f %d\n", area, p->side, p->physics_ms, p->full_ms, p->slots);
             if (!md) continue;
             char full[32] = "-";
             if (p->full_ms >= 0) snprintf(full, sizeof full, "%.4f", p->full_ms);
-            eval_text_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
-                             p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
+            core_buf_printf(md, "| %s | %g m | %gx | %d | %d | %ld | %.4f | %s |\n", s ? "active" : "field",
+                            p->side, area, p->balls, p->slots, p->blades, p->physics_ms, full);
         }
     }
     if (md)
-        eval_text_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
-                         res->intercept, res->slope, res->r2);
+        core_buf_printf(md, "\nLeast squares over the active sweep: %.4f ms + %.5f ms per active tile, R^2 = %.3f.\n",
+                        res->intercept, res->slope, res->r2);
     const char *names[3] = {"scaling.csv", "scaling_field.dat", "scaling_active.dat"};
-    eval_text_t *texts[3] = {&csv, &fd, &ad};
+    core_buf_t *texts[3] = {&csv, &fd, &ad};
     for (int k = 0; k < 3; k++) {
         snprintf(path, sizeof path, "%s/%s", out, names[k]);
-        if (!eval_text_write(texts[k], path)) rc = 1;
-        eval_text_free(texts[k]);
+        if (!core_buf_write(texts[k], path)) rc = 1;
+        core_buf_free(texts[k]);
     }
     if (rc) return rc;
     char plot[1600];

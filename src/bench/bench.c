@@ -1,6 +1,6 @@
-/* app_bench: `meadow bench` sweeps configurations of deterministic scenes
+/* bench_run: `meadow bench` sweeps configurations of deterministic scenes
  * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
- * times, CPU time, accuracy metrics (app_metrics.c, docs/METRICS.md) and
+ * times, CPU time, accuracy metrics (bench_metrics.c, docs/METRICS.md) and
  * image error against the reference rendering (1 - SSIM) to bench.csv and
  * bench.json, plus speed-vs-accuracy charts (x GPU ms, y the chart's
  * accuracy measure; PNG and SVG through gnuplot) with the Pareto front.
@@ -16,11 +16,11 @@
  *   blade_tessellation, blade_distance_levels (eq. 19-20),
  *   hybrid_switch_distance, modes (mode x density x render path) (image error).
  * --quick runs two configurations per sweep for CI. The stability suite
- * (app_stability.c) runs with --stability, the tile scaling sweeps
- * (app_scaling.c) with --scaling; --report DIR runs the sweep, both of
+ * (bench_stability.c) runs with --stability, the tile scaling sweeps
+ * (bench_scaling.c) with --scaling; --report DIR runs the sweep, both of
  * those and `meadow compare`, and writes
  * DIR/RESULTS.md with its charts and screenshots in DIR/images. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <assert.h>
 #include <math.h>
@@ -97,8 +97,9 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
 {
     const bench_config_t *c = user;
     int n = 0;
-    for (int i = 0; i < w->colliders.count && n < max; i++) {
-        const app_collider_t *k = &w->colliders.items[i];
+    const app_colliders_t *colliders = app_world_colliders(w);
+    for (int i = 0; i < colliders->count && n < max; i++) {
+        const app_collider_t *k = &colliders->items[i];
         const float *p = k->position;
         if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
             out[n++] = (blade_sphere_t){{p[0], p[1], p[2], k->bound_radius}};
@@ -220,7 +221,7 @@ static const bench_chart_t charts[] = {
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
 
-static double y_of(const bench_chart_t *ch, const app_metrics_t *m, double image_error)
+static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double image_error)
 {
     switch (ch->y) {
     case Y_PEN_MAX: return m->penetration_max;
@@ -247,7 +248,7 @@ static void write_chart(const char *out, const bench_chart_t *ch)
 typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
-    app_metrics_t *met;
+    bench_metrics_t *met;
     double *err;
     char renderer[256];
     int frames;
@@ -265,10 +266,10 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int frames = b->frames;
     core_image_t ref = {0}, img = {0};
-    app_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
-                             .reference = true, .msaa = 8};
+    bench_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+                               .reference = true, .msaa = 8};
     core_log_info("bench: reference rendering (%d frames)", frames);
-    int rc = app_session_run(&rd, &ref, NULL);
+    int rc = bench_session_run(&rd, &ref, NULL);
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
         if (app_interrupted()) {
@@ -279,11 +280,11 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = *o;
         if (c->blade_render) oc.blade_render = c->blade_render - 1;
-        app_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
-                                .tweak = tweak, .user = c, .tuning = c->tuning};
+        bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
+                                  .tweak = tweak, .user = c, .tuning = c->tuning};
         bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
-        app_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
-        rc = app_session_run_hooks(&d, &h, &img, &b->met[i]);
+        bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
+        rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
         if (rc) break;
         b->err[i] = 1.0 - eval_image_ssim(&img, &ref);
         core_image_free(&img);
@@ -296,37 +297,37 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     core_image_free(&ref);
     if (rc) return rc;
     snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
-    eval_text_t csv = {0}, json = {0};
-    eval_text_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
-                           "blade_length_error,spring_error,passes\n");
-    eval_text_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
+    core_buf_t csv = {0}, json = {0};
+    core_buf_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
+                          "blade_length_error,spring_error,passes\n");
+    core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
     for (int i = 0; i < n; i++) {
-        const app_metrics_t *m = &b->met[i];
+        const bench_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
-        eval_text_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
-                         scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
-                         m->penetration_max, m->blade_length_error, m->spring_error);
-        eval_text_printf(&json,
-                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
-                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
-                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
-                         "\"passes\": {",
-                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
-                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
+                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
+                        m->penetration_max, m->blade_length_error, m->spring_error);
+        core_buf_printf(&json,
+                        "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
+                        "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
+                        "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
+                        "\"passes\": {",
+                        c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
+                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
         for (int p = 0; p < m->pass_count; p++) {
-            eval_text_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
-            eval_text_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
+            core_buf_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
+            core_buf_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
         }
-        eval_text_printf(&csv, "\n");
-        eval_text_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
+        core_buf_printf(&csv, "\n");
+        core_buf_printf(&json, "} }%s\n", i + 1 < n ? "," : "");
     }
-    eval_text_printf(&json, "  ]\n}\n");
+    core_buf_printf(&json, "  ]\n}\n");
     snprintf(path, sizeof path, "%s/bench.csv", out);
-    if (!eval_text_write(&csv, path)) rc = 1;
+    if (!core_buf_write(&csv, path)) rc = 1;
     snprintf(path, sizeof path, "%s/bench.json", out);
-    if (!eval_text_write(&json, path)) rc = 1;
-    eval_text_free(&csv);
-    eval_text_free(&json);
+    if (!core_buf_write(&json, path)) rc = 1;
+    core_buf_free(&csv);
+    core_buf_free(&json);
     /* One data file and chart per chart entry: x GPU ms, y its measure. */
     for (int ci = 0; ci < CHART_COUNT && rc == 0; ci++) {
         const bench_chart_t *ch = &charts[ci];
@@ -341,13 +342,13 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
                 k++;
             }
         eval_pareto(xs, ys, k, front);
-        eval_text_t dat = {0};
-        eval_text_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
+        core_buf_t dat = {0};
+        core_buf_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
         for (int j = 0; j < k; j++)
-            eval_text_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
+            core_buf_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
-        if (!eval_text_write(&dat, path)) rc = 1;
-        eval_text_free(&dat);
+        if (!core_buf_write(&dat, path)) rc = 1;
+        core_buf_free(&dat);
         write_chart(out, ch);
     }
     if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
@@ -389,70 +390,70 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
     if (!core_fs_mkdirs(path)) return 1;
     char size[32];
     snprintf(size, sizeof size, "%dx%d", o->width, o->height);
-    eval_text_t r = {0};
-    eval_text_printf(&r,
-                     "# meadow results\n\n"
-                     "Generated by one command (do not edit by hand):\n\n"
-                     "    ./build/meadow bench --report %s --scene SCENE [--quick] [--frames N]\n\n"
-                     "It runs the bench sweep, the stability suite, the tile scaling sweeps and `meadow compare`, writes the raw data "
-                     "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
-                     "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
-                     "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
-                     "- renderer: `%s`\n- frames per configuration: %d\n\n",
-                     dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
-                     o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
-                     b->renderer[0] ? b->renderer : "?", b->frames);
+    core_buf_t r = {0};
+    core_buf_printf(&r,
+                    "# meadow results\n\n"
+                    "Generated by one command (do not edit by hand):\n\n"
+                    "    ./build/meadow bench --report %s --scene SCENE [--quick] [--frames N]\n\n"
+                    "It runs the bench sweep, the stability suite, the tile scaling sweeps and `meadow compare`, writes the raw data "
+                    "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
+                    "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
+                    "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
+                    "- renderer: `%s`\n- frames per configuration: %d\n\n",
+                    dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
+                    o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
+                    b->renderer[0] ? b->renderer : "?", b->frames);
     if (strstr(b->renderer, "llvmpipe"))
-        eval_text_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
-                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
-                             "renderer.\n\n");
-    eval_text_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
-                         "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
+        core_buf_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
+                            "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
+                            "renderer.\n\n");
+    core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
+                        "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
     for (int ci = 0; ci < CHART_COUNT; ci++) {
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
         copy_chart(dir, out, path);
-        eval_text_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
-                             "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
-                         ch->name, ch->name, ch->name, ch->ylabel);
+        core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
+                            "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
+                        ch->name, ch->name, ch->name, ch->ylabel);
         for (int i = 0; i < b->n; i++) {
             if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
-            const app_metrics_t *m = &b->met[i];
-            eval_text_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
-                             y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
+            const bench_metrics_t *m = &b->met[i];
+            core_buf_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
+                            y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
         }
-        eval_text_printf(&r, "\n");
+        core_buf_printf(&r, "\n");
     }
-    eval_text_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box (the scene's first collider's path, or a "
-                         "path across the view) with the scene's characters removed, and compares sphere sets with "
-                         "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
-    eval_text_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
-                         "(src/app/app_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
-                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
-                     stability_md ? stability_md : "(not run)\n");
+    core_buf_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box (the scene's first collider's path, or a "
+                        "path across the view) with the scene's characters removed, and compares sphere sets with "
+                        "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
+    core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
+                        "(src/bench/bench_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
+                        "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
+                    stability_md ? stability_md : "(not run)\n");
     if (scaling_md) {
         copy_chart(dir, out, "scaling_field");
         copy_chart(dir, out, "scaling_active");
-        eval_text_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
-                             "(src/app/app_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
-                             "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
-                             "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
-                             "scaling_active.png)\n\n%s\n",
-                         o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
+        core_buf_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
+                            "(src/bench/bench_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
+                            "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
+                            "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
+                            "scaling_active.png)\n\n%s\n",
+                        o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
     }
     snprintf(path, sizeof path, "%s/compare/compare.png", out);
     snprintf(to, sizeof to, "%s/images/bench_compare.png", dir);
     if (copy_file(path, to))
-        eval_text_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
-                             "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
+        core_buf_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
+                            "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
     snprintf(path, sizeof path, "%s/RESULTS.md", dir);
-    int rc = eval_text_write(&r, path) ? 0 : 1;
-    eval_text_free(&r);
+    int rc = core_buf_write(&r, path) ? 0 : 1;
+    core_buf_free(&r);
     if (rc == 0) core_log_info("report: wrote %s", path);
     return rc;
 }
 
-int app_bench(const app_options_t *o)
+int bench_run(const app_options_t *o)
 {
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
@@ -474,15 +475,15 @@ int app_bench(const app_options_t *o)
     }
     gfx_init();
     bench_run_t b = {0};
-    eval_text_t md = {0}, scaling_md = {0};
-    app_scaling_t sc;
+    core_buf_t md = {0}, scaling_md = {0};
+    bench_scaling_t sc;
     if (full) {
         snprintf(path, sizeof path, "%s/images", report);
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
     int rc = sweep ? run_sweep(o, o->quick, out, &b) : 0;
-    if (rc == 0 && stability) rc = app_stability_run(o, out, o->quick, &md, full ? report : NULL);
-    if (rc == 0 && scaling) rc = app_scaling_run(o, out, o->quick, &sc, &scaling_md);
+    if (rc == 0 && stability) rc = bench_stability_run(o, out, o->quick, &md, full ? report : NULL);
+    if (rc == 0 && scaling) rc = bench_scaling_run(o, out, o->quick, &sc, &scaling_md);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -495,11 +496,11 @@ int app_bench(const app_options_t *o)
         snprintf(path, sizeof path, "%s/compare", out);
         oc.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
-        if (rc == 0) rc = app_compare(&oc);
-        if (rc == 0) rc = write_report(report, out, o, &b, md.s, scaling_md.s);
+        if (rc == 0) rc = bench_compare(&oc);
+        if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data);
     }
-    eval_text_free(&md);
-    eval_text_free(&scaling_md);
+    core_buf_free(&md);
+    core_buf_free(&scaling_md);
     free(b.cfg);
     free(b.met);
     free(b.err);

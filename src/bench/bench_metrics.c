@@ -1,4 +1,4 @@
-/* app_metrics: accuracy metrics of a world's state for `meadow bench` and
+/* bench_metrics: accuracy metrics of a world's state for `meadow bench` and
  * the stability suite (definitions and formulas in docs/METRICS.md).
  *
  * Penetration is measured against the EXACT analytic collider
@@ -24,12 +24,12 @@
  * over the structural springs (eq. 6-7) of the deformed meshes, l0 from the
  * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)).
  *
- * Texture distortion of deformed billboards (app_metrics_bb_distortion):
+ * Texture distortion of deformed billboards (bench_metrics_bb_distortion):
  * the largest structural-spring stretch |l / l0 - 1| and the folded cells,
  * a cell being folded when its signed area ratio against a reference
  * normal is <= 0: the rest normal right x up for the root row, the normals
  * of the neighbouring cells below and to the left above it. */
-#include "app/app_eval.h"
+#include "bench/bench_local.h"
 
 #include <math.h>
 #include <string.h>
@@ -46,16 +46,18 @@ typedef struct exact_t {
 static int gather_exact(app_world_t *w, exact_t *out)
 {
     int n = 0;
-    for (int i = 0; i < w->colliders.count; i++) {
-        const app_collider_t *c = &w->colliders.items[i];
+    const app_colliders_t *colliders = app_world_colliders(w);
+    for (int i = 0; i < colliders->count; i++) {
+        const app_collider_t *c = &colliders->items[i];
         out[n].shape = c->desc;
         glm_vec3_copy((float *)c->position, out[n].pos);
         out[n].reach = c->bound_radius;
         n++;
     }
-    if (w->have_chars) {
+    character_set_t *chars = app_world_characters(w);
+    if (chars) {
         float (*s)[4] = malloc(sizeof(float[4]) * BLADE_MAX_SPHERES);
-        int k = s ? character_set_spheres(&w->chars, s, BLADE_MAX_SPHERES) : 0;
+        int k = s ? character_set_spheres(chars, s, BLADE_MAX_SPHERES) : 0;
         if (k > BLADE_MAX_SPHERES) k = BLADE_MAX_SPHERES;
         for (int i = 0; i < k; i++, n++) {
             out[n] = (exact_t){.shape = {.type = SCENE_COLLIDER_SPHERE, .radius = s[i][3]}, .reach = s[i][3]};
@@ -120,13 +122,16 @@ static bool blade_finite(const blade_t *b)
     return true;
 }
 
-static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, app_metrics_t *m,
-                          app_metrics_ext_t *x)
+static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
+                          bench_metrics_ext_t *x)
 {
-    uint32_t count = w->blades.padded_count;
+    blade_gpu_t *g = app_world_blades(w);
+    const terrain_mesh_t *terrain = app_world_terrain(w);
+    bool heightfield = app_world_scene(w)->terrain.type == TERRAIN_HEIGHTFIELD;
+    uint32_t count = g->padded_count;
     blade_t *b = malloc(sizeof *b * count);
     if (!b) return;
-    blade_gpu_read_blades(&w->blades, b, NULL);
+    blade_gpu_read_blades(g, b, NULL);
     double len_sum = 0;
     long real = 0, below = 0;
     for (uint32_t i = 0; i < count; i++) {
@@ -138,8 +143,8 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
             continue;
         }
         len_sum += fabs(blade_ref_curve_length(&b[i], 32) - h) / h;
-        float ground = terrain_height_at(&w->terrain_mesh, b[i].v2[0], b[i].v2[2], NULL);
-        if (isfinite(ground) && b[i].v2[1] < ground - 0.01f && w->scene.terrain.type == TERRAIN_HEIGHTFIELD)
+        float ground = terrain_height_at(terrain, b[i].v2[0], b[i].v2[2], NULL);
+        if (isfinite(ground) && b[i].v2[1] < ground - 0.01f && heightfield)
             below++;
         for (int k = 1; k <= SAMPLES_PER_BLADE; k++) {
             float p[3];
@@ -174,10 +179,10 @@ static bool read_bb(bb_field_t *f, bb_point_t **pts, float (**mesh)[4])
     return true;
 }
 
-static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, app_metrics_t *m,
-                       app_metrics_ext_t *x)
+static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
+                       bench_metrics_ext_t *x)
 {
-    bb_field_t *f = &w->bb;
+    bb_field_t *f = app_world_billboards(w);
     int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
@@ -242,9 +247,9 @@ done:
     free(grid);
 }
 
-void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *x)
+void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x)
 {
-    app_metrics_ext_t dummy;
+    bench_metrics_ext_t dummy;
     if (!x) x = &dummy;
     memset(x, 0, sizeof *x);
     m->penetration_fraction = m->penetration_max = m->blade_length_error = m->spring_error = -1;
@@ -252,8 +257,10 @@ void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *
     if (!ex) return;
     int n = gather_exact(w, ex);
     pen_acc_t acc = {0};
-    bool blades = w->have_blades && (w->mode != SCENE_MODE_BILLBOARD || w->reference);
-    bool bbs = w->have_bb && w->mode != SCENE_MODE_BLADE && !w->reference;
+    scene_mode_t mode = app_world_mode(w);
+    bool reference = app_world_is_reference(w);
+    bool blades = app_world_blades(w) && (mode != SCENE_MODE_BILLBOARD || reference);
+    bool bbs = app_world_billboards(w) && mode != SCENE_MODE_BLADE && !reference;
     if (blades) blade_metrics(w, ex, n, &acc, m, x);
     if (bbs) bb_metrics(w, ex, n, &acc, m, x);
     if (blades || bbs) {
@@ -265,22 +272,21 @@ void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *
     free(ex);
 }
 
-void app_world_metrics(app_world_t *w, app_metrics_t *m) { app_world_metrics_ext(w, m, NULL); }
-
-static blade_t *read_blades(app_world_t *w)
+static blade_t *read_blades(blade_gpu_t *g)
 {
-    blade_t *b = malloc(sizeof *b * w->blades.padded_count);
-    if (b) blade_gpu_read_blades(&w->blades, b, NULL);
+    blade_t *b = malloc(sizeof *b * g->padded_count);
+    if (b) blade_gpu_read_blades(g, b, NULL);
     return b;
 }
 
-double app_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter)
+double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter)
 {
-    if (!w->have_blades || !twin->have_blades || w->blades.padded_count != twin->blades.padded_count) return 0;
-    blade_t *a = read_blades(w), *b = read_blades(twin);
+    blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
+    if (!gw || !gt || gw->padded_count != gt->padded_count) return 0;
+    blade_t *a = read_blades(gw), *b = read_blades(gt);
     double worst = 0, jit = 0;
     bool first = prev && !*primed;
-    for (uint32_t i = 0; a && b && i < w->blades.padded_count; i++) {
+    for (uint32_t i = 0; a && b && i < gw->padded_count; i++) {
         if (a[i].v1[3] <= 0.0f) continue;
         float d[3];
         for (int k = 0; k < 3; k++) d[k] = a[i].v2[k] - b[i].v2[k];
@@ -304,16 +310,17 @@ double app_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, 
     return worst;
 }
 
-double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
-                                  float radius, float frac, long *corridor)
+double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+                                    float radius, float frac, long *corridor)
 {
     *corridor = 0;
-    if (!w->have_blades || !twin->have_blades || w->blades.padded_count != twin->blades.padded_count) return 0;
-    blade_t *x = read_blades(w), *y = read_blades(twin);
+    blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
+    if (!gw || !gt || gw->padded_count != gt->padded_count) return 0;
+    blade_t *x = read_blades(gw), *y = read_blades(gt);
     long hit = 0;
     float ab[2] = {b[0] - a[0], b[1] - a[1]};
     float ab2 = ab[0] * ab[0] + ab[1] * ab[1];
-    for (uint32_t i = 0; x && y && i < w->blades.padded_count; i++) {
+    for (uint32_t i = 0; x && y && i < gw->padded_count; i++) {
         float h = x[i].v1[3];
         if (h <= 0.0f) continue;
         float ap[2] = {x[i].v0[0] - a[0], x[i].v0[2] - a[1]};
@@ -330,10 +337,10 @@ double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float
     return *corridor ? (double)hit / (double)*corridor : 0.0;
 }
 
-double app_metrics_bb_offset(app_world_t *w)
+double bench_metrics_bb_offset(app_world_t *w)
 {
-    if (!w->have_bb) return 0;
-    bb_field_t *f = &w->bb;
+    bb_field_t *f = app_world_billboards(w);
+    if (!f) return 0;
     int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
@@ -375,11 +382,11 @@ static void cell_area(const float *a, const float *b, const float *d, const floa
     glm_vec3_scale(out, 0.5f, out);
 }
 
-void app_metrics_bb_distortion(app_world_t *w, app_bb_distortion_t *out)
+void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out)
 {
     memset(out, 0, sizeof *out);
-    if (!w->have_bb) return;
-    bb_field_t *f = &w->bb;
+    bb_field_t *f = app_world_billboards(w);
+    if (!f) return;
     int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
@@ -425,23 +432,25 @@ void app_metrics_bb_distortion(app_world_t *w, app_bb_distortion_t *out)
     free(unit);
 }
 
-long app_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3])
+long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3])
 {
     long n = 0;
-    if (w->mode == SCENE_MODE_BLADE && w->have_blades) {
-        blade_t *b = read_blades(w);
-        for (uint32_t i = 0; b && i < w->blades.padded_count; i++) {
+    blade_gpu_t *g = app_world_blades(w);
+    bb_field_t *f = app_world_billboards(w);
+    if (app_world_mode(w) == SCENE_MODE_BLADE && g) {
+        blade_t *b = read_blades(g);
+        for (uint32_t i = 0; b && i < g->padded_count; i++) {
             const float *p = b[i].v0;
             if (b[i].v1[3] > 0.0f && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
                 p[2] >= lo[2] && p[2] <= hi[2])
                 n++;
         }
         free(b);
-    } else if (w->mode == SCENE_MODE_BILLBOARD && w->have_bb) {
+    } else if (app_world_mode(w) == SCENE_MODE_BILLBOARD && f) {
         bb_point_t *pts;
         float (*mesh)[4];
-        if (!read_bb(&w->bb, &pts, &mesh)) return 0;
-        for (int i = 0; i < w->bb.billboards; i++) {
+        if (!read_bb(f, &pts, &mesh)) return 0;
+        for (int i = 0; i < f->billboards; i++) {
             const float *p = pts[i].position;
             if (p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2])
                 n++;

@@ -1,86 +1,61 @@
-/* app_session: one offscreen run of a scene in an existing GL context, for
+/* bench_session: one offscreen run of a scene in an existing GL context, for
  * `meadow compare`, `meadow bench` and the stability suite: world, frames,
- * timings, last frame, accuracy metrics (app_metrics.c), and optional
- * per-frame hooks (app_eval.h). */
-#include "app/app_eval.h"
+ * timings, last frame, accuracy metrics (bench_metrics.c), and optional
+ * per-frame hooks (bench_local.h). */
+#include "bench/bench_local.h"
 
 #include <string.h>
 
 #include "platform/plat.h"
 
-/* The world update of a blade-only world with the hook's sphere proxies in
- * place of app_world's (same order: colliders, then one blade step). */
-static void update_with_proxies(app_world_t *w, const app_session_hooks_t *h, float t, float dt)
-{
-    w->time = t;
-    app_colliders_update(&w->colliders, &w->terrain_mesh, t);
-    blade_env_t *env = &w->blade_env;
-    env->dt = dt;
-    env->time = t;
-    collide_begin_set(&w->collide);
-    w->collide.sphere_count = h->blade_spheres(w, w->collide.spheres, BLADE_MAX_SPHERES, h->user);
-    blade_gpu_simulate(&w->blades, env, &w->collide);
-}
-
-int app_session_world(const app_session_desc_t *d, app_world_t *w)
+int bench_session_world(const bench_session_desc_t *d, app_world_t *w)
 {
     int rc = app_world_load(w, d->opts);
     if (rc) {
         app_world_destroy(w);
         return rc;
     }
-    scene_desc_t *s = &w->scene;
-    if (d->mode_set) {
-        w->mode = d->mode;
-        s->mode = d->mode;
-    }
-    if (d->msaa) s->msaa = d->msaa;
-    w->reference = d->reference;
-    w->tuning = d->tuning;
-    terrain_desc_t terrain_before = s->terrain;
-    if (d->tweak) d->tweak(s, d->user);
-    /* A tweak of a heightfield rebuilds the terrain app_world_load made. */
-    if (memcmp(&terrain_before, &s->terrain, sizeof terrain_before) != 0 && s->terrain.type == TERRAIN_HEIGHTFIELD) {
-        terrain_free(&w->terrain_mesh);
-        if (!terrain_make_heightfield(&w->terrain_mesh, &s->terrain, s->seed)) {
-            core_log_error("session: cannot build the tweaked heightfield of %s", w->scene_path);
-            app_world_destroy(w);
-            return 1;
-        }
+    app_world_setup_t setup = {.mode = d->mode, .mode_set = d->mode_set, .msaa = d->msaa,
+                               .reference = d->reference, .tuning = d->tuning, .tweak = d->tweak, .user = d->user};
+    if (!app_world_setup(w, &setup)) {
+        app_world_destroy(w);
+        return 1;
     }
     if (!app_world_make_gpu(w)) {
-        core_log_error("session: cannot build the renderer for %s", w->scene_path);
-        rc = w->input_error ? 2 : 1;
+        core_log_error("session: cannot build the renderer for %s", app_world_scene_path(w));
+        rc = app_world_input_error(w) ? 2 : 1;
         app_world_destroy(w);
         return rc;
     }
     return 0;
 }
 
-int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t *h, core_image_t *last,
-                          app_metrics_t *m)
+int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_hooks_t *h, core_image_t *last,
+                            bench_metrics_t *m)
 {
-    static const app_session_hooks_t none = {0};
+    static const bench_session_hooks_t none = {0};
     if (!h) h = &none;
     app_world_t *w = calloc(1, sizeof *w);
     if (!w) return 1;
-    int rc = app_session_world(d, w);
+    int rc = bench_session_world(d, w);
     if (rc) {
         free(w);
         return rc;
     }
-    scene_desc_t *s = &w->scene;
+    const scene_desc_t *s = app_world_scene(w);
     int frames = d->frames > 0 ? d->frames : 60;
     int warmup = d->warmup > 0 ? d->warmup : frames / 4;
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
                                                                .samples = s->msaa, .label = "session"});
     if (!target.fbo) {
-        core_log_error("session: cannot make the %dx%d target for %s", s->size[0], s->size[1], w->scene_path);
+        core_log_error("session: cannot make the %dx%d target for %s", s->size[0], s->size[1],
+                       app_world_scene_path(w));
         app_world_destroy(w);
         free(w);
         return 1;
     }
-    bool own_update = h->blade_spheres && w->have_blades && !w->have_bb && !w->have_chars;
+    bool own_update = h->blade_spheres && app_world_blades(w) && !app_world_billboards(w) &&
+                      !app_world_characters(w);
     cam_t cam;
     scene_camera_init(s, &cam);
     double cpu0 = 0, t_acc = 0;
@@ -94,7 +69,7 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
         float dt = h->step_dt ? h->step_dt(f, s->dt, h->user) : s->dt;
         t_acc += dt;
         float t = (float)t_acc;
-        if (own_update) update_with_proxies(w, h, t, dt);
+        if (own_update) app_world_update_spheres(w, t, dt, h->blade_spheres, h->user);
         else app_world_update(w, t, dt);
         if (h->frame) h->frame(w, f, t, h->user);
         if (h->draw_last_only && f + 1 < frames) continue;
@@ -120,7 +95,7 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
             snprintf(m->pass_name[i], sizeof m->pass_name[i], "%s", gfx_timer_name(i));
             m->frame_ms += m->pass_ms[i];
         }
-        app_world_metrics_ext(w, m, h->ext);
+        bench_metrics_measure(w, m, h->ext);
     }
     bool ok = !last || gfx_target_read(&target, last);
     gfx_target_destroy(&target);
@@ -129,7 +104,7 @@ int app_session_run_hooks(const app_session_desc_t *d, const app_session_hooks_t
     return ok ? 0 : 1;
 }
 
-int app_session_run(const app_session_desc_t *d, core_image_t *last, app_metrics_t *m)
+int bench_session_run(const bench_session_desc_t *d, core_image_t *last, bench_metrics_t *m)
 {
-    return app_session_run_hooks(d, NULL, last, m);
+    return bench_session_run_hooks(d, NULL, last, m);
 }

@@ -1,59 +1,62 @@
-/* app_eval: private interface between the evaluation files of the meadow
- * program: app_metrics.c (accuracy metrics, docs/METRICS.md), app_session.c
- * (offscreen runs with per-frame hooks), app_bench.c (sweeps and charts) and
- * app_stability.c (where each method breaks). */
-#ifndef MEADOW_APP_EVAL_H
-#define MEADOW_APP_EVAL_H
+/* bench_local: private interface between the files of the bench module:
+ * bench_metrics.c (accuracy metrics, docs/METRICS.md), bench_session.c
+ * (offscreen runs with per-frame hooks), bench.c (sweeps and charts),
+ * bench_stability.c (where each method breaks), bench_scaling.c (tile
+ * simulation cost) and bench_compare.c. */
+#ifndef MEADOW_BENCH_LOCAL_H
+#define MEADOW_BENCH_LOCAL_H
 
-#include "app/app_world.h"
+#include "bench/bench.h"
 #include "eval/eval.h"
 
-/* Metrics beyond app_metrics_t (filled next to it by app_world_metrics_ext). */
-typedef struct app_metrics_ext_t {
+/* Metrics beyond bench_metrics_t (filled next to it by bench_metrics_measure). */
+typedef struct bench_metrics_ext_t {
     long near_samples;   /* grass sample points within reach of a collider */
     long inside_samples; /* of those, inside the exact shape */
     long nonfinite;      /* blade or billboard values that are NaN or infinite */
     double below_ground; /* fraction of blade tips more than 1 cm under the terrain */
     int deformed;        /* billboards with a deformed mesh */
-} app_metrics_ext_t;
+} bench_metrics_ext_t;
 
-/* app_world_metrics plus the extra counts (x may be NULL). */
-void app_world_metrics_ext(app_world_t *w, app_metrics_t *m, app_metrics_ext_t *x);
+/* Accuracy metrics of the world's current state into m (reads GPU buffers
+ * back), plus the extra counts into x (may be NULL). */
+void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x);
 /* Largest tip offset max |v2 - v2_twin| (m) between two blade worlds built
  * from the same scene and seed; INFINITY when a value is not finite. When
- * prev (w->blades.padded_count x 3 floats, NULL to skip) is given, *jitter
- * gets the largest change of (v2 - v2_twin) since the previous call with
- * the same prev (0 while *primed is false), prev is updated and *primed set. */
-double app_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter);
+ * prev (app_world_blades(w)->padded_count x 3 floats, NULL to skip) is
+ * given, *jitter gets the largest change of (v2 - v2_twin) since the
+ * previous call with the same prev (0 while *primed is false), prev is
+ * updated and *primed set. */
+double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter);
 /* Fraction of real blades whose tips lie inside `radius` of the line from a
  * to b (xz plane, roots between the ends) that are deflected from the twin
  * by more than frac x their height; *corridor gets their count. */
-double app_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
-                                  float radius, float frac, long *corridor);
+double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+                                    float radius, float frac, long *corridor);
 /* Largest distance (m) of a deformed billboard mesh vertex from its wind
  * pose at the field's time; 0 when no mesh is deformed. */
-double app_metrics_bb_offset(app_world_t *w);
+double bench_metrics_bb_offset(app_world_t *w);
 
 /* Texture distortion of the deformed billboard meshes (docs/METRICS.md). */
-typedef struct app_bb_distortion_t {
+typedef struct bench_bb_distortion_t {
     double max_stretch; /* max |l / l0 - 1| over structural springs; INFINITY when not finite */
     long folded;        /* cells with signed area ratio <= 0 against their reference normal */
     long cells;         /* cells of the deformed meshes */
     long nonfinite;     /* mesh coordinates that are NaN or infinite */
     int deformed;       /* billboards with a deformed mesh */
-} app_bb_distortion_t;
+} bench_bb_distortion_t;
 /* Measures the deformed billboards of w now (all zero without billboards). */
-void app_metrics_bb_distortion(app_world_t *w, app_bb_distortion_t *out);
+void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out);
 
 /* Grass roots inside the world-space box lo..hi: real blade roots v0 in
  * blade mode, billboard root centres in billboard mode (0 otherwise). */
-long app_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]);
+long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]);
 
 /* Per-frame hooks of an offscreen session (all optional). */
-typedef struct app_session_hooks_t {
+typedef struct bench_session_hooks_t {
     /* Replaces the world's blade sphere proxies; only for blade-mode worlds
-     * without characters (the world update is then done here). */
-    int (*blade_spheres)(app_world_t *w, blade_sphere_t *out, int max, void *user);
+     * without characters (the world update is then app_world_update_spheres). */
+    app_world_spheres_fn blade_spheres;
     /* Called after every simulated step. */
     void (*frame)(app_world_t *w, int frame, float t, void *user);
     /* Step length of frame `frame` (default: the scene's dt every step);
@@ -63,25 +66,25 @@ typedef struct app_session_hooks_t {
     void (*drawn)(const gfx_target_t *target, int frame, void *user);
     void *user;
     bool draw_last_only;    /* simulate every frame, draw the last one only */
-    app_metrics_ext_t *ext; /* filled with the metrics when non-NULL */
-} app_session_hooks_t;
+    bench_metrics_ext_t *ext; /* filled with the metrics when non-NULL */
+} bench_session_hooks_t;
 
 /* Loads the world of a session (scene, mode, tweak; a tweaked heightfield is
  * rebuilt) and makes its GPU resources. Returns 0, or the exit code with w
  * destroyed. */
-int app_session_world(const app_session_desc_t *desc, app_world_t *w);
-int app_session_run_hooks(const app_session_desc_t *desc, const app_session_hooks_t *hooks, core_image_t *last,
-                          app_metrics_t *metrics);
+int bench_session_world(const bench_session_desc_t *desc, app_world_t *w);
+int bench_session_run_hooks(const bench_session_desc_t *desc, const bench_session_hooks_t *hooks, core_image_t *last,
+                            bench_metrics_t *metrics);
 
 /* Stability suite: writes stability.csv, stability.md and
  * stability_<case>.png into out; with report (a folder) the screenshots
  * also go to report/images and md (when non-NULL) gets the table with links
  * relative to report. Needs a current GL context (gfx_init done). Returns 0
  * or 1. */
-int app_stability_run(const app_options_t *o, const char *out, bool quick, eval_text_t *md, const char *report);
+int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md, const char *report);
 
-/* Simulation cost of the tiled blade field (app_scaling.c): one run. */
-typedef struct app_scaling_point_t {
+/* Simulation cost of the tiled blade field (bench_scaling.c): one run. */
+typedef struct bench_scaling_point_t {
     float side;        /* terrain side, m */
     int balls;         /* resting balls, each on its own tile */
     int frames;
@@ -90,20 +93,20 @@ typedef struct app_scaling_point_t {
     double physics_ms; /* median "tiles.physics" GPU time */
     long full_blades;  /* the full-field blade mode (field sweep, not --quick) */
     double full_ms;    /* its median "blade.physics"; -1 when not run */
-} app_scaling_point_t;
+} bench_scaling_point_t;
 
-#define APP_SCALING_MAX 6
-typedef struct app_scaling_t {
+#define BENCH_SCALING_MAX 6
+typedef struct bench_scaling_t {
     int field_count, active_count;
-    app_scaling_point_t field[APP_SCALING_MAX];  /* 1x, 4x, 16x (64x) area, 4 balls */
-    app_scaling_point_t active[APP_SCALING_MAX]; /* 1, 2, 4, 8, 16 (32) balls */
+    bench_scaling_point_t field[BENCH_SCALING_MAX];  /* 1x, 4x, 16x (64x) area, 4 balls */
+    bench_scaling_point_t active[BENCH_SCALING_MAX]; /* 1, 2, 4, 8, 16 (32) balls */
     double slope, intercept, r2; /* least squares ms = intercept + slope * slots (active sweep) */
     char renderer[256];
-} app_scaling_t;
+} bench_scaling_t;
 
 /* `bench --scaling`: the field and active sweeps; writes scaling.csv, the
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
-int app_scaling_run(const app_options_t *o, const char *out, bool quick, app_scaling_t *res, eval_text_t *md);
+int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md);
 
 #endif
