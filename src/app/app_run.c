@@ -142,13 +142,13 @@ static void write_summary(app_t *app, double wall_s)
                      "mode: %s\nraster: %s%s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
                      "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
                      "screenshots: %d\n"
-                     "gpu passes (median ms over last <=256 frames, mean ms):\n",
+                     "gpu passes (median ms over last <=256 frames, mean ms)%s:\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
                      scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw", calib,
                      app->world.scene.seed, app->frames, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
-                     app->shots_written);
+                     app->shots_written, gfx_timer_sync() ? ", each after glFinish (MEADOW_TIMER_SYNC)" : "");
     double frame_gpu = 0;
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++) {
         n += snprintf(buf + n, sizeof buf - (size_t)n, "  %-14s %9.4f %9.4f\n", gfx_timer_name(i),

@@ -190,6 +190,9 @@ double gfx_timer_median_ms(int i); /* median of the last 256 results */
 /* Drains all outstanding queries (blocking). For end-of-run summaries. */
 void gfx_timer_flush(void);
 void gfx_timer_reset_stats(void);
+/* True when MEADOW_TIMER_SYNC=1: every pass begins after glFinish, so no
+ * pass is charged for earlier work still in flight (profiling only). */
+bool gfx_timer_sync(void);
 
 /* ---- text HUD (stb_easy_font) ----------------------------------------------
  * Draws text in pixels from the top-left of the current viewport. */

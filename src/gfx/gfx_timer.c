@@ -1,6 +1,13 @@
 /* gfx_timer: per-pass GPU timings with GL_TIME_ELAPSED queries in a ring of
  * GFX_TIMER_LATENCY frames. A slot is read only when its result is
- * available, so the CPU never waits on the GPU. */
+ * available, so the CPU never waits on the GPU.
+ *
+ * Attribution: a driver may start a pass's timer while earlier work is
+ * still in flight, so a pass that must wait for it (a transform-feedback
+ * write into a buffer the previous frame's draw still reads) shows that
+ * wait as its own time. With MEADOW_TIMER_SYNC=1 in the environment every
+ * pass begins after glFinish: the frame is slower, each pass's time is its
+ * own (docs/PERFORMANCE.md). */
 #include "gfx/gfx_local.h"
 
 #include <stdio.h>
@@ -25,7 +32,17 @@ static struct {
     int frame;
     int open;
     bool warned_full;
-} t = {.open = -1};
+    int sync; /* -1 unread, else MEADOW_TIMER_SYNC */
+} t = {.open = -1, .sync = -1};
+
+bool gfx_timer_sync(void)
+{
+    if (t.sync < 0) {
+        const char *e = getenv("MEADOW_TIMER_SYNC");
+        t.sync = e && strcmp(e, "1") == 0;
+    }
+    return t.sync == 1;
+}
 
 static void record(pass_t *p, double ms)
 {
@@ -63,6 +80,7 @@ void gfx_timer_frame_begin(void)
 
 void gfx_timer_begin(const char *pass)
 {
+    if (gfx_timer_sync()) glFinish();
     int i;
     for (i = 0; i < t.count; i++)
         if (strcmp(t.passes[i].name, pass) == 0) break;
