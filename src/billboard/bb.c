@@ -324,7 +324,8 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
 
 /* Each billboard's bounding sphere as bb_collide.geom computes it (centre
  * half way up the growth direction, radius half the diagonal plus the wind
- * strength), read back once in chunks. */
+ * strength), read back once in chunks through a staging buffer (a direct
+ * read made the H100 driver keep the points in host memory afterwards). */
 static bool read_spheres(bb_field_t *f)
 {
     enum { CHUNK = 16384 };
@@ -337,7 +338,10 @@ static bool read_spheres(bb_field_t *f)
     }
     for (int i0 = 0; i0 < f->billboards; i0 += CHUNK) {
         int n = f->billboards - i0 < CHUNK ? f->billboards - i0 : CHUNK;
-        gfx_buffer_read(f->points, sizeof *pts * (size_t)i0, sizeof *pts * (size_t)n, pts);
+        if (!gfx_buffer_read_staged(f->points, sizeof *pts * (size_t)i0, sizeof *pts * (size_t)n, pts)) {
+            free(pts);
+            return false;
+        }
         for (int i = 0; i < n; i++) {
             const bb_point_t *p = &pts[i];
             vec3 right, up;
@@ -430,7 +434,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->ranges = malloc(sizeof *f->ranges * (size_t)f->tree.leaf_count);
     f->firsts = malloc(sizeof *f->firsts * (size_t)f->tree.leaf_count);
     f->counts_gl = malloc(sizeof *f->counts_gl * (size_t)f->tree.leaf_count);
-    if (!f->ranges || !f->firsts || !f->counts_gl) {
+    f->recover_ranges = malloc(sizeof *f->recover_ranges * 4 * (size_t)f->tree.leaf_count);
+    if (!f->ranges || !f->firsts || !f->counts_gl || !f->recover_ranges) {
         core_log_error("%s:%d: out of memory", __FILE__, __LINE__);
         goto fail;
     }
@@ -449,9 +454,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
                                                              .gs = "billboard/bb_collide.geom", .defines = defines,
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
-    f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                             .gs = "billboard/bb_recover.geom", .defines = defines,
-                                                             .tf_varyings = bb_tf_varyings, .label = "bb.recover"});
+    f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
+                                                             .label = "bb.recover"});
     f->render_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
                                                             .gs = "billboard/bb_render.geom",
                                                             .fs = "billboard/bb_render.frag", .defines = defines,
@@ -474,6 +478,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     pool[0] = (uint32_t)d->max_deformed;
     for (int s = 0; s < d->max_deformed; s++) pool[4 + s] = (uint32_t)(d->max_deformed - 1 - s);
     f->pool = gfx_buffer_make(&(gfx_buffer_desc_t){.size = pool_words * 4, .data = pool, .label = "bb.pool"});
+    f->recover_range_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->tree.leaf_count * 16, .dynamic = true,
+                                                                .label = "bb.recover_ranges"});
     free(pool);
     f->meshes = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)d->max_deformed * (size_t)(n * m) * 16,
                                                      .label = "bb.meshes"});
@@ -498,7 +504,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->points_vao = gfx_vertex_array_make("bb.points_vao");
     f->empty_vao = gfx_vertex_array_make("bb.empty_vao");
     f->tf = gfx_transform_feedback_make("bb.tf");
-    if (!f->pool.id || !f->meshes.id || !f->points.id || !f->scratch.id || !f->objects.id || !f->cubes.id ||
+    if (!f->pool.id || !f->recover_range_buf.id || !f->meshes.id || !f->points.id || !f->scratch.id || !f->objects.id || !f->cubes.id ||
         !f->cube_target.fbo)
         goto fail;
     f->readback = gfx_readback_make(16, BB_READBACK_SLOTS, "bb.pool_readback");
@@ -541,6 +547,8 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->slope_prog);
     bb_octree_free(&f->tree);
     free(f->ranges);
+    free(f->recover_ranges);
+    gfx_buffer_destroy(&f->recover_range_buf);
     free(f->firsts);
     free(f->counts_gl);
     free(f->spheres);
@@ -948,15 +956,31 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
     int nrec = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), NULL,
                                  f->ranges, f->tree.leaf_count);
     if (nrec > 0) {
+        int nr = merge_ranges(f, nrec);
+        uint32_t threads = 0;
+        for (int i = 0; i < nr; i++) {
+            f->recover_ranges[4 * i + 0] = (uint32_t)f->firsts[i];
+            f->recover_ranges[4 * i + 1] = (uint32_t)f->counts_gl[i];
+            f->recover_ranges[4 * i + 2] = threads;
+            threads += (uint32_t)f->counts_gl[i];
+        }
         gfx_program_t p = f->recover_prog;
         glUseProgram(p.id);
         glUniform1f(loc(p, "u_time"), time);
         glUniform1f(loc(p, "u_dt"), dt);
-        glUniform1f(loc(p, "u_recover"), d->recover_time);
+        glUniform1i(loc(p, "u_range_count"), nr);
+        glUniform1ui(loc(p, "u_threads"), threads);
         set_wind(p.id, &d->wind);
-        int nr = merge_ranges(f, nrec);
         gfx_timer_begin("bb.recover");
-        tf_pass(f, p, f->firsts, f->counts_gl, nr, NULL);
+        gfx_buffer_update(f->recover_range_buf, 0, (size_t)nr * 16, f->recover_ranges);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, f->recover_range_buf.id);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        glDispatchCompute((threads + 63u) / 64u, 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                        GL_BUFFER_UPDATE_BARRIER_BIT);
         gfx_timer_end();
         gpu_work = true;
     }

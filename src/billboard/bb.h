@@ -149,6 +149,8 @@ typedef struct bb_field_t {
     bb_range_t *ranges;    /* leaf_count scratch */
     GLint *firsts;
     GLsizei *counts_gl;
+    uint32_t *recover_ranges;      /* leaf_count x (first, count, first thread, 0) */
+    gfx_buffer_t recover_range_buf; /* the same, for bb_recover.comp */
     float cube_half[BB_MAX_OBJECTS], cube_centre[BB_MAX_OBJECTS][3];
     /* Collide batches: each billboard's bounding sphere (centre, radius, as
      * bb_collide.geom computes it) read back once after generation, for

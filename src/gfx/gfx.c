@@ -174,6 +174,23 @@ void gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)
     glGetNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, out);
 }
 
+bool gfx_buffer_read_staged(gfx_buffer_t buf, size_t offset, size_t size, void *out)
+{
+    enum { STAGE = 4 << 20 };
+    size_t stage = size < STAGE ? size : STAGE;
+    if (stage == 0) return true;
+    gfx_buffer_t tmp = gfx_buffer_make(&(gfx_buffer_desc_t){.size = stage, .readable = true, .label = "gfx.staging"});
+    if (!tmp.id) return false;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    for (size_t done = 0; done < size; done += stage) {
+        size_t n = size - done < stage ? size - done : stage;
+        glCopyNamedBufferSubData(buf.id, tmp.id, (GLintptr)(offset + done), 0, (GLsizeiptr)n);
+        glGetNamedBufferSubData(tmp.id, 0, (GLsizeiptr)n, (char *)out + done);
+    }
+    gfx_buffer_destroy(&tmp);
+    return true;
+}
+
 /* ---- textures ----------------------------------------------------------------- */
 
 static int mip_count(int w, int h)
