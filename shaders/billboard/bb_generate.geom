@@ -1,29 +1,29 @@
 #version 450
 /* bb_generate.geom: billboard generation of Orthmann et al. 2009 (sec. 3,
  * layout textures). One invocation per tile of BB_TILE x BB_TILE candidate
- * cells of the current octree leaf's footprint; emits one point per accepted
- * candidate (bb_generate, twin of bb_layout_sample) whose root, placed on the
- * terrain height texture, lies in leaf u_leaf. Drawing leaf after leaf in
- * Morton order inside one transform feedback makes the buffer ordered by
- * leaf; the per-leaf count goes to an SSBO with atomics. */
+ * cells of an octree leaf's footprint (entries[v_entry[0]]); emits one point
+ * per accepted candidate (bb_generate, twin of bb_layout_sample) whose root,
+ * placed on the terrain height texture, lies in that leaf. The leaves' tiles
+ * follow each other in Morton order in one draw, and transform feedback
+ * keeps primitive order, so the buffer is ordered by leaf; the per-leaf
+ * count goes to an SSBO with atomics. */
 #include "common/hash.glsl"
 #include "common/bb.glsl"
 #define BB_POINTS_OUT
 #include "billboard/bb_points.glsl"
+#include "billboard/bb_gen_leaves.glsl"
 
 layout(points) in;
 layout(points, max_vertices = BB_TILE_POINTS) out;
 
 flat in int v_tile[];
+flat in int v_entry[];
 
 uniform sampler2D u_extent;
 uniform sampler2D u_direction;
 uniform sampler2D u_messiness;
 uniform sampler2D u_heights;   /* R32F grid vertex heights */
 uniform bb_gen u_gen;
-uniform ivec4 u_cells;         /* candidate cells [x0, z0] .. (x1, z1) of this leaf */
-uniform int u_tiles_x;
-uniform uint u_leaf;
 uniform vec3 u_tree_min;
 uniform vec3 u_tree_max;
 uniform int u_side;
@@ -69,20 +69,21 @@ uint leaf_of(vec3 p)
 
 void main()
 {
-    int tx = v_tile[0] % u_tiles_x, tz = v_tile[0] / u_tiles_x;
+    bb_gen_entry e = entries[v_entry[0]];
+    int tx = v_tile[0] % e.tiles_x, tz = v_tile[0] / e.tiles_x;
     for (int dz = 0; dz < BB_TILE; dz++) {
         for (int dx = 0; dx < BB_TILE; dx++) {
-            int ix = u_cells.x + tx * BB_TILE + dx, iz = u_cells.y + tz * BB_TILE + dz;
-            if (ix >= u_cells.z || iz >= u_cells.w) continue;
+            int ix = e.cells.x + tx * BB_TILE + dx, iz = e.cells.y + tz * BB_TILE + dz;
+            if (ix >= e.cells.z || iz >= e.cells.w) continue;
             bb_point p;
             if (!bb_generate(u_extent, u_direction, u_messiness, u_gen, ix, iz, p)) continue;
             if (p.position.x > u_tree_max.x || p.position.z > u_tree_max.z) continue;
             float y = terrain_height(p.position.x, p.position.z);
             if (y < -1e37) continue;
             p.position.y = y;
-            if (leaf_of(p.position) != u_leaf) continue;
+            if (leaf_of(p.position) != e.leaf) continue;
             p.pad0 = BB_NO_SLOT;
-            atomicAdd(leaf_count[u_leaf], 1u);
+            atomicAdd(leaf_count[e.leaf], 1u);
             bb_emit_point(p);
         }
     }

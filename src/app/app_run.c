@@ -4,6 +4,7 @@
 #include "app/app_world.h"
 
 #include <assert.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -25,6 +26,8 @@ typedef struct app_t {
     char shots[16][1100];
     double frame_ms_avg;
     double raster_calib_ms[2]; /* --raster auto: GPU ms of a frame, hardware and compute */
+    app_frame_times_t times;
+    double startup_draws, startup_ranges, startup_dispatches;
 } app_t;
 
 /* --raster auto: draws the first frame's view with each rasterizer (one
@@ -64,6 +67,44 @@ static void calibrate_raster(app_t *app, float dt)
     gfx_timer_reset_stats();
     core_log_info("raster auto: a frame takes %.3f ms with the hardware path, %.3f ms with compute: %s", best[0],
                   best[1], compute ? "compute" : "hw");
+}
+
+/* ---- frame times -------------------------------------------------------------
+ * What a user feels: wall-clock time from the end of one frame to the end of
+ * the next, where a frame ends once at most APP_FRAMES_IN_FLIGHT frames are
+ * unfinished on the GPU (gfx_frame_end, a fence wait as a swap chain would
+ * block; no glFinish). In steady state that is the larger of the CPU and the
+ * GPU time of a frame, and a stall in either shows. Beside it the CPU part:
+ * frame start to the last command submitted. The first `warmup` frames
+ * (first-use compiles, lazy allocations, the tiles' first activation) are
+ * left out; the newest APP_FRAME_HISTORY frames are kept. */
+static void frame_times_add(app_frame_times_t *ft, int frame, double wall_ms, double cpu_ms)
+{
+    if (frame < ft->warmup) return;
+    ft->wall[ft->next] = wall_ms;
+    ft->cpu[ft->next] = cpu_ms;
+    ft->next = (ft->next + 1) % APP_FRAME_HISTORY;
+    if (ft->count < APP_FRAME_HISTORY) ft->count++;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* p50, p95, p99 (nearest rank) and the worst of n samples. */
+static void percentiles(const double *v, int n, double out[4])
+{
+    static double tmp[APP_FRAME_HISTORY];
+    memcpy(tmp, v, sizeof *v * (size_t)n);
+    qsort(tmp, (size_t)n, sizeof *tmp, cmp_double);
+    static const double q[3] = {0.50, 0.95, 0.99};
+    for (int k = 0; k < 3; k++) {
+        int rank = (int)ceil(q[k] * n);
+        out[k] = tmp[(rank > 0 ? rank : 1) - 1];
+    }
+    out[3] = tmp[n - 1];
 }
 
 static void handle_keys(app_t *app, float real_dt)
@@ -124,6 +165,75 @@ static void screenshot(app_t *app, int frame)
     }
 }
 
+static int summary_frame_times(const app_t *app, char *buf, size_t size)
+{
+    const app_frame_times_t *ft = &app->times;
+    if (ft->count == 0) return snprintf(buf, size, "frame times: no frame after the %d warm-up frames\n", ft->warmup);
+    double w[4], c[4];
+    percentiles(ft->wall, ft->count, w);
+    percentiles(ft->cpu, ft->count, c);
+    return snprintf(buf, size,
+                    "frame times after warm-up (%d frames left out; %d frames, at most %d in flight), ms:\n"
+                    "  wall (CPU and GPU)  p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
+                    "  cpu (submit)        p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
+                    "  p99/p50: %.2f (target <= 1.5: %s)\n",
+                    ft->warmup, ft->count, APP_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3],
+                    w[2] / w[0], w[2] <= 1.5 * w[0] ? "met" : "missed");
+}
+
+static int summary_startup(const app_t *app, const app_world_stats_t *st, char *buf, size_t size)
+{
+    const double *s = app->world.stage_ms;
+    double total = 0.0;
+    for (int k = 0; k < APP_STAGES; k++) total += s[k];
+    int n = snprintf(buf, size, "startup_ms (start of the run to the first frame done on the GPU): %.1f\n", total);
+    for (int k = 0; k < APP_STAGES && n < (int)size - 160; k++) {
+        n += snprintf(buf + n, size - (size_t)n, "  %-12s %9.1f", app_stage_name(k), s[k]);
+        if (k == APP_STAGE_BILLBOARDS && st->billboards > 0) {
+            n += snprintf(buf + n, size - (size_t)n, "  (");
+            for (int b = 0; b < BB_MAKE_STAGES; b++)
+                n += snprintf(buf + n, size - (size_t)n, "%s%s %.1f", b ? ", " : "", bb_make_stage_name(b),
+                              st->bb_make_stage_ms[b]);
+            n += snprintf(buf + n, size - (size_t)n, ")");
+        }
+        n += snprintf(buf + n, size - (size_t)n, "\n");
+    }
+    n += snprintf(buf + n, size - (size_t)n, "startup work: draw calls %.0f (ranges %.0f), dispatches %.0f\n",
+                  app->startup_draws, app->startup_ranges, app->startup_dispatches);
+    return n < (int)size ? n : (int)size - 1;
+}
+
+/* Work counters (gfx_count) as means per frame over the run; passes with
+ * no work are left out. */
+static int summary_work(char *buf, size_t size)
+{
+    int frames = gfx_count_frames() > 0 ? gfx_count_frames() : 1;
+    int n = snprintf(buf, size,
+                     "work per frame (means over %d frames; counters, not timings):\n"
+                     "  %-16s %10s %10s %10s %12s %12s %12s\n",
+                     gfx_count_frames(), "pass", "draws", "ranges", "dispatches", "groups", "primitives",
+                     "tf_written");
+    double sum[GFX_COUNT_KINDS] = {0};
+    for (int i = 0; i < gfx_count_pass_count() && n < (int)size - 160; i++) {
+        double v[GFX_COUNT_KINDS], any = 0.0;
+        for (int k = 0; k < GFX_COUNT_KINDS; k++) {
+            v[k] = gfx_count_pass_total(i, k) / frames;
+            sum[k] += v[k];
+            any += v[k];
+        }
+        if (any == 0.0) continue;
+        n += snprintf(buf + n, size - (size_t)n, "  %-16s %10.3f %10.3f %10.3f %12.3f %12.3f %12.3f\n",
+                      gfx_count_pass_name(i), v[0], v[1], v[2], v[3], v[4], v[5]);
+    }
+    n += snprintf(buf + n, size - (size_t)n, "  %-16s %10.3f %10.3f %10.3f %12.3f %12.3f %12.3f\n", "total", sum[0],
+                  sum[1], sum[2], sum[3], sum[4], sum[5]);
+    n += snprintf(buf + n, size - (size_t)n, "items per frame:\n");
+    for (int i = 0; i < gfx_count_item_count() && n < (int)size - 64; i++)
+        n += snprintf(buf + n, size - (size_t)n, "  %-24s %14.3f\n", gfx_count_item_name(i),
+                      gfx_count_item_total(i) / frames);
+    return n < (int)size ? n : (int)size - 1;
+}
+
 static void write_summary(app_t *app, double wall_s)
 {
     app_world_stats_t st;
@@ -132,7 +242,7 @@ static void write_summary(app_t *app, double wall_s)
     if (app->raster_calib_ms[0] > 0.0)
         snprintf(calib, sizeof calib, " (auto: frame %.3f ms hw, %.3f ms compute)", app->raster_calib_ms[0],
                  app->raster_calib_ms[1]);
-    char buf[8192];
+    char buf[16384];
     int n = snprintf(buf, sizeof buf,
                      "meadow run summary\n"
                      "renderer: %s\n"
@@ -142,7 +252,7 @@ static void write_summary(app_t *app, double wall_s)
                      "mode: %s\nraster: %s%s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
                      "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
                      "screenshots: %d\n"
-                     "gpu passes (median ms over last <=256 frames, mean ms)%s:\n",
+                     "gpu passes after warm-up (median ms over the last <=256 frames, mean ms, max ms)%s:\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
                      scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw", calib,
@@ -151,8 +261,8 @@ static void write_summary(app_t *app, double wall_s)
                      app->shots_written, gfx_timer_sync() ? ", each after glFinish (MEADOW_TIMER_SYNC)" : "");
     double frame_gpu = 0;
     for (int i = 0; i < gfx_timer_count() && n < (int)sizeof buf - 128; i++) {
-        n += snprintf(buf + n, sizeof buf - (size_t)n, "  %-14s %9.4f %9.4f\n", gfx_timer_name(i),
-                      gfx_timer_median_ms(i), gfx_timer_avg_ms(i));
+        n += snprintf(buf + n, sizeof buf - (size_t)n, "  %-14s %9.4f %9.4f %9.4f\n", gfx_timer_name(i),
+                      gfx_timer_median_ms(i), gfx_timer_avg_ms(i), gfx_timer_max_ms(i));
         if (strcmp(gfx_timer_name(i), "bb.generate") != 0) frame_gpu += gfx_timer_median_ms(i);
     }
     n += snprintf(buf + n, sizeof buf - (size_t)n,
@@ -171,6 +281,9 @@ static void write_summary(app_t *app, double wall_s)
                   st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
+    n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
+    n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
+    n += summary_work(buf + n, sizeof buf - (size_t)n);
     if (app->opts->floor) {
         double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
@@ -194,6 +307,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         return 2;
     }
     app_world_t *w = &app.world;
+    double t_run = plat_time();
     int rc = app_world_load(w, o);
     if (rc) {
         app_world_destroy(w);
@@ -216,17 +330,29 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     app.target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
                                                       .samples = s->msaa, .label = "main"});
     scene_camera_init(s, &app.cam);
+    w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
+                                     w->stage_ms[APP_STAGE_TERRAIN];
     bool ok = app.target.fbo && app_world_make_gpu(w);
     if (ok && s->raster == SCENE_RASTER_AUTO) calibrate_raster(&app, (float)s->dt);
+    gfx_count_flush();
+    for (int i = 0; i < gfx_count_pass_count(); i++) {
+        app.startup_draws += gfx_count_pass_total(i, GFX_COUNT_DRAWS);
+        app.startup_ranges += gfx_count_pass_total(i, GFX_COUNT_DRAW_RANGES);
+        app.startup_dispatches += gfx_count_pass_total(i, GFX_COUNT_DISPATCHES);
+    }
+    gfx_count_reset();
+    /* Warm-up: a quarter of a fixed run, at most APP_WARMUP_FRAMES. */
+    app.times.warmup = app.frames > 0 && app.frames / 4 < APP_WARMUP_FRAMES ? app.frames / 4 : APP_WARMUP_FRAMES;
     if (!ok) {
         if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
         rc = w->input_error ? 2 : 1;
     }
     scene_clock_t clock;
     scene_clock_init(&clock, s->dt, headless);
-    double t0 = plat_time(), last = t0;
+    double t0 = plat_time(), last = t0, frame_end = t0;
     int frame = 0;
     while (ok && !plat_should_close() && !app_interrupted() && (app.frames == 0 || frame < app.frames)) {
+        if (frame == app.times.warmup) gfx_timer_skip_warmup();
         plat_poll_events();
         double now = plat_time(), real_dt = now - last;
         last = now;
@@ -265,6 +391,13 @@ int app_run(const app_options_t *o, app_montage_fn montage)
             gfx_target_present(&app.target, fw, fh);
             plat_swap();
         }
+        double submitted = plat_time();
+        /* The first frame is waited for: the end of start-up. */
+        gfx_frame_end(frame == 1 ? 1 : APP_FRAMES_IN_FLIGHT);
+        double end = plat_time();
+        if (frame == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - t0) * 1e3;
+        frame_times_add(&app.times, frame - 1, (end - frame_end) * 1e3, (submitted - frame_end) * 1e3);
+        frame_end = end;
         if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
     }
     if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", frame);

@@ -8,6 +8,22 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "platform/plat.h"
+
+const char *app_stage_name(int stage)
+{
+    static const char *const names[APP_STAGES] = {"scene",      "terrain",    "context", "terrain_gpu",
+                                                  "characters", "billboards", "blades",  "first_frame"};
+    return stage >= 0 && stage < APP_STAGES ? names[stage] : "?";
+}
+
+/* Adds the wall time since *mark to the world's stage and moves the mark. */
+static void stage_done(app_world_t *w, int stage, double *mark)
+{
+    double now = plat_time();
+    w->stage_ms[stage] += (now - *mark) * 1e3;
+    *mark = now;
+}
 
 static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
 {
@@ -22,6 +38,7 @@ static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
 int app_world_load(app_world_t *w, const app_options_t *o)
 {
     memset(w, 0, sizeof *w);
+    double mark = plat_time();
     char err[1024];
     if (o->scene) snprintf(w->scene_path, sizeof w->scene_path, "%s", o->scene);
     else core_fs_resolve("scenes/meadow.json", w->scene_path, sizeof w->scene_path);
@@ -39,6 +56,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
     w->character_override = o->character;
     w->clip_override = o->clip;
+    stage_done(w, APP_STAGE_SCENE, &mark);
     if (s->terrain.type == TERRAIN_MESH) {
         char mesh[1024];
         if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
@@ -50,6 +68,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         core_log_error("%s: cannot build the heightfield terrain", w->scene_path);
         return 2;
     }
+    stage_done(w, APP_STAGE_TERRAIN, &mark);
     return 0;
 }
 
@@ -302,7 +321,9 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 
 bool app_world_make_gpu(app_world_t *w)
 {
+    double mark = plat_time();
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
+    stage_done(w, APP_STAGE_TERRAIN_GPU, &mark);
     if (w->gpu_ready && (w->scene.character_count || w->character_override)) {
         w->have_chars = character_set_make(&w->chars, &(character_set_desc_t){
                                                           .characters = w->scene.characters,
@@ -315,10 +336,13 @@ bool app_world_make_gpu(app_world_t *w)
         w->input_error = !w->have_chars;
         w->gpu_ready = w->have_chars;
     }
+    stage_done(w, APP_STAGE_CHARACTERS, &mark);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
+    stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
     else if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
+    stage_done(w, APP_STAGE_BLADES, &mark);
     return w->gpu_ready;
 }
 
@@ -579,6 +603,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->bb_deformed = s.deformed;
         st->bb_generate_ms = s.generate_ms;
         st->bb_make_ms = s.make_ms;
+        for (int k = 0; k < BB_MAKE_STAGES; k++) st->bb_make_stage_ms[k] = s.make_stage_ms[k];
         int nm = (w->bb.desc.subdiv[0] - 1) * (w->bb.desc.subdiv[1] - 1) * 2;
         st->triangles += (long)(s.billboards - s.deformed) * 2 + (long)s.deformed * nm;
     }

@@ -77,6 +77,35 @@ typedef struct app_tuning_t {
                                 sphere proxies (the set's cube proxies; not the tiles) */
 } app_tuning_t;
 
+/* ---- start-up stages -------------------------------------------------------------
+ * Wall-clock ms of each stage from the start of app_run to the end of the
+ * first frame on the GPU (summary.txt "startup"). app_world_load and
+ * app_world_make_gpu time their own stages; app_run the context and the
+ * first frame. */
+enum {
+    APP_STAGE_SCENE,       /* scene file and CLI overrides */
+    APP_STAGE_TERRAIN,     /* heightfield or terrain mesh (CPU) */
+    APP_STAGE_CONTEXT,     /* GL context, gfx, render target */
+    APP_STAGE_TERRAIN_GPU, /* terrain and collider buffers and programs */
+    APP_STAGE_CHARACTERS,  /* models, clips, skinning buffers */
+    APP_STAGE_BILLBOARDS,  /* bb_field_make (its own stages in bb_stats_t) */
+    APP_STAGE_BLADES,      /* blade field or tiles */
+    APP_STAGE_FIRST_FRAME, /* first update + draw, until its fence signals */
+    APP_STAGES
+};
+const char *app_stage_name(int stage);
+
+/* ---- frame times (app_run) ---------------------------------------------------------- */
+#define APP_FRAMES_IN_FLIGHT 2
+#define APP_WARMUP_FRAMES 60
+#define APP_FRAME_HISTORY 16384
+typedef struct app_frame_times_t {
+    int warmup;                     /* frames left out at the start */
+    double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
+    double cpu[APP_FRAME_HISTORY];  /* ms, frame start to the last command submitted */
+    int count, next;
+} app_frame_times_t;
+
 /* ---- the world ------------------------------------------------------------------ */
 typedef struct app_world_t {
     scene_desc_t scene; /* resolved, CLI overrides applied */
@@ -120,6 +149,7 @@ typedef struct app_world_t {
     bool input_error; /* a model file failed to load: exit code 2 */
     bool warned_objects;
     float time;
+    double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */
 } app_world_t;
 
 /* Scene file, CLI overrides and terrain (no GL). Returns 0, or 2 after one
@@ -146,6 +176,7 @@ typedef struct app_world_stats_t {
     long billboards;
     int bb_deformed;
     double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */
+    double bb_make_stage_ms[BB_MAKE_STAGES];
     int characters;
     int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
     long tile_blades_simulated;

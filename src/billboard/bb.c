@@ -190,18 +190,67 @@ static uint32_t compact3(uint32_t m)
     return r;
 }
 
+/* std430 twin of struct bb_gen_entry in bb_gen_leaves.glsl. */
+typedef struct bb_gen_entry_t {
+    int32_t cells[4];
+    int32_t tiles_x;
+    uint32_t leaf, first, pad;
+} bb_gen_entry_t;
+
+/* The leaves whose footprint and terrain height range can hold billboards,
+ * in Morton order, each with its tiles of candidate cells and the first
+ * vertex of those tiles in the one generation draw. Returns the count; the
+ * total number of tiles goes to *vertices. */
+static int gen_entries(const bb_field_t *f, const float *clo, const float *chi, int tile, bb_gen_entry_t *out,
+                       uint32_t *vertices)
+{
+    const bb_octree_t *tr = &f->tree;
+    const bb_gen_desc_t *g = &f->gen;
+    int n = 0;
+    uint32_t first = 0;
+    for (int leaf = 0; leaf < tr->leaf_count; leaf++) {
+        int node = bb_octree_leaf_node(tr, (uint32_t)leaf);
+        int cx = (int)compact3((uint32_t)leaf), cz = (int)compact3((uint32_t)leaf >> 2);
+        float ylo = clo[cz * tr->side + cx], yhi = chi[cz * tr->side + cx];
+        float eps = 1e-3f * (tr->desc.max[1] - tr->desc.min[1]);
+        if (yhi < tr->lo[node][1] - eps || ylo > tr->hi[node][1] + eps) continue;
+        int c[4];
+        for (int q = 0; q < 2; q++) {
+            int a = q * 2;
+            c[q] = (int)floorf((tr->lo[node][a] - g->origin[q]) / g->spacing) - 1;
+            c[q + 2] = (int)floorf((tr->hi[node][a] - g->origin[q]) / g->spacing) + 2;
+            c[q] = c[q] < 0 ? 0 : c[q];
+            c[q + 2] = c[q + 2] > f->cells[q] ? f->cells[q] : c[q + 2];
+        }
+        int tx = (c[2] - c[0] + tile - 1) / tile, tz = (c[3] - c[1] + tile - 1) / tile;
+        if (tx <= 0 || tz <= 0) continue;
+        out[n++] = (bb_gen_entry_t){.cells = {c[0], c[1], c[2], c[3]}, .tiles_x = tx, .leaf = (uint32_t)leaf,
+                                    .first = first};
+        first += (uint32_t)(tx * tz);
+    }
+    *vertices = first;
+    return n;
+}
+
 static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5], int tile)
 {
     bb_octree_t *tr = &f->tree;
     int side = tr->side;
     float *clo = malloc(sizeof *clo * (size_t)(side * side)), *chi = malloc(sizeof *chi * (size_t)(side * side));
     uint32_t *counts = calloc((size_t)tr->leaf_count, sizeof *counts);
-    if (!clo || !chi || !counts) {
-        free(clo), free(chi), free(counts);
+    bb_gen_entry_t *entries = malloc(sizeof *entries * (size_t)tr->leaf_count);
+    if (!clo || !chi || !counts || !entries) {
+        free(clo), free(chi), free(counts), free(entries);
         core_log_error("%s:%d: out of memory for generation", __FILE__, __LINE__);
         return false;
     }
     column_ranges(f, t, clo, chi);
+    uint32_t vertices = 0;
+    int nentries = gen_entries(f, clo, chi, tile, entries, &vertices);
+    gfx_buffer_t entry_buf = gfx_buffer_make(&(gfx_buffer_desc_t){
+        .size = sizeof *entries * (size_t)(nentries > 0 ? nentries : 1), .data = entries,
+        .label = "bb.generate.leaves"});
+    free(entries);
     f->counts = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof *counts * (size_t)tr->leaf_count,
                                                      .data = counts, .label = "bb.leaf_counts"});
     GLuint query = gfx_query_make(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, "bb.generate.written");
@@ -235,7 +284,9 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     glUniform2f(loc(p, "u_hmin"), hgrid[0], hgrid[1]);
     glUniform2f(loc(p, "u_hmax"), hgrid[2], hgrid[3]);
     glUniform1f(loc(p, "u_hcell"), hgrid[4]);
+    glUniform1i(loc(p, "u_entry_count"), nentries);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, f->counts.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, entry_buf.id);
     glBindVertexArray(f->empty_vao);
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -246,29 +297,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->points.id);
     glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query);
     glBeginTransformFeedback(GL_POINTS);
-    int drawn = 0;
-    for (int leaf = 0; leaf < tr->leaf_count; leaf++) {
-        int node = bb_octree_leaf_node(tr, (uint32_t)leaf);
-        int cx = (int)compact3((uint32_t)leaf), cz = (int)compact3((uint32_t)leaf >> 2);
-        float ylo = clo[cz * side + cx], yhi = chi[cz * side + cx];
-        float eps = 1e-3f * (tr->desc.max[1] - tr->desc.min[1]);
-        if (yhi < tr->lo[node][1] - eps || ylo > tr->hi[node][1] + eps) continue;
-        int c[4];
-        for (int q = 0; q < 2; q++) {
-            int a = q * 2;
-            c[q] = (int)floorf((tr->lo[node][a] - g->origin[q]) / g->spacing) - 1;
-            c[q + 2] = (int)floorf((tr->hi[node][a] - g->origin[q]) / g->spacing) + 2;
-            c[q] = c[q] < 0 ? 0 : c[q];
-            c[q + 2] = c[q + 2] > f->cells[q] ? f->cells[q] : c[q + 2];
-        }
-        int tx = (c[2] - c[0] + tile - 1) / tile, tz = (c[3] - c[1] + tile - 1) / tile;
-        if (tx <= 0 || tz <= 0) continue;
-        glUniform4i(loc(p, "u_cells"), c[0], c[1], c[2], c[3]);
-        glUniform1i(loc(p, "u_tiles_x"), tx);
-        glUniform1ui(loc(p, "u_leaf"), (uint32_t)leaf);
-        glDrawArrays(GL_POINTS, 0, tx * tz);
-        drawn++;
-    }
+    if (vertices > 0) glDrawArrays(GL_POINTS, 0, (GLsizei)vertices);
     glEndTransformFeedback();
     glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     glDisable(GL_RASTERIZER_DISCARD);
@@ -279,6 +308,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     GLuint written = 0;
     glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
     gfx_query_destroy(&query);
+    gfx_buffer_destroy(&entry_buf);
     f->generate_ms = -1.0f;
     if (stamp_bits > 0) {
         GLuint64 t0 = 0, t1 = 0;
@@ -316,8 +346,8 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
                        (unsigned long long)total);
         ok = false;
     }
-    core_log_info("bb: generated %u billboards from %d x %d candidates in %d leaf draws", written, f->cells[0],
-                  f->cells[1], drawn);
+    core_log_info("bb: generated %u billboards from %d x %d candidates in %d leaves (one draw)", written,
+                  f->cells[0], f->cells[1], nentries);
     free(pos), free(order), free(clo), free(chi), free(counts);
     return ok;
 }
@@ -376,9 +406,24 @@ static double wall_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
+const char *bb_make_stage_name(int stage)
+{
+    static const char *const names[BB_MAKE_STAGES] = {"layout", "programs", "generate", "spheres"};
+    assert(stage >= 0 && stage < BB_MAKE_STAGES);
+    return names[stage];
+}
+
+/* Adds the wall time since *mark to stage `stage` and moves the mark. */
+static void stage_done(bb_field_t *f, int stage, double *mark)
+{
+    double now = wall_ms();
+    f->make_stage_ms[stage] += (float)(now - *mark);
+    *mark = now;
+}
+
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
 {
-    double t_start = wall_ms();
+    double t_start = wall_ms(), mark = t_start;
     memset(f, 0, sizeof *f);
     f->desc = bb_field_desc_defaults(desc);
     bb_field_desc_t *d = &f->desc;
@@ -412,6 +457,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
         .spacing = 1.0f / sqrtf(d->density), .origin = {t->aabb_min[0], t->aabb_min[2]}, .width = d->size[0],
         .height = d->size[1], .seed = d->seed});
     if (!upload_layout(f)) goto fail;
+    stage_done(f, BB_MAKE_LAYOUT, &mark);
     float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];
     f->cells[0] = (int)ceilf(ext_x / f->gen.spacing);
     f->cells[1] = (int)ceilf(ext_z / f->gen.spacing);
@@ -471,6 +517,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
         !f->quad_prog.id || !f->slope_prog.id)
         goto fail;
+    stage_done(f, BB_MAKE_PROGRAMS, &mark);
 
     size_t pool_words = 4 + (size_t)d->max_deformed;
     uint32_t *pool = calloc(pool_words, sizeof *pool);
@@ -510,7 +557,10 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->readback = gfx_readback_make(16, BB_READBACK_SLOTS, "bb.pool_readback");
     if (!f->readback.depth) goto fail;
     setup_points_vao(f->points_vao, f->points.id);
-    if (!generate(f, t, hgrid, tile) || !read_spheres(f)) goto fail;
+    if (!generate(f, t, hgrid, tile)) goto fail;
+    stage_done(f, BB_MAKE_GENERATE, &mark);
+    if (!read_spheres(f)) goto fail;
+    stage_done(f, BB_MAKE_SPHERES, &mark);
     f->make_ms = (float)(wall_ms() - t_start);
     return true;
 fail:
@@ -578,6 +628,14 @@ void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders)
     }
     colliders->cube_texture = f->cubes.id;
     colliders->cube_res = f->desc.cube_res;
+}
+
+/* Billboards in draw ranges (work counters). */
+static double range_total(const GLsizei *size, int n)
+{
+    double s = 0.0;
+    for (int i = 0; i < n; i++) s += (double)size[i];
+    return s;
 }
 
 /* Merges leaf ranges that are adjacent in the buffer into draw ranges. */
@@ -833,6 +891,8 @@ static bool collide_batches(bb_field_t *f, const bb_object_gpu_t *gpu)
     free(staging);
 
     tf_pass(f, f->collide_prog, f->plan.first, f->plan.size, f->plan.range_count, &f->plan);
+    gfx_count_add("bb.collided", range_total(f->plan.size, f->plan.range_count));
+    gfx_count_add("bb.collide_batches", pl->count);
     return true;
 }
 
@@ -982,6 +1042,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
                         GL_BUFFER_UPDATE_BARRIER_BIT);
         gfx_timer_end();
+        gfx_count_add("bb.recovered", range_total(f->counts_gl, nr));
         gpu_work = true;
     }
     if (gpu_work) queue_readback(f);
@@ -1026,6 +1087,7 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, sums.id);
     glDispatchCompute(((GLuint)f->billboards + 255u) / 256u, 1, 1);
+    gfx_count_add("bb.slope_read", f->billboards);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -1050,6 +1112,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
     if (n > 0) {
         int nr = merge_ranges(f, n);
+        gfx_count_add("bb.drawn_quads", range_total(f->counts_gl, nr));
         for (int i = 0; i < nr; i++) {
             f->firsts[i] *= 6;
             f->counts_gl[i] *= 6;
@@ -1061,6 +1124,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
                           f->ranges, f->tree.leaf_count);
     if (n > 0) {
         int nr = merge_ranges(f, n);
+        gfx_count_add("bb.drawn_meshes", range_total(f->counts_gl, nr));
         render_uniforms(f, f->render_prog, dd);
         glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
     }
@@ -1112,6 +1176,7 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
     out->pool_capacity = f->desc.max_deformed;
     out->generate_ms = f->generate_ms;
     out->make_ms = f->make_ms;
+    memcpy(out->make_stage_ms, f->make_stage_ms, sizeof out->make_stage_ms);
     out->batches = f->batches_last;
     out->objects_dropped = f->dropped;
     if (!wait) {

@@ -97,6 +97,13 @@ typedef struct bb_draw_desc_t {
     float slope_recover;
 } bb_draw_desc_t;
 
+/* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)
+ * and their upload, shader programs (compile and link), the GPU generation
+ * pass with its count readback and the node-range check, and the read-back
+ * of the bounding spheres. */
+enum { BB_MAKE_LAYOUT, BB_MAKE_PROGRAMS, BB_MAKE_GENERATE, BB_MAKE_SPHERES, BB_MAKE_STAGES };
+const char *bb_make_stage_name(int stage);
+
 typedef struct bb_stats_t {
     int billboards;
     int leaves[3];        /* non-empty leaves per BB_NODE_* state */
@@ -112,6 +119,8 @@ typedef struct bb_stats_t {
                              has no timestamp counter */
     float make_ms;        /* CPU wall time of bb_field_make (ends after the
                              generation results were read back) */
+    float make_stage_ms[BB_MAKE_STAGES]; /* make_ms split by stage (wall
+                             clock, see bb_make_stage_name) */
 } bb_stats_t;
 
 /* Object batches of one collide update (see BB_PASS_OBJECTS): batch b draws
@@ -167,6 +176,7 @@ typedef struct bb_field_t {
     int deformed_last, exhausted_last; /* newest pool header that reached the CPU */
     int exhausted_logged;              /* refused count of the last warning */
     float generate_ms, make_ms;
+    float make_stage_ms[BB_MAKE_STAGES];
     float time;
 } bb_field_t;
 

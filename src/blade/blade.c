@@ -179,6 +179,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_se
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->spheres.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->cube_objects.id);
     if (g->padded_count) glDispatchCompute((g->padded_count + 255u) / 256u, 1, 1);
+    gfx_count_add("blade.simulated", (double)g->padded_count);
     glBindTextureUnit(0, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_timer_end();
@@ -279,6 +280,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->counters.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->patches.id);
     if (invocations) glDispatchCompute((invocations + 255u) / 256u, 1, 1);
+    gfx_count_add("blade.cull_tested", (double)invocations);
     glBindTextureUnit(0, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 

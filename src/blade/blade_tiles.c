@@ -576,6 +576,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, t->slope_map.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, t->bb_sums.id);
         glDispatchCompute(((GLuint)ninit * B + 255u) / 256u, 1, 1);
+        gfx_count_add("tiles.initialised", (double)ninit * B);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         if (nseed && t->source) {
             uint32_t zero = 0;
@@ -600,6 +601,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->slot_list.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, t->motion.id);
         glDispatchCompute(((GLuint)nslots * B + 255u) / 256u, 1, 1);
+        gfx_count_add("tiles.simulated", (double)nslots * B);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         gfx_readback_copy(&t->motion_ring, t->motion, 0, 0, (size_t)S * 4);
         int r = gfx_readback_fence(&t->motion_ring);
@@ -683,6 +685,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, t->command.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
     if (n) glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
+    gfx_count_add("tiles.cull_tested", (double)n * B);
     glBindTextureUnit(0, 0);
     glBindTextureUnit(1, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);

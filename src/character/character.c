@@ -357,6 +357,7 @@ void character_set_update(character_set_t *set, float time, float dt)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, inst->bones.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, inst->skinned.id);
         glDispatchCompute((GLuint)(a->model.vertex_count + 63) / 64, 1, 1);
+        gfx_count_add("character.skinned", (double)a->model.vertex_count);
     }
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     for (GLuint k = 0; k < 3; k++) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, k, 0);

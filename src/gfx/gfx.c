@@ -107,6 +107,7 @@ void gfx_shutdown(bool report_leaks)
 {
     gfx_text_shutdown();
     gfx_timer_shutdown();
+    gfx_count_shutdown();
     if (report_leaks && g.count)
         for (int i = 0; i < g.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", g.objs[i].label);
     while (g.count) {

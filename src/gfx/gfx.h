@@ -183,7 +183,7 @@ void gfx_readback_read(const gfx_readback_t *r, int slot, size_t offset, size_t 
 /* ---- GPU timers ------------------------------------------------------------
  * Named passes timed with GL_TIME_ELAPSED queries. Results are read
  * GFX_TIMER_LATENCY frames later, only when available: no stall. Passes may
- * not nest. */
+ * not nest. Each pass also runs the work-counter queries (see below). */
 #define GFX_TIMER_MAX_PASSES 32
 #define GFX_TIMER_LATENCY 4
 void gfx_timer_frame_begin(void);
@@ -193,13 +193,107 @@ int gfx_timer_count(void);
 const char *gfx_timer_name(int i);
 double gfx_timer_last_ms(int i);  /* latest available result */
 double gfx_timer_avg_ms(int i);   /* mean over every result so far */
+double gfx_timer_max_ms(int i);   /* largest result so far */
 double gfx_timer_median_ms(int i); /* median of the last 256 results */
-/* Drains all outstanding queries (blocking). For end-of-run summaries. */
+/* Frame pacing without glFinish: puts a fence after the frame's commands,
+ * then waits until at most `in_flight` frames (this one included) are
+ * unfinished on the GPU, as a swap chain does; 1 waits for this frame.
+ * Returns the seconds spent waiting. */
+double gfx_frame_end(int in_flight);
+/* Drains all outstanding timer and counter queries (blocking). For
+ * end-of-run summaries. */
 void gfx_timer_flush(void);
 void gfx_timer_reset_stats(void);
 /* True when MEADOW_TIMER_SYNC=1: every pass begins after glFinish, so no
  * pass is charged for earlier work still in flight (profiling only). */
 bool gfx_timer_sync(void);
+/* Without waiting: clears the statistics and leaves out the results of the
+ * frames begun so far (warm-up: first-use compiles, lazy allocations). */
+void gfx_timer_skip_warmup(void);
+
+/* ---- work counters ---------------------------------------------------------
+ * Counts of work that do not depend on timing (gfx_count.c), for run
+ * summaries and the CI baseline of test_work_counters. Per pass (the
+ * gfx_timer pass open at the time, else "(untimed)"): draw calls, the draws
+ * they stand for (a glMultiDrawArrays of n ranges counts 1 call, n ranges),
+ * compute dispatches and their work groups (indirect dispatches add no
+ * groups: the CPU does not know them), and the results of a
+ * GL_PRIMITIVES_GENERATED and a GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN
+ * query that run with every timer pass (timer passes may therefore not
+ * contain queries of those two targets). Query results are read when
+ * available, never dropped; gfx_count_flush waits for the rest. Modules add
+ * items they process by name with gfx_count_add (for example "bb.collided",
+ * billboards the collide pass read). Totals run from gfx_count_reset;
+ * gfx_timer_frame_begin counts frames. */
+enum {
+    GFX_COUNT_DRAWS,
+    GFX_COUNT_DRAW_RANGES,
+    GFX_COUNT_DISPATCHES,
+    GFX_COUNT_GROUPS,
+    GFX_COUNT_PRIMITIVES,
+    GFX_COUNT_TF_WRITTEN,
+    GFX_COUNT_KINDS
+};
+#define GFX_COUNT_MAX 64 /* passes, and items */
+void gfx_count_draw(GLsizei ranges);
+void gfx_count_dispatch(uint64_t groups);
+void gfx_count_add(const char *item, double n);
+void gfx_count_flush(void);
+void gfx_count_reset(void); /* flushes, then zeroes every total and the frame count */
+int gfx_count_frames(void);
+int gfx_count_pass_count(void);
+const char *gfx_count_pass_name(int i);
+double gfx_count_pass_total(int i, int kind);
+int gfx_count_item_count(void);
+const char *gfx_count_item_name(int i);
+double gfx_count_item_total(int i);
+
+/* Every draw and dispatch entry point the project calls goes through a
+ * counting wrapper: epoxy's macros are replaced here, so call sites stay
+ * plain GL. A new entry point gets a wrapper beside these. */
+static inline void gfx_counted_draw_arrays(GLenum mode, GLint first, GLsizei count)
+{
+    gfx_count_draw(1);
+    epoxy_glDrawArrays(mode, first, count);
+}
+static inline void gfx_counted_draw_arrays_indirect(GLenum mode, const void *indirect)
+{
+    gfx_count_draw(1);
+    epoxy_glDrawArraysIndirect(mode, indirect);
+}
+static inline void gfx_counted_draw_elements(GLenum mode, GLsizei count, GLenum type, const void *indices)
+{
+    gfx_count_draw(1);
+    epoxy_glDrawElements(mode, count, type, indices);
+}
+static inline void gfx_counted_multi_draw_arrays(GLenum mode, const GLint *first, const GLsizei *count,
+                                                 GLsizei drawcount)
+{
+    gfx_count_draw(drawcount);
+    epoxy_glMultiDrawArrays(mode, first, count, drawcount);
+}
+static inline void gfx_counted_dispatch_compute(GLuint x, GLuint y, GLuint z)
+{
+    gfx_count_dispatch((uint64_t)x * y * z);
+    epoxy_glDispatchCompute(x, y, z);
+}
+static inline void gfx_counted_dispatch_compute_indirect(GLintptr indirect)
+{
+    gfx_count_dispatch(0);
+    epoxy_glDispatchComputeIndirect(indirect);
+}
+#undef glDrawArrays
+#undef glDrawArraysIndirect
+#undef glDrawElements
+#undef glMultiDrawArrays
+#undef glDispatchCompute
+#undef glDispatchComputeIndirect
+#define glDrawArrays gfx_counted_draw_arrays
+#define glDrawArraysIndirect gfx_counted_draw_arrays_indirect
+#define glDrawElements gfx_counted_draw_elements
+#define glMultiDrawArrays gfx_counted_multi_draw_arrays
+#define glDispatchCompute gfx_counted_dispatch_compute
+#define glDispatchComputeIndirect gfx_counted_dispatch_compute_indirect
 
 /* ---- text HUD (stb_easy_font) ----------------------------------------------
  * Draws text in pixels from the top-left of the current viewport. */

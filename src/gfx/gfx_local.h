@@ -10,6 +10,11 @@ void gfx_track(GLenum kind, GLuint id, const char *label);
 void gfx_untrack(GLenum kind, GLuint id);
 void gfx_delete_object(GLenum kind, GLuint id);
 void gfx_timer_shutdown(void);
+/* gfx_count: the timer pass queries, the frame count, shutdown. */
+void gfx_count_pass_begin(const char *pass);
+void gfx_count_pass_end(void);
+void gfx_count_frame(void);
+void gfx_count_shutdown(void);
 void gfx_text_shutdown(void);
 
 #endif

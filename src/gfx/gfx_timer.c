@@ -9,7 +9,9 @@
  * pass begins after glFinish: the frame is slower, each pass's time is its
  * own (docs/PERFORMANCE.md). */
 #include "gfx/gfx_local.h"
+#include "platform/plat.h"
 
+#include <assert.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,7 +22,8 @@ typedef struct pass_t {
     char name[32];
     GLuint q[GFX_TIMER_LATENCY];
     bool pending[GFX_TIMER_LATENCY];
-    double last, sum;
+    int frame_of[GFX_TIMER_LATENCY]; /* frame each slot's query ran in */
+    double last, sum, max;
     long n;
     double hist[HISTORY];
     int hist_n, hist_i;
@@ -31,6 +34,9 @@ static struct {
     int count;
     int frame;
     int open;
+    int first_frame; /* samples of earlier frames are not recorded */
+    GLsync fences[GFX_TIMER_LATENCY]; /* gfx_frame_end, oldest first */
+    int fence_count;
     bool warned_full;
     int sync; /* -1 unread, else MEADOW_TIMER_SYNC */
 } t = {.open = -1, .sync = -1};
@@ -47,6 +53,7 @@ bool gfx_timer_sync(void)
 static void record(pass_t *p, double ms)
 {
     p->last = ms;
+    p->max = ms > p->max ? ms : p->max;
     p->sum += ms;
     p->n++;
     p->hist[p->hist_i] = ms;
@@ -63,11 +70,12 @@ static void harvest(pass_t *p, int slot, bool wait)
     GLuint64 ns = 0;
     glGetQueryObjectui64v(p->q[slot], GL_QUERY_RESULT, &ns);
     p->pending[slot] = false;
-    record(p, (double)ns * 1e-6);
+    if (p->frame_of[slot] >= t.first_frame) record(p, (double)ns * 1e-6);
 }
 
 void gfx_timer_frame_begin(void)
 {
+    gfx_count_frame();
     t.frame++;
     int slot = t.frame % GFX_TIMER_LATENCY;
     for (int i = 0; i < t.count; i++) {
@@ -81,6 +89,7 @@ void gfx_timer_frame_begin(void)
 void gfx_timer_begin(const char *pass)
 {
     if (gfx_timer_sync()) glFinish();
+    gfx_count_pass_begin(pass);
     int i;
     for (i = 0; i < t.count; i++)
         if (strcmp(t.passes[i].name, pass) == 0) break;
@@ -103,11 +112,13 @@ void gfx_timer_begin(const char *pass)
         return;
     }
     glBeginQuery(GL_TIME_ELAPSED, p->q[slot]);
+    p->frame_of[slot] = t.frame;
     t.open = i;
 }
 
 void gfx_timer_end(void)
 {
+    gfx_count_pass_end();
     if (t.open < 0) return;
     glEndQuery(GL_TIME_ELAPSED);
     t.passes[t.open].pending[t.frame % GFX_TIMER_LATENCY] = true;
@@ -117,6 +128,7 @@ void gfx_timer_end(void)
 int gfx_timer_count(void) { return t.count; }
 const char *gfx_timer_name(int i) { return t.passes[i].name; }
 double gfx_timer_last_ms(int i) { return t.passes[i].last; }
+double gfx_timer_max_ms(int i) { return t.passes[i].max; }
 double gfx_timer_avg_ms(int i) { return t.passes[i].n ? t.passes[i].sum / (double)t.passes[i].n : 0.0; }
 
 static int cmp_double(const void *a, const void *b)
@@ -135,25 +147,62 @@ double gfx_timer_median_ms(int i)
     return tmp[p->hist_n / 2];
 }
 
+double gfx_frame_end(int in_flight)
+{
+    assert(in_flight >= 1 && in_flight <= GFX_TIMER_LATENCY);
+    if (t.fence_count == GFX_TIMER_LATENCY) {
+        glDeleteSync(t.fences[0]);
+        memmove(t.fences, t.fences + 1, sizeof t.fences[0] * (GFX_TIMER_LATENCY - 1));
+        t.fence_count--;
+    }
+    t.fences[t.fence_count++] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    double t0 = plat_time();
+    while (t.fence_count > in_flight - 1) {
+        /* 10 s per try: a lost context must not hang the run forever. */
+        GLenum r = glClientWaitSync(t.fences[0], GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
+        if (r == GL_TIMEOUT_EXPIRED) {
+            core_log_warn("gfx: a frame has not finished on the GPU after 10 s");
+            continue;
+        }
+        glDeleteSync(t.fences[0]);
+        memmove(t.fences, t.fences + 1, sizeof t.fences[0] * (size_t)(t.fence_count - 1));
+        t.fence_count--;
+    }
+    return plat_time() - t0;
+}
+
 void gfx_timer_flush(void)
 {
+    gfx_count_flush();
     for (int i = 0; i < t.count; i++)
         for (int s = 0; s < GFX_TIMER_LATENCY; s++) harvest(&t.passes[i], s, true);
 }
 
-void gfx_timer_reset_stats(void)
+static void clear_stats(void)
 {
-    gfx_timer_flush();
     for (int i = 0; i < t.count; i++) {
         pass_t *p = &t.passes[i];
-        p->sum = 0;
+        p->sum = p->max = 0;
         p->n = 0;
         p->hist_n = p->hist_i = 0;
     }
 }
 
+void gfx_timer_reset_stats(void)
+{
+    gfx_timer_flush();
+    clear_stats();
+}
+
+void gfx_timer_skip_warmup(void)
+{
+    clear_stats();
+    t.first_frame = t.frame + 1;
+}
+
 void gfx_timer_shutdown(void)
 {
+    for (int k = 0; k < t.fence_count; k++) glDeleteSync(t.fences[k]);
     for (int i = 0; i < t.count; i++) glDeleteQueries(GFX_TIMER_LATENCY, t.passes[i].q);
     memset(&t, 0, sizeof t);
     t.open = -1;

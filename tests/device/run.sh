@@ -20,6 +20,10 @@
 #                side by side, and four meadow_large screenshots -> $OUT
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
+#   startup      every bench scene, 400 frames: start-up stages, frame-time
+#                percentiles (p50/p95/p99/worst after warm-up), GPU pass
+#                medians/means/max and the work counters; meadow_large also
+#                with --frames 1 twice (cold and warm shader cache)
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
 export LD_LIBRARY_PATH=$PWD/.bundle/lib
 M=.bundle/bin/meadow
@@ -100,6 +104,22 @@ raster() {
     --raster auto --out /tmp/r-auto > /dev/null 2>&1; echo "-- meadow_large auto: $(grep -E '^raster:' /tmp/r-auto/summary.txt)"
   for n in large_hybrid-hw large_hybrid-compute large_billboard-compute large_blade-compute; do
     cp /tmp/r-$n/shot-000300.png $OUT/$n.png 2>/dev/null
+  done
+}
+
+startup() {
+  echo "== startup and frame times"
+  for s in orthmann nature helicopter fan128 meadow_large; do
+    timeout 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 0 \
+      --out /tmp/st-$s > /tmp/st-$s.log 2>&1
+    echo "-- $s rc=$?"
+    sed -n '/gpu passes/,/gpu_frame_ms/p;/^frame times/,/^items per frame/p' /tmp/st-$s/summary.txt
+    grep -E "error|warn" /tmp/st-$s.log | head -3
+  done
+  for run in 1 2; do
+    ( time timeout 60 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 1 --screenshot-every 0 \
+        --out /tmp/st1-$run > /dev/null 2>&1 ) 2>&1 | grep real
+    echo "-- meadow_large --frames 1, run $run"; sed -n '/^startup_ms/,/^startup work/p' /tmp/st1-$run/summary.txt
   done
 }
 
