@@ -354,8 +354,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
 
 /* Each billboard's bounding sphere as bb_collide.geom computes it (centre
  * half way up the growth direction, radius half the diagonal plus the wind
- * strength), read back once in chunks through a staging buffer (a direct
- * read made the H100 driver keep the points in host memory afterwards). */
+ * strength), read back once in chunks (through a staging copy: gfx.h). */
 static bool read_spheres(bb_field_t *f)
 {
     enum { CHUNK = 16384 };
@@ -368,7 +367,7 @@ static bool read_spheres(bb_field_t *f)
     }
     for (int i0 = 0; i0 < f->billboards; i0 += CHUNK) {
         int n = f->billboards - i0 < CHUNK ? f->billboards - i0 : CHUNK;
-        if (!gfx_buffer_read_staged(f->points, sizeof *pts * (size_t)i0, sizeof *pts * (size_t)n, pts)) {
+        if (!gfx_buffer_read(f->points, sizeof *pts * (size_t)i0, sizeof *pts * (size_t)n, pts)) {
             free(pts);
             return false;
         }

@@ -25,13 +25,12 @@ blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
     return d;
 }
 
-static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t size, const void *data,
-                                bool readable)
+static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t size, const void *data)
 {
     char label[128];
     snprintf(label, sizeof label, "%s.%s", g->desc.label, what);
     return gfx_buffer_make(&(gfx_buffer_desc_t){.size = size ? size : 16, .data = data, .dynamic = true,
-                                                .readable = readable, .label = label});
+                                                .label = label});
 }
 
 /* Indirect command layout: {count, instanceCount, first, baseInstance}. The
@@ -75,17 +74,17 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
         if (f->blades[i].v1[3] > 0.0f) g->patch_real[i / g->patch_size]++;
 
     size_t nb = g->padded_count;
-    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades, true);
-    g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta, true);
-    g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL, false);
-    g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL, false);
-    g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL, true);
-    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL, false);
+    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades);
+    g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta);
+    g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
+    g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
+    g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL);
+    g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL);
     uint32_t cmd[4];
     command_initial(g, cmd);
-    g->command = make_buffer(g, "command", sizeof cmd, cmd, true);
-    g->counters = make_buffer(g, "counters", 4 * sizeof(uint32_t), NULL, true);
-    g->patches = make_buffer(g, "patches", np * sizeof(uint32_t), NULL, false);
+    g->command = make_buffer(g, "command", sizeof cmd, cmd);
+    g->counters = make_buffer(g, "counters", 4 * sizeof(uint32_t), NULL);
+    g->patches = make_buffer(g, "patches", np * sizeof(uint32_t), NULL);
     bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id && g->cube_objects.id &&
               g->command.id && g->counters.id && g->patches.id;
     char label[128];

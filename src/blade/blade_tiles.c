@@ -193,7 +193,7 @@ static gfx_buffer_t make_buffer(const blade_tiles_t *t, const char *what, size_t
     char label[128];
     snprintf(label, sizeof label, "%s.%s", t->desc.label, what);
     return gfx_buffer_make(&(gfx_buffer_desc_t){
-        .size = size ? size : 16, .data = data, .dynamic = true, .readable = true, .label = label});
+        .size = size ? size : 16, .data = data, .dynamic = true, .label = label});
 }
 
 static gfx_program_t make_program(const blade_tiles_t *t, const char *what, const gfx_program_desc_t *pd)

@@ -136,7 +136,7 @@ static bool instance_make(character_set_t *set, character_instance_t *inst, int 
     inst->bones = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->bone_count * 16 * sizeof(float),
                                                        .dynamic = true, .label = "character.bones"});
     inst->skinned = gfx_buffer_make(&(gfx_buffer_desc_t){
-        .size = (size_t)m->vertex_count * sizeof(character_skinned_vertex_t), .readable = true,
+        .size = (size_t)m->vertex_count * sizeof(character_skinned_vertex_t),
         .label = "character.skinned"});
     if (!inst->bones.id || !inst->skinned.id) return false;
     inst->vao = gfx_vertex_array_make("character.vao");

@@ -146,6 +146,7 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
         return (gfx_buffer_t){0};
     }
     b.size = desc->size;
+    b.readable = desc->readable;
     if (desc->persistent)
         b.mapped = glMapNamedBufferRange(b.id, 0, (GLsizeiptr)desc->size,
                                          GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT);
@@ -169,20 +170,18 @@ void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void 
         glNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, data);
 }
 
-void gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)
+bool gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)
 {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    glGetNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, out);
-}
-
-bool gfx_buffer_read_staged(gfx_buffer_t buf, size_t offset, size_t size, void *out)
-{
+    if (buf.readable) {
+        glGetNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, out);
+        return true;
+    }
     enum { STAGE = 4 << 20 };
     size_t stage = size < STAGE ? size : STAGE;
     if (stage == 0) return true;
     gfx_buffer_t tmp = gfx_buffer_make(&(gfx_buffer_desc_t){.size = stage, .readable = true, .label = "gfx.staging"});
     if (!tmp.id) return false;
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
     for (size_t done = 0; done < size; done += stage) {
         size_t n = size - done < stage ? size - done : stage;
         glCopyNamedBufferSubData(buf.id, tmp.id, (GLintptr)(offset + done), 0, (GLsizeiptr)n);

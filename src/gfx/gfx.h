@@ -33,6 +33,7 @@ typedef struct gfx_buffer_t {
     GLuint id;
     size_t size;
     void *mapped; /* persistent mapping, when desc.persistent */
+    bool readable; /* desc.readable */
 } gfx_buffer_t;
 
 typedef struct gfx_buffer_desc_t {
@@ -40,7 +41,9 @@ typedef struct gfx_buffer_desc_t {
     const void *data;   /* initial contents, optional */
     bool dynamic;       /* GL_DYNAMIC_STORAGE_BIT (glNamedBufferSubData) */
     bool persistent;    /* mapped write-coherent for the buffer's life */
-    bool readable;      /* GL_MAP_READ_BIT (tests read back) */
+    bool readable;      /* GL_MAP_READ_BIT: a small buffer the CPU reads (readback rings, staging).
+                           Never on a buffer the GPU uses every frame: on the H100 such buffers
+                           can be placed where every GPU access crosses PCIe. */
     const char *label;  /* required: debug label */
 } gfx_buffer_desc_t;
 
@@ -49,15 +52,15 @@ typedef struct gfx_buffer_desc_t {
 gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc);
 void gfx_buffer_destroy(gfx_buffer_t *buf);
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data);
-/* Blocking read (tests, one-off): glGetNamedBufferSubData. */
-void gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out);
-/* The same through a temporary readable buffer (4 MB chunks), for buffers
- * the GPU keeps using every frame: on the H100 the driver moved a buffer
- * read once with glGetNamedBufferSubData (the billboard points, 25 MB) to
- * memory it reached over PCIe from then on (billboard recovery 0.34 ->
- * 4.9 ms, rendering 12.3 -> 15.9 ms on meadow_large). False when the
- * staging buffer cannot be made (logged). */
-bool gfx_buffer_read_staged(gfx_buffer_t buf, size_t offset, size_t size, void *out);
+/* Blocking read (tests, summaries, one-off): glGetNamedBufferSubData on a
+ * readable buffer; any other buffer is read through a temporary readable
+ * copy (4 MB chunks). A direct read of a buffer the GPU keeps using made the
+ * H100 driver move it, once and for good, to memory every GPU access then
+ * reached over PCIe (the billboard points, 25 MB, read once after
+ * generation: billboard recovery 0.34 -> 4.9 ms, rendering 12.3 -> 15.9 ms
+ * on meadow_large). False when the copy cannot be made (logged; out is
+ * then untouched). */
+bool gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out);
 
 /* ---- textures ------------------------------------------------------------- */
 typedef struct gfx_texture_t {

@@ -47,7 +47,7 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
     r->vis = gfx_buffer_make(&(gfx_buffer_desc_t){.size = samples * 8, .label = label});
     snprintf(label, sizeof label, "%s.queue", d->label);
     r->queue = gfx_buffer_make(&(gfx_buffer_desc_t){
-        .size = QUEUE_HEADER + (size_t)d->queue_capacity * 8, .readable = true, .label = label});
+        .size = QUEUE_HEADER + (size_t)d->queue_capacity * 8, .label = label});
     snprintf(label, sizeof label, "%s.args", d->label);
     r->args = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 32, .label = label});
     r->init = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_init.comp", .label = "raster.init"});
