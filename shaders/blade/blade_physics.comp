@@ -9,7 +9,11 @@
  * (collision after the spheres, exit after the sphere exit; twins of
  * blade_ref.c's collide_cubes / exit_cubes),
  * eta += k d.d (BLADE_ETA_DT / dt) then eta = clamp(eta - a dt, 0, 1). Blades of height <= 0 (patch
- * padding) are left untouched. One invocation per blade. */
+ * padding) are left untouched. One invocation per blade. The cube-proxy
+ * code is compiled only with BLADE_CUBES (blade.c makes both programs and
+ * uses this one only while cube proxies are set): present but unused, it
+ * made the step twice as slow on the H100 (fan128 0.39 -> 0.83 ms, nature
+ * 0.066 -> 0.101 ms, commit a4a6f17). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "common/blade.glsl"
@@ -32,6 +36,7 @@ uniform float u_collision_gain;
 uniform int u_wind_count;
 uniform int u_sphere_count;
 uniform int u_length_mode;     /* BLADE_LENGTH_QUADRATURE or BLADE_LENGTH_PAPER */
+#ifdef BLADE_CUBES
 uniform int u_cube_count;      /* cube-map colliders (0: none) */
 uniform int u_cube_res;
 uniform sampler2DArray u_cube_tex; /* layers 6k .. 6k+5: object k */
@@ -73,6 +78,7 @@ void cube_exit_straight(inout Blade b)
     b.v1.xyz = v0 + bu * (0.5 * h);
     b.v2.xyz = v0 + bu * h;
 }
+#endif
 
 void main()
 {
@@ -91,7 +97,9 @@ void main()
     blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
     for (int k = 0; k < u_sphere_count; k++) d = d + blade_collide_sphere(b, spheres[k], u_length_mode);
+#ifdef BLADE_CUBES
     for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
+#endif
     if (dot(d, d) > 0.0) {
         blade_validate(b, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
@@ -101,6 +109,7 @@ void main()
             }
         }
         for (int k = 0; k < u_sphere_count; k++) blade_exit_straight(b, spheres[k]);
+#ifdef BLADE_CUBES
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (int k = 0; k < u_cube_count; k++) {
                 blade_cube_exit_rotate(b, u_cube_tex, cubes[k], cube_of(k), b.v2.xyz);
@@ -108,6 +117,7 @@ void main()
             }
         }
         cube_exit_straight(b);
+#endif
     }
     e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 ? BLADE_ETA_DT / u_dt : 1.0);
     eta[i] = clamp(e - u_collision_decay * u_dt, 0.0, 1.0);

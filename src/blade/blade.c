@@ -93,6 +93,9 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     ok = ok && g->readback.depth;
     snprintf(label, sizeof label, "%s.physics", g->desc.label);
     g->physics = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .label = label});
+    snprintf(label, sizeof label, "%s.physics_cubes", g->desc.label);
+    g->physics_cubes = gfx_program_make(
+        &(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n", .label = label});
     snprintf(label, sizeof label, "%s.cull", g->desc.label);
     g->cull = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_cull.comp", .label = label});
     if (g->desc.path == BLADE_PATH_TESSELLATION) {
@@ -111,7 +114,7 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     }
     snprintf(label, sizeof label, "%s.vao", g->desc.label);
     g->vao = gfx_vertex_array_make(label);
-    ok = ok && g->physics.id && g->cull.id && g->vao;
+    ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->vao;
     if (!ok) {
         core_log_error("%s:%d: blade_gpu_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
                        g->desc.label);
@@ -130,7 +133,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     gfx_readback_destroy(&g->readback);
     raster_program_destroy(&g->raster);
-    gfx_program_t *progs[] = {&g->physics, &g->cull, &g->draw_tess, &g->draw_pull};
+    gfx_program_t *progs[] = {&g->physics, &g->physics_cubes, &g->cull, &g->draw_tess, &g->draw_pull};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (g->vao) gfx_vertex_array_destroy(&g->vao);
@@ -155,7 +158,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_se
     if (e.wind_count) gfx_buffer_update(g->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (c->sphere_count)
         gfx_buffer_update(g->spheres, 0, (size_t)c->sphere_count * sizeof(blade_sphere_t), c->spheres);
-    gfx_program_t p = g->physics;
+    gfx_program_t p = cubes ? g->physics_cubes : g->physics;
     glUseProgram(p.id);
     glUniform1ui(gfx_uniform(p, "u_blade_count"), g->padded_count);
     glUniform1f(gfx_uniform(p, "u_dt"), e.dt);
@@ -168,10 +171,12 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_se
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
     glUniform1i(gfx_uniform(p, "u_sphere_count"), c->sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
-    glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
-    glUniform1i(gfx_uniform(p, "u_cube_res"), c->cube_res);
-    glUniform1i(gfx_uniform(p, "u_cube_tex"), 0);
-    glBindTextureUnit(0, cubes ? c->cube_texture : 0);
+    if (cubes) {
+        glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
+        glUniform1i(gfx_uniform(p, "u_cube_res"), c->cube_res);
+        glUniform1i(gfx_uniform(p, "u_cube_tex"), 0);
+        glBindTextureUnit(0, c->cube_texture);
+    }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->eta.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->winds.id);

@@ -99,7 +99,7 @@ typedef struct blade_gpu_t {
     gfx_readback_t readback;                              /* counters (16 bytes), then the command */
     uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
     blade_gpu_stats_t stats;
-    gfx_program_t physics, cull, draw_tess, draw_pull;
+    gfx_program_t physics, physics_cubes, cull, draw_tess, draw_pull; /* physics_cubes: with cube proxies */
     GLuint vao;
     bool culled_once;
 } blade_gpu_t;
