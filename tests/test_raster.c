@@ -150,7 +150,7 @@ int main(void)
     static float tris[NTRI * 16];
     make_triangles(tris);
     raster_ref_t ref;
-    CHECK(raster_ref_init(&ref, W, H, 2, 0.9f));
+    CHECK(raster_ref_init(&ref, W, H, 4, 0.9f));
     for (int i = 0; i < NTRI; i++)
         raster_ref_triangle(&ref, tris + 16 * i, tris + 16 * i + 4, tris + 16 * i + 8, 0xff000000u | (uint32_t)(i * 2654435761u >> 8));
     run_variant(true, tris, &ref);

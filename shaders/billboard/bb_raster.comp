@@ -139,7 +139,7 @@ void bb_triangle(int t, out vec4 a, out vec4 b, out vec4 c)
 void raster_fragment(int s0, vec3 w, float depth)
 {
     uint depth_bits = floatBitsToUint(depth);
-    int n = u_raster_ss * u_raster_ss;
+    int n = u_raster_samples;
     bool hidden = true;
     for (int k = 0; k < n; k++) hidden = hidden && raster_occluded(s0 + k, depth_bits);
     if (hidden) return;

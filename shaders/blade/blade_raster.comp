@@ -4,8 +4,8 @@
  * ids[i], else blades[i]; the count is the uint at u_count_index of
  * Count, written by the culling pass): the blade surface of blade_geom.glsl
  * (eq. 21, 24) as a strip of n segments, n from the blade's projected
- * length (u_segment_samples samples per segment, 1 to u_max_level). A blade
- * narrower than a sample is widened to one sample and covers each sample
+ * length (u_segment_pixels pixels per segment, 1 to u_max_level). A blade
+ * narrower than the sample spacing is widened to it and covers each sample
  * with the probability of its true width, so a far blade is a thin line of
  * the right average coverage. Hybrid fade: alpha as blade.frag, turned into
  * coverage by fixed per-sample thresholds (what alpha-to-coverage does).
@@ -34,7 +34,7 @@ uniform vec3 u_sun;
 uniform vec2 u_fade; /* start, end; end <= start: no fade */
 uniform vec3 u_albedo_root;
 uniform vec3 u_albedo_tip;
-uniform float u_segment_samples;
+uniform float u_segment_pixels;
 
 /* The blade being drawn and its current triangle's vertex attributes. */
 Blade g_blade;
@@ -64,14 +64,16 @@ int blade_setup(uint prim)
     bool ok = raster_project(u_view_proj * vec4(g_blade.v0.xyz, 1.0), r0);
     ok = raster_project(u_view_proj * vec4(g_blade.v0.xyz + t1 * g_blade.v2.w, 1.0), r1) && ok;
     ok = raster_project(u_view_proj * vec4(g_blade.v2.xyz, 1.0), r2) && ok;
+    /* the sample spacing: 1 pixel, 0.5 with 4 samples */
+    float spacing = inversesqrt(float(u_raster_samples));
     float width = distance(r0.p.xy, r1.p.xy);
     g_keep = 1.0;
-    if (ok && width < 1.0) {
-        g_keep = max(width, 1.0 / 64.0);
+    if (ok && width < spacing) {
+        g_keep = max(width / spacing, 1.0 / 64.0);
         g_blade.v2.w /= g_keep;
     }
     float len = ok ? distance(r0.p.xy, r2.p.xy) : 1e9;
-    return clamp(int(ceil(len / u_segment_samples)), 1, max(u_max_level, 1));
+    return clamp(int(ceil(len / u_segment_pixels)), 1, max(u_max_level, 1));
 }
 
 vec4 blade_vertex(float u, float v, int slot)
@@ -87,11 +89,11 @@ vec4 blade_vertex(float u, float v, int slot)
 void raster_fragment(int s, vec3 w, float depth)
 {
     if (raster_occluded(s, floatBitsToUint(depth))) return;
-    uint sub = uint(s % (u_raster_ss * u_raster_ss));
-    float threshold = (float(sub) + 0.5) / float(u_raster_ss * u_raster_ss);
+    uint sub = uint(s % u_raster_samples);
+    float threshold = (float(sub) + 0.5) / float(u_raster_samples);
     if (g_keep < 1.0 && hash_float(g_seed ^ uint(s) * 0x85ebca6bu) >= g_keep) return;
     if (g_alpha < 1.0) {
-        int pixel = s / (u_raster_ss * u_raster_ss);
+        int pixel = s / u_raster_samples;
         uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
         float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
         float alpha = clamp(g_alpha + dither * 0.25, 0.0, 1.0);

@@ -1,29 +1,38 @@
 /* raster.glsl: the compute rasterizer's side of the visibility buffer
  * (src/raster/raster.h). Grass shaders that draw in compute include this
- * file, set up a primitive (a blade, a billboard), project its vertices
- * with raster_project and scan its triangles with raster_triangle; each
- * covered sample calls the including shader's raster_fragment, which
- * decides coverage, shades (only when raster_color_pass()) and calls
- * raster_put.
+ * file, set up a primitive (a blade, a billboard), hand its triangles in
+ * clip space to raster_triangle_or_queue; each covered sample calls the
+ * including shader's raster_fragment, which decides coverage, shades (only
+ * when raster_color_pass()) and calls raster_put.
+ *
+ * Samples: u_raster_samples per pixel (1: the pixel centre; 4: the
+ * standard 4x MSAA pattern, offsets (-2,-6) (6,-2) (-6,2) (2,6) / 16 pixel
+ * from the centre, the rotated grid the hardware path's 4x MSAA uses, so
+ * near-vertical blade edges get four coverage steps, not two). Sample k of
+ * pixel p is word p n + k. Each sample index k is a regular lattice (the
+ * pixel grid shifted by its offset), so a triangle is scanned once per
+ * lattice, row by row.
  *
  * Visibility buffer: one 64-bit word per sample, depth (float bits of the
  * window depth, which order like uints for depth >= 0) in the high half and
- * packed RGBA8 colour in the low half; the 2x2 (RASTER_SS^2) samples of a
- * pixel are adjacent. With RASTER_ATOMIC64 (GL_NV_shader_atomic_int64) one
- * atomicMin keeps the nearest sample. Without it (Mesa llvmpipe) the same
- * memory is two uints per sample and every draw runs twice: pass 0 takes
- * atomicMin of the depth, pass 1 stores the colour where its depth won.
+ * packed RGBA8 colour in the low half. With RASTER_ATOMIC64
+ * (GL_NV_shader_atomic_int64) one atomicMin keeps the nearest sample.
+ * Without it (Mesa llvmpipe) the same memory is two uints per sample and
+ * every draw runs twice: pass 0 takes atomicMin of the depth, pass 1 stores
+ * the colour where its depth won.
  *
- * Pixel rate (RASTER_PIXEL_RATE defined before including): triangles are
- * scanned at pixel centres and raster_fragment gets the pixel's first
- * sample; the shader then covers some of the pixel's u_raster_ss^2 samples
- * (alpha as coverage, as alpha-to-coverage does). For shaders whose cost is
- * per fragment (texture, shading) and whose edges are soft anyway.
+ * Pixel rate (RASTER_PIXEL_RATE defined before including): one lattice, the
+ * pixel centres, and raster_fragment gets the pixel's first sample; the
+ * shader then covers some of the pixel's samples (alpha as coverage, as
+ * alpha-to-coverage does). For shaders whose cost is per fragment (texture,
+ * shading) and whose edges are soft anyway.
  *
- * Work split: a triangle whose sample bounding box exceeds
- * u_raster_big_samples is not scanned by its thread but queued (primitive,
- * triangle) for the RASTER_BIG variant of the same shader, where one work
- * group of RASTER_BIG_THREADS scans it, one row per thread in turn. */
+ * Work split: a triangle whose pixel bounding box times the lattices it is
+ * scanned on exceeds u_raster_big_samples is not scanned by its thread but
+ * queued (primitive, triangle) for the RASTER_BIG variant of the same
+ * shader, where one work group of RASTER_BIG_THREADS scans it, one row per
+ * thread in turn. Triangles crossing the near plane are queued too and
+ * clipped there. */
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
@@ -48,7 +57,7 @@ layout(std430, binding = RASTER_QUEUE_BINDING) buffer RasterQueue {
 };
 
 uniform ivec2 u_raster_pixels;      /* target size in pixels */
-uniform int u_raster_ss;            /* samples per pixel side */
+uniform int u_raster_samples;       /* per pixel: 1 or 4 */
 uniform int u_raster_pass;          /* without RASTER_ATOMIC64: 0 depth, 1 colour */
 uniform uint u_raster_big_samples;  /* bounding-box samples above which a triangle is queued */
 uniform uint u_raster_queue_capacity;
@@ -62,31 +71,20 @@ bool raster_color_pass()
 #endif
 }
 
-/* The scan grid: samples, or pixels with RASTER_PIXEL_RATE. */
-ivec2 raster_grid()
+/* Sample k's offset from the pixel centre, in pixels. */
+vec2 raster_offset(int k)
 {
-#ifdef RASTER_PIXEL_RATE
-    return u_raster_pixels;
-#else
-    return u_raster_pixels * u_raster_ss;
-#endif
+    const vec2 o4[4] = vec2[4](vec2(-2.0, -6.0), vec2(6.0, -2.0), vec2(-6.0, 2.0), vec2(2.0, 6.0));
+    return u_raster_samples == 4 ? o4[k] * (1.0 / 16.0) : vec2(0.0);
 }
 
-int raster_sample_index(int x, int y)
-{
-    int ss = u_raster_ss;
-    int px = x / ss, py = y / ss;
-    return ((py * u_raster_pixels.x + px) * ss + (y - py * ss)) * ss + (x - px * ss);
-}
-
-/* First sample of the pixel a grid point falls in (with RASTER_PIXEL_RATE
- * the grid point is the pixel), else the sample itself. */
-int raster_grid_index(int x, int y)
+/* Lattices a triangle is scanned on: one per sample, or one at pixel rate. */
+int raster_lattices()
 {
 #ifdef RASTER_PIXEL_RATE
-    return (y * u_raster_pixels.x + x) * u_raster_ss * u_raster_ss;
+    return 1;
 #else
-    return raster_sample_index(x, y);
+    return u_raster_samples;
 #endif
 }
 
@@ -131,18 +129,17 @@ bool raster_project(vec4 clip, out raster_vert v)
     if (clip.w <= 0.0) return false;
     float iw = 1.0 / clip.w;
     vec3 ndc = clip.xyz * iw;
-    vec2 size = vec2(raster_grid());
-    v.p = vec3((ndc.xy * 0.5 + 0.5) * size, ndc.z * 0.5 + 0.5);
+    v.p = vec3((ndc.xy * 0.5 + 0.5) * vec2(u_raster_pixels), ndc.z * 0.5 + 0.5);
     v.inv_w = iw;
     return true;
 }
 
-/* Grid area of a box clamped to the buffer, in grid points. */
+/* Pixel area of a box clamped to the target, times the lattices scanned. */
 float raster_box_samples(vec2 lo, vec2 hi)
 {
-    vec2 size = vec2(raster_grid());
+    vec2 size = vec2(u_raster_pixels);
     vec2 a = clamp(lo, vec2(0.0), size), b = clamp(hi, vec2(0.0), size);
-    return max(b.x - a.x + 1.0, 0.0) * max(b.y - a.y + 1.0, 0.0);
+    return max(b.x - a.x + 1.0, 0.0) * max(b.y - a.y + 1.0, 0.0) * float(raster_lattices());
 }
 
 /* The including shader's fragment: sample s (pixel rate: the pixel's
@@ -151,9 +148,10 @@ float raster_box_samples(vec2 lo, vec2 hi)
 void raster_fragment(int s, vec3 w, float depth);
 
 /* Scans rows first_row, first_row + row_step, ... of the projected
- * triangle a b c; fragment weights are to_tri * (weights of a, b, c).
- * Sample centres at +0.5; a sample on a shared edge may be drawn by both
- * triangles (same depth: no artefact). */
+ * triangle a b c on every lattice (lattice k's rows count after lattice
+ * k - 1's, so a work group's threads share all of them); fragment weights
+ * are to_tri * (weights of a, b, c). A sample on a shared edge may be drawn
+ * by both triangles (same depth: no artefact). */
 void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int first_row, int row_step)
 {
     vec2 p0 = a.p.xy, p1 = b.p.xy, p2 = c.p.xy;
@@ -166,28 +164,40 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
     B.z = -B.x - B.y;
     vec3 C = vec3(-(A.x * p2.x + B.x * p2.y), -(A.y * p2.x + B.y * p2.y), 0.0);
     C.z = 1.0 - C.x - C.y;
-    ivec2 size = raster_grid();
+    ivec2 size = u_raster_pixels;
     float ylo = min(p0.y, min(p1.y, p2.y)), yhi = max(p0.y, max(p1.y, p2.y));
     float xlo = min(p0.x, min(p1.x, p2.x)), xhi = max(p0.x, max(p1.x, p2.x));
-    int y0 = max(int(ceil(ylo - 0.5)), 0), y1 = min(int(floor(yhi - 0.5)), size.y - 1);
     vec3 z = vec3(a.p.z, b.p.z, c.p.z), iw = vec3(a.inv_w, b.inv_w, c.inv_w);
-    for (int y = y0 + first_row; y <= y1; y += row_step) {
-        float yc = float(y) + 0.5;
-        vec3 K = B * yc + C;
-        float lo = xlo, hi = xhi;
-        for (int i = 0; i < 3; i++) {
-            if (A[i] > 0.0) lo = max(lo, -K[i] / A[i]);
-            else if (A[i] < 0.0) hi = min(hi, -K[i] / A[i]);
-            else if (K[i] < 0.0) hi = lo - 1.0;
+    int row = first_row;
+    for (int k = 0; k < raster_lattices(); k++) {
+#ifdef RASTER_PIXEL_RATE
+        vec2 o = vec2(0.5);
+#else
+        vec2 o = raster_offset(k) + 0.5;
+#endif
+        int y0 = max(int(ceil(ylo - o.y)), 0), y1 = min(int(floor(yhi - o.y)), size.y - 1);
+        int rows = max(y1 - y0 + 1, 0);
+        for (; row < rows; row += row_step) {
+            int y = y0 + row;
+            float yc = float(y) + o.y;
+            vec3 K = B * yc + C;
+            float lo = xlo, hi = xhi;
+            for (int i = 0; i < 3; i++) {
+                if (A[i] > 0.0) lo = max(lo, -K[i] / A[i]);
+                else if (A[i] < 0.0) hi = min(hi, -K[i] / A[i]);
+                else if (K[i] < 0.0) hi = lo - 1.0;
+            }
+            int x0 = max(int(ceil(lo - o.x)), 0), x1 = min(int(floor(hi - o.x)), size.x - 1);
+            for (int x = x0; x <= x1; x++) {
+                vec3 l = max(A * (float(x) + o.x) + K, vec3(0.0));
+                float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
+                if (!(depth >= 0.0 && depth <= 1.0)) continue;
+                vec3 q = l * iw;
+                raster_fragment((y * size.x + x) * u_raster_samples + k,
+                                to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
+            }
         }
-        int x0 = max(int(ceil(lo - 0.5)), 0), x1 = min(int(floor(hi - 0.5)), size.x - 1);
-        for (int x = x0; x <= x1; x++) {
-            vec3 l = max(A * (float(x) + 0.5) + K, vec3(0.0));
-            float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
-            if (!(depth >= 0.0 && depth <= 1.0)) continue;
-            vec3 q = l * iw;
-            raster_fragment(raster_grid_index(x, y), to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
-        }
+        row -= rows;
     }
 }
 

@@ -8,14 +8,14 @@
 layout(std430, binding = 20) readonly buffer RasterVis { uint words[]; };
 
 uniform ivec2 u_raster_pixels;
-uniform int u_raster_ss;
+uniform int u_raster_samples;
 
 out vec4 o_color;
 
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    int n = u_raster_ss * u_raster_ss;
+    int n = u_raster_samples;
     int base = (px.y * u_raster_pixels.x + px.x) * n;
     vec3 sum = vec3(0.0);
     int covered = 0;

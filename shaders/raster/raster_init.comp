@@ -12,14 +12,14 @@ layout(std430, binding = 20) writeonly buffer RasterVis { uint words[]; };
 layout(binding = 0) uniform sampler2D u_depth;
 
 uniform ivec2 u_raster_pixels;
-uniform int u_raster_ss;
+uniform int u_raster_samples;
 
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (px.x >= u_raster_pixels.x || px.y >= u_raster_pixels.y) return;
     uint depth = floatBitsToUint(max(texelFetch(u_depth, px, 0).r, 0.0));
-    int n = u_raster_ss * u_raster_ss;
+    int n = u_raster_samples;
     int base = (px.y * u_raster_pixels.x + px.x) * n;
     for (int k = 0; k < n; k++) {
         words[2 * (base + k)] = 0u;

@@ -284,9 +284,9 @@ static void write_summary(app_t *app, double wall_s)
     const raster_t *r = &app->world.raster;
     if (r->vis.id)
         n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "raster_buffers_mb: %.1f (visibility %dx%d x %dx%d samples, %s; large-triangle queue)\n",
+                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; large-triangle queue)\n",
                       (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
-                      r->desc.supersample, r->desc.supersample,
+                      r->desc.samples,
                       r->atomic64 ? "64-bit atomics" : "two-pass 32-bit");
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);

@@ -206,7 +206,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
 /* The same billboards as bb_field_draw, drawn by the compute rasterizer
  * (timer "bb.raster"): every billboard is tested against the frustum on
- * the GPU (no octree walk), coverage comes from r's supersamples instead
+ * the GPU (no octree walk), coverage comes from r's samples instead
  * of alpha-to-coverage. Between raster_begin and raster_end. */
 void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
 /* wait: reads the pool header now (blocks until the last update finished;

@@ -395,7 +395,7 @@ static void bind_raster(gfx_program_t p, void *user)
     glUniform1i(gfx_uniform(p, "u_use_ids"), b->ids.id != 0);
     glUniform1ui(gfx_uniform(p, "u_count_index"), b->count_index);
     glUniform1ui(gfx_uniform(p, "u_count_max"), 0xffffffffu);
-    glUniform1f(gfx_uniform(p, "u_segment_samples"), BLADE_RASTER_SEGMENT_SAMPLES);
+    glUniform1f(gfx_uniform(p, "u_segment_pixels"), BLADE_RASTER_SEGMENT_PIXELS);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b->ids.id ? b->ids.id : b->blades.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->count.id);

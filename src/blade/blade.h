@@ -150,14 +150,14 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
  * "blade.draw"). Depth test on, no face culling (two-sided). */
 void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
 
-/* Blade length in visibility-buffer samples per segment of the compute
+/* Projected blade length in pixels per segment of the compute
  * rasterizer's level of detail (segments = ceil(projected length / this),
  * 1 to max_tess_level). */
-#define BLADE_RASTER_SEGMENT_SAMPLES 8.0f
+#define BLADE_RASTER_SEGMENT_PIXELS 4.0f
 
 /* Draws the survivors of the latest cull with the compute rasterizer
  * (timer "blade.raster"); the same surface and shading as blade_gpu_draw,
- * coverage from r's supersamples. Between raster_begin and raster_end. */
+ * coverage from r's samples. Between raster_begin and raster_end. */
 void blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
 /* Module-internal (blade.c, blade_tiles.c). The surface of drawn blades
  * (blade_geom.glsl uniforms). */

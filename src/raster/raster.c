@@ -21,14 +21,13 @@ bool raster_has_atomic64(void)
 bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out)
 {
     raster_desc_t d = *in;
-    if (!d.supersample) d.supersample = 2;
+    if (!d.samples) d.samples = 4;
     if (!d.big_samples) d.big_samples = 256;
     if (!d.queue_capacity) d.queue_capacity = 1 << 20;
     if (!d.label) d.label = "raster";
-    if (d.w <= 0 || d.h <= 0 || d.supersample < 1 || d.supersample > 4 || d.big_samples < 1 ||
-        d.queue_capacity < 1) {
-        core_log_error("raster: bad desc (size %dx%d, supersample %d in 1..4, big_samples %d, queue %d)", d.w, d.h,
-                       d.supersample, d.big_samples, d.queue_capacity);
+    if (d.w <= 0 || d.h <= 0 || (d.samples != 1 && d.samples != 4) || d.big_samples < 1 || d.queue_capacity < 1) {
+        core_log_error("raster: bad desc (size %dx%d, samples %d: 1 or 4, big_samples %d, queue %d)", d.w, d.h,
+                       d.samples, d.big_samples, d.queue_capacity);
         return false;
     }
     *out = d;
@@ -41,7 +40,7 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
     if (!raster_desc_resolve(desc, &r->desc)) return false;
     const raster_desc_t *d = &r->desc;
     r->atomic64 = !d->no_atomic64 && raster_has_atomic64();
-    size_t samples = (size_t)d->w * (size_t)d->h * (size_t)(d->supersample * d->supersample);
+    size_t samples = (size_t)d->w * (size_t)d->h * (size_t)d->samples;
     char label[128];
     snprintf(label, sizeof label, "%s.visibility", d->label);
     r->vis = gfx_buffer_make(&(gfx_buffer_desc_t){.size = samples * 8, .label = label});
@@ -59,8 +58,8 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
         raster_destroy(r);
         return false;
     }
-    core_log_info("raster: %dx%d, %dx%d samples per pixel, %s visibility buffer (%.1f MB)", d->w, d->h,
-                  d->supersample, d->supersample, r->atomic64 ? "64-bit atomic" : "two-pass 32-bit",
+    core_log_info("raster: %dx%d, %d samples per pixel, %s visibility buffer (%.1f MB)", d->w, d->h,
+                  d->samples, r->atomic64 ? "64-bit atomic" : "two-pass 32-bit",
                   (double)(samples * 8) / (1024.0 * 1024.0));
     return true;
 }
@@ -105,7 +104,7 @@ void raster_program_destroy(raster_program_t *p)
 static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
 {
     glUniform2i(gfx_uniform(p, "u_raster_pixels"), r->desc.w, r->desc.h);
-    glUniform1i(gfx_uniform(p, "u_raster_ss"), r->desc.supersample);
+    glUniform1i(gfx_uniform(p, "u_raster_samples"), r->desc.samples);
 }
 
 void raster_begin(raster_t *r, const gfx_target_t *target)

@@ -3,8 +3,9 @@
  * On the H100 the vertex/tessellation/fragment stages run on a small part of
  * the chip while compute runs on every SM, so millions of tiny grass
  * triangles rasterize far faster in compute (issue 14; docs/RASTER.md).
- * This module owns the visibility buffer (one 64-bit word per sample: depth
- * high, RGBA8 colour low, kept by atomicMin), its start from the opaque
+ * This module owns the visibility buffer (one 64-bit word per sample, 4
+ * samples per pixel in the 4x MSAA pattern: depth high, RGBA8 colour low,
+ * kept by atomicMin), its start from the opaque
  * depth, and the resolve + composite into the frame's target. The grass
  * modules only say what to draw: each has a compute shader that includes
  * shaders/raster/raster.glsl, made with raster_program_make and run with
@@ -29,7 +30,7 @@
 
 typedef struct raster_desc_t {
     int w, h;               /* target pixels, required */
-    int supersample;        /* samples per pixel side: default 2 (2x2), 1..4 */
+    int samples;            /* per pixel: 4 (default; the standard 4x MSAA pattern) or 1 (the centre) */
     int big_samples;        /* a triangle whose sample box exceeds this is scanned by a
                                work group instead of one thread; default 256 */
     int queue_capacity;     /* queued large triangles per draw; default 1 << 20 */

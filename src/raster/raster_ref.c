@@ -10,10 +10,10 @@ typedef struct vert_t {
     float x, y, z, inv_w;
 } vert_t;
 
-bool raster_ref_init(raster_ref_t *r, int w, int h, int ss, float depth)
+bool raster_ref_init(raster_ref_t *r, int w, int h, int samples, float depth)
 {
-    size_t n = (size_t)w * (size_t)h * (size_t)(ss * ss);
-    *r = (raster_ref_t){.w = w, .h = h, .ss = ss, .colour = calloc(n, 4), .depth = malloc(n * 4)};
+    size_t n = (size_t)w * (size_t)h * (size_t)samples;
+    *r = (raster_ref_t){.w = w, .h = h, .samples = samples, .colour = calloc(n, 4), .depth = malloc(n * 4)};
     if (!r->colour || !r->depth) {
         raster_ref_free(r);
         return false;
@@ -31,10 +31,11 @@ void raster_ref_free(raster_ref_t *r)
     memset(r, 0, sizeof *r);
 }
 
-int raster_ref_sample_index(const raster_ref_t *r, int x, int y)
+void raster_ref_sample_offset(int samples, int k, float out[2])
 {
-    int ss = r->ss, px = x / ss, py = y / ss;
-    return ((py * r->w + px) * ss + (y - py * ss)) * ss + (x - px * ss);
+    static const float o4[4][2] = {{-2, -6}, {6, -2}, {-6, 2}, {2, 6}};
+    out[0] = samples == 4 ? o4[k][0] / 16.0f : 0.0f;
+    out[1] = samples == 4 ? o4[k][1] / 16.0f : 0.0f;
 }
 
 static void put(raster_ref_t *r, int s, float depth, uint32_t rgba)
@@ -50,7 +51,7 @@ static void put(raster_ref_t *r, int s, float depth, uint32_t rgba)
 static vert_t project(const raster_ref_t *r, const float c[4])
 {
     float iw = 1.0f / c[3];
-    return (vert_t){(c[0] * iw * 0.5f + 0.5f) * (float)(r->w * r->ss), (c[1] * iw * 0.5f + 0.5f) * (float)(r->h * r->ss),
+    return (vert_t){(c[0] * iw * 0.5f + 0.5f) * (float)r->w, (c[1] * iw * 0.5f + 0.5f) * (float)r->h,
                     c[2] * iw * 0.5f + 0.5f, iw};
 }
 
@@ -64,30 +65,35 @@ static void scan(raster_ref_t *r, vert_t a, vert_t b, vert_t c, uint32_t rgba)
     B[2] = -B[0] - B[1];
     float C[3] = {-(A[0] * c.x + B[0] * c.y), -(A[1] * c.x + B[1] * c.y), 0};
     C[2] = 1.0f - C[0] - C[1];
-    int sw = r->w * r->ss, sh = r->h * r->ss;
     float ylo = fminf(a.y, fminf(b.y, c.y)), yhi = fmaxf(a.y, fmaxf(b.y, c.y));
     float xlo = fminf(a.x, fminf(b.x, c.x)), xhi = fmaxf(a.x, fmaxf(b.x, c.x));
-    int y0 = (int)fmaxf(ceilf(ylo - 0.5f), 0.0f), y1 = (int)fminf(floorf(yhi - 0.5f), (float)(sh - 1));
     float z[3] = {a.z, b.z, c.z};
-    for (int y = y0; y <= y1; y++) {
-        float yc = (float)y + 0.5f, K[3], lo = xlo, hi = xhi;
-        for (int i = 0; i < 3; i++) {
-            K[i] = B[i] * yc + C[i];
-            if (A[i] > 0.0f) lo = fmaxf(lo, -K[i] / A[i]);
-            else if (A[i] < 0.0f) hi = fminf(hi, -K[i] / A[i]);
-            else if (K[i] < 0.0f) hi = lo - 1.0f;
-        }
-        int x0 = (int)fmaxf(ceilf(lo - 0.5f), 0.0f), x1 = (int)fminf(floorf(hi - 0.5f), (float)(sw - 1));
-        for (int x = x0; x <= x1; x++) {
-            float l[3], sum = 0.0f, d = 0.0f;
+    for (int k = 0; k < r->samples; k++) {
+        float o[2];
+        raster_ref_sample_offset(r->samples, k, o);
+        o[0] += 0.5f;
+        o[1] += 0.5f;
+        int y0 = (int)fmaxf(ceilf(ylo - o[1]), 0.0f), y1 = (int)fminf(floorf(yhi - o[1]), (float)(r->h - 1));
+        for (int y = y0; y <= y1; y++) {
+            float yc = (float)y + o[1], K[3], lo = xlo, hi = xhi;
             for (int i = 0; i < 3; i++) {
-                l[i] = fmaxf(A[i] * ((float)x + 0.5f) + K[i], 0.0f);
-                sum += l[i];
-                d += l[i] * z[i];
+                K[i] = B[i] * yc + C[i];
+                if (A[i] > 0.0f) lo = fmaxf(lo, -K[i] / A[i]);
+                else if (A[i] < 0.0f) hi = fminf(hi, -K[i] / A[i]);
+                else if (K[i] < 0.0f) hi = lo - 1.0f;
             }
-            d /= fmaxf(sum, 1e-20f);
-            if (!(d >= 0.0f && d <= 1.0f)) continue;
-            put(r, raster_ref_sample_index(r, x, y), d, rgba);
+            int x0 = (int)fmaxf(ceilf(lo - o[0]), 0.0f), x1 = (int)fminf(floorf(hi - o[0]), (float)(r->w - 1));
+            for (int x = x0; x <= x1; x++) {
+                float l[3], sum = 0.0f, d = 0.0f;
+                for (int i = 0; i < 3; i++) {
+                    l[i] = fmaxf(A[i] * ((float)x + o[0]) + K[i], 0.0f);
+                    sum += l[i];
+                    d += l[i] * z[i];
+                }
+                d /= fmaxf(sum, 1e-20f);
+                if (!(d >= 0.0f && d <= 1.0f)) continue;
+                put(r, (y * r->w + x) * r->samples + k, d, rgba);
+            }
         }
     }
 }
