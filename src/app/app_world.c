@@ -491,7 +491,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         else blade_tiles_draw(&w->tiles, &dd);
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
-        if (!raster) gfx_target_resolve(target);
+        if (!raster) gfx_target_resolve_depth(target);
         blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
                                 .distance_levels = w->tuning.distance_levels,
                                 .disable = w->reference ? 0xffu : w->tuning.cull_disable};

@@ -349,14 +349,19 @@ void gfx_target_bind(const gfx_target_t *t)
     glViewport(0, 0, t->w, t->h);
 }
 
+void gfx_target_resolve_depth(const gfx_target_t *t)
+{
+    if (t->resolve_fbo == t->fbo || !t->depth.id) return;
+    glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_DEPTH_BUFFER_BIT,
+                           GL_NEAREST);
+}
+
 void gfx_target_resolve(const gfx_target_t *t)
 {
     if (t->resolve_fbo == t->fbo) return;
     glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_COLOR_BUFFER_BIT,
                            GL_NEAREST);
-    if (t->depth.id)
-        glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_DEPTH_BUFFER_BIT,
-                               GL_NEAREST);
+    gfx_target_resolve_depth(t);
 }
 
 bool gfx_target_read(const gfx_target_t *t, core_image_t *out)

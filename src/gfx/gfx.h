@@ -110,6 +110,8 @@ void gfx_target_destroy(gfx_target_t *t);
 void gfx_target_bind(const gfx_target_t *t); /* binds fbo and sets viewport */
 /* Resolves colour (and depth, for occlusion culling) into the resolve FBO. */
 void gfx_target_resolve(const gfx_target_t *t);
+/* Depth only (occlusion culling, the compute rasterizer's start). */
+void gfx_target_resolve_depth(const gfx_target_t *t);
 /* Reads the resolved colour as RGBA8, row 0 at the top, alpha 255 (opaque). */
 bool gfx_target_read(const gfx_target_t *t, core_image_t *out);
 /* Resolve + read + write PNG (atomic). */

@@ -110,7 +110,7 @@ static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
 void raster_begin(raster_t *r, const gfx_target_t *target)
 {
     gfx_timer_begin("raster.init");
-    gfx_target_resolve(target);
+    gfx_target_resolve_depth(target);
     glUseProgram(r->init.id);
     set_frame_uniforms(r, r->init);
     glBindTextureUnit(0, target->resolve_depth.id);
