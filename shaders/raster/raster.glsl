@@ -148,10 +148,9 @@ float raster_box_samples(vec2 lo, vec2 hi)
 void raster_fragment(int s, vec3 w, float depth);
 
 /* Scans rows first_row, first_row + row_step, ... of the projected
- * triangle a b c on every lattice (lattice k's rows count after lattice
- * k - 1's, so a work group's threads share all of them); fragment weights
- * are to_tri * (weights of a, b, c). A sample on a shared edge may be drawn
- * by both triangles (same depth: no artefact). */
+ * triangle a b c on every lattice (each lattice's rows from first_row);
+ * fragment weights are to_tri * (weights of a, b, c). A sample on a shared
+ * edge may be drawn by both triangles (same depth: no artefact). */
 void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int first_row, int row_step)
 {
     vec2 p0 = a.p.xy, p1 = b.p.xy, p2 = c.p.xy;
@@ -168,17 +167,14 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
     float ylo = min(p0.y, min(p1.y, p2.y)), yhi = max(p0.y, max(p1.y, p2.y));
     float xlo = min(p0.x, min(p1.x, p2.x)), xhi = max(p0.x, max(p1.x, p2.x));
     vec3 z = vec3(a.p.z, b.p.z, c.p.z), iw = vec3(a.inv_w, b.inv_w, c.inv_w);
-    int row = first_row;
     for (int k = 0; k < raster_lattices(); k++) {
 #ifdef RASTER_PIXEL_RATE
-        vec2 o = vec2(0.5);
+        const vec2 o = vec2(0.5);
 #else
         vec2 o = raster_offset(k) + 0.5;
 #endif
         int y0 = max(int(ceil(ylo - o.y)), 0), y1 = min(int(floor(yhi - o.y)), size.y - 1);
-        int rows = max(y1 - y0 + 1, 0);
-        for (; row < rows; row += row_step) {
-            int y = y0 + row;
+        for (int y = y0 + first_row; y <= y1; y += row_step) {
             float yc = float(y) + o.y;
             vec3 K = B * yc + C;
             float lo = xlo, hi = xhi;
@@ -188,16 +184,15 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
                 else if (K[i] < 0.0) hi = lo - 1.0;
             }
             int x0 = max(int(ceil(lo - o.x)), 0), x1 = min(int(floor(hi - o.x)), size.x - 1);
+            int base = y * size.x * u_raster_samples + k;
             for (int x = x0; x <= x1; x++) {
                 vec3 l = max(A * (float(x) + o.x) + K, vec3(0.0));
                 float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
                 if (!(depth >= 0.0 && depth <= 1.0)) continue;
                 vec3 q = l * iw;
-                raster_fragment((y * size.x + x) * u_raster_samples + k,
-                                to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
+                raster_fragment(base + x * u_raster_samples, to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
             }
         }
-        row -= rows;
     }
 }
 
