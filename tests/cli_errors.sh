@@ -28,6 +28,8 @@ expect2 "unknown option '--bogus'" --bogus
 expect2 "--frames '-5'" --frames -5
 expect2 "--frames 'abc'" --frames abc
 expect2 "--size '0x100'" --size 0x100
+expect2 "--raster 'gpu'" --raster gpu
+expect2 "--raster-samples '2'" --raster-samples 2
 expect2 "--size '-640x480'" --size -640x480
 expect2 "--size '100000x100'" --size 100000x100
 expect2 "--seed 'x1'" --seed x1
@@ -43,6 +45,8 @@ printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"
 expect2 'unknown.json:2.*sed' --headless --scene "$tmp/unknown.json"
 printf '{\n  "grass": { "stiffness": [0, 10] }\n}\n' >"$tmp/stiffness0.json"
 expect2 'stiffness0.json:2: field "grass.stiffness": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
+printf '{\n  "raster": "gpu"\n}\n' >"$tmp/raster.json"
+expect2 'raster.json:2.*raster' --headless --scene "$tmp/raster.json"
 printf '{ "terrain": { "type": "mesh", "mesh": "%s/nope.obj" } }\n' "$tmp" >"$tmp/badmesh.json"
 expect2 'nope.obj' --headless --scene "$tmp/badmesh.json"
 printf 'this is not a mesh\n' >"$tmp/garbage.obj"

@@ -26,6 +26,7 @@ void app_print_usage(void)
            "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
            "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
            "                        of the two, measured at start-up); default: the scene's (hw)\n"
+           "  --raster-samples N    compute rasterizer samples per pixel: 4 (default, the 4x MSAA pattern) or 1\n"
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
@@ -182,6 +183,13 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
                 return 2;
             }
             o->raster = 1 + (int)r;
+        } else if (strcmp(a, "--raster-samples") == 0) {
+            NEED_VALUE();
+            if (strcmp(v, "1") != 0 && strcmp(v, "4") != 0) {
+                snprintf(err, err_size, "--raster-samples '%s': expected 1 or 4", v);
+                return 2;
+            }
+            o->raster_samples = v[0] - '0';
         } else if (strcmp(a, "--mode") == 0) {
             NEED_VALUE();
             if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;

@@ -54,6 +54,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->blade_render = o->blade_render;
     if (o->raster) s->raster = (scene_raster_t)(o->raster - 1);
     w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
+    w->raster_samples = o->raster_samples;
     w->character_override = o->character;
     w->clip_override = o->clip;
     stage_done(w, APP_STAGE_SCENE, &mark);
@@ -460,7 +461,7 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
     raster_t *r = &w->raster;
     if (r->vis.id && r->desc.w == target->w && r->desc.h == target->h) return r;
     raster_destroy(r);
-    if (!raster_make(r, &(raster_desc_t){.w = target->w, .h = target->h})) {
+    if (!raster_make(r, &(raster_desc_t){.w = target->w, .h = target->h, .samples = w->raster_samples})) {
         core_log_warn("compute rasterizer unavailable; drawing grass with the hardware path");
         w->raster_compute = false;
         return NULL;
