@@ -4,7 +4,8 @@
  * GL_NV_shader_atomic_int64 exists (the GPU machine; llvmpipe lacks it and
  * the test says so). Triangles: many small ones at random depths, large
  * ones (the work-group queue), ones crossing the near plane (clipping) and
- * ones wholly behind it. Checks per sample: coverage and colour equal,
+ * ones wholly behind it; small thresholds, so all three work lists are
+ * used. Checks per sample: coverage and colour equal,
  * depth equal to 1e-5 (window depth; fused multiply-adds on GPUs), except for a small budget of samples on edges
  * (float rounding); the queue was used; the composite writes the mean
  * colour of a pixel's samples and coverage over the background. */
@@ -69,7 +70,8 @@ static void bind(gfx_program_t p, void *user)
 static void run_variant(bool no_atomic64, const float *tris, const raster_ref_t *ref)
 {
     raster_t r;
-    CHECK(raster_make(&r, &(raster_desc_t){.w = W, .h = H, .no_atomic64 = no_atomic64, .big_samples = 64}));
+    CHECK(raster_make(&r, &(raster_desc_t){.w = W, .h = H, .no_atomic64 = no_atomic64, .small_samples = 16,
+                                            .medium_samples = 256}));
     printf("variant: %s\n", r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes");
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "t"});
     gfx_target_bind(&target);
@@ -85,8 +87,8 @@ static void run_variant(bool no_atomic64, const float *tris, const raster_ref_t 
     raster_draw(&r, &prog, &(raster_items_t){.count = NTRI}, bind, &b);
     raster_stats_t st;
     raster_read_stats(&r, &st);
-    printf("queued large or clipped triangles: %u (overflow %u)\n", st.queued, st.overflow);
-    CHECK(st.queued >= 8 && st.overflow == 0);
+    printf("queued triangles: %u medium, %u large or clipped (overflow %u)\n", st.medium, st.large, st.overflow);
+    CHECK(st.medium >= 8 && st.large >= 8 && st.overflow == 0);
 
     size_t n = (size_t)W * H * 4;
     uint32_t *words = malloc(n * 8);

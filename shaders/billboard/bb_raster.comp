@@ -11,7 +11,8 @@
  * then cover round(alpha n) of the pixel's n samples, starting at a sample
  * chosen by a hash of the pixel, as alpha-to-coverage does with MSAA.
  * Fragments behind what the samples already hold are skipped before the
- * texel fetch. With RASTER_BIG one work group scans one queued triangle. */
+ * texel fetch. With RASTER_BIG the queued medium and large triangles
+ * (raster.glsl). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
@@ -170,13 +171,12 @@ void raster_fragment(int s0, vec3 w, float depth)
 void main()
 {
 #ifdef RASTER_BIG
-    uint q = gl_WorkGroupID.x;
-    if (q >= min(raster_queue_count, u_raster_queue_capacity)) return;
-    uvec2 item = raster_queue[q];
-    if (!bb_setup(item.x)) return;
+    uvec2 item;
+    int first_row, row_step;
+    if (!raster_queued_item(item, first_row, row_step) || !bb_setup(item.x)) return;
     vec4 a, b, c;
     bb_triangle(int(item.y), a, b, c);
-    raster_triangle(a, b, c, int(gl_LocalInvocationID.x), RASTER_BIG_THREADS);
+    raster_triangle(a, b, c, first_row, row_step);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= u_count || !bb_setup(prim)) return;

@@ -9,7 +9,7 @@
  * with the probability of its true width, so a far blade is a thin line of
  * the right average coverage. Hybrid fade: alpha as blade.frag, turned into
  * coverage by fixed per-sample thresholds (what alpha-to-coverage does).
- * With RASTER_BIG one work group scans one queued triangle. */
+ * With RASTER_BIG the queued medium and large triangles (raster.glsl). */
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
 #include "common/grass_shade.glsl"
@@ -128,13 +128,13 @@ void blade_triangle(int t, int n, out vec4 a, out vec4 b, out vec4 c)
 void main()
 {
 #ifdef RASTER_BIG
-    uint q = gl_WorkGroupID.x;
-    if (q >= min(raster_queue_count, u_raster_queue_capacity)) return;
-    uvec2 item = raster_queue[q];
+    uvec2 item;
+    int first_row, row_step;
+    if (!raster_queued_item(item, first_row, row_step)) return;
     int n = blade_setup(item.x);
     vec4 a, b, c;
     blade_triangle(int(item.y), n, a, b, c);
-    raster_triangle(a, b, c, int(gl_LocalInvocationID.x), RASTER_BIG_THREADS);
+    raster_triangle(a, b, c, first_row, row_step);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= blade_count()) return;

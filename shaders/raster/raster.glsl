@@ -27,18 +27,21 @@
  * alpha-to-coverage does). For shaders whose cost is per fragment (texture,
  * shading) and whose edges are soft anyway.
  *
- * Work split: a triangle whose pixel bounding box times the lattices it is
- * scanned on exceeds u_raster_big_samples is not scanned by its thread but
- * queued (primitive, triangle) for the RASTER_BIG variant of the same
- * shader, where one work group of RASTER_BIG_THREADS scans it, one row per
- * thread in turn. Triangles crossing the near plane are queued too and
- * clipped there. */
+ * Work split by size (samples = pixel bounding box times the lattices it
+ * is scanned on): up to u_raster_small_samples the primitive's thread scans
+ * the triangle at once; up to u_raster_medium_samples it is queued
+ * (primitive, triangle) on the medium list, larger ones and those crossing
+ * the near plane on the large list. The RASTER_BIG variant of the same
+ * shader then runs both lists (raster_queued_item): medium triangles one
+ * per thread (similar sizes side by side, so the threads of a warp finish
+ * together), large ones one per work group of RASTER_BIG_THREADS, one row
+ * per thread in turn (near-plane crossings clipped there). */
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
 #define RASTER_VIS_BINDING 20
 #define RASTER_QUEUE_BINDING 21
-#define RASTER_BIG_THREADS 64
+#define RASTER_BIG_THREADS 64u
 
 layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
 #ifdef RASTER_ATOMIC64
@@ -48,19 +51,23 @@ layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
 #endif
 };
 
-/* count, overflow, then (primitive, triangle) pairs; see raster.c. */
+/* Large count and overflow, medium count and overflow, then the large
+ * list (u_raster_queue_capacity (primitive, triangle) pairs) and the
+ * medium list (as many); see raster.c. */
 layout(std430, binding = RASTER_QUEUE_BINDING) buffer RasterQueue {
-    uint raster_queue_count;
-    uint raster_queue_overflow;
-    uint raster_queue_pad[2];
+    uint raster_large_count;
+    uint raster_large_overflow;
+    uint raster_medium_count;
+    uint raster_medium_overflow;
     uvec2 raster_queue[];
 };
 
 uniform ivec2 u_raster_pixels;      /* target size in pixels */
 uniform int u_raster_samples;       /* per pixel: 1 or 4 */
 uniform int u_raster_pass;          /* without RASTER_ATOMIC64: 0 depth, 1 colour */
-uniform uint u_raster_big_samples;  /* bounding-box samples above which a triangle is queued */
-uniform uint u_raster_queue_capacity;
+uniform uint u_raster_small_samples;  /* scanned by the primitive's thread up to this */
+uniform uint u_raster_medium_samples; /* queued one per thread up to this, else one per work group */
+uniform uint u_raster_queue_capacity; /* per list */
 
 bool raster_color_pass()
 {
@@ -244,26 +251,62 @@ void raster_triangle(vec4 c0, vec4 c1, vec4 c2, int first_row, int row_step)
 }
 
 /* In the per-primitive pass: scans a small triangle now, or queues it
- * (prim, tri) for the work-group pass when its sample box is large or it
- * crosses the near plane. Triangles wholly behind the near plane vanish. */
+ * (prim, tri) on the medium or the large list (large also when it crosses
+ * the near plane). Triangles wholly behind the near plane vanish. */
 void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
 {
     vec3 d = vec3(raster_near(c0), raster_near(c1), raster_near(c2));
     if (all(lessThan(d, vec3(0.0)))) return;
+    bool medium = false;
     if (all(greaterThanEqual(d, vec3(0.0))) && c0.w > 0.0 && c1.w > 0.0 && c2.w > 0.0) {
         raster_vert a, b, c;
         raster_project(c0, a);
         raster_project(c1, b);
         raster_project(c2, c);
         vec2 lo = min(a.p.xy, min(b.p.xy, c.p.xy)), hi = max(a.p.xy, max(b.p.xy, c.p.xy));
-        if (raster_box_samples(lo, hi) <= float(u_raster_big_samples)) {
+        float area = raster_box_samples(lo, hi);
+        if (area <= float(u_raster_small_samples)) {
             raster_scan(a, b, c, mat3(1.0), 0, 1);
             return;
         }
+        medium = area <= float(u_raster_medium_samples);
     }
-    uint slot = atomicAdd(raster_queue_count, 1u);
-    if (slot < u_raster_queue_capacity) raster_queue[slot] = uvec2(prim, tri);
-    else atomicAdd(raster_queue_overflow, 1u);
+    if (medium) {
+        uint slot = atomicAdd(raster_medium_count, 1u);
+        if (slot < u_raster_queue_capacity) raster_queue[u_raster_queue_capacity + slot] = uvec2(prim, tri);
+        else atomicAdd(raster_medium_overflow, 1u);
+    } else {
+        uint slot = atomicAdd(raster_large_count, 1u);
+        if (slot < u_raster_queue_capacity) raster_queue[slot] = uvec2(prim, tri);
+        else atomicAdd(raster_large_overflow, 1u);
+    }
+}
+
+/* In the RASTER_BIG pass: this invocation's queued triangle and the rows it
+ * scans (raster_triangle's first_row, row_step). The first
+ * ceil(medium / RASTER_BIG_THREADS) work groups take the medium list, one
+ * triangle per thread; each later group takes one large triangle. False:
+ * nothing for this invocation. */
+bool raster_queued_item(out uvec2 item, out int first_row, out int row_step)
+{
+    item = uvec2(0u);
+    uint medium = min(raster_medium_count, u_raster_queue_capacity);
+    uint medium_groups = (medium + RASTER_BIG_THREADS - 1u) / RASTER_BIG_THREADS;
+    uint g = gl_WorkGroupID.x;
+    if (g < medium_groups) {
+        uint i = g * RASTER_BIG_THREADS + gl_LocalInvocationID.x;
+        first_row = 0;
+        row_step = 1;
+        if (i >= medium) return false;
+        item = raster_queue[u_raster_queue_capacity + i];
+        return true;
+    }
+    uint q = g - medium_groups;
+    first_row = int(gl_LocalInvocationID.x);
+    row_step = int(RASTER_BIG_THREADS);
+    if (q >= min(raster_large_count, u_raster_queue_capacity)) return false;
+    item = raster_queue[q];
+    return true;
 }
 
 #endif

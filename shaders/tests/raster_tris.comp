@@ -25,11 +25,12 @@ void raster_fragment(int s, vec3 w, float depth)
 void main()
 {
 #ifdef RASTER_BIG
-    uint q = gl_WorkGroupID.x;
-    if (q >= min(raster_queue_count, u_raster_queue_capacity)) return;
-    uint i = raster_queue[q].x;
+    uvec2 item;
+    int first_row, row_step;
+    if (!raster_queued_item(item, first_row, row_step)) return;
+    uint i = item.x;
     g_rgba = floatBitsToUint(tris[4 * i + 3].x);
-    raster_triangle(tris[4 * i], tris[4 * i + 1], tris[4 * i + 2], int(gl_LocalInvocationID.x), RASTER_BIG_THREADS);
+    raster_triangle(tris[4 * i], tris[4 * i + 1], tris[4 * i + 2], first_row, row_step);
 #else
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_count) return;

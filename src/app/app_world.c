@@ -482,13 +482,14 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
     /* raster_begin resolves the opaque depth (also read by occlusion culling). */
     if (raster) raster_begin(raster, target);
+    bool raster_ok = true;
     if (w->have_tiles && uses_tiles(w)) {
         blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi};
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
         blade_tiles_set_overlay(&w->tiles, v->overlay);
-        if (raster) blade_tiles_raster(&w->tiles, raster, &dd);
+        if (raster) raster_ok = blade_tiles_raster(&w->tiles, raster, &dd) && raster_ok;
         else blade_tiles_draw(&w->tiles, &dd);
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass. */
@@ -509,7 +510,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             dd.fade_start = fade_lo;
             dd.fade_end = fade_hi;
         }
-        if (raster) blade_gpu_raster(&w->blades, raster, &dd);
+        if (raster) raster_ok = blade_gpu_raster(&w->blades, raster, &dd) && raster_ok;
         else blade_gpu_draw(&w->blades, &dd);
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
@@ -527,10 +528,14 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             d.slope_grid = w->tiles.slope_grid;
             d.slope_recover = w->tiles.desc.slope_recover;
         }
-        if (raster) bb_field_raster(&w->bb, raster, &d);
+        if (raster) raster_ok = bb_field_raster(&w->bb, raster, &d) && raster_ok;
         else bb_field_draw(&w->bb, &d);
     }
     if (raster) raster_end(raster, target);
+    if (!raster_ok) {
+        core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
+        w->raster_compute = false;
+    }
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 

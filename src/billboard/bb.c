@@ -1149,7 +1149,7 @@ static void bind_raster(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b->f->points.id);
 }
 
-void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
+bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
     gfx_timer_begin("bb.raster");
     raster_program_t *prog = &f->raster_prog;
@@ -1161,6 +1161,7 @@ void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
     }
     glBindTextureUnit(0, 0);
     gfx_timer_end();
+    return prog->prim.id != 0;
 }
 
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)

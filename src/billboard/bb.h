@@ -207,8 +207,9 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
 /* The same billboards as bb_field_draw, drawn by the compute rasterizer
  * (timer "bb.raster"): every billboard is tested against the frustum on
  * the GPU (no octree walk), coverage comes from r's samples instead
- * of alpha-to-coverage. Between raster_begin and raster_end. */
-void bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
+ * of alpha-to-coverage. Between raster_begin and raster_end. False when
+ * the raster program cannot be made (logged). */
+bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
 /* wait: reads the pool header now (blocks until the last update finished;
  * exact, for tests). !wait: pool numbers from the newest readback that
  * already reached the CPU (no stall, a few updates late; HUDs). */

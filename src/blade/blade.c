@@ -401,27 +401,29 @@ static void bind_raster(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->count.id);
 }
 
-void blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
+bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
                        const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
                        uint32_t count_index, uint32_t count_max)
 {
     if (prog->prim.id && prog->atomic64 != r->atomic64) raster_program_destroy(prog);
     if (!prog->prim.id) *prog = raster_program_make(r, "blade/blade_raster.comp", NULL, "blade.raster");
-    if (!prog->prim.id) return;
+    if (!prog->prim.id) return false;
     raster_bind_t b = {.surf = surf, .draw = desc, .blades = blades, .ids = ids, .count = count,
                        .count_index = count_index};
     raster_items_t items = {.count_buffer = count, .count_index = count_index, .count_max = count_max};
     raster_draw(r, prog, &items, bind_raster, &b);
+    return true;
 }
 
-void blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc)
+bool blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc)
 {
     gfx_timer_begin("blade.raster");
     blade_surface_t surf = surface_of(&g->desc);
-    if (g->culled_once)
-        blade_raster_list(r, &g->raster, &surf, desc, g->blades, g->survivors, g->command,
-                          g->desc.path == BLADE_PATH_PULLING ? 1u : 0u, g->padded_count);
+    bool ok = !g->culled_once ||
+              blade_raster_list(r, &g->raster, &surf, desc, g->blades, g->survivors, g->command,
+                                g->desc.path == BLADE_PATH_PULLING ? 1u : 0u, g->padded_count);
     gfx_timer_end();
+    return ok;
 }
 
 void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out)

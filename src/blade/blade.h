@@ -157,8 +157,9 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
 
 /* Draws the survivors of the latest cull with the compute rasterizer
  * (timer "blade.raster"); the same surface and shading as blade_gpu_draw,
- * coverage from r's samples. Between raster_begin and raster_end. */
-void blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
+ * coverage from r's samples. Between raster_begin and raster_end. False
+ * when the raster program cannot be made (logged). */
+bool blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
 /* Module-internal (blade.c, blade_tiles.c). The surface of drawn blades
  * (blade_geom.glsl uniforms). */
 typedef struct blade_surface_t {
@@ -175,7 +176,7 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
  * `blades` listed in `ids` (id 0: blades[i] directly), as many as the uint
  * at word count_index of `count` (at most count_max); `prog` is made on
  * first use and kept by the caller. */
-void blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
+bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
                        const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
                        uint32_t count_index, uint32_t count_max);
 

@@ -742,13 +742,15 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     gfx_timer_end();
 }
 
-void blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc)
+bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc)
 {
     cull_tiles(t, desc);
     gfx_timer_begin("tiles.raster");
     blade_surface_t surf = tiles_surface(t);
-    blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, 1, t->draw_capacity);
+    bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, 1,
+                                t->draw_capacity);
     gfx_timer_end();
+    return ok;
 }
 
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)

@@ -248,8 +248,8 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
 /* The same blades as blade_tiles_draw (same culling, timer "tiles.cull"),
  * drawn by the compute rasterizer (timer "tiles.raster"); between
  * raster_begin and raster_end. Debug overlays are drawn by the hardware
- * path only. */
-void blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc);
+ * path only. False when the raster program cannot be made (logged). */
+bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc);
 
 /* Statistics; blades_drawn without stalling unless wait (tests). */
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);

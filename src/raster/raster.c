@@ -11,7 +11,7 @@
 #define RASTER_QUEUE_BINDING 21 /* raster.glsl */
 #define RASTER_BIG_THREADS 64   /* raster.glsl */
 #define RASTER_PRIM_THREADS 64  /* local size of the per-primitive variants */
-#define QUEUE_HEADER 16         /* count, overflow, two pads */
+#define QUEUE_HEADER 16         /* large count, overflow, medium count, overflow */
 
 bool raster_has_atomic64(void)
 {
@@ -22,12 +22,14 @@ bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out)
 {
     raster_desc_t d = *in;
     if (!d.samples) d.samples = 4;
-    if (!d.big_samples) d.big_samples = 256;
+    if (!d.small_samples) d.small_samples = 64;
+    if (!d.medium_samples) d.medium_samples = 4096;
     if (!d.queue_capacity) d.queue_capacity = 1 << 20;
     if (!d.label) d.label = "raster";
-    if (d.w <= 0 || d.h <= 0 || (d.samples != 1 && d.samples != 4) || d.big_samples < 1 || d.queue_capacity < 1) {
-        core_log_error("raster: bad desc (size %dx%d, samples %d: 1 or 4, big_samples %d, queue %d)", d.w, d.h,
-                       d.samples, d.big_samples, d.queue_capacity);
+    if (d.w <= 0 || d.h <= 0 || (d.samples != 1 && d.samples != 4) || d.small_samples < 1 ||
+        d.medium_samples < d.small_samples || d.queue_capacity < 1) {
+        core_log_error("raster: bad desc (size %dx%d, samples %d: 1 or 4, small %d, medium %d >= small, queue %d)",
+                       d.w, d.h, d.samples, d.small_samples, d.medium_samples, d.queue_capacity);
         return false;
     }
     *out = d;
@@ -46,7 +48,7 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
     r->vis = gfx_buffer_make(&(gfx_buffer_desc_t){.size = samples * 8, .label = label});
     snprintf(label, sizeof label, "%s.queue", d->label);
     r->queue = gfx_buffer_make(&(gfx_buffer_desc_t){
-        .size = QUEUE_HEADER + (size_t)d->queue_capacity * 8, .label = label});
+        .size = QUEUE_HEADER + 2 * (size_t)d->queue_capacity * 8, .label = label});
     snprintf(label, sizeof label, "%s.args", d->label);
     r->args = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 32, .label = label});
     r->init = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_init.comp", .label = "raster.init"});
@@ -127,6 +129,7 @@ static void write_args(raster_t *r, gfx_buffer_t src, uint32_t index, uint32_t m
 {
     gfx_program_t p = r->args_prog;
     glUseProgram(p.id);
+    glUniform1i(gfx_uniform(p, "u_queue"), src.id == r->queue.id);
     glUniform1ui(gfx_uniform(p, "u_src_index"), index);
     glUniform1ui(gfx_uniform(p, "u_max"), max);
     glUniform1ui(gfx_uniform(p, "u_group"), group);
@@ -141,7 +144,8 @@ static void use_raster_program(const raster_t *r, gfx_program_t p, int pass, ras
     glUseProgram(p.id);
     set_frame_uniforms(r, p);
     glUniform1i(gfx_uniform(p, "u_raster_pass"), pass);
-    glUniform1ui(gfx_uniform(p, "u_raster_big_samples"), (GLuint)r->desc.big_samples);
+    glUniform1ui(gfx_uniform(p, "u_raster_small_samples"), (GLuint)r->desc.small_samples);
+    glUniform1ui(gfx_uniform(p, "u_raster_medium_samples"), (GLuint)r->desc.medium_samples);
     glUniform1ui(gfx_uniform(p, "u_raster_queue_capacity"), (GLuint)r->desc.queue_capacity);
     bind(p, user);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
@@ -155,7 +159,7 @@ void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *i
     static const uint32_t zero = 0;
     int passes = r->atomic64 ? 1 : 2;
     for (int pass = 0; pass < passes; pass++) {
-        glClearNamedBufferSubData(r->queue.id, GL_R32UI, 0, 8, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glClearNamedBufferSubData(r->queue.id, GL_R32UI, 0, QUEUE_HEADER, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         if (items->count_buffer.id)
             write_args(r, items->count_buffer, items->count_index, items->count_max, RASTER_PRIM_THREADS, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -167,7 +171,7 @@ void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *i
             glDispatchCompute((items->count + RASTER_PRIM_THREADS - 1) / RASTER_PRIM_THREADS, 1, 1);
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        write_args(r, r->queue, 0, (uint32_t)r->desc.queue_capacity, 1, 1);
+        write_args(r, r->queue, 0, (uint32_t)r->desc.queue_capacity, RASTER_BIG_THREADS, 1);
         use_raster_program(r, p->big, pass, bind, user);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->args.id);
         glDispatchComputeIndirect(16);
@@ -200,13 +204,13 @@ void raster_end(raster_t *r, const gfx_target_t *target)
 
 void raster_read_stats(raster_t *r, raster_stats_t *out)
 {
-    uint32_t hdr[2];
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    uint32_t hdr[4];
     gfx_buffer_read(r->queue, 0, sizeof hdr, hdr);
-    r->stats.queued = hdr[0];
-    r->stats.overflow = hdr[0] > (uint32_t)r->desc.queue_capacity ? hdr[0] - (uint32_t)r->desc.queue_capacity : 0;
+    r->stats.large = hdr[0];
+    r->stats.medium = hdr[2];
+    r->stats.overflow = hdr[1] + hdr[3];
     if (r->stats.overflow && !r->warned_overflow) {
-        core_log_warn("raster: %u large triangles past the queue's %d were not drawn (raise queue_capacity)",
+        core_log_warn("raster: %u queued triangles past the lists' %d were not drawn (raise queue_capacity)",
                       r->stats.overflow, r->desc.queue_capacity);
         r->warned_overflow = true;
     }

@@ -31,16 +31,18 @@
 typedef struct raster_desc_t {
     int w, h;               /* target pixels, required */
     int samples;            /* per pixel: 4 (default; the standard 4x MSAA pattern) or 1 (the centre) */
-    int big_samples;        /* a triangle whose sample box exceeds this is scanned by a
-                               work group instead of one thread; default 256 */
-    int queue_capacity;     /* queued large triangles per draw; default 1 << 20 */
+    int small_samples;      /* a triangle whose box covers up to this many samples is scanned
+                               by its primitive's thread at once; default 64 */
+    int medium_samples;     /* up to this it is queued and scanned one per thread among
+                               similar ones, beyond it by a work group; default 4096 */
+    int queue_capacity;     /* queued triangles per list (medium, large) per draw; default 1 << 20 */
     bool no_atomic64;       /* force the two-pass 32-bit variant (tests); default: 64-bit
                                atomics when the GL has GL_NV_shader_atomic_int64 */
     const char *label;      /* default "raster" */
 } raster_desc_t;
 
 typedef struct raster_stats_t {
-    uint32_t queued;        /* large triangles queued by the last draw */
+    uint32_t medium, large; /* triangles queued by the last draw */
     uint32_t overflow;      /* of those, beyond queue_capacity (not drawn; logged) */
 } raster_stats_t;
 
@@ -48,7 +50,7 @@ typedef struct raster_t {
     raster_desc_t desc;     /* resolved */
     bool atomic64;
     gfx_buffer_t vis;       /* 8 bytes per sample */
-    gfx_buffer_t queue;     /* count, overflow, pad, pad, (primitive, triangle) pairs */
+    gfx_buffer_t queue;     /* large and medium counts and overflows, the large list, the medium list */
     gfx_buffer_t args;      /* two glDispatchComputeIndirect argument triples */
     gfx_program_t init, args_prog, composite;
     GLuint empty_vao;
@@ -57,8 +59,8 @@ typedef struct raster_t {
 } raster_t;
 
 /* A grass module's compute rasterization shader, in two variants: one
- * thread per primitive, and RASTER_BIG (one work group per queued large
- * triangle). */
+ * thread per primitive, and RASTER_BIG (the queued medium triangles one per
+ * thread, the large ones one per work group). */
 typedef struct raster_program_t {
     gfx_program_t prim, big;
     bool atomic64; /* made for a one-pass (64-bit atomic) raster_t */
@@ -95,13 +97,13 @@ typedef void (*raster_bind_fn)(gfx_program_t prog, void *user);
  * visibility buffer. The target must have r's size. */
 void raster_begin(raster_t *r, const gfx_target_t *target);
 /* Runs a grass module's program over `items` (both passes without 64-bit
- * atomics): threads per primitive, then the large triangles they queued. */
+ * atomics): threads per primitive, then the triangles they queued. */
 void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *items, raster_bind_fn bind,
                  void *user);
 /* Composites the grass into `target` (binds its FBO). */
 void raster_end(raster_t *r, const gfx_target_t *target);
 
-/* Large-triangle counts of the last draw (blocking read: tests, summaries). */
+/* Queued-triangle counts of the last draw (blocking read: tests, summaries). */
 void raster_read_stats(raster_t *r, raster_stats_t *out);
 
 #endif

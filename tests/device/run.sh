@@ -18,6 +18,10 @@
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
 #                side by side, and four meadow_large screenshots -> $OUT
+#   samples      compute rasterizer samples per pixel (4 vs 1) against the
+#                hardware path on meadow.json and meadow_large: timings, and
+#                the frame-120 screenshots -> $OUT (compare them with
+#                eval_image_ssim off the machine)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
@@ -120,6 +124,21 @@ startup() {
     ( time timeout 60 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 1 --screenshot-every 0 \
         --out /tmp/st1-$run > /dev/null 2>&1 ) 2>&1 | grep real
     echo "-- meadow_large --frames 1, run $run"; sed -n '/^startup_ms/,/^startup work/p' /tmp/st1-$run/summary.txt
+  done
+}
+
+samples() {
+  echo "== raster samples per pixel"
+  for s in meadow meadow_large; do
+    f=scenes/$s.json; [ $s = meadow_large ] && f=scenes/bench/meadow_large.json
+    for v in hw:4 compute:4 compute:1; do
+      r=${v%:*}; n=${v#*:}
+      timeout 150 $M --headless --quiet --scene $f --frames 120 --screenshot-every 120 --raster $r \
+        --raster-samples $n --out /tmp/ss-$s-$r$n > /dev/null 2>&1
+      echo "-- $s $r samples $n rc=$? $(grep -E '^gpu_frame' /tmp/ss-$s-$r$n/summary.txt)"
+      grep -E "^  (bb.raster|blade.raster|tiles.raster|raster)" /tmp/ss-$s-$r$n/summary.txt
+      cp /tmp/ss-$s-$r$n/shot-000120.png $OUT/$s-$r$n.png 2>/dev/null
+    done
   done
 }
 
