@@ -21,6 +21,7 @@
 #include "common/grass_shade.glsl"
 #include "common/hash.glsl"
 #define RASTER_PIXEL_RATE 1
+#define RASTER_NO_MEDIUM 1
 #include "raster/raster.glsl"
 
 #ifdef RASTER_BIG

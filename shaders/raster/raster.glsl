@@ -35,13 +35,15 @@
  * shader then runs both lists (raster_queued_item): medium triangles one
  * per thread (similar sizes side by side, so the threads of a warp finish
  * together), large ones one per work group of RASTER_BIG_THREADS, one row
- * per thread in turn (near-plane crossings clipped there). */
+ * per thread in turn (near-plane crossings clipped there). A shader that
+ * defines RASTER_NO_MEDIUM queues everything it does not scan at once on
+ * the large list (compiled out, not just a threshold). */
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
 #define RASTER_VIS_BINDING 20
 #define RASTER_QUEUE_BINDING 21
-#define RASTER_BIG_THREADS 64u
+#define RASTER_BIG_THREADS 64
 
 layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
 #ifdef RASTER_ATOMIC64
@@ -269,7 +271,9 @@ void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
             raster_scan(a, b, c, mat3(1.0), 0, 1);
             return;
         }
+#ifndef RASTER_NO_MEDIUM
         medium = area <= float(u_raster_medium_samples);
+#endif
     }
     if (medium) {
         uint slot = atomicAdd(raster_medium_count, 1u);
@@ -290,11 +294,14 @@ void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
 bool raster_queued_item(out uvec2 item, out int first_row, out int row_step)
 {
     item = uvec2(0u);
-    uint medium = min(raster_medium_count, u_raster_queue_capacity);
-    uint medium_groups = (medium + RASTER_BIG_THREADS - 1u) / RASTER_BIG_THREADS;
     uint g = gl_WorkGroupID.x;
+#ifdef RASTER_NO_MEDIUM
+    uint q = g;
+#else
+    uint medium = min(raster_medium_count, u_raster_queue_capacity);
+    uint medium_groups = (medium + uint(RASTER_BIG_THREADS) - 1u) / uint(RASTER_BIG_THREADS);
     if (g < medium_groups) {
-        uint i = g * RASTER_BIG_THREADS + gl_LocalInvocationID.x;
+        uint i = g * uint(RASTER_BIG_THREADS) + gl_LocalInvocationID.x;
         first_row = 0;
         row_step = 1;
         if (i >= medium) return false;
@@ -302,8 +309,9 @@ bool raster_queued_item(out uvec2 item, out int first_row, out int row_step)
         return true;
     }
     uint q = g - medium_groups;
+#endif
     first_row = int(gl_LocalInvocationID.x);
-    row_step = int(RASTER_BIG_THREADS);
+    row_step = RASTER_BIG_THREADS;
     if (q >= min(raster_large_count, u_raster_queue_capacity)) return false;
     item = raster_queue[q];
     return true;

@@ -139,13 +139,16 @@ static void write_args(raster_t *r, gfx_buffer_t src, uint32_t index, uint32_t m
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-static void use_raster_program(const raster_t *r, gfx_program_t p, int pass, raster_bind_fn bind, void *user)
+static void use_raster_program(const raster_t *r, gfx_program_t p, int pass, const raster_items_t *items,
+                               raster_bind_fn bind, void *user)
 {
     glUseProgram(p.id);
     set_frame_uniforms(r, p);
     glUniform1i(gfx_uniform(p, "u_raster_pass"), pass);
-    glUniform1ui(gfx_uniform(p, "u_raster_small_samples"), (GLuint)r->desc.small_samples);
-    glUniform1ui(gfx_uniform(p, "u_raster_medium_samples"), (GLuint)r->desc.medium_samples);
+    GLuint small = items->small_samples ? items->small_samples : (GLuint)r->desc.small_samples;
+    GLuint medium = items->medium_samples ? items->medium_samples : (GLuint)r->desc.medium_samples;
+    glUniform1ui(gfx_uniform(p, "u_raster_small_samples"), small);
+    glUniform1ui(gfx_uniform(p, "u_raster_medium_samples"), medium > small ? medium : small);
     glUniform1ui(gfx_uniform(p, "u_raster_queue_capacity"), (GLuint)r->desc.queue_capacity);
     bind(p, user);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
@@ -163,7 +166,7 @@ void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *i
         if (items->count_buffer.id)
             write_args(r, items->count_buffer, items->count_index, items->count_max, RASTER_PRIM_THREADS, 0);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-        use_raster_program(r, p->prim, pass, bind, user);
+        use_raster_program(r, p->prim, pass, items, bind, user);
         if (items->count_buffer.id) {
             glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->args.id);
             glDispatchComputeIndirect(0);
@@ -172,7 +175,7 @@ void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *i
         }
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         write_args(r, r->queue, 0, (uint32_t)r->desc.queue_capacity, RASTER_BIG_THREADS, 1);
-        use_raster_program(r, p->big, pass, bind, user);
+        use_raster_program(r, p->big, pass, items, bind, user);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, r->args.id);
         glDispatchComputeIndirect(16);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

@@ -87,6 +87,10 @@ typedef struct raster_items_t {
     gfx_buffer_t count_buffer;
     uint32_t count_index;
     uint32_t count_max;
+    /* This draw's work split (0: the desc's). Pixel-rate shaders with a
+     * texture fetch per fragment (billboards) run best without a medium
+     * list (medium_samples = small_samples) and a larger small one. */
+    uint32_t small_samples, medium_samples;
 } raster_items_t;
 
 /* Binds the grass module's buffers, textures and uniforms on `prog`
