@@ -7,6 +7,7 @@
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "core/core.h"
+#include "scene/scene_fields.h"
 #include "test.h"
 
 #include <stdint.h>
@@ -253,9 +254,9 @@ int main(void)
     CHECK(fabs(frac - want_frac) < 4 * sigma);
     for (size_t i = 0; i < f.blade_count; i++) {
         const blade_t *b = &f.blades[i];
-        CHECK(b->v1[3] >= 0.3f && b->v1[3] < 0.6f);
-        CHECK(b->v2[3] >= 0.01f && b->v2[3] < 0.02f);
-        CHECK(b->up[3] >= 4.0f && b->up[3] < 8.0f);
+        CHECK(b->v1[3] >= SCENE_DEFAULT_BLADE_HEIGHT_MIN && b->v1[3] < SCENE_DEFAULT_BLADE_HEIGHT_MAX);
+        CHECK(b->v2[3] >= SCENE_DEFAULT_BLADE_WIDTH_MIN && b->v2[3] < SCENE_DEFAULT_BLADE_WIDTH_MAX);
+        CHECK(b->up[3] >= SCENE_DEFAULT_STIFFNESS_MIN && b->up[3] < SCENE_DEFAULT_STIFFNESS_MAX);
         CHECK(b->v0[3] >= 0.0f && b->v0[3] < 6.2831854f);
         if (test_failures) break;
     }
@@ -347,7 +348,7 @@ int main(void)
     CHECK(core_log_error_count() == errs + 2);
 
     blade_seed_desc_t dd = blade_seed_desc_defaults(&(blade_seed_desc_t){0});
-    CHECK(dd.density == 100.0f && dd.patch_size == 256 && dd.tuft_blades == 8);
+    CHECK(dd.density == SCENE_DEFAULT_DENSITY && dd.patch_size == 256 && dd.tuft_blades == 8);
     CHECK(dd.max_blades == (size_t)1 << 22);
     mesh_free(&terrain);
     mesh_free(&cube);

@@ -1,7 +1,7 @@
 /* test_scene_json: scene files parse; every malformed input fails with
  * file:line and the field in the message; parsed values and defaults match
  * hand-written expectations; the JSON parser decodes escapes and rejects
- * non-JSON. */
+ * non-JSON; docs/SCENES.md is the rendering of the key table. */
 #include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +9,7 @@
 
 #include "core/core.h"
 #include "scene/scene.h"
+#include "scene/scene_fields.h"
 #include "test.h"
 
 #define DATA MEADOW_SOURCE_DIR "/tests/data/scenes/"
@@ -361,6 +362,44 @@ static void test_all_truncations(void)
     free(text);
 }
 
+/* The billboard module's subdivision range is the scene's: 0 (default) or
+ * [SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX]. */
+static void test_subdiv_bounds(void)
+{
+    expect_parse_fail("{\"grass\": {\"subdiv\": [1, 4]}}", "subdiv 1", "field \"grass.subdiv[0]\"",
+                      "1 is out of range [2, 8] (or 0 for the default)");
+    expect_parse_fail("{\"grass\": {\"subdiv\": [4, 9]}}", "subdiv 9", "field \"grass.subdiv[1]\"",
+                      "9 is out of range [2, 8]");
+    if (parse_ok("{\"grass\": {\"subdiv\": [0, 8]}}"))
+        CHECK(desc.grass.subdiv[0] == SCENE_DEFAULT_SUBDIV && desc.grass.subdiv[1] == SCENE_SUBDIV_MAX);
+    if (parse_ok("{\"grass\": {\"subdiv\": [2, 2]}}")) CHECK(desc.grass.subdiv[0] == SCENE_SUBDIV_MIN);
+}
+
+/* docs/SCENES.md equals `meadow --scene-keys` (regenerate with
+ * ./build/meadow --scene-keys > docs/SCENES.md). */
+static void test_keys_doc(void)
+{
+    char *md = scene_keys_markdown();
+    char *doc = core_fs_read(MEADOW_SOURCE_DIR "/docs/SCENES.md", NULL, NULL, 0);
+    CHECK(md != NULL && doc != NULL);
+    if (md && doc) {
+        size_t i = 0;
+        while (md[i] && md[i] == doc[i]) i++;
+        CHECK_MSG(md[i] == doc[i], "docs/SCENES.md differs from scene_keys_markdown() at byte %zu: regenerate "
+                                   "it with ./build/meadow --scene-keys > docs/SCENES.md", i);
+    }
+    /* Every row is well formed. */
+    for (int i = 0; i < scene_field_count; i++) {
+        const scene_field_t *f = &scene_fields[i];
+        CHECK_MSG(f->doc && f->doc[0] && f->lo <= f->hi, "row %d (%s)", i, f->key);
+        CHECK_MSG(scene_field_find(f->section, f->key) == f, "row %d (%s) is not unique", i, f->key);
+        if (f->type == SCENE_FIELD_INTS || f->type == SCENE_FIELD_FLOATS)
+            CHECK_MSG(f->n >= 1 && f->n <= 3 && f->size == (size_t)f->n * 4, "row %d (%s)", i, f->key);
+    }
+    free(md);
+    free(doc);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -370,5 +409,7 @@ int main(void)
     test_good_full();
     test_defaults_and_values();
     test_all_truncations();
+    test_subdiv_bounds();
+    test_keys_doc();
     TEST_END();
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "scene/scene.h"
+#include "scene/scene_fields.h"
 
 void app_print_usage(void)
 {
@@ -36,6 +37,7 @@ void app_print_usage(void)
            "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
            "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
            "  --quiet               only warnings and errors\n"
+           "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n"
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
            "      F wireframe, 1/2/3 billboard/blade/hybrid, R hardware/compute raster, O overlays (state, LOD,\n"
@@ -81,6 +83,15 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
     } while (0)
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             app_print_usage();
+            return 1;
+        } else if (strcmp(a, "--scene-keys") == 0) {
+            char *md = scene_keys_markdown();
+            if (!md) {
+                snprintf(err, err_size, "--scene-keys: out of memory");
+                return 2;
+            }
+            fputs(md, stdout);
+            free(md);
             return 1;
         } else if (strcmp(a, "--headless") == 0) {
             o->headless = true;

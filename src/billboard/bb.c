@@ -37,16 +37,16 @@ static int pass_objects(const bb_field_t *f)
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
 {
     bb_field_desc_t d = desc ? *desc : (bb_field_desc_t){0};
-    if (d.density <= 0) d.density = 16.0f;
-    if (d.size[0] <= 0) d.size[0] = 0.5f;
-    if (d.size[1] <= 0) d.size[1] = 0.4f;
-    if (d.subdiv[0] <= 0) d.subdiv[0] = 4;
-    if (d.subdiv[1] <= 0) d.subdiv[1] = 4;
-    if (d.iterations <= 0) d.iterations = 4;
+    if (d.density <= 0) d.density = SCENE_DEFAULT_BILLBOARD_DENSITY;
+    if (d.size[0] <= 0) d.size[0] = SCENE_DEFAULT_BILLBOARD_WIDTH;
+    if (d.size[1] <= 0) d.size[1] = SCENE_DEFAULT_BILLBOARD_HEIGHT;
+    if (d.subdiv[0] <= 0) d.subdiv[0] = SCENE_DEFAULT_SUBDIV;
+    if (d.subdiv[1] <= 0) d.subdiv[1] = SCENE_DEFAULT_SUBDIV;
+    if (d.iterations <= 0) d.iterations = SCENE_DEFAULT_SPRING_ITERATIONS;
     if (d.r1 <= 0) d.r1 = 1.0f;
     if (d.r2 <= 0) d.r2 = 0.5f;
-    if (d.cube_res <= 0) d.cube_res = 64;
-    if (d.recover_time <= 0) d.recover_time = 2.0f;
+    if (d.cube_res <= 0) d.cube_res = SCENE_DEFAULT_CUBE_RESOLUTION;
+    if (d.recover_time <= 0) d.recover_time = SCENE_DEFAULT_RECOVER_TIME;
     if (d.max_objects <= 0) d.max_objects = 8;
     if (d.max_deformed <= 0) d.max_deformed = 4096;
     if (d.octree_depth <= 0) d.octree_depth = 4;
@@ -428,11 +428,11 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     bb_field_desc_t *d = &f->desc;
     const terrain_mesh_t *t = d->terrain;
     assert(t && t->positions && t->index_count >= 3);
-    if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < 2 || d->subdiv[0] > 8 || d->subdiv[1] < 2 ||
-        d->subdiv[1] > 8 || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
-        core_log_error("%s:%d: bb_field_make: max_objects %d (at most %d), subdiv %dx%d (2..8), octree depth %d "
+    if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < SCENE_SUBDIV_MIN || d->subdiv[0] > SCENE_SUBDIV_MAX ||
+        d->subdiv[1] < SCENE_SUBDIV_MIN || d->subdiv[1] > SCENE_SUBDIV_MAX || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
+        core_log_error("%s:%d: bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
                        "(at most %d) out of range", __FILE__, __LINE__, d->max_objects, BB_MAX_OBJECTS,
-                       d->subdiv[0], d->subdiv[1], d->octree_depth, BB_OCTREE_MAX_DEPTH);
+                       d->subdiv[0], d->subdiv[1], SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
         return false;
     }
     int n = d->subdiv[0], m = d->subdiv[1];

@@ -39,6 +39,7 @@
 #include "gfx/gfx.h"
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
+#include "scene/scene_fields.h"
 #include "scene/terrain.h"
 
 /* Objects one field can collide against per update (desc.max_objects; the
@@ -59,18 +60,26 @@
 typedef struct bb_field_desc_t {
     const terrain_mesh_t *terrain; /* required; only read during make */
     uint32_t seed;                 /* any value (0 included) */
+    /* Defaults marked (scene) are the program's, SCENE_DEFAULT_* of
+     * scene/scene_fields.h (scene key in brackets). */
     float density;                 /* candidate billboards per m^2 (the extent map
-                                      accepts a fraction), default 16 (0.25 m grid) */
-    float size[2];                 /* base width, height in m, default 0.5 x 0.4 */
-    int subdiv[2];                 /* refined mesh N columns x M rows, default 4 x 4,
-                                      each in [2, 8], limited by the GPU's geometry
-                                      shader output (checked, logged) */
-    int iterations;                /* spring sweeps K, default 4 */
+                                      accepts a fraction), default 6 (scene,
+                                      grass.billboard_density) */
+    float size[2];                 /* base width, height in m, default 1.0 x 0.6
+                                      (scene, grass.billboard_size) */
+    int subdiv[2];                 /* refined mesh N columns x M rows, default 4 x 4
+                                      (scene, grass.subdiv), each in [SCENE_SUBDIV_MIN,
+                                      SCENE_SUBDIV_MAX] = [2, 8], limited by the GPU's
+                                      geometry shader output (checked, logged) */
+    int iterations;                /* spring sweeps K, default 2 (scene,
+                                      grass.spring_iterations) */
     float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
-    int cube_res;                  /* depth cube map side in texels, default 64; the
+    int cube_res;                  /* depth cube map side in texels, default 32 (scene,
+                                      grass.cube_resolution); the
                                       array takes 6 * max_objects * res^2 * 16 bytes
                                       (128 objects at 32: 12 MiB) */
-    float recover_time;            /* seconds to recover, default 2 */
+    float recover_time;            /* seconds to recover, default 3 (scene,
+                                      grass.recover_time) */
     int max_objects;               /* objects per update, default 8, at most
                                       BB_MAX_OBJECTS */
     int max_deformed;              /* deformed-mesh pool slots, default 4096 */

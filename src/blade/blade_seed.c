@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "scene/scene_fields.h"
 
 #define MORTON_CELLS 2097152.0f /* 2^21 */
 #define TUFT_REDRAWS 8
@@ -16,10 +17,19 @@
 blade_seed_desc_t blade_seed_desc_defaults(const blade_seed_desc_t *desc)
 {
     blade_seed_desc_t d = *desc;
-    if (d.density == 0.0f) d.density = 100.0f;
-    if (d.height_min == 0.0f && d.height_max == 0.0f) { d.height_min = 0.3f; d.height_max = 0.6f; }
-    if (d.width_min == 0.0f && d.width_max == 0.0f) { d.width_min = 0.01f; d.width_max = 0.02f; }
-    if (d.stiffness_min == 0.0f && d.stiffness_max == 0.0f) { d.stiffness_min = 4.0f; d.stiffness_max = 8.0f; }
+    if (d.density == 0.0f) d.density = SCENE_DEFAULT_DENSITY;
+    if (d.height_min == 0.0f && d.height_max == 0.0f) {
+        d.height_min = SCENE_DEFAULT_BLADE_HEIGHT_MIN;
+        d.height_max = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
+    }
+    if (d.width_min == 0.0f && d.width_max == 0.0f) {
+        d.width_min = SCENE_DEFAULT_BLADE_WIDTH_MIN;
+        d.width_max = SCENE_DEFAULT_BLADE_WIDTH_MAX;
+    }
+    if (d.stiffness_min == 0.0f && d.stiffness_max == 0.0f) {
+        d.stiffness_min = SCENE_DEFAULT_STIFFNESS_MIN;
+        d.stiffness_max = SCENE_DEFAULT_STIFFNESS_MAX;
+    }
     if (d.angle_min == 0.0f && d.angle_max == 0.0f) d.angle_max = 6.28318531f;
     if (d.tuft_min_distance == 0.0f) d.tuft_min_distance = 0.25f;
     if (d.tuft_blades == 0) d.tuft_blades = 8;

@@ -13,6 +13,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/scene_fields.h"
+
 #define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
 #define NO_SLOT 0xffffffffu
 #define RECOVERING_BIT 0x80000000u
@@ -24,7 +26,7 @@
 blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
 {
     blade_tiles_desc_t d = *desc;
-    if (d.tile_size <= 0.0f) d.tile_size = 8.0f;
+    if (d.tile_size <= 0.0f) d.tile_size = SCENE_DEFAULT_TILE_SIZE;
     if (d.template_count <= 0) d.template_count = 4;
     blade_seed_desc_t sd = blade_seed_desc_defaults(&(blade_seed_desc_t){
         .density = d.density, .height_min = d.height_min, .height_max = d.height_max, .width_min = d.width_min,
@@ -34,14 +36,14 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     d.width_min = sd.width_min, d.width_max = sd.width_max;
     d.stiffness_min = sd.stiffness_min, d.stiffness_max = sd.stiffness_max;
     if (d.pool_slots <= 0) d.pool_slots = 64;
-    if (d.switch_distance <= 0.0f) d.switch_distance = 12.0f;
+    if (d.switch_distance <= 0.0f) d.switch_distance = SCENE_DEFAULT_SWITCH_DISTANCE;
     if (d.recover_timeout <= 0.0f) d.recover_timeout = 5.0f;
-    if (d.motion_epsilon <= 0.0f) d.motion_epsilon = 2e-3f;
+    if (d.motion_epsilon <= 0.0f) d.motion_epsilon = SCENE_DEFAULT_MOTION_EPSILON;
     if (d.max_level == 0) d.max_level = 8;
     if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
     d.cull = blade_cull_desc_defaults(&d.cull);
     if (d.slope_cells_per_tile <= 0) d.slope_cells_per_tile = (int)fmaxf(1.0f, roundf(d.tile_size / 0.5f));
-    if (d.slope_recover <= 0.0f) d.slope_recover = 2.0f;
+    if (d.slope_recover <= 0.0f) d.slope_recover = SCENE_DEFAULT_RECOVER_TIME;
     if (!d.label) d.label = "tiles";
     assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
     assert(d.wind_count >= 0 && d.wind_count <= BLADE_MAX_WINDS);

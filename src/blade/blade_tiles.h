@@ -88,18 +88,21 @@
 #define BLADE_TILES_READBACK_SLOTS 4
 
 
-/* Zero means default:
+/* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
+ * scene/scene_fields.h:
  *   terrain          required, a heightfield (grid_res > 0); borrowed
  *                    during make only
- *   tile_size        8 m
+ *   tile_size        4 m (scene, grass.tile_size)
  *   template_count   4 (1..BLADE_TILES_MAX_TEMPLATES)
- *   density          100 blades/m^2; height [0.3, 0.6] m; width
- *                    [0.01, 0.02] m; stiffness [4, 8] (blade_seed defaults)
+ *   density          200 blades/m^2; height [0.35, 0.7] m; width
+ *                    [0.02, 0.05] m; stiffness [8, 12] (blade_seed
+ *                    defaults, scene)
  *   seed             0 is a valid seed (templates use seed + k)
  *   pool_slots       64 simulation slots of one template each
- *   switch_distance  12 m: tiles nearer are drawn as blades (hybrid rule,
+ *   switch_distance  12 m (scene): tiles nearer are drawn as blades (hybrid rule,
  *                    with hysteresis 1 m); far tiles are left to billboards
- *   recover_timeout  5 s; motion_epsilon 2 mm (see the banner)
+ *   recover_timeout  5 s; motion_epsilon 2 mm (scene, not a key; see the
+ *                    banner)
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
@@ -115,7 +118,8 @@
  *                    count to 0.5 m cells (at least 1); more than
  *                    HYBRID_SLOPE_MAX_PER_CELL blades per cell is an error
  *   slope_recover    R of the hand-over (the billboards' recover time) and
- *                    how long a tile may carry deformation: default 2 s
+ *                    how long a tile may carry deformation: default 3 s
+ *                    (scene, grass.recover_time)
  *   keep_state       false (default): hand-over on; true: recovering tiles
  *                    keep their slot in any representation, nothing is
  *                    handed over (hybrid_desc_t.keep_state)

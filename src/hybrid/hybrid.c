@@ -7,18 +7,19 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "scene/scene_fields.h"
 
 hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *in)
 {
     hybrid_desc_t d = *in;
-    if (d.tile_size <= 0) d.tile_size = 4.0f;
+    if (d.tile_size <= 0) d.tile_size = SCENE_DEFAULT_TILE_SIZE;
     if (d.grass_height <= 0) d.grass_height = 1.0f;
-    if (d.switch_distance <= 0) d.switch_distance = 12.0f;
+    if (d.switch_distance <= 0) d.switch_distance = SCENE_DEFAULT_SWITCH_DISTANCE;
     if (d.hysteresis <= 0) d.hysteresis = 1.0f;
     if (d.recover_timeout <= 0) d.recover_timeout = 5.0f;
-    if (d.motion_epsilon <= 0) d.motion_epsilon = 1e-3f;
+    if (d.motion_epsilon <= 0) d.motion_epsilon = SCENE_DEFAULT_MOTION_EPSILON;
     if (d.pool_slots <= 0) d.pool_slots = 64;
-    if (d.memory <= 0) d.memory = 2.0f;
+    if (d.memory <= 0) d.memory = SCENE_DEFAULT_RECOVER_TIME;
     return d;
 }
 

@@ -52,21 +52,22 @@ typedef struct hybrid_tile_t {
     uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
 } hybrid_tile_t;
 
-/* Zero means default. */
+/* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
+ * scene/scene_fields.h. */
 typedef struct hybrid_desc_t {
     float min_x, min_z;       /* field origin (m); required */
     float size_x, size_z;     /* field extent (m); required */
     float min_y, max_y;       /* ground height range (m) */
-    float tile_size;          /* default 4 m */
+    float tile_size;          /* default 4 m (scene, grass.tile_size) */
     float grass_height;       /* AABB growth above the ground; default 1 m */
-    float switch_distance;    /* blade/billboard boundary; default 12 m */
+    float switch_distance;    /* blade/billboard boundary; default 12 m (scene) */
     float hysteresis;         /* half width of the dead band; default 1 m */
     float recover_timeout;    /* default 5 s */
-    float motion_epsilon;     /* RECOVERING -> IDLE below this; default 1 mm */
+    float motion_epsilon;     /* RECOVERING -> IDLE below this; default 2 mm (scene) */
     int pool_slots;           /* simulation-state slots; default 64 */
     float memory;             /* s a tile carries deformation after its last touch
                                  or hand-over (the billboards' recover time);
-                                 default 2 s */
+                                 default 3 s (scene, grass.recover_time) */
     bool keep_state;          /* false (default): hand over (see the banner);
                                  true: RECOVERING tiles keep their slot whatever
                                  their representation, nothing is handed over */

@@ -6,17 +6,18 @@
 #include <math.h>
 
 #include "core/core.h"
+#include "scene/scene_fields.h"
 
 void cam_defaults(cam_t *cam)
 {
-    if (cam->fov <= 0) cam->fov = 60.0f;
-    if (cam->near <= 0) cam->near = 0.1f;
-    if (cam->far <= 0) cam->far = 200.0f;
+    if (cam->fov <= 0) cam->fov = SCENE_DEFAULT_FOV;
+    if (cam->near <= 0) cam->near = SCENE_DEFAULT_NEAR;
+    if (cam->far <= 0) cam->far = SCENE_DEFAULT_FAR;
     if (cam->aspect <= 0) cam->aspect = 16.0f / 9.0f;
     if (glm_vec3_eq(cam->position, 0.0f) && glm_vec3_eq(cam->target, 0.0f)) {
         cam->position[0] = 0.0f;
-        cam->position[1] = 8.0f;
-        cam->position[2] = 24.0f;
+        cam->position[1] = SCENE_DEFAULT_CAMERA_Y;
+        cam->position[2] = SCENE_DEFAULT_CAMERA_Z;
     }
 }
 

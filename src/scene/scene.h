@@ -10,7 +10,10 @@
  *
  * Every field is optional; absent or 0 means the default written below (the
  * meadow "zero means default" rule; an explicit 0 therefore also selects the
- * default). Ranges in [] are the accepted JSON values. File paths inside a
+ * default). Ranges in [] are the accepted JSON values. Keys, ranges and
+ * defaults come from one table, scene_fields.c (constants in
+ * scene_fields.h, shared with the modules' descs); docs/SCENES.md is its
+ * rendering (`meadow --scene-keys`). File paths inside a
  * scene (terrain.mesh, characters[].model) are repository-relative and are
  * resolved by the consumer with core_fs_resolve. */
 #ifndef MEADOW_SCENE_H
@@ -69,7 +72,7 @@ typedef struct scene_grass_desc_t {
     float switch_distance;   /* hybrid blade->billboard distance m [0, 1000]; default 12 */
     float tile_size;         /* grass tile side m [0, 1000]; default 4 */
     scene_blade_shape_t shape; /* default quadratic */
-    int subdiv[2];           /* billboard mesh subdivision [N, M], each [0, 64]; default [4, 4] */
+    int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
     int cube_resolution;     /* collision cube-map resolution [0, 4096]; default 32 */
     float recover_time;      /* seconds to stand up after a push [0, 3600]; default 3 */

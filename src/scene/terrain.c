@@ -3,6 +3,7 @@
  * uniform 2D triangle grid for meshes). See terrain.h. */
 #include "scene/terrain.h"
 #include "scene/mesh_import.h"
+#include "scene/scene_fields.h"
 
 #include <assert.h>
 #include <assimp/cimport.h>
@@ -39,10 +40,10 @@ static void normalize_or_up(float *n)
 terrain_desc_t terrain_desc_defaults(const terrain_desc_t *d)
 {
     terrain_desc_t r = *d;
-    if (r.size <= 0) r.size = 40.0f;
-    if (r.resolution <= 0) r.resolution = 64;
-    if (r.height <= 0) r.height = 1.5f;
-    if (r.scale <= 0) r.scale = 1.0f;
+    if (r.size <= 0) r.size = SCENE_DEFAULT_TERRAIN_SIZE;
+    if (r.resolution <= 0) r.resolution = SCENE_DEFAULT_TERRAIN_RESOLUTION;
+    if (r.height <= 0) r.height = SCENE_DEFAULT_TERRAIN_HEIGHT;
+    if (r.scale <= 0) r.scale = SCENE_DEFAULT_TERRAIN_SCALE;
     return r;
 }
 
@@ -122,8 +123,9 @@ bool terrain_make_heightfield(terrain_mesh_t *mesh, const terrain_desc_t *desc, 
 {
     memset(mesh, 0, sizeof *mesh);
     terrain_desc_t d = terrain_desc_defaults(desc);
-    if (d.resolution > 8192) {
-        core_log_error("terrain: resolution %d exceeds the maximum 8192", d.resolution);
+    if (d.resolution > SCENE_TERRAIN_RESOLUTION_MAX) {
+        core_log_error("terrain: resolution %d exceeds the maximum %d (SCENE_TERRAIN_RESOLUTION_MAX)", d.resolution,
+                       SCENE_TERRAIN_RESOLUTION_MAX);
         return false;
     }
     uint32_t res = (uint32_t)d.resolution, side = res + 1;

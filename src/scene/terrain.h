@@ -19,7 +19,8 @@ typedef enum terrain_type_t {
     TERRAIN_MESH,
 } terrain_type_t;
 
-/* Zero means default. */
+/* Zero means default: the program's, SCENE_DEFAULT_TERRAIN_* of
+ * scene/scene_fields.h. resolution is at most SCENE_TERRAIN_RESOLUTION_MAX (4096). */
 typedef struct terrain_desc_t {
     terrain_type_t type;         /* default heightfield */
     float size;                  /* heightfield side, metres, square; default 40 */

@@ -1,0 +1,350 @@
+/* scene_fields: the table of scene keys (see scene_fields.h) and its
+ * markdown rendering, docs/SCENES.md. */
+#include "scene/scene_fields.h"
+
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/scene.h"
+
+static const char *const mode_names[] = {"hybrid", "billboard", "blade", NULL};
+static const char *const raster_names[] = {"hw", "compute", "auto", NULL};
+static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
+static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
+static const char *const wind_names[] = {"directional", "point", NULL};
+static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
+
+/* Entry-type bits of scene_field_t.variants. */
+#define DIRECTIONAL (1u << SCENE_WIND_DIRECTIONAL)
+#define POINT (1u << SCENE_WIND_POINT)
+#define SPHERE (1u << SCENE_COLLIDER_SPHERE)
+#define CAPSULE (1u << SCENE_COLLIDER_CAPSULE)
+#define BOX (1u << SCENE_COLLIDER_BOX)
+
+#define AT(T, m) .offset = offsetof(T, m), .size = sizeof(((T *)0)->m)
+#define ROOT(m) .section = SCENE_SEC_ROOT, AT(scene_desc_t, m)
+#define TERRAIN(m) .section = SCENE_SEC_TERRAIN, AT(terrain_desc_t, m)
+#define GRASS(m) .section = SCENE_SEC_GRASS, AT(scene_grass_desc_t, m)
+#define CAMERA(m) .section = SCENE_SEC_CAMERA, AT(scene_camera_desc_t, m)
+#define CAMERA_KEY(m) .section = SCENE_SEC_CAMERA_KEY, AT(cam_path_key_t, m)
+#define WIND(m) .section = SCENE_SEC_WIND, AT(scene_wind_t, m)
+#define COLLIDER(m) .section = SCENE_SEC_COLLIDER, AT(scene_collider_t, m)
+#define COLLIDER_KEY(m) .section = SCENE_SEC_COLLIDER_KEY, AT(scene_path_key_t, m)
+#define CHARACTER(m) .section = SCENE_SEC_CHARACTER, AT(scene_character_t, m)
+
+/* Rows in the order of the unknown-key lists and of parsing. */
+const scene_field_t scene_fields[] = {
+    /* ---- top level ---- */
+    {ROOT(seed), .key = "seed", .type = SCENE_FIELD_U32, .hi = 4294967295.0, .flags = SCENE_FIELD_NO_DEFAULT,
+      .doc = "random seed of everything generated (0 is a valid seed)", .def_doc = "0"},
+    {ROOT(frames), .key = "frames", .type = SCENE_FIELD_INT, .hi = 1e7, .def = {SCENE_DEFAULT_FRAMES},
+      .doc = "frames of a headless run"},
+    {ROOT(dt), .key = "dt", .type = SCENE_FIELD_FLOAT, .hi = 1, .def = {SCENE_DEFAULT_DT},
+      .doc = "fixed timestep (s)", .def_doc = "1/60"},
+    {ROOT(size), .key = "size", .type = SCENE_FIELD_INTS, .n = 2, .hi = 16384,
+      .def = {SCENE_DEFAULT_WIDTH, SCENE_DEFAULT_HEIGHT}, .doc = "framebuffer [w, h] (px)"},
+    {ROOT(msaa), .key = "msaa", .type = SCENE_FIELD_INT, .hi = 16, .def = {SCENE_DEFAULT_MSAA},
+      .flags = SCENE_FIELD_POW2, .doc = "samples per pixel (1 = off)"},
+    {ROOT(mode), .key = "mode", .type = SCENE_FIELD_ENUM, .names = mode_names,
+      .doc = "grass model: blades near and billboards far (hybrid), or one method alone"},
+    {ROOT(raster), .key = "raster", .type = SCENE_FIELD_ENUM, .names = raster_names,
+      .doc = "how grass is rasterized: hardware pipeline, compute shaders, or the faster measured at "
+             "start-up (docs/RASTER.md)"},
+    {ROOT(terrain), .key = "terrain", .type = SCENE_FIELD_OBJECT, .doc = "the ground (keys `terrain.*`)"},
+    {ROOT(grass), .key = "grass", .type = SCENE_FIELD_OBJECT, .doc = "grass of both models (keys `grass.*`)"},
+    {ROOT(camera), .key = "camera", .type = SCENE_FIELD_OBJECT, .doc = "the view (keys `camera.*`)"},
+    {ROOT(wind), .key = "wind", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_WIND, .limit = "SCENE_MAX_WIND",
+      .doc = "wind fields (keys `wind[].*`)", .def_doc = "none"},
+    {ROOT(colliders), .key = "colliders", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_COLLIDERS,
+      .limit = "SCENE_MAX_COLLIDERS", .doc = "analytic colliders (keys `colliders[].*`)", .def_doc = "none"},
+    {ROOT(characters), .key = "characters", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_CHARACTERS,
+      .limit = "SCENE_MAX_CHARACTERS", .doc = "walking characters (keys `characters[].*`)", .def_doc = "none"},
+
+    /* ---- terrain ---- */
+    {TERRAIN(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = terrain_names,
+      .doc = "procedural heightfield or an imported mesh"},
+    {TERRAIN(size), .key = "size", .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
+      .doc = "heightfield side (m), square"},
+    {TERRAIN(resolution), .key = "resolution", .type = SCENE_FIELD_INT, .hi = SCENE_TERRAIN_RESOLUTION_MAX,
+      .def = {SCENE_DEFAULT_TERRAIN_RESOLUTION}, .doc = "heightfield grid cells per side"},
+    {TERRAIN(height), .key = "height", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_TERRAIN_HEIGHT}, .doc = "heightfield amplitude: heights in [-height, height] (m)"},
+    {TERRAIN(mesh), .key = "mesh", .type = SCENE_FIELD_STRING, .flags = SCENE_FIELD_NO_DEFAULT,
+      .doc = "mesh file, repository-relative; required when type is \"mesh\""},
+    {TERRAIN(scale), .key = "scale", .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_TERRAIN_SCALE},
+      .doc = "uniform scale of the mesh"},
+
+    /* ---- grass ---- */
+    {GRASS(density), .key = "density", .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_DENSITY},
+      .doc = "blades per m^2"},
+    {GRASS(height), .key = "height", .type = SCENE_FIELD_RANGE, .hi = 10,
+      .def = {SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX}, .doc = "blade height (m)"},
+    {GRASS(width), .key = "width", .type = SCENE_FIELD_RANGE, .hi = 1,
+      .def = {SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX}, .doc = "blade width (m)"},
+    {GRASS(stiffness), .key = "stiffness", .type = SCENE_FIELD_RANGE, .hi = 100,
+      .def = {SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX},
+      .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 1); min > 0"},
+    {GRASS(billboard_density), .key = "billboard_density", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_BILLBOARD_DENSITY}, .doc = "billboards per m^2"},
+    {GRASS(billboard_size), .key = "billboard_size", .type = SCENE_FIELD_FLOATS, .n = 2, .hi = 20,
+      .def = {SCENE_DEFAULT_BILLBOARD_WIDTH, SCENE_DEFAULT_BILLBOARD_HEIGHT}, .doc = "billboard [w, h] (m)"},
+    {GRASS(switch_distance), .key = "switch_distance", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_SWITCH_DISTANCE}, .doc = "hybrid: blades nearer than this (m), billboards beyond"},
+    {GRASS(tile_size), .key = "tile_size", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_TILE_SIZE}, .doc = "side of the square grass tiles of the hybrid field (m)"},
+    {GRASS(shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,
+      .doc = "blade shape function (Jahrmann & Wimmer 2017, section 5)"},
+    {GRASS(subdiv), .key = "subdiv", .type = SCENE_FIELD_INTS, .n = 2, .lo = SCENE_SUBDIV_MIN,
+      .hi = SCENE_SUBDIV_MAX, .def = {SCENE_DEFAULT_SUBDIV, SCENE_DEFAULT_SUBDIV}, .flags = SCENE_FIELD_ZERO_OK,
+      .doc = "deformable billboard mesh [N columns, M rows]"},
+    {GRASS(spring_iterations), .key = "spring_iterations", .type = SCENE_FIELD_INT, .hi = 64,
+      .def = {SCENE_DEFAULT_SPRING_ITERATIONS}, .doc = "billboard spring relaxation sweeps per step (eq. 6-7)"},
+    {GRASS(cube_resolution), .key = "cube_resolution", .type = SCENE_FIELD_INT, .hi = 4096,
+      .def = {SCENE_DEFAULT_CUBE_RESOLUTION}, .doc = "side of the collision depth cube maps (texels)"},
+    {GRASS(recover_time), .key = "recover_time", .type = SCENE_FIELD_FLOAT, .hi = 3600,
+      .def = {SCENE_DEFAULT_RECOVER_TIME},
+      .doc = "seconds grass takes to stand up after a push (billboards eq. 8, blade trails, hand-over)"},
+
+    /* ---- camera ---- */
+    {CAMERA(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_NO_DEFAULT, .doc = "eye (m)", .def_doc = "[0, 8, 24] when target is also zero"},
+    {CAMERA(target), .key = "target", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m)", .def_doc = "[0, 0, 0]"},
+    {CAMERA(fov), .key = "fov", .type = SCENE_FIELD_FLOAT, .hi = 179, .def = {SCENE_DEFAULT_FOV},
+      .doc = "vertical field of view (degrees)"},
+    {CAMERA(near), .key = "near", .type = SCENE_FIELD_FLOAT, .hi = 1e4, .def = {SCENE_DEFAULT_NEAR},
+      .doc = "near plane (m)"},
+    {CAMERA(far), .key = "far", .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_FAR},
+      .doc = "far plane (m); must exceed near"},
+    {CAMERA(path), .key = "path", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_PATH_KEYS,
+      .limit = "SCENE_MAX_PATH_KEYS", .doc = "camera keys over time (keys `camera.path[].*`)", .def_doc = "none"},
+    {CAMERA_KEY(t), .key = "t", .type = SCENE_FIELD_FLOAT, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "time (s), strictly increasing"},
+    {CAMERA_KEY(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "eye (m)"},
+    {CAMERA_KEY(target), .key = "target", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m)"},
+
+    /* ---- wind ---- */
+    {WIND(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = wind_names,
+      .doc = "travelling gusts along a direction, or a radial source"},
+    {WIND(direction), .key = "direction", .variants = DIRECTIONAL, .type = SCENE_FIELD_FLOATS, .n = 2,
+      .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX, .flags = SCENE_FIELD_NO_DEFAULT, .doc = "(x, z), normalised on load", .def_doc = "[1, 0]"},
+    {WIND(position), .key = "position", .variants = POINT, .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX,
+      .hi = SCENE_COORD_MAX, .flags = SCENE_FIELD_NO_DEFAULT, .doc = "centre (m)", .def_doc = "[0, 0, 0]"},
+    {WIND(strength), .key = "strength", .type = SCENE_FIELD_FLOAT, .hi = 100, .def = {SCENE_DEFAULT_WIND_STRENGTH},
+      .doc = "strength"},
+    {WIND(wavelength), .key = "wavelength", .variants = DIRECTIONAL, .type = SCENE_FIELD_FLOAT, .hi = 1e4,
+      .def = {SCENE_DEFAULT_WIND_WAVELENGTH}, .doc = "gust wavelength (m)"},
+    {WIND(speed), .key = "speed", .variants = DIRECTIONAL, .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_WIND_SPEED}, .doc = "gust speed (m/s)"},
+    {WIND(radius), .key = "radius", .variants = POINT, .type = SCENE_FIELD_FLOAT, .hi = 1e4,
+      .def = {SCENE_DEFAULT_WIND_RADIUS}, .doc = "falloff radius (m)"},
+
+    /* ---- colliders ---- */
+    {COLLIDER(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = collider_names,
+      .doc = "shape (capsule: vertical axis; box: axis aligned)"},
+    {COLLIDER(path), .key = "position", .type = SCENE_FIELD_CUSTOM, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_NO_DEFAULT,
+      .doc = "a static centre (m), not with path; on heightfields y is the height above the ground", .type_doc = "[3 numbers]", .def_doc = "[0, 0, 0]"},
+    {COLLIDER(path), .key = "path", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_PATH_KEYS,
+      .limit = "SCENE_MAX_PATH_KEYS", .doc = "a moving centre, not with position (keys `colliders[].path[].*`)", .def_doc = "none"},
+    {COLLIDER(loop), .key = "loop", .type = SCENE_FIELD_BOOL, .doc = "repeat the path"},
+    {COLLIDER(radius), .key = "radius", .variants = SPHERE | CAPSULE, .type = SCENE_FIELD_FLOAT, .hi = 100,
+      .def = {SCENE_DEFAULT_SPHERE_RADIUS}, .doc = "radius (m)", .def_doc = "0.5 (sphere), 0.3 (capsule)"},
+    {COLLIDER(length), .key = "length", .variants = CAPSULE, .type = SCENE_FIELD_FLOAT, .hi = 100,
+      .def = {SCENE_DEFAULT_CAPSULE_LENGTH}, .doc = "segment length (m)"},
+    {COLLIDER(half_extents), .key = "half_extents", .variants = BOX, .type = SCENE_FIELD_FLOATS, .n = 3,
+      .hi = 100, .def = {SCENE_DEFAULT_HALF_EXTENT, SCENE_DEFAULT_HALF_EXTENT, SCENE_DEFAULT_HALF_EXTENT},
+      .doc = "half size along x, y, z (m)"},
+    {COLLIDER_KEY(t), .key = "t", .type = SCENE_FIELD_FLOAT, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "time (s), strictly increasing"},
+    {COLLIDER_KEY(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "centre (m)"},
+
+    /* ---- characters ---- */
+    {CHARACTER(model), .key = "model", .type = SCENE_FIELD_STRING,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT,
+      .doc = "model file, repository-relative (e.g. models/humanoid.gltf); not empty"},
+    {CHARACTER(clip_index), .key = "clip", .type = SCENE_FIELD_CUSTOM, .hi = 1000, .flags = SCENE_FIELD_NO_DEFAULT,
+      .doc = "walk clip by name, or by index in [0, 1000]", .type_doc = "string or integer", .def_doc = "0 (the first clip)"},
+    {CHARACTER(speed), .key = "speed", .type = SCENE_FIELD_FLOAT, .hi = 100, .def = {SCENE_DEFAULT_WALK_SPEED},
+      .doc = "walking speed (m/s)"},
+    {CHARACTER(scale), .key = "scale", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_CHARACTER_SCALE}, .doc = "uniform model scale"},
+    {CHARACTER(waypoints), .key = "path", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_PATH_KEYS,
+      .limit = "SCENE_MAX_PATH_KEYS", .doc = "waypoints [[x, z], ...], each component in [-1e6, 1e6]",
+     .type_doc = "array of [x, z]", .def_doc = "stands at the origin"},
+    {CHARACTER(loop), .key = "loop", .type = SCENE_FIELD_BOOL, .doc = "closed walk"},
+};
+
+const int scene_field_count = (int)(sizeof scene_fields / sizeof scene_fields[0]);
+
+/* ---- lookups ------------------------------------------------------------- */
+
+static const char *const section_names[SCENE_SEC_COUNT] = {
+    "", "terrain", "grass", "camera", "camera.path[]", "wind[]", "colliders[]", "colliders[].path[]", "characters[]",
+};
+
+const char *scene_section_name(scene_section_t section) { return section_names[section]; }
+
+const scene_field_t *scene_field_find(scene_section_t section, const char *key)
+{
+    for (int i = 0; i < scene_field_count; i++)
+        if (scene_fields[i].section == section && strcmp(scene_fields[i].key, key) == 0) return &scene_fields[i];
+    return NULL;
+}
+
+/* ---- markdown ------------------------------------------------------------ */
+
+typedef struct md_t {
+    char *buf;
+    size_t len, cap;
+    bool failed;
+} md_t;
+
+__attribute__((format(printf, 2, 3))) static void md_printf(md_t *m, const char *fmt, ...)
+{
+    if (m->failed) return;
+    for (;;) {
+        va_list ap;
+        va_start(ap, fmt);
+        int n = vsnprintf(m->buf + m->len, m->cap - m->len, fmt, ap);
+        va_end(ap);
+        if (n < 0) {
+            m->failed = true;
+            return;
+        }
+        if ((size_t)n < m->cap - m->len) {
+            m->len += (size_t)n;
+            return;
+        }
+        size_t cap = (m->cap + (size_t)n + 1) * 2;
+        char *b = realloc(m->buf, cap);
+        if (!b) {
+            m->failed = true;
+            return;
+        }
+        m->buf = b;
+        m->cap = cap;
+    }
+}
+
+static void md_names(md_t *m, const char *const *names)
+{
+    for (int i = 0; names[i]; i++) md_printf(m, "%s\"%s\"", i ? ", " : "", names[i]);
+}
+
+static void md_type(md_t *m, const scene_field_t *f)
+{
+    static const char *const plain[] = {
+        [SCENE_FIELD_INT] = "integer", [SCENE_FIELD_U32] = "integer", [SCENE_FIELD_FLOAT] = "number",
+        [SCENE_FIELD_RANGE] = "[min, max]", [SCENE_FIELD_ENUM] = "string", [SCENE_FIELD_BOOL] = "bool",
+        [SCENE_FIELD_STRING] = "string", [SCENE_FIELD_OBJECT] = "object", [SCENE_FIELD_ARRAY] = "array",
+        [SCENE_FIELD_CUSTOM] = "-"};
+    if (f->type_doc) md_printf(m, "%s", f->type_doc);
+    else if (f->type == SCENE_FIELD_INTS) md_printf(m, "[%d integers]", f->n);
+    else if (f->type == SCENE_FIELD_FLOATS) md_printf(m, "[%d numbers]", f->n);
+    else md_printf(m, "%s", plain[f->type]);
+}
+
+static void md_accepted(md_t *m, const scene_field_t *f)
+{
+    switch (f->type) {
+    case SCENE_FIELD_ENUM: md_names(m, f->names); break;
+    case SCENE_FIELD_BOOL: md_printf(m, "true, false"); break;
+    case SCENE_FIELD_STRING: md_printf(m, "at most %zu bytes", f->size - 1); break;
+    case SCENE_FIELD_OBJECT: md_printf(m, "-"); break;
+    case SCENE_FIELD_ARRAY: md_printf(m, "at most %.10g entries (%s)", f->hi, f->limit); break;
+    default:
+        if (f->flags & SCENE_FIELD_POW2) {
+            md_printf(m, "0");
+            for (int v = 1; v <= (int)f->hi; v *= 2) md_printf(m, ", %d", v);
+            break;
+        }
+        if (f->type == SCENE_FIELD_INTS || f->type == SCENE_FIELD_FLOATS || f->type == SCENE_FIELD_RANGE)
+            md_printf(m, "each ");
+        if (f->flags & SCENE_FIELD_ZERO_OK) md_printf(m, "0 or ");
+        md_printf(m, "[%.10g, %.10g]", f->lo, f->hi);
+        if (f->type == SCENE_FIELD_RANGE) md_printf(m, ", min <= max");
+        break;
+    }
+}
+
+static void md_default(md_t *m, const scene_field_t *f)
+{
+    if (f->def_doc) {
+        md_printf(m, "%s", f->def_doc);
+        return;
+    }
+    switch (f->type) {
+    case SCENE_FIELD_ENUM: md_printf(m, "\"%s\"", f->names[0]); break;
+    case SCENE_FIELD_BOOL: md_printf(m, "false"); break;
+    case SCENE_FIELD_RANGE: md_printf(m, "[%g, %g]", (double)f->def[0], (double)f->def[1]); break;
+    case SCENE_FIELD_INTS:
+    case SCENE_FIELD_FLOATS:
+        md_printf(m, "[");
+        for (int k = 0; k < f->n; k++) md_printf(m, "%s%g", k ? ", " : "", (double)f->def[k]);
+        md_printf(m, "]");
+        break;
+    case SCENE_FIELD_INT:
+    case SCENE_FIELD_U32:
+    case SCENE_FIELD_FLOAT: md_printf(m, "%g", (double)f->def[0]); break;
+    default: md_printf(m, "-"); break;
+    }
+}
+
+/* "*directional*: " for keys of some entry types only. */
+static void md_variants(md_t *m, const scene_field_t *f)
+{
+    if (!f->variants) return;
+    const scene_field_t *type = scene_field_find(f->section, "type");
+    bool first = true;
+    for (int i = 0; type && type->names[i]; i++) {
+        if (!(f->variants & (1u << i))) continue;
+        md_printf(m, "%s*%s*", first ? "" : ", ", type->names[i]);
+        first = false;
+    }
+    md_printf(m, " only: ");
+}
+
+char *scene_keys_markdown(void)
+{
+    md_t m = {.buf = malloc(4096), .cap = 4096};
+    if (!m.buf) return NULL;
+    md_printf(&m, "# Scene keys\n\n"
+                  "<!-- Generated by `meadow --scene-keys` from the table in src/scene/scene_fields.c;\n"
+                  "     test_scene_json fails when this file differs from its output. -->\n\n"
+                  "Scene files (`scenes/*.json`) are strict JSON: unknown keys, wrong types, values out\n"
+                  "of range and too many entries are errors naming the file, line and field. Every\n"
+                  "key is optional unless marked *required*; absent or 0 selects the default (an\n"
+                  "explicit 0 is the default too). `[]` in a key is an array entry. The defaults are\n"
+                  "the constants of src/scene/scene_fields.h, which the modules' descs default to as\n"
+                  "well.\n");
+    for (int s = 0; s < SCENE_SEC_COUNT; s++) {
+        md_printf(&m, "\n## %s\n\n", s == SCENE_SEC_ROOT ? "Top level" : section_names[s]);
+        md_printf(&m, "| key | type | accepted | default | meaning |\n| --- | --- | --- | --- | --- |\n");
+        for (int i = 0; i < scene_field_count; i++) {
+            const scene_field_t *f = &scene_fields[i];
+            if ((int)f->section != s) continue;
+            md_printf(&m, "| `%s%s%s` | ", section_names[s], s == SCENE_SEC_ROOT ? "" : ".", f->key);
+            md_type(&m, f);
+            md_printf(&m, " | ");
+            md_accepted(&m, f);
+            md_printf(&m, " | ");
+            if (f->flags & SCENE_FIELD_REQUIRED) md_printf(&m, "*required*");
+            else md_default(&m, f);
+            md_printf(&m, " | ");
+            md_variants(&m, f);
+            md_printf(&m, "%s |\n", f->doc);
+        }
+    }
+    if (m.failed) {
+        free(m.buf);
+        return NULL;
+    }
+    return m.buf;
+}
