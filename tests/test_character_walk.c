@@ -126,13 +126,13 @@ static void check_slip(const char *model, double lo, double hi)
     for (int i = 0; i < 16; i++) {
         character_set_update(&set, 3.0f + 0.071f * (float)i, 0.0f);
         character_skin_cpu(m, &in->pose, pos, NULL);
-        float lo = 1e9f;
+        float lowest = 1e9f;
         for (int v = 0; v < m->vertex_count; v++) {
             float w[3];
             character_mat4_point(in->model, &pos[3 * v], w);
-            lo = fminf(lo, w[1]);
+            lowest = fminf(lowest, w[1]);
         }
-        lowest_max = fmax(lowest_max, lo), lowest_min = fmin(lowest_min, lo);
+        lowest_max = fmax(lowest_max, lowest), lowest_min = fmin(lowest_min, lowest);
     }
     free(pos);
     float matched = in->rate;
