@@ -140,7 +140,7 @@ static bool make_bb(app_world_t *w)
     }
     bb_gen_desc_t gen;
     int layout_size = layout_for(w, &gen);
-    int objects = w->colliders.count + (w->have_chars ? w->chars.count : 0);
+    int objects = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
     w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
                                            .terrain = &w->terrain_mesh,
@@ -352,7 +352,7 @@ bool app_world_make_gpu(app_world_t *w)
  * character. More than the set holds are reported once; the first win. */
 static void add_objects(app_world_t *w, collide_set_t *set, float dt)
 {
-    int total = w->colliders.count + (w->have_chars ? w->chars.count : 0);
+    int total = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
@@ -524,9 +524,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             d.fade_end = fade_hi;
         }
         if (w->have_tiles && uses_tiles(w)) {
-            d.slope_map = w->tiles.slope_map;
-            d.slope_grid = w->tiles.slope_grid;
-            d.slope_recover = w->tiles.desc.slope_recover;
+            blade_tiles_slope(&w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
         }
         if (raster) raster_ok = bb_field_raster(&w->bb, raster, &d) && raster_ok;
         else bb_field_draw(&w->bb, &d);
@@ -597,10 +595,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->blade_survivors = b.survivors;
         memcpy(st->blade_culled, b.culled, sizeof st->blade_culled);
         st->blade_patch_culled = b.patch_culled;
-        /* Both render paths draw up to max_tess_level segments of two
-         * triangles per blade; level of detail lowers it with distance, so
-         * this is an upper bound. */
-        st->triangles += (long)b.survivors * 2 * w->blades.desc.max_tess_level;
+        st->triangles += b.triangles_max;
     }
     if (w->have_bb) {
         bb_stats_t s;
@@ -610,8 +605,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->bb_generate_ms = s.generate_ms;
         st->bb_make_ms = s.make_ms;
         for (int k = 0; k < BB_MAKE_STAGES; k++) st->bb_make_stage_ms[k] = s.make_stage_ms[k];
-        int nm = (w->bb.desc.subdiv[0] - 1) * (w->bb.desc.subdiv[1] - 1) * 2;
-        st->triangles += (long)(s.billboards - s.deformed) * 2 + (long)s.deformed * nm;
+        st->triangles += s.triangles;
     }
     if (w->have_tiles) {
         blade_tiles_stats_t ts = blade_tiles_stats(&w->tiles, true);
@@ -625,7 +619,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->tile_blades_simulated = (long)ts.blades_dispatched;
         st->tile_handovers = ts.handovers_total;
         st->tile_seeded = ts.seeded_total;
-        st->triangles += (long)ts.blades_drawn * 2 * w->tiles.desc.max_level;
+        st->triangles += ts.triangles_max;
     }
-    st->characters = w->have_chars ? w->chars.count : 0;
+    st->characters = w->have_chars ? character_set_count(&w->chars) : 0;
 }

@@ -1187,10 +1187,12 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
     if (!wait) {
         out->deformed = f->deformed_last;
         out->pool_exhausted = f->exhausted_last;
-        return;
+    } else {
+        uint32_t hdr[2];
+        gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
+        out->deformed = f->desc.max_deformed - (int32_t)hdr[0];
+        out->pool_exhausted = (int)hdr[1];
     }
-    uint32_t hdr[2];
-    gfx_buffer_read(f->pool, 0, sizeof hdr, hdr);
-    out->deformed = f->desc.max_deformed - (int32_t)hdr[0];
-    out->pool_exhausted = (int)hdr[1];
+    long mesh = 2L * (f->desc.subdiv[0] - 1) * (f->desc.subdiv[1] - 1);
+    out->triangles = (long)(out->billboards - out->deformed) * 2 + (long)out->deformed * mesh;
 }

@@ -126,6 +126,8 @@ typedef struct bb_stats_t {
     float generate_ms;    /* GPU time of the make-time generation pass: two
                              GL_TIMESTAMP queries around it; -1 when the GPU
                              has no timestamp counter */
+    long triangles;       /* drawn per frame at most: 2 per plain billboard, the
+                             mesh's 2 (N-1)(M-1) per deformed one */
     float make_ms;        /* CPU wall time of bb_field_make (ends after the
                              generation results were read back) */
     float make_stage_ms[BB_MAKE_STAGES]; /* make_ms split by stage (wall

@@ -312,6 +312,7 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
     g->stats.patches_drawn = g->readback_patch[slot][1];
     g->stats.total = g->blade_count;
     g->stats.valid = true;
+    g->stats.triangles_max = (long)g->stats.survivors * 2 * g->desc.max_tess_level;
     return g->stats;
 }
 

@@ -84,6 +84,8 @@ typedef struct blade_gpu_stats_t {
     uint32_t patch_culled; /* real blades of patches culled on the CPU */
     uint32_t patches_drawn;
     bool valid;            /* false until a cull result has been read */
+    long triangles_max;    /* survivors x 2 x max_tess_level: an upper bound of the
+                              drawn triangles (level of detail lowers it with distance) */
 } blade_gpu_stats_t;
 
 typedef struct blade_gpu_t {

@@ -775,7 +775,15 @@ blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)
     t->stats.blade_tiles = h->blade_tiles;
     t->stats.slots_used = h->slots_used;
     t->stats.pool_denied = h->pool_denied;
+    t->stats.triangles_max = (long)t->stats.blades_drawn * 2 * t->desc.max_level;
     return t->stats;
+}
+
+void blade_tiles_slope(const blade_tiles_t *t, gfx_buffer_t *map, hybrid_slope_grid_t *grid, float *recover)
+{
+    *map = t->slope_map;
+    *grid = t->slope_grid;
+    *recover = t->desc.slope_recover;
 }
 
 void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float *eta_out)

@@ -173,6 +173,7 @@ typedef struct blade_tiles_stats_t {
     uint32_t blades_drawn;      /* survivors of the latest cull read back (-1..2 frames late) */
     uint32_t draw_overflow;     /* survivors dropped for lack of capacity (logged) */
     uint32_t blades_per_template; /* padded */
+    long triangles_max;         /* blades_drawn x 2 x max_level (upper bound) */
     size_t gpu_bytes;           /* buffers + textures held */
 } blade_tiles_stats_t;
 
@@ -256,6 +257,9 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
 bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc);
 
 /* Statistics; blades_drawn without stalling unless wait (tests). */
+/* The blades -> billboards slope hand-over the billboards draw with
+ * (bb_draw_desc_t slope_map, slope_grid, slope_recover). */
+void blade_tiles_slope(const blade_tiles_t *t, gfx_buffer_t *map, hybrid_slope_grid_t *grid, float *recover);
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);
 
 /* ---- test helpers (blocking) ---------------------------------------------- */

@@ -442,3 +442,5 @@ int character_set_objects(const character_set_t *set, character_object_t *out, i
     }
     return set->count;
 }
+
+int character_set_count(const character_set_t *set) { return set->count; }

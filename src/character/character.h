@@ -145,6 +145,8 @@ void character_set_destroy(character_set_t *set);
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max);
 /* The same for every character of the set, concatenated. */
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max);
+/* Characters in the set. */
+int character_set_count(const character_set_t *set);
 /* Billboard proxy of one character. */
 void character_bb_object(const character_instance_t *inst, character_object_t *out);
 /* Every character's object; writes at most max, returns set->count (logs
