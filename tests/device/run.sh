@@ -18,6 +18,9 @@
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
 #                side by side, and four meadow_large screenshots -> $OUT
+#   perf         `meadow bench --perf` (bench scenes x {hw, compute}, 400 frames): $OUT/perf.json and the
+#                regenerated $OUT/PERFORMANCE.md; then `meadow bench --baseline docs/perf/h100.json`
+#                on that perf.json (a note instead when the baseline does not exist yet)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
@@ -101,6 +104,24 @@ raster() {
   for n in large_hybrid-hw large_hybrid-compute large_billboard-compute large_blade-compute; do
     cp /tmp/r-$n/shot-000300.png $OUT/$n.png 2>/dev/null
   done
+}
+
+perf() {
+  echo "== bench --perf"
+  rm -rf /tmp/perf; mkdir -p /tmp/perf
+  cp docs/PERFORMANCE.md /tmp/perf/PERFORMANCE.md 2>/dev/null \
+    || echo "note: no docs/PERFORMANCE.md here: regenerate it at home with bench --perf DIR --from perf.json"
+  doc=(); [ -f /tmp/perf/PERFORMANCE.md ] && doc=(--doc /tmp/perf/PERFORMANCE.md)
+  ( time timeout 560 $M bench --perf /tmp/perf "${doc[@]}" --quiet ) 2>&1 | tail -22
+  cp /tmp/perf/perf.json /tmp/perf/PERFORMANCE.md $OUT/ 2>/dev/null
+  if [ ! -f /tmp/perf/perf.json ]; then
+    echo "no perf.json: bench --perf failed"
+  elif [ -f docs/perf/h100.json ]; then
+    echo "== bench --baseline docs/perf/h100.json"
+    $M bench --baseline docs/perf/h100.json --from /tmp/perf/perf.json 2>&1; echo "baseline rc=$?"
+  else
+    echo "note: no docs/perf/h100.json yet; commit \$OUT/perf.json as docs/perf/h100.json to make this run the baseline"
+  fi
 }
 
 sections=${*:-tests bench scaling report}
