@@ -36,6 +36,11 @@ expect2 "--seed 'x1'" --seed x1
 expect2 "--mode 'grass'" --mode grass
 expect2 "needs a value" --scene
 expect2 "unknown command 'fly'" fly
+expect2 "options of .meadow bench." --perf "$tmp/p"
+expect2 "--from needs --perf or --baseline" bench --from "$tmp/p.json"
+expect2 "--force needs --baseline" bench --perf "$tmp/p" --force
+expect2 "--baseline: empty path" bench --baseline ""
+expect2 "cannot be combined" bench --perf "$tmp/p" --scaling
 expect2 "missing.json" --headless --scene "$tmp/missing.json"
 printf '{ "seed": 1,\n  "terrain": { "size": 10,\n' >"$tmp/truncated.json"
 expect2 "truncated.json:2: unexpected end of file" --headless --scene "$tmp/truncated.json"

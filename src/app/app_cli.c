@@ -36,6 +36,14 @@ void app_print_usage(void)
            "  --stability           bench: run the stability suite (where each method breaks)\n"
            "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
            "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
+           "  --perf DIR            bench: bench scenes x {hw, compute}, pass medians to DIR/perf.json,\n"
+           "                        regenerates docs/PERFORMANCE.md's measured section (--quick: tiny scenes)\n"
+           "  --baseline FILE       bench: run (or --from) and compare every pass median with FILE; exit 1\n"
+           "                        when one is slower by more than 15 %% + 0.02 ms\n"
+           "  --from FILE           bench --perf/--baseline: use a saved perf.json instead of running\n"
+           "  --doc FILE            bench --perf: the doc to regenerate (default docs/PERFORMANCE.md; none\n"
+           "                        with --quick)\n"
+           "  --force               bench --baseline: compare even when the renderers differ\n"
            "  --quiet               only warnings and errors\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n"
@@ -121,6 +129,18 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
                 return 2;
             }
             o->report = v;
+        } else if (strcmp(a, "--perf") == 0 || strcmp(a, "--baseline") == 0 || strcmp(a, "--from") == 0 ||
+                   strcmp(a, "--doc") == 0) {
+            NEED_VALUE();
+            if (!*v) {
+                snprintf(err, err_size, "%s: empty path", a);
+                return 2;
+            }
+            const char **slot = a[2] == 'p' ? &o->perf : a[2] == 'b' ? &o->baseline : a[2] == 'f' ? &o->perf_from
+                                                                                             : &o->doc;
+            *slot = v;
+        } else if (strcmp(a, "--force") == 0) {
+            o->force = true;
         } else if (strcmp(a, "--quiet") == 0) {
             o->quiet = true;
         } else if (strcmp(a, "--scene") == 0) {
@@ -215,6 +235,23 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             return 2;
         }
 #undef NEED_VALUE
+    }
+    bool perf = o->perf || o->baseline;
+    if ((perf || o->perf_from || o->doc || o->force) && o->command != APP_CMD_BENCH) {
+        snprintf(err, err_size, "--perf, --baseline, --from, --doc and --force are options of `meadow bench`");
+        return 2;
+    }
+    if ((o->perf_from || o->doc) && !perf) {
+        snprintf(err, err_size, "%s needs --perf or --baseline (see --help)", o->doc ? "--doc" : "--from");
+        return 2;
+    }
+    if (o->force && !o->baseline) {
+        snprintf(err, err_size, "--force needs --baseline (see --help)");
+        return 2;
+    }
+    if (perf && (o->report || o->stability || o->scaling)) {
+        snprintf(err, err_size, "--perf and --baseline cannot be combined with --report, --stability or --scaling");
+        return 2;
     }
     return 0;
 }

@@ -19,7 +19,8 @@
  * (bench_stability.c) runs with --stability, the tile scaling sweeps
  * (bench_scaling.c) with --scaling; --report DIR runs the sweep, both of
  * those and `meadow compare`, and writes
- * DIR/RESULTS.md with its charts and screenshots in DIR/images. */
+ * DIR/RESULTS.md with its charts and screenshots in DIR/images. --perf and
+ * --baseline (bench_perf.c, bench_baseline.c) time the bench scenes. */
 #include "bench/bench_local.h"
 
 #include <assert.h>
@@ -455,6 +456,7 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
 
 int bench_run(const app_options_t *o)
 {
+    if (o->perf || o->baseline) return bench_perf_main(o);
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
     if (!core_fs_check_writable_dir(out, err, sizeof err)) {

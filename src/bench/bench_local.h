@@ -2,7 +2,9 @@
  * bench_metrics.c (accuracy metrics, docs/METRICS.md), bench_session.c
  * (offscreen runs with per-frame hooks), bench.c (sweeps and charts),
  * bench_stability.c (where each method breaks), bench_scaling.c (tile
- * simulation cost) and bench_compare.c. */
+ * simulation cost), bench_perf.c (the bench scenes' pass medians, perf.json,
+ * docs/PERFORMANCE.md), bench_baseline.c (against a committed baseline) and
+ * bench_compare.c. */
 #ifndef MEADOW_BENCH_LOCAL_H
 #define MEADOW_BENCH_LOCAL_H
 
@@ -108,5 +110,50 @@ typedef struct bench_scaling_t {
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
 int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md);
+
+/* ---- bench --perf / --baseline (bench_perf.c, bench_baseline.c) ------------------ */
+#define BENCH_PERF_MAX_RUNS 32
+
+/* One session of the perf set: a scene in one mode through one rasterizer. */
+typedef struct bench_perf_run_t {
+    char name[64];        /* "<scene>/<mode>/<raster>", the key baselines match on */
+    char scene[256];      /* scene file */
+    char mode[16], raster[16];
+    bool fell_back;       /* compute asked for, hardware path drawn */
+    int size[2], msaa;
+    double frame_ms;      /* sum of the pass medians (bb.generate left out, as in summary.txt) */
+    double cpu_ms;        /* mean wall-clock ms per frame after warm-up */
+    double floor_ms;      /* app_floor_ms of the grass triangles; -1 = not measured */
+    double memory_mb;     /* GPU memory held by gfx at the last frame */
+    long blades, blades_drawn, billboards, triangles;
+    int pass_count;
+    char pass_name[GFX_TIMER_MAX_PASSES][32];
+    double pass_ms[GFX_TIMER_MAX_PASSES]; /* medians */
+} bench_perf_run_t;
+
+typedef struct bench_perf_t {
+    char renderer[256], gl_version[256], date[32]; /* date: UTC, ISO 8601 */
+    int frames;
+    bool quick;
+    int run_count;
+    bench_perf_run_t runs[BENCH_PERF_MAX_RUNS];
+} bench_perf_t;
+
+/* Reads a perf.json (bench_perf.c's format). Returns 0, or 2 after one error
+ * line naming the file (and line). */
+int bench_perf_read(const char *path, bench_perf_t *p);
+/* The run named `name`, or NULL. */
+const bench_perf_run_t *bench_perf_find(const bench_perf_t *p, const char *name);
+/* The regression check of `bench --baseline`: every pass median of cur
+ * against base. Prints the offending passes (slower by more than
+ * BENCH_BASELINE_SLOWER_FRAC + BENCH_BASELINE_SLOWER_MS), notes faster,
+ * missing and new ones. Returns 0, 1 (a pass is slower) or 2 (the
+ * renderers differ and force is false). */
+#define BENCH_BASELINE_SLOWER_FRAC 0.15
+#define BENCH_BASELINE_SLOWER_MS 0.02
+int bench_baseline_check(const bench_perf_t *cur, const bench_perf_t *base, const char *base_path, bool force);
+/* `bench --perf DIR` and `bench --baseline FILE` (dispatched from bench_run).
+ * Returns the process exit code. */
+int bench_perf_main(const app_options_t *o);
 
 #endif

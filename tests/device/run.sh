@@ -22,6 +22,9 @@
 #                hardware path on meadow.json and meadow_large: timings, and
 #                the frame-120 screenshots -> $OUT (compare them with
 #                eval_image_ssim off the machine)
+#   perf         `meadow bench --perf` (bench scenes x {hw, compute}, 400 frames): $OUT/perf.json and the
+#                regenerated $OUT/PERFORMANCE.md; then `meadow bench --baseline docs/perf/h100.json`
+#                on that perf.json (a note instead when the baseline does not exist yet)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
@@ -140,6 +143,24 @@ samples() {
       cp /tmp/ss-$s-$r$n/shot-000120.png $OUT/$s-$r$n.png 2>/dev/null
     done
   done
+}
+
+perf() {
+  echo "== bench --perf"
+  rm -rf /tmp/perf; mkdir -p /tmp/perf
+  cp docs/PERFORMANCE.md /tmp/perf/PERFORMANCE.md 2>/dev/null \
+    || echo "note: no docs/PERFORMANCE.md here: regenerate it at home with bench --perf DIR --from perf.json"
+  doc=(); [ -f /tmp/perf/PERFORMANCE.md ] && doc=(--doc /tmp/perf/PERFORMANCE.md)
+  ( time timeout 560 $M bench --perf /tmp/perf "${doc[@]}" --quiet ) 2>&1 | tail -22
+  cp /tmp/perf/perf.json /tmp/perf/PERFORMANCE.md $OUT/ 2>/dev/null
+  if [ ! -f /tmp/perf/perf.json ]; then
+    echo "no perf.json: bench --perf failed"
+  elif [ -f docs/perf/h100.json ]; then
+    echo "== bench --baseline docs/perf/h100.json"
+    $M bench --baseline docs/perf/h100.json --from /tmp/perf/perf.json 2>&1; echo "baseline rc=$?"
+  else
+    echo "note: no docs/perf/h100.json yet; commit \$OUT/perf.json as docs/perf/h100.json to make this run the baseline"
+  fi
 }
 
 sections=${*:-tests bench scaling report}
