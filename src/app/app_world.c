@@ -99,6 +99,12 @@ static bool extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t 
                                                         .clump_size = 8, .blades = 1});
 }
 
+/* The seed of where blades stand (app_tuning_t.placement_seed). */
+static uint32_t placement_seed(const app_world_t *w)
+{
+    return w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
+}
+
 /* Thins seeded blades by the extent map with the billboards' acceptance
  * rule (accept with probability E/255, see bb_layout.h), so both
  * representations share clearings and density ratio. A rejected blade gets
@@ -117,7 +123,7 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
         int tx = ((ix / gen.cells_per_texel) % lay.extent.w + lay.extent.w) % lay.extent.w;
         int tz = ((iz / gen.cells_per_texel) % lay.extent.h + lay.extent.h) % lay.extent.h;
         uint32_t e = lay.extent.px[(size_t)tz * (size_t)lay.extent.w + (size_t)tx];
-        if (core_hash_u32((uint32_t)i ^ core_hash_u32(w->scene.seed ^ 0x5bd1e995u)) % 255u >= e) {
+        if (core_hash_u32((uint32_t)i ^ core_hash_u32(placement_seed(w) ^ 0x5bd1e995u)) % 255u >= e) {
             b->v1[3] = 0.0f;
             b->v2[3] = 0.0f;
             dropped++;
@@ -145,6 +151,7 @@ static bool make_bb(app_world_t *w)
     w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
                                            .terrain = &w->terrain_mesh,
                                            .seed = s->seed,
+                                           .placement_seed = w->tuning.placement_seed,
                                            .density = g->billboard_density,
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
@@ -184,7 +191,7 @@ static bool make_blades(app_world_t *w)
     blade_field_t field;
     blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
                          .indices = t->indices, .index_count = t->index_count};
-    blade_seed_desc_t sd = {.seed = s->seed,
+    blade_seed_desc_t sd = {.seed = placement_seed(w),
                             .density = g->density,
                             .height_min = g->height[0], .height_max = g->height[1],
                             .width_min = g->width[0], .width_max = g->width[1],

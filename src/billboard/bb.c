@@ -454,7 +454,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
 
     f->gen = bb_gen_desc_defaults(&(bb_gen_desc_t){
         .spacing = 1.0f / sqrtf(d->density), .origin = {t->aabb_min[0], t->aabb_min[2]}, .width = d->size[0],
-        .height = d->size[1], .seed = d->seed});
+        .height = d->size[1], .seed = d->placement_seed ? d->placement_seed : d->seed});
     if (!upload_layout(f)) goto fail;
     stage_done(f, BB_MAKE_LAYOUT, &mark);
     float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];

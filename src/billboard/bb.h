@@ -60,6 +60,9 @@
 typedef struct bb_field_desc_t {
     const terrain_mesh_t *terrain; /* required; only read during make */
     uint32_t seed;                 /* any value (0 included) */
+    uint32_t placement_seed;       /* seeds the generation rule (where billboards stand)
+                                      instead of `seed` when non-zero; the layout
+                                      textures (clearings, clumps) keep `seed` */
     /* Defaults marked (scene) are the program's, SCENE_DEFAULT_* of
      * scene/scene_fields.h (scene key in brackets). */
     float density;                 /* candidate billboards per m^2 (the extent map
