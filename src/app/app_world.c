@@ -300,20 +300,48 @@ static bool make_tiles(app_world_t *w)
     return w->have_tiles;
 }
 
+/* Collider i's sweep (previous - current centre) from this step's collide
+ * set: the colliders are its first objects (add_objects) and only
+ * translate, so every sphere of their proxies moves by the same vector. */
+static void collider_sweep(const app_world_t *w, int i, float out[4])
+{
+    const collide_object_t *o = i < w->collide.object_count ? &w->collide.objects[i] : NULL;
+    for (int k = 0; k < 3; k++) out[k] = o ? o->prev_position[k] - o->position[k] : 0.0f;
+    out[3] = 0.0f;
+}
+
+/* The characters' proxy spheres (already swept by character_set_update:
+ * each holds its previous and current pose) appended to out[n..max). */
+static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max)
+{
+    static float packed[BLADE_MAX_SPHERES][4];
+    int room = max - n, want = character_set_spheres(&w->chars, packed, room);
+    for (int k = 0; k < room && k < want; k++)
+        out[n + k] = (blade_sphere_t){.centre_radius = {packed[k][0], packed[k][1], packed[k][2], packed[k][3]}};
+    return want;
+}
+
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
- * then the characters'). More than BLADE_MAX_SPHERES is reported once. */
+ * with its sweep, then the characters'). More than BLADE_MAX_SPHERES is
+ * reported once. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
+    static float packed[BLADE_MAX_SPHERES][4];
     int n = 0;
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
-        int want = collide_pack_spheres(&c->desc, c->position, (float (*)[4])out[n].centre_radius, max - n);
+        int want = collide_pack_spheres(&c->desc, c->position, packed, max - n);
         full = want > max - n;
-        n += full ? max - n : want;
+        int got = full ? max - n : want;
+        for (int k = 0; k < got; k++) {
+            memcpy(out[n + k].centre_radius, packed[k], sizeof packed[k]);
+            collider_sweep(w, i, out[n + k].sweep);
+        }
+        n += got;
     }
     if (w->have_chars && !full) {
-        int want = character_set_spheres(&w->chars, (float (*)[4])out[n].centre_radius, max - n);
+        int want = character_spheres(w, out, n, max);
         full = want > max - n;
         n += full ? max - n : want;
     }
@@ -430,12 +458,13 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
     set->cube_res = w->scene.grass.cube_resolution;
     for (int k = nc; k < w->colliders.count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
         const app_collider_t *c = &w->colliders.items[k];
-        set->spheres[set->sphere_count++] =
-            (collide_sphere_t){{c->position[0], c->position[1], c->position[2], c->bound_radius}};
+        collide_sphere_t *s = &set->spheres[set->sphere_count++];
+        *s = (collide_sphere_t){.centre_radius = {c->position[0], c->position[1], c->position[2], c->bound_radius}};
+        collider_sweep(w, k, s->sweep);
     }
     if (w->have_chars) {
         int room = BLADE_MAX_SPHERES - set->sphere_count;
-        int want = character_set_spheres(&w->chars, (float (*)[4])set->spheres[set->sphere_count].centre_radius, room);
+        int want = character_spheres(w, set->spheres, set->sphere_count, BLADE_MAX_SPHERES);
         set->sphere_count += want < room ? want : room;
     }
 }

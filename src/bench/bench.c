@@ -105,12 +105,12 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
         const app_collider_t *k = &colliders->items[i];
         const float *p = k->position;
         if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
-            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], k->bound_radius}};
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k->bound_radius}};
             continue;
         }
         const float *h = k->desc.half_extents;
         if (c->proxy == PROXY_INSCRIBED) {
-            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
             continue;
         }
         float cell[3] = {h[0] / (float)c->grid[0], h[1] / (float)c->grid[1], h[2] / (float)c->grid[2]};
@@ -119,8 +119,9 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
         for (int a = 0; a < c->grid[0]; a++)
             for (int b = 0; b < c->grid[1]; b++)
                 for (int d = 0; d < c->grid[2] && n < max; d++)
-                    out[n++] = (blade_sphere_t){{p[0] - h[0] + cell[0] * (2 * a + 1), p[1] - h[1] + cell[1] * (2 * b + 1),
-                                                 p[2] - h[2] + cell[2] * (2 * d + 1), r}};
+                    out[n++] = (blade_sphere_t){.centre_radius = {p[0] - h[0] + cell[0] * (2 * a + 1),
+                                                                  p[1] - h[1] + cell[1] * (2 * b + 1),
+                                                                  p[2] - h[2] + cell[2] * (2 * d + 1), r}};
     }
     return n;
 }
