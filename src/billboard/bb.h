@@ -156,6 +156,7 @@ typedef struct bb_field_t {
     int billboards;
     int capacity;          /* points buffer size in billboards (upper bound) */
     gfx_texture_t extent, direction, messiness, clumps, heights;
+    float hgrid[5];        /* heights: first vertex (x, z), clamp bound (x, z), cell */
     gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
     gfx_target_t cube_target; /* res x 6res scratch the faces are drawn into */
     gfx_buffer_t points;   /* capacity bb_point_t, leaf-ordered; first `billboards` valid */
