@@ -85,4 +85,26 @@ static inline void test_cpu_mesh(const bb_field_t *f, const bb_point_t *p, float
     bb_ref_wind_pose(mesh, &f->desc.wind, time, mesh->pos);
 }
 
+static inline float test_ground_at(const void *terrain, float x, float z)
+{
+    return terrain_height_at(terrain, x, z, NULL);
+}
+
+/* The CPU twin of the field's collision pass: its springs and its terrain
+ * as the ground (bb_collide_desc_t.ground). */
+static inline bb_collide_desc_t test_collide_desc(const bb_field_t *f)
+{
+    return (bb_collide_desc_t){.r1 = f->desc.r1, .r2 = f->desc.r2, .iterations = f->desc.iterations,
+                               .ground = test_ground_at, .ground_user = f->desc.terrain};
+}
+
+/* Whether world point p lies on the ground (within 0.1 mm above it) or
+ * under it (below counts it, more than 0.1 mm under). */
+static inline bool test_on_ground(const bb_field_t *f, const float *p, int *below)
+{
+    float g = terrain_height_at(f->desc.terrain, p[0], p[2], NULL);
+    if (p[1] < g - 1e-4f) (*below)++;
+    return p[1] <= g + 1e-4f;
+}
+
 #endif

@@ -17,9 +17,11 @@
 static float sphere_y(const terrain_mesh_t *t, float x, float z) { return terrain_height_at(t, x, z, NULL) + 0.3f; }
 
 /* Returns the number of deformed billboards; fills max/mean vertex error
- * against bb_ref_collide(cpu_cube) and the deepest penetration. */
+ * against bb_ref_collide(cpu_cube, the terrain as ground), the deepest
+ * penetration of vertices off the ground and the count of vertices under
+ * the terrain (the sphere is sunk 0.2 m into it). */
 static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float centre[3], float radius, float time,
-                   double *max_err, double *mean_err, double *deepest, int *cpu_hits)
+                   double *max_err, double *mean_err, double *deepest, int *cpu_hits, int *below)
 {
     int n = f->billboards, nm = f->desc.subdiv[0] * f->desc.subdiv[1];
     bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
@@ -30,7 +32,7 @@ static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float cen
     glm_translate_make(w2c, (vec3){-centre[0], -centre[1], -centre[2]});
     scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
     int deformed = 0, sum_n = 0;
-    *max_err = 0, *mean_err = 0, *deepest = 0, *cpu_hits = 0;
+    *max_err = 0, *mean_err = 0, *deepest = 0, *cpu_hits = 0, *below = 0;
     for (int i = 0; i < n; i++) {
         const bb_point_t *p = &pts[i];
         vec3 right, up;
@@ -49,8 +51,8 @@ static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float cen
         deformed++;
         bb_mesh_t mesh;
         test_cpu_mesh(f, p, time, &mesh);
-        bb_ref_collide(&mesh, cube, (const mat4 *)&w2c, 1,
-                       &(bb_collide_desc_t){.r1 = f->desc.r1, .r2 = f->desc.r2, .iterations = f->desc.iterations});
+        bb_collide_desc_t cd = test_collide_desc(f);
+        bb_ref_collide(&mesh, cube, (const mat4 *)&w2c, 1, &cd);
         const float *g = &meshes[(size_t)p->pad[0] * (size_t)nm * 4];
         for (int v = 0; v < nm; v++) {
             double e = 0;
@@ -59,7 +61,9 @@ static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float cen
             *mean_err += e;
             sum_n++;
             float rel[3] = {g[4 * v] - centre[0], g[4 * v + 1] - centre[1], g[4 * v + 2] - centre[2]};
-            if (v >= f->desc.subdiv[0]) /* roots are fixed (and may sit inside a sphere sunk into the ground) */
+            /* roots are fixed, and vertices held on the ground may stay in
+             * a sphere sunk into it (the push out goes under the terrain) */
+            if (v >= f->desc.subdiv[0] && !test_on_ground(f, &g[4 * v], below))
                 *deepest = fmin(*deepest, collide_signed_distance(&sph, rel));
         }
         bb_mesh_free(&mesh);
@@ -92,12 +96,14 @@ int main(void)
     gfx_timer_frame_begin();
     bb_field_update(&fa, test_set(&oa, 1), time, 1.0f / 30.0f);
     double max_err, mean_err, deepest;
-    int cpu_hits;
-    int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
-    printf("A (CPU cube): %d of %d billboards deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m\n",
-           da, fa.billboards, cpu_hits, max_err, mean_err, deepest);
+    int cpu_hits, below;
+    int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    printf("A (CPU cube): %d of %d billboards deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m, "
+           "%d vertices under the terrain\n",
+           da, fa.billboards, cpu_hits, max_err, mean_err, deepest, below);
     CHECK(da > 10 && da == cpu_hits);
     CHECK(max_err < 1e-4);
+    CHECK(below == 0);
     bb_stats_t st;
     bb_field_stats(&fa, true, &st);
     CHECK(st.deformed == da && st.pool_exhausted == 0);
@@ -143,13 +149,18 @@ int main(void)
     CHECK(far < both / 20);
     CHECK(mean_dd / both < 0.01); /* the flat facets lie up to ~1.4 cm inside the sphere */
     CHECK(max_dn < 0.15);
-    int db = compare(&fb, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits);
+    int db = compare(&fb, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     float texel = 2 * radius / RES;
-    printf("B (GPU cube): %d deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m (texel %.3g m)\n",
-           db, cpu_hits, max_err, mean_err, deepest, texel);
+    printf("B (GPU cube): %d deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m (texel %.3g m), "
+           "%d vertices under the terrain\n",
+           db, cpu_hits, max_err, mean_err, deepest, texel, below);
+    CHECK(below == 0);
     CHECK(db == cpu_hits);
     CHECK(mean_err < 0.01);
-    CHECK(max_err < 0.1);
+    /* 0.039 m before the ground clamp: where the two cube maps push a vertex
+     * one down (then raised onto the ground) and one sideways, they part
+     * further (0.102 m measured on llvmpipe) */
+    CHECK(max_err < 0.15);
     CHECK(deepest > -texel);
     free(tex);
     bb_field_destroy(&fb);

@@ -159,7 +159,7 @@ static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const collide_cubem
             set = (collide_set_t){.cubes[0] = o, .cube_count = 1, .cube_texture = tex, .cube_res = RES};
         } else {
             set = (collide_set_t){.sphere_count = kind == 2};
-            set.spheres[0] = (blade_sphere_t){{c[0], c[1], c[2], RADIUS}};
+            set.spheres[0] = (blade_sphere_t){.centre_radius = {c[0], c[1], c[2], RADIUS}};
         }
         blade_gpu_simulate(g, &env, &set);
         blade_gpu_read_blades(g, b, NULL);

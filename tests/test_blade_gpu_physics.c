@@ -62,8 +62,13 @@ static void random_env(core_rng_t *rng, blade_env_t *env, collide_set_t *set, in
     }
     set->sphere_count = 3;
     for (int i = 0; i < 3; i++)
-        set->spheres[i] = (blade_sphere_t){{core_rng_range(rng, -2, 2), core_rng_range(rng, 0.1f, 0.8f),
-                                            core_rng_range(rng, -2, 7), core_rng_range(rng, 0.2f, 0.6f)}};
+        set->spheres[i] = (blade_sphere_t){.centre_radius = {core_rng_range(rng, -2, 2), core_rng_range(rng, 0.1f, 0.8f),
+                                                             core_rng_range(rng, -2, 7), core_rng_range(rng, 0.2f, 0.6f)}};
+    /* spheres 1 and 2 moved up to 1.5 m along x and z this step (swept) */
+    for (int i = 1; i < 3; i++) {
+        set->spheres[i].sweep[0] = core_rng_range(rng, -1.5f, 1.5f);
+        set->spheres[i].sweep[2] = core_rng_range(rng, -1.5f, 1.5f);
+    }
     if (variant == 1) env->gravity_off = true;
     if (variant == 2) {
         env->gravity_dir[0] = 0.3f, env->gravity_dir[1] = -1.0f;
@@ -154,9 +159,9 @@ static void test_invariants(double budget_s)
         env.dt = core_rng_range(&rng, 1.0f / 240.0f, 1.0f / 10.0f);
         env.time = (float)t;
         float a = (float)t * 0.7f;
-        set.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
+        set.spheres[0] = (blade_sphere_t){.centre_radius = {1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
-        set.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
+        set.spheres[1] = (blade_sphere_t){.centre_radius = {sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
         blade_gpu_simulate(&g, &env, &set);
         blade_gpu_read_blades(&g, b, NULL);
         frames++;

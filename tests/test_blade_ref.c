@@ -175,7 +175,7 @@ static void test_collision_and_step(void)
 {
     /* upright blade h = 1, sphere (0.3, 1, 0) r 0.5 */
     blade_t b = upright(0, 0, 1, 0.0f, 1.0f);
-    blade_sphere_t s = {{0.3f, 1.0f, 0.0f, 0.5f}};
+    blade_sphere_t s = {.centre_radius = {0.3f, 1.0f, 0.0f, 0.5f}};
     float d[3];
     blade_ref_collide(&b, &s, 1, BLADE_LENGTH_QUADRATURE, d);
     /* v2 pushed to (-0.2, 1, 0); m = (-0.05, 0.75, 0); m's push-out, 4x
@@ -199,7 +199,7 @@ static void test_collision_and_step(void)
     CHECK_V3(b.v2, -0.2 + sc * dmx, 1 + sc * dmy, 0, EPS);
     /* no contact: no displacement */
     b = upright(0, 0, 1, 0.0f, 1.0f);
-    blade_sphere_t far = {{3, 1, 0, 0.5f}};
+    blade_sphere_t far = {.centre_radius = {3, 1, 0, 0.5f}};
     blade_ref_collide(&b, &far, 1, BLADE_LENGTH_QUADRATURE, d);
     CHECK_V3(d, 0, 0, 0, 0);
 
@@ -312,9 +312,9 @@ static void run_invariants(int length_mode, int steps, double len_bound)
         env.time = (float)t;
         float a = (float)t * 0.7f;
         /* sphere 0 circles over the flat patch, sphere 1 sweeps the slope */
-        set.spheres[0] = (blade_sphere_t){{1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
+        set.spheres[0] = (blade_sphere_t){.centre_radius = {1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
-        set.spheres[1] = (blade_sphere_t){{sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
+        set.spheres[1] = (blade_sphere_t){.centre_radius = {sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
         blade_env_t res = blade_env_defaults(&env);
         for (int i = 0; i < N; i++) {
             /* the step composed by hand from the public pieces, to get d */
@@ -552,15 +552,57 @@ static void test_cull(void)
     free(surv);
 }
 
+/* Swept collision: a ball r 0.3 m at (1, 0.3, 0) that came from (-1, 0.3, 0)
+ * this step (sweep (-2, 0, 0)) is the capsule between them; an upright
+ * blade at x = 0 lies in neither end sphere and is bent by the step, as it
+ * would be by a ball moving 2 m over 20 steps. */
+static void test_swept(void)
+{
+    blade_sphere_t s = {.centre_radius = {1.0f, 0.3f, 0.0f, 0.3f}, .sweep = {-2.0f, 0.0f, 0.0f, 0.0f}}, at;
+    blade_ref_sphere_at(&s, (float[3]){0.2f, 0.5f, 0.1f}, &at);
+    CHECK_V3(at.centre_radius, 0.2, 0.3, 0.0, EPS);
+    CHECK(at.centre_radius[3] == 0.3f);
+    blade_ref_sphere_at(&s, (float[3]){-3.0f, 0.5f, 0.1f}, &at);
+    CHECK_V3(at.centre_radius, -1.0, 0.3, 0.0, EPS);
+    blade_ref_sphere_at(&s, (float[3]){3.0f, 0.5f, 0.1f}, &at);
+    CHECK_V3(at.centre_radius, 1.0, 0.3, 0.0, EPS);
+    blade_sphere_t rest = {.centre_radius = {1.0f, 0.3f, 0.0f, 0.3f}};
+    blade_ref_sphere_at(&rest, (float[3]){0.0f, 0.5f, 0.0f}, &at);
+    CHECK(memcmp(&at, &rest, sizeof at) == 0);
+
+    blade_env_t env = {.dt = 1.0f / 60.0f, .gravity_off = true};
+    static collide_set_t set;
+    set.sphere_count = 1;
+    set.spheres[0] = s;
+    blade_t b = upright(0.0f, 0.1f, 0.4f, 0.0f, 10.0f);
+    float eta = 0.0f;
+    blade_ref_step(&b, &eta, 1, &env, &set);
+    float m[3];
+    blade_ref_midpoint(&b, m);
+    double tip = sqrt((b.v2[0] - 0.0) * (b.v2[0] - 0.0) + (b.v2[1] - 0.4) * (b.v2[1] - 0.4) +
+                      (b.v2[2] - 0.1) * (b.v2[2] - 0.1));
+    printf("swept: tip of a blade between the ends moved %.3f m (h 0.4 m)\n", tip);
+    CHECK(tip > 0.2 * 0.4);
+    /* v2 and m end outside the capsule */
+    for (int k = 0; k < 2; k++) {
+        const float *p = k ? m : b.v2;
+        blade_ref_sphere_at(&s, p, &at);
+        double dx = p[0] - at.centre_radius[0], dy = p[1] - at.centre_radius[1], dz = p[2] - at.centre_radius[2];
+        CHECK(sqrt(dx * dx + dy * dy + dz * dz) >= 0.3 - PEN_BOUND);
+    }
+    CHECK(eta > 0.0f);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
     CHECK(sizeof(blade_t) == 64);
     CHECK(sizeof(blade_wind_t) == 32);
-    CHECK(sizeof(blade_sphere_t) == 16);
+    CHECK(sizeof(blade_sphere_t) == 32);
     test_frame_and_forces();
     test_validation();
     test_collision_and_step();
+    test_swept();
     run_invariants(BLADE_LENGTH_QUADRATURE, 1000, 0.02);
     run_invariants(BLADE_LENGTH_PAPER, 300, 0.55);
     test_determinism();

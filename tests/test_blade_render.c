@@ -86,7 +86,7 @@ static void simulate_trail(blade_gpu_t *g)
     for (int s = 0; s < 120; s++) {
         gfx_timer_frame_begin();
         float x = -2.5f + 3.2f * (float)s / 119.0f;
-        set.spheres[0] = (blade_sphere_t){{x, 0.3f, 0.0f, 0.45f}};
+        set.spheres[0] = (blade_sphere_t){.centre_radius = {x, 0.3f, 0.0f, 0.45f}};
         env.time = (float)s * env.dt;
         blade_gpu_simulate(g, &env, &set);
     }

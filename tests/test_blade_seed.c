@@ -281,7 +281,7 @@ int main(void)
         int outside = 0;
         for (int s = 0; s < 60; s++) {
             env.time = (float)s * env.dt;
-            set.spheres[0] = (blade_sphere_t){{(float)s / 6.0f, 0.3f, 5.0f, 1.0f}};
+            set.spheres[0] = (blade_sphere_t){.centre_radius = {(float)s / 6.0f, 0.3f, 5.0f, 1.0f}};
             blade_ref_step(f.blades, f.eta, f.padded_count, &env, &set);
         }
         for (size_t i = 0; i < f.padded_count; i++) {

@@ -101,7 +101,7 @@ static double pass_recovery(float hz)
         float t = (float)t_acc;
         env.time = t;
         set.sphere_count = t <= 1.0f ? 1 : 0;
-        set.spheres[0] = (blade_sphere_t){{-2.5f + 5.0f * t, 0.3f, 0, 0.3f}};
+        set.spheres[0] = (blade_sphere_t){.centre_radius = {-2.5f + 5.0f * t, 0.3f, 0, 0.3f}};
         blade_ref_step(f.b, f.eta, (size_t)f.n, &env, &set);
         blade_ref_step(tw.b, tw.eta, (size_t)tw.n, &env, NULL);
         if (t <= 1.0f) continue;

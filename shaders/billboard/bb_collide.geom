@@ -4,11 +4,13 @@
  * billboard whose bounding sphere meets an object's bounding sphere gets a
  * pool slot (its refined mesh starts from the current wind pose), then every
  * non-root vertex is pushed out of the objects' depth cube maps (eq. 1-5) and
- * the springs relaxed K times (eq. 6-7) by bb_collide from common/bb.glsl;
+ * the springs relaxed K times (eq. 6-7) by bb_collide from common/bb.glsl,
+ * every vertex kept on or above the terrain (bb_ground.glsl);
  * state becomes COLLIDING and the recovery timer restarts. Each draw sees
  * one batch of at most BB_MAX_CUBES objects (bb.c: BB_PASS_OBJECTS, bound
  * as a range of the objects buffer); entries carry their cube-array layer. */
 #define BB_NO_GENERATE
+#include "billboard/bb_ground.glsl"
 #include "common/bb.glsl"
 #define BB_POINTS_IN
 #define BB_POINTS_OUT

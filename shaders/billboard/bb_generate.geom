@@ -8,6 +8,7 @@
  * keeps primitive order, so the buffer is ordered by leaf; the per-leaf
  * count goes to an SSBO with atomics. */
 #include "common/hash.glsl"
+#include "billboard/bb_ground.glsl"
 #include "common/bb.glsl"
 #define BB_POINTS_OUT
 #include "billboard/bb_points.glsl"
@@ -22,34 +23,12 @@ flat in int v_entry[];
 uniform sampler2D u_extent;
 uniform sampler2D u_direction;
 uniform sampler2D u_messiness;
-uniform sampler2D u_heights;   /* R32F grid vertex heights */
 uniform bb_gen u_gen;
 uniform vec3 u_tree_min;
 uniform vec3 u_tree_max;
 uniform int u_side;
-uniform vec2 u_hmin;           /* height grid: first vertex (x, z) */
-uniform vec2 u_hmax;           /* height grid: clamp bound (x, z) */
-uniform float u_hcell;         /* height grid cell size */
 
 layout(std430, binding = 0) buffer LeafCounts { uint leaf_count[]; };
-
-/* Twin of grid_height in src/scene/terrain.c (same two triangles per cell). */
-float terrain_height(float x, float z)
-{
-    ivec2 res = textureSize(u_heights, 0) - 1;
-    float fx = (clamp(x, u_hmin.x, u_hmax.x) - u_hmin.x) / u_hcell;
-    float fz = (clamp(z, u_hmin.y, u_hmax.y) - u_hmin.y) / u_hcell;
-    int i = clamp(int(floor(fx)), 0, res.x - 1);
-    int j = clamp(int(floor(fz)), 0, res.y - 1);
-    float u = fx - float(i), v = fz - float(j);
-    float p00 = texelFetch(u_heights, ivec2(i, j), 0).r;
-    float p10 = texelFetch(u_heights, ivec2(i + 1, j), 0).r;
-    float p01 = texelFetch(u_heights, ivec2(i, j + 1), 0).r;
-    float p11 = texelFetch(u_heights, ivec2(i + 1, j + 1), 0).r;
-    if (min(min(p00, p10), min(p01, p11)) < -1e29) return -3.0e38; /* no ground (mesh hole) */
-    if (v >= u) return p00 + u * (p11 - p01) + v * (p01 - p00);
-    return p00 + u * (p10 - p00) + v * (p11 - p10);
-}
 
 /* Twin of bb_leaf_coord / bb_leaf_of in src/billboard/bb_octree.c. */
 uint leaf_of(vec3 p)

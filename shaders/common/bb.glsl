@@ -166,6 +166,9 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
             vec3 o;
             if (bb_push_out(tex, cubes[c], q, o)) bb_pos[v] = (c2w[c] * vec4(o, 1.0)).xyz;
         }
+#ifdef BB_GROUND
+        bb_pos[v].y = max(bb_pos[v].y, terrain_height(bb_pos[v].x, bb_pos[v].z));
+#endif
     }
 }
 

@@ -11,7 +11,7 @@
  * Structs are std430 and vec4-packed; C mirrors in blade_ref.h:
  *   Blade       = blade_t        (64 bytes)
  *   BladeWind   = blade_wind_t   (32 bytes)
- *   BladeSphere = blade_sphere_t (16 bytes)
+ *   BladeSphere = blade_sphere_t (32 bytes)
  *   BladeCube   = collide_cube_proxy_t (160 bytes, collide/collide_cube.h)
  *
  * The cube-map collider functions (beyond both papers; blade_ref.h banner)
@@ -35,6 +35,7 @@ struct BladeWind {
 
 struct BladeSphere {
     vec4 centre_radius;
+    vec4 sweep; /* xyz previous centre - centre (0: the plain sphere) */
 };
 
 struct BladeCube {
@@ -146,6 +147,19 @@ vec3 blade_midpoint(Blade b)
     return b.v0.xyz * 0.25 + b.v1.xyz * 0.5 + b.v2.xyz * 0.25;
 }
 
+/* Swept collision (twin of sphere_at): the sphere of s's swept capsule
+ * closest to p. */
+BladeSphere blade_sphere_at(BladeSphere s, vec3 p)
+{
+    vec3 c = s.centre_radius.xyz;
+    vec3 d = s.sweep.xyz;
+    float dd = dot(d, d);
+    float t = dd > 0.0 ? min(max(dot(p - c, d) / dd, 0.0), 1.0) : 0.0;
+    BladeSphere o = s;
+    o.centre_radius.xyz = c + d * t;
+    return o;
+}
+
 /* Push-out of p from a sphere: min(|c - p| - r, 0) normalize(c - p). */
 vec3 blade_sphere_push(BladeSphere s, vec3 p)
 {
@@ -159,8 +173,9 @@ void blade_validate(inout Blade b, int length_mode);
 
 /* 4x the push-out of m, cut back to the secant root when a validated copy
  * would carry m beyond the surface (twin of midpoint_push). */
-vec3 blade_midpoint_push(Blade b, BladeSphere s, int length_mode)
+vec3 blade_midpoint_push(Blade b, BladeSphere sweep, int length_mode)
 {
+    BladeSphere s = blade_sphere_at(sweep, blade_midpoint(b));
     vec3 pm = blade_sphere_push(s, blade_midpoint(b));
     vec3 dm = pm * 4.0;
     float p = length(pm);
@@ -179,7 +194,7 @@ vec3 blade_midpoint_push(Blade b, BladeSphere s, int length_mode)
  * The caller loops over the spheres in order and sums the results. */
 vec3 blade_collide_sphere(inout Blade b, BladeSphere s, int length_mode)
 {
-    vec3 dv2 = blade_sphere_push(s, b.v2.xyz);
+    vec3 dv2 = blade_sphere_push(blade_sphere_at(s, b.v2.xyz), b.v2.xyz);
     b.v2.xyz = b.v2.xyz + dv2;
     vec3 dm = blade_midpoint_push(b, s, length_mode);
     b.v2.xyz = b.v2.xyz + dm;
@@ -225,8 +240,9 @@ void blade_rotate_about_root(inout Blade b, vec3 v0, vec3 up, vec3 k, float cth,
     b.v2.xyz = v0 + r2;
 }
 
-void blade_exit_rotate(inout Blade b, BladeSphere s, vec3 p)
+void blade_exit_rotate(inout Blade b, BladeSphere sweep, vec3 p)
 {
+    BladeSphere s = blade_sphere_at(sweep, p);
     if (!blade_inside_sphere(s, p)) return;
     vec3 v0 = b.v0.xyz;
     vec3 up = b.up.xyz;
@@ -247,8 +263,9 @@ void blade_exit_rotate(inout Blade b, BladeSphere s, vec3 p)
     blade_rotate_about_root(b, v0, up, k, cth, sth);
 }
 
-void blade_exit_straight(inout Blade b, BladeSphere s)
+void blade_exit_straight(inout Blade b, BladeSphere sweep)
 {
+    BladeSphere s = blade_sphere_at(sweep, blade_midpoint(b));
     float h = b.v1.w;
     vec3 v0 = b.v0.xyz;
     vec3 up = b.up.xyz;

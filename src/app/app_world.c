@@ -99,6 +99,12 @@ static bool extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t 
                                                         .clump_size = 8, .blades = 1});
 }
 
+/* The seed of where blades stand (app_tuning_t.placement_seed). */
+static uint32_t placement_seed(const app_world_t *w)
+{
+    return w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
+}
+
 /* Thins seeded blades by the extent map with the billboards' acceptance
  * rule (accept with probability E/255, see bb_layout.h), so both
  * representations share clearings and density ratio. A rejected blade gets
@@ -117,7 +123,7 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
         int tx = ((ix / gen.cells_per_texel) % lay.extent.w + lay.extent.w) % lay.extent.w;
         int tz = ((iz / gen.cells_per_texel) % lay.extent.h + lay.extent.h) % lay.extent.h;
         uint32_t e = lay.extent.px[(size_t)tz * (size_t)lay.extent.w + (size_t)tx];
-        if (core_hash_u32((uint32_t)i ^ core_hash_u32(w->scene.seed ^ 0x5bd1e995u)) % 255u >= e) {
+        if (core_hash_u32((uint32_t)i ^ core_hash_u32(placement_seed(w) ^ 0x5bd1e995u)) % 255u >= e) {
             b->v1[3] = 0.0f;
             b->v2[3] = 0.0f;
             dropped++;
@@ -145,6 +151,7 @@ static bool make_bb(app_world_t *w)
     w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
                                            .terrain = &w->terrain_mesh,
                                            .seed = s->seed,
+                                           .placement_seed = w->tuning.placement_seed,
                                            .density = g->billboard_density,
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
@@ -184,7 +191,7 @@ static bool make_blades(app_world_t *w)
     blade_field_t field;
     blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
                          .indices = t->indices, .index_count = t->index_count};
-    blade_seed_desc_t sd = {.seed = s->seed,
+    blade_seed_desc_t sd = {.seed = placement_seed(w),
                             .density = g->density,
                             .height_min = g->height[0], .height_max = g->height[1],
                             .width_min = g->width[0], .width_max = g->width[1],
@@ -293,20 +300,48 @@ static bool make_tiles(app_world_t *w)
     return w->have_tiles;
 }
 
+/* Collider i's sweep (previous - current centre) from this step's collide
+ * set: the colliders are its first objects (add_objects) and only
+ * translate, so every sphere of their proxies moves by the same vector. */
+static void collider_sweep(const app_world_t *w, int i, float out[4])
+{
+    const collide_object_t *o = i < w->collide.object_count ? &w->collide.objects[i] : NULL;
+    for (int k = 0; k < 3; k++) out[k] = o ? o->prev_position[k] - o->position[k] : 0.0f;
+    out[3] = 0.0f;
+}
+
+/* The characters' proxy spheres (already swept by character_set_update:
+ * each holds its previous and current pose) appended to out[n..max). */
+static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max)
+{
+    static float packed[BLADE_MAX_SPHERES][4];
+    int room = max - n, want = character_set_spheres(&w->chars, packed, room);
+    for (int k = 0; k < room && k < want; k++)
+        out[n + k] = (blade_sphere_t){.centre_radius = {packed[k][0], packed[k][1], packed[k][2], packed[k][3]}};
+    return want;
+}
+
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
- * then the characters'). More than BLADE_MAX_SPHERES is reported once. */
+ * with its sweep, then the characters'). More than BLADE_MAX_SPHERES is
+ * reported once. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
+    static float packed[BLADE_MAX_SPHERES][4];
     int n = 0;
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
-        int want = collide_pack_spheres(&c->desc, c->position, (float (*)[4])out[n].centre_radius, max - n);
+        int want = collide_pack_spheres(&c->desc, c->position, packed, max - n);
         full = want > max - n;
-        n += full ? max - n : want;
+        int got = full ? max - n : want;
+        for (int k = 0; k < got; k++) {
+            memcpy(out[n + k].centre_radius, packed[k], sizeof packed[k]);
+            collider_sweep(w, i, out[n + k].sweep);
+        }
+        n += got;
     }
     if (w->have_chars && !full) {
-        int want = character_set_spheres(&w->chars, (float (*)[4])out[n].centre_radius, max - n);
+        int want = character_spheres(w, out, n, max);
         full = want > max - n;
         n += full ? max - n : want;
     }
@@ -423,12 +458,13 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
     set->cube_res = w->scene.grass.cube_resolution;
     for (int k = nc; k < w->colliders.count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
         const app_collider_t *c = &w->colliders.items[k];
-        set->spheres[set->sphere_count++] =
-            (collide_sphere_t){{c->position[0], c->position[1], c->position[2], c->bound_radius}};
+        collide_sphere_t *s = &set->spheres[set->sphere_count++];
+        *s = (collide_sphere_t){.centre_radius = {c->position[0], c->position[1], c->position[2], c->bound_radius}};
+        collider_sweep(w, k, s->sweep);
     }
     if (w->have_chars) {
         int room = BLADE_MAX_SPHERES - set->sphere_count;
-        int want = character_set_spheres(&w->chars, (float (*)[4])set->spheres[set->sphere_count].centre_radius, room);
+        int want = character_spheres(w, set->spheres, set->sphere_count, BLADE_MAX_SPHERES);
         set->sphere_count += want < room ? want : room;
     }
 }

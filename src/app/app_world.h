@@ -75,6 +75,11 @@ typedef struct app_tuning_t {
     unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
     bool blade_cube_proxies; /* blades collide against depth cube maps instead of
                                 sphere proxies (the set's cube proxies; not the tiles) */
+    uint32_t placement_seed; /* seeds where grass stands instead of the scene seed: full-field
+                                blades (blade_seed and the clearing thinning's draw) and
+                                billboards (bb_field_desc_t.placement_seed); terrain,
+                                clearings and clump textures keep the scene seed (not the
+                                hybrid tiles). The image error's noise floor (docs/METRICS.md) */
 } app_tuning_t;
 
 /* ---- start-up stages -------------------------------------------------------------

@@ -1,9 +1,11 @@
 /* bench_run: `meadow bench` sweeps configurations of deterministic scenes
  * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
  * times, CPU time, accuracy metrics (bench_metrics.c, docs/METRICS.md) and
- * image error against the reference rendering (1 - SSIM) to bench.csv and
- * bench.json, plus speed-vs-accuracy charts (x GPU ms, y the chart's
- * accuracy measure; PNG and SVG through gnuplot) with the Pareto front.
+ * image error against the reference rendering (eval_image.h, with 1 - SSIM
+ * beside it) to bench.csv and bench.json, plus speed-vs-accuracy charts
+ * (x GPU ms, y the chart's accuracy measure; PNG and SVG through gnuplot)
+ * with the Pareto front; image charts draw the noise floor (the reference
+ * with another placement seed).
  *
  * Sweeps (one chart each, y in parentheses):
  *   billboard_collision  cube-map res x subdivision x spring iterations K
@@ -29,6 +31,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "eval/eval_image.h"
 #include "platform/plat.h"
 
 typedef enum bench_proxy_t {
@@ -103,12 +106,12 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
         const app_collider_t *k = &colliders->items[i];
         const float *p = k->position;
         if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
-            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], k->bound_radius}};
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k->bound_radius}};
             continue;
         }
         const float *h = k->desc.half_extents;
         if (c->proxy == PROXY_INSCRIBED) {
-            out[n++] = (blade_sphere_t){{p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
             continue;
         }
         float cell[3] = {h[0] / (float)c->grid[0], h[1] / (float)c->grid[1], h[2] / (float)c->grid[2]};
@@ -117,13 +120,25 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
         for (int a = 0; a < c->grid[0]; a++)
             for (int b = 0; b < c->grid[1]; b++)
                 for (int d = 0; d < c->grid[2] && n < max; d++)
-                    out[n++] = (blade_sphere_t){{p[0] - h[0] + cell[0] * (2 * a + 1), p[1] - h[1] + cell[1] * (2 * b + 1),
-                                                 p[2] - h[2] + cell[2] * (2 * d + 1), r}};
+                    out[n++] = (blade_sphere_t){.centre_radius = {p[0] - h[0] + cell[0] * (2 * a + 1),
+                                                                  p[1] - h[1] + cell[1] * (2 * b + 1),
+                                                                  p[2] - h[2] + cell[2] * (2 * d + 1), r}};
     }
     return n;
 }
 
 #define MAX_CONFIGS 96
+
+/* Placement seed of the noise-floor reference (app_tuning_t.placement_seed). */
+#define FLOOR_PLACEMENT_SEED 0x9e3779b9u
+
+/* The reference's grass-free view (the image error's background): a blade
+ * field too thin to hold a blade. */
+static void no_grass(scene_desc_t *s, void *user)
+{
+    (void)user;
+    s->grass.density = 1e-7f;
+}
 
 static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_mode_t mode)
 {
@@ -215,10 +230,10 @@ static const bench_chart_t charts[] = {
     {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX},
     {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING},
     {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX},
-    {"blade_tessellation", "blade_tessellation", "image error (1 - SSIM vs reference)", Y_IMAGE},
-    {"blade_distance_levels", "blade_distance_levels", "image error (1 - SSIM vs reference)", Y_IMAGE},
-    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (1 - SSIM vs reference)", Y_IMAGE},
-    {"modes", "modes", "image error (1 - SSIM vs reference)", Y_IMAGE},
+    {"blade_tessellation", "blade_tessellation", "image error (eval_image vs reference)", Y_IMAGE},
+    {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE},
+    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE},
+    {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE},
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
 
@@ -231,9 +246,13 @@ static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double ima
     }
 }
 
-static void write_chart(const char *out, const bench_chart_t *ch)
+/* floor >= 0: a dashed line at the image error's noise floor. */
+static void write_chart(const char *out, const bench_chart_t *ch, double floor)
 {
-    char name[64], data[1200], body[4096];
+    char name[64], data[1200], body[4096], floor_plot[160] = "";
+    if (floor >= 0)
+        snprintf(floor_plot, sizeof floor_plot, ", %.6f with lines dt 2 lw 2 lc rgb 'gray40' title 'noise floor "
+                 "(reference, other placement seed)'", floor);
     snprintf(name, sizeof name, "bench_%s", ch->name);
     snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
     snprintf(body, sizeof body,
@@ -241,8 +260,8 @@ static void write_chart(const char *out, const bench_chart_t *ch)
              "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
              "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
              "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
-             "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'",
-             ch->name, ch->ylabel, data, data);
+             "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'%s",
+             ch->name, ch->ylabel, data, data, floor_plot);
     eval_gnuplot_chart(out, name, body);
 }
 
@@ -250,7 +269,10 @@ typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
     bench_metrics_t *met;
-    double *err;
+    double *err;       /* eval_image score against the reference */
+    double *ssim_err;  /* 1 - SSIM against the reference */
+    double floor;      /* eval_image score of the reference with another placement seed */
+    double floor_ssim; /* its 1 - SSIM */
     char renderer[256];
     int frames;
 } bench_run_t;
@@ -261,16 +283,31 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
     b->met = calloc(MAX_CONFIGS, sizeof *b->met);
     b->err = calloc(MAX_CONFIGS, sizeof(double));
-    if (!b->cfg || !b->met || !b->err) return 1;
+    b->ssim_err = calloc(MAX_CONFIGS, sizeof(double));
+    if (!b->cfg || !b->met || !b->err || !b->ssim_err) return 1;
     b->n = build_configs(b->cfg, quick);
     int n = b->n;
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int frames = b->frames;
-    core_image_t ref = {0}, img = {0};
+    core_image_t ref = {0}, img = {0}, bg = {0}, other = {0};
     bench_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
-    core_log_info("bench: reference rendering (%d frames)", frames);
+    core_log_info("bench: reference rendering (%d frames), its grass-free view and another placement", frames);
     int rc = bench_session_run(&rd, &ref, NULL);
+    /* The image error's background (no blade) and noise floor. */
+    bench_session_desc_t bd = rd;
+    bd.tweak = no_grass;
+    if (rc == 0) rc = bench_session_run(&bd, &bg, NULL);
+    bench_session_desc_t fd = rd;
+    fd.tuning.placement_seed = FLOOR_PLACEMENT_SEED;
+    if (rc == 0) rc = bench_session_run(&fd, &other, NULL);
+    const eval_image_desc_t ed = {.background = &bg};
+    eval_image_error_t e;
+    if (rc == 0 && eval_image_error(&other, &ref, &ed, &e)) {
+        b->floor = e.score;
+        b->floor_ssim = 1.0 - eval_image_ssim(&other, &ref);
+        core_log_info("bench: image error noise floor %.4f (1 - SSIM %.4f)", b->floor, b->floor_ssim);
+    }
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
         if (app_interrupted()) {
@@ -287,34 +324,42 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
         rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
         if (rc) break;
-        b->err[i] = 1.0 - eval_image_ssim(&img, &ref);
+        b->err[i] = eval_image_error(&img, &ref, &ed, &e) ? e.score : -1.0;
+        b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &ref);
         core_image_free(&img);
         double el = plat_time() - t0;
-        fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  1-SSIM %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,
+        fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,
                 c->group, c->label, b->met[i].frame_ms, b->err[i], b->met[i].penetration_max,
                 el / (i + 1) * (n - i - 1));
     }
     fputc('\n', stderr);
     core_image_free(&ref);
+    core_image_free(&bg);
+    core_image_free(&other);
     if (rc) return rc;
     snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     core_buf_t csv = {0}, json = {0};
-    core_buf_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,penetration_fraction,penetration_max,"
+    core_buf_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,image_ssim_error,penetration_fraction,penetration_max,"
                           "blade_length_error,spring_error,passes\n");
-    core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"configs\": [\n", b->renderer, frames);
+    core_buf_printf(&json,
+                    "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"image_error_floor\": %.6f,\n"
+                    "  \"image_ssim_error_floor\": %.6f,\n  \"configs\": [\n",
+                    b->renderer, frames, b->floor, b->floor_ssim);
     for (int i = 0; i < n; i++) {
         const bench_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
-        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
-                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], m->penetration_fraction,
+        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
+                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], b->ssim_err[i],
+                        m->penetration_fraction,
                         m->penetration_max, m->blade_length_error, m->spring_error);
         core_buf_printf(&json,
                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
-                        "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"penetration_fraction\": %.6f, "
+                        "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
+                        "\"penetration_fraction\": %.6f, "
                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
                         "\"passes\": {",
                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
-                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+                        b->ssim_err[i], m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
         for (int p = 0; p < m->pass_count; p++) {
             core_buf_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
             core_buf_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
@@ -350,7 +395,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
         if (!core_buf_write(&dat, path)) rc = 1;
         core_buf_free(&dat);
-        write_chart(out, ch);
+        write_chart(out, ch, ch->y == Y_IMAGE ? b->floor : -1.0);
     }
     if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
     return rc;
@@ -381,6 +426,14 @@ static void copy_chart(const char *dir, const char *out, const char *name)
     }
 }
 
+/* A table cell: `digits` decimals, or n/a for the -1 of a measure that does
+ * not apply (docs/METRICS.md). */
+static void cell(char out[32], double v, int digits)
+{
+    if (v < 0.0) snprintf(out, 32, "n/a");
+    else snprintf(out, 32, "%.*f", digits, v);
+}
+
 /* RESULTS.md: every chart with its numbers, the stability table, the
  * tile scaling sweeps, the comparison montage. */
 static int write_report(const char *dir, const char *out, const app_options_t *o, const bench_run_t *b,
@@ -409,19 +462,31 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
                             "renderer.\n\n");
     core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
-                        "measure named on the axis; the line joins the Pareto-optimal configurations.\n\n");
+                        "measure named on the axis; the line joins the Pareto-optimal configurations. Image error: "
+                        "the block-statistics score of docs/METRICS.md against the reference (0 = indistinguishable, "
+                        "1 = one clearly visible unit); its noise floor, the reference drawn with another placement "
+                        "seed, is %.4f (dashed line; 1 - SSIM of the same pair: %.4f). n/a: the measure does not "
+                        "apply to that mode.\n\n",
+                    b->floor, b->floor_ssim);
     for (int ci = 0; ci < CHART_COUNT; ci++) {
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
         copy_chart(dir, out, path);
         core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
-                            "image error | pen. fraction | blade length err |\n| --- | --- | --- | --- | --- | --- |\n",
+                            "image error | 1 - SSIM | pen. fraction | blade length err |\n"
+                            "| --- | --- | --- | --- | --- | --- | --- |\n",
                         ch->name, ch->name, ch->name, ch->ylabel);
         for (int i = 0; i < b->n; i++) {
             if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
             const bench_metrics_t *m = &b->met[i];
-            core_buf_printf(&r, "| %s | %.3f | %.5f | %.4f | %.4f | %.4f |\n", b->cfg[i].label, m->frame_ms,
-                            y_of(ch, m, b->err[i]), b->err[i], m->penetration_fraction, m->blade_length_error);
+            char v[5][32];
+            cell(v[0], y_of(ch, m, b->err[i]), 5);
+            cell(v[1], b->err[i], 4);
+            cell(v[2], b->ssim_err[i], 4);
+            cell(v[3], m->penetration_fraction, 4);
+            cell(v[4], m->blade_length_error, 4);
+            core_buf_printf(&r, "| %s | %.3f | %s | %s | %s | %s | %s |\n", b->cfg[i].label, m->frame_ms, v[0], v[1],
+                            v[2], v[3], v[4]);
         }
         core_buf_printf(&r, "\n");
     }
@@ -506,5 +571,6 @@ int bench_run(const app_options_t *o)
     free(b.cfg);
     free(b.met);
     free(b.err);
+    free(b.ssim_err);
     return rc;
 }

@@ -30,11 +30,14 @@ void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext
  * previous call with the same prev (0 while *primed is false), prev is
  * updated and *primed set. */
 double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter);
-/* Fraction of real blades whose tips lie inside `radius` of the line from a
- * to b (xz plane, roots between the ends) that are deflected from the twin
- * by more than frac x their height; *corridor gets their count. */
+/* Fraction of real blades whose roots lie inside `radius` of the line from
+ * a to b (xz plane, roots between the ends) that are deflected from the twin
+ * by more than frac x their height; *corridor gets their count. With `ever`
+ * (app_world_blades(w)->padded_count bytes, zeroed before the first call;
+ * NULL to skip) a blade counts once deflected in this or any earlier call
+ * with the same mask. */
 double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
-                                    float radius, float frac, long *corridor);
+                                    float radius, float frac, uint8_t *ever, long *corridor);
 /* Largest distance (m) of a deformed billboard mesh vertex from its wind
  * pose at the field's time; 0 when no mesh is deformed. */
 double bench_metrics_bb_offset(app_world_t *w);

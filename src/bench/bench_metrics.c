@@ -311,7 +311,7 @@ double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev
 }
 
 double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
-                                    float radius, float frac, long *corridor)
+                                    float radius, float frac, uint8_t *ever, long *corridor)
 {
     *corridor = 0;
     blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
@@ -330,7 +330,9 @@ double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const flo
         if (dx * dx + dz * dz > radius * radius) continue;
         (*corridor)++;
         float dd = glm_vec3_distance(x[i].v2, y[i].v2);
-        if (!isfinite(dd) || dd > frac * h) hit++;
+        bool deflected = !isfinite(dd) || dd > frac * h;
+        if (ever) deflected = (ever[i] |= deflected);
+        if (deflected) hit++;
     }
     free(x);
     free(y);

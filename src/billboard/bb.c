@@ -115,7 +115,17 @@ static bool upload_layout(bb_field_t *f)
 
 /* Height grid on the GPU: the heightfield's own vertices, or a mesh terrain
  * resampled with terrain_height_at at the candidate spacing (-1e30 where no
- * ground lies under a grid vertex). */
+ * ground lies under a grid vertex); read by generation and collision
+ * (shaders/billboard/bb_ground.glsl). */
+static void set_heights(const bb_field_t *f, gfx_program_t p, int unit)
+{
+    glBindTextureUnit((GLuint)unit, f->heights.id);
+    glUniform1i(loc(p, "u_heights"), unit);
+    glUniform2f(loc(p, "u_hmin"), f->hgrid[0], f->hgrid[1]);
+    glUniform2f(loc(p, "u_hmax"), f->hgrid[2], f->hgrid[3]);
+    glUniform1f(loc(p, "u_hcell"), f->hgrid[4]);
+}
+
 static bool upload_heights(bb_field_t *f, const terrain_mesh_t *t, float hgrid[5])
 {
     int nx, nz;
@@ -232,7 +242,7 @@ static int gen_entries(const bb_field_t *f, const float *clo, const float *chi, 
     return n;
 }
 
-static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5], int tile)
+static bool generate(bb_field_t *f, const terrain_mesh_t *t, int tile)
 {
     bb_octree_t *tr = &f->tree;
     int side = tr->side;
@@ -265,11 +275,10 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     glBindTextureUnit(0, f->extent.id);
     glBindTextureUnit(1, f->direction.id);
     glBindTextureUnit(2, f->messiness.id);
-    glBindTextureUnit(3, f->heights.id);
     glUniform1i(loc(p, "u_extent"), 0);
     glUniform1i(loc(p, "u_direction"), 1);
     glUniform1i(loc(p, "u_messiness"), 2);
-    glUniform1i(loc(p, "u_heights"), 3);
+    set_heights(f, p, 3);
     const bb_gen_desc_t *g = &f->gen;
     glUniform1f(loc(p, "u_gen.spacing"), g->spacing);
     glUniform2f(loc(p, "u_gen.origin"), g->origin[0], g->origin[1]);
@@ -281,9 +290,6 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const float hgrid[5
     glUniform3fv(loc(p, "u_tree_min"), 1, tr->desc.min);
     glUniform3fv(loc(p, "u_tree_max"), 1, tr->desc.max);
     glUniform1i(loc(p, "u_side"), side);
-    glUniform2f(loc(p, "u_hmin"), hgrid[0], hgrid[1]);
-    glUniform2f(loc(p, "u_hmax"), hgrid[2], hgrid[3]);
-    glUniform1f(loc(p, "u_hcell"), hgrid[4]);
     glUniform1i(loc(p, "u_entry_count"), nentries);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, f->counts.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, entry_buf.id);
@@ -454,7 +460,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
 
     f->gen = bb_gen_desc_defaults(&(bb_gen_desc_t){
         .spacing = 1.0f / sqrtf(d->density), .origin = {t->aabb_min[0], t->aabb_min[2]}, .width = d->size[0],
-        .height = d->size[1], .seed = d->seed});
+        .height = d->size[1], .seed = d->placement_seed ? d->placement_seed : d->seed});
     if (!upload_layout(f)) goto fail;
     stage_done(f, BB_MAKE_LAYOUT, &mark);
     float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];
@@ -485,8 +491,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
         goto fail;
     }
 
-    float hgrid[5];
-    if (!upload_heights(f, t, hgrid)) goto fail;
+    if (!upload_heights(f, t, f->hgrid)) goto fail;
 
     char *defines = f->defines;
     snprintf(f->defines, sizeof f->defines,
@@ -556,7 +561,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->readback = gfx_readback_make(16, BB_READBACK_SLOTS, "bb.pool_readback");
     if (!f->readback.depth) goto fail;
     setup_points_vao(f->points_vao, f->points.id);
-    if (!generate(f, t, hgrid, tile)) goto fail;
+    if (!generate(f, t, tile)) goto fail;
     stage_done(f, BB_MAKE_GENERATE, &mark);
     if (!read_spheres(f)) goto fail;
     stage_done(f, BB_MAKE_SPHERES, &mark);
@@ -998,6 +1003,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
         glUseProgram(p.id);
         glBindTextureUnit(0, f->cubes.id);
         glUniform1i(loc(p, "u_cubes"), 0);
+        set_heights(f, p, 1);
         glUniform1i(loc(p, "u_res"), d->cube_res);
         glUniform1f(loc(p, "u_time"), time);
         glUniform1f(loc(p, "u_recover"), d->recover_time);

@@ -60,6 +60,9 @@
 typedef struct bb_field_desc_t {
     const terrain_mesh_t *terrain; /* required; only read during make */
     uint32_t seed;                 /* any value (0 included) */
+    uint32_t placement_seed;       /* seeds the generation rule (where billboards stand)
+                                      instead of `seed` when non-zero; the layout
+                                      textures (clearings, clumps) keep `seed` */
     /* Defaults marked (scene) are the program's, SCENE_DEFAULT_* of
      * scene/scene_fields.h (scene key in brackets). */
     float density;                 /* candidate billboards per m^2 (the extent map
@@ -155,6 +158,7 @@ typedef struct bb_field_t {
     int billboards;
     int capacity;          /* points buffer size in billboards (upper bound) */
     gfx_texture_t extent, direction, messiness, clumps, heights;
+    float hgrid[5];        /* heights: first vertex (x, z), clamp bound (x, z), cell */
     gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
     gfx_target_t cube_target; /* res x 6res scratch the faces are drawn into */
     gfx_buffer_t points;   /* capacity bb_point_t, leaf-ordered; first `billboards` valid */

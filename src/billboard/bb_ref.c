@@ -124,7 +124,7 @@ bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc)
 }
 
 static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *w2c,
-                         const mat4 *c2w, int count)
+                         const mat4 *c2w, int count, const bb_collide_desc_t *d)
 {
     for (int v = mesh->n; v < mesh->n * mesh->m; v++) {
         for (int c = 0; c < count; c++) {
@@ -133,6 +133,8 @@ static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const 
             if (collide_push_out(&cubes[c], q, out))
                 glm_mat4_mulv3((vec4 *)c2w[c], out, 1.0f, mesh->pos[v]);
         }
+        if (d->ground)
+            mesh->pos[v][1] = fmaxf(mesh->pos[v][1], d->ground(d->ground_user, mesh->pos[v][0], mesh->pos[v][2]));
     }
 }
 
@@ -144,10 +146,10 @@ void bb_ref_collide(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 
     assert(count >= 0 && count <= BB_MAX_CUBES);
     mat4 c2w[BB_MAX_CUBES];
     for (int c = 0; c < count; c++) glm_mat4_inv((vec4 *)world_to_cube[c], c2w[c]);
-    bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count);
+    bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count, &d);
     for (int it = 0; it < d.iterations; it++) {
         bb_ref_relax_springs(mesh, d.r1, d.r2, 1);
-        bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count);
+        bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count, &d);
     }
 }
 

@@ -43,6 +43,13 @@ typedef struct bb_collide_desc_t {
     float r1;       /* structural responsiveness, default 1.0 */
     float r2;       /* shear responsiveness, default 0.5 */
     int iterations; /* relaxation sweeps K, default 4 */
+    /* Terrain height at (x, z), or NULL (no ground). Departure from the
+     * paper: after each push-out every non-root vertex is raised to the
+     * ground, since a push along a downward normal (a ball sunk into the
+     * ground over the roots) would leave it under the terrain. GPU twin:
+     * the field's height texture (shaders/billboard/bb_ground.glsl). */
+    float (*ground)(const void *user, float x, float z);
+    const void *ground_user;
 } bb_collide_desc_t;
 bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
 

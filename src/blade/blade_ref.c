@@ -179,6 +179,25 @@ static v3 sphere_push(const blade_sphere_t *s, v3 p)
     return v3_scale(v3_safe_normalize(to_c), pen);
 }
 
+/* The sphere of s's swept capsule closest to p: the centre moves to the
+ * closest point of the segment [c, c + sweep] (the sweep's own sphere
+ * when it is zero). */
+static blade_sphere_t sphere_at(const blade_sphere_t *s, v3 p)
+{
+    v3 c = v3_load(s->centre_radius);
+    v3 d = v3_load(s->sweep);
+    float dd = v3_dot(d, d);
+    float t = dd > 0.0f ? fminf(fmaxf(v3_dot(v3_sub(p, c), d) / dd, 0.0f), 1.0f) : 0.0f;
+    blade_sphere_t o = *s;
+    v3_store(o.centre_radius, v3_add(c, v3_scale(d, t)));
+    return o;
+}
+
+void blade_ref_sphere_at(const blade_sphere_t *s, const float p[3], blade_sphere_t *out)
+{
+    *out = sphere_at(s, v3_load(p));
+}
+
 static void validate(blade_t *b, int length_mode);
 
 /* Departure from the paper: the 4x midpoint push assumes v1 stays put,
@@ -189,8 +208,10 @@ static void validate(blade_t *b, int length_mode);
  * on a validated copy; when that m ends q > 0 outside, dm is scaled by
  * p / (p + q) (p the penetration before the push), the secant root of the
  * distance along the push. An undershoot is left to the exit. */
-static v3 midpoint_push(const blade_t *b, const blade_sphere_t *s, int length_mode)
+static v3 midpoint_push(const blade_t *b, const blade_sphere_t *sweep, int length_mode)
 {
+    blade_sphere_t at = sphere_at(sweep, midpoint(b));
+    const blade_sphere_t *s = &at;
     v3 pm = sphere_push(s, midpoint(b));
     v3 dm = v3_scale(pm, 4.0f);
     float p = v3_len(pm);
@@ -208,7 +229,8 @@ static v3 collide(blade_t *b, const blade_sphere_t *spheres, int count, int leng
 {
     v3 d = v3_make(0.0f, 0.0f, 0.0f);
     for (int i = 0; i < count; i++) {
-        v3 dv2 = sphere_push(&spheres[i], v3_load(b->v2));
+        blade_sphere_t at = sphere_at(&spheres[i], v3_load(b->v2));
+        v3 dv2 = sphere_push(&at, v3_load(b->v2));
         v3_store(b->v2, v3_add(v3_load(b->v2), dv2));
         v3 dm = midpoint_push(b, &spheres[i], length_mode);
         v3_store(b->v2, v3_add(v3_load(b->v2), dm));
@@ -272,8 +294,10 @@ static void rotate_about_root(blade_t *b, v3 v0, v3 up, v3 k, float cth, float s
  * trig), so the GLSL twin matches up to sqrt rounding. Skipped when p is
  * outside, when the root is inside s, and when it would put v2 under the
  * ground plane (exit_straight handles those contacts). */
-static void exit_rotate(blade_t *b, const blade_sphere_t *s, v3 p)
+static void exit_rotate(blade_t *b, const blade_sphere_t *sweep, v3 p)
 {
+    blade_sphere_t at = sphere_at(sweep, p);
+    const blade_sphere_t *s = &at;
     if (!inside_sphere(s, p)) return;
     v3 v0 = v3_load(b->v0);
     v3 up = v3_load(b->up);
@@ -302,8 +326,10 @@ static void exit_rotate(blade_t *b, const blade_sphere_t *s, v3 p)
  * larger of the two exit angles; when that u points under the ground plane,
  * u is the ground-plane direction on the same cone (dot(u, up) = 0,
  * dot(u, ch) = cos_exit), on the tip's side. */
-static void exit_straight(blade_t *b, const blade_sphere_t *s)
+static void exit_straight(blade_t *b, const blade_sphere_t *sweep)
 {
+    blade_sphere_t at = sphere_at(sweep, midpoint(b));
+    const blade_sphere_t *s = &at;
     float h = b->v1[3];
     v3 v0 = v3_load(b->v0);
     v3 up = v3_load(b->up);

@@ -113,8 +113,9 @@ typedef struct blade_wind_t {
 #define BLADE_WIND_WAVE 0.0f
 #define BLADE_WIND_POINT 1.0f
 
-/* A sphere collider: the collide set's sphere proxy (xyz centre, w radius,
- * std430), mirrored by `struct BladeSphere` in shaders/common/blade.glsl. */
+/* A sphere collider: the collide set's sphere proxy (centre, radius and
+ * the step's sweep, std430), mirrored by `struct BladeSphere` in
+ * shaders/common/blade.glsl. */
 typedef collide_sphere_t blade_sphere_t;
 
 #define BLADE_MAX_WINDS 8
@@ -188,7 +189,14 @@ void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3]);
  * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter),
  * scaled by p / (p + q) when a validated copy (length_mode) would leave m
  * q > 0 outside (p: m's penetration before the push).
- * Applies the displacement to b->v2 and writes the total into d. */
+ * Applies the displacement to b->v2 and writes the total into d.
+ * Swept collision (beyond the paper): a sphere with a sweep is the capsule
+ * between its previous and current centre; every test of a point p (the
+ * push of v2, of m, the exit rotations of v2 and m, and the straight exit,
+ * at m) takes the sphere of that capsule closest to p (blade_ref_sphere_at),
+ * so a sphere moving more than its diameter per step still bends every
+ * blade along its path instead of tunnelling past them. */
+void blade_ref_sphere_at(const blade_sphere_t *s, const float p[3], blade_sphere_t *out);
 void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float d[3]);
 
 /* Departure from the paper (collision exit, see the banner); no-op for a

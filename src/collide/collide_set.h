@@ -37,10 +37,15 @@ typedef struct collide_object_t {
     uint32_t index_type;
 } collide_object_t;
 
-/* A sphere proxy, 16 bytes, std430: xyz centre, w radius (world). Mirrors
- * `struct BladeSphere` in shaders/common/blade.glsl. */
+/* A sphere proxy, 32 bytes, std430: centre_radius xyz centre, w radius
+ * (world); sweep xyz = previous centre - centre (this step's travel,
+ * backwards), w 0. A zero sweep (resting, first step, or left zero by a
+ * `{{x, y, z, r}}` initialiser) is the plain sphere; otherwise the proxy is
+ * the capsule swept by the sphere during the step (swept collision, see
+ * blade_ref.h). Mirrors `struct BladeSphere` in shaders/common/blade.glsl. */
 typedef struct collide_sphere_t {
     float centre_radius[4];
+    float sweep[4];
 } collide_sphere_t;
 
 typedef struct collide_set_t {
