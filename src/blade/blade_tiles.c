@@ -516,9 +516,9 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
      * a swept sphere by the bounding sphere of its capsule */
     static hybrid_object_t objs[BLADE_MAX_SPHERES];
     for (int k = 0; k < sphere_count; k++) {
-        const float *c = spheres[k].centre_radius, *d = spheres[k].sweep;
-        for (int a = 0; a < 3; a++) objs[k].sphere[a] = c[a] + 0.5f * d[a];
-        objs[k].sphere[3] = c[3] + 0.5f * sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + t->reach;
+        const float *cr = spheres[k].centre_radius, *d = spheres[k].sweep;
+        for (int a = 0; a < 3; a++) objs[k].sphere[a] = cr[a] + 0.5f * d[a];
+        objs[k].sphere[3] = cr[3] + 0.5f * sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + t->reach;
     }
     hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
 
