@@ -87,6 +87,15 @@ static bool push(query_pair_t **arr, int *count, int *cap, query_pair_t v)
     return true;
 }
 
+static void harvest(bool wait);
+
+/* Queries awaiting their results. Harvested at every gfx_timer_frame_begin;
+ * a caller that never begins frames (a test driving the world directly)
+ * must not grow the list without bound, so pass_end harvests too once it is
+ * long: without waiting past PENDING_SOFT, waiting past PENDING_HARD. */
+#define PENDING_SOFT 1024
+#define PENDING_HARD 4096
+
 void gfx_count_pass_begin(const char *pass)
 {
     if (c.open >= 0) return;
@@ -110,6 +119,8 @@ void gfx_count_pass_end(void)
         core_log_error("%s:%d: out of memory for counter queries", __FILE__, __LINE__);
         glDeleteQueries(2, c.running.q);
     }
+    if (c.pending_count >= PENDING_SOFT) harvest(false);
+    if (c.pending_count >= PENDING_HARD) harvest(true);
     c.open = -1;
 }
 
