@@ -128,3 +128,17 @@ bool test_image_check(const core_image_t *actual, const char *name, const test_i
     core_image_free(&diff);
     return r.pass;
 }
+
+double test_grass_pixels(const core_image_t *img, double rgb[3])
+{
+    double n = 0.0;
+    rgb[0] = rgb[1] = rgb[2] = 0.0;
+    for (size_t i = 0; i < (size_t)img->w * (size_t)img->h; i++) {
+        const uint8_t *p = img->px + i * 4;
+        if (p[1] <= p[0] + 25) continue;
+        for (int k = 0; k < 3; k++) rgb[k] += p[k] / 255.0;
+        n += 1.0;
+    }
+    for (int k = 0; k < 3; k++) rgb[k] /= n > 0.0 ? n : 1.0;
+    return n / ((double)img->w * img->h);
+}

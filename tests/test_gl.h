@@ -38,6 +38,10 @@ test_image_result_t test_image_diff(const core_image_t *a, const core_image_t *b
                                     core_image_t *diff_out);
 /* Compares against tests/golden/<name>.png. Returns true on pass. */
 bool test_image_check(const core_image_t *actual, const char *name, const test_image_cmp_t *cmp);
+/* Grass pixels of an RGBA image (green clearly above red, as the grass
+ * and not the soil or sky): their share of the image, and their mean
+ * colour (0..1) in rgb. */
+double test_grass_pixels(const core_image_t *img, double rgb[3]);
 /* Directory for test artefacts ($MEADOW_TEST_OUT or /tmp/meadow-test). */
 const char *test_out_dir(void);
 

@@ -62,20 +62,6 @@ static void msaa4(scene_desc_t *s, void *user)
     s->size[1] = 288;
 }
 
-/* Share of grass pixels (green clearly above red) and their mean colour. */
-static double grass(const core_image_t *img, double rgb[3])
-{
-    double n = 0.0;
-    rgb[0] = rgb[1] = rgb[2] = 0.0;
-    for (size_t i = 0; i < (size_t)img->w * (size_t)img->h; i++) {
-        const uint8_t *p = img->px + i * 4;
-        if (p[1] <= p[0] + 25) continue;
-        for (int k = 0; k < 3; k++) rgb[k] += p[k] / 255.0;
-        n += 1.0;
-    }
-    for (int k = 0; k < 3; k++) rgb[k] /= n > 0.0 ? n : 1.0;
-    return n / ((double)img->w * img->h);
-}
 
 int main(void)
 {
@@ -86,7 +72,7 @@ int main(void)
         core_image_t img[2];
         double cov[2], rgb[2][3];
         render_pair("scenes/tiny.json", modes[m], true, 6, msaa4, img);
-        for (int r = 0; r < 2; r++) cov[r] = grass(&img[r], rgb[r]);
+        for (int r = 0; r < 2; r++) cov[r] = test_grass_pixels(&img[r], rgb[r]);
         int differ, ball = ball_pixels(&img[0], &img[1], &differ);
         printf("%-9s ball pixels %d, ball in one image only %d\n", scene_mode_name(modes[m]), ball, differ);
         CHECK(ball > 300 && differ <= ball / 10);
