@@ -16,7 +16,8 @@
  *                        papers, the box's depth cube map at 16/32/64 texels
  *                        (penetration depth against the exact box),
  *   blade_tessellation, blade_distance_levels (eq. 19-20),
- *   hybrid_switch_distance, modes (mode x density x render path) (image error).
+ *   hybrid_switch_distance, modes (mode x density x render path, hardware
+ *   and compute rasterizer) (image error).
  * --quick runs two configurations per sweep for CI. The stability suite
  * (bench_stability.c) runs with --stability, the tile scaling sweeps
  * (bench_scaling.c) with --scaling; --report DIR runs the sweep, both of
@@ -51,6 +52,7 @@ typedef struct bench_config_t {
     float switch_distance;                /* hybrid knob, 0 = scene */
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
     int blade_render;                     /* 0 = the options', 1 pull, 2 tess */
+    int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     bench_proxy_t proxy;
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
@@ -216,6 +218,12 @@ static int build_configs(bench_config_t *c, bool quick)
         x->blade_render = 2;
         snprintf(x->label, sizeof x->label, "%s_x1_tess", scene_mode_name(modes[i]));
     }
+    /* The compute rasterizer (docs/RASTER.md) beside the hardware rows. */
+    for (int i = 0; i < 3 && !quick; i++) {
+        bench_config_t *x = add(c, &n, "modes", modes[i]);
+        x->raster = 1 + SCENE_RASTER_COMPUTE;
+        snprintf(x->label, sizeof x->label, "%s_x1_compute", scene_mode_name(modes[i]));
+    }
     return n;
 }
 
@@ -318,6 +326,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = *o;
         if (c->blade_render) oc.blade_render = c->blade_render - 1;
+        if (c->raster) oc.raster = c->raster;
         bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
                                   .tweak = tweak, .user = c, .tuning = c->tuning};
         bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
