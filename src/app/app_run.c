@@ -281,13 +281,17 @@ static void write_summary(app_t *app, double wall_s)
                   st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
-    const raster_t *r = &app->world.raster;
-    if (r->vis.id)
+    raster_t *r = &app->world.raster;
+    if (r->vis.id) {
+        raster_stats_t rs;
+        raster_read_stats(r, &rs);
         n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; large-triangle queue)\n",
+                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
+                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
                       (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
-                      r->desc.samples,
-                      r->atomic64 ? "64-bit atomics" : "two-pass 32-bit");
+                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
+                      rs.overflow);
+    }
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
     n += summary_work(buf + n, sizeof buf - (size_t)n);

@@ -1,6 +1,7 @@
 /* raster: the compute rasterizer's visibility buffer, its start from the
  * opaque depth, the dispatch of the grass modules' raster shaders (per
- * primitive, then per queued large triangle) and the composite. See
+ * primitive, then the queued medium and large triangles) and the
+ * composite. See
  * raster.h; the shader side is shaders/raster/raster.glsl. */
 #include "raster/raster.h"
 
