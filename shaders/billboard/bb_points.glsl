@@ -77,6 +77,13 @@ void bb_plain_corners(bb_point p, vec3 right, vec3 up, bb_wind wind, float time,
     tb = bb_wind_vertex(wind, b + p.size.y * up, p.position, 1.0, time);
 }
 
+/* True when billboard p lies wholly nearer than the hybrid fade band
+ * (fade_end <= 0: no band), where blades stand instead. */
+bool bb_fade_dropped(bb_point p, vec3 camera, float fade_start, float fade_end)
+{
+    return fade_end > 0.0 && distance(camera, p.position) + 0.5 * length(p.size) < fade_start;
+}
+
 /* bb_mesh_init_quad into bb_rest. */
 void bb_build_rest(bb_point p, vec3 right, vec3 up)
 {

@@ -32,7 +32,7 @@ void main()
     bb_point p = points[gl_VertexID / 6];
     const int corners[6] = int[](0, 1, 2, 2, 1, 3);
     int c = corners[gl_VertexID % 6];
-    bool near = u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start;
+    bool near = bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end);
     if (p.pad0 != BB_NO_SLOT || near) {
         g_world = vec3(0.0);
         g_normal = vec3(0.0, 1.0, 0.0);

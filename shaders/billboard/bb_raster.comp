@@ -62,7 +62,7 @@ bool bb_setup(uint prim)
     vec3 centre = p.position + 0.5 * p.size.y * p.growth;
     for (int i = 0; i < 6; i++)
         if (dot(u_planes[i].xyz, centre) + u_planes[i].w < -r) return false;
-    if (u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start) return false;
+    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return false;
     bb_frame(p, g_right, g_up);
     g_layer = float(p.layer);
     g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
@@ -93,15 +93,6 @@ int bb_triangles()
     return g_p.pad0 == BB_NO_SLOT ? 2 : 2 * (BB_N - 1) * (BB_M - 1);
 }
 
-vec3 bb_mesh_normal(int i, int j)
-{
-    vec3 du = bb_pos[j * BB_N + min(i + 1, BB_N - 1)] - bb_pos[j * BB_N + max(i - 1, 0)];
-    vec3 dv = bb_pos[min(j + 1, BB_M - 1) * BB_N + i] - bb_pos[max(j - 1, 0) * BB_N + i];
-    vec3 n = cross(du, dv);
-    float l = length(n);
-    return l > 1e-12 ? n / l : cross(g_right, g_up);
-}
-
 /* Grid vertex (i, j) (plain quad: corner) into triangle slot `slot`;
  * returns its clip position. */
 vec4 bb_vertex(int i, int j, int slot)
@@ -114,7 +105,7 @@ vec4 bb_vertex(int i, int j, int slot)
         uv = vec2(float(i), float(j));
     } else {
         pos = bb_pos[j * BB_N + i];
-        n = bb_mesh_normal(i, j);
+        n = bb_mesh_normal(i, j, cross(g_right, g_up));
         uv = vec2(float(i) / float(BB_N - 1), float(j) / float(BB_M - 1));
     }
     g_pos[slot] = pos;
@@ -148,14 +139,9 @@ void raster_fragment(int s0, vec3 w, float depth)
     vec2 uv = w.x * g_uv[0] + w.y * g_uv[1] + w.z * g_uv[2];
     vec4 tex = textureLod(u_clumps, vec3(uv.x, 1.0 - uv.y, g_layer), g_lod);
     vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
-    float a = tex.a;
     int pixel = s0 / n;
     uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
-    if (u_fade_end > 0.0) {
-        float fade = clamp((distance(u_camera, world) - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);
-        float ign = fract(52.9829189 * fract(dot(vec2(px) + 0.5, vec2(0.06711056, 0.00583715))));
-        if (fade < 1.0) a = clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0);
-    }
+    float a = bb_fade_alpha(tex.a, distance(u_camera, world), u_fade_start, u_fade_end, vec2(px) + 0.5);
     if (a < 1.0 / 255.0) return;
     int covered = min(int(a * float(n) + 0.5), n);
     if (covered == 0) return;

@@ -24,13 +24,7 @@ void main()
 {
     vec4 tex = texture(u_clumps, g_uvl);
     vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
-    float dist = distance(u_camera, g_world);
-    float a = tex.a;
-    if (u_fade_end > 0.0) {
-        float fade = clamp((dist - u_fade_start) / max(u_fade_end - u_fade_start, 1e-6), 0.0, 1.0);
-        float ign = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-        if (fade < 1.0) a = clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0);
-    }
+    float a = bb_fade_alpha(tex.a, distance(u_camera, g_world), u_fade_start, u_fade_end, gl_FragCoord.xy);
     if (a < 1.0 / 255.0) discard;
     frag = vec4(c, a);
 }

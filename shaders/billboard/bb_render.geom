@@ -43,7 +43,7 @@ void put(vec3 pos, vec3 n, float u, float h, float layer)
 void main()
 {
     bb_point p = bb_load_point();
-    if (u_fade_end > 0.0 && distance(u_camera, p.position) + 0.5 * length(p.size) < u_fade_start) return;
+    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return;
     vec3 right, up;
     bb_frame(p, right, up);
     float layer = float(p.layer);
@@ -73,15 +73,8 @@ void main()
         bb_slope_mesh(p, ta, tb);
     }
     vec3 nrm[BB_N * BB_M];
-    for (int j = 0; j < BB_M; j++) {
-        for (int i = 0; i < BB_N; i++) {
-            vec3 du = bb_pos[j * BB_N + min(i + 1, BB_N - 1)] - bb_pos[j * BB_N + max(i - 1, 0)];
-            vec3 dv = bb_pos[min(j + 1, BB_M - 1) * BB_N + i] - bb_pos[max(j - 1, 0) * BB_N + i];
-            vec3 n = cross(du, dv);
-            float l = length(n);
-            nrm[j * BB_N + i] = l > 1e-12 ? n / l : cross(right, up);
-        }
-    }
+    for (int j = 0; j < BB_M; j++)
+        for (int i = 0; i < BB_N; i++) nrm[j * BB_N + i] = bb_mesh_normal(i, j, cross(right, up));
     for (int j = 0; j < BB_M - 1; j++) {
         for (int i = 0; i < BB_N; i++) {
             float u = float(i) / float(BB_N - 1);

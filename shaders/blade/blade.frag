@@ -3,7 +3,6 @@
  * fog (common/lighting.glsl), and the hybrid cross-fade: alpha 1 nearer than
  * u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of the pixel) and
  * turned into MSAA coverage by alpha-to-coverage (enabled by the host). */
-#include "common/hash.glsl"
 #include "common/grass_shade.glsl"
 
 in vec3 f_pos;
@@ -26,10 +25,7 @@ void main()
 {
     float alpha = 1.0;
     if (u_fade.y > u_fade.x) {
-        alpha = 1.0 - smoothstep(u_fade.x, u_fade.y, f_root_dist);
-        uvec2 px = uvec2(gl_FragCoord.xy);
-        float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
-        alpha = clamp(alpha + dither * 0.25, 0.0, 1.0);
+        alpha = blade_fade_dither(blade_fade_ramp(f_root_dist, u_fade), uvec2(gl_FragCoord.xy));
         if (alpha <= 0.0) discard;
     }
 #ifdef BLADE_OVERLAY

@@ -57,7 +57,7 @@ int blade_setup(uint prim)
     g_blade = blades[index];
     g_seed = hash_u32(index * 0x9e3779b9u);
     float root_dist = length(g_blade.v0.xyz - u_camera);
-    g_alpha = u_fade.y > u_fade.x ? 1.0 - smoothstep(u_fade.x, u_fade.y, root_dist) : 1.0;
+    g_alpha = blade_fade_ramp(root_dist, u_fade);
     raster_vert r0, r1, r2;
     vec3 t1, front;
     blade_frame(g_blade, t1, front);
@@ -95,9 +95,7 @@ void raster_fragment(int s, vec3 w, float depth)
     if (g_alpha < 1.0) {
         int pixel = s / u_raster_samples;
         uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
-        float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
-        float alpha = clamp(g_alpha + dither * 0.25, 0.0, 1.0);
-        if (alpha <= threshold) return;
+        if (blade_fade_dither(g_alpha, px) <= threshold) return;
     }
     uint rgba = 0u;
     if (raster_color_pass()) {

@@ -122,6 +122,17 @@ bool bb_push_out(sampler2DArray tex, bb_cube cube, vec3 q, out vec3 o)
 vec3 bb_pos[BB_N * BB_M];
 vec3 bb_rest[BB_N * BB_M];
 
+/* Normal of mesh vertex (i, j) from central differences of bb_pos
+ * (one-sided at the borders); `fallback` where they are degenerate. */
+vec3 bb_mesh_normal(int i, int j, vec3 fallback)
+{
+    vec3 du = bb_pos[j * BB_N + min(i + 1, BB_N - 1)] - bb_pos[j * BB_N + max(i - 1, 0)];
+    vec3 dv = bb_pos[min(j + 1, BB_M - 1) * BB_N + i] - bb_pos[max(j - 1, 0) * BB_N + i];
+    vec3 n = cross(du, dv);
+    float l = length(n);
+    return l > 1e-12 ? n / l : fallback;
+}
+
 void bb_spring(int a, int b, float r)
 {
     bool fa = a < BB_N, fb = b < BB_N;

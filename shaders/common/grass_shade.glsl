@@ -3,11 +3,41 @@
  * rasterizer (shaders/raster/), so both paths shade alike: two-sided
  * lighting (normal flipped towards the viewer), the shared sun, sky ambient
  * and fog (common/lighting.glsl), and a debug overlay mixed in before fog
- * (weight 0: none). The hybrid fade's coverage is the callers' business. */
+ * (weight 0: none); and the hybrid fade's alpha of blades and billboards,
+ * which the hardware path turns into coverage with alpha-to-coverage and
+ * the compute path with per-sample thresholds. */
 #ifndef GRASS_SHADE_GLSL
 #define GRASS_SHADE_GLSL
 
+#include "common/hash.glsl"
 #include "common/lighting.glsl"
+
+/* Hybrid fade of a blade: 1 nearer than fade.x, 0 beyond fade.y (root
+ * distance d; fade.y <= fade.x: no fade, 1). */
+float blade_fade_ramp(float d, vec2 fade)
+{
+    return fade.y > fade.x ? 1.0 - smoothstep(fade.x, fade.y, d) : 1.0;
+}
+
+/* A blade's fade alpha dithered per pixel px, the alpha that
+ * alpha-to-coverage (or the compute path's sample thresholds) turns into
+ * coverage. */
+float blade_fade_dither(float alpha, uvec2 px)
+{
+    float dither = hash_float(px.x * 1973u + px.y * 9277u) - 0.5;
+    return clamp(alpha + dither * 0.25, 0.0, 1.0);
+}
+
+/* A billboard texel's alpha a under the hybrid fade (0 nearer than
+ * fade_start, 1 beyond fade_end; fade_end <= 0: none) at distance dist,
+ * dithered by interleaved gradient noise of the pixel centre frag. */
+float bb_fade_alpha(float a, float dist, float fade_start, float fade_end, vec2 frag)
+{
+    if (fade_end <= 0.0) return a;
+    float fade = clamp((dist - fade_start) / max(fade_end - fade_start, 1e-6), 0.0, 1.0);
+    float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
+    return fade < 1.0 ? clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
+}
 
 /* A blade point at height v (0 root, 1 tip), albedo mixed root to tip. */
 vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 albedo_root, vec3 albedo_tip,

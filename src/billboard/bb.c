@@ -1159,9 +1159,8 @@ bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
     gfx_timer_begin("bb.raster");
     raster_program_t *prog = &f->raster_prog;
-    if (prog->prim.id && prog->atomic64 != r->atomic64) raster_program_destroy(prog);
-    if (!prog->prim.id) *prog = raster_program_make(r, "billboard/bb_raster.comp", f->defines, "bb.raster");
-    if (prog->prim.id && f->billboards > 0) {
+    bool ok = raster_program_ensure(r, prog, "billboard/bb_raster.comp", f->defines, "bb.raster");
+    if (ok && f->billboards > 0) {
         raster_bind_t b = {.f = f, .dd = dd};
         /* No medium list (bb_raster.comp: RASTER_NO_MEDIUM): on the H100 one
          * thread per medium billboard triangle (a texel fetch per pixel) cost
@@ -1172,7 +1171,7 @@ bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
     }
     glBindTextureUnit(0, 0);
     gfx_timer_end();
-    return prog->prim.id != 0;
+    return ok;
 }
 
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)

@@ -406,9 +406,7 @@ bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_
                        const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
                        uint32_t count_index, uint32_t count_max)
 {
-    if (prog->prim.id && prog->atomic64 != r->atomic64) raster_program_destroy(prog);
-    if (!prog->prim.id) *prog = raster_program_make(r, "blade/blade_raster.comp", NULL, "blade.raster");
-    if (!prog->prim.id) return false;
+    if (!raster_program_ensure(r, prog, "blade/blade_raster.comp", NULL, "blade.raster")) return false;
     raster_bind_t b = {.surf = surf, .draw = desc, .blades = blades, .ids = ids, .count = count,
                        .count_index = count_index};
     raster_items_t items = {.count_buffer = count, .count_index = count_index, .count_max = count_max};

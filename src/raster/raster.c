@@ -104,6 +104,14 @@ void raster_program_destroy(raster_program_t *p)
     gfx_program_destroy(&p->big);
 }
 
+bool raster_program_ensure(const raster_t *r, raster_program_t *p, const char *cs, const char *defines,
+                           const char *label)
+{
+    if (p->prim.id && p->atomic64 != r->atomic64) raster_program_destroy(p);
+    if (!p->prim.id) *p = raster_program_make(r, cs, defines, label);
+    return p->prim.id != 0;
+}
+
 static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
 {
     glUniform2i(gfx_uniform(p, "u_raster_pixels"), r->desc.w, r->desc.h);

@@ -79,6 +79,10 @@ void raster_destroy(raster_t *r);
  * variant of `r` (atomic64 or not). id 0 on failure (logged). */
 raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label);
 void raster_program_destroy(raster_program_t *p);
+/* *p made for r's variant: (re)made from cs/defines when it is missing or
+ * was made for the other variant. False when it cannot be made (logged). */
+bool raster_program_ensure(const raster_t *r, raster_program_t *p, const char *cs, const char *defines,
+                           const char *label);
 
 /* What a draw covers: `count` primitives, or (count_buffer.id != 0) the
  * uint at word `count_index` of count_buffer, at most `count_max`. */
