@@ -41,8 +41,8 @@
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
-#define RASTER_VIS_BINDING 20
-#define RASTER_QUEUE_BINDING 21
+#include "raster/raster_frame.glsl"
+
 #define RASTER_BIG_THREADS 64
 
 layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
@@ -64,8 +64,6 @@ layout(std430, binding = RASTER_QUEUE_BINDING) buffer RasterQueue {
     uvec2 raster_queue[];
 };
 
-uniform ivec2 u_raster_pixels;      /* target size in pixels */
-uniform int u_raster_samples;       /* per pixel: 1 or 4 */
 uniform int u_raster_pass;          /* without RASTER_ATOMIC64: 0 depth, 1 colour */
 uniform uint u_raster_small_samples;  /* scanned by the primitive's thread up to this */
 uniform uint u_raster_medium_samples; /* queued one per thread up to this, else one per work group */

@@ -5,10 +5,10 @@
  * samples / samples) as alpha (blend ONE, ONE_MINUS_SRC_ALPHA), and depth
  * the nearest grass sample, so later passes and screenshots see the grass.
  * Pixels without grass are discarded. */
-layout(std430, binding = 20) readonly buffer RasterVis { uint words[]; };
+#include "raster/raster_frame.glsl"
 
-uniform ivec2 u_raster_pixels;
-uniform int u_raster_samples;
+layout(std430, binding = RASTER_VIS_BINDING) readonly buffer RasterVis { uint words[]; };
+
 
 out vec4 o_color;
 

@@ -7,12 +7,12 @@
  * raster.glsl (colour word first, depth word second). */
 layout(local_size_x = 16, local_size_y = 16) in;
 
-layout(std430, binding = 20) writeonly buffer RasterVis { uint words[]; };
+#include "raster/raster_frame.glsl"
+
+layout(std430, binding = RASTER_VIS_BINDING) writeonly buffer RasterVis { uint words[]; };
 
 layout(binding = 0) uniform sampler2D u_depth;
 
-uniform ivec2 u_raster_pixels;
-uniform int u_raster_samples;
 
 void main()
 {

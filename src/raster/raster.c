@@ -8,8 +8,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#define RASTER_VIS_BINDING 20   /* raster.glsl */
-#define RASTER_QUEUE_BINDING 21 /* raster.glsl */
+#define RASTER_VIS_BINDING 20   /* raster_frame.glsl */
+#define RASTER_QUEUE_BINDING 21 /* raster_frame.glsl */
 #define RASTER_BIG_THREADS 64   /* raster.glsl */
 #define RASTER_PRIM_THREADS 64  /* local size of the per-primitive variants */
 #define QUEUE_HEADER 16         /* large count, overflow, medium count, overflow */
