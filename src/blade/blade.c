@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+_Static_assert(BLADE_MAX_SPHERES == 512, "blade_physics.comp lists near spheres in a 512-bit mask (SPHERE_WORDS)");
+
 blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
 {
     blade_gpu_desc_t d = *desc;
