@@ -97,12 +97,14 @@ int raster_lattices()
 
 /* True when sample s already holds something nearer than depth_bits: the
  * fragment can be skipped before it is shaded (a plain read: the stored
- * depth only decreases, so a stale value is only less useful). The colour
- * pass of the two-pass variant keeps the equal depth it has to match. */
+ * depth only decreases, so a stale value is only less useful). Equal depth
+ * is not skipped where the colour decides the tie (the 64-bit atomicMin;
+ * the colour pass of the two-pass variant, which has to match it), so the
+ * image does not depend on the order in which threads run. */
 bool raster_occluded(int s, uint depth_bits)
 {
 #ifdef RASTER_ATOMIC64
-    return depth_bits >= unpackUint2x32(raster_vis[s]).y;
+    return depth_bits > unpackUint2x32(raster_vis[s]).y;
 #else
     uint stored = raster_vis[2 * s + 1];
     return u_raster_pass == 0 ? depth_bits >= stored : depth_bits > stored;

@@ -1,28 +1,55 @@
 #version 450
 /* raster_init.comp: starts a frame of the compute rasterizer: every sample
- * of the visibility buffer gets the opaque depth of its pixel (the resolved
- * depth of the hardware pass: terrain, sky, characters, balls) and colour
- * word 0, which marks "no grass" (grass colours carry alpha 255). Works on
- * the buffer as two uints per sample, the layout of both variants in
- * raster.glsl (colour word first, depth word second). */
+ * of the visibility buffer gets the opaque depth of the hardware pass
+ * (terrain, sky, characters, balls) and colour word 0, which marks "no
+ * grass" (grass colours carry alpha 255). Reads the target's depth texture
+ * itself, on every SM, instead of a resolve blit on the graphics engine:
+ * with RASTER_DEPTH_MS (a multisample target) raster sample k takes target
+ * sample k u_target_samples / u_raster_samples (the same sample when both
+ * are 4: the raster's offsets are the standard 4x pattern), else the
+ * pixel's depth. Also writes the farthest opaque depth of each pixel to
+ * u_opaque (r32f), what occlusion culling reads (conservative: a blade is
+ * hidden only behind all of the pixel's samples). Works on the buffer as
+ * two uints per sample, the layout of both variants in raster.glsl
+ * (colour word first, depth word second). */
 layout(local_size_x = 16, local_size_y = 16) in;
 
 #include "raster/raster_frame.glsl"
 
 layout(std430, binding = RASTER_VIS_BINDING) writeonly buffer RasterVis { uint words[]; };
 
+#ifdef RASTER_DEPTH_MS
+layout(binding = 0) uniform sampler2DMS u_depth;
+uniform int u_target_samples;
+#else
 layout(binding = 0) uniform sampler2D u_depth;
+#endif
+layout(binding = 0, r32f) uniform writeonly image2D u_opaque;
 
+float target_depth(ivec2 px, int k)
+{
+#ifdef RASTER_DEPTH_MS
+    return texelFetch(u_depth, px, k * u_target_samples / u_raster_samples).r;
+#else
+    return texelFetch(u_depth, px, 0).r;
+#endif
+}
 
 void main()
 {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
     if (px.x >= u_raster_pixels.x || px.y >= u_raster_pixels.y) return;
-    uint depth = floatBitsToUint(max(texelFetch(u_depth, px, 0).r, 0.0));
     int n = u_raster_samples;
     int base = (px.y * u_raster_pixels.x + px.x) * n;
     for (int k = 0; k < n; k++) {
         words[2 * (base + k)] = 0u;
-        words[2 * (base + k) + 1] = depth;
+        words[2 * (base + k) + 1] = floatBitsToUint(max(target_depth(px, k), 0.0));
     }
+    float far = 0.0;
+#ifdef RASTER_DEPTH_MS
+    for (int k = 0; k < u_target_samples; k++) far = max(far, texelFetch(u_depth, px, k).r);
+#else
+    far = texelFetch(u_depth, px, 0).r;
+#endif
+    imageStore(u_opaque, px, vec4(far));
 }

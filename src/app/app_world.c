@@ -516,7 +516,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
     glm_vec3_copy((float *)v->camera, w->camera);
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
-    /* raster_begin resolves the opaque depth (also read by occlusion culling). */
+    /* raster_begin takes the opaque depth (also read by occlusion culling). */
     if (raster) raster_begin(raster, target);
     bool raster_ok = true;
     if (w->have_tiles && uses_tiles(w)) {
@@ -528,14 +528,16 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (raster) raster_ok = blade_tiles_raster(&w->tiles, raster, &dd) && raster_ok;
         else blade_tiles_draw(&w->tiles, &dd);
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
-        /* Occlusion culling reads the resolved depth of the opaque pass. */
+        /* Occlusion culling reads the resolved depth of the opaque pass (the
+         * compute path: the farthest opaque sample, from raster_begin). */
         if (!raster) gfx_target_resolve_depth(target);
         blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
                                 .distance_levels = w->tuning.distance_levels,
                                 .disable = w->reference ? 0xffu : w->tuning.cull_disable};
         memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
         memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
-        blade_gpu_cull(&w->blades, &cd, w->reference ? 0 : target->resolve_depth.id);
+        GLuint depth = raster ? raster->opaque_depth.id : target->resolve_depth.id;
+        blade_gpu_cull(&w->blades, &cd, w->reference ? 0 : depth);
         glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
         glViewport(0, 0, target->w, target->h);
         blade_draw_desc_t dd = {.time = v->time};

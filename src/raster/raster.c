@@ -52,12 +52,18 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
         .size = QUEUE_HEADER + 2 * (size_t)d->queue_capacity * 8, .label = label});
     snprintf(label, sizeof label, "%s.args", d->label);
     r->args = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 32, .label = label});
+    snprintf(label, sizeof label, "%s.opaque_depth", d->label);
+    r->opaque_depth = gfx_texture_make(&(gfx_texture_desc_t){
+        .w = d->w, .h = d->h, .format = GL_R32F, .filter = GL_NEAREST, .label = label});
     r->init = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_init.comp", .label = "raster.init"});
+    r->init_ms = gfx_program_make(&(gfx_program_desc_t){
+        .cs = "raster/raster_init.comp", .defines = "#define RASTER_DEPTH_MS 1\n", .label = "raster.init_ms"});
     r->args_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_args.comp", .label = "raster.args"});
     r->composite = gfx_program_make(&(gfx_program_desc_t){
         .vs = "raster/raster_composite.vert", .fs = "raster/raster_composite.frag", .label = "raster.composite"});
     r->empty_vao = gfx_vertex_array_make("raster.empty");
-    if (!r->vis.id || !r->queue.id || !r->args.id || !r->init.id || !r->args_prog.id || !r->composite.id) {
+    if (!r->vis.id || !r->queue.id || !r->args.id || !r->opaque_depth.id || !r->init.id || !r->init_ms.id ||
+        !r->args_prog.id || !r->composite.id) {
         raster_destroy(r);
         return false;
     }
@@ -72,7 +78,9 @@ void raster_destroy(raster_t *r)
     gfx_buffer_destroy(&r->vis);
     gfx_buffer_destroy(&r->queue);
     gfx_buffer_destroy(&r->args);
+    gfx_texture_destroy(&r->opaque_depth);
     gfx_program_destroy(&r->init);
+    gfx_program_destroy(&r->init_ms);
     gfx_program_destroy(&r->args_prog);
     gfx_program_destroy(&r->composite);
     gfx_vertex_array_destroy(&r->empty_vao);
@@ -121,15 +129,19 @@ static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
 void raster_begin(raster_t *r, const gfx_target_t *target)
 {
     gfx_timer_begin("raster.init");
-    gfx_target_resolve_depth(target);
-    glUseProgram(r->init.id);
-    set_frame_uniforms(r, r->init);
-    glBindTextureUnit(0, target->resolve_depth.id);
+    bool ms = target->samples > 1;
+    gfx_program_t p = ms ? r->init_ms : r->init;
+    glUseProgram(p.id);
+    set_frame_uniforms(r, p);
+    if (ms) glUniform1i(gfx_uniform(p, "u_target_samples"), target->samples);
+    glBindTextureUnit(0, target->depth.id);
+    glBindImageTexture(0, r->opaque_depth.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute((GLuint)(r->desc.w + 15) / 16, (GLuint)(r->desc.h + 15) / 16, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindTextureUnit(0, 0);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gfx_timer_end();
 }
 

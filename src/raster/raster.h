@@ -13,7 +13,7 @@
  *
  * A frame:
  *   opaque scene drawn by the hardware into the target
- *   raster_begin(r, target)      resolves depth, fills every sample with it
+ *   raster_begin(r, target)      fills every sample with the target's opaque depth
  *   bb_field_raster / blade_gpu_raster / blade_tiles_raster   (raster_draw)
  *   raster_end(r, target)        composites colour, coverage and depth
  *
@@ -52,7 +52,9 @@ typedef struct raster_t {
     gfx_buffer_t vis;       /* 8 bytes per sample */
     gfx_buffer_t queue;     /* large and medium counts and overflows, the large list, the medium list */
     gfx_buffer_t args;      /* two glDispatchComputeIndirect argument triples */
-    gfx_program_t init, args_prog, composite;
+    gfx_texture_t opaque_depth; /* r32f, the farthest opaque sample of each pixel, written by raster_begin:
+                                   what occlusion culling reads in this path */
+    gfx_program_t init, init_ms, args_prog, composite;
     GLuint empty_vao;
     raster_stats_t stats;
     bool warned_overflow;
@@ -101,8 +103,9 @@ typedef struct raster_items_t {
  * (already in use); called before every dispatch of a draw. */
 typedef void (*raster_bind_fn)(gfx_program_t prog, void *user);
 
-/* Starts a frame: resolves `target` (for its depth) and fills the
- * visibility buffer. The target must have r's size. */
+/* Starts a frame: fills the visibility buffer from `target`'s depth
+ * texture, per sample (raster_init.comp, no resolve blit), and writes
+ * opaque_depth. The target must have r's size. */
 void raster_begin(raster_t *r, const gfx_target_t *target);
 /* Runs a grass module's program over `items` (both passes without 64-bit
  * atomics): threads per primitive, then the triangles they queued. */
