@@ -145,6 +145,12 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
         glDeleteBuffers(1, &b.id);
         return (gfx_buffer_t){0};
     }
+    /* Without data the store starts as zeros, not as whatever memory the
+     * driver recycled (a new world in a process that freed another one). */
+    if (!desc->data && desc->size > 0) {
+        static const uint8_t zero = 0;
+        glClearNamedBufferData(b.id, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    }
     b.size = desc->size;
     b.readable = desc->readable;
     if (desc->persistent)

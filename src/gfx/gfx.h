@@ -38,7 +38,7 @@ typedef struct gfx_buffer_t {
 
 typedef struct gfx_buffer_desc_t {
     size_t size;        /* bytes, required */
-    const void *data;   /* initial contents, optional */
+    const void *data;   /* initial contents, optional (default: zeros) */
     bool dynamic;       /* GL_DYNAMIC_STORAGE_BIT (glNamedBufferSubData) */
     bool persistent;    /* mapped write-coherent for the buffer's life */
     bool readable;      /* GL_MAP_READ_BIT: a small buffer the CPU reads (readback rings, staging).
