@@ -158,6 +158,14 @@ static void test_bad_inline(void)
     expect_parse_fail("{\"frames\": 2.5}", "fraction", "field \"frames\": expected an integer, got 2.5",
                       NULL);
     expect_parse_fail("{\"msaa\": 3}", "msaa", "field \"msaa\"", "3 is not one of");
+    expect_parse_fail("{\n\"raster_samples\": 2}", "raster_samples 2", "inline.json:2: field \"raster_samples\"",
+                      "2 is not 1 or 4");
+    {
+        scene_desc_t d;
+        char err[256];
+        CHECK(scene_parse(&d, "{\"raster_samples\": 1}", "inline.json", err, sizeof err) && d.raster_samples == 1);
+        CHECK(scene_parse(&d, "{}", "inline.json", err, sizeof err) && d.raster_samples == 4);
+    }
     expect_parse_fail("{\"mode\": \"grass\"}", "mode", "field \"mode\": unknown value \"grass\"",
                       "billboard, blade");
     expect_parse_fail("{\"size\": [1, 2, 3]}", "size len", "field \"size\"",

@@ -39,7 +39,7 @@ typedef struct app_options_t {
     const char *clip;         /* --clip NAME|INDEX|START:END */
     int blade_render;         /* 0 = vertex pulling (default), 1 = tessellation */
     int raster;               /* --raster: 0 = the scene's, else 1 + scene_raster_t */
-    int raster_samples;       /* --raster-samples 1|4: compute rasterizer samples per pixel; 0 = 4 */
+    int raster_samples;       /* --raster-samples 1|4: compute rasterizer samples per pixel; 0 = the scene's */
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */

@@ -54,7 +54,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->blade_render = o->blade_render;
     if (o->raster) s->raster = (scene_raster_t)(o->raster - 1);
     w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
-    w->raster_samples = o->raster_samples;
+    w->raster_samples = o->raster_samples ? o->raster_samples : s->raster_samples;
     w->character_override = o->character;
     w->clip_override = o->clip;
     stage_done(w, APP_STAGE_SCENE, &mark);

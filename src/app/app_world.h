@@ -138,7 +138,7 @@ typedef struct app_world_t {
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
     bool raster_compute;
-    int raster_samples; /* app_options_t.raster_samples (0: the raster module's default) */
+    int raster_samples; /* --raster-samples, else the scene key raster_samples (1 or 4) */
     raster_t raster;
     /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
      * per-blade state only for tiles objects touch. */

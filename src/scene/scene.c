@@ -538,6 +538,9 @@ static bool parse_root(sp_t *sp, const json_t *o, scene_desc_t *d)
     const json_t *v;
     if (!check_members(sp, o, "", SCENE_SEC_ROOT, 0, "")) return false;
     if (!get_members(sp, o, "", SCENE_SEC_ROOT, 0, d)) return false;
+    if ((v = scene_json_get(o, "raster_samples")) && d->raster_samples != 1 && d->raster_samples != 4)
+        return sp_fail(sp, v->line, "raster_samples", "%d is not 1 or 4 (the compute rasterizer's sample patterns)",
+                       d->raster_samples);
     if ((v = scene_json_get(o, "terrain")) && !parse_terrain(sp, v, &d->terrain)) return false;
     if ((v = scene_json_get(o, "grass")) && !parse_grass(sp, v, &d->grass)) return false;
     if ((v = scene_json_get(o, "camera")) && !parse_camera(sp, v, &d->camera)) return false;

@@ -154,6 +154,7 @@ typedef struct scene_desc_t {
     int msaa;             /* samples, one of 0, 1, 2, 4, 8, 16 (1 = off); default 4 */
     scene_mode_t mode;    /* default hybrid */
     scene_raster_t raster; /* "raster": "hw" (default) | "compute" | "auto" */
+    int raster_samples;   /* compute rasterizer samples per pixel, 1 or 4; default 4 */
     terrain_desc_t terrain;
     scene_grass_desc_t grass;
     scene_camera_desc_t camera;

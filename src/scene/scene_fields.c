@@ -53,6 +53,10 @@ const scene_field_t scene_fields[] = {
     {ROOT(raster), .key = "raster", .type = SCENE_FIELD_ENUM, .names = raster_names,
       .doc = "how grass is rasterized: hardware pipeline, compute shaders, or the faster measured at "
              "start-up (docs/RASTER.md)"},
+    {ROOT(raster_samples), .key = "raster_samples", .type = SCENE_FIELD_INT, .lo = 1, .hi = 4,
+      .def = {SCENE_DEFAULT_RASTER_SAMPLES}, .type_doc = "integer: 1 or 4",
+      .doc = "compute rasterizer samples per pixel: 4 (the 4x MSAA pattern) or 1 (the pixel centre); "
+             "--raster-samples overrides it"},
     {ROOT(terrain), .key = "terrain", .type = SCENE_FIELD_OBJECT, .doc = "the ground (keys `terrain.*`)"},
     {ROOT(grass), .key = "grass", .type = SCENE_FIELD_OBJECT, .doc = "grass of both models (keys `grass.*`)"},
     {ROOT(camera), .key = "camera", .type = SCENE_FIELD_OBJECT, .doc = "the view (keys `camera.*`)"},

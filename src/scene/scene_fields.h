@@ -25,6 +25,7 @@
 #define SCENE_DEFAULT_WIDTH 1280
 #define SCENE_DEFAULT_HEIGHT 720
 #define SCENE_DEFAULT_MSAA 4
+#define SCENE_DEFAULT_RASTER_SAMPLES 4
 
 /* "terrain" (terrain_desc_defaults). */
 #define SCENE_DEFAULT_TERRAIN_SIZE 40.0f
