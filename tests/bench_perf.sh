@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # bench_perf: `meadow bench --perf DIR --quick` on llvmpipe writes a
-# perf.json with every run (tiny.json in each mode, hw and compute) and
+# perf.json with every run (tiny.json in each mode, hw and compute; both
+# floors measured) and
 # regenerates only the marked section of a doc; `meadow bench --baseline`
 # on synthetic perf.json files fails a pass 20 % + 0.03 ms slower (exit 1),
 # passes one 10 % slower (exit 0), notes faster, missing and new passes, and
@@ -25,8 +26,9 @@ ok = d["renderer"] and d["date"] and names == want
 for r in d["runs"]:
     ok = ok and len(r["passes"]) >= 2 and abs(sum(r["passes"].values()) - r["frame_ms"]) < 1e-3 * len(r["passes"])
     ok = ok and (r["raster"] == "hw" or "raster.composite" in r["passes"] or r["fell_back"])
+    ok = ok and r["floor_ms"] > 0 and r["compute_floor_ms"] > 0
 if not ok:
-    print(f"FAIL: perf.json: runs {names}, want {want}, each with passes summing to frame_ms")
+    print(f"FAIL: perf.json: runs {names}, want {want}, each with passes summing to frame_ms and both floors")
     sys.exit(1)
 EOF
 for n in 1 2 3 4 5 6; do

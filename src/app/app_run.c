@@ -297,8 +297,14 @@ static void write_summary(app_t *app, double wall_s)
     n += summary_work(buf + n, sizeof buf - (size_t)n);
     if (app->opts->floor) {
         double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
+        int rs = app->world.raster_samples ? app->world.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
+        double cfloor_ms = app_floor_compute_ms(st.triangles, app->target.w, app->target.h, app->target.samples, rs);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
                       st.triangles, floor_ms, floor_ms > 0 ? frame_gpu / floor_ms : 0.0);
+        n += snprintf(buf + n, sizeof buf - (size_t)n,
+                      "compute_floor_ms (the same through the compute rasterizer, %d samples per pixel, with its "
+                      "start and composite): %.4f\nframe_over_compute_floor: %.2f\n",
+                      rs, cfloor_ms, cfloor_ms > 0 ? frame_gpu / cfloor_ms : 0.0);
     }
     char path[1100];
     snprintf(path, sizeof path, "%s/summary.txt", app->out);

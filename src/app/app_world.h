@@ -200,6 +200,11 @@ void app_view_make(app_view_t *v, const cam_t *cam, int w, int h, float time, fl
 /* GPU ms to draw `triangles` trivial triangles from a prebuilt buffer into a
  * w x h target with `samples` MSAA (median of 12 draws); -1 on failure. */
 double app_floor_ms(long triangles, int w, int h, int samples);
+/* The same triangles through the compute rasterizer (raster_samples per
+ * pixel: 1 or 4) into a w x h target of `samples`: raster_begin, the draw
+ * with trivial shading and raster_end, median GPU ms of 12; -1 when it
+ * cannot be measured, 0 for no triangles. */
+double app_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples);
 
 /* ---- access for the evaluation harness (src/bench; app_world_access.c) ------------ */
 const scene_desc_t *app_world_scene(const app_world_t *w);

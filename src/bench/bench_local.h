@@ -127,6 +127,7 @@ typedef struct bench_perf_run_t {
     double frame_ms;      /* sum of the pass medians (bb.generate left out, as in summary.txt) */
     double cpu_ms;        /* mean wall-clock ms per frame after warm-up */
     double floor_ms;      /* app_floor_ms of the grass triangles; -1 = not measured */
+    double compute_floor_ms; /* app_floor_compute_ms of the same; -1 = not measured */
     double memory_mb;     /* GPU memory held by gfx at the last frame */
     long blades, blades_drawn, billboards, triangles;
     int pass_count;

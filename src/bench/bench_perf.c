@@ -49,6 +49,7 @@ typedef struct perf_probe_t {
     bench_perf_run_t *run;
     app_world_stats_t stats;
     bool compute;
+    int raster_samples; /* the world's compute rasterizer samples per pixel */
 } perf_probe_t;
 
 static void probe_frame(app_world_t *w, int frame, float t, void *user)
@@ -62,6 +63,7 @@ static void probe_frame(app_world_t *w, int frame, float t, void *user)
     p->run->msaa = s->msaa;
     p->run->memory_mb = (double)gfx_memory_bytes() / (1024.0 * 1024.0);
     p->compute = w->raster_compute;
+    p->raster_samples = w->raster_samples ? w->raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
     app_world_stats(w, &p->stats);
 }
 
@@ -109,6 +111,10 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     r->triangles = probe.stats.triangles;
     r->floor_ms = probe.stats.triangles > 0 ? app_floor_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa)
                                             : -1.0;
+    r->compute_floor_ms = probe.stats.triangles > 0
+                              ? app_floor_compute_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa,
+                                                     probe.raster_samples)
+                              : -1.0;
     return 0;
 }
 
@@ -175,10 +181,12 @@ static bool write_json(const bench_perf_t *p, const char *path)
         core_buf_printf(&b,
                         ",\n      \"mode\": \"%s\", \"raster\": \"%s\", \"fell_back\": %s, \"size\": [%d, %d], "
                         "\"msaa\": %d,\n      \"frame_ms\": %.4f, \"cpu_ms\": %.3f, \"floor_ms\": %.4f, "
+                        "\"compute_floor_ms\": %.4f, "
                         "\"memory_mb\": %.1f,\n      \"blades\": %ld, \"blades_drawn\": %ld, \"billboards\": %ld, "
                         "\"triangles\": %ld,\n      \"passes\": {",
                         r->mode, r->raster, r->fell_back ? "true" : "false", r->size[0], r->size[1], r->msaa,
-                        r->frame_ms, r->cpu_ms, r->floor_ms, r->memory_mb, r->blades, r->blades_drawn,
+                        r->frame_ms, r->cpu_ms, r->floor_ms, r->compute_floor_ms, r->memory_mb, r->blades,
+                        r->blades_drawn,
                         r->billboards, r->triangles);
         for (int k = 0; k < r->pass_count; k++) {
             core_buf_printf(&b, "%s", k ? ", " : "");
@@ -234,6 +242,7 @@ static bool read_run(const scene_json_t *o, bench_perf_run_t *r, char *err, size
     r->frame_ms = get_number(o, "frame_ms", 0);
     r->cpu_ms = get_number(o, "cpu_ms", 0);
     r->floor_ms = get_number(o, "floor_ms", -1);
+    r->compute_floor_ms = get_number(o, "compute_floor_ms", -1);
     r->memory_mb = get_number(o, "memory_mb", 0);
     r->blades = (long)get_number(o, "blades", 0);
     r->blades_drawn = (long)get_number(o, "blades_drawn", 0);
@@ -364,11 +373,14 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
                     p->frames, p->quick ? " (--quick: CI sizes, not the bench scenes)" : "", p->frames / 4);
     if (strstr(p->renderer, "llvmpipe"))
         core_buf_printf(b, "GPU times from llvmpipe are not meaningful (CPU rasteriser); rerun on a GPU.\n\n");
-    core_buf_printf(b, "### Per run\n\n| run | size, MSAA | grass | frame ms (sum) | floor ms | frame/floor | "
-                       "GPU memory | CPU ms/frame |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    core_buf_printf(b, "### Per run\n\nfloor: the hardware floor (app_floor.c); compute floor: the same triangles "
+                       "through the compute rasterizer with trivial shading, its start and composite included.\n\n"
+                       "| run | size, MSAA | grass | frame ms (sum) | floor ms | frame/floor | compute floor ms | "
+                       "frame/compute floor | GPU memory | CPU ms/frame |\n"
+                       "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
         const bench_perf_run_t *r = &p->runs[i];
-        char grass[128] = "", fl[32], ratio[32] = "-";
+        char grass[128] = "", fl[32], ratio[32] = "-", cfl[32], cratio[32] = "-";
         int n = 0;
         if (r->blades) n += snprintf(grass + n, sizeof grass - (size_t)n, "%ld blades, %ld drawn", r->blades,
                                      r->blades_drawn);
@@ -376,9 +388,11 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
             n += snprintf(grass + n, sizeof grass - (size_t)n, "%s%ld billboards", n ? "; " : "", r->billboards);
         cell(fl, sizeof fl, r->floor_ms, "");
         if (r->floor_ms > 0) snprintf(ratio, sizeof ratio, "%.2f", r->frame_ms / r->floor_ms);
-        core_buf_printf(b, "| %s%s | %dx%d, %dx | %s | **%.3f** | %s | %s | %.1f MB | %.2f |\n", r->name,
+        cell(cfl, sizeof cfl, r->compute_floor_ms, "");
+        if (r->compute_floor_ms > 0) snprintf(cratio, sizeof cratio, "%.2f", r->frame_ms / r->compute_floor_ms);
+        core_buf_printf(b, "| %s%s | %dx%d, %dx | %s | **%.3f** | %s | %s | %s | %s | %.1f MB | %.2f |\n", r->name,
                         r->fell_back ? " (fell back to hw)" : "", r->size[0], r->size[1], r->msaa,
-                        grass[0] ? grass : "-", r->frame_ms, fl, ratio, r->memory_mb, r->cpu_ms);
+                        grass[0] ? grass : "-", r->frame_ms, fl, ratio, cfl, cratio, r->memory_mb, r->cpu_ms);
     }
     core_buf_printf(b, "\n### Pass medians (ms)\n\n| run | passes |\n| --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
