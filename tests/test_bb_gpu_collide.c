@@ -110,6 +110,21 @@ int main(void)
     CHECK(st.leaves[BB_NODE_COLLIDING] > 0);
     bb_field_destroy(&fa);
 
+    /* Lent cube proxies keep the object's index (layers 6k .. 6k+5): object
+     * 0 without a map, object 1 with one. */
+    bb_field_t fl;
+    CHECK(bb_field_make(&fl, &desc));
+    bb_field_set_cube(&fl, 1, &cpu_cube);
+    float far_centre[3] = {centre[0] + 3.0f, centre[1], centre[2]};
+    collide_object_t two[2] = {test_object(NULL, centre, radius), test_object(NULL, far_centre, radius)};
+    collide_set_t lend = *test_set(two, 2);
+    lend.cube_count = 0;
+    bb_field_lend_cubes(&fl, &lend);
+    CHECK(lend.cube_count == 2);
+    CHECK(lend.cubes[0].sphere[3] <= 0.0f);
+    CHECK(lend.cubes[1].sphere[3] > 0.0f && fabsf(lend.cubes[1].sphere[0] - far_centre[0]) < 1e-4f);
+    bb_field_destroy(&fl);
+
     /* B: GPU cube map of the sphere mesh. */
     scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
     test_mesh_t mesh;

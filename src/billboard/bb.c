@@ -630,11 +630,14 @@ void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube)
 void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders)
 {
     int count = colliders->object_count < f->desc.max_objects ? colliders->object_count : f->desc.max_objects;
+    /* Proxy k reads layers 6k .. 6k+5: an object without a rendered map
+     * keeps its index with a skipped proxy (sphere radius 0) rather than
+     * shifting the later objects onto its layers. */
     for (int k = 0; k < count && colliders->cube_count < COLLIDE_MAX_CUBES; k++) {
+        collide_cube_proxy_t *out = &colliders->cubes[colliders->cube_count++];
         float half = f->cube_half[k];
-        if (half <= 0.0f) continue;
-        collide_make_cube_proxy(colliders->objects[k].model, f->cube_centre[k], half,
-                                &colliders->cubes[colliders->cube_count++]);
+        if (half > 0.0f) collide_make_cube_proxy(colliders->objects[k].model, f->cube_centre[k], half, out);
+        else memset(out, 0, sizeof *out);
     }
     colliders->cube_texture = f->cubes.id;
     colliders->cube_res = f->desc.cube_res;

@@ -241,10 +241,11 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
 void bb_field_set_cube(bb_field_t *f, int object, const collide_cubemap_t *cube);
 /* Lends the field's cube maps to the blades (beyond both papers): appends to
  * colliders->cubes the cube proxy of every object of `colliders` (the set
- * of the latest bb_field_update, in order, at most COLLIDE_MAX_CUBES) whose
- * cube map an update has rendered, skipping the others, and names the
- * field's cube array as colliders->cube_texture / cube_res. A character's
- * map keeps the pose of its last render. */
+ * of the latest bb_field_update, in order, at most COLLIDE_MAX_CUBES; proxy
+ * k reads layers 6k .. 6k+5, so the set must start with cube_count 0), a
+ * skipped proxy (all zero) for an object whose cube map no update has
+ * rendered, and names the field's cube array as colliders->cube_texture /
+ * cube_res. A character's map keeps the pose of its last render. */
 void bb_field_lend_cubes(const bb_field_t *f, collide_set_t *colliders);
 /* The quad frame of a billboard (twin of bb_frame in
  * shaders/billboard/bb_points.glsl): up = growth, right = the horizontal
