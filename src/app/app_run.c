@@ -30,45 +30,6 @@ typedef struct app_t {
     double startup_draws, startup_ranges, startup_dispatches;
 } app_t;
 
-/* --raster auto: draws the first frame's view with each rasterizer (one
- * warm-up draw, then the least of 5, GL timestamps around the whole draw)
- * and keeps the faster. */
-static void calibrate_raster(app_t *app, float dt)
-{
-    app_world_t *w = &app->world;
-    app_view_t view;
-    app_view_make(&view, &app->cam, app->target.w, app->target.h, 0.0f, dt);
-    GLuint q[2] = {gfx_query_make(GL_TIMESTAMP, "raster.calibrate.begin"),
-                   gfx_query_make(GL_TIMESTAMP, "raster.calibrate.end")};
-    double best[2] = {1e30, 1e30};
-    for (int rep = 0; rep < 6; rep++) {
-        for (int c = 0; c < 2; c++) {
-            app_world_set_raster(w, c == 1);
-            gfx_timer_frame_begin();
-            gfx_target_bind(&app->target);
-            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            glEnable(GL_DEPTH_TEST);
-            glQueryCounter(q[0], GL_TIMESTAMP);
-            app_world_draw(w, &view, &app->target, false);
-            glQueryCounter(q[1], GL_TIMESTAMP);
-            GLuint64 t0 = 0, t1 = 0;
-            glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
-            glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &t1);
-            if (rep > 0 && (double)(t1 - t0) * 1e-6 < best[c]) best[c] = (double)(t1 - t0) * 1e-6;
-        }
-    }
-    gfx_query_destroy(&q[0]);
-    gfx_query_destroy(&q[1]);
-    /* A path that fell back (no compute rasterizer) cannot be chosen. */
-    bool compute = best[1] < best[0] && w->raster_compute;
-    app_world_set_raster(w, compute);
-    app->raster_calib_ms[0] = best[0];
-    app->raster_calib_ms[1] = best[1];
-    gfx_timer_reset_stats();
-    core_log_info("raster auto: a frame takes %.3f ms with the hardware path, %.3f ms with compute: %s", best[0],
-                  best[1], compute ? "compute" : "hw");
-}
-
 /* ---- frame times -------------------------------------------------------------
  * What a user feels: wall-clock time from the end of one frame to the end of
  * the next, where a frame ends once at most APP_FRAMES_IN_FLIGHT frames are
@@ -350,7 +311,11 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
                                      w->stage_ms[APP_STAGE_TERRAIN];
     bool ok = app.target.fbo && app_world_make_gpu(w);
-    if (ok && s->raster == SCENE_RASTER_AUTO) calibrate_raster(&app, (float)s->dt);
+    if (ok && s->raster == SCENE_RASTER_AUTO) {
+        app_view_t view;
+        app_view_make(&view, &app.cam, app.target.w, app.target.h, 0.0f, (float)s->dt);
+        app_world_calibrate_raster(w, &view, &app.target, app.raster_calib_ms);
+    }
     gfx_count_flush();
     for (int i = 0; i < gfx_count_pass_count(); i++) {
         app.startup_draws += gfx_count_pass_total(i, GFX_COUNT_DRAWS);

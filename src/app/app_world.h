@@ -170,6 +170,12 @@ void app_world_update(app_world_t *w, float t, float dt);
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe);
 /* Switches between the hardware and the compute rasterizer at run time. */
 void app_world_set_raster(app_world_t *w, bool compute);
+/* The scene's `raster: auto`: draws `view` into `target` with each
+ * rasterizer (one warm-up draw, then the least of 5, GL timestamps around
+ * the whole draw), keeps the faster (hardware when compute fell back) and
+ * returns true for compute; ms gets the hardware and compute times. Clears
+ * the pass timers' statistics. */
+bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2]);
 /* Switches the grass mode at run time, keeping the simulation state. */
 void app_world_set_mode(app_world_t *w, scene_mode_t mode);
 void app_world_destroy(app_world_t *w);

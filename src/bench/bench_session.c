@@ -58,6 +58,12 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
                       !app_world_characters(w);
     cam_t cam;
     scene_camera_init(s, &cam);
+    if (s->raster == SCENE_RASTER_AUTO) {
+        app_view_t view;
+        double ms[2];
+        app_view_make(&view, &cam, target.w, target.h, 0.0f, s->dt);
+        app_world_calibrate_raster(w, &view, &target, ms);
+    }
     double cpu0 = 0, t_acc = 0;
     for (int f = 0; f < frames; f++) {
         if (f == warmup) {
