@@ -55,6 +55,7 @@ typedef struct bench_config_t {
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
+    bool box;                             /* the box of blade_proxies is the only collider */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
@@ -73,10 +74,12 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
     }
-    if (c->proxy != PROXY_WORLD) {
+    if (c->proxy != PROXY_WORLD || c->box) {
         /* Characters would keep their own proxy spheres (the variants could
          * not be told apart): only the box collides. A scene without
-         * colliders gets a box crossing the camera's view at t = 0. */
+         * colliders gets a box crossing the camera's view at t = 0. Its
+         * flat faces and edges are where a cube map's resolution shows (a
+         * sphere's depth varies slowly across a texel). */
         s->character_count = 0;
         scene_collider_t *k = &s->colliders[0];
         if (s->collider_count == 0) {
@@ -155,15 +158,18 @@ static int build_configs(bench_config_t *c, bool quick)
 {
     int n = 0;
     static const int cubes[] = {8, 16, 32}, subdivs[] = {2, 4, 6}, springs[] = {1, 2, 4};
-    int nc = quick ? 1 : 3, ns = quick ? 2 : 3, nk = quick ? 1 : 3;
+    /* --quick: the coarsest and the finest cube map at one mesh, so CI sees
+     * the penetration measure respond to the resolution (bench_quick.sh). */
+    int nc = quick ? 2 : 3, ns = quick ? 1 : 3, nk = quick ? 1 : 3;
     for (int a = 0; a < nc; a++)
         for (int b = 0; b < ns; b++)
             for (int k = 0; k < nk; k++) {
-                int cube = cubes[quick ? 1 : a], sub = subdivs[b], spr = springs[quick ? 1 : k];
+                int cube = cubes[quick ? 2 * a : a], sub = subdivs[quick ? 1 : b], spr = springs[quick ? 1 : k];
                 bench_config_t *x = add(c, &n, "billboard_collision", SCENE_MODE_BILLBOARD);
                 x->cube_resolution = cube;
                 x->subdiv = sub;
                 x->springs = spr;
+                x->box = true;
                 snprintf(x->label, sizeof x->label, "cube%d_sub%d_k%d", cube, sub, spr);
             }
     static const struct {
@@ -236,23 +242,67 @@ static int build_configs(bench_config_t *c, bool quick)
     return n;
 }
 
-/* One chart: a group's runs with y taken from one measure. */
+/* One chart: a group's runs with y taken from one measure and x the GPU
+ * time of the passes its knob changes (`passes`: space-separated pass
+ * names whose medians are summed; NULL: the whole frame), the frame beside
+ * it in the tables. Timing only those passes keeps a knob's cost from
+ * drowning in the run-to-run noise of the rest of the frame. */
 typedef enum bench_y_t { Y_IMAGE = 0, Y_PEN_MAX, Y_SPRING } bench_y_t;
 typedef struct bench_chart_t {
     const char *name, *group, *ylabel;
     bench_y_t y;
+    const char *passes;
 } bench_chart_t;
 
+#define BB_KNOB_PASSES "bb.cubemaps bb.collide bb.recover"
+#define DRAW_PASSES "blade.cull blade.draw blade.raster"
 static const bench_chart_t charts[] = {
-    {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX},
-    {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING},
-    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX},
-    {"blade_tessellation", "blade_tessellation", "image error (eval_image vs reference)", Y_IMAGE},
-    {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE},
-    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE},
-    {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE},
+    {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX,
+     BB_KNOB_PASSES},
+    {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING, BB_KNOB_PASSES},
+    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX, "blade.physics"},
+    {"blade_tessellation", "blade_tessellation", "image error (eval_image vs reference)", Y_IMAGE, DRAW_PASSES},
+    {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE,
+     DRAW_PASSES},
+    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE, NULL},
+    {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE, NULL},
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
+
+/* The GPU ms of a chart's knob passes in a run (the frame when the chart
+ * names none). */
+static double knob_ms(const bench_chart_t *ch, const bench_metrics_t *m)
+{
+    if (!ch->passes) return m->frame_ms;
+    double sum = 0.0;
+    for (int p = 0; p < m->pass_count; p++) {
+        const char *name = m->pass_name[p], *at = strstr(ch->passes, name);
+        size_t len = strlen(name);
+        while (at && !((at == ch->passes || at[-1] == ' ') && (at[len] == ' ' || at[len] == 0)))
+            at = strstr(at + 1, name);
+        if (at) sum += m->pass_ms[p];
+    }
+    return sum;
+}
+
+/* "GPU ms of bb.cubemaps + bb.collide + bb.recover per frame" or of the frame. */
+static void knob_label(const bench_chart_t *ch, char *out, size_t size)
+{
+    if (!ch->passes) {
+        snprintf(out, size, "GPU ms per frame");
+        return;
+    }
+    size_t n = (size_t)snprintf(out, size, "GPU ms of ");
+    for (const char *c = ch->passes; *c && n + 16 < size; c++) {
+        if (*c == ' ') {
+            n += (size_t)snprintf(out + n, size - n, " + ");
+        } else {
+            out[n++] = *c;
+            out[n] = 0;
+        }
+    }
+    snprintf(out + n, size - n, " per frame");
+}
 
 static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double image_error)
 {
@@ -266,19 +316,20 @@ static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double ima
 /* floor >= 0: a dashed line at the image error's noise floor. */
 static void write_chart(const char *out, const bench_chart_t *ch, double floor)
 {
-    char name[64], data[1200], body[4096], floor_plot[160] = "";
+    char name[64], data[1200], body[4096], floor_plot[160] = "", xlabel[160];
+    knob_label(ch, xlabel, sizeof xlabel);
     if (floor >= 0)
         snprintf(floor_plot, sizeof floor_plot, ", %.6f with lines dt 2 lw 2 lc rgb 'gray40' title 'noise floor "
                  "(reference, other placement seed)'", floor);
     snprintf(name, sizeof name, "bench_%s", ch->name);
     snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
     snprintf(body, sizeof body,
-             "set title '%s: speed vs accuracy'\nset xlabel 'GPU ms per frame'\nset ylabel '%s'\n"
+             "set title '%s: speed vs accuracy'\nset xlabel '%s'\nset ylabel '%s'\n"
              "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
              "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
              "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
              "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'%s",
-             ch->name, ch->ylabel, data, data, floor_plot);
+             ch->name, xlabel, ch->ylabel, data, data, floor_plot);
     eval_gnuplot_chart(out, name, body);
 }
 
@@ -402,15 +453,18 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         for (int i = 0; i < n; i++)
             if (strcmp(b->cfg[i].group, ch->group) == 0) {
                 idx[k] = i;
-                xs[k] = b->met[i].frame_ms;
+                xs[k] = knob_ms(ch, &b->met[i]);
                 ys[k] = y_of(ch, &b->met[i], b->err[i]);
                 k++;
             }
         eval_pareto(xs, ys, k, front);
         core_buf_t dat = {0};
-        core_buf_printf(&dat, "# gpu_ms y label pareto (y: %s)\n", ch->ylabel);
+        char xlabel[160];
+        knob_label(ch, xlabel, sizeof xlabel);
+        core_buf_printf(&dat, "# x y label pareto frame_ms (x: %s; y: %s)\n", xlabel, ch->ylabel);
         for (int j = 0; j < k; j++)
-            core_buf_printf(&dat, "%.5f %.6f %s %d\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j]);
+            core_buf_printf(&dat, "%.5f %.6f %s %d %.5f\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j],
+                            b->met[idx[j]].frame_ms);
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
         if (!core_buf_write(&dat, path)) rc = 1;
         core_buf_free(&dat);
@@ -480,8 +534,9 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
         core_buf_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
                             "renderer.\n\n");
-    core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = summed GPU pass medians per frame, y = the "
-                        "measure named on the axis; the line joins the Pareto-optimal configurations. Image error: "
+    core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = the summed GPU pass medians of the passes its "
+                        "knob changes (named under the chart; the whole frame for the modes and the switch "
+                        "distance), y = the measure named on the axis; the line joins the Pareto-optimal configurations. Image error: "
                         "the block-statistics score of docs/METRICS.md against the reference (0 = indistinguishable, "
                         "1 = one clearly visible unit); its noise floor, the reference drawn with another placement "
                         "seed, is %.4f (dashed line; 1 - SSIM of the same pair: %.4f). n/a: the measure does not "
@@ -491,10 +546,12 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
         copy_chart(dir, out, path);
-        core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\n| configuration | GPU ms | %s | "
-                            "image error | 1 - SSIM | pen. fraction | blade length err |\n"
-                            "| --- | --- | --- | --- | --- | --- | --- |\n",
-                        ch->name, ch->name, ch->name, ch->ylabel);
+        char xlabel[160];
+        knob_label(ch, xlabel, sizeof xlabel);
+        core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\nx: %s.\n\n| configuration | x (ms) | "
+                            "frame GPU ms | %s | image error | 1 - SSIM | pen. fraction | blade length err |\n"
+                            "| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                        ch->name, ch->name, ch->name, xlabel, ch->ylabel);
         for (int i = 0; i < b->n; i++) {
             if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
             const bench_metrics_t *m = &b->met[i];
@@ -504,14 +561,17 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
             cell(v[2], b->ssim_err[i], 4);
             cell(v[3], m->penetration_fraction, 4);
             cell(v[4], m->blade_length_error, 4);
-            core_buf_printf(&r, "| %s | %.3f | %s | %s | %s | %s | %s |\n", b->cfg[i].label, m->frame_ms, v[0], v[1],
-                            v[2], v[3], v[4]);
+            core_buf_printf(&r, "| %s | %.4f | %.3f | %s | %s | %s | %s | %s |\n", b->cfg[i].label, knob_ms(ch, m),
+                            m->frame_ms, v[0], v[1], v[2], v[3], v[4]);
         }
         core_buf_printf(&r, "\n");
     }
-    core_buf_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box (the scene's first collider's path, or a "
-                        "path across the view) with the scene's characters removed, and compares sphere sets with "
-                        "the box's depth cube map (cubemap_N, N^2 texels per face, rasterised on the CPU).\n\n");
+    core_buf_printf(&r, "blade_proxies and billboard_collision run a 1 x 0.4 x 0.4 m box (the scene's first "
+                        "collider's path, or a path across the view) with the scene's characters removed; "
+                        "blade_proxies compares sphere sets with the box's depth cube map (cubemap_N, N^2 texels per "
+                        "face, rasterised on the CPU), billboard_collision the billboards' cube map resolution "
+                        "(cubeN), mesh (subN) and spring iterations (kN). Billboard penetration is sampled at the "
+                        "mesh vertices, inside its edges and at its cell centres.\n\n");
     core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
                         "(src/bench/bench_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",

@@ -7,7 +7,8 @@
  *   - blades (Jahrmann & Wimmer 2017): 8 points per Bézier curve,
  *     p(t) = (1-t)^2 v0 + 2(1-t)t v1 + t^2 v2 at t = k/8, k = 1..8 (eq. 21's
  *     curve; the root t = 0 is fixed and excluded);
- *   - billboards (Orthmann et al. 2009): every non-root vertex and every
+ *   - billboards (Orthmann et al. 2009): every non-root vertex, three points
+ *     inside every mesh edge above the root row (EDGE_SAMPLES) and every
  *     cell centre of each deformed N x M mesh (the meshes pool); a billboard
  *     without a mesh is sampled on its wind pose (bb_ref_wind_vertex) at
  *     the same points, so a collision the method missed counts.
@@ -106,6 +107,19 @@ static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3]
     if (d > 0.0f) {
         acc->inside++;
         if (d > acc->max_depth) acc->max_depth = d;
+    }
+}
+
+/* EDGE_SAMPLES points inside the segment a b (a mesh edge: between two
+ * vertices a sphere or a box corner can poke through where no vertex is). */
+#define EDGE_SAMPLES 3
+static void sample_edge(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra,
+                        const float anchor[3], const float a[3], const float b[3])
+{
+    for (int i = 1; i <= EDGE_SAMPLES; i++) {
+        float t = (float)i / (float)(EDGE_SAMPLES + 1), q[3];
+        for (int k = 0; k < 3; k++) q[k] = a[k] + t * (b[k] - a[k]);
+        sample(acc, ex, n, root, reach_extra, anchor, q);
     }
 }
 
@@ -231,6 +245,8 @@ static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc,
         for (int j = 1; j < mm; j++)
             for (int c = 0; c < nn; c++) {
                 sample(acc, ex, n, p->position, reach, grid[c], grid[j * nn + c]);
+                sample_edge(acc, ex, n, p->position, reach, grid[c], grid[(j - 1) * nn + c], grid[j * nn + c]);
+                if (c + 1 < nn) sample_edge(acc, ex, n, p->position, reach, grid[c], grid[j * nn + c], grid[j * nn + c + 1]);
                 if (c + 1 < nn) {
                     vec3 q;
                     for (int k = 0; k < 3; k++)
