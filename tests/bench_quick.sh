@@ -75,5 +75,12 @@ python3 -c "import json; s=json.load(open('scenes/tiny.json')); s['raster']='aut
   || { echo "FAIL: compare of a raster auto scene exit $?"; fail=1; }
 grep -q "raster auto: a frame takes" "$out/compare_auto.log" \
   || { echo "FAIL: a bench session did not calibrate raster auto"; fail=1; }
+# grass.cube_texel raises the cube-map resolution with the largest collider:
+# a 0.4 m sphere at 0.02 m texels needs 40 per face (above the default 32).
+python3 -c "import json; s=json.load(open('scenes/tiny.json')); s['grass']['cube_texel']=0.02; json.dump(s, open('$out/texel.json','w'))"
+"$bin" --headless --scene "$out/texel.json" --frames 1 --screenshot-every 0 --out "$out/texel" 2>"$out/texel.log" >/dev/null \
+  || { echo "FAIL: cube_texel scene exit $?"; fail=1; }
+grep -q "collision cube maps: 40 texels per face" "$out/texel.log" \
+  || { echo "FAIL: grass.cube_texel did not raise the cube resolution to 40"; fail=1; }
 [ $fail = 0 ] && echo "ok: bench and compare wrote every file"
 exit $fail

@@ -133,6 +133,42 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
     return dropped;
 }
 
+/* The collision cube-map side: grass.cube_resolution, raised (grass.cube_texel
+ * > 0) until the largest collider or character, of bounding radius r, has
+ * texels 2 r / res no larger than cube_texel (large_bb in the stability
+ * suite: a 4 m ball at 16 texels had 0.5 m texels). Capped where the cube
+ * render target (res x 6 res) exceeds the GL's texture size, with a warning. */
+static int cube_resolution_for(app_world_t *w)
+{
+    const scene_grass_desc_t *g = &w->scene.grass;
+    int res = g->cube_resolution;
+    if (g->cube_texel <= 0.0f) return res;
+    float r = 0.0f;
+    for (int i = 0; i < w->colliders.count; i++) r = fmaxf(r, w->colliders.items[i].bound_radius);
+    if (w->have_chars) {
+        character_object_t co[COLLIDE_MAX_OBJECTS];
+        int n = character_set_objects(&w->chars, co, COLLIDE_MAX_OBJECTS);
+        for (int i = 0; i < n && i < COLLIDE_MAX_OBJECTS; i++) r = fmaxf(r, co[i].radius);
+    }
+    int want = (int)ceilf(2.0f * r / g->cube_texel);
+    GLint max_size = 4096;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    int cap = max_size / 6;
+    if (want > cap) {
+        core_log_warn("grass.cube_texel %g m needs %d texels per cube face for a collider of radius %g m; the GL "
+                      "allows %d: texels stay %g m",
+                      (double)g->cube_texel, want, (double)r, cap, (double)(2.0f * r / (float)cap));
+        want = cap;
+    }
+    if (want > res) {
+        core_log_info("collision cube maps: %d texels per face (grass.cube_texel %g m, largest collider radius "
+                      "%g m; grass.cube_resolution %d)",
+                      want, (double)g->cube_texel, (double)r, res);
+        res = want;
+    }
+    return res;
+}
+
 static bool make_bb(app_world_t *w)
 {
     const scene_desc_t *s = &w->scene;
@@ -156,7 +192,7 @@ static bool make_bb(app_world_t *w)
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
                                            .iterations = g->spring_iterations,
-                                           .cube_res = g->cube_resolution,
+                                           .cube_res = w->cube_res,
                                            .recover_time = g->recover_time,
                                            .max_objects = objects > 0 ? objects : 1,
                                            .wind = wind,
@@ -373,6 +409,7 @@ bool app_world_make_gpu(app_world_t *w)
         w->gpu_ready = w->have_chars;
     }
     stage_done(w, APP_STAGE_CHARACTERS, &mark);
+    w->cube_res = cube_resolution_for(w);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
@@ -437,7 +474,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
         bool ok = true;
         for (int k = 0; k < nc; k++) {
             const app_collider_t *c = &w->colliders.items[k];
-            ok = ok && collide_init_cubemap(&cubes[k], w->scene.grass.cube_resolution, (vec3){0, 0, 0}, c->bound_radius);
+            ok = ok && collide_init_cubemap(&cubes[k], w->cube_res, (vec3){0, 0, 0}, c->bound_radius);
             if (!ok) {
                 nc = k;
                 break;
@@ -455,7 +492,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
         collide_make_cube_proxy((const float *)model, (vec3){0, 0, 0}, c->bound_radius, &set->cubes[set->cube_count++]);
     }
     set->cube_texture = w->blade_cubes;
-    set->cube_res = w->scene.grass.cube_resolution;
+    set->cube_res = w->cube_res;
     for (int k = nc; k < w->colliders.count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
         const app_collider_t *c = &w->colliders.items[k];
         collide_sphere_t *s = &set->spheres[set->sphere_count++];

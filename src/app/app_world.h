@@ -130,6 +130,8 @@ typedef struct app_world_t {
     blade_gpu_t blades;
     bool have_blades;
     blade_env_t blade_env; /* winds fixed at load */
+    int cube_res;          /* collision cube-map side: grass.cube_resolution, raised by grass.cube_texel
+                              (cube_resolution_for) */
     GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
                               (blade_gpu_upload_cubes; owned by blades) */
     bool warned_spheres;

@@ -75,6 +75,9 @@ typedef struct scene_grass_desc_t {
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
     int cube_resolution;     /* collision cube-map resolution [0, 4096]; default 32 */
+    float cube_texel;        /* largest cube-map texel m [0, 10]: the resolution rises above
+                                cube_resolution until 2 r / res <= cube_texel for the largest
+                                collider; default 0 (off: cube_resolution for all) */
     float recover_time;      /* seconds to stand up after a push [0, 3600]; default 3 */
 } scene_grass_desc_t;
 /* For [min, max] pairs, [0, 0] (or absent) means default; otherwise

@@ -108,6 +108,10 @@ const scene_field_t scene_fields[] = {
       .def = {SCENE_DEFAULT_SPRING_ITERATIONS}, .doc = "billboard spring relaxation sweeps per step (eq. 6-7)"},
     {GRASS(cube_resolution), .key = "cube_resolution", .type = SCENE_FIELD_INT, .hi = 4096,
       .def = {SCENE_DEFAULT_CUBE_RESOLUTION}, .doc = "side of the collision depth cube maps (texels)"},
+    {GRASS(cube_texel), .key = "cube_texel", .type = SCENE_FIELD_FLOAT, .hi = 10,
+      .doc = "largest cube-map texel (m): the resolution rises above cube_resolution until the largest collider's "
+             "texel (2 r / resolution) is at most this (capped by the GL's texture size, with a warning); 0: off",
+      .def_doc = "0 (off)"},
     {GRASS(recover_time), .key = "recover_time", .type = SCENE_FIELD_FLOAT, .hi = 3600,
       .def = {SCENE_DEFAULT_RECOVER_TIME},
       .doc = "seconds grass takes to stand up after a push (billboards eq. 8, blade trails, hand-over)"},
