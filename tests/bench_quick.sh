@@ -23,13 +23,14 @@ rows=$(($(wc -l <"$out/bench/bench.csv") - 1))
 python3 -c "import json,sys; d=json.load(open('$out/bench/bench.json')); assert len(d['configs'])==$rows" 2>/dev/null \
   || { echo "FAIL: bench.json does not parse or disagrees with the CSV"; fail=1; }
 # The billboard penetration measure sees the cube-map resolution it charts
-# (a box collider, edges sampled): 8 texels per face leave it clearly deeper
-# than 32 (0.064 against 0.043 m on llvmpipe).
+# (a box collider, edges sampled): 8 texels per face leave the 6 x 6 meshes
+# clearly deeper than 32 (0.0108 against 0.0057 m on llvmpipe; 16 and 32
+# give the same: the box's faces are planes, exact at any resolution).
 python3 - "$out/bench/bench.csv" <<'EOF' || fail=1
 import csv, sys
 rows = {r["label"]: float(r["penetration_max"]) for r in csv.DictReader(open(sys.argv[1]))
         if r["group"] == "billboard_collision"}
-a, b = rows.get("cube8_sub4_k2"), rows.get("cube32_sub4_k2")
+a, b = rows.get("cube8_sub6_k2"), rows.get("cube32_sub6_k2")
 if a is None or b is None or not (a > 1.2 * b > 0):
     print(f"FAIL: billboard penetration does not respond to the cube map: cube8 {a}, cube32 {b}")
     sys.exit(1)

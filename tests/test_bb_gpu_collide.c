@@ -1,7 +1,8 @@
 /* test_bb_gpu_collide: the collision pass of Orthmann et al. 2009 on the GPU
  * (bb_collide.geom, eq. 1-7) against the CPU reference bb_ref_collide.
  *  A: the CPU cube map of the sphere (collide_render_sphere) uploaded with
- *     bb_field_set_cube: GPU meshes equal bb_ref_collide to float rounding.
+ *     bb_field_set_cube: GPU meshes equal bb_ref_collide to float rounding;
+ *     A2 the same for the sphere swept over the last step.
  *  B: the GPU cube map of the sphere mesh from shapes.h: its texels against
  *     the CPU ones, the GPU meshes against bb_ref_collide on the CPU cube,
  *     and no refined vertex deeper than one texel inside the analytic sphere. */
@@ -20,8 +21,9 @@ static float sphere_y(const terrain_mesh_t *t, float x, float z) { return terrai
  * against bb_ref_collide(cpu_cube, the terrain as ground), the deepest
  * penetration of vertices off the ground and the count of vertices under
  * the terrain (the sphere is sunk 0.2 m into it). */
-static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float centre[3], float radius, float time,
-                   double *max_err, double *mean_err, double *deepest, int *cpu_hits, int *below)
+static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float centre[3], const float sweep[3],
+                   float radius, float time, double *max_err, double *mean_err, double *deepest, int *cpu_hits,
+                   int *below)
 {
     int n = f->billboards, nm = f->desc.subdiv[0] * f->desc.subdiv[1];
     bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
@@ -39,7 +41,12 @@ static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float cen
         bb_point_frame(p, right, up);
         float bc[3], br = 0.5f * sqrtf(p->size[0] * p->size[0] + p->size[1] * p->size[1]) + f->desc.wind.strength;
         for (int k = 0; k < 3; k++) bc[k] = p->position[k] + up[k] * 0.5f * p->size[1];
-        float dist = sqrtf(glm_vec3_distance2(bc, (float *)centre));
+        /* the swept object's capsule (bb_collide.geom) */
+        float ss = glm_vec3_norm2((float *)sweep), t = 0.0f, near[3];
+        if (ss > 0.0f) t = glm_clamp(glm_vec3_dot((vec3){bc[0] - centre[0], bc[1] - centre[1], bc[2] - centre[2]},
+                                                  (float *)sweep) / ss, 0.0f, 1.0f);
+        for (int k = 0; k < 3; k++) near[k] = centre[k] + t * sweep[k];
+        float dist = sqrtf(glm_vec3_distance2(bc, near));
         bool hit = dist < br + radius;
         *cpu_hits += hit;
         if (p->pad[0] == BB_NO_SLOT) {
@@ -52,6 +59,8 @@ static int compare(bb_field_t *f, const collide_cubemap_t *cube, const float cen
         bb_mesh_t mesh;
         test_cpu_mesh(f, p, time, &mesh);
         bb_collide_desc_t cd = test_collide_desc(f);
+        const float sweeps[1][3] = {{sweep[0], sweep[1], sweep[2]}};
+        cd.sweep = sweeps;
         bb_ref_collide(&mesh, cube, (const mat4 *)&w2c, 1, &cd);
         const float *g = &meshes[(size_t)p->pad[0] * (size_t)nm * 4];
         for (int v = 0; v < nm; v++) {
@@ -97,7 +106,8 @@ int main(void)
     bb_field_update(&fa, test_set(&oa, 1), time, 1.0f / 30.0f);
     double max_err, mean_err, deepest;
     int cpu_hits, below;
-    int da = compare(&fa, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    const float still[3] = {0, 0, 0};
+    int da = compare(&fa, &cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     printf("A (CPU cube): %d of %d billboards deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m, "
            "%d vertices under the terrain\n",
            da, fa.billboards, cpu_hits, max_err, mean_err, deepest, below);
@@ -109,6 +119,37 @@ int main(void)
     CHECK(st.deformed == da && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] > 0);
     bb_field_destroy(&fa);
+
+    /* A2: the same sphere swept: one step ago it was 1.0 m back along x and
+     * 0.7 m along z (collide_add_object with dt > 0 gives prev_position);
+     * GPU meshes equal bb_ref_collide with the same sweep, and more
+     * billboards bend than where it stands. The sweep is diagonal on
+     * purpose: along a cube axis every swept query lands on the plane
+     * through the cube centre across the sweep, which is a texel boundary
+     * at even resolutions, and the GPU and the CPU then round to texels on
+     * either side (normals tilted +-half a texel: 0.019 m apart along the
+     * sweep without springs, 0.056 m with them, measured). */
+    bb_field_t fs;
+    CHECK(bb_field_make(&fs, &desc));
+    bb_field_set_cube(&fs, 0, &cpu_cube);
+    const float sweep[3] = {-1.0f, 0.0f, -0.7f};
+    float before[3] = {centre[0] + sweep[0], centre[1] + sweep[1], centre[2] + sweep[2]};
+    collide_object_t os[2] = {test_object(NULL, before, radius), test_object(NULL, centre, radius)};
+    static collide_set_t moving;
+    collide_begin_set(&moving);
+    collide_add_object(&moving, &os[0], 0.0f);
+    collide_begin_set(&moving);
+    collide_add_object(&moving, &os[1], 1.0f / 30.0f);
+    gfx_timer_frame_begin();
+    bb_field_update(&fs, &moving, time, 1.0f / 30.0f);
+    int ds = compare(&fs, &cpu_cube, centre, sweep, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    printf("A2 (swept 1.22 m): %d billboards deformed (CPU: %d hit; %d standing), max |dv| %.3g m, %d under the "
+           "terrain\n",
+           ds, cpu_hits, da, max_err, below);
+    CHECK(ds == cpu_hits && ds > da + 10);
+    CHECK(max_err < 1e-4);
+    CHECK(below == 0);
+    bb_field_destroy(&fs);
 
     /* Lent cube proxies keep the object's index (layers 6k .. 6k+5): object
      * 0 without a map, object 1 with one. */
@@ -164,7 +205,7 @@ int main(void)
     CHECK(far < both / 20);
     CHECK(mean_dd / both < 0.01); /* the flat facets lie up to ~1.4 cm inside the sphere */
     CHECK(max_dn < 0.15);
-    int db = compare(&fb, &cpu_cube, centre, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    int db = compare(&fb, &cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     float texel = 2 * radius / RES;
     printf("B (GPU cube): %d deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m (texel %.3g m), "
            "%d vertices under the terrain\n",

@@ -1,6 +1,6 @@
 /* test_bb_ref: the Orthmann et al. 2009 collision reference (bb_ref.c).
  * Checks collide (eq. 4-5, the cube maps are tests/test_collide.c) against
- * the analytic surface, spring relaxation (eq. 6-7),
+ * the analytic surface, the swept collision (a departure), spring relaxation (eq. 6-7),
  * recovery (eq. 8), the wind formula, a 1000-frame stress run, and the
  * bb_point_t layout against struct bb_point in shaders/common/bb.glsl. */
 #include "billboard/bb_ref.h"
@@ -54,6 +54,47 @@ static void test_collide(void)
     printf("collide: %d of 200 meshes touched, deepest vertex %.4f m inside (texel %.4f)\n", touched, worst,
            texel);
     CHECK(touched > 100);
+    collide_free_cubemap(&cube);
+}
+
+/* Swept collision: a 0.3 m sphere that moved 1.5 m along x in one step (at
+ * x = 1.5 now, at 0 before) pushes a billboard standing at x = 0.75, which
+ * only the path between the two positions meets, and leaves nothing of it
+ * inside the path's capsule; without the sweep the billboard is untouched. */
+static void test_swept(void)
+{
+    collide_cubemap_t cube;
+    float r = 0.3f;
+    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
+    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
+    float texel = 2.0f * cube.half / (float)cube.res;
+    vec3 now = {1.5f, 0.35f, 0.0f};
+    const float sweep[1][3] = {{-1.5f, 0.0f, 0.0f}};
+    for (int swept = 0; swept < 2; swept++) {
+        bb_mesh_t mesh, rest;
+        CHECK(bb_mesh_init_quad(&mesh, (vec3){0.75f, 0, 0.1f}, (vec3){0, 0, 1}, (vec3){0, 1, 0}, 0.6f, 0.5f, 5, 6));
+        CHECK(bb_mesh_init_quad(&rest, (vec3){0.75f, 0, 0.1f}, (vec3){0, 0, 1}, (vec3){0, 1, 0}, 0.6f, 0.5f, 5, 6));
+        bb_collide_desc_t d = {.sweep = swept ? sweep : NULL};
+        collide_field(&mesh, 1, &cube, now, &d);
+        double moved = 0.0, deepest = -1.0;
+        for (int v = mesh.n; v < mesh.n * mesh.m; v++) {
+            moved = fmax(moved, test_dist3(mesh.pos[v], rest.pos[v]));
+            /* distance to the capsule's axis (x in [0, 1.5] at y 0.35, z 0) */
+            float x = glm_clamp(mesh.pos[v][0], 0.0f, 1.5f);
+            float dy = mesh.pos[v][1] - 0.35f, dz = mesh.pos[v][2], dx = mesh.pos[v][0] - x;
+            deepest = fmax(deepest, r - sqrt((double)(dx * dx + dy * dy + dz * dz)));
+        }
+        printf("swept %d: billboard moved %.3f m, deepest in the capsule %.4f m (texel %.4f)\n", swept, moved,
+               deepest, texel);
+        if (swept) {
+            CHECK(moved > 0.05);
+            CHECK(deepest <= texel);
+        } else {
+            CHECK(moved == 0.0);
+        }
+        bb_mesh_free(&mesh);
+        bb_mesh_free(&rest);
+    }
     collide_free_cubemap(&cube);
 }
 
@@ -259,6 +300,7 @@ int main(void)
 {
     core_log_set_quiet(true);
     test_collide();
+    test_swept();
     test_springs();
     test_wind_recover();
     test_stress();

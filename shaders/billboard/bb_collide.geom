@@ -1,7 +1,8 @@
 #version 450
 /* bb_collide.geom: the collision pass of Orthmann et al. 2009 over the
  * billboards of COLLIDING octree leaves (transform feedback in and out). A
- * billboard whose bounding sphere meets an object's bounding sphere gets a
+ * billboard whose bounding sphere meets an object's bounding sphere (swept:
+ * the capsule between its previous and current position) gets a
  * pool slot (its refined mesh starts from the current wind pose), then every
  * non-root vertex is pushed out of the objects' depth cube maps (eq. 1-5) and
  * the springs relaxed K times (eq. 6-7) by bb_collide from common/bb.glsl,
@@ -26,6 +27,7 @@ struct bb_object {
     vec4 cube;   /* cube-space centre, half edge */
     vec4 sphere; /* world-space bounding sphere; radius < 0: skip */
     ivec4 layer; /* x: first of the object's 6 cube-array layers */
+    vec4 sweep;  /* xyz previous - current world position (swept collision; 0: none) */
 };
 layout(std140, binding = 0) uniform Objects { bb_object u_obj[BB_MAX_CUBES]; };
 
@@ -48,13 +50,18 @@ void main()
     float br = 0.5 * length(p.size) + u_wind.strength;
     bb_cube cubes[BB_MAX_CUBES];
     mat4 w2c[BB_MAX_CUBES], c2w[BB_MAX_CUBES];
+    vec3 sweep[BB_MAX_CUBES];
     int n = 0;
     for (int k = 0; k < u_count; k++) {
         vec4 s = u_obj[k].sphere;
-        if (s.w < 0.0 || distance(bc, s.xyz) >= br + s.w) continue;
+        vec3 sw = u_obj[k].sweep.xyz;
+        float ss = dot(sw, sw);
+        vec3 nearest = s.xyz + (ss > 0.0 ? sw * clamp(dot(bc - s.xyz, sw) / ss, 0.0, 1.0) : vec3(0.0));
+        if (s.w < 0.0 || distance(bc, nearest) >= br + s.w) continue;
         cubes[n] = bb_cube(u_obj[k].cube.xyz, u_obj[k].cube.w, u_res, u_obj[k].layer.x);
         w2c[n] = u_obj[k].w2c;
         c2w[n] = u_obj[k].c2w;
+        sweep[n] = sw;
         n++;
     }
     if (n > 0) {
@@ -77,7 +84,7 @@ void main()
             bb_load_mesh(slot);
         }
         if (ok) {
-            bb_collide(u_cubes, cubes, w2c, c2w, n, u_r1, u_r2, u_iterations);
+            bb_collide(u_cubes, cubes, w2c, c2w, sweep, n, u_r1, u_r2, u_iterations);
             bb_store_mesh(slot);
             p.pad0 = slot;
             p.state = BB_STATE_COLLIDING;

@@ -168,14 +168,25 @@ void bb_relax_springs(float r1, float r2, int iterations)
     }
 }
 
+/* Swept collision (bb_ref.c sweep_shift): the translation moving cube c
+ * back along its sweep s (current to previous world position) to the
+ * point of the step's path nearest p. */
+vec3 bb_sweep_shift(bb_cube cube, mat4 c2w, vec3 s, vec3 p)
+{
+    vec3 centre = (c2w * vec4(cube.centre, 1.0)).xyz;
+    float ss = dot(s, s);
+    return ss > 0.0 ? s * clamp(dot(p - centre, s) / ss, 0.0, 1.0) : vec3(0.0);
+}
+
 void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
-                  mat4 c2w[BB_MAX_CUBES], int count)
+                  mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count)
 {
     for (int v = BB_N; v < BB_N * BB_M; v++) {
         for (int c = 0; c < count; c++) {
-            vec3 q = (w2c[c] * vec4(bb_pos[v], 1.0)).xyz;
+            vec3 shift = bb_sweep_shift(cubes[c], c2w[c], sweep[c], bb_pos[v]);
+            vec3 q = (w2c[c] * vec4(bb_pos[v] - shift, 1.0)).xyz;
             vec3 o;
-            if (bb_push_out(tex, cubes[c], q, o)) bb_pos[v] = (c2w[c] * vec4(o, 1.0)).xyz;
+            if (bb_push_out(tex, cubes[c], q, o)) bb_pos[v] = (c2w[c] * vec4(o, 1.0)).xyz + shift;
         }
 #ifdef BB_GROUND
         bb_pos[v].y = max(bb_pos[v].y, terrain_height(bb_pos[v].x, bb_pos[v].z));
@@ -184,14 +195,15 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
 }
 
 /* bb_ref_collide: push-out, then K x (one relaxation sweep, push-out).
- * c2w[c] must be inverse(w2c[c]) (computed once on the CPU). */
+ * c2w[c] must be inverse(w2c[c]) (computed once on the CPU); sweep[c] as
+ * bb_collide_desc_t.sweep (0: the object where it is). */
 void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
-                mat4 c2w[BB_MAX_CUBES], int count, float r1, float r2, int iterations)
+                mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count, float r1, float r2, int iterations)
 {
-    bb_push_mesh(tex, cubes, w2c, c2w, count);
+    bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
     for (int it = 0; it < iterations; it++) {
         bb_relax_springs(r1, r2, 1);
-        bb_push_mesh(tex, cubes, w2c, c2w, count);
+        bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
     }
 }
 

@@ -514,6 +514,16 @@ void app_world_update(app_world_t *w, float t, float dt)
     app_colliders_update(&w->colliders, &w->terrain_mesh, t);
     if (w->have_chars) character_set_update(&w->chars, t, dt);
     collide_set_t *set = &w->collide;
+    if (!w->stepped && dt > 0.0f) {
+        /* The first step sweeps too: the colliders on paths stood at t - dt
+         * before it (a fast ball's first step would skip its path
+         * otherwise: stability cases tunnelling, tunnelling_bb). */
+        app_colliders_update(&w->colliders, &w->terrain_mesh, t - dt);
+        collide_begin_set(set);
+        add_objects(w, set, 0.0f);
+        app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+    }
+    w->stepped = true;
     collide_begin_set(set);
     add_objects(w, set, dt);
     if (w->have_bb) bb_field_update(&w->bb, set, t, dt);

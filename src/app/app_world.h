@@ -156,6 +156,7 @@ typedef struct app_world_t {
     const char *character_override, *clip_override;
     bool input_error; /* a model file failed to load: exit code 2 */
     bool warned_objects;
+    bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;
     double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */
 } app_world_t;

@@ -55,12 +55,13 @@ typedef struct bench_config_t {
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
-    bool box;                             /* the box of blade_proxies is the only collider */
+    bool box;                             /* proxy_box is the only collider */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
 
-/* The box that blade_proxies runs on the first collider's path. */
+/* The box that blade_proxies and billboard_collision run on the first
+ * collider's path. */
 static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
 
 static void tweak(scene_desc_t *s, void *user)
@@ -158,13 +159,14 @@ static int build_configs(bench_config_t *c, bool quick)
 {
     int n = 0;
     static const int cubes[] = {8, 16, 32}, subdivs[] = {2, 4, 6}, springs[] = {1, 2, 4};
-    /* --quick: the coarsest and the finest cube map at one mesh, so CI sees
-     * the penetration measure respond to the resolution (bench_quick.sh). */
+    /* --quick: the coarsest and the finest cube map on the 6 x 6 mesh, so
+     * CI sees the penetration measure respond to the resolution
+     * (bench_quick.sh). */
     int nc = quick ? 2 : 3, ns = quick ? 1 : 3, nk = quick ? 1 : 3;
     for (int a = 0; a < nc; a++)
         for (int b = 0; b < ns; b++)
             for (int k = 0; k < nk; k++) {
-                int cube = cubes[quick ? 2 * a : a], sub = subdivs[quick ? 1 : b], spr = springs[quick ? 1 : k];
+                int cube = cubes[quick ? 2 * a : a], sub = subdivs[quick ? 2 : b], spr = springs[quick ? 1 : k];
                 bench_config_t *x = add(c, &n, "billboard_collision", SCENE_MODE_BILLBOARD);
                 x->cube_resolution = cube;
                 x->subdiv = sub;

@@ -41,6 +41,12 @@ double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const flo
 /* Largest distance (m) of a deformed billboard mesh vertex from its wind
  * pose at the field's time; 0 when no mesh is deformed. */
 double bench_metrics_bb_offset(app_world_t *w);
+/* Trail coverage of billboards: of those rooted within `radius` of the
+ * segment a-b (xz, strictly between its ends), the share whose deformed
+ * mesh has moved a vertex more than frac x their height from the wind pose,
+ * now or in an earlier call (ever[i], billboards entries, updated). */
+double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b[2], float radius, float frac,
+                                 uint8_t *ever, long *corridor);
 
 /* Texture distortion of the deformed billboard meshes (docs/METRICS.md). */
 typedef struct bench_bb_distortion_t {

@@ -355,33 +355,67 @@ double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const flo
     return *corridor ? (double)hit / (double)*corridor : 0.0;
 }
 
+/* Largest distance of billboard p's deformed mesh (slot) from its wind pose. */
+static double bb_mesh_offset(const bb_field_t *f, const bb_point_t *p, const float (*mesh)[4])
+{
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    uint32_t slot = p->pad[0];
+    if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) return 0.0;
+    vec3 right, up;
+    bb_point_frame(p, right, up);
+    double worst = 0.0;
+    for (int j = 1; j < mm; j++)
+        for (int c = 0; c < nn; c++) {
+            float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
+            float yo = p->size[1] * (float)j / (float)(mm - 1);
+            vec3 rest, wind;
+            for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
+            bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), f->time, wind);
+            double d = glm_vec3_distance(wind, (float *)mesh[(size_t)slot * nv + j * nn + c]);
+            if (!isfinite(d)) return INFINITY;
+            if (d > worst) worst = d;
+        }
+    return worst;
+}
+
+double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b[2], float radius, float frac,
+                                 uint8_t *ever, long *corridor)
+{
+    *corridor = 0;
+    bb_field_t *f = app_world_billboards(w);
+    bb_point_t *pts;
+    float (*mesh)[4];
+    if (!f || !read_bb(f, &pts, &mesh)) return 0.0;
+    float ab[2] = {b[0] - a[0], b[1] - a[1]};
+    float ab2 = ab[0] * ab[0] + ab[1] * ab[1];
+    long hit = 0;
+    for (int i = 0; i < f->billboards; i++) {
+        const bb_point_t *p = &pts[i];
+        float ap[2] = {p->position[0] - a[0], p->position[2] - a[1]};
+        float t = (ap[0] * ab[0] + ap[1] * ab[1]) / ab2;
+        if (t <= 0.0f || t >= 1.0f) continue;
+        float dx = ap[0] - t * ab[0], dz = ap[1] - t * ab[1];
+        if (dx * dx + dz * dz > radius * radius) continue;
+        (*corridor)++;
+        ever[i] |= bb_mesh_offset(f, p, (const float (*)[4])mesh) > frac * p->size[1];
+        hit += ever[i];
+    }
+    free(pts);
+    free(mesh);
+    return *corridor ? (double)hit / (double)*corridor : 0.0;
+}
+
 double bench_metrics_bb_offset(app_world_t *w)
 {
     bb_field_t *f = app_world_billboards(w);
     if (!f) return 0;
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
     double worst = 0;
     if (read_bb(f, &pts, &mesh)) {
         for (int i = 0; i < f->billboards; i++) {
-            const bb_point_t *p = &pts[i];
-            uint32_t slot = p->pad[0];
-            if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) continue;
-            vec3 right, up;
-            bb_point_frame(p, right, up);
-            for (int j = 1; j < mm; j++)
-                for (int c = 0; c < nn; c++) {
-                    float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
-                    float yo = p->size[1] * (float)j / (float)(mm - 1);
-                    vec3 rest, wind;
-                    for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
-                    bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1),
-                                       f->time, wind);
-                    double d = glm_vec3_distance(wind, mesh[(size_t)slot * nv + j * nn + c]);
-                    if (!isfinite(d)) d = INFINITY;
-                    if (d > worst) worst = d;
-                }
+            double d = bb_mesh_offset(f, &pts[i], (const float (*)[4])mesh);
+            if (d > worst) worst = d;
         }
     }
     free(pts);

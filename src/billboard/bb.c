@@ -26,6 +26,7 @@ typedef struct bb_object_gpu_t {
     float cube[4];
     float sphere[4];
     int32_t layer[4]; /* first cube-array layer (6 * object index), 3 pad */
+    float sweep[4];   /* previous - current world position (swept collision), 0 pad */
 } bb_object_gpu_t;
 
 /* Objects one collide pass tests: the shader's BB_MAX_CUBES. */
@@ -769,6 +770,19 @@ static int cmp_int(const void *a, const void *b) { return *(const int *)a - *(co
  * runs of billboards share batches; billboards that touch nothing are left
  * out. More than `limit` objects on one billboard: the nearest (surface
  * distance) are kept and the rest counted in f->dropped. */
+/* Distance from p to an object's bound (negative inside a sphere, 0 inside
+ * a box: a swept object's capsule boxed). */
+static float bound_distance(const bb_bound_t *b, const float p[3])
+{
+    if (b->kind == BB_BOUND_SPHERE) return sqrtf(glm_vec3_distance2((float *)p, (float *)b->centre)) - b->radius;
+    float d2 = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        float e = fmaxf(fabsf(p[a] - b->centre[a]) - b->half[a], 0.0f);
+        d2 += e * e;
+    }
+    return sqrtf(d2);
+}
+
 static bool plan_split_leaf(bb_field_t *f, int limit, const bb_range_t *r, const bb_bound_t *bounds,
                             const int *objs, int n)
 {
@@ -777,8 +791,7 @@ static bool plan_split_leaf(bb_field_t *f, int limit, const bb_range_t *r, const
         float dist[BB_MAX_OBJECTS];
         int hit[BB_MAX_OBJECTS], h = 0;
         for (int q = 0; q < n; q++) {
-            const bb_bound_t *b = &bounds[objs[q]];
-            float dd = sqrtf(glm_vec3_distance2((float *)sp, (float *)b->centre)) - b->radius - sp[3];
+            float dd = bound_distance(&bounds[objs[q]], sp) - sp[3];
             if (dd < 1e-3f) dist[h] = dd, hit[h++] = objs[q];
         }
         if (h == 0) continue;
@@ -965,8 +978,20 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
         glm_mat4_inv(model, inv);
         vec3 c;
         glm_mat4_mulv3(model, (float *)objs[k].centre, 1.0f, c);
-        bounds[k] = (bb_bound_t){.kind = BB_BOUND_SPHERE, .centre = {c[0], c[1], c[2]},
-                                 .radius = objs[k].radius * max_scale(objs[k].model)};
+        float radius = objs[k].radius * max_scale(objs[k].model);
+        vec3 sweep;
+        glm_vec3_sub((float *)objs[k].prev_position, (float *)objs[k].position, sweep);
+        bounds[k] = (bb_bound_t){.kind = BB_BOUND_SPHERE, .centre = {c[0], c[1], c[2]}, .radius = radius};
+        if (glm_vec3_norm2(sweep) > 0.0f) {
+            /* the step's capsule, boxed (broad phase only) */
+            bounds[k].kind = BB_BOUND_AABB;
+            for (int a = 0; a < 3; a++) {
+                bounds[k].centre[a] = c[a] + 0.5f * sweep[a];
+                bounds[k].half[a] = 0.5f * fabsf(sweep[a]) + radius;
+            }
+        }
+        memcpy(gpu[k].sweep, sweep, sizeof sweep);
+        gpu[k].sweep[3] = 0.0f;
         memcpy(gpu[k].w2c, inv, sizeof inv);
         memcpy(gpu[k].c2w, model, sizeof model);
         memcpy(gpu[k].sphere, c, sizeof c);

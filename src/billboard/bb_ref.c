@@ -123,15 +123,33 @@ bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc)
     return d;
 }
 
+/* The translation that moves cube c back along its sweep s to the point of
+ * the step's path nearest the world point p (bb_collide_desc_t.sweep). */
+static void sweep_shift(const collide_cubemap_t *cube, const mat4 c2w, const float s[3], const float p[3], vec3 out)
+{
+    vec3 centre;
+    glm_mat4_mulv3((vec4 *)c2w, (float *)cube->centre, 1.0f, centre);
+    float ss = s[0] * s[0] + s[1] * s[1] + s[2] * s[2];
+    float t = 0.0f;
+    if (ss > 0.0f)
+        t = glm_clamp(((p[0] - centre[0]) * s[0] + (p[1] - centre[1]) * s[1] + (p[2] - centre[2]) * s[2]) / ss, 0.0f,
+                      1.0f);
+    for (int k = 0; k < 3; k++) out[k] = s[k] * t;
+}
+
 static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *w2c,
                          const mat4 *c2w, int count, const bb_collide_desc_t *d)
 {
     for (int v = mesh->n; v < mesh->n * mesh->m; v++) {
         for (int c = 0; c < count; c++) {
-            vec3 q, out;
-            glm_mat4_mulv3((vec4 *)w2c[c], mesh->pos[v], 1.0f, q);
-            if (collide_push_out(&cubes[c], q, out))
-                glm_mat4_mulv3((vec4 *)c2w[c], out, 1.0f, mesh->pos[v]);
+            vec3 shift = {0.0f, 0.0f, 0.0f}, p, q, out;
+            if (d->sweep) sweep_shift(&cubes[c], c2w[c], d->sweep[c], mesh->pos[v], shift);
+            glm_vec3_sub(mesh->pos[v], shift, p);
+            glm_mat4_mulv3((vec4 *)w2c[c], p, 1.0f, q);
+            if (collide_push_out(&cubes[c], q, out)) {
+                glm_mat4_mulv3((vec4 *)c2w[c], out, 1.0f, p);
+                glm_vec3_add(p, shift, mesh->pos[v]);
+            }
         }
         if (d->ground)
             mesh->pos[v][1] = fmaxf(mesh->pos[v][1], d->ground(d->ground_user, mesh->pos[v][0], mesh->pos[v][2]));

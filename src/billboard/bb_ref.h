@@ -50,6 +50,14 @@ typedef struct bb_collide_desc_t {
      * the field's height texture (shaders/billboard/bb_ground.glsl). */
     float (*ground)(const void *user, float x, float z);
     const void *ground_user;
+    /* Swept collision (departure from the paper; issue 17): per cube, the
+     * world translation from the object's current to its previous position
+     * (the capsule the step swept), or NULL (default): the object where it
+     * is. A vertex is tested against the object moved back along its sweep
+     * to the point nearest the vertex (t = clamp((p - c).s / s.s, 0, 1), c
+     * the cube centre in world space), so the step's whole path pushes, as
+     * blade_ref's swept spheres. GPU twin: bb_push_mesh's sweep. */
+    const float (*sweep)[3];
 } bb_collide_desc_t;
 bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
 
