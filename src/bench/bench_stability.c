@@ -581,6 +581,12 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
 
 /* ---- the suite ---------------------------------------------------------------------------- */
 
+/* Every case, or only the one named by --case. */
+static bool case_selected(const app_options_t *o, const stab_case_t *c)
+{
+    return !o->stability_case || strcmp(o->stability_case, c->name) == 0;
+}
+
 static void fmt_value(char *buf, size_t n, double v)
 {
     if (isinf(v)) snprintf(buf, n, "never");
@@ -598,10 +604,19 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
                               "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     core_buf_printf(&md, "%s", head);
     core_buf_printf(&mdr, "%s", head);
-    int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0;
+    int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0, selected = 0;
+    for (int ci = 0; ci < CASE_COUNT; ci++) selected += case_selected(o, &cases[ci]);
+    if (selected == 0) {
+        core_buf_t names = {0};
+        for (int ci = 0; ci < CASE_COUNT; ci++) core_buf_printf(&names, "%s%s", ci ? ", " : "", cases[ci].name);
+        core_log_error("--case '%s': no such stability case (%s)", o->stability_case, names.data);
+        core_buf_free(&names);
+        rc = 1;
+    }
     double t0 = plat_time();
     for (int ci = 0; ci < CASE_COUNT && rc == 0; ci++) {
         const stab_case_t *c = &cases[ci];
+        if (!case_selected(o, c)) continue;
         stab_result_t res[STAB_VALUES], first = {0};
         core_image_t shot = {0}, img = {0};
         int broke = -1;
@@ -639,7 +654,7 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
             snprintf(measured + lm, sizeof measured - lm, "%s%s%s%s", k ? ", " : "", buf, folds,
                      res[k].fails ? "*" : "");
             done++;
-            fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, CASE_COUNT * runs, c->name,
+            fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, selected * runs, c->name,
                     v, buf, res[k].fails ? "FAILS" : "ok", plat_time() - t0);
         }
         if (rc) {
@@ -665,7 +680,7 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
             core_buf_t *t = e ? &mdr : &md;
             core_buf_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
             for (int ci = 0; ci < CASE_COUNT; ci++)
-                core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
+                if (case_selected(o, &cases[ci])) core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
         }
         if (md_out) core_buf_printf(md_out, "%s", mdr.data);
         snprintf(path, sizeof path, "%s/stability.csv", out);
