@@ -47,6 +47,15 @@ for c in $cases; do
   grep -q "^$c," "$out/stability/stability.csv" || { echo "FAIL: stability.csv has no $c rows"; fail=1; }
   grep -q "^| $c |" "$out/stability/stability.md" || { echo "FAIL: stability.md has no $c row"; fail=1; }
 done
+# --case runs one case alone; an unknown name is an error
+"$bin" bench --stability --quick --quiet --case resting_blade --scene scenes/tiny.json --out "$out/one" \
+  || { echo "FAIL: bench stability --case exit $?"; fail=1; }
+others=$(awk -F, 'NR > 1 && $1 != "resting_blade"' "$out/one/stability.csv" 2>/dev/null | wc -l)
+rows=$(awk -F, 'NR > 1 && $1 == "resting_blade"' "$out/one/stability.csv" 2>/dev/null | wc -l)
+[ "$others" = 0 ] && [ "$rows" = 2 ] || { echo "FAIL: --case resting_blade wrote $rows rows of it, $others of others"; fail=1; }
+if "$bin" bench --stability --quick --quiet --case no_such_case --out "$out/none" 2>/dev/null; then
+  echo "FAIL: --case no_such_case succeeded"; fail=1
+fi
 "$bin" bench --scaling --quick --quiet --out "$out/scaling" || { echo "FAIL: bench scaling exit $?"; fail=1; }
 for f in scaling.csv scaling_field.dat scaling_field.png scaling_field.svg scaling_active.dat scaling_active.png \
          scaling_active.svg; do

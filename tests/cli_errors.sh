@@ -41,6 +41,7 @@ expect2 "--from needs --perf or --baseline" bench --from "$tmp/p.json"
 expect2 "--force needs --baseline" bench --perf "$tmp/p" --force
 expect2 "--baseline: empty path" bench --baseline ""
 expect2 "cannot be combined" bench --perf "$tmp/p" --scaling
+expect2 "--case needs .meadow bench --stability." bench --case resting_blade
 expect2 "missing.json" --headless --scene "$tmp/missing.json"
 printf '{ "seed": 1,\n  "terrain": { "size": 10,\n' >"$tmp/truncated.json"
 expect2 "truncated.json:2: unexpected end of file" --headless --scene "$tmp/truncated.json"

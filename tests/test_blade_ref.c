@@ -177,7 +177,7 @@ static void test_collision_and_step(void)
     blade_t b = upright(0, 0, 1, 0.0f, 1.0f);
     blade_sphere_t s = {.centre_radius = {0.3f, 1.0f, 0.0f, 0.5f}};
     float d[3];
-    blade_ref_collide(&b, &s, 1, BLADE_LENGTH_QUADRATURE, d);
+    blade_ref_collide(&b, &s, 1, BLADE_LENGTH_QUADRATURE, 1.0f, d);
     /* v2 pushed to (-0.2, 1, 0); m = (-0.05, 0.75, 0); m's push-out, 4x
      * (the paper), puts m exactly on the sphere before validation */
     double mx = 0.35, my = 0.25, ml = sqrt(mx * mx + my * my), pen = ml - 0.5;
@@ -200,7 +200,7 @@ static void test_collision_and_step(void)
     /* no contact: no displacement */
     b = upright(0, 0, 1, 0.0f, 1.0f);
     blade_sphere_t far = {.centre_radius = {3, 1, 0, 0.5f}};
-    blade_ref_collide(&b, &far, 1, BLADE_LENGTH_QUADRATURE, d);
+    blade_ref_collide(&b, &far, 1, BLADE_LENGTH_QUADRATURE, 1.0f, d);
     CHECK_V3(d, 0, 0, 0, 0);
 
     /* a whole step, gravity only, hand-computed in double */
@@ -228,8 +228,11 @@ static void test_collision_and_step(void)
     set.spheres[0] = s;
     b = upright(0, 0, 1, 0.0f, 2.0f);
     blade_t ref = b;
-    blade_ref_collide(&ref, &s, 1, BLADE_LENGTH_QUADRATURE, d);
-    blade_ref_validate(&ref, BLADE_LENGTH_QUADRATURE);
+    float rescale = blade_ref_validate(&ref, BLADE_LENGTH_QUADRATURE);
+    CHECK_NEAR(rescale, 1.0, 1e-6);
+    blade_ref_collide(&ref, &s, 1, BLADE_LENGTH_QUADRATURE, rescale, d);
+    blade_ref_revalidate(&ref, BLADE_LENGTH_QUADRATURE, rescale);
+    blade_ref_friction(&ref, &b, d, &set, BLADE_LENGTH_QUADRATURE);
     blade_ref_exit(&ref, &s, 1);
     eta = 0.0f;
     blade_ref_step(&b, &eta, 1, &env, &set);
@@ -325,15 +328,16 @@ static void run_invariants(int length_mode, int steps, double len_bound)
             blade_ref_wind(&c, &res, w);
             float kg = blade_ref_step_gain(c.up[3], eta[i], res.dt);
             for (int k = 0; k < 3; k++) c.v2[k] += (r[k] + g[k] + w[k]) * kg;
-            blade_ref_validate(&c, length_mode);
+            float rescale = blade_ref_validate(&c, length_mode);
             float pre = 0.0f, cm[3];
             blade_ref_midpoint(&c, cm);
             for (int k = 0; k < set.sphere_count; k++)
                 pre = fmaxf(pre, fmaxf(sphere_pen(&set.spheres[k], c.v2), sphere_pen(&set.spheres[k], cm)));
-            blade_ref_collide(&c, set.spheres, set.sphere_count, res.length_mode, d);
+            blade_ref_collide(&c, set.spheres, set.sphere_count, res.length_mode, rescale, d);
             bool hit = d[0] != 0.0f || d[1] != 0.0f || d[2] != 0.0f;
             if (hit) {
-                blade_ref_validate(&c, length_mode);
+                blade_ref_revalidate(&c, length_mode, rescale);
+                blade_ref_friction(&c, &b[i], d, &set, length_mode);
                 blade_ref_exit(&c, set.spheres, set.sphere_count);
             }
 
@@ -553,17 +557,23 @@ static void test_cull(void)
 }
 
 /* Swept collision: a ball r 0.3 m at (1, 0.3, 0) that came from (-1, 0.3, 0)
- * this step (sweep (-2, 0, 0)) is the capsule between them; an upright
- * blade at x = 0 lies in neither end sphere and is bent by the step, as it
- * would be by a ball moving 2 m over 20 steps. */
+ * this step (sweep (-2, 0, 0)) is the capsule between them, less the half
+ * of the start sphere behind x = -1 (the ball left it as the step began:
+ * points there take the current sphere); an upright blade at x = 0 lies in
+ * neither end sphere and is bent by the step, as it would be by a ball
+ * moving 2 m over 20 steps. */
 static void test_swept(void)
 {
     blade_sphere_t s = {.centre_radius = {1.0f, 0.3f, 0.0f, 0.3f}, .sweep = {-2.0f, 0.0f, 0.0f, 0.0f}}, at;
     blade_ref_sphere_at(&s, (float[3]){0.2f, 0.5f, 0.1f}, &at);
     CHECK_V3(at.centre_radius, 0.2, 0.3, 0.0, EPS);
     CHECK(at.centre_radius[3] == 0.3f);
+    blade_ref_sphere_at(&s, (float[3]){-0.9f, 0.5f, 0.1f}, &at);
+    CHECK_V3(at.centre_radius, -0.9, 0.3, 0.0, EPS);
+    blade_ref_sphere_at(&s, (float[3]){-1.1f, 0.5f, 0.1f}, &at);
+    CHECK_V3(at.centre_radius, 1.0, 0.3, 0.0, EPS);
     blade_ref_sphere_at(&s, (float[3]){-3.0f, 0.5f, 0.1f}, &at);
-    CHECK_V3(at.centre_radius, -1.0, 0.3, 0.0, EPS);
+    CHECK_V3(at.centre_radius, 1.0, 0.3, 0.0, EPS);
     blade_ref_sphere_at(&s, (float[3]){3.0f, 0.5f, 0.1f}, &at);
     CHECK_V3(at.centre_radius, 1.0, 0.3, 0.0, EPS);
     blade_sphere_t rest = {.centre_radius = {1.0f, 0.3f, 0.0f, 0.3f}};

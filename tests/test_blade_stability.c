@@ -9,8 +9,19 @@
  *             undisturbed twin (interpolated between frames) agrees with
  *             144 Hz within 5 % at 240, 60, 30 and 15 Hz, and the blades
  *             also recover at 8 and 4 Hz.
+ *   resting   a r 0.35 m ball rests 5 cm deep in a 2 x 2 m field (no wind,
+ *             60 Hz) for 8 s; over the last 0.5 s no tip moves more than
+ *             1 mm per frame relative to an undisturbed twin, at every
+ *             stiffness 2-100 (issue 17; the CPU side of `meadow bench
+ *             --stability` resting_blade). The step of commit 47b07a5,
+ *             before the resting-contact changes, gave 1.59 mm (a
+ *             period-2 cycle of one blade) at stiffness 5 and 1.13 mm at
+ *             2; without the continuous second validation alone the
+ *             1.59 mm cycle stays, without friction alone 1.10 mm at
+ *             stiffness 2.
  * Scene values as `meadow bench --stability` (app_world.c's env: gravity
- * 1 m/s^2, eta gain 1 / (0.1 h)^2, recover time 1 s, one wind wave). */
+ * 1 m/s^2, eta gain 1 / (0.1 h)^2, recover time 1 s, one wind wave, none
+ * in resting). */
 #include "blade/blade_ref.h"
 #include "test.h"
 
@@ -133,9 +144,73 @@ static void test_rate(void)
     }
 }
 
+/* Largest per-frame change of any tip's offset from its twin over the last
+ * 0.5 s of 8 s under a resting ball; *pressed: blades whose tip ends more
+ * than 5 cm from the twin's, *touching: those whose v2 or m ends within
+ * 5 mm of the ball's surface. */
+static double resting_jitter(float stiffness, int *pressed, int *touching)
+{
+    enum { N = 240 };
+    const float dt = 1.0f / 60.0f, h = 0.425f;
+    static blade_t b[N], tw[N];
+    static float eta[N], teta[N], prev[3 * N];
+    uint32_t seed = 7;
+    for (int i = 0; i < N; i++) {
+        float x = -1.0f + 2.0f * frand(&seed), z = -1.0f + 2.0f * frand(&seed);
+        float hh = 0.35f + 0.15f * frand(&seed), a = 6.2831853f * frand(&seed);
+        b[i] = tw[i] = (blade_t){{x, 0, z, a}, {x, hh, z, hh}, {x, hh, z, 0.03f}, {0, 1, 0, stiffness}};
+        eta[i] = teta[i] = 0.0f;
+    }
+    blade_env_t env = {.gravity = 1.0f, .collision_gain = 1.0f / (0.01f * h * h), .collision_decay = 1.0f, .dt = dt};
+    static collide_set_t set;
+    set.sphere_count = 1;
+    set.spheres[0] = (blade_sphere_t){.centre_radius = {0, 0.3f, 0, 0.35f}};
+    int frames = (int)lroundf(8.0f / dt), window = (int)lroundf(0.5f / dt);
+    double jitter = 0.0;
+    for (int k = 0; k < frames; k++) {
+        env.time = (float)(k + 1) * dt;
+        blade_ref_step(b, eta, N, &env, &set);
+        blade_ref_step(tw, teta, N, &env, NULL);
+        for (int i = 0; i < N; i++) {
+            float o[3] = {b[i].v2[0] - tw[i].v2[0], b[i].v2[1] - tw[i].v2[1], b[i].v2[2] - tw[i].v2[2]};
+            if (k > frames - window)
+                jitter = fmax(jitter, hypot(hypot(o[0] - prev[3 * i], o[1] - prev[3 * i + 1]), o[2] - prev[3 * i + 2]));
+            memcpy(&prev[3 * i], o, sizeof o);
+        }
+    }
+    *pressed = *touching = 0;
+    for (int i = 0; i < N; i++) {
+        *pressed += hypot(hypot(b[i].v2[0] - tw[i].v2[0], b[i].v2[1] - tw[i].v2[1]), b[i].v2[2] - tw[i].v2[2]) > 0.05;
+        float m[3];
+        blade_ref_midpoint(&b[i], m);
+        double gap = 1.0;
+        for (int k = 0; k < 2; k++) {
+            const float *p = k ? m : b[i].v2;
+            gap = fmin(gap, hypot(hypot(p[0], p[1] - 0.3), p[2]) - 0.35);
+        }
+        *touching += gap < 0.005;
+    }
+    return jitter;
+}
+
+static void test_resting(void)
+{
+    static const float stiffness[] = {100, 50, 20, 10, 5, 2};
+    for (size_t i = 0; i < sizeof stiffness / sizeof *stiffness; i++) {
+        int pressed, touching;
+        double j = resting_jitter(stiffness[i], &pressed, &touching);
+        printf("resting: stiffness %g: %d blades pressed, %d touching the ball; jitter over the last 0.5 s "
+               "%.3f mm/frame\n",
+               stiffness[i], pressed, touching, 1e3 * j);
+        CHECK(pressed >= 5 && touching >= 5);
+        CHECK_MSG(j <= 1e-3, "stiffness %g: %.2f mm per frame", stiffness[i], 1e3 * j);
+    }
+}
+
 int main(void)
 {
     test_sweep();
     test_rate();
+    test_resting();
     TEST_END();
 }

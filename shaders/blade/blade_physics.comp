@@ -3,8 +3,9 @@
  * 2017 eq. 1-13), the twin of blade_ref_step_one in src/blade/blade_ref.c:
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) k with
  * k = blade_step_gain (exact for frozen g, w),
- * validation, sphere collision, validation again and the collision exit
- * (departure, see blade_ref.h) only after a contact, and, beyond both
+ * validation, sphere collision, and only after a contact the validation of
+ * the tip mapped back through the first one's rescale, Coulomb friction and
+ * the collision exit (departures, see blade_ref.h), and, beyond both
  * papers, the same for the cube proxies of the collide set
  * (collision after the spheres, exit after the sphere exit; twins of
  * blade_ref.c's collide_cubes / exit_cubes),
@@ -161,11 +162,12 @@ void main()
     uint i = gl_GlobalInvocationID.x;
     bool live = i < u_blade_count;
     Blade b;
-    float e = 0.0;
+    float e = 0.0, rescale = 1.0;
     if (live) {
         b = blades[i];
         live = b.v1.w > 0.0;
     }
+    Blade start = b;
     if (live) {
         e = eta[i];
         vec3 r = blade_recovery(b, e);
@@ -174,18 +176,28 @@ void main()
         for (int k = 0; k < u_wind_count; k++) wi = wi + blade_wind_field(winds[k], b.v0.xyz, u_time);
         vec3 w = blade_wind(b, wi);
         b.v2.xyz = b.v2.xyz + ((r + g) + w) * blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
-        blade_validate(b, u_length_mode);
+        rescale = blade_validate(b, u_length_mode);
     }
     list_near_spheres(live, b);
     if (!live) return;
     uint ns = s_count;
     vec3 d = vec3(0.0);
-    for (uint j = 0u; j < ns; j++) d = d + blade_collide_sphere(b, spheres[s_list[j]], u_length_mode);
+    for (uint j = 0u; j < ns; j++) d = d + blade_collide_sphere(b, spheres[s_list[j]], u_length_mode, rescale);
 #ifdef BLADE_CUBES
     for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
 #endif
     if (dot(d, d) > 0.0) {
-        blade_validate(b, u_length_mode);
+        blade_revalidate(b, u_length_mode, rescale);
+        bool held = false;
+        for (uint j = 0u; j < ns && !held; j++) held = blade_sphere_holds(start, spheres[s_list[j]]);
+#ifdef BLADE_CUBES
+        for (int k = 0; k < u_cube_count && !held; k++) {
+            bb_cube c = cube_of(k);
+            held = blade_inside_cube(u_cube_tex, cubes[k], c, start.v2.xyz) ||
+                   blade_inside_cube(u_cube_tex, cubes[k], c, blade_midpoint(start));
+        }
+#endif
+        if (!held) blade_friction(b, start, d, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (uint j = 0u; j < ns; j++) {
                 BladeSphere s = spheres[s_list[j]];

@@ -1,6 +1,7 @@
 #version 450
 /* tiles_physics.comp: one Jahrmann & Wimmer 2017 step (eq. 1-13, the twin
- * of blade_physics.comp / blade_ref_step_one, collision exit included) for
+ * of blade_physics.comp / blade_ref_step_one, second validation, friction
+ * and collision exit included) for
  * the blades of the listed pool slots only (Fan et al. 2015: simulate what
  * the scene needs). Invocation i: slot list[i / B] & 0x7fffffff, blade
  * i % B. Each slot tests only the spheres of its tile's object list
@@ -38,15 +39,21 @@ void main()
     uint sbase = slot * u_slot_stride;
     int ns = int(slot_spheres[sbase]);
     float e = eta[idx];
+    Blade start = b;
     vec3 r = blade_recovery(b, e);
     vec3 g = blade_gravity(b, u_gravity, u_gravity_centre);
     vec3 w = blade_wind(b, tiles_wind_sum(b.v0.xyz));
     b.v2.xyz = b.v2.xyz + ((r + g) + w) * blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
-    blade_validate(b, u_length_mode);
+    float rescale = blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
-    for (int k = 0; k < ns; k++) d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + 1u + uint(k)]], u_length_mode);
+    for (int k = 0; k < ns; k++)
+        d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + 1u + uint(k)]], u_length_mode, rescale);
     if (dot(d, d) > 0.0) {
-        blade_validate(b, u_length_mode);
+        blade_revalidate(b, u_length_mode, rescale);
+        bool held = false;
+        for (int k = 0; k < ns && !held; k++)
+            held = blade_sphere_holds(start, spheres[slot_spheres[sbase + 1u + uint(k)]]);
+        if (!held) blade_friction(b, start, d, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (int k = 0; k < ns; k++) {
                 BladeSphere s = spheres[slot_spheres[sbase + 1u + uint(k)]];

@@ -5,8 +5,10 @@
  * function of the same name (blade_ref_x -> blade_x) statement by
  * statement, in the same order of operations; see blade_ref.h for the
  * step order and the departures from the paper (quadrature length, second
- * validation only after a contact, collision exit). Results match the C code to rounding
- * (sin/sqrt precision, fma contraction).
+ * validation only after a contact and of the tip mapped back through the
+ * first one's rescale, Coulomb friction, collision exit with its turn
+ * along the ground, the capsule less its trailing half). Results match the
+ * C code to rounding (sin/sqrt precision, fma contraction).
  *
  * Structs are std430 and vec4-packed; C mirrors in blade_ref.h:
  *   Blade       = blade_t        (64 bytes)
@@ -148,13 +150,14 @@ vec3 blade_midpoint(Blade b)
 }
 
 /* Swept collision (twin of sphere_at): the sphere of s's swept capsule
- * closest to p. */
+ * closest to p; behind the start of the sweep, the sphere where it is now. */
 BladeSphere blade_sphere_at(BladeSphere s, vec3 p)
 {
     vec3 c = s.centre_radius.xyz;
     vec3 d = s.sweep.xyz;
     float dd = dot(d, d);
-    float t = dd > 0.0 ? min(max(dot(p - c, d) / dd, 0.0), 1.0) : 0.0;
+    float t = dd > 0.0 ? max(dot(p - c, d) / dd, 0.0) : 0.0;
+    if (t > 1.0) t = 0.0;
     BladeSphere o = s;
     o.centre_radius.xyz = c + d * t;
     return o;
@@ -169,11 +172,14 @@ vec3 blade_sphere_push(BladeSphere s, vec3 p)
     return blade_safe_normalize(to_c) * pen;
 }
 
-void blade_validate(inout Blade b, int length_mode);
+float blade_validate(inout Blade b, int length_mode);
+void blade_revalidate(inout Blade b, int length_mode, float rescale);
 
-/* 4x the push-out of m, cut back to the secant root when a validated copy
- * would carry m beyond the surface (twin of midpoint_push). */
-vec3 blade_midpoint_push(Blade b, BladeSphere sweep, int length_mode)
+/* 4x the push-out of m, cut back to the secant root when a copy
+ * revalidated as the step will would carry m beyond the surface (twin of
+ * midpoint_push; rescale: what blade_validate returned before the
+ * collision). */
+vec3 blade_midpoint_push(Blade b, BladeSphere sweep, int length_mode, float rescale)
 {
     BladeSphere s = blade_sphere_at(sweep, blade_midpoint(b));
     vec3 pm = blade_sphere_push(s, blade_midpoint(b));
@@ -182,7 +188,7 @@ vec3 blade_midpoint_push(Blade b, BladeSphere sweep, int length_mode)
     if (p > 0.0) {
         Blade t = b;
         t.v2.xyz = t.v2.xyz + dm;
-        blade_validate(t, length_mode);
+        blade_revalidate(t, length_mode, rescale);
         float q = length(blade_midpoint(t) - s.centre_radius.xyz) - s.centre_radius.w;
         if (q > 0.0) dm = dm * (p / (p + q));
     }
@@ -192,11 +198,11 @@ vec3 blade_midpoint_push(Blade b, BladeSphere sweep, int length_mode)
 /* Sec. 5.2 for one sphere: v2 pushed out, then the push of the recomputed
  * midpoint (blade_midpoint_push). Updates b.v2, returns the displacement.
  * The caller loops over the spheres in order and sums the results. */
-vec3 blade_collide_sphere(inout Blade b, BladeSphere s, int length_mode)
+vec3 blade_collide_sphere(inout Blade b, BladeSphere s, int length_mode, float rescale)
 {
     vec3 dv2 = blade_sphere_push(blade_sphere_at(s, b.v2.xyz), b.v2.xyz);
     b.v2.xyz = b.v2.xyz + dv2;
-    vec3 dm = blade_midpoint_push(b, s, length_mode);
+    vec3 dm = blade_midpoint_push(b, s, length_mode, rescale);
     b.v2.xyz = b.v2.xyz + dm;
     return dv2 + dm;
 }
@@ -229,15 +235,47 @@ bool blade_inside_sphere(BladeSphere s, vec3 p)
 }
 
 /* Twin of rotate_about_root (blade_ref.c): Rodrigues rotation of v1 and v2
- * about the root, skipped when it would put v2 under the ground plane. */
-void blade_rotate_about_root(inout Blade b, vec3 v0, vec3 up, vec3 k, float cth, float sth)
+ * about the root; with ground_test, skipped (false) when it would put v2
+ * under the ground plane. */
+bool blade_rotate_about_root(inout Blade b, vec3 v0, vec3 up, vec3 k, float cth, float sth, bool ground_test)
 {
     vec3 x1 = b.v1.xyz - v0, x2 = b.v2.xyz - v0;
     vec3 r1 = (x1 * cth + cross(k, x1) * sth) + k * (dot(k, x1) * (1.0 - cth));
     vec3 r2 = (x2 * cth + cross(k, x2) * sth) + k * (dot(k, x2) * (1.0 - cth));
-    if (dot(r2, up) < 0.0) return;
+    if (ground_test && dot(r2, up) < 0.0) return false;
     b.v1.xyz = v0 + r1;
     b.v2.xyz = v0 + r2;
+    return true;
+}
+
+/* Twin of exit_rotate_up: the turn about up that brings p onto the exit
+ * distance of the sphere's cross-section at p's height. */
+void blade_exit_rotate_up(inout Blade b, BladeSphere s, vec3 p, vec3 v0, vec3 up)
+{
+    vec3 cd = s.centre_radius.xyz - v0;
+    float cu = dot(cd, up);
+    vec3 ch = cd - up * cu;
+    float dist = length(ch);
+    vec3 pd = p - v0;
+    float pu = dot(pd, up);
+    vec3 ph = pd - up * pu;
+    float rho = length(ph);
+    float r = s.centre_radius.w;
+    float r2 = r * r - (pu - cu) * (pu - cu);
+    if (dist < 1e-6 || rho < 1e-6 || r2 <= 0.0) return;
+    float rt = sqrt(r2) * BLADE_EXIT_MARGIN;
+    float ct = (rho * rho + dist * dist - rt * rt) / (2.0 * rho * dist);
+    if (ct < -1.0) return;
+    ct = min(ct, 1.0);
+    ch = ch * (1.0 / dist);
+    vec3 e = ph - ch * dot(ph, ch);
+    if (length(e) < 1e-4 * rho) e = cross(up, ch);
+    e = blade_safe_normalize(e);
+    float ca = min(max(dot(ph, ch) / rho, -1.0), 1.0);
+    float sa = sqrt(max(1.0 - ca * ca, 0.0));
+    float st = sqrt(max(1.0 - ct * ct, 0.0));
+    vec3 k = dot(cross(ch, e), up) < 0.0 ? up * -1.0 : up;
+    blade_rotate_about_root(b, v0, up, k, ct * ca + st * sa, st * ca - ct * sa, false);
 }
 
 void blade_exit_rotate(inout Blade b, BladeSphere sweep, vec3 p)
@@ -260,7 +298,7 @@ void blade_exit_rotate(inout Blade b, BladeSphere sweep, vec3 p)
     float cth = ct * ca + st * sa;
     float sth = st * ca - ct * sa;
     vec3 k = cross(ch, e);
-    blade_rotate_about_root(b, v0, up, k, cth, sth);
+    if (!blade_rotate_about_root(b, v0, up, k, cth, sth, true)) blade_exit_rotate_up(b, s, p, v0, up);
 }
 
 void blade_exit_straight(inout Blade b, BladeSphere sweep)
@@ -290,6 +328,43 @@ void blade_exit_straight(inout Blade b, BladeSphere sweep)
     }
     b.v1.xyz = v0 + u * (0.5 * h);
     b.v2.xyz = v0 + u * h;
+}
+
+/* ---- Coulomb friction (departure from the paper; blade_ref_friction) ----- */
+#define BLADE_FRICTION 0.5
+
+/* Sphere part of pose_held: does the sphere hold v2 or m (whatever the
+ * root)? */
+bool blade_sphere_holds(Blade b, BladeSphere sweep)
+{
+    vec3 m = blade_midpoint(b);
+    return blade_inside_sphere(blade_sphere_at(sweep, b.v2.xyz), b.v2.xyz) ||
+           blade_inside_sphere(blade_sphere_at(sweep, m), m);
+}
+
+float blade_length_estimate(vec3 v0, vec3 v1, vec3 v2, int mode);
+
+/* Twin of friction's second half, for a start pose no collider holds (the
+ * caller tests that): stick (start's v1, v2) or the slipping blend brought
+ * back to length h by eq. 12-13 alone. */
+void blade_friction(inout Blade b, Blade start, vec3 d, int length_mode)
+{
+    vec3 mv = b.v2.xyz - start.v2.xyz;
+    if (dot(mv, mv) <= BLADE_FRICTION * BLADE_FRICTION * dot(d, d)) {
+        b.v1.xyz = start.v1.xyz;
+        b.v2.xyz = start.v2.xyz;
+        return;
+    }
+    float slip = 1.0 - BLADE_FRICTION * length(d) / length(mv);
+    vec3 v0 = b.v0.xyz;
+    vec3 v1 = start.v1.xyz, v2 = start.v2.xyz;
+    v1 = v1 + (b.v1.xyz - v1) * slip;
+    v2 = v2 + (b.v2.xyz - v2) * slip;
+    float h = b.v1.w, len = blade_length_estimate(v0, v1, v2, length_mode);
+    if (!(len > 1e-3 * h)) return;
+    float r = h / len;
+    b.v1.xyz = v0 + (v1 - v0) * r;
+    b.v2.xyz = v0 + (v2 - v0) * r;
 }
 
 /* ---- cube-map colliders (beyond both papers; blade_ref.c cube_*) ---------- */
@@ -362,7 +437,7 @@ void blade_cube_exit_rotate(inout Blade b, sampler2DArray tex, BladeCube o, bb_c
     vec3 k = ax * (1.0 / s);
     float cth = dot(a, t) / (la * lt);
     float sth = s / (la * lt);
-    blade_rotate_about_root(b, v0, up, k, cth, sth);
+    blade_rotate_about_root(b, v0, up, k, cth, sth, true);
 }
 
 vec3 blade_cube_direction(Blade b, int i)
@@ -405,11 +480,11 @@ float blade_length_estimate(vec3 v0, vec3 v1, vec3 v2, int mode)
     return blade_speed_integral(e0, a, 0.0, ts) + blade_speed_integral(e0, a, ts, 1.0);
 }
 
-/* Eq. 9-13. */
-void blade_validate(inout Blade b, int length_mode)
+/* Eq. 9-13; returns the rescale r of eq. 13 (1 for a padding blade). */
+float blade_validate(inout Blade b, int length_mode)
 {
     float h = b.v1.w;
-    if (h <= 0.0) return;
+    if (h <= 0.0) return 1.0;
     vec3 v0 = b.v0.xyz;
     vec3 up = b.up.xyz;
     vec3 v2 = b.v2.xyz;
@@ -422,6 +497,16 @@ void blade_validate(inout Blade b, int length_mode)
     vec3 v2c = v1c + (v2 - v1) * r;
     b.v1.xyz = v1c;
     b.v2.xyz = v2c;
+    return r;
+}
+
+/* Twin of revalidate: the validation after a contact, of the tip mapped
+ * back through the rescale of the validation before the collision. */
+void blade_revalidate(inout Blade b, int length_mode, float rescale)
+{
+    vec3 v0 = b.v0.xyz;
+    b.v2.xyz = v0 + (b.v2.xyz - v0) * (1.0 / rescale);
+    blade_validate(b, length_mode);
 }
 
 /* ---- culling (blade_ref_cull_one) ---------------------------------------- */

@@ -43,6 +43,7 @@ typedef struct app_options_t {
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */
+    const char *stability_case; /* bench --stability --case NAME: only that case of the suite */
     bool scaling;             /* bench --scaling: tile simulation vs field size and active tiles only */
     bool montage;             /* --montage: end a headless run with the mode montage */
     bool video;               /* compare --video: a clip per mode (ffmpeg) */

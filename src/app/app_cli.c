@@ -34,6 +34,7 @@ void app_print_usage(void)
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
            "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
            "  --stability           bench: run the stability suite (where each method breaks)\n"
+           "  --case NAME           bench --stability: run only the case NAME (e.g. resting_blade)\n"
            "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
            "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
            "  --perf DIR            bench: bench scenes x {hw, compute}, pass medians to DIR/perf.json,\n"
@@ -120,6 +121,13 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->video = true;
         } else if (strcmp(a, "--stability") == 0) {
             o->stability = true;
+        } else if (strcmp(a, "--case") == 0) {
+            NEED_VALUE();
+            if (!*v) {
+                snprintf(err, err_size, "--case: empty case name");
+                return 2;
+            }
+            o->stability_case = v;
         } else if (strcmp(a, "--scaling") == 0) {
             o->scaling = true;
         } else if (strcmp(a, "--report") == 0) {
@@ -247,6 +255,10 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
     }
     if (o->force && !o->baseline) {
         snprintf(err, err_size, "--force needs --baseline (see --help)");
+        return 2;
+    }
+    if (o->stability_case && (o->command != APP_CMD_BENCH || !o->stability)) {
+        snprintf(err, err_size, "--case needs `meadow bench --stability` (see --help)");
         return 2;
     }
     if (perf && (o->report || o->stability || o->scaling)) {

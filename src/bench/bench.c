@@ -19,9 +19,9 @@
  *   hybrid_switch_distance, modes (mode x density x render path, hardware
  *   and compute rasterizer at 4 and 1 samples per pixel) (image error).
  * --quick runs two configurations per sweep for CI. The stability suite
- * (bench_stability.c) runs with --stability, the tile scaling sweeps
- * (bench_scaling.c) with --scaling; --report DIR runs the sweep, both of
- * those and `meadow compare`, and writes
+ * (bench_stability.c) runs with --stability (--case NAME: one case), the
+ * tile scaling sweeps (bench_scaling.c) with --scaling; --report DIR runs
+ * the sweep, both of those and `meadow compare`, and writes
  * DIR/RESULTS.md with its charts and screenshots in DIR/images. --perf and
  * --baseline (bench_perf.c, bench_baseline.c) time the bench scenes. */
 #include "bench/bench_local.h"

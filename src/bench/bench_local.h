@@ -90,8 +90,9 @@ int bench_session_run_hooks(const bench_session_desc_t *desc, const bench_sessio
 /* Stability suite: writes stability.csv, stability.md and
  * stability_<case>.png into out; with report (a folder) the screenshots
  * also go to report/images and md (when non-NULL) gets the table with links
- * relative to report. Needs a current GL context (gfx_init done). Returns 0
- * or 1. */
+ * relative to report; o->stability_case, when set, runs that case alone.
+ * Needs a current GL context (gfx_init done). Returns 0 or 1 (1 also for
+ * an unknown case name). */
 int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md, const char *report);
 
 /* Simulation cost of the tiled blade field (bench_scaling.c): one run. */

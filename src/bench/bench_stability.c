@@ -22,6 +22,7 @@
 
 #define STAB_VALUES 6
 #define RECOVERY_EPS 0.01 /* m: back within 1 cm of the undisturbed pose */
+#define JITTER_TIME 8.0f  /* s a ball rests; the jitter is measured over the last 0.5 s */
 #define PASS_FROM -2.5f
 #define PASS_TO 2.5f
 
@@ -152,8 +153,12 @@ static void setup_squeeze(scene_desc_t *s, float v)
     add_sphere(s, 0.35f, -(0.35f + 0.5f * v), 0.3f, 0);
     add_sphere(s, 0.35f, 0.35f + 0.5f * v, 0.3f, 0);
 }
+/* No wind: a pressed blade (eta near 1, stiffness x 0.1) sways with the
+ * wind ten times as far as its unpressed twin, a legitimate motion the
+ * twin's offset does not remove. */
 static void setup_resting(scene_desc_t *s, float v)
 {
+    s->wind_count = 0;
     s->grass.stiffness[0] = s->grass.stiffness[1] = v;
     add_sphere(s, 0.35f, 0, 0.3f, 0);
 }
@@ -286,7 +291,7 @@ static void judge_jitter(stab_result_t *r, const stab_result_t *first, float v, 
 {
     (void)first, (void)v, (void)dt;
     r->measure = r->jitter;
-    r->fails = r->x.nonfinite > 0 || r->jitter > 0.005;
+    r->fails = r->x.nonfinite > 0 || r->jitter > 0.001;
 }
 static void judge_spikes(stab_result_t *r, const stab_result_t *first, float v, float dt)
 {
@@ -328,7 +333,7 @@ static const stab_case_t cases[] = {
      setup_tunnel, judge_tunnel},
     {"framerate_blade", SCENE_MODE_BLADE, "simulation rate Hz (dt = 1/Hz)", {144, 60, 30, 15, 8, 4}, MEASURE_PASS,
      "recovery s", "abs(recovery - recovery at 144 Hz) > 5%, or NaN",
-     "eq. 1 is integrated exactly for the step's forces (v2 += (r + g + w) (1 - exp(-s' dt)) / s', docs/BLADES.md) and eta gains collision_gain |d|^2 (1/60 s) / dt, so the recovery does not depend on the rate; the ball is swept (a capsule per step), so at 8 and 4 Hz it still presses every blade on its path, but its last step presses the last 0.6 or 1.25 m of the path at once, sideways: at 4 Hz the recovery is 5 % longer than at 144 Hz", setup_rate, judge_rate_blade},
+     "eq. 1 is integrated exactly for the step's forces (v2 += (r + g + w) (1 - exp(-s' dt)) / s', docs/BLADES.md) and eta gains collision_gain |d|^2 (1/60 s) / dt, so the recovery does not depend on the rate; the ball is swept (a capsule per step, less the half of its start sphere it moves away from), so at 8 and 4 Hz it still presses every blade on its path, but its last step presses the last 0.6 or 1.25 m of the path at once, sideways: at 4 Hz the recovery is 4.3 % longer than at 144 Hz (5.4 % while the capsule's trailing half held the blades under the lifted ball for the whole 0.25 s step)", setup_rate, judge_rate_blade},
     {"framerate_bb", SCENE_MODE_BILLBOARD, "simulation rate Hz (dt = 1/Hz)", {144, 60, 30, 15, 8, 4},
      MEASURE_PASS, "recovery s", "abs(recovery - recovery at 144 Hz) > max(15%, 2 dt), or NaN",
      "eq. 8 recovery is a function of the remaining time, not of the step count; the ball is swept, so at 8 and 4 "
@@ -361,10 +366,19 @@ static const stab_case_t cases[] = {
      MEASURE_STATIC, "max depth m", "deepest sample > max(0.02 m, 2 x first value's), or NaN",
      "eq. 5 pushes along one face's normal per object and pass", setup_squeeze, judge_depth2},
     {"resting_blade", SCENE_MODE_BLADE, "blade stiffness (r 0.35 m ball resting, 5 cm sunk)",
-     {100, 50, 20, 10, 5, 2}, MEASURE_JITTER, "jitter m/frame", "frame-to-frame tip change > 5 mm (wind removed)",
-     "the midpoint push is cut back when validation would carry m past the sphere, which ended the contact / no-contact "
-     "alternation (10 mm at stiffness 20 before); below stiffness 10 the blades pressed at t = 0 stand up again "
-     "once eta has decayed (recover time 1 s) and are still rising in the window", setup_resting, judge_jitter},
+     {100, 50, 20, 10, 5, 2}, MEASURE_JITTER, "jitter m/frame",
+     "frame-to-frame tip change > 1 mm over the last 0.5 s of 8 s at rest (no wind), or NaN",
+     "three departures hold a resting contact still (docs/BLADES.md): the validation after a contact validates the "
+     "step's total translation once (validating the validated blade again moved v1 by about h (1 - r) for any "
+     "push, however small: period-2 contact / no-contact cycles of 1.6 mm), Coulomb friction mu 0.5 (pressed tips "
+     "and blades rooted under the ball slid along it 2-4 mm per frame for seconds) and an exit that turns a blade "
+     "lying on the ground along it (it was straightened elsewhere: 10 cm jumps every 1.5 s at stiffness 2). "
+     "llvmpipe, mm per frame at 100/50/20/10/5/2: 0/0/0.16/0.12/0.05/0.23; the physics before, same measure: "
+     "0/0.008/2.1/2.1/2.1/18.4 (last 0.5 s of 1.5 s, with wind: 0.38/0.82/2.8/2.8/11.0/6.5). The run is 8 s "
+     "because the blades pressed as the ball appears swing back smoothly once eta has decayed (3-5 mm per frame "
+     "at 1-3 s at stiffness 2, legitimate motion); other seeds at stiffness 2 can still show a blade creeping "
+     "down the ball's side under friction at 8 s (seed 7: 2.1 mm, smooth)",
+     setup_resting, judge_jitter},
     {"spikes_blade", SCENE_MODE_BLADE, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball resting)",
      {16.7f, 33, 66, 100, 250, 500}, MEASURE_STATIC, "max depth m (after a spike)",
      "NaN, length error > 5%, or deepest sample > max(0.05 m, 2 x first value's)",
@@ -555,7 +569,7 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
         r.t_exit = probe.colliders[0].path.keys[1].t;
         duration = r.t_exit + (c == &cases[0] ? 0.1f : (quick ? 2.0f : 3.5f));
     } else if (c->measure == MEASURE_JITTER) {
-        duration = quick ? 1.0f : 1.5f;
+        duration = JITTER_TIME;
     } else if (quick) {
         duration = 0.25f;
     }
@@ -603,6 +617,12 @@ static int run_one(const app_options_t *o, const stab_case_t *c, float v, bool q
 
 /* ---- the suite ---------------------------------------------------------------------------- */
 
+/* Every case, or only the one named by --case. */
+static bool case_selected(const app_options_t *o, const stab_case_t *c)
+{
+    return !o->stability_case || strcmp(o->stability_case, c->name) == 0;
+}
+
 static void fmt_value(char *buf, size_t n, double v)
 {
     if (isinf(v)) snprintf(buf, n, "never");
@@ -620,10 +640,19 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
                               "breaks at | screenshot |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     core_buf_printf(&md, "%s", head);
     core_buf_printf(&mdr, "%s", head);
-    int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0;
+    int rc = 0, runs = quick ? 2 : STAB_VALUES, done = 0, selected = 0;
+    for (int ci = 0; ci < CASE_COUNT; ci++) selected += case_selected(o, &cases[ci]);
+    if (selected == 0) {
+        core_buf_t names = {0};
+        for (int ci = 0; ci < CASE_COUNT; ci++) core_buf_printf(&names, "%s%s", ci ? ", " : "", cases[ci].name);
+        core_log_error("--case '%s': no such stability case (%s)", o->stability_case, names.data);
+        core_buf_free(&names);
+        rc = 1;
+    }
     double t0 = plat_time();
     for (int ci = 0; ci < CASE_COUNT && rc == 0; ci++) {
         const stab_case_t *c = &cases[ci];
+        if (!case_selected(o, c)) continue;
         stab_result_t res[STAB_VALUES], first = {0};
         core_image_t shot = {0}, img = {0};
         int broke = -1;
@@ -661,7 +690,7 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
             snprintf(measured + lm, sizeof measured - lm, "%s%s%s%s", k ? ", " : "", buf, folds,
                      res[k].fails ? "*" : "");
             done++;
-            fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, CASE_COUNT * runs, c->name,
+            fprintf(stderr, "\rstability: %d/%d %-16s %-8g %-12s %-5s (%.0f s)   ", done, selected * runs, c->name,
                     v, buf, res[k].fails ? "FAILS" : "ok", plat_time() - t0);
         }
         if (rc) {
@@ -687,7 +716,7 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
             core_buf_t *t = e ? &mdr : &md;
             core_buf_printf(t, "\n`*` marks a failing value. Notes per case (mechanism):\n\n");
             for (int ci = 0; ci < CASE_COUNT; ci++)
-                core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
+                if (case_selected(o, &cases[ci])) core_buf_printf(t, "- **%s**: %s.\n", cases[ci].name, cases[ci].note);
         }
         if (md_out) core_buf_printf(md_out, "%s", mdr.data);
         snprintf(path, sizeof path, "%s/stability.csv", out);

@@ -181,13 +181,20 @@ static v3 sphere_push(const blade_sphere_t *s, v3 p)
 
 /* The sphere of s's swept capsule closest to p: the centre moves to the
  * closest point of the segment [c, c + sweep] (the sweep's own sphere
- * when it is zero). */
+ * when it is zero). A point behind the start c + sweep (on the side the
+ * sphere moved away from) takes the sphere where it is now: the sphere
+ * left that region as the step began, so a blade recovering into it
+ * during the step is not held there. Holding it made a low rate hold
+ * blades one step longer behind a moving sphere: the ball lifted off the
+ * grass in framerate_blade kept the blades under it pressed for the whole
+ * 0.25 s step at 4 Hz (6.9 ms at 144 Hz). */
 static blade_sphere_t sphere_at(const blade_sphere_t *s, v3 p)
 {
     v3 c = v3_load(s->centre_radius);
     v3 d = v3_load(s->sweep);
     float dd = v3_dot(d, d);
-    float t = dd > 0.0f ? fminf(fmaxf(v3_dot(v3_sub(p, c), d) / dd, 0.0f), 1.0f) : 0.0f;
+    float t = dd > 0.0f ? fmaxf(v3_dot(v3_sub(p, c), d) / dd, 0.0f) : 0.0f;
+    if (t > 1.0f) t = 0.0f;
     blade_sphere_t o = *s;
     v3_store(o.centre_radius, v3_add(c, v3_scale(d, t)));
     return o;
@@ -198,17 +205,19 @@ void blade_ref_sphere_at(const blade_sphere_t *s, const float p[3], blade_sphere
     *out = sphere_at(s, v3_load(p));
 }
 
-static void validate(blade_t *b, int length_mode);
+static float validate(blade_t *b, int length_mode);
+static void revalidate(blade_t *b, int length_mode, float rescale);
 
 /* Departure from the paper: the 4x midpoint push assumes v1 stays put,
  * but the validation that follows places v1 anew from the tip (eq. 10-11),
  * which can carry m well beyond the surface (measured: 8 mm on blades
  * pressed under a resting ball, so contact and no contact alternated every
  * step, with eta, and tips jittered 9 mm per frame). The push dm is tried
- * on a validated copy; when that m ends q > 0 outside, dm is scaled by
- * p / (p + q) (p the penetration before the push), the secant root of the
- * distance along the push. An undershoot is left to the exit. */
-static v3 midpoint_push(const blade_t *b, const blade_sphere_t *sweep, int length_mode)
+ * on a copy validated as the step will (revalidate, with the rescale of the
+ * validation before the collision); when that m ends q > 0 outside, dm is
+ * scaled by p / (p + q) (p the penetration before the push), the secant
+ * root of the distance along the push. An undershoot is left to the exit. */
+static v3 midpoint_push(const blade_t *b, const blade_sphere_t *sweep, int length_mode, float rescale)
 {
     blade_sphere_t at = sphere_at(sweep, midpoint(b));
     const blade_sphere_t *s = &at;
@@ -218,30 +227,31 @@ static v3 midpoint_push(const blade_t *b, const blade_sphere_t *sweep, int lengt
     if (p > 0.0f) {
         blade_t t = *b;
         v3_store(t.v2, v3_add(v3_load(t.v2), dm));
-        validate(&t, length_mode);
+        revalidate(&t, length_mode, rescale);
         float q = v3_len(v3_sub(midpoint(&t), v3_load(s->centre_radius))) - s->centre_radius[3];
         if (q > 0.0f) dm = v3_scale(dm, p / (p + q));
     }
     return dm;
 }
 
-static v3 collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode)
+static v3 collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float rescale)
 {
     v3 d = v3_make(0.0f, 0.0f, 0.0f);
     for (int i = 0; i < count; i++) {
         blade_sphere_t at = sphere_at(&spheres[i], v3_load(b->v2));
         v3 dv2 = sphere_push(&at, v3_load(b->v2));
         v3_store(b->v2, v3_add(v3_load(b->v2), dv2));
-        v3 dm = midpoint_push(b, &spheres[i], length_mode);
+        v3 dm = midpoint_push(b, &spheres[i], length_mode, rescale);
         v3_store(b->v2, v3_add(v3_load(b->v2), dm));
         d = v3_add(d, v3_add(dv2, dm));
     }
     return d;
 }
 
-void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float d[3])
+void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float rescale,
+                       float d[3])
 {
-    v3_store(d, collide(b, spheres, count, length_mode));
+    v3_store(d, collide(b, spheres, count, length_mode, rescale));
 }
 
 /* Departure from the paper (see blade_ref.h). Sphere s seen from the root:
@@ -274,26 +284,70 @@ static bool inside_sphere(const blade_sphere_t *s, v3 p)
 }
 
 /* Rodrigues rotation of v1 and v2 about the root v0 (axis k, cos cth, sin
- * sth): the length is kept exactly. Skipped when it would put v2 under the
- * ground plane. */
-static void rotate_about_root(blade_t *b, v3 v0, v3 up, v3 k, float cth, float sth)
+ * sth): the length is kept exactly. With ground_test, skipped (false) when
+ * it would put v2 under the ground plane. */
+static bool rotate_about_root(blade_t *b, v3 v0, v3 up, v3 k, float cth, float sth, bool ground_test)
 {
     v3 x1 = v3_sub(v3_load(b->v1), v0), x2 = v3_sub(v3_load(b->v2), v0);
     v3 r1 = v3_add(v3_add(v3_scale(x1, cth), v3_scale(v3_cross(k, x1), sth)),
                    v3_scale(k, v3_dot(k, x1) * (1.0f - cth)));
     v3 r2 = v3_add(v3_add(v3_scale(x2, cth), v3_scale(v3_cross(k, x2), sth)),
                    v3_scale(k, v3_dot(k, x2) * (1.0f - cth)));
-    if (v3_dot(r2, up) < 0.0f) return;
+    if (ground_test && v3_dot(r2, up) < 0.0f) return false;
     v3_store(b->v1, v3_add(v0, r1));
     v3_store(b->v2, v3_add(v0, r2));
+    return true;
+}
+
+/* Departure from the paper: exit_rotate's fallback when its rotation would
+ * put v2 under the ground plane (a blade lying on the ground against a
+ * sphere sunk into it, whose exit direction points into the ground): the
+ * rotation about up (the root's normal) that brings p onto the exit
+ * distance of the sphere's cross-section at p's height, the same law of
+ * cosines in the ground plane. It keeps every height above the ground (so
+ * it is not tested: a tip lying on the ground would fail the test on
+ * rounding alone), and the blade turns along the ground by the small
+ * angle a small penetration needs; before, it was left inside and
+ * exit_straight made it a straight blade elsewhere (measured under a
+ * resting ball at stiffness 2: jumps of 10 cm, every 1.5 s). Skipped when
+ * the root's vertical line is on the cross-section's centre or no turn
+ * clears p. Where the cross-section is small the turn is ill-conditioned:
+ * one step from the same state, CPU and GPU differ by up to 6e-5 m. */
+static void exit_rotate_up(blade_t *b, const blade_sphere_t *s, v3 p, v3 v0, v3 up)
+{
+    v3 cd = v3_sub(v3_load(s->centre_radius), v0);
+    float cu = v3_dot(cd, up);
+    v3 ch = v3_sub(cd, v3_scale(up, cu));
+    float dist = v3_len(ch);
+    v3 pd = v3_sub(p, v0);
+    float pu = v3_dot(pd, up);
+    v3 ph = v3_sub(pd, v3_scale(up, pu));
+    float rho = v3_len(ph);
+    float r = s->centre_radius[3];
+    float r2 = r * r - (pu - cu) * (pu - cu);
+    if (dist < 1e-6f || rho < 1e-6f || r2 <= 0.0f) return;
+    float rt = sqrtf(r2) * BLADE_EXIT_MARGIN;
+    float ct = (rho * rho + dist * dist - rt * rt) / (2.0f * rho * dist);
+    if (ct < -1.0f) return;
+    ct = fminf(ct, 1.0f);
+    ch = v3_scale(ch, 1.0f / dist);
+    v3 e = v3_sub(ph, v3_scale(ch, v3_dot(ph, ch)));
+    if (v3_len(e) < 1e-4f * rho) e = v3_cross(up, ch);
+    e = v3_safe_normalize(e);
+    float ca = fminf(fmaxf(v3_dot(ph, ch) / rho, -1.0f), 1.0f);
+    float sa = sqrtf(fmaxf(1.0f - ca * ca, 0.0f));
+    float st = sqrtf(fmaxf(1.0f - ct * ct, 0.0f));
+    v3 k = v3_dot(v3_cross(ch, e), up) < 0.0f ? v3_scale(up, -1.0f) : up;
+    rotate_about_root(b, v0, up, k, ct * ca + st * sa, st * ca - ct * sa, false);
 }
 
 /* Rigid rotation of v1 and v2 about v0, in the plane of ch and (p - v0),
  * that brings p (v2 or m) onto the exit distance. The rotation keeps the
  * curve length; it is built from cosines and sines by algebra only (no
  * trig), so the GLSL twin matches up to sqrt rounding. Skipped when p is
- * outside, when the root is inside s, and when it would put v2 under the
- * ground plane (exit_straight handles those contacts). */
+ * outside and when the root is inside s; when it would put v2 under the
+ * ground plane, the rotation about up of exit_rotate_up replaces it
+ * (exit_straight handles the contacts neither clears). */
 static void exit_rotate(blade_t *b, const blade_sphere_t *sweep, v3 p)
 {
     blade_sphere_t at = sphere_at(sweep, p);
@@ -315,7 +369,7 @@ static void exit_rotate(blade_t *b, const blade_sphere_t *sweep, v3 p)
     float cth = ct * ca + st * sa;
     float sth = st * ca - ct * sa;
     v3 k = v3_cross(ch, e);
-    rotate_about_root(b, v0, up, k, cth, sth);
+    if (!rotate_about_root(b, v0, up, k, cth, sth, true)) exit_rotate_up(b, s, p, v0, up);
 }
 
 /* Last resort for a sphere that still holds v2 or m (root outside): the
@@ -472,7 +526,7 @@ static void cube_exit_rotate(blade_t *b, const collide_cube_proxy_t *o, const co
     v3 k = v3_scale(ax, 1.0f / s);
     float cth = v3_dot(a, t) / (la * lt);
     float sth = s / (la * lt);
-    rotate_about_root(b, v0, up, k, cth, sth);
+    rotate_about_root(b, v0, up, k, cth, sth, true);
 }
 
 /* Candidate direction i of the straight fallback: 0 = up, then rings of 8
@@ -573,10 +627,10 @@ float blade_ref_length_estimate(const blade_t *b, int mode)
     return length_estimate(v3_load(b->v0), v3_load(b->v1), v3_load(b->v2), mode);
 }
 
-static void validate(blade_t *b, int length_mode)
+static float validate(blade_t *b, int length_mode)
 {
     float h = b->v1[3];
-    if (h <= 0.0f) return;
+    if (h <= 0.0f) return 1.0f;
     v3 v0 = v3_load(b->v0);
     v3 up = v3_load(b->up);
     v3 v2 = v3_load(b->v2);
@@ -594,11 +648,35 @@ static void validate(blade_t *b, int length_mode)
     v3 v2c = v3_add(v1c, v3_scale(v3_sub(v2, v1), r));
     v3_store(b->v1, v1c);
     v3_store(b->v2, v2c);
+    return r;
 }
 
-void blade_ref_validate(blade_t *b, int length_mode)
+float blade_ref_validate(blade_t *b, int length_mode)
 {
+    return validate(b, length_mode);
+}
+
+/* Departure from the paper: the validation after a contact. Eq. 11 places
+ * v1 from the tip's projection before eq. 13 rescales the tip by r, so
+ * validating a validated blade moves v1 by about h (1 - r) (2 cm for a
+ * 3 % rescale): a push of 0.004 mm, the last of a resting contact, moved
+ * the tip 1.6 mm, the next step had no contact and moved it back (period-2
+ * jitter under a resting ball). The tip is first mapped back through the
+ * rescale r of the validation before the collision (a uniform scaling
+ * about v0), so the step validates the tip of the forces plus d / r once,
+ * as the paper validates its total translation once, and a push that
+ * tends to zero gives the blade of the first validation. */
+static void revalidate(blade_t *b, int length_mode, float rescale)
+{
+    v3 v0 = v3_load(b->v0);
+    v3_store(b->v2, v3_add(v0, v3_scale(v3_sub(v3_load(b->v2), v0), 1.0f / rescale)));
     validate(b, length_mode);
+}
+
+void blade_ref_revalidate(blade_t *b, int length_mode, float rescale)
+{
+    if (b->v1[3] <= 0.0f) return;
+    revalidate(b, length_mode, rescale);
 }
 
 /* Departure from the paper: v2 += (r + g + w) dt (explicit Euler) swings
@@ -621,10 +699,59 @@ float blade_ref_step_gain(float stiffness, float eta, float dt)
     return step_gain(stiffness * fmaxf(1.0f - eta, 0.1f), dt);
 }
 
+/* Whether a collider of c holds v2 or m of b (spheres: the capsule's
+ * sphere nearest each point; colliders holding the root count too). */
+static bool pose_held(const blade_t *b, const collide_set_t *c)
+{
+    v3 p[2] = {v3_load(b->v2), midpoint(b)};
+    for (int k = 0; k < 2; k++) {
+        for (int i = 0; i < c->sphere_count; i++) {
+            blade_sphere_t at = sphere_at(&c->spheres[i], p[k]);
+            if (inside_sphere(&at, p[k])) return true;
+        }
+        for (int i = 0; i < c->cube_count; i++)
+            if (inside_cube(&c->cubes[i], &c->cube_maps[i], p[k])) return true;
+    }
+    return false;
+}
+
+/* Departure from the paper: Coulomb friction at contacts (see blade_ref.h).
+ * The slipping blend is brought back to length h by eq. 12-13 alone (a
+ * uniform scaling about v0, which leaves a blade of length h as it is). */
+static void friction(blade_t *b, const blade_t *start, v3 d, const collide_set_t *c, int length_mode)
+{
+    if (pose_held(start, c)) return;
+    v3 mv = v3_sub(v3_load(b->v2), v3_load(start->v2));
+    if (v3_dot(mv, mv) <= BLADE_FRICTION * BLADE_FRICTION * v3_dot(d, d)) {
+        memcpy(b->v1, start->v1, sizeof b->v1);
+        memcpy(b->v2, start->v2, sizeof b->v2);
+        return;
+    }
+    float slip = 1.0f - BLADE_FRICTION * v3_len(d) / v3_len(mv);
+    v3 v0 = v3_load(b->v0);
+    v3 v1 = v3_load(start->v1), v2 = v3_load(start->v2);
+    v1 = v3_add(v1, v3_scale(v3_sub(v3_load(b->v1), v1), slip));
+    v2 = v3_add(v2, v3_scale(v3_sub(v3_load(b->v2), v2), slip));
+    float h = b->v1[3], len = length_estimate(v0, v1, v2, length_mode);
+    if (!(len > 1e-3f * h)) return;
+    float r = h / len;
+    v3_store(b->v1, v3_add(v0, v3_scale(v3_sub(v1, v0), r)));
+    v3_store(b->v2, v3_add(v0, v3_scale(v3_sub(v2, v0), r)));
+}
+
+void blade_ref_friction(blade_t *b, const blade_t *start, const float d[3], const collide_set_t *colliders,
+                        int length_mode)
+{
+    static const collide_set_t none;
+    if (b->v1[3] <= 0.0f) return;
+    friction(b, start, v3_load(d), colliders ? colliders : &none, length_mode);
+}
+
 void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const collide_set_t *colliders)
 {
     float h = b->v1[3];
     if (h <= 0.0f) return;
+    const blade_t start = *b;
     static const collide_set_t none;
     const collide_set_t *c = colliders ? colliders : &none;
     assert(c->cube_count == 0 || c->cube_maps);
@@ -634,11 +761,12 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const co
     v3 w = wind(b, env);
     float k = step_gain(b->up[3] * fmaxf(1.0f - *eta, 0.1f), dt);
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), k)));
-    blade_ref_validate(b, env->length_mode);
-    v3 d = collide(b, c->spheres, c->sphere_count, env->length_mode);
+    float rescale = validate(b, env->length_mode);
+    v3 d = collide(b, c->spheres, c->sphere_count, env->length_mode, rescale);
     d = v3_add(d, collide_cubes(b, c->cubes, c->cube_maps, c->cube_count));
     if (v3_dot(d, d) > 0.0f) {
-        blade_ref_validate(b, env->length_mode);
+        revalidate(b, env->length_mode, rescale);
+        friction(b, &start, d, c, env->length_mode);
         exit_spheres(b, c->spheres, c->sphere_count);
         exit_cubes(b, c->cubes, c->cube_maps, c->cube_count);
     }

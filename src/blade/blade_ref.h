@@ -15,16 +15,22 @@
  *      of eq. 1 with g and w frozen over the step, where the paper's
  *      k = dt (explicit Euler) overshoots the rest pose for s' dt > 1 and
  *      swings forever for s' dt >= 2 (departure; docs/BLADES.md).
- *   4. validation (eq. 9-13) so v1 and the curve are valid for step 5.
+ *   4. validation (eq. 9-13) so v1 and the curve are valid for step 5; it
+ *      rescales the tip about v0 by r (eq. 13).
  *   5. collision: v2 += d, detected on v2 and on the midpoint m of the valid
  *      curve of step 4 (the paper tests m of a curve whose v1 still belongs
  *      to the previous position; validating first makes m the real midpoint).
  *      m's 4x push is cut back when the validated result would carry m
  *      beyond the surface (secant step, blade_ref.c midpoint_push).
- *   6. validation (eq. 9-13) again, only when step 5 moved v2 (the
- *      validation is not idempotent: eq. 11 places v1 from the rescaled
- *      tip, so a second pass would change a blade nothing touched).
- *   6b. only after a contact: blade_ref_exit (departure, below).
+ *   6. only when step 5 moved v2: the validation again, of the tip mapped
+ *      back through step 4's rescale (blade_ref_revalidate: the step
+ *      validates the tip of step 3 plus d / r once, as the paper validates
+ *      its total translation once). The validation is not idempotent (eq. 11
+ *      places v1 from the tip before eq. 13 rescales it): validating the
+ *      validated blade again moved it by about h (1 - r) for any push,
+ *      however small, and a resting contact alternated between the two.
+ *   6b. only after a contact: Coulomb friction (blade_ref_friction,
+ *      departure, below), then blade_ref_exit (departure, below).
  *   7. eta += k d.d (BLADE_ETA_DT / dt), then eta = clamp(eta - a dt, 0, 1).
  *      The paper adds k d.d per step; the push d of a collider moving or
  *      pressing at a given speed shrinks with dt, so d.d / dt is what is
@@ -35,7 +41,8 @@
  *      bound (measured: one strong push added ~90 and flattened blades never
  *      stood up again).
  * The paper's total translation is delta = (r + g + w) dt + d; here it is
- * applied in two parts with a validation in between (steps 3 and 5).
+ * applied in two parts with a validation in between (steps 3 and 5), and
+ * after a contact step 6 validates their sum.
  *
  * Departure from the paper: the curve length used by eq. 13 is, by default,
  * the arc length by 3-point Gauss-Legendre quadrature on each side of the
@@ -57,6 +64,27 @@
  * length, then a straight-blade fallback that also keeps v2 above the
  * ground). After it v2 and m are outside every sphere that does not contain
  * the root (spheres overlapping each other can still trap a point).
+ *
+ * Departure from the paper, Coulomb friction: a push d only cancels the
+ * normal part of the step, so a blade pressed against a resting sphere by
+ * its recovery (or rooted under it) slid along the surface every step
+ * (measured under a resting ball: 2-4 mm per frame for seconds at
+ * stiffness 5-50, with eta held where |d| is 5.5 mm per step by the
+ * program's gain at 60 Hz). After a contact,
+ * when the pose at the start of the step has v2 and m outside every
+ * collider (also those holding the root: a blade rooted under a ball that
+ * rolls onto it is crushed, not held; with the exit's exception the
+ * blade_trail golden's flattened tips stood at 0.26 h instead of 0.04 h),
+ * the step's motion is cut as positional Coulomb friction with
+ * one coefficient mu = BLADE_FRICTION (the friction of position-based
+ * dynamics, Macklin et al. 2014): a tip that would move by |mv| <= mu |d|
+ * keeps the start pose (stick); otherwise v1 and v2 keep the fraction
+ * 1 - mu |d| / |mv| of their motion from the start pose (slip, continuous
+ * at the threshold), rescaled about v0 to length h by eq. 12-13. The
+ * exit runs after it, so nothing stays inside. eta still gains d.d, so it
+ * settles as before. A collider moving into the blade makes the start pose
+ * invalid, so it pushes as before; friction is taken in the world, not
+ * relative to a moving collider (a rolling ball does not drag blades).
  *
  * Beyond both papers, cube-map colliders: besides spheres, a blade can
  * collide against the depth cube maps of the billboard model (Orthmann et
@@ -187,31 +215,58 @@ void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3]);
 /* Sec. 5.2 collision, spheres in order (residual: see the banner). Per sphere: v2 is pushed out of the
  * sphere along (v2 - c); then m = 1/4 v0 + 1/2 v1 + 1/4 v2 is recomputed and
  * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter),
- * scaled by p / (p + q) when a validated copy (length_mode) would leave m
- * q > 0 outside (p: m's penetration before the push).
+ * scaled by p / (p + q) when a copy revalidated as the step will
+ * (blade_ref_revalidate with rescale, the r returned by the validation
+ * before the collision; length_mode) would leave m q > 0 outside (p: m's
+ * penetration before the push).
  * Applies the displacement to b->v2 and writes the total into d.
  * Swept collision (beyond the paper): a sphere with a sweep is the capsule
  * between its previous and current centre; every test of a point p (the
- * push of v2, of m, the exit rotations of v2 and m, and the straight exit,
- * at m) takes the sphere of that capsule closest to p (blade_ref_sphere_at),
- * so a sphere moving more than its diameter per step still bends every
- * blade along its path instead of tunnelling past them. */
+ * push of v2, of m, the exit rotations of v2 and m, the straight exit, at
+ * m, and friction's test of the start pose) takes the sphere of that
+ * capsule closest to p (blade_ref_sphere_at), so a sphere moving more than
+ * its diameter per step still bends every blade along its path instead of
+ * tunnelling past them. A point behind the previous centre (on the side
+ * the sphere moved away from) takes the current sphere: the sphere left
+ * that region as the step began (departure from the plain capsule; it held
+ * blades one whole step longer behind a sphere at low rates). */
 void blade_ref_sphere_at(const blade_sphere_t *s, const float p[3], blade_sphere_t *out);
-void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float d[3]);
+void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float rescale,
+                       float d[3]);
 
 /* Departure from the paper (collision exit, see the banner); no-op for a
  * padding blade. Rounds: BLADE_EXIT_ROUNDS passes over the spheres in
  * order, each moving first v2 then m onto the distance r * BLADE_EXIT_MARGIN
  * from the centre by a rigid rotation of v1 and v2 about v0 in the plane of
  * (c - v0) and (p - v0); a rotation that would put v2 under the ground plane
- * is skipped. Then, per sphere still holding v2 or m, the blade is made the
- * straight segment v0 + u [0, h] (length exactly h) along the direction
- * nearest the tip that clears both points, on the ground plane when needed.
+ * is replaced by the rotation about up that brings the point onto the exit
+ * distance of the sphere's cross-section at its height (the blade turns
+ * along the ground; skipped when no turn clears it). Then, per sphere
+ * still holding v2 or m, the blade is made the straight segment
+ * v0 + u [0, h] (length exactly h) along the direction nearest the tip that
+ * clears both points, on the ground plane when needed.
  * Spheres that contain the root are skipped. eta is not changed (d stays
  * the paper's push). */
 #define BLADE_EXIT_ROUNDS 3
 #define BLADE_EXIT_MARGIN 1.0001f
 void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
+
+/* Coulomb friction after a contact (departure, see the banner), applied
+ * after the revalidation and before the exit. Skipped when a sphere or cube
+ * proxy of colliders holds start's v2 or m (wherever the root is).
+ * Else, with mv = b.v2 - start.v2: |mv| <= BLADE_FRICTION |d|: b takes
+ * start's v1 and v2; otherwise v1, v2 = start + (1 - BLADE_FRICTION |d| /
+ * |mv|) (b - start), rescaled about v0 so length_estimate is h (left as b
+ * when that length is under 1e-3 h). start: the blade at the start of the
+ * step; d: the step's total push. No-op for a padding blade. mu = 0.5,
+ * measured under a resting ball (no wind, 60 Hz, bench resting_blade,
+ * worst tip change per frame at 7.5-8 s, stiffness 20/10/5/2, seeds 2, 3,
+ * 5, 7, 8): 0.3 leaves 0.25/0.74/2.7/3.6 mm, 0.5 0.40/0.33/0.27/2.1 mm,
+ * 1.0 0.007/0.007/0.007/2.4 mm (at stiffness 2 a blade leaning on the
+ * ball creeps down its side at any mu). */
+#define BLADE_FRICTION 0.5f
+void blade_ref_friction(blade_t *b, const blade_t *start, const float d[3], const collide_set_t *colliders,
+                        int length_mode);
 
 /* Cube-map collision of one blade (see the banner): every object's push of
  * v2 and then of m, applied to b->v2; the total goes into d. */
@@ -228,9 +283,15 @@ bool blade_ref_inside_cube(const collide_cube_proxy_t *object, const collide_cub
 float blade_ref_length_estimate(const blade_t *b, int length_mode);
 
 /* Eq. 9-13: tip above the ground plane of the root, v1 placed from the
- * projected length, then v1 and v2 rescaled about v0 so the curve length
- * (blade_ref_length_estimate) equals the height. No-op for height <= 0. */
-void blade_ref_validate(blade_t *b, int length_mode);
+ * projected length, then v1 and v2 rescaled about v0 by r so the curve
+ * length (blade_ref_length_estimate) equals the height. Returns r. No-op
+ * for height <= 0 (returns 1). */
+float blade_ref_validate(blade_t *b, int length_mode);
+
+/* The validation after a contact (step 6, departure): v2 = v0 + (v2 - v0) /
+ * rescale (undoing the rescale r that blade_ref_validate returned before the
+ * collision), then blade_ref_validate. No-op for height <= 0. */
+void blade_ref_revalidate(blade_t *b, int length_mode, float rescale);
 
 /* Step 3's gain k = (1 - exp(-s' dt)) / s', s' = stiffness max(1 - eta, 0.1);
  * dt (1 - s' dt / 2) below s' dt = 1e-3. 0 < k <= dt, and k s' < 1 for
