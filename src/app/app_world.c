@@ -513,7 +513,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
     if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
-    float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
+    float fade_lo = w->scene.grass.switch_distance - APP_SWITCH_FADE;
+    float fade_hi = w->scene.grass.switch_distance + APP_SWITCH_FADE;
     glm_vec3_copy((float *)v->camera, w->camera);
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
     /* raster_begin takes the opaque depth (also read by occlusion culling). */
