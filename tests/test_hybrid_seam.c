@@ -21,7 +21,7 @@
 #include <string.h>
 
 /* The hybrid frame's colour and coverage steps may not exceed these. */
-#define SEAM_DELTA_E 3.5
+#define SEAM_DELTA_E 1.5
 #define SEAM_COVERAGE 0.15
 
 static app_world_t *make_world(uint32_t placement_seed)
