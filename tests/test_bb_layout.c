@@ -3,8 +3,15 @@
  * like what they claim (clearings, mostly-up directions); clump textures
  * must have 10-60 % opaque coverage in many thin blades, not a rectangle;
  * the generation rule must follow the extent map and its documented hash
- * formula. Writes the PNGs to $MEADOW_TEST_OUT for inspection. */
+ * formula. The clumps are the blade model's (bb_clump_desc_t): every texel
+ * holds an albedo on the line from the root's to the tip's (the desc's, not
+ * a fixed green), darker below; blades stand at their height in metres, or
+ * the layer shrinks so the tallest fits; nothing is cut at the sides or the
+ * top; more blades or a wider shape cover more; bb_clump_blades is the
+ * documented (pi / 2) density ratio. Writes the PNGs to $MEADOW_TEST_OUT for
+ * inspection. */
 #include "billboard/bb_layout.h"
+#include "blade/blade_ref.h"
 #include "test.h"
 
 #include <string.h>
@@ -180,6 +187,135 @@ static void test_sample(const bb_layout_t *l)
     CHECK_MSG(tried > 0 && agree == tried, "%d of %d agree", agree, tried);
 }
 
+/* Where the texel colours of one layer lie against the line root -> tip:
+ * the largest distance from it (0..1 per channel) and the mean parameter
+ * t (0 root, 1 tip) of the texels with alpha >= 1/2 in the bottom and the
+ * top quarter of the covered rows. */
+static void albedo_line(const core_image_t *im, const float root[3], const float tip[3], double *off, double *t_low,
+                        double *t_high)
+{
+    double d[3], dd = 0.0;
+    for (int k = 0; k < 3; k++) {
+        d[k] = tip[k] - root[k];
+        dd += d[k] * d[k];
+    }
+    int top = im->h, bottom = -1;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++)
+            if (im->px[((size_t)y * im->w + x) * 4 + 3] >= 128) {
+                top = y < top ? y : top;
+                bottom = y > bottom ? y : bottom;
+            }
+    double lo = 0, hi = 0, nlo = 0, nhi = 0;
+    *off = 0.0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            const uint8_t *p = im->px + ((size_t)y * im->w + x) * 4;
+            if (p[3] == 0) continue;
+            double t = 0.0, e2 = 0.0;
+            for (int k = 0; k < 3; k++) t += (p[k] / 255.0 - root[k]) * d[k] / dd;
+            for (int k = 0; k < 3; k++) {
+                double r = p[k] / 255.0 - (root[k] + t * d[k]);
+                e2 += r * r;
+            }
+            *off = fmax(*off, sqrt(e2));
+            if (p[3] < 128) continue;
+            if (y >= bottom - (bottom - top) / 4) lo += t, nlo++;
+            if (y <= top + (bottom - top) / 4) hi += t, nhi++;
+        }
+    *t_low = lo / fmax(nlo, 1.0);
+    *t_high = hi / fmax(nhi, 1.0);
+}
+
+/* Rows [first, last] holding any coverage, and whether the outermost
+ * columns are clear. */
+static void covered_rows(const core_image_t *im, int *first, int *last, bool *sides_clear)
+{
+    *first = im->h;
+    *last = -1;
+    *sides_clear = true;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            if (im->px[((size_t)y * im->w + x) * 4 + 3] == 0) continue;
+            *first = y < *first ? y : *first;
+            *last = y > *last ? y : *last;
+            *sides_clear = *sides_clear && x > 0 && x < im->w - 1;
+        }
+}
+
+static double mean_alpha(const bb_layout_t *l)
+{
+    double a = 0.0;
+    size_t n = (size_t)l->clumps[0].w * l->clumps[0].h;
+    for (int k = 0; k < l->clump_layers; k++)
+        for (size_t i = 0; i < n; i++) a += l->clumps[k].px[i * 4 + 3] / 255.0;
+    return a / (double)(n * (size_t)l->clump_layers);
+}
+
+static void test_blade_clumps(void)
+{
+    CHECK(bb_clump_blades(200.0f, 6.0f) == 52 && bb_clump_blades(160.0f, 6.0f) == 42);
+    CHECK(bb_clump_blades(20.0f, 2.0f) == 16 && bb_clump_blades(0.01f, 6.0f) == 1);
+    bb_layout_desc_t dd = bb_layout_desc_defaults(NULL);
+    CHECK(dd.blades == 52 && dd.clump.size[0] == 1.0f && dd.clump.size[1] == 0.6f && dd.clump.gravity == 1.0f);
+    CHECK(dd.clump.height[0] == 0.35f && dd.clump.height[1] == 0.7f && dd.clump.width[1] == 0.05f);
+    CHECK(dd.clump.albedo_root[1] == 0.25f && dd.clump.albedo_tip[1] == 0.65f);
+
+    /* The default blades: albedo on the root -> tip line, roots darker. */
+    bb_layout_t l;
+    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16}));
+    for (int k = 0; k < l.clump_layers; k++) {
+        double off, lo, hi;
+        albedo_line(&l.clumps[k], dd.clump.albedo_root, dd.clump.albedo_tip, &off, &lo, &hi);
+        int first, last;
+        bool sides;
+        covered_rows(&l.clumps[k], &first, &last, &sides);
+        printf("clump %d (default blades): off the root-tip line %.4f, t bottom %.2f top %.2f, rows %d..%d, "
+               "sides clear %d\n",
+               k, off, lo, hi, first, last, sides);
+        CHECK(off < 3.0 / 255.0);
+        CHECK(lo < 0.3 && hi > 0.6);
+        /* Tallest settled blade ~0.7 m > 0.98 x 0.6 m: scaled to fit just under the top. */
+        CHECK(first >= 1 && first <= 6 && last == l.clumps[k].h - 1 && sides);
+    }
+    double a52 = mean_alpha(&l);
+    bb_layout_free(&l);
+
+    /* Another albedo is taken as it is. */
+    bb_layout_desc_t d = {.seed = 3, .size = 16,
+                          .clump = {.albedo_root = {0.8f, 0.1f, 0.1f}, .albedo_tip = {0.1f, 0.1f, 0.9f}}};
+    CHECK(bb_layout_generate(&l, &d));
+    double off, lo, hi;
+    albedo_line(&l.clumps[0], d.clump.albedo_root, d.clump.albedo_tip, &off, &lo, &hi);
+    printf("red-to-blue blades: off the line %.4f, t bottom %.2f top %.2f\n", off, lo, hi);
+    CHECK(off < 3.0 / 255.0 && lo < 0.3 && hi > 0.6);
+    bb_layout_free(&l);
+
+    /* Short blades stand at their height in metres: 0.3 m of 0.6 m. */
+    d = (bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.height = {0.29f, 0.3f}}};
+    CHECK(bb_layout_generate(&l, &d));
+    int first, last;
+    bool sides;
+    covered_rows(&l.clumps[0], &first, &last, &sides);
+    printf("0.3 m blades in a 0.6 m layer: rows %d..%d of %d\n", first, last, l.clumps[0].h);
+    CHECK(abs(first - l.clumps[0].h / 2) <= 3 && last == l.clumps[0].h - 1 && sides);
+    bb_layout_free(&l);
+
+    /* More blades, or a wider shape, cover more. */
+    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .blades = 20}));
+    double a20 = mean_alpha(&l);
+    bb_layout_free(&l);
+    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.shape = BLADE_SHAPE_QUAD}}));
+    double aquad = mean_alpha(&l);
+    bb_layout_free(&l);
+    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.shape = BLADE_SHAPE_TRIANGLE}}));
+    double atri = mean_alpha(&l);
+    bb_layout_free(&l);
+    printf("mean alpha: 20 blades %.3f, 52 blades %.3f; 52 quad blades %.3f, 52 triangle blades %.3f\n", a20, a52,
+           aquad, atri);
+    CHECK(a20 < 0.7 * a52 && aquad > 1.2 * atri);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -190,6 +326,7 @@ int main(void)
     test_maps(&l);
     test_clumps(&l);
     test_sample(&l);
+    test_blade_clumps();
     const char *out = getenv("MEADOW_TEST_OUT");
     char dir[1024];
     snprintf(dir, sizeof dir, "%s", out ? out : "/tmp/meadow-test-bb-layout");

@@ -28,6 +28,15 @@ static void test_billboards(const scene_grass_desc_t *g)
     CHECK_MSG(bb.cube_res == g->cube_resolution, "bb cube_res %d, scene %d", bb.cube_res, g->cube_resolution);
     CHECK_MSG(bb.recover_time == g->recover_time, "bb recover_time %g, scene %g", bb.recover_time,
               g->recover_time);
+    /* The clump layers are drawn from the scene's blades (bb_layout.h). */
+    const bb_clump_desc_t *c = &bb.layout.clump;
+    CHECK(c->size[0] == g->billboard_size[0] && c->size[1] == g->billboard_size[1]);
+    CHECK(c->height[0] == g->height[0] && c->height[1] == g->height[1]);
+    CHECK(c->width[0] == g->width[0] && c->width[1] == g->width[1]);
+    CHECK(c->stiffness[0] == g->stiffness[0] && c->stiffness[1] == g->stiffness[1]);
+    CHECK(c->shape == (int)g->shape && c->gravity == SCENE_DEFAULT_BLADE_GRAVITY);
+    CHECK_MSG(bb.layout.blades == bb_clump_blades(g->density, g->billboard_density), "bb clump blades %d",
+              bb.layout.blades);
     /* The scene accepts exactly the subdivisions bb_field_make accepts. */
     const scene_field_t *subdiv = scene_field_find(SCENE_SEC_GRASS, "subdiv");
     CHECK(subdiv && subdiv->lo == SCENE_SUBDIV_MIN && subdiv->hi == SCENE_SUBDIV_MAX);

@@ -11,6 +11,15 @@
 
 #define BB_NO_SLOT 0xffffffffu
 
+/* Per-billboard brightness (the clump texel's factor in bb_shade): 1 +- 0.15
+ * messiness, uniform from the seed. Its mean is 1, so the variation does not
+ * move the field's colour off the blades' (the clumps hold the blades'
+ * albedo). */
+float bb_tint(bb_point p)
+{
+    return 1.0 + 0.3 * p.messiness * (fract(float(p.seed >> 8) * (1.0 / 16777216.0)) - 0.5);
+}
+
 #ifdef BB_POINTS_IN
 in vec4 v_pos_angle[];
 in vec4 v_growth_mess[];

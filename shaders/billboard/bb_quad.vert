@@ -48,7 +48,7 @@ void main()
     bb_plain_corners(p, right, up, u_wind, u_time, a, b, ta, tb);
     vec3 shift = bb_slope_shift(p, ta, tb);
     vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb) + shift);
-    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    g_tint = bb_tint(p);
     g_overlay = 0u;
     g_world = pos;
     g_normal = cross(right, up);

@@ -65,7 +65,7 @@ bool bb_setup(uint prim)
     if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return false;
     bb_frame(p, g_right, g_up);
     g_layer = float(p.layer);
-    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    g_tint = bb_tint(p);
     raster_vert r0, r1, r2;
     bool ok = raster_project(u_viewproj * vec4(p.position, 1.0), r0);
     ok = raster_project(u_viewproj * vec4(p.position + p.size.y * g_up, 1.0), r1) && ok;

@@ -47,7 +47,7 @@ void main()
     vec3 right, up;
     bb_frame(p, right, up);
     float layer = float(p.layer);
-    g_tint = 0.85 + 0.3 * p.messiness * fract(float(p.seed >> 8) * (1.0 / 16777216.0));
+    g_tint = bb_tint(p);
     g_overlay = packUnorm4x8(u_overlay != 1 ? vec4(0.0)
                            : (p.state == BB_STATE_COLLIDING ? vec4(1.0, 0.1, 0.1, 0.75)
                                                             : (p.state == BB_STATE_RECOVERING ? vec4(1.0, 0.85, 0.1, 0.75)

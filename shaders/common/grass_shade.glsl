@@ -52,8 +52,13 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
     return apply_fog(c, length(view), normalize(-view));
 }
 
-/* A billboard point: clump texel colour times the clump tint, ambient
- * occlusion from the image row (v_img 0 at the top of the clump image). */
+/* A billboard point: clump texel albedo (bb_layout: the blades' root-to-tip
+ * mix, unlit) times the billboard's tint (bb_tint, mean 1), ambient
+ * occlusion from the image row (v_img 0 at the top of the clump image):
+ * the layers draw blades at their height in metres, so the row stands for
+ * the height on the blades a viewer sees. Measured against the blade
+ * field (docs/BILLBOARDS.md), this AO matches it better than the exact
+ * per-texel mix(0.45, 1, v) of the blades drawn in the texel. */
 vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, float v_img, vec3 camera, vec3 sun, vec4 overlay)
 {
     vec3 to_eye = camera - world;

@@ -27,6 +27,8 @@ typedef struct app_t {
     double frame_ms_avg;
     double raster_calib_ms[2]; /* --raster auto: GPU ms of a frame, hardware and compute */
     app_frame_times_t times;
+    app_view_t last_view; /* of the frame in the target */
+    bool last_hud;        /* the HUD, wireframe or an overlay is in it */
     double startup_draws, startup_ranges, startup_dispatches;
 } app_t;
 
@@ -164,6 +166,29 @@ static int summary_startup(const app_t *app, const app_world_stats_t *st, char *
     return n < (int)size ? n : (int)size - 1;
 }
 
+/* Hybrid runs: the seam at the switch band of the last frame
+ * (app_world_seam; it draws the billboard-only reference into the target). */
+static int summary_seam(app_t *app, char *buf, size_t size)
+{
+    app_world_t *w = &app->world;
+    if (w->mode != SCENE_MODE_HYBRID || app->frames == 0) return 0;
+    float sd = w->scene.grass.switch_distance;
+    eval_seam_t e;
+    if (app->last_hud)
+        return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",
+                        sd);
+    if (!app_world_seam(w, &app->last_view, &app->target, &e))
+        return snprintf(buf, size, "hybrid seam at %.1f m: not measured (a side of the band shows no grass)\n", sd);
+    int n = snprintf(buf, size,
+                     "hybrid seam at %.1f m (last frame against it drawn with billboards only; band +-%.0f m, "
+                     "windows of 3 m; eval_image units, 1 = clearly visible): score %.3f\n"
+                     "  Delta E %.3f, Delta L* %+.3f, coverage %.4f; windows near | far: grass %.3f | %.3f "
+                     "(reference %.3f | %.3f), pixels %ld | %ld\n",
+                     sd, APP_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
+                     e.grass[1][0], e.grass[1][1], e.pixels[0][0], e.pixels[0][1]);
+    return n < (int)size ? n : (int)size - 1;
+}
+
 /* Work counters (gfx_count) as means per frame over the run; passes with
  * no work are left out. */
 static int summary_work(char *buf, size_t size)
@@ -267,6 +292,8 @@ static void write_summary(app_t *app, double wall_s)
                       "start and composite): %.4f\nframe_over_compute_floor: %.2f\n",
                       rs, cfloor_ms, cfloor_ms > 0 ? frame_gpu / cfloor_ms : 0.0);
     }
+    /* Last: it draws again (after the timers and work counters were read). */
+    n += summary_seam(app, buf + n, sizeof buf - (size_t)n);
     char path[1100];
     snprintf(path, sizeof path, "%s/summary.txt", app->out);
     if (core_fs_write_atomic(path, buf, (size_t)n)) core_log_info("wrote %s", path);
@@ -363,6 +390,8 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         glEnable(GL_DEPTH_TEST);
         app_world_draw(w, &view, &app.target, app.wireframe);
         if (app.hud) draw_hud(&app, sim_t);
+        app.last_view = view;
+        app.last_hud = app.hud || app.wireframe || app.overlay;
         frame++;
         app.frame_ms_avg = app.frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
         bool shot = (app.shot_every && frame % app.shot_every == 0) || (!headless && plat_key_pressed(PLAT_KEY_C));

@@ -196,7 +196,13 @@ static bool make_bb(app_world_t *w)
                                            .recover_time = g->recover_time,
                                            .max_objects = objects > 0 ? objects : 1,
                                            .wind = wind,
-                                           .layout = {.size = layout_size},
+                                           .layout = {.size = layout_size,
+                                                      .blades = bb_clump_blades(g->density, g->billboard_density),
+                                                      .clump = {.height = {g->height[0], g->height[1]},
+                                                                .width = {g->width[0], g->width[1]},
+                                                                .stiffness = {g->stiffness[0], g->stiffness[1]},
+                                                                .shape = (int)g->shape,
+                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY}},
                                        });
     return w->have_bb;
 }
@@ -210,11 +216,6 @@ static bool uses_tiles(const app_world_t *w)
 {
     return w->mode == SCENE_MODE_HYBRID && !w->reference && w->terrain_mesh.grid_res > 0;
 }
-
-/* Blade gravity in the paper's units: forces are displacement rates (m/s),
- * so with eq. 1's stiffness s the tip settles where s * deflection balances
- * gravity. 1 m/s with stiffness 8-12 bends a 0.5 m blade by ~0.1 m. */
-#define APP_BLADE_GRAVITY 1.0f
 
 /* Blades of a full (blade-mode) field: 50M x 68 B = 3.4 GB of GPU state. */
 #define APP_MAX_FIELD_BLADES 50000000
@@ -279,7 +280,7 @@ static void make_blade_env(app_world_t *w)
      * that long, like the billboards' (departure from the paper's k = 1,
      * see blade_env_t.collision_gain). */
     float h = 0.5f * (g->height[0] + g->height[1]);
-    w->blade_env = (blade_env_t){.gravity = APP_BLADE_GRAVITY,
+    w->blade_env = (blade_env_t){.gravity = SCENE_DEFAULT_BLADE_GRAVITY,
                                  .collision_gain = 1.0f / (0.01f * h * h),
                                  .collision_decay = 1.0f / g->recover_time};
     for (int i = 0; i < s->wind_count && i < BLADE_MAX_WINDS; i++) {
@@ -560,7 +561,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
     if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
-    float fade_lo = w->scene.grass.switch_distance - 1.0f, fade_hi = w->scene.grass.switch_distance + 1.0f;
+    float fade_lo = w->scene.grass.switch_distance - APP_SWITCH_FADE;
+    float fade_hi = w->scene.grass.switch_distance + APP_SWITCH_FADE;
     glm_vec3_copy((float *)v->camera, w->camera);
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
     /* raster_begin takes the opaque depth (also read by occlusion culling). */

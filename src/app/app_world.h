@@ -15,6 +15,7 @@
 #include "blade/blade.h"
 #include "blade/blade_tiles.h"
 #include "character/character.h"
+#include "eval/eval_image.h"
 #include "raster/raster.h"
 
 /* Per-frame view, shared by every draw. */
@@ -171,6 +172,38 @@ void app_world_update(app_world_t *w, float t, float dt);
 /* Draws into `target` (bound by the caller): opaque objects first, then
  * their depth is resolved for the blades' occlusion culling, then grass. */
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe);
+/* Half width (m) of the hybrid cross-fade band around grass.switch_distance:
+ * blades fade out and billboards fade in over [switch - it, switch + it]. */
+#define APP_SWITCH_FADE 1.0f
+/* ---- hybrid seam (app_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
+/* A frame for eval_image_seam: colour, distance to the visible surface and
+ * class per pixel (row 0 at the top). */
+typedef struct app_seam_frame_t {
+    core_image_t img;
+    float *dist;
+    uint8_t *cls;
+} app_seam_frame_t;
+/* Reads the frame drawn into t with view v (blocking): colour and distance;
+ * cls EVAL_SEAM_GROUND where the visible surface is the terrain, else
+ * EVAL_SEAM_SKIP (what a background frame needs). */
+bool app_seam_frame_read(const app_world_t *w, const app_view_t *v, const gfx_target_t *t, app_seam_frame_t *f);
+/* Classes of a frame against the background (the same view with no grass):
+ * skipped where the background does not show the terrain, grass where the
+ * colour differs from it by more than 8 levels in a channel, else ground. */
+void app_seam_frame_classify(app_seam_frame_t *f, const app_seam_frame_t *background);
+/* Draws the view into t in `mode`, with no grass at all when !grass (the
+ * background), and reads it (app_seam_frame_read). The world's systems are
+ * used as they are (nothing is built or simulated) and keep their state. */
+bool app_seam_frame_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
+                         app_seam_frame_t *f);
+void app_seam_frame_free(app_seam_frame_t *f);
+/* The scene's switch distance and the fade band of app_world_draw. */
+eval_seam_desc_t app_seam_desc(const app_world_t *w);
+/* The seam of the hybrid frame drawn into t with view v, against the same
+ * view drawn again with billboards only, both classified against it drawn
+ * with no grass (which is what t holds afterwards). False when the world is
+ * not in hybrid mode or a window of the band shows no grass. */
+bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* Switches between the hardware and the compute rasterizer at run time. */
 void app_world_set_raster(app_world_t *w, bool compute);
 /* The scene's `raster: auto`: draws `view` into `target` with each

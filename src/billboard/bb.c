@@ -53,6 +53,8 @@ bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
     if (d.octree_depth <= 0) d.octree_depth = 4;
     d.wind = bb_wind_desc_defaults(&d.wind);
     d.layout.seed = d.seed;
+    if (d.layout.clump.size[0] <= 0.0f) d.layout.clump.size[0] = d.size[0];
+    if (d.layout.clump.size[1] <= 0.0f) d.layout.clump.size[1] = d.size[1];
     d.layout = bb_layout_desc_defaults(&d.layout);
     return d;
 }

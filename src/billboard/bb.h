@@ -88,7 +88,9 @@ typedef struct bb_field_desc_t {
     int max_deformed;              /* deformed-mesh pool slots, default 4096 */
     int octree_depth;              /* default 4, at most BB_OCTREE_MAX_DEPTH */
     bb_wind_desc_t wind;           /* see bb_wind_desc_defaults */
-    bb_layout_desc_t layout;       /* layout textures; its seed is replaced by `seed` */
+    bb_layout_desc_t layout;       /* layout textures; its seed is replaced by `seed`, its
+                                      clump.size defaults to `size` (the clump blades:
+                                      bb_layout.h) */
 } bb_field_desc_t;
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc);
 

@@ -1,7 +1,12 @@
 /* bb_layout: procedural layout textures (extent, direction, messiness), the
- * grass-clump texture array, and the CPU twin of the billboard generation
- * rule of Orthmann et al. 2009 (sec. 3); see bb_layout.h. */
+ * grass-clump texture array drawn from the blade model of Jahrmann & Wimmer
+ * 2017 (eq. 1-13 settle the blades, eq. 21 shapes them), and the CPU twin
+ * of the billboard generation rule of Orthmann et al. 2009 (sec. 3); see
+ * bb_layout.h. */
 #include "billboard/bb_layout.h"
+
+#include "blade/blade_ref.h"
+#include "scene/scene_fields.h"
 
 #include <assert.h>
 #include <math.h>
@@ -9,14 +14,48 @@
 #include <stdlib.h>
 #include <string.h>
 
+static bool bb_zero3(const float v[3]) { return v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f; }
+
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc)
 {
     bb_layout_desc_t d = desc ? *desc : (bb_layout_desc_t){0};
     if (d.size == 0) d.size = 256;
     if (d.clump_size == 0) d.clump_size = 128;
     if (d.clump_layers == 0) d.clump_layers = 4;
-    if (d.blades == 0) d.blades = 48;
+    if (d.blades == 0) d.blades = bb_clump_blades(SCENE_DEFAULT_DENSITY, SCENE_DEFAULT_BILLBOARD_DENSITY);
+    bb_clump_desc_t *c = &d.clump;
+    if (c->size[0] <= 0.0f) c->size[0] = SCENE_DEFAULT_BILLBOARD_WIDTH;
+    if (c->size[1] <= 0.0f) c->size[1] = SCENE_DEFAULT_BILLBOARD_HEIGHT;
+    if (c->height[0] == 0.0f && c->height[1] == 0.0f) {
+        c->height[0] = SCENE_DEFAULT_BLADE_HEIGHT_MIN;
+        c->height[1] = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
+    }
+    if (c->width[0] == 0.0f && c->width[1] == 0.0f) {
+        c->width[0] = SCENE_DEFAULT_BLADE_WIDTH_MIN;
+        c->width[1] = SCENE_DEFAULT_BLADE_WIDTH_MAX;
+    }
+    if (c->stiffness[0] == 0.0f && c->stiffness[1] == 0.0f) {
+        c->stiffness[0] = SCENE_DEFAULT_STIFFNESS_MIN;
+        c->stiffness[1] = SCENE_DEFAULT_STIFFNESS_MAX;
+    }
+    static const float root[3] = SCENE_DEFAULT_ALBEDO_ROOT, tip[3] = SCENE_DEFAULT_ALBEDO_TIP;
+    if (bb_zero3(c->albedo_root)) memcpy(c->albedo_root, root, sizeof root);
+    if (bb_zero3(c->albedo_tip)) memcpy(c->albedo_tip, tip, sizeof tip);
+    if (c->gravity == 0.0f) c->gravity = SCENE_DEFAULT_BLADE_GRAVITY;
+    assert(c->shape >= BLADE_SHAPE_QUADRATIC && c->shape <= BLADE_SHAPE_DANDELION);
+    assert(c->height[0] <= c->height[1] && c->width[0] <= c->width[1] && c->stiffness[0] <= c->stiffness[1]);
     return d;
+}
+
+int bb_clump_blades(float blade_density, float billboard_density)
+{
+    assert(billboard_density > 0.0f);
+    long n = lrintf(1.5707963f * blade_density / billboard_density);
+    if (n > BB_CLUMP_MAX_BLADES)
+        core_log_warn("billboards: %g blades/m^2 over %g billboards/m^2 asks %ld blades per clump layer; drawing "
+                      "BB_CLUMP_MAX_BLADES = %d",
+                      blade_density, billboard_density, n, BB_CLUMP_MAX_BLADES);
+    return n < 1 ? 1 : (n > BB_CLUMP_MAX_BLADES ? BB_CLUMP_MAX_BLADES : (int)n);
 }
 
 bb_gen_desc_t bb_gen_desc_defaults(const bb_gen_desc_t *desc)
@@ -123,121 +162,181 @@ static void bb_layout_maps(bb_layout_t *l, uint32_t seed)
     free(fields);
 }
 
-/* ---- grass clumps ------------------------------------------------------------- */
+/* ---- grass clumps (the blade model, seen from the front) ----------------------
+ * Layer frame: x across the billboard (its `right`), y up (its growth
+ * direction), z towards the viewer; roots on y = 0. Each blade is a blade_t
+ * of the blade model with root (x, 0, z) and up +y, rasterised as the
+ * blade path draws it: BB_CLUMP_SEGMENTS quads along v, each vertex from
+ * blade_ref_surface (eq. 21 with the scene's width profile). Orthographic
+ * projection along z onto a grid of BB_CLUMP_SS x BB_CLUMP_SS samples per
+ * texel with a depth test (nearest z wins, so blades in front hide those
+ * behind); a texel's alpha is its covered fraction, its colour the mean
+ * albedo mix(root, tip, v) of its covered samples (straight alpha). */
 
-enum { BB_BLADE_SAMPLES = 16 };
+static float bb_range(core_rng_t *rng, const float r[2]) { return core_rng_range(rng, r[0], r[1]); }
 
-typedef struct bb_blade_t {
-    float p[BB_BLADE_SAMPLES][2]; /* centre line, normalised coords (x right, y up) */
-    float hw[BB_BLADE_SAMPLES];   /* half width at each sample */
-    float col[3];
-    float lo[2], hi[2];           /* bounding box */
-} bb_blade_t;
-
-static void bb_blade_make(bb_blade_t *b, core_rng_t *rng)
+/* One blade of a layer, settled and placed: root x chosen so the blade's
+ * projection keeps BB_CLUMP_MARGIN texels off the layer's sides. */
+static void bb_clump_blade(blade_t *b, core_rng_t *rng, const bb_clump_desc_t *c, const blade_env_t *env,
+                           float margin)
 {
-    float bx = 0.5f + (core_rng_float(rng) + core_rng_float(rng) - 1.0f) * 0.24f;
-    float height = core_rng_range(rng, 0.45f, 0.96f);
-    float lean = (bx - 0.5f) * 0.9f + core_rng_range(rng, -0.14f, 0.14f);
-    bool droop = core_rng_float(rng) < 0.25f;
-    float p0[2] = {bx, 0.0f};
-    float p1[2] = {bx + lean * 0.15f, height * (droop ? 0.95f : 0.6f)};
-    float p2[2] = {bx + lean * (droop ? 1.6f : 1.0f), height * (droop ? 0.75f : 1.0f)};
-    /* Keep tips off the texture border so billboards never show a cut blade. */
-    p1[0] = fminf(fmaxf(p1[0], 0.05f), 0.95f);
-    p2[0] = fminf(fmaxf(p2[0], 0.05f), 0.95f);
-    float w0 = core_rng_range(rng, 0.008f, 0.016f);
-    float g = core_rng_range(rng, 0.42f, 0.72f);
-    float yellow = core_rng_float(rng);
-    b->col[0] = g * (0.35f + 0.45f * yellow * yellow);
-    b->col[1] = g;
-    b->col[2] = g * core_rng_range(rng, 0.15f, 0.35f);
-    b->lo[0] = b->lo[1] = 1e9f;
-    b->hi[0] = b->hi[1] = -1e9f;
-    for (int s = 0; s < BB_BLADE_SAMPLES; s++) {
-        float t = (float)s / (float)(BB_BLADE_SAMPLES - 1), it = 1.0f - t;
-        for (int k = 0; k < 2; k++) {
-            b->p[s][k] = it * it * p0[k] + 2.0f * it * t * p1[k] + t * t * p2[k];
-            b->lo[k] = fminf(b->lo[k], b->p[s][k]);
-            b->hi[k] = fmaxf(b->hi[k], b->p[s][k]);
+    float h = bb_range(rng, c->height), w = bb_range(rng, c->width), s = bb_range(rng, c->stiffness);
+    float angle = core_rng_range(rng, 0.0f, 6.2831853f);
+    float x = core_rng_float(rng), z = core_rng_range(rng, -0.5f, 0.5f) * c->size[0];
+    *b = (blade_t){.v0 = {0.0f, 0.0f, 0.0f, angle}, .v1 = {0.0f, h, 0.0f, h}, .v2 = {0.0f, h, 0.0f, w},
+                   .up = {0.0f, 1.0f, 0.0f, s}};
+    float eta = 0.0f;
+    for (int i = 0; i < BB_CLUMP_SETTLE_STEPS; i++) blade_ref_step_one(b, &eta, env, NULL);
+    /* x extent of the settled blade relative to its root. */
+    float lo = 0.0f, hi = 0.0f;
+    for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++)
+        for (int u = 0; u < 2; u++) {
+            float p[3], n[3];
+            blade_ref_surface(b, c->shape, (float)u, (float)i / BB_CLUMP_SEGMENTS, p, n);
+            lo = fminf(lo, p[0]);
+            hi = fmaxf(hi, p[0]);
         }
-        b->hw[s] = w0 * powf(it, 0.7f);
+    float half = 0.5f * c->size[0] - margin, x0 = -half - lo, x1 = half - hi;
+    float root = x1 > x0 ? x0 + x * (x1 - x0) : 0.5f * (x0 + x1);
+    float shift[3] = {root, 0.0f, z};
+    for (int k = 0; k < 3; k++) {
+        b->v0[k] += shift[k];
+        b->v1[k] += shift[k];
+        b->v2[k] += shift[k];
     }
+}
+
+/* Sample buffer of one layer: nearest depth and the blade parameter v. */
+typedef struct bb_samples_t {
+    int w, h; /* samples */
+    float *z, *v;
+} bb_samples_t;
+
+/* Rasterises the triangle (a, b, c) of sample-space x, y, depth z and blade
+ * parameter v (4 floats each), either winding: per sample row, the span of
+ * sample centres inside it (where the row's centre line crosses its edges);
+ * z and v from the triangle's plane; a sample takes them when nearer than
+ * what it holds. */
+static void bb_clump_triangle(bb_samples_t *sb, const float *a, const float *b, const float *c)
+{
+    float area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    if (fabsf(area) < 1e-6f) return;
+    /* Attribute k at (x, y): at[k] + dx[k] (x - a.x) + dy[k] (y - a.y). */
+    float dx[2], dy[2];
     for (int k = 0; k < 2; k++) {
-        b->lo[k] -= w0 + 0.01f;
-        b->hi[k] += w0 + 0.01f;
+        float fb = b[2 + k] - a[2 + k], fc = c[2 + k] - a[2 + k];
+        dx[k] = (fb * (c[1] - a[1]) - fc * (b[1] - a[1])) / area;
+        dy[k] = (fc * (b[0] - a[0]) - fb * (c[0] - a[0])) / area;
     }
-}
-
-/* Signed distance (pixels) from (x,y) to the tapered blade outline, and the
- * blade parameter t and the lateral fraction of the closest point. */
-static float bb_blade_dist(const bb_blade_t *b, float x, float y, float px, float *t_out, float *side_out)
-{
-    float best = 1e9f;
-    for (int s = 0; s < BB_BLADE_SAMPLES - 1; s++) {
-        float ax = b->p[s][0], ay = b->p[s][1];
-        float dx = b->p[s + 1][0] - ax, dy = b->p[s + 1][1] - ay;
-        float den = dx * dx + dy * dy;
-        float f = den > 0.0f ? bb_clamp01(((x - ax) * dx + (y - ay) * dy) / den) : 0.0f;
-        float qx = x - ax - f * dx, qy = y - ay - f * dy;
-        float dist = sqrtf(qx * qx + qy * qy);
-        float hw = b->hw[s] + f * (b->hw[s + 1] - b->hw[s]);
-        float sd = (dist - hw) * px;
-        if (sd < best) {
-            best = sd;
-            *t_out = ((float)s + f) / (float)(BB_BLADE_SAMPLES - 1);
-            *side_out = hw > 0.0f ? dist / hw : 1.0f;
+    const float *v[3] = {a, b, c};
+    float ylo = fminf(a[1], fminf(b[1], c[1])), yhi = fmaxf(a[1], fmaxf(b[1], c[1]));
+    int y0 = (int)ceilf(ylo - 0.5f), y1 = (int)floorf(yhi - 0.5f);
+    y0 = y0 < 0 ? 0 : y0;
+    y1 = y1 > sb->h - 1 ? sb->h - 1 : y1;
+    for (int y = y0; y <= y1; y++) {
+        float py = (float)y + 0.5f, xlo = INFINITY, xhi = -INFINITY;
+        for (int e = 0; e < 3; e++) {
+            const float *p = v[e], *q = v[(e + 1) % 3];
+            if ((p[1] > py) == (q[1] > py)) continue;
+            float x = p[0] + (py - p[1]) * (q[0] - p[0]) / (q[1] - p[1]);
+            xlo = fminf(xlo, x);
+            xhi = fmaxf(xhi, x);
+        }
+        int x0 = (int)ceilf(xlo - 0.5f), x1 = (int)floorf(xhi - 0.5f);
+        x0 = x0 < 0 ? 0 : x0;
+        x1 = x1 > sb->w - 1 ? sb->w - 1 : x1;
+        float *zr = sb->z + (size_t)y * (size_t)sb->w, *vr = sb->v + (size_t)y * (size_t)sb->w;
+        float ry = py - a[1];
+        for (int x = x0; x <= x1; x++) {
+            float rx = (float)x + 0.5f - a[0];
+            float z = a[2] + dx[0] * rx + dy[0] * ry;
+            if (z <= zr[x]) continue;
+            zr[x] = z;
+            vr[x] = fminf(fmaxf(a[3] + dx[1] * rx + dy[1] * ry, 0.0f), 1.0f);
         }
     }
-    return best;
 }
 
-static void bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blades)
+/* Layer `layer` of the clump texture array into img (RGBA). False when out
+ * of memory. */
+static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blades, const bb_clump_desc_t *c)
 {
     int w = img->w, h = img->h;
-    float *acc = calloc((size_t)w * h * 4, sizeof(float));
+    bb_samples_t sb = {.w = w * BB_CLUMP_SS, .h = h * BB_CLUMP_SS};
+    size_t ns = (size_t)sb.w * (size_t)sb.h;
+    sb.z = malloc(sizeof(float) * ns);
+    sb.v = malloc(sizeof(float) * ns);
+    blade_t *b = malloc(sizeof *b * (size_t)blades);
+    float *rgba = malloc(sizeof(float) * 4 * (size_t)w * (size_t)h);
+    bool ok = sb.z && sb.v && b && rgba;
+    for (size_t i = 0; ok && i < ns; i++) sb.z[i] = -INFINITY;
     core_rng_t rng;
     core_rng_seed(&rng, seed, 100u + (uint64_t)layer);
-    for (int n = 0; n < blades; n++) {
-        bb_blade_t b;
-        bb_blade_make(&b, &rng);
-        int x0 = (int)floorf(b.lo[0] * w), x1 = (int)ceilf(b.hi[0] * w);
-        int y0 = (int)floorf((1.0f - b.hi[1]) * h), y1 = (int)ceilf((1.0f - b.lo[1]) * h);
-        x0 = x0 < 0 ? 0 : x0;
-        y0 = y0 < 0 ? 0 : y0;
-        x1 = x1 > w ? w : x1;
-        y1 = y1 > h ? h : y1;
-        for (int py = y0; py < y1; py++) {
-            for (int px = x0; px < x1; px++) {
-                float x = ((float)px + 0.5f) / (float)w, y = 1.0f - ((float)py + 0.5f) / (float)h;
-                float t = 0.0f, side = 1.0f;
-                float sd = bb_blade_dist(&b, x, y, (float)w, &t, &side);
-                float a = bb_clamp01(0.5f - sd);
-                if (a <= 0.0f) continue;
-                /* Dark base, lighter tip, a faint bright midrib. */
-                float shade = (0.35f + 0.65f * bb_smoothstep(0.0f, 0.55f, t)) * (1.0f + 0.12f * t);
-                shade *= 1.0f + 0.15f * (1.0f - bb_clamp01(side));
-                float *dst = acc + ((size_t)py * w + px) * 4;
-                for (int k = 0; k < 3; k++)
-                    dst[k] = bb_clamp01(b.col[k] * shade) * a + dst[k] * (1.0f - a);
-                dst[3] = a + dst[3] * (1.0f - a);
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = c->gravity});
+    float margin = BB_CLUMP_MARGIN * c->size[0] / (float)w, top = 0.0f;
+    for (int n = 0; ok && n < blades; n++) {
+        bb_clump_blade(&b[n], &rng, c, &env, margin);
+        for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
+            float p[3], nrm[3];
+            blade_ref_surface(&b[n], c->shape, 0.5f, (float)i / BB_CLUMP_SEGMENTS, p, nrm);
+            top = fmaxf(top, p[1]);
+        }
+    }
+    /* Metres to samples: across by size[0]; up by size[1], or by what the
+     * tallest blade needs when it would reach above 0.98 of it. */
+    float sx = (float)sb.w / c->size[0], sy = (float)sb.h / fmaxf(c->size[1], top / 0.98f);
+    for (int n = 0; ok && n < blades; n++) {
+        float q[BB_CLUMP_SEGMENTS + 1][2][4];
+        for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
+            float v = (float)i / BB_CLUMP_SEGMENTS;
+            for (int u = 0; u < 2; u++) {
+                float p[3], nrm[3];
+                blade_ref_surface(&b[n], c->shape, (float)u, v, p, nrm);
+                q[i][u][0] = (p[0] + 0.5f * c->size[0]) * sx;
+                q[i][u][1] = (float)sb.h - p[1] * sy;
+                q[i][u][2] = p[2];
+                q[i][u][3] = v;
             }
         }
-    }
-    double mean[3] = {0, 0, 0}, wsum = 0.0;
-    for (size_t i = 0; i < (size_t)w * h; i++) {
-        for (int k = 0; k < 3; k++) mean[k] += acc[i * 4 + k];
-        wsum += acc[i * 4 + 3];
-    }
-    for (size_t i = 0; i < (size_t)w * h; i++) {
-        float a = acc[i * 4 + 3];
-        for (int k = 0; k < 3; k++) {
-            float c = a > 0.0f ? acc[i * 4 + k] / a : (wsum > 0.0 ? (float)(mean[k] / wsum) : 0.0f);
-            img->px[i * 4 + k] = bb_byte(c);
+        for (int i = 0; i < BB_CLUMP_SEGMENTS; i++) {
+            bb_clump_triangle(&sb, q[i][0], q[i][1], q[i + 1][0]);
+            bb_clump_triangle(&sb, q[i][1], q[i + 1][1], q[i + 1][0]);
         }
+    }
+    /* Resolve: coverage and mean albedo per texel. */
+    const float *ra = c->albedo_root, *ta = c->albedo_tip;
+    double mean[3] = {0, 0, 0}, wsum = 0.0;
+    for (int ty = 0; ok && ty < h; ty++)
+        for (int tx = 0; tx < w; tx++) {
+            float sum[3] = {0, 0, 0};
+            int covered = 0;
+            for (int sy0 = 0; sy0 < BB_CLUMP_SS; sy0++) {
+                size_t row = (size_t)(ty * BB_CLUMP_SS + sy0) * (size_t)sb.w + (size_t)(tx * BB_CLUMP_SS);
+                for (int sx0 = 0; sx0 < BB_CLUMP_SS; sx0++) {
+                    if (sb.z[row + (size_t)sx0] == -INFINITY) continue;
+                    covered++;
+                    for (int k = 0; k < 3; k++) sum[k] += ra[k] + (ta[k] - ra[k]) * sb.v[row + (size_t)sx0];
+                }
+            }
+            float *o = rgba + ((size_t)ty * (size_t)w + (size_t)tx) * 4;
+            o[3] = (float)covered / (float)(BB_CLUMP_SS * BB_CLUMP_SS);
+            for (int k = 0; k < 3; k++) {
+                o[k] = covered ? sum[k] / (float)covered : 0.0f;
+                mean[k] += sum[k];
+            }
+            wsum += covered;
+        }
+    for (size_t i = 0; ok && i < (size_t)w * (size_t)h; i++) {
+        float a = rgba[i * 4 + 3];
+        for (int k = 0; k < 3; k++)
+            img->px[i * 4 + k] = bb_byte(a > 0.0f ? rgba[i * 4 + k] : (wsum > 0.0 ? (float)(mean[k] / wsum) : 0.0f));
         img->px[i * 4 + 3] = bb_byte(a);
     }
-    free(acc);
+    free(rgba);
+    free(sb.z);
+    free(sb.v);
+    free(b);
+    return ok;
 }
 
 bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
@@ -257,8 +356,13 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
         return false;
     }
     bb_layout_maps(layout, d.seed);
-    for (int k = 0; k < d.clump_layers; k++) bb_clump_draw(&layout->clumps[k], d.seed, k, d.blades);
-    return true;
+    for (int k = 0; ok && k < d.clump_layers; k++)
+        ok = bb_clump_draw(&layout->clumps[k], d.seed, k, d.blades, &d.clump);
+    if (!ok) {
+        core_log_error("%s:%d: out of memory drawing the clump layers", __FILE__, __LINE__);
+        bb_layout_free(layout);
+    }
+    return ok;
 }
 
 void bb_layout_free(bb_layout_t *layout)

@@ -4,7 +4,18 @@
  * texture array drawn on the billboards, and the CPU twin of the generation
  * rule that turns a candidate grid cell into a bb_point_t. The GLSL twin is
  * bb_generate() in shaders/common/bb.glsl; both use core_hash_u32 /
- * hash_u32 so the accept decision, layer and seed match bit for bit. */
+ * hash_u32 so the accept decision, layer and seed match bit for bit.
+ *
+ * The clumps are drawn from the blade model of Jahrmann & Wimmer 2017, not
+ * painted: each layer is a patch of the blade field seen from the front
+ * (orthographic), its blades seeded as blade_seed seeds them (height,
+ * width, stiffness and direction angle uniform in the scene's ranges),
+ * settled under the program's gravity by the blade physics (blade_ref_step,
+ * eq. 1-13, no wind: the billboards sway on their own) and rasterised on
+ * the CPU from the C twin of blade_geom.glsl (blade_ref_surface, eq. 21 and
+ * the scene's shape). A texel holds the blades' albedo, the root-to-tip mix
+ * of blade_shade (unlit: bb_shade lights it), and their coverage as
+ * straight alpha; see bb_layout.c for the rasteriser. */
 #ifndef MEADOW_BB_LAYOUT_H
 #define MEADOW_BB_LAYOUT_H
 
@@ -14,14 +25,56 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* Clump rasteriser (bb_layout.c): samples per texel side, quads along a
+ * blade, physics steps of SCENE_DEFAULT_DT that settle a blade under
+ * gravity (1.5 s: the slowest stiffness, 8, leaves e^-12 of the start), texels
+ * kept clear at the layer's sides, and the most blades bb_clump_blades
+ * gives (it logs a warning when it caps). */
+#define BB_CLUMP_SS 4
+#define BB_CLUMP_SEGMENTS 16
+#define BB_CLUMP_SETTLE_STEPS 90
+#define BB_CLUMP_MARGIN 1.5f
+#define BB_CLUMP_MAX_BLADES 4096
+
+/* The blades of the clump layers. Zero means default; defaults marked
+ * (scene) are SCENE_DEFAULT_* of scene/scene_fields.h (scene key in
+ * brackets). */
+typedef struct bb_clump_desc_t {
+    float size[2];         /* metres a layer spans across and up: the billboard's base
+                              size, default 1.0 x 0.6 (scene, grass.billboard_size).
+                              Blades are drawn at their size in metres; when the
+                              tallest settled blade of a layer reaches above 0.98 x
+                              size[1], the layer's vertical scale shrinks so it fits */
+    float height[2];       /* blade height [min, max] m, default [0.35, 0.7] (scene, grass.height) */
+    float width[2];        /* blade width [min, max] m, default [0.02, 0.05] (scene, grass.width) */
+    float stiffness[2];    /* blade stiffness [min, max], default [8, 12] (scene, grass.stiffness) */
+    int shape;             /* BLADE_SHAPE_* (blade_ref.h), default quadratic (0) (scene, grass.shape) */
+    float albedo_root[3];  /* (0,0,0): (0.10, 0.25, 0.05) (SCENE_DEFAULT_ALBEDO_ROOT) */
+    float albedo_tip[3];   /* (0,0,0): (0.45, 0.65, 0.20) (SCENE_DEFAULT_ALBEDO_TIP) */
+    float gravity;         /* m/s the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
+} bb_clump_desc_t;
+
 typedef struct bb_layout_desc_t {
     uint32_t seed;     /* any value (0 included) */
     int size;          /* layout texture side in texels, default 256 */
     int clump_size;    /* clump texture side, default 128 */
     int clump_layers;  /* clump texture array layers, default 4 */
-    int blades;        /* blades per clump, default 48 */
+    int blades;        /* blades per clump layer, default bb_clump_blades(200, 6) = 52
+                          (the scene's default densities) */
+    bb_clump_desc_t clump;
 } bb_layout_desc_t;
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
+
+/* Blades per clump layer for a blade field of `blade_density` blades per m^2
+ * shown by billboards of `billboard_density` candidates per m^2 (both
+ * thinned alike by the extent map): (pi / 2) blade_density /
+ * billboard_density, rounded, at least 1. Per billboard as many blades as
+ * the blade field grows per billboard, times pi / 2 because a billboard
+ * seen at an angle theta foreshortens its blades by |cos theta| once more
+ * (mean 2 / pi) than the blades of the field, which are seen at their own
+ * angle only: so a ray through the billboard field meets as much blade
+ * surface as one through the blade field. */
+int bb_clump_blades(float blade_density, float billboard_density);
 
 /* All images have row 0 at the top; texel (x, y) covers layout cell x along
  * world +x and y along world +z. The layout textures tile seamlessly. */
@@ -30,9 +83,9 @@ typedef struct bb_layout_t {
     core_image_t direction;  /* 3 channels: 0.5 + 0.5 * growth dir (mostly +y) */
     core_image_t messiness;  /* 1 channel */
     int clump_layers;
-    core_image_t *clumps;    /* clump_layers RGBA images, straight alpha; fully
-                                transparent texels hold the layer's mean blade
-                                colour so mipmaps do not darken the edges */
+    core_image_t *clumps;    /* clump_layers RGBA images: blade albedo, coverage as
+                                straight alpha; fully transparent texels hold the
+                                layer's mean albedo so mipmaps do not darken edges */
 } bb_layout_t;
 
 /* Deterministic from desc->seed. Returns false (and logs) on allocation failure. */

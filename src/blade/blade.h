@@ -112,7 +112,8 @@ typedef struct blade_gpu_t {
  *   nearer than fade_start (distance from the camera to the root), absent
  *   beyond fade_end, and cross-faded in between by a dithered alpha that
  *   drives alpha-to-coverage (enable MSAA on the target for a smooth fade).
- *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20). */
+ *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20)
+ *   (SCENE_DEFAULT_ALBEDO_ROOT / _TIP of scene/scene_fields.h). */
 typedef struct blade_draw_desc_t {
     float view_proj[16];
     float camera[3];

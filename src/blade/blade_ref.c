@@ -901,3 +901,37 @@ size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
     if (stats) *stats = s;
     return count;
 }
+
+/* ---- geometry (twin of blade_profile / blade_build in blade_geom.glsl) ------- */
+
+float blade_ref_profile(int shape, float v)
+{
+    switch (shape) {
+    case BLADE_SHAPE_QUAD: return 1.0f;
+    case BLADE_SHAPE_TRIANGLE: return 1.0f - v;
+    case BLADE_SHAPE_TRIANGLE_TIP: return 1.0f - fmaxf(v - 0.5f, 0.0f) / 0.5f;
+    case BLADE_SHAPE_DANDELION: {
+        float f = 4.0f * v - floorf(4.0f * v);
+        return (1.0f - v) * (0.35f + 0.65f * fabsf(2.0f * f - 1.0f));
+    }
+    default: return 1.0f - v * v;
+    }
+}
+
+void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[3], float normal[3])
+{
+    v3 v0 = v3_load(b->v0), v1 = v3_load(b->v1), v2 = v3_load(b->v2);
+    float w = b->v2[3];
+    v3 t1, front;
+    frame(b, &t1, &front);
+    v3 a = v3_add(v0, v3_scale(v3_sub(v1, v0), v));
+    v3 bb = v3_add(v1, v3_scale(v3_sub(v2, v1), v));
+    v3 c = v3_add(a, v3_scale(v3_sub(bb, a), v));
+    v3 n = v3_safe_normalize(v3_cross(v3_sub(bb, a), t1));
+    if (v3_dot(n, n) == 0.0f) n = front;
+    v3 c0 = v3_sub(c, v3_scale(t1, 0.5f * w));
+    v3 c1 = v3_add(c, v3_scale(t1, 0.5f * w));
+    float t = 0.5f + (u - 0.5f) * blade_ref_profile(shape, v);
+    v3_store(pos, v3_add(v3_scale(c0, 1.0f - t), v3_scale(c1, t)));
+    v3_store(normal, n);
+}

@@ -2,10 +2,11 @@
  * Jahrmann & Wimmer 2017, "Responsive Real-Time Grass Rendering for General
  * 3D Scenes". Each blade is a quadratic Bézier curve v0 (root), v1 (control
  * point), v2 (simulated tip). The functions here are the exact twins of
- * shaders/common/blade.glsl, shaders/blade/blade_physics.comp and
- * shaders/blade/blade_cull.comp, one function per step so tests can check
- * each: recovery (eq. 1), gravity (eq. 2-4), wind (eq. 5-8), collision
- * (sec. 5.2), state validation (eq. 9-13), culling (eq. 14-20).
+ * shaders/common/blade.glsl, shaders/blade/blade_physics.comp,
+ * shaders/blade/blade_cull.comp and shaders/blade/blade_geom.glsl, one
+ * function per step so tests can check each: recovery (eq. 1), gravity
+ * (eq. 2-4), wind (eq. 5-8), collision (sec. 5.2), state validation
+ * (eq. 9-13), culling (eq. 14-20), the blade surface (eq. 21).
  *
  * One simulation step of blade_ref_step_one, in this order:
  *   1. height <= 0 (a padding blade): nothing happens.
@@ -312,6 +313,25 @@ float blade_ref_curve_length(const blade_t *b, int samples);
 
 /* Curve midpoint m = 1/4 v0 + 1/2 v1 + 1/4 v2. */
 void blade_ref_midpoint(const blade_t *b, float m[3]);
+
+/* ---- geometry (sec. 6.3, eq. 21; twin of shaders/blade/blade_geom.glsl) ----
+ * Shapes: BLADE_SHAPE_* are the values of scene_blade_shape_t and of the
+ * GLSL's SHAPE_* (0 quadratic, 1 quad, 2 triangle, 3 triangle_tip,
+ * 4 dandelion). The width profile f(v) of blade_profile. */
+enum {
+    BLADE_SHAPE_QUADRATIC = 0,
+    BLADE_SHAPE_QUAD = 1,
+    BLADE_SHAPE_TRIANGLE = 2,
+    BLADE_SHAPE_TRIANGLE_TIP = 3,
+    BLADE_SHAPE_DANDELION = 4
+};
+float blade_ref_profile(int shape, float v);
+
+/* The surface point of blade_build at u (0..1 across the width) and v
+ * (0 root, 1 tip) and its normal normalize(cross(b - a, width_dir)) (the
+ * front direction where that degenerates), without eq. 23 and eq. 24
+ * (u_displacement and u_width_correction 0: the program's setting). */
+void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[3], float normal[3]);
 
 /* ---- culling (sec. 6, eq. 14-20) ----------------------------------------
  * Tests, in this order (the first that fails culls the blade and only that

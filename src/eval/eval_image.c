@@ -35,7 +35,7 @@ typedef struct block_t {
     double n;            /* pixels */
 } block_t;
 
-static double srgb_to_linear(int v)
+double eval_srgb_to_linear(int v)
 {
     double c = v / 255.0;
     return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
@@ -47,8 +47,7 @@ static double lab_f(double t)
     return t > e ? cbrt(t) : (k * t + 16.0) / 116.0;
 }
 
-/* Linear sRGB (D65) to CIELAB. */
-static void linear_to_lab(const double rgb[3], double lab[3])
+void eval_linear_to_lab(const double rgb[3], double lab[3])
 {
     double x = 0.4124564 * rgb[0] + 0.3575761 * rgb[1] + 0.1804375 * rgb[2];
     double y = 0.2126729 * rgb[0] + 0.7151522 * rgb[1] + 0.0721750 * rgb[2];
@@ -136,8 +135,8 @@ static void level_terms(const block_t *ba, const block_t *bb, int nb, double t[3
         const block_t *a = &ba[i], *b = &bb[i];
         double ma[3], mb[3], la[3], lb[3];
         for (int k = 0; k < 3; k++) ma[k] = a->rgb[k] / a->n, mb[k] = b->rgb[k] / b->n;
-        linear_to_lab(ma, la);
-        linear_to_lab(mb, lb);
+        eval_linear_to_lab(ma, la);
+        eval_linear_to_lab(mb, lb);
         colour += a->n * sqrt((la[0] - lb[0]) * (la[0] - lb[0]) + (la[1] - lb[1]) * (la[1] - lb[1]) +
                               (la[2] - lb[2]) * (la[2] - lb[2]));
         coverage += fabs(a->grass - b->grass);
@@ -164,7 +163,7 @@ bool eval_image_error(const core_image_t *img, const core_image_t *ref, const ev
         return false;
     if (bg && (bg->w != img->w || bg->h != img->h || bg->channels < 3)) return false;
     double lut[256];
-    for (int v = 0; v < 256; v++) lut[v] = srgb_to_linear(v);
+    for (int v = 0; v < 256; v++) lut[v] = eval_srgb_to_linear(v);
     int s = d.block > 0 ? d.block : (img->h + BLOCKS_PER_HEIGHT / 2) / BLOCKS_PER_HEIGHT;
     s = s < 1 ? 1 : s;
     int bx = (img->w + s - 1) / s, by = (img->h + s - 1) / s;
@@ -189,5 +188,80 @@ bool eval_image_error(const core_image_t *img, const core_image_t *ref, const ev
     if (!ok) return false;
     out->score = fmax(fmax(out->colour / d.colour_scale, out->structure / d.structure_scale),
                       out->coverage / d.coverage_scale);
+    return true;
+}
+
+/* ---- hybrid seam (eval_image.h) ------------------------------------------------ */
+
+eval_seam_desc_t eval_seam_desc_defaults(const eval_seam_desc_t *d)
+{
+    eval_seam_desc_t r = d ? *d : (eval_seam_desc_t){0};
+    if (r.fade <= 0.0f) r.fade = 1.0f;
+    if (r.window <= 0.0f) r.window = 3.0f;
+    if (r.colour_scale <= 0) r.colour_scale = 2.3;
+    if (r.coverage_scale <= 0) r.coverage_scale = 0.05;
+    return r;
+}
+
+/* Window statistics of one frame (near, far): CIELAB of the mean colour of
+ * the grass pixels, grass fraction, counted pixels. */
+static bool seam_windows(const eval_seam_frame_t *f, const eval_seam_desc_t *d, const double *lut, double lab[2][3],
+                         double grass[2], long pixels[2])
+{
+    double s = d->switch_distance, rgb[2][3] = {{0}}, g[2] = {0}, n[2] = {0};
+    size_t count = (size_t)f->img->w * (size_t)f->img->h;
+    for (size_t i = 0; i < count; i++) {
+        double x = f->dist[i];
+        if (f->cls[i] == EVAL_SEAM_SKIP || !(fabs(x - s) > d->fade && fabs(x - s) <= d->fade + d->window)) continue;
+        int side = x > s;
+        n[side] += 1.0;
+        if (f->cls[i] != EVAL_SEAM_GRASS) continue;
+        const uint8_t *p = f->img->px + i * (size_t)f->img->channels;
+        for (int c = 0; c < 3; c++) rgb[side][c] += lut[p[c]];
+        g[side] += 1.0;
+    }
+    for (int side = 0; side < 2; side++) {
+        if (g[side] <= 0.0) return false;
+        for (int c = 0; c < 3; c++) rgb[side][c] /= g[side];
+        eval_linear_to_lab(rgb[side], lab[side]);
+        grass[side] = g[side] / n[side];
+        pixels[side] = (long)n[side];
+    }
+    return true;
+}
+
+bool eval_image_seam(const eval_seam_frame_t *frame, const eval_seam_frame_t *ref, const eval_seam_desc_t *desc,
+                     eval_seam_t *out)
+{
+    memset(out, 0, sizeof *out);
+    eval_seam_desc_t d = eval_seam_desc_defaults(desc);
+    const core_image_t *a = frame->img, *b = ref ? ref->img : NULL;
+    if (d.switch_distance <= 0.0f || a->channels < 3 || (b && (b->w != a->w || b->h != a->h || b->channels < 3)))
+        return false;
+    double lut[256];
+    for (int v = 0; v < 256; v++) lut[v] = eval_srgb_to_linear(v);
+    bool ok = seam_windows(frame, &d, lut, out->lab[0], out->grass[0], out->pixels[0]);
+    if (ok && ref) {
+        ok = seam_windows(ref, &d, lut, out->lab[1], out->grass[1], out->pixels[1]);
+    } else if (ok) {
+        /* No reference: one that does not change across the band. */
+        for (int side = 0; side < 2; side++) {
+            memcpy(out->lab[1][side], out->lab[0][0], sizeof out->lab[1][side]);
+            out->grass[1][side] = out->grass[0][0];
+        }
+    }
+    if (!ok) {
+        memset(out, 0, sizeof *out);
+        return false;
+    }
+    double e2 = 0.0;
+    for (int c = 0; c < 3; c++) {
+        double v = (out->lab[0][1][c] - out->lab[0][0][c]) - (out->lab[1][1][c] - out->lab[1][0][c]);
+        e2 += v * v;
+        if (c == 0) out->delta_l = v;
+    }
+    out->delta_e = sqrt(e2);
+    out->coverage = fabs((out->grass[0][1] - out->grass[0][0]) - (out->grass[1][1] - out->grass[1][0]));
+    out->score = fmax(out->delta_e / d.colour_scale, out->coverage / d.coverage_scale);
     return true;
 }

@@ -393,6 +393,22 @@ bool gfx_target_read(const gfx_target_t *t, core_image_t *out)
     return true;
 }
 
+bool gfx_target_read_depth(const gfx_target_t *t, float *out)
+{
+    if (!t->depth.id) return false;
+    gfx_target_resolve_depth(t);
+    size_t row = (size_t)t->w;
+    float *tmp = malloc(sizeof(float) * row * (size_t)t->h);
+    if (!tmp) return false;
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, t->resolve_fbo);
+    glReadPixels(0, 0, t->w, t->h, GL_DEPTH_COMPONENT, GL_FLOAT, tmp);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    for (int y = 0; y < t->h; y++) memcpy(out + (size_t)y * row, tmp + (size_t)(t->h - 1 - y) * row, sizeof(float) * row);
+    free(tmp);
+    return true;
+}
+
 bool gfx_target_screenshot(const gfx_target_t *t, const char *path)
 {
     core_image_t img;

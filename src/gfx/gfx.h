@@ -114,6 +114,10 @@ void gfx_target_resolve(const gfx_target_t *t);
 void gfx_target_resolve_depth(const gfx_target_t *t);
 /* Reads the resolved colour as RGBA8, row 0 at the top, alpha 255 (opaque). */
 bool gfx_target_read(const gfx_target_t *t, core_image_t *out);
+/* Reads the resolved depth (window depth in [0, 1], 1 where nothing was
+ * drawn) as w * h floats, row 0 at the top; false when the target has no
+ * depth. */
+bool gfx_target_read_depth(const gfx_target_t *t, float *out);
 /* Resolve + read + write PNG (atomic). */
 bool gfx_target_screenshot(const gfx_target_t *t, const char *path);
 

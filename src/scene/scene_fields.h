@@ -42,6 +42,14 @@
 #define SCENE_DEFAULT_BLADE_WIDTH_MAX 0.05f
 #define SCENE_DEFAULT_STIFFNESS_MIN 8.0f
 #define SCENE_DEFAULT_STIFFNESS_MAX 12.0f
+/* Not scene keys: the blades' colour (blade_draw_desc_t, and the billboard
+ * clumps drawn from the blade model, bb_clump_desc_t), albedo at the root
+ * and at the tip, and the gravity of the program's blade physics (m/s: the
+ * paper's forces are displacement rates; 1 m/s with stiffness 8-12 bends a
+ * 0.5 m blade by ~0.1 m). */
+#define SCENE_DEFAULT_ALBEDO_ROOT {0.10f, 0.25f, 0.05f}
+#define SCENE_DEFAULT_ALBEDO_TIP {0.45f, 0.65f, 0.20f}
+#define SCENE_DEFAULT_BLADE_GRAVITY 1.0f
 /* "grass": billboards (bb_field_desc_t). */
 #define SCENE_DEFAULT_BILLBOARD_DENSITY 6.0f
 #define SCENE_DEFAULT_BILLBOARD_WIDTH 1.0f

@@ -1,0 +1,116 @@
+/* test_hybrid_seam: the hybrid seam measure (app_world_seam, docs/METRICS.md
+ * "Hybrid seam") on llvmpipe, tests/data/scenes/metric.json in hybrid mode
+ * with the switch at 10 m (the band in the middle of the view), 320x180,
+ * 4 frames:
+ * 1. The seam of the hybrid frame against its billboard-only reference:
+ *    its colour step (Delta E) stays within SEAM_DELTA_E and its coverage
+ *    step within SEAM_COVERAGE (printed with the score).
+ * 2. Its floor: the billboard-only frame of the same view with another
+ *    placement seed against the reference (no switch in either; only
+ *    where the billboards stand differs) scores below 1. The reference's
+ *    own step (the view's change with distance, no reference) is printed:
+ *    why the measure needs a reference.
+ * 3. The measure follows a seam: the hybrid frame with its far side (the
+ *    billboards beyond the band) 10 % darker in linear light moves Delta L*
+ *    down by more than 1. */
+#include "app/app_world.h"
+#include "test.h"
+#include "test_gl.h"
+
+#include <math.h>
+#include <string.h>
+
+/* The hybrid frame's colour and coverage steps may not exceed these. */
+#define SEAM_DELTA_E 1.5
+#define SEAM_COVERAGE 0.15
+
+static app_world_t *make_world(uint32_t placement_seed)
+{
+    app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
+    app_world_t *w = calloc(1, sizeof *w);
+    CHECK(app_world_load(w, &o) == 0);
+    app_world_set_mode(w, SCENE_MODE_HYBRID);
+    w->scene.grass.switch_distance = 10.0f;
+    w->tuning.placement_seed = placement_seed;
+    CHECK(app_world_make_gpu(w));
+    for (int f = 0; f < 4; f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+    return w;
+}
+
+static eval_seam_frame_t view_of(const app_seam_frame_t *f) { return (eval_seam_frame_t){&f->img, f->dist, f->cls}; }
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    app_world_t *w = make_world(0);
+    const scene_desc_t *s = &w->scene;
+    gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
+    cam_t cam;
+    scene_camera_init(s, &cam);
+    app_view_t v;
+    app_view_make(&v, &cam, t.w, t.h, 4.0f / 60.0f, 1.0f / 60.0f);
+    eval_seam_desc_t d = app_seam_desc(w);
+
+    /* 1. The hybrid frame against its billboard-only reference. */
+    app_seam_frame_t hybrid, ref, other, bg;
+    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &hybrid));
+    eval_seam_t e;
+    CHECK(app_world_seam(w, &v, &t, &e));
+    printf("hybrid seam: score %.3f, Delta E %.3f, Delta L* %+.3f, coverage %.4f (grass near | far %.3f | %.3f, "
+           "reference %.3f | %.3f; pixels %ld | %ld)\n",
+           e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1], e.grass[1][0], e.grass[1][1],
+           e.pixels[0][0], e.pixels[0][1]);
+    CHECK(e.pixels[0][0] > 1000 && e.pixels[0][1] > 1000);
+    CHECK(e.delta_e <= SEAM_DELTA_E && e.coverage <= SEAM_COVERAGE);
+
+    /* 2. Floor: billboards only, another placement, against the reference. */
+    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_BILLBOARD, true, &ref));
+    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, false, &bg));
+    app_world_t *w2 = make_world(0x9e3779b9u);
+    CHECK(app_seam_frame_draw(w2, &v, &t, SCENE_MODE_BILLBOARD, true, &other));
+    app_seam_frame_classify(&hybrid, &bg);
+    app_seam_frame_classify(&ref, &bg);
+    app_seam_frame_classify(&other, &bg);
+    eval_seam_frame_t fh = view_of(&hybrid), fr = view_of(&ref), fo = view_of(&other);
+    eval_seam_t floor_e;
+    CHECK(eval_image_seam(&fo, &fr, &d, &floor_e));
+    printf("floor (billboards, another placement): score %.3f, Delta E %.3f, coverage %.4f\n", floor_e.score,
+           floor_e.delta_e, floor_e.coverage);
+    CHECK(floor_e.score < 1.0);
+    /* Why a reference: the billboard-only frame's own step across the band
+     * (no switch in it) is the view's change with distance. */
+    eval_seam_t own;
+    CHECK(eval_image_seam(&fr, NULL, &d, &own));
+    printf("the reference's own step (no switch, no reference): score %.3f, Delta E %.3f, coverage %.4f\n",
+           own.score, own.delta_e, own.coverage);
+
+    /* 3. A darker far side: the measure follows. */
+    eval_seam_t base, dark;
+    CHECK(eval_image_seam(&fh, &fr, &d, &base));
+    CHECK_NEAR(base.score, e.score, 1e-9);
+    for (size_t i = 0; i < (size_t)hybrid.img.w * (size_t)hybrid.img.h; i++) {
+        if (hybrid.dist[i] <= d.switch_distance + d.fade) continue;
+        for (int c = 0; c < 3; c++) {
+            uint8_t *p = &hybrid.img.px[i * 4 + (size_t)c];
+            double lin = pow(*p / 255.0, 2.2) * 0.9;
+            *p = (uint8_t)lrint(pow(lin, 1.0 / 2.2) * 255.0);
+        }
+    }
+    CHECK(eval_image_seam(&fh, &fr, &d, &dark));
+    printf("far side 10%% darker: Delta E %.3f -> %.3f, Delta L* %+.3f -> %+.3f\n", base.delta_e, dark.delta_e,
+           base.delta_l, dark.delta_l);
+    CHECK(dark.delta_l < base.delta_l - 1.0);
+
+    app_seam_frame_free(&hybrid);
+    app_seam_frame_free(&ref);
+    app_seam_frame_free(&other);
+    app_seam_frame_free(&bg);
+    gfx_target_destroy(&t);
+    app_world_destroy(w);
+    app_world_destroy(w2);
+    free(w);
+    free(w2);
+    CHECK(test_gl_shutdown() == 0);
+    TEST_END();
+}
