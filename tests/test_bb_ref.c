@@ -98,6 +98,48 @@ static void test_swept(void)
     collide_free_cubemap(&cube);
 }
 
+static float flat_ground(const void *user, float x, float z)
+{
+    (void)user, (void)x, (void)z;
+    return 0.0f;
+}
+
+/* A ball sunk 0.2 m into flat ground: a billboard rooted just outside its
+ * ground circle has vertices whose push points down; raised back onto the
+ * ground they leave the ball sideways, so none stays inside it. */
+static void test_ground_escape(void)
+{
+    collide_cubemap_t cube;
+    float r = 0.3f;
+    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
+    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
+    float texel = 2.0f * cube.half / (float)cube.res;
+    vec3 centre = {0.0f, 0.1f, 0.0f};
+    double deepest = -1.0;
+    int below = 0;
+    for (int k = 0; k < 12; k++) {
+        float ang = 6.2831853f * (float)k / 12.0f;
+        /* rooted 0.3 m out (the ground circle is 0.283 m), facing the
+         * centre, 0.58 m wide and 0.14 m tall: its innermost column stands
+         * 1 cm from the ball's axis, where the push points straight down */
+        vec3 root = {0.3f * cosf(ang), 0.0f, 0.3f * sinf(ang)};
+        bb_mesh_t mesh;
+        CHECK(bb_mesh_init_quad(&mesh, root, (vec3){cosf(ang), 0, sinf(ang)}, (vec3){0, 1, 0}, 0.58f, 0.14f, 5, 8));
+        bb_collide_desc_t d = {.ground = flat_ground, .iterations = 1};
+        collide_field(&mesh, 1, &cube, centre, &d);
+        for (int v = mesh.n; v < mesh.n * mesh.m; v++) {
+            deepest = fmax(deepest, r - test_dist3(mesh.pos[v], centre));
+            below += mesh.pos[v][1] < -1e-6f;
+        }
+        bb_mesh_free(&mesh);
+    }
+    printf("ground escape: deepest vertex %.4f m inside the sunk ball (texel %.4f), %d under the ground\n", deepest,
+           texel, below);
+    CHECK(deepest <= texel);
+    CHECK(below == 0);
+    collide_free_cubemap(&cube);
+}
+
 static void test_springs(void)
 {
     bb_mesh_t mesh;
@@ -301,6 +343,7 @@ int main(void)
     core_log_set_quiet(true);
     test_collide();
     test_swept();
+    test_ground_escape();
     test_springs();
     test_wind_recover();
     test_stress();

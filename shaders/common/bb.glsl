@@ -178,18 +178,41 @@ vec3 bb_sweep_shift(bb_cube cube, mat4 c2w, vec3 s, vec3 p)
     return ss > 0.0 ? s * clamp(dot(p - centre, s) / ss, 0.0, 1.0) : vec3(0.0);
 }
 
+/* Where cube c's push-out takes world point x (bb_ref.c push_target). */
+bool bb_push_target(sampler2DArray tex, bb_cube cube, mat4 w2c, mat4 c2w, vec3 sweep, vec3 x, out vec3 to)
+{
+    vec3 shift = bb_sweep_shift(cube, c2w, sweep, x);
+    vec3 o;
+    to = x;
+    if (!bb_push_out(tex, cube, (w2c * vec4(x - shift, 1.0)).xyz, o)) return false;
+    to = (c2w * vec4(o, 1.0)).xyz + shift;
+    return true;
+}
+
 void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
                   mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count)
 {
     for (int v = BB_N; v < BB_N * BB_M; v++) {
         for (int c = 0; c < count; c++) {
-            vec3 shift = bb_sweep_shift(cubes[c], c2w[c], sweep[c], bb_pos[v]);
-            vec3 q = (w2c[c] * vec4(bb_pos[v] - shift, 1.0)).xyz;
-            vec3 o;
-            if (bb_push_out(tex, cubes[c], q, o)) bb_pos[v] = (c2w[c] * vec4(o, 1.0)).xyz + shift;
+            vec3 to;
+            if (bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) bb_pos[v] = to;
         }
 #ifdef BB_GROUND
-        bb_pos[v].y = max(bb_pos[v].y, terrain_height(bb_pos[v].x, bb_pos[v].z));
+        float g = terrain_height(bb_pos[v].x, bb_pos[v].z);
+        if (bb_pos[v].y >= g) continue;
+        bb_pos[v].y = g;
+        /* Raised back into an object whose push pointed down: leave sideways
+         * (bb_ref.c bb_push_mesh). */
+        for (int c = 0; c < count; c++) {
+            vec3 to;
+            if (!bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) continue;
+            vec3 d = to - bb_pos[v];
+            float pen = length(d), hl = length(d.xz);
+            if (hl < 1e-6 * max(pen, 1e-12)) continue;
+            float s = min(pen * pen / hl, 4.0 * pen);
+            bb_pos[v].xz += d.xz / hl * s;
+            bb_pos[v].y = max(bb_pos[v].y, terrain_height(bb_pos[v].x, bb_pos[v].z));
+        }
 #endif
     }
 }

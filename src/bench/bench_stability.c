@@ -356,8 +356,8 @@ static const stab_case_t cases[] = {
      MEASURE_STATIC, "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
      "the cube covers the bounding sphere, so at a fixed resolution its texel grows with the collider (2 r / 16: "
      "the case broke from r 1 m, 0.056 m deep, 0.23 m at 4 m); grass.cube_texel raises the resolution until a "
-     "texel is at most 2 cm (400 texels per face at 4 m). The depth left at r 3 m is not the texel's: 1 cm texels "
-     "leave the same 0.062 m",
+     "texel is at most 2 cm (400 texels per face at 4 m); the 0.062 m then left at r 3 m were vertices the ground "
+     "held inside the ball (1 cm texels left the same), which now leave it sideways (bb_collide_desc_t.ground)",
      setup_large, judge_depth5},
     {"squeeze_blade", SCENE_MODE_BLADE, "gap between two r 0.35 m spheres m", {0.4f, 0.2f, 0.1f, 0.05f, 0.02f, 0},
      MEASURE_STATIC, "max depth m", "deepest sample > max(0.02 m, 2 x first value's), or NaN",

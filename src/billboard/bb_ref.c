@@ -137,22 +137,46 @@ static void sweep_shift(const collide_cubemap_t *cube, const mat4 c2w, const flo
     for (int k = 0; k < 3; k++) out[k] = s[k] * t;
 }
 
+/* Where cube c's push-out would take world point x (its swept position
+ * included); false when x is outside. */
+static bool push_target(const collide_cubemap_t *cube, const mat4 w2c, const mat4 c2w, const float *sweep,
+                        const float x[3], vec3 out)
+{
+    vec3 shift = {0.0f, 0.0f, 0.0f}, p, q, o;
+    if (sweep) sweep_shift(cube, c2w, sweep, x, shift);
+    glm_vec3_sub((float *)x, shift, p);
+    glm_mat4_mulv3((vec4 *)w2c, p, 1.0f, q);
+    if (!collide_push_out(cube, q, o)) return false;
+    glm_mat4_mulv3((vec4 *)c2w, o, 1.0f, p);
+    glm_vec3_add(p, shift, out);
+    return true;
+}
+
 static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *w2c,
                          const mat4 *c2w, int count, const bb_collide_desc_t *d)
 {
     for (int v = mesh->n; v < mesh->n * mesh->m; v++) {
+        float *x = mesh->pos[v];
+        for (int c = 0; c < count; c++) push_target(&cubes[c], w2c[c], c2w[c], d->sweep ? d->sweep[c] : NULL, x, x);
+        if (!d->ground) continue;
+        float g = d->ground(d->ground_user, x[0], x[2]);
+        if (x[1] >= g) continue;
+        x[1] = g;
+        /* Raised back into an object whose push pointed down: leave it
+         * sideways instead, along the push's horizontal part by the distance
+         * that removes its depth across a locally flat surface (pen / |n_h|,
+         * at most 4 pen), then onto the ground again. */
         for (int c = 0; c < count; c++) {
-            vec3 shift = {0.0f, 0.0f, 0.0f}, p, q, out;
-            if (d->sweep) sweep_shift(&cubes[c], c2w[c], d->sweep[c], mesh->pos[v], shift);
-            glm_vec3_sub(mesh->pos[v], shift, p);
-            glm_mat4_mulv3((vec4 *)w2c[c], p, 1.0f, q);
-            if (collide_push_out(&cubes[c], q, out)) {
-                glm_mat4_mulv3((vec4 *)c2w[c], out, 1.0f, p);
-                glm_vec3_add(p, shift, mesh->pos[v]);
-            }
+            vec3 to;
+            if (!push_target(&cubes[c], w2c[c], c2w[c], d->sweep ? d->sweep[c] : NULL, x, to)) continue;
+            float dx = to[0] - x[0], dy = to[1] - x[1], dz = to[2] - x[2];
+            float pen = sqrtf(dx * dx + dy * dy + dz * dz), hl = sqrtf(dx * dx + dz * dz);
+            if (hl < 1e-6f * fmaxf(pen, 1e-12f)) continue;
+            float s = fminf(pen * pen / hl, 4.0f * pen);
+            x[0] += dx / hl * s;
+            x[2] += dz / hl * s;
+            x[1] = fmaxf(x[1], d->ground(d->ground_user, x[0], x[2]));
         }
-        if (d->ground)
-            mesh->pos[v][1] = fmaxf(mesh->pos[v][1], d->ground(d->ground_user, mesh->pos[v][0], mesh->pos[v][2]));
     }
 }
 

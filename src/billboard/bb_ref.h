@@ -46,8 +46,10 @@ typedef struct bb_collide_desc_t {
     /* Terrain height at (x, z), or NULL (no ground). Departure from the
      * paper: after each push-out every non-root vertex is raised to the
      * ground, since a push along a downward normal (a ball sunk into the
-     * ground over the roots) would leave it under the terrain. GPU twin:
-     * the field's height texture (shaders/billboard/bb_ground.glsl). */
+     * ground over the roots) would leave it under the terrain; a vertex so
+     * raised back into an object then leaves it sideways (the push's
+     * horizontal part, pen / |n_h|, at most 4 pen). GPU twin: the field's
+     * height texture (shaders/billboard/bb_ground.glsl). */
     float (*ground)(const void *user, float x, float z);
     const void *ground_user;
     /* Swept collision (departure from the paper; issue 17): per cube, the
