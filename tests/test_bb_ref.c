@@ -19,13 +19,19 @@ static void collide_field(bb_mesh_t *meshes, int count, const collide_cubemap_t 
     for (int b = 0; b < count; b++) bb_ref_collide(&meshes[b], cube, (const mat4 *)&w2c, 1, desc);
 }
 
+/* A 64^2 cube map (half 0.35 m) of a sphere of radius r at its centre;
+ * returns its texel size. */
+static float sphere_cube(collide_cubemap_t *cube, float r)
+{
+    CHECK(collide_init_cubemap(cube, 64, (vec3){0, 0, 0}, 0.35f));
+    collide_render_sphere(cube, (vec3){0, 0, 0}, r);
+    return 2.0f * cube->half / (float)cube->res;
+}
+
 static void test_collide(void)
 {
     collide_cubemap_t cube;
-    float r = 0.3f;
-    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
-    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
-    float texel = 2.0f * cube.half / (float)cube.res;
+    float r = 0.3f, texel = sphere_cube(&cube, r);
     core_rng_t rng;
     core_rng_seed(&rng, 11, 2);
     int touched = 0;
@@ -64,10 +70,7 @@ static void test_collide(void)
 static void test_swept(void)
 {
     collide_cubemap_t cube;
-    float r = 0.3f;
-    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
-    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
-    float texel = 2.0f * cube.half / (float)cube.res;
+    float r = 0.3f, texel = sphere_cube(&cube, r);
     vec3 now = {1.5f, 0.35f, 0.0f};
     const float sweep[1][3] = {{-1.5f, 0.0f, 0.0f}};
     for (int swept = 0; swept < 2; swept++) {
@@ -110,10 +113,7 @@ static float flat_ground(const void *user, float x, float z)
 static void test_ground_escape(void)
 {
     collide_cubemap_t cube;
-    float r = 0.3f;
-    CHECK(collide_init_cubemap(&cube, 64, (vec3){0, 0, 0}, 0.35f));
-    collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
-    float texel = 2.0f * cube.half / (float)cube.res;
+    float r = 0.3f, texel = sphere_cube(&cube, r);
     vec3 centre = {0.0f, 0.1f, 0.0f};
     double deepest = -1.0;
     int below = 0;
