@@ -245,29 +245,30 @@ static int build_configs(bench_config_t *c, bool quick)
 }
 
 /* One chart: a group's runs with y taken from one measure and x the GPU
- * time of the passes its knob changes (`passes`: space-separated pass
- * names whose medians are summed; NULL: the whole frame), the frame beside
- * it in the tables. Timing only those passes keeps a knob's cost from
- * drowning in the run-to-run noise of the rest of the frame. */
+ * time of the passes its knob changes (`passes`: the pass names whose
+ * medians are summed, up to a NULL; none: the whole frame), the frame
+ * beside it in the tables. Timing only those passes keeps a knob's cost
+ * from drowning in the run-to-run noise of the rest of the frame. */
 typedef enum bench_y_t { Y_IMAGE = 0, Y_PEN_MAX, Y_SPRING } bench_y_t;
+#define CHART_PASSES 4
 typedef struct bench_chart_t {
     const char *name, *group, *ylabel;
     bench_y_t y;
-    const char *passes;
+    const char *passes[CHART_PASSES];
 } bench_chart_t;
 
-#define BB_KNOB_PASSES "bb.cubemaps bb.collide bb.recover"
-#define DRAW_PASSES "blade.cull blade.draw blade.raster"
+#define BB_KNOB_PASSES {"bb.cubemaps", "bb.collide", "bb.recover"}
+#define DRAW_PASSES {"blade.cull", "blade.draw", "blade.raster"}
 static const bench_chart_t charts[] = {
     {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX,
      BB_KNOB_PASSES},
     {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING, BB_KNOB_PASSES},
-    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX, "blade.physics"},
+    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX, {"blade.physics"}},
     {"blade_tessellation", "blade_tessellation", "image error (eval_image vs reference)", Y_IMAGE, DRAW_PASSES},
     {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE,
      DRAW_PASSES},
-    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE, NULL},
-    {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE, NULL},
+    {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
+    {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
 
@@ -275,35 +276,25 @@ static const bench_chart_t charts[] = {
  * names none). */
 static double knob_ms(const bench_chart_t *ch, const bench_metrics_t *m)
 {
-    if (!ch->passes) return m->frame_ms;
+    if (!ch->passes[0]) return m->frame_ms;
     double sum = 0.0;
-    for (int p = 0; p < m->pass_count; p++) {
-        const char *name = m->pass_name[p], *at = strstr(ch->passes, name);
-        size_t len = strlen(name);
-        while (at && !((at == ch->passes || at[-1] == ' ') && (at[len] == ' ' || at[len] == 0)))
-            at = strstr(at + 1, name);
-        if (at) sum += m->pass_ms[p];
-    }
+    for (int p = 0; p < m->pass_count; p++)
+        for (int k = 0; k < CHART_PASSES && ch->passes[k]; k++)
+            if (strcmp(m->pass_name[p], ch->passes[k]) == 0) sum += m->pass_ms[p];
     return sum;
 }
 
 /* "GPU ms of bb.cubemaps + bb.collide + bb.recover per frame" or of the frame. */
 static void knob_label(const bench_chart_t *ch, char *out, size_t size)
 {
-    if (!ch->passes) {
+    if (!ch->passes[0]) {
         snprintf(out, size, "GPU ms per frame");
         return;
     }
-    size_t n = (size_t)snprintf(out, size, "GPU ms of ");
-    for (const char *c = ch->passes; *c && n + 16 < size; c++) {
-        if (*c == ' ') {
-            n += (size_t)snprintf(out + n, size - n, " + ");
-        } else {
-            out[n++] = *c;
-            out[n] = 0;
-        }
-    }
-    snprintf(out + n, size - n, " per frame");
+    int n = snprintf(out, size, "GPU ms of");
+    for (int k = 0; k < CHART_PASSES && ch->passes[k] && n > 0 && (size_t)n < size; k++)
+        n += snprintf(out + n, size - (size_t)n, "%s %s", k ? " +" : "", ch->passes[k]);
+    if (n > 0 && (size_t)n < size) snprintf(out + n, size - (size_t)n, " per frame");
 }
 
 static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double image_error)

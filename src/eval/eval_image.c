@@ -14,14 +14,18 @@
 #define STRUCTURE_FLOOR 1.0
 /* Default finest block: the image height / BLOCKS_PER_HEIGHT. */
 #define BLOCKS_PER_HEIGHT 8
+/* The scores' units, shared by eval_image_error and eval_image_seam: the
+ * Delta E (CIE76 JND) and the grass-fraction step that score 1. */
+#define COLOUR_SCALE 2.3
+#define COVERAGE_SCALE 0.05
 
 eval_image_desc_t eval_image_desc_defaults(const eval_image_desc_t *d)
 {
     eval_image_desc_t r = d ? *d : (eval_image_desc_t){0};
     if (r.levels <= 0) r.levels = 2;
     if (r.grass_threshold <= 0) r.grass_threshold = 8;
-    if (r.colour_scale <= 0) r.colour_scale = 2.3;
-    if (r.coverage_scale <= 0) r.coverage_scale = 0.05;
+    if (r.colour_scale <= 0) r.colour_scale = COLOUR_SCALE;
+    if (r.coverage_scale <= 0) r.coverage_scale = COVERAGE_SCALE;
     if (r.structure_scale <= 0) r.structure_scale = 0.2;
     return r;
 }
@@ -198,8 +202,8 @@ eval_seam_desc_t eval_seam_desc_defaults(const eval_seam_desc_t *d)
     eval_seam_desc_t r = d ? *d : (eval_seam_desc_t){0};
     if (r.fade <= 0.0f) r.fade = 1.0f;
     if (r.window <= 0.0f) r.window = 3.0f;
-    if (r.colour_scale <= 0) r.colour_scale = 2.3;
-    if (r.coverage_scale <= 0) r.coverage_scale = 0.05;
+    if (r.colour_scale <= 0) r.colour_scale = COLOUR_SCALE;
+    if (r.coverage_scale <= 0) r.coverage_scale = COVERAGE_SCALE;
     return r;
 }
 
