@@ -10,7 +10,8 @@
  *    (tests/data/scenes/metric.json: 5 m up, looking 11 m ahead), grass
  *    being what differs from the grass-free view (eval_image's rule):
  *    the billboards' grass fraction is within SIDE_COVERAGE of the
- *    blades' and their mean grass colour within CIE76 Delta E SIDE_DELTA_E.
+ *    blades' and their mean grass colour within CIE76 Delta E SIDE_DELTA_E
+ *    (the three views go to test_out_dir() as side_*.png).
  * 3. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
 #include "app/app_world.h"
@@ -84,6 +85,13 @@ static void side_view(void)
     printf("side view: grass fraction billboard %.3f, blade %.3f; grass colour L*a*b* billboard (%.1f %.1f %.1f), "
            "blade (%.1f %.1f %.1f), Delta E %.2f\n",
            cb, cl, lb[0], lb[1], lb[2], ll[0], ll[1], ll[2], de);
+    const char *names[3] = {"side_background.png", "side_blade.png", "side_billboard.png"};
+    const core_image_t *imgs[3] = {&bg, &bl, &bb};
+    for (int i = 0; i < 3; i++) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", test_out_dir(), names[i]);
+        core_image_write_png(imgs[i], path);
+    }
     CHECK(fabs(cb - cl) < SIDE_COVERAGE);
     CHECK(de < SIDE_DELTA_E);
     core_image_free(&bg);

@@ -19,7 +19,12 @@
  *      sphere carries its travel, in the GPU and the CPU step alike);
  *   e) swept collision: a ball moving 1.5 m per step (5 diameters, 90 m/s
  *      at 60 Hz) bends at least 90 % of the blades along its path at some
- *      step. */
+ *      step;
+ *   f) distance thinning keeps coverage: with the distance test on, every
+ *      drawn blade is a survivor of blade_ref_cull_one and is drawn
+ *      blade_ref_lod_width times its pose's width; per 2 m ring of ground
+ *      distance the drawn blades' summed width is within 10 % of all the
+ *      blades' (thinning alone leaves down to 1 / 8 of it). */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
 #include "test.h"
@@ -411,6 +416,70 @@ static void test_exhaustion(void)
     terrain_free(&m);
 }
 
+/* ---- f) ------------------------------------------------------------------ */
+static void test_lod_width(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    t.desc.cull.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM;
+    t.desc.cull.max_distance = 10.0f;
+    t.desc.cull.distance_levels = 8;
+    uint32_t B = t.template_blades;
+    const float cam[3] = {-7.5f, 2.0f, -7.5f};
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, cam, NULL, &env);
+    draw_all(&t, cam);
+    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
+    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_cull_desc_t cull = t.desc.cull;
+    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
+    enum { RINGS = 5 };
+    double all[RINGS] = {0}, kept[RINGS] = {0}, thin[RINGS] = {0};
+    float worst = 0.0f;
+    int not_survivor = 0;
+    bool *listed = calloc((size_t)t.grid.nx * (size_t)t.grid.nz, sizeof *listed);
+    for (uint32_t i = 0; i < n; i++) {
+        blade_t pose;
+        blade_tiles_pose(&t, (int)(ids[i] / B), ids[i] % B, &pose);
+        listed[ids[i] / B] = true;
+        not_survivor += blade_ref_cull_one(&pose, ids[i] % B, &cull) != BLADE_CULL_VISIBLE;
+        float dx = pose.v0[0] - cam[0], dz = pose.v0[2] - cam[2], d = sqrtf(dx * dx + dz * dz);
+        float want = pose.v2[3] * blade_ref_lod_width(d, 10.0f, 8);
+        worst = fmaxf(worst, fabsf(drawn[i].v2[3] - want) / want);
+        int r = (int)(d / 2.0f);
+        if (r < RINGS) kept[r] += drawn[i].v2[3], thin[r] += pose.v2[3];
+    }
+    /* every blade of the tiles that were drawn, as if nothing were thinned */
+    for (int tile = 0; tile < t.grid.nx * t.grid.nz; tile++) {
+        if (!listed[tile]) continue;
+        for (uint32_t k = 0; k < B; k++) {
+            blade_t pose;
+            blade_tiles_pose(&t, tile, k, &pose);
+            if (pose.v1[3] <= 0.0f) continue;
+            float dx = pose.v0[0] - cam[0], dz = pose.v0[2] - cam[2];
+            int r = (int)(sqrtf(dx * dx + dz * dz) / 2.0f);
+            if (r < RINGS) all[r] += pose.v2[3];
+        }
+    }
+    printf("f) %u blades drawn, %d not survivors of the CPU cull, width vs CPU twin worst %.2g (relative)\n", n,
+           not_survivor, worst);
+    CHECK(n > 0 && not_survivor == 0);
+    CHECK(worst < 1e-4f);
+    for (int r = 0; r < RINGS; r++) {
+        printf("f) ground distance %d-%d m: drawn width / all blades' width %.3f (unwidened %.3f)\n", 2 * r,
+               2 * r + 2, kept[r] / all[r], thin[r] / all[r]);
+        CHECK(all[r] > 0.0 && fabs(kept[r] / all[r] - 1.0) < 0.1);
+    }
+    CHECK(thin[RINGS - 1] / all[RINGS - 1] < 0.5); /* the last ring is thinned: the test compares something */
+    free(listed);
+    free(drawn);
+    free(ids);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -420,6 +489,7 @@ int main(void)
     test_ball();
     test_fast_ball();
     test_exhaustion();
+    test_lod_width();
     /* a mesh terrain is rejected */
     terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
     mesh.grid_res = 0;

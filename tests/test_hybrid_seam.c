@@ -3,11 +3,12 @@
  * with the switch at 10 m (the band in the middle of the view), 320x180,
  * 4 frames:
  * 1. The seam of the hybrid frame against its billboard-only reference:
- *    its colour step (Delta E) stays within SEAM_DELTA_E and its coverage
- *    step within SEAM_COVERAGE (printed with the score).
+ *    its coverage step stays within SEAM_COVERAGE (the tiles widen the
+ *    blades their distance levels thin, blade_ref_lod_width).
  * 2. Its floor: the billboard-only frame of the same view with another
  *    placement seed against the reference (no switch in either; only
- *    where the billboards stand differs) scores below 1. The reference's
+ *    where the billboards stand differs) scores below 1, and the hybrid
+ *    seam scores no more than this floor (issue 16). The reference's
  *    own step (the view's change with distance, no reference) is printed:
  *    why the measure needs a reference.
  * 3. The measure follows a seam: the hybrid frame with its far side (the
@@ -20,9 +21,8 @@
 #include <math.h>
 #include <string.h>
 
-/* The hybrid frame's colour and coverage steps may not exceed these. */
-#define SEAM_DELTA_E 1.5
-#define SEAM_COVERAGE 0.15
+/* The hybrid frame's coverage step may not exceed this (score 0.4). */
+#define SEAM_COVERAGE 0.02
 
 static app_world_t *make_world(uint32_t placement_seed)
 {
@@ -62,7 +62,7 @@ int main(void)
            e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1], e.grass[1][0], e.grass[1][1],
            e.pixels[0][0], e.pixels[0][1]);
     CHECK(e.pixels[0][0] > 1000 && e.pixels[0][1] > 1000);
-    CHECK(e.delta_e <= SEAM_DELTA_E && e.coverage <= SEAM_COVERAGE);
+    CHECK(e.coverage <= SEAM_COVERAGE);
 
     /* 2. Floor: billboards only, another placement, against the reference. */
     CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_BILLBOARD, true, &ref));
@@ -78,6 +78,7 @@ int main(void)
     printf("floor (billboards, another placement): score %.3f, Delta E %.3f, coverage %.4f\n", floor_e.score,
            floor_e.delta_e, floor_e.coverage);
     CHECK(floor_e.score < 1.0);
+    CHECK_MSG(e.score <= floor_e.score, "the seam (%.3f) is above the noise floor (%.3f)", e.score, floor_e.score);
     /* Why a reference: the billboard-only frame's own step across the band
      * (no switch in it) is the view's change with distance. */
     eval_seam_t own;

@@ -180,7 +180,8 @@ int main(void)
                             fmax(fabs(ref.m - cells[c].m), fabs(ref.eta - cells[c].eta)));
             worst = fmax(worst, e);
             deepest = fmax(deepest, cells[c].m);
-            CHECK(fabsf(cells[c].tau - bt->time) < 1e-6f);
+            CHECK_MSG(fabsf(cells[c].tau - bt->time) < 1e-6f, "cell %d written at %.7f s, hand-over at %.7f s", c,
+                      cells[c].tau, bt->time);
             compared += ref.count > 0;
         }
     printf("a) hand-over: %d cells of tile %d, GPU vs CPU twin %.2g (mean |o| up to %.3f)\n", compared, tile, worst,

@@ -5,7 +5,9 @@
  * list[i / B] = (tile, slot), blade k = i % B: the blade is the pool state
  * of the slot, or, for an idle tile (slot TILES_NO_SLOT), the procedural
  * pose of the template blade. The distance level uses k (templates are
- * Morton ordered, so the thinning is spatially even). A survivor is
+ * Morton ordered, so the thinning is spatially even) and widens the
+ * survivors so the thinned field covers the ground as the full one
+ * (blade_lod_width). A survivor is
  * appended as a whole blade (and its id tile * B + k) and counted in
  * cmd.instanceCount; beyond u_capacity it is dropped and counted in
  * cmd.overflow. The host zeroes both before the dispatch. */
@@ -50,6 +52,13 @@ bool extent_keep(vec3 v0, uint id)
     return hash_u32(id ^ hash_u32(u_extent_seed ^ 0x5bd1e995u)) % 255u < e;
 }
 
+/* Ground distance from the camera (eq. 19's d_proj). */
+float ground_distance(Blade b)
+{
+    vec3 view = b.v0.xyz - u_cam_pos;
+    return length(view - b.up.xyz * dot(view, b.up.xyz));
+}
+
 bool visible(Blade b, uint index)
 {
     vec3 v0 = b.v0.xyz;
@@ -69,7 +78,7 @@ bool visible(Blade b, uint index)
             return false;
     }
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
-        float dproj = length(view_ground);
+        float dproj = ground_distance(b);
         int n = u_distance_levels;
         if (dproj > u_max_distance) return false;
         int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
@@ -94,6 +103,8 @@ void main()
     }
     if (b.v1.w <= 0.0 || !visible(b, k)) return;
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
+    if ((u_disable & BLADE_CULL_DISTANCE) == 0u)
+        b.v2.w *= blade_lod_width(ground_distance(b), u_max_distance, u_distance_levels);
     uint slot = atomicAdd(cmd.instanceCount, 1u);
     if (slot < u_capacity) {
         drawn[slot] = b;

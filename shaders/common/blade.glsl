@@ -511,6 +511,14 @@ void blade_revalidate(inout Blade b, int length_mode, float rescale)
 
 /* ---- culling (blade_ref_cull_one) ---------------------------------------- */
 
+/* Twin of blade_ref_lod_width: a distance survivor's width scale. */
+float blade_lod_width(float d_proj, float max_distance, int levels)
+{
+    float n = float(levels);
+    float kept = (n * (1.0 - d_proj / max_distance) + 0.5) / n;
+    return 1.0 / clamp(kept, 1.0 / n, 1.0);
+}
+
 bool blade_in_frustum(vec4 clip, float tolerance)
 {
     float h = clip.w + tolerance;

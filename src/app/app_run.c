@@ -178,7 +178,7 @@ static int summary_seam(app_t *app, char *buf, size_t size)
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",
                         sd);
     if (!app_world_seam(w, &app->last_view, &app->target, &e))
-        return snprintf(buf, size, "hybrid seam at %.1f m: not measured (a side of the band shows no grass)\n", sd);
+        return snprintf(buf, size, "hybrid seam at %.1f m: not measured (a side of the band shows no grass or too few pixels)\n", sd);
     int n = snprintf(buf, size,
                      "hybrid seam at %.1f m (last frame against it drawn with billboards only; band +-%.0f m, "
                      "windows of 3 m; eval_image units, 1 = clearly visible): score %.3f\n"
@@ -186,6 +186,12 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                      "(reference %.3f | %.3f), pixels %ld | %ld\n",
                      sd, APP_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
                      e.grass[1][0], e.grass[1][1], e.pixels[0][0], e.pixels[0][1]);
+    eval_seam_t f;
+    if (n < (int)size && app_world_seam_floor(w, &app->last_view, &app->target, &f))
+        n += snprintf(buf + n, size - (size_t)n,
+                      "  floor (billboards placed with another seed, against the reference): score %.3f, Delta E "
+                      "%.3f, coverage %.4f; the seam is %s the floor\n",
+                      f.score, f.delta_e, f.coverage, e.score <= f.score ? "within" : "above");
     return n < (int)size ? n : (int)size - 1;
 }
 

@@ -23,6 +23,11 @@
 /* Levels (of 255) a channel must differ from the background for grass
  * (eval_image_desc_t.grass_threshold's default). */
 #define APP_SEAM_GRASS_THRESHOLD 8
+/* A window of the band with fewer counted pixels than this (in the frame
+ * or the reference) leaves the seam unmeasured. */
+#define APP_SEAM_MIN_PIXELS 100
+/* The floor's second placement: the world's placement seed xor this. */
+#define APP_SEAM_FLOOR_SEED 0x9e3779b9u
 
 void app_seam_frame_free(app_seam_frame_t *f)
 {
@@ -109,9 +114,40 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
         eval_seam_desc_t d = app_seam_desc(w);
         ok = eval_image_seam(&(eval_seam_frame_t){&frame.img, frame.dist, frame.cls},
                              &(eval_seam_frame_t){&ref.img, ref.dist, ref.cls}, &d, out);
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= APP_SEAM_MIN_PIXELS;
     }
     app_seam_frame_free(&frame);
     app_seam_frame_free(&ref);
+    app_seam_frame_free(&bg);
+    return ok;
+}
+
+bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (w->mode != SCENE_MODE_HYBRID || !w->have_bb) return false;
+    app_seam_frame_t ref = {0}, other = {0}, bg = {0};
+    bool ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
+              app_seam_frame_draw(w, v, t, w->mode, false, &bg);
+    bb_field_t keep = w->bb;
+    uint32_t seed = w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
+    if (ok) ok = app_world_make_billboards(w, seed ^ APP_SEAM_FLOOR_SEED);
+    if (ok) {
+        ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &other);
+        bb_field_destroy(&w->bb);
+    }
+    w->bb = keep;
+    w->have_bb = true;
+    if (ok) {
+        app_seam_frame_classify(&ref, &bg);
+        app_seam_frame_classify(&other, &bg);
+        eval_seam_desc_t d = app_seam_desc(w);
+        ok = eval_image_seam(&(eval_seam_frame_t){&other.img, other.dist, other.cls},
+                             &(eval_seam_frame_t){&ref.img, ref.dist, ref.cls}, &d, out);
+    }
+    app_seam_frame_free(&ref);
+    app_seam_frame_free(&other);
     app_seam_frame_free(&bg);
     return ok;
 }

@@ -207,6 +207,15 @@ static bool make_bb(app_world_t *w)
     return w->have_bb;
 }
 
+bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed)
+{
+    uint32_t keep = w->tuning.placement_seed;
+    w->tuning.placement_seed = placement_seed;
+    bool ok = make_bb(w);
+    w->tuning.placement_seed = keep;
+    return ok;
+}
+
 static bool wants_bb(scene_mode_t m) { return m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID; }
 static bool wants_blades(scene_mode_t m) { return m == SCENE_MODE_BLADE || m == SCENE_MODE_HYBRID; }
 

@@ -202,8 +202,19 @@ eval_seam_desc_t app_seam_desc(const app_world_t *w);
 /* The seam of the hybrid frame drawn into t with view v, against the same
  * view drawn again with billboards only, both classified against it drawn
  * with no grass (which is what t holds afterwards). False when the world is
- * not in hybrid mode or a window of the band shows no grass. */
+ * not in hybrid mode or a window of the band shows no grass or fewer than
+ * 100 counted pixels (in either frame). */
 bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+/* The seam's noise floor for this view: the billboards built again with
+ * another placement seed (APP_SEAM_FLOOR_SEED xor the world's), drawn
+ * billboard-only (undeformed), against the world's own billboard-only
+ * frame: what the measure reads where only where billboards stand differs
+ * (docs/METRICS.md). The world's billboards are kept and restored. False
+ * as app_world_seam, or when the second field cannot be built. */
+bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+/* Builds the world's billboard field (w->bb, have_bb) for placement seed
+ * `placement_seed` (0: the scene seed); app_world_seam_floor's second field. */
+bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed);
 /* Switches between the hardware and the compute rasterizer at run time. */
 void app_world_set_raster(app_world_t *w, bool compute);
 /* The scene's `raster: auto`: draws `view` into `target` with each

@@ -880,6 +880,13 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
     return BLADE_CULL_VISIBLE;
 }
 
+float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels)
+{
+    float n = (float)distance_levels;
+    float kept = (n * (1.0f - d_proj / max_distance) + 0.5f) / n;
+    return 1.0f / fminf(fmaxf(kept, 1.0f / n), 1.0f);
+}
+
 size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
                       uint32_t *survivors, blade_cull_stats_t *stats)
 {

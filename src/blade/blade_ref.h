@@ -399,4 +399,15 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
 size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
                       uint32_t *survivors, blade_cull_stats_t *stats);
 
+/* Width scale of a survivor of the distance test in the tiled field
+ * (tiles_cull.comp; coverage-preserving thinning as in Cook, Halstead,
+ * Planck and Ryu 2007, "Stochastic simplification of aggregate detail").
+ * At ground distance d_proj the test keeps about p = clamp((n (1 -
+ * d_proj / max_distance) + 0.5) / n, 1 / n, 1) of the blades (its steps of
+ * 1 / n smoothed by half a level, so no width jumps where a level ends)
+ * and the survivors are drawn 1 / p as wide: the thinned field covers the
+ * ground as the full one does, where the billboards take over at the
+ * switch as well. n = distance_levels (>= 1), max_distance > 0. */
+float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels);
+
 #endif

@@ -738,9 +738,9 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glBindVertexArray(t->vao);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    if (fade) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (fade) gfx_alpha_to_coverage(true);
     glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
-    if (fade) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (fade) gfx_alpha_to_coverage(false);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gfx_timer_end();

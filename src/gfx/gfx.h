@@ -308,6 +308,15 @@ static inline void gfx_counted_dispatch_compute_indirect(GLintptr indirect)
  * Draws text in pixels from the top-left of the current viewport. */
 void gfx_text_draw(const char *text, float x, float y, float scale, const float rgba[4]);
 
+/* ---- alpha to coverage --------------------------------------------------------
+ * Turns GL_SAMPLE_ALPHA_TO_COVERAGE on or off. On: where the driver
+ * dithers the coverage mask across neighbouring pixels (NVIDIA,
+ * GL_NV_alpha_to_coverage_dither_control) the dither is turned off, so a
+ * fragment of alpha a covers about a n of its pixel's n samples in every
+ * pixel, as Mesa does and as the compute rasterizer's billboards and
+ * blades do (docs/BILLBOARDS.md). */
+void gfx_alpha_to_coverage(bool on);
+
 /* ---- fullscreen helpers ------------------------------------------------------ */
 /* Blits the resolved target to the default framebuffer (window mode). */
 void gfx_target_present(const gfx_target_t *t, int win_w, int win_h);
