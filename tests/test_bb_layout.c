@@ -3,7 +3,8 @@
  * like what they claim (clearings, mostly-up directions); clump textures
  * must have 10-60 % opaque coverage in many thin blades, not a rectangle;
  * the generation rule must follow the extent map and its documented hash
- * formula. The clumps are the blade model's (bb_clump_desc_t): every texel
+ * formula, on the candidate grid and on mesh triangles (by true area, a
+ * vertical face as dense as level ground). The clumps are the blade model's (bb_clump_desc_t): every texel
  * holds an albedo on the line from the root's to the tip's (the desc's, not
  * a fixed green), darker below; blades stand at their height in metres, or
  * the layer shrinks so the tallest fits; nothing is cut at the sides or the
@@ -187,6 +188,64 @@ static void test_sample(const bb_layout_t *l)
     CHECK_MSG(tried > 0 && agree == tried, "%d of %d agree", agree, tried);
 }
 
+/* The triangle rule (bb_layout_sample_tri): frames, faces looking down or
+ * of no area refused; with the extent map full, a vertical and a level
+ * triangle of the same area get area / spacing^2 roots (to 3 %), every
+ * root on its triangle, the documented hash, and a vertical face reads the
+ * layout texel of its (z, y) position. */
+static void test_sample_tri(const bb_layout_t *l)
+{
+    bb_gen_tri_t t;
+    const float o[3] = {0, 0, 0}, x[3] = {1, 0, 0}, z[3] = {0, 0, 1}, y[3] = {0, 1, 0};
+    CHECK(!bb_gen_tri_make(o, x, o, 0.25f, &t) && t.cells[0] == 0);
+    CHECK(!bb_gen_tri_make(o, x, z, 0.25f, &t));  /* (1,0,0) x (0,0,1) = -y: looks down */
+    CHECK(bb_gen_tri_make(o, z, x, 0.25f, &t));   /* looks up */
+    CHECK(t.plane == 1 && fabsf(t.length - sqrtf(2.0f)) < 1e-6f && t.cells[0] == 6 && t.cells[1] == 3);
+    CHECK(bb_gen_tri_make(o, y, z, 0.25f, &t) && t.plane == 0); /* looks along -x: vertical */
+
+    bb_layout_t full = *l;
+    core_image_t ext;
+    CHECK(core_image_alloc(&ext, l->extent.w, l->extent.h, 1));
+    memset(ext.px, 255, (size_t)ext.w * ext.h);
+    full.extent = ext;
+    bb_gen_desc_t d = {.seed = 5, .spacing = 0.25f, .origin = {-3.0f, 2.0f}};
+    /* 12 x 9 m right triangles, 54 m^2: level, and vertical facing +x. */
+    const float tris[2][3][3] = {{{-6, 0.5f, 0}, {-6, 0.5f, 9}, {6, 0.5f, 0}}, {{0, -4, -6}, {0, 8, -6}, {0, -4, 3}}};
+    for (int k = 0; k < 2; k++) {
+        CHECK(bb_gen_tri_make(tris[k][0], tris[k][1], tris[k][2], d.spacing, &t));
+        CHECK(t.plane == (k ? 0 : 1));
+        int n = 0, off = 0, texel = 0;
+        for (int j = 0; j < t.cells[1]; j++) {
+            for (int i = 0; i < t.cells[0]; i++) {
+                bb_point_t p;
+                if (!bb_layout_sample_tri(&full, &d, &t, 7u + (uint32_t)k, i, j, &p)) continue;
+                n++;
+                uint32_t name = 7u + (uint32_t)k;
+                uint32_t h = core_hash_u32((uint32_t)i * 0x8da6b343u ^
+                                           core_hash_u32((uint32_t)j ^ core_hash_u32(name ^ core_hash_u32(5u))));
+                CHECK(p.seed == h);
+                /* On the triangle: in its plane, inside its xz (level) or zy (vertical) bounds. */
+                float a = k ? p.position[2] : p.position[0], b = k ? p.position[1] : p.position[2];
+                float flat = k ? p.position[0] : p.position[1] - 0.5f;
+                float a0 = -6.0f, b0 = k ? -4.0f : 0.0f, al = k ? 9.0f : 12.0f, bl = k ? 12.0f : 9.0f;
+                off += !(fabsf(flat) < 1e-6f && a >= a0 - 1e-5f && b >= b0 - 1e-5f &&
+                         (a - a0) / al + (b - b0) / bl <= 1.0f + 1e-5f);
+                if (k == 1) {
+                    int tx = ((int)floorf((p.position[2] - 2.0f) / 0.25f) % l->extent.w + l->extent.w) % l->extent.w;
+                    int ty = ((int)floorf(p.position[1] / 0.25f) % l->extent.h + l->extent.h) % l->extent.h;
+                    texel += p.messiness == l->messiness.px[ty * l->extent.w + tx] / 255.0f;
+                }
+            }
+        }
+        printf("sample_tri %s: %d roots, %.3f of area / spacing^2, %d off the triangle, texel agrees %d\n",
+               k ? "vertical" : "level", n, n / (54.0 / 0.0625), off, texel);
+        CHECK(fabs(n / (54.0 / 0.0625) - 1.0) < 0.03);
+        CHECK(off == 0);
+        CHECK(k == 0 || texel == n);
+    }
+    core_image_free(&ext);
+}
+
 /* Where the texel colours of one layer lie against the line root -> tip:
  * the largest distance from it (0..1 per channel) and the mean parameter
  * t (0 root, 1 tip) of the texels with alpha >= 1/2 in the bottom and the
@@ -326,6 +385,7 @@ int main(void)
     test_maps(&l);
     test_clumps(&l);
     test_sample(&l);
+    test_sample_tri(&l);
     test_blade_clumps();
     const char *out = getenv("MEADOW_TEST_OUT");
     char dir[1024];

@@ -3,10 +3,13 @@
  * layout textures). One invocation per tile of BB_TILE x BB_TILE candidate
  * cells of an octree leaf's footprint (entries[v_entry[0]]); emits one point
  * per accepted candidate (bb_generate, twin of bb_layout_sample) whose root,
- * placed on the terrain height texture, lies in that leaf. The leaves' tiles
- * follow each other in Morton order in one draw, and transform feedback
- * keeps primitive order, so the buffer is ordered by leaf; the per-leaf
- * count goes to an SSBO with atomics. */
+ * placed on the terrain height texture, lies in that leaf. With
+ * BB_GEN_TRIANGLES (mesh terrains) an entry is a (leaf, triangle) pair and
+ * its cells are the triangle's own candidates (bb_generate_tri, twin of
+ * bb_layout_sample_tri), whose roots lie on the triangle. The entries'
+ * tiles follow each other in Morton order of their leaves in one draw, and
+ * transform feedback keeps primitive order, so the buffer is ordered by
+ * leaf; the per-leaf count goes to an SSBO with atomics. */
 #include "common/hash.glsl"
 #include "billboard/bb_ground.glsl"
 #include "common/bb.glsl"
@@ -29,6 +32,9 @@ uniform vec3 u_tree_max;
 uniform int u_side;
 
 layout(std430, binding = 0) buffer LeafCounts { uint leaf_count[]; };
+#ifdef BB_GEN_TRIANGLES
+layout(std430, binding = 2) readonly buffer GenTris { bb_gen_tri tris[]; };
+#endif
 
 /* Twin of bb_leaf_coord / bb_leaf_of in src/billboard/bb_octree.c. */
 uint leaf_of(vec3 p)
@@ -50,16 +56,23 @@ void main()
 {
     bb_gen_entry e = entries[v_entry[0]];
     int tx = v_tile[0] % e.tiles_x, tz = v_tile[0] / e.tiles_x;
+#ifdef BB_GEN_TRIANGLES
+    bb_gen_tri tri = tris[e.tri];
+#endif
     for (int dz = 0; dz < BB_TILE; dz++) {
         for (int dx = 0; dx < BB_TILE; dx++) {
             int ix = e.cells.x + tx * BB_TILE + dx, iz = e.cells.y + tz * BB_TILE + dz;
             if (ix >= e.cells.z || iz >= e.cells.w) continue;
             bb_point p;
+#ifdef BB_GEN_TRIANGLES
+            if (!bb_generate_tri(u_extent, u_direction, u_messiness, u_gen, tri, e.tri, ix, iz, p)) continue;
+#else
             if (!bb_generate(u_extent, u_direction, u_messiness, u_gen, ix, iz, p)) continue;
             if (p.position.x > u_tree_max.x || p.position.z > u_tree_max.z) continue;
             float y = terrain_height(p.position.x, p.position.z);
             if (y < -1e37) continue;
             p.position.y = y;
+#endif
             if (leaf_of(p.position) != e.leaf) continue;
             p.pad0 = BB_NO_SLOT;
             atomicAdd(leaf_count[e.leaf], 1u);

@@ -287,7 +287,25 @@ int bb_floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
 
-/* extent / messiness: R8 unorm; direction: RGB8 unorm. */
+/* bb_layout.c bb_fill_point: the fields every rule shares once candidate h
+ * was accepted on texel t of extent e (position left to the caller).
+ * direction: RGB8 unorm, messiness: R8 unorm. */
+void bb_fill_point(sampler2D direction, sampler2D messiness, bb_gen d, uint h, ivec2 t, uint e, out bb_point p)
+{
+    p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
+    p.size.x = d.width * (0.8 + 0.4 * bb_hash_float(h + 3u));
+    p.size.y = d.height * (0.6 + 0.8 * bb_hash_float(h + 4u)) * (0.5 + 0.5 * float(e) / 255.0);
+    p.angle = 6.2831853 * bb_hash_float(h + 5u);
+    p.layer = ((hash_u32(h + 6u) >> 8) * d.layers) >> 24;
+    vec3 g = round(texelFetch(direction, t, 0).rgb * 255.0) / 255.0 * 2.0 - 1.0;
+    p.growth = g * (1.0 / sqrt(dot(g, g)));
+    p.messiness = round(texelFetch(messiness, t, 0).r * 255.0) / 255.0;
+    p.seed = h;
+    p.state = BB_STATE_IDLE;
+    p.recover_time = 0.0;
+}
+
+/* extent: R8 unorm. */
 bool bb_generate(sampler2D extent, sampler2D direction, sampler2D messiness, bb_gen d, int ix,
                  int iz, out bb_point p)
 {
@@ -298,19 +316,52 @@ bool bb_generate(sampler2D extent, sampler2D direction, sampler2D messiness, bb_
     uint e = uint(round(texelFetch(extent, ivec2(tx, tz), 0).r * 255.0));
     p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
     if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
+    bb_fill_point(direction, messiness, d, h, ivec2(tx, tz), e, p);
     p.position.x = d.origin.x + (float(ix) + bb_hash_float(h + 1u)) * d.spacing;
     p.position.y = 0.0;
     p.position.z = d.origin.y + (float(iz) + bb_hash_float(h + 2u)) * d.spacing;
-    p.size.x = d.width * (0.8 + 0.4 * bb_hash_float(h + 3u));
-    p.size.y = d.height * (0.6 + 0.8 * bb_hash_float(h + 4u)) * (0.5 + 0.5 * float(e) / 255.0);
-    p.angle = 6.2831853 * bb_hash_float(h + 5u);
-    p.layer = ((hash_u32(h + 6u) >> 8) * d.layers) >> 24;
-    vec3 g = round(texelFetch(direction, ivec2(tx, tz), 0).rgb * 255.0) / 255.0 * 2.0 - 1.0;
-    p.growth = g * (1.0 / sqrt(dot(g, g)));
-    p.messiness = round(texelFetch(messiness, ivec2(tx, tz), 0).r * 255.0) / 255.0;
-    p.seed = h;
-    p.state = BB_STATE_IDLE;
-    p.recover_time = 0.0;
+    return true;
+}
+
+/* Mirrors bb_gen_tri_t (bb_layout.h; length -> len, the name of a GLSL
+ * built-in): one triangle of a mesh terrain in its plane frame; std430, 64
+ * bytes. */
+struct bb_gen_tri {
+    vec3 a;
+    float len;
+    vec3 u;
+    float height;
+    vec3 v;
+    float foot;
+    ivec2 cells;
+    int plane;
+    int pad;
+};
+
+int bb_texel_of(float c, bb_gen d, int side)
+{
+    return bb_mod(bb_floor_div(int(floor(c / d.spacing)), d.cells_per_texel), side);
+}
+
+/* bb_layout_sample_tri: cell (i, j) of triangle tri named t. */
+bool bb_generate_tri(sampler2D extent, sampler2D direction, sampler2D messiness, bb_gen d, bb_gen_tri tri,
+                     uint t, int i, int j, out bb_point p)
+{
+    uint h = hash_u32(uint(i) * 0x8da6b343u ^ hash_u32(uint(j) ^ hash_u32(t ^ hash_u32(d.seed))));
+    float pu = (float(i) + bb_hash_float(h + 1u)) * d.spacing;
+    float pv = (float(j) + bb_hash_float(h + 2u)) * d.spacing;
+    p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
+    if (!(tri.height * pu >= tri.foot * pv && tri.height * (tri.len - pu) >= (tri.len - tri.foot) * pv))
+        return false;
+    vec3 pos = tri.a + pu * tri.u + pv * tri.v;
+    float cx = pos.x - d.origin.x, cz = pos.z - d.origin.y;
+    float s0 = tri.plane == 0 ? cz : cx, s1 = tri.plane == 1 ? cz : pos.y;
+    ivec2 wh = textureSize(extent, 0);
+    ivec2 tt = ivec2(bb_texel_of(s0, d, wh.x), bb_texel_of(s1, d, wh.y));
+    uint e = uint(round(texelFetch(extent, tt, 0).r * 255.0));
+    if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
+    bb_fill_point(direction, messiness, d, h, tt, e, p);
+    p.position = pos;
     return true;
 }
 

@@ -203,11 +203,18 @@ static uint32_t compact3(uint32_t m)
     return r;
 }
 
+static uint32_t spread3(uint32_t c)
+{
+    uint32_t r = 0;
+    for (int b = 0; b < BB_OCTREE_MAX_DEPTH; b++) r |= ((c >> b) & 1u) << (3 * b);
+    return r;
+}
+
 /* std430 twin of struct bb_gen_entry in bb_gen_leaves.glsl. */
 typedef struct bb_gen_entry_t {
     int32_t cells[4];
     int32_t tiles_x;
-    uint32_t leaf, first, pad;
+    uint32_t leaf, first, tri;
 } bb_gen_entry_t;
 
 /* The leaves whose footprint and terrain height range can hold billboards,
@@ -245,21 +252,160 @@ static int gen_entries(const bb_field_t *f, const float *clo, const float *chi, 
     return n;
 }
 
-static bool generate(bb_field_t *f, const terrain_mesh_t *t, int tile)
+/* Mesh terrains: the frame of every triangle (bb_gen_tri_make, zeroed
+ * where it seeds nothing), the count of those that seed (*seeding) and the
+ * candidates they hold (*cells, an upper bound on the billboards). NULL
+ * when out of memory (logged). */
+static bb_gen_tri_t *mesh_tris(const terrain_mesh_t *t, float spacing, int *seeding, double *cells)
+{
+    uint32_t n = t->index_count / 3;
+    bb_gen_tri_t *tris = malloc(sizeof *tris * (size_t)n);
+    if (!tris) {
+        core_log_error("%s:%d: out of memory for %u terrain triangles", __FILE__, __LINE__, n);
+        return NULL;
+    }
+    *seeding = 0, *cells = 0.0;
+    for (uint32_t k = 0; k < n; k++) {
+        const float *v[3];
+        for (int c = 0; c < 3; c++) v[c] = &t->positions[3 * t->indices[3 * k + (uint32_t)c]];
+        if (!bb_gen_tri_make(v[0], v[1], v[2], spacing, &tris[k])) continue;
+        (*seeding)++;
+        *cells += (double)tris[k].cells[0] * (double)tris[k].cells[1];
+    }
+    return tris;
+}
+
+/* Leaf coordinates [out[0], out[1]] along axis a that [p0, p1], grown by
+ * 1e-4 of the tree's extent (roots computed on the GPU may round across),
+ * overlaps. */
+static void leaf_span(const bb_octree_t *tr, int a, float p0, float p1, int out[2])
+{
+    float mn = tr->desc.min[a], ext = tr->desc.max[a] - mn, s = (float)tr->side / ext;
+    int c[2] = {(int)floorf((p0 - 1e-4f * ext - mn) * s), (int)floorf((p1 + 1e-4f * ext - mn) * s)};
+    for (int q = 0; q < 2; q++) out[q] = c[q] < 0 ? 0 : (c[q] > tr->side - 1 ? tr->side - 1 : c[q]);
+}
+
+/* Candidate cells [c[0], c[2]) x [c[1], c[3]) of triangle tri whose roots
+ * can lie in leaf box [lo, hi]: the box's corners projected on the
+ * triangle's frame, grown by 1e-3 cell. False when empty. */
+static bool tri_cells_in_box(const bb_gen_tri_t *tri, float spacing, const float lo[3], const float hi[3], int c[4])
+{
+    for (int q = 0; q < 2; q++) {
+        const float *axis = q ? tri->v : tri->u;
+        float dmin = 0.0f, dmax = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            float d0 = (lo[k] - tri->a[k]) * axis[k], d1 = (hi[k] - tri->a[k]) * axis[k];
+            dmin += fminf(d0, d1), dmax += fmaxf(d0, d1);
+        }
+        int c0 = (int)floorf(dmin / spacing - 1e-3f), c1 = (int)floorf(dmax / spacing + 1e-3f) + 1;
+        c[q] = c0 < 0 ? 0 : c0;
+        c[q + 2] = c1 > tri->cells[q] ? tri->cells[q] : c1;
+        if (c[q + 2] <= c[q]) return false;
+    }
+    return true;
+}
+
+/* Mesh terrains: one entry per (leaf, seeding triangle) pair whose boxes
+ * overlap, with the triangle's candidate cells that can reach the leaf, in
+ * Morton order of the leaves (triangle order within a leaf); tiles and
+ * first vertices as gen_entries. Returns the entries (malloc, *count of
+ * them), NULL when out of memory. */
+static bb_gen_entry_t *tri_entries(const bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t *tris,
+                                   int tile, int *count, uint32_t *vertices)
+{
+    const bb_octree_t *tr = &f->tree;
+    size_t n = 0, cap = 0;
+    bb_gen_entry_t *tmp = NULL, *out = NULL;
+    uint32_t *per_leaf = calloc((size_t)tr->leaf_count + 1, sizeof *per_leaf);
+    bool ok = per_leaf != NULL;
+    *count = 0, *vertices = 0;
+    for (uint32_t k = 0; ok && k < t->index_count / 3; k++) {
+        if (tris[k].cells[0] == 0) continue;
+        float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+        for (int v = 0; v < 3; v++) {
+            const float *p = &t->positions[3 * t->indices[3 * k + (uint32_t)v]];
+            for (int a = 0; a < 3; a++) bmin[a] = fminf(bmin[a], p[a]), bmax[a] = fmaxf(bmax[a], p[a]);
+        }
+        int span[3][2];
+        for (int a = 0; a < 3; a++) leaf_span(tr, a, bmin[a], bmax[a], span[a]);
+        for (int z = span[2][0]; ok && z <= span[2][1]; z++) {
+            for (int y = span[1][0]; ok && y <= span[1][1]; y++) {
+                for (int x = span[0][0]; ok && x <= span[0][1]; x++) {
+                    uint32_t leaf = spread3((uint32_t)x) | spread3((uint32_t)y) << 1 | spread3((uint32_t)z) << 2;
+                    int node = bb_octree_leaf_node(tr, leaf), c[4];
+                    if (!tri_cells_in_box(&tris[k], f->gen.spacing, tr->lo[node], tr->hi[node], c)) continue;
+                    if (n == cap) {
+                        cap = cap ? 2 * cap : 1024;
+                        bb_gen_entry_t *grown = realloc(tmp, sizeof *tmp * cap);
+                        if (!grown) {
+                            ok = false;
+                            break;
+                        }
+                        tmp = grown;
+                    }
+                    int tx = (c[2] - c[0] + tile - 1) / tile, tz = (c[3] - c[1] + tile - 1) / tile;
+                    tmp[n++] = (bb_gen_entry_t){.cells = {c[0], c[1], c[2], c[3]}, .tiles_x = tx, .leaf = leaf,
+                                                .first = (uint32_t)(tx * tz), .tri = k};
+                    per_leaf[leaf + 1]++;
+                }
+            }
+        }
+    }
+    if (ok) out = malloc(sizeof *out * (n ? n : 1));
+    if (out) {
+        /* Counting sort by leaf (stable: triangle order within a leaf), then
+         * .first from tile counts to first vertices. */
+        for (int l = 0; l < tr->leaf_count; l++) per_leaf[l + 1] += per_leaf[l];
+        for (size_t q = 0; q < n; q++) out[per_leaf[tmp[q].leaf]++] = tmp[q];
+        uint32_t first = 0;
+        for (size_t q = 0; q < n; q++) {
+            uint32_t tiles = out[q].first;
+            out[q].first = first;
+            first += tiles;
+        }
+        *count = (int)n, *vertices = first;
+    }
+    free(tmp), free(per_leaf);
+    return out;
+}
+
+/* Heightfields: gen_entries over the terrain's column height ranges
+ * (malloc, *count of them), NULL when out of memory. */
+static bb_gen_entry_t *grid_entries(const bb_field_t *f, const terrain_mesh_t *t, int tile, int *count,
+                                    uint32_t *vertices)
+{
+    int side = f->tree.side;
+    float *clo = malloc(sizeof *clo * (size_t)(side * side)), *chi = malloc(sizeof *chi * (size_t)(side * side));
+    bb_gen_entry_t *entries = malloc(sizeof *entries * (size_t)f->tree.leaf_count);
+    if (clo && chi && entries) {
+        column_ranges(f, t, clo, chi);
+        *count = gen_entries(f, clo, chi, tile, entries, vertices);
+    } else {
+        free(entries);
+        entries = NULL;
+    }
+    free(clo), free(chi);
+    return entries;
+}
+
+static bool generate(bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t *tris, int tile)
 {
     bb_octree_t *tr = &f->tree;
     int side = tr->side;
-    float *clo = malloc(sizeof *clo * (size_t)(side * side)), *chi = malloc(sizeof *chi * (size_t)(side * side));
     uint32_t *counts = calloc((size_t)tr->leaf_count, sizeof *counts);
-    bb_gen_entry_t *entries = malloc(sizeof *entries * (size_t)tr->leaf_count);
-    if (!clo || !chi || !counts || !entries) {
-        free(clo), free(chi), free(counts), free(entries);
+    uint32_t vertices = 0;
+    int nentries = 0;
+    bb_gen_entry_t *entries = tris ? tri_entries(f, t, tris, tile, &nentries, &vertices)
+                                   : grid_entries(f, t, tile, &nentries, &vertices);
+    if (!counts || !entries) {
+        free(counts), free(entries);
         core_log_error("%s:%d: out of memory for generation", __FILE__, __LINE__);
         return false;
     }
-    column_ranges(f, t, clo, chi);
-    uint32_t vertices = 0;
-    int nentries = gen_entries(f, clo, chi, tile, entries, &vertices);
+    gfx_buffer_t tri_buf = {0};
+    if (tris)
+        tri_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof *tris * (size_t)(t->index_count / 3),
+                                                       .data = tris, .label = "bb.generate.triangles"});
     gfx_buffer_t entry_buf = gfx_buffer_make(&(gfx_buffer_desc_t){
         .size = sizeof *entries * (size_t)(nentries > 0 ? nentries : 1), .data = entries,
         .label = "bb.generate.leaves"});
@@ -296,6 +442,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, int tile)
     glUniform1i(loc(p, "u_entry_count"), nentries);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, f->counts.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, entry_buf.id);
+    if (tris) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tri_buf.id);
     glBindVertexArray(f->empty_vao);
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
@@ -318,6 +465,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, int tile)
     glGetQueryObjectuiv(query, GL_QUERY_RESULT, &written);
     gfx_query_destroy(&query);
     gfx_buffer_destroy(&entry_buf);
+    if (tris) gfx_buffer_destroy(&tri_buf);
     f->generate_ms = -1.0f;
     if (stamp_bits > 0) {
         GLuint64 t0 = 0, t1 = 0;
@@ -355,9 +503,13 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, int tile)
                        (unsigned long long)total);
         ok = false;
     }
-    core_log_info("bb: generated %u billboards from %d x %d candidates in %d leaves (one draw)", written,
-                  f->cells[0], f->cells[1], nentries);
-    free(pos), free(order), free(clo), free(chi), free(counts);
+    if (tris)
+        core_log_info("bb: generated %u billboards on %d terrain triangles in %d (leaf, triangle) entries "
+                      "(one draw)", written, f->triangles, nentries);
+    else
+        core_log_info("bb: generated %u billboards from %d x %d candidates in %d leaves (one draw)", written,
+                      f->cells[0], f->cells[1], nentries);
+    free(pos), free(order), free(counts);
     return ok;
 }
 
@@ -432,6 +584,7 @@ static void stage_done(bb_field_t *f, int stage, double *mark)
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
 {
     double t_start = wall_ms(), mark = t_start;
+    bb_gen_tri_t *tris = NULL; /* mesh terrains: generation per triangle */
     memset(f, 0, sizeof *f);
     f->desc = bb_field_desc_defaults(desc);
     bb_field_desc_t *d = &f->desc;
@@ -472,10 +625,15 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
         .height = d->size[1], .seed = d->placement_seed ? d->placement_seed : d->seed});
     if (!upload_layout(f)) goto fail;
     stage_done(f, BB_MAKE_LAYOUT, &mark);
-    float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];
-    f->cells[0] = (int)ceilf(ext_x / f->gen.spacing);
-    f->cells[1] = (int)ceilf(ext_z / f->gen.spacing);
-    double cap = (double)f->cells[0] * (double)f->cells[1];
+    double cap;
+    if (t->grid_res > 0) {
+        float ext_x = t->aabb_max[0] - t->aabb_min[0], ext_z = t->aabb_max[2] - t->aabb_min[2];
+        f->cells[0] = (int)ceilf(ext_x / f->gen.spacing);
+        f->cells[1] = (int)ceilf(ext_z / f->gen.spacing);
+        cap = (double)f->cells[0] * (double)f->cells[1];
+    } else if (!(tris = mesh_tris(t, f->gen.spacing, &f->triangles, &cap))) {
+        goto fail;
+    }
     if (cap > (double)(1u << 26)) {
         core_log_error("%s:%d: bb_field_make: %.0f candidate billboards exceed the limit of %u; lower the density",
                        __FILE__, __LINE__, cap, 1u << 26);
@@ -507,8 +665,10 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
              "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n",
              n, m, pass_objects(f), tile, tile * tile, render_verts);
+    char gen_defines[sizeof f->defines + 32];
+    snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, tris ? "#define BB_GEN_TRIANGLES\n" : "");
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
-                                                         .gs = "billboard/bb_generate.geom", .defines = defines,
+                                                         .gs = "billboard/bb_generate.geom", .defines = gen_defines,
                                                          .tf_varyings = bb_tf_varyings, .label = "bb.generate"});
     f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
                                                              .gs = "billboard/bb_collide.geom", .defines = defines,
@@ -570,13 +730,16 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->readback = gfx_readback_make(16, BB_READBACK_SLOTS, "bb.pool_readback");
     if (!f->readback.depth) goto fail;
     setup_points_vao(f->points_vao, f->points.id);
-    if (!generate(f, t, tile)) goto fail;
+    if (!generate(f, t, tris, tile)) goto fail;
+    free(tris);
+    tris = NULL;
     stage_done(f, BB_MAKE_GENERATE, &mark);
     if (!read_spheres(f)) goto fail;
     stage_done(f, BB_MAKE_SPHERES, &mark);
     f->make_ms = (float)(wall_ms() - t_start);
     return true;
 fail:
+    free(tris);
     bb_field_destroy(f);
     return false;
 }

@@ -17,11 +17,16 @@
  *            by a geometry shader into a wind-animated quad or its deformed
  *            N x M mesh; alpha-to-coverage, two-sided lighting, distance fade.
  *
- * Terrain heights on the GPU: a height texture. For a heightfield it holds
- * the grid vertices and the shader interpolates the same two triangles per
- * cell as terrain_height_at; a mesh terrain is resampled on the CPU with
- * terrain_height_at onto a grid of candidate spacing (cells with no ground
- * under them get no billboards).
+ * Where billboards stand: on a heightfield, the candidate grid of the
+ * generation rule (bb_layout_sample) over a height texture holding the grid
+ * vertices (the shader interpolates the same two triangles per cell as
+ * terrain_height_at). On a mesh terrain, each triangle's own candidates
+ * (bb_layout_sample_tri: by true area, roots on the triangle, so a steep or
+ * vertical face is as dense per m^2 as the floor; faces looking down get
+ * none): the triangles' frames go to the GPU once, and one generation entry
+ * per (leaf, triangle) pair whose boxes overlap. The collision's ground
+ * clamp still reads a height texture, for a mesh terrain resampled on the
+ * CPU with terrain_height_at onto a grid of candidate spacing.
  *
  * Deformed meshes live in a fixed pool (desc.max_deformed slots of N*M vec4);
  * a billboard's slot index is stored in bb_point_t.pad[0] (BB_NO_SLOT when
@@ -156,7 +161,9 @@ typedef struct bb_field_t {
     bb_field_desc_t desc; /* resolved */
     bb_octree_t tree;
     bb_gen_desc_t gen;
-    int cells[2];          /* candidate cells along x, z */
+    int cells[2];          /* heightfields: candidate cells along x, z (0 on mesh terrains) */
+    int triangles;         /* mesh terrains: triangles that seed billboards
+                              (bb_gen_tri_make; 0 on heightfields) */
     int billboards;
     int capacity;          /* points buffer size in billboards (upper bound) */
     gfx_texture_t extent, direction, messiness, clumps, heights;

@@ -399,25 +399,16 @@ static int bb_floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) /
 /* Written without % on negatives so the GLSL twin (where that is undefined) matches. */
 static int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
 
-bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int ix, int iz,
-                      bb_point_t *out)
+/* The fields every rule shares once candidate h was accepted on texel ti of
+ * extent e (position left to the caller). */
+static void bb_fill_point(const bb_layout_t *layout, const bb_gen_desc_t *d, uint32_t h, size_t ti, uint32_t e,
+                          bb_point_t *out)
 {
-    bb_gen_desc_t d = bb_gen_desc_defaults(desc);
-    assert(d.layers <= 256u && d.cells_per_texel > 0);
-    uint32_t h = core_hash_u32((uint32_t)ix * 0x8da6b343u ^ core_hash_u32((uint32_t)iz ^ core_hash_u32(d.seed)));
-    int tx = bb_mod(bb_floor_div(ix, d.cells_per_texel), layout->extent.w);
-    int tz = bb_mod(bb_floor_div(iz, d.cells_per_texel), layout->extent.h);
-    size_t ti = (size_t)tz * layout->extent.w + tx;
-    uint32_t e = layout->extent.px[ti];
-    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
     memset(out, 0, sizeof *out);
-    out->position[0] = d.origin[0] + ((float)ix + core_hash_float(h + 1u)) * d.spacing;
-    out->position[1] = 0.0f;
-    out->position[2] = d.origin[1] + ((float)iz + core_hash_float(h + 2u)) * d.spacing;
-    out->size[0] = d.width * (0.8f + 0.4f * core_hash_float(h + 3u));
-    out->size[1] = d.height * (0.6f + 0.8f * core_hash_float(h + 4u)) * (0.5f + 0.5f * (float)e / 255.0f);
+    out->size[0] = d->width * (0.8f + 0.4f * core_hash_float(h + 3u));
+    out->size[1] = d->height * (0.6f + 0.8f * core_hash_float(h + 4u)) * (0.5f + 0.5f * (float)e / 255.0f);
     out->angle = 6.2831853f * core_hash_float(h + 5u);
-    out->layer = ((core_hash_u32(h + 6u) >> 8) * d.layers) >> 24;
+    out->layer = ((core_hash_u32(h + 6u) >> 8) * d->layers) >> 24;
     float g[3], len2 = 0.0f;
     for (int k = 0; k < 3; k++) {
         g[k] = (float)layout->direction.px[ti * 3 + k] / 255.0f * 2.0f - 1.0f;
@@ -429,5 +420,92 @@ bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int 
     out->seed = h;
     out->state = BB_STATE_IDLE;
     out->recover_time = 0.0f;
+}
+
+bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int ix, int iz,
+                      bb_point_t *out)
+{
+    bb_gen_desc_t d = bb_gen_desc_defaults(desc);
+    assert(d.layers <= 256u && d.cells_per_texel > 0);
+    uint32_t h = core_hash_u32((uint32_t)ix * 0x8da6b343u ^ core_hash_u32((uint32_t)iz ^ core_hash_u32(d.seed)));
+    int tx = bb_mod(bb_floor_div(ix, d.cells_per_texel), layout->extent.w);
+    int tz = bb_mod(bb_floor_div(iz, d.cells_per_texel), layout->extent.h);
+    size_t ti = (size_t)tz * layout->extent.w + tx;
+    uint32_t e = layout->extent.px[ti];
+    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
+    bb_fill_point(layout, &d, h, ti, e, out);
+    out->position[0] = d.origin[0] + ((float)ix + core_hash_float(h + 1u)) * d.spacing;
+    out->position[1] = 0.0f;
+    out->position[2] = d.origin[1] + ((float)iz + core_hash_float(h + 2u)) * d.spacing;
+    return true;
+}
+
+bool bb_gen_tri_make(const float a[3], const float b[3], const float c[3], float spacing, bb_gen_tri_t *out)
+{
+    memset(out, 0, sizeof *out);
+    const float *p[3] = {a, b, c};
+    float e[3][3], len2[3];
+    for (int k = 0; k < 3; k++) {
+        for (int q = 0; q < 3; q++) e[k][q] = p[(k + 1) % 3][q] - p[k][q];
+        len2[k] = e[k][0] * e[k][0] + e[k][1] * e[k][1] + e[k][2] * e[k][2];
+    }
+    /* (b - a) x (c - a) = e[2] x e[0] (e[2] = a - c). */
+    float n[3] = {e[2][1] * e[0][2] - e[2][2] * e[0][1], e[2][2] * e[0][0] - e[2][0] * e[0][2],
+                  e[2][0] * e[0][1] - e[2][1] * e[0][0]};
+    float nl = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(0.5f * nl >= 1e-12f) || !(n[1] / nl >= BB_GEN_TRI_MIN_UP)) return false;
+    /* Rotate (a, b, c) so that edge k (p[k] -> p[k+1]) is the longest;
+     * rotation keeps the winding. */
+    int k = len2[0] >= len2[1] ? (len2[0] >= len2[2] ? 0 : 2) : (len2[1] >= len2[2] ? 1 : 2);
+    const float *pa = p[k], *pc = p[(k + 2) % 3];
+    out->length = sqrtf(len2[k]);
+    float ac[3], d = 0.0f, h2 = 0.0f;
+    for (int q = 0; q < 3; q++) {
+        out->a[q] = pa[q];
+        out->u[q] = e[k][q] / out->length;
+        ac[q] = pc[q] - pa[q];
+        d += ac[q] * out->u[q];
+    }
+    for (int q = 0; q < 3; q++) {
+        out->v[q] = ac[q] - d * out->u[q];
+        h2 += out->v[q] * out->v[q];
+    }
+    out->height = sqrtf(h2);
+    for (int q = 0; q < 3; q++) out->v[q] /= out->height;
+    out->foot = fminf(fmaxf(d, 0.0f), out->length);
+    float an[3] = {fabsf(n[0]), fabsf(n[1]), fabsf(n[2])};
+    out->plane = an[1] >= an[0] && an[1] >= an[2] ? 1 : (an[0] >= an[2] ? 0 : 2);
+    out->cells[0] = (int32_t)ceilf(out->length / spacing);
+    out->cells[1] = (int32_t)ceilf(out->height / spacing);
+    return true;
+}
+
+/* Layout texel coordinate of world coordinate c (twin: bb_texel_of). */
+static int bb_texel_of(float c, const bb_gen_desc_t *d, int side)
+{
+    return bb_mod(bb_floor_div((int)floorf(c / d->spacing), d->cells_per_texel), side);
+}
+
+bool bb_layout_sample_tri(const bb_layout_t *layout, const bb_gen_desc_t *desc, const bb_gen_tri_t *tri,
+                          uint32_t t, int i, int j, bb_point_t *out)
+{
+    bb_gen_desc_t d = bb_gen_desc_defaults(desc);
+    assert(d.layers <= 256u && d.cells_per_texel > 0);
+    uint32_t h = core_hash_u32((uint32_t)i * 0x8da6b343u ^
+                               core_hash_u32((uint32_t)j ^ core_hash_u32(t ^ core_hash_u32(d.seed))));
+    float pu = ((float)i + core_hash_float(h + 1u)) * d.spacing;
+    float pv = ((float)j + core_hash_float(h + 2u)) * d.spacing;
+    if (!(tri->height * pu >= tri->foot * pv && tri->height * (tri->length - pu) >= (tri->length - tri->foot) * pv))
+        return false;
+    float pos[3];
+    for (int q = 0; q < 3; q++) pos[q] = tri->a[q] + pu * tri->u[q] + pv * tri->v[q];
+    float cx = pos[0] - d.origin[0], cz = pos[2] - d.origin[1];
+    float s0 = tri->plane == 0 ? cz : cx, s1 = tri->plane == 1 ? cz : pos[1];
+    int tx = bb_texel_of(s0, &d, layout->extent.w), tz = bb_texel_of(s1, &d, layout->extent.h);
+    size_t ti = (size_t)tz * layout->extent.w + tx;
+    uint32_t e = layout->extent.px[ti];
+    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
+    bb_fill_point(layout, &d, h, ti, e, out);
+    memcpy(out->position, pos, sizeof pos);
     return true;
 }

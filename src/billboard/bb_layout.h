@@ -128,4 +128,64 @@ bb_gen_desc_t bb_gen_desc_defaults(const bb_gen_desc_t *desc);
 bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int ix, int iz,
                       bb_point_t *out);
 
+/* ---- generation rule on a mesh triangle ---------------------------------------
+ * Mesh terrains (not heightfields) seed billboards per triangle, by its true
+ * area, so a steep face gets as many candidates per m^2 as the floor (the
+ * grid above sees a face only through its plan area, about cos angle, and
+ * a vertical face not at all). A triangle (a, b, c), rotated so that a b is
+ * its longest edge, spans the plane frame u = (b - a) / |b - a| and v, the
+ * unit in-plane direction perpendicular to u towards c; in that frame the
+ * corners are (0, 0), (length, 0) and (foot, height), foot in [0, length].
+ * Its candidates form a grid of `spacing` metres over [0, length] x
+ * [0, height]: cell (i, j), 0 <= i < cells[0], 0 <= j < cells[1], of
+ * triangle index t (any number naming it, the mesh's triangle index in bb.c)
+ * is decided by
+ *   h      = hash(uint(i) * 0x8da6b343u ^ hash(uint(j) ^ hash(t ^ hash(seed))))
+ *   (pu, pv) = ((i + hf(h+1)) * spacing, (j + hf(h+2)) * spacing)
+ *   inside iff height * pu >= foot * pv and
+ *              height * (length - pu) >= (length - foot) * pv
+ *   position = a + pu u + pv v        (on the triangle: no height lookup)
+ *   texel  the layout texel of the grid rule's cell under the position,
+ *          projected along the largest component of the face normal:
+ *          plane 1 (normal mostly y): (x - origin.x, z - origin.z),
+ *          plane 0 (mostly x): (z - origin.z, y), plane 2 (mostly z):
+ *          (x - origin.x, y); each coordinate c -> floor(floor(c / spacing)
+ *          / cells_per_texel) mod the texture side
+ *   then the accept test and every other field exactly as the grid rule
+ *   (extent E of that texel; growth from the direction map: billboards
+ *   stand up from a face as from the floor).
+ * Every cell of the box [0, length] x [0, height] holds its share of the
+ * triangle's area, so a triangle gets area / spacing^2 candidates in
+ * expectation, jittered-grid stratified inside it. Float results agree with
+ * the GLSL twin (bb_generate_tri) to rounding; a root within rounding of a
+ * texel edge could read the neighbouring texel. */
+typedef struct bb_gen_tri_t {  /* std430 twin: struct bb_gen_tri in shaders/common/bb.glsl */
+    float a[3];
+    float length;              /* |b - a|, the longest edge */
+    float u[3];                /* unit (b - a) */
+    float height;              /* distance of c from the line a b */
+    float v[3];                /* unit, in the plane, perpendicular to u, towards c */
+    float foot;                /* (c - a) . u */
+    int32_t cells[2];          /* ceil(length / spacing), ceil(height / spacing) */
+    int32_t plane;             /* layout projection (above) */
+    int32_t pad;
+} bb_gen_tri_t;
+
+/* Faces whose unit normal ((b - a) x (c - a), counter-clockwise seen from
+ * outside as terrain_mesh_t winds them) has a y component below this get no
+ * billboards: they grow up, into the solid above an overhang. Vertical
+ * faces (y 0 up to rounding) keep theirs. */
+#define BB_GEN_TRI_MIN_UP (-1e-3f)
+
+/* The frame of triangle (a, b, c) for candidates `spacing` apart. Returns
+ * false (out zeroed) when the triangle is degenerate (area below 1e-12 m^2)
+ * or faces down (BB_GEN_TRI_MIN_UP). */
+bool bb_gen_tri_make(const float a[3], const float b[3], const float c[3], float spacing, bb_gen_tri_t *out);
+
+/* Applies the triangle rule to cell (i, j) of triangle `tri` named t (see
+ * above). Returns true and fills *out when the candidate lies inside the
+ * triangle and gets a billboard; false otherwise (out untouched). */
+bool bb_layout_sample_tri(const bb_layout_t *layout, const bb_gen_desc_t *desc, const bb_gen_tri_t *tri,
+                          uint32_t t, int i, int j, bb_point_t *out);
+
 #endif
