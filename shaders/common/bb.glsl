@@ -189,12 +189,36 @@ bool bb_push_target(sampler2DArray tex, bb_cube cube, mat4 w2c, mat4 c2w, vec3 s
     return true;
 }
 
+/* Slide (bb_ref.c bb_slide): the point of the plane through `to` across
+ * the push at the rest distance l0 from the vertex below, a, in the
+ * direction x - a has along that plane; `to` where there is none. */
+vec3 bb_slide(vec3 a, float l0, vec3 x, vec3 to)
+{
+    vec3 nrm = to - x;
+    float pen = length(nrm);
+    if (pen < 1e-12) return to;
+    nrm *= 1.0 / pen;
+    float h = dot(a - to, nrm);
+    if (h * h >= l0 * l0) return to;
+    vec3 ax = x - a;
+    vec3 tang = ax - nrm * dot(ax, nrm);
+    float tl = length(tang);
+    if (tl < 1e-6 * l0) return to;
+    float s = sqrt(l0 * l0 - h * h) / tl;
+    return a - h * nrm + s * tang;
+}
+
 void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
                   mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count)
 {
     for (int v = BB_N; v < BB_N * BB_M; v++) {
+        float l0 = distance(bb_rest[v], bb_rest[v - BB_N]);
+        /* Each object's push slides the vertex at its row length, then
+         * pushes the slid point again (bb_ref.c bb_push_mesh). */
         for (int c = 0; c < count; c++) {
             vec3 to;
+            if (!bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) continue;
+            bb_pos[v] = bb_slide(bb_pos[v - BB_N], l0, bb_pos[v], to);
             if (bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) bb_pos[v] = to;
         }
 #ifdef BB_GROUND
@@ -202,7 +226,7 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
         if (bb_pos[v].y >= g) continue;
         bb_pos[v].y = g;
         /* Raised back into an object whose push pointed down: leave sideways
-         * (bb_ref.c bb_push_mesh). */
+         * (bb_ref.c bb_ground_vertex). */
         for (int c = 0; c < count; c++) {
             vec3 to;
             if (!bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) continue;
@@ -217,7 +241,8 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
     }
 }
 
-/* bb_ref_collide: push-out, then K x (one relaxation sweep, push-out).
+/* bb_ref_collide: push-out, then K x (one relaxation sweep, push-out), each
+ * push with the slide (bb_slide).
  * c2w[c] must be inverse(w2c[c]) (computed once on the CPU); sweep[c] as
  * bb_collide_desc_t.sweep (0: the object where it is). */
 void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],

@@ -152,31 +152,74 @@ static bool push_target(const collide_cubemap_t *cube, const mat4 w2c, const mat
     return true;
 }
 
+/* Slide (departure from the paper): x, which a push takes to `to`, goes
+ * instead to the point of the plane through `to` across the push that lies
+ * at the rest distance l0 from the vertex below it, a, in the direction
+ * x - a has along that plane: its column segment turns about a out of the
+ * object instead of being shortened. `to` is kept where no such point
+ * exists (a farther than l0 from the plane, or x straight along the push
+ * from a). */
+static void bb_slide(const float a[3], float l0, const float x[3], vec3 to)
+{
+    vec3 nrm, foot, tang, ax;
+    glm_vec3_sub(to, (float *)x, nrm);
+    float pen = glm_vec3_norm(nrm);
+    if (pen < 1e-12f) return;
+    glm_vec3_scale(nrm, 1.0f / pen, nrm);
+    glm_vec3_sub((float *)a, to, foot);
+    float h = glm_vec3_dot(foot, nrm);
+    if (h * h >= l0 * l0) return;
+    glm_vec3_sub((float *)x, (float *)a, ax);
+    glm_vec3_scale(nrm, glm_vec3_dot(ax, nrm), tang);
+    glm_vec3_sub(ax, tang, tang);
+    float tl = glm_vec3_norm(tang);
+    if (tl < 1e-6f * l0) return;
+    float s = sqrtf(l0 * l0 - h * h) / tl;
+    for (int k = 0; k < 3; k++) to[k] = a[k] - h * nrm[k] + s * tang[k];
+}
+
+/* Keeps x on or above the ground (bb_collide_desc_t.ground). */
+static void bb_ground_vertex(float x[3], const collide_cubemap_t *cubes, const mat4 *w2c, const mat4 *c2w, int count,
+                             const bb_collide_desc_t *d)
+{
+    float g = d->ground(d->ground_user, x[0], x[2]);
+    if (x[1] >= g) return;
+    x[1] = g;
+    /* Raised back into an object whose push pointed down: leave it
+     * sideways instead, along the push's horizontal part by the distance
+     * that removes its depth across a locally flat surface (pen / |n_h|,
+     * at most 4 pen), then onto the ground again. */
+    for (int c = 0; c < count; c++) {
+        vec3 to;
+        if (!push_target(&cubes[c], w2c[c], c2w[c], d->sweep ? d->sweep[c] : NULL, x, to)) continue;
+        float dx = to[0] - x[0], dy = to[1] - x[1], dz = to[2] - x[2];
+        float pen = sqrtf(dx * dx + dy * dy + dz * dz), hl = sqrtf(dx * dx + dz * dz);
+        if (hl < 1e-6f * fmaxf(pen, 1e-12f)) continue;
+        float s = fminf(pen * pen / hl, 4.0f * pen);
+        x[0] += dx / hl * s;
+        x[2] += dz / hl * s;
+        x[1] = fmaxf(x[1], d->ground(d->ground_user, x[0], x[2]));
+    }
+}
+
 static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *w2c,
                          const mat4 *c2w, int count, const bb_collide_desc_t *d)
 {
     for (int v = mesh->n; v < mesh->n * mesh->m; v++) {
         float *x = mesh->pos[v];
-        for (int c = 0; c < count; c++) push_target(&cubes[c], w2c[c], c2w[c], d->sweep ? d->sweep[c] : NULL, x, x);
-        if (!d->ground) continue;
-        float g = d->ground(d->ground_user, x[0], x[2]);
-        if (x[1] >= g) continue;
-        x[1] = g;
-        /* Raised back into an object whose push pointed down: leave it
-         * sideways instead, along the push's horizontal part by the distance
-         * that removes its depth across a locally flat surface (pen / |n_h|,
-         * at most 4 pen), then onto the ground again. */
+        const float *a = mesh->pos[v - mesh->n];
+        float l0 = glm_vec3_distance(mesh->rest[v], mesh->rest[v - mesh->n]);
+        /* Each object's push slides x at its row length (bb_slide), then
+         * pushes the slid point again: the push comes last. */
         for (int c = 0; c < count; c++) {
+            const float *sweep = d->sweep ? d->sweep[c] : NULL;
             vec3 to;
-            if (!push_target(&cubes[c], w2c[c], c2w[c], d->sweep ? d->sweep[c] : NULL, x, to)) continue;
-            float dx = to[0] - x[0], dy = to[1] - x[1], dz = to[2] - x[2];
-            float pen = sqrtf(dx * dx + dy * dy + dz * dz), hl = sqrtf(dx * dx + dz * dz);
-            if (hl < 1e-6f * fmaxf(pen, 1e-12f)) continue;
-            float s = fminf(pen * pen / hl, 4.0f * pen);
-            x[0] += dx / hl * s;
-            x[2] += dz / hl * s;
-            x[1] = fmaxf(x[1], d->ground(d->ground_user, x[0], x[2]));
+            if (!push_target(&cubes[c], w2c[c], c2w[c], sweep, x, to)) continue;
+            bb_slide(a, l0, x, to);
+            glm_vec3_copy(to, x);
+            push_target(&cubes[c], w2c[c], c2w[c], sweep, x, x);
         }
+        if (d->ground) bb_ground_vertex(x, cubes, w2c, c2w, count, d);
     }
 }
 

@@ -66,7 +66,11 @@ bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
 /* Push every non-root vertex out of each cube (eq. 4-5), then K times: one
  * relaxation sweep (eq. 6-7) followed by another push-out. Departure from
  * the paper, which relaxes once after the push-out: re-projecting after each
- * sweep keeps springs from pulling vertices back inside the object.
+ * sweep keeps springs from pulling vertices back inside the object. Second
+ * departure: a pushed vertex slides, on the plane across the push through
+ * its target, to its rest row length from the vertex below it, and that
+ * point is pushed again (bb_ref.c bb_slide), so a column turns out of the
+ * object instead of being shortened by it.
  * world_to_cube[k] maps world space into cube k's space. desc may be NULL. */
 void bb_ref_collide(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 *world_to_cube,
                     int count, const bb_collide_desc_t *desc);
