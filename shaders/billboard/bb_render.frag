@@ -1,9 +1,11 @@
 #version 450
 /* bb_render.frag: billboard shading of Orthmann et al. 2009: clump texture
  * array, two-sided lighting (normal flipped towards the viewer), fog, and
- * alpha-to-coverage without sorting. The hybrid distance fade multiplies
- * alpha by a ramp from fade_start to fade_end plus an interleaved-gradient
- * dither, so the MSAA coverage cross-fades instead of blending. */
+ * alpha-to-coverage without sorting (the mask written here,
+ * grass_coverage_mask, the compute rasterizer's rule). The hybrid distance
+ * fade multiplies alpha by a ramp from fade_start to fade_end plus an
+ * interleaved-gradient dither, so the MSAA coverage cross-fades instead of
+ * blending. */
 #include "common/grass_shade.glsl"
 
 uniform sampler2DArray u_clumps;
@@ -25,6 +27,8 @@ void main()
     vec4 tex = texture(u_clumps, g_uvl);
     vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
     float a = bb_fade_alpha(tex.a, distance(u_camera, g_world), u_fade_start, u_fade_end, gl_FragCoord.xy);
-    if (a < 1.0 / 255.0) discard;
-    frag = vec4(c, a);
+    uint mask = grass_coverage_mask(a, gl_NumSamples, uvec2(gl_FragCoord.xy));
+    if (a < 1.0 / 255.0 || mask == 0u) discard;
+    gl_SampleMask[0] = int(mask);
+    frag = vec4(c, 1.0);
 }

@@ -39,6 +39,21 @@ float bb_fade_alpha(float a, float dist, float fade_start, float fade_end, vec2 
     return fade < 1.0 ? clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
 }
 
+/* Alpha to coverage, one rule for both rasterizers and every driver: a
+ * fragment of alpha a covers ceil(a n) of its pixel's n samples (Mesa's
+ * rule), the run of them starting at sample hash(pixel) mod n (bit k:
+ * sample k). Drivers differ in how they turn alpha into a mask (NVIDIA's
+ * covers about round(a n): billboards seen from the side covered 0.807 of
+ * the ground there against 0.848 on Mesa), so the hardware path writes
+ * this mask itself (gl_SampleMask) instead of GL_SAMPLE_ALPHA_TO_COVERAGE. */
+uint grass_coverage_mask(float a, int n, uvec2 pixel)
+{
+    int covered = min(int(ceil(a * float(n))), n);
+    uint first = hash_u32(pixel.x * 1973u + pixel.y * 9277u) % uint(n);
+    uint run = covered >= 32 ? 0xffffffffu : (1u << uint(covered)) - 1u;
+    return ((run << first) | (run >> (uint(n) - first))) & ((1u << uint(n)) - 1u);
+}
+
 /* A blade point at height v (0 root, 1 tip), albedo mixed root to tip. */
 vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 albedo_root, vec3 albedo_tip,
                  vec4 overlay)

@@ -1310,7 +1310,6 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    gfx_alpha_to_coverage(true);
     gfx_timer_begin("bb.render");
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
@@ -1333,7 +1332,6 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
         glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
     }
     gfx_timer_end();
-    gfx_alpha_to_coverage(false);
     glBindVertexArray(0);
 }
 

@@ -40,7 +40,8 @@ tests() {
   echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
   for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
-           test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam; do
+           test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam \
+           test_bb_gpu_generate; do
     echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
     grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)|variant|queued|mismatch|grass share" /tmp/$t.log | head -14
   done
