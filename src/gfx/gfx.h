@@ -313,8 +313,8 @@ void gfx_text_draw(const char *text, float x, float y, float scale, const float 
  * dithers the coverage mask across neighbouring pixels (NVIDIA,
  * GL_NV_alpha_to_coverage_dither_control) the dither is turned off, so a
  * fragment of alpha a covers about a n of its pixel's n samples in every
- * pixel, as Mesa does and as the compute rasterizer's billboards and
- * blades do (docs/BILLBOARDS.md). */
+ * pixel, as Mesa does (the blades' hybrid fade; the billboards write
+ * their mask themselves: grass_coverage_mask, docs/BILLBOARDS.md). */
 void gfx_alpha_to_coverage(bool on);
 
 /* ---- fullscreen helpers ------------------------------------------------------ */
