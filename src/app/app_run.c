@@ -186,6 +186,12 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                      "(reference %.3f | %.3f), pixels %ld | %ld\n",
                      sd, APP_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
                      e.grass[1][0], e.grass[1][1], e.pixels[0][0], e.pixels[0][1]);
+    if (n < (int)size)
+        n += snprintf(buf + n, size - (size_t)n,
+                      "  grass L*a*b* near | far: frame (%.1f %.1f %.1f) | (%.1f %.1f %.1f), reference (%.1f %.1f "
+                      "%.1f) | (%.1f %.1f %.1f)\n",
+                      e.lab[0][0][0], e.lab[0][0][1], e.lab[0][0][2], e.lab[0][1][0], e.lab[0][1][1], e.lab[0][1][2],
+                      e.lab[1][0][0], e.lab[1][0][1], e.lab[1][0][2], e.lab[1][1][0], e.lab[1][1][1], e.lab[1][1][2]);
     eval_seam_t f;
     if (n < (int)size && app_world_seam_floor(w, &app->last_view, &app->target, &f))
         n += snprintf(buf + n, size - (size_t)n,
