@@ -1,6 +1,6 @@
 /* test_bb_ref: the Orthmann et al. 2009 collision reference (bb_ref.c).
  * Checks collide (eq. 4-5, the cube maps are tests/test_collide.c) against
- * the analytic surface, the swept collision (a departure), spring relaxation (eq. 6-7),
+ * the analytic surface, the swept collision and the bend limit (departures), spring relaxation (eq. 6-7),
  * recovery (eq. 8), the wind formula, a 1000-frame stress run, and the
  * bb_point_t layout against struct bb_point in shaders/common/bb.glsl. */
 #include "billboard/bb_ref.h"
@@ -221,6 +221,61 @@ static void test_border_ball(void)
     collide_free_cubemap(&cube);
 }
 
+/* A ball rolling to a stop over billboards facing its path (issue 17,
+ * stability case bb_border): a billboard crushed under the resting ball
+ * lies on the ground with its upper rows in the wedge between ball and
+ * ground, where the push-out turned a column up the ball's back: a joint
+ * past 90 degrees, a cell folded against the one below. The bend limit
+ * (bb_ref_bend_limit) leans the segments below into the bend instead.
+ * Without it: 12 folded billboards of 72 here (cube maps of 2 cm texels,
+ * as the bench case; checked by disabling the call in bb_ref_collide). */
+static void test_resting_wedge(void)
+{
+    const float radii[] = {0.2f, 0.5f, 0.8f};
+    int folded_bb = 0, placements = 0;
+    double stretch = 0.0, deepest = -1.0, worst_texel = 0.0;
+    for (int ri = 0; ri < 3; ri++) {
+        float r = radii[ri], step = 1.6f / 60.0f;
+        collide_cubemap_t cube;
+        CHECK(collide_init_cubemap(&cube, (int)ceilf(2.0f * r / 0.02f), (vec3){0, 0, 0}, r + 0.01f));
+        collide_render_sphere(&cube, (vec3){0, 0, 0}, r);
+        worst_texel = fmax(worst_texel, 2.0 * cube.half / cube.res);
+        for (int k = -1; k <= 1; k++) {
+            float ang = 1.5707963f + 0.3926991f * (float)k;
+            vec3 right = {cosf(ang), 0, sinf(ang)}, up = {0, 1, 0}, rest_normal;
+            glm_vec3_cross(right, up, rest_normal);
+            for (int o = 0; o < 8; o++) {
+                float ox = -(r + 0.35f) * (float)o / 7.0f, oz = o % 2 ? 0.0123f : -0.1f;
+                bb_mesh_t mesh;
+                CHECK(bb_mesh_init_quad(&mesh, (vec3){ox, 0, oz}, right, up, 0.6f, 0.4f, 4, 4));
+                float sweep[1][3] = {{0, 0, 0}};
+                bb_collide_desc_t d = {.ground = flat_ground, .iterations = 2, .sweep = (const float (*)[3])sweep};
+                int folded = 0;
+                float prev = -2.0f;
+                for (int f = 0; f < 150; f++) {
+                    float x = fminf(-2.0f + step * (float)f, 0.0f);
+                    sweep[0][0] = f ? prev - x : 0.0f;
+                    prev = x;
+                    vec3 centre = {x, r, 0};
+                    if (sqrtf((x - ox) * (x - ox) + oz * oz) >= r + 0.45f) continue;
+                    collide_field(&mesh, 1, &cube, centre, &d);
+                    folded += border_distortion(&mesh, rest_normal, &stretch);
+                    for (int v = mesh.n; v < mesh.n * mesh.m; v++)
+                        deepest = fmax(deepest, r - test_dist3(mesh.pos[v], centre));
+                }
+                folded_bb += folded > 0;
+                placements++;
+                bb_mesh_free(&mesh);
+            }
+        }
+        collide_free_cubemap(&cube);
+    }
+    printf("resting wedge: %d of %d billboards folded, max stretch %.3f, deepest vertex %.4f m inside (texel %.4f)\n",
+           folded_bb, placements, stretch, deepest, worst_texel);
+    CHECK(folded_bb == 0);
+    CHECK(deepest <= worst_texel);
+}
+
 static void test_springs(void)
 {
     bb_mesh_t mesh;
@@ -426,6 +481,7 @@ int main(void)
     test_swept();
     test_ground_escape();
     test_border_ball();
+    test_resting_wedge();
     test_springs();
     test_wind_recover();
     test_stress();

@@ -168,6 +168,45 @@ void bb_relax_springs(float r1, float r2, int iterations)
     }
 }
 
+/* Bend limit (bb_ref.c bb_bend, bb_ref_bend_limit): joint a between
+ * segments b-a and a-v bends by at most about acos(BB_BEND_COS); a
+ * violated joint is projected along the constraint's gradients (b < 0:
+ * t is a root's rest column direction, b does not move). */
+const float BB_BEND_COS = 0.25;
+
+void bb_bend(vec3 t, int b, int a, int v)
+{
+    float tl = length(t);
+    if (tl < 1e-12) return;
+    t *= 1.0 / tl;
+    vec3 av = bb_pos[v] - bb_pos[a];
+    float c = dot(av, t) - BB_BEND_COS * distance(bb_rest[a], bb_rest[v]);
+    if (c >= 0.0) return;
+    vec3 p = av - t * dot(av, t);
+    float inv = b >= 0 ? 1.0 / tl : 0.0;
+    float wa = a >= BB_N ? 1.0 : 0.0, wb = b >= BB_N ? 1.0 : 0.0;
+    vec3 ga = -t + p * inv, gb = -p * inv;
+    float lambda = -c / (1.0 + wa * dot(ga, ga) + wb * dot(gb, gb));
+    bb_pos[v] += t * lambda;
+    bb_pos[a] += ga * (wa * lambda);
+    if (b >= 0) bb_pos[b] += gb * (wb * lambda);
+}
+
+void bb_bend_limit()
+{
+    for (int i = 0; i < BB_N; i++)
+        for (int j = 1; j < BB_M; j++) {
+            int v = j * BB_N + i, a = v - BB_N;
+            vec3 t = j == 1 ? bb_rest[v] - bb_rest[a] : bb_pos[a] - bb_pos[a - BB_N];
+            bb_bend(t, j == 1 ? -1 : a - BB_N, a, v);
+        }
+    for (int j = 1; j < BB_M; j++)
+        for (int i = 2; i < BB_N; i++) {
+            int v = j * BB_N + i, a = v - 1;
+            bb_bend(bb_pos[a] - bb_pos[a - 1], a - 1, a, v);
+        }
+}
+
 /* Swept collision (bb_ref.c sweep_shift): the translation moving cube c
  * back along its sweep s (current to previous world position) to the
  * point of the step's path nearest p. */
@@ -241,8 +280,8 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
     }
 }
 
-/* bb_ref_collide: push-out, then K x (one relaxation sweep, push-out), each
- * push with the slide (bb_slide).
+/* bb_ref_collide: push-out, then K x (bend limit, one relaxation sweep,
+ * push-out), each push with the slide (bb_slide).
  * c2w[c] must be inverse(w2c[c]) (computed once on the CPU); sweep[c] as
  * bb_collide_desc_t.sweep (0: the object where it is). */
 void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
@@ -250,6 +289,7 @@ void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX
 {
     bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
     for (int it = 0; it < iterations; it++) {
+        bb_bend_limit();
         bb_relax_springs(r1, r2, 1);
         bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
     }

@@ -417,8 +417,12 @@ static const stab_case_t cases[] = {
      "A pushed vertex now slides at its row length to the vertex below (bb_ref.c bb_slide), and the case "
      "raises the cube maps to 2 cm texels as large_bb does: at 16 texels a 0.8 m ball's are 10 cm, coarser "
      "than the few-cm wedge the billboard lies in (the slide alone: 0.45 at r 0.2, 0.40 at 0.8; the texels "
-     "alone: 0.50 at 0.2, 0.30 at 0.8). Left: at r 0.2 one cell of a column draped under the resting ball folds "
-     "by a hair (signed area ratio -0.002, stretch 0.21). Billboards are simulated one by one, so a pass "
+     "alone: 0.50 at 0.2, 0.30 at 0.8). That left at r 0.2 (and 0.15) one cell of a column draped under the "
+     "resting ball folded by a hair (signed area ratio -0.002, stretch 0.21): the push turned the column up the "
+     "ball's back, past 90 degrees. A bend limit now keeps each joint within about 75 degrees by leaning the "
+     "segments below into the bend (bb_ref.c bb_ref_bend_limit): no fold, worst stretch 0.035, 0.15, 0.19, 0.19, "
+     "0.18, 0.20 (also none at r 0.15, 0.25, 0.4, 0.6, 1.0 m: 0.23, 0.23, 0.21, 0.18, 0.19). Billboards are "
+     "simulated one by one, so a pass "
      "through the middle of the field behaves the same; the sparse border (its last candidate row, z 2.71 to "
      "3.53 m, is cut by the terrain edge at 3 m) only leaves the distorted billboards in plain view",
      setup_border, judge_border},

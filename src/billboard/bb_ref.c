@@ -88,6 +88,56 @@ void bb_ref_relax_springs(bb_mesh_t *mesh, float r1, float r2, int iterations)
     }
 }
 
+/* Bend limit (departure from the paper; issue 17): the constraint
+ * C = (x_v - x_a) . t - BB_REF_BEND_COS l0 >= 0, t the unit direction of
+ * the segment b -> a before joint a (for a root a, its rest column
+ * direction; b < 0), l0 the rest length a-v. A violated constraint is
+ * projected as in position-based dynamics, along the gradients
+ * dC/dv = t, dC/da = -t + p / |a - b|, dC/db = -p / |a - b| (p the part of
+ * v - a across t), roots fixed: the segment before the joint leans into
+ * the bend instead of the joint creasing. */
+static void bb_bend(bb_mesh_t *mesh, const float t_in[3], int b, int a, int v)
+{
+    int n = mesh->n;
+    vec3 t, av, p, ga, gb;
+    float tl = glm_vec3_norm((float *)t_in);
+    if (tl < 1e-12f) return;
+    glm_vec3_scale((float *)t_in, 1.0f / tl, t);
+    glm_vec3_sub(mesh->pos[v], mesh->pos[a], av);
+    float c = glm_vec3_dot(av, t) - BB_REF_BEND_COS * glm_vec3_distance(mesh->rest[a], mesh->rest[v]);
+    if (c >= 0.0f) return;
+    glm_vec3_scale(t, glm_vec3_dot(av, t), p);
+    glm_vec3_sub(av, p, p);
+    float inv = b >= 0 ? 1.0f / tl : 0.0f, wa = a >= n ? 1.0f : 0.0f, wb = b >= n ? 1.0f : 0.0f;
+    for (int k = 0; k < 3; k++) {
+        ga[k] = -t[k] + p[k] * inv;
+        gb[k] = -p[k] * inv;
+    }
+    float lambda = -c / (1.0f + wa * glm_vec3_dot(ga, ga) + wb * glm_vec3_dot(gb, gb));
+    glm_vec3_muladds(t, lambda, mesh->pos[v]);
+    glm_vec3_muladds(ga, wa * lambda, mesh->pos[a]);
+    if (b >= 0) glm_vec3_muladds(gb, wb * lambda, mesh->pos[b]);
+}
+
+void bb_ref_bend_limit(bb_mesh_t *mesh)
+{
+    int n = mesh->n, m = mesh->m;
+    vec3 t;
+    for (int i = 0; i < n; i++)
+        for (int j = 1; j < m; j++) {
+            int v = j * n + i, a = v - n;
+            if (j == 1) glm_vec3_sub(mesh->rest[v], mesh->rest[a], t);
+            else glm_vec3_sub(mesh->pos[a], mesh->pos[a - n], t);
+            bb_bend(mesh, t, j == 1 ? -1 : a - n, a, v);
+        }
+    for (int j = 1; j < m; j++)
+        for (int i = 2; i < n; i++) {
+            int v = j * n + i, a = v - 1;
+            glm_vec3_sub(mesh->pos[a], mesh->pos[a - 1], t);
+            bb_bend(mesh, t, a - 1, a, v);
+        }
+}
+
 static void bb_spring_err(const bb_mesh_t *mesh, int a, int b, double *sum, int *count)
 {
     if (a < mesh->n && b < mesh->n) return;
@@ -233,6 +283,7 @@ void bb_ref_collide(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 
     for (int c = 0; c < count; c++) glm_mat4_inv((vec4 *)world_to_cube[c], c2w[c]);
     bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count, &d);
     for (int it = 0; it < d.iterations; it++) {
+        bb_ref_bend_limit(mesh);
         bb_ref_relax_springs(mesh, d.r1, d.r2, 1);
         bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count, &d);
     }

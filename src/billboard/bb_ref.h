@@ -36,6 +36,18 @@ void bb_mesh_free(bb_mesh_t *mesh);
  * c = (l - l0)/l * (b - a): free ends move a += r/2 c, b -= r/2 c; if a is
  * a root only b moves, b -= r c (and vice versa). r = r1 structural, r2 shear. */
 void bb_ref_relax_springs(bb_mesh_t *mesh, float r1, float r2, int iterations);
+/* Bend limit (departure from the paper; issue 17), one Gauss-Seidel sweep:
+ * along each column (bottom up), then along each row (left to right), a
+ * joint a between segments b-a and a-v is kept from bending by more than
+ * about acos(BB_REF_BEND_COS) (75 degrees): (v - a) . t >= BB_REF_BEND_COS
+ * l0, t the unit direction b -> a (a root's rest column direction for row
+ * 1), l0 the rest length a-v. A violated joint is projected along the
+ * constraint's gradients (position-based dynamics, roots fixed), so the
+ * segment below leans into the bend rather than the joint creasing. The
+ * margin below 90 degrees absorbs what the push-out after it bends back
+ * (docs/BILLBOARDS.md, bend limit). */
+#define BB_REF_BEND_COS 0.25f
+void bb_ref_bend_limit(bb_mesh_t *mesh);
 /* Mean |l - l0| / l0 over all structural and shear springs. */
 float bb_ref_spring_error(const bb_mesh_t *mesh);
 
@@ -63,8 +75,9 @@ typedef struct bb_collide_desc_t {
 } bb_collide_desc_t;
 bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
 
-/* Push every non-root vertex out of each cube (eq. 4-5), then K times: one
- * relaxation sweep (eq. 6-7) followed by another push-out. Departure from
+/* Push every non-root vertex out of each cube (eq. 4-5), then K times: the
+ * bend limit (bb_ref_bend_limit), one relaxation sweep (eq. 6-7), another
+ * push-out. Departure from
  * the paper, which relaxes once after the push-out: re-projecting after each
  * sweep keeps springs from pulling vertices back inside the object. Second
  * departure: a pushed vertex slides, on the plane across the push through
