@@ -52,19 +52,17 @@ bool extent_keep(vec3 v0, uint id)
     return hash_u32(id ^ hash_u32(u_extent_seed ^ 0x5bd1e995u)) % 255u < e;
 }
 
-/* Ground distance from the camera (eq. 19's d_proj). */
-float ground_distance(Blade b)
+/* The blade's ground vector from the camera (v0 - camera without its part
+ * along up): orientation test and eq. 19's d_proj = |view_ground|. */
+vec3 ground_view(Blade b)
 {
     vec3 view = b.v0.xyz - u_cam_pos;
-    return length(view - b.up.xyz * dot(view, b.up.xyz));
+    return view - b.up.xyz * dot(view, b.up.xyz);
 }
 
-bool visible(Blade b, uint index)
+bool visible(Blade b, uint index, vec3 view_ground)
 {
     vec3 v0 = b.v0.xyz;
-    vec3 up = b.up.xyz;
-    vec3 view = v0 - u_cam_pos;
-    vec3 view_ground = view - up * dot(view, up);
     if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
         vec3 width_dir, front;
         blade_frame(b, width_dir, front);
@@ -78,8 +76,8 @@ bool visible(Blade b, uint index)
             return false;
     }
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
-        float dproj = ground_distance(b);
         int n = u_distance_levels;
+        float dproj = length(view_ground);
         if (dproj > u_max_distance) return false;
         int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
         if (int(index % uint(n)) > level) return false;
@@ -101,10 +99,12 @@ void main()
         if (b.v1.w <= 0.0) return;
         b = tiles_pose(b);
     }
-    if (b.v1.w <= 0.0 || !visible(b, k)) return;
+    if (b.v1.w <= 0.0) return;
+    vec3 view_ground = ground_view(b);
+    if (!visible(b, k, view_ground)) return;
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u)
-        b.v2.w *= blade_lod_width(ground_distance(b), u_max_distance, u_distance_levels);
+        b.v2.w *= blade_lod_width(length(view_ground), u_max_distance, u_distance_levels);
     uint slot = atomicAdd(cmd.instanceCount, 1u);
     if (slot < u_capacity) {
         drawn[slot] = b;

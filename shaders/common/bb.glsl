@@ -352,12 +352,16 @@ int bb_floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
 int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
 
-/* bb_layout.c bb_fill_point: the fields every rule shares once candidate h
- * was accepted on texel t of extent e (position left to the caller).
- * direction: RGB8 unorm, messiness: R8 unorm. */
-void bb_fill_point(sampler2D direction, sampler2D messiness, bb_gen d, uint h, ivec2 t, uint e, out bb_point p)
+/* bb_layout.c bb_accept_point: candidate h on texel t is kept with the
+ * texel's extent as probability; a kept one gets every field but its
+ * position (left to the caller). extent, messiness: R8 unorm, direction:
+ * RGB8 unorm. */
+bool bb_accept_point(sampler2D extent, sampler2D direction, sampler2D messiness, bb_gen d, uint h, ivec2 t,
+                     out bb_point p)
 {
     p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
+    uint e = uint(round(texelFetch(extent, t, 0).r * 255.0));
+    if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
     p.size.x = d.width * (0.8 + 0.4 * bb_hash_float(h + 3u));
     p.size.y = d.height * (0.6 + 0.8 * bb_hash_float(h + 4u)) * (0.5 + 0.5 * float(e) / 255.0);
     p.angle = 6.2831853 * bb_hash_float(h + 5u);
@@ -368,9 +372,9 @@ void bb_fill_point(sampler2D direction, sampler2D messiness, bb_gen d, uint h, i
     p.seed = h;
     p.state = BB_STATE_IDLE;
     p.recover_time = 0.0;
+    return true;
 }
 
-/* extent: R8 unorm. */
 bool bb_generate(sampler2D extent, sampler2D direction, sampler2D messiness, bb_gen d, int ix,
                  int iz, out bb_point p)
 {
@@ -378,10 +382,7 @@ bool bb_generate(sampler2D extent, sampler2D direction, sampler2D messiness, bb_
     ivec2 wh = textureSize(extent, 0);
     int tx = bb_mod(bb_floor_div(ix, d.cells_per_texel), wh.x);
     int tz = bb_mod(bb_floor_div(iz, d.cells_per_texel), wh.y);
-    uint e = uint(round(texelFetch(extent, ivec2(tx, tz), 0).r * 255.0));
-    p = bb_point(vec3(0.0), 0.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0u, 0.0, 0u, 0u, 0u);
-    if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
-    bb_fill_point(direction, messiness, d, h, ivec2(tx, tz), e, p);
+    if (!bb_accept_point(extent, direction, messiness, d, h, ivec2(tx, tz), p)) return false;
     p.position.x = d.origin.x + (float(ix) + bb_hash_float(h + 1u)) * d.spacing;
     p.position.y = 0.0;
     p.position.z = d.origin.y + (float(iz) + bb_hash_float(h + 2u)) * d.spacing;
@@ -423,9 +424,7 @@ bool bb_generate_tri(sampler2D extent, sampler2D direction, sampler2D messiness,
     float s0 = tri.plane == 0 ? cz : cx, s1 = tri.plane == 1 ? cz : pos.y;
     ivec2 wh = textureSize(extent, 0);
     ivec2 tt = ivec2(bb_texel_of(s0, d, wh.x), bb_texel_of(s1, d, wh.y));
-    uint e = uint(round(texelFetch(extent, tt, 0).r * 255.0));
-    if (!(hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
-    bb_fill_point(direction, messiness, d, h, tt, e, p);
+    if (!bb_accept_point(extent, direction, messiness, d, h, tt, p)) return false;
     p.position = pos;
     return true;
 }

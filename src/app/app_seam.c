@@ -101,6 +101,17 @@ eval_seam_desc_t app_seam_desc(const app_world_t *w)
     return (eval_seam_desc_t){.switch_distance = w->scene.grass.switch_distance, .fade = APP_SWITCH_FADE};
 }
 
+/* eval_image_seam of frame against ref, both classified against bg. */
+static bool seam_of(const app_world_t *w, app_seam_frame_t *frame, app_seam_frame_t *ref, const app_seam_frame_t *bg,
+                    eval_seam_t *out)
+{
+    app_seam_frame_classify(frame, bg);
+    app_seam_frame_classify(ref, bg);
+    eval_seam_desc_t d = app_seam_desc(w);
+    return eval_image_seam(&(eval_seam_frame_t){&frame->img, frame->dist, frame->cls},
+                           &(eval_seam_frame_t){&ref->img, ref->dist, ref->cls}, &d, out);
+}
+
 bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
@@ -109,11 +120,7 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
     bool ok = app_seam_frame_read(w, v, t, &frame) && app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               app_seam_frame_draw(w, v, t, w->mode, false, &bg);
     if (ok) {
-        app_seam_frame_classify(&frame, &bg);
-        app_seam_frame_classify(&ref, &bg);
-        eval_seam_desc_t d = app_seam_desc(w);
-        ok = eval_image_seam(&(eval_seam_frame_t){&frame.img, frame.dist, frame.cls},
-                             &(eval_seam_frame_t){&ref.img, ref.dist, ref.cls}, &d, out);
+        ok = seam_of(w, &frame, &ref, &bg, out);
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= APP_SEAM_MIN_PIXELS;
     }
@@ -139,13 +146,7 @@ bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_
     }
     w->bb = keep;
     w->have_bb = true;
-    if (ok) {
-        app_seam_frame_classify(&ref, &bg);
-        app_seam_frame_classify(&other, &bg);
-        eval_seam_desc_t d = app_seam_desc(w);
-        ok = eval_image_seam(&(eval_seam_frame_t){&other.img, other.dist, other.cls},
-                             &(eval_seam_frame_t){&ref.img, ref.dist, ref.cls}, &d, out);
-    }
+    if (ok) ok = seam_of(w, &other, &ref, &bg, out);
     app_seam_frame_free(&ref);
     app_seam_frame_free(&other);
     app_seam_frame_free(&bg);

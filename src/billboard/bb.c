@@ -196,20 +196,6 @@ static void column_ranges(const bb_field_t *f, const terrain_mesh_t *t, float *l
     }
 }
 
-static uint32_t compact3(uint32_t m)
-{
-    uint32_t r = 0;
-    for (int b = 0; b < BB_OCTREE_MAX_DEPTH; b++) r |= ((m >> (3 * b)) & 1u) << b;
-    return r;
-}
-
-static uint32_t spread3(uint32_t c)
-{
-    uint32_t r = 0;
-    for (int b = 0; b < BB_OCTREE_MAX_DEPTH; b++) r |= ((c >> b) & 1u) << (3 * b);
-    return r;
-}
-
 /* std430 twin of struct bb_gen_entry in bb_gen_leaves.glsl. */
 typedef struct bb_gen_entry_t {
     int32_t cells[4];
@@ -230,8 +216,9 @@ static int gen_entries(const bb_field_t *f, const float *clo, const float *chi, 
     uint32_t first = 0;
     for (int leaf = 0; leaf < tr->leaf_count; leaf++) {
         int node = bb_octree_leaf_node(tr, (uint32_t)leaf);
-        int cx = (int)compact3((uint32_t)leaf), cz = (int)compact3((uint32_t)leaf >> 2);
-        float ylo = clo[cz * tr->side + cx], yhi = chi[cz * tr->side + cx];
+        int lc[3];
+        bb_octree_leaf_coords((uint32_t)leaf, lc);
+        float ylo = clo[lc[2] * tr->side + lc[0]], yhi = chi[lc[2] * tr->side + lc[0]];
         float eps = 1e-3f * (tr->desc.max[1] - tr->desc.min[1]);
         if (yhi < tr->lo[node][1] - eps || ylo > tr->hi[node][1] + eps) continue;
         int c[4];
@@ -331,7 +318,7 @@ static bb_gen_entry_t *tri_entries(const bb_field_t *f, const terrain_mesh_t *t,
         for (int z = span[2][0]; ok && z <= span[2][1]; z++) {
             for (int y = span[1][0]; ok && y <= span[1][1]; y++) {
                 for (int x = span[0][0]; ok && x <= span[0][1]; x++) {
-                    uint32_t leaf = spread3((uint32_t)x) | spread3((uint32_t)y) << 1 | spread3((uint32_t)z) << 2;
+                    uint32_t leaf = bb_octree_leaf_at((const int[3]){x, y, z});
                     int node = bb_octree_leaf_node(tr, leaf), c[4];
                     if (!tri_cells_in_box(&tris[k], f->gen.spacing, tr->lo[node], tr->hi[node], c)) continue;
                     if (n == cap) {

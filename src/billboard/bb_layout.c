@@ -399,11 +399,15 @@ static int bb_floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) /
 /* Written without % on negatives so the GLSL twin (where that is undefined) matches. */
 static int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
 
-/* The fields every rule shares once candidate h was accepted on texel ti of
- * extent e (position left to the caller). */
-static void bb_fill_point(const bb_layout_t *layout, const bb_gen_desc_t *d, uint32_t h, size_t ti, uint32_t e,
-                          bb_point_t *out)
+/* What every rule shares: candidate h on layout texel (tx, tz) is kept
+ * with the texel's extent as probability; a kept one gets every field but
+ * its position (left to the caller). */
+static bool bb_accept_point(const bb_layout_t *layout, const bb_gen_desc_t *d, uint32_t h, int tx, int tz,
+                            bb_point_t *out)
 {
+    size_t ti = (size_t)tz * layout->extent.w + tx;
+    uint32_t e = layout->extent.px[ti];
+    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
     memset(out, 0, sizeof *out);
     out->size[0] = d->width * (0.8f + 0.4f * core_hash_float(h + 3u));
     out->size[1] = d->height * (0.6f + 0.8f * core_hash_float(h + 4u)) * (0.5f + 0.5f * (float)e / 255.0f);
@@ -420,6 +424,7 @@ static void bb_fill_point(const bb_layout_t *layout, const bb_gen_desc_t *d, uin
     out->seed = h;
     out->state = BB_STATE_IDLE;
     out->recover_time = 0.0f;
+    return true;
 }
 
 bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int ix, int iz,
@@ -430,10 +435,7 @@ bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int 
     uint32_t h = core_hash_u32((uint32_t)ix * 0x8da6b343u ^ core_hash_u32((uint32_t)iz ^ core_hash_u32(d.seed)));
     int tx = bb_mod(bb_floor_div(ix, d.cells_per_texel), layout->extent.w);
     int tz = bb_mod(bb_floor_div(iz, d.cells_per_texel), layout->extent.h);
-    size_t ti = (size_t)tz * layout->extent.w + tx;
-    uint32_t e = layout->extent.px[ti];
-    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
-    bb_fill_point(layout, &d, h, ti, e, out);
+    if (!bb_accept_point(layout, &d, h, tx, tz, out)) return false;
     out->position[0] = d.origin[0] + ((float)ix + core_hash_float(h + 1u)) * d.spacing;
     out->position[1] = 0.0f;
     out->position[2] = d.origin[1] + ((float)iz + core_hash_float(h + 2u)) * d.spacing;
@@ -502,10 +504,7 @@ bool bb_layout_sample_tri(const bb_layout_t *layout, const bb_gen_desc_t *desc, 
     float cx = pos[0] - d.origin[0], cz = pos[2] - d.origin[1];
     float s0 = tri->plane == 0 ? cz : cx, s1 = tri->plane == 1 ? cz : pos[1];
     int tx = bb_texel_of(s0, &d, layout->extent.w), tz = bb_texel_of(s1, &d, layout->extent.h);
-    size_t ti = (size_t)tz * layout->extent.w + tx;
-    uint32_t e = layout->extent.px[ti];
-    if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;
-    bb_fill_point(layout, &d, h, ti, e, out);
+    if (!bb_accept_point(layout, &d, h, tx, tz, out)) return false;
     memcpy(out->position, pos, sizeof pos);
     return true;
 }

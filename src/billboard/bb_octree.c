@@ -124,11 +124,23 @@ static int bb_leaf_coord(const bb_octree_t *tree, int a, float p, bool *clamped)
     return c;
 }
 
-static uint32_t bb_leaf_of(const bb_octree_t *tree, const float pos[3], bool *clamped)
+uint32_t bb_octree_leaf_at(const int c[3])
 {
     uint32_t m = 0;
-    for (int a = 0; a < 3; a++) m |= bb_spread3((uint32_t)bb_leaf_coord(tree, a, pos[a], clamped)) << a;
+    for (int a = 0; a < 3; a++) m |= bb_spread3((uint32_t)c[a]) << a;
     return m;
+}
+
+void bb_octree_leaf_coords(uint32_t leaf, int c[3])
+{
+    for (int a = 0; a < 3; a++) c[a] = (int)bb_compact3(leaf >> a);
+}
+
+static uint32_t bb_leaf_of(const bb_octree_t *tree, const float pos[3], bool *clamped)
+{
+    int c[3];
+    for (int a = 0; a < 3; a++) c[a] = bb_leaf_coord(tree, a, pos[a], clamped);
+    return bb_octree_leaf_at(c);
 }
 
 uint32_t bb_octree_leaf_of(const bb_octree_t *tree, const float pos[3])

@@ -74,6 +74,9 @@ void bb_octree_free(bb_octree_t *tree);
 /* Leaf (Morton) index of a position; positions outside the AABB clamp to
  * the border leaf. */
 uint32_t bb_octree_leaf_of(const bb_octree_t *tree, const float pos[3]);
+/* Leaf (Morton) index of leaf coordinates c (each 0..side-1), and back. */
+uint32_t bb_octree_leaf_at(const int c[3]);
+void bb_octree_leaf_coords(uint32_t leaf, int c[3]);
 /* Node index of leaf k. */
 static inline int bb_octree_leaf_node(const bb_octree_t *tree, uint32_t leaf)
 {
