@@ -344,12 +344,12 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     if (!app.shot_every && headless && o->screenshot_every == 0 && app.frames >= 3) app.shot_every = app.frames / 3;
     app.hud = !headless;
     gfx_init();
-    app.target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
-                                                      .samples = s->msaa, .label = "main"});
+    app.target = (gfx_target_t){.w = s->size[0], .h = s->size[1]};
+    bool ok = app_world_fit_target(w, &app.target, "main");
     scene_camera_init(s, &app.cam);
     w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
                                      w->stage_ms[APP_STAGE_TERRAIN];
-    bool ok = app.target.fbo && app_world_make_gpu(w);
+    ok = ok && app_world_make_gpu(w);
     if (ok && s->raster == SCENE_RASTER_AUTO) {
         app_view_t view;
         app_view_make(&view, &app.cam, app.target.w, app.target.h, 0.0f, (float)s->dt);
@@ -396,6 +396,11 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         app_view_t view;
         app_view_make(&view, &app.cam, app.target.w, app.target.h, sim_t, (float)s->dt);
         view.overlay = app.overlay;
+        if (!app_world_fit_target(w, &app.target, "main")) {
+            ok = false;
+            rc = 1;
+            break;
+        }
         gfx_target_bind(&app.target);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -416,7 +421,12 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         }
         double submitted = plat_time();
         /* The first frame is waited for: the end of start-up. */
-        gfx_frame_end(frame == 1 ? 1 : APP_FRAMES_IN_FLIGHT);
+        if (gfx_frame_end(frame == 1 ? 1 : APP_FRAMES_IN_FLIGHT) < 0.0) {
+            core_log_error("giving up at frame %d: the GPU did not finish it", frame);
+            ok = false;
+            rc = 1;
+            break;
+        }
         double end = plat_time();
         if (frame == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - t0) * 1e3;
         frame_times_add(&app.times, frame - 1, (end - frame_end) * 1e3, (submitted - frame_end) * 1e3);

@@ -639,8 +639,36 @@ void app_world_set_raster(app_world_t *w, bool compute)
     w->scene.raster = compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW;
 }
 
+int app_world_target_samples(const app_world_t *w)
+{
+    return w->raster_compute ? 1 : w->scene.msaa;
+}
+
+bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label)
+{
+    int samples = app_world_target_samples(w);
+    if (t->fbo && t->samples == (samples > 0 ? samples : 4)) return true;
+    int tw = t->w, th = t->h;
+    gfx_target_destroy(t);
+    *t = gfx_target_make(&(gfx_target_desc_t){.w = tw, .h = th, .samples = samples, .label = label});
+    if (!t->fbo) core_log_error("cannot make the %dx%d target '%s' with %d samples", tw, th, label, samples);
+    return t->fbo != 0;
+}
+
 bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2])
 {
+    /* Each path draws into the target it would use (app_world_fit_target). */
+    gfx_target_t tg[2] = {{.w = target->w, .h = target->h}, {.w = target->w, .h = target->h}};
+    for (int c = 0; c < 2; c++) {
+        app_world_set_raster(w, c == 1);
+        if (!app_world_fit_target(w, &tg[c], c ? "raster.calibrate.compute" : "raster.calibrate.hw")) {
+            gfx_target_destroy(&tg[0]);
+            gfx_target_destroy(&tg[1]);
+            app_world_set_raster(w, false);
+            ms[0] = ms[1] = 0.0;
+            return false;
+        }
+    }
     GLuint q[2] = {gfx_query_make(GL_TIMESTAMP, "raster.calibrate.begin"),
                    gfx_query_make(GL_TIMESTAMP, "raster.calibrate.end")};
     double best[2] = {1e30, 1e30};
@@ -648,11 +676,11 @@ bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gf
         for (int c = 0; c < 2; c++) {
             app_world_set_raster(w, c == 1);
             gfx_timer_frame_begin();
-            gfx_target_bind(target);
+            gfx_target_bind(&tg[c]);
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             glEnable(GL_DEPTH_TEST);
             glQueryCounter(q[0], GL_TIMESTAMP);
-            app_world_draw(w, view, target, false);
+            app_world_draw(w, view, &tg[c], false);
             glQueryCounter(q[1], GL_TIMESTAMP);
             GLuint64 t0 = 0, t1 = 0;
             glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
@@ -662,6 +690,8 @@ bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gf
     }
     gfx_query_destroy(&q[0]);
     gfx_query_destroy(&q[1]);
+    gfx_target_destroy(&tg[0]);
+    gfx_target_destroy(&tg[1]);
     /* A path that fell back (no compute rasterizer) cannot be chosen. */
     bool compute = best[1] < best[0] && w->raster_compute;
     app_world_set_raster(w, compute);

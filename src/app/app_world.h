@@ -217,8 +217,20 @@ bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_
 bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed);
 /* Switches between the hardware and the compute rasterizer at run time. */
 void app_world_set_raster(app_world_t *w, bool compute);
-/* The scene's `raster: auto`: draws `view` into `target` with each
- * rasterizer (one warm-up draw, then the least of 5, GL timestamps around
+/* Samples per pixel of the frame's target: the scene's msaa with the
+ * hardware path; 1 with the compute rasterizer, which anti-aliases the
+ * grass with its own samples, so the opaque scene (terrain, sky,
+ * characters, balls) is drawn single-sampled there. On the H100 the 4x
+ * target's fill and the composite into it cost 2.3 ms of a 9.3 ms
+ * meadow_large frame, 1.2 ms at one sample (docs/RASTER.md). */
+int app_world_target_samples(const app_world_t *w);
+/* Remakes *t (size kept, `label`) when its samples differ from
+ * app_world_target_samples: called before every frame, so a live switch of
+ * the rasterizer (or a fall-back) gets its target. False when it cannot be
+ * made (logged). */
+bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label);
+/* The scene's `raster: auto`: draws `view` with each rasterizer into a
+ * target of that path's samples (target gives the size) (one warm-up draw, then the least of 5, GL timestamps around
  * the whole draw), keeps the faster (hardware when compute fell back) and
  * returns true for compute; ms gets the hardware and compute times. Clears
  * the pass timers' statistics. */

@@ -45,9 +45,8 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
     const scene_desc_t *s = app_world_scene(w);
     int frames = d->frames > 0 ? d->frames : 60;
     int warmup = d->warmup > 0 ? d->warmup : frames / 4;
-    gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = s->size[0], .h = s->size[1],
-                                                               .samples = s->msaa, .label = "session"});
-    if (!target.fbo) {
+    gfx_target_t target = {.w = s->size[0], .h = s->size[1]};
+    if (!app_world_fit_target(w, &target, "session")) {
         core_log_error("session: cannot make the %dx%d target for %s", s->size[0], s->size[1],
                        app_world_scene_path(w));
         app_world_destroy(w);
@@ -82,12 +81,26 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
         if (s->camera.path.count) cam_path_eval(&s->camera.path, t, &cam);
         app_view_t view;
         app_view_make(&view, &cam, target.w, target.h, t, s->dt);
+        if (!app_world_fit_target(w, &target, "session")) {
+            app_world_destroy(w);
+            free(w);
+            return 1;
+        }
         gfx_target_bind(&target);
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
         app_world_draw(w, &view, &target, false);
         if (h->drawn) h->drawn(&target, f, h->user);
+        /* Paced as the app is (at most APP_FRAMES_IN_FLIGHT frames queued),
+         * so a hung GPU ends the session (logged) instead of waiting forever. */
+        if (gfx_frame_end(APP_FRAMES_IN_FLIGHT) < 0.0) {
+            core_log_error("session: %s: the GPU did not finish frame %d", app_world_scene_path(w), f);
+            gfx_target_destroy(&target);
+            app_world_destroy(w);
+            free(w);
+            return 1;
+        }
     }
     glFinish();
     double cpu = plat_time() - cpu0;

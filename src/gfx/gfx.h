@@ -207,7 +207,9 @@ double gfx_timer_median_ms(int i); /* median of the last 256 results */
 /* Frame pacing without glFinish: puts a fence after the frame's commands,
  * then waits until at most `in_flight` frames (this one included) are
  * unfinished on the GPU, as a swap chain does; 1 waits for this frame.
- * Returns the seconds spent waiting. */
+ * Returns the seconds spent waiting, or -1 (logged, with the passes of the
+ * frame) when a frame has not finished after 30 s: a hung GPU or a lost
+ * context, which the caller should treat as fatal. */
 double gfx_frame_end(int in_flight);
 /* Drains all outstanding timer and counter queries (blocking). For
  * end-of-run summaries. */

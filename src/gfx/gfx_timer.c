@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define GFX_HANG_TRIES 3 /* of 10 s each */
+
 #define HISTORY 256
 
 typedef struct pass_t {
@@ -147,6 +149,20 @@ double gfx_timer_median_ms(int i)
     return tmp[p->hist_n / 2];
 }
 
+/* The timed passes of frame `frame` (when its queries are still in their
+ * slots), comma separated: what a hung frame was running. */
+static const char *frame_pass_names(int frame)
+{
+    static char names[512];
+    names[0] = 0;
+    size_t len = 0;
+    int slot = frame % GFX_TIMER_LATENCY;
+    for (int i = 0; i < t.count && len < sizeof names; i++)
+        if (t.passes[i].frame_of[slot] == frame)
+            len += (size_t)snprintf(names + len, sizeof names - len, "%s%s", len ? ", " : "", t.passes[i].name);
+    return names[0] ? names : "(unknown)";
+}
+
 double gfx_frame_end(int in_flight)
 {
     assert(in_flight >= 1 && in_flight <= GFX_TIMER_LATENCY);
@@ -157,12 +173,19 @@ double gfx_frame_end(int in_flight)
     }
     t.fences[t.fence_count++] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     double t0 = plat_time();
+    int waits = 0;
     while (t.fence_count > in_flight - 1) {
-        /* 10 s per try: a lost context must not hang the run forever. */
+        /* 10 s per try; a frame still unfinished after GFX_HANG_TRIES tries
+         * is a hung GPU (or a lost context): give up instead of waiting forever. */
         GLenum r = glClientWaitSync(t.fences[0], GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
-        if (r == GL_TIMEOUT_EXPIRED) {
-            core_log_warn("gfx: a frame has not finished on the GPU after 10 s");
-            continue;
+        if (r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED) {
+            if (++waits < GFX_HANG_TRIES && r == GL_TIMEOUT_EXPIRED) {
+                core_log_warn("gfx: a frame has not finished on the GPU after %d s", 10 * waits);
+                continue;
+            }
+            core_log_error("gfx: a frame did not finish on the GPU (%s after %d s); passes timed this frame: %s",
+                           r == GL_WAIT_FAILED ? "wait failed" : "timeout", 10 * waits, frame_pass_names(t.frame - t.fence_count + 1));
+            return -1.0;
         }
         glDeleteSync(t.fences[0]);
         memmove(t.fences, t.fences + 1, sizeof t.fences[0] * (size_t)(t.fence_count - 1));

@@ -42,7 +42,7 @@ tests() {
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
            test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam \
            test_bb_gpu_generate; do
-    echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
+    echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout -k 10 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
     grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)|variant|queued|mismatch|grass share" /tmp/$t.log | head -14
   done
 }
@@ -50,7 +50,7 @@ tests() {
 bench() {
   for s in orthmann nature helicopter fan128 meadow_large; do
     echo "== bench $s"
-    timeout 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 400 --floor \
+    timeout -k 10 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 400 --floor \
       --out /tmp/b-$s > /tmp/b-$s.log 2>&1
     echo "rc=$?"; sed -n '/gpu passes/,$p' /tmp/b-$s/summary.txt 2>/dev/null; grep -E "error|warn" /tmp/b-$s.log | head -5
   done
@@ -62,7 +62,7 @@ scaling() {
   for mode in hybrid blade; do for size in 25 50 100 200; do
     sed -e "s/\"size\": 200/\"size\": $size/" -e "s/\"mode\": \"hybrid\"/\"mode\": \"$mode\"/" \
       scenes/bench/scaling.json > /tmp/scale.json
-    timeout 100 $M --headless --quiet --scene /tmp/scale.json --frames 300 --screenshot-every 0 \
+    timeout -k 10 100 $M --headless --quiet --scene /tmp/scale.json --frames 300 --screenshot-every 0 \
       --out /tmp/s-$mode-$size > /dev/null 2>&1
     echo "-- $mode $size m: $(grep -E 'physics|gpu_memory|blades:|blade_tiles' /tmp/s-$mode-$size/summary.txt | tr -s ' ' | tr '\n' ';')"
   done; done
@@ -70,14 +70,14 @@ scaling() {
 
 tilescaling() {
   echo "== bench --scaling"
-  ( time timeout 300 $M bench --scaling --quiet --out /tmp/tsc ) 2>&1 | tail -8
+  ( time timeout -k 10 300 $M bench --scaling --quiet --out /tmp/tsc ) 2>&1 | tail -8
   cat /tmp/tsc/scaling.csv
   tar czf $OUT/tilescaling.tgz -C /tmp tsc 2>/dev/null
 }
 
 report() {
   echo "== bench report"
-  ( time timeout 400 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
+  ( time timeout -k 10 400 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
       --quiet --out /tmp/rep/out ) 2>&1 | tail -20
   tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
   ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
@@ -87,7 +87,7 @@ report() {
 naturesweep() {
   echo "== nature sweep with the GL debug callback"
   command -v nvidia-smi > /dev/null && { nvidia-smi --query-gpu=memory.used --format=csv -l 5 > $OUT/gpumem.log & }
-  ( time MEADOW_GL_DEBUG=1 timeout 400 $M bench --scene scenes/bench/nature.json --frames 90 \
+  ( time MEADOW_GL_DEBUG=1 timeout -k 10 400 $M bench --scene scenes/bench/nature.json --frames 90 \
       --out /tmp/ns > $OUT/naturesweep.log 2>&1 ) 2>&1 | tail -4
   kill %1 2> /dev/null
   echo "GL debug messages: $(grep -c "GL: " $OUT/naturesweep.log)"; grep -m8 -iE "error|GL: |0 billboards" $OUT/naturesweep.log
@@ -99,7 +99,7 @@ raster() {
   run_pair() { # name scene extra-args...
     local name=$1 scene=$2; shift 2
     for r in hw compute; do
-      timeout 150 $M --headless --quiet --scene $scene --frames 300 --screenshot-every 300 --raster $r "$@" \
+      timeout -k 10 150 $M --headless --quiet --scene $scene --frames 300 --screenshot-every 300 --raster $r "$@" \
         --out /tmp/r-$name-$r > /tmp/r-$name-$r.log 2>&1
       echo "-- $name $r rc=$? $(grep -E '^raster:' /tmp/r-$name-$r/summary.txt)"
       sed -n '/gpu passes/,/gpu_frame_ms/p' /tmp/r-$name-$r/summary.txt | grep -vE 'gpu passes'
@@ -108,7 +108,7 @@ raster() {
   }
   for s in orthmann nature helicopter fan128; do run_pair $s scenes/bench/$s.json; done
   for m in hybrid billboard blade; do run_pair large_$m scenes/bench/meadow_large.json --mode $m; done
-  timeout 150 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 60 --screenshot-every 0 \
+  timeout -k 10 150 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 60 --screenshot-every 0 \
     --raster auto --out /tmp/r-auto > /dev/null 2>&1; echo "-- meadow_large auto: $(grep -E '^raster:' /tmp/r-auto/summary.txt)"
   for n in large_hybrid-hw large_hybrid-compute large_billboard-compute large_blade-compute; do
     cp /tmp/r-$n/shot-000300.png $OUT/$n.png 2>/dev/null
@@ -118,14 +118,14 @@ raster() {
 startup() {
   echo "== startup and frame times"
   for s in orthmann nature helicopter fan128 meadow_large; do
-    timeout 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 0 \
+    timeout -k 10 150 $M --headless --quiet --scene scenes/bench/$s.json --frames 400 --screenshot-every 0 \
       --out /tmp/st-$s > /tmp/st-$s.log 2>&1
     echo "-- $s rc=$?"
     sed -n '/gpu passes/,/gpu_frame_ms/p;/^frame times/,/^items per frame/p' /tmp/st-$s/summary.txt
     grep -E "error|warn" /tmp/st-$s.log | head -3
   done
   for run in 1 2; do
-    ( time timeout 60 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 1 --screenshot-every 0 \
+    ( time timeout -k 10 60 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 1 --screenshot-every 0 \
         --out /tmp/st1-$run > /dev/null 2>&1 ) 2>&1 | grep real
     echo "-- meadow_large --frames 1, run $run"; sed -n '/^startup_ms/,/^startup work/p' /tmp/st1-$run/summary.txt
   done
@@ -137,7 +137,7 @@ samples() {
     f=scenes/$s.json; [ $s = meadow_large ] && f=scenes/bench/meadow_large.json
     for v in hw:4 compute:4 compute:1; do
       r=${v%:*}; n=${v#*:}
-      timeout 150 $M --headless --quiet --scene $f --frames 120 --screenshot-every 120 --raster $r \
+      timeout -k 10 150 $M --headless --quiet --scene $f --frames 120 --screenshot-every 120 --raster $r \
         --raster-samples $n --out /tmp/ss-$s-$r$n > /dev/null 2>&1
       echo "-- $s $r samples $n rc=$? $(grep -E '^gpu_frame' /tmp/ss-$s-$r$n/summary.txt)"
       grep -E "^  (bb.raster|blade.raster|tiles.raster|raster)" /tmp/ss-$s-$r$n/summary.txt
@@ -152,7 +152,10 @@ perf() {
   cp docs/PERFORMANCE.md /tmp/perf/PERFORMANCE.md 2>/dev/null \
     || echo "note: no docs/PERFORMANCE.md here: regenerate it at home with bench --perf DIR --from perf.json"
   doc=(); [ -f /tmp/perf/PERFORMANCE.md ] && doc=(--doc /tmp/perf/PERFORMANCE.md)
-  ( time timeout 560 $M bench --perf /tmp/perf "${doc[@]}" --quiet ) 2>&1 | tail -22
+  # Progress goes straight to $OUT/perf.log, so a run cut short still says
+  # how far it got (a GPU hang ends the run after 30 s: gfx_frame_end).
+  ( time timeout -k 10 560 $M bench --perf /tmp/perf "${doc[@]}" --quiet ) > $OUT/perf.log 2>&1
+  tail -22 $OUT/perf.log
   cp /tmp/perf/perf.json /tmp/perf/PERFORMANCE.md $OUT/ 2>/dev/null
   if [ ! -f /tmp/perf/perf.json ]; then
     echo "no perf.json: bench --perf failed"
