@@ -321,7 +321,7 @@ static void write_chart(const char *out, const bench_chart_t *ch, double floor)
              "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
              "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
              "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
-             "'< grep \" 1$\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'%s",
+             "'< grep -E \"^[^ ]+ [^ ]+ [^ ]+ 1( |$)\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'%s",
              ch->name, xlabel, ch->ylabel, data, data, floor_plot);
     eval_gnuplot_chart(out, name, body);
 }

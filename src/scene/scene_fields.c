@@ -47,7 +47,8 @@ const scene_field_t scene_fields[] = {
     {ROOT(size), .key = "size", .type = SCENE_FIELD_INTS, .n = 2, .hi = 16384,
       .def = {SCENE_DEFAULT_WIDTH, SCENE_DEFAULT_HEIGHT}, .doc = "framebuffer [w, h] (px)"},
     {ROOT(msaa), .key = "msaa", .type = SCENE_FIELD_INT, .hi = 16, .def = {SCENE_DEFAULT_MSAA},
-      .flags = SCENE_FIELD_POW2, .doc = "samples per pixel (1 = off)"},
+      .flags = SCENE_FIELD_POW2, .doc = "samples per pixel of the hardware path (1 = off); the compute rasterizer draws the opaque "
+             "scene single-sampled and the grass with its own samples"},
     {ROOT(mode), .key = "mode", .type = SCENE_FIELD_ENUM, .names = mode_names,
       .doc = "grass model: blades near and billboards far (hybrid), or one method alone"},
     {ROOT(raster), .key = "raster", .type = SCENE_FIELD_ENUM, .names = raster_names,

@@ -154,7 +154,7 @@ perf() {
   doc=(); [ -f /tmp/perf/PERFORMANCE.md ] && doc=(--doc /tmp/perf/PERFORMANCE.md)
   # Progress goes straight to $OUT/perf.log, so a run cut short still says
   # how far it got (a GPU hang ends the run after 30 s: gfx_frame_end).
-  ( time timeout -k 10 560 $M bench --perf /tmp/perf "${doc[@]}" --quiet ) > $OUT/perf.log 2>&1
+  ( time timeout -k 10 560 $M bench --perf /tmp/perf "${doc[@]}" ${PERF_FRAMES:+--frames $PERF_FRAMES} --quiet ) > $OUT/perf.log 2>&1
   tail -22 $OUT/perf.log
   cp /tmp/perf/perf.json /tmp/perf/PERFORMANCE.md $OUT/ 2>/dev/null
   if [ ! -f /tmp/perf/perf.json ]; then
