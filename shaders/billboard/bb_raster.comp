@@ -160,11 +160,11 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    int first_row, row_step;
-    if (!raster_queued_item(item, first_row, row_step) || !bb_setup(item.x)) return;
+    bool group;
+    if (!raster_queued_item(item, group) || !bb_setup(item.x)) return;
     vec4 a, b, c;
     bb_triangle(int(item.y), a, b, c);
-    raster_triangle(a, b, c, first_row, row_step);
+    raster_triangle(a, b, c, group);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= u_count || !bb_setup(prim)) return;
