@@ -160,11 +160,11 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    bool group;
-    if (!raster_queued_item(item, group) || !bb_setup(item.x)) return;
+    int first_row, row_step;
+    if (!raster_queued_item(item, first_row, row_step) || !bb_setup(item.x)) return;
     vec4 a, b, c;
     bb_triangle(int(item.y), a, b, c);
-    raster_triangle(a, b, c, group);
+    raster_triangle(a, b, c, first_row, row_step);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= u_count || !bb_setup(prim)) return;
