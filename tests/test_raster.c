@@ -18,7 +18,7 @@
 #include <string.h>
 
 #define W 96
-#define H 64
+#define H 150
 #define NTRI 400
 
 static float frand(uint32_t *s)
