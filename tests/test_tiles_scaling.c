@@ -10,11 +10,11 @@
  *   a) fixed active area (4 resting balls on 4 tiles), field 16, 32, 64 m
  *      (1x, 4x, 16x area): the same slots and blades are simulated, and
  *      the time at 16x is within 1.5x (+0.5 ms wall, +0.005 ms timer) of
- *      the time at 1x;
+ *      the time at 1x (least per field over up to 3 rounds of the three);
  *   b) fixed field (32 m), 1, 2, 4, 8, 16 balls, each on its own tile:
  *      slots = balls, and the time grows about linearly with active tiles:
- *      least-squares R^2 >= 0.9 with a positive slope, and on llvmpipe
- *      time(16) >= 4 time(1). */
+ *      least-squares R^2 >= 0.9 with a positive slope (least per count over
+ *      up to 3 rounds), and on llvmpipe time(16) >= 4 time(1). */
 #include "blade/blade_tiles.h"
 #include "eval/eval.h"
 #include "platform/plat.h"
@@ -110,34 +110,44 @@ int main(void)
 
     /* a) fixed active area */
     static const float sides[3] = {16.0f, 32.0f, 64.0f};
-    double field_ms[3];
-    int field_slots[3];
-    uint32_t field_blades[3];
-    for (int i = 0; i < 3; i++) {
-        field_ms[i] = run(sides[i], 4, &field_slots[i], &field_blades[i]);
-        printf("a) field %2.0f m (%2dx area): %d slots, %u blades simulated, %.4f ms per update\n", sides[i],
-               1 << (2 * i), field_slots[i], field_blades[i], field_ms[i]);
-    }
+    double field_ms[3] = {1e30, 1e30, 1e30};
+    int field_slots[3] = {0, 0, 0};
+    uint32_t field_blades[3] = {0, 0, 0};
+    double slack = gpu_timers ? 0.005 : 0.5; /* ms: timer resolution vs scheduling noise */
+    /* Up to 3 rounds over the three fields, each keeping its least time: a
+     * burst of other work (ctest -j2 runs a second GL test beside this one)
+     * during one field's steps then does not decide the check. */
+    for (int round = 0; round < 3 && (round == 0 || field_ms[2] > 1.5 * field_ms[0] + slack); round++)
+        for (int i = 0; i < 3; i++) {
+            double ms = run(sides[i], 4, &field_slots[i], &field_blades[i]);
+            field_ms[i] = ms < field_ms[i] ? ms : field_ms[i];
+            printf("a) round %d, field %2.0f m (%2dx area): %d slots, %u blades simulated, %.4f ms per update\n",
+                   round + 1, sides[i], 1 << (2 * i), field_slots[i], field_blades[i], ms);
+        }
     CHECK(field_slots[0] == 4 && field_slots[1] == 4 && field_slots[2] == 4);
     CHECK(field_blades[0] == field_blades[2] && field_blades[0] > 0);
-    double slack = gpu_timers ? 0.005 : 0.5; /* ms: timer resolution vs scheduling noise */
     CHECK_MSG(field_ms[2] <= 1.5 * field_ms[0] + slack, "16x the field: %.4f ms against %.4f ms at 1x",
               field_ms[2], field_ms[0]);
 
     /* b) fixed field, 1..16 active tiles */
     static const int balls[5] = {1, 2, 4, 8, 16};
-    double x[5], y[5];
-    for (int i = 0; i < 5; i++) {
-        int slots;
-        uint32_t blades;
-        y[i] = run(32.0f, balls[i], &slots, &blades);
-        x[i] = slots;
-        printf("b) %2d balls: %2d slots, %6u blades simulated, %.4f ms per update\n", balls[i], slots, blades, y[i]);
-        CHECK(slots == balls[i]);
+    double x[5], y[5] = {1e30, 1e30, 1e30, 1e30, 1e30}, slope = 0.0, intercept = 0.0, r2 = 0.0;
+    /* Rounds as in a), each ball count keeping its least time. */
+    for (int round = 0; round < 3 && (round == 0 || r2 < 0.9 || slope <= 0.0); round++) {
+        for (int i = 0; i < 5; i++) {
+            int slots;
+            uint32_t blades;
+            double ms = run(32.0f, balls[i], &slots, &blades);
+            y[i] = ms < y[i] ? ms : y[i];
+            x[i] = slots;
+            printf("b) round %d, %2d balls: %2d slots, %6u blades simulated, %.4f ms per update\n", round + 1,
+                   balls[i], slots, blades, ms);
+            CHECK(slots == balls[i]);
+        }
+        r2 = eval_linear_fit(x, y, 5, &slope, &intercept);
+        printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n",
+               intercept, slope, r2, y[4] / y[0]);
     }
-    double slope, intercept, r2 = eval_linear_fit(x, y, 5, &slope, &intercept);
-    printf("b) least squares: %.3f ms + %.4f ms per active tile, R^2 %.3f; time(16) / time(1) = %.1f\n", intercept,
-           slope, r2, y[4] / y[0]);
     CHECK(r2 >= 0.9 && slope > 0.0);
     /* Wall time on llvmpipe is the work itself; a GPU's timer adds a
      * dispatch floor that 131k blades do not outweigh (H100: 0.022 ms +
