@@ -647,7 +647,7 @@ int app_world_target_samples(const app_world_t *w)
 bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label)
 {
     int samples = app_world_target_samples(w);
-    if (t->fbo && t->samples == (samples > 0 ? samples : 4)) return true;
+    if (t->fbo && t->samples == gfx_target_samples(samples)) return true;
     int tw = t->w, th = t->h;
     gfx_target_destroy(t);
     *t = gfx_target_make(&(gfx_target_desc_t){.w = tw, .h = th, .samples = samples, .label = label});

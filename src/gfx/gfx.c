@@ -16,6 +16,7 @@ typedef struct gfx_obj_t {
 static struct {
     gfx_obj_t *objs;
     int count, cap;
+    long made; /* objects tracked since gfx_init */
 } g;
 
 bool gfx_init(void)
@@ -35,6 +36,7 @@ void gfx_track(GLenum kind, GLuint id, const char *label)
         g.cap = cap;
     }
     gfx_obj_t *o = &g.objs[g.count++];
+    g.made++;
     o->kind = kind;
     o->id = id;
     o->bytes = 0;
@@ -74,6 +76,7 @@ static void release(GLenum kind, GLuint id)
 }
 
 int gfx_live_objects(void) { return g.count; }
+long gfx_objects_made(void) { return g.made; }
 
 static void set_bytes(GLenum kind, GLuint id, size_t bytes)
 {
@@ -288,19 +291,23 @@ static GLuint make_fbo(const char *label, const char *suffix, GLuint color, GLui
     return fbo;
 }
 
+int gfx_target_samples(int requested)
+{
+    int samples = requested > 0 ? requested : 4;
+    GLint max_samples = 1;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    return samples < max_samples ? samples : max_samples;
+}
+
 gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
 {
     gfx_target_t t = {0};
     t.w = d->w;
     t.h = d->h;
-    t.samples = d->samples > 0 ? d->samples : 4;
-    GLint max_samples = 1;
-    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-    if (t.samples > max_samples) {
-        core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label, t.samples,
-                      max_samples, max_samples);
-        t.samples = max_samples;
-    }
+    t.samples = gfx_target_samples(d->samples);
+    if (t.samples < (d->samples > 0 ? d->samples : 4))
+        core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label,
+                      d->samples, t.samples, t.samples);
     GLenum cf = d->color_format ? d->color_format : GL_RGBA8;
     char name[96];
     bool ms = t.samples > 1;

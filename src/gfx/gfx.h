@@ -21,6 +21,9 @@ bool gfx_init(void);
 void gfx_shutdown(bool report_leaks);
 /* Number of live GL objects created through gfx (user objects only). */
 int gfx_live_objects(void);
+/* GL objects created through gfx since gfx_init (released or not): what a
+ * test reads to see that nothing was remade. */
+long gfx_objects_made(void);
 /* Bytes of buffer and texture storage those objects hold (textures:
  * texels x format size x samples, +1/3 with mipmaps). */
 size_t gfx_memory_bytes(void);
@@ -106,6 +109,9 @@ typedef struct gfx_target_desc_t {
 } gfx_target_desc_t;
 
 gfx_target_t gfx_target_make(const gfx_target_desc_t *desc);
+/* The samples a target asking for `requested` gets (0: the default 4),
+ * at most GL_MAX_SAMPLES. */
+int gfx_target_samples(int requested);
 void gfx_target_destroy(gfx_target_t *t);
 void gfx_target_bind(const gfx_target_t *t); /* binds fbo and sets viewport */
 /* Resolves colour (and depth, for occlusion culling) into the resolve FBO. */
