@@ -27,6 +27,12 @@
 #                on that perf.json (a note instead when the baseline does not exist yet)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
+#   ab           shader A/B in one command: meadow_large (hybrid, billboard,
+#                blade) and nature with --raster compute, 200 frames, with the
+#                shaders under $AB_ROOT (a folder holding a shaders/ tree, e.g.
+#                `git archive REV shaders | tar x -C .bundle/old`) and with the
+#                build's own, alternating; pass medians of both to $R. The
+#                binary must suit both shader trees.
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -142,6 +148,22 @@ samples() {
       echo "-- $s $r samples $n rc=$? $(grep -E '^gpu_frame' /tmp/ss-$s-$r$n/summary.txt)"
       grep -E "^  (bb.raster|blade.raster|tiles.raster|raster)" /tmp/ss-$s-$r$n/summary.txt
       cp /tmp/ss-$s-$r$n/shot-000120.png $OUT/$s-$r$n.png 2>/dev/null
+    done
+  done
+}
+
+ab() {
+  echo "== shader A/B: AB_ROOT=${AB_ROOT:-unset} against the build's shaders"
+  [ -d "$AB_ROOT/shaders" ] || { echo "AB_ROOT must hold a shaders/ folder"; return; }
+  for run in meadow_large:hybrid meadow_large:billboard meadow_large:blade nature:blade; do
+    s=${run%:*}; m=${run#*:}
+    for v in a b; do
+      root=; [ $v = a ] && root=$AB_ROOT
+      env ${root:+MEADOW_ROOT=$root} timeout -k 5 60 $M --headless --quiet --scene scenes/bench/$s.json --mode $m \
+        --raster compute --frames 200 --screenshot-every 0 --out /tmp/ab-$s-$m-$v > /tmp/ab-$s-$m-$v.log 2>&1
+      echo "-- $s $m $([ $v = a ] && echo AB_ROOT || echo build) rc=$? $(grep -E '^gpu_frame_ms' /tmp/ab-$s-$m-$v/summary.txt)"
+      sed -n '/gpu passes/,/gpu_frame_ms/p' /tmp/ab-$s-$m-$v/summary.txt | grep -E "^  (bb|tiles|blade|raster)\."
+      grep -E "error" /tmp/ab-$s-$m-$v.log | head -3
     done
   done
 }
