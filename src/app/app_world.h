@@ -230,8 +230,8 @@ int app_world_target_samples(const app_world_t *w);
  * made (logged). */
 bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label);
 /* The scene's `raster: auto`: draws `view` with each rasterizer into a
- * target of that path's samples (target gives the size) (one warm-up draw, then the least of 5, GL timestamps around
- * the whole draw), keeps the faster (hardware when compute fell back) and
+ * target of `target`'s size and that path's samples (one warm-up draw,
+ * then the least of 5, GL timestamps around the whole draw), keeps the faster (hardware when compute fell back) and
  * returns true for compute; ms gets the hardware and compute times. Clears
  * the pass timers' statistics. */
 bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2]);

@@ -64,6 +64,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
         app_world_calibrate_raster(w, &view, &target, ms);
     }
     double cpu0 = 0, t_acc = 0;
+    bool ran = true; /* false: the target could not be made, or the GPU hung */
     for (int f = 0; f < frames; f++) {
         if (f == warmup) {
             gfx_timer_reset_stats();
@@ -82,9 +83,8 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
         app_view_t view;
         app_view_make(&view, &cam, target.w, target.h, t, s->dt);
         if (!app_world_fit_target(w, &target, "session")) {
-            app_world_destroy(w);
-            free(w);
-            return 1;
+            ran = false;
+            break;
         }
         gfx_target_bind(&target);
         glClearColor(0, 0, 0, 1);
@@ -96,11 +96,15 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
          * so a hung GPU ends the session (logged) instead of waiting forever. */
         if (gfx_frame_end(APP_FRAMES_IN_FLIGHT) < 0.0) {
             core_log_error("session: %s: the GPU did not finish frame %d", app_world_scene_path(w), f);
-            gfx_target_destroy(&target);
-            app_world_destroy(w);
-            free(w);
-            return 1;
+            ran = false;
+            break;
         }
+    }
+    if (!ran) {
+        gfx_target_destroy(&target);
+        app_world_destroy(w);
+        free(w);
+        return 1;
     }
     glFinish();
     double cpu = plat_time() - cpu0;

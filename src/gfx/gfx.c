@@ -16,7 +16,8 @@ typedef struct gfx_obj_t {
 static struct {
     gfx_obj_t *objs;
     int count, cap;
-    long made; /* objects tracked since gfx_init */
+    long made;       /* objects tracked since gfx_init */
+    int max_samples; /* GL_MAX_SAMPLES, read once (0: not yet) */
 } g;
 
 bool gfx_init(void)
@@ -294,9 +295,12 @@ static GLuint make_fbo(const char *label, const char *suffix, GLuint color, GLui
 int gfx_target_samples(int requested)
 {
     int samples = requested > 0 ? requested : 4;
-    GLint max_samples = 1;
-    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-    return samples < max_samples ? samples : max_samples;
+    if (g.max_samples == 0) {
+        GLint max_samples = 1;
+        glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+        g.max_samples = max_samples > 0 ? max_samples : 1;
+    }
+    return samples < g.max_samples ? samples : g.max_samples;
 }
 
 gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
@@ -304,10 +308,11 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
     gfx_target_t t = {0};
     t.w = d->w;
     t.h = d->h;
-    t.samples = gfx_target_samples(d->samples);
-    if (t.samples < (d->samples > 0 ? d->samples : 4))
-        core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label,
-                      d->samples, t.samples, t.samples);
+    int asked = d->samples > 0 ? d->samples : 4;
+    t.samples = gfx_target_samples(asked);
+    if (t.samples < asked)
+        core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label, asked,
+                      t.samples, t.samples);
     GLenum cf = d->color_format ? d->color_format : GL_RGBA8;
     char name[96];
     bool ms = t.samples > 1;

@@ -110,7 +110,7 @@ typedef struct gfx_target_desc_t {
 
 gfx_target_t gfx_target_make(const gfx_target_desc_t *desc);
 /* The samples a target asking for `requested` gets (0: the default 4),
- * at most GL_MAX_SAMPLES. */
+ * at most GL_MAX_SAMPLES (read once per gfx_init). */
 int gfx_target_samples(int requested);
 void gfx_target_destroy(gfx_target_t *t);
 void gfx_target_bind(const gfx_target_t *t); /* binds fbo and sets viewport */
