@@ -10,7 +10,10 @@ command -v Xvfb >/dev/null && command -v xdotool >/dev/null || { echo "SKIP: Xvf
 tmp=$(mktemp -d)
 # Xvfb picks a free display itself and writes its number to fd 3 once it
 # accepts connections (no collision with stale locks, no guessing when ready).
-Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
+# -noreset: by default the server resets when its last client leaves, so the
+# program could connect while the xdotool probe's disconnect resets it
+# ("Failed to open display" in a loaded CI run).
+Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp -noreset 3>"$tmp/display" >"$tmp/xvfb.log" 2>&1 &
 xpid=$!
 mpid=""
 cleanup() { [ -n "$mpid" ] && kill "$mpid" 2>/dev/null; kill "$xpid" 2>/dev/null; wait 2>/dev/null; rm -rf "$tmp"; }
