@@ -5,7 +5,8 @@
  * the test says so). Triangles: many small ones at random depths, large
  * ones (the work-group queue), ones crossing the near plane (clipping) and
  * ones wholly behind it; small thresholds, so all three work lists are
- * used. Checks per sample: coverage and colour equal,
+ * used; large triangles both ways (a row per invocation, and shared out
+ * pixel by pixel with RASTER_GROUP_SCAN). Checks per sample: coverage and colour equal,
  * depth equal to 1e-5 (window depth; fused multiply-adds on GPUs), except for a small budget of samples on edges
  * (float rounding); the queue was used; the composite writes the mean
  * colour of a pixel's samples and coverage over the background. */
@@ -67,12 +68,13 @@ static void bind(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b->tris.id);
 }
 
-static void run_variant(bool no_atomic64, const float *tris, const raster_ref_t *ref)
+static void run_variant(bool no_atomic64, bool group_scan, const float *tris, const raster_ref_t *ref)
 {
     raster_t r;
     CHECK(raster_make(&r, &(raster_desc_t){.w = W, .h = H, .no_atomic64 = no_atomic64, .small_samples = 16,
                                             .medium_samples = 256}));
-    printf("variant: %s\n", r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes");
+    printf("variant: %s, large triangles %s\n", r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes",
+           group_scan ? "shared out pixel by pixel (RASTER_GROUP_SCAN)" : "one row per invocation");
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "t"});
     gfx_target_bind(&target);
     glClearColor(0.0f, 0.0f, 1.0f, 1.0f);
@@ -80,7 +82,8 @@ static void run_variant(bool no_atomic64, const float *tris, const raster_ref_t 
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glClearDepth(1.0);
     gfx_buffer_t buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = NTRI * 64, .data = tris, .label = "tris"});
-    raster_program_t prog = raster_program_make(&r, "tests/raster_tris.comp", NULL, "raster_tris");
+    raster_program_t prog = raster_program_make(&r, "tests/raster_tris.comp", group_scan ? "#define RASTER_GROUP_SCAN 1\n" : NULL,
+                                                "raster_tris");
     CHECK(prog.prim.id && prog.big.id);
     raster_begin(&r, &target);
     bind_t b = {buf};
@@ -155,9 +158,12 @@ int main(void)
     CHECK(raster_ref_init(&ref, W, H, 4, 0.9f));
     for (int i = 0; i < NTRI; i++)
         raster_ref_triangle(&ref, tris + 16 * i, tris + 16 * i + 4, tris + 16 * i + 8, 0xff000000u | (uint32_t)(i * 2654435761u >> 8));
-    run_variant(true, tris, &ref);
-    if (raster_has_atomic64()) run_variant(false, tris, &ref);
-    else printf("GL_NV_shader_atomic_int64 missing: the one-pass variant is checked on the GPU machine only\n");
+    for (int g = 0; g < 2; g++) {
+        run_variant(true, g == 1, tris, &ref);
+        if (raster_has_atomic64()) run_variant(false, g == 1, tris, &ref);
+    }
+    if (!raster_has_atomic64())
+        printf("GL_NV_shader_atomic_int64 missing: the one-pass variant is checked on the GPU machine only\n");
     raster_ref_free(&ref);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

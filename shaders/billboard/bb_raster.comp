@@ -12,8 +12,9 @@
  * chosen by a hash of the pixel (grass_coverage_mask, the hardware path's
  * rule too).
  * Fragments behind what the samples already hold are skipped before the
- * texel fetch. With RASTER_BIG the queued medium and large triangles
- * (raster.glsl). */
+ * texel fetch. With RASTER_BIG the queued large triangles, each scanned by
+ * its whole work group sharing out the covered pixels (RASTER_GROUP_SCAN,
+ * raster.glsl). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
@@ -23,6 +24,8 @@
 #include "common/hash.glsl"
 #define RASTER_PIXEL_RATE 1
 #define RASTER_NO_MEDIUM 1
+#define RASTER_GROUP_SCAN 1
+#define RASTER_BIG_THREADS 32
 #include "raster/raster.glsl"
 
 #ifdef RASTER_BIG
@@ -44,6 +47,11 @@ uniform float u_fade_end;
 uniform bb_wind u_wind;
 uniform uint u_count;
 
+/* A queued triangle is (billboard, triangle | level of detail << 8): at
+ * most 2 (8-1)^2 = 98 triangles, the level in 1/256 steps. */
+#define BB_LOD_SHIFT 8u
+#define BB_LOD_SCALE 256.0
+
 bb_point g_p;
 float g_layer, g_tint, g_lod;
 vec3 g_right, g_up;
@@ -53,20 +61,25 @@ vec3 g_nrm[3];
 vec2 g_uv[3]; /* u, height h (0 root) */
 
 /* Loads billboard `prim`; false when it is culled or dropped. Sets the
- * plain corners (a, b, c, d) or the mesh in bb_pos. */
+ * plain corners (a, b, c, d) or the mesh in bb_pos. The RASTER_BIG pass
+ * takes only billboards the first pass kept, and their texel level of
+ * detail from the queue: it skips the tests and the projections. */
 bool bb_setup(uint prim)
 {
     g_p = points[prim];
     bb_point p = g_p;
+#ifndef RASTER_BIG
     if (p.size.y <= 0.0) return false;
     float r = 0.5 * length(vec2(p.size.x, p.size.y)) + u_wind.strength;
     vec3 centre = p.position + 0.5 * p.size.y * p.growth;
     for (int i = 0; i < 6; i++)
         if (dot(u_planes[i].xyz, centre) + u_planes[i].w < -r) return false;
     if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return false;
+#endif
     bb_frame(p, g_right, g_up);
     g_layer = float(p.layer);
     g_tint = bb_tint(p);
+#ifndef RASTER_BIG
     raster_vert r0, r1, r2;
     bool ok = raster_project(u_viewproj * vec4(p.position, 1.0), r0);
     ok = raster_project(u_viewproj * vec4(p.position + p.size.y * g_up, 1.0), r1) && ok;
@@ -74,6 +87,7 @@ bool bb_setup(uint prim)
     vec2 texels = vec2(textureSize(u_clumps, 0).xy);
     vec2 extent = max(vec2(distance(r0.p.xy, r2.p.xy), distance(r0.p.xy, r1.p.xy)), vec2(1.0));
     g_lod = ok ? max(log2(max(texels.x / extent.x, texels.y / extent.y)), 0.0) : 0.0;
+#endif
     vec3 a, b, ta, tb;
     bb_plain_corners(p, g_right, g_up, u_wind, u_time, a, b, ta, tb);
     if (p.pad0 == BB_NO_SLOT) {
@@ -160,11 +174,13 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    int first_row, row_step;
-    if (!raster_queued_item(item, first_row, row_step) || !bb_setup(item.x)) return;
+    bool group;
+    if (!raster_queued_item(item, group)) return;
+    g_lod = float(item.y >> BB_LOD_SHIFT) / BB_LOD_SCALE;
+    bb_setup(item.x);
     vec4 a, b, c;
-    bb_triangle(int(item.y), a, b, c);
-    raster_triangle(a, b, c, first_row, row_step);
+    bb_triangle(int(item.y & ((1u << BB_LOD_SHIFT) - 1u)), a, b, c);
+    raster_triangle(a, b, c, group);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= u_count || !bb_setup(prim)) return;
@@ -172,7 +188,7 @@ void main()
     for (int t = 0; t < n; t++) {
         vec4 a, b, c;
         bb_triangle(t, a, b, c);
-        raster_triangle_or_queue(a, b, c, prim, uint(t));
+        raster_triangle_or_queue(a, b, c, prim, uint(t) | uint(g_lod * BB_LOD_SCALE + 0.5) << BB_LOD_SHIFT);
     }
 #endif
 }

@@ -127,12 +127,12 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    int first_row, row_step;
-    if (!raster_queued_item(item, first_row, row_step)) return;
+    bool group;
+    if (!raster_queued_item(item, group)) return;
     int n = blade_setup(item.x);
     vec4 a, b, c;
     blade_triangle(int(item.y), n, a, b, c);
-    raster_triangle(a, b, c, first_row, row_step);
+    raster_triangle(a, b, c, group);
 #else
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= blade_count()) return;

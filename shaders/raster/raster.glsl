@@ -34,16 +34,25 @@
  * the near plane on the large list. The RASTER_BIG variant of the same
  * shader then runs both lists (raster_queued_item): medium triangles one
  * per thread (similar sizes side by side, so the threads of a warp finish
- * together), large ones one per work group of RASTER_BIG_THREADS, one row
- * per thread in turn (near-plane crossings clipped there). A shader that
- * defines RASTER_NO_MEDIUM queues everything it does not scan at once on
- * the large list (compiled out, not just a threshold). */
+ * together), large ones one per work group of RASTER_BIG_THREADS
+ * (near-plane crossings clipped there): one row per invocation in turn, or,
+ * where the shader defines RASTER_GROUP_SCAN, the invocations share out the
+ * covered pixels (raster_scan_group). Measured on the H100 (meadow_large):
+ * the shared scan takes billboards' short, wide triangles from 4.75 to
+ * 2.94 ms but blades' tall, thin ones from 1.31 to 1.57 ms, so each shader
+ * chooses. A shader that defines RASTER_NO_MEDIUM queues everything it does
+ * not scan at once on the large list (compiled out, not just a
+ * threshold). */
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
 #include "raster/raster_frame.glsl"
 
+/* Invocations per work group of the RASTER_BIG pass (a shader without the
+ * medium list may choose its own: raster.c sizes only the medium groups). */
+#ifndef RASTER_BIG_THREADS
 #define RASTER_BIG_THREADS 64
+#endif
 
 layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
 #ifdef RASTER_ATOMIC64
@@ -156,51 +165,102 @@ float raster_box_samples(vec2 lo, vec2 hi)
  * vertices, window depth `depth`. */
 void raster_fragment(int s, vec3 w, float depth);
 
-/* Scans rows first_row, first_row + row_step, ... of the projected
- * triangle a b c on every lattice (each lattice's rows from first_row);
- * fragment weights are to_tri * (weights of a, b, c). A sample on a shared
- * edge may be drawn by both triangles (same depth: no artefact). */
-void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int first_row, int row_step)
+/* A projected triangle set up for scanning: the edge functions, at a
+ * sample point (x, y), l = A x + (B y + C) are the unnormalised weights of
+ * its vertices a, b, c; its box in pixels; depth and 1 / w per vertex. */
+struct raster_tri {
+    vec3 A, B, C;
+    vec2 lo, hi;
+    vec3 z, iw;
+};
+
+/* False for a degenerate (zero-area) triangle. */
+bool raster_tri_setup(raster_vert a, raster_vert b, raster_vert c, out raster_tri t)
 {
     vec2 p0 = a.p.xy, p1 = b.p.xy, p2 = c.p.xy;
     float det = (p1.y - p2.y) * (p0.x - p2.x) + (p2.x - p1.x) * (p0.y - p2.y);
-    if (abs(det) < 1e-10) return;
+    t.A = t.B = t.C = t.z = t.iw = vec3(0.0);
+    t.lo = t.hi = vec2(0.0);
+    if (abs(det) < 1e-10) return false;
     float id = 1.0 / det;
-    vec3 A = vec3(p1.y - p2.y, p2.y - p0.y, 0.0) * id;
-    vec3 B = vec3(p2.x - p1.x, p0.x - p2.x, 0.0) * id;
-    A.z = -A.x - A.y;
-    B.z = -B.x - B.y;
-    vec3 C = vec3(-(A.x * p2.x + B.x * p2.y), -(A.y * p2.x + B.y * p2.y), 0.0);
-    C.z = 1.0 - C.x - C.y;
-    ivec2 size = u_raster_pixels;
-    float ylo = min(p0.y, min(p1.y, p2.y)), yhi = max(p0.y, max(p1.y, p2.y));
-    float xlo = min(p0.x, min(p1.x, p2.x)), xhi = max(p0.x, max(p1.x, p2.x));
-    vec3 z = vec3(a.p.z, b.p.z, c.p.z), iw = vec3(a.inv_w, b.inv_w, c.inv_w);
-    for (int k = 0; k < raster_lattices(); k++) {
+    t.A = vec3(p1.y - p2.y, p2.y - p0.y, 0.0) * id;
+    t.B = vec3(p2.x - p1.x, p0.x - p2.x, 0.0) * id;
+    t.A.z = -t.A.x - t.A.y;
+    t.B.z = -t.B.x - t.B.y;
+    t.C = vec3(-(t.A.x * p2.x + t.B.x * p2.y), -(t.A.y * p2.x + t.B.y * p2.y), 0.0);
+    t.C.z = 1.0 - t.C.x - t.C.y;
+    t.lo = min(p0, min(p1, p2));
+    t.hi = max(p0, max(p1, p2));
+    t.z = vec3(a.p.z, b.p.z, c.p.z);
+    t.iw = vec3(a.inv_w, b.inv_w, c.inv_w);
+    return true;
+}
+
+/* Lattice k's sample position within a pixel (pixel rate: the centre). */
+vec2 raster_lattice_offset(int k)
+{
 #ifdef RASTER_PIXEL_RATE
-        const vec2 o = vec2(0.5);
+    return vec2(0.5);
 #else
-        vec2 o = raster_offset(k) + 0.5;
+    return raster_offset(k) + 0.5;
 #endif
-        int y0 = max(int(ceil(ylo - o.y)), 0), y1 = min(int(floor(yhi - o.y)), size.y - 1);
+}
+
+/* Rows [y0, y1] of the triangle on the lattice at offset o. */
+void raster_tri_rows(raster_tri t, vec2 o, out int y0, out int y1)
+{
+    y0 = max(int(ceil(t.lo.y - o.y)), 0);
+    y1 = min(int(floor(t.hi.y - o.y)), u_raster_pixels.y - 1);
+}
+
+/* Row y's edge functions on the lattice at offset o, without the x term:
+ * l = A x + K. */
+vec3 raster_tri_row(raster_tri t, int y, vec2 o) { return t.B * (float(y) + o.y) + t.C; }
+
+/* Columns [x0, x1] of the row with edge functions K on the lattice at
+ * offset o (x1 < x0: none). */
+void raster_tri_span(raster_tri t, vec3 K, vec2 o, out int x0, out int x1)
+{
+    float lo = t.lo.x, hi = t.hi.x;
+    for (int i = 0; i < 3; i++) {
+        if (t.A[i] > 0.0) lo = max(lo, -K[i] / t.A[i]);
+        else if (t.A[i] < 0.0) hi = min(hi, -K[i] / t.A[i]);
+        else if (K[i] < 0.0) hi = lo - 1.0;
+    }
+    x0 = max(int(ceil(lo - o.x)), 0);
+    x1 = min(int(floor(hi - o.x)), u_raster_pixels.x - 1);
+}
+
+/* The fragment of sample `s` at column x of the row with edge functions K
+ * (lattice offset o), when its depth is in range; weights are to_tri *
+ * (perspective-correct weights of a, b, c). */
+void raster_tri_pixel(raster_tri t, mat3 to_tri, vec3 K, int x, int s, vec2 o)
+{
+    vec3 l = max(t.A * (float(x) + o.x) + K, vec3(0.0));
+    float depth = dot(l, t.z) / max(l.x + l.y + l.z, 1e-20);
+    if (!(depth >= 0.0 && depth <= 1.0)) return;
+    vec3 q = l * t.iw;
+    raster_fragment(s, to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
+}
+
+/* Scans rows first_row, first_row + row_step, ... of the projected
+ * triangle a b c on every lattice (each lattice's rows from its first). A
+ * sample on a shared edge may be drawn by both triangles (same depth: no
+ * artefact). */
+void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int first_row, int row_step)
+{
+    raster_tri t;
+    if (!raster_tri_setup(a, b, c, t)) return;
+    for (int k = 0; k < raster_lattices(); k++) {
+        vec2 o = raster_lattice_offset(k);
+        int y0, y1;
+        raster_tri_rows(t, o, y0, y1);
         for (int y = y0 + first_row; y <= y1; y += row_step) {
-            float yc = float(y) + o.y;
-            vec3 K = B * yc + C;
-            float lo = xlo, hi = xhi;
-            for (int i = 0; i < 3; i++) {
-                if (A[i] > 0.0) lo = max(lo, -K[i] / A[i]);
-                else if (A[i] < 0.0) hi = min(hi, -K[i] / A[i]);
-                else if (K[i] < 0.0) hi = lo - 1.0;
-            }
-            int x0 = max(int(ceil(lo - o.x)), 0), x1 = min(int(floor(hi - o.x)), size.x - 1);
-            int base = y * size.x * u_raster_samples + k;
-            for (int x = x0; x <= x1; x++) {
-                vec3 l = max(A * (float(x) + o.x) + K, vec3(0.0));
-                float depth = dot(l, z) / max(l.x + l.y + l.z, 1e-20);
-                if (!(depth >= 0.0 && depth <= 1.0)) continue;
-                vec3 q = l * iw;
-                raster_fragment(base + x * u_raster_samples, to_tri * (q / max(q.x + q.y + q.z, 1e-30)), depth);
-            }
+            vec3 K = raster_tri_row(t, y, o);
+            int x0, x1;
+            raster_tri_span(t, K, o, x0, x1);
+            int base = y * u_raster_pixels.x * u_raster_samples + k;
+            for (int x = x0; x <= x1; x++) raster_tri_pixel(t, to_tri, K, x, base + x * u_raster_samples, o);
         }
     }
 }
@@ -208,22 +268,70 @@ void raster_scan(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri, int f
 /* Distance of a clip-space point in front of the near plane (z = -w). */
 float raster_near(vec4 c) { return c.z + c.w; }
 
-/* Scans the triangle with clip-space vertices c0 c1 c2 (rows as
- * raster_scan), clipped against the near plane first when it crosses it:
- * the clipped polygon (up to 4 vertices) is scanned as a fan whose weights
- * map back to c0 c1 c2. */
-void raster_triangle(vec4 c0, vec4 c1, vec4 c2, int first_row, int row_step)
+#if defined(RASTER_BIG) && defined(RASTER_GROUP_SCAN)
+shared int raster_span_x0[RASTER_BIG_THREADS];
+shared int raster_span_start[RASTER_BIG_THREADS + 1];
+
+/* The same scan by the whole work group (every invocation calls it with
+ * the same triangle): per block of RASTER_BIG_THREADS rows, each invocation
+ * finds one row's span, a prefix sum lays the spans end to end, and the
+ * invocations take the covered pixels in turn, so every lane works on a
+ * covered pixel whatever the triangle's shape (one row per lane left most
+ * lanes idle on the billboards' short, wide triangles). */
+void raster_scan_group(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri)
+{
+    raster_tri t;
+    if (!raster_tri_setup(a, b, c, t)) return;
+    int lane = int(gl_LocalInvocationID.x);
+    for (int k = 0; k < raster_lattices(); k++) {
+        vec2 o = raster_lattice_offset(k);
+        int y0, y1;
+        raster_tri_rows(t, o, y0, y1);
+        for (int base = y0; base <= y1; base += RASTER_BIG_THREADS) {
+            int x0 = 0, x1 = -1;
+            if (base + lane <= y1) raster_tri_span(t, raster_tri_row(t, base + lane, o), o, x0, x1);
+            raster_span_x0[lane] = x0;
+            raster_span_start[lane + 1] = max(x1 - x0 + 1, 0);
+            barrier();
+            if (lane == 0) {
+                raster_span_start[0] = 0;
+                for (int i = 1; i <= RASTER_BIG_THREADS; i++) raster_span_start[i] += raster_span_start[i - 1];
+            }
+            barrier();
+            int total = raster_span_start[RASTER_BIG_THREADS];
+            for (int i = lane; i < total; i += RASTER_BIG_THREADS) {
+                /* The last row starting at or before pixel i (rows without
+                 * pixels start where the next one does). */
+                int lo = 0, hi = RASTER_BIG_THREADS - 1;
+                while (lo < hi) {
+                    int mid = (lo + hi + 1) / 2;
+                    if (raster_span_start[mid] <= i) lo = mid;
+                    else hi = mid - 1;
+                }
+                int x = raster_span_x0[lo] + i - raster_span_start[lo], y = base + lo;
+                raster_tri_pixel(t, to_tri, raster_tri_row(t, y, o), x, (y * u_raster_pixels.x + x) * u_raster_samples + k,
+                                 o);
+            }
+            barrier();
+        }
+    }
+}
+
+#endif
+
+#ifdef RASTER_BIG
+/* In the RASTER_BIG pass: scans the triangle with clip-space vertices c0
+ * c1 c2 in this invocation, or with the whole work group (`group`, the same
+ * for every invocation of the group): its invocations share out the
+ * covered pixels with RASTER_GROUP_SCAN (raster_scan_group), else take one
+ * row each in turn. Clipped against the near plane first: the polygon in
+ * front of it (the triangle itself, or up to 4 vertices where it crosses)
+ * is scanned as a fan whose weights map back to c0 c1 c2; one call site of
+ * the scan, which the compiler inlines. */
+void raster_triangle(vec4 c0, vec4 c1, vec4 c2, bool group)
 {
     vec4 c[3] = vec4[3](c0, c1, c2);
     vec3 d = vec3(raster_near(c0), raster_near(c1), raster_near(c2));
-    raster_vert a, b, e;
-    if (all(greaterThanEqual(d, vec3(0.0))) && c0.w > 0.0 && c1.w > 0.0 && c2.w > 0.0) {
-        raster_project(c0, a);
-        raster_project(c1, b);
-        raster_project(c2, e);
-        raster_scan(a, b, e, mat3(1.0), first_row, row_step);
-        return;
-    }
     vec4 poly[4];
     vec3 bary[4];
     int n = 0;
@@ -248,9 +356,26 @@ void raster_triangle(vec4 c0, vec4 c1, vec4 c2, int first_row, int row_step)
     raster_vert pv[4];
     for (int i = 0; i < n; i++)
         if (!raster_project(poly[i], pv[i])) return;
-    for (int i = 1; i + 1 < n; i++)
-        raster_scan(pv[0], pv[i], pv[i + 1], mat3(bary[0], bary[i], bary[i + 1]), first_row, row_step);
+    int first_row = 0, row_step = 1;
+#ifndef RASTER_GROUP_SCAN
+    if (group) {
+        first_row = int(gl_LocalInvocationID.x);
+        row_step = RASTER_BIG_THREADS;
+    }
+#endif
+    for (int i = 1; i + 1 < n; i++) {
+        mat3 to_tri = mat3(bary[0], bary[i], bary[i + 1]);
+#ifdef RASTER_GROUP_SCAN
+        if (group) {
+            raster_scan_group(pv[0], pv[i], pv[i + 1], to_tri);
+            continue;
+        }
+#endif
+        raster_scan(pv[0], pv[i], pv[i + 1], to_tri, first_row, row_step);
+    }
 }
+
+#endif
 
 /* In the per-primitive pass: scans a small triangle now, or queues it
  * (prim, tri) on the medium or the large list (large also when it crosses
@@ -286,14 +411,15 @@ void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
     }
 }
 
-/* In the RASTER_BIG pass: this invocation's queued triangle and the rows it
- * scans (raster_triangle's first_row, row_step). The first
+/* In the RASTER_BIG pass: this invocation's queued triangle, and whether
+ * the work group scans it together (raster_triangle's `group`). The first
  * ceil(medium / RASTER_BIG_THREADS) work groups take the medium list, one
- * triangle per thread; each later group takes one large triangle. False:
- * nothing for this invocation. */
-bool raster_queued_item(out uvec2 item, out int first_row, out int row_step)
+ * triangle per invocation; each later group takes one large triangle. False:
+ * nothing for this invocation (for a large item: for the whole group). */
+bool raster_queued_item(out uvec2 item, out bool group)
 {
     item = uvec2(0u);
+    group = false;
     uint g = gl_WorkGroupID.x;
 #ifdef RASTER_NO_MEDIUM
     uint q = g;
@@ -302,16 +428,13 @@ bool raster_queued_item(out uvec2 item, out int first_row, out int row_step)
     uint medium_groups = (medium + uint(RASTER_BIG_THREADS) - 1u) / uint(RASTER_BIG_THREADS);
     if (g < medium_groups) {
         uint i = g * uint(RASTER_BIG_THREADS) + gl_LocalInvocationID.x;
-        first_row = 0;
-        row_step = 1;
         if (i >= medium) return false;
         item = raster_queue[u_raster_queue_capacity + i];
         return true;
     }
     uint q = g - medium_groups;
 #endif
-    first_row = int(gl_LocalInvocationID.x);
-    row_step = RASTER_BIG_THREADS;
+    group = true;
     if (q >= min(raster_large_count, u_raster_queue_capacity)) return false;
     item = raster_queue[q];
     return true;

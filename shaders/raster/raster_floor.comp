@@ -26,10 +26,10 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    int first_row, row_step;
-    if (!raster_queued_item(item, first_row, row_step)) return;
+    bool group;
+    if (!raster_queued_item(item, group)) return;
     uint t = 3u * item.x;
-    raster_triangle(tri_v[t], tri_v[t + 1u], tri_v[t + 2u], first_row, row_step);
+    raster_triangle(tri_v[t], tri_v[t + 1u], tri_v[t + 2u], group);
 #else
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_count) return;

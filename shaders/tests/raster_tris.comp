@@ -26,11 +26,11 @@ void main()
 {
 #ifdef RASTER_BIG
     uvec2 item;
-    int first_row, row_step;
-    if (!raster_queued_item(item, first_row, row_step)) return;
+    bool group;
+    if (!raster_queued_item(item, group)) return;
     uint i = item.x;
     g_rgba = floatBitsToUint(tris[4 * i + 3].x);
-    raster_triangle(tris[4 * i], tris[4 * i + 1], tris[4 * i + 2], first_row, row_step);
+    raster_triangle(tris[4 * i], tris[4 * i + 1], tris[4 * i + 2], group);
 #else
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_count) return;

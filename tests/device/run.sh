@@ -28,11 +28,13 @@
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 #   ab           shader A/B in one command: meadow_large (hybrid, billboard,
-#                blade) and nature with --raster compute, 200 frames, with the
-#                shaders under $AB_ROOT (a folder holding a shaders/ tree, e.g.
-#                `git archive REV shaders | tar x -C .bundle/old`) and with the
-#                build's own, alternating; pass medians of both to $R. The
-#                binary must suit both shader trees.
+#                blade) and nature (or $AB_RUNS: "SCENE:MODE ...", SCENE a
+#                bench scene's name or one under scenes/) with --raster
+#                compute, 200 frames, with the build's shaders and then with
+#                those under each folder of $AB_ROOT (space-separated folders
+#                holding a shaders/ tree, e.g. `git archive REV shaders | tar x
+#                -C .bundle/old`); pass medians of each to $R. The binary must
+#                suit every shader tree.
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -154,16 +156,16 @@ samples() {
 
 ab() {
   echo "== shader A/B: AB_ROOT=${AB_ROOT:-unset} against the build's shaders"
-  [ -d "$AB_ROOT/shaders" ] || { echo "AB_ROOT must hold a shaders/ folder"; return; }
-  for run in meadow_large:hybrid meadow_large:billboard meadow_large:blade nature:blade; do
-    s=${run%:*}; m=${run#*:}
-    for v in a b; do
-      root=; [ $v = a ] && root=$AB_ROOT
-      env ${root:+MEADOW_ROOT=$root} timeout -k 5 60 $M --headless --quiet --scene scenes/bench/$s.json --mode $m \
-        --raster compute --frames 200 --screenshot-every 0 --out /tmp/ab-$s-$m-$v > /tmp/ab-$s-$m-$v.log 2>&1
-      echo "-- $s $m $([ $v = a ] && echo AB_ROOT || echo build) rc=$? $(grep -E '^gpu_frame_ms' /tmp/ab-$s-$m-$v/summary.txt)"
-      sed -n '/gpu passes/,/gpu_frame_ms/p' /tmp/ab-$s-$m-$v/summary.txt | grep -E "^  (bb|tiles|blade|raster)\."
-      grep -E "error" /tmp/ab-$s-$m-$v.log | head -3
+  for root in $AB_ROOT; do [ -d "$root/shaders" ] || { echo "AB_ROOT: $root holds no shaders/ folder"; return; }; done
+  for run in ${AB_RUNS:-meadow_large:hybrid meadow_large:billboard meadow_large:blade nature:blade}; do
+    s=${run%:*}; m=${run#*:}; scene=scenes/bench/$s.json; [ -f "$scene" ] || scene=scenes/$s.json
+    for root in build $AB_ROOT; do
+      tag=$(basename $root); o=/tmp/ab-$s-$m-$tag
+      env $([ $root != build ] && echo MEADOW_ROOT=$root) timeout -k 5 60 $M --headless --quiet --scene $scene --mode $m \
+        --raster compute --frames 200 --screenshot-every 0 --out $o > $o.log 2>&1
+      echo "-- $s $m $tag rc=$? $(grep -E '^gpu_frame_ms' $o/summary.txt)"
+      sed -n '/gpu passes/,/gpu_frame_ms/p' $o/summary.txt | grep -E "^  (bb|tiles|blade|raster|terrain)"
+      grep -E "error" $o.log | head -3
     done
   done
 }
