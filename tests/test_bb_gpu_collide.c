@@ -117,7 +117,26 @@ int main(void)
     bb_stats_t st;
     bb_field_stats(&fa, true, &st);
     CHECK(st.deformed == da && st.pool_exhausted == 0);
-    CHECK(st.leaves[BB_NODE_COLLIDING] > 0);
+    CHECK(st.leaves[BB_NODE_COLLIDING] > 0 && st.objects_hidden == 0);
+
+    /* H: the hybrid's hidden region (bb_field_set_hidden). A camera 2 m
+     * above the sphere: with a fade start just beyond the sphere's reach
+     * (2 m + radius + 3 of the largest billboard spheres) it is left out
+     * (no colliding leaf, no collide batch); just short of it, it collides
+     * again, and with the fade off too. */
+    float cam[3] = {centre[0], centre[1] + 2.0f, centre[2]};
+    float reach = 2.0f + radius + 3.0f * fa.sphere_max;
+    const float fades[3] = {reach + 0.01f, reach - 0.01f, 0.0f};
+    for (int i = 0; i < 3; i++) {
+        bb_field_set_hidden(&fa, cam, fades[i]);
+        bb_field_update(&fa, test_set(&oa, 1), time + 0.1f * (float)(i + 1), 1.0f / 30.0f);
+        bb_field_stats(&fa, true, &st);
+        printf("H (fade start %.2f m, reach %.2f m): hidden %d, colliding leaves %d, batches %d\n", fades[i], reach,
+               st.objects_hidden, st.leaves[BB_NODE_COLLIDING], st.batches);
+        CHECK(st.objects_hidden == (i == 0));
+        CHECK((st.leaves[BB_NODE_COLLIDING] > 0) == (i > 0));
+        CHECK((st.batches > 0) == (i > 0));
+    }
     bb_field_destroy(&fa);
 
     /* A2: the same sphere swept: one step ago it was 1.0 m back along x and
@@ -218,6 +237,25 @@ int main(void)
      * further (0.102 m measured on llvmpipe) */
     CHECK(max_err < 0.15);
     CHECK(deepest > -texel);
+    bb_field_destroy(&fb);
+
+    /* B2: two spheres in one update, each in its own six layers (one draw
+     * per object, the geometry shader picks the layer): both maps equal
+     * B's texel for texel. */
+    CHECK(bb_field_make(&fb, &desc));
+    float other[3] = {centre[0] - 2.0f, 0.0f, centre[2] + 1.5f};
+    other[1] = sphere_y(&terrain, other[0], other[2]);
+    collide_object_t pair[2] = {test_object(&mesh, other, radius), test_object(&mesh, centre, radius)};
+    gfx_timer_frame_begin();
+    bb_field_update(&fb, test_set(pair, 2), time, 1.0f / 30.0f);
+    float *tex2 = malloc(sizeof(float) * 4 * 12 * RES * RES);
+    glGetTextureSubImage(fb.cubes.id, 0, 0, 0, 0, RES, RES, 12, GL_RGBA, GL_FLOAT, sizeof(float) * 4 * 12 * RES * RES,
+                         tex2);
+    int differ = 0;
+    for (int t = 0; t < 12 * 4 * RES * RES; t++) differ += fabsf(tex2[t] - tex[t % (6 * 4 * RES * RES)]) > 1e-6f;
+    printf("B2 two objects: %d of %d cube map floats differ from B's\n", differ, 12 * 4 * RES * RES);
+    CHECK(differ == 0);
+    free(tex2);
     free(tex);
     bb_field_destroy(&fb);
     test_mesh_destroy(&mesh);

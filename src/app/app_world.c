@@ -536,7 +536,14 @@ void app_world_update(app_world_t *w, float t, float dt)
     w->stepped = true;
     collide_begin_set(set);
     add_objects(w, set, dt);
-    if (w->have_bb) bb_field_update(&w->bb, set, t, dt);
+    if (w->have_bb) {
+        /* The hybrid draws no billboard nearer than its fade band: objects
+         * there bend the blades alone (unless the blades borrow the
+         * billboards' cube maps). */
+        bool hide = w->mode == SCENE_MODE_HYBRID && !w->reference && w->drawn && !w->tuning.blade_cube_proxies;
+        bb_field_set_hidden(&w->bb, w->camera, hide ? w->scene.grass.switch_distance - APP_SWITCH_FADE : 0.0f);
+        bb_field_update(&w->bb, set, t, dt);
+    }
     if (w->have_blades || w->have_tiles) {
         blade_env_t *env = &w->blade_env;
         env->dt = dt;
@@ -573,6 +580,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     float fade_lo = w->scene.grass.switch_distance - APP_SWITCH_FADE;
     float fade_hi = w->scene.grass.switch_distance + APP_SWITCH_FADE;
     glm_vec3_copy((float *)v->camera, w->camera);
+    w->drawn = true;
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
     /* raster_begin takes the opaque depth (also read by occlusion culling). */
     if (raster) raster_begin(raster, target);

@@ -148,6 +148,7 @@ typedef struct app_world_t {
     blade_tiles_t tiles;
     bool have_tiles;
     float camera[3]; /* of the last draw (activation and representation) */
+    bool drawn;      /* camera holds a draw's camera */
     /* The colliders of the latest step (app_world_update), taken by the
      * billboards, the blades and the tiles. */
     collide_set_t collide;

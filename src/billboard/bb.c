@@ -526,6 +526,7 @@ static bool read_spheres(bb_field_t *f)
             for (int a = 0; a < 3; a++) f->spheres[i0 + i][a] = p->position[a] + up[a] * (0.5f * p->size[1]);
             f->spheres[i0 + i][3] = 0.5f * sqrtf(p->size[0] * p->size[0] + p->size[1] * p->size[1]) +
                                     f->desc.wind.strength;
+            f->sphere_max = fmaxf(f->sphere_max, f->spheres[i0 + i][3]);
         }
     }
     free(pts);
@@ -706,8 +707,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
                                                       .h = d->cube_res, .layers = 6 * d->max_objects,
                                                       .format = GL_RGBA32F, .filter = GL_NEAREST,
                                                       .label = "bb.cubes"});
-    f->cube_target = gfx_target_make(&(gfx_target_desc_t){.w = d->cube_res, .h = 6 * d->cube_res, .samples = 1,
-                                                          .color_format = GL_RGBA32F, .label = "bb.cube_target"});
+    if (f->cubes.id) f->cube_target = gfx_layered_target_make(f->cubes, "bb.cube_target");
     f->points_vao = gfx_vertex_array_make("bb.points_vao");
     f->empty_vao = gfx_vertex_array_make("bb.empty_vao");
     f->tf = gfx_transform_feedback_make("bb.tf");
@@ -739,7 +739,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_texture_destroy(&f->clumps);
     gfx_texture_destroy(&f->heights);
     gfx_texture_destroy(&f->cubes);
-    if (f->cube_target.fbo) gfx_target_destroy(&f->cube_target);
+    if (f->cube_target.fbo) gfx_layered_target_destroy(&f->cube_target);
     gfx_buffer_destroy(&f->points);
     gfx_buffer_destroy(&f->scratch);
     gfx_buffer_destroy(&f->pool);
@@ -821,28 +821,23 @@ static int merge_ranges(bb_field_t *f, int count)
     return k;
 }
 
+/* Object k's six faces into layers 6k .. 6k+5 of f->cubes: the faces'
+ * backgrounds, then its mesh, each one instanced draw (instance = face; the
+ * layered target's depth was cleared to 1 and the depth test is LEQUAL). */
 static void render_cube(bb_field_t *f, const collide_object_t *o, int k)
 {
-    int res = f->desc.cube_res;
-    float half = o->radius;
-    glUniform3fv(loc(f->cube_prog, "u_centre"), 1, o->centre);
-    glUniform1f(loc(f->cube_prog, "u_half"), half);
+    gfx_program_t p = f->cube_prog;
+    glUniform3fv(loc(p, "u_centre"), 1, o->centre);
+    glUniform1f(loc(p, "u_half"), o->radius);
+    glUniform1i(loc(p, "u_layer"), 6 * k);
+    glUniform1i(loc(p, "u_background"), 1);
+    glBindVertexArray(f->empty_vao);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, 6);
+    glUniform1i(loc(p, "u_background"), 0);
     glBindVertexArray(o->vao);
-    for (int face = 0; face < 6; face++) {
-        vec3 u, v, in;
-        collide_get_face_basis(face, u, v, in);
-        float clear[4] = {2.0f * half, -in[0], -in[1], -in[2]}, one = 1.0f;
-        glViewport(0, face * res, res, res);
-        glScissor(0, face * res, res, res);
-        glClearBufferfv(GL_COLOR, 0, clear);
-        glClearBufferfv(GL_DEPTH, 0, &one);
-        glUniform1i(loc(f->cube_prog, "u_face"), face);
-        glDrawElements(GL_TRIANGLES, o->index_count, o->index_type, NULL);
-        glCopyImageSubData(f->cube_target.color.id, GL_TEXTURE_2D, 0, 0, face * res, 0, f->cubes.id,
-                           GL_TEXTURE_2D_ARRAY, 0, 0, 0, 6 * k + face, res, res, 1);
-    }
+    glDrawElementsInstanced(GL_TRIANGLES, o->index_count, o->index_type, NULL, 6);
     glm_vec3_copy((float *)o->centre, f->cube_centre[k]);
-    f->cube_half[k] = half;
+    f->cube_half[k] = o->radius;
 }
 
 /* ---- collide batches ------------------------------------------------------ */
@@ -1112,6 +1107,25 @@ static void queue_readback(bb_field_t *f)
     gfx_readback_fence(&f->readback);
 }
 
+void bb_field_set_hidden(bb_field_t *f, const float camera[3], float fade_start)
+{
+    for (int a = 0; a < 3; a++) f->hidden[a] = camera[a];
+    f->hidden[3] = fade_start > 0.0f ? fade_start : 0.0f;
+}
+
+/* True when bound b cannot reach a drawn billboard (bb_field_set_hidden).
+ * A drawn billboard's root is at least fade_start - r from the camera
+ * (bb_fade_dropped: r = half its diagonal, at most its bounding sphere's
+ * radius), its sphere's centre at most r above the root and its geometry
+ * within the sphere, so all of it lies beyond fade_start - 3 r. */
+static bool bound_hidden(const bb_field_t *f, const bb_bound_t *b)
+{
+    if (f->hidden[3] <= 0.0f) return false;
+    float reach = b->radius;
+    if (b->kind == BB_BOUND_AABB) reach = sqrtf(b->half[0] * b->half[0] + b->half[1] * b->half[1] + b->half[2] * b->half[2]);
+    return glm_vec3_distance((float *)f->hidden, (float *)b->centre) + reach < f->hidden[3] - 3.0f * f->sphere_max;
+}
+
 void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt)
 {
     const collide_object_t *objs = colliders ? colliders->objects : NULL;
@@ -1124,6 +1138,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
     bool gpu_work = false;
     bb_bound_t bounds[BB_MAX_OBJECTS];
     bb_object_gpu_t gpu[BB_MAX_OBJECTS];
+    int hidden = 0;
     for (int k = 0; k < count; k++) {
         mat4 model, inv;
         memcpy(model, objs[k].model, sizeof model);
@@ -1142,6 +1157,10 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
                 bounds[k].half[a] = 0.5f * fabsf(sweep[a]) + radius;
             }
         }
+        if (bound_hidden(f, &bounds[k])) {
+            bounds[k].kind = BB_BOUND_NONE;
+            hidden++;
+        }
         memcpy(gpu[k].sweep, sweep, sizeof sweep);
         gpu[k].sweep[3] = 0.0f;
         memcpy(gpu[k].w2c, inv, sizeof inv);
@@ -1151,6 +1170,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
         gpu[k].layer[0] = 6 * k;
         gpu[k].layer[1] = gpu[k].layer[2] = gpu[k].layer[3] = 0;
     }
+    f->hidden_last = hidden;
     bb_octree_update(&f->tree, bounds, count, dt, d->recover_time + BB_LEAF_RECOVER_SLACK);
     int ncol = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING), NULL, f->ranges, f->tree.leaf_count);
     if (ncol > 0) {
@@ -1166,15 +1186,17 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
             gfx_timer_begin("bb.cubemaps");
             glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo);
             glEnable(GL_DEPTH_TEST);
-            glDepthFunc(GL_LESS);
+            glDepthFunc(GL_LEQUAL);
             glDepthMask(GL_TRUE);
             glDisable(GL_CULL_FACE);
             glDisable(GL_BLEND);
-            glEnable(GL_SCISSOR_TEST);
+            glViewport(0, 0, d->cube_res, d->cube_res);
+            float one = 1.0f;
+            glClearBufferfv(GL_DEPTH, 0, &one); /* every layer */
             glUseProgram(f->cube_prog.id);
             for (int k = 0; k < count; k++)
                 if (need[k] && objs[k].vao) render_cube(f, &objs[k], k);
-            glDisable(GL_SCISSOR_TEST);
+            glDepthFunc(GL_LESS);
             gfx_timer_end();
             glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
             glViewport(vp[0], vp[1], vp[2], vp[3]);
@@ -1373,6 +1395,7 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
     memcpy(out->make_stage_ms, f->make_stage_ms, sizeof out->make_stage_ms);
     out->batches = f->batches_last;
     out->objects_dropped = f->dropped;
+    out->objects_hidden = f->hidden_last;
     if (!wait) {
         out->deformed = f->deformed_last;
         out->pool_exhausted = f->exhausted_last;

@@ -133,6 +133,8 @@ typedef struct bb_stats_t {
     int objects_dropped;  /* object hits left out so far: billboards whose
                              bounding sphere met more than BB_PASS_OBJECTS
                              objects, summed over the excess objects */
+    int objects_hidden;   /* objects of the last update left out because they
+                             cannot reach a drawn billboard (bb_field_set_hidden) */
     float generate_ms;    /* GPU time of the make-time generation pass: two
                              GL_TIMESTAMP queries around it; -1 when the GPU
                              has no timestamp counter */
@@ -169,7 +171,7 @@ typedef struct bb_field_t {
     gfx_texture_t extent, direction, messiness, clumps, heights;
     float hgrid[5];        /* heights: first vertex (x, z), clamp bound (x, z), cell */
     gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
-    gfx_target_t cube_target; /* res x 6res scratch the faces are drawn into */
+    gfx_layered_target_t cube_target; /* over `cubes`: each object's faces in one draw */
     gfx_buffer_t points;   /* capacity bb_point_t, leaf-ordered; first `billboards` valid */
     gfx_buffer_t scratch;  /* transform-feedback target of the collide/recover passes */
     gfx_buffer_t pool;     /* int free_top, uint exhausted, 2 pad, uint free_stack[max_deformed] */
@@ -192,6 +194,9 @@ typedef struct bb_field_t {
      * objects uniform buffer, one aligned region of BB_PASS_OBJECTS entries
      * per batch (grown on demand). */
     float (*spheres)[4];
+    float sphere_max;      /* the largest of their radii */
+    float hidden[4];       /* bb_field_set_hidden: camera, fade start (0: off) */
+    int hidden_last;       /* objects left out by it in the last update */
     bb_batch_plan_t plan;
     size_t objects_stride, objects_size;
     int batches_last, dropped, dropped_logged;
@@ -225,6 +230,16 @@ void bb_field_destroy(bb_field_t *f);
  * slots whose query is available (typically one or two updates late); pool
  * exhaustion is logged from those copies. */
 void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt);
+/* Billboards nearer to `camera` than `fade_start` are not drawn (the
+ * hybrid's blade region: bb_draw_desc_t.fade_start). From the next
+ * bb_field_update on, an object whose bound lies within fade_start minus
+ * three of the largest billboard bounding spheres of `camera` cannot reach
+ * a drawn billboard: it is left out of the broad phase, the cube maps and
+ * the narrow phase (counted in bb_stats_t.objects_hidden). The blade tiles
+ * simulate there and hand their state to the billboards when they switch
+ * (hybrid.h). fade_start <= 0: every object collides (the default). The
+ * hybrid calls it with the camera of its last draw. */
+void bb_field_set_hidden(bb_field_t *f, const float camera[3], float fade_start);
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
  * timer "bb.render". */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);

@@ -191,6 +191,7 @@ void bb_octree_assign(bb_octree_t *tree, const float (*positions)[3], int n, uin
 
 bool bb_bound_overlaps_box(const bb_bound_t *b, const float lo[3], const float hi[3], float margin)
 {
+    if (b->kind == BB_BOUND_NONE) return false;
     if (b->kind == BB_BOUND_SPHERE) {
         float d2 = 0.0f;
         for (int a = 0; a < 3; a++) {

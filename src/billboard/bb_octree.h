@@ -35,9 +35,10 @@ typedef struct bb_octree_desc_t {
 } bb_octree_desc_t;
 bb_octree_desc_t bb_octree_desc_defaults(const bb_octree_desc_t *desc);
 
-enum { BB_BOUND_SPHERE = 0, BB_BOUND_AABB = 1 };
+enum { BB_BOUND_SPHERE = 0, BB_BOUND_AABB = 1, BB_BOUND_NONE = 2 };
 typedef struct bb_bound_t {
-    int kind;         /* BB_BOUND_SPHERE or BB_BOUND_AABB */
+    int kind;         /* BB_BOUND_SPHERE, BB_BOUND_AABB, or BB_BOUND_NONE
+                         (an object left out: overlaps nothing) */
     float centre[3];  /* world space */
     float radius;     /* sphere */
     float half[3];    /* AABB half extents */

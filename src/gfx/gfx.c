@@ -361,6 +361,26 @@ void gfx_target_destroy(gfx_target_t *t)
     memset(t, 0, sizeof *t);
 }
 
+gfx_layered_target_t gfx_layered_target_make(gfx_texture_t color, const char *label)
+{
+    gfx_layered_target_t t = {0};
+    char name[96];
+    snprintf(name, sizeof name, "%s.depth", label);
+    t.depth = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = color.w, .h = color.h,
+                                                     .layers = color.layers, .format = GL_DEPTH_COMPONENT32F,
+                                                     .filter = GL_NEAREST, .label = name});
+    if (t.depth.id) t.fbo = make_fbo(label, "fbo", color.id, t.depth.id);
+    if (!t.fbo) gfx_layered_target_destroy(&t);
+    return t;
+}
+
+void gfx_layered_target_destroy(gfx_layered_target_t *t)
+{
+    release(GL_FRAMEBUFFER, t->fbo);
+    release(GL_TEXTURE, t->depth.id);
+    memset(t, 0, sizeof *t);
+}
+
 void gfx_target_bind(const gfx_target_t *t)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, t->fbo);

@@ -127,6 +127,17 @@ bool gfx_target_read_depth(const gfx_target_t *t, float *out);
 /* Resolve + read + write PNG (atomic). */
 bool gfx_target_screenshot(const gfx_target_t *t, const char *path);
 
+/* A framebuffer over every layer of `color` (a GL_TEXTURE_2D_ARRAY, not
+ * owned) with a DEPTH32F array of as many layers (owned): a geometry
+ * shader picks the layer each primitive goes to (gl_Layer). */
+typedef struct gfx_layered_target_t {
+    GLuint fbo;
+    gfx_texture_t depth;
+} gfx_layered_target_t;
+
+gfx_layered_target_t gfx_layered_target_make(gfx_texture_t color, const char *label);
+void gfx_layered_target_destroy(gfx_layered_target_t *t);
+
 /* ---- programs ------------------------------------------------------------- */
 /* Paths are relative to shaders/ (resolved with core_fs_resolve). Sources may
  * `#include "common/x.glsl"` (relative to shaders/). Compile and link errors
@@ -283,6 +294,17 @@ static inline void gfx_counted_draw_elements(GLenum mode, GLsizei count, GLenum 
     gfx_count_draw(1);
     epoxy_glDrawElements(mode, count, type, indices);
 }
+static inline void gfx_counted_draw_arrays_instanced(GLenum mode, GLint first, GLsizei count, GLsizei instances)
+{
+    gfx_count_draw(1);
+    epoxy_glDrawArraysInstanced(mode, first, count, instances);
+}
+static inline void gfx_counted_draw_elements_instanced(GLenum mode, GLsizei count, GLenum type, const void *indices,
+                                                       GLsizei instances)
+{
+    gfx_count_draw(1);
+    epoxy_glDrawElementsInstanced(mode, count, type, indices, instances);
+}
 static inline void gfx_counted_multi_draw_arrays(GLenum mode, const GLint *first, const GLsizei *count,
                                                  GLsizei drawcount)
 {
@@ -302,12 +324,16 @@ static inline void gfx_counted_dispatch_compute_indirect(GLintptr indirect)
 #undef glDrawArrays
 #undef glDrawArraysIndirect
 #undef glDrawElements
+#undef glDrawArraysInstanced
+#undef glDrawElementsInstanced
 #undef glMultiDrawArrays
 #undef glDispatchCompute
 #undef glDispatchComputeIndirect
 #define glDrawArrays gfx_counted_draw_arrays
 #define glDrawArraysIndirect gfx_counted_draw_arrays_indirect
 #define glDrawElements gfx_counted_draw_elements
+#define glDrawArraysInstanced gfx_counted_draw_arrays_instanced
+#define glDrawElementsInstanced gfx_counted_draw_elements_instanced
 #define glMultiDrawArrays gfx_counted_multi_draw_arrays
 #define glDispatchCompute gfx_counted_dispatch_compute
 #define glDispatchComputeIndirect gfx_counted_dispatch_compute_indirect
