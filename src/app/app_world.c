@@ -426,6 +426,14 @@ bool app_world_make_gpu(app_world_t *w)
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
     else if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
     stage_done(w, APP_STAGE_BLADES, &mark);
+    if (!w->drawn) {
+        /* Until the first draw, the scene's camera at t = 0 decides which
+         * tiles are near (the first frame drew no grass near the camera
+         * when the tiles took the origin for it). */
+        cam_t cam;
+        scene_camera_init(&w->scene, &cam);
+        glm_vec3_copy(cam.position, w->camera);
+    }
     return w->gpu_ready;
 }
 
