@@ -39,8 +39,8 @@
  * where the shader defines RASTER_GROUP_SCAN, the invocations share out the
  * covered pixels (raster_scan_group). Measured on the H100 (meadow_large):
  * the shared scan takes billboards' short, wide triangles from 4.75 to
- * 2.94 ms but blades' tall, thin ones from 1.31 to 1.57 ms, so each shader
- * chooses. A shader that defines RASTER_NO_MEDIUM queues everything it does
+ * 2.94 ms but blades' tall, thin ones from 1.31 to 1.57 ms (docs/RASTER.md),
+ * so each shader chooses. A shader that defines RASTER_NO_MEDIUM queues everything it does
  * not scan at once on the large list (compiled out, not just a
  * threshold). */
 #ifndef RASTER_GLSL
