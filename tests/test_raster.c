@@ -71,9 +71,11 @@ static void bind(gfx_program_t p, void *user)
 static void run_variant(bool no_atomic64, bool group_scan, const float *tris, const raster_ref_t *ref)
 {
     raster_t r;
-    CHECK(raster_make(&r, &(raster_desc_t){.w = W, .h = H, .no_atomic64 = no_atomic64, .small_samples = 16,
-                                            .medium_samples = 256}));
-    printf("variant: %s, large triangles %s\n", r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes",
+    int ns = ref->samples;
+    CHECK(raster_make(&r, &(raster_desc_t){.w = W, .h = H, .samples = ns, .no_atomic64 = no_atomic64,
+                                            .small_samples = 16, .medium_samples = 256}));
+    printf("variant: %s, %d sample%s per pixel, large triangles %s\n",
+           r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes", ns, ns > 1 ? "s" : "",
            group_scan ? "shared out pixel by pixel (RASTER_GROUP_SCAN)" : "one row per invocation");
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "t"});
     gfx_target_bind(&target);
@@ -93,7 +95,7 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
     printf("queued triangles: %u medium, %u large or clipped (overflow %u)\n", st.medium, st.large, st.overflow);
     CHECK(st.medium >= 8 && st.large >= 8 && st.overflow == 0);
 
-    size_t n = (size_t)W * H * 4;
+    size_t n = (size_t)W * H * (size_t)ns;
     uint32_t *words = malloc(n * 8);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_buffer_read(r.vis, 0, n * 8, words);
@@ -126,11 +128,11 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
     for (int py = 0; py < H; py++)
         for (int px = 0; px < W; px++) {
             double want[3] = {0, 0, 0};
-            for (int k = 0; k < 4; k++) {
-                uint32_t c = ref->colour[(py * W + px) * 4 + k];
+            for (int k = 0; k < ns; k++) {
+                uint32_t c = ref->colour[(py * W + px) * ns + k];
                 double rgb[3] = {(c & 255) / 255.0, (c >> 8 & 255) / 255.0, (c >> 16 & 255) / 255.0};
                 if (!c) rgb[0] = rgb[1] = 0.0, rgb[2] = 1.0;
-                for (int i = 0; i < 3; i++) want[i] += rgb[i] / 4.0;
+                for (int i = 0; i < 3; i++) want[i] += rgb[i] / ns;
             }
             const uint8_t *got = img.px + ((size_t)(H - 1 - py) * W + (size_t)px) * 4;
             for (int i = 0; i < 3; i++)
@@ -154,17 +156,23 @@ int main(void)
     test_gl_init();
     static float tris[NTRI * 16];
     make_triangles(tris);
-    raster_ref_t ref;
-    CHECK(raster_ref_init(&ref, W, H, 4, 0.9f));
-    for (int i = 0; i < NTRI; i++)
-        raster_ref_triangle(&ref, tris + 16 * i, tris + 16 * i + 4, tris + 16 * i + 8, 0xff000000u | (uint32_t)(i * 2654435761u >> 8));
-    for (int g = 0; g < 2; g++) {
-        run_variant(true, g == 1, tris, &ref);
-        if (raster_has_atomic64()) run_variant(false, g == 1, tris, &ref);
+    /* 4 samples (the default) with both large-triangle scans, then one
+     * sample per pixel (the widest words of raster_init and the composite
+     * differ by sample count). */
+    for (int ns = 4; ns >= 1; ns -= 3) {
+        raster_ref_t ref;
+        CHECK(raster_ref_init(&ref, W, H, ns, 0.9f));
+        for (int i = 0; i < NTRI; i++)
+            raster_ref_triangle(&ref, tris + 16 * i, tris + 16 * i + 4, tris + 16 * i + 8,
+                                0xff000000u | (uint32_t)(i * 2654435761u >> 8));
+        for (int g = 0; g < (ns == 4 ? 2 : 1); g++) {
+            run_variant(true, g == 1, tris, &ref);
+            if (raster_has_atomic64()) run_variant(false, g == 1, tris, &ref);
+        }
+        raster_ref_free(&ref);
     }
     if (!raster_has_atomic64())
         printf("GL_NV_shader_atomic_int64 missing: the one-pass variant is checked on the GPU machine only\n");
-    raster_ref_free(&ref);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }
