@@ -147,6 +147,7 @@ static void test_states(void)
         bb_bound_t obj[3];
         scripted_objects(time, obj);
         int nobj = (frame % 97 < 80) ? 3 : 1; /* objects vanish for a while */
+        if (frame % 53 < 12) obj[0].kind = BB_BOUND_NONE; /* or are left out (bb_field_set_hidden) */
         bb_octree_update(&t, obj, nobj, dt, recover);
         bb_octree_state_brute(&t, obj, nobj, dt, recover, bs, bt);
         int nc = 0, nr = 0;
@@ -227,9 +228,21 @@ static void test_states(void)
     bb_octree_free(&t);
 }
 
+/* A left-out object (BB_BOUND_NONE) overlaps no box, however large, while
+ * the same centre as a sphere does. */
+static void test_bound_none(void)
+{
+    const float lo[3] = {-1e6f, -1e6f, -1e6f}, hi[3] = {1e6f, 1e6f, 1e6f};
+    bb_bound_t b = {.kind = BB_BOUND_SPHERE, .radius = 1.0f};
+    CHECK(bb_bound_overlaps_box(&b, lo, hi, 1.0f));
+    b.kind = BB_BOUND_NONE;
+    CHECK(!bb_bound_overlaps_box(&b, lo, hi, 1.0f));
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
+    test_bound_none();
     test_build();
     test_assign();
     test_states();

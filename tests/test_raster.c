@@ -84,8 +84,8 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glClearDepth(1.0);
     gfx_buffer_t buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = NTRI * 64, .data = tris, .label = "tris"});
-    raster_program_t prog = raster_program_make(&r, "tests/raster_tris.comp", group_scan ? "#define RASTER_GROUP_SCAN 1\n" : NULL,
-                                                "raster_tris");
+    const char *defines = group_scan ? "#define RASTER_GROUP_SCAN 1\n" : NULL;
+    raster_program_t prog = raster_program_make(&r, "tests/raster_tris.comp", defines, "raster_tris");
     CHECK(prog.prim.id && prog.big.id);
     raster_begin(&r, &target);
     bind_t b = {buf};

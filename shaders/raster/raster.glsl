@@ -39,10 +39,10 @@
  * where the shader defines RASTER_GROUP_SCAN, the invocations share out the
  * covered pixels (raster_scan_group). Measured on the H100 (meadow_large):
  * the shared scan takes billboards' short, wide triangles from 4.75 to
- * 2.94 ms but blades' tall, thin ones from 1.31 to 1.57 ms (docs/RASTER.md),
- * so each shader chooses. A shader that defines RASTER_NO_MEDIUM queues everything it does
- * not scan at once on the large list (compiled out, not just a
- * threshold). */
+ * 2.94 ms but blades' tall, thin ones from 1.31 to 1.57 ms
+ * (docs/RASTER.md), so each shader chooses. A shader that defines
+ * RASTER_NO_MEDIUM queues everything it does not scan at once on the large
+ * list (compiled out, not just a threshold). */
 #ifndef RASTER_GLSL
 #define RASTER_GLSL
 
@@ -309,8 +309,8 @@ void raster_scan_group(raster_vert a, raster_vert b, raster_vert c, mat3 to_tri)
                     else hi = mid - 1;
                 }
                 int x = raster_span_x0[lo] + i - raster_span_start[lo], y = base + lo;
-                raster_tri_pixel(t, to_tri, raster_tri_row(t, y, o), x, (y * u_raster_pixels.x + x) * u_raster_samples + k,
-                                 o);
+                int s = (y * u_raster_pixels.x + x) * u_raster_samples + k;
+                raster_tri_pixel(t, to_tri, raster_tri_row(t, y, o), x, s, o);
             }
             barrier();
         }

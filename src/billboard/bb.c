@@ -1122,7 +1122,7 @@ static bool bound_hidden(const bb_field_t *f, const bb_bound_t *b)
 {
     if (f->hidden[3] <= 0.0f) return false;
     float reach = b->radius;
-    if (b->kind == BB_BOUND_AABB) reach = sqrtf(b->half[0] * b->half[0] + b->half[1] * b->half[1] + b->half[2] * b->half[2]);
+    if (b->kind == BB_BOUND_AABB) reach = glm_vec3_norm((float *)b->half);
     return glm_vec3_distance((float *)f->hidden, (float *)b->centre) + reach < f->hidden[3] - 3.0f * f->sphere_max;
 }
 
