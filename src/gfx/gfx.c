@@ -2,6 +2,7 @@
  * with MSAA resolve, vertex arrays, queries and screenshots. */
 #include "gfx/gfx_local.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -76,7 +77,8 @@ static void release(GLenum kind, GLuint id)
     gfx_delete_object(kind, id);
 }
 
-int gfx_live_objects(void) { return g.count; }
+static bool upload_ring_alive(void);
+int gfx_live_objects(void) { return g.count - (upload_ring_alive() ? 1 : 0); }
 long gfx_objects_made(void) { return g.made; }
 
 static void set_bytes(GLenum kind, GLuint id, size_t bytes)
@@ -107,8 +109,11 @@ static size_t format_bytes(GLenum f)
     }
 }
 
+static void upload_shutdown(void);
+
 void gfx_shutdown(bool report_leaks)
 {
+    upload_shutdown();
     gfx_text_shutdown();
     gfx_timer_shutdown();
     gfx_count_shutdown();
@@ -172,12 +177,120 @@ void gfx_buffer_destroy(gfx_buffer_t *buf)
     memset(buf, 0, sizeof *buf);
 }
 
+/* ---- uploads ----------------------------------------------------------------
+ * Every CPU -> buffer update goes through one persistently mapped ring: the
+ * bytes are written to a part of the ring that no queued command still
+ * reads, then copied on the GPU (glCopyNamedBufferSubData), in order with
+ * the commands around it. On the H100, glNamedBufferSubData into a buffer
+ * that queued compute work had yet to read reached that work: the hybrid
+ * tiles' init list of one frame was read by the previous frame's dispatch,
+ * which initialised the wrong slot (test_hybrid_trail, test_gfx_upload;
+ * docs/PERFORMANCE.md "GPU correctness"). The ring is split into segments;
+ * a segment is fenced when the ring leaves it and waited for (rarely: the GPU
+ * must be a whole ring of uploads behind) before it is written again, so
+ * callers need not pace their frames. */
+#define UPLOAD_RING_BYTES ((size_t)8 << 20)
+#define UPLOAD_SEGMENTS 16
+#define UPLOAD_SEGMENT (UPLOAD_RING_BYTES / UPLOAD_SEGMENTS)
+#define UPLOAD_ALIGN 256
+
+static struct {
+    GLuint id;
+    uint8_t *map;
+    size_t head; /* next free byte */
+    int seg;     /* segment holding head */
+    GLsync fence[UPLOAD_SEGMENTS];
+    bool failed; /* the ring could not be made: direct glNamedBufferSubData */
+    long waits;
+} u;
+
+static bool upload_ring_ready(void)
+{
+    if (u.id || u.failed) return u.id != 0;
+    const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+    glCreateBuffers(1, &u.id);
+    glNamedBufferStorage(u.id, (GLsizeiptr)UPLOAD_RING_BYTES, NULL, flags);
+    u.map = glMapNamedBufferRange(u.id, 0, (GLsizeiptr)UPLOAD_RING_BYTES, flags);
+    if (!u.map) {
+        core_log_warn("gfx: cannot map the upload ring; buffer updates use glNamedBufferSubData");
+        glDeleteBuffers(1, &u.id);
+        u.id = 0;
+        u.failed = true;
+        return false;
+    }
+    gfx_track(GL_BUFFER, u.id, "gfx.upload_ring");
+    set_bytes(GL_BUFFER, u.id, UPLOAD_RING_BYTES);
+    return true;
+}
+
+/* Fences the segment being left and opens the next, waiting for its last
+ * copies when the GPU has not done them yet. */
+static void upload_next_segment(void)
+{
+    u.fence[u.seg] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    u.seg = (u.seg + 1) % UPLOAD_SEGMENTS;
+    GLsync f = u.fence[u.seg];
+    if (f) {
+        GLenum r = glClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+        if (r == GL_TIMEOUT_EXPIRED) {
+            u.waits++;
+            for (int tries = 0; r == GL_TIMEOUT_EXPIRED && tries < 6; tries++)
+                r = glClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
+        }
+        if (r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED) {
+            core_log_error("gfx: the GPU has not finished an upload after 60 s; waiting for it");
+            glFinish();
+        }
+        glDeleteSync(f);
+        u.fence[u.seg] = 0;
+    }
+    u.head = (size_t)u.seg * UPLOAD_SEGMENT;
+}
+
+static void upload(GLuint dst, size_t offset, size_t size, const void *data)
+{
+    if (!upload_ring_ready()) {
+        glNamedBufferSubData(dst, (GLintptr)offset, (GLsizeiptr)size, data);
+        return;
+    }
+    const uint8_t *src = data;
+    while (size > 0) {
+        size_t n = size < UPLOAD_SEGMENT ? size : UPLOAD_SEGMENT;
+        if (u.head + n > (size_t)(u.seg + 1) * UPLOAD_SEGMENT) upload_next_segment();
+        memcpy(u.map + u.head, src, n);
+        glCopyNamedBufferSubData(u.id, dst, (GLintptr)u.head, (GLintptr)offset, (GLsizeiptr)n);
+        u.head += (n + UPLOAD_ALIGN - 1) & ~(size_t)(UPLOAD_ALIGN - 1);
+        src += n;
+        offset += n;
+        size -= n;
+    }
+}
+
+static void upload_shutdown(void)
+{
+    for (int i = 0; i < UPLOAD_SEGMENTS; i++)
+        if (u.fence[i]) glDeleteSync(u.fence[i]);
+    if (u.id) {
+        glUnmapNamedBuffer(u.id);
+        release(GL_BUFFER, u.id);
+    }
+    memset(&u, 0, sizeof u);
+}
+
+static bool upload_ring_alive(void) { return u.id != 0; }
+long gfx_upload_waits(void) { return u.waits; }
+
+void gfx_upload_raw(GLuint buffer, size_t offset, size_t size, const void *data)
+{
+    upload(buffer, offset, size, data);
+}
+
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data)
 {
     if (buf.mapped)
         memcpy((char *)buf.mapped + offset, data, size);
     else
-        glNamedBufferSubData(buf.id, (GLintptr)offset, (GLsizeiptr)size, data);
+        upload(buf.id, offset, size, data);
 }
 
 bool gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)

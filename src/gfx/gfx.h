@@ -54,7 +54,15 @@ typedef struct gfx_buffer_desc_t {
  * GL_OUT_OF_MEMORY. */
 gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc);
 void gfx_buffer_destroy(gfx_buffer_t *buf);
+/* Copies `data` into the buffer in order with the commands around it: the
+ * bytes go through gfx's upload ring (8 MB, persistently mapped) and a GPU
+ * copy, so commands queued before the call still see the old contents, even
+ * without frame pacing (see gfx.c "uploads"). A persistent buffer is written
+ * directly through its mapping (the caller keeps the GPU off those bytes). */
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data);
+/* Times the upload ring had to wait for the GPU since gfx_init (a whole ring
+ * of uploads queued ahead of the GPU). */
+long gfx_upload_waits(void);
 /* Blocking read (tests, summaries, one-off): glGetNamedBufferSubData on a
  * readable buffer; any other buffer is read through a temporary readable
  * copy (4 MB chunks). A direct read of a buffer the GPU keeps using made the

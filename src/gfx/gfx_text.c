@@ -71,7 +71,7 @@ void gfx_text_draw(const char *text, float x, float y, float scale, const float 
     if (!nv) return;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
-    glNamedBufferSubData(g_text.vbo, 0, (GLsizeiptr)((size_t)nv * 2 * sizeof(float)), tris);
+    gfx_upload_raw(g_text.vbo, 0, (size_t)nv * 2 * sizeof(float), tris);
     glUseProgram(g_text.prog);
     glUniform2f(glGetUniformLocation(g_text.prog, "u_viewport"), (float)vp[2], (float)vp[3]);
     glUniform4fv(glGetUniformLocation(g_text.prog, "u_color"), 1, rgba);

@@ -46,7 +46,7 @@ R=$OUT/report.txt
 
 tests() {
   echo "== default scene, 10 frames"; $M --headless --frames 10 --out /tmp/o0 2>&1 | grep -E "GL_RENDERER|error"
-  for t in test_gfx_smoke test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
+  for t in test_gfx_smoke test_gfx_upload test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
            test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam \
            test_bb_gpu_generate; do
