@@ -44,6 +44,7 @@ typedef struct app_options_t {
     bool floor;               /* --floor: measure the hardware floor at the end */
     bool stability;           /* bench --stability: the stability suite only */
     const char *stability_case; /* bench --stability --case NAME: only that case of the suite */
+    const char *chart;        /* bench --chart NAME: only that chart's configurations of the sweep */
     bool scaling;             /* bench --scaling: tile simulation vs field size and active tiles only */
     bool montage;             /* --montage: end a headless run with the mode montage */
     bool video;               /* compare --video: a clip per mode (ffmpeg) */

@@ -35,6 +35,7 @@ void app_print_usage(void)
            "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
            "  --stability           bench: run the stability suite (where each method breaks)\n"
            "  --case NAME           bench --stability: run only the case NAME (e.g. resting_blade)\n"
+           "  --chart NAME          bench: run only the sweep's configurations of chart NAME (e.g. modes)\n"
            "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
            "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
            "  --perf DIR            bench: bench scenes x {hw, compute}, pass medians to DIR/perf.json,\n"
@@ -128,6 +129,13 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
                 return 2;
             }
             o->stability_case = v;
+        } else if (strcmp(a, "--chart") == 0) {
+            NEED_VALUE();
+            if (!*v) {
+                snprintf(err, err_size, "--chart: empty chart name");
+                return 2;
+            }
+            o->chart = v;
         } else if (strcmp(a, "--scaling") == 0) {
             o->scaling = true;
         } else if (strcmp(a, "--report") == 0) {
@@ -259,6 +267,10 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
     }
     if (o->stability_case && (o->command != APP_CMD_BENCH || !o->stability)) {
         snprintf(err, err_size, "--case needs `meadow bench --stability` (see --help)");
+        return 2;
+    }
+    if (o->chart && (o->command != APP_CMD_BENCH || o->stability || o->scaling || o->report || perf)) {
+        snprintf(err, err_size, "--chart needs `meadow bench` without --stability, --scaling, --report or --perf");
         return 2;
     }
     if (perf && (o->report || o->stability || o->scaling)) {

@@ -332,6 +332,7 @@ typedef struct bench_run_t {
     bench_metrics_t *met;
     double *err;       /* eval_image score against the reference */
     double *ssim_err;  /* 1 - SSIM against the reference */
+    eval_image_error_t *terms; /* the image error's terms */
     double floor;      /* eval_image score of the reference with another placement seed */
     double floor_ssim; /* its 1 - SSIM */
     char renderer[256];
@@ -345,8 +346,24 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->met = calloc(MAX_CONFIGS, sizeof *b->met);
     b->err = calloc(MAX_CONFIGS, sizeof(double));
     b->ssim_err = calloc(MAX_CONFIGS, sizeof(double));
-    if (!b->cfg || !b->met || !b->err || !b->ssim_err) return 1;
+    b->terms = calloc(MAX_CONFIGS, sizeof *b->terms);
+    if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms) return 1;
     b->n = build_configs(b->cfg, quick);
+    if (o->chart) {
+        int k = 0;
+        for (int i = 0; i < b->n; i++)
+            if (strcmp(b->cfg[i].group, o->chart) == 0) b->cfg[k++] = b->cfg[i];
+        if (k == 0) {
+            core_buf_t names = {0};
+            for (int ci = 0; ci < CHART_COUNT; ci++)
+                if (ci == 0 || strcmp(charts[ci].group, charts[ci - 1].group) != 0)
+                    core_buf_printf(&names, "%s%s", ci ? ", " : "", charts[ci].group);
+            core_log_error("--chart '%s': no such chart (%s)", o->chart, names.data);
+            core_buf_free(&names);
+            return 2;
+        }
+        b->n = k;
+    }
     int n = b->n;
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int frames = b->frames;
@@ -363,11 +380,22 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     fd.tuning.placement_seed = FLOOR_PLACEMENT_SEED;
     if (rc == 0) rc = bench_session_run(&fd, &other, NULL);
     const eval_image_desc_t ed = {.background = &bg};
-    eval_image_error_t e;
+    eval_image_error_t e = {0};
+    snprintf(path, sizeof path, "%s/frames", out);
+    if (rc == 0 && !core_fs_mkdirs(path)) core_log_warn("bench: cannot create %s", path);
+    const struct {
+        const core_image_t *img;
+        const char *name;
+    } fixed[] = {{&ref, "reference"}, {&bg, "background"}, {&other, "floor"}};
+    for (int i = 0; i < 3 && rc == 0; i++) {
+        snprintf(path, sizeof path, "%s/frames/%s.png", out, fixed[i].name);
+        if (!core_image_write_png(fixed[i].img, path)) core_log_warn("bench: cannot write %s", path);
+    }
     if (rc == 0 && eval_image_error(&other, &ref, &ed, &e)) {
         b->floor = e.score;
         b->floor_ssim = 1.0 - eval_image_ssim(&other, &ref);
-        core_log_info("bench: image error noise floor %.4f (1 - SSIM %.4f)", b->floor, b->floor_ssim);
+        core_log_info("bench: image error noise floor %.4f (colour %.3f, coverage %.4f, structure %.4f; 1 - SSIM %.4f)",
+                      b->floor, e.colour, e.coverage, e.structure, b->floor_ssim);
     }
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
@@ -388,7 +416,10 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
         if (rc) break;
         b->err[i] = eval_image_error(&img, &ref, &ed, &e) ? e.score : -1.0;
+        b->terms[i] = e;
         b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &ref);
+        snprintf(path, sizeof path, "%s/frames/%s_%s.png", out, c->group, c->label);
+        if (!core_image_write_png(&img, path)) core_log_warn("bench: cannot write %s", path);
         core_image_free(&img);
         double el = plat_time() - t0;
         fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,
@@ -418,11 +449,13 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         core_buf_printf(&json,
                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
+                        "\"image_terms\": {\"colour\": %.4f, \"coverage\": %.4f, \"structure\": %.4f}, "
                         "\"penetration_fraction\": %.6f, "
                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
                         "\"passes\": {",
                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
-                        b->ssim_err[i], m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+                        b->ssim_err[i], b->terms[i].colour, b->terms[i].coverage, b->terms[i].structure,
+                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
         for (int p = 0; p < m->pass_count; p++) {
             core_buf_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
             core_buf_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
@@ -450,6 +483,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
                 ys[k] = y_of(ch, &b->met[i], b->err[i]);
                 k++;
             }
+        if (k == 0) continue;
         eval_pareto(xs, ys, k, front);
         core_buf_t dat = {0};
         char xlabel[160];
@@ -644,5 +678,6 @@ int bench_run(const app_options_t *o)
     free(b.met);
     free(b.err);
     free(b.ssim_err);
+    free(b.terms);
     return rc;
 }
