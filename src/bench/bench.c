@@ -198,7 +198,7 @@ static int build_configs(bench_config_t *c, bool quick)
         snprintf(x->label, sizeof x->label, "cubemap_%d", cube_res[i]);
     }
     static const int tess[] = {1, 2, 3, 5, 7, 10}, levels[] = {1, 2, 4, 8, 16, 32};
-    static const float sw[] = {2, 4, 8, 12, 20, 40};
+    static const float sw[] = {2, 4, 8, 12, 16, 20, 25, 30, 40};
     int nt = quick ? 2 : 6;
     for (int i = 0; i < nt; i++) {
         bench_config_t *x = add(c, &n, "blade_tessellation", SCENE_MODE_BLADE);
@@ -210,7 +210,8 @@ static int build_configs(bench_config_t *c, bool quick)
         x->tuning.distance_levels = levels[i];
         snprintf(x->label, sizeof x->label, "levels%d", levels[i]);
     }
-    for (int i = 0; i < nt; i++) {
+    int nsw = quick ? 2 : (int)(sizeof sw / sizeof sw[0]);
+    for (int i = 0; i < nsw; i++) {
         bench_config_t *x = add(c, &n, "hybrid_switch_distance", SCENE_MODE_HYBRID);
         x->switch_distance = sw[i];
         snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
@@ -309,7 +310,7 @@ static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double ima
 /* floor >= 0: a dashed line at the image error's noise floor. */
 static void write_chart(const char *out, const bench_chart_t *ch, double floor)
 {
-    char name[64], data[1200], body[4096], floor_plot[160] = "", xlabel[160];
+    char name[64], data[1200], body[6144], floor_plot[160] = "", xlabel[160];
     knob_label(ch, xlabel, sizeof xlabel);
     if (floor >= 0)
         snprintf(floor_plot, sizeof floor_plot, ", %.6f with lines dt 2 lw 2 lc rgb 'gray40' title 'noise floor "
@@ -321,8 +322,11 @@ static void write_chart(const char *out, const bench_chart_t *ch, double floor)
              "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
              "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
              "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
-             "'< grep -E \"^[^ ]+ [^ ]+ [^ ]+ 1( |$)\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 title 'Pareto front'%s",
-             ch->name, xlabel, ch->ylabel, data, data, floor_plot);
+             "'< grep -E \"^[^ ]+ [^ ]+ [^ ]+ 1( |$)\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 "
+             "title 'Pareto front, hardware path', "
+             "'< grep -E \"^[^ ]+ [^ ]+ [^ ]+ 2( |$)\" %s | sort -g' using 1:2 with linespoints lw 2 dt 3 pt 8 ps 2 "
+             "title 'Pareto front, compute path'%s",
+             ch->name, xlabel, ch->ylabel, data, data, data, floor_plot);
     eval_gnuplot_chart(out, name, body);
 }
 
@@ -338,6 +342,39 @@ typedef struct bench_run_t {
     char renderer[256];
     int frames;
 } bench_run_t;
+
+/* A chart's configurations (idx, xs, ys: k of them) and their Pareto
+ * fronts, one per rasterizer path: a configuration is compared only with
+ * those drawn by the same path (the modes chart holds both), as the path
+ * is a property of the GPU rather than a knob of the method. front[j]: 0
+ * off the fronts, 1 on the hardware path's, 2 on the compute path's. */
+static int chart_points(const bench_run_t *b, const bench_chart_t *ch, int *idx, double *xs, double *ys, int *front)
+{
+    int k = 0;
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->cfg[i].group, ch->group) == 0) {
+            idx[k] = i;
+            xs[k] = knob_ms(ch, &b->met[i]);
+            ys[k] = y_of(ch, &b->met[i], b->err[i]);
+            k++;
+        }
+    for (int path = 0; path < 2; path++) {
+        double px[MAX_CONFIGS], py[MAX_CONFIGS];
+        bool on[MAX_CONFIGS];
+        int map[MAX_CONFIGS], m = 0;
+        for (int j = 0; j < k; j++)
+            if ((int)b->met[idx[j]].raster_compute == path) {
+                px[m] = xs[j];
+                py[m] = ys[j];
+                map[m++] = j;
+            }
+        eval_pareto(px, py, m, on);
+        for (int j = 0; j < m; j++) front[map[j]] = on[j] ? 1 + path : 0;
+    }
+    return k;
+}
+
+static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
 
 static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
 {
@@ -474,21 +511,15 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     for (int ci = 0; ci < CHART_COUNT && rc == 0; ci++) {
         const bench_chart_t *ch = &charts[ci];
         double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
-        bool front[MAX_CONFIGS];
-        int idx[MAX_CONFIGS], k = 0;
-        for (int i = 0; i < n; i++)
-            if (strcmp(b->cfg[i].group, ch->group) == 0) {
-                idx[k] = i;
-                xs[k] = knob_ms(ch, &b->met[i]);
-                ys[k] = y_of(ch, &b->met[i], b->err[i]);
-                k++;
-            }
+        int front[MAX_CONFIGS], idx[MAX_CONFIGS];
+        int k = chart_points(b, ch, idx, xs, ys, front);
         if (k == 0) continue;
-        eval_pareto(xs, ys, k, front);
         core_buf_t dat = {0};
         char xlabel[160];
         knob_label(ch, xlabel, sizeof xlabel);
-        core_buf_printf(&dat, "# x y label pareto frame_ms (x: %s; y: %s)\n", xlabel, ch->ylabel);
+        core_buf_printf(&dat, "# x y label pareto frame_ms (x: %s; y: %s; pareto: 0 off, 1 hardware path's "
+                              "front, 2 compute path's)\n",
+                        xlabel, ch->ylabel);
         for (int j = 0; j < k; j++)
             core_buf_printf(&dat, "%.5f %.6f %s %d %.5f\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j],
                             b->met[idx[j]].frame_ms);
@@ -563,7 +594,9 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             "renderer.\n\n");
     core_buf_printf(&r, "## Speed vs accuracy\n\nEach chart: x = the summed GPU pass medians of the passes its "
                         "knob changes (named under the chart; the whole frame for the modes and the switch "
-                        "distance), y = the measure named on the axis; the line joins the Pareto-optimal configurations. Image error: "
+                        "distance), y = the measure named on the axis; the lines join the Pareto-optimal "
+                        "configurations of each rasterizer path (solid: hardware, dotted: compute; a configuration "
+                        "competes only with those of its own path). Image error: "
                         "the block-statistics score of docs/METRICS.md against the reference (0 = indistinguishable, "
                         "1 = one clearly visible unit); its noise floor, the reference drawn with another placement "
                         "seed, is %.4f (dashed line; 1 - SSIM of the same pair: %.4f). n/a: the measure does not "
@@ -576,11 +609,15 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
         char xlabel[160];
         knob_label(ch, xlabel, sizeof xlabel);
         core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\nx: %s.\n\n| configuration | x (ms) | "
-                            "frame GPU ms | %s | image error | 1 - SSIM | pen. fraction | blade length err |\n"
-                            "| --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                            "frame GPU ms | %s | image error | 1 - SSIM | pen. fraction | blade length err | "
+                            "Pareto front |\n"
+                            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
                         ch->name, ch->name, ch->name, xlabel, ch->ylabel);
-        for (int i = 0; i < b->n; i++) {
-            if (strcmp(b->cfg[i].group, ch->group) != 0) continue;
+        double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
+        int front[MAX_CONFIGS], idx[MAX_CONFIGS];
+        int k = chart_points(b, ch, idx, xs, ys, front);
+        for (int j = 0; j < k; j++) {
+            int i = idx[j];
             const bench_metrics_t *m = &b->met[i];
             char v[5][32];
             cell(v[0], y_of(ch, m, b->err[i]), 5);
@@ -588,8 +625,8 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
             cell(v[2], b->ssim_err[i], 4);
             cell(v[3], m->penetration_fraction, 4);
             cell(v[4], m->blade_length_error, 4);
-            core_buf_printf(&r, "| %s | %.4f | %.3f | %s | %s | %s | %s | %s |\n", b->cfg[i].label, knob_ms(ch, m),
-                            m->frame_ms, v[0], v[1], v[2], v[3], v[4]);
+            core_buf_printf(&r, "| %s | %.4f | %.3f | %s | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
+                            knob_ms(ch, m), m->frame_ms, v[0], v[1], v[2], v[3], v[4], front_name(front[j]));
         }
         core_buf_printf(&r, "\n");
     }

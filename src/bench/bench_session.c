@@ -112,6 +112,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
     if (m) {
         memset(m, 0, sizeof *m);
         m->cpu_ms = cpu * 1000.0 / (frames - warmup > 0 ? frames - warmup : 1);
+        m->raster_compute = w->raster_compute;
         m->pass_count = gfx_timer_count();
         for (int i = 0; i < m->pass_count; i++) {
             m->pass_ms[i] = gfx_timer_median_ms(i);
