@@ -41,7 +41,6 @@ uniform mat4 u_viewproj;
 uniform vec4 u_planes[6];
 uniform vec3 u_camera;
 uniform vec3 u_sun;
-uniform vec3 u_gain; /* colour gain (bb_draw_desc_t.gain) */
 uniform float u_time;
 uniform float u_fade_start;
 uniform float u_fade_end;
@@ -164,7 +163,7 @@ void raster_fragment(int s0, vec3 w, float depth)
     uint rgba = 0u;
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
-        vec3 c = bb_shade(tex.rgb * u_gain, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
+        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
         rgba = packUnorm4x8(vec4(c, 1.0));
     }
     for (int k = 0; k < n; k++)

@@ -11,7 +11,6 @@
 uniform sampler2DArray u_clumps;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
-uniform vec3 u_gain; /* colour gain (bb_draw_desc_t.gain) */
 uniform float u_fade_start;
 uniform float u_fade_end;
 
@@ -26,7 +25,7 @@ out vec4 frag;
 void main()
 {
     vec4 tex = texture(u_clumps, g_uvl);
-    vec3 c = bb_shade(tex.rgb * u_gain, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
+    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
     float a = bb_fade_alpha(tex.a, distance(u_camera, g_world), u_fade_start, u_fade_end, gl_FragCoord.xy);
     uint mask = grass_coverage_mask(a, gl_NumSamples, uvec2(gl_FragCoord.xy));
     if (a < 1.0 / 255.0 || mask == 0u) discard;

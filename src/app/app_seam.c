@@ -28,10 +28,6 @@
 #define APP_SEAM_MIN_PIXELS 100
 /* The floor's second placement: the world's placement seed xor this. */
 #define APP_SEAM_FLOOR_SEED 0x9e3779b9u
-/* app_world_seam_match: rounds, and the bounds of the gain per channel. */
-#define APP_SEAM_MATCH_ROUNDS 4
-#define APP_SEAM_GAIN_MIN 0.2f
-#define APP_SEAM_GAIN_MAX 2.0f
 
 void app_seam_frame_free(app_seam_frame_t *f)
 {
@@ -131,67 +127,6 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
     app_seam_frame_free(&frame);
     app_seam_frame_free(&ref);
     app_seam_frame_free(&bg);
-    return ok;
-}
-
-/* Mean colour in linear light (eval_srgb_to_linear, as eval_image_seam) of
- * f's grass pixels whose surface lies in [lo, hi) m; false with fewer than
- * APP_SEAM_MIN_PIXELS of them. */
-static bool grass_mean(const app_seam_frame_t *f, float lo, float hi, double mean[3])
-{
-    double lut[256];
-    for (int i = 0; i < 256; i++) lut[i] = eval_srgb_to_linear(i);
-    double sum[3] = {0}, n = 0;
-    size_t count = (size_t)f->img.w * (size_t)f->img.h;
-    for (size_t i = 0; i < count; i++) {
-        if (f->cls[i] != EVAL_SEAM_GRASS || f->dist[i] < lo || f->dist[i] >= hi) continue;
-        for (int c = 0; c < 3; c++) sum[c] += lut[f->img.px[i * (size_t)f->img.channels + (size_t)c]];
-        n += 1.0;
-    }
-    for (int c = 0; c < 3; c++) mean[c] = n > 0 ? sum[c] / n : 0.0;
-    return n >= APP_SEAM_MIN_PIXELS;
-}
-
-bool app_world_seam_match(app_world_t *w, const app_view_t *v, const gfx_target_t *t)
-{
-    if (w->mode != SCENE_MODE_HYBRID || !w->have_bb || !w->have_tiles) return false;
-    for (int c = 0; c < 3; c++)
-        if (w->bb_gain[c] <= 0.0f) w->bb_gain[c] = 1.0f;
-    eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = w->scene.grass.switch_distance,
-                                                                      .fade = APP_SWITCH_FADE});
-    float hi = d.switch_distance - d.fade, lo = hi - d.window;
-    app_seam_frame_t bg = {0};
-    bool ok = app_seam_frame_draw(w, v, t, w->mode, false, &bg);
-    /* Per channel, the billboards' mean m(g) against gain g is monotone but
-     * not proportional (fog and sky light add to it): a first multiplicative
-     * step, then secant steps towards m(g) = the blades' mean. */
-    double prev_g[3] = {0}, prev_m[3] = {0};
-    for (int round = 0; ok && round < APP_SEAM_MATCH_ROUNDS; round++) {
-        app_seam_frame_t frame = {0}, ref = {0};
-        double blades[3], bb[3];
-        ok = app_seam_frame_draw(w, v, t, w->mode, true, &frame) &&
-             app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref);
-        if (ok) {
-            app_seam_frame_classify(&frame, &bg);
-            app_seam_frame_classify(&ref, &bg);
-            ok = grass_mean(&frame, lo, hi, blades) && grass_mean(&ref, lo, hi, bb);
-        }
-        for (int c = 0; ok && c < 3; c++) {
-            double g = w->bb_gain[c], next;
-            if (round > 0 && fabs(bb[c] - prev_m[c]) > 1e-7)
-                next = g + (blades[c] - bb[c]) * (g - prev_g[c]) / (bb[c] - prev_m[c]);
-            else
-                next = g * (bb[c] > 0.0 ? pow(blades[c] / bb[c], 1.0 / 2.2) : 1.0);
-            prev_g[c] = g;
-            prev_m[c] = bb[c];
-            w->bb_gain[c] = (float)fmin(fmax(next, APP_SEAM_GAIN_MIN), APP_SEAM_GAIN_MAX);
-        }
-        app_seam_frame_free(&frame);
-        app_seam_frame_free(&ref);
-    }
-    app_seam_frame_free(&bg);
-    core_log_info("hybrid: billboard colour gain %.3f %.3f %.3f (matched to the blades before the switch%s)",
-                  w->bb_gain[0], w->bb_gain[1], w->bb_gain[2], ok ? "" : "; too few grass pixels, left there");
     return ok;
 }
 

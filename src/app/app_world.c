@@ -579,15 +579,6 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
 
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
-    if (!w->seam_matched && w->mode == SCENE_MODE_HYBRID && w->have_bb && w->have_tiles && !w->reference) {
-        w->seam_matched = true;
-        app_world_seam_match(w, v, target);
-        /* The caller's clear, which the match's frames have overwritten. */
-        gfx_target_bind(target);
-        glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glEnable(GL_DEPTH_TEST);
-    }
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
     gfx_timer_begin("terrain");
     app_terrain_draw(&w->terrain, v);
@@ -636,7 +627,6 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1};
-        memcpy(d.gain, w->bb_gain, sizeof d.gain);
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
         memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);

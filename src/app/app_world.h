@@ -149,11 +149,6 @@ typedef struct app_world_t {
     bool have_tiles;
     float camera[3]; /* of the last draw (activation and representation) */
     bool drawn;      /* camera holds a draw's camera */
-    /* The billboards' colour gain (bb_draw_desc_t.gain, 1 until matched) and
-     * whether the hybrid's first draw has matched it to the blades yet
-     * (app_world_seam_match). */
-    float bb_gain[3];
-    bool seam_matched;
     /* The colliders of the latest step (app_world_update), taken by the
      * billboards, the blades and the tiles. */
     collide_set_t collide;
@@ -211,18 +206,6 @@ eval_seam_desc_t app_seam_desc(const app_world_t *w);
  * not in hybrid mode or a window of the band shows no grass or fewer than
  * 100 counted pixels (in either frame). */
 bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
-/* Matches the billboards' colour to the blades they continue: draws view v
- * without grass (to classify pixels), then APP_SEAM_MATCH_ROUNDS times in
- * hybrid and with billboards only, and sets the billboards' colour gain per
- * channel so that the mean grass colour (linear light) of the billboards in
- * the window just before the switch band equals the blades' there (a
- * multiplicative step, then secant steps; bounds APP_SEAM_GAIN_MIN/MAX).
- * The hybrid's first draw does this (app_world_draw), so the
- * representations meet with the same colour in the scene's first view; the
- * gain then holds for the run (and in billboard mode after a switch). False
- * (the gain stays where it got to) when not hybrid, or a window holds too
- * few grass pixels. */
-bool app_world_seam_match(app_world_t *w, const app_view_t *v, const gfx_target_t *t);
 /* The seam's noise floor for this view: the billboards built again with
  * another placement seed (APP_SEAM_FLOOR_SEED xor the world's), drawn
  * billboard-only (undeformed), against the world's own billboard-only

@@ -1269,9 +1269,6 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniformMatrix4fv(loc(p, "u_viewproj"), 1, GL_FALSE, dd->viewproj);
     glUniform3fv(loc(p, "u_camera"), 1, dd->camera);
     glUniform3fv(loc(p, "u_sun"), 1, dd->sun_dir);
-    bool gained = dd->gain[0] > 0.0f || dd->gain[1] > 0.0f || dd->gain[2] > 0.0f;
-    glUniform3f(loc(p, "u_gain"), gained ? dd->gain[0] : 1.0f, gained ? dd->gain[1] : 1.0f,
-                gained ? dd->gain[2] : 1.0f);
     glUniform1f(loc(p, "u_time"), dd->time);
     glUniform1f(loc(p, "u_fade_start"), dd->fade_start);
     glUniform1f(loc(p, "u_fade_end"), dd->fade_end);

@@ -114,9 +114,6 @@ typedef struct bb_draw_desc_t {
     gfx_buffer_t slope_map;
     hybrid_slope_grid_t slope_grid;
     float slope_recover;
-    /* Colour gain on the billboards' albedo, per channel (the hybrid's seam
-     * match, app_world_seam_match); all zero: 1. */
-    float gain[3];
 } bb_draw_desc_t;
 
 /* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)
