@@ -91,6 +91,15 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
         }                                                                         \
         i++;                                                                      \
     } while (0)
+/* NEED_VALUE, and the value may not be empty ("OPTION: empty WHAT"). */
+#define NEED_NONEMPTY(what)                                                       \
+    do {                                                                          \
+        NEED_VALUE();                                                             \
+        if (!*v) {                                                                \
+            snprintf(err, err_size, "%s: empty %s", a, what);                     \
+            return 2;                                                             \
+        }                                                                         \
+    } while (0)
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             app_print_usage();
             return 1;
@@ -123,35 +132,19 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
         } else if (strcmp(a, "--stability") == 0) {
             o->stability = true;
         } else if (strcmp(a, "--case") == 0) {
-            NEED_VALUE();
-            if (!*v) {
-                snprintf(err, err_size, "--case: empty case name");
-                return 2;
-            }
+            NEED_NONEMPTY("case name");
             o->stability_case = v;
         } else if (strcmp(a, "--chart") == 0) {
-            NEED_VALUE();
-            if (!*v) {
-                snprintf(err, err_size, "--chart: empty chart name");
-                return 2;
-            }
+            NEED_NONEMPTY("chart name");
             o->chart = v;
         } else if (strcmp(a, "--scaling") == 0) {
             o->scaling = true;
         } else if (strcmp(a, "--report") == 0) {
-            NEED_VALUE();
-            if (!*v) {
-                snprintf(err, err_size, "--report: empty folder name");
-                return 2;
-            }
+            NEED_NONEMPTY("folder name");
             o->report = v;
         } else if (strcmp(a, "--perf") == 0 || strcmp(a, "--baseline") == 0 || strcmp(a, "--from") == 0 ||
                    strcmp(a, "--doc") == 0) {
-            NEED_VALUE();
-            if (!*v) {
-                snprintf(err, err_size, "%s: empty path", a);
-                return 2;
-            }
+            NEED_NONEMPTY("path");
             const char **slot = a[2] == 'p' ? &o->perf : a[2] == 'b' ? &o->baseline : a[2] == 'f' ? &o->perf_from
                                                                                              : &o->doc;
             *slot = v;
@@ -163,11 +156,7 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             NEED_VALUE();
             o->scene = v;
         } else if (strcmp(a, "--out") == 0) {
-            NEED_VALUE();
-            if (!*v) {
-                snprintf(err, err_size, "--out: empty folder name");
-                return 2;
-            }
+            NEED_NONEMPTY("folder name");
             o->out = v;
         } else if (strcmp(a, "--character") == 0) {
             NEED_VALUE();

@@ -247,7 +247,7 @@ static void upload_next_segment(void)
     u.head = (size_t)u.seg * UPLOAD_SEGMENT;
 }
 
-static void upload(GLuint dst, size_t offset, size_t size, const void *data)
+void gfx_upload_raw(GLuint dst, size_t offset, size_t size, const void *data)
 {
     if (!upload_ring_ready()) {
         glNamedBufferSubData(dst, (GLintptr)offset, (GLsizeiptr)size, data);
@@ -280,17 +280,12 @@ static void upload_shutdown(void)
 static bool upload_ring_alive(void) { return u.id != 0; }
 long gfx_upload_waits(void) { return u.waits; }
 
-void gfx_upload_raw(GLuint buffer, size_t offset, size_t size, const void *data)
-{
-    upload(buffer, offset, size, data);
-}
-
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data)
 {
     if (buf.mapped)
         memcpy((char *)buf.mapped + offset, data, size);
     else
-        upload(buf.id, offset, size, data);
+        gfx_upload_raw(buf.id, offset, size, data);
 }
 
 bool gfx_buffer_read(gfx_buffer_t buf, size_t offset, size_t size, void *out)
