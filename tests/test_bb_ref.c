@@ -4,6 +4,7 @@
  * recovery (eq. 8), the wind formula, a 1000-frame stress run, and the
  * bb_point_t layout against struct bb_point in shaders/common/bb.glsl. */
 #include "billboard/bb_ref.h"
+#include "blade/blade_ref.h"
 #include "core/core.h"
 #include "test.h"
 
@@ -318,6 +319,42 @@ static void test_springs(void)
     bb_mesh_free(&tiny);
 }
 
+/* Billboards and blades sway in phase under one wave (bb_wind_from_wave):
+ * over places and times, the billboard top's bend along the wind and the
+ * blades' wind strength correlate (s's main term is the wave itself: about
+ * 0.6 / sqrt(0.6^2 + 0.3^2 + 0.1^2) = 0.88; in antiphase it would be -0.88). */
+static void test_wind_phase(void)
+{
+    const float dir[2] = {1.0f, 0.3f}, strength = 1.0f, wavelength = 10.0f, speed = 2.0f;
+    bb_wind_desc_t bw = bb_wind_from_wave(dir[0], dir[1], strength, wavelength, speed);
+    bw = bb_wind_desc_defaults(&bw);
+    blade_wind_t blw = blade_wind_wave(dir[0], dir[1], strength, wavelength, speed);
+    core_rng_t rng;
+    core_rng_seed(&rng, 11u, 0u);
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    const int n = 2000;
+    for (int i = 0; i < n; i++) {
+        vec3 root = {core_rng_range(&rng, -20.0f, 20.0f), 0.0f, core_rng_range(&rng, -20.0f, 20.0f)};
+        float t = core_rng_range(&rng, 0.0f, 30.0f);
+        vec3 top = {root[0], 1.0f, root[2]}, out;
+        bb_ref_wind_vertex(&bw, top, root, 1.0f, t, out);
+        float bend = (out[0] - top[0]) * bw.dir[0] + (out[2] - top[2]) * bw.dir[1];
+        float w[3];
+        blade_ref_wind_field(&blw, root, t, w);
+        float f = sqrtf(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+        sx += bend;
+        sy += f;
+        sxx += (double)bend * bend;
+        syy += (double)f * f;
+        sxy += (double)bend * f;
+    }
+    double cov = sxy / n - (sx / n) * (sy / n);
+    double r = cov / sqrt((sxx / n - (sx / n) * (sx / n)) * (syy / n - (sy / n) * (sy / n)));
+    printf("wind phase: billboard bend vs blade wind correlation %.3f\n", r);
+    CHECK_MSG(r > 0.8, "billboard bend vs blade wind correlation %.3f (in phase: > 0.8)", r);
+    CHECK_NEAR(bw.strength, 0.08f * strength, 1e-6f);
+}
+
 static void test_wind_recover(void)
 {
     bb_mesh_t mesh;
@@ -484,6 +521,7 @@ int main(void)
     test_resting_wedge();
     test_springs();
     test_wind_recover();
+    test_wind_phase();
     test_stress();
     test_point_layout();
     TEST_END();

@@ -86,6 +86,14 @@ void bb_plain_corners(bb_point p, vec3 right, vec3 up, bb_wind wind, float time,
     tb = bb_wind_vertex(wind, b + p.size.y * up, p.position, 1.0, time);
 }
 
+/* Surface normal of a plain quad with root corners a, b and top corners
+ * ta, tb (wind pose and slope shift applied): the quad as drawn, so its
+ * shading leans with it as a deformed mesh's does (bb_mesh_normal). */
+vec3 bb_plain_normal(vec3 a, vec3 b, vec3 ta, vec3 tb)
+{
+    return normalize(cross(b - a, 0.5 * (ta + tb) - 0.5 * (a + b)));
+}
+
 /* True when billboard p lies wholly nearer than the hybrid fade band
  * (fade_end <= 0: no band), where blades stand instead. */
 bool bb_fade_dropped(bb_point p, vec3 camera, float fade_start, float fade_end)

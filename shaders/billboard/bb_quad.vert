@@ -5,8 +5,8 @@
  * bb_render.geom (two upper vertices moved by bb_wind_vertex). Idle leaves
  * hold no deformed billboard; a point that does, or that lies wholly nearer
  * than the hybrid fade band, is emitted degenerate. The top edge takes the
- * handed-over slope of its cell (bb_slope.glsl). Outputs match
- * bb_render.frag's inputs. */
+ * handed-over slope of its cell (bb_slope.glsl); the normal is the moved
+ * quad's (bb_plain_normal). Outputs match bb_render.frag's inputs. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
@@ -47,11 +47,13 @@ void main()
     vec3 a, b, ta, tb;
     bb_plain_corners(p, right, up, u_wind, u_time, a, b, ta, tb);
     vec3 shift = bb_slope_shift(p, ta, tb);
-    vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb) + shift);
+    ta += shift;
+    tb += shift;
+    vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb));
     g_tint = bb_tint(p);
     g_overlay = 0u;
     g_world = pos;
-    g_normal = cross(right, up);
+    g_normal = bb_plain_normal(a, b, ta, tb);
     g_uvl = vec3(float(c & 1), 1.0 - float(c >> 1), float(p.layer));
     gl_Position = u_viewproj * vec4(pos, 1.0);
 }

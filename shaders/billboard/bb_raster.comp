@@ -56,6 +56,7 @@ bb_point g_p;
 float g_layer, g_tint, g_lod;
 vec3 g_right, g_up;
 vec3 g_corner[4];
+vec3 g_plain_n;
 vec3 g_pos[3];
 vec3 g_nrm[3];
 vec2 g_uv[3]; /* u, height h (0 root) */
@@ -96,6 +97,7 @@ bool bb_setup(uint prim)
         g_corner[1] = b;
         g_corner[2] = ta + shift;
         g_corner[3] = tb + shift;
+        g_plain_n = bb_plain_normal(a, b, g_corner[2], g_corner[3]);
     } else {
         bb_load_mesh(p.pad0);
         if (u_slope_on != 0) bb_slope_mesh(p, ta, tb);
@@ -116,7 +118,7 @@ vec4 bb_vertex(int i, int j, int slot)
     vec2 uv;
     if (g_p.pad0 == BB_NO_SLOT) {
         pos = g_corner[j * 2 + i];
-        n = cross(g_right, g_up);
+        n = g_plain_n;
         uv = vec2(float(i), float(j));
     } else {
         pos = bb_pos[j * BB_N + i];

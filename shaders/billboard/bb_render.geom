@@ -53,12 +53,12 @@ void main()
                                                             : (p.state == BB_STATE_RECOVERING ? vec4(1.0, 0.85, 0.1, 0.75)
                                                                                               : vec4(0.0))));
     if (p.pad0 == BB_NO_SLOT) {
-        vec3 n = cross(right, up);
         vec3 a, b, c, d;
         bb_plain_corners(p, right, up, u_wind, u_time, a, b, c, d);
         vec3 shift = bb_slope_shift(p, c, d);
         c = c + shift;
         d = d + shift;
+        vec3 n = bb_plain_normal(a, b, c, d);
         put(a, n, 0.0, 0.0, layer);
         put(b, n, 1.0, 0.0, layer);
         put(c, n, 0.0, 1.0, layer);

@@ -316,8 +316,8 @@ vec3 bb_wind_vertex(bb_wind wind, vec3 rest, vec3 root, float h, float time)
 {
     float ph = wind.wavenumber * (root.x * wind.dir.x + root.z * wind.dir.y);
     float wt = wind.omega * time;
-    float s = 0.6 * sin(wt - ph) + 0.3 * sin(2.3 * wt - 1.7 * ph + 1.3) +
-              0.1 * sin(5.1 * wt - 2.9 * ph + 0.7);
+    float s = 0.6 * sin(ph - wt) + 0.3 * sin(1.7 * ph - 2.3 * wt + 1.3) +
+              0.1 * sin(2.9 * ph - 5.1 * wt + 0.7);
     float bend = wind.strength * h * h * (0.4 + 0.6 * s);
     return vec3(rest.x + bend * wind.dir.x, rest.y, rest.z + bend * wind.dir.y);
 }

@@ -176,9 +176,7 @@ static bool make_bb(app_world_t *w)
     bb_wind_desc_t wind = {0};
     if (s->wind_count && s->wind[0].type == SCENE_WIND_DIRECTIONAL) {
         const scene_wind_t *sw = &s->wind[0];
-        wind = (bb_wind_desc_t){.dir = {sw->direction[0], sw->direction[1]}, .strength = 0.08f * sw->strength,
-                                .omega = 2.0f * GLM_PIf * sw->speed / sw->wavelength,
-                                .wavenumber = 2.0f * GLM_PIf / sw->wavelength};
+        wind = bb_wind_from_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
     }
     bb_gen_desc_t gen;
     int layout_size = layout_for(w, &gen);

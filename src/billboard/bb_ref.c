@@ -298,6 +298,15 @@ void bb_ref_recover(bb_mesh_t *mesh, const vec3 *wind_pose, float t)
             mesh->pos[v][k] = (1.0f - t3) * wind_pose[v][k] + t3 * mesh->pos[v][k];
 }
 
+bb_wind_desc_t bb_wind_from_wave(float dir_x, float dir_z, float strength, float wavelength, float speed)
+{
+    assert(wavelength > 0.0f);
+    return (bb_wind_desc_t){.dir = {dir_x, dir_z},
+                            .strength = 0.08f * strength,
+                            .omega = 2.0f * GLM_PIf * speed / wavelength,
+                            .wavenumber = 2.0f * GLM_PIf / wavelength};
+}
+
 bb_wind_desc_t bb_wind_desc_defaults(const bb_wind_desc_t *desc)
 {
     bb_wind_desc_t d = desc ? *desc : (bb_wind_desc_t){0};
@@ -320,8 +329,8 @@ void bb_ref_wind_vertex(const bb_wind_desc_t *wind, const vec3 rest, const vec3 
 {
     float ph = wind->wavenumber * (root[0] * wind->dir[0] + root[2] * wind->dir[1]);
     float wt = wind->omega * time;
-    float s = 0.6f * sinf(wt - ph) + 0.3f * sinf(2.3f * wt - 1.7f * ph + 1.3f) +
-              0.1f * sinf(5.1f * wt - 2.9f * ph + 0.7f);
+    float s = 0.6f * sinf(ph - wt) + 0.3f * sinf(1.7f * ph - 2.3f * wt + 1.3f) +
+              0.1f * sinf(2.9f * ph - 5.1f * wt + 0.7f);
     float bend = wind->strength * h * h * (0.4f + 0.6f * s);
     out[0] = rest[0] + bend * wind->dir[0];
     out[1] = rest[1];

@@ -96,8 +96,8 @@ void bb_ref_recover(bb_mesh_t *mesh, const vec3 *wind_pose, float t);
  * For a vertex with rest position p, billboard root r (rest row-0 centre),
  * height fraction h = j/(M-1), wind direction d (xz, normalised):
  *   ph   = k * dot(r.xz, d)
- *   s    = 0.6 sin(w t - ph) + 0.3 sin(2.3 w t - 1.7 ph + 1.3)
- *        + 0.1 sin(5.1 w t - 2.9 ph + 0.7)
+ *   s    = 0.6 sin(ph - w t) + 0.3 sin(1.7 ph - 2.3 w t + 1.3)
+ *        + 0.1 sin(2.9 ph - 5.1 w t + 0.7)
  *   bend = strength * h^2 * (0.4 + 0.6 s)
  *   out  = p + bend * (d.x, 0, d.y)
  * Only the upper vertices move (h = 0 at the roots); the displacement is
@@ -109,6 +109,13 @@ typedef struct bb_wind_desc_t {
     float wavenumber;  /* k (rad/m), default 0.4 */
 } bb_wind_desc_t;
 bb_wind_desc_t bb_wind_desc_defaults(const bb_wind_desc_t *desc);
+/* The billboards' wind for the blades' wave field blade_wind_wave(dir_x,
+ * dir_z, strength, wavelength, speed) (blade_ref.h): the same direction,
+ * k = 2 pi / wavelength and w = 2 pi speed / wavelength, so both sway in
+ * phase (the wave's crest, where the blades bend most, is where s peaks),
+ * and 0.08 m of tip displacement per unit of strength (the blades' bend
+ * under it: about 0.1 m on 0.5 m blades of stiffness 8-12). wavelength > 0. */
+bb_wind_desc_t bb_wind_from_wave(float dir_x, float dir_z, float strength, float wavelength, float speed);
 
 /* One vertex of the formula above (wind must be resolved by the defaults). */
 void bb_ref_wind_vertex(const bb_wind_desc_t *wind, const vec3 rest, const vec3 root,
