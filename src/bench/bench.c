@@ -155,6 +155,16 @@ static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_m
     return x;
 }
 
+/* The timings of `from` (frame, passes, CPU) into `to`, its accuracy kept. */
+static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
+{
+    to->frame_ms = from->frame_ms;
+    to->cpu_ms = from->cpu_ms;
+    to->pass_count = from->pass_count;
+    memcpy(to->pass_ms, from->pass_ms, sizeof to->pass_ms);
+    memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
+}
+
 static int build_configs(bench_config_t *c, bool quick)
 {
     int n = 0;
@@ -451,6 +461,15 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
         bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
         rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
+        /* Timing: the faster of two runs (image and accuracy from the first;
+         * not with --quick). On the H100 a run now and then had every pass
+         * slower, the unchanged terrain pass too: billboard_x1_compute read
+         * 5.21 ms in one report (terrain 0.78 ms) and 1.70 ms alone (0.23). */
+        if (rc == 0 && !quick) {
+            bench_metrics_t again;
+            rc = bench_session_run_hooks(&d, &h, NULL, &again);
+            if (rc == 0 && again.frame_ms < b->met[i].frame_ms) keep_timing(&b->met[i], &again);
+        }
         if (rc) break;
         b->err[i] = eval_image_error(&img, &ref, &ed, &e) ? e.score : -1.0;
         b->terms[i] = e;
@@ -584,10 +603,11 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                     "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
                     "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
                     "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
-                    "- renderer: `%s`\n- frames per configuration: %d\n\n",
+                    "- renderer: `%s`\n- frames per configuration: %d%s\n\n",
                     dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
                     o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
-                    b->renderer[0] ? b->renderer : "?", b->frames);
+                    b->renderer[0] ? b->renderer : "?", b->frames,
+                    o->quick ? "" : "; sweep timings: the faster of two runs of each configuration");
     if (strstr(b->renderer, "llvmpipe"))
         core_buf_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "

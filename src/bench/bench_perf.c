@@ -75,6 +75,12 @@ static void scene_short(const char *path, char *out, size_t size)
     if (dot) *dot = 0;
 }
 
+/* The smaller of two timings, ignoring a failed one (negative). */
+static double faster(double a, double b)
+{
+    return a < 0.0 ? b : (b < 0.0 ? a : (b < a ? b : a));
+}
+
 static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raster_t raster, int frames,
                        bench_perf_run_t *r)
 {
@@ -109,12 +115,17 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     r->blades_drawn = probe.stats.blade_survivors;
     r->billboards = probe.stats.billboards;
     r->triangles = probe.stats.triangles;
-    r->floor_ms = probe.stats.triangles > 0 ? app_floor_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa)
-                                            : -1.0;
-    r->compute_floor_ms = probe.stats.triangles > 0
-                              ? app_floor_compute_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa,
-                                                     probe.raster_samples)
-                              : -1.0;
+    /* Each floor the faster of two measurements: on the H100 one of them now
+     * and then ran 3.7 times slower (meadow_large's hardware floor read
+     * 27.7 ms in one run, 7.5 ms in every other). */
+    r->floor_ms = -1.0;
+    r->compute_floor_ms = -1.0;
+    for (int k = 0; k < 2 && probe.stats.triangles > 0; k++) {
+        r->floor_ms = faster(r->floor_ms, app_floor_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa));
+        r->compute_floor_ms = faster(r->compute_floor_ms, app_floor_compute_ms(probe.stats.triangles, r->size[0],
+                                                                               r->size[1], r->msaa,
+                                                                               probe.raster_samples));
+    }
     return 0;
 }
 

@@ -85,7 +85,7 @@ tilescaling() {
 
 report() {
   echo "== bench report"
-  ( time timeout -k 10 400 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
+  ( time timeout -k 10 560 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
       --quiet --out /tmp/rep/out ) 2>&1 | tail -20
   tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
   ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
