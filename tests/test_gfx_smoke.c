@@ -1,9 +1,11 @@
 /* test_gfx_smoke: a GL 4.5 context exists, shader errors name file:line,
- * #include works, an MSAA FBO resolves and reads back, timers report, a
+ * #include works, an MSAA FBO resolves and reads back (colour, depth, the
+ * nearest depth sample per pixel), timers report, a
  * readback ring returns its copies in order, and nothing leaks. */
 #include "test.h"
 #include "test_gl.h"
 
+#include <math.h>
 #include <string.h>
 
 int main(void)
@@ -55,6 +57,49 @@ int main(void)
     for (int i = 0; i < 64 * 32; i++) translucent += img.px[i * 4 + 3] != 255;
     CHECK_MSG(translucent == 0, "%d pixels read back with alpha below 255", translucent);
     core_image_free(&img);
+
+    /* Nearest depth sample per pixel (61 x 37, so the edge crosses pixels
+     * at many offsets): the triangle, upside down (glClipControl), at window
+     * depth 0.5 over a cleared depth of 1. A pixel reads 0.5 when any of its
+     * samples (at GL_SAMPLE_POSITION) lies inside the triangle (x + y < 0 in
+     * NDC, y flipped), else 1; pixels with a sample within 1e-3 of the edge
+     * are left out. The check discriminates: on some pixels sample 0 is
+     * outside and another sample inside, where one sample's depth would read
+     * 1. */
+    enum { DW = 61, DH = 37 };
+    gfx_target_t dt = gfx_target_make(&(gfx_target_desc_t){.w = DW, .h = DH, .samples = 4, .label = "smoke.depth"});
+    gfx_target_bind(&dt);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    glClipControl(GL_UPPER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glUseProgram(prog.id);
+    glBindVertexArray(vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+    glDisable(GL_DEPTH_TEST);
+    float nearest[DW * DH], pos[4][2];
+    CHECK(gfx_target_read_depth_nearest(&dt, nearest));
+    for (int k = 0; k < 4; k++) glGetMultisamplefv(GL_SAMPLE_POSITION, (GLuint)k, pos[k]);
+    int wrong = 0, checked = 0, not_sample0 = 0;
+    for (int y = 0; y < DH; y++)
+        for (int x = 0; x < DW; x++) {
+            int gy = DH - 1 - y; /* row 0 of the read is the top */
+            bool inside[4], any = false, near_edge = false;
+            for (int k = 0; k < 4; k++) {
+                float nx = ((float)x + pos[k][0]) / DW * 2.0f - 1.0f, ny = 1.0f - ((float)gy + pos[k][1]) / DH * 2.0f;
+                inside[k] = nx + ny < 0.0f;
+                any = any || inside[k];
+                near_edge = near_edge || fabsf(nx + ny) < 1e-3f;
+            }
+            if (near_edge) continue;
+            checked++;
+            wrong += fabsf(nearest[y * DW + x] - (any ? 0.5f : 1.0f)) > 1e-6f;
+            not_sample0 += any && !inside[0];
+        }
+    printf("nearest depth: %d of %d pixels wrong; %d pixels covered only off sample 0\n", wrong, checked, not_sample0);
+    CHECK(checked > DW * DH * 9 / 10 && wrong == 0);
+    CHECK(not_sample0 > 0);
+    gfx_target_destroy(&dt);
 
     gfx_timer_flush();
     CHECK(gfx_timer_count() == 1);

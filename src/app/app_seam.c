@@ -1,6 +1,10 @@
 /* app_seam: the hybrid seam measure of a drawn frame (docs/METRICS.md,
  * "Hybrid seam"). A frame read back from the target gives, per pixel, the
- * distance from the camera to the visible surface (resolved depth). The
+ * distance from the camera to the nearest surface it shows (its nearest
+ * depth sample, gfx_target_read_depth_nearest: the hardware path stores
+ * grass depth per sample, the compute rasterizer's composite per pixel, so
+ * one sample's depth put the same grass pixel at different distances on
+ * the two paths). The
  * background, the same view drawn with no grass, says which pixels count:
  * those where it shows the terrain (not the sky, colliders or characters);
  * of those, a pixel is grass where the frame differs from the background by
@@ -16,8 +20,8 @@
 #include <string.h>
 
 /* A background pixel shows the terrain when its surface lies less than this
- * (m) above terrain_height_at: the resolved depth is one MSAA sample's, off
- * the pixel centre, which puts grazing ground a few centimetres high;
+ * (m) above terrain_height_at: the depth is an MSAA sample's, off the pixel
+ * centre, which puts grazing ground a few centimetres high;
  * colliders and characters stand far higher. */
 #define APP_SEAM_GROUND_EPS 0.15f
 /* Levels (of 255) a channel must differ from the background for grass
@@ -43,7 +47,7 @@ bool app_seam_frame_read(const app_world_t *w, const app_view_t *v, const gfx_ta
     size_t n = (size_t)t->w * (size_t)t->h;
     f->dist = malloc(sizeof(float) * n);
     f->cls = malloc(n);
-    if (!f->dist || !f->cls || !gfx_target_read(t, &f->img) || !gfx_target_read_depth(t, f->dist)) {
+    if (!f->dist || !f->cls || !gfx_target_read(t, &f->img) || !gfx_target_read_depth_nearest(t, f->dist)) {
         app_seam_frame_free(f);
         return false;
     }

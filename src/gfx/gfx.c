@@ -115,6 +115,7 @@ void gfx_shutdown(bool report_leaks)
 {
     upload_shutdown();
     gfx_text_shutdown();
+    gfx_depth_shutdown();
     gfx_timer_shutdown();
     gfx_count_shutdown();
     if (report_leaks && g.count)

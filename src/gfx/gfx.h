@@ -132,6 +132,12 @@ bool gfx_target_read(const gfx_target_t *t, core_image_t *out);
  * drawn) as w * h floats, row 0 at the top; false when the target has no
  * depth. */
 bool gfx_target_read_depth(const gfx_target_t *t, float *out);
+/* As gfx_target_read_depth, but each pixel's nearest depth sample instead
+ * of the one sample the resolve blit keeps (gfx_depth.c): the distance to
+ * the nearest surface anything in the pixel shows, alike for grass drawn
+ * per sample by the hardware and per pixel by the compute rasterizer's
+ * composite. False when the target has no depth or the pass fails. */
+bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out);
 /* Resolve + read + write PNG (atomic). */
 bool gfx_target_screenshot(const gfx_target_t *t, const char *path);
 

@@ -16,6 +16,7 @@ void gfx_count_pass_end(void);
 void gfx_count_frame(void);
 void gfx_count_shutdown(void);
 void gfx_text_shutdown(void);
+void gfx_depth_shutdown(void);
 /* gfx_buffer_update's ring upload for a raw buffer name (also gfx_text's
  * vertex buffer). */
 void gfx_upload_raw(GLuint buffer, size_t offset, size_t size, const void *data);

@@ -1,0 +1,66 @@
+/* gfx_depth: the nearest depth sample of each pixel of a multisampled
+ * target (shaders/gfx/depth_nearest.comp), for measures that need the
+ * distance to the nearest visible surface of a pixel whichever sample it
+ * covers. Its program is gfx-internal: labelled, created on first use,
+ * released by gfx_shutdown. */
+#include "gfx/gfx_local.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static struct {
+    GLuint prog;
+    bool failed;
+} g_depth;
+
+static bool depth_init(void)
+{
+    if (g_depth.prog || g_depth.failed) return !g_depth.failed;
+    gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){.cs = "gfx/depth_nearest.comp",
+                                                             .label = "gfx.depth_nearest.program"});
+    if (!p.id) {
+        g_depth.failed = true;
+        return false;
+    }
+    /* Internal: keep out of the user object count. */
+    gfx_untrack(GL_PROGRAM, p.id);
+    g_depth.prog = p.id;
+    return true;
+}
+
+void gfx_depth_shutdown(void)
+{
+    if (g_depth.prog) glDeleteProgram(g_depth.prog);
+    memset(&g_depth, 0, sizeof g_depth);
+}
+
+bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out)
+{
+    if (!t->depth.id) return false;
+    if (t->samples <= 1 || t->resolve_fbo == t->fbo) return gfx_target_read_depth(t, out);
+    if (!depth_init()) return false;
+    size_t n = (size_t)t->w * (size_t)t->h;
+    gfx_buffer_t buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(float) * n, .readable = true,
+                                                            .label = "gfx.depth_nearest.buffer"});
+    float *tmp = malloc(sizeof(float) * n);
+    bool ok = buf.id && tmp;
+    if (ok) {
+        glUseProgram(g_depth.prog);
+        glBindTextureUnit(0, t->depth.id);
+        glUniform1i(glGetUniformLocation(g_depth.prog, "u_depth"), 0);
+        glUniform1i(glGetUniformLocation(g_depth.prog, "u_samples"), t->samples);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf.id);
+        glDispatchCompute(((GLuint)t->w + 7u) / 8u, ((GLuint)t->h + 7u) / 8u, 1);
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBindTextureUnit(0, 0);
+        ok = gfx_buffer_read(buf, 0, sizeof(float) * n, tmp);
+    }
+    if (ok) {
+        size_t row = (size_t)t->w;
+        for (int y = 0; y < t->h; y++)
+            memcpy(out + (size_t)y * row, tmp + (size_t)(t->h - 1 - y) * row, sizeof(float) * row);
+    }
+    free(tmp);
+    gfx_buffer_destroy(&buf);
+    return ok;
+}
