@@ -5,13 +5,12 @@
  * 1. The seam of the hybrid frame against its billboard-only reference:
  *    its coverage step stays within SEAM_COVERAGE (the tiles widen the
  *    blades their distance levels thin, blade_ref_lod_width).
- * 2. Its floor: the billboard-only frame of the same view with another
- *    placement seed against the reference (no switch in either; only
- *    where the billboards stand differs) scores below 1, and so does the
- *    hybrid seam (not clearly visible). Issue 16 asks for the seam within
- *    the floor; it is not (0.688 against 0.584 since the windows take each
- *    pixel's nearest depth sample, docs/METRICS.md), so this guards the
- *    seam against getting clearly visible and prints both. The reference's
+ * 2. Its floor (app_world_seam_floor): billboard-only frames of the same
+ *    view with other placement seeds against the reference (no switch in
+ *    either; only where the billboards stand differs), their mean below 1,
+ *    and so is the hybrid seam (not clearly visible). Issue 16 asks for
+ *    the seam within the floor; it is not (docs/METRICS.md), so this
+ *    guards the seam against getting clearly visible and prints both. The reference's
  *    own step (the view's change with distance, no reference) is printed:
  *    why the measure needs a reference.
  * 3. The measure follows a seam: the hybrid frame with its far side (the
@@ -27,14 +26,13 @@
 /* The hybrid frame's coverage step may not exceed this (score 1). */
 #define SEAM_COVERAGE 0.05
 
-static app_world_t *make_world(uint32_t placement_seed)
+static app_world_t *make_world(void)
 {
     app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
     app_world_t *w = calloc(1, sizeof *w);
     CHECK(app_world_load(w, &o) == 0);
     app_world_set_mode(w, SCENE_MODE_HYBRID);
     w->scene.grass.switch_distance = 10.0f;
-    w->tuning.placement_seed = placement_seed;
     CHECK(app_world_make_gpu(w));
     for (int f = 0; f < 4; f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     return w;
@@ -46,7 +44,7 @@ int main(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    app_world_t *w = make_world(0);
+    app_world_t *w = make_world();
     const scene_desc_t *s = &w->scene;
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
     cam_t cam;
@@ -56,7 +54,7 @@ int main(void)
     eval_seam_desc_t d = app_seam_desc(w);
 
     /* 1. The hybrid frame against its billboard-only reference. */
-    app_seam_frame_t hybrid, ref, other, bg;
+    app_seam_frame_t hybrid, ref, bg;
     CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &hybrid));
     eval_seam_t e;
     CHECK(app_world_seam(w, &v, &t, &e));
@@ -67,21 +65,20 @@ int main(void)
     CHECK(e.pixels[0][0] > 1000 && e.pixels[0][1] > 1000);
     CHECK(e.coverage <= SEAM_COVERAGE);
 
-    /* 2. Floor: billboards only, another placement, against the reference. */
+    /* 2. Floor: billboards only, other placements, against the reference. */
+    app_seam_floor_t fl;
+    CHECK(app_world_seam_floor(w, &v, &t, &fl));
+    printf("floor (billboards, %d other placements, means): score %.3f (%.3f %.3f %.3f), Delta E %.3f, coverage "
+           "%.4f\n",
+           APP_SEAM_FLOOR_PLACEMENTS, fl.mean.score, fl.score[0], fl.score[1], fl.score[2], fl.mean.delta_e,
+           fl.mean.coverage);
+    CHECK(fl.mean.score > 0.0 && fl.mean.score < 1.0);
+    CHECK_MSG(e.score < 1.0, "the seam (%.3f) is clearly visible (floor %.3f)", e.score, fl.mean.score);
     CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_BILLBOARD, true, &ref));
     CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, false, &bg));
-    app_world_t *w2 = make_world(0x9e3779b9u);
-    CHECK(app_seam_frame_draw(w2, &v, &t, SCENE_MODE_BILLBOARD, true, &other));
     app_seam_frame_classify(&hybrid, &bg);
     app_seam_frame_classify(&ref, &bg);
-    app_seam_frame_classify(&other, &bg);
-    eval_seam_frame_t fh = view_of(&hybrid), fr = view_of(&ref), fo = view_of(&other);
-    eval_seam_t floor_e;
-    CHECK(eval_image_seam(&fo, &fr, &d, &floor_e));
-    printf("floor (billboards, another placement): score %.3f, Delta E %.3f, coverage %.4f\n", floor_e.score,
-           floor_e.delta_e, floor_e.coverage);
-    CHECK(floor_e.score < 1.0);
-    CHECK_MSG(e.score < 1.0, "the seam (%.3f) is clearly visible (floor %.3f)", e.score, floor_e.score);
+    eval_seam_frame_t fh = view_of(&hybrid), fr = view_of(&ref);
     /* Why a reference: the billboard-only frame's own step across the band
      * (no switch in it) is the view's change with distance. */
     eval_seam_t own;
@@ -108,13 +105,10 @@ int main(void)
 
     app_seam_frame_free(&hybrid);
     app_seam_frame_free(&ref);
-    app_seam_frame_free(&other);
     app_seam_frame_free(&bg);
     gfx_target_destroy(&t);
     app_world_destroy(w);
-    app_world_destroy(w2);
     free(w);
-    free(w2);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

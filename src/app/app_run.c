@@ -192,12 +192,14 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                       "%.1f) | (%.1f %.1f %.1f)\n",
                       e.lab[0][0][0], e.lab[0][0][1], e.lab[0][0][2], e.lab[0][1][0], e.lab[0][1][1], e.lab[0][1][2],
                       e.lab[1][0][0], e.lab[1][0][1], e.lab[1][0][2], e.lab[1][1][0], e.lab[1][1][1], e.lab[1][1][2]);
-    eval_seam_t f;
+    app_seam_floor_t f;
+    _Static_assert(APP_SEAM_FLOOR_PLACEMENTS == 3, "the floor line prints three placements");
     if (n < (int)size && app_world_seam_floor(w, &app->last_view, &app->target, &f))
         n += snprintf(buf + n, size - (size_t)n,
-                      "  floor (billboards placed with another seed, against the reference): score %.3f, Delta E "
-                      "%.3f, coverage %.4f; the seam is %s the floor\n",
-                      f.score, f.delta_e, f.coverage, e.score <= f.score ? "within" : "above");
+                      "  floor (billboards placed with %d other seeds, each against the reference; means): score "
+                      "%.3f (%.3f %.3f %.3f), Delta E %.3f, coverage %.4f; the seam is %s the floor\n",
+                      APP_SEAM_FLOOR_PLACEMENTS, f.mean.score, f.score[0], f.score[1], f.score[2], f.mean.delta_e,
+                      f.mean.coverage, e.score <= f.mean.score ? "within" : "above");
     return n < (int)size ? n : (int)size - 1;
 }
 

@@ -30,7 +30,8 @@
 /* A window of the band with fewer counted pixels than this (in the frame
  * or the reference) leaves the seam unmeasured. */
 #define APP_SEAM_MIN_PIXELS 100
-/* The floor's second placement: the world's placement seed xor this. */
+/* The floor's placements: the world's placement seed xor this times 1, 2,
+ * ... APP_SEAM_FLOOR_PLACEMENTS. */
 #define APP_SEAM_FLOOR_SEED 0x9e3779b9u
 
 void app_seam_frame_free(app_seam_frame_t *f)
@@ -134,25 +135,38 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
     return ok;
 }
 
-bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, app_seam_floor_t *out)
 {
     memset(out, 0, sizeof *out);
     if (w->mode != SCENE_MODE_HYBRID || !w->have_bb) return false;
-    app_seam_frame_t ref = {0}, other = {0}, bg = {0};
+    app_seam_frame_t ref = {0}, bg = {0};
     bool ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               app_seam_frame_draw(w, v, t, w->mode, false, &bg);
     bb_field_t keep = w->bb;
     uint32_t seed = w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
-    if (ok) ok = app_world_make_billboards(w, seed ^ APP_SEAM_FLOOR_SEED);
-    if (ok) {
-        ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &other);
-        bb_field_destroy(&w->bb);
+    for (int k = 0; ok && k < APP_SEAM_FLOOR_PLACEMENTS; k++) {
+        app_seam_frame_t other = {0};
+        eval_seam_t e;
+        ok = app_world_make_billboards(w, seed ^ (APP_SEAM_FLOOR_SEED * (uint32_t)(k + 1)));
+        if (ok) {
+            ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &other);
+            bb_field_destroy(&w->bb);
+        }
+        /* seam_of classifies ref again against the same background: the
+         * same classes every time. */
+        if (ok) ok = seam_of(w, &other, &ref, &bg, &e);
+        app_seam_frame_free(&other);
+        if (!ok) break;
+        out->score[k] = e.score;
+        out->mean.score += e.score / APP_SEAM_FLOOR_PLACEMENTS;
+        out->mean.delta_e += e.delta_e / APP_SEAM_FLOOR_PLACEMENTS;
+        out->mean.delta_l += e.delta_l / APP_SEAM_FLOOR_PLACEMENTS;
+        out->mean.coverage += e.coverage / APP_SEAM_FLOOR_PLACEMENTS;
     }
     w->bb = keep;
     w->have_bb = true;
-    if (ok) ok = seam_of(w, &other, &ref, &bg, out);
     app_seam_frame_free(&ref);
-    app_seam_frame_free(&other);
     app_seam_frame_free(&bg);
+    if (!ok) memset(out, 0, sizeof *out);
     return ok;
 }
