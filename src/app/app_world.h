@@ -210,11 +210,11 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
  * APP_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn
  * billboard-only (undeformed) against the world's own billboard-only frame:
  * what the measure reads where only where billboards stand differs
- * (docs/METRICS.md). One placement's score varies by 2x from seed to seed
- * (metric.json: 0.25 and 0.58), so the floor is their mean (score and
- * terms), each placement's score kept beside it. The world's billboards are
- * kept and restored. False as app_world_seam, or when a field cannot be
- * built. */
+ * (docs/METRICS.md). One placement's score varies by 2-7x from seed to
+ * seed (meadow_large at frame 120 on the H100: 0.039, 0.208, 0.049), so
+ * the floor is their mean (score and terms), each placement's score kept
+ * beside it. The world's billboards are kept and restored. False as
+ * app_world_seam, or when a field cannot be built. */
 #define APP_SEAM_FLOOR_PLACEMENTS 3
 typedef struct app_seam_floor_t {
     eval_seam_t mean; /* score, delta_e, delta_l, coverage: means over the placements */

@@ -35,6 +35,10 @@
 #                holding a shaders/ tree, e.g. `git archive REV shaders | tar x
 #                -C .bundle/old`); pass medians of each to $R. The binary must
 #                suit every shader tree.
+#   seam         the hybrid seam and its floor (summary.txt) of meadow.json and
+#                meadow_large, hw and compute, ending at frames $SEAM_FRAMES
+#                (default 3 60 120 240); $SEAM_ROOT (a folder holding shaders/,
+#                scenes/ and models/, e.g. another revision's): its shaders instead
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -166,6 +170,19 @@ ab() {
       echo "-- $s $m $tag rc=$? $(grep -E '^gpu_frame_ms' $o/summary.txt)"
       sed -n '/gpu passes/,/gpu_frame_ms/p' $o/summary.txt | grep -E "^  (bb|tiles|blade|raster|terrain)"
       grep -E "error" $o.log | head -3
+    done
+  done
+}
+
+seam() {
+  local root=${SEAM_ROOT:-$PWD}
+  for sc in scenes/meadow.json scenes/bench/meadow_large.json; do
+    for r in hw compute; do
+      for fr in ${SEAM_FRAMES:-3 60 120 240}; do
+        MEADOW_ROOT=$root $M --headless --quiet --scene $root/$sc --mode hybrid --raster $r --frames $fr \
+          --screenshot-every 100000 --out /tmp/seam > /dev/null 2>&1
+        echo "== seam $sc $r frame $fr: $(grep -A4 '^hybrid seam' /tmp/seam/summary.txt | sed 's/^hybrid seam.*score/score/' | tr '\n' ' ' | sed 's/  */ /g')"
+      done
     done
   done
 }
