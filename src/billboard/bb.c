@@ -99,7 +99,13 @@ static bool upload_layout(bb_field_t *f)
     f->messiness = gfx_texture_make(&(gfx_texture_desc_t){.w = s, .h = s, .format = GL_R8, .filter = GL_NEAREST,
                                                           .wrap = GL_REPEAT, .data = lay.messiness.px,
                                                           .upload_format = GL_RED, .label = "bb.messiness"});
-    int cs = lay.clumps[0].w, layers = lay.clump_layers;
+    int cs = lay.clumps[0].w, layers = lay.clump_layers, lo = lay.clump_stats[0].blades, hi = lo;
+    for (int k = 1; k < layers; k++) {
+        lo = lay.clump_stats[k].blades < lo ? lay.clump_stats[k].blades : lo;
+        hi = lay.clump_stats[k].blades > hi ? lay.clump_stats[k].blades : hi;
+    }
+    core_log_info("billboards: %d clump layers of %d-%d blades (%d for the field's density, more for its coverage)",
+                  layers, lo, hi, f->desc.layout.blades);
     size_t layer_bytes = (size_t)cs * (size_t)cs * 4;
     uint8_t *all = malloc(layer_bytes * (size_t)layers);
     if (all) {

@@ -171,7 +171,20 @@ static void bb_layout_maps(bb_layout_t *l, uint32_t seed)
  * projection along z onto a grid of BB_CLUMP_SS x BB_CLUMP_SS samples per
  * texel with a depth test (nearest z wins, so blades in front hide those
  * behind); a texel's alpha is its covered fraction, its colour the mean
- * albedo mix(root, tip, v) of its covered samples (straight alpha). */
+ * albedo mix(root, tip, v) of its covered samples (straight alpha).
+ *
+ * Coverage, calibrated: a ray through the blade field meets blade surface
+ * at the rate the layer's `blades` blades (bb_clump_blades: per billboard
+ * as many as the field grows, times pi / 2) give counted with their
+ * overlaps, a mean overlap count T per sample; through the billboards it
+ * meets cards, each hit letting 1 - alpha through, and random hits make
+ * the transmittance exp(-rate x mean alpha) (Campbell's theorem). The
+ * blades of one layer overlap each other, so its mean alpha (their union)
+ * falls short of T, and the cards let more ground through than the blades
+ * they stand for. So the layer takes more blades, from the same stream,
+ * until its mean alpha reaches the mean over sample rows of min(T_row, 1)
+ * (a row already covered cannot be more opaque), at most 4 x `blades`
+ * and BB_CLUMP_MAX_BLADES (bb_layout_t.clump_stats says how many). */
 
 static float bb_range(core_rng_t *rng, const float r[2]) { return core_rng_range(rng, r[0], r[1]); }
 
@@ -210,6 +223,8 @@ static void bb_clump_blade(blade_t *b, core_rng_t *rng, const bb_clump_desc_t *c
 typedef struct bb_samples_t {
     int w, h; /* samples */
     float *z, *v;
+    uint16_t *hits; /* surfaces over each sample, overlaps counted; NULL: not counted */
+    long covered;   /* samples some surface covers */
 } bb_samples_t;
 
 /* Rasterises the triangle (a, b, c) of sample-space x, y, depth z and blade
@@ -250,6 +265,11 @@ static void bb_clump_triangle(bb_samples_t *sb, const float *a, const float *b, 
         for (int x = x0; x <= x1; x++) {
             float rx = (float)x + 0.5f - a[0];
             float z = a[2] + dx[0] * rx + dy[0] * ry;
+            if (sb->hits) {
+                uint16_t *hit = sb->hits + (size_t)y * (size_t)sb->w + (size_t)x;
+                *hit = *hit < UINT16_MAX ? (uint16_t)(*hit + 1) : *hit;
+            }
+            sb->covered += zr[x] == -INFINITY;
             if (z <= zr[x]) continue;
             zr[x] = z;
             vr[x] = fminf(fmaxf(a[3] + dx[1] * rx + dy[1] * ry, 0.0f), 1.0f);
@@ -257,24 +277,51 @@ static void bb_clump_triangle(bb_samples_t *sb, const float *a, const float *b, 
     }
 }
 
-/* Layer `layer` of the clump texture array into img (RGBA). False when out
- * of memory. */
-static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blades, const bb_clump_desc_t *c)
+/* One blade into the sample buffer (sx, sy: samples per metre). */
+static void bb_clump_raster(bb_samples_t *sb, const blade_t *b, const bb_clump_desc_t *c, float sx, float sy)
+{
+    float q[BB_CLUMP_SEGMENTS + 1][2][4];
+    for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
+        float v = (float)i / BB_CLUMP_SEGMENTS;
+        for (int u = 0; u < 2; u++) {
+            float p[3], nrm[3];
+            blade_ref_surface(b, c->shape, (float)u, v, p, nrm);
+            q[i][u][0] = (p[0] + 0.5f * c->size[0]) * sx;
+            q[i][u][1] = (float)sb->h - p[1] * sy;
+            q[i][u][2] = p[2];
+            q[i][u][3] = v;
+        }
+    }
+    for (int i = 0; i < BB_CLUMP_SEGMENTS; i++) {
+        bb_clump_triangle(sb, q[i][0], q[i][1], q[i + 1][0]);
+        bb_clump_triangle(sb, q[i][1], q[i + 1][1], q[i + 1][0]);
+    }
+}
+
+/* Layer `layer` of the clump texture array into img (RGBA), calibrated as
+ * the banner says; *drawn: the blades it took. False when out of memory. */
+static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blades, const bb_clump_desc_t *c,
+                          bb_clump_stats_t *stats)
 {
     int w = img->w, h = img->h;
     bb_samples_t sb = {.w = w * BB_CLUMP_SS, .h = h * BB_CLUMP_SS};
     size_t ns = (size_t)sb.w * (size_t)sb.h;
     sb.z = malloc(sizeof(float) * ns);
     sb.v = malloc(sizeof(float) * ns);
-    blade_t *b = malloc(sizeof *b * (size_t)blades);
+    sb.hits = calloc(ns, sizeof *sb.hits);
+    /* The calibration's blades come from the same stream: all are settled
+     * first, so the layer's vertical scale fits the tallest of them. */
+    int pool = blades * 4 < BB_CLUMP_MAX_BLADES ? blades * 4 : BB_CLUMP_MAX_BLADES;
+    pool = pool > blades ? pool : blades;
+    blade_t *b = malloc(sizeof *b * (size_t)pool);
     float *rgba = malloc(sizeof(float) * 4 * (size_t)w * (size_t)h);
-    bool ok = sb.z && sb.v && b && rgba;
+    bool ok = sb.z && sb.v && sb.hits && b && rgba;
     for (size_t i = 0; ok && i < ns; i++) sb.z[i] = -INFINITY;
     core_rng_t rng;
     core_rng_seed(&rng, seed, 100u + (uint64_t)layer);
     blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = c->gravity});
     float margin = BB_CLUMP_MARGIN * c->size[0] / (float)w, top = 0.0f;
-    for (int n = 0; ok && n < blades; n++) {
+    for (int n = 0; ok && n < pool; n++) {
         bb_clump_blade(&b[n], &rng, c, &env, margin);
         for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
             float p[3], nrm[3];
@@ -285,24 +332,23 @@ static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blade
     /* Metres to samples: across by size[0]; up by size[1], or by what the
      * tallest blade needs when it would reach above 0.98 of it. */
     float sx = (float)sb.w / c->size[0], sy = (float)sb.h / fmaxf(c->size[1], top / 0.98f);
-    for (int n = 0; ok && n < blades; n++) {
-        float q[BB_CLUMP_SEGMENTS + 1][2][4];
-        for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
-            float v = (float)i / BB_CLUMP_SEGMENTS;
-            for (int u = 0; u < 2; u++) {
-                float p[3], nrm[3];
-                blade_ref_surface(&b[n], c->shape, (float)u, v, p, nrm);
-                q[i][u][0] = (p[0] + 0.5f * c->size[0]) * sx;
-                q[i][u][1] = (float)sb.h - p[1] * sy;
-                q[i][u][2] = p[2];
-                q[i][u][3] = v;
-            }
-        }
-        for (int i = 0; i < BB_CLUMP_SEGMENTS; i++) {
-            bb_clump_triangle(&sb, q[i][0], q[i][1], q[i + 1][0]);
-            bb_clump_triangle(&sb, q[i][1], q[i + 1][1], q[i + 1][0]);
-        }
+    for (int n = 0; ok && n < blades; n++) bb_clump_raster(&sb, &b[n], c, sx, sy);
+    /* Target coverage: the mean over sample rows of min(T_row, 1). */
+    double target = 0.0;
+    for (int y = 0; ok && y < sb.h; y++) {
+        long row = 0;
+        for (int x = 0; x < sb.w; x++) row += sb.hits[(size_t)y * (size_t)sb.w + (size_t)x];
+        target += fmin((double)row / sb.w, 1.0) / sb.h;
     }
+    free(sb.hits);
+    sb.hits = NULL;
+    int n = blades;
+    for (; ok && (double)sb.covered / (double)ns < target && n < pool; n++) bb_clump_raster(&sb, &b[n], c, sx, sy);
+    *stats = (bb_clump_stats_t){.blades = n, .alpha = (float)((double)sb.covered / (double)ns), .target = (float)target};
+    if (ok && stats->alpha < target)
+        core_log_warn("billboards: clump layer %d covers %.3f of its samples with %d blades (4 x %d, at most "
+                      "BB_CLUMP_MAX_BLADES = %d), short of the %.3f its field's blades cover",
+                      layer, stats->alpha, n, blades, BB_CLUMP_MAX_BLADES, target);
     /* Resolve: coverage and mean albedo per texel. */
     const float *ra = c->albedo_root, *ta = c->albedo_tip;
     double mean[3] = {0, 0, 0}, wsum = 0.0;
@@ -335,6 +381,7 @@ static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blade
     free(rgba);
     free(sb.z);
     free(sb.v);
+    free(sb.hits);
     free(b);
     return ok;
 }
@@ -344,7 +391,8 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
     bb_layout_desc_t d = bb_layout_desc_defaults(desc);
     memset(layout, 0, sizeof *layout);
     layout->clumps = calloc((size_t)d.clump_layers, sizeof *layout->clumps);
-    bool ok = layout->clumps && core_image_alloc(&layout->extent, d.size, d.size, 1) &&
+    layout->clump_stats = calloc((size_t)d.clump_layers, sizeof *layout->clump_stats);
+    bool ok = layout->clumps && layout->clump_stats && core_image_alloc(&layout->extent, d.size, d.size, 1) &&
               core_image_alloc(&layout->direction, d.size, d.size, 3) &&
               core_image_alloc(&layout->messiness, d.size, d.size, 1);
     if (ok) layout->clump_layers = d.clump_layers;
@@ -357,7 +405,7 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
     }
     bb_layout_maps(layout, d.seed);
     for (int k = 0; ok && k < d.clump_layers; k++)
-        ok = bb_clump_draw(&layout->clumps[k], d.seed, k, d.blades, &d.clump);
+        ok = bb_clump_draw(&layout->clumps[k], d.seed, k, d.blades, &d.clump, &layout->clump_stats[k]);
     if (!ok) {
         core_log_error("%s:%d: out of memory drawing the clump layers", __FILE__, __LINE__);
         bb_layout_free(layout);
@@ -372,6 +420,7 @@ void bb_layout_free(bb_layout_t *layout)
     core_image_free(&layout->messiness);
     for (int k = 0; layout->clumps && k < layout->clump_layers; k++) core_image_free(&layout->clumps[k]);
     free(layout->clumps);
+    free(layout->clump_stats);
     memset(layout, 0, sizeof *layout);
 }
 

@@ -59,8 +59,10 @@ typedef struct bb_layout_desc_t {
     int size;          /* layout texture side in texels, default 256 */
     int clump_size;    /* clump texture side, default 128 */
     int clump_layers;  /* clump texture array layers, default 4 */
-    int blades;        /* blades per clump layer, default bb_clump_blades(200, 6) = 52
-                          (the scene's default densities) */
+    int blades;        /* blades per clump layer before the coverage calibration (the
+                          layer adds blades until its union covers as much as these
+                          do counted with their overlaps; bb_layout.c), default
+                          bb_clump_blades(200, 6) = 52 (the scene's default densities) */
     bb_clump_desc_t clump;
 } bb_layout_desc_t;
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
@@ -76,6 +78,16 @@ bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
  * surface as one through the blade field. */
 int bb_clump_blades(float blade_density, float billboard_density);
 
+/* A clump layer's coverage calibration (bb_layout.c, "Coverage,
+ * calibrated"): the blades it took (desc.blades, then more until its mean
+ * alpha reaches the target), its mean alpha (covered samples) and the
+ * target (mean over sample rows of min(T_row, 1), T the overlap count of
+ * desc.blades blades). */
+typedef struct bb_clump_stats_t {
+    int blades;
+    float alpha, target;
+} bb_clump_stats_t;
+
 /* All images have row 0 at the top; texel (x, y) covers layout cell x along
  * world +x and y along world +z. The layout textures tile seamlessly. */
 typedef struct bb_layout_t {
@@ -86,6 +98,7 @@ typedef struct bb_layout_t {
     core_image_t *clumps;    /* clump_layers RGBA images: blade albedo, coverage as
                                 straight alpha; fully transparent texels hold the
                                 layer's mean albedo so mipmaps do not darken edges */
+    bb_clump_stats_t *clump_stats; /* per layer: the coverage calibration */
 } bb_layout_t;
 
 /* Deterministic from desc->seed. Returns false (and logs) on allocation failure. */
