@@ -24,7 +24,13 @@
  *      drawn blade is a survivor of blade_ref_cull_one and is drawn
  *      blade_ref_lod_width times its pose's width; per 2 m ring of ground
  *      distance the drawn blades' summed width is within 10 % of all the
- *      blades' (thinning alone leaves down to 1 / 8 of it). */
+ *      blades' (thinning alone leaves down to 1 / 8 of it);
+ *   g) the orientation test of widened blades: with it and the distance
+ *      test on, the drawn blades of every listed tile are exactly those
+ *      the CPU keeps (distance survivors of blade_ref_cull_one whose
+ *      |dir_c . dir_b| is within blade_ref_lod_orientation of the
+ *      threshold and their width scale), and some of them the plain
+ *      threshold would have culled. */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
 #include "test.h"
@@ -480,6 +486,65 @@ static void test_lod_width(void)
     terrain_free(&m);
 }
 
+/* ---- g) ------------------------------------------------------------------ */
+static void test_lod_orientation(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    t.desc.cull.disable = BLADE_CULL_FRUSTUM;
+    t.desc.cull.max_distance = 10.0f;
+    t.desc.cull.distance_levels = 8;
+    t.desc.cull.orientation_threshold = 0.9f;
+    uint32_t B = t.template_blades;
+    const float cam[3] = {-7.5f, 2.0f, -7.5f};
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, cam, NULL, &env);
+    draw_all(&t, cam);
+    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
+    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    int tiles = t.grid.nx * t.grid.nz;
+    int *gpu = calloc((size_t)tiles, sizeof *gpu);
+    for (uint32_t i = 0; i < n; i++) gpu[ids[i] / B]++;
+    blade_cull_desc_t cull = t.desc.cull;
+    cull.disable = BLADE_CULL_FRUSTUM | BLADE_CULL_ORIENTATION;
+    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
+    int mismatched_tiles = 0, rescued = 0, expected = 0;
+    for (int tile = 0; tile < tiles; tile++) {
+        if (!gpu[tile]) continue;
+        int want = 0;
+        for (uint32_t k = 0; k < B; k++) {
+            blade_t pose;
+            blade_tiles_pose(&t, tile, k, &pose);
+            if (pose.v1[3] <= 0.0f || blade_ref_cull_one(&pose, k, &cull) != BLADE_CULL_VISIBLE) continue;
+            float g[3] = {pose.v0[0] - cam[0], pose.v0[1] - cam[1], pose.v0[2] - cam[2]};
+            float along = g[0] * pose.up[0] + g[1] * pose.up[1] + g[2] * pose.up[2];
+            for (int c = 0; c < 3; c++) g[c] -= pose.up[c] * along;
+            float d = sqrtf(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+            float width_dir[3], front[3];
+            blade_ref_frame(&pose, width_dir, front);
+            float c = fabsf(g[0] * width_dir[0] + g[1] * width_dir[1] + g[2] * width_dir[2]) / d;
+            float tk = blade_ref_lod_orientation(0.9f, blade_ref_lod_width(d, 10.0f, 8));
+            if (c > tk) continue;
+            want++;
+            rescued += c > 0.9f;
+        }
+        expected += want;
+        mismatched_tiles += abs(want - gpu[tile]) > 1; /* one blade of slack: c at the threshold in float */
+    }
+    printf("g) %u blades drawn, %d expected by the CPU, %d kept only for their width, %d tiles differ\n", n,
+           expected, rescued, mismatched_tiles);
+    CHECK(n > 0 && mismatched_tiles == 0);
+    CHECK(abs((int)n - expected) <= 2);
+    CHECK(rescued > 0);
+    free(gpu);
+    free(drawn);
+    free(ids);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -490,6 +555,7 @@ int main(void)
     test_fast_ball();
     test_exhaustion();
     test_lod_width();
+    test_lod_orientation();
     /* a mesh terrain is rejected */
     terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
     mesh.grid_res = 0;

@@ -9,8 +9,9 @@
  *    view with other placement seeds against the reference (no switch in
  *    either; only where the billboards stand differs), their mean below 1,
  *    and so is the hybrid seam (not clearly visible). Issue 16 asks for
- *    the seam within the floor; it is not (docs/METRICS.md), so this
- *    guards the seam against getting clearly visible and prints both. The reference's
+ *    the seam within the floor; here it is on llvmpipe and not on the H100
+ *    (docs/METRICS.md), so this guards the seam against getting clearly
+ *    visible and prints both. The reference's
  *    own step (the view's change with distance, no reference) is printed:
  *    why the measure needs a reference.
  * 3. The measure follows a seam: the hybrid frame with its far side (the

@@ -7,7 +7,9 @@
  * pose of the template blade. The distance level uses k (templates are
  * Morton ordered, so the thinning is spatially even) and widens the
  * survivors so the thinned field covers the ground as the full one
- * (blade_lod_width). A survivor is
+ * (blade_lod_width); the orientation test culls a widened blade only when
+ * it is as thin on screen as the test means (blade_lod_orientation). A
+ * survivor is
  * appended as a whole blade (and its id tile * B + k) and counted in
  * cmd.instanceCount; beyond u_capacity it is dropped and counted in
  * cmd.overflow. The host zeroes both before the dispatch. */
@@ -60,13 +62,15 @@ vec3 ground_view(Blade b)
     return view - b.up.xyz * dot(view, b.up.xyz);
 }
 
-bool visible(Blade b, uint index, vec3 view_ground)
+/* width_scale: what the distance levels widen the blade by (1: none). */
+bool visible(Blade b, uint index, vec3 view_ground, float width_scale)
 {
     vec3 v0 = b.v0.xyz;
     if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
         vec3 width_dir, front;
         blade_frame(b, width_dir, front);
-        if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > u_orientation_threshold) return false;
+        float t = blade_lod_orientation(u_orientation_threshold, width_scale);
+        if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > t) return false;
     }
     if ((u_disable & BLADE_CULL_FRUSTUM) == 0u) {
         float t = u_frustum_tolerance;
@@ -101,10 +105,12 @@ void main()
     }
     if (b.v1.w <= 0.0) return;
     vec3 view_ground = ground_view(b);
-    if (!visible(b, k, view_ground)) return;
+    float width_scale = (u_disable & BLADE_CULL_DISTANCE) == 0u
+                            ? blade_lod_width(length(view_ground), u_max_distance, u_distance_levels)
+                            : 1.0;
+    if (!visible(b, k, view_ground, width_scale)) return;
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
-    if ((u_disable & BLADE_CULL_DISTANCE) == 0u)
-        b.v2.w *= blade_lod_width(length(view_ground), u_max_distance, u_distance_levels);
+    b.v2.w *= width_scale;
     uint slot = atomicAdd(cmd.instanceCount, 1u);
     if (slot < u_capacity) {
         drawn[slot] = b;

@@ -519,6 +519,14 @@ float blade_lod_width(float d_proj, float max_distance, int levels)
     return 1.0 / clamp(kept, 1.0 / n, 1.0);
 }
 
+/* Twin of blade_ref_lod_orientation: the orientation threshold of a blade
+ * drawn width_scale times as wide. */
+float blade_lod_orientation(float threshold, float width_scale)
+{
+    float k = max(width_scale, 1.0);
+    return sqrt(max(1.0 - (1.0 - threshold * threshold) / (k * k), 0.0));
+}
+
 bool blade_in_frustum(vec4 clip, float tolerance)
 {
     float h = clip.w + tolerance;

@@ -887,6 +887,12 @@ float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels)
     return 1.0f / fminf(fmaxf(kept, 1.0f / n), 1.0f);
 }
 
+float blade_ref_lod_orientation(float threshold, float width_scale)
+{
+    float k = fmaxf(width_scale, 1.0f);
+    return sqrtf(fmaxf(1.0f - (1.0f - threshold * threshold) / (k * k), 0.0f));
+}
+
 size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
                       uint32_t *survivors, blade_cull_stats_t *stats)
 {
