@@ -422,23 +422,37 @@ static void test_exhaustion(void)
     terrain_free(&m);
 }
 
+/* f) and g): a 16 m field of 2 m tiles, distance levels to 10 m (8), the
+ * tests `disable` names off, drawn once from `cam`; the drawn blades and
+ * their ids into *drawn and *ids (t.draw_capacity each), their count
+ * returned. */
+static uint32_t draw_thinned(blade_tiles_t *t, terrain_mesh_t *m, uint32_t disable, const float cam[3],
+                             blade_t **drawn, uint32_t **ids)
+{
+    *m = make_terrain(16.0f, 32, true);
+    CHECK(make_tiles(t, m, 8, 0.0f));
+    t->desc.cull.disable = disable;
+    t->desc.cull.max_distance = 10.0f;
+    t->desc.cull.distance_levels = 8;
+    t->desc.cull.orientation_threshold = 0.9f;
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(t, cam, NULL, &env);
+    draw_all(t, cam);
+    *drawn = malloc(t->draw_capacity * sizeof **drawn);
+    *ids = malloc(t->draw_capacity * sizeof **ids);
+    return blade_tiles_read_drawn(t, *drawn, *ids);
+}
+
 /* ---- f) ------------------------------------------------------------------ */
 static void test_lod_width(void)
 {
-    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    terrain_mesh_t m;
     blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 8, 0.0f));
-    t.desc.cull.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM;
-    t.desc.cull.max_distance = 10.0f;
-    t.desc.cull.distance_levels = 8;
-    uint32_t B = t.template_blades;
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
-    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, &env);
-    draw_all(&t, cam);
-    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
-    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
-    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_t *drawn;
+    uint32_t *ids;
+    uint32_t n = draw_thinned(&t, &m, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM, cam, &drawn, &ids);
+    uint32_t B = t.template_blades;
     blade_cull_desc_t cull = t.desc.cull;
     memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
     enum { RINGS = 5 };
@@ -489,21 +503,13 @@ static void test_lod_width(void)
 /* ---- g) ------------------------------------------------------------------ */
 static void test_lod_orientation(void)
 {
-    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    terrain_mesh_t m;
     blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 8, 0.0f));
-    t.desc.cull.disable = BLADE_CULL_FRUSTUM;
-    t.desc.cull.max_distance = 10.0f;
-    t.desc.cull.distance_levels = 8;
-    t.desc.cull.orientation_threshold = 0.9f;
-    uint32_t B = t.template_blades;
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
-    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, &env);
-    draw_all(&t, cam);
-    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
-    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
-    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_t *drawn;
+    uint32_t *ids;
+    uint32_t n = draw_thinned(&t, &m, BLADE_CULL_FRUSTUM, cam, &drawn, &ids);
+    uint32_t B = t.template_blades;
     int tiles = t.grid.nx * t.grid.nz;
     int *gpu = calloc((size_t)tiles, sizeof *gpu);
     for (uint32_t i = 0; i < n; i++) gpu[ids[i] / B]++;
