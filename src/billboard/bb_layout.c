@@ -299,7 +299,8 @@ static void bb_clump_raster(bb_samples_t *sb, const blade_t *b, const bb_clump_d
 }
 
 /* Layer `layer` of the clump texture array into img (RGBA), calibrated as
- * the banner says; *drawn: the blades it took. False when out of memory. */
+ * the banner says; *stats: its blades, mean alpha and target. False when
+ * out of memory. */
 static bool bb_clump_draw(core_image_t *img, uint32_t seed, int layer, int blades, const bb_clump_desc_t *c,
                           bb_clump_stats_t *stats)
 {
