@@ -2,12 +2,15 @@
  * Assign must give contiguous leaf ranges covering every billboard once;
  * the hierarchical collision/recovery state machine must match a flat
  * brute-force computation frame by frame over a scripted path; collect must
- * list exactly the non-empty leaves in the requested states and frustum. */
+ * list exactly the non-empty leaves in the requested states and frustum;
+ * sort_near_first must order them by their parent cell's distance. */
 #include "billboard/bb_octree.h"
 #include "core/core.h"
 #include "test.h"
 
 #include <cglm/cglm.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const bb_octree_desc_t desc = {
@@ -218,6 +221,36 @@ static void test_states(void)
     printf("frustum: %d of %d non-empty leaves visible (brute %d)\n", got, all, want);
     CHECK(got == want);
     CHECK(got > 10 && got < all / 2);
+
+    /* Nearest first: the same leaves, by the distance from the eye to their
+     * parent's box (computed here from the leaf coordinates), ties in leaf
+     * order, so each parent's leaves stay adjacent in the buffer. */
+    const float eye[3] = {-45.0f, 6.0f, -40.0f};
+    uint8_t *seen = calloc((size_t)t.leaf_count, 1);
+    for (int i = 0; i < got; i++) seen[ranges[i].leaf] = 1;
+    CHECK(bb_octree_sort_near_first(&t, eye, ranges, got));
+    int sorted_bad = 0, merged = 0;
+    float prev = -1.0f;
+    for (int i = 0; i < got; i++) {
+        sorted_bad += seen[ranges[i].leaf] != 1;
+        seen[ranges[i].leaf] = 2;
+        int c[3];
+        leaf_coords(ranges[i].leaf, t.depth, c);
+        float d2 = 0.0f;
+        for (int a = 0; a < 3; a++) {
+            float cell = (desc.max[a] - desc.min[a]) / (float)(t.side / 2);
+            float lo = desc.min[a] + cell * (float)(c[a] / 2), hi = lo + cell;
+            float d = eye[a] < lo ? lo - eye[a] : (eye[a] > hi ? eye[a] - hi : 0.0f);
+            d2 += d * d;
+        }
+        sorted_bad += d2 < prev - 1e-3f || (i > 0 && fabsf(d2 - prev) <= 1e-3f && ranges[i].leaf < ranges[i - 1].leaf);
+        prev = d2;
+        merged += i == 0 || ranges[i - 1].first + ranges[i - 1].count != ranges[i].first;
+    }
+    printf("near first: %d leaves in %d draw ranges, %d out of order\n", got, merged, sorted_bad);
+    CHECK(sorted_bad == 0);
+    CHECK(merged * 3 < got);
+    free(seen);
     /* No silent cap: a short output array logs and reports the full count. */
     int warns = core_log_warn_count();
     CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), NULL, ranges, 5) == all);

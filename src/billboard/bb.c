@@ -1313,7 +1313,9 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
 /* Idle leaves (only plain quads) are drawn by vertex pulling, six vertices
  * per billboard, with no geometry shader; colliding and recovering leaves,
  * which hold deformed meshes, go through bb_render.geom. Both share
- * bb_render.frag. */
+ * bb_render.frag. Leaves go nearest first (bb_octree_sort_near_first), so
+ * the coarse depth test rejects more of the far layers that nearer ones
+ * already cover (docs/PERFORMANCE.md). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
 {
     glBindTextureUnit(0, f->clumps.id);
@@ -1329,6 +1331,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
     if (n > 0) {
+        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n);
         int nr = merge_ranges(f, n);
         gfx_count_add("bb.drawn_quads", range_total(f->counts_gl, nr));
         for (int i = 0; i < nr; i++) {
@@ -1341,6 +1344,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
                           f->ranges, f->tree.leaf_count);
     if (n > 0) {
+        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n);
         int nr = merge_ranges(f, n);
         gfx_count_add("bb.drawn_meshes", range_total(f->counts_gl, nr));
         render_uniforms(f, f->render_prog, dd);

@@ -296,6 +296,43 @@ int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float 
     return found;
 }
 
+typedef struct bb_range_key_t {
+    float dist2;
+    bb_range_t range;
+} bb_range_key_t;
+
+static int bb_range_key_cmp(const void *pa, const void *pb)
+{
+    const bb_range_key_t *a = pa, *b = pb;
+    if (a->dist2 != b->dist2) return a->dist2 < b->dist2 ? -1 : 1;
+    return (a->range.leaf > b->range.leaf) - (a->range.leaf < b->range.leaf);
+}
+
+bool bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n)
+{
+    if (n < 2) return true;
+    bb_range_key_t *keys = malloc((size_t)n * sizeof *keys);
+    if (!keys) {
+        core_log_error("bb_octree_sort_near_first: out of memory for %d ranges", n);
+        return false;
+    }
+    int level = tree->depth > 0 ? tree->depth - 1 : 0;
+    for (int i = 0; i < n; i++) {
+        int node = tree->level_start[level] + (int)(ranges[i].leaf >> (3 * (tree->depth - level)));
+        float d2 = 0.0f;
+        for (int a = 0; a < 3; a++) {
+            float lo = tree->lo[node][a], hi = tree->hi[node][a];
+            float d = eye[a] < lo ? lo - eye[a] : (eye[a] > hi ? eye[a] - hi : 0.0f);
+            d2 += d * d;
+        }
+        keys[i] = (bb_range_key_t){.dist2 = d2, .range = ranges[i]};
+    }
+    qsort(keys, (size_t)n, sizeof *keys, bb_range_key_cmp);
+    for (int i = 0; i < n; i++) ranges[i] = keys[i].range;
+    free(keys);
+    return true;
+}
+
 void bb_octree_state_brute(const bb_octree_t *tree, const bb_bound_t *objects, int n, float dt,
                            float recover_time, uint8_t *states, float *timers)
 {

@@ -104,6 +104,14 @@ void bb_octree_update(bb_octree_t *tree, const bb_bound_t *objects, int n, float
 int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float (*planes)[4],
                       bb_range_t *out, int max_out);
 
+/* Orders ranges[0..n) nearest first: by the distance from eye to the cell
+ * box (without margin; 0 inside it) of each range's leaf's parent, ties by
+ * leaf index, so the leaves of one parent stay in Morton order (adjacent in
+ * the buffer: a draw merges them into one range) and a draw in this order
+ * lets the depth test reject what nearer cells already cover. Returns false
+ * (ranges untouched, logged) when its scratch allocation fails. */
+bool bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n);
+
 /* Independent brute-force twin of bb_octree_update for tests: loops over
  * all leaves, computes each leaf box from its integer coordinates, tests it
  * against every object and applies the same state rule to the caller's
