@@ -3,8 +3,9 @@
  * fixed camera: per-test culled counts equal (patch culling off), survivor
  * sets equal (patch culling on and off), with and without a depth texture,
  * and the draw count in the indirect command equals the survivors for both
- * render paths. Also: the non-blocking statistics become valid a few
- * frames late without a wait. */
+ * render paths. With patch culling the visible patches go nearest first
+ * (the order the draw appends them in). Also: the non-blocking statistics
+ * become valid a few frames late without a wait. */
 #include "blade/blade.h"
 #include "test.h"
 #include "test_gl.h"
@@ -89,6 +90,12 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
         /* a blade of a culled patch fails the frustum test, so the reference
          * counts it as orientation or frustum; the later tests agree exactly */
         CHECK(st.patch_culled > 0);
+        int unordered = 0;
+        for (uint32_t k = 1; k < st.patches_drawn; k++)
+            unordered += blade_aabb_dist2(&f->patch_aabbs[g.visible_patches[k]], cd.cam_pos) <
+                         blade_aabb_dist2(&f->patch_aabbs[g.visible_patches[k - 1]], cd.cam_pos);
+        printf("%-34s %u visible patches, %d out of distance order\n", name, st.patches_drawn, unordered);
+        CHECK(st.patches_drawn > 2 && unordered == 0);
         CHECK(st.culled[0] + st.culled[1] + st.patch_culled == rs.culled[0] + rs.culled[1]);
         CHECK(st.culled[2] == rs.culled[2] && st.culled[3] == rs.culled[3]);
     }

@@ -30,7 +30,12 @@
  *      the CPU keeps (distance survivors of blade_ref_cull_one whose
  *      |dir_c . dir_b| is within blade_ref_lod_orientation of the
  *      threshold and their width scale), and some of them the plain
- *      threshold would have culled. */
+ *      threshold would have culled;
+ *   h) the hardware path's draw lists: the tile list goes nearest first
+ *      (blade_aabb_dist2 nondecreasing), and a cull split at the fade start
+ *      draws the same blades as one without (same ids) in two lists: roots
+ *      up to the fade start first (the opaque draw), farther ones after
+ *      (the fade's draw), both non-empty. */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
 #include "test.h"
@@ -71,9 +76,9 @@ static blade_env_t make_env(float time, float dt)
     return (blade_env_t){.dt = dt, .time = time, .gravity = 1.0f};
 }
 
-static void draw_all(blade_tiles_t *t, const float cam[3])
+static void draw_faded(blade_tiles_t *t, const float cam[3], float fade_start, float fade_end)
 {
-    blade_draw_desc_t dd = {0};
+    blade_draw_desc_t dd = {.fade_start = fade_start, .fade_end = fade_end};
     mat4 view, proj, vp;
     glm_lookat((float *)cam, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
     glm_perspective(glm_rad(60.0f), 1.0f, 0.05f, 100.0f, proj);
@@ -82,6 +87,8 @@ static void draw_all(blade_tiles_t *t, const float cam[3])
     memcpy(dd.camera, cam, sizeof dd.camera);
     blade_tiles_draw(t, &dd);
 }
+
+static void draw_all(blade_tiles_t *t, const float cam[3]) { draw_faded(t, cam, 0.0f, 0.0f); }
 
 static float dist3(const float *a, const float *b)
 {
@@ -551,6 +558,64 @@ static void test_lod_orientation(void)
     terrain_free(&m);
 }
 
+/* ---- h) ------------------------------------------------------------------ */
+static int cmp_u32(const void *a, const void *b)
+{
+    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void test_draw_lists(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, false);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    const float cam[3] = {-5.0f, 2.0f, 3.0f}, fade_start = 6.0f;
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, cam, NULL, &env);
+    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids), *ids_split = malloc(t.draw_capacity * sizeof *ids);
+
+    draw_all(&t, cam);
+    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    int listed = t.stats.tiles_drawn, unordered = 0;
+    uint32_t *list = malloc((size_t)listed * 2 * sizeof *list);
+    gfx_buffer_read(t.tile_list, 0, (size_t)listed * 2 * sizeof *list, list);
+    float last = 0.0f;
+    for (int k = 0; k < listed; k++) {
+        const hybrid_tile_t *tile = &t.grid.tiles[list[2 * k]];
+        blade_aabb_t box = {{tile->min[0], tile->min[1], tile->min[2]}, {tile->max[0], tile->max[1], tile->max[2]}};
+        float d2 = blade_aabb_dist2(&box, cam);
+        unordered += d2 < last;
+        last = d2;
+    }
+
+    draw_faded(&t, cam, fade_start, fade_start + 2.0f);
+    uint32_t n_split = blade_tiles_read_drawn(&t, drawn, ids_split), near = 0, misplaced = 0;
+    bool beyond = false;
+    for (uint32_t i = 0; i < n_split; i++) {
+        bool far = dist3(drawn[i].v0, cam) > fade_start;
+        misplaced += beyond && !far; /* an opaque blade after the fade list began */
+        beyond = beyond || far;
+        near += !far;
+    }
+    qsort(ids, n, sizeof *ids, cmp_u32);
+    qsort(ids_split, n_split, sizeof *ids_split, cmp_u32);
+    bool same = n == n_split && memcmp(ids, ids_split, n * sizeof *ids) == 0;
+    printf("h) %d tiles listed, %d out of distance order; %u blades drawn, split at %.0f m: %u opaque, %u fading, "
+           "%u out of place, same ids as unsplit: %s\n",
+           listed, unordered, n, fade_start, near, n_split - near, misplaced, same ? "yes" : "no");
+    CHECK(listed > 4 && unordered == 0);
+    CHECK(same);
+    CHECK(near > 0 && near < n_split && misplaced == 0);
+    free(list);
+    free(drawn);
+    free(ids);
+    free(ids_split);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -562,6 +627,7 @@ int main(void)
     test_exhaustion();
     test_lod_width();
     test_lod_orientation();
+    test_draw_lists();
     /* a mesh terrain is rejected */
     terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
     mesh.grid_res = 0;

@@ -1,9 +1,16 @@
 #version 450
 /* blade.frag: two-sided blade shading with the shared sun, sky ambient and
- * fog (common/lighting.glsl), and the hybrid cross-fade: alpha 1 nearer than
- * u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of the pixel) and
- * turned into MSAA coverage by alpha-to-coverage (enabled by the host). */
+ * fog (common/lighting.glsl). With BLADE_FADE, the hybrid cross-fade: alpha
+ * 1 nearer than u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of
+ * the pixel) and turned into MSAA coverage by alpha-to-coverage (enabled by
+ * the host). Without it the blade is opaque and the depth test runs before
+ * this shader: with the fade's discard (and alpha-to-coverage) the driver
+ * shades every hidden blade fragment first (docs/PERFORMANCE.md). */
 #include "common/grass_shade.glsl"
+
+#ifndef BLADE_FADE
+layout(early_fragment_tests) in;
+#endif
 
 in vec3 f_pos;
 in vec3 f_normal;
@@ -15,7 +22,9 @@ in flat vec4 f_overlay; /* debug overlay colour and weight (tiled field) */
 
 uniform vec3 u_camera;
 uniform vec3 u_sun;
+#ifdef BLADE_FADE
 uniform vec2 u_fade; /* start, end; end <= start: no fade */
+#endif
 uniform vec3 u_albedo_root;
 uniform vec3 u_albedo_tip;
 
@@ -24,10 +33,12 @@ out vec4 o_color;
 void main()
 {
     float alpha = 1.0;
+#ifdef BLADE_FADE
     if (u_fade.y > u_fade.x) {
         alpha = blade_fade_dither(blade_fade_ramp(f_root_dist, u_fade), uvec2(gl_FragCoord.xy));
         if (alpha <= 0.0) discard;
     }
+#endif
 #ifdef BLADE_OVERLAY
     vec4 overlay = f_overlay;
 #else

@@ -9,10 +9,14 @@
  * survivors so the thinned field covers the ground as the full one
  * (blade_lod_width); the orientation test culls a widened blade only when
  * it is as thin on screen as the test means (blade_lod_orientation). A
- * survivor is
- * appended as a whole blade (and its id tile * B + k) and counted in
- * cmd.instanceCount; beyond u_capacity it is dropped and counted in
- * cmd.overflow. The host zeroes both before the dispatch. */
+ * survivor is counted in cmd.total and, within u_capacity, appended as a
+ * whole blade (and its id tile * B + k): with u_split, a blade whose root
+ * lies beyond u_fade_start at the end of `drawn`, counted back from
+ * u_capacity - 1 (cmd.fade_instances), any other at the front
+ * (cmd.instanceCount); without, every blade at the front; front and end cannot meet, as each append first
+ * took one of the u_capacity places in cmd.total. Past the capacity it is
+ * dropped and counted in cmd.overflow. The host zeroes the four counters
+ * before the dispatch. */
 #include "blade/tiles_common.glsl"
 
 layout(local_size_x = 256) in;
@@ -26,6 +30,12 @@ layout(std430, binding = 9) buffer Command {
     uint first;
     uint baseInstance;
     uint overflow;
+    uint total;
+    uint pad0, pad1;
+    uint fade_count;
+    uint fade_instances;
+    uint fade_first;
+    uint fade_base_instance;
 } cmd;
 layout(std430, binding = 10) writeonly buffer DrawnIds { uint drawn_ids[]; };
 
@@ -38,6 +48,8 @@ uniform int u_distance_levels;
 uniform float u_orientation_threshold;
 uniform float u_frustum_tolerance;
 uniform uint u_disable;
+uniform bool u_split;
+uniform float u_fade_start;
 /* Shared coverage map (blade_tiles_desc_t.extent): the billboards' rule. */
 uniform bool u_extent_on;
 uniform sampler2D u_extent;
@@ -111,11 +123,13 @@ void main()
     if (!visible(b, k, view_ground, width_scale)) return;
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
     b.v2.w *= width_scale;
-    uint slot = atomicAdd(cmd.instanceCount, 1u);
-    if (slot < u_capacity) {
-        drawn[slot] = b;
-        drawn_ids[slot] = e.x * u_template_blades + k;
-    } else {
+    if (atomicAdd(cmd.total, 1u) >= u_capacity) {
         atomicAdd(cmd.overflow, 1u);
+        return;
     }
+    uint slot = u_split && length(b.v0.xyz - u_cam_pos) > u_fade_start
+                    ? u_capacity - 1u - atomicAdd(cmd.fade_instances, 1u)
+                    : atomicAdd(cmd.instanceCount, 1u);
+    drawn[slot] = b;
+    drawn_ids[slot] = e.x * u_template_blades + k;
 }

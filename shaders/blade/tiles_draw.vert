@@ -2,8 +2,8 @@
 /* tiles_draw.vert: vertex pulling of the blades appended by
  * tiles_cull.comp: one instance per blade, a triangle strip of
  * 2 (u_max_level + 1) vertices built by blade_geom.glsl (Jahrmann & Wimmer
- * 2017 eq. 21, 23, 24), as blade_pull.vert. Instances past u_capacity
- * (overflow, counted and logged by the host) collapse to a point. The
+ * 2017 eq. 21, 23, 24), as blade_pull.vert. With u_from_end instance i
+ * is blade u_capacity - 1 - i (the fade list, tiles_cull.comp). The
  * debug overlays (blade_tiles_set_overlay) tint blades by tile state, level
  * of detail or collision strength. */
 #include "common/blade.glsl"
@@ -16,6 +16,7 @@ layout(std430, binding = 12) readonly buffer Eta { float eta[]; };
 
 uniform mat4 u_view_proj;
 uniform uint u_capacity;
+uniform bool u_from_end;
 uniform uint u_template_blades;
 uniform int u_overlay; /* BLADE_TILES_OVERLAY_*: 0 off, 1 tile state, 2 LOD, 3 eta */
 
@@ -25,10 +26,10 @@ out float f_v;
 out flat float f_root_dist;
 out flat vec4 f_overlay; /* rgb over the shaded colour with weight a */
 
-vec4 overlay(int lod)
+vec4 overlay(uint index, int lod)
 {
     if (u_overlay == 0) return vec4(0.0);
-    uint id = drawn_ids[gl_InstanceID];
+    uint id = drawn_ids[index];
     uint info = tile_info[id / u_template_blades];
     uint state = info & 3u, slot = info >> 2;
     if (u_overlay == 1)
@@ -43,16 +44,8 @@ vec4 overlay(int lod)
 
 void main()
 {
-    if (uint(gl_InstanceID) >= u_capacity) {
-        f_pos = vec3(0.0);
-        f_normal = vec3(0.0, 1.0, 0.0);
-        f_v = 0.0;
-        f_root_dist = 0.0;
-        f_overlay = vec4(0.0);
-        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
-        return;
-    }
-    Blade b = drawn[gl_InstanceID];
+    uint index = u_from_end ? u_capacity - 1u - uint(gl_InstanceID) : uint(gl_InstanceID);
+    Blade b = drawn[index];
     int n = blade_lod(b);
     float v = float(min(gl_VertexID / 2, n)) / float(n);
     vec3 p, nrm;
@@ -61,6 +54,6 @@ void main()
     f_normal = nrm;
     f_v = v;
     f_root_dist = length(b.v0.xyz - u_camera);
-    f_overlay = overlay(n);
+    f_overlay = overlay(index, n);
     gl_Position = u_view_proj * vec4(p, 1.0);
 }

@@ -73,7 +73,8 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->patch_aabbs = calloc(np, sizeof *g->patch_aabbs);
     g->patch_real = calloc(np, sizeof *g->patch_real);
     g->visible_patches = calloc(np, sizeof *g->visible_patches);
-    if (!g->patch_aabbs || !g->patch_real || !g->visible_patches) {
+    g->patch_order = calloc(np, sizeof *g->patch_order);
+    if (!g->patch_aabbs || !g->patch_real || !g->visible_patches || !g->patch_order) {
         core_log_error("%s:%d: blade_gpu_make: out of memory (%u patches)", __FILE__, __LINE__,
                        g->patch_count);
         blade_gpu_destroy(g);
@@ -108,19 +109,18 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
         &(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n", .label = label});
     snprintf(label, sizeof label, "%s.cull", g->desc.label);
     g->cull = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_cull.comp", .label = label});
-    if (g->desc.path == BLADE_PATH_TESSELLATION) {
-        snprintf(label, sizeof label, "%s.draw_tess", g->desc.label);
-        g->draw_tess = gfx_program_make(&(gfx_program_desc_t){.vs = "blade/blade_tess.vert",
-                                                              .tcs = "blade/blade.tesc",
-                                                              .tes = "blade/blade.tese",
-                                                              .fs = "blade/blade.frag",
-                                                              .label = label});
-        ok = ok && g->draw_tess.id;
-    } else {
-        snprintf(label, sizeof label, "%s.draw_pull", g->desc.label);
-        g->draw_pull = gfx_program_make(&(gfx_program_desc_t){.vs = "blade/blade_pull.vert",
-                                                              .fs = "blade/blade.frag", .label = label});
-        ok = ok && g->draw_pull.id;
+    bool tess = g->desc.path == BLADE_PATH_TESSELLATION;
+    for (int fade = 0; fade < 2; fade++) {
+        snprintf(label, sizeof label, "%s.draw_%s%s", g->desc.label, tess ? "tess" : "pull", fade ? "_fade" : "");
+        gfx_program_desc_t pd = {.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
+                                 .tcs = tess ? "blade/blade.tesc" : NULL,
+                                 .tes = tess ? "blade/blade.tese" : NULL,
+                                 .fs = "blade/blade.frag",
+                                 .defines = fade ? "#define BLADE_FADE 1\n" : NULL,
+                                 .label = label};
+        gfx_program_t *out = fade ? &g->draw_fade : &g->draw;
+        *out = gfx_program_make(&pd);
+        ok = ok && out->id;
     }
     snprintf(label, sizeof label, "%s.vao", g->desc.label);
     g->vao = gfx_vertex_array_make(label);
@@ -143,7 +143,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     gfx_readback_destroy(&g->readback);
     raster_program_destroy(&g->raster);
-    gfx_program_t *progs[] = {&g->physics, &g->physics_cubes, &g->cull, &g->draw_tess, &g->draw_pull};
+    gfx_program_t *progs[] = {&g->physics, &g->physics_cubes, &g->cull, &g->draw, &g->draw_fade};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (g->vao) gfx_vertex_array_destroy(&g->vao);
@@ -151,6 +151,7 @@ void blade_gpu_destroy(blade_gpu_t *g)
     free(g->patch_aabbs);
     free(g->patch_real);
     free(g->visible_patches);
+    free(g->patch_order);
     memset(g, 0, sizeof *g);
 }
 
@@ -256,8 +257,11 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
                 aabb_outside(&g->patch_aabbs[p], d.view_proj, d.frustum_tolerance))
                 patch_culled += g->patch_real[p];
             else
-                g->visible_patches[visible++] = p;
+                g->patch_order[visible++] =
+                    (blade_order_key_t){.dist2 = blade_aabb_dist2(&g->patch_aabbs[p], d.cam_pos), .id = p};
         }
+        blade_order_sort(g->patch_order, visible);
+        for (uint32_t k = 0; k < visible; k++) g->visible_patches[k] = g->patch_order[k].id;
         if (visible) gfx_buffer_update(g->patches, 0, visible * sizeof(uint32_t), g->visible_patches);
     } else {
         visible = g->patch_count;
@@ -367,8 +371,8 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
         return;
     }
     bool pull = g->desc.path == BLADE_PATH_PULLING;
-    gfx_program_t p = pull ? g->draw_pull : g->draw_tess;
     bool fade = desc->fade_end > desc->fade_start;
+    gfx_program_t p = fade ? g->draw_fade : g->draw;
 
     glUseProgram(p.id);
     blade_surface_t surf = surface_of(&g->desc);

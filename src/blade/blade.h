@@ -94,6 +94,7 @@ typedef struct blade_gpu_t {
     blade_aabb_t *patch_aabbs;
     uint32_t *patch_real;    /* real blades per patch */
     uint32_t *visible_patches;
+    blade_order_key_t *patch_order; /* the visible patches, nearest first */
     gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
     raster_program_t raster; /* made on the first blade_gpu_raster */
     gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
@@ -101,7 +102,8 @@ typedef struct blade_gpu_t {
     gfx_readback_t readback;                              /* counters (16 bytes), then the command */
     uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
     blade_gpu_stats_t stats;
-    gfx_program_t physics, physics_cubes, cull, draw_tess, draw_pull; /* physics_cubes: with cube proxies */
+    gfx_program_t physics, physics_cubes, cull; /* physics_cubes: with cube proxies */
+    gfx_program_t draw, draw_fade;              /* the path's: opaque, and with the hybrid fade */
     GLuint vao;
     bool culled_once;
 } blade_gpu_t;

@@ -275,6 +275,28 @@ typedef struct sort_key_t {
     uint32_t index;
 } sort_key_t;
 
+float blade_aabb_dist2(const blade_aabb_t *box, const float p[3])
+{
+    float d2 = 0.0f;
+    for (int a = 0; a < 3; a++) {
+        float d = fmaxf(fmaxf(box->min[a] - p[a], p[a] - box->max[a]), 0.0f);
+        d2 += d * d;
+    }
+    return d2;
+}
+
+static int cmp_order(const void *a, const void *b)
+{
+    const blade_order_key_t *x = a, *y = b;
+    if (x->dist2 != y->dist2) return x->dist2 < y->dist2 ? -1 : 1;
+    return (x->id > y->id) - (x->id < y->id);
+}
+
+void blade_order_sort(blade_order_key_t *keys, size_t n)
+{
+    if (n > 1) qsort(keys, n, sizeof *keys, cmp_order);
+}
+
 static int cmp_key(const void *a, const void *b)
 {
     const sort_key_t *x = a, *y = b;

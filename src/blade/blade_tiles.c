@@ -17,6 +17,10 @@
 
 #define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
 #define NO_SLOT 0xffffffffu
+/* t->command, uint words: the solid blades' draw (count, instanceCount,
+ * first, baseInstance), appends past the capacity, appends tried, and the
+ * fading blades' draw (tiles_cull.comp's Command). */
+enum { CMD_SOLID = 0, CMD_OVERFLOW = 4, CMD_TOTAL = 5, CMD_FADE = 8, TILES_COMMAND_WORDS = 12 };
 #define RECOVERING_BIT 0x80000000u
 #define HYSTERESIS 1.0f /* hybrid's default dead band, used for the draw capacity */
 #define TILES_POSE_ITERATIONS 6 /* tiles_common.glsl */
@@ -94,7 +98,7 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
               + BLADE_MAX_WINDS * sizeof(blade_wind_t) + BLADE_MAX_SPHERES * sizeof(blade_sphere_t)
               + (size_t)l.draw_tiles * 2 * sizeof(uint32_t)            /* tile list */
               + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
-              + 8 * sizeof(uint32_t)                                   /* command */
+              + TILES_COMMAND_WORDS * sizeof(uint32_t)                  /* draw commands */
               + (size_t)BLADE_TILES_READBACK_SLOTS * (S + 2) * sizeof(uint32_t) /* readback rings */
               + side * side * 4 * sizeof(float)                        /* ground texture */
               + (size_t)l.tiles_x * l.tiles_z * (size_t)d->slope_cells_per_tile * d->slope_cells_per_tile *
@@ -283,12 +287,13 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
     t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
+    t->order = malloc((size_t)(l.draw_tiles > 0 ? l.draw_tiles : 1) * sizeof(blade_order_key_t));
     t->ground_cpu = malloc(side * side * 4 * sizeof(float));
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
         t->motion_owner[i] = malloc((size_t)d->pool_slots * sizeof(int));
         ok = ok && t->motion_owner[i];
     }
-    ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->ground_cpu;
+    ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
     if (!ok || !seed_templates(t)) {
         core_log_error("%s:%d: blade_tiles_make: out of memory or seeding failed", __FILE__, __LINE__);
         blade_tiles_destroy(t);
@@ -315,7 +320,8 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->tile_list = make_buffer(t, "tile_list", (size_t)l.draw_tiles * 2 * sizeof(uint32_t), NULL);
     t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
     t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
-    uint32_t cmd[8] = {2u * (uint32_t)(d->max_level + 1), 0, 0, 0, 0, 0, 0, 0};
+    uint32_t cmd[TILES_COMMAND_WORDS] = {0};
+    cmd[CMD_SOLID] = cmd[CMD_FADE] = 2u * (uint32_t)(d->max_level + 1);
     t->command = make_buffer(t, "command", sizeof cmd, cmd);
     ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
          t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id && t->drawn_ids.id &&
@@ -361,11 +367,14 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
     t->draw = make_program(t, "draw", &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
                                                             .defines = "#define BLADE_OVERLAY 1\n"});
+    t->draw_fade = make_program(t, "draw_fade",
+                                &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                                      .defines = "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"});
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
     t->vao = gfx_vertex_array_make(label);
-    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->vao;
+    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
     if (!ok) {
         core_log_error("%s:%d: blade_tiles_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
                        d->label);
@@ -395,7 +404,7 @@ void blade_tiles_destroy(blade_tiles_t *t)
     gfx_readback_destroy(&t->motion_ring);
     gfx_readback_destroy(&t->draw_ring);
     raster_program_destroy(&t->raster);
-    gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw, &t->handover, &t->resolve};
+    gfx_program_t *progs[] = {&t->init, &t->physics, &t->cull, &t->draw, &t->draw_fade, &t->handover, &t->resolve};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (t->ground.id) gfx_texture_destroy(&t->ground);
@@ -408,6 +417,7 @@ void blade_tiles_destroy(blade_tiles_t *t)
     free(t->slot_motion);
     free(t->tile_motion);
     free(t->scratch);
+    free(t->order);
     free(t->template_cpu);
     free(t->ground_cpu);
     memset(t, 0, sizeof *t);
@@ -638,8 +648,13 @@ static bool box_outside(const float mn[3], const float mx[3], const float *m, fl
 }
 
 /* The CPU tile frustum test and tiles_cull.comp: appends the drawn blades
- * to t->drawn and their count to the draw command (timer "tiles.cull"). */
-static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
+ * to t->drawn and their count to the draw commands (timer "tiles.cull").
+ * With `split` (the hardware path's fade) blades whose roots lie beyond
+ * the fade start go to the end of t->drawn and the fade command, the rest
+ * to the front and the solid one; without it all go to the front.
+ * The tile list goes nearest first (blade_order_sort), so the blades are appended roughly front to back
+ * and the depth test rejects more of the hidden ones (docs/PERFORMANCE.md). */
+static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split)
 {
     const blade_cull_desc_t *c = &t->desc.cull;
     uint32_t B = t->template_blades;
@@ -657,14 +672,21 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
             core_log_warn("blade_tiles: more than %d blade tiles in view; the rest are not drawn", n);
             break;
         }
-        list[2 * n] = (uint32_t)i;
-        list[2 * n + 1] = tile->slot >= 0 ? (uint32_t)tile->slot : NO_SLOT;
-        n++;
+        blade_aabb_t box = {{tile->min[0], tile->min[1], tile->min[2]}, {tile->max[0], tile->max[1], tile->max[2]}};
+        t->order[n++] = (blade_order_key_t){.dist2 = blade_aabb_dist2(&box, desc->camera), .id = (uint32_t)i};
+    }
+    blade_order_sort(t->order, (size_t)n);
+    for (int k = 0; k < n; k++) {
+        const hybrid_tile_t *tile = &t->grid.tiles[t->order[k].id];
+        list[2 * k] = t->order[k].id;
+        list[2 * k + 1] = tile->slot >= 0 ? (uint32_t)tile->slot : NO_SLOT;
     }
     t->stats.tiles_drawn = n;
-    uint32_t zero[2] = {0, 0};
-    glClearNamedBufferSubData(t->command.id, GL_R32UI, 4, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
-    glClearNamedBufferSubData(t->command.id, GL_R32UI, 16, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, zero);
+    uint32_t zero = 0;
+    static const int counted[] = {CMD_SOLID + 1, CMD_OVERFLOW, CMD_TOTAL, CMD_FADE + 1};
+    for (int k = 0; k < 4; k++)
+        glClearNamedBufferSubData(t->command.id, GL_R32UI, 4 * counted[k], 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                                  &zero);
     if (n) gfx_buffer_update(t->tile_list, 0, (size_t)n * 2 * sizeof(uint32_t), list);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_program_t p = t->cull;
@@ -678,6 +700,8 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
+    glUniform1i(gfx_uniform(p, "u_split"), split);
+    glUniform1f(gfx_uniform(p, "u_fade_start"), desc->fade_start);
     glUniform1i(gfx_uniform(p, "u_extent_on"), t->extent.id != 0);
     glUniform1i(gfx_uniform(p, "u_extent"), 1);
     glUniform2fv(gfx_uniform(p, "u_extent_origin"), 1, t->desc.extent_origin);
@@ -693,9 +717,9 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glBindTextureUnit(0, 0);
     glBindTextureUnit(1, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    /* instanceCount and overflow */
-    gfx_readback_copy(&t->draw_ring, t->command, 4, 0, 4);
-    gfx_readback_copy(&t->draw_ring, t->command, 16, 4, 4);
+    /* appends tried, and those past the capacity */
+    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_TOTAL, 0, 4);
+    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_OVERFLOW, 4, 4);
     gfx_readback_fence(&t->draw_ring);
     t->culled_once = true;
     gfx_timer_end();
@@ -707,19 +731,15 @@ static blade_surface_t tiles_surface(const blade_tiles_t *t)
                              .lod_distance = t->desc.lod_distance};
 }
 
+/* Blades nearer than the fade start are opaque: drawn without the fade's
+ * discard and alpha-to-coverage, so the depth test runs before the
+ * fragment shader (blade.frag); the fading ones after them with both. */
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
 {
-    cull_tiles(t, desc);
+    bool fade = desc->fade_end > desc->fade_start;
+    cull_tiles(t, desc, fade);
     uint32_t B = t->template_blades;
     gfx_timer_begin("tiles.draw");
-    bool fade = desc->fade_end > desc->fade_start;
-    gfx_program_t p = t->draw;
-    glUseProgram(p.id);
-    blade_surface_t surf = tiles_surface(t);
-    blade_set_surface_uniforms(p, &surf, desc);
-    glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
-    glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
-    glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
     if (t->overlay) {
         int ntiles_all = t->grid.nx * t->grid.nz;
         uint32_t *info = malloc((size_t)ntiles_all * sizeof(uint32_t));
@@ -738,9 +758,19 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glBindVertexArray(t->vao);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    if (fade) gfx_alpha_to_coverage(true);
-    glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
-    if (fade) gfx_alpha_to_coverage(false);
+    blade_surface_t surf = tiles_surface(t);
+    for (int pass = 0; pass < (fade ? 2 : 1); pass++) {
+        gfx_program_t p = pass ? t->draw_fade : t->draw;
+        glUseProgram(p.id);
+        blade_set_surface_uniforms(p, &surf, desc);
+        glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
+        glUniform1i(gfx_uniform(p, "u_from_end"), pass);
+        glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
+        glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
+        if (pass) gfx_alpha_to_coverage(true);
+        glDrawArraysIndirect(GL_TRIANGLE_STRIP, (const void *)(uintptr_t)(4 * (pass ? CMD_FADE : CMD_SOLID)));
+        if (pass) gfx_alpha_to_coverage(false);
+    }
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gfx_timer_end();
@@ -748,10 +778,10 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
 
 bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc)
 {
-    cull_tiles(t, desc);
+    cull_tiles(t, desc, false);
     gfx_timer_begin("tiles.raster");
     blade_surface_t surf = tiles_surface(t);
-    bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, 1,
+    bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, CMD_SOLID + 1,
                                 t->draw_capacity);
     gfx_timer_end();
     return ok;
@@ -804,13 +834,17 @@ void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out)
 
 uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids)
 {
-    uint32_t n;
+    uint32_t solid, fade;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gfx_buffer_read(t->command, 4, sizeof n, &n);
-    if (n > t->draw_capacity) n = t->draw_capacity;
-    if (n && out) gfx_buffer_read(t->drawn, 0, n * sizeof(blade_t), out);
-    if (n && ids) gfx_buffer_read(t->drawn_ids, 0, n * sizeof(uint32_t), ids);
-    return n;
+    gfx_buffer_read(t->command, 4 * (CMD_SOLID + 1), sizeof solid, &solid);
+    gfx_buffer_read(t->command, 4 * (CMD_FADE + 1), sizeof fade, &fade);
+    uint32_t cap = t->draw_capacity, first_fade = cap - fade;
+    if (solid && out) gfx_buffer_read(t->drawn, 0, solid * sizeof(blade_t), out);
+    if (solid && ids) gfx_buffer_read(t->drawn_ids, 0, solid * sizeof(uint32_t), ids);
+    if (fade && out) gfx_buffer_read(t->drawn, first_fade * sizeof(blade_t), fade * sizeof(blade_t), out + solid);
+    if (fade && ids)
+        gfx_buffer_read(t->drawn_ids, first_fade * sizeof(uint32_t), fade * sizeof(uint32_t), ids + solid);
+    return solid + fade;
 }
 
 float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)

@@ -194,6 +194,7 @@ typedef struct blade_tiles_t {
     int *slot_owner;                /* tile per slot, -1 free */
     float *tile_motion;             /* per tile, for hybrid */
     uint32_t *scratch;              /* per-frame upload lists */
+    blade_order_key_t *order;       /* max_draw_tiles: the drawn tiles, nearest first */
     blade_t *template_cpu;          /* template_count * template_blades, tile-local */
     float *ground_cpu;              /* the ground texture: xyz normal, w height per grid vertex */
     int max_draw_tiles;
@@ -208,7 +209,7 @@ typedef struct blade_tiles_t {
     gfx_texture_t extent; /* R8, id 0 when the desc gave none */
     gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
     int overlay;            /* BLADE_TILES_OVERLAY_* */
-    gfx_program_t init, physics, cull, draw, handover, resolve;
+    gfx_program_t init, physics, cull, draw, draw_fade, handover, resolve;
     raster_program_t raster; /* made on the first blade_tiles_raster */
     hybrid_slope_grid_t slope_grid;
     gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
@@ -268,8 +269,8 @@ void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float
 /* The whole pool: pool_slots * template_blades blades. */
 void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out);
 /* Survivors of the latest cull (whole blades, count returned; out holds
- * draw_capacity); ids (may be NULL) receives tile * template_blades + blade
- * per survivor. */
+ * draw_capacity): the solid blades, then those of a split cull's fade list;
+ * ids (may be NULL) receives tile * template_blades + blade per survivor. */
 uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids);
 /* The slope cells (slope_grid.nx * slope_grid.nz). */
 void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out);
