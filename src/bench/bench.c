@@ -329,7 +329,7 @@ static void write_chart(const char *out, const bench_chart_t *ch, double floor)
     snprintf(data, sizeof data, "%s/bench_%s.dat", out, ch->name);
     snprintf(body, sizeof body,
              "set title '%s: speed vs accuracy'\nset xlabel '%s'\nset ylabel '%s'\n"
-             "set grid\nset key top right\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
+             "set grid\nset key below\nset offsets graph 0.05, graph 0.05, graph 0.08, graph 0.05\n"
              "plot '%s' using 1:2 with points pt 7 ps 1.2 title 'configurations', "
              "'' using 1:2:3 with labels offset 0,1 font ',8' notitle, "
              "'< grep -E \"^[^ ]+ [^ ]+ [^ ]+ 1( |$)\" %s | sort -g' using 1:2 with linespoints lw 2 pt 6 ps 2 "
