@@ -228,7 +228,9 @@ static void test_states(void)
     const float eye[3] = {-45.0f, 6.0f, -40.0f};
     uint8_t *seen = calloc((size_t)t.leaf_count, 1);
     for (int i = 0; i < got; i++) seen[ranges[i].leaf] = 1;
-    CHECK(bb_octree_sort_near_first(&t, eye, ranges, got));
+    bb_range_key_t *keys = malloc((size_t)got * sizeof *keys);
+    bb_octree_sort_near_first(&t, eye, ranges, got, keys);
+    free(keys);
     int sorted_bad = 0, merged = 0;
     float prev = -1.0f;
     for (int i = 0; i < got; i++) {

@@ -1,9 +1,9 @@
 #version 450
 /* blade.frag: two-sided blade shading with the shared sun, sky ambient and
  * fog (common/lighting.glsl). With BLADE_FADE, the hybrid cross-fade: alpha
- * 1 nearer than u_fade.x, 0 beyond u_fade.y, dithered per pixel (hash of
- * the pixel) and turned into MSAA coverage by alpha-to-coverage (enabled by
- * the host). Without it the blade is opaque and the depth test runs before
+ * 1 nearer than u_fade.x, 0 beyond u_fade.y, in between dithered per pixel
+ * (hash of the pixel) and turned into MSAA coverage by alpha-to-coverage
+ * (enabled by the host). Without it the blade is opaque and the depth test runs before
  * this shader: with the fade's discard (and alpha-to-coverage) the driver
  * shades every hidden blade fragment first (docs/PERFORMANCE.md). */
 #include "common/grass_shade.glsl"
@@ -34,8 +34,9 @@ void main()
 {
     float alpha = 1.0;
 #ifdef BLADE_FADE
-    if (u_fade.y > u_fade.x) {
-        alpha = blade_fade_dither(blade_fade_ramp(f_root_dist, u_fade), uvec2(gl_FragCoord.xy));
+    float ramp = blade_fade_ramp(f_root_dist, u_fade);
+    if (ramp < 1.0) { /* as blade_raster.comp: alpha 1 stays 1, not dithered below it */
+        alpha = blade_fade_dither(ramp, uvec2(gl_FragCoord.xy));
         if (alpha <= 0.0) discard;
     }
 #endif

@@ -644,10 +644,11 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
                            .margin = margin > 1.0f ? margin : 1.0f};
     if (!bb_octree_build(&f->tree, &od)) goto fail;
     f->ranges = malloc(sizeof *f->ranges * (size_t)f->tree.leaf_count);
+    f->sort_keys = malloc(sizeof *f->sort_keys * (size_t)f->tree.leaf_count);
     f->firsts = malloc(sizeof *f->firsts * (size_t)f->tree.leaf_count);
     f->counts_gl = malloc(sizeof *f->counts_gl * (size_t)f->tree.leaf_count);
     f->recover_ranges = malloc(sizeof *f->recover_ranges * 4 * (size_t)f->tree.leaf_count);
-    if (!f->ranges || !f->firsts || !f->counts_gl || !f->recover_ranges) {
+    if (!f->ranges || !f->sort_keys || !f->firsts || !f->counts_gl || !f->recover_ranges) {
         core_log_error("%s:%d: out of memory", __FILE__, __LINE__);
         goto fail;
     }
@@ -766,6 +767,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->slope_prog);
     bb_octree_free(&f->tree);
     free(f->ranges);
+    free(f->sort_keys);
     free(f->recover_ranges);
     gfx_buffer_destroy(&f->recover_range_buf);
     free(f->firsts);
@@ -1331,7 +1333,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
     if (n > 0) {
-        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n);
+        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
         gfx_count_add("bb.drawn_quads", range_total(f->counts_gl, nr));
         for (int i = 0; i < nr; i++) {
@@ -1344,7 +1346,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
                           f->ranges, f->tree.leaf_count);
     if (n > 0) {
-        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n);
+        bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
         gfx_count_add("bb.drawn_meshes", range_total(f->counts_gl, nr));
         render_uniforms(f, f->render_prog, dd);

@@ -182,6 +182,7 @@ typedef struct bb_field_t {
     char defines[256];          /* the programs' mesh size and limits */
     raster_program_t raster_prog; /* made on the first bb_field_raster */
     bb_range_t *ranges;    /* leaf_count scratch */
+    bb_range_key_t *sort_keys; /* leaf_count scratch of bb_octree_sort_near_first */
     GLint *firsts;
     GLsizei *counts_gl;
     uint32_t *recover_ranges;      /* leaf_count x (first, count, first thread, 0) */

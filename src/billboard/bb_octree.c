@@ -300,11 +300,6 @@ int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float 
     return found;
 }
 
-typedef struct bb_range_key_t {
-    float dist2;
-    bb_range_t range;
-} bb_range_key_t;
-
 static int bb_range_key_cmp(const void *pa, const void *pb)
 {
     const bb_range_key_t *a = pa, *b = pb;
@@ -312,14 +307,10 @@ static int bb_range_key_cmp(const void *pa, const void *pb)
     return (a->range.leaf > b->range.leaf) - (a->range.leaf < b->range.leaf);
 }
 
-bool bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n)
+void bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n,
+                               bb_range_key_t *keys)
 {
-    if (n < 2) return true;
-    bb_range_key_t *keys = malloc((size_t)n * sizeof *keys);
-    if (!keys) {
-        core_log_error("bb_octree_sort_near_first: out of memory for %d ranges", n);
-        return false;
-    }
+    if (n < 2) return;
     int level = tree->depth > 0 ? tree->depth - 1 : 0;
     for (int i = 0; i < n; i++) {
         int node = tree->level_start[level] + (int)(ranges[i].leaf >> (3 * (tree->depth - level)));
@@ -328,8 +319,6 @@ bool bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_r
     }
     qsort(keys, (size_t)n, sizeof *keys, bb_range_key_cmp);
     for (int i = 0; i < n; i++) ranges[i] = keys[i].range;
-    free(keys);
-    return true;
 }
 
 void bb_octree_state_brute(const bb_octree_t *tree, const bb_bound_t *objects, int n, float dt,

@@ -108,9 +108,14 @@ int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float 
  * box (without margin; 0 inside it) of each range's leaf's parent, ties by
  * leaf index, so the leaves of one parent stay in Morton order (adjacent in
  * the buffer: a draw merges them into one range) and a draw in this order
- * lets the depth test reject what nearer cells already cover. Returns false
- * (ranges untouched, logged) when its scratch allocation fails. */
-bool bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n);
+ * lets the depth test reject what nearer cells already cover. keys: scratch
+ * of at least n entries (the caller's, so a draw allocates nothing). */
+typedef struct bb_range_key_t {
+    float dist2;
+    bb_range_t range;
+} bb_range_key_t;
+void bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n,
+                               bb_range_key_t *keys);
 
 /* Independent brute-force twin of bb_octree_update for tests: loops over
  * all leaves, computes each leaf box from its integer coordinates, tests it
