@@ -3,9 +3,9 @@
  * fog (common/lighting.glsl). With BLADE_FADE, the hybrid cross-fade: alpha
  * 1 nearer than u_fade.x, 0 beyond u_fade.y, in between dithered per pixel
  * (hash of the pixel) and turned into MSAA coverage by alpha-to-coverage
- * (enabled by the host). Without it the blade is opaque and the depth test runs before
- * this shader: with the fade's discard (and alpha-to-coverage) the driver
- * shades every hidden blade fragment first (docs/PERFORMANCE.md). */
+ * (enabled by the host). Without it the blade is opaque and the depth test
+ * runs before this shader: with the fade's discard (and alpha-to-coverage)
+ * the driver shades every hidden blade fragment first (docs/PERFORMANCE.md). */
 #include "common/grass_shade.glsl"
 
 #ifndef BLADE_FADE

@@ -13,9 +13,9 @@
  * whole blade (and its id tile * B + k): with u_split, a blade whose root
  * lies beyond u_fade_start at the end of `drawn`, counted back from
  * u_capacity - 1 (cmd.fade_instances), any other at the front
- * (cmd.instanceCount); without, every blade at the front; front and end cannot meet, as each append first
- * took one of the u_capacity places in cmd.total. Past the capacity it is
- * dropped and counted in cmd.overflow. The host zeroes the four counters
+ * (cmd.instanceCount); without, every blade at the front. Front and end
+ * cannot meet, as each append first took one of the u_capacity places in
+ * cmd.total. Past the capacity it is dropped and counted in cmd.overflow. The host zeroes the four counters
  * before the dispatch. */
 #include "blade/tiles_common.glsl"
 

@@ -152,7 +152,10 @@ GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, in
 void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture);
 
 /* Draws the survivors of the latest cull into the bound framebuffer (timer
- * "blade.draw"). Depth test on, no face culling (two-sided). */
+ * "blade.draw"). Depth test on, no face culling (two-sided). Without a fade
+ * band the program is opaque and depth tested before shading; with one
+ * (desc->fade_end > fade_start) every blade takes the fade program
+ * (discard, alpha-to-coverage). */
 void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
 
 /* Projected blade length in pixels per segment of the compute

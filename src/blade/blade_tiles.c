@@ -651,9 +651,10 @@ static bool box_outside(const float mn[3], const float mx[3], const float *m, fl
  * to t->drawn and their count to the draw commands (timer "tiles.cull").
  * With `split` (the hardware path's fade) blades whose roots lie beyond
  * the fade start go to the end of t->drawn and the fade command, the rest
- * to the front and the solid one; without it all go to the front.
- * The tile list goes nearest first (blade_order_sort), so the blades are appended roughly front to back
- * and the depth test rejects more of the hidden ones (docs/PERFORMANCE.md). */
+ * to the front and the solid one; without it all go to the front. The
+ * tile list goes nearest first (blade_order_sort), so the blades are
+ * appended roughly front to back and the depth test rejects more of the
+ * hidden ones (docs/PERFORMANCE.md). */
 static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split)
 {
     const blade_cull_desc_t *c = &t->desc.cull;

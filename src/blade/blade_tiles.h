@@ -249,7 +249,10 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
 
 /* Culls (timer "tiles.cull") and draws (timer "tiles.draw") the blade-
  * representation tiles into the bound framebuffer; procedural pose at the
- * time of the latest update. Depth test on, two-sided. */
+ * time of the latest update. Depth test on, two-sided. With a fade band
+ * (desc->fade_end > fade_start) two draws: the blades rooted within
+ * fade_start opaque (depth tested before shading), then the fading ones
+ * with alpha-to-coverage. */
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
 /* The same blades as blade_tiles_draw (same culling, timer "tiles.cull"),
  * drawn by the compute rasterizer (timer "tiles.raster"); between
