@@ -8,7 +8,8 @@
  * narrower than the sample spacing is widened to it and covers each sample
  * with the probability of its true width, so a far blade is a thin line of
  * the right average coverage. Hybrid fade: alpha as blade.frag, turned into
- * coverage by fixed per-sample thresholds (what alpha-to-coverage does).
+ * coverage by fixed per-sample thresholds (blade_fade_covers, the rule
+ * blade.frag's sample mask follows).
  * With RASTER_BIG the queued medium and large triangles (raster.glsl). */
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
@@ -89,13 +90,11 @@ vec4 blade_vertex(float u, float v, int slot)
 void raster_fragment(int s, vec3 w, float depth)
 {
     if (raster_occluded(s, floatBitsToUint(depth))) return;
-    uint sub = uint(s % u_raster_samples);
-    float threshold = (float(sub) + 0.5) / float(u_raster_samples);
     if (g_keep < 1.0 && hash_float(g_seed ^ uint(s) * 0x85ebca6bu) >= g_keep) return;
     if (g_alpha < 1.0) {
         int pixel = s / u_raster_samples;
         uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
-        if (blade_fade_dither(g_alpha, px) <= threshold) return;
+        if (!blade_fade_covers(blade_fade_dither(g_alpha, px), s % u_raster_samples, u_raster_samples)) return;
     }
     uint rgba = 0u;
     if (raster_color_pass()) {

@@ -28,6 +28,21 @@ float blade_fade_dither(float alpha, uvec2 px)
     return clamp(alpha + dither * 0.25, 0.0, 1.0);
 }
 
+/* The samples a fading blade of dithered alpha a covers, one rule for both
+ * rasterizers: sample k of n when a > (k + 0.5) / n (bit k of the mask). */
+bool blade_fade_covers(float a, int k, int n)
+{
+    return a > (float(k) + 0.5) / float(n);
+}
+
+uint blade_fade_mask(float a, int n)
+{
+    uint mask = 0u;
+    for (int k = 0; k < n; k++)
+        if (blade_fade_covers(a, k, n)) mask |= 1u << uint(k);
+    return mask;
+}
+
 /* A billboard texel's alpha a under the hybrid fade (0 nearer than
  * fade_start, 1 beyond fade_end; fade_end <= 0: none) at distance dist,
  * dithered by interleaved gradient noise of the pixel centre frag. */

@@ -383,14 +383,12 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
     glBindVertexArray(g->vao);
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
-    if (fade) gfx_alpha_to_coverage(true);
     if (pull) {
         glDrawArraysIndirect(GL_TRIANGLE_STRIP, NULL);
     } else {
         glPatchParameteri(GL_PATCH_VERTICES, 1);
         glDrawArraysIndirect(GL_PATCHES, NULL);
     }
-    if (fade) gfx_alpha_to_coverage(false);
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gfx_timer_end();

@@ -113,7 +113,8 @@ typedef struct blade_gpu_t {
  *   fade_start = fade_end = 0: no fade; otherwise blades are fully drawn
  *   nearer than fade_start (distance from the camera to the root), absent
  *   beyond fade_end, and cross-faded in between by a dithered alpha that
- *   drives alpha-to-coverage (enable MSAA on the target for a smooth fade).
+ *   the fragment shader turns into its sample mask (blade_fade_mask; enable
+ *   MSAA on the target for a smooth fade).
  *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20)
  *   (SCENE_DEFAULT_ALBEDO_ROOT / _TIP of scene/scene_fields.h). */
 typedef struct blade_draw_desc_t {
@@ -155,7 +156,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
  * "blade.draw"). Depth test on, no face culling (two-sided). Without a fade
  * band the program is opaque and depth tested before shading; with one
  * (desc->fade_end > fade_start) every blade takes the fade program
- * (discard, alpha-to-coverage). */
+ * (discard, sample mask). */
 void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
 
 /* Projected blade length in pixels per segment of the compute

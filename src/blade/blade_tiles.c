@@ -733,8 +733,8 @@ static blade_surface_t tiles_surface(const blade_tiles_t *t)
 }
 
 /* Blades nearer than the fade start are opaque: drawn without the fade's
- * discard and alpha-to-coverage, so the depth test runs before the
- * fragment shader (blade.frag); the fading ones after them with both. */
+ * discard and sample mask, so the depth test runs before the fragment
+ * shader (blade.frag); the fading ones after them with both. */
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
 {
     bool fade = desc->fade_end > desc->fade_start;
@@ -768,9 +768,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
         glUniform1i(gfx_uniform(p, "u_from_end"), pass);
         glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
         glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
-        if (pass) gfx_alpha_to_coverage(true);
         glDrawArraysIndirect(GL_TRIANGLE_STRIP, (const void *)(uintptr_t)(4 * (pass ? CMD_FADE : CMD_SOLID)));
-        if (pass) gfx_alpha_to_coverage(false);
     }
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);

@@ -252,7 +252,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
  * time of the latest update. Depth test on, two-sided. With a fade band
  * (desc->fade_end > fade_start) two draws: the blades rooted within
  * fade_start opaque (depth tested before shading), then the fading ones
- * with alpha-to-coverage. */
+ * with their sample mask (blade_fade_mask). */
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
 /* The same blades as blade_tiles_draw (same culling, timer "tiles.cull"),
  * drawn by the compute rasterizer (timer "tiles.raster"); between

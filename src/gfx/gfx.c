@@ -559,18 +559,6 @@ bool gfx_target_screenshot(const gfx_target_t *t, const char *path)
     return ok;
 }
 
-void gfx_alpha_to_coverage(bool on)
-{
-    static int dither_control = -1;
-    if (dither_control < 0) dither_control = epoxy_has_gl_extension("GL_NV_alpha_to_coverage_dither_control");
-    if (!on) {
-        glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-        return;
-    }
-    glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
-    if (dither_control) glAlphaToCoverageDitherControlNV(GL_ALPHA_TO_COVERAGE_DITHER_DISABLE_NV);
-}
-
 void gfx_target_present(const gfx_target_t *t, int win_w, int win_h)
 {
     gfx_target_resolve(t);

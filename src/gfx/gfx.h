@@ -356,16 +356,6 @@ static inline void gfx_counted_dispatch_compute_indirect(GLintptr indirect)
  * Draws text in pixels from the top-left of the current viewport. */
 void gfx_text_draw(const char *text, float x, float y, float scale, const float rgba[4]);
 
-/* ---- alpha to coverage --------------------------------------------------------
- * Turns GL_SAMPLE_ALPHA_TO_COVERAGE on or off (the blades' hybrid fade).
- * On: where the driver can dither the coverage mask across neighbouring
- * pixels (GL_NV_alpha_to_coverage_dither_control) the dither is turned
- * off, so the fade's own dither is the only one. Drivers still differ in
- * how many samples an alpha covers (on the H100 fewer than on Mesa, with
- * or without the dither), which is why the billboards write their mask
- * themselves (grass_coverage_mask, docs/BILLBOARDS.md). */
-void gfx_alpha_to_coverage(bool on);
-
 /* ---- fullscreen helpers ------------------------------------------------------ */
 /* Blits the resolved target to the default framebuffer (window mode). */
 void gfx_target_present(const gfx_target_t *t, int win_w, int win_h);
