@@ -91,9 +91,12 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
          * counts it as orientation or frustum; the later tests agree exactly */
         CHECK(st.patch_culled > 0);
         int unordered = 0;
-        for (uint32_t k = 1; k < st.patches_drawn; k++)
-            unordered += blade_aabb_dist2(&f->patch_aabbs[g.visible_patches[k]], cd.cam_pos) <
-                         blade_aabb_dist2(&f->patch_aabbs[g.visible_patches[k - 1]], cd.cam_pos);
+        for (uint32_t k = 1; k < st.patches_drawn; k++) {
+            const blade_aabb_t *here = &f->patch_aabbs[g.visible_patches[k]];
+            const blade_aabb_t *prev = &f->patch_aabbs[g.visible_patches[k - 1]];
+            unordered += core_box_dist2(cd.cam_pos, here->min, here->max) <
+                         core_box_dist2(cd.cam_pos, prev->min, prev->max);
+        }
         printf("%-34s %u visible patches, %d out of distance order\n", name, st.patches_drawn, unordered);
         CHECK(st.patches_drawn > 2 && unordered == 0);
         CHECK(st.culled[0] + st.culled[1] + st.patch_culled == rs.culled[0] + rs.culled[1]);

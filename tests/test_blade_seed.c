@@ -273,11 +273,8 @@ int main(void)
     CHECK(field_hash(&g) != h1);
     blade_field_free(&g);
 
-    /* draw order: box distance and the nearest-first sort (ties by id) */
+    /* draw order: the nearest-first sort (ties by id) */
     {
-        blade_aabb_t box = {{0, 0, 0}, {2, 1, 2}};
-        CHECK(blade_aabb_dist2(&box, (float[3]){1, 0.5f, 1}) == 0.0f);
-        CHECK(fabsf(blade_aabb_dist2(&box, (float[3]){5, 3, -1}) - (9 + 4 + 1)) < 1e-5f);
         blade_order_key_t keys[6] = {{4, 7}, {1, 3}, {4, 2}, {0, 9}, {9, 0}, {1, 1}};
         blade_order_sort(keys, 6);
         const uint32_t order[6] = {9, 1, 3, 2, 7, 0};

@@ -32,7 +32,7 @@
  *      threshold and their width scale), and some of them the plain
  *      threshold would have culled;
  *   h) the hardware path's draw lists: the tile list goes nearest first
- *      (blade_aabb_dist2 nondecreasing), and a cull split at the fade start
+ *      (core_box_dist2 nondecreasing), and a cull split at the fade start
  *      draws the same blades as one without (same ids) in two lists: roots
  *      up to the fade start first (the opaque draw), farther ones after
  *      (the fade's draw), both non-empty. */
@@ -584,8 +584,7 @@ static void test_draw_lists(void)
     float last = 0.0f;
     for (int k = 0; k < listed; k++) {
         const hybrid_tile_t *tile = &t.grid.tiles[list[2 * k]];
-        blade_aabb_t box = {{tile->min[0], tile->min[1], tile->min[2]}, {tile->max[0], tile->max[1], tile->max[2]}};
-        float d2 = blade_aabb_dist2(&box, cam);
+        float d2 = core_box_dist2(cam, tile->min, tile->max);
         unordered += d2 < last;
         last = d2;
     }

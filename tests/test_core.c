@@ -1,8 +1,9 @@
 /* test_core: RNG determinism, hash bits, atomic file writes, growable
- * buffers, PNG round trip. */
+ * buffers, PNG round trip, box distance. */
 #include "core/core.h"
 #include "test.h"
 
+#include <math.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -99,5 +100,11 @@ int main(void)
     core_image_free(&tile);
     char probe[300];
     CHECK(core_fs_resolve("CMakeLists.txt", probe, sizeof probe));
+    /* box distance */
+    {
+        const float lo[3] = {0, 0, 0}, hi[3] = {2, 1, 2};
+        CHECK(core_box_dist2((float[3]){1, 0.5f, 1}, lo, hi) == 0.0f);
+        CHECK(fabsf(core_box_dist2((float[3]){5, 3, -1}, lo, hi) - (9 + 4 + 1)) < 1e-5f);
+    }
     TEST_END();
 }

@@ -15,8 +15,8 @@
  * u_capacity - 1 (cmd.fade_instances), any other at the front
  * (cmd.instanceCount); without, every blade at the front. Front and end
  * cannot meet, as each append first took one of the u_capacity places in
- * cmd.total. Past the capacity it is dropped and counted in cmd.overflow. The host zeroes the four counters
- * before the dispatch. */
+ * cmd.total. Past the capacity it is dropped and counted in cmd.overflow.
+ * The host zeroes the four counters before the dispatch. */
 #include "blade/tiles_common.glsl"
 
 layout(local_size_x = 256) in;

@@ -189,22 +189,14 @@ void bb_octree_assign(bb_octree_t *tree, const float (*positions)[3], int n, uin
     free(leaf);
 }
 
-/* Squared distance from p to the box [lo - margin, hi + margin] (0 inside). */
-static float bb_box_dist2(const float p[3], const float lo[3], const float hi[3], float margin)
-{
-    float d2 = 0.0f;
-    for (int a = 0; a < 3; a++) {
-        float l = lo[a] - margin, h = hi[a] + margin, c = p[a];
-        float q = c < l ? l - c : (c > h ? c - h : 0.0f);
-        d2 += q * q;
-    }
-    return d2;
-}
-
 bool bb_bound_overlaps_box(const bb_bound_t *b, const float lo[3], const float hi[3], float margin)
 {
     if (b->kind == BB_BOUND_NONE) return false;
-    if (b->kind == BB_BOUND_SPHERE) return bb_box_dist2(b->centre, lo, hi, margin) <= b->radius * b->radius;
+    if (b->kind == BB_BOUND_SPHERE) {
+        float l[3], h[3];
+        for (int a = 0; a < 3; a++) l[a] = lo[a] - margin, h[a] = hi[a] + margin;
+        return core_box_dist2(b->centre, l, h) <= b->radius * b->radius;
+    }
     for (int a = 0; a < 3; a++) {
         if (b->centre[a] + b->half[a] < lo[a] - margin) return false;
         if (b->centre[a] - b->half[a] > hi[a] + margin) return false;
@@ -314,7 +306,7 @@ void bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_r
     int level = tree->depth > 0 ? tree->depth - 1 : 0;
     for (int i = 0; i < n; i++) {
         int node = tree->level_start[level] + (int)(ranges[i].leaf >> (3 * (tree->depth - level)));
-        keys[i] = (bb_range_key_t){.dist2 = bb_box_dist2(eye, tree->lo[node], tree->hi[node], 0.0f),
+        keys[i] = (bb_range_key_t){.dist2 = core_box_dist2(eye, tree->lo[node], tree->hi[node]),
                                    .range = ranges[i]};
     }
     qsort(keys, (size_t)n, sizeof *keys, bb_range_key_cmp);

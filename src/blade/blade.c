@@ -258,7 +258,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
                 patch_culled += g->patch_real[p];
             else
                 g->patch_order[visible++] =
-                    (blade_order_key_t){.dist2 = blade_aabb_dist2(&g->patch_aabbs[p], d.cam_pos), .id = p};
+                    (blade_order_key_t){.dist2 = core_box_dist2(d.cam_pos, g->patch_aabbs[p].min, g->patch_aabbs[p].max), .id = p};
         }
         blade_order_sort(g->patch_order, visible);
         for (uint32_t k = 0; k < visible; k++) g->visible_patches[k] = g->patch_order[k].id;

@@ -275,16 +275,6 @@ typedef struct sort_key_t {
     uint32_t index;
 } sort_key_t;
 
-float blade_aabb_dist2(const blade_aabb_t *box, const float p[3])
-{
-    float d2 = 0.0f;
-    for (int a = 0; a < 3; a++) {
-        float d = fmaxf(fmaxf(box->min[a] - p[a], p[a] - box->max[a]), 0.0f);
-        d2 += d * d;
-    }
-    return d2;
-}
-
 static int cmp_order(const void *a, const void *b)
 {
     const blade_order_key_t *x = a, *y = b;

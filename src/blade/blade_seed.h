@@ -76,9 +76,6 @@ typedef struct blade_aabb_t {
     float min[3], max[3];
 } blade_aabb_t;
 
-/* Squared distance from p to the box (0 inside). */
-float blade_aabb_dist2(const blade_aabb_t *box, const float p[3]);
-
 /* A drawn group (patch, tile) and its squared distance to the camera. */
 typedef struct blade_order_key_t {
     float dist2;
@@ -87,7 +84,8 @@ typedef struct blade_order_key_t {
 
 /* Sorts keys nearest first, ties by id (the same order on every run).
  * The draws append blades in this order, so the depth test rejects more of
- * the hidden ones (docs/PERFORMANCE.md "Blades drawn nearest first"). */
+ * the hidden ones (docs/PERFORMANCE.md, "Opaque blades tested before
+ * shading, drawn nearest first"). */
 void blade_order_sort(blade_order_key_t *keys, size_t n);
 
 typedef struct blade_field_t {

@@ -673,8 +673,8 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
             core_log_warn("blade_tiles: more than %d blade tiles in view; the rest are not drawn", n);
             break;
         }
-        blade_aabb_t box = {{tile->min[0], tile->min[1], tile->min[2]}, {tile->max[0], tile->max[1], tile->max[2]}};
-        t->order[n++] = (blade_order_key_t){.dist2 = blade_aabb_dist2(&box, desc->camera), .id = (uint32_t)i};
+        t->order[n++] = (blade_order_key_t){.dist2 = core_box_dist2(desc->camera, tile->min, tile->max),
+                                            .id = (uint32_t)i};
     }
     blade_order_sort(t->order, (size_t)n);
     for (int k = 0; k < n; k++) {

@@ -1,5 +1,6 @@
 /* core: logging, seeded RNG, stateless hashes, file I/O with atomic writes,
- * growable buffers and 8-bit RGBA images. GL-free; every other module may use it. */
+ * growable buffers, 8-bit RGBA images and small geometry helpers. GL-free;
+ * every other module may use it. */
 #ifndef MEADOW_CORE_H
 #define MEADOW_CORE_H
 
@@ -37,6 +38,10 @@ uint32_t core_hash_u32(uint32_t x);
 float core_hash_float(uint32_t x);
 /* FNV-1a over bytes, for state hashes in determinism tests. */
 uint64_t core_hash_bytes(const void *data, size_t size, uint64_t h);
+
+/* ---- geometry --------------------------------------------------------------
+ * Squared distance from p to the axis-aligned box [lo, hi] (0 inside it). */
+float core_box_dist2(const float p[3], const float lo[3], const float hi[3]);
 
 /* ---- files ---------------------------------------------------------------
  * core_fs_read reads a whole file into a malloc'd, NUL-terminated buffer.

@@ -73,22 +73,12 @@ int hybrid_tile_at(const hybrid_grid_t *g, float x, float z)
     return j * g->nx + i;
 }
 
-static float sphere_box_dist2(const float c[3], const float mn[3], const float mx[3])
-{
-    float d2 = 0;
-    for (int k = 0; k < 3; k++) {
-        float v = c[k] < mn[k] ? mn[k] - c[k] : (c[k] > mx[k] ? c[k] - mx[k] : 0.0f);
-        d2 += v * v;
-    }
-    return d2;
-}
-
 bool hybrid_tile_touched_brute(const hybrid_grid_t *g, int i, const hybrid_object_t *o, int count)
 {
     const hybrid_tile_t *t = &g->tiles[i];
     for (int k = 0; k < count; k++) {
         float r = o[k].sphere[3];
-        if (sphere_box_dist2(o[k].sphere, t->min, t->max) <= r * r) return true;
+        if (core_box_dist2(o[k].sphere, t->min, t->max) <= r * r) return true;
     }
     return false;
 }
@@ -119,7 +109,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
         for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < g->nz; j++)
             for (int i = i0 < 0 ? 0 : i0; i <= i1 && i < g->nx; i++) {
                 hybrid_tile_t *t = &g->tiles[j * g->nx + i];
-                if (sphere_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
+                if (core_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
                 if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
                     st.list_overflow++;
                     continue;
