@@ -253,6 +253,30 @@ static void test_states(void)
     CHECK(sorted_bad == 0);
     CHECK(merged * 3 < got);
     free(seen);
+
+    /* Near only (the canopy's end): the leaves whose margin-grown box, from
+     * the leaf coordinates, comes within 30 m of the eye, order kept. */
+    bb_range_t *near = malloc((size_t)got * sizeof *near);
+    memcpy(near, ranges, (size_t)got * sizeof *near);
+    int kept = bb_octree_keep_near(&t, eye, 30.0f, near, got), expect = 0, near_bad = 0;
+    for (int i = 0; i < got; i++) {
+        int c[3];
+        leaf_coords(ranges[i].leaf, t.depth, c);
+        float d2 = 0.0f;
+        for (int a = 0; a < 3; a++) {
+            float cell = (desc.max[a] - desc.min[a]) / (float)t.side;
+            float lo = desc.min[a] + cell * (float)c[a], hi = lo + cell;
+            float d = eye[a] < lo ? lo - eye[a] : (eye[a] > hi ? eye[a] - hi : 0.0f);
+            d2 += d * d;
+        }
+        if (sqrtf(d2) > 30.0f + t.desc.margin) continue;
+        near_bad += expect >= kept || near[expect].leaf != ranges[i].leaf;
+        expect++;
+    }
+    printf("near only: %d of %d leaves within 30 m (brute %d), %d differ\n", kept, got, expect, near_bad);
+    CHECK(kept == expect && near_bad == 0);
+    CHECK(kept > 0 && kept < got);
+    free(near);
     /* No silent cap: a short output array logs and reports the full count. */
     int warns = core_log_warn_count();
     CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), NULL, ranges, 5) == all);

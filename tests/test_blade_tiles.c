@@ -22,8 +22,8 @@
  *      step;
  *   f) distance thinning keeps coverage: with the distance test on, every
  *      drawn blade is a survivor of blade_ref_cull_one and is drawn
- *      blade_ref_lod_width times its pose's width; per 2 m ring of ground
- *      distance the drawn blades' summed width is within 10 % of all the
+ *      blade_ref_lod_width times its pose's width; per 2 m ring of the
+ *      tiles' distance (the eye distance) the drawn blades' summed width is within 10 % of all the
  *      blades' (thinning alone leaves down to 1 / 8 of it);
  *   g) the orientation test of widened blades: with it and the distance
  *      test on, the drawn blades of every listed tile are exactly those
@@ -462,7 +462,7 @@ static void test_lod_width(void)
     uint32_t B = t.template_blades;
     blade_cull_desc_t cull = t.desc.cull;
     memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
-    enum { RINGS = 5 };
+    enum { RINGS = 4 }; /* 2-4 .. 8-10 m: the camera is 2 m up */
     double all[RINGS] = {0}, kept[RINGS] = {0}, thin[RINGS] = {0};
     float worst = 0.0f;
     int not_survivor = 0;
@@ -472,11 +472,11 @@ static void test_lod_width(void)
         blade_tiles_pose(&t, (int)(ids[i] / B), ids[i] % B, &pose);
         listed[ids[i] / B] = true;
         not_survivor += blade_ref_cull_one(&pose, ids[i] % B, &cull) != BLADE_CULL_VISIBLE;
-        float dx = pose.v0[0] - cam[0], dz = pose.v0[2] - cam[2], d = sqrtf(dx * dx + dz * dz);
+        float d = blade_ref_cull_distance(&pose, &cull);
         float want = pose.v2[3] * blade_ref_lod_width(d, 10.0f, 8);
         worst = fmaxf(worst, fabsf(drawn[i].v2[3] - want) / want);
-        int r = (int)(d / 2.0f);
-        if (r < RINGS) kept[r] += drawn[i].v2[3], thin[r] += pose.v2[3];
+        int r = (int)(d / 2.0f) - 1;
+        if (r >= 0 && r < RINGS) kept[r] += drawn[i].v2[3], thin[r] += pose.v2[3];
     }
     /* every blade of the tiles that were drawn, as if nothing were thinned */
     for (int tile = 0; tile < t.grid.nx * t.grid.nz; tile++) {
@@ -485,9 +485,8 @@ static void test_lod_width(void)
             blade_t pose;
             blade_tiles_pose(&t, tile, k, &pose);
             if (pose.v1[3] <= 0.0f) continue;
-            float dx = pose.v0[0] - cam[0], dz = pose.v0[2] - cam[2];
-            int r = (int)(sqrtf(dx * dx + dz * dz) / 2.0f);
-            if (r < RINGS) all[r] += pose.v2[3];
+            int r = (int)(blade_ref_cull_distance(&pose, &cull) / 2.0f) - 1;
+            if (r >= 0 && r < RINGS) all[r] += pose.v2[3];
         }
     }
     printf("f) %u blades drawn, %d not survivors of the CPU cull, width vs CPU twin worst %.2g (relative)\n", n,
@@ -495,8 +494,8 @@ static void test_lod_width(void)
     CHECK(n > 0 && not_survivor == 0);
     CHECK(worst < 1e-4f);
     for (int r = 0; r < RINGS; r++) {
-        printf("f) ground distance %d-%d m: drawn width / all blades' width %.3f (unwidened %.3f)\n", 2 * r,
-               2 * r + 2, kept[r] / all[r], thin[r] / all[r]);
+        printf("f) distance %d-%d m: drawn width / all blades' width %.3f (unwidened %.3f)\n", 2 * r + 2,
+               2 * r + 4, kept[r] / all[r], thin[r] / all[r]);
         CHECK(all[r] > 0.0 && fabs(kept[r] / all[r] - 1.0) < 0.1);
     }
     CHECK(thin[RINGS - 1] / all[RINGS - 1] < 0.5); /* the last ring is thinned: the test compares something */
@@ -538,7 +537,8 @@ static void test_lod_orientation(void)
             float width_dir[3], front[3];
             blade_ref_frame(&pose, width_dir, front);
             float c = fabsf(g[0] * width_dir[0] + g[1] * width_dir[1] + g[2] * width_dir[2]) / d;
-            float tk = blade_ref_lod_orientation(0.9f, blade_ref_lod_width(d, 10.0f, 8));
+            float lod = blade_ref_lod_width(blade_ref_cull_distance(&pose, &cull), 10.0f, 8);
+            float tk = blade_ref_lod_orientation(0.9f, lod);
             if (c > tk) continue;
             want++;
             rescued += c > 0.9f;

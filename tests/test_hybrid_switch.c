@@ -53,9 +53,9 @@ static double max_jump(scene_mode_t mode, double *series)
 }
 
 /* The first update, before any draw: the tile under the scene's camera is
- * drawn as blades (tiny.json with the camera over the corner tile
- * [2, 4]^2 and a switch distance of 1.5 m, so that tile is a billboard tile
- * seen from the origin). It was a billboard tile when the tiles took the
+ * drawn as blades (tiny.json with the camera 0.5 m up over the corner tile
+ * [2, 4]^2, within the tile's box, and a switch distance of 1.5 m, so that
+ * tile is a billboard tile seen from the origin). It was a billboard tile when the tiles took the
  * origin for the camera until the first draw, and the first frame of
  * meadow_large showed bare ground near the camera. */
 static void first_update_near_tiles(void)
@@ -65,7 +65,7 @@ static void first_update_near_tiles(void)
     CHECK(app_world_load(w, &o) == 0);
     app_world_set_mode(w, SCENE_MODE_HYBRID);
     w->scene.grass.switch_distance = 1.5f;
-    glm_vec3_copy((vec3){3.0f, 3.0f, 3.0f}, w->scene.camera.position);
+    glm_vec3_copy((vec3){3.0f, 0.5f, 3.0f}, w->scene.camera.position);
     CHECK(app_world_make_gpu(w));
     app_world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
     const hybrid_grid_t *g = &w->tiles.grid;

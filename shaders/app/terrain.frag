@@ -1,11 +1,22 @@
-// terrain.frag: soil and short-grass ground colour, lit like the grass.
+// terrain.frag: soil and short-grass ground colour, lit like the grass;
+// in the hybrid, beyond the billboards, the ground canopy (common/canopy.glsl):
+// the ground's colour mixed with the canopy's by its cover, thinned by the
+// extent map as the blades and billboards are, faded in over
+// u_canopy_fade (start, end of the switch distance; end <= 0: no canopy).
 #version 450 core
 #include "common/lighting.glsl"
 #include "common/hash.glsl"
+#include "common/canopy.glsl"
+#include "common/switch.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
+uniform vec2 u_canopy_fade;
+uniform bool u_extent_on;
+uniform sampler2D u_extent;
+uniform vec2 u_extent_origin;
+uniform float u_extent_spacing;
 out vec4 o_color;
 
 float value_noise(vec2 p)
@@ -19,6 +30,16 @@ float value_noise(vec2 p)
     return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
 }
 
+/* The extent map's grass fraction at ground point p (texel of its candidate
+ * cell, wrapped as the billboards' and tiles' lookups wrap it). */
+float extent_at(vec2 p)
+{
+    if (!u_extent_on) return 1.0;
+    ivec2 size = textureSize(u_extent, 0);
+    ivec2 cell = ivec2(floor((p - u_extent_origin) / u_extent_spacing));
+    return texelFetch(u_extent, ((cell % size) + size) % size, 0).r;
+}
+
 void main()
 {
     vec3 n = normalize(v_normal);
@@ -28,5 +49,14 @@ void main()
     vec3 albedo = mix(soil, turf, smoothstep(0.3, 0.7, noise));
     vec3 c = shade(albedo, n, u_sun, 1.0);
     vec3 to_frag = v_pos - u_camera;
+    if (u_canopy_fade.y > 0.0) {
+        float d = grass_distance(v_pos, u_camera);
+        float ramp = clamp((d - u_canopy_fade.x) / max(u_canopy_fade.y - u_canopy_fade.x, 1e-6), 0.0, 1.0);
+        if (ramp > 0.0) {
+            float cover;
+            vec3 grass = canopy_color(v_pos, n, u_camera, u_sun, cover);
+            c = mix(c, grass, ramp * canopy_thinned(cover, extent_at(v_pos.xz)));
+        }
+    }
     o_color = vec4(apply_fog(c, length(to_frag), normalize(to_frag)), 1.0);
 }

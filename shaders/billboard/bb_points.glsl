@@ -9,6 +9,8 @@
 #ifndef BB_POINTS_GLSL
 #define BB_POINTS_GLSL
 
+#include "common/switch.glsl"
+
 #define BB_NO_SLOT 0xffffffffu
 
 /* Per-billboard brightness (the clump texel's factor in bb_shade): 1 +- 0.15
@@ -98,7 +100,14 @@ vec3 bb_plain_normal(vec3 a, vec3 b, vec3 ta, vec3 tb)
  * (fade_end <= 0: no band), where blades stand instead. */
 bool bb_fade_dropped(bb_point p, vec3 camera, float fade_start, float fade_end)
 {
-    return fade_end > 0.0 && distance(camera, p.position) + 0.5 * length(p.size) < fade_start;
+    return fade_end > 0.0 && grass_distance(p.position, camera) + 0.5 * length(p.size) < fade_start;
+}
+
+/* True when billboard p lies wholly beyond the canopy's fade (far_end > 0),
+ * where the ground canopy stands for it. */
+bool bb_far_dropped(bb_point p, vec3 camera, float far_end)
+{
+    return far_end > 0.0 && grass_distance(p.position, camera) - 0.5 * length(p.size) > far_end;
 }
 
 /* bb_mesh_init_quad into bb_rest. */

@@ -19,6 +19,7 @@ uniform vec3 u_camera;
 uniform float u_time;
 uniform float u_fade_start;
 uniform float u_fade_end;
+uniform float u_far_end;
 uniform bb_wind u_wind;
 
 out vec3 g_world;
@@ -32,7 +33,7 @@ void main()
     bb_point p = points[gl_VertexID / 6];
     const int corners[6] = int[](0, 1, 2, 2, 1, 3);
     int c = corners[gl_VertexID % 6];
-    bool near = bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end);
+    bool near = bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end) || bb_far_dropped(p, u_camera, u_far_end);
     if (p.pad0 != BB_NO_SLOT || near) {
         g_world = vec3(0.0);
         g_normal = vec3(0.0, 1.0, 0.0);

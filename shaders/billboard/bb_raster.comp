@@ -44,6 +44,8 @@ uniform vec3 u_sun;
 uniform float u_time;
 uniform float u_fade_start;
 uniform float u_fade_end;
+uniform float u_far_start;
+uniform float u_far_end;
 uniform bb_wind u_wind;
 uniform uint u_count;
 
@@ -75,7 +77,7 @@ bool bb_setup(uint prim)
     vec3 centre = p.position + 0.5 * p.size.y * p.growth;
     for (int i = 0; i < 6; i++)
         if (dot(u_planes[i].xyz, centre) + u_planes[i].w < -r) return false;
-    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return false;
+    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end) || bb_far_dropped(p, u_camera, u_far_end)) return false;
 #endif
     bb_frame(p, g_right, g_up);
     g_layer = float(p.layer);
@@ -158,7 +160,9 @@ void raster_fragment(int s0, vec3 w, float depth)
     vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
     int pixel = s0 / n;
     uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
-    float a = bb_fade_alpha(tex.a, distance(u_camera, world), u_fade_start, u_fade_end, vec2(px) + 0.5);
+    float dist = grass_distance(world, u_camera);
+    float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, vec2(px) + 0.5);
+    a = bb_far_alpha(a, dist, u_far_start, u_far_end, vec2(px) + 0.5);
     if (a < 1.0 / 255.0) return;
     uint mask = grass_coverage_mask(a, n, px);
     if (mask == 0u) return;

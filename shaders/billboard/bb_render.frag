@@ -5,7 +5,8 @@
  * grass_coverage_mask, the compute rasterizer's rule). The hybrid distance
  * fade multiplies alpha by a ramp from fade_start to fade_end plus an
  * interleaved-gradient dither, so the MSAA coverage cross-fades instead of
- * blending. */
+ * blending; the canopy's fade (u_far_start to u_far_end) ramps it back down
+ * the same way, where the ground canopy fades in (terrain.frag). */
 #include "common/grass_shade.glsl"
 
 uniform sampler2DArray u_clumps;
@@ -13,6 +14,8 @@ uniform vec3 u_camera;
 uniform vec3 u_sun;
 uniform float u_fade_start;
 uniform float u_fade_end;
+uniform float u_far_start;
+uniform float u_far_end;
 
 in vec3 g_world;
 in vec3 g_normal;
@@ -26,7 +29,9 @@ void main()
 {
     vec4 tex = texture(u_clumps, g_uvl);
     vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
-    float a = bb_fade_alpha(tex.a, distance(u_camera, g_world), u_fade_start, u_fade_end, gl_FragCoord.xy);
+    float dist = grass_distance(g_world, u_camera);
+    float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, gl_FragCoord.xy);
+    a = bb_far_alpha(a, dist, u_far_start, u_far_end, gl_FragCoord.xy);
     uint mask = grass_coverage_mask(a, gl_NumSamples, uvec2(gl_FragCoord.xy));
     if (a < 1.0 / 255.0 || mask == 0u) discard;
     gl_SampleMask[0] = int(mask);

@@ -21,6 +21,7 @@ uniform vec3 u_camera;
 uniform float u_time;
 uniform float u_fade_start;
 uniform float u_fade_end;
+uniform float u_far_end;
 uniform bb_wind u_wind;
 
 out vec3 g_world;
@@ -43,7 +44,7 @@ void put(vec3 pos, vec3 n, float u, float h, float layer)
 void main()
 {
     bb_point p = bb_load_point();
-    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end)) return;
+    if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end) || bb_far_dropped(p, u_camera, u_far_end)) return;
     vec3 right, up;
     bb_frame(p, right, up);
     float layer = float(p.layer);

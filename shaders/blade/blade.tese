@@ -2,6 +2,7 @@
 /* blade.tese: builds the blade surface at (u, v) with De Casteljau and the
  * shape functions (Jahrmann & Wimmer 2017 eq. 21, 23, 24; blade_geom.glsl). */
 #include "common/blade.glsl"
+#include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(quads, equal_spacing, ccw) in;
@@ -23,6 +24,6 @@ void main()
     f_pos = p;
     f_normal = n;
     f_v = gl_TessCoord.y;
-    f_root_dist = length(b.v0.xyz - u_camera);
+    f_root_dist = grass_distance(b.v0.xyz, u_camera);
     gl_Position = u_view_proj * vec4(p, 1.0);
 }

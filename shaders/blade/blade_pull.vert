@@ -9,6 +9,7 @@
  * 2 S + 2 vertices (blade.c command_initial). Same geometry as blade.tese
  * (Jahrmann & Wimmer 2017 eq. 21, 23, 24). */
 #include "common/blade.glsl"
+#include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
@@ -40,6 +41,6 @@ void main()
     f_pos = p;
     f_normal = nrm;
     f_v = v;
-    f_root_dist = length(b.v0.xyz - u_camera);
+    f_root_dist = grass_distance(b.v0.xyz, u_camera);
     gl_Position = u_view_proj * vec4(p, 1.0);
 }

@@ -57,7 +57,7 @@ int blade_setup(uint prim)
     uint index = u_use_ids != 0 ? ids[prim] : prim;
     g_blade = blades[index];
     g_seed = hash_u32(index * 0x9e3779b9u);
-    float root_dist = length(g_blade.v0.xyz - u_camera);
+    float root_dist = grass_distance(g_blade.v0.xyz, u_camera);
     g_alpha = blade_fade_ramp(root_dist, u_fade);
     raster_vert r0, r1, r2;
     vec3 t1, front;

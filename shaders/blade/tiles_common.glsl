@@ -18,6 +18,7 @@
 #ifndef TILES_COMMON_GLSL
 #define TILES_COMMON_GLSL
 
+#include "common/switch.glsl"
 #include "common/blade.glsl"
 #include "common/hash.glsl"
 

@@ -67,7 +67,9 @@ bool extent_keep(vec3 v0, uint id)
 }
 
 /* The blade's ground vector from the camera (v0 - camera without its part
- * along up): orientation test and eq. 19's d_proj = |view_ground|. */
+ * along up): the orientation test. The distance levels read the hybrid's
+ * switch distance (grass_distance) instead of eq. 19's d_proj, so the
+ * thinning ends where the fade and the tiles' representation switch. */
 vec3 ground_view(Blade b)
 {
     vec3 view = b.v0.xyz - u_cam_pos;
@@ -93,9 +95,9 @@ bool visible(Blade b, uint index, vec3 view_ground, float width_scale)
     }
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
         int n = u_distance_levels;
-        float dproj = length(view_ground);
-        if (dproj > u_max_distance) return false;
-        int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
+        float d = grass_distance(v0, u_cam_pos);
+        if (d > u_max_distance) return false;
+        int level = int(floor(float(n) * (1.0 - d / u_max_distance)));
         if (int(index % uint(n)) > level) return false;
     }
     return true;
@@ -118,7 +120,7 @@ void main()
     if (b.v1.w <= 0.0) return;
     vec3 view_ground = ground_view(b);
     float width_scale = (u_disable & BLADE_CULL_DISTANCE) == 0u
-                            ? blade_lod_width(length(view_ground), u_max_distance, u_distance_levels)
+                            ? blade_lod_width(grass_distance(b.v0.xyz, u_cam_pos), u_max_distance, u_distance_levels)
                             : 1.0;
     if (!visible(b, k, view_ground, width_scale)) return;
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
@@ -127,7 +129,7 @@ void main()
         atomicAdd(cmd.overflow, 1u);
         return;
     }
-    uint slot = u_split && length(b.v0.xyz - u_cam_pos) > u_fade_start
+    uint slot = u_split && grass_distance(b.v0.xyz, u_cam_pos) > u_fade_start
                     ? u_capacity - 1u - atomicAdd(cmd.fade_instances, 1u)
                     : atomicAdd(cmd.instanceCount, 1u);
     drawn[slot] = b;

@@ -7,6 +7,7 @@
  * debug overlays (blade_tiles_set_overlay) tint blades by tile state, level
  * of detail or collision strength. */
 #include "common/blade.glsl"
+#include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(std430, binding = 8) readonly buffer Drawn { Blade drawn[]; };
@@ -53,7 +54,7 @@ void main()
     f_pos = p;
     f_normal = nrm;
     f_v = v;
-    f_root_dist = length(b.v0.xyz - u_camera);
+    f_root_dist = grass_distance(b.v0.xyz, u_camera);
     f_overlay = overlay(index, n);
     gl_Position = u_view_proj * vec4(p, 1.0);
 }

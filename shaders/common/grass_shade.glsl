@@ -11,6 +11,7 @@
 
 #include "common/hash.glsl"
 #include "common/lighting.glsl"
+#include "common/switch.glsl"
 
 /* Hybrid fade of a blade: 1 nearer than fade.x, 0 beyond fade.y (root
  * distance d; fade.y <= fade.x: no fade, 1). */
@@ -52,6 +53,17 @@ float bb_fade_alpha(float a, float dist, float fade_start, float fade_end, vec2 
     float fade = clamp((dist - fade_start) / max(fade_end - fade_start, 1e-6), 0.0, 1.0);
     float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
     return fade < 1.0 ? clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
+}
+
+/* A billboard texel's alpha a under the canopy's fade (1 nearer than
+ * far_start, 0 beyond far_end; far_end <= 0: none) at distance dist,
+ * dithered as bb_fade_alpha dithers the near fade. */
+float bb_far_alpha(float a, float dist, float far_start, float far_end, vec2 frag)
+{
+    if (far_end <= 0.0) return a;
+    float keep = 1.0 - clamp((dist - far_start) / max(far_end - far_start, 1e-6), 0.0, 1.0);
+    float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
+    return keep < 1.0 ? clamp(a * keep + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
 }
 
 /* Alpha to coverage, one rule for both rasterizers and every driver: a

@@ -12,13 +12,19 @@ vec3 sky_color(vec3 dir)
     return mix(SKY_HORIZON, SKY_ZENITH, t);
 }
 
+// The terms of shade() (twins: BLADE_CANOPY_* in src/blade/blade_canopy.h,
+// whose table integrates them over the blades).
+const float SUN_DIFFUSE = 0.85;
+const vec3 AMBIENT_DOWN = vec3(0.18, 0.17, 0.14);
+const vec3 AMBIENT_UP = vec3(0.35, 0.42, 0.55);
+
 // Lambert sun + hemispheric sky ambient. two_sided flips the normal toward
 // the viewer (grass is lit from both faces).
 vec3 shade(vec3 albedo, vec3 n, vec3 sun_dir, float ao)
 {
     float ndl = max(dot(n, sun_dir), 0.0);
-    vec3 ambient = mix(vec3(0.18, 0.17, 0.14), vec3(0.35, 0.42, 0.55), n.y * 0.5 + 0.5);
-    return albedo * (SUN_COLOR * ndl * 0.85 + ambient * ao);
+    vec3 ambient = mix(AMBIENT_DOWN, AMBIENT_UP, n.y * 0.5 + 0.5);
+    return albedo * (SUN_COLOR * ndl * SUN_DIFFUSE + ambient * ao);
 }
 
 vec3 apply_fog(vec3 c, float dist, vec3 view_dir)

@@ -200,6 +200,19 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                       "%.3f (%.3f %.3f %.3f), Delta E %.3f, coverage %.4f; the seam is %s the floor\n",
                       APP_SEAM_FLOOR_PLACEMENTS, f.mean.score, f.score[0], f.score[1], f.score[2], f.mean.delta_e,
                       f.mean.coverage, e.score <= f.mean.score ? "within" : "above");
+    if (n < (int)size && w->terrain.canopy.rows > 1) {
+        float cd = w->scene.grass.canopy_distance;
+        if (!app_world_canopy_seam(w, &app->last_view, &app->target, &e))
+            n += snprintf(buf + n, size - (size_t)n,
+                          "canopy seam at %.1f m: not measured (a side of the band shows no grass or too few "
+                          "pixels)\n",
+                          cd);
+        else
+            n += snprintf(buf + n, size - (size_t)n,
+                          "canopy seam at %.1f m (billboards to the ground canopy, against billboards to the "
+                          "horizon; band +-%.0f m): score %.3f, Delta E %.3f, Delta L* %+.3f, coverage %.4f\n",
+                          cd, APP_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
+    }
     return n < (int)size ? n : (int)size - 1;
 }
 

@@ -106,18 +106,27 @@ eval_seam_desc_t app_seam_desc(const app_world_t *w)
     return (eval_seam_desc_t){.switch_distance = w->scene.grass.switch_distance, .fade = APP_SWITCH_FADE};
 }
 
-/* eval_image_seam of frame against ref, both classified against bg. */
-static bool seam_of(const app_world_t *w, app_seam_frame_t *frame, app_seam_frame_t *ref, const app_seam_frame_t *bg,
-                    eval_seam_t *out)
+/* eval_image_seam of frame against ref, both classified against bg, at
+ * the band of d. */
+static bool seam_at(app_seam_frame_t *frame, app_seam_frame_t *ref, const app_seam_frame_t *bg,
+                    const eval_seam_desc_t *d, eval_seam_t *out)
 {
     app_seam_frame_classify(frame, bg);
     app_seam_frame_classify(ref, bg);
-    eval_seam_desc_t d = app_seam_desc(w);
     return eval_image_seam(&(eval_seam_frame_t){&frame->img, frame->dist, frame->cls},
-                           &(eval_seam_frame_t){&ref->img, ref->dist, ref->cls}, &d, out);
+                           &(eval_seam_frame_t){&ref->img, ref->dist, ref->cls}, d, out);
 }
 
-bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+static bool seam_of(const app_world_t *w, app_seam_frame_t *frame, app_seam_frame_t *ref, const app_seam_frame_t *bg,
+                    eval_seam_t *out)
+{
+    eval_seam_desc_t d = app_seam_desc(w);
+    return seam_at(frame, ref, bg, &d, out);
+}
+
+/* The last frame against it drawn with billboards only, at band d. */
+static bool world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, const eval_seam_desc_t *d,
+                       eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
     if (w->mode != SCENE_MODE_HYBRID || !w->have_bb) return false;
@@ -125,7 +134,7 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
     bool ok = app_seam_frame_read(w, v, t, &frame) && app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               app_seam_frame_draw(w, v, t, w->mode, false, &bg);
     if (ok) {
-        ok = seam_of(w, &frame, &ref, &bg, out);
+        ok = seam_at(&frame, &ref, &bg, d, out);
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= APP_SEAM_MIN_PIXELS;
     }
@@ -133,6 +142,20 @@ bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, 
     app_seam_frame_free(&ref);
     app_seam_frame_free(&bg);
     return ok;
+}
+
+bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+{
+    eval_seam_desc_t d = app_seam_desc(w);
+    return world_seam(w, v, t, &d, out);
+}
+
+bool app_world_canopy_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!w->have_tiles || w->terrain.canopy.rows < 2) return false;
+    eval_seam_desc_t d = {.switch_distance = w->scene.grass.canopy_distance, .fade = APP_CANOPY_FADE};
+    return world_seam(w, v, t, &d, out);
 }
 
 bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, app_seam_floor_t *out)

@@ -1,6 +1,7 @@
 /* app_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
  * ground), and draws the sky gradient behind everything. */
 #include "app/app_world.h"
+#include "scene/scene_fields.h"
 
 #include <string.h>
 
@@ -39,8 +40,23 @@ bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
     return t->vbo.id && t->ibo.id && t->prog.id && t->sky.id;
 }
 
+bool app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, const core_image_t *extent,
+                            const float origin[2], float spacing)
+{
+    blade_canopy_pack(c, &t->canopy);
+    gfx_texture_destroy(&t->extent);
+    if (!extent) return true;
+    t->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = extent->w, .h = extent->h, .format = GL_R8,
+                                                       .filter = GL_NEAREST, .data = extent->px,
+                                                       .upload_format = GL_RED, .label = "terrain.extent"});
+    memcpy(t->extent_origin, origin, sizeof t->extent_origin);
+    t->extent_spacing = spacing;
+    return t->extent.id != 0;
+}
+
 void app_terrain_destroy(app_terrain_t *t)
 {
+    gfx_texture_destroy(&t->extent);
     gfx_buffer_destroy(&t->vbo);
     gfx_buffer_destroy(&t->ibo);
     gfx_vertex_array_destroy(&t->vao);
@@ -55,6 +71,24 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
     glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
+    glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
+                canopy ? t->canopy_fade[1] : 0.0f);
+    if (canopy) {
+        static const float root[3] = SCENE_DEFAULT_ALBEDO_ROOT, tip[3] = SCENE_DEFAULT_ALBEDO_TIP;
+        const blade_canopy_uniforms_t *u = &t->canopy;
+        glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), u->rows);
+        glUniform1fv(gfx_uniform(t->prog, "u_canopy_cover"), u->rows, u->cover);
+        glUniform4fv(gfx_uniform(t->prog, "u_canopy_amb"), u->rows, &u->amb[0][0]);
+        glUniform2fv(gfx_uniform(t->prog, "u_canopy_sun"), u->rows * BLADE_CANOPY_AZIMUTHS, &u->sun[0][0]);
+        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
+        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
+        glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent.id != 0);
+        glUniform1i(gfx_uniform(t->prog, "u_extent"), 0);
+        glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
+        glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
+        glBindTextureUnit(0, t->extent.id);
+    }
     glBindVertexArray(t->vao);
     glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
 

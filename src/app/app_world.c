@@ -57,6 +57,13 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->raster_samples = o->raster_samples ? o->raster_samples : s->raster_samples;
     w->character_override = o->character;
     w->clip_override = o->clip;
+    float canopy_min = s->grass.switch_distance + APP_SWITCH_FADE + APP_CANOPY_FADE;
+    if (s->grass.canopy_distance < canopy_min) {
+        core_log_error("%s: grass.canopy_distance %g is less than grass.switch_distance + %g (%g): the blades' and "
+                       "the canopy's fade bands would overlap",
+                       w->scene_path, s->grass.canopy_distance, APP_SWITCH_FADE + APP_CANOPY_FADE, canopy_min);
+        return 2;
+    }
     stage_done(w, APP_STAGE_SCENE, &mark);
     if (s->terrain.type == TERRAIN_MESH) {
         char mesh[1024];
@@ -340,6 +347,21 @@ static bool make_tiles(app_world_t *w)
     }
     w->have_tiles = blade_tiles_make(&w->tiles, &td);
     if (w->have_tiles) blade_tiles_set_slope_source(&w->tiles, bb_slope_source, w);
+    /* The ground canopy beyond the billboards, thinned by the same map. */
+    blade_canopy_t canopy;
+    bool canopy_ok = blade_canopy_make(&canopy, &(blade_canopy_desc_t){
+                                                    .density = g->density,
+                                                    .height = {g->height[0], g->height[1]},
+                                                    .width = {g->width[0], g->width[1]},
+                                                    .stiffness = {g->stiffness[0], g->stiffness[1]},
+                                                    .shape = g->shape,
+                                                    .gravity = w->blade_env.gravity,
+                                                    .seed = s->seed,
+                                                    .sun = APP_SUN_DIR,
+                                                });
+    if (w->have_tiles && canopy_ok)
+        w->have_tiles = app_terrain_set_canopy(&w->terrain, &canopy, have_layout ? &lay.extent : NULL,
+                                               td.extent_origin, td.extent_spacing);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
 }
@@ -578,6 +600,11 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
+    bool canopy = w->mode == SCENE_MODE_HYBRID && w->have_tiles && uses_tiles(w);
+    float far_lo = w->scene.grass.canopy_distance - APP_CANOPY_FADE;
+    float far_hi = w->scene.grass.canopy_distance + APP_CANOPY_FADE;
+    w->terrain.canopy_fade[0] = canopy ? far_lo : 0.0f;
+    w->terrain.canopy_fade[1] = canopy ? far_hi : 0.0f;
     gfx_timer_begin("terrain");
     app_terrain_draw(&w->terrain, v);
     app_colliders_draw(&w->colliders, v);
@@ -632,6 +659,10 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (w->mode == SCENE_MODE_HYBRID) {
             d.fade_start = fade_lo;
             d.fade_end = fade_hi;
+        }
+        if (canopy) {
+            d.far_start = far_lo;
+            d.far_end = far_hi;
         }
         if (w->have_tiles && uses_tiles(w)) {
             blade_tiles_slope(&w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
@@ -753,7 +784,7 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     glm_mat4_inv(v->viewproj, v->inv_viewproj);
     cam_frustum_planes(v->viewproj, v->planes);
     glm_vec3_copy(cam.position, v->camera);
-    glm_vec3_normalize_to((vec3){0.45f, 0.8f, 0.35f}, v->sun_dir);
+    glm_vec3_normalize_to((vec3)APP_SUN_DIR, v->sun_dir);
     v->width = width;
     v->height = height;
     v->time = time;

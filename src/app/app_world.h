@@ -13,6 +13,7 @@
 #include "scene/terrain.h"
 #include "billboard/bb.h"
 #include "blade/blade.h"
+#include "blade/blade_canopy.h"
 #include "blade/blade_tiles.h"
 #include "character/character.h"
 #include "eval/eval_image.h"
@@ -29,15 +30,27 @@ typedef struct app_view_t {
     int overlay; /* debug overlay, key O: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength */
 } app_view_t;
 
+/* The terrain, and in the hybrid the ground canopy it is shaded as beyond
+ * the billboards (blade_canopy.h, shaders/common/canopy.glsl). */
 typedef struct app_terrain_t {
     gfx_buffer_t vbo, ibo;
     GLuint vao, empty_vao;
     int index_count;
     gfx_program_t prog, sky;
+    /* Ground canopy: its table, the extent map that thins it, and this
+     * frame's fade (start, end of the switch distance; end 0: none). */
+    blade_canopy_uniforms_t canopy;
+    gfx_texture_t extent;
+    float extent_origin[2], extent_spacing;
+    float canopy_fade[2];
 } app_terrain_t;
 
 bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh);
 void app_terrain_destroy(app_terrain_t *t);
+/* The canopy's table and the extent map (NULL: none) that thins it, whose
+ * texel of ground point p is floor((p.xz - origin) / spacing) wrapped. */
+bool app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, const core_image_t *extent,
+                            const float origin[2], float spacing);
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
 
@@ -176,6 +189,12 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
 /* Half width (m) of the hybrid cross-fade band around grass.switch_distance:
  * blades fade out and billboards fade in over [switch - it, switch + it]. */
 #define APP_SWITCH_FADE 1.0f
+/* Half width (m) of the canopy's band around grass.canopy_distance:
+ * billboards fade out and the ground canopy fades in over [canopy - it,
+ * canopy + it]. */
+#define APP_CANOPY_FADE 4.0f
+/* Towards the sun (normalised where used): every view's sun_dir. */
+#define APP_SUN_DIR {0.45f, 0.8f, 0.35f}
 /* ---- hybrid seam (app_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
 /* A frame for eval_image_seam: colour, distance to the visible surface and
  * class per pixel (row 0 at the top). */
@@ -206,6 +225,10 @@ eval_seam_desc_t app_seam_desc(const app_world_t *w);
  * not in hybrid mode or a window of the band shows no grass or fewer than
  * 100 counted pixels (in either frame). */
 bool app_world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+/* The same at the canopy's band (grass.canopy_distance +- APP_CANOPY_FADE):
+ * billboards to the ground canopy, against billboards to the horizon.
+ * False as app_world_seam, and without a canopy. */
+bool app_world_canopy_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The seam's noise floor for this view: the billboards built again with
  * APP_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn
  * billboard-only (undeformed) against the world's own billboard-only frame:

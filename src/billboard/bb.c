@@ -1280,6 +1280,8 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(loc(p, "u_time"), dd->time);
     glUniform1f(loc(p, "u_fade_start"), dd->fade_start);
     glUniform1f(loc(p, "u_fade_end"), dd->fade_end);
+    glUniform1f(loc(p, "u_far_start"), dd->far_start);
+    glUniform1f(loc(p, "u_far_end"), dd->far_end);
     glUniform1i(loc(p, "u_clumps"), 0);
     glUniform1i(loc(p, "u_overlay"), dd->overlay);
     set_wind(p.id, &f->desc.wind);
@@ -1332,6 +1334,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     gfx_timer_begin("bb.render");
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
+    if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
@@ -1345,6 +1348,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     }
     n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
                           f->ranges, f->tree.leaf_count);
+    if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);

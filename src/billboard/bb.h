@@ -107,6 +107,8 @@ typedef struct bb_draw_desc_t {
     float time;
     float fade_start;    /* invisible nearer than this (0 = fade off) */
     float fade_end;      /* fully visible beyond this */
+    float far_start;     /* the canopy's fade: fully visible nearer than this, */
+    float far_end;       /* none beyond this, nor drawn (0 = off) */
     int overlay;         /* 1: tint colliding (red) and recovering (yellow) billboards */
     /* Slope cells handed over by blades (hybrid_slope.h), drawn on plain
      * billboards: a buffer of hybrid_slope_cell_t per cell of slope_grid

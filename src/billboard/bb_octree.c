@@ -313,6 +313,17 @@ void bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_r
     for (int i = 0; i < n; i++) ranges[i] = keys[i].range;
 }
 
+int bb_octree_keep_near(const bb_octree_t *tree, const float eye[3], float dist, bb_range_t *ranges, int n)
+{
+    float reach = dist + tree->desc.margin;
+    int kept = 0;
+    for (int i = 0; i < n; i++) {
+        int node = bb_octree_leaf_node(tree, ranges[i].leaf);
+        if (core_box_dist2(eye, tree->lo[node], tree->hi[node]) <= reach * reach) ranges[kept++] = ranges[i];
+    }
+    return kept;
+}
+
 void bb_octree_state_brute(const bb_octree_t *tree, const bb_bound_t *objects, int n, float dt,
                            float recover_time, uint8_t *states, float *timers)
 {

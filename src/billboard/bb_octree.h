@@ -117,6 +117,11 @@ typedef struct bb_range_key_t {
 void bb_octree_sort_near_first(const bb_octree_t *tree, const float eye[3], bb_range_t *ranges, int n,
                                bb_range_key_t *keys);
 
+/* Keeps the ranges[0..n) whose leaf's margin-grown box comes within dist
+ * of eye (core_box_dist2), in their order; returns how many. The hybrid's
+ * billboards end at the ground canopy's fade (bb_draw_desc_t.far_end). */
+int bb_octree_keep_near(const bb_octree_t *tree, const float eye[3], float dist, bb_range_t *ranges, int n);
+
 /* Independent brute-force twin of bb_octree_update for tests: loops over
  * all leaves, computes each leaf box from its integer coordinates, tests it
  * against every object and applies the same state rule to the caller's

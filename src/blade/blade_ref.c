@@ -866,10 +866,10 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
     }
 
     if (!(desc->disable & BLADE_CULL_DISTANCE)) {
-        float dproj = v3_len(view_ground);
+        float dist = desc->eye_distance ? v3_len(view) : v3_len(view_ground);
         int n = desc->distance_levels;
-        if (dproj > desc->max_distance) return BLADE_CULL_DISTANCE;
-        int level = (int)floorf((float)n * (1.0f - dproj / desc->max_distance));
+        if (dist > desc->max_distance) return BLADE_CULL_DISTANCE;
+        int level = (int)floorf((float)n * (1.0f - dist / desc->max_distance));
         if ((int)(index % (uint32_t)n) > level) return BLADE_CULL_DISTANCE;
     }
 
@@ -878,6 +878,13 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
             return BLADE_CULL_OCCLUSION;
     }
     return BLADE_CULL_VISIBLE;
+}
+
+float blade_ref_cull_distance(const blade_t *b, const blade_cull_desc_t *desc)
+{
+    v3 up = v3_load(b->up);
+    v3 view = v3_sub(v3_load(b->v0), v3_load(desc->cam_pos));
+    return desc->eye_distance ? v3_len(view) : v3_len(v3_sub(view, v3_scale(up, v3_dot(view, up))));
 }
 
 float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels)

@@ -343,10 +343,12 @@ void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[
  *   1 frustum: v0, m, v2 to clip space p = VP (x, 1); a point is inside when
  *     |p.x|, |p.y|, |p.z| <= p.w + frustum_tolerance; culled when none of the
  *     three is inside.
- *   2 distance: d_proj = |(v0 - cam) - up ((v0 - cam).up)|; culled when
- *     d_proj > max_distance or (index mod n) > floor(n (1 - d_proj / max_distance))
- *     with n = distance_levels (eq. 19-20): near the camera all blades stay,
- *     at max_distance one in n.
+ *   2 distance: d = blade_ref_cull_distance (eq. 19's ground distance
+ *     d_proj = |(v0 - cam) - up ((v0 - cam).up)|, or with eye_distance the
+ *     hybrid's switch distance |v0 - cam|); culled when d > max_distance or
+ *     (index mod n) > floor(n (1 - d / max_distance)) with n =
+ *     distance_levels (eq. 19-20): near the camera all blades stay, at
+ *     max_distance one in n.
  *   3 occlusion (only when depth != NULL): a point with p.w > 0 and NDC x,y
  *     inside [-1,1] maps to pixel (floor((x*0.5+0.5) W), floor((y*0.5+0.5) H))
  *     clamped to the image, row 0 at the bottom (glReadPixels order); it is
@@ -378,6 +380,9 @@ typedef struct blade_cull_desc_t {
     int depth_w, depth_h;
     float depth_bias;
     uint32_t disable;
+    bool eye_distance; /* distance test on |v0 - cam| instead of eq. 19's d_proj: the
+                          hybrid's tiles, whose representation, thinning and fades
+                          share one distance (docs/HYBRID.md); default false */
 } blade_cull_desc_t;
 
 /* Culled counts per test, indexed 0 orientation, 1 frustum, 2 distance,
@@ -392,6 +397,10 @@ blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc);
 /* Which test culls blade `index` (a BLADE_CULL_* value, BLADE_CULL_VISIBLE
  * when it survives). desc must be resolved. */
 int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc);
+
+/* The distance the distance test (2) reads for blade b: eq. 19's d_proj, or
+ * |v0 - cam| with desc->eye_distance. */
+float blade_ref_cull_distance(const blade_t *b, const blade_cull_desc_t *desc);
 
 /* Culls n blades; survivors (capacity n) receives the surviving indices in
  * increasing order (the GPU writes them in any order: compare as sets).

@@ -46,6 +46,7 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     if (d.max_level == 0) d.max_level = 8;
     if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
     d.cull = blade_cull_desc_defaults(&d.cull);
+    d.cull.eye_distance = true; /* the hybrid's one switch distance (tiles_cull.comp) */
     if (d.slope_cells_per_tile <= 0) d.slope_cells_per_tile = (int)fmaxf(1.0f, roundf(d.tile_size / 0.5f));
     if (d.slope_recover <= 0.0f) d.slope_recover = SCENE_DEFAULT_RECOVER_TIME;
     if (!d.label) d.label = "tiles";

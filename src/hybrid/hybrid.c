@@ -119,10 +119,10 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
     }
     for (int i = 0; i < ntiles; i++) {
         hybrid_tile_t *t = &g->tiles[i];
-        /* Representation with hysteresis on the xz distance to the tile. */
-        float dx = fmaxf(fmaxf(t->min[0] - cam[0], cam[0] - t->max[0]), 0.0f);
-        float dz = fmaxf(fmaxf(t->min[2] - cam[2], cam[2] - t->max[2]), 0.0f);
-        float dist = sqrtf(dx * dx + dz * dz);
+        /* Representation with hysteresis on the switch distance (the eye
+         * distance, shaders/common/switch.glsl) to the tile's box: no blade
+         * of a billboard tile is nearer than the box. */
+        float dist = sqrtf(core_box_dist2(cam, t->min, t->max));
         hybrid_rep_t rep = t->rep;
         if (dist < d->switch_distance - d->hysteresis) rep = HYBRID_REP_BLADE;
         else if (dist > d->switch_distance + d->hysteresis) rep = HYBRID_REP_BILLBOARD;

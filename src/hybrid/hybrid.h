@@ -1,6 +1,7 @@
 /* hybrid: the tiled field shared by both grass models (GL-free).
- * - Representation per tile: blades within switch_distance of the camera,
- *   billboards beyond, with hysteresis so a tile near the boundary does not
+ * - Representation per tile: blades within switch_distance of the camera
+ *   (the eye distance to the tile's box, the one switch distance of
+ *   shaders/common/switch.glsl), billboards beyond, with hysteresis so a tile near the boundary does not
  *   flip every frame.
  * - Activation per tile (Fan et al. 2015): a tile is ACTIVE while an object
  *   touches it, RECOVERING after the last object left until its measured
@@ -104,8 +105,8 @@ typedef struct hybrid_object_t {
 
 bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc);
 void hybrid_grid_free(hybrid_grid_t *g);
-/* One update: representation from the camera (xz distance to the tile's
- * nearest point), object lists and activation. `motion` (may be NULL) gives
+/* One update: representation from the camera (eye distance to the tile's box,
+ * its nearest point), object lists and activation. `motion` (may be NULL) gives
  * the measured motion per tile from the last simulation step. */
 void hybrid_grid_update(hybrid_grid_t *g, const float camera[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt);

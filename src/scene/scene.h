@@ -70,6 +70,7 @@ typedef struct scene_grass_desc_t {
     float billboard_density; /* billboards per m^2 [0, 1000]; default 6 */
     vec2 billboard_size;     /* billboard [w, h] m, each [0, 20]; default [1.0, 0.6] */
     float switch_distance;   /* hybrid blade->billboard distance m [0, 1000]; default 12 */
+    float canopy_distance;   /* hybrid billboard->ground canopy distance m [0, 1e5]; default 60 */
     float tile_size;         /* grass tile side m [0, 1000]; default 4 */
     scene_blade_shape_t shape; /* default quadratic */
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */

@@ -98,6 +98,10 @@ const scene_field_t scene_fields[] = {
       .def = {SCENE_DEFAULT_BILLBOARD_WIDTH, SCENE_DEFAULT_BILLBOARD_HEIGHT}, .doc = "billboard [w, h] (m)"},
     {GRASS(switch_distance), .key = "switch_distance", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_SWITCH_DISTANCE}, .doc = "hybrid: blades nearer than this (m), billboards beyond"},
+    {GRASS(canopy_distance), .key = "canopy_distance", .type = SCENE_FIELD_FLOAT, .hi = 100000,
+      .def = {SCENE_DEFAULT_CANOPY_DISTANCE},
+      .doc = "hybrid: billboards nearer than this (m), the ground shaded as grass canopy beyond (docs/HYBRID.md); "
+             "at least switch_distance + 5 (the two fade bands apart)"},
     {GRASS(tile_size), .key = "tile_size", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_TILE_SIZE}, .doc = "side of the square grass tiles of the hybrid field (m)"},
     {GRASS(shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,

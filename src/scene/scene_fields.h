@@ -62,6 +62,7 @@
 /* "grass": both (hybrid, blade_tiles; recover_time also drives the blades'
  * collision decay and the hand-over memory). */
 #define SCENE_DEFAULT_SWITCH_DISTANCE 12.0f
+#define SCENE_DEFAULT_CANOPY_DISTANCE 60.0f
 #define SCENE_DEFAULT_TILE_SIZE 4.0f
 #define SCENE_DEFAULT_RECOVER_TIME 3.0f
 /* Not a scene key: the motion (m) below which a RECOVERING tile goes IDLE

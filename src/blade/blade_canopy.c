@@ -1,0 +1,351 @@
+/* blade_canopy: the ground canopy's table measured on the blade model by
+ * ray casting a settled, periodic patch of blades (see blade_canopy.h).
+ *
+ * Rays look along +x, so a ray keeps its z: the patch's triangles are
+ * binned into strips of z (a triangle that crosses the patch's z border is
+ * binned once more, shifted by the patch side), and a ray tests the
+ * triangles of its strip in the periodic copies along x that its x span
+ * crosses, copy by copy, nearest first, until a hit lies before the next
+ * copy can begin. Intersection: Moller-Trumbore. */
+#include "blade/blade_canopy.h"
+
+#include "blade/blade_ref.h"
+#include "core/core.h"
+#include "scene/scene_fields.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define CANOPY_STRIPS 64
+#define CANOPY_SETTLE_STEPS 90 /* 1.5 s at 60 Hz, as the clump layers settle */
+
+typedef struct canopy_tri_t {
+    float p[3][3], n[3][3], v[3];
+    float xlo, xhi;
+} canopy_tri_t;
+
+typedef struct canopy_entry_t {
+    uint32_t tri;
+    float zshift;
+} canopy_entry_t;
+
+typedef struct canopy_strip_t {
+    canopy_entry_t *e;
+    int count, cap;
+    float xlo, xhi; /* over its entries */
+} canopy_strip_t;
+
+blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
+{
+    blade_canopy_desc_t d = *desc;
+    if (d.density <= 0.0f) d.density = SCENE_DEFAULT_DENSITY;
+    if (d.height[1] <= 0.0f) d.height[0] = SCENE_DEFAULT_BLADE_HEIGHT_MIN, d.height[1] = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
+    if (d.width[1] <= 0.0f) d.width[0] = SCENE_DEFAULT_BLADE_WIDTH_MIN, d.width[1] = SCENE_DEFAULT_BLADE_WIDTH_MAX;
+    if (d.stiffness[1] <= 0.0f) d.stiffness[0] = SCENE_DEFAULT_STIFFNESS_MIN, d.stiffness[1] = SCENE_DEFAULT_STIFFNESS_MAX;
+    if (d.gravity <= 0.0f) d.gravity = SCENE_DEFAULT_BLADE_GRAVITY;
+    if (d.rows <= 0) d.rows = 16;
+    if (d.rays <= 0) d.rays = 4096;
+    if (d.patch <= 0.0f) d.patch = 2.0f;
+    return d;
+}
+
+static bool strip_add(canopy_strip_t *s, uint32_t tri, float zshift, const canopy_tri_t *t)
+{
+    if (s->count == s->cap) {
+        int cap = s->cap ? 2 * s->cap : 64;
+        canopy_entry_t *e = realloc(s->e, sizeof *e * (size_t)cap);
+        if (!e) return false;
+        s->e = e;
+        s->cap = cap;
+    }
+    s->e[s->count++] = (canopy_entry_t){tri, zshift};
+    s->xlo = s->count == 1 ? t->xlo : fminf(s->xlo, t->xlo);
+    s->xhi = s->count == 1 ? t->xhi : fmaxf(s->xhi, t->xhi);
+    return true;
+}
+
+/* Bins triangle i into the strips its z range covers, in the patch and in
+ * the copies one side beyond either z border. */
+static bool bin_triangle(canopy_strip_t *strips, const canopy_tri_t *t, uint32_t i, float patch)
+{
+    float zlo = fminf(t->p[0][2], fminf(t->p[1][2], t->p[2][2]));
+    float zhi = fmaxf(t->p[0][2], fmaxf(t->p[1][2], t->p[2][2]));
+    for (int k = -1; k <= 1; k++) {
+        float shift = (float)k * patch, lo = zlo + shift, hi = zhi + shift;
+        if (hi < 0.0f || lo >= patch) continue;
+        int s0 = (int)floorf(fmaxf(lo, 0.0f) / patch * CANOPY_STRIPS);
+        int s1 = (int)floorf(fminf(hi, patch * 0.99999f) / patch * CANOPY_STRIPS);
+        for (int s = s0; s <= s1 && s < CANOPY_STRIPS; s++)
+            if (!strip_add(&strips[s], i, shift, t)) return false;
+    }
+    return true;
+}
+
+/* Moller-Trumbore: ray o + t d against triangle t shifted by (sx, 0, sz);
+ * t of the hit (INFINITY: none) and its barycentrics (b1, b2). */
+static float intersect(const canopy_tri_t *tr, float sx, float sz, const float o[3], const float d[3], float *b1,
+                       float *b2)
+{
+    float p0[3] = {tr->p[0][0] + sx, tr->p[0][1], tr->p[0][2] + sz};
+    float e1[3], e2[3], s[3], q[3], h[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = tr->p[1][k] - tr->p[0][k];
+        e2[k] = tr->p[2][k] - tr->p[0][k];
+        s[k] = o[k] - p0[k];
+    }
+    h[0] = d[1] * e2[2] - d[2] * e2[1];
+    h[1] = d[2] * e2[0] - d[0] * e2[2];
+    h[2] = d[0] * e2[1] - d[1] * e2[0];
+    float a = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+    if (fabsf(a) < 1e-12f) return INFINITY;
+    float f = 1.0f / a, u = f * (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]);
+    if (u < 0.0f || u > 1.0f) return INFINITY;
+    q[0] = s[1] * e1[2] - s[2] * e1[1];
+    q[1] = s[2] * e1[0] - s[0] * e1[2];
+    q[2] = s[0] * e1[1] - s[1] * e1[0];
+    float v = f * (d[0] * q[0] + d[1] * q[1] + d[2] * q[2]);
+    if (v < 0.0f || u + v > 1.0f) return INFINITY;
+    float t = f * (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]);
+    if (t <= 0.0f) return INFINITY;
+    *b1 = u;
+    *b2 = v;
+    return t;
+}
+
+/* Seeds and settles the patch's blades and cuts them into triangles. */
+static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_out, int *tri_count, float *top)
+{
+    int blades = (int)lroundf(d->density * d->patch * d->patch);
+    blades = blades < 1 ? 1 : blades;
+    int per = 2 * BLADE_CANOPY_SEGMENTS;
+    canopy_tri_t *tris = malloc(sizeof *tris * (size_t)blades * (size_t)per);
+    if (!tris) return NULL;
+    core_rng_t rng;
+    core_rng_seed(&rng, d->seed, 0xca90u);
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = d->gravity});
+    *top = 0.0f;
+    for (int n = 0; n < blades; n++) {
+        float h = core_rng_range(&rng, d->height[0], d->height[1]);
+        float w = core_rng_range(&rng, d->width[0], d->width[1]);
+        float s = core_rng_range(&rng, d->stiffness[0], d->stiffness[1]);
+        float angle = core_rng_range(&rng, 0.0f, 6.2831853f);
+        float x = core_rng_float(&rng) * d->patch, z = core_rng_float(&rng) * d->patch;
+        blade_t b = {.v0 = {x, 0.0f, z, angle}, .v1 = {x, h, z, h}, .v2 = {x, h, z, w}, .up = {0.0f, 1.0f, 0.0f, s}};
+        float eta = 0.0f;
+        for (int i = 0; i < CANOPY_SETTLE_STEPS; i++) blade_ref_step_one(&b, &eta, &env, NULL);
+        float p[BLADE_CANOPY_SEGMENTS + 1][2][3], nrm[BLADE_CANOPY_SEGMENTS + 1][2][3];
+        for (int i = 0; i <= BLADE_CANOPY_SEGMENTS; i++)
+            for (int u = 0; u < 2; u++) {
+                blade_ref_surface(&b, d->shape, (float)u, (float)i / BLADE_CANOPY_SEGMENTS, p[i][u], nrm[i][u]);
+                *top = fmaxf(*top, p[i][u][1]);
+            }
+        for (int i = 0; i < BLADE_CANOPY_SEGMENTS; i++) {
+            /* (i,0) (i,1) (i+1,0) and (i,1) (i+1,1) (i+1,0), as the clumps */
+            static const int corner[2][3][2] = {{{0, 0}, {0, 1}, {1, 0}}, {{0, 1}, {1, 1}, {1, 0}}};
+            for (int k = 0; k < 2; k++) {
+                canopy_tri_t *t = &tris[(size_t)n * (size_t)per + (size_t)(2 * i + k)];
+                t->xlo = INFINITY;
+                t->xhi = -INFINITY;
+                for (int c = 0; c < 3; c++) {
+                    int row = i + corner[k][c][0], side = corner[k][c][1];
+                    memcpy(t->p[c], p[row][side], sizeof t->p[c]);
+                    memcpy(t->n[c], nrm[row][side], sizeof t->n[c]);
+                    t->v[c] = (float)row / BLADE_CANOPY_SEGMENTS;
+                    t->xlo = fminf(t->xlo, t->p[c][0]);
+                    t->xhi = fmaxf(t->xhi, t->p[c][0]);
+                }
+            }
+        }
+    }
+    *blades_out = blades;
+    *tri_count = blades * per;
+    return tris;
+}
+
+/* Sums over the points a row's rays meet (blade_canopy.h). */
+typedef struct canopy_acc_t {
+    double ao, u_ao, v_ao, vu_ao;
+    double sun[BLADE_CANOPY_AZIMUTHS][2];
+} canopy_acc_t;
+
+/* Adds a met point of blade parameter v and normal n (unit, flipped to the
+ * viewer); suns[k]: the sun at azimuth k in the rays' frame. */
+static void accumulate(canopy_acc_t *a, float v, const float n[3], const float suns[][3])
+{
+    double ao = 0.45 + 0.55 * v, u = 0.5 * n[1] + 0.5;
+    a->ao += ao;
+    a->u_ao += u * ao;
+    a->v_ao += v * ao;
+    a->vu_ao += v * u * ao;
+    for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
+        double d = fmax(n[0] * suns[k][0] + n[1] * suns[k][1] + n[2] * suns[k][2], 0.0);
+        a->sun[k][0] += d;
+        a->sun[k][1] += v * d;
+    }
+}
+
+/* The first surface ray (o, dir) meets in strip s between the copies its x
+ * span [x0, x1] crosses, shaded into acc; true on a hit. */
+static bool cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch, const float o[3],
+                 const float dir[3], float x0, float x1, const float suns[][3], canopy_acc_t *acc)
+{
+    if (s->count == 0) return false;
+    int k0 = (int)ceilf((x0 - s->xhi) / patch), k1 = (int)floorf((x1 - s->xlo) / patch);
+    float best = INFINITY, bb1 = 0.0f, bb2 = 0.0f;
+    const canopy_tri_t *hit = NULL;
+    for (int k = k0; k <= k1; k++) {
+        float sx = (float)k * patch;
+        for (int i = 0; i < s->count; i++) {
+            const canopy_tri_t *t = &tris[s->e[i].tri];
+            if (t->xhi + sx < x0 || t->xlo + sx > x1) continue;
+            float b1 = 0.0f, b2 = 0.0f, th = intersect(t, sx, s->e[i].zshift, o, dir, &b1, &b2);
+            if (th < best) best = th, bb1 = b1, bb2 = b2, hit = t;
+        }
+        /* Copies further along x begin at s->xlo + (k + 1) patch. */
+        if (hit && o[0] + best * dir[0] < s->xlo + (float)(k + 1) * patch) break;
+    }
+    if (!hit) return false;
+    float b0 = 1.0f - bb1 - bb2, n[3], len = 0.0f;
+    for (int c = 0; c < 3; c++) {
+        n[c] = b0 * hit->n[0][c] + bb1 * hit->n[1][c] + bb2 * hit->n[2][c];
+        len += n[c] * n[c];
+    }
+    len = sqrtf(len) > 1e-12f ? sqrtf(len) : 1.0f;
+    /* flipped to face the viewer, as blade_shade flips it */
+    float facing = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) > 0.0f ? -1.0f : 1.0f;
+    for (int c = 0; c < 3; c++) n[c] *= facing / len;
+    accumulate(acc, b0 * hit->v[0] + bb1 * hit->v[1] + bb2 * hit->v[2], n, suns);
+    return true;
+}
+
+bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
+{
+    blade_canopy_desc_t d = blade_canopy_desc_defaults(desc);
+    memset(out, 0, sizeof *out);
+    if (d.sun[0] == 0.0f && d.sun[1] == 0.0f && d.sun[2] == 0.0f) {
+        core_log_error("blade_canopy_make: no sun direction");
+        return false;
+    }
+    if (d.rows < 2 || d.rows > BLADE_CANOPY_MAX_ROWS || d.height[0] > d.height[1] || d.width[0] > d.width[1] ||
+        d.density * d.patch * d.patch > 1e6f) {
+        core_log_error("blade_canopy_make: rows %d (2..%d), height [%g, %g], width [%g, %g], %g blades per patch",
+                       d.rows, BLADE_CANOPY_MAX_ROWS, d.height[0], d.height[1], d.width[0], d.width[1],
+                       d.density * d.patch * d.patch);
+        return false;
+    }
+    int blades = 0, ntri = 0;
+    float top = 0.0f;
+    canopy_tri_t *tris = make_triangles(&d, &blades, &ntri, &top);
+    canopy_strip_t strips[CANOPY_STRIPS] = {{0}};
+    bool ok = tris != NULL;
+    for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(strips, &tris[i], (uint32_t)i, d.patch);
+    /* The sun at azimuth k from the direction towards the viewer, -x. */
+    float sl = sqrtf(d.sun[0] * d.sun[0] + d.sun[1] * d.sun[1] + d.sun[2] * d.sun[2]);
+    float sy = sl > 0.0f ? d.sun[1] / sl : 1.0f, sh = sqrtf(fmaxf(1.0f - sy * sy, 0.0f));
+    float suns[BLADE_CANOPY_AZIMUTHS][3];
+    for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
+        float phi = 3.1415927f * (float)k / (float)(BLADE_CANOPY_AZIMUTHS - 1);
+        suns[k][0] = -sh * cosf(phi);
+        suns[k][1] = sy;
+        suns[k][2] = sh * sinf(phi);
+    }
+    int side = (int)ceilf(sqrtf((float)d.rays));
+    core_rng_t rng;
+    core_rng_seed(&rng, d.seed, 0xca91u);
+    for (int r = 0; ok && r < d.rows; r++) {
+        float e = fmaxf((float)r / (float)(d.rows - 1) * 1.5707963f, 0.0174533f);
+        float dir[3] = {cosf(e), -sinf(e), 0.0f}, h = top + 0.01f, along = h / sinf(e);
+        canopy_acc_t acc = {0};
+        int hits = 0, rays = 0;
+        for (int j = 0; j < side; j++)
+            for (int i = 0; i < side && rays < d.rays; i++, rays++) {
+                /* stratified ground points of the patch */
+                float gx = ((float)i + core_rng_float(&rng)) / (float)side * d.patch;
+                float gz = ((float)j + core_rng_float(&rng)) / (float)side * d.patch;
+                float o[3] = {gx - dir[0] * along, h, gz};
+                int s = (int)(gz / d.patch * CANOPY_STRIPS);
+                s = s < CANOPY_STRIPS ? s : CANOPY_STRIPS - 1;
+                hits += cast(&strips[s], tris, d.patch, o, dir, o[0], gx, suns, &acc);
+            }
+        double inv = hits ? 1.0 / hits : 0.0;
+        blade_canopy_row_t *row = &out->row[r];
+        out->elevation[r] = e;
+        *row = (blade_canopy_row_t){.cover = (float)hits / (float)rays,
+                                    .ao = (float)(acc.ao * inv),
+                                    .u_ao = (float)(acc.u_ao * inv),
+                                    .v_ao = (float)(acc.v_ao * inv),
+                                    .vu_ao = (float)(acc.vu_ao * inv)};
+        for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
+            row->sun[k][0] = (float)(acc.sun[k][0] * inv);
+            row->sun[k][1] = (float)(acc.sun[k][1] * inv);
+        }
+    }
+    for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
+    free(tris);
+    if (!ok) {
+        core_log_error("blade_canopy_make: out of memory");
+        return false;
+    }
+    out->rows = d.rows;
+    out->blades = blades;
+    return true;
+}
+
+blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation)
+{
+    float x = fminf(fmaxf(elevation / 1.5707963f, 0.0f), 1.0f) * (float)(c->rows - 1);
+    int i = (int)floorf(x);
+    i = i < c->rows - 1 ? i : c->rows - 2;
+    float f = x - (float)i;
+    /* the row is floats only: blend them one by one */
+    enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
+    float a[N], b[N], m[N];
+    memcpy(a, &c->row[i], sizeof a);
+    memcpy(b, &c->row[i + 1], sizeof b);
+    for (int k = 0; k < N; k++) m[k] = a[k] + f * (b[k] - a[k]);
+    blade_canopy_row_t out;
+    memcpy(&out, m, sizeof out);
+    return out;
+}
+
+void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_uniforms_t *out)
+{
+    memset(out, 0, sizeof *out);
+    out->rows = c->rows;
+    for (int r = 0; r < c->rows; r++) {
+        const blade_canopy_row_t *w = &c->row[r];
+        out->cover[r] = w->cover;
+        out->amb[r][0] = w->ao;
+        out->amb[r][1] = w->u_ao;
+        out->amb[r][2] = w->v_ao;
+        out->amb[r][3] = w->vu_ao;
+        memcpy(out->sun[r * BLADE_CANOPY_AZIMUTHS], w->sun, sizeof w->sun);
+    }
+}
+
+void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float root[3], const float tip[3],
+                        float rgb[3], float *cover)
+{
+    static const float sun_color[3] = BLADE_CANOPY_SUN_COLOR, down[3] = BLADE_CANOPY_AMBIENT_DOWN,
+                       up[3] = BLADE_CANOPY_AMBIENT_UP;
+    blade_canopy_row_t r = blade_canopy_at(c, e);
+    float y = fminf(fmaxf(phi / 3.1415927f, 0.0f), 1.0f) * (float)(BLADE_CANOPY_AZIMUTHS - 1);
+    int j = (int)floorf(y);
+    j = j < BLADE_CANOPY_AZIMUTHS - 1 ? j : BLADE_CANOPY_AZIMUTHS - 2;
+    float g = y - (float)j;
+    float d = r.sun[j][0] + g * (r.sun[j + 1][0] - r.sun[j][0]);
+    float vd = r.sun[j][1] + g * (r.sun[j + 1][1] - r.sun[j][1]);
+    for (int k = 0; k < 3; k++) {
+        float dt = tip[k] - root[k];
+        rgb[k] = sun_color[k] * BLADE_CANOPY_SUN_DIFFUSE * (root[k] * d + dt * vd) +
+                 root[k] * (down[k] * r.ao + (up[k] - down[k]) * r.u_ao) +
+                 dt * (down[k] * r.v_ao + (up[k] - down[k]) * r.vu_ao);
+    }
+    *cover = r.cover;
+}
+
+float blade_canopy_thinned(float cover, float e)
+{
+    return 1.0f - powf(fmaxf(1.0f - cover, 0.0f), fminf(fmaxf(e, 0.0f), 1.0f));
+}

@@ -1,0 +1,107 @@
+/* blade_canopy: the far field's third representation, after Qiu et al.:
+ * the ground itself shaded as a grass canopy, its coverage and colour and
+ * their change with the view elevation measured on the blade model
+ * (GL-free; the GLSL twin that shades with the table is
+ * shaders/common/canopy.glsl, docs/HYBRID.md "Ground canopy").
+ *
+ * A periodic square patch of blades, seeded as blade_seed seeds them
+ * (height, width, stiffness and facing uniform in the scene's ranges, roots
+ * uniform) and settled under gravity by the blade physics
+ * (blade_ref_step_one, eq. 1-13, no wind), is ray-cast orthographically at
+ * `rows` view elevations: row i looks down at elevation 90 i / (rows - 1)
+ * degrees (row 0 at 1 degree: a ray along the ground meets no ground).
+ * Each blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21
+ * with the scene's shape), as the clump layers and the pulled strips draw
+ * it. The points the rays meet are shaded as blade_shade shades blades
+ * (common/lighting.glsl's shade(): the normal flipped to the viewer,
+ * albedo mix(root, tip, v), ambient occlusion ao = 0.45 + 0.55 v, Lambert
+ * sun and the sky ambient mix(down, up, u), u = n.y / 2 + 1 / 2), and the
+ * table keeps the means over them that make that colour's mean exact:
+ *   cover   the fraction of rays that meet a blade before the ground;
+ *   ao, u_ao, v_ao, vu_ao   the means of ao, u ao, v ao and v u ao (the
+ *           ambient term, linear in them);
+ *   sun[k]  the means of D and v D, D = max(n . sun, 0), with the sun at
+ *           azimuth k pi / (BLADE_CANOPY_AZIMUTHS - 1) from the horizontal
+ *           direction towards the viewer (blade facings are uniform, so
+ *           the mean depends on that angle alone, symmetric about 0).
+ * The mean colour is then, albedo mix(R, T, v):
+ *   SUN_DIFFUSE SUN (R E[D] + (T - R) E[vD])
+ *   + R (DOWN E[ao] + (UP - DOWN) E[u ao]) + (T - R) (DOWN E[v ao] + (UP - DOWN) E[v u ao]).
+ * Thinned by the extent map to a fraction E of the density, the ground a
+ * ray meets before any blade is (1 - cover)^E (the gaps of independent
+ * thinned layers multiply: Campbell's exp(-E rate)). */
+#ifndef MEADOW_BLADE_CANOPY_H
+#define MEADOW_BLADE_CANOPY_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#define BLADE_CANOPY_MAX_ROWS 32
+#define BLADE_CANOPY_AZIMUTHS 9
+#define BLADE_CANOPY_SEGMENTS 8
+
+/* Zero means default; defaults marked (scene) are SCENE_DEFAULT_* of
+ * scene/scene_fields.h (scene key in brackets). */
+typedef struct blade_canopy_desc_t {
+    float density;      /* blades per m^2, default 200 (scene, grass.density) */
+    float height[2];    /* [min, max] m, default [0.35, 0.7] (scene, grass.height) */
+    float width[2];     /* [min, max] m, default [0.02, 0.05] (scene, grass.width) */
+    float stiffness[2]; /* [min, max], default [8, 12] (scene, grass.stiffness) */
+    int shape;          /* BLADE_SHAPE_*, default quadratic (0) (scene, grass.shape) */
+    float gravity;      /* m/s^2 the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
+    uint32_t seed;      /* any value (0 included) */
+    int rows;           /* view elevations, default 16, at most BLADE_CANOPY_MAX_ROWS */
+    int rays;           /* rays per row, default 4096 */
+    float patch;        /* side of the periodic patch, m, default 2 */
+    float sun[3];       /* towards the sun, required (unit: normalised here) */
+} blade_canopy_desc_t;
+blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);
+
+typedef struct blade_canopy_row_t {
+    float cover, ao, u_ao, v_ao, vu_ao;
+    float sun[BLADE_CANOPY_AZIMUTHS][2]; /* E[D], E[v D] */
+} blade_canopy_row_t;
+
+typedef struct blade_canopy_t {
+    int rows;
+    float elevation[BLADE_CANOPY_MAX_ROWS]; /* radians, the rays' (row 0: 1 degree) */
+    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS];
+    int blades; /* in the patch */
+} blade_canopy_t;
+
+/* Measures the table. False (and logs) on bad input or out of memory. */
+bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc);
+
+/* The row at elevation e (radians, clamped to [0, pi / 2]), linear between
+ * rows spaced pi / (2 (rows - 1)) apart: the lookup canopy.glsl does. */
+blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation);
+
+/* The table as canopy.glsl's uniform arrays take it: u_canopy_cover[row],
+ * u_canopy_amb[row] (ao, u_ao, v_ao, vu_ao) and u_canopy_sun[row *
+ * BLADE_CANOPY_AZIMUTHS + azimuth]. */
+typedef struct blade_canopy_uniforms_t {
+    int rows;
+    float cover[BLADE_CANOPY_MAX_ROWS];
+    float amb[BLADE_CANOPY_MAX_ROWS][4];
+    float sun[BLADE_CANOPY_MAX_ROWS * BLADE_CANOPY_AZIMUTHS][2];
+} blade_canopy_uniforms_t;
+void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_uniforms_t *out);
+
+/* The terms of common/lighting.glsl's shade() the mean colour uses. */
+#define BLADE_CANOPY_SUN_DIFFUSE 0.85f
+#define BLADE_CANOPY_SUN_COLOR {1.0f, 0.95f, 0.85f}
+#define BLADE_CANOPY_AMBIENT_DOWN {0.18f, 0.17f, 0.14f}
+#define BLADE_CANOPY_AMBIENT_UP {0.35f, 0.42f, 0.55f}
+
+/* The canopy's mean colour (unfogged) and cover seen at elevation e and
+ * with the sun at azimuth phi in [0, pi] from the direction towards the
+ * viewer (both radians), blades of albedo mix(root, tip, v): the C twin of
+ * canopy_color in common/canopy.glsl (bilinear in e and phi). */
+void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float root[3], const float tip[3],
+                        float rgb[3], float *cover);
+
+/* Cover of the canopy thinned to a fraction e in [0, 1] of its density:
+ * 1 - (1 - cover)^e. */
+float blade_canopy_thinned(float cover, float e);
+
+#endif

@@ -1,0 +1,115 @@
+/* test_blade_canopy: the ground canopy's table (blade_canopy.h) against an
+ * independent estimate. Blades placed uniformly at random form a Boolean
+ * model: the gap a ray along dir meets is exp(-rho E[A_dir] / sin e), A_dir
+ * a blade's area projected along dir (over sin e: the ground area of roots
+ * whose blade the ray crosses), e the elevation, here integrated over blade_ref_surface
+ * of blades seeded and settled apart from the table's (own generator, own
+ * integration, no ray casting). Also: values in range and finite, cover
+ * falling as the view rises, cover growing with density, the same seed
+ * giving the same table, the lookup and the thinning rule. */
+#include "blade/blade_canopy.h"
+#include "blade/blade_ref.h"
+#include "core/core.h"
+#include "scene/scene_fields.h"
+#include "test.h"
+
+#include <string.h>
+
+/* Mean area of a settled default blade projected along dir (unit), over
+ * n blades, by the midpoint rule on 32 x 4 surface cells. */
+static double projected_area(const float dir[3], int n)
+{
+    core_rng_t rng;
+    core_rng_seed(&rng, 7u, 3u);
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = 1.0f});
+    enum { NV = 32, NU = 4 };
+    double sum = 0.0;
+    for (int k = 0; k < n; k++) {
+        float h = core_rng_range(&rng, SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX);
+        float w = core_rng_range(&rng, SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX);
+        float s = core_rng_range(&rng, SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX);
+        float a = core_rng_range(&rng, 0.0f, 6.2831853f);
+        blade_t b = {.v0 = {0, 0, 0, a}, .v1 = {0, h, 0, h}, .v2 = {0, h, 0, w}, .up = {0, 1, 0, s}};
+        float eta = 0.0f;
+        for (int i = 0; i < 90; i++) blade_ref_step_one(&b, &eta, &env, NULL);
+        for (int i = 0; i < NV; i++)
+            for (int j = 0; j < NU; j++) {
+                float p[4][3], nrm[3];
+                float u0 = (float)j / NU, u1 = (float)(j + 1) / NU, v0 = (float)i / NV, v1 = (float)(i + 1) / NV;
+                blade_ref_surface(&b, 0, u0, v0, p[0], nrm);
+                blade_ref_surface(&b, 0, u1, v0, p[1], nrm);
+                blade_ref_surface(&b, 0, u0, v1, p[2], nrm);
+                blade_ref_surface(&b, 0, u1, v1, p[3], nrm);
+                /* the cell as a parallelogram of its two diagonals */
+                float d1[3], d2[3], c[3];
+                for (int q = 0; q < 3; q++) d1[q] = p[3][q] - p[0][q], d2[q] = p[2][q] - p[1][q];
+                c[0] = d1[1] * d2[2] - d1[2] * d2[1];
+                c[1] = d1[2] * d2[0] - d1[0] * d2[2];
+                c[2] = d1[0] * d2[1] - d1[1] * d2[0];
+                sum += 0.5 * fabs(c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2]);
+            }
+    }
+    return sum / n;
+}
+
+int main(void)
+{
+    core_log_set_quiet(true);
+    blade_canopy_t c, again, dense;
+    CHECK(blade_canopy_make(&c, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}}));
+    printf("table of %d blades\n", c.blades);
+    CHECK(c.rows == 16 && c.blades == 800);
+    bool finite = true, in_range = true;
+    for (int r = 0; r < c.rows; r++) {
+        const blade_canopy_row_t *w = &c.row[r];
+        enum { NF = sizeof *w / sizeof(float) };
+        float f[NF];
+        memcpy(f, w, sizeof f);
+        for (int k = 0; k < NF; k++) finite = finite && isfinite(f[k]);
+        /* ao in [0.45, 1], u in [0, 1], v in [0, 1]: each product below its ao */
+        in_range = in_range && w->cover >= 0 && w->cover <= 1 && w->ao >= 0.45f - 1e-6f && w->ao <= 1.0f + 1e-6f &&
+                   w->u_ao >= 0 && w->u_ao <= w->ao + 1e-6f && w->v_ao >= 0 && w->v_ao <= w->ao + 1e-6f &&
+                   w->vu_ao >= 0 && w->vu_ao <= w->v_ao + 1e-6f && w->sun[0][1] <= w->sun[0][0] + 1e-6f;
+    }
+    CHECK(finite && in_range);
+    CHECK(c.row[0].cover > 0.99f);                   /* along the ground: all grass */
+    CHECK(c.row[c.rows - 1].cover < c.row[4].cover); /* from above: ground between the blades */
+    /* grazing rays meet the blades' upper parts (mean v = E[v ao] / E[ao]) */
+    CHECK(c.row[1].v_ao / c.row[1].ao > c.row[8].v_ao / c.row[8].ao);
+    /* the faces a viewer sees are lit with the sun behind the viewer (azimuth
+     * 0), backlit with the sun ahead */
+    CHECK(c.row[2].sun[0][0] > 2.0f * c.row[2].sun[BLADE_CANOPY_AZIMUTHS - 1][0]);
+
+    /* the Boolean model, at the rows whose gap is measurable */
+    int compared = 0;
+    double worst = 0.0;
+    for (int r = 1; r < c.rows; r++) {
+        float e = c.elevation[r], dir[3] = {cosf(e), -sinf(e), 0.0f};
+        double want = 1.0 - exp(-200.0 * projected_area(dir, 400) / sin(e));
+        if (want > 0.97) continue;
+        double err = fabs(c.row[r].cover - want);
+        printf("elevation %5.1f deg: cover %.3f, Boolean model %.3f, mean v %.2f, sun behind / ahead %.2f / %.2f\n",
+               e * 57.29578f, c.row[r].cover, want, c.row[r].v_ao / c.row[r].ao, c.row[r].sun[0][0],
+               c.row[r].sun[BLADE_CANOPY_AZIMUTHS - 1][0]);
+        worst = fmax(worst, err);
+        compared++;
+    }
+    printf("%d rows compared, worst |cover - model| %.3f\n", compared, worst);
+    CHECK(compared >= 5);
+    CHECK(worst < 0.04);
+
+    CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}}));
+    CHECK(memcmp(&c, &again, sizeof c) == 0);
+    CHECK(blade_canopy_make(&dense, &(blade_canopy_desc_t){.seed = 3, .density = 400.0f, .sun = {0, 1, 0}}));
+    CHECK(dense.row[c.rows - 1].cover > c.row[c.rows - 1].cover + 0.05f);
+
+    blade_canopy_row_t mid = blade_canopy_at(&c, 0.5f * (c.elevation[3] + c.elevation[4]));
+    CHECK_NEAR(mid.cover, 0.5f * (c.row[3].cover + c.row[4].cover), 1e-5);
+    CHECK_NEAR(blade_canopy_at(&c, 2.0f).cover, c.row[c.rows - 1].cover, 1e-6);
+    CHECK_NEAR(blade_canopy_thinned(0.75f, 0.5f), 0.5f, 1e-6);
+    CHECK_NEAR(blade_canopy_thinned(0.75f, 1.0f), 0.75f, 1e-6);
+    CHECK(blade_canopy_thinned(0.75f, 0.0f) == 0.0f);
+    CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.rows = 1, .sun = {0, 1, 0}}));
+    CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3})); /* no sun */
+    TEST_END();
+}
