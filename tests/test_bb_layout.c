@@ -9,7 +9,8 @@
  * a fixed green), darker below; blades stand at their height in metres, or
  * the layer shrinks so the tallest fits; nothing is cut at the sides or the
  * top; more blades or a wider shape cover more; bb_clump_blades is the
- * documented (pi / 2) density ratio. Writes the PNGs to $MEADOW_TEST_OUT for
+ * documented (pi / 2) density ratio. The extent's clearings follow
+ * bb_extent_desc_t: none, a bare fraction, a blob size, an image. Writes the PNGs to $MEADOW_TEST_OUT for
  * inspection. */
 #include "billboard/bb_layout.h"
 #include "blade/blade_ref.h"
@@ -392,10 +393,109 @@ static void test_blade_clumps(void)
     bb_layout_free(&l);
 }
 
+/* Share of texels below `below`. */
+static double share_below(const core_image_t *e, int below)
+{
+    size_t n = (size_t)e->w * e->h, k = 0;
+    for (size_t i = 0; i < n; i++) k += e->px[i] < below;
+    return (double)k / (double)n;
+}
+
+/* The first lag (texels, along x, wrapping) at which the extent's
+ * autocorrelation falls below one half: the blobs' scale. */
+static int correlation_length(const core_image_t *e)
+{
+    int n = e->w;
+    double mean = 0.0, var = 0.0;
+    for (int i = 0; i < n * n; i++) mean += e->px[i];
+    mean /= (double)n * n;
+    for (int i = 0; i < n * n; i++) var += (e->px[i] - mean) * (e->px[i] - mean);
+    for (int lag = 1; lag < n / 2; lag++) {
+        double c = 0.0;
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++) c += (e->px[y * n + x] - mean) * (e->px[y * n + (x + lag) % n] - mean);
+        if (c < 0.5 * var) return lag;
+    }
+    return n / 2;
+}
+
+/* bb_extent_desc_t: none is all grass; the default desc is the zero desc;
+ * fraction sets the bare share (mask below one half: extent below 102 for
+ * sure, below 128 at most) whatever the seed's own share; feature sets the
+ * blob scale; an image maps over image_texels, bilinear, clamped. */
+static void test_extent_keys(void)
+{
+    bb_layout_desc_t base = {.seed = 5, .size = 256, .clump_layers = 1, .clump_size = 8, .blades = 1};
+    bb_layout_t def, l;
+    CHECK(bb_layout_generate(&def, &base));
+
+    bb_layout_desc_t d = base;
+    d.extent.clearings = BB_CLEARINGS_NONE;
+    CHECK(bb_layout_generate(&l, &d));
+    CHECK(share_below(&l.extent, 255) == 0.0);
+    CHECK(images_equal(&l.direction, &def.direction) && images_equal(&l.messiness, &def.messiness));
+    bb_layout_free(&l);
+
+    d = base;
+    d.extent.feature = 64.0f; /* size / 4: the default's base period */
+    CHECK(bb_layout_generate(&l, &d));
+    CHECK(images_equal(&l.extent, &def.extent));
+    bb_layout_free(&l);
+
+    double own = share_below(&def.extent, 128);
+    static const float fractions[] = {0.05f, 0.2f, 0.5f, 0.8f};
+    for (int k = 0; k < 4; k++) {
+        d = base;
+        d.extent.fraction = fractions[k];
+        CHECK(bb_layout_generate(&l, &d));
+        double sure = share_below(&l.extent, 102), most = share_below(&l.extent, 128);
+        printf("extent fraction %.2f: bare (extent < 102) %.3f, (< 128) %.3f; the seed's own %.3f\n",
+               (double)fractions[k], sure, most, own);
+        CHECK(sure <= fractions[k] + 0.005 && most >= fractions[k] - 0.005);
+        CHECK_NEAR(most, fractions[k], 0.04);
+        bb_layout_free(&l);
+    }
+
+    int lengths[3];
+    static const float features[3] = {8.0f, 32.0f, 128.0f};
+    for (int k = 0; k < 3; k++) {
+        d = base;
+        d.extent.feature = features[k];
+        d.extent.fraction = 0.3f;
+        CHECK(bb_layout_generate(&l, &d));
+        lengths[k] = correlation_length(&l.extent);
+        CHECK_NEAR(share_below(&l.extent, 128), 0.3, 0.04);
+        bb_layout_free(&l);
+    }
+    printf("extent feature 8 / 32 / 128 texels: correlation length %d / %d / %d texels\n", lengths[0], lengths[1],
+           lengths[2]);
+    CHECK(lengths[1] >= 2 * lengths[0] && lengths[2] >= 2 * lengths[1]);
+
+    core_image_t im;
+    CHECK(core_image_alloc(&im, 2, 1, 3));
+    memset(im.px, 0, 6);
+    memset(im.px + 3, 255, 3); /* black left, white right */
+    d = base;
+    d.extent.clearings = BB_CLEARINGS_IMAGE;
+    d.extent.image = &im;
+    d.extent.image_texels[0] = 128.0f;
+    d.extent.image_texels[1] = 64.0f;
+    CHECK(bb_layout_generate(&l, &d));
+    const uint8_t *row = l.extent.px + 200 * 256;
+    printf("extent image: texels 0, 31, 64, 96, 127, 200: %d %d %d %d %d %d\n", row[0], row[31], row[64], row[96],
+           row[127], row[200]);
+    CHECK(row[0] == 0 && row[31] == 0 && row[127] == 255 && row[200] == 255);
+    CHECK(row[64] > 120 && row[64] < 136 && row[96] == 255);
+    bb_layout_free(&l);
+    core_image_free(&im);
+    bb_layout_free(&def);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
     test_determinism();
+    test_extent_keys();
     bb_layout_t l;
     CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 2009}));
     CHECK(l.extent.w == 256 && l.clumps[0].w == 128);

@@ -5,7 +5,8 @@
  * and the draw count in the indirect command equals the survivors for both
  * render paths. With patch culling the visible patches go nearest first
  * (the order the draw appends them in). Also: the non-blocking statistics
- * become valid a few frames late without a wait. */
+ * become valid a few frames late without a wait. A cut beyond or before the
+ * levels' end (level_distance != max_distance) matches the reference too. */
 #include "blade/blade.h"
 #include "test.h"
 #include "test_gl.h"
@@ -42,12 +43,18 @@ static void camera(blade_cull_desc_t *c)
     c->max_distance = 20.0f;
 }
 
-/* Runs one configuration and compares with the reference. */
+/* Runs one configuration and compares with the reference; cut > 0 culls
+ * at cut metres with the levels of the 20 m cut (blade mode's
+ * grass.blade_distance). */
 static void compare(const blade_field_t *f, blade_render_path_t path, bool patch_cull, const float *depth,
-                    GLuint depth_tex, const char *name)
+                    GLuint depth_tex, float cut, const char *name)
 {
     blade_cull_desc_t cd = {0};
     camera(&cd);
+    if (cut > 0.0f) {
+        cd.level_distance = cd.max_distance;
+        cd.max_distance = cut;
+    }
     blade_gpu_t g;
     CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = f, .path = path, .no_patch_cull = !patch_cull,
                                                  .label = "cull_test"}));
@@ -131,11 +138,13 @@ int main(void)
                                                                .upload_type = GL_FLOAT, .label = "cull_test.depth"});
     CHECK(tex.id != 0);
 
-    compare(&f, BLADE_PATH_TESSELLATION, false, NULL, 0, "tess, no patch cull, no depth");
-    compare(&f, BLADE_PATH_TESSELLATION, false, ndc, tex.id, "tess, no patch cull, depth");
-    compare(&f, BLADE_PATH_TESSELLATION, true, NULL, 0, "tess, patch cull, no depth");
-    compare(&f, BLADE_PATH_PULLING, true, ndc, tex.id, "pull, patch cull, depth");
-    compare(&f, BLADE_PATH_PULLING, false, ndc, tex.id, "pull, no patch cull, depth");
+    compare(&f, BLADE_PATH_TESSELLATION, false, NULL, 0, 0.0f, "tess, no patch cull, no depth");
+    compare(&f, BLADE_PATH_TESSELLATION, false, ndc, tex.id, 0.0f, "tess, no patch cull, depth");
+    compare(&f, BLADE_PATH_TESSELLATION, true, NULL, 0, 0.0f, "tess, patch cull, no depth");
+    compare(&f, BLADE_PATH_PULLING, true, ndc, tex.id, 0.0f, "pull, patch cull, depth");
+    compare(&f, BLADE_PATH_PULLING, false, ndc, tex.id, 0.0f, "pull, no patch cull, depth");
+    compare(&f, BLADE_PATH_PULLING, false, NULL, 0, 30.0f, "pull, no patch cull, cut 30 m");
+    compare(&f, BLADE_PATH_PULLING, false, NULL, 0, 9.0f, "pull, no patch cull, cut 9 m");
 
     /* non-blocking statistics: invalid before any cull, valid after a few
      * frames of culling without ever waiting */

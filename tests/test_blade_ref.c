@@ -551,6 +551,32 @@ static void test_cull(void)
     one = upright(3, 3, 1, FACE_ON(3, 3), 1.0f); /* near: every index survives the distance test */
     desc.disable = BLADE_CULL_FRUSTUM | BLADE_CULL_OCCLUSION;
     for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &desc) == BLADE_CULL_VISIBLE);
+
+    /* Blade mode's cut (grass.blade_distance) beyond the levels' 60 m: a
+     * blade within the cut keeps one index in 8 past 60 m, a blade beyond
+     * it is culled whatever its index; near blades thin as with the 60 m
+     * cut (level_distance, not max_distance, sets the levels). */
+    blade_cull_desc_t cut = desc;
+    cut.max_distance = 100.0f;
+    cut.level_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
+    one = upright(50, 60, 1, FACE_ON(50, 60), 1.0f); /* 78 m */
+    int kept = 0;
+    for (uint32_t i = 0; i < 8; i++) kept += blade_ref_cull_one(&one, i, &cut) == BLADE_CULL_VISIBLE;
+    CHECK(kept == 1 && blade_ref_cull_one(&one, 0, &cut) == BLADE_CULL_VISIBLE);
+    one = upright(70, 80, 1, FACE_ON(70, 80), 1.0f); /* 106 m: beyond the cut */
+    for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &cut) == BLADE_CULL_DISTANCE);
+    cut.max_distance = 12.0f; /* a cap nearer than the levels' end */
+    one = upright(10, 10, 1, FACE_ON(10, 10), 1.0f); /* 14 m */
+    CHECK(blade_ref_cull_one(&one, 0, &cut) == BLADE_CULL_DISTANCE);
+    one = upright(20, 20, 1, FACE_ON(20, 20), 1.0f); /* 28 m: level floor(8 (1 - 28.3 / 60)) = 4 */
+    cut.max_distance = 100.0f;
+    blade_cull_desc_t paper = desc;
+    paper.max_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
+    for (uint32_t i = 0; i < 8; i++) {
+        int want_level = i <= 4 ? BLADE_CULL_VISIBLE : BLADE_CULL_DISTANCE;
+        CHECK(blade_ref_cull_one(&one, i, &cut) == want_level);
+        CHECK(blade_ref_cull_one(&one, i, &paper) == want_level);
+    }
     free(b);
     free(depth);
     free(surv);

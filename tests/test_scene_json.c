@@ -3,6 +3,7 @@
  * hand-written expectations; the JSON parser decodes escapes and rejects
  * non-JSON; docs/SCENES.md is the rendering of the key table. */
 #include <dirent.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -408,6 +409,59 @@ static void test_keys_doc(void)
     free(doc);
 }
 
+/* grass.blade_distance and grass.clearings: defaults, values, errors, and
+ * the blade distance resolved from the field's box and the far plane. */
+static void test_grass_keys(void)
+{
+    if (parse_ok("{}")) {
+        CHECK(desc.grass.blade_distance == 0 && desc.grass.clearings.type == SCENE_CLEARINGS_NOISE);
+        CHECK(desc.grass.clearings.fraction == 0 && desc.grass.clearings.size == 0);
+    }
+    if (parse_ok("{\"grass\": {\"blade_distance\": 80, \"clearings\": {\"fraction\": 0.2, \"size\": 6}}}")) {
+        CHECK(desc.grass.blade_distance == 80 && desc.grass.clearings.type == SCENE_CLEARINGS_NOISE);
+        CHECK(desc.grass.clearings.fraction == 0.2f && desc.grass.clearings.size == 6);
+    }
+    if (parse_ok("{\"grass\": {\"clearings\": {\"type\": \"none\"}}}"))
+        CHECK(desc.grass.clearings.type == SCENE_CLEARINGS_NONE);
+    if (parse_ok("{\"grass\": {\"clearings\": {\"type\": \"image\", \"image\": \"tests/data/x.png\"}}}"))
+        CHECK(desc.grass.clearings.type == SCENE_CLEARINGS_IMAGE &&
+              strcmp(desc.grass.clearings.image, "tests/data/x.png") == 0);
+    expect_parse_fail("{\n\"grass\": {\"blade_distance\": -1}}", "blade_distance < 0",
+                      "inline.json:2: field \"grass.blade_distance\"", "-1 is out of range [0, 1e+06]");
+    expect_parse_fail("{\"grass\": {\"blade_distance\": \"far\"}}", "blade_distance type",
+                      "field \"grass.blade_distance\": expected number, got string", NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": \"none\"}}", "clearings type",
+                      "field \"grass.clearings\": expected object, got string", NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"type\": \"lawn\"}}}", "clearings kind",
+                      "field \"grass.clearings.type\": unknown value \"lawn\"", "noise, none, image");
+    expect_parse_fail("{\"grass\": {\"clearings\": {\n\"fraction\": 1.5}}}", "fraction > 1",
+                      "inline.json:2: field \"grass.clearings.fraction\"", "1.5 is out of range [0, 1]");
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"size\": -6}}}", "size < 0",
+                      "field \"grass.clearings.size\"", "out of range [0, 10000]");
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"size\": [6]}}}", "size type",
+                      "field \"grass.clearings.size\": expected number, got array", NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"type\": \"none\", \"fraction\": 0.2}}}", "none + fraction",
+                      "field \"grass.clearings.fraction\": unknown key \"fraction\" for clearings type \"none\"",
+                      NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"type\": \"image\"}}}", "image missing",
+                      "field \"grass.clearings.image\": required but missing", NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"type\": \"image\", \"image\": \"\"}}}", "image empty",
+                      "field \"grass.clearings.image\": must not be empty", NULL);
+    expect_parse_fail("{\"grass\": {\"clearings\": {\"image\": \"a.png\"}}}", "image for noise",
+                      "unknown key \"image\" for clearings type \"noise\"", NULL);
+
+    /* The camera 8 m up, 24 m behind a 40 m field: its farthest corner is
+     * (+-20, -1.5, -20), sqrt(20^2 + 9.5^2 + 44^2) = 49.26 m away. */
+    scene_grass_desc_t g = {0};
+    const float cam[3] = {0, 8, 24}, lo[3] = {-20, -1.5f, -20}, hi[3] = {20, 1.5f, 20};
+    float corner = sqrtf(20.0f * 20.0f + 9.5f * 9.5f + 44.0f * 44.0f);
+    CHECK_NEAR(scene_blade_distance(&g, cam, 200.0f, lo, hi), corner, 1e-4);
+    CHECK(scene_blade_distance(&g, cam, 30.0f, lo, hi) == 30.0f);
+    g.blade_distance = 12.5f;
+    CHECK(scene_blade_distance(&g, cam, 200.0f, lo, hi) == 12.5f);
+    CHECK(scene_blade_distance(&g, cam, 5.0f, lo, hi) == 12.5f);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -416,6 +470,7 @@ int main(void)
     test_bad_inline();
     test_good_full();
     test_defaults_and_values();
+    test_grass_keys();
     test_all_truncations();
     test_subdiv_bounds();
     test_keys_doc();

@@ -36,6 +36,7 @@ uniform uint u_blade_count;    /* invocations: blades, or listed patches * P */
 uniform vec3 u_cam_pos;
 uniform mat4 u_view_proj;
 uniform float u_max_distance;
+uniform float u_level_distance;
 uniform int u_distance_levels;
 uniform float u_orientation_threshold;
 uniform float u_frustum_tolerance;
@@ -88,7 +89,7 @@ uint cull(Blade b, uint index)
         float dproj = length(view_ground);
         int n = u_distance_levels;
         if (dproj > u_max_distance) return BLADE_CULL_DISTANCE;
-        int level = int(floor(float(n) * (1.0 - dproj / u_max_distance)));
+        int level = max(int(floor(float(n) * (1.0 - dproj / u_level_distance))), 0);
         if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
     }
 

@@ -76,6 +76,15 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         core_log_error("%s: cannot build the heightfield terrain", w->scene_path);
         return 2;
     }
+    const scene_clearings_desc_t *cl = &s->grass.clearings;
+    if (cl->type == SCENE_CLEARINGS_IMAGE) {
+        char image[1024];
+        if (!core_fs_resolve(cl->image, image, sizeof image)) {
+            core_log_error("%s: grass.clearings.image: cannot find \"%s\"", w->scene_path, cl->image);
+            return 2;
+        }
+        if (!core_image_load(&w->clearings_image, image, 1)) return 2; /* logged: the file and why */
+    }
     stage_done(w, APP_STAGE_TERRAIN, &mark);
     return 0;
 }
@@ -97,13 +106,34 @@ static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
     return layout_size;
 }
 
+/* The extent map's clearings (grass.clearings) on the layout of gen's
+ * cells: the blob size in texels, the image stretched over the terrain's
+ * xz box (the layout's origin is its corner). */
+static bb_extent_desc_t extent_desc(const app_world_t *w, const bb_gen_desc_t *gen)
+{
+    static const bb_clearings_t kinds[] = {[SCENE_CLEARINGS_NOISE] = BB_CLEARINGS_NOISE,
+                                           [SCENE_CLEARINGS_NONE] = BB_CLEARINGS_NONE,
+                                           [SCENE_CLEARINGS_IMAGE] = BB_CLEARINGS_IMAGE};
+    const scene_clearings_desc_t *c = &w->scene.grass.clearings;
+    const float *lo = w->terrain_mesh.aabb_min, *hi = w->terrain_mesh.aabb_max;
+    float texel = gen->spacing * (float)gen->cells_per_texel;
+    bool image = c->type == SCENE_CLEARINGS_IMAGE;
+    return (bb_extent_desc_t){.clearings = kinds[c->type],
+                              .fraction = c->fraction,
+                              .feature = c->size / texel,
+                              .image = image ? &w->clearings_image : NULL,
+                              .image_texels = {image ? (hi[0] - lo[0]) / texel : 0.0f,
+                                               image ? (hi[2] - lo[2]) / texel : 0.0f}};
+}
+
 /* The shared layout's extent map alone (the clump texture is the billboard
  * field's business): one tiny clump layer is enough for bb_layout. */
 static bool extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
 {
     int size = layout_for(w, gen);
     return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
-                                                        .clump_size = 8, .blades = 1});
+                                                        .clump_size = 8, .blades = 1,
+                                                        .extent = extent_desc(w, gen)});
 }
 
 /* The seed of where blades stand (app_tuning_t.placement_seed). */
@@ -207,7 +237,8 @@ static bool make_bb(app_world_t *w)
                                                                 .width = {g->width[0], g->width[1]},
                                                                 .stiffness = {g->stiffness[0], g->stiffness[1]},
                                                                 .shape = (int)g->shape,
-                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY}},
+                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY},
+                                                      .extent = extent_desc(w, &gen)},
                                        });
     return w->have_bb;
 }
@@ -630,7 +661,15 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         /* Occlusion culling reads the resolved depth of the opaque pass (the
          * compute path: the farthest opaque sample, from raster_begin). */
         if (!raster) gfx_target_resolve_depth(target);
-        blade_cull_desc_t cd = {.max_distance = w->mode == SCENE_MODE_HYBRID ? fade_hi : 0.0f,
+        /* Blade mode draws as far as grass.blade_distance (default: the
+         * field's edge or the far plane) with the levels of the 60 m cut
+         * (blade_cull_desc_t.level_distance, docs/BLADES.md). */
+        bool hybrid = w->mode == SCENE_MODE_HYBRID;
+        blade_cull_desc_t cd = {.max_distance = hybrid ? fade_hi
+                                                       : scene_blade_distance(&w->scene.grass, v->camera, v->far,
+                                                                              w->terrain_mesh.aabb_min,
+                                                                              w->terrain_mesh.aabb_max),
+                                .level_distance = hybrid ? 0.0f : BLADE_CULL_MAX_DISTANCE_DEFAULT,
                                 .distance_levels = w->tuning.distance_levels,
                                 .disable = w->reference ? 0xffu : w->tuning.cull_disable};
         memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
@@ -771,6 +810,7 @@ void app_world_destroy(app_world_t *w)
     app_colliders_destroy(&w->colliders);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);
+    core_image_free(&w->clearings_image);
 }
 
 void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, float time, float dt)
@@ -784,6 +824,7 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     glm_mat4_inv(v->viewproj, v->inv_viewproj);
     cam_frustum_planes(v->viewproj, v->planes);
     glm_vec3_copy(cam.position, v->camera);
+    v->far = cam.far;
     glm_vec3_normalize_to((vec3)APP_SUN_DIR, v->sun_dir);
     v->width = width;
     v->height = height;

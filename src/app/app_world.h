@@ -25,6 +25,7 @@ typedef struct app_view_t {
     vec4 planes[6];
     vec3 camera;
     vec3 sun_dir;
+    float far; /* the camera's far plane (m) */
     int width, height;
     float time, dt;
     int overlay; /* debug overlay, key O: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength */
@@ -130,6 +131,7 @@ typedef struct app_world_t {
     scene_desc_t scene; /* resolved, CLI overrides applied */
     char scene_path[1024];
     terrain_mesh_t terrain_mesh;
+    core_image_t clearings_image; /* grass.clearings.image (type image), 1 channel */
     app_terrain_t terrain;
     app_colliders_t colliders;
     scene_mode_t mode;

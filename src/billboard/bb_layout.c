@@ -16,10 +16,21 @@
 
 static bool bb_zero3(const float v[3]) { return v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f; }
 
+static bb_extent_desc_t bb_extent_desc_defaults(const bb_extent_desc_t *e, int size)
+{
+    bb_extent_desc_t d = *e;
+    if (d.image_texels[0] <= 0.0f) d.image_texels[0] = (float)size;
+    if (d.image_texels[1] <= 0.0f) d.image_texels[1] = (float)size;
+    assert(d.fraction >= 0.0f && d.fraction <= 1.0f && d.feature >= 0.0f);
+    assert(d.clearings != BB_CLEARINGS_IMAGE || (d.image && d.image->w > 0 && d.image->h > 0));
+    return d;
+}
+
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc)
 {
     bb_layout_desc_t d = desc ? *desc : (bb_layout_desc_t){0};
     if (d.size == 0) d.size = 256;
+    d.extent = bb_extent_desc_defaults(&d.extent, d.size);
     if (d.clump_size == 0) d.clump_size = 128;
     if (d.clump_layers == 0) d.clump_layers = 4;
     if (d.blades == 0) d.blades = bb_clump_blades(SCENE_DEFAULT_DENSITY, SCENE_DEFAULT_BILLBOARD_DENSITY);
@@ -80,27 +91,35 @@ static float bb_lattice(int x, int y, int period, uint32_t seed)
 
 static float bb_smooth(float t) { return t * t * (3.0f - 2.0f * t); }
 
-/* 5 octaves, base period 4, gain 0.5. The lattice values of every octave
- * are hashed once into a table (4^2 + 8^2 + ... + 64^2 values), so a sample
- * costs 20 table reads instead of 60 hashes; the values and the arithmetic
- * are the same as hashing each time. */
-enum { BB_OCTAVES = 5, BB_BASE_PERIOD = 4, BB_LATTICE_VALUES = 16 + 64 + 256 + 1024 + 4096 };
+/* Up to 5 octaves of periods base, 2 base, 4 base, ... lattice cells across
+ * the unit square, gain 0.5. The lattice values of every octave are hashed
+ * once into a table, so a sample costs 4 table reads per octave instead of
+ * 12 hashes; the values and the arithmetic are the same as hashing each
+ * time. The direction and messiness fields (and the default clearings) use
+ * base 4, periods 4 to 64. */
+enum { BB_OCTAVES = 5, BB_BASE_PERIOD = 4 };
 
 typedef struct bb_fbm_t {
-    float lattice[BB_LATTICE_VALUES];
+    int base, octaves;
+    float *lattice; /* base^2 + (2 base)^2 + ... values, octave by octave */
 } bb_fbm_t;
 
-static void bb_fbm_init(bb_fbm_t *n, uint32_t seed)
+static bool bb_fbm_init(bb_fbm_t *n, uint32_t seed, int base, int octaves)
 {
+    size_t values = 0;
+    for (int o = 0; o < octaves; o++) values += (size_t)(base << o) * (size_t)(base << o);
+    *n = (bb_fbm_t){.base = base, .octaves = octaves, .lattice = malloc(values * sizeof(float))};
+    if (!n->lattice) return false;
     float *t = n->lattice;
-    for (int o = 0, period = BB_BASE_PERIOD; o < BB_OCTAVES; o++, period *= 2) {
+    for (int o = 0, period = base; o < octaves; o++, period *= 2) {
         uint32_t s = core_hash_u32(seed + (uint32_t)o);
         for (int y = 0; y < period; y++)
             for (int x = 0; x < period; x++) *t++ = bb_lattice(x, y, period, s);
     }
+    return true;
 }
 
-/* Value noise with `period` lattice cells across the unit square. */
+/* Value noise with `period` lattice cells across the unit square; u, v >= 0. */
 static float bb_value_noise(float u, float v, int period, const float *lattice)
 {
     float x = u * (float)period, y = v * (float)period;
@@ -108,8 +127,7 @@ static float bb_value_noise(float u, float v, int period, const float *lattice)
     ix -= x < (float)ix;
     iy -= y < (float)iy;
     float fx = bb_smooth(x - (float)ix), fy = bb_smooth(y - (float)iy);
-    int mask = period - 1; /* periods are powers of two */
-    int x0 = ix & mask, y0 = iy & mask, x1 = (ix + 1) & mask, y1 = (iy + 1) & mask;
+    int x0 = ix % period, y0 = iy % period, x1 = (ix + 1) % period, y1 = (iy + 1) % period;
     float a = lattice[y0 * period + x0], b = lattice[y0 * period + x1];
     float c = lattice[y1 * period + x0], d = lattice[y1 * period + x1];
     return (a + (b - a) * fx) + ((c + (d - c) * fx) - (a + (b - a) * fx)) * fy;
@@ -120,7 +138,7 @@ static float bb_fbm(float u, float v, const bb_fbm_t *n)
 {
     float sum = 0.0f, amp = 0.5f, norm = 0.0f;
     const float *lattice = n->lattice;
-    for (int o = 0, period = BB_BASE_PERIOD; o < BB_OCTAVES; o++, period *= 2) {
+    for (int o = 0, period = n->base; o < n->octaves; o++, period *= 2) {
         sum += amp * bb_value_noise(u, v, period, lattice);
         lattice += period * period;
         norm += amp;
@@ -135,31 +153,116 @@ static float bb_smoothstep(float e0, float e1, float x) { return bb_smooth(bb_cl
 
 static uint8_t bb_byte(float x) { return (uint8_t)lrintf(bb_clamp01(x) * 255.0f); }
 
-static void bb_layout_maps(bb_layout_t *l, uint32_t seed)
+static int bb_cmp_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+/* Channel 0 of image texel (x, y), clamped to the edges, in [0, 1]. */
+static float bb_image_at(const core_image_t *im, int x, int y)
+{
+    x = x < 0 ? 0 : (x >= im->w ? im->w - 1 : x);
+    y = y < 0 ? 0 : (y >= im->h ? im->h - 1 : y);
+    return (float)im->px[((size_t)y * (size_t)im->w + (size_t)x) * (size_t)im->channels] / 255.0f;
+}
+
+/* The image over image_texels of the map, bilinear between texel centres. */
+static void bb_extent_image(core_image_t *ext, const bb_extent_desc_t *e)
+{
+    const core_image_t *im = e->image;
+    for (int y = 0; y < ext->h; y++) {
+        float sy = ((float)y + 0.5f) / e->image_texels[1] * (float)im->h - 0.5f;
+        int iy = (int)floorf(sy);
+        float fy = sy - (float)iy;
+        for (int x = 0; x < ext->w; x++) {
+            float sx = ((float)x + 0.5f) / e->image_texels[0] * (float)im->w - 0.5f;
+            int ix = (int)floorf(sx);
+            float fx = sx - (float)ix;
+            float top = bb_image_at(im, ix, iy) + (bb_image_at(im, ix + 1, iy) - bb_image_at(im, ix, iy)) * fx;
+            float bot =
+                bb_image_at(im, ix, iy + 1) + (bb_image_at(im, ix + 1, iy + 1) - bb_image_at(im, ix, iy + 1)) * fx;
+            ext->px[(size_t)y * (size_t)ext->w + (size_t)x] = bb_byte(top + (bot - top) * fy);
+        }
+    }
+}
+
+/* Noise clearings: the mask smoothstep(lo, hi, fbm) over a band 0.09 wide
+ * (by default [0.42, 0.51]: bare where the field dips below ~0.45), times
+ * 0.8 + 0.2 x a detail fBm at twice the frequency. With e->fraction the
+ * band is centred on that quantile of the map's fBm values, so that share
+ * of texels has a mask below one half. The clearing and detail fields
+ * take e->feature's base period and stop before an octave's period
+ * exceeds max(64, side): finer octaves than the texels add nothing. */
+static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_desc_t *e)
+{
+    int n = ext->w, base = BB_BASE_PERIOD, octaves = 0;
+    size_t count = (size_t)n * (size_t)n;
+    if (e->feature > 0.0f) {
+        float cells = (float)n / e->feature;
+        int most = n / 2 > 1 ? n / 2 : 1;
+        base = cells >= (float)most ? most : (cells < 1.5f ? 1 : (int)lrintf(cells));
+    }
+    for (int period = base; octaves < BB_OCTAVES && period <= (n > 64 ? n : 64); period *= 2) octaves++;
+    bb_fbm_t clear, detail;
+    bool ok_clear = bb_fbm_init(&clear, core_hash_u32(seed ^ 0x1001u), base, octaves);
+    bool ok_detail = bb_fbm_init(&detail, core_hash_u32(seed ^ 0x2002u), base, octaves);
+    float *field = malloc(count * sizeof *field), *sorted = e->fraction > 0.0f ? malloc(count * sizeof *sorted) : NULL;
+    bool ok = ok_clear && ok_detail && field && (sorted || e->fraction <= 0.0f);
+    if (ok) {
+        for (int y = 0; y < n; y++)
+            for (int x = 0; x < n; x++)
+                field[(size_t)y * n + x] = bb_fbm(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, &clear);
+        float lo = 0.42f, hi = 0.51f;
+        if (sorted) {
+            memcpy(sorted, field, count * sizeof *sorted);
+            qsort(sorted, count, sizeof *sorted, bb_cmp_float);
+            size_t k = (size_t)lrintf(e->fraction * (float)count);
+            float centre = k < count ? sorted[k] : sorted[count - 1] + 1.0f;
+            lo = centre - 0.045f;
+            hi = centre + 0.045f;
+        }
+        for (int y = 0; y < n; y++) {
+            for (int x = 0; x < n; x++) {
+                float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
+                size_t i = (size_t)y * n + x;
+                float cover = bb_smoothstep(lo, hi, field[i]);
+                cover *= 0.8f + 0.2f * bb_fbm(2.0f * u, 2.0f * v, &detail);
+                ext->px[i] = bb_byte(cover);
+            }
+        }
+    }
+    free(clear.lattice);
+    free(detail.lattice);
+    free(field);
+    free(sorted);
+    return ok;
+}
+
+static bool bb_layout_maps(bb_layout_t *l, uint32_t seed, const bb_extent_desc_t *e)
 {
     int n = l->extent.w;
-    static const uint32_t salts[5] = {0x1001u, 0x2002u, 0x3003u, 0x4004u, 0x5005u};
-    bb_fbm_t *fields = malloc(sizeof *fields * 5);
-    assert(fields);
-    for (int k = 0; k < 5; k++) bb_fbm_init(&fields[k], core_hash_u32(seed ^ salts[k]));
-    const bb_fbm_t *s_ext = &fields[0], *s_det = &fields[1], *s_dx = &fields[2], *s_dz = &fields[3];
-    const bb_fbm_t *s_mes = &fields[4];
-    for (int y = 0; y < n; y++) {
+    bool ok = true;
+    if (e->clearings == BB_CLEARINGS_NONE) memset(l->extent.px, 255, (size_t)n * (size_t)n);
+    else if (e->clearings == BB_CLEARINGS_IMAGE) bb_extent_image(&l->extent, e);
+    else ok = bb_extent_noise(&l->extent, seed, e);
+    static const uint32_t salts[3] = {0x3003u, 0x4004u, 0x5005u};
+    bb_fbm_t fields[3];
+    for (int k = 0; k < 3; k++)
+        ok = bb_fbm_init(&fields[k], core_hash_u32(seed ^ salts[k]), BB_BASE_PERIOD, BB_OCTAVES) && ok;
+    const bb_fbm_t *s_dx = &fields[0], *s_dz = &fields[1], *s_mes = &fields[2];
+    for (int y = 0; ok && y < n; y++) {
         for (int x = 0; x < n; x++) {
             float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
             size_t i = (size_t)y * n + x;
-            /* Clearings where the fBm field dips below ~0.45 (about a tenth to a
-             * quarter of a field, depending on the seed). */
-            float cover = bb_smoothstep(0.42f, 0.51f, bb_fbm(u, v, s_ext));
-            cover *= 0.8f + 0.2f * bb_fbm(2.0f * u, 2.0f * v, s_det);
-            l->extent.px[i] = bb_byte(cover);
             float dir[3] = {(bb_fbm(u, v, s_dx) - 0.5f) * 0.8f, 1.0f, (bb_fbm(u, v, s_dz) - 0.5f) * 0.8f};
             float len = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
             for (int k = 0; k < 3; k++) l->direction.px[i * 3 + k] = bb_byte(0.5f + 0.5f * dir[k] / len);
             l->messiness.px[i] = bb_byte((bb_fbm(u, v, s_mes) - 0.5f) * 2.5f + 0.5f);
         }
     }
-    free(fields);
+    for (int k = 0; k < 3; k++) free(fields[k].lattice);
+    return ok;
 }
 
 /* ---- grass clumps (the blade model, seen from the front) ----------------------
@@ -404,7 +507,11 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
         bb_layout_free(layout);
         return false;
     }
-    bb_layout_maps(layout, d.seed);
+    if (!bb_layout_maps(layout, d.seed, &d.extent)) {
+        core_log_error("%s:%d: out of memory for the billboard layout's noise", __FILE__, __LINE__);
+        bb_layout_free(layout);
+        return false;
+    }
     for (int k = 0; ok && k < d.clump_layers; k++)
         ok = bb_clump_draw(&layout->clumps[k], d.seed, k, d.blades, &d.clump, &layout->clump_stats[k]);
     if (!ok) {

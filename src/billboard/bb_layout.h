@@ -54,6 +54,28 @@ typedef struct bb_clump_desc_t {
     float gravity;         /* m/s the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
 } bb_clump_desc_t;
 
+/* The extent map's clearings (bb_layout.c, bb_layout_extent). */
+typedef enum bb_clearings_t {
+    BB_CLEARINGS_NOISE = 0, /* bare blobs where a tileable fBm field dips (default) */
+    BB_CLEARINGS_NONE,      /* none: 255 everywhere */
+    BB_CLEARINGS_IMAGE,     /* the first channel of `image`, bilinear, clamped to its edges */
+} bb_clearings_t;
+
+/* Zero means default. */
+typedef struct bb_extent_desc_t {
+    bb_clearings_t clearings; /* default noise */
+    float fraction;           /* noise: share of texels whose clearing mask is below one half (bare:
+                                 extent below about 0.5 x 255), in (0, 1]; default 0: the mask's
+                                 fixed threshold, whose share varies with the seed (0.07 to
+                                 0.65 below 128 for seeds 0-19 at 112 texels) */
+    float feature;            /* noise: texels per cell of the clearing field's coarsest octave,
+                                 rounded so a whole number of cells (1 to size / 2) spans the map;
+                                 default 0: size / 4 */
+    const core_image_t *image; /* image: required, not owned; row 0 maps to texel row 0 */
+    float image_texels[2];    /* image: texels the image spans along x and along z from texel
+                                 (0, 0); default (size, size) */
+} bb_extent_desc_t;
+
 typedef struct bb_layout_desc_t {
     uint32_t seed;     /* any value (0 included) */
     int size;          /* layout texture side in texels, default 256 */
@@ -64,6 +86,7 @@ typedef struct bb_layout_desc_t {
                           do counted with their overlaps; bb_layout.c), default
                           bb_clump_blades(200, 6) = 52 (the scene's default densities) */
     bb_clump_desc_t clump;
+    bb_extent_desc_t extent;
 } bb_layout_desc_t;
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
 
@@ -91,7 +114,7 @@ typedef struct bb_clump_stats_t {
 /* All images have row 0 at the top; texel (x, y) covers layout cell x along
  * world +x and y along world +z. The layout textures tile seamlessly. */
 typedef struct bb_layout_t {
-    core_image_t extent;     /* 1 channel: grass coverage (fBm with clearings) */
+    core_image_t extent;     /* 1 channel: grass coverage (bb_extent_desc_t: fBm with clearings) */
     core_image_t direction;  /* 3 channels: 0.5 + 0.5 * growth dir (mostly +y) */
     core_image_t messiness;  /* 1 channel */
     int clump_layers;

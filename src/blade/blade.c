@@ -281,6 +281,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.cam_pos);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view_proj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
+    glUniform1f(gfx_uniform(p, "u_level_distance"), d.level_distance > 0.0f ? d.level_distance : d.max_distance);
     glUniform1i(gfx_uniform(p, "u_distance_levels"), d.distance_levels);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), d.orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), d.frustum_tolerance);

@@ -802,7 +802,7 @@ float blade_ref_curve_length(const blade_t *b, int samples)
 blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc)
 {
     blade_cull_desc_t d = *desc;
-    if (d.max_distance == 0.0f) d.max_distance = 60.0f;
+    if (d.max_distance == 0.0f) d.max_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
     if (d.distance_levels == 0) d.distance_levels = 8;
     if (d.orientation_threshold == 0.0f) d.orientation_threshold = 0.9f;
     if (d.frustum_tolerance == 0.0f) d.frustum_tolerance = 0.1f;
@@ -869,7 +869,9 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
         float dist = desc->eye_distance ? v3_len(view) : v3_len(view_ground);
         int n = desc->distance_levels;
         if (dist > desc->max_distance) return BLADE_CULL_DISTANCE;
-        int level = (int)floorf((float)n * (1.0f - dist / desc->max_distance));
+        float span = desc->level_distance > 0.0f ? desc->level_distance : desc->max_distance;
+        int level = (int)floorf((float)n * (1.0f - dist / span));
+        if (level < 0) level = 0;
         if ((int)(index % (uint32_t)n) > level) return BLADE_CULL_DISTANCE;
     }
 

@@ -346,9 +346,13 @@ void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[
  *   2 distance: d = blade_ref_cull_distance (eq. 19's ground distance
  *     d_proj = |(v0 - cam) - up ((v0 - cam).up)|, or with eye_distance the
  *     hybrid's switch distance |v0 - cam|); culled when d > max_distance or
- *     (index mod n) > floor(n (1 - d / max_distance)) with n =
- *     distance_levels (eq. 19-20): near the camera all blades stay, at
- *     max_distance one in n.
+ *     (index mod n) > max(floor(n (1 - d / level_distance)), 0) with n =
+ *     distance_levels (eq. 19-20): near the camera all blades stay, from
+ *     level_distance on one in n. The paper's levels span the cull distance
+ *     (level_distance = max_distance, the default); a level_distance below
+ *     max_distance keeps one in n from there to the cut (blade mode drawn to
+ *     the field's edge keeps the near-field thinning of a 60 m cut,
+ *     docs/BLADES.md).
  *   3 occlusion (only when depth != NULL): a point with p.w > 0 and NDC x,y
  *     inside [-1,1] maps to pixel (floor((x*0.5+0.5) W), floor((y*0.5+0.5) H))
  *     clamped to the image, row 0 at the bottom (glReadPixels order); it is
@@ -357,7 +361,10 @@ void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[
  *     reads window depth d and uses 2d-1).
  * Padding blades (height <= 0) are dropped before the tests and counted by
  * no counter. Zero means default:
- *   max_distance 60 m, distance_levels 8, orientation_threshold 0.9,
+ *   max_distance BLADE_CULL_MAX_DISTANCE_DEFAULT (60 m), level_distance
+ *   max_distance (0 stays 0 in the resolved desc and means max_distance
+ *   when culling, so a caller that changes max_distance later keeps the
+ *   paper's levels), distance_levels 8, orientation_threshold 0.9,
  *   frustum_tolerance 0.1 (clip units), depth_bias 1e-3.
  * disable: bitmask of BLADE_CULL_* tests to skip (0: all enabled). */
 enum {
@@ -369,10 +376,13 @@ enum {
     BLADE_CULL_PADDING = 16
 };
 
+#define BLADE_CULL_MAX_DISTANCE_DEFAULT 60.0f
+
 typedef struct blade_cull_desc_t {
     float cam_pos[3];
     float view_proj[16]; /* column-major, GL clip space (z in [-w, w]) */
     float max_distance;
+    float level_distance;
     int distance_levels;
     float orientation_threshold;
     float frustum_tolerance;

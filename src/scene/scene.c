@@ -17,7 +17,8 @@ typedef scene_json_t json_t;
 
 static_assert(sizeof(scene_mode_t) == sizeof(int) && sizeof(scene_raster_t) == sizeof(int) &&
                   sizeof(scene_blade_shape_t) == sizeof(int) && sizeof(terrain_type_t) == sizeof(int) &&
-                  sizeof(scene_wind_type_t) == sizeof(int) && sizeof(scene_collider_type_t) == sizeof(int),
+                  sizeof(scene_wind_type_t) == sizeof(int) && sizeof(scene_collider_type_t) == sizeof(int) &&
+                  sizeof(scene_clearings_type_t) == sizeof(int),
               "SCENE_FIELD_ENUM members are stored as int");
 
 /* The accepted strings of an enum key (NULL-terminated). */
@@ -69,6 +70,7 @@ void scene_desc_defaults(scene_desc_t *d)
     fill_defaults(SCENE_SEC_ROOT, d);
     fill_defaults(SCENE_SEC_TERRAIN, &d->terrain);
     fill_defaults(SCENE_SEC_GRASS, &d->grass);
+    fill_defaults(SCENE_SEC_CLEARINGS, &d->grass.clearings);
     scene_camera_desc_t *c = &d->camera;
     fill_defaults(SCENE_SEC_CAMERA, c);
     if (glm_vec3_eq(c->position, 0.0f) && glm_vec3_eq(c->target, 0.0f)) {
@@ -111,6 +113,18 @@ void scene_camera_init(const scene_desc_t *d, cam_t *cam)
     glm_vec3_copy((float *)d->camera.target, cam->target);
     cam_path_eval(&d->camera.path, 0.0f, cam);
     cam_defaults(cam);
+}
+
+float scene_blade_distance(const scene_grass_desc_t *g, const float cam_pos[3], float far, const float field_min[3],
+                           const float field_max[3])
+{
+    if (g->blade_distance > 0.0f) return g->blade_distance;
+    float d2 = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        float e = fmaxf(fabsf(field_min[k] - cam_pos[k]), fabsf(field_max[k] - cam_pos[k]));
+        d2 += e * e;
+    }
+    return fminf(sqrtf(d2), far);
 }
 
 const char *scene_mode_name(scene_mode_t mode) { return names_of(SCENE_SEC_ROOT, "mode")[mode]; }
@@ -405,6 +419,13 @@ static bool parse_grass(sp_t *sp, const json_t *o, scene_grass_desc_t *g)
         return sp_fail(sp, v->line, "grass.stiffness",
                        "%g is out of range (0, %g]: a blade of stiffness 0 never stands up (eq. 1)",
                        (double)g->stiffness[0], scene_field_find(SCENE_SEC_GRASS, "stiffness")->hi);
+    if (!(v = scene_json_get(o, "clearings"))) return true;
+    int type = 0;
+    if (!get_typed_entry(sp, v, "grass.clearings", SCENE_SEC_CLEARINGS, "clearings", &type, &g->clearings))
+        return false;
+    g->clearings.type = (scene_clearings_type_t)type;
+    if (type == SCENE_CLEARINGS_IMAGE && !g->clearings.image[0])
+        return sp_fail(sp, scene_json_get(v, "image")->line, "grass.clearings.image", "must not be empty");
     return true;
 }
 

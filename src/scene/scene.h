@@ -60,6 +60,25 @@ typedef enum scene_blade_shape_t {
     SCENE_SHAPE_DANDELION,     /* "dandelion" */
 } scene_blade_shape_t;
 
+/* Clearings of the extent map (bb_layout.h, bb_extent_desc_t): where both
+ * grass models leave the ground bare. */
+typedef enum scene_clearings_type_t {
+    SCENE_CLEARINGS_NOISE = 0, /* "noise" (default): bare blobs where a fBm field dips */
+    SCENE_CLEARINGS_NONE,      /* "none": full coverage everywhere (a lawn) */
+    SCENE_CLEARINGS_IMAGE,     /* "image": a grey image over the terrain, white grass, black bare */
+} scene_clearings_type_t;
+
+/* "grass.clearings" object. Noise keys: type, fraction, size. Image keys:
+ * type, image. None keys: type. */
+typedef struct scene_clearings_desc_t {
+    scene_clearings_type_t type;
+    float fraction; /* noise: share of the ground left bare [0, 1]; default 0: the noise's own
+                       threshold, whose bare share varies with the seed */
+    float size;     /* noise: blob scale m [0, 10000] (the coarsest noise octave's cell);
+                       default 0: a quarter of the field's side */
+    char image[SCENE_PATH_MAX]; /* image: grey image file, repository-relative; required */
+} scene_clearings_desc_t;
+
 /* "grass" object. */
 typedef struct scene_grass_desc_t {
     float density;           /* blades per m^2 [0, 10000]; default 200 */
@@ -80,6 +99,9 @@ typedef struct scene_grass_desc_t {
                                 cube_resolution until 2 r / res <= cube_texel for the largest
                                 collider; default 0 (off: cube_resolution for all) */
     float recover_time;      /* seconds to stand up after a push [0, 3600]; default 3 */
+    float blade_distance;    /* blade mode: blades drawn up to this distance m [0, 1e6]; default 0:
+                                as far as grass is visible (scene_blade_distance) */
+    scene_clearings_desc_t clearings; /* default noise */
 } scene_grass_desc_t;
 /* For [min, max] pairs, [0, 0] (or absent) means default; otherwise
  * min <= max is required. */
@@ -188,6 +210,14 @@ void scene_free(scene_desc_t *d);
 /* Camera at t = 0 from a resolved desc: position/target/fov/near/far, aspect
  * from size, then the camera path (if any) evaluated at 0. */
 void scene_camera_init(const scene_desc_t *d, cam_t *cam);
+
+/* Blade mode's cull distance (m) for a camera at cam_pos with far plane
+ * `far` over grass in the box [field_min, field_max]: grass.blade_distance
+ * when positive, else the distance from the camera to the box's farthest
+ * corner or `far`, whichever is nearer (every blade of the field that the
+ * far plane leaves visible). */
+float scene_blade_distance(const scene_grass_desc_t *g, const float cam_pos[3], float far, const float field_min[3],
+                           const float field_max[3]);
 
 /* Names used in scene files, for logs and UIs. */
 const char *scene_mode_name(scene_mode_t mode);

@@ -16,6 +16,7 @@ static const char *const shape_names[] = {"quadratic", "quad", "triangle", "tria
 static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
+static const char *const clearings_names[] = {"noise", "none", "image", NULL};
 
 /* Entry-type bits of scene_field_t.variants. */
 #define DIRECTIONAL (1u << SCENE_WIND_DIRECTIONAL)
@@ -23,11 +24,14 @@ static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
 #define SPHERE (1u << SCENE_COLLIDER_SPHERE)
 #define CAPSULE (1u << SCENE_COLLIDER_CAPSULE)
 #define BOX (1u << SCENE_COLLIDER_BOX)
+#define NOISE (1u << SCENE_CLEARINGS_NOISE)
+#define IMAGE (1u << SCENE_CLEARINGS_IMAGE)
 
 #define AT(T, m) .offset = offsetof(T, m), .size = sizeof(((T *)0)->m)
 #define ROOT(m) .section = SCENE_SEC_ROOT, AT(scene_desc_t, m)
 #define TERRAIN(m) .section = SCENE_SEC_TERRAIN, AT(terrain_desc_t, m)
 #define GRASS(m) .section = SCENE_SEC_GRASS, AT(scene_grass_desc_t, m)
+#define CLEARINGS(m) .section = SCENE_SEC_CLEARINGS, AT(scene_clearings_desc_t, m)
 #define CAMERA(m) .section = SCENE_SEC_CAMERA, AT(scene_camera_desc_t, m)
 #define CAMERA_KEY(m) .section = SCENE_SEC_CAMERA_KEY, AT(cam_path_key_t, m)
 #define WIND(m) .section = SCENE_SEC_WIND, AT(scene_wind_t, m)
@@ -120,6 +124,25 @@ const scene_field_t scene_fields[] = {
     {GRASS(recover_time), .key = "recover_time", .type = SCENE_FIELD_FLOAT, .hi = 3600,
       .def = {SCENE_DEFAULT_RECOVER_TIME},
       .doc = "seconds grass takes to stand up after a push (billboards eq. 8, blade trails, hand-over)"},
+    {GRASS(blade_distance), .key = "blade_distance", .type = SCENE_FIELD_FLOAT, .hi = SCENE_COORD_MAX,
+      .doc = "blade mode: blades are drawn up to this distance (m) from the camera; 0: as far as grass is visible, "
+             "the field's farthest corner or camera.far, whichever is nearer (the hybrid uses switch_distance)",
+      .def_doc = "0 (the field)"},
+    {GRASS(clearings), .key = "clearings", .type = SCENE_FIELD_OBJECT,
+      .doc = "bare ground of both models, the extent map (keys `grass.clearings.*`)", .def_doc = "noise"},
+
+    /* ---- grass.clearings ---- */
+    {CLEARINGS(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = clearings_names,
+      .doc = "bare blobs where a noise field dips, none (full coverage: a lawn, scenes/lawn.json), or a grey image"},
+    {CLEARINGS(fraction), .key = "fraction", .variants = NOISE, .type = SCENE_FIELD_FLOAT, .hi = 1,
+      .doc = "share of the ground left bare", .def_doc = "0 (the noise's fixed threshold: the share varies with the seed)"},
+    {CLEARINGS(size), .key = "size", .variants = NOISE, .type = SCENE_FIELD_FLOAT, .hi = 10000,
+      .doc = "blob scale (m): the cell of the noise's coarsest octave, rounded so the map tiles",
+      .def_doc = "0 (about a quarter of the field's side)"},
+    {CLEARINGS(image), .key = "image", .variants = IMAGE, .type = SCENE_FIELD_STRING,
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT,
+      .doc = "grey image file (PNG), repository-relative, stretched over the terrain seen from above (row 0 at "
+             "-z, column 0 at -x): white grass, black bare"},
 
     /* ---- camera ---- */
     {CAMERA(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
@@ -199,7 +222,7 @@ const int scene_field_count = (int)(sizeof scene_fields / sizeof scene_fields[0]
 /* ---- lookups ------------------------------------------------------------- */
 
 static const char *const section_names[SCENE_SEC_COUNT] = {
-    "", "terrain", "grass", "camera", "camera.path[]", "wind[]", "colliders[]", "colliders[].path[]", "characters[]",
+    "", "terrain", "grass", "grass.clearings", "camera", "camera.path[]", "wind[]", "colliders[]", "colliders[].path[]", "characters[]",
 };
 
 const char *scene_section_name(scene_section_t section) { return section_names[section]; }
