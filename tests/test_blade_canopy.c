@@ -109,6 +109,7 @@ int main(void)
     CHECK_NEAR(blade_canopy_thinned(0.75f, 0.5f), 0.5f, 1e-6);
     CHECK_NEAR(blade_canopy_thinned(0.75f, 1.0f), 0.75f, 1e-6);
     CHECK(blade_canopy_thinned(0.75f, 0.0f) == 0.0f);
+    CHECK(blade_canopy_thinned(1.0f, 0.0f) == 0.0f); /* full cover in a clearing: no grass, not NaN */
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.rows = 1, .sun = {0, 1, 0}}));
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3})); /* no sun */
     TEST_END();

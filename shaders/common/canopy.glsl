@@ -21,10 +21,11 @@ uniform vec2 u_canopy_sun[CANOPY_MAX_ROWS * CANOPY_AZIMUTHS]; /* E[D], E[v D] */
 uniform vec3 u_canopy_albedo_root;
 uniform vec3 u_canopy_albedo_tip;
 
-/* blade_canopy_thinned: cover of the canopy thinned to a fraction e. */
+/* blade_canopy_thinned: cover of the canopy thinned to a fraction e (the
+ * gap kept above 0: GLSL's pow(0, 0) is undefined, NaN on NVIDIA). */
 float canopy_thinned(float cover, float e)
 {
-    return 1.0 - pow(max(1.0 - cover, 0.0), clamp(e, 0.0, 1.0));
+    return 1.0 - pow(max(1.0 - cover, 1e-6), clamp(e, 0.0, 1.0));
 }
 
 /* blade_canopy_color at elevation e and sun azimuth phi (radians). */

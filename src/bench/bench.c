@@ -16,7 +16,9 @@
  *                        papers, the box's depth cube map at 16/32/64 texels
  *                        (penetration depth against the exact box),
  *   blade_tessellation, blade_distance_levels (eq. 19-20),
- *   hybrid_switch_distance, modes (mode x density x render path, hardware
+ *   hybrid_switch_distance, hybrid_canopy_distance (both rasterizer paths,
+ *   billboard and blade mode beside it),
+ *   modes (mode x density x render path, hardware
  *   and compute rasterizer at 4 and 1 samples per pixel) (image error).
  * --quick runs two configurations per sweep for CI. The stability suite
  * (bench_stability.c) runs with --stability (--case NAME: one case), the
@@ -50,6 +52,7 @@ typedef struct bench_config_t {
     scene_mode_t mode;
     int cube_resolution, subdiv, springs; /* billboard knobs, 0 = scene */
     float switch_distance;                /* hybrid knob, 0 = scene */
+    float canopy_distance;                /* hybrid knob, 0 = scene */
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
     int blade_render;                     /* 0 = the options', 1 pull, 2 tess */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
@@ -71,6 +74,9 @@ static void tweak(scene_desc_t *s, void *user)
     if (c->subdiv) s->grass.subdiv[0] = s->grass.subdiv[1] = c->subdiv;
     if (c->springs) s->grass.spring_iterations = c->springs;
     if (c->switch_distance > 0) s->grass.switch_distance = c->switch_distance;
+    if (c->canopy_distance > 0) s->grass.canopy_distance = c->canopy_distance;
+    /* A switch sweep keeps the canopy's band beyond the blades' (app_world_load's rule). */
+    s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + 5.0f);
     if (c->density_scale > 0) {
         s->grass.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
@@ -226,6 +232,26 @@ static int build_configs(bench_config_t *c, bool quick)
         x->switch_distance = sw[i];
         snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
     }
+    /* The ground canopy's distance (100 km: no canopy) on both rasterizer
+     * paths, beside billboard and blade mode drawn as far (blade mode to
+     * the field's edge, grass.blade_distance's default). */
+    static const float canopy[] = {35, 45, 60, 90, 100000};
+    int ncan = quick ? 2 : (int)(sizeof canopy / sizeof canopy[0]);
+    for (int r = 0; r < (quick ? 1 : 2); r++) {
+        for (int m = 0; m < 2 && !quick; m++) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", m ? SCENE_MODE_BLADE : SCENE_MODE_BILLBOARD);
+            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+            snprintf(x->label, sizeof x->label, "%s%s", m ? "blade" : "billboard", r ? "_compute" : "");
+        }
+        for (int i = 0; i < ncan; i++) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
+            x->canopy_distance = canopy[quick ? 2 * i : i];
+            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+            const char *path = r ? "_compute" : "";
+            if (x->canopy_distance >= 100000) snprintf(x->label, sizeof x->label, "no_canopy%s", path);
+            else snprintf(x->label, sizeof x->label, "canopy%gm%s", (double)x->canopy_distance, path);
+        }
+    }
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     for (int d = 0; d < (quick ? 1 : 2); d++)
         for (int i = 0; i < 3; i++) {
@@ -279,6 +305,7 @@ static const bench_chart_t charts[] = {
     {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE,
      DRAW_PASSES},
     {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
+    {"hybrid_canopy_distance", "hybrid_canopy_distance", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
     {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))

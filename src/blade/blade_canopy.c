@@ -347,5 +347,5 @@ void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float
 
 float blade_canopy_thinned(float cover, float e)
 {
-    return 1.0f - powf(fmaxf(1.0f - cover, 0.0f), fminf(fmaxf(e, 0.0f), 1.0f));
+    return 1.0f - powf(fmaxf(1.0f - cover, 1e-6f), fminf(fmaxf(e, 0.0f), 1.0f));
 }

@@ -101,7 +101,8 @@ void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float
                         float rgb[3], float *cover);
 
 /* Cover of the canopy thinned to a fraction e in [0, 1] of its density:
- * 1 - (1 - cover)^e. */
+ * 1 - max(1 - cover, 1e-6)^e (a gap of 0 would make e = 0 undefined in
+ * GLSL's pow). */
 float blade_canopy_thinned(float cover, float e);
 
 #endif
