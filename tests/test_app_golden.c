@@ -14,7 +14,8 @@ static bool render(const char *dir, core_image_t *img)
     char frames[] = "4", size[] = "160x96", every[] = "4", out[512], mode[] = "hybrid";
     snprintf(out, sizeof out, "%s", dir);
     char *argv[] = {"meadow", "--headless", "--quiet", "--scene", "scenes/tiny.json", "--frames", frames,
-                    "--size", size, "--screenshot-every", every, "--mode", mode, "--out", out};
+                    "--size", size, "--screenshot-every", every, "--mode", mode, "--out", out,
+                    "--raster", "hw"}; /* the goldens are the hardware path's (the default, auto, measures) */
     app_options_t o;
     char err[256];
     if (app_parse_args((int)(sizeof argv / sizeof argv[0]), argv, &o, err, sizeof err) != 0) return false;

@@ -84,7 +84,8 @@ static int run_config(const config_t *c, value_t *vals, int n)
     char out[512], summary[600];
     snprintf(out, sizeof out, "%s/%s", test_out_dir(), c->name);
     char *argv[] = {"meadow", "--headless", "--quiet", "--scene", (char *)c->scene, "--mode", (char *)c->mode,
-                    "--frames", "40", "--size", "160x90", "--screenshot-every", "0", "--out", out};
+                    "--frames", "40", "--size", "160x90", "--screenshot-every", "0", "--out", out,
+                    "--raster", "hw"}; /* the baseline counts the hardware path (auto measures both) */
     app_options_t o;
     char err[256];
     if (app_parse_args((int)(sizeof argv / sizeof argv[0]), argv, &o, err, sizeof err) != 0) return -1;

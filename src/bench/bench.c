@@ -423,6 +423,10 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->terms = calloc(MAX_CONFIGS, sizeof *b->terms);
     if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms) return 1;
     b->n = build_configs(b->cfg, quick);
+    /* Every row names its rasterizer path: hw unless the row or --raster
+     * says otherwise (the scene default, auto, would pick one by timing). */
+    app_options_t oh = *o;
+    if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
     if (o->chart) {
         int k = 0;
         for (int i = 0; i < b->n; i++)
@@ -442,7 +446,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int frames = b->frames;
     core_image_t ref = {0}, img = {0}, bg = {0}, other = {0};
-    bench_session_desc_t rd = {.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+    bench_session_desc_t rd = {.opts = &oh, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
     core_log_info("bench: reference rendering (%d frames), its grass-free view and another placement", frames);
     int rc = bench_session_run(&rd, &ref, NULL);
@@ -479,7 +483,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
             break;
         }
         bench_config_t *c = &b->cfg[i];
-        app_options_t oc = *o;
+        app_options_t oc = oh;
         if (c->blade_render) oc.blade_render = c->blade_render - 1;
         if (c->raster) oc.raster = c->raster;
         if (c->raster_samples) oc.raster_samples = c->raster_samples;

@@ -45,10 +45,11 @@ typedef enum scene_mode_t {
 
 /* How grass is rasterized (docs/RASTER.md). */
 typedef enum scene_raster_t {
-    SCENE_RASTER_HW = 0,  /* "hw" (default): the hardware pipeline, the papers' reference path
-                             (tessellation / geometry shaders, alpha-to-coverage) */
-    SCENE_RASTER_COMPUTE, /* "compute": compute shaders into a visibility buffer (src/raster) */
-    SCENE_RASTER_AUTO,    /* "auto": the faster of the two, measured at start-up */
+    SCENE_RASTER_AUTO = 0, /* "auto" (default): the faster of the two, measured at start-up
+                              (the bench sweep's rows name their path: hw unless said) */
+    SCENE_RASTER_HW,       /* "hw": the hardware pipeline, the papers' reference path
+                              (tessellation / geometry shaders, alpha-to-coverage) */
+    SCENE_RASTER_COMPUTE,  /* "compute": compute shaders into a visibility buffer (src/raster) */
 } scene_raster_t;
 
 /* Blade shape functions of Jahrmann & Wimmer 2017, section 5. */

@@ -11,7 +11,7 @@
 #include "scene/scene.h"
 
 static const char *const mode_names[] = {"hybrid", "billboard", "blade", NULL};
-static const char *const raster_names[] = {"hw", "compute", "auto", NULL};
+static const char *const raster_names[] = {"auto", "hw", "compute", NULL};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
 static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
@@ -56,8 +56,8 @@ const scene_field_t scene_fields[] = {
     {ROOT(mode), .key = "mode", .type = SCENE_FIELD_ENUM, .names = mode_names,
       .doc = "grass model: blades near and billboards far (hybrid), or one method alone"},
     {ROOT(raster), .key = "raster", .type = SCENE_FIELD_ENUM, .names = raster_names,
-      .doc = "how grass is rasterized: hardware pipeline, compute shaders, or the faster measured at "
-             "start-up (docs/RASTER.md)"},
+      .doc = "how grass is rasterized: the faster of the two measured at start-up (summary.txt says which "
+             "and what the measure cost), the hardware pipeline, or compute shaders (docs/RASTER.md)"},
     {ROOT(raster_samples), .key = "raster_samples", .type = SCENE_FIELD_INT, .lo = 1, .hi = 4,
       .def = {SCENE_DEFAULT_RASTER_SAMPLES}, .type_doc = "integer: 1 or 4",
       .doc = "compute rasterizer samples per pixel: 4 (the 4x MSAA pattern) or 1 (the pixel centre); "
