@@ -295,6 +295,10 @@ static void write_summary(app_t *app, double wall_s)
                   st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
+    if (app->world.scene.mode == SCENE_MODE_HYBRID)
+        n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
+                      app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
+                      app->world.lod_note[0] ? app->world.lod_note : "the scene's; no grass.lod_table");
     raster_t *r = &app->world.raster;
     if (r->vis.id) {
         raster_stats_t rs;

@@ -9,6 +9,7 @@
 
 #include "core/core.h"
 #include "platform/plat.h"
+#include "scene/scene_lod.h"
 
 const char *app_stage_name(int stage)
 {
@@ -452,6 +453,45 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
  * spheres (see character_proxy_spheres). */
 #define APP_CHARACTER_CAPSULES 8
 
+/* grass.lod_table: the switch and canopy distances the bench measured for
+ * this GL renderer and path, and with raster auto the cheaper path
+ * (scene_lod.h); they replace the scene's before anything is built. A table
+ * of another renderer, or one that cannot be read, leaves the scene's with
+ * a warning. */
+static void apply_lod_table(app_world_t *w)
+{
+    scene_grass_desc_t *g = &w->scene.grass;
+    if (!g->lod_table[0] || w->mode != SCENE_MODE_HYBRID || w->reference) return;
+    char path[1024], err[1024];
+    if (!core_fs_resolve(g->lod_table, path, sizeof path)) snprintf(path, sizeof path, "%s", g->lod_table);
+    scene_lod_t t;
+    if (!scene_lod_read(&t, path, err, sizeof err)) {
+        core_log_warn("grass.lod_table: %s; keeping the scene's distances", err);
+        snprintf(w->lod_note, sizeof w->lod_note, "not read (%.400s): the scene's distances", err);
+        return;
+    }
+    const char *renderer = (const char *)glGetString(GL_RENDERER);
+    bool auto_path = w->scene.raster == SCENE_RASTER_AUTO, compute = w->raster_compute;
+    const scene_lod_pick_t *p = scene_lod_choose(&t, renderer, auto_path ? -1 : (compute ? 1 : 0), &compute);
+    if (!p) {
+        core_log_warn("grass.lod_table %s: measured on '%s' (or without the %s path), this GL is '%s': keeping the "
+                      "scene's distances", g->lod_table, t.renderer, compute ? "compute" : "hw", renderer);
+        snprintf(w->lod_note, sizeof w->lod_note, "%.200s measured on '%.200s', not this GL: the scene's distances",
+                 g->lod_table, t.renderer);
+        return;
+    }
+    g->switch_distance = p->switch_distance;
+    g->canopy_distance = p->canopy_distance;
+    if (auto_path) app_world_set_raster(w, compute);
+    snprintf(w->lod_note, sizeof w->lod_note,
+             "%s path%s, from %.200s: %.3f ms at image error %.3f, %s budget %.3f (blade mode's error + noise "
+             "floor); the cheapest within it of %d hybrid configurations",
+             compute ? "compute" : "hw",
+             auto_path ? " (the table's cheaper)" : "", g->lod_table, p->gpu_ms, p->image_error,
+             p->met ? "within its" : "NOT within its (the least error measured)", p->budget, p->candidates);
+    core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, w->lod_note);
+}
+
 bool app_world_make_gpu(app_world_t *w)
 {
     double mark = plat_time();
@@ -471,6 +511,7 @@ bool app_world_make_gpu(app_world_t *w)
     }
     stage_done(w, APP_STAGE_CHARACTERS, &mark);
     w->cube_res = cube_resolution_for(w);
+    apply_lod_table(w);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);

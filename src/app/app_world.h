@@ -172,6 +172,7 @@ typedef struct app_world_t {
     bool have_chars;
     const char *character_override, *clip_override;
     bool input_error; /* a model file failed to load: exit code 2 */
+    char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
     bool warned_objects;
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;

@@ -124,6 +124,11 @@ const scene_field_t scene_fields[] = {
     {GRASS(recover_time), .key = "recover_time", .type = SCENE_FIELD_FLOAT, .hi = 3600,
       .def = {SCENE_DEFAULT_RECOVER_TIME},
       .doc = "seconds grass takes to stand up after a push (billboards eq. 8, blade trails, hand-over)"},
+    {GRASS(lod_table), .key = "lod_table", .type = SCENE_FIELD_STRING,
+      .doc = "hybrid: a lod.json of `meadow bench --chart hybrid_canopy_distance`: on the GL renderer it was "
+             "measured on, its switch and canopy distances (and with raster auto its path) replace the scene's "
+             "(docs/HYBRID.md)",
+      .def_doc = "\"\" (none)"},
     {GRASS(blade_distance), .key = "blade_distance", .type = SCENE_FIELD_FLOAT, .hi = SCENE_COORD_MAX,
       .doc = "blade mode: blades are drawn up to this distance (m) from the camera; 0: as far as grass is visible, "
              "the field's farthest corner or camera.far, whichever is nearer (the hybrid uses switch_distance)",

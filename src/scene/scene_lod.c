@@ -1,0 +1,87 @@
+/* scene_lod: reads the bench's lod.json and picks the switch distances for
+ * a renderer and rasterizer path (see scene_lod.h). */
+#include "scene/scene_lod.h"
+
+#include "core/core.h"
+#include "scene/scene_json.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const scene_json_t *member(const scene_json_t *o, const char *key, scene_json_type_t type)
+{
+    const scene_json_t *v = o && o->type == SCENE_JSON_OBJECT ? scene_json_get(o, key) : NULL;
+    return v && v->type == type ? v : NULL;
+}
+
+static bool read_path(const scene_json_t *p, scene_lod_pick_t *out, const char *name, const char *file, char *err,
+                      size_t err_size)
+{
+    static const char *const keys[] = {"switch_distance", "canopy_distance", "gpu_ms", "image_error", "budget"};
+    double v[5];
+    for (int k = 0; k < 5; k++) {
+        const scene_json_t *n = member(p, keys[k], SCENE_JSON_NUMBER);
+        if (!n) {
+            snprintf(err, err_size, "%s:%d: paths.%s needs a number \"%s\"", file, p->line, name, keys[k]);
+            return false;
+        }
+        v[k] = n->number;
+    }
+    const scene_json_t *met = member(p, "met", SCENE_JSON_BOOL), *cand = member(p, "candidates", SCENE_JSON_NUMBER);
+    const scene_json_t *label = member(p, "label", SCENE_JSON_STRING);
+    if (v[0] < 0.0 || v[1] < v[0] || !met) {
+        snprintf(err, err_size, "%s:%d: paths.%s: switch_distance >= 0, canopy_distance >= switch_distance and a "
+                 "boolean \"met\" are required", file, p->line, name);
+        return false;
+    }
+    *out = (scene_lod_pick_t){.present = true, .switch_distance = (float)v[0], .canopy_distance = (float)v[1],
+                              .gpu_ms = v[2], .image_error = v[3], .budget = v[4], .met = met->boolean,
+                              .candidates = cand ? (int)cand->number : 0};
+    if (label) snprintf(out->label, sizeof out->label, "%s", label->string);
+    return true;
+}
+
+bool scene_lod_read(scene_lod_t *t, const char *path, char *err, size_t err_size)
+{
+    memset(t, 0, sizeof *t);
+    char why[256];
+    char *text = core_fs_read(path, NULL, why, sizeof why);
+    if (!text) {
+        snprintf(err, err_size, "%s: %s", path, why);
+        return false;
+    }
+    scene_json_doc_t doc = {0};
+    bool ok = scene_json_parse(&doc, text, path, err, err_size);
+    free(text);
+    if (!ok) return false;
+    const scene_json_t *renderer = member(doc.root, "renderer", SCENE_JSON_STRING);
+    const scene_json_t *paths = member(doc.root, "paths", SCENE_JSON_OBJECT);
+    if (!renderer || !paths) {
+        snprintf(err, err_size, "%s: not a lod.json (needs a \"renderer\" string and a \"paths\" object)", path);
+        ok = false;
+    }
+    static const char *const names[2] = {"hw", "compute"};
+    for (int k = 0; ok && k < 2; k++) {
+        const scene_json_t *p = member(paths, names[k], SCENE_JSON_OBJECT);
+        if (p) ok = read_path(p, &t->path[k], names[k], path, err, err_size);
+    }
+    if (ok && !t->path[0].present && !t->path[1].present) {
+        snprintf(err, err_size, "%s: \"paths\" holds neither \"hw\" nor \"compute\"", path);
+        ok = false;
+    }
+    if (ok) snprintf(t->renderer, sizeof t->renderer, "%s", renderer->string);
+    scene_json_free(&doc);
+    return ok;
+}
+
+const scene_lod_pick_t *scene_lod_choose(const scene_lod_t *t, const char *renderer, int path, bool *compute)
+{
+    if (!renderer || strcmp(renderer, t->renderer) != 0) return NULL;
+    if (path < 0) {
+        const scene_lod_pick_t *hw = &t->path[0], *cs = &t->path[1];
+        path = !hw->present || (cs->present && cs->gpu_ms < hw->gpu_ms) ? 1 : 0;
+    }
+    *compute = path == 1;
+    return t->path[path].present ? &t->path[path] : NULL;
+}
