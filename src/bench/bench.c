@@ -54,7 +54,7 @@ typedef struct bench_config_t {
     float switch_distance;                /* hybrid knob, 0 = scene */
     float canopy_distance;                /* hybrid knob, 0 = scene */
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
-    int blade_render;                     /* 0 = the options', 1 pull, 2 tess */
+    int blade_render;                     /* 0 = the options', else 1 + scene_blade_render_t (1 pull, 2 tess) */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
@@ -480,7 +480,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         }
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = *o;
-        if (c->blade_render) oc.blade_render = c->blade_render - 1;
+        if (c->blade_render) oc.blade_render = c->blade_render;
         if (c->raster) oc.raster = c->raster;
         if (c->raster_samples) oc.raster_samples = c->raster_samples;
         bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
