@@ -15,7 +15,9 @@
  *                        (Jahrmann & Wimmer 2017 sec. 5.3) and, beyond both
  *                        papers, the box's depth cube map at 16/32/64 texels
  *                        (penetration depth against the exact box),
- *   blade_tessellation, blade_distance_levels (eq. 19-20),
+ *   blade_tessellation (blade mode drawn through the tessellation
+ *                        shaders, tess_max 1..10 segments), blade_distance_levels
+ *                        (eq. 19-20),
  *   hybrid_switch_distance, hybrid_canopy_distance (both rasterizer paths,
  *   billboard and blade mode beside it),
  *   modes (mode x density x render path, hardware
@@ -217,8 +219,15 @@ static int build_configs(bench_config_t *c, bool quick)
     static const float sw[] = {2, 4, 8, 12, 16, 20, 25, 30, 40};
     int nt = quick ? 2 : 6;
     for (int i = 0; i < nt; i++) {
+        /* tess_max caps the segments of both hardware paths (the pulled
+         * strip's length and its levels as well); the chart is about
+         * tessellation, so it draws with the tessellation shaders. Its
+         * reference (shared by every chart) is drawn with 16 segments by
+         * the scene's path, the surface tessellation builds at 16 too
+         * (test_blade_render: tessellation vs pulling mean 0.000). */
         bench_config_t *x = add(c, &n, "blade_tessellation", SCENE_MODE_BLADE);
         x->tuning.tess_max = tess[i];
+        x->blade_render = 1 + SCENE_BLADE_RENDER_TESS;
         snprintf(x->label, sizeof x->label, "tess%d", tess[i]);
     }
     for (int i = 0; i < nt; i++) {
