@@ -35,7 +35,16 @@
  *      (core_box_dist2 nondecreasing), and a cull split at the fade start
  *      draws the same blades as one without (same ids) in two lists: roots
  *      up to the fade start first (the opaque draw), farther ones after
- *      (the fade's draw), both non-empty. */
+ *      (the fade's draw), both non-empty;
+ *   i) occlusion: a wall in the depth texture (its left half at the depth
+ *      of a point 6 m ahead of the camera) hides part of the field; with
+ *      frustum, distance and occlusion tests on, the drawn blades are
+ *      those blade_ref_cull_one keeps with the same depth (as NDC), the
+ *      per-test counts equal the CPU's, and the counts add up: survivors +
+ *      culled + the blades of tiles the CPU frustum test dropped = the
+ *      blade tiles' blades. Without the depth texture exactly the occluded
+ *      blades come back (so the test fails if the occlusion test is
+ *      missing). */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
 #include "test.h"
@@ -76,16 +85,28 @@ static blade_env_t make_env(float time, float dt)
     return (blade_env_t){.dt = dt, .time = time, .gravity = 1.0f};
 }
 
-static void draw_faded(blade_tiles_t *t, const float cam[3], float fade_start, float fade_end)
+/* The test camera at cam looking at the origin. */
+static void view_proj(const float cam[3], mat4 vp)
 {
-    blade_draw_desc_t dd = {.fade_start = fade_start, .fade_end = fade_end};
-    mat4 view, proj, vp;
+    mat4 view, proj;
     glm_lookat((float *)cam, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
     glm_perspective(glm_rad(60.0f), 1.0f, 0.05f, 100.0f, proj);
     glm_mat4_mul(proj, view, vp);
+}
+
+static void draw_occluded(blade_tiles_t *t, const float cam[3], float fade_start, float fade_end, GLuint depth)
+{
+    blade_draw_desc_t dd = {.fade_start = fade_start, .fade_end = fade_end};
+    mat4 vp;
+    view_proj(cam, vp);
     memcpy(dd.view_proj, vp, sizeof vp);
     memcpy(dd.camera, cam, sizeof dd.camera);
-    blade_tiles_draw(t, &dd);
+    blade_tiles_draw(t, &dd, depth);
+}
+
+static void draw_faded(blade_tiles_t *t, const float cam[3], float fade_start, float fade_end)
+{
+    draw_occluded(t, cam, fade_start, fade_end, 0);
 }
 
 static void draw_all(blade_tiles_t *t, const float cam[3]) { draw_faded(t, cam, 0.0f, 0.0f); }
@@ -615,6 +636,110 @@ static void test_draw_lists(void)
     terrain_free(&m);
 }
 
+/* ---- i) ------------------------------------------------------------------ */
+#define DEPTH_SIDE 64
+
+static void test_occlusion(void)
+{
+    terrain_mesh_t m = make_terrain(16.0f, 32, true);
+    blade_tiles_t t;
+    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    t.desc.cull.disable = BLADE_CULL_ORIENTATION; /* the tiles' own rule for widened blades: test g */
+    t.desc.cull.max_distance = 10.0f;
+    t.desc.cull.distance_levels = 8;
+    const float cam[3] = {-7.5f, 2.0f, -7.5f};
+    blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
+    blade_tiles_update(&t, cam, NULL, &env);
+    uint32_t B = t.template_blades;
+
+    /* the wall: the left half of the image at the window depth of the
+     * point 6 m ahead of the camera, the right half open (depth 1) */
+    mat4 vp;
+    view_proj(cam, vp);
+    vec3 ahead;
+    glm_vec3_normalize_to((vec3){-cam[0], -cam[1], -cam[2]}, ahead);
+    vec4 p = {cam[0] + 6.0f * ahead[0], cam[1] + 6.0f * ahead[1], cam[2] + 6.0f * ahead[2], 1.0f}, clip;
+    glm_mat4_mulv(vp, p, clip);
+    float wall = 0.5f * clip[2] / clip[3] + 0.5f;
+    static float window[DEPTH_SIDE * DEPTH_SIDE], ndc[DEPTH_SIDE * DEPTH_SIDE];
+    for (int y = 0; y < DEPTH_SIDE; y++)
+        for (int x = 0; x < DEPTH_SIDE; x++) {
+            window[y * DEPTH_SIDE + x] = x < DEPTH_SIDE / 2 ? wall : 1.0f;
+            ndc[y * DEPTH_SIDE + x] = 2.0f * window[y * DEPTH_SIDE + x] - 1.0f;
+        }
+    gfx_texture_t depth = gfx_texture_make(&(gfx_texture_desc_t){
+        .w = DEPTH_SIDE, .h = DEPTH_SIDE, .format = GL_R32F, .filter = GL_NEAREST, .data = window,
+        .upload_format = GL_RED, .upload_type = GL_FLOAT, .label = "tiles.test_depth"});
+    CHECK(depth.id != 0);
+
+    draw_occluded(&t, cam, 0.0f, 0.0f, depth.id);
+    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
+    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    int listed = t.stats.tiles_drawn, ntiles = t.grid.nx * t.grid.nz;
+    uint32_t *list = malloc((size_t)listed * 2 * sizeof *list);
+    gfx_buffer_read(t.tile_list, 0, (size_t)listed * 2 * sizeof *list, list);
+
+    /* the CPU twin over the listed tiles, with the same depth */
+    blade_cull_desc_t cull = t.desc.cull;
+    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
+    memcpy(cull.view_proj, vp, sizeof cull.view_proj);
+    cull.depth = ndc;
+    cull.depth_w = cull.depth_h = DEPTH_SIDE;
+    unsigned char *want = calloc((size_t)ntiles * B, 1), *got = calloc((size_t)ntiles * B, 1);
+    uint32_t cpu[4] = {0}, cpu_visible = 0;
+    for (int k = 0; k < listed; k++)
+        for (uint32_t b = 0; b < B; b++) {
+            blade_t pose;
+            blade_tiles_pose(&t, (int)list[2 * k], b, &pose);
+            int why = blade_ref_cull_one(&pose, b, &cull);
+            if (why == BLADE_CULL_VISIBLE) {
+                want[list[2 * k] * B + b] = 1;
+                cpu_visible++;
+            }
+            for (int test = 0; test < 4; test++) cpu[test] += why == 1 << test; /* BLADE_CULL_ORIENTATION .. */
+        }
+    for (uint32_t i = 0; i < n; i++) got[ids[i]] = 1;
+    int differ = 0;
+    for (size_t i = 0; i < (size_t)ntiles * B; i++) differ += want[i] != got[i];
+    /* every blade of the blade-representation tiles */
+    uint32_t blade_tiles_blades = 0, counted = st.blades_drawn + st.tile_culled;
+    for (int i = 0; i < ntiles; i++) {
+        if (t.grid.tiles[i].rep != HYBRID_REP_BLADE) continue;
+        int tmpl, sym;
+        blade_tiles_instance(&t, i, &tmpl, &sym);
+        blade_tiles_blades += t.template_real[tmpl];
+    }
+    for (int k = 0; k < 4; k++) counted += st.culled[k];
+    printf("i) wall at window depth %.4f over the left half: GPU culled (orientation frustum distance occlusion "
+           "tile) %u %u %u %u %u, drawn %u; CPU %u %u %u %u, visible %u; %d blades differ; %u of the blade tiles' "
+           "%u blades accounted for\n",
+           wall, st.culled[0], st.culled[1], st.culled[2], st.culled[3], st.tile_culled, n, cpu[0], cpu[1], cpu[2],
+           cpu[3], cpu_visible, differ, counted, blade_tiles_blades);
+    CHECK(n == st.blades_drawn);
+    CHECK(cpu[3] > 100 && cpu_visible > 100);
+    CHECK(differ <= 2); /* blades whose points sit on the wall's depth, in float */
+    for (int k = 0; k < 4; k++) CHECK(abs((int)st.culled[k] - (int)cpu[k]) <= 2);
+    CHECK(st.tile_culled > 0 && counted == blade_tiles_blades);
+
+    /* without the depth texture the occluded blades come back */
+    draw_occluded(&t, cam, 0.0f, 0.0f, 0);
+    uint32_t n_open = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_tiles_stats_t open = blade_tiles_stats(&t, true);
+    printf("i) without the depth texture: %u drawn (%u more), occlusion count %u\n", n_open, n_open - n,
+           open.culled[3]);
+    CHECK(open.culled[3] == 0 && n_open == n + st.culled[3]);
+    gfx_texture_destroy(&depth);
+    free(want);
+    free(got);
+    free(list);
+    free(drawn);
+    free(ids);
+    blade_tiles_destroy(&t);
+    terrain_free(&m);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -627,6 +752,7 @@ int main(void)
     test_lod_width();
     test_lod_orientation();
     test_draw_lists();
+    test_occlusion();
     /* a mesh terrain is rejected */
     terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
     mesh.grid_res = 0;

@@ -47,19 +47,6 @@ uniform int u_count_instances;
 uniform int u_use_patches;
 uniform uint u_patch_size;
 
-bool occluded(vec4 clip, ivec2 size)
-{
-    if (clip.w <= 0.0) return false;
-    float x = clip.x / clip.w, y = clip.y / clip.w, z = clip.z / clip.w;
-    if (abs(x) > 1.0 || abs(y) > 1.0) return false;
-    int px = int(floor((x * 0.5 + 0.5) * float(size.x)));
-    int py = int(floor((y * 0.5 + 0.5) * float(size.y)));
-    px = clamp(px, 0, size.x - 1);
-    py = clamp(py, 0, size.y - 1);
-    float ndc = texelFetch(u_depth, ivec2(px, py), 0).r * 2.0 - 1.0;
-    return z > ndc + u_depth_bias;
-}
-
 uint cull(Blade b, uint index)
 {
     float h = b.v1.w;
@@ -94,8 +81,10 @@ uint cull(Blade b, uint index)
     }
 
     if (u_use_depth != 0 && (u_disable & BLADE_CULL_OCCLUSION) == 0u) {
-        ivec2 size = textureSize(u_depth, 0);
-        if (occluded(c0, size) && occluded(cm, size) && occluded(c2, size)) return BLADE_CULL_OCCLUSION;
+        float bias = u_depth_bias;
+        if (blade_occluded(u_depth, c0, bias) && blade_occluded(u_depth, cm, bias) &&
+            blade_occluded(u_depth, c2, bias))
+            return BLADE_CULL_OCCLUSION;
     }
     return BLADE_CULL_VISIBLE;
 }

@@ -1,22 +1,29 @@
 #version 450
 /* tiles_cull.comp: per-blade culling of the tiled field (Jahrmann & Wimmer
- * 2017 eq. 14-20: orientation, frustum, distance levels; the tests and
- * their order of blade_cull.comp, no occlusion). Invocation i: entry
- * list[i / B] = (tile, slot), blade k = i % B: the blade is the pool state
- * of the slot, or, for an idle tile (slot TILES_NO_SLOT), the procedural
- * pose of the template blade. The distance level uses k (templates are
- * Morton ordered, so the thinning is spatially even) and widens the
- * survivors so the thinned field covers the ground as the full one
- * (blade_lod_width); the orientation test culls a widened blade only when
- * it is as thin on screen as the test means (blade_lod_orientation). A
- * survivor is counted in cmd.total and, within u_capacity, appended as a
+ * 2017 eq. 14-20: orientation, frustum, distance levels, occlusion; the
+ * tests, their order and the occlusion rule and bias of blade_cull.comp).
+ * Invocation i: entry list[i / B] = (tile, slot), blade k = i % B: the
+ * blade is the pool state of the slot, or, for an idle tile (slot
+ * TILES_NO_SLOT), the procedural pose of the template blade. The distance
+ * level uses k (templates are Morton ordered, so the thinning is
+ * spatially even) and widens the survivors so the thinned field covers the
+ * ground as the full one (blade_lod_width); the orientation test culls a
+ * widened blade only when it is as thin on screen as the test means
+ * (blade_lod_orientation). With u_use_depth the blade is culled when v0,
+ * its midpoint and v2 all lie behind the opaque depth in u_depth
+ * (blade_occluded). The first test that fails counts the blade in its
+ * counter (cmd.culled[0..3]: orientation, frustum, distance, occlusion).
+ * A survivor is counted in cmd.total and, within u_capacity, appended as a
  * whole blade (and its id tile * B + k): with u_split, a blade whose root
  * lies beyond u_fade_start at the end of `drawn`, counted back from
- * u_capacity - 1 (cmd.fade_instances), any other at the front
- * (cmd.instanceCount); without, every blade at the front. Front and end
- * cannot meet, as each append first took one of the u_capacity places in
- * cmd.total. Past the capacity it is dropped and counted in cmd.overflow.
- * The host zeroes the four counters before the dispatch. */
+ * u_capacity - 1 (the fade command), any other at the front (the solid
+ * command); without, every blade at the front. A command counts in word
+ * u_count_word of its four: 1 (instanceCount: the pulled strips, one
+ * instance per blade) or 0 (count: the tessellation path, one patch vertex
+ * per blade). Front and end cannot meet, as each append first took one of
+ * the u_capacity places in cmd.total. Past the capacity it is dropped and
+ * counted in cmd.overflow. The host zeroes the counted words before the
+ * dispatch. */
 #include "blade/tiles_common.glsl"
 
 layout(local_size_x = 256) in;
@@ -25,17 +32,12 @@ layout(std430, binding = 1) readonly buffer Pool { Blade pool[]; };
 layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
 layout(std430, binding = 8) writeonly buffer Drawn { Blade drawn[]; };
 layout(std430, binding = 9) buffer Command {
-    uint count;
-    uint instanceCount;
-    uint first;
-    uint baseInstance;
+    uint solid[4]; /* count, instanceCount, first, baseInstance */
     uint overflow;
     uint total;
     uint pad0, pad1;
-    uint fade_count;
-    uint fade_instances;
-    uint fade_first;
-    uint fade_base_instance;
+    uint fade[4];
+    uint culled[4];
 } cmd;
 layout(std430, binding = 10) writeonly buffer DrawnIds { uint drawn_ids[]; };
 
@@ -50,6 +52,12 @@ uniform float u_frustum_tolerance;
 uniform uint u_disable;
 uniform bool u_split;
 uniform float u_fade_start;
+uniform uint u_count_word; /* 1: instanceCount (pulled strips), 0: count (patches) */
+/* Opaque window depth (blade_cull.comp's u_depth): the hardware path's
+ * resolved depth, the compute path's farthest opaque sample. */
+layout(binding = 2) uniform sampler2D u_depth;
+uniform bool u_use_depth;
+uniform float u_depth_bias;
 /* Shared coverage map (blade_tiles_desc_t.extent): the billboards' rule. */
 uniform bool u_extent_on;
 uniform sampler2D u_extent;
@@ -76,31 +84,39 @@ vec3 ground_view(Blade b)
     return view - b.up.xyz * dot(view, b.up.xyz);
 }
 
-/* width_scale: what the distance levels widen the blade by (1: none). */
-bool visible(Blade b, uint index, vec3 view_ground, float width_scale)
+/* Which test culls the blade (BLADE_CULL_*, VISIBLE when none);
+ * width_scale: what the distance levels widen it by (1: none). */
+uint cull(Blade b, uint index, vec3 view_ground, float width_scale)
 {
     vec3 v0 = b.v0.xyz;
     if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
         vec3 width_dir, front;
         blade_frame(b, width_dir, front);
         float t = blade_lod_orientation(u_orientation_threshold, width_scale);
-        if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > t) return false;
+        if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > t) return BLADE_CULL_ORIENTATION;
     }
+    vec4 c0 = u_view_proj * vec4(v0, 1.0);
+    vec4 cm = u_view_proj * vec4(blade_midpoint(b), 1.0);
+    vec4 c2 = u_view_proj * vec4(b.v2.xyz, 1.0);
     if ((u_disable & BLADE_CULL_FRUSTUM) == 0u) {
         float t = u_frustum_tolerance;
-        if (!blade_in_frustum(u_view_proj * vec4(v0, 1.0), t) &&
-            !blade_in_frustum(u_view_proj * vec4(blade_midpoint(b), 1.0), t) &&
-            !blade_in_frustum(u_view_proj * vec4(b.v2.xyz, 1.0), t))
-            return false;
+        if (!blade_in_frustum(c0, t) && !blade_in_frustum(cm, t) && !blade_in_frustum(c2, t))
+            return BLADE_CULL_FRUSTUM;
     }
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
         int n = u_distance_levels;
         float d = grass_distance(v0, u_cam_pos);
-        if (d > u_max_distance) return false;
+        if (d > u_max_distance) return BLADE_CULL_DISTANCE;
         int level = int(floor(float(n) * (1.0 - d / u_max_distance)));
-        if (int(index % uint(n)) > level) return false;
+        if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
     }
-    return true;
+    if (u_use_depth && (u_disable & BLADE_CULL_OCCLUSION) == 0u) {
+        float bias = u_depth_bias;
+        if (blade_occluded(u_depth, c0, bias) && blade_occluded(u_depth, cm, bias) &&
+            blade_occluded(u_depth, c2, bias))
+            return BLADE_CULL_OCCLUSION;
+    }
+    return BLADE_CULL_VISIBLE;
 }
 
 void main()
@@ -122,7 +138,11 @@ void main()
     float width_scale = (u_disable & BLADE_CULL_DISTANCE) == 0u
                             ? blade_lod_width(grass_distance(b.v0.xyz, u_cam_pos), u_max_distance, u_distance_levels)
                             : 1.0;
-    if (!visible(b, k, view_ground, width_scale)) return;
+    uint why = cull(b, k, view_ground, width_scale);
+    if (why != BLADE_CULL_VISIBLE) {
+        atomicAdd(cmd.culled[findLSB(why)], 1u);
+        return;
+    }
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
     b.v2.w *= width_scale;
     if (atomicAdd(cmd.total, 1u) >= u_capacity) {
@@ -130,8 +150,8 @@ void main()
         return;
     }
     uint slot = u_split && grass_distance(b.v0.xyz, u_cam_pos) > u_fade_start
-                    ? u_capacity - 1u - atomicAdd(cmd.fade_instances, 1u)
-                    : atomicAdd(cmd.instanceCount, 1u);
+                    ? u_capacity - 1u - atomicAdd(cmd.fade[u_count_word], 1u)
+                    : atomicAdd(cmd.solid[u_count_word], 1u);
     drawn[slot] = b;
     drawn_ids[slot] = e.x * u_template_blades + k;
 }

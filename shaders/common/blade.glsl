@@ -533,4 +533,23 @@ bool blade_in_frustum(vec4 clip, float tolerance)
     return abs(clip.x) <= h && abs(clip.y) <= h && abs(clip.z) <= h;
 }
 
+/* Occlusion test of one point (sec. 6; twin of blade_ref.c's occluded,
+ * used by blade_cull.comp and tiles_cull.comp): a point in front of the
+ * camera whose NDC x, y lie in [-1, 1] maps to the depth texel
+ * (floor((x 0.5 + 0.5) W), floor((y 0.5 + 0.5) H)), clamped; it is
+ * occluded when its NDC z lies beyond the texel's window depth d (NDC
+ * 2 d - 1) by more than bias. Points outside the image are never
+ * occluded. */
+bool blade_occluded(sampler2D depth, vec4 clip, float bias)
+{
+    if (clip.w <= 0.0) return false;
+    float x = clip.x / clip.w, y = clip.y / clip.w, z = clip.z / clip.w;
+    if (abs(x) > 1.0 || abs(y) > 1.0) return false;
+    ivec2 size = textureSize(depth, 0);
+    int px = clamp(int(floor((x * 0.5 + 0.5) * float(size.x))), 0, size.x - 1);
+    int py = clamp(int(floor((y * 0.5 + 0.5) * float(size.y))), 0, size.y - 1);
+    float ndc = texelFetch(depth, ivec2(px, py), 0).r * 2.0 - 1.0;
+    return z > ndc + bias;
+}
+
 #endif

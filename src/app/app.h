@@ -37,7 +37,7 @@ typedef struct app_options_t {
     app_mode_t mode;
     const char *character;    /* --character PATH: replaces the scene's models */
     const char *clip;         /* --clip NAME|INDEX|START:END */
-    int blade_render;         /* 0 = vertex pulling (default), 1 = tessellation */
+    int blade_render;         /* --blade-render: 0 = the scene's, else 1 + scene_blade_render_t */
     int raster;               /* --raster: 0 = the scene's, else 1 + scene_raster_t */
     int raster_samples;       /* --raster-samples 1|4: compute rasterizer samples per pixel; 0 = the scene's */
     bool quick;               /* bench --quick */

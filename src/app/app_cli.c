@@ -24,7 +24,8 @@ void app_print_usage(void)
            "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
-           "  --blade-render R      pull (vertex pulling, default) | tess (tessellation shaders)\n"
+           "  --blade-render R      pull (vertex pulling) | tess (tessellation shaders), blade mode and the\n"
+           "                        hybrid's tiles; default: the scene's (pull)\n"
            "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
            "                        of the two, measured at start-up); default: the scene's (hw)\n"
            "  --raster-samples N    compute rasterizer samples per pixel: 4 (default, the 4x MSAA pattern) or 1\n"
@@ -205,8 +206,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->height = (int)h;
         } else if (strcmp(a, "--blade-render") == 0) {
             NEED_VALUE();
-            if (strcmp(v, "pull") == 0) o->blade_render = 0;
-            else if (strcmp(v, "tess") == 0) o->blade_render = 1;
+            if (strcmp(v, "pull") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_PULL;
+            else if (strcmp(v, "tess") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_TESS;
             else {
                 snprintf(err, err_size, "--blade-render '%s': expected pull or tess", v);
                 return 2;

@@ -284,6 +284,7 @@ static void write_summary(app_t *app, double wall_s)
                   "gpu_memory_mb: %.1f\n"
                   "blades: %ld\nblade_survivors: %ld\nblade_culled (orientation frustum distance occlusion "
                   "patch): %u %u %u %u %ld\n"
+                  "tiles_culled (orientation frustum distance occlusion tile): %u %u %u %u %ld\n"
                   "billboards: %ld\nbillboards_deformed: %d\n"
                   "billboard generation (once): GPU %.3f ms, make %.1f ms\ncharacters: %d\n"
                   "blade_tiles (near) %d, active %d, recovering %d, state slots %d/%d, blades simulated %ld\n"
@@ -291,8 +292,9 @@ static void write_summary(app_t *app, double wall_s)
                   "grass_triangles_max: %ld\n",
                   frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
                   st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
-                  st.blade_patch_culled, st.billboards, st.bb_deformed, st.bb_generate_ms, st.bb_make_ms,
-                  st.characters, st.tiles_blade,
+                  st.blade_patch_culled, st.tiles_culled[0], st.tiles_culled[1], st.tiles_culled[2],
+                  st.tiles_culled[3], st.tiles_tile_culled, st.billboards, st.bb_deformed, st.bb_generate_ms,
+                  st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
     if (app->world.scene.mode == SCENE_MODE_HYBRID)

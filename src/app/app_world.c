@@ -52,7 +52,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     }
     s->mode = mode_from_cli(o->mode, s->mode);
     w->mode = s->mode;
-    w->blade_render = o->blade_render;
+    if (o->blade_render) s->grass.blade_render = (scene_blade_render_t)(o->blade_render - 1);
     if (o->raster) s->raster = (scene_raster_t)(o->raster - 1);
     w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
     w->raster_samples = o->raster_samples ? o->raster_samples : s->raster_samples;
@@ -303,7 +303,8 @@ static bool make_blades(app_world_t *w)
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
-                           .path = w->blade_render ? BLADE_PATH_TESSELLATION : BLADE_PATH_PULLING};
+                           .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
+                                                                              : BLADE_PATH_PULLING};
     if (w->tuning.tess_max) gd.max_tess_level = w->tuning.tess_max;
     if (w->reference) {
         gd.max_tess_level = 16;
@@ -362,6 +363,7 @@ static bool make_tiles(app_world_t *w)
                              .seed = s->seed,
                              .switch_distance = g->switch_distance,
                              .shape = g->shape,
+                             .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = w->blade_env.wind_count,
                              .cull = {.max_distance = g->switch_distance + 1.0f},
                              .slope_recover = g->recover_time,
@@ -696,8 +698,13 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
         blade_tiles_set_overlay(&w->tiles, v->overlay);
-        if (raster) raster_ok = blade_tiles_raster(&w->tiles, raster, &dd) && raster_ok;
-        else blade_tiles_draw(&w->tiles, &dd);
+        /* Occlusion culling reads the opaque depth, as blade mode's below. */
+        if (raster) {
+            raster_ok = blade_tiles_raster(&w->tiles, raster, &dd, raster->opaque_depth.id) && raster_ok;
+        } else {
+            gfx_target_resolve_depth(target);
+            blade_tiles_draw(&w->tiles, &dd, target->resolve_depth.id);
+        }
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass (the
          * compute path: the farthest opaque sample, from raster_begin). */
@@ -906,6 +913,8 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->tile_blades_simulated = (long)ts.blades_dispatched;
         st->tile_handovers = ts.handovers_total;
         st->tile_seeded = ts.seeded_total;
+        memcpy(st->tiles_culled, ts.culled, sizeof st->tiles_culled);
+        st->tiles_tile_culled = ts.tile_culled;
         st->triangles += ts.triangles_max;
     }
     st->characters = w->have_chars ? character_set_count(&w->chars) : 0;

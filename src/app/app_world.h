@@ -151,7 +151,6 @@ typedef struct app_world_t {
     GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
                               (blade_gpu_upload_cubes; owned by blades) */
     bool warned_spheres;
-    int blade_render; /* app_options_t.blade_render */
     /* Grass through the compute rasterizer (scene "raster" compute, or auto
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
@@ -279,6 +278,8 @@ typedef struct app_world_stats_t {
     long blade_survivors;   /* in the last draw command */
     unsigned blade_culled[4]; /* orientation, frustum, distance, occlusion */
     long blade_patch_culled;
+    unsigned tiles_culled[4]; /* the hybrid's tiles: orientation, frustum, distance, occlusion */
+    long tiles_tile_culled;   /* blades of blade tiles culled by the CPU frustum test */
     long billboards;
     int bb_deformed;
     double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */

@@ -15,7 +15,9 @@
  *                        (Jahrmann & Wimmer 2017 sec. 5.3) and, beyond both
  *                        papers, the box's depth cube map at 16/32/64 texels
  *                        (penetration depth against the exact box),
- *   blade_tessellation, blade_distance_levels (eq. 19-20),
+ *   blade_tessellation (blade mode drawn through the tessellation
+ *                        shaders, tess_max 1..10 segments), blade_distance_levels
+ *                        (eq. 19-20),
  *   hybrid_switch_distance, hybrid_canopy_distance (both rasterizer paths,
  *   billboard and blade mode beside it),
  *   modes (mode x density x render path, hardware
@@ -54,7 +56,7 @@ typedef struct bench_config_t {
     float switch_distance;                /* hybrid knob, 0 = scene */
     float canopy_distance;                /* hybrid knob, 0 = scene */
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
-    int blade_render;                     /* 0 = the options', 1 pull, 2 tess */
+    int blade_render;                     /* 0 = the options', else 1 + scene_blade_render_t (1 pull, 2 tess) */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
@@ -217,8 +219,15 @@ static int build_configs(bench_config_t *c, bool quick)
     static const float sw[] = {2, 4, 8, 12, 16, 20, 25, 30, 40};
     int nt = quick ? 2 : 6;
     for (int i = 0; i < nt; i++) {
+        /* tess_max caps the segments of both hardware paths (the pulled
+         * strip's length and its levels as well); the chart is about
+         * tessellation, so it draws with the tessellation shaders. Its
+         * reference (shared by every chart) is drawn with 16 segments by
+         * the scene's path, the surface tessellation builds at 16 too
+         * (test_blade_render: tessellation vs pulling mean 0.000). */
         bench_config_t *x = add(c, &n, "blade_tessellation", SCENE_MODE_BLADE);
         x->tuning.tess_max = tess[i];
+        x->blade_render = 1 + SCENE_BLADE_RENDER_TESS;
         snprintf(x->label, sizeof x->label, "tess%d", tess[i]);
     }
     for (int i = 0; i < nt; i++) {
@@ -545,7 +554,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         }
         bench_config_t *c = &b->cfg[i];
         app_options_t oc = oh;
-        if (c->blade_render) oc.blade_render = c->blade_render - 1;
+        if (c->blade_render) oc.blade_render = c->blade_render;
         if (c->raster) oc.raster = c->raster;
         if (c->raster_samples) oc.raster_samples = c->raster_samples;
         bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,

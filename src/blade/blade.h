@@ -41,7 +41,7 @@
 #include "scene/scene.h"
 
 typedef enum blade_render_path_t {
-    BLADE_PATH_TESSELLATION = 0, /* default */
+    BLADE_PATH_TESSELLATION = 0, /* the desc's zero; the program passes grass.blade_render (pull by default) */
     BLADE_PATH_PULLING = 1,      /* instanced strips, vertex pulling */
 } blade_render_path_t;
 

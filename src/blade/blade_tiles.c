@@ -2,7 +2,8 @@
  * Wimmer 2017 blades (eq. 1-13 physics on active slots only, eq. 14-20
  * culling, eq. 21 drawing): template seeding, ground texture, slot pool,
  * activation through src/hybrid, motion readback, per-tile CPU frustum
- * test, cull + vertex-pulled draw. See blade_tiles.h. GL objects come from
+ * test, cull (occlusion included) + vertex-pulled or tessellated draw.
+ * See blade_tiles.h. GL objects come from
  * gfx only. */
 #include "blade/blade_tiles.h"
 
@@ -18,9 +19,14 @@
 #define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
 #define NO_SLOT 0xffffffffu
 /* t->command, uint words: the solid blades' draw (count, instanceCount,
- * first, baseInstance), appends past the capacity, appends tried, and the
- * fading blades' draw (tiles_cull.comp's Command). */
-enum { CMD_SOLID = 0, CMD_OVERFLOW = 4, CMD_TOTAL = 5, CMD_FADE = 8, TILES_COMMAND_WORDS = 12 };
+ * first, baseInstance), appends past the capacity, appends tried, the
+ * fading blades' draw, and the blades culled per test (orientation,
+ * frustum, distance, occlusion; tiles_cull.comp's Command). A draw counts
+ * its blades in word t->count_word: instanceCount for the pulled strips,
+ * count (patch vertices) for tessellation. */
+enum { CMD_SOLID = 0, CMD_OVERFLOW = 4, CMD_TOTAL = 5, CMD_FADE = 8, CMD_CULLED = 12, TILES_COMMAND_WORDS = 16 };
+/* t->draw_ring, uint words: appends tried, past the capacity, culled per test. */
+enum { RING_TOTAL = 0, RING_OVERFLOW = 1, RING_CULLED = 2, RING_WORDS = 6 };
 #define RECOVERING_BIT 0x80000000u
 #define HYSTERESIS 1.0f /* hybrid's default dead band, used for the draw capacity */
 #define TILES_POSE_ITERATIONS 6 /* tiles_common.glsl */
@@ -100,7 +106,7 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
               + (size_t)l.draw_tiles * 2 * sizeof(uint32_t)            /* tile list */
               + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
               + TILES_COMMAND_WORDS * sizeof(uint32_t)                  /* draw commands */
-              + (size_t)BLADE_TILES_READBACK_SLOTS * (S + 2) * sizeof(uint32_t) /* readback rings */
+              + (size_t)BLADE_TILES_READBACK_SLOTS * (S + RING_WORDS) * sizeof(uint32_t) /* readback rings */
               + side * side * 4 * sizeof(float)                        /* ground texture */
               + (size_t)l.tiles_x * l.tiles_z * (size_t)d->slope_cells_per_tile * d->slope_cells_per_tile *
                     (sizeof(hybrid_slope_cell_t) + 2 * sizeof(hybrid_slope_sum_t)); /* slope cells + sums */
@@ -236,6 +242,7 @@ static bool seed_templates(blade_tiles_t *t)
             return false;
         }
         memcpy(&t->template_cpu[(size_t)k * B], f.blades, B * sizeof(blade_t));
+        t->template_real[k] = (uint32_t)f.blade_count;
         blade_field_free(&f);
     }
     return true;
@@ -322,7 +329,12 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
     t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
     uint32_t cmd[TILES_COMMAND_WORDS] = {0};
-    cmd[CMD_SOLID] = cmd[CMD_FADE] = 2u * (uint32_t)(d->max_level + 1);
+    t->count_word = d->tessellate ? 0 : 1;
+    for (int k = 0; k < 2; k++) {
+        uint32_t *c = &cmd[k ? CMD_FADE : CMD_SOLID];
+        if (d->tessellate) c[1] = 1u; /* one instance of `count` patches */
+        else c[0] = 2u * (uint32_t)(d->max_level + 1); /* instances of one strip */
+    }
     t->command = make_buffer(t, "command", sizeof cmd, cmd);
     ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
          t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id && t->drawn_ids.id &&
@@ -331,7 +343,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     snprintf(label, sizeof label, "%s.motion_readback", d->label);
     t->motion_ring = gfx_readback_make(S * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
     snprintf(label, sizeof label, "%s.draw_readback", d->label);
-    t->draw_ring = gfx_readback_make(2 * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
+    t->draw_ring = gfx_readback_make(RING_WORDS * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
     ok = ok && t->motion_ring.depth && t->draw_ring.depth;
     snprintf(label, sizeof label, "%s.ground", d->label);
     t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
@@ -366,11 +378,21 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
-    t->draw = make_program(t, "draw", &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
-                                                            .defines = "#define BLADE_OVERLAY 1\n"});
-    t->draw_fade = make_program(t, "draw_fade",
-                                &(gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
-                                                      .defines = "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"});
+    for (int fade = 0; fade < 2; fade++) {
+        /* the pulled strips carry the debug overlays; the tessellation
+         * stages are blade mode's (blade.tesc, blade.tese) */
+        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
+                                                 : "#define BLADE_OVERLAY 1\n"};
+        if (d->tessellate) {
+            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
+                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
+                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        }
+        char what[32];
+        snprintf(what, sizeof what, "draw_%s%s", d->tessellate ? "tess" : "pull", fade ? "_fade" : "");
+        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
+    }
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
@@ -656,20 +678,24 @@ static bool box_outside(const float mn[3], const float mx[3], const float *m, fl
  * tile list goes nearest first (blade_order_sort), so the blades are
  * appended roughly front to back and the depth test rejects more of the
  * hidden ones (docs/PERFORMANCE.md). */
-static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split)
+static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split, GLuint depth)
 {
     const blade_cull_desc_t *c = &t->desc.cull;
     uint32_t B = t->template_blades;
     gfx_timer_begin("tiles.cull");
     int ntiles = t->grid.nx * t->grid.nz, n = 0;
-    uint32_t *list = t->scratch;
+    uint32_t *list = t->scratch, tile_culled = 0;
     for (int i = 0; i < ntiles; i++) {
         const hybrid_tile_t *tile = &t->grid.tiles[i];
         if (tile->rep != HYBRID_REP_BLADE) continue;
         float mn[3] = {tile->min[0] - t->reach, tile->min[1], tile->min[2] - t->reach};
         float mx[3] = {tile->max[0] + t->reach, tile->max[1], tile->max[2] + t->reach};
-        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view_proj, c->frustum_tolerance))
+        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view_proj, c->frustum_tolerance)) {
+            int tmpl, sym;
+            blade_tiles_instance(t, i, &tmpl, &sym);
+            tile_culled += t->template_real[tmpl];
             continue;
+        }
         if (n == t->max_draw_tiles) {
             core_log_warn("blade_tiles: more than %d blade tiles in view; the rest are not drawn", n);
             break;
@@ -685,10 +711,11 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     }
     t->stats.tiles_drawn = n;
     uint32_t zero = 0;
-    static const int counted[] = {CMD_SOLID + 1, CMD_OVERFLOW, CMD_TOTAL, CMD_FADE + 1};
+    const int counted[] = {CMD_SOLID + t->count_word, CMD_OVERFLOW, CMD_TOTAL, CMD_FADE + t->count_word};
     for (int k = 0; k < 4; k++)
         glClearNamedBufferSubData(t->command.id, GL_R32UI, 4 * counted[k], 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
                                   &zero);
+    glClearNamedBufferSubData(t->command.id, GL_R32UI, 4 * CMD_CULLED, 16, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     if (n) gfx_buffer_update(t->tile_list, 0, (size_t)n * 2 * sizeof(uint32_t), list);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_program_t p = t->cull;
@@ -704,6 +731,11 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
     glUniform1i(gfx_uniform(p, "u_split"), split);
     glUniform1f(gfx_uniform(p, "u_fade_start"), desc->fade_start);
+    glUniform1ui(gfx_uniform(p, "u_count_word"), (GLuint)t->count_word);
+    glUniform1i(gfx_uniform(p, "u_use_depth"), depth != 0);
+    glUniform1f(gfx_uniform(p, "u_depth_bias"), c->depth_bias);
+    glUniform1i(gfx_uniform(p, "u_depth"), 2);
+    glBindTextureUnit(2, depth);
     glUniform1i(gfx_uniform(p, "u_extent_on"), t->extent.id != 0);
     glUniform1i(gfx_uniform(p, "u_extent"), 1);
     glUniform2fv(gfx_uniform(p, "u_extent_origin"), 1, t->desc.extent_origin);
@@ -716,13 +748,13 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
     if (n) glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
     gfx_count_add("tiles.cull_tested", (double)n * B);
-    glBindTextureUnit(0, 0);
-    glBindTextureUnit(1, 0);
+    for (int unit = 0; unit < 3; unit++) glBindTextureUnit((GLuint)unit, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    /* appends tried, and those past the capacity */
-    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_TOTAL, 0, 4);
-    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_OVERFLOW, 4, 4);
-    gfx_readback_fence(&t->draw_ring);
+    /* appends tried, those past the capacity, and the culled counts */
+    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_TOTAL, 4 * RING_TOTAL, 4);
+    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_OVERFLOW, 4 * RING_OVERFLOW, 4);
+    gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_CULLED, 4 * RING_CULLED, 16);
+    t->ring_tile_culled[gfx_readback_fence(&t->draw_ring)] = tile_culled;
     t->culled_once = true;
     gfx_timer_end();
 }
@@ -736,10 +768,10 @@ static blade_surface_t tiles_surface(const blade_tiles_t *t)
 /* Blades nearer than the fade start are opaque: drawn without the fade's
  * discard and sample mask, so the depth test runs before the fragment
  * shader (blade.frag); the fading ones after them with both. */
-void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
+void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint depth_texture)
 {
-    bool fade = desc->fade_end > desc->fade_start;
-    cull_tiles(t, desc, fade);
+    bool fade = desc->fade_end > desc->fade_start, tess = t->desc.tessellate;
+    cull_tiles(t, desc, fade, depth_texture);
     uint32_t B = t->template_blades;
     gfx_timer_begin("tiles.draw");
     if (t->overlay) {
@@ -752,7 +784,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
         if (info) gfx_buffer_update(t->tile_info, 0, (size_t)ntiles_all * sizeof(uint32_t), info);
         free(info);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, tess ? 0 : 8, t->drawn.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, t->tile_info.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, t->eta.id);
@@ -761,6 +793,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
     glEnable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     blade_surface_t surf = tiles_surface(t);
+    if (tess) glPatchParameteri(GL_PATCH_VERTICES, 1);
     for (int pass = 0; pass < (fade ? 2 : 1); pass++) {
         gfx_program_t p = pass ? t->draw_fade : t->draw;
         glUseProgram(p.id);
@@ -769,20 +802,21 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc)
         glUniform1i(gfx_uniform(p, "u_from_end"), pass);
         glUniform1i(gfx_uniform(p, "u_overlay"), t->overlay);
         glUniform1ui(gfx_uniform(p, "u_template_blades"), B);
-        glDrawArraysIndirect(GL_TRIANGLE_STRIP, (const void *)(uintptr_t)(4 * (pass ? CMD_FADE : CMD_SOLID)));
+        glDrawArraysIndirect(tess ? GL_PATCHES : GL_TRIANGLE_STRIP,
+                             (const void *)(uintptr_t)(4 * (pass ? CMD_FADE : CMD_SOLID)));
     }
     glBindVertexArray(0);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
     gfx_timer_end();
 }
 
-bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc)
+bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc, GLuint depth_texture)
 {
-    cull_tiles(t, desc, false);
+    cull_tiles(t, desc, false, depth_texture);
     gfx_timer_begin("tiles.raster");
     blade_surface_t surf = tiles_surface(t);
-    bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command, CMD_SOLID + 1,
-                                t->draw_capacity);
+    bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command,
+                                CMD_SOLID + (uint32_t)t->count_word, t->draw_capacity);
     gfx_timer_end();
     return ok;
 }
@@ -791,14 +825,17 @@ blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)
 {
     int r;
     while ((r = gfx_readback_poll(&t->draw_ring, wait)) >= 0) {
-        uint32_t v[2];
+        uint32_t v[RING_WORDS];
         gfx_readback_read(&t->draw_ring, r, 0, sizeof v, v);
-        t->stats.blades_drawn = v[0] < t->draw_capacity ? v[0] : t->draw_capacity;
-        t->stats.draw_overflow = v[1];
-        if (v[1] && !t->warned_overflow)
-            core_log_warn("blade_tiles: %u blades did not fit the draw buffer (%u); raise draw_capacity", v[1],
+        uint32_t total = v[RING_TOTAL], over = v[RING_OVERFLOW];
+        t->stats.blades_drawn = total < t->draw_capacity ? total : t->draw_capacity;
+        t->stats.draw_overflow = over;
+        memcpy(t->stats.culled, &v[RING_CULLED], sizeof t->stats.culled);
+        t->stats.tile_culled = t->ring_tile_culled[r];
+        if (over && !t->warned_overflow)
+            core_log_warn("blade_tiles: %u blades did not fit the draw buffer (%u); raise draw_capacity", over,
                           t->draw_capacity);
-        t->warned_overflow = t->warned_overflow || v[1];
+        t->warned_overflow = t->warned_overflow || over;
     }
     const hybrid_stats_t *h = &t->grid.stats;
     t->stats.idle = h->idle;
@@ -836,8 +873,8 @@ uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *
 {
     uint32_t solid, fade;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    gfx_buffer_read(t->command, 4 * (CMD_SOLID + 1), sizeof solid, &solid);
-    gfx_buffer_read(t->command, 4 * (CMD_FADE + 1), sizeof fade, &fade);
+    gfx_buffer_read(t->command, 4 * (CMD_SOLID + (size_t)t->count_word), sizeof solid, &solid);
+    gfx_buffer_read(t->command, 4 * (CMD_FADE + (size_t)t->count_word), sizeof fade, &fade);
     uint32_t cap = t->draw_capacity, first_fade = cap - fade;
     if (solid && out) gfx_buffer_read(t->drawn, 0, solid * sizeof(blade_t), out);
     if (solid && ids) gfx_buffer_read(t->drawn_ids, 0, solid * sizeof(uint32_t), ids);

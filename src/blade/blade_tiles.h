@@ -49,14 +49,18 @@
  *
  * Drawing: CPU frustum test per tile (box of the tile grown by the blade
  * reach), then tiles_cull.comp over the blades of the listed blade-
- * representation tiles: orientation, frustum and distance-level tests of
- * blade_cull (eq. 14-20; the distance level uses the template index, and
- * templates are Morton ordered, so thinning stays hole-free); survivors are
- * appended as whole blades to a per-frame buffer (capacity: the blades of
- * every tile within switch_distance + hysteresis, counted at make; an
- * overflow is logged and counted) and drawn by vertex pulling with the
+ * representation tiles: orientation, frustum, distance-level and
+ * occlusion tests of blade_cull (eq. 14-20 and the occlusion test against
+ * the opaque depth, same rule and bias; the distance level uses the
+ * template index, and templates are Morton ordered, so thinning stays
+ * hole-free), culled blades counted per test; survivors are appended as
+ * whole blades to a per-frame buffer (capacity: the blades of every tile
+ * within switch_distance + hysteresis, counted at make; an overflow is
+ * logged and counted) and drawn by vertex pulling (tiles_draw.vert) or,
+ * with desc.tessellate, through blade mode's tessellation stages
+ * (tiles_tess.vert, blade.tesc, blade.tese: one patch per blade), with the
  * geometry of blade_geom.glsl and blade.frag (fade band of
- * blade_draw_desc_t). No occlusion test.
+ * blade_draw_desc_t).
  *
  * GPU memory: templates + pool + draw buffer, independent of the field
  * size; the tile table lives on the CPU (hybrid_grid_t), plus the height
@@ -106,11 +110,19 @@
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
- *   shape, max_level (8 segments at the camera, vertex pulling),
- *   lod_distance (30 m): as blade_gpu_desc_t
+ *   shape, max_level (8 segments at the camera), lod_distance (30 m): as
+ *                    blade_gpu_desc_t
+ *   tessellate       false (default): the hardware path draws instanced
+ *                    triangle strips by vertex pulling; true: GL_PATCHES
+ *                    through blade.tesc / blade.tese (scene,
+ *                    grass.blade_render). The debug overlays are drawn by
+ *                    the pulled strips only; the compute rasterizer
+ *                    (blade_tiles_raster) is the same either way
  *   cull             max_distance, distance_levels, orientation_threshold,
- *                    frustum_tolerance, disable (blade_cull_desc_defaults);
- *                    view_proj and cam_pos come from the draw desc
+ *                    frustum_tolerance, depth_bias, disable
+ *                    (blade_cull_desc_defaults); view_proj and cam_pos come
+ *                    from the draw desc, the depth texture from the draw
+ *                    call
  *   draw_capacity    blades the per-frame draw buffer holds; 0: every
  *                    blade of every tile that can be within
  *                    switch_distance + 1 m of the camera (worst case)
@@ -142,6 +154,7 @@ typedef struct blade_tiles_desc_t {
     scene_blade_shape_t shape;
     int max_level;
     float lod_distance;
+    bool tessellate;
     blade_cull_desc_t cull;
     uint32_t draw_capacity;
     /* Optional coverage map shared with the billboards (bb_layout's extent
@@ -172,6 +185,11 @@ typedef struct blade_tiles_stats_t {
     int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */
     uint32_t blades_drawn;      /* survivors of the latest cull read back (-1..2 frames late) */
     uint32_t draw_overflow;     /* survivors dropped for lack of capacity (logged) */
+    uint32_t culled[4];         /* the same cull: blades culled by orientation, frustum, distance,
+                                   occlusion (tiles_cull.comp, first failing test; blades of
+                                   clearings included, they are dropped after the tests) */
+    uint32_t tile_culled;       /* blades of the templates of blade tiles the CPU frustum test
+                                   dropped (padding excluded), the same cull */
     uint32_t blades_per_template; /* padded */
     long triangles_max;         /* blades_drawn x 2 x max_level (upper bound) */
     size_t gpu_bytes;           /* buffers + textures held */
@@ -196,6 +214,10 @@ typedef struct blade_tiles_t {
     uint32_t *scratch;              /* per-frame upload lists */
     blade_order_key_t *order;       /* max_draw_tiles: the drawn tiles, nearest first */
     blade_t *template_cpu;          /* template_count * template_blades, tile-local */
+    uint32_t template_real[BLADE_TILES_MAX_TEMPLATES]; /* blades per template, padding excluded */
+    int count_word;                 /* the word a draw command counts blades in: 1 instances (pull),
+                                       0 patch vertices (tessellate) */
+    uint32_t ring_tile_culled[BLADE_TILES_READBACK_SLOTS]; /* stats.tile_culled per draw_ring slot */
     float *ground_cpu;              /* the ground texture: xyz normal, w height per grid vertex */
     int max_draw_tiles;
     blade_env_t env;                /* latest resolved env (gravity, winds) */
@@ -249,16 +271,20 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
 
 /* Culls (timer "tiles.cull") and draws (timer "tiles.draw") the blade-
  * representation tiles into the bound framebuffer; procedural pose at the
- * time of the latest update. Depth test on, two-sided. With a fade band
+ * time of the latest update. depth_texture: a GL_TEXTURE_2D of opaque
+ * window depth (single sample: gfx_target_resolve_depth's resolve_depth,
+ * or raster_t.opaque_depth) for the occlusion test, 0 for none (as
+ * blade_gpu_cull). Depth test on, two-sided. With a fade band
  * (desc->fade_end > fade_start) two draws: the blades rooted within
  * fade_start opaque (depth tested before shading), then the fading ones
- * with their sample mask (blade_fade_mask). */
-void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc);
+ * with their sample mask (blade_fade_mask). Pulled strips or patches by
+ * desc.tessellate. */
+void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint depth_texture);
 /* The same blades as blade_tiles_draw (same culling, timer "tiles.cull"),
  * drawn by the compute rasterizer (timer "tiles.raster"); between
  * raster_begin and raster_end. Debug overlays are drawn by the hardware
  * path only. False when the raster program cannot be made (logged). */
-bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc);
+bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc, GLuint depth_texture);
 
 /* Statistics; blades_drawn without stalling unless wait (tests). */
 /* The blades -> billboards slope hand-over the billboards draw with

@@ -61,6 +61,12 @@ typedef enum scene_blade_shape_t {
     SCENE_SHAPE_DANDELION,     /* "dandelion" */
 } scene_blade_shape_t;
 
+/* How the hardware path draws blades (docs/BLADES.md). */
+typedef enum scene_blade_render_t {
+    SCENE_BLADE_RENDER_PULL = 0, /* "pull" (default): instanced triangle strips, vertex pulling */
+    SCENE_BLADE_RENDER_TESS,     /* "tess": one patch per blade through blade.tesc / blade.tese */
+} scene_blade_render_t;
+
 /* Clearings of the extent map (bb_layout.h, bb_extent_desc_t): where both
  * grass models leave the ground bare. */
 typedef enum scene_clearings_type_t {
@@ -93,6 +99,7 @@ typedef struct scene_grass_desc_t {
     float canopy_distance;   /* hybrid billboard->ground canopy distance m [0, 1e5]; default 60 */
     float tile_size;         /* grass tile side m [0, 1000]; default 4 */
     scene_blade_shape_t shape; /* default quadratic */
+    scene_blade_render_t blade_render; /* default pull */
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
     int cube_resolution;     /* collision cube-map resolution [0, 4096]; default 32 */

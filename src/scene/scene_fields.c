@@ -13,6 +13,7 @@
 static const char *const mode_names[] = {"hybrid", "billboard", "blade", NULL};
 static const char *const raster_names[] = {"auto", "hw", "compute", NULL};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
+static const char *const blade_render_names[] = {"pull", "tess", NULL};
 static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
@@ -110,6 +111,10 @@ const scene_field_t scene_fields[] = {
       .def = {SCENE_DEFAULT_TILE_SIZE}, .doc = "side of the square grass tiles of the hybrid field (m)"},
     {GRASS(shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,
       .doc = "blade shape function (Jahrmann & Wimmer 2017, section 5)"},
+    {GRASS(blade_render), .key = "blade_render", .type = SCENE_FIELD_ENUM, .names = blade_render_names,
+      .doc = "how the hardware path draws blades, in blade mode and the hybrid's tiles: instanced triangle strips "
+             "by vertex pulling, or one patch per blade through the tessellation shaders (docs/BLADES.md); "
+             "--blade-render overrides it"},
     {GRASS(subdiv), .key = "subdiv", .type = SCENE_FIELD_INTS, .n = 2, .lo = SCENE_SUBDIV_MIN,
       .hi = SCENE_SUBDIV_MAX, .def = {SCENE_DEFAULT_SUBDIV, SCENE_DEFAULT_SUBDIV}, .flags = SCENE_FIELD_ZERO_OK,
       .doc = "deformable billboard mesh [N columns, M rows]"},
