@@ -13,7 +13,8 @@ vec3 sky_color(vec3 dir)
 }
 
 // Lambert sun + hemispheric sky ambient. two_sided flips the normal toward
-// the viewer (grass is lit from both faces).
+// the viewer (grass is lit from both faces). Twin: bb_shade_ref in
+// src/billboard/bb_layout.c (the clump bakes' lit colour).
 vec3 shade(vec3 albedo, vec3 n, vec3 sun_dir, float ao)
 {
     float ndl = max(dot(n, sun_dir), 0.0);

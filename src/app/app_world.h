@@ -81,6 +81,7 @@ typedef struct app_tuning_t {
                                 billboards (bb_field_desc_t.placement_seed); terrain,
                                 clearings and clump textures keep the scene seed (not the
                                 hybrid tiles). The image error's noise floor (docs/METRICS.md) */
+    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
 } app_tuning_t;
 
 /* ---- start-up stages -------------------------------------------------------------
