@@ -394,8 +394,8 @@ static void test_blade_clumps(void)
 }
 
 /* View v of layer k: its mean alpha, the mean luminance of its covered
- * texels' lit colour (the light image holds its square root) and the
- * alpha-weighted mean row (0 top). */
+ * texels' lit colour (the light image) and the alpha-weighted mean row (0
+ * top). */
 static void view_look(const bb_layout_t *l, int v, int k, double *alpha, double *lum, double *row)
 {
     static const double y709[3] = {0.2126, 0.7152, 0.0722};
@@ -405,7 +405,7 @@ static void view_look(const bb_layout_t *l, int v, int k, double *alpha, double 
         double t = im->px[4 * i + 3] / 255.0;
         a += t;
         r += t * (i / im->w);
-        for (int c = 0; c < 3; c++) y += t * y709[c] * pow(li->px[4 * i + c] / 255.0, 2.0);
+        for (int c = 0; c < 3; c++) y += t * y709[c] * li->px[4 * i + c] / 255.0;
     }
     *alpha = a / (im->w * im->h);
     *lum = y / a;

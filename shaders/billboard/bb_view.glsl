@@ -60,11 +60,11 @@ float bb_view_xi(uvec2 px)
 
 /* Clump layer `layer` at uv (gradients dx, dy) seen along to_eye, from the
  * view the pixel's draw xi picks (bb_view_pick): its albedo and alpha, and
- * in light its light layer (the square root of the lit colour,
- * bb_layout.c; views off: none in the array, 0). A pixel shows one bake, not a mix: the views' alpha
- * images are calibrated one by one, and a mix of two would put half-alpha
- * ghosts of both where alpha-to-coverage rounds up; the pixels of a card
- * mix the views in proportion to their weights. */
+ * in light its light layer (the blades' lit colour, bb_layout.c; views
+ * off: none in the array, 0). A pixel shows one bake, not a mix: the
+ * views' alpha images are calibrated one by one, and a mix of two would
+ * put half-alpha ghosts of both where alpha-to-coverage rounds up; the
+ * pixels of a card mix the views in proportion to their weights. */
 vec4 bb_view_texel(sampler2DArray clumps, vec2 uv, float layer, vec2 dx, vec2 dy, vec3 to_eye, float xi, out vec3 light)
 {
     ivec4 view;

@@ -89,8 +89,8 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
  * the top of the clump image): the layers draw blades at their height in
  * metres, so the row stands for the height on the blades a viewer sees.
  * Views on (lit 1): the lit colour of the card's view-dependent bakes
- * (bb_view.glsl; light: the square root of its blades' mean colour as
- * blade_shade lights them before fog, under the scene's sun) times the
+ * (bb_view.glsl; light: its blades' mean colour as blade_shade lights
+ * them before fog, under the scene's sun) times the
  * tint; a deformed mesh (card 0) scales it by how much more (or less)
  * light its own normal takes than the same normal stood upright (its
  * horizontal part; at most twice), so a billboard pressed flat turns to the
@@ -108,7 +108,7 @@ vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, vec3 light, float
         vec3 flat_n = vec3(n.x, 0.0, n.z), eye_h = vec3(to_eye.x, 0.0, to_eye.z);
         vec3 stood = dot(flat_n, flat_n) > 1e-6 ? normalize(flat_n) : eye_h / max(length(eye_h), 1e-6);
         vec3 scale = card > 0.5 ? vec3(1.0) : min(c / max(shade(texel * tint, stood, sun, ao), vec3(1e-4)), vec3(2.0));
-        c = light * light * tint * scale;
+        c = light * tint * scale;
     }
     c = mix(c, overlay.rgb, overlay.a);
     return apply_fog(c, dist, -to_eye / max(dist, 1e-6));

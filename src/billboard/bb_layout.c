@@ -192,8 +192,10 @@ static void bb_layout_maps(bb_layout_t *l, uint32_t seed)
  * before fog: shade() (lighting.glsl) of the sample's albedo, its unit
  * normal turned towards d as blade_shade turns it towards the viewer,
  * ambient occlusion mix(0.45, 1, v), and the sun in the view's frame (the
- * scene's sun and wind fix it for each azimuth), stored as its square root
- * (8 bits keep the dark colours). A plain card shows that colour times its
+ * scene's sun and wind fix it for each azimuth), linear, so the mip
+ * levels average it as the pixels would (a square root kept more of the
+ * dark colours' bits but darkened the minified cards: the mean of a root
+ * squared is below the mean). A plain card shows that colour times its
  * tint, fogged.
  *
  * Coverage, calibrated (per view): a ray through the blade field meets
@@ -454,7 +456,7 @@ static bool bb_clump_view(core_image_t *img, core_image_t *light, bb_samples_t *
         for (int k = 0; k < 6; k++) m[k] = o[6] > 0.0f ? o[k] : (wsum > 0.0 ? (float)(mean[k] / wsum) : 0.0f);
         for (int k = 0; k < 3; k++) {
             img->px[i * 4 + k] = bb_byte(m[k]);
-            light->px[i * 4 + k] = bb_byte(sqrtf(m[3 + k]));
+            light->px[i * 4 + k] = bb_byte(m[3 + k]);
         }
         img->px[i * 4 + 3] = bb_byte(o[6]);
         light->px[i * 4 + 3] = 255;

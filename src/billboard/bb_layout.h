@@ -15,7 +15,10 @@
  * the CPU from the C twin of blade_geom.glsl (blade_ref_surface, eq. 21 and
  * the scene's shape). A texel holds the blades' albedo, the root-to-tip mix
  * of blade_shade (unlit: bb_shade lights it), and their coverage as
- * straight alpha; see bb_layout.c for the rasteriser. */
+ * straight alpha; see bb_layout.c for the rasteriser. With the views on
+ * (bb_view.h, beyond the paper) each layer is baked once per view, its
+ * blades bent by the scene's mean wind, and every view also holds its
+ * blades' mean lit colour. */
 #ifndef MEADOW_BB_LAYOUT_H
 #define MEADOW_BB_LAYOUT_H
 
@@ -113,9 +116,9 @@ typedef struct bb_layout_t {
                                 albedo, coverage as straight alpha; fully transparent
                                 texels hold the view's mean albedo so mipmaps do not
                                 darken edges */
-    core_image_t *clump_light; /* V L RGBA images beside clumps: the square root of the
-                                covered samples' mean colour lit as blade_shade lights it
-                                before fog (bb_layout.c), alpha 255 */
+    core_image_t *clump_light; /* V L RGBA images beside clumps: the covered samples'
+                                mean colour lit as blade_shade lights it before fog
+                                (bb_layout.c), linear, alpha 255 */
     bb_clump_stats_t *clump_stats; /* per image: the coverage calibration */
 } bb_layout_t;
 
