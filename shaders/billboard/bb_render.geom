@@ -29,7 +29,7 @@ out vec3 g_uvl; /* u, v (0 at the top of the clump image), layer */
 flat out float g_tint;
 flat out float g_card; /* 1: plain quad, 0: deformed mesh (bb_render.frag) */
 flat out uint g_overlay; /* debug overlay, packUnorm4x8 (u_overlay 1: colliding red, recovering yellow);
-                          one component: the vertex is 15 (bb.c checks the GPU's limit) */
+                          one component: the vertex is 16 (bb.c checks the GPU's limit) */
 uniform int u_overlay;
 
 void put(vec3 pos, vec3 n, float u, float h, float layer)

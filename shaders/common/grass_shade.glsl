@@ -88,13 +88,15 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
  * towards the viewer and ambient occlusion from the image row (v_img 0 at
  * the top of the clump image): the layers draw blades at their height in
  * metres, so the row stands for the height on the blades a viewer sees.
- * Views on (lit 1): the lit colour of the card's view-dependent bakes
- * (bb_view.glsl; light: its blades' mean colour as blade_shade lights
- * them before fog, under the scene's sun) times the
+ * Measured against the blade field (docs/BILLBOARDS.md), this AO matches
+ * it better than the exact per-texel mix(0.45, 1, v) of the blades drawn
+ * in the texel. Views on (lit 1): the lit colour of the card's
+ * view-dependent bakes (bb_view.glsl; light: its blades' mean colour as
+ * blade_shade lights them before fog, under the scene's sun) times the
  * tint; a deformed mesh (card 0) scales it by how much more (or less)
  * light its own normal takes than the same normal stood upright (its
- * horizontal part; at most twice), so a billboard pressed flat turns to the
- * sky and one barely touched keeps the plain card's colour. */
+ * horizontal part; at most twice), so a billboard pressed flat turns to
+ * the sky and one barely touched keeps the plain card's colour. */
 vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, vec3 light, float lit, float card, float v_img,
               vec3 camera, vec3 sun, vec4 overlay)
 {

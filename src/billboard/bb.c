@@ -121,11 +121,13 @@ static bool upload_layout(bb_field_t *f)
     int array_layers = lay.views.on ? 2 * images : images;
     size_t layer_bytes = (size_t)cs * (size_t)cs * 4;
     f->clump_bytes = layer_bytes * (size_t)array_layers * 4 / 3;
-    core_log_info("billboards: %d clump layers x %d views (%s: %d elevations up to %.0f deg, %d wind azimuths) of "
-                  "%d-%d blades (%d for the field's density, more for its coverage), clump array %.2f MiB with mipmaps",
-                  layers, images / layers, lay.views.on ? "view cards" : "Orthmann's cards", lay.views.elevations,
-                  lay.views.elevation_max * 57.29578f, lay.views.azimuths, lo, hi, f->desc.layout.blades,
-                  (double)f->clump_bytes / 1048576.0);
+    char views[96] = "one view, Orthmann's cards";
+    if (lay.views.on)
+        snprintf(views, sizeof views, "view cards: %d elevations up to %.0f deg x %d wind azimuths",
+                 lay.views.elevations, lay.views.elevation_max * 57.29578f, lay.views.azimuths);
+    core_log_info("billboards: %d clump layers (%s) of %d-%d blades (%d for the field's density, more for its "
+                  "coverage), clump array %.2f MiB with mipmaps",
+                  layers, views, lo, hi, f->desc.layout.blades, (double)f->clump_bytes / 1048576.0);
     f->views = lay.views;
     uint8_t *all = malloc(layer_bytes * (size_t)array_layers);
     if (all) {
