@@ -10,8 +10,9 @@
  * the layer shrinks so the tallest fits; nothing is cut at the sides or the
  * top; more blades or a wider shape cover more; bb_clump_blades is the
  * documented (pi / 2) density ratio. The extent's clearings follow
- * bb_extent_desc_t: none, a bare fraction, a blob size, an image. Writes the PNGs to $MEADOW_TEST_OUT for
- * inspection. */
+ * bb_extent_desc_t: none, a bare fraction, a blob size, an image. The view
+ * bakes (bb_view.h) differ as the sun, the wind and the elevation make them
+ * differ (test_views). Writes the PNGs to $MEADOW_TEST_OUT for inspection. */
 #include "billboard/bb_layout.h"
 #include "blade/blade_ref.h"
 #include "test.h"
@@ -491,6 +492,74 @@ static void test_extent_keys(void)
     bb_layout_free(&def);
 }
 
+/* View v of layer k: its mean alpha, the mean luminance of its covered
+ * texels' lit colour (the light image) and the alpha-weighted mean row (0
+ * top). */
+static void view_look(const bb_layout_t *l, int v, int k, double *alpha, double *lum, double *row)
+{
+    static const double y709[3] = {0.2126, 0.7152, 0.0722};
+    const core_image_t *im = &l->clumps[v * l->clump_layers + k], *li = &l->clump_light[v * l->clump_layers + k];
+    double a = 0.0, y = 0.0, r = 0.0;
+    for (int i = 0; i < im->w * im->h; i++) {
+        double t = im->px[4 * i + 3] / 255.0;
+        a += t;
+        r += t * (i / im->w);
+        for (int c = 0; c < 3; c++) y += t * y709[c] * li->px[4 * i + c] / 255.0;
+    }
+    *alpha = a / (im->w * im->h);
+    *lum = y / a;
+    *row = r / a;
+}
+
+/* The view bakes (bb_view.h), meadow_large's blades and wind (1, 0.3):
+ * - looking with the wind is looking towards the program's sun (0.45, 0.8,
+ *   0.35), so the blades show their shaded faces: darker than looking
+ *   against it;
+ * - the wind's own part: against the same bakes without wind, the view
+ *   looking with it and the one looking against it change in opposite
+ *   ways (a bake that dropped the wind's azimuth would change both alike);
+ * - seen from 60 degrees the slab behind the card rises into view: the
+ *   covered rows move up. */
+static void test_views(void)
+{
+    bb_view_desc_t vd = bb_view_desc_defaults(NULL);
+    CHECK(!vd.on && vd.elevations == 1 && vd.azimuths == 1);
+    vd = bb_view_desc_defaults(&(bb_view_desc_t){.on = true});
+    CHECK(vd.elevations == 1 && vd.azimuths == 4 && fabsf(vd.elevation_max - 1.0471976f) < 1e-6f);
+    float e, a;
+    bb_view_angles(&(bb_view_desc_t){.elevations = 3, .azimuths = 4, .elevation_max = 1.0471976f}, 9, &e, &a);
+    CHECK(fabsf(e - 1.0471976f) < 1e-6f && fabsf(a - 1.5707963f) < 1e-6f);
+    double lum[2][12], row[2][12];
+    for (int wind = 0; wind < 2; wind++) {
+        bb_layout_t l;
+        CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 7, .size = 16, .clump_size = 64,
+                                                         .blades = bb_clump_blades(250.0f, 20.0f),
+                                                         .clump = {.wind = 1.0f * (float)wind,
+                                                                   .wind_dir = {1.0f, 0.3f}},
+                                                         .views = {.on = true, .elevations = 3}}));
+        CHECK(l.views.elevations * l.views.azimuths == 12);
+        for (int v = 0; v < 12; v++) {
+            double al = 0;
+            lum[wind][v] = row[wind][v] = 0;
+            for (int k = 0; k < l.clump_layers; k++) {
+                double ak, yk, rk;
+                view_look(&l, v, k, &ak, &yk, &rk);
+                al += ak / l.clump_layers;
+                lum[wind][v] += yk / l.clump_layers;
+                row[wind][v] += rk / l.clump_layers;
+            }
+            printf("wind %d view %2d (elevation %d, azimuth %d): alpha %.3f, lit luminance %.4f, mean row %.1f\n",
+                   wind, v, v / 4, v % 4, al, lum[wind][v], row[wind][v]);
+        }
+        bb_layout_free(&l);
+    }
+    double with = lum[1][0] - lum[0][0], against = lum[1][2] - lum[0][2];
+    printf("wind's change of lit luminance: looking with it %+.4f, against it %+.4f\n", with, against);
+    CHECK(lum[1][2] > 2.0 * lum[1][0]);
+    CHECK(with - against > 0.008 && with > 0.0 && against < 0.0);
+    for (int az = 0; az < 4; az++) CHECK(row[1][8 + az] < row[1][az] - 2.0);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -504,6 +573,7 @@ int main(void)
     test_sample(&l);
     test_sample_tri(&l);
     test_blade_clumps();
+    test_views();
     const char *out = getenv("MEADOW_TEST_OUT");
     char dir[1024];
     snprintf(dir, sizeof dir, "%s", out ? out : "/tmp/meadow-test-bb-layout");

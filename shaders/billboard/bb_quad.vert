@@ -26,6 +26,7 @@ out vec3 g_world;
 out vec3 g_normal;
 out vec3 g_uvl;
 flat out float g_tint;
+flat out float g_card; /* always 1: a plain quad */
 flat out uint g_overlay; /* packUnorm4x8; idle leaves: never tinted */
 
 void main()
@@ -39,6 +40,7 @@ void main()
         g_normal = vec3(0.0, 1.0, 0.0);
         g_uvl = vec3(0.0);
         g_tint = 0.0;
+        g_card = 1.0;
         g_overlay = 0u;
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); /* beyond the far plane */
         return;
@@ -52,6 +54,7 @@ void main()
     tb += shift;
     vec3 pos = c == 0 ? a : (c == 1 ? b : (c == 2 ? ta : tb));
     g_tint = bb_tint(p);
+    g_card = 1.0;
     g_overlay = 0u;
     g_world = pos;
     g_normal = bb_plain_normal(a, b, ta, tb);

@@ -11,6 +11,8 @@
  * then cover round(alpha n) of the pixel's n samples, starting at a sample
  * chosen by a hash of the pixel (grass_coverage_mask, the hardware path's
  * rule too).
+ * The texel and the lit colour cards show are the view-dependent blend of
+ * the clump bakes (bb_view.glsl, bb_shade).
  * Fragments behind what the samples already hold are skipped before the
  * texel fetch. With RASTER_BIG the queued large triangles, each scanned by
  * its whole work group sharing out the covered pixels (RASTER_GROUP_SCAN,
@@ -22,6 +24,7 @@
 #include "billboard/bb_slope.glsl"
 #include "common/grass_shade.glsl"
 #include "common/hash.glsl"
+#include "billboard/bb_view.glsl"
 #define RASTER_PIXEL_RATE 1
 #define RASTER_NO_MEDIUM 1
 #define RASTER_GROUP_SCAN 1
@@ -156,10 +159,13 @@ void raster_fragment(int s0, vec3 w, float depth)
     for (int k = 0; k < n; k++) hidden = hidden && raster_occluded(s0 + k, depth_bits);
     if (hidden) return;
     vec2 uv = w.x * g_uv[0] + w.y * g_uv[1] + w.z * g_uv[2];
-    vec4 tex = textureLod(u_clumps, vec3(uv.x, 1.0 - uv.y, g_layer), g_lod);
     vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
     int pixel = s0 / n;
     uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
+    vec2 grad = exp2(g_lod) / vec2(textureSize(u_clumps, 0).xy);
+    vec3 light;
+    vec4 tex = bb_view_texel(u_clumps, vec2(uv.x, 1.0 - uv.y), g_layer, vec2(grad.x, 0.0), vec2(0.0, grad.y),
+                             u_camera - world, bb_view_xi(px), light);
     float dist = grass_distance(world, u_camera);
     float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, vec2(px) + 0.5);
     a = bb_far_alpha(a, dist, u_far_start, u_far_end, vec2(px) + 0.5);
@@ -169,7 +175,9 @@ void raster_fragment(int s0, vec3 w, float depth)
     uint rgba = 0u;
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
-        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, 1.0 - uv.y, u_camera, u_sun, vec4(0.0));
+        float card = g_p.pad0 == BB_NO_SLOT ? 1.0 : 0.0;
+        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, light, float(u_view_lit), card, 1.0 - uv.y, u_camera, u_sun,
+                          vec4(0.0));
         rgba = packUnorm4x8(vec4(c, 1.0));
     }
     for (int k = 0; k < n; k++)

@@ -6,8 +6,11 @@
  * fade multiplies alpha by a ramp from fade_start to fade_end plus an
  * interleaved-gradient dither, so the MSAA coverage cross-fades instead of
  * blending; the canopy's fade (u_far_start to u_far_end) ramps it back down
- * the same way, where the ground canopy fades in (terrain.frag). */
+ * the same way, where the ground canopy fades in (terrain.frag). The texel
+ * is the view-dependent blend of the clump bakes (bb_view.glsl), and so is
+ * the lit colour cards show (bb_shade). */
 #include "common/grass_shade.glsl"
+#include "billboard/bb_view.glsl"
 
 uniform sampler2DArray u_clumps;
 uniform vec3 u_camera;
@@ -21,14 +24,18 @@ in vec3 g_world;
 in vec3 g_normal;
 in vec3 g_uvl;
 flat in float g_tint;
+flat in float g_card; /* 1: plain card; 0: deformed mesh (bb_shade) */
 flat in uint g_overlay; /* packUnorm4x8 */
 
 out vec4 frag;
 
 void main()
 {
-    vec4 tex = texture(u_clumps, g_uvl);
-    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, g_uvl.y, u_camera, u_sun, unpackUnorm4x8(g_overlay));
+    vec3 light;
+    vec4 tex = bb_view_texel(u_clumps, g_uvl.xy, g_uvl.z, dFdx(g_uvl.xy), dFdy(g_uvl.xy), u_camera - g_world,
+                             bb_view_xi(uvec2(gl_FragCoord.xy)), light);
+    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, light, float(u_view_lit), g_card, g_uvl.y, u_camera, u_sun,
+                      unpackUnorm4x8(g_overlay));
     float dist = grass_distance(g_world, u_camera);
     float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, gl_FragCoord.xy);
     a = bb_far_alpha(a, dist, u_far_start, u_far_end, gl_FragCoord.xy);

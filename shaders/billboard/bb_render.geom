@@ -28,8 +28,9 @@ out vec3 g_world;
 out vec3 g_normal;
 out vec3 g_uvl; /* u, v (0 at the top of the clump image), layer */
 flat out float g_tint;
+flat out float g_card; /* 1: plain quad, 0: deformed mesh (bb_render.frag) */
 flat out uint g_overlay; /* debug overlay, packUnorm4x8 (u_overlay 1: colliding red, recovering yellow);
-                          one component: the vertex is 15 (bb.c checks the GPU's limit) */
+                          one component: the vertex is 16 (bb.c checks the GPU's limit) */
 uniform int u_overlay;
 
 void put(vec3 pos, vec3 n, float u, float h, float layer)
@@ -60,6 +61,7 @@ void main()
         c = c + shift;
         d = d + shift;
         vec3 n = bb_plain_normal(a, b, c, d);
+        g_card = 1.0;
         put(a, n, 0.0, 0.0, layer);
         put(b, n, 1.0, 0.0, layer);
         put(c, n, 0.0, 1.0, layer);
@@ -68,6 +70,7 @@ void main()
         return;
     }
     bb_load_mesh(p.pad0);
+    g_card = 0.0;
     if (u_slope_on != 0) {
         vec3 a, b, ta, tb;
         bb_plain_corners(p, right, up, u_wind, u_time, a, b, ta, tb);

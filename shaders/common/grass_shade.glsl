@@ -94,20 +94,36 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
     return apply_fog(c, length(view), normalize(-view));
 }
 
-/* A billboard point: clump texel albedo (bb_layout: the blades' root-to-tip
- * mix, unlit) times the billboard's tint (bb_tint, mean 1), ambient
- * occlusion from the image row (v_img 0 at the top of the clump image):
- * the layers draw blades at their height in metres, so the row stands for
- * the height on the blades a viewer sees. Measured against the blade
- * field (docs/BILLBOARDS.md), this AO matches it better than the exact
- * per-texel mix(0.45, 1, v) of the blades drawn in the texel. */
-vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, float v_img, vec3 camera, vec3 sun, vec4 overlay)
+/* A billboard point. Views off (lit 0, Orthmann's cards): clump texel
+ * albedo (bb_layout: the blades' root-to-tip mix, unlit) times the
+ * billboard's tint (bb_tint, mean 1), lit with the card's normal turned
+ * towards the viewer and ambient occlusion from the image row (v_img 0 at
+ * the top of the clump image): the layers draw blades at their height in
+ * metres, so the row stands for the height on the blades a viewer sees.
+ * Measured against the blade field (docs/BILLBOARDS.md), this AO matches
+ * it better than the exact per-texel mix(0.45, 1, v) of the blades drawn
+ * in the texel. Views on (lit 1): the lit colour of the card's
+ * view-dependent bakes (bb_view.glsl; light: its blades' mean colour as
+ * blade_shade lights them before fog, under the scene's sun) times the
+ * tint; a deformed mesh (card 0) scales it by how much more (or less)
+ * light its own normal takes than the same normal stood upright (its
+ * horizontal part; at most twice), so a billboard pressed flat turns to
+ * the sky and one barely touched keeps the plain card's colour. */
+vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, vec3 light, float lit, float card, float v_img,
+              vec3 camera, vec3 sun, vec4 overlay)
 {
     vec3 to_eye = camera - world;
     float dist = length(to_eye);
     vec3 n = normalize(normal);
     if (dot(n, to_eye) < 0.0) n = -n;
-    vec3 c = shade(texel * tint, n, sun, mix(0.45, 1.0, 1.0 - v_img));
+    float ao = mix(0.45, 1.0, 1.0 - v_img);
+    vec3 c = shade(texel * tint, n, sun, ao);
+    if (lit > 0.5) {
+        vec3 flat_n = vec3(n.x, 0.0, n.z), eye_h = vec3(to_eye.x, 0.0, to_eye.z);
+        vec3 stood = dot(flat_n, flat_n) > 1e-6 ? normalize(flat_n) : eye_h / max(length(eye_h), 1e-6);
+        vec3 scale = card > 0.5 ? vec3(1.0) : min(c / max(shade(texel * tint, stood, sun, ao), vec3(1e-4)), vec3(2.0));
+        c = light * tint * scale;
+    }
     c = mix(c, overlay.rgb, overlay.a);
     return apply_fog(c, dist, -to_eye / max(dist, 1e-6));
 }

@@ -19,7 +19,8 @@ const vec3 AMBIENT_DOWN = vec3(0.18, 0.17, 0.14);
 const vec3 AMBIENT_UP = vec3(0.35, 0.42, 0.55);
 
 // Lambert sun + hemispheric sky ambient. two_sided flips the normal toward
-// the viewer (grass is lit from both faces).
+// the viewer (grass is lit from both faces). Twin: bb_shade_ref in
+// src/billboard/bb_layout.c (the clump bakes' lit colour).
 vec3 shade(vec3 albedo, vec3 n, vec3 sun_dir, float ao)
 {
     float ndl = max(dot(n, sun_dir), 0.0);

@@ -42,6 +42,8 @@ typedef struct app_options_t {
     int raster_samples;       /* --raster-samples 1|4: compute rasterizer samples per pixel; 0 = the scene's */
     bool quick;               /* bench --quick */
     bool floor;               /* --floor: measure the hardware floor at the end */
+    bool view_cards;          /* --view-cards: billboards whose clump appearance follows the view
+                                 (bb_view_desc_t.on, docs/BILLBOARDS.md) */
     bool stability;           /* bench --stability: the stability suite only */
     const char *stability_case; /* bench --stability --case NAME: only that case of the suite */
     const char *chart;        /* bench --chart NAME: only that chart's configurations of the sweep */

@@ -31,6 +31,7 @@ void app_print_usage(void)
            "  --raster-samples N    compute rasterizer samples per pixel: 4 (default, the 4x MSAA pattern) or 1\n"
            "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
+           "  --view-cards          billboards whose clump appearance follows the view and the wind\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
            "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
@@ -119,6 +120,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->quick = true;
         } else if (strcmp(a, "--floor") == 0) {
             o->floor = true;
+        } else if (strcmp(a, "--view-cards") == 0) {
+            o->view_cards = true;
         } else if (strcmp(a, "--montage") == 0) {
             o->montage = true;
         } else if (strcmp(a, "--overlay") == 0) {

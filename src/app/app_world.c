@@ -53,6 +53,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     s->mode = mode_from_cli(o->mode, s->mode);
     w->mode = s->mode;
     if (o->blade_render) s->grass.blade_render = (scene_blade_render_t)(o->blade_render - 1);
+    w->tuning.view_cards = o->view_cards;
     if (o->raster) s->raster = (scene_raster_t)(o->raster - 1);
     w->raster_compute = s->raster == SCENE_RASTER_COMPUTE;
     w->raster_samples = o->raster_samples ? o->raster_samples : s->raster_samples;
@@ -212,9 +213,11 @@ static bool make_bb(app_world_t *w)
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
     bb_wind_desc_t wind = {0};
+    float wind_strength = 0.0f; /* the clump bakes' blades settle under its mean */
     if (s->wind_count && s->wind[0].type == SCENE_WIND_DIRECTIONAL) {
         const scene_wind_t *sw = &s->wind[0];
         wind = bb_wind_from_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
+        wind_strength = sw->strength;
     }
     bb_gen_desc_t gen;
     int layout_size = layout_for(w, &gen);
@@ -238,8 +241,11 @@ static bool make_bb(app_world_t *w)
                                                                 .width = {g->width[0], g->width[1]},
                                                                 .stiffness = {g->stiffness[0], g->stiffness[1]},
                                                                 .shape = (int)g->shape,
-                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY},
-                                                      .extent = extent_desc(w, &gen)},
+                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY,
+                                                                .wind = wind_strength,
+                                                                .wind_dir = {wind.dir[0], wind.dir[1]}},
+                                                      .extent = extent_desc(w, &gen),
+                                                      .views = {.on = w->tuning.view_cards}},
                                        });
     return w->have_bb;
 }
@@ -873,7 +879,7 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     cam_frustum_planes(v->viewproj, v->planes);
     glm_vec3_copy(cam.position, v->camera);
     v->far = cam.far;
-    glm_vec3_normalize_to((vec3)APP_SUN_DIR, v->sun_dir);
+    glm_vec3_normalize_to((vec3)APP_SUN_DIR, v->sun_dir); /* the clump bakes and the canopy light with it */
     v->width = width;
     v->height = height;
     v->time = time;

@@ -95,6 +95,7 @@ typedef struct app_tuning_t {
                                 billboards (bb_field_desc_t.placement_seed); terrain,
                                 clearings and clump textures keep the scene seed (not the
                                 hybrid tiles). The image error's noise floor (docs/METRICS.md) */
+    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
 } app_tuning_t;
 
 /* ---- start-up stages -------------------------------------------------------------
@@ -195,8 +196,9 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
  * billboards fade out and the ground canopy fades in over [canopy - it,
  * canopy + it]. */
 #define APP_CANOPY_FADE 4.0f
-/* Towards the sun (normalised where used): every view's sun_dir. */
-#define APP_SUN_DIR {0.45f, 0.8f, 0.35f}
+/* Towards the sun (normalised where used): every view's sun_dir, the one
+ * the clump bakes (BB_CLUMP_SUN) and the canopy's table light with. */
+#define APP_SUN_DIR BB_CLUMP_SUN
 /* ---- hybrid seam (app_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
 /* A frame for eval_image_seam: colour, distance to the visible surface and
  * class per pixel (row 0 at the top). */

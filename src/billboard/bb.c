@@ -55,6 +55,7 @@ bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
     d.layout.seed = d.seed;
     if (d.layout.clump.size[0] <= 0.0f) d.layout.clump.size[0] = d.size[0];
     if (d.layout.clump.size[1] <= 0.0f) d.layout.clump.size[1] = d.size[1];
+    if (d.layout.clump.depth <= 0.0f) d.layout.clump.depth = 1.5707963f / (d.layout.clump.size[0] * d.density);
     d.layout = bb_layout_desc_defaults(&d.layout);
     return d;
 }
@@ -81,6 +82,16 @@ static void set_wind(GLuint prog, const bb_wind_desc_t *w)
     glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.wavenumber"), w->wavenumber);
 }
 
+/* The view-dependent cards' uniforms (shaders/billboard/bb_view.glsl). */
+static void set_views(const bb_field_t *f, GLuint prog)
+{
+    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_views"), f->views.elevations, f->views.azimuths);
+    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_view_elevation_max"), f->views.elevation_max);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_layers"), (GLint)f->gen.layers);
+    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_view_wind"), f->desc.wind.dir[0], f->desc.wind.dir[1]);
+    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_lit"), f->views.on);
+}
+
 static GLint loc(gfx_program_t p, const char *name) { return glGetUniformLocation(p.id, name); }
 
 /* ---- make ------------------------------------------------------------------ */
@@ -100,21 +111,35 @@ static bool upload_layout(bb_field_t *f)
                                                           .wrap = GL_REPEAT, .data = lay.messiness.px,
                                                           .upload_format = GL_RED, .label = "bb.messiness"});
     int cs = lay.clumps[0].w, layers = lay.clump_layers, lo = lay.clump_stats[0].blades, hi = lo;
-    for (int k = 1; k < layers; k++) {
+    int images = layers * lay.views.elevations * lay.views.azimuths;
+    for (int k = 1; k < images; k++) {
         lo = lay.clump_stats[k].blades < lo ? lay.clump_stats[k].blades : lo;
         hi = lay.clump_stats[k].blades > hi ? lay.clump_stats[k].blades : hi;
     }
-    core_log_info("billboards: %d clump layers of %d-%d blades (%d for the field's density, more for its coverage)",
-                  layers, lo, hi, f->desc.layout.blades);
+    /* The array: the V L albedo images, then (views on) their V L light
+     * images. */
+    int array_layers = lay.views.on ? 2 * images : images;
     size_t layer_bytes = (size_t)cs * (size_t)cs * 4;
-    uint8_t *all = malloc(layer_bytes * (size_t)layers);
+    f->clump_bytes = layer_bytes * (size_t)array_layers * 4 / 3;
+    char views[96] = "one view, Orthmann's cards";
+    if (lay.views.on)
+        snprintf(views, sizeof views, "view cards: %d elevations up to %.0f deg x %d wind azimuths",
+                 lay.views.elevations, lay.views.elevation_max * 57.29578f, lay.views.azimuths);
+    core_log_info("billboards: %d clump layers (%s) of %d-%d blades (%d for the field's density, more for its "
+                  "coverage), clump array %.2f MiB with mipmaps",
+                  layers, views, lo, hi, f->desc.layout.blades, (double)f->clump_bytes / 1048576.0);
+    f->views = lay.views;
+    uint8_t *all = malloc(layer_bytes * (size_t)array_layers);
     if (all) {
-        for (int k = 0; k < layers; k++) memcpy(all + layer_bytes * (size_t)k, lay.clumps[k].px, layer_bytes);
+        for (int k = 0; k < images; k++) {
+            memcpy(all + layer_bytes * (size_t)k, lay.clumps[k].px, layer_bytes);
+            if (lay.views.on) memcpy(all + layer_bytes * (size_t)(images + k), lay.clump_light[k].px, layer_bytes);
+        }
         f->clumps = gfx_texture_make(&(gfx_texture_desc_t){.target = GL_TEXTURE_2D_ARRAY, .w = cs, .h = cs,
-                                                           .layers = layers, .mip_levels = -1, .data = all,
+                                                           .layers = array_layers, .mip_levels = -1, .data = all,
                                                            .label = "bb.clumps"});
     } else {
-        core_log_error("%s:%d: out of memory for %d clump layers", __FILE__, __LINE__, layers);
+        core_log_error("%s:%d: out of memory for %d clump images", __FILE__, __LINE__, array_layers);
     }
     free(all);
     f->gen.layers = (uint32_t)layers;
@@ -597,10 +622,10 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &max_comps);
     int render_verts = (m - 1) * 2 * n > 4 ? (m - 1) * 2 * n : 4;
     /* bb_render.geom's vertex: g_world, g_normal, g_uvl (3 each), g_tint,
-     * g_overlay (1 each) and gl_Position (4) = 15 components. */
-    if (render_verts > max_verts || render_verts * 15 > max_comps) {
+     * g_card, g_overlay (1 each) and gl_Position (4) = 16 components. */
+    if (render_verts > max_verts || render_verts * 16 > max_comps) {
         core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components); "
-                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 15,
+                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 16,
                        max_verts, max_comps);
         return false;
     }
@@ -1285,6 +1310,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1i(loc(p, "u_clumps"), 0);
     glUniform1i(loc(p, "u_overlay"), dd->overlay);
     set_wind(p.id, &f->desc.wind);
+    set_views(f, p.id);
     const hybrid_slope_grid_t *g = &dd->slope_grid;
     glUniform1i(loc(p, "u_slope_on"), dd->slope_map.id != 0);
     glUniform1f(loc(p, "u_slope_time"), dd->time);

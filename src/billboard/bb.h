@@ -171,6 +171,9 @@ typedef struct bb_field_t {
     int billboards;
     int capacity;          /* points buffer size in billboards (upper bound) */
     gfx_texture_t extent, direction, messiness, clumps, heights;
+    bb_view_desc_t views;  /* the clump array's views (bb_view.h): the V L albedo layers,
+                              then (views on) their V L light layers */
+    size_t clump_bytes;    /* the clump array with its mipmaps */
     float hgrid[5];        /* heights: first vertex (x, z), clamp bound (x, z), cell */
     gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
     gfx_layered_target_t cube_target; /* over `cubes`: each object's faces in one draw */

@@ -15,11 +15,15 @@
  * the CPU from the C twin of blade_geom.glsl (blade_ref_surface, eq. 21 and
  * the scene's shape). A texel holds the blades' albedo, the root-to-tip mix
  * of blade_shade (unlit: bb_shade lights it), and their coverage as
- * straight alpha; see bb_layout.c for the rasteriser. */
+ * straight alpha; see bb_layout.c for the rasteriser. With the views on
+ * (bb_view.h, beyond the paper) each layer is baked once per view, its
+ * blades bent by the scene's mean wind, and every view also holds its
+ * blades' mean lit colour. */
 #ifndef MEADOW_BB_LAYOUT_H
 #define MEADOW_BB_LAYOUT_H
 
 #include "billboard/bb_ref.h"
+#include "billboard/bb_view.h"
 #include "core/core.h"
 
 #include <stdbool.h>
@@ -35,6 +39,7 @@
 #define BB_CLUMP_SETTLE_STEPS 90
 #define BB_CLUMP_MARGIN 1.5f
 #define BB_CLUMP_MAX_BLADES 4096
+#define BB_CLUMP_SUN {0.45f, 0.8f, 0.35f}
 
 /* The blades of the clump layers. Zero means default; defaults marked
  * (scene) are SCENE_DEFAULT_* of scene/scene_fields.h (scene key in
@@ -52,6 +57,15 @@ typedef struct bb_clump_desc_t {
     float albedo_root[3];  /* (0,0,0): (0.10, 0.25, 0.05) (SCENE_DEFAULT_ALBEDO_ROOT) */
     float albedo_tip[3];   /* (0,0,0): (0.45, 0.65, 0.20) (SCENE_DEFAULT_ALBEDO_TIP) */
     float gravity;         /* m/s the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
+    float wind;            /* strength of the scene's wind wave (blade_wind_wave); the blades
+                              settle under its mean, half of it, default 0 (no wind: the
+                              azimuth views differ only by the blades' turn) */
+    float wind_dir[2];     /* the wind's xz direction in the world, default (1, 0) */
+    float sun[3];          /* direction to the sun in the world (any length), default
+                              BB_CLUMP_SUN, the program's sun (app_world.c) */
+    float depth;           /* metres of field behind a card that its elevated views show (the
+                              mean free path between cards, pi / (2 size[0] billboard
+                              density)), default pi / (2 size[0] SCENE_DEFAULT_BILLBOARD_DENSITY) */
 } bb_clump_desc_t;
 
 /* The extent map's clearings (bb_layout.c, bb_layout_extent). */
@@ -80,13 +94,15 @@ typedef struct bb_layout_desc_t {
     uint32_t seed;     /* any value (0 included) */
     int size;          /* layout texture side in texels, default 256 */
     int clump_size;    /* clump texture side, default 128 */
-    int clump_layers;  /* clump texture array layers, default 4 */
+    int clump_layers;  /* clump layers a billboard picks from, default 4; each is baked
+                          once per view */
     int blades;        /* blades per clump layer before the coverage calibration (the
                           layer adds blades until its union covers as much as these
                           do counted with their overlaps; bb_layout.c), default
                           bb_clump_blades(200, 6) = 52 (the scene's default densities) */
     bb_clump_desc_t clump;
     bb_extent_desc_t extent;
+    bb_view_desc_t views; /* the views each clump layer is baked for (bb_view.h) */
 } bb_layout_desc_t;
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
 
@@ -117,18 +133,24 @@ typedef struct bb_layout_t {
     core_image_t extent;     /* 1 channel: grass coverage (bb_extent_desc_t: fBm with clearings) */
     core_image_t direction;  /* 3 channels: 0.5 + 0.5 * growth dir (mostly +y) */
     core_image_t messiness;  /* 1 channel */
-    int clump_layers;
-    core_image_t *clumps;    /* clump_layers RGBA images: blade albedo, coverage as
-                                straight alpha; fully transparent texels hold the
-                                layer's mean albedo so mipmaps do not darken edges */
-    bb_clump_stats_t *clump_stats; /* per layer: the coverage calibration */
+    int clump_layers;        /* L, the layers a billboard picks from */
+    bb_view_desc_t views;    /* resolved; V = elevations x azimuths views */
+    core_image_t *clumps;    /* V L RGBA images, view v of layer k at v L + k: blade
+                                albedo, coverage as straight alpha; fully transparent
+                                texels hold the view's mean albedo so mipmaps do not
+                                darken edges */
+    core_image_t *clump_light; /* V L RGBA images beside clumps: the covered samples'
+                                mean colour lit as blade_shade lights it before fog
+                                (bb_layout.c), linear, alpha 255 */
+    bb_clump_stats_t *clump_stats; /* per image: the coverage calibration */
 } bb_layout_t;
 
 /* Deterministic from desc->seed. Returns false (and logs) on allocation failure. */
 bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc);
 void bb_layout_free(bb_layout_t *layout);
-/* Writes extent.png, direction.png, messiness.png, clump_<k>.png into dir
- * (created if needed). */
+/* Writes extent.png, direction.png, messiness.png, clump_<k>.png (view 0),
+ * clump_<k>_view<v>.png and clump_<k>_view<v>_light.png into dir (created
+ * if needed). */
 bool bb_layout_write_pngs(const bb_layout_t *layout, const char *dir);
 
 /* ---- generation rule --------------------------------------------------------

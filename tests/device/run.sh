@@ -39,13 +39,15 @@
 #                meadow_large, hw and compute, ending at frames $SEAM_FRAMES
 #                (default 3 60 120 240); $SEAM_ROOT (a folder holding shaders/,
 #                scenes/ and models/, e.g. another revision's): its shaders instead
-#   large        issue 31 on meadow_large: each mode x path, 300 frames (pass
-#                medians, GPU memory, counts; blade mode drawn to the field's
-#                edge, grass.blade_distance's default), the switch and canopy
-#                seams every 30th frame (meadow_large and meadow.json, both
-#                paths), and the modes and hybrid_canopy_distance charts
-#                against the all-blade reference (120 frames at 1080p)
-#                -> $OUT/large_charts.tgz, screenshots -> $OUT
+#   large        the hybrid on meadow_large (docs/HYBRID.md's table): the
+#                hybrid_canopy_distance chart against the all-blade reference
+#                (billboard and blade mode drawn as far, the hybrid at each
+#                canopy distance, both paths; $LARGE_FRAMES frames, default
+#                40; lod.json), the tiles' pull/tess A/B (hw, 200 frames),
+#                and the switch and canopy seams every 30th frame of
+#                meadow_large and meadow.json on both paths
+#                -> $OUT/large_chart.tgz (bench.csv/json, lod.json, .dat/.gp),
+#                three of the chart's frames
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -196,33 +198,29 @@ seam() {
 
 large() {
   local L=scenes/bench/meadow_large.json
-  for mode in hybrid blade billboard; do for r in hw compute; do
-    timeout -k 10 200 $M --headless --quiet --scene $L --mode $mode --raster $r --frames 300 --screenshot-every 300 \
-      --out /tmp/l-$mode-$r > /tmp/l-$mode-$r.log 2>&1
-    echo "== large $mode $r rc=$?"
-    sed -n '/^gpu passes/,/^grass_triangles_max/p' /tmp/l-$mode-$r/summary.txt
-    grep -E "^(hybrid|canopy) seam|^  Delta|^  floor" /tmp/l-$mode-$r/summary.txt
-    grep -E "error|warn" /tmp/l-$mode-$r.log | head -3
-  done; done
-  cp /tmp/l-hybrid-hw/shot-000300.png $OUT/large_hybrid_hw.png 2>/dev/null
-  cp /tmp/l-blade-hw/shot-000300.png $OUT/large_blade_hw.png 2>/dev/null
-  cp /tmp/l-hybrid-compute/shot-000300.png $OUT/large_hybrid_compute.png 2>/dev/null
+  rm -rf /tmp/lc
+  ( time timeout -k 10 330 $M bench --scene $L --chart hybrid_canopy_distance --frames ${LARGE_FRAMES:-40} \
+      --out /tmp/lc --quiet ) > /tmp/lc.log 2>&1
+  echo "== chart rc=$?"; tail -4 /tmp/lc.log | tr '\r' '\n' | tail -4
+  cut -d, -f1-7 /tmp/lc/bench.csv 2>/dev/null; cat /tmp/lc/lod.json 2>/dev/null
+  grep -o '"image_error_floor": [0-9.]*' /tmp/lc/bench.json 2>/dev/null
+  (cd /tmp/lc && tar czf $OUT/large_chart.tgz --exclude=frames .)
+  for f in reference hybrid_canopy_distance_blade hybrid_canopy_distance_canopy45m; do
+    cp /tmp/lc/frames/$f.png $OUT/ 2>/dev/null
+  done
+  for br in pull tess; do
+    timeout -k 10 120 $M --headless --quiet --scene $L --mode hybrid --raster hw --blade-render $br --frames 200 \
+      --screenshot-every 0 --out /tmp/ab-$br > /dev/null 2>&1
+    echo "== tiles $br rc=$?: $(grep -E '^  tiles\.(draw|cull)|^gpu_frame_ms' /tmp/ab-$br/summary.txt | tr -s ' ' | tr '\n' ';')"
+  done
   for sc in $L scenes/meadow.json; do for r in hw compute; do
     for fr in ${SEAM_FRAMES:-30 60 90 120 150 180 210 240}; do
-      $M --headless --quiet --scene $sc --mode hybrid --raster $r --frames $fr --screenshot-every 100000 \
+      timeout -k 5 60 $M --headless --quiet --scene $sc --mode hybrid --raster $r --frames $fr --screenshot-every 100000 \
         --out /tmp/seam > /dev/null 2>&1
       echo "== seam $sc $r frame $fr: $(grep -E '^(hybrid|canopy) seam' /tmp/seam/summary.txt \
         | sed -e 's/ (.*score/ score/' -e 's/, Delta E.*//' | tr '\n' ' ')"
     done
   done; done
-  rm -rf /tmp/lc; mkdir -p /tmp/lc
-  ( time timeout -k 10 400 $M bench --scene $L --chart modes --out /tmp/lc/modes --quiet ) > /tmp/lc/modes.log 2>&1
-  tail -3 /tmp/lc/modes.log
-  ( time timeout -k 10 300 $M bench --scene $L --chart hybrid_canopy_distance --out /tmp/lc/canopy --quiet ) \
-    > /tmp/lc/canopy.log 2>&1
-  tail -3 /tmp/lc/canopy.log
-  for c in modes canopy; do echo "== chart $c"; cat /tmp/lc/$c/bench.csv 2>/dev/null | cut -d, -f1-8; done
-  (cd /tmp/lc && tar czf $OUT/large_charts.tgz --exclude='*.png' .)
 }
 
 perf() {
