@@ -162,10 +162,18 @@ void raster_fragment(int s0, vec3 w, float depth)
     vec3 world = w.x * g_pos[0] + w.y * g_pos[1] + w.z * g_pos[2];
     int pixel = s0 / n;
     uvec2 px = uvec2(pixel % u_raster_pixels.x, pixel / u_raster_pixels.x);
-    vec2 grad = exp2(g_lod) / vec2(textureSize(u_clumps, 0).xy);
+    /* Views off (no BB_VIEW_CARDS): one bake at the card's level. */
+#ifdef BB_VIEW_CARDS
     vec3 light;
+    vec2 grad = exp2(g_lod) / vec2(textureSize(u_clumps, 0).xy);
     vec4 tex = bb_view_texel(u_clumps, vec2(uv.x, 1.0 - uv.y), g_layer, vec2(grad.x, 0.0), vec2(0.0, grad.y),
                              u_camera - world, bb_view_xi(px), light);
+    const float lit = 1.0;
+#else
+    const vec3 light = vec3(0.0);
+    vec4 tex = textureLod(u_clumps, vec3(uv.x, 1.0 - uv.y, g_layer), g_lod);
+    const float lit = 0.0;
+#endif
     float dist = grass_distance(world, u_camera);
     float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, vec2(px) + 0.5);
     a = bb_far_alpha(a, dist, u_far_start, u_far_end, vec2(px) + 0.5);
@@ -176,7 +184,7 @@ void raster_fragment(int s0, vec3 w, float depth)
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
         float card = g_p.pad0 == BB_NO_SLOT ? 1.0 : 0.0;
-        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, light, float(u_view_lit), card, 1.0 - uv.y, u_camera, u_sun,
+        vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, light, lit, card, 1.0 - uv.y, u_camera, u_sun,
                           vec4(0.0));
         rgba = packUnorm4x8(vec4(c, 1.0));
     }

@@ -31,10 +31,18 @@ out vec4 frag;
 
 void main()
 {
+    /* Views off (no BB_VIEW_CARDS): the one bake. */
+#ifdef BB_VIEW_CARDS
     vec3 light;
     vec4 tex = bb_view_texel(u_clumps, g_uvl.xy, g_uvl.z, dFdx(g_uvl.xy), dFdy(g_uvl.xy), u_camera - g_world,
                              bb_view_xi(uvec2(gl_FragCoord.xy)), light);
-    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, light, float(u_view_lit), g_card, g_uvl.y, u_camera, u_sun,
+    const float lit = 1.0;
+#else
+    const vec3 light = vec3(0.0);
+    vec4 tex = texture(u_clumps, g_uvl);
+    const float lit = 0.0;
+#endif
+    vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, light, lit, g_card, g_uvl.y, u_camera, u_sun,
                       unpackUnorm4x8(g_overlay));
     float dist = grass_distance(g_world, u_camera);
     float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, gl_FragCoord.xy);

@@ -242,24 +242,29 @@ static int build_configs(bench_config_t *c, bool quick)
         snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
     }
     /* The ground canopy's distance (100 km: no canopy) on both rasterizer
-     * paths, beside billboard and blade mode drawn as far (blade mode to
-     * the field's edge, grass.blade_distance's default). */
-    static const float canopy[] = {35, 45, 60, 90, 100000};
+     * paths, after blade mode drawn as far (blade mode to the field's edge,
+     * grass.blade_distance's default: the budget) and before billboard mode. */
+    static const float canopy[] = {45, 60, 35, 90, 100000};
     int ncan = quick ? 2 : (int)(sizeof canopy / sizeof canopy[0]);
     for (int r = 0; r < (quick ? 1 : 2); r++) {
-        for (int m = 0; m < 2 && !quick; m++) {
-            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", m ? SCENE_MODE_BLADE : SCENE_MODE_BILLBOARD);
+        const char *path = r ? "_compute" : "";
+        if (!quick) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BLADE);
             x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-            snprintf(x->label, sizeof x->label, "%s%s", m ? "blade" : "billboard", r ? "_compute" : "");
+            snprintf(x->label, sizeof x->label, "blade%s", path);
         }
         for (int i = 0; i < ncan; i++) {
             bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
-            x->canopy_distance = canopy[quick ? 2 * i : i];
+            x->canopy_distance = canopy[i];
             x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-            const char *path = r ? "_compute" : "";
             if (x->canopy_distance >= 100000) snprintf(x->label, sizeof x->label, "no_canopy%s", path);
             else snprintf(x->label, sizeof x->label, "canopy%gm%s", (double)x->canopy_distance, path);
         }
+    }
+    for (int r = 0; r < 2 && !quick; r++) {
+        bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BILLBOARD);
+        x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+        snprintf(x->label, sizeof x->label, "billboard%s", r ? "_compute" : "");
     }
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     for (int d = 0; d < (quick ? 1 : 2); d++)
