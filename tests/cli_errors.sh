@@ -88,4 +88,12 @@ expect2 "more than the 50000000 a full blade field holds" --headless --scene "$t
 expect2 "nope.gltf" --headless --scene "$root/scenes/tiny.json" --character "$tmp/nope.gltf"
 mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
 expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"
+# Interrupted runs still write their summary: GNU timeout signals the
+# program and then its process group, so one timeout delivers SIGINT twice
+# (a second-signal-kills rule lost the summary and bench tables that way).
+rm -rf "$tmp/intr"
+timeout -s INT -k 60 4 "$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 \
+  --screenshot-every 0 --out "$tmp/intr" >/dev/null 2>&1
+grep -q "interrupted" "$tmp/intr/summary.txt" 2>/dev/null \
+  || { echo "FAIL: a run interrupted by timeout -s INT wrote no summary saying so"; fail=1; }
 exit $fail

@@ -22,6 +22,7 @@ typedef struct app_t {
     bool paused, step_once, wireframe, hud;
     int overlay;
     int frames, shot_every, shots_written;
+    int frames_asked; /* --frames, when an interrupt ended the run early (frames: those done) */
     char out[1024];
     char shots[16][1100];
     double frame_ms_avg;
@@ -252,6 +253,9 @@ static void write_summary(app_t *app, double wall_s)
 {
     app_world_stats_t st;
     app_world_stats(&app->world, &st);
+    char interrupted[96] = "";
+    if (app_interrupted())
+        snprintf(interrupted, sizeof interrupted, " (interrupted: %d of %d asked)", app->frames, app->frames_asked);
     char calib[128] = "";
     if (app->raster_calib_ms[0] > 0.0)
         snprintf(calib, sizeof calib, " (auto: frame %.3f ms hw, %.3f ms compute; measured in %.0f ms at start-up)",
@@ -263,14 +267,14 @@ static void write_summary(app_t *app, double wall_s)
                      "gl_version: %s\n"
                      "platform: %s\n"
                      "scene: %s\n"
-                     "mode: %s\nraster: %s%s\nseed: %u\nframes: %d\nsize: %dx%d\nmsaa: %d\n"
+                     "mode: %s\nraster: %s%s\nseed: %u\nframes: %d%s\nsize: %dx%d\nmsaa: %d\n"
                      "wall_seconds: %.3f\nmean_frame_ms: %.3f\n"
                      "screenshots: %d\n"
                      "gpu passes after warm-up (median ms over the last <=256 frames, mean ms, max ms)%s:\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
                      scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw", calib,
-                     app->world.scene.seed, app->frames, app->target.w, app->target.h,
+                     app->world.scene.seed, app->frames, interrupted, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written, gfx_timer_sync() ? ", each after glFinish (MEADOW_TIMER_SYNC)" : "");
     double frame_gpu = 0;
@@ -458,6 +462,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
     }
     if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", frame);
+    app.frames_asked = app.frames;
     app.frames = frame;
     if (ok) {
         gfx_timer_flush();

@@ -1,7 +1,10 @@
 /* app_signal: Ctrl-C (SIGINT) and SIGTERM stop long runs cleanly. The first
  * signal sets a flag that the main loop and `meadow bench` check between
- * frames and configurations, so the results so far are still written; a
- * second signal falls back to the default action. */
+ * frames and configurations, so the results so far are still written; the
+ * third falls back to the default action. Not the second: `timeout` (GNU
+ * coreutils) signals the program and then its whole process group, so one
+ * timeout delivers the signal twice, and a second-signal rule had killed
+ * `bench` runs before they wrote what they had. */
 #include "app/app.h"
 
 #include <signal.h>
@@ -11,8 +14,10 @@ static volatile sig_atomic_t g_interrupted;
 
 static void on_signal(int sig)
 {
-    g_interrupted = 1;
+    if (g_interrupted < 3) g_interrupted++;
+    if (g_interrupted < 3) return;
     signal(sig, SIG_DFL);
+    raise(sig);
 }
 
 void app_signal_install(void)
