@@ -88,6 +88,29 @@ expect2 "more than the 50000000 a full blade field holds" --headless --scene "$t
 expect2 "nope.gltf" --headless --scene "$root/scenes/tiny.json" --character "$tmp/nope.gltf"
 mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
 expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"
+# grass.lod_table (scene_lod.h): a table of this renderer sets the hybrid's
+# distances and says so in summary.txt; one of another renderer leaves the
+# scene's with a warning.
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1 --screenshot-every 0 \
+  --out "$tmp/lod0" >/dev/null 2>&1
+renderer=$(sed -n 's/^renderer: //p' "$tmp/lod0/summary.txt")
+lod_table() { # renderer file
+  printf '{"renderer": "%s", "paths": {"hw": {"switch_distance": 3, "canopy_distance": 9, "gpu_ms": 1,
+    "image_error": 0.5, "budget": 0.6, "met": true, "candidates": 4}}}\n' "$1" >"$2"
+}
+lod_table "$renderer" "$tmp/lod_here.json"
+lod_table "Some Other GPU" "$tmp/lod_other.json"
+for t in here other; do
+  python3 -c "import json,sys; s=json.load(open(sys.argv[1])); s['grass']['lod_table']=sys.argv[2]; \
+s['raster']='hw'; json.dump(s, open(sys.argv[3],'w'))" "$root/scenes/tiny.json" "$tmp/lod_$t.json" "$tmp/lod_$t.scene.json"
+  "$bin" --headless --quiet --scene "$tmp/lod_$t.scene.json" --size 64x36 --frames 1 --screenshot-every 0 \
+    --out "$tmp/lod_$t" >/dev/null 2>"$tmp/lod_$t.log"
+done
+grep -q "^hybrid distances: switch 3.0 m, canopy 9.0 m (hw path, from" "$tmp/lod_here/summary.txt" \
+  || { echo "FAIL: grass.lod_table of this renderer did not set the distances"; fail=1; }
+grep -q "^hybrid distances: switch 4.0 m, canopy 60.0 m (.*not this GL" "$tmp/lod_other/summary.txt" \
+  && grep -q "warning: grass.lod_table" "$tmp/lod_other.log" \
+  || { echo "FAIL: grass.lod_table of another renderer was not refused with a warning"; fail=1; }
 # Interrupted runs still write their summary: GNU timeout signals the
 # program and then its process group, so one timeout delivers SIGINT twice
 # (a second-signal-kills rule lost the summary and bench tables that way).
