@@ -46,7 +46,8 @@ typedef enum scene_mode_t {
 /* How grass is rasterized (docs/RASTER.md). */
 typedef enum scene_raster_t {
     SCENE_RASTER_AUTO = 0, /* "auto" (default): the faster of the two, measured at start-up
-                              (the bench sweep's rows name their path: hw unless said) */
+                              (bench and compare sessions draw hw unless --raster says
+                              otherwise; --raster auto measures there too) */
     SCENE_RASTER_HW,       /* "hw": the hardware pipeline, the papers' reference path
                               (tessellation / geometry shaders, alpha-to-coverage) */
     SCENE_RASTER_COMPUTE,  /* "compute": compute shaders into a visibility buffer (src/raster) */
