@@ -88,6 +88,15 @@ expect2 "more than the 50000000 a full blade field holds" --headless --scene "$t
 expect2 "nope.gltf" --headless --scene "$root/scenes/tiny.json" --character "$tmp/nope.gltf"
 mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
 expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"
+# Inputs that exhaust the machine are refused before anything is allocated:
+# an endless file, and tiles too small for the hybrid's table.
+expect2 'more than 64 MiB, the most this program reads' --headless --scene /dev/zero
+printf '{ "grass": { "tile_size": 0.001 } }\n' >"$tmp/tiny_tiles.json"
+expect2 'the smallest tile_size that fits is' --headless --scene "$tmp/tiny_tiles.json"
+# A UTF-8 byte order mark before the scene's JSON is accepted.
+{ printf '\xef\xbb\xbf'; sed "s|\"models/|\"$root/models/|g" "$root/scenes/tiny.json"; } >"$tmp/bom.json"
+"$bin" --headless --quiet --scene "$tmp/bom.json" --size 64x36 --frames 1 --screenshot-every 0 --out "$tmp/bom" \
+  >/dev/null 2>&1 || { echo "FAIL: a scene file with a UTF-8 byte order mark was refused"; fail=1; }
 # grass.lod_table (scene_lod.h): a table of this renderer sets the hybrid's
 # distances and says so in summary.txt; one of another renderer leaves the
 # scene's with a warning.

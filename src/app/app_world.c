@@ -36,6 +36,26 @@ static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
     }
 }
 
+/* Refuses, before anything is allocated, a grass.tile_size that cuts a
+ * heightfield into more than HYBRID_MAX_TILES tiles or that holds less than
+ * one blade per tile (the hybrid's tiles and templates; a 0.001 m tile had
+ * grown to 24 GB, 1e-6 m never finished), naming the smallest that fits. */
+static bool tile_admission(const app_world_t *w)
+{
+    const terrain_mesh_t *t = &w->terrain_mesh;
+    const scene_grass_desc_t *g = &w->scene.grass;
+    if (w->scene.terrain.type != TERRAIN_HEIGHTFIELD || g->tile_size <= 0.0f) return true;
+    double sx = t->aabb_max[0] - t->aabb_min[0], sz = t->aabb_max[2] - t->aabb_min[2];
+    double tiles = ceil(sx / g->tile_size) * ceil(sz / g->tile_size);
+    double per_tile = (double)g->density * g->tile_size * g->tile_size;
+    if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || g->density <= 0.0f)) return true;
+    double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), g->density > 0.0f ? 1.0 / sqrt(g->density) : 0.0);
+    core_log_error("%s: grass.tile_size %g m cuts the %.0f x %.0f m field into %.3g tiles of %.3g blades; the "
+                   "hybrid holds at most %d tiles of at least one blade: the smallest tile_size that fits is %.3g m",
+                   w->scene_path, g->tile_size, sx, sz, tiles, per_tile, HYBRID_MAX_TILES, ceil(smallest * 1e3) / 1e3);
+    return false;
+}
+
 int app_world_load(app_world_t *w, const app_options_t *o)
 {
     memset(w, 0, sizeof *w);
@@ -88,7 +108,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         if (!core_image_load(&w->clearings_image, image, 1)) return 2; /* logged: the file and why */
     }
     stage_done(w, APP_STAGE_TERRAIN, &mark);
-    return 0;
+    return tile_admission(w) ? 0 : 2;
 }
 
 /* The layout shared by both grass models (so hybrid tiles cover the same

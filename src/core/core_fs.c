@@ -22,6 +22,11 @@ char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size)
         fclose(f);
         return NULL;
     }
+    if ((uint64_t)st.st_size > CORE_FS_READ_MAX) {
+        if (err) snprintf(err, err_size, "larger than %zu MiB, the most this program reads", CORE_FS_READ_MAX >> 20);
+        fclose(f);
+        return NULL;
+    }
     size_t cap = (size_t)st.st_size + 1, len = 0;
     char *buf = malloc(cap);
     if (!buf) {
@@ -33,6 +38,12 @@ char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size)
         size_t n = fread(buf + len, 1, cap - 1 - len, f);
         len += n;
         if (len < cap - 1) break;
+        if (len >= CORE_FS_READ_MAX) {
+            free(buf);
+            fclose(f);
+            if (err) snprintf(err, err_size, "more than %zu MiB, the most this program reads", CORE_FS_READ_MAX >> 20);
+            return NULL;
+        }
         char *grown = realloc(buf, cap * 2);
         if (!grown) {
             free(buf);

@@ -103,6 +103,10 @@ typedef struct hybrid_object_t {
     float sphere[4];
 } hybrid_object_t;
 
+/* The most tiles a grid holds (its CPU table, slope cells and tile lists
+ * grow with them): grass.tile_size is refused below what this allows. */
+#define HYBRID_MAX_TILES (1 << 20)
+
 bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc);
 void hybrid_grid_free(hybrid_grid_t *g);
 /* One update: representation from the camera (eye distance to the tile's box,

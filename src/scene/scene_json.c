@@ -452,6 +452,9 @@ bool scene_json_parse(scene_json_doc_t *doc, const char *text, const char *name,
     };
     doc->root = NULL;
     doc->arena = NULL;
+    /* A UTF-8 byte order mark (editors on Windows write one) is not JSON
+     * (RFC 8259 8.1 lets a parser ignore it). */
+    if (ps.end - ps.p >= 3 && memcmp(ps.p, "\xEF\xBB\xBF", 3) == 0) ps.p += 3;
     scene_json_t *root = parse_value(&ps);
     if (root) {
         skip_ws(&ps);
