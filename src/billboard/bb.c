@@ -1126,7 +1126,7 @@ static void poll_readbacks(bb_field_t *f)
         f->exhausted_last = (int)hdr[1] > f->exhausted_last ? (int)hdr[1] : f->exhausted_last;
         if (f->exhausted_last > 0 && f->exhausted_last >= 2 * f->exhausted_logged) {
             core_log_warn("bb: deformed-mesh pool of %d slots exhausted: %d collisions left undeformed so far "
-                          "(raise max_deformed)", f->desc.max_deformed, f->exhausted_last);
+                          "(raise grass.deformed_pool)", f->desc.max_deformed, f->exhausted_last);
             f->exhausted_logged = f->exhausted_last;
         }
     }

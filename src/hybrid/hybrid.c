@@ -185,7 +185,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
     st.slots_used = d->pool_slots - g->free_count;
     if (st.pool_denied && !g->warned_pool)
         core_log_warn("hybrid: simulation pool exhausted: %d tile(s) touched by objects got no state slot "
-                      "(%d slots); raise pool_slots",
+                      "(%d slots); raise grass.tile_pool",
                       st.pool_denied, d->pool_slots);
     g->warned_pool = st.pool_denied > 0;
     if (st.list_overflow > 2 * g->warned_overflow) {

@@ -103,6 +103,8 @@ typedef struct scene_grass_desc_t {
     scene_blade_render_t blade_render; /* default pull */
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
+    int deformed_pool;       /* billboards' deformed-mesh pool slots [0, 262144]; default 4096 */
+    int tile_pool;           /* hybrid: tiles simulated at once (state slots) [0, 1024]; default 64 */
     int cube_resolution;     /* collision cube-map resolution [0, 4096]; default 32 */
     float cube_texel;        /* largest cube-map texel m [0, 10]: the resolution rises above
                                 cube_resolution until 2 r / res <= cube_texel for the largest

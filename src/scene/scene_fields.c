@@ -120,6 +120,13 @@ const scene_field_t scene_fields[] = {
       .doc = "deformable billboard mesh [N columns, M rows]"},
     {GRASS(spring_iterations), .key = "spring_iterations", .type = SCENE_FIELD_INT, .hi = 64,
       .def = {SCENE_DEFAULT_SPRING_ITERATIONS}, .doc = "billboard spring relaxation sweeps per step (eq. 6-7)"},
+    {GRASS(deformed_pool), .key = "deformed_pool", .type = SCENE_FIELD_INT, .hi = 262144,
+      .def = {SCENE_DEFAULT_DEFORMED_POOL},
+      .doc = "billboards deformed at once (the deformed-mesh pool's slots, N x M vec4 each); a full pool is "
+             "reported"},
+    {GRASS(tile_pool), .key = "tile_pool", .type = SCENE_FIELD_INT, .hi = 1024, .def = {SCENE_DEFAULT_TILE_POOL},
+      .doc = "hybrid: tiles simulated at once (state slots of one template of blades each); a full pool is "
+             "reported"},
     {GRASS(cube_resolution), .key = "cube_resolution", .type = SCENE_FIELD_INT, .hi = 4096,
       .def = {SCENE_DEFAULT_CUBE_RESOLUTION}, .doc = "side of the collision depth cube maps (texels)"},
     {GRASS(cube_texel), .key = "cube_texel", .type = SCENE_FIELD_FLOAT, .hi = 10,

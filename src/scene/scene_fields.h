@@ -58,6 +58,8 @@
 #define SCENE_SUBDIV_MIN 2 /* the billboard geometry shader's output limits */
 #define SCENE_SUBDIV_MAX 8
 #define SCENE_DEFAULT_SPRING_ITERATIONS 2
+#define SCENE_DEFAULT_DEFORMED_POOL 4096
+#define SCENE_DEFAULT_TILE_POOL 64
 #define SCENE_DEFAULT_CUBE_RESOLUTION 32
 /* "grass": both (hybrid, blade_tiles; recover_time also drives the blades'
  * collision decay and the hand-over memory). */
