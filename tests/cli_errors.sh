@@ -124,8 +124,10 @@ grep -q "^hybrid distances: switch 4.0 m, canopy 60.0 m (.*not this GL" "$tmp/lo
 # program and then its process group, so one timeout delivers SIGINT twice
 # (a second-signal-kills rule lost the summary and bench tables that way).
 rm -rf "$tmp/intr"
-timeout -s INT -k 60 4 "$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 \
-  --screenshot-every 0 --out "$tmp/intr" >/dev/null 2>&1
+timeout --preserve-status -s INT -k 60 10 "$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 \
+  --frames 1000000 --screenshot-every 0 --out "$tmp/intr" >/dev/null 2>&1
+rc=$?
 grep -q "interrupted" "$tmp/intr/summary.txt" 2>/dev/null \
   || { echo "FAIL: a run interrupted by timeout -s INT wrote no summary saying so"; fail=1; }
+[ "$rc" = 130 ] || { echo "FAIL: an interrupted run exited $rc, not 130"; fail=1; }
 exit $fail

@@ -72,6 +72,11 @@ void app_print_usage(void);
 /* Ctrl-C / SIGTERM: the first one asks long runs to stop after the current
  * frame or configuration and write what they have (app_signal.c). */
 void app_signal_install(void);
+/* Installs the handlers again, the flag kept: Mesa's llvmpipe (LLVM)
+ * installs its own SIGINT handler when it compiles, which kills the
+ * process; app_run calls this every frame, `meadow bench` every
+ * configuration. */
+void app_signal_reclaim(void);
 bool app_interrupted(void);
 
 /* What --montage ends a headless run with, in the run's GL context: the
@@ -79,8 +84,11 @@ bool app_interrupted(void);
  * src/bench). Returns 0 or 1. */
 typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int frames);
 
-/* Runs the program; returns the process exit code. `montage` may be NULL
- * when opts->montage is false. */
+/* Runs the program; returns the process exit code: 0, 1 (a failure), 2 (bad
+ * input) or APP_EXIT_INTERRUPTED (SIGINT or SIGTERM ended the run early;
+ * the summary was written and says frames done of asked). `montage` may be
+ * NULL when opts->montage is false. */
+#define APP_EXIT_INTERRUPTED 130
 int app_run(const app_options_t *opts, app_montage_fn montage);
 
 #endif

@@ -457,6 +457,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         }
         double end = plat_time();
         if (frame == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - t0) * 1e3;
+        app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
         frame_times_add(&app.times, frame - 1, (end - frame_end) * 1e3, (submitted - frame_end) * 1e3);
         frame_end = end;
         if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
@@ -484,5 +485,5 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         core_log_error("%d GL error(s) during the run", gl_errors);
         return 1;
     }
-    return rc;
+    return rc == 0 && app_interrupted() ? APP_EXIT_INTERRUPTED : rc;
 }

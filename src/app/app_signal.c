@@ -1,30 +1,46 @@
 /* app_signal: Ctrl-C (SIGINT) and SIGTERM stop long runs cleanly. The first
  * signal sets a flag that the main loop and `meadow bench` check between
- * frames and configurations, so the results so far are still written; the
- * third falls back to the default action. Not the second: `timeout` (GNU
- * coreutils) signals the program and then its whole process group, so one
- * timeout delivers the signal twice, and a second-signal rule had killed
- * `bench` runs before they wrote what they had. */
+ * frames and configurations, so the results so far are still written; a
+ * signal a second or more after it falls back to the default action (Ctrl-C
+ * again kills a run that does not stop). Signals within that second count
+ * as the first: GNU `timeout` signals the program, its process group and,
+ * receiving its own, the program again, so one timeout delivers three or
+ * four, and a count of signals had killed runs before they wrote what they
+ * had. */
 #include "app/app.h"
 
 #include <signal.h>
 #include <string.h>
+#include <time.h>
 
 static volatile sig_atomic_t g_interrupted;
+static struct timespec g_first; /* when the first signal came */
 
 static void on_signal(int sig)
 {
-    if (g_interrupted < 3) g_interrupted++;
-    if (g_interrupted < 3) return;
+    struct timespec now;
+    clock_gettime(CLOCK_MONOTONIC, &now); /* async-signal-safe (POSIX) */
+    if (!g_interrupted) {
+        g_first = now;
+        g_interrupted = 1;
+        return;
+    }
+    double since = (double)(now.tv_sec - g_first.tv_sec) + 1e-9 * (double)(now.tv_nsec - g_first.tv_nsec);
+    if (since < 1.0) return;
     signal(sig, SIG_DFL);
     raise(sig);
+}
+
+void app_signal_reclaim(void)
+{
+    signal(SIGINT, on_signal);
+    signal(SIGTERM, on_signal);
 }
 
 void app_signal_install(void)
 {
     g_interrupted = 0;
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
+    app_signal_reclaim();
 }
 
 bool app_interrupted(void) { return g_interrupted != 0; }
