@@ -54,11 +54,15 @@ typedef enum blade_render_path_t {
  *   cull           per-blade culling defaults for blade_gpu_cull calls with
  *                  desc NULL (blade_cull_desc_defaults)
  *   path           BLADE_PATH_TESSELLATION
- *   displacement   0: flat blades; > 0: eq. 23, the midrib raised along
- *                  the normal by displacement * width / 2 at the root
- *                  (both paths then build 2 columns across the width)
- *   width_correction 0: off; > 0: eq. 24, a blade seen edge-on is widened
- *                  by 1 / max(|n.view|, width_correction) (clamped at 4x)
+ *   displacement   0: flat blades; k > 0: eq. 23 as printed, scaled by k
+ *                  (1 the paper): p += k (width / 2) n (0.5 - |u - 0.5|
+ *                  (1 - v)) (scene, grass.displacement); the tessellation
+ *                  and the pulled strips then build 2 columns across the
+ *                  width, the compute rasterizer keeps 1 (docs/BLADES.md)
+ *   width_correction 0: off; > 0: the eq. 24 step, this project's reading
+ *                  (docs/BLADES.md): a blade seen edge-on is widened by
+ *                  1 / max(|n.view|, width_correction), at most 4x (scene,
+ *                  grass.width_correction)
  *   no_patch_cull  false: CPU patch frustum test on
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
@@ -177,6 +181,10 @@ typedef struct blade_surface_t {
     int max_level;
     float lod_distance;
 } blade_surface_t;
+/* Vertices of one pulled strip (blade_geom.glsl blade_strip_uv):
+ * S = 2 (max_level + 1), or 2 S + 2 with the eq. 23 displacement (two
+ * columns across the width). */
+uint32_t blade_strip_vertices(int max_level, float displacement);
 /* Sets the surface and shading uniforms (blade_geom.glsl,
  * grass_shade.glsl) of program p (in use); zero sun and albedos take the
  * blade_draw_desc_t defaults. */

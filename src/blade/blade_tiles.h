@@ -110,7 +110,9 @@
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
- *   shape, max_level (8 segments at the camera), lod_distance (30 m): as
+ *   shape, max_level (8 segments at the camera), lod_distance (30 m),
+ *   displacement, width_correction (0: off; eq. 23, eq. 24; scene,
+ *                    grass.displacement, grass.width_correction): as
  *                    blade_gpu_desc_t
  *   tessellate       false (default): the hardware path draws instanced
  *                    triangle strips by vertex pulling; true: GL_PATCHES
@@ -154,6 +156,8 @@ typedef struct blade_tiles_desc_t {
     scene_blade_shape_t shape;
     int max_level;
     float lod_distance;
+    float displacement;
+    float width_correction;
     bool tessellate;
     blade_cull_desc_t cull;
     uint32_t draw_capacity;
