@@ -1,8 +1,8 @@
 /* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
- * simulates it in a compute shader (eq. 1-13 plus the collision exit of
+ * simulates it in a compute shader (eq. 1-16 plus the collision exit of
  * blade_ref.h), culls it per patch on the CPU and per blade in a compute
- * shader (eq. 14-20) into an indirect draw command, and draws the
+ * shader (eq. 17-20) into an indirect draw command, and draws the
  * survivors either through tessellation (GL_PATCHES; the control shader
  * picks the level by distance, the evaluation shader builds the blade by
  * De Casteljau, eq. 21, with the shape functions of sec. 6.3 and the

@@ -1,5 +1,5 @@
 /* blade_ref: CPU reference of the blade simulation (Jahrmann & Wimmer 2017
- * eq. 1-13) and culling (eq. 14-20). Every function mirrors, statement by
+ * eq. 1-16) and culling (eq. 17-20). Every function mirrors, statement by
  * statement, its twin in shaders/common/blade.glsl (same names without the
  * ref_ prefix), so the GPU result can be compared with an epsilon. Beyond
  * both papers: collision against depth cube maps (Orthmann et al. 2009

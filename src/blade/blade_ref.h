@@ -4,9 +4,9 @@
  * point), v2 (simulated tip). The functions here are the exact twins of
  * shaders/common/blade.glsl, shaders/blade/blade_physics.comp,
  * shaders/blade/blade_cull.comp and shaders/blade/blade_geom.glsl, one
- * function per step so tests can check each: recovery (eq. 1), gravity
- * (eq. 2-4), wind (eq. 5-8), collision (sec. 5.2), state validation
- * (eq. 9-13), culling (eq. 14-20), the blade surface (eq. 21).
+ * function per step so tests can check each: recovery (eq. 3), gravity
+ * (eq. 4-6), wind (eq. 7-8), collision (sec. 5.2, eq. 14-16), state validation
+ * (eq. 9-13), culling (eq. 17-20), the blade surface (eq. 21).
  *
  * One simulation step of blade_ref_step_one, in this order:
  *   1. height <= 0 (a padding blade): nothing happens.
@@ -354,7 +354,7 @@ typedef struct blade_ref_surface_desc_t {
 void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *desc, float u, float v, float pos[3],
                           float normal[3]);
 
-/* ---- culling (sec. 6, eq. 14-20) ----------------------------------------
+/* ---- culling (sec. 6, eq. 17-20) ----------------------------------------
  * Tests, in this order (the first that fails culls the blade and only that
  * test's counter counts it; same order as the paper, cheapest first):
  *   0 orientation: dir_c = (v0 - cam) projected onto the blade's ground
