@@ -183,8 +183,9 @@ static void test_shapes(void)
 
 /* Eq. 23 in numbers: one upright blade (width 0.16 m, height 0.6 m, width
  * along x) seen edge-on from +x. Flat, it is a line of no area; with the
- * midrib raised (displacement 1: 0.08 m at the root, along the normal z)
- * its side view is a triangle, in both render paths. Counts the pixels
+ * eq. 23 as printed (displacement 1: the midrib w / 4 = 0.04 m along the
+ * normal z, the edges from 0 at the root to 0.04 m at the tip) its side
+ * view is a triangle, in both render paths. Counts the pixels
  * that differ from the clear colour. */
 static int midrib_pixels(blade_render_path_t path, float displacement)
 {

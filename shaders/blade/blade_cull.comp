@@ -1,6 +1,6 @@
 #version 450
 /* blade_cull.comp: per-blade culling (Jahrmann & Wimmer 2017 sec. 6,
- * eq. 14-20), the twin of blade_ref_cull_one in src/blade/blade_ref.c.
+ * eq. 17-20), the twin of blade_ref_cull_one in src/blade/blade_ref.c.
  * Tests in order: orientation, frustum, distance, occlusion; the first that
  * fails culls the blade and increments its counter (counters[0..3] in that
  * order). A survivor appends its index to `survivors` and increments the

@@ -11,13 +11,18 @@
  *     1 - max(v - tau, 0) / (1 - tau), tau = 0.5; dandelion (1 - v) times
  *     a tooth pattern 0.35 + 0.65 |2 fract(4v) - 1| (own profile after the
  *     paper's figure: teeth show from 8 segments on).
- *   eq. 23 (optional): p += n displacement w (0.5 - |u - 0.5|) (1 - v),
- *     a raised midrib fading to the tip; it needs vertices at u = 0.5, so
- *     with displacement > 0 both paths build 2 columns across the width
- *     (blade_columns).
- *   eq. 24 (optional, this project's reading): width w /
- *     max(|n . view|, width_correction), at most 4 w, so blades seen
- *     edge-on do not fall below a pixel and alias.
+ *   eq. 23 (optional, as printed, scaled by u_displacement = k, 1 the
+ *     paper): d = k (w / 2) n (0.5 - |u - 0.5| (1 - v)), p += d. The
+ *     paper's w is the half width (eq. 21 spans c -+ w t1), so w / 2 here.
+ *     The midrib (u = 0.5) stands w / 4 off the curve along n over the
+ *     whole blade, the edges 0 at the root up to w / 4 at the tip: a fold
+ *     of depth (w / 4)(1 - v). It needs vertices at u = 0.5, so with
+ *     displacement > 0 the tessellation and both pulled strips build 2
+ *     columns across the width (blade_columns, blade_strip_uv).
+ *   eq. 24 (optional, this project's reading: the printed form was not
+ *     recovered, docs/BLADES.md): width w / max(|n . view|,
+ *     width_correction), at most 4 w, so blades seen edge-on do not fall
+ *     below a pixel and alias.
  * Level of detail: segments along the blade, from u_max_level at the
  * camera down to max(u_max_level / 4, 1) at u_lod_distance (root distance). */
 #ifndef BLADE_GEOM_GLSL
@@ -36,8 +41,26 @@ uniform vec3 u_camera;
 uniform int u_max_level;
 uniform float u_lod_distance;
 
-/* Segments across the width: 2 when eq. 23 raises the midrib, else 1. */
+/* Segments across the width: 2 when eq. 23 folds the midrib, else 1. */
 int blade_columns() { return u_displacement > 0.0 ? 2 : 1; }
+
+/* (u, v) of vertex k of a pulled strip (blade_pull.vert, tiles_draw.vert)
+ * of a blade with n segments: S = 2 (u_max_level + 1) vertices per column,
+ * vertex j of a column at (j & 1, min(j / 2, n) / n), so past level n the
+ * strip collapses into degenerate triangles. With 2 columns (eq. 23; u in
+ * [0, 0.5], then [0.5, 1]) they are joined by 2 degenerate vertices (the
+ * last of the first, the first of the second): 2 S + 2 vertices. */
+vec2 blade_strip_uv(int k, int n)
+{
+    int s = 2 * (u_max_level + 1), column = 0;
+    if (k == s) {
+        k = s - 1;
+    } else if (k > s) {
+        column = 1;
+        k = max(k - s - 2, 0);
+    }
+    return vec2((float(column) + float(k & 1)) / float(blade_columns()), float(min(k / 2, n)) / float(n));
+}
 
 int blade_lod(Blade b)
 {
@@ -74,7 +97,7 @@ void blade_build(Blade b, float u, float v, out vec3 pos, out vec3 normal)
     vec3 c1 = c + t1 * (0.5 * w);
     float t = 0.5 + (u - 0.5) * blade_profile(v);
     pos = mix(c0, c1, t);
-    if (u_displacement > 0.0) pos += n * (u_displacement * w * (0.5 - abs(u - 0.5)) * (1.0 - v));
+    if (u_displacement > 0.0) pos += n * (u_displacement * (0.5 * w) * (0.5 - abs(u - 0.5) * (1.0 - v)));
     normal = n;
 }
 

@@ -1,6 +1,6 @@
 #version 450
 /* tiles_cull.comp: per-blade culling of the tiled field (Jahrmann & Wimmer
- * 2017 eq. 14-20: orientation, frustum, distance levels, occlusion; the
+ * 2017 eq. 17-20: orientation, frustum, distance levels, occlusion; the
  * tests, their order and the occlusion rule and bias of blade_cull.comp).
  * Invocation i: entry list[i / B] = (tile, slot), blade k = i % B: the
  * blade is the pool state of the slot, or, for an idle tile (slot

@@ -1,7 +1,8 @@
 #version 450
 /* tiles_draw.vert: vertex pulling of the blades appended by
  * tiles_cull.comp: one instance per blade, a triangle strip of
- * 2 (u_max_level + 1) vertices built by blade_geom.glsl (Jahrmann & Wimmer
+ * 2 (u_max_level + 1) vertices per column (2 columns with the eq. 23
+ * displacement, blade_strip_uv) built by blade_geom.glsl (Jahrmann & Wimmer
  * 2017 eq. 21, 23, 24), as blade_pull.vert. With u_from_end instance i
  * is blade u_capacity - 1 - i (the fade list, tiles_cull.comp). The
  * debug overlays (blade_tiles_set_overlay) tint blades by tile state, level
@@ -48,9 +49,10 @@ void main()
     uint index = u_from_end ? u_capacity - 1u - uint(gl_InstanceID) : uint(gl_InstanceID);
     Blade b = drawn[index];
     int n = blade_lod(b);
-    float v = float(min(gl_VertexID / 2, n)) / float(n);
+    vec2 uv = blade_strip_uv(gl_VertexID, n);
+    float v = uv.y;
     vec3 p, nrm;
-    blade_build(b, float(gl_VertexID & 1), v, p, nrm);
+    blade_build(b, uv.x, v, p, nrm);
     f_pos = p;
     f_normal = nrm;
     f_v = v;

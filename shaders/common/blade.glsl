@@ -1,7 +1,7 @@
 /* blade.glsl: GLSL twins of src/blade/blade_ref.c for the Bézier grass
- * blades of Jahrmann & Wimmer 2017: blade frame, recovery (eq. 1), gravity
- * (eq. 2-4), wind (eq. 5-8), sphere collision (sec. 5.2), state validation
- * (eq. 9-13) and the culling tests (eq. 14-20). Each function mirrors the C
+ * blades of Jahrmann & Wimmer 2017: blade frame, recovery (eq. 3), gravity
+ * (eq. 4-6), wind (eq. 7-8), sphere collision (sec. 5.2, eq. 14-16), state validation
+ * (eq. 9-13) and the culling tests (eq. 17-20). Each function mirrors the C
  * function of the same name (blade_ref_x -> blade_x) statement by
  * statement, in the same order of operations; see blade_ref.h for the
  * step order and the departures from the paper (quadrature length, second

@@ -330,6 +330,7 @@ static bool make_blades(app_world_t *w)
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
+                           .displacement = g->displacement, .width_correction = g->width_correction,
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
                                                                               : BLADE_PATH_PULLING};
     if (w->tuning.tess_max) gd.max_tess_level = w->tuning.tess_max;
@@ -391,6 +392,8 @@ static bool make_tiles(app_world_t *w)
                              .switch_distance = g->switch_distance,
                              .pool_slots = g->tile_pool,
                              .shape = g->shape,
+                             .displacement = g->displacement,
+                             .width_correction = g->width_correction,
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = w->blade_env.wind_count,
                              .cull = {.max_distance = g->switch_distance + 1.0f},

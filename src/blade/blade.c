@@ -1,6 +1,6 @@
 /* blade: GPU driver of the Jahrmann & Wimmer 2017 blades: upload, physics
- * dispatch (eq. 1-13), CPU patch culling and per-blade culling dispatch
- * (eq. 14-20) into an indirect command, tessellated or vertex-pulled
+ * dispatch (eq. 1-16), CPU patch culling and per-blade culling dispatch
+ * (eq. 17-20) into an indirect command, tessellated or vertex-pulled
  * drawing (eq. 21-24), statistics read back a frame late; beyond both
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
  * eq. 1-5). GL objects come from gfx only. */
@@ -43,15 +43,19 @@ static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t s
                                                 .label = label});
 }
 
+uint32_t blade_strip_vertices(int max_level, float displacement)
+{
+    uint32_t s = 2u * (uint32_t)(max_level + 1);
+    return displacement > 0.0f ? 2u * s + 2u : s;
+}
+
 /* Indirect command layout: {count, instanceCount, first, baseInstance}. The
  * tessellation path counts patches (count, one instance), vertex pulling
- * counts instances of one strip of S = 2 (levels + 1) vertices, or of
- * 2 S + 2 with the eq. 23 displacement (two columns, blade_pull.vert). */
+ * counts instances of one strip (blade_strip_vertices). */
 static void command_initial(const blade_gpu_t *g, uint32_t cmd[4])
 {
     bool pull = g->desc.path == BLADE_PATH_PULLING;
-    uint32_t s = 2u * (uint32_t)(g->desc.max_tess_level + 1);
-    cmd[0] = pull ? (g->desc.displacement > 0.0f ? 2u * s + 2u : s) : 0u;
+    cmd[0] = pull ? blade_strip_vertices(g->desc.max_tess_level, g->desc.displacement) : 0u;
     cmd[1] = pull ? 0u : 1u;
     cmd[2] = 0u;
     cmd[3] = 0u;

@@ -1,8 +1,8 @@
 /* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
- * simulates it in a compute shader (eq. 1-13 plus the collision exit of
+ * simulates it in a compute shader (eq. 1-16 plus the collision exit of
  * blade_ref.h), culls it per patch on the CPU and per blade in a compute
- * shader (eq. 14-20) into an indirect draw command, and draws the
+ * shader (eq. 17-20) into an indirect draw command, and draws the
  * survivors either through tessellation (GL_PATCHES; the control shader
  * picks the level by distance, the evaluation shader builds the blade by
  * De Casteljau, eq. 21, with the shape functions of sec. 6.3 and the
@@ -54,11 +54,15 @@ typedef enum blade_render_path_t {
  *   cull           per-blade culling defaults for blade_gpu_cull calls with
  *                  desc NULL (blade_cull_desc_defaults)
  *   path           BLADE_PATH_TESSELLATION
- *   displacement   0: flat blades; > 0: eq. 23, the midrib raised along
- *                  the normal by displacement * width / 2 at the root
- *                  (both paths then build 2 columns across the width)
- *   width_correction 0: off; > 0: eq. 24, a blade seen edge-on is widened
- *                  by 1 / max(|n.view|, width_correction) (clamped at 4x)
+ *   displacement   0: flat blades; k > 0: eq. 23 as printed, scaled by k
+ *                  (1 the paper): p += k (width / 2) n (0.5 - |u - 0.5|
+ *                  (1 - v)) (scene, grass.displacement); the tessellation
+ *                  and the pulled strips then build 2 columns across the
+ *                  width, the compute rasterizer keeps 1 (docs/BLADES.md)
+ *   width_correction 0: off; > 0: the eq. 24 step, this project's reading
+ *                  (docs/BLADES.md): a blade seen edge-on is widened by
+ *                  1 / max(|n.view|, width_correction), at most 4x (scene,
+ *                  grass.width_correction)
  *   no_patch_cull  false: CPU patch frustum test on
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
@@ -177,6 +181,10 @@ typedef struct blade_surface_t {
     int max_level;
     float lod_distance;
 } blade_surface_t;
+/* Vertices of one pulled strip (blade_geom.glsl blade_strip_uv):
+ * S = 2 (max_level + 1), or 2 S + 2 with the eq. 23 displacement (two
+ * columns across the width). */
+uint32_t blade_strip_vertices(int max_level, float displacement);
 /* Sets the surface and shading uniforms (blade_geom.glsl,
  * grass_shade.glsl) of program p (in use); zero sun and albedos take the
  * blade_draw_desc_t defaults. */

@@ -1,5 +1,5 @@
 /* blade_ref: CPU reference of the blade simulation (Jahrmann & Wimmer 2017
- * eq. 1-13) and culling (eq. 14-20). Every function mirrors, statement by
+ * eq. 1-16) and culling (eq. 17-20). Every function mirrors, statement by
  * statement, its twin in shaders/common/blade.glsl (same names without the
  * ref_ prefix), so the GPU result can be compared with an epsilon. Beyond
  * both papers: collision against depth cube maps (Orthmann et al. 2009
@@ -942,6 +942,12 @@ float blade_ref_profile(int shape, float v)
 
 void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[3], float normal[3])
 {
+    blade_ref_surface_at(b, &(blade_ref_surface_desc_t){.shape = shape}, u, v, pos, normal);
+}
+
+void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *d, float u, float v, float pos[3],
+                          float normal[3])
+{
     v3 v0 = v3_load(b->v0), v1 = v3_load(b->v1), v2 = v3_load(b->v2);
     float w = b->v2[3];
     v3 t1, front;
@@ -951,9 +957,16 @@ void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[
     v3 c = v3_add(a, v3_scale(v3_sub(bb, a), v));
     v3 n = v3_safe_normalize(v3_cross(v3_sub(bb, a), t1));
     if (v3_dot(n, n) == 0.0f) n = front;
+    if (d->width_correction > 0.0f) {
+        float nv = fabsf(v3_dot(n, v3_safe_normalize(v3_sub(v3_load(d->camera), c))));
+        w = w * fminf(1.0f / fmaxf(nv, d->width_correction), 4.0f);
+    }
     v3 c0 = v3_sub(c, v3_scale(t1, 0.5f * w));
     v3 c1 = v3_add(c, v3_scale(t1, 0.5f * w));
-    float t = 0.5f + (u - 0.5f) * blade_ref_profile(shape, v);
-    v3_store(pos, v3_add(v3_scale(c0, 1.0f - t), v3_scale(c1, t)));
+    float t = 0.5f + (u - 0.5f) * blade_ref_profile(d->shape, v);
+    v3 p = v3_add(v3_scale(c0, 1.0f - t), v3_scale(c1, t));
+    if (d->displacement > 0.0f)
+        p = v3_add(p, v3_scale(n, d->displacement * (0.5f * w) * (0.5f - fabsf(u - 0.5f) * (1.0f - v))));
+    v3_store(pos, p);
     v3_store(normal, n);
 }

@@ -4,9 +4,9 @@
  * point), v2 (simulated tip). The functions here are the exact twins of
  * shaders/common/blade.glsl, shaders/blade/blade_physics.comp,
  * shaders/blade/blade_cull.comp and shaders/blade/blade_geom.glsl, one
- * function per step so tests can check each: recovery (eq. 1), gravity
- * (eq. 2-4), wind (eq. 5-8), collision (sec. 5.2), state validation
- * (eq. 9-13), culling (eq. 14-20), the blade surface (eq. 21).
+ * function per step so tests can check each: recovery (eq. 3), gravity
+ * (eq. 4-6), wind (eq. 7-8), collision (sec. 5.2, eq. 14-16), state validation
+ * (eq. 9-13), culling (eq. 17-20), the blade surface (eq. 21).
  *
  * One simulation step of blade_ref_step_one, in this order:
  *   1. height <= 0 (a padding blade): nothing happens.
@@ -330,10 +330,31 @@ float blade_ref_profile(int shape, float v);
 /* The surface point of blade_build at u (0..1 across the width) and v
  * (0 root, 1 tip) and its normal normalize(cross(b - a, width_dir)) (the
  * front direction where that degenerates), without eq. 23 and eq. 24
- * (u_displacement and u_width_correction 0: the program's setting). */
+ * (u_displacement and u_width_correction 0: the program's default). */
 void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[3], float normal[3]);
 
-/* ---- culling (sec. 6, eq. 14-20) ----------------------------------------
+/* The blade_geom.glsl uniforms of blade_ref_surface_at. Zero means off:
+ *   shape            BLADE_SHAPE_* (0 quadratic)
+ *   displacement     0: off; k > 0: eq. 23 as printed, scaled by k:
+ *                    p += k (w / 2) n (0.5 - |u - 0.5| (1 - v)), w / 2 the
+ *                    paper's w (eq. 21 spans c -+ w t1); k = 1 the paper
+ *   width_correction 0: off; > 0: the eq. 24 step (this project's reading,
+ *                    docs/BLADES.md): w / max(|n . view|, width_correction),
+ *                    at most 4 w, view towards camera from the curve point
+ *   camera           world position (used by width_correction only) */
+typedef struct blade_ref_surface_desc_t {
+    int shape;
+    float displacement;
+    float width_correction;
+    float camera[3];
+} blade_ref_surface_desc_t;
+
+/* blade_ref_surface with eq. 23 and eq. 24 as desc sets them: the twin of
+ * blade_build with the same uniforms (test_blade_surface). */
+void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *desc, float u, float v, float pos[3],
+                          float normal[3]);
+
+/* ---- culling (sec. 6, eq. 17-20) ----------------------------------------
  * Tests, in this order (the first that fails culls the blade and only that
  * test's counter counts it; same order as the paper, cheapest first):
  *   0 orientation: dir_c = (v0 - cam) projected onto the blade's ground

@@ -1,5 +1,5 @@
 /* blade_tiles: tiled blade field of Fan et al. 2015 over the Jahrmann &
- * Wimmer 2017 blades (eq. 1-13 physics on active slots only, eq. 14-20
+ * Wimmer 2017 blades (eq. 1-16 physics on active slots only, eq. 17-20
  * culling, eq. 21 drawing): template seeding, ground texture, slot pool,
  * activation through src/hybrid, motion readback, per-tile CPU frustum
  * test, cull (occlusion included) + vertex-pulled or tessellated draw.
@@ -333,7 +333,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     for (int k = 0; k < 2; k++) {
         uint32_t *c = &cmd[k ? CMD_FADE : CMD_SOLID];
         if (d->tessellate) c[1] = 1u; /* one instance of `count` patches */
-        else c[0] = 2u * (uint32_t)(d->max_level + 1); /* instances of one strip */
+        else c[0] = blade_strip_vertices(d->max_level, d->displacement); /* vertices of one strip */
     }
     t->command = make_buffer(t, "command", sizeof cmd, cmd);
     ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
@@ -761,7 +761,8 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
 
 static blade_surface_t tiles_surface(const blade_tiles_t *t)
 {
-    return (blade_surface_t){.shape = t->desc.shape, .max_level = t->desc.max_level,
+    return (blade_surface_t){.shape = t->desc.shape, .displacement = t->desc.displacement,
+                             .width_correction = t->desc.width_correction, .max_level = t->desc.max_level,
                              .lod_distance = t->desc.lod_distance};
 }
 

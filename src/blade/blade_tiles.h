@@ -15,12 +15,12 @@
  * Mesh terrains are rejected (logged error): use blade_gpu for them.
  *
  * Idle tiles have no per-blade state: they are drawn from the templates in
- * the procedural pose P(t), the equilibrium of the blade physics (eq. 1-13
+ * the procedural pose P(t), the equilibrium of the blade physics (eq. 1-16
  * with eta = 0) under gravity and the wind of time t. One physics step is
  *   v2 <- validate(v2 + a (T(v2) - v2)),  T(v2) = v0 + up h + (g + w(v2)) / s,
  * with a = 1 - exp(-s dt) (the exact step of eq. 1, blade_ref_step_gain
- * times s; s at least BLADE_STIFFNESS_MIN), g of eq. 2-4,
- * w(v2) = (sum_i w_i(v0, t)) theta(v2) of eq. 5-8, validate = eq. 9-13.
+ * times s; s at least BLADE_STIFFNESS_MIN), g of eq. 4-6,
+ * w(v2) = (sum_i w_i(v0, t)) theta(v2) of eq. 7-8, validate = eq. 9-13.
  * P(t) iterates this map from the rest pose: TILES_POSE_ITERATIONS (6)
  * times with a = 0.7 (fast approach), then TILES_POSE_STEPS (24) times
  * with a = min(1 - exp(-s dt), 0.7), dt of the latest update (the validation is not a radial
@@ -50,7 +50,7 @@
  * Drawing: CPU frustum test per tile (box of the tile grown by the blade
  * reach), then tiles_cull.comp over the blades of the listed blade-
  * representation tiles: orientation, frustum, distance-level and
- * occlusion tests of blade_cull (eq. 14-20 and the occlusion test against
+ * occlusion tests of blade_cull (eq. 17-20 and the occlusion test against
  * the opaque depth, same rule and bias; the distance level uses the
  * template index, and templates are Morton ordered, so thinning stays
  * hole-free), culled blades counted per test; survivors are appended as
@@ -110,7 +110,9 @@
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
- *   shape, max_level (8 segments at the camera), lod_distance (30 m): as
+ *   shape, max_level (8 segments at the camera), lod_distance (30 m),
+ *   displacement, width_correction (0: off; eq. 23, eq. 24; scene,
+ *                    grass.displacement, grass.width_correction): as
  *                    blade_gpu_desc_t
  *   tessellate       false (default): the hardware path draws instanced
  *                    triangle strips by vertex pulling; true: GL_PATCHES
@@ -154,6 +156,8 @@ typedef struct blade_tiles_desc_t {
     scene_blade_shape_t shape;
     int max_level;
     float lod_distance;
+    float displacement;
+    float width_correction;
     bool tessellate;
     blade_cull_desc_t cull;
     uint32_t draw_capacity;

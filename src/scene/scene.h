@@ -101,6 +101,8 @@ typedef struct scene_grass_desc_t {
     float tile_size;         /* grass tile side m [0, 1000]; default 4 */
     scene_blade_shape_t shape; /* default quadratic */
     scene_blade_render_t blade_render; /* default pull */
+    float displacement;      /* eq. 23 as printed, times this [0, 4]; default 0 (off) */
+    float width_correction;  /* eq. 24 step (this project's reading) [0, 1]; default 0 (off) */
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
     int deformed_pool;       /* billboards' deformed-mesh pool slots [0, 262144]; default 4096 */

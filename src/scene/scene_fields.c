@@ -115,6 +115,15 @@ const scene_field_t scene_fields[] = {
       .doc = "how the hardware path draws blades, in blade mode and the hybrid's tiles: instanced triangle strips "
              "by vertex pulling, or one patch per blade through the tessellation shaders (docs/BLADES.md); "
              "--blade-render overrides it"},
+    {GRASS(displacement), .key = "displacement", .type = SCENE_FIELD_FLOAT, .hi = 4,
+      .doc = "blades' 3-D shape, Jahrmann & Wimmer 2017 eq. 23 as printed, scaled by this (1: the paper): the midrib "
+             "folds out of the blade by width/4 at the root (docs/BLADES.md); blade mode and the hybrid's tiles; 0: "
+             "flat blades",
+      .def_doc = "0 (off)"},
+    {GRASS(width_correction), .key = "width_correction", .type = SCENE_FIELD_FLOAT, .hi = 1,
+      .doc = "blades seen edge-on widened by 1 / max(|n.view|, this), at most 4x: the eq. 24 step as this project "
+             "reads it (docs/BLADES.md); blade mode and the hybrid's tiles; 0: off",
+      .def_doc = "0 (off)"},
     {GRASS(subdiv), .key = "subdiv", .type = SCENE_FIELD_INTS, .n = 2, .lo = SCENE_SUBDIV_MIN,
       .hi = SCENE_SUBDIV_MAX, .def = {SCENE_DEFAULT_SUBDIV, SCENE_DEFAULT_SUBDIV}, .flags = SCENE_FIELD_ZERO_OK,
       .doc = "deformable billboard mesh [N columns, M rows]"},
