@@ -44,26 +44,32 @@ uint blade_fade_mask(float a, int n)
     return mask;
 }
 
+/* Alpha a scaled by a fade's keep in [0, 1], dithered by interleaved
+ * gradient noise of the pixel centre frag (unchanged at keep 1). */
+float bb_dither_alpha(float a, float keep, vec2 frag)
+{
+    float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
+    return keep < 1.0 ? clamp(a * keep + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
+}
+
 /* A billboard texel's alpha a under the hybrid fade (0 nearer than
  * fade_start, 1 beyond fade_end; fade_end <= 0: none) at distance dist,
- * dithered by interleaved gradient noise of the pixel centre frag. */
+ * dithered (bb_dither_alpha). */
 float bb_fade_alpha(float a, float dist, float fade_start, float fade_end, vec2 frag)
 {
     if (fade_end <= 0.0) return a;
     float fade = clamp((dist - fade_start) / max(fade_end - fade_start, 1e-6), 0.0, 1.0);
-    float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
-    return fade < 1.0 ? clamp(a * fade + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
+    return bb_dither_alpha(a, fade, frag);
 }
 
 /* A billboard texel's alpha a under the canopy's fade (1 nearer than
  * far_start, 0 beyond far_end; far_end <= 0: none) at distance dist,
- * dithered as bb_fade_alpha dithers the near fade. */
+ * dithered as the near fade. */
 float bb_far_alpha(float a, float dist, float far_start, float far_end, vec2 frag)
 {
     if (far_end <= 0.0) return a;
     float keep = 1.0 - clamp((dist - far_start) / max(far_end - far_start, 1e-6), 0.0, 1.0);
-    float ign = fract(52.9829189 * fract(dot(frag, vec2(0.06711056, 0.00583715))));
-    return keep < 1.0 ? clamp(a * keep + (ign - 0.5) * 0.25, 0.0, 1.0) : a;
+    return bb_dither_alpha(a, keep, frag);
 }
 
 /* Alpha to coverage, one rule for both rasterizers and every driver: a
