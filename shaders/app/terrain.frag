@@ -8,6 +8,7 @@
 #include "common/hash.glsl"
 #include "common/canopy.glsl"
 #include "common/switch.glsl"
+#include "common/extent.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
 uniform vec3 u_camera;
@@ -30,14 +31,10 @@ float value_noise(vec2 p)
     return mix(mix(a, b, u.x), mix(c, d, u.x), u.y);
 }
 
-/* The extent map's grass fraction at ground point p (texel of its candidate
- * cell, wrapped as the billboards' and tiles' lookups wrap it). */
+/* The extent map's grass fraction at ground point p. */
 float extent_at(vec2 p)
 {
-    if (!u_extent_on) return 1.0;
-    ivec2 size = textureSize(u_extent, 0);
-    ivec2 cell = ivec2(floor((p - u_extent_origin) / u_extent_spacing));
-    return texelFetch(u_extent, ((cell % size) + size) % size, 0).r;
+    return u_extent_on ? texelFetch(u_extent, extent_texel(u_extent, p, u_extent_origin, u_extent_spacing), 0).r : 1.0;
 }
 
 void main()

@@ -25,6 +25,7 @@
  * counted in cmd.overflow. The host zeroes the counted words before the
  * dispatch. */
 #include "blade/tiles_common.glsl"
+#include "common/extent.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -67,9 +68,7 @@ uniform uint u_extent_seed;
 
 bool extent_keep(vec3 v0, uint id)
 {
-    ivec2 size = textureSize(u_extent, 0);
-    ivec2 cell = ivec2(floor((v0.xz - u_extent_origin) / u_extent_spacing));
-    ivec2 texel = ((cell % size) + size) % size;
+    ivec2 texel = extent_texel(u_extent, v0.xz, u_extent_origin, u_extent_spacing);
     uint e = uint(texelFetch(u_extent, texel, 0).r * 255.0 + 0.5);
     return hash_u32(id ^ hash_u32(u_extent_seed ^ 0x5bd1e995u)) % 255u < e;
 }

@@ -40,23 +40,17 @@ bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
     return t->vbo.id && t->ibo.id && t->prog.id && t->sky.id;
 }
 
-bool app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, const core_image_t *extent,
-                            const float origin[2], float spacing)
+void app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
+                            float spacing)
 {
     blade_canopy_pack(c, &t->canopy);
-    gfx_texture_destroy(&t->extent);
-    if (!extent) return true;
-    t->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = extent->w, .h = extent->h, .format = GL_R8,
-                                                       .filter = GL_NEAREST, .data = extent->px,
-                                                       .upload_format = GL_RED, .label = "terrain.extent"});
+    t->extent = extent;
     memcpy(t->extent_origin, origin, sizeof t->extent_origin);
     t->extent_spacing = spacing;
-    return t->extent.id != 0;
 }
 
 void app_terrain_destroy(app_terrain_t *t)
 {
-    gfx_texture_destroy(&t->extent);
     gfx_buffer_destroy(&t->vbo);
     gfx_buffer_destroy(&t->ibo);
     gfx_vertex_array_destroy(&t->vao);
@@ -83,11 +77,11 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
         glUniform2fv(gfx_uniform(t->prog, "u_canopy_sun"), u->rows * BLADE_CANOPY_AZIMUTHS, &u->sun[0][0]);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
-        glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent.id != 0);
+        glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);
         glUniform1i(gfx_uniform(t->prog, "u_extent"), 0);
         glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
         glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
-        glBindTextureUnit(0, t->extent.id);
+        glBindTextureUnit(0, t->extent);
     }
     glBindVertexArray(t->vao);
     glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);

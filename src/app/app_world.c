@@ -412,21 +412,20 @@ static bool make_tiles(app_world_t *w)
     }
     w->have_tiles = blade_tiles_make(&w->tiles, &td);
     if (w->have_tiles) blade_tiles_set_slope_source(&w->tiles, bb_slope_source, w);
-    /* The ground canopy beyond the billboards, thinned by the same map. */
+    /* The ground canopy beyond the billboards, thinned by the tiles' extent
+     * map (its texture). */
     blade_canopy_t canopy;
-    bool canopy_ok = blade_canopy_make(&canopy, &(blade_canopy_desc_t){
-                                                    .density = g->density,
-                                                    .height = {g->height[0], g->height[1]},
-                                                    .width = {g->width[0], g->width[1]},
-                                                    .stiffness = {g->stiffness[0], g->stiffness[1]},
-                                                    .shape = g->shape,
-                                                    .gravity = w->blade_env.gravity,
-                                                    .seed = s->seed,
-                                                    .sun = APP_SUN_DIR,
-                                                });
-    if (w->have_tiles && canopy_ok)
-        w->have_tiles = app_terrain_set_canopy(&w->terrain, &canopy, have_layout ? &lay.extent : NULL,
-                                               td.extent_origin, td.extent_spacing);
+    if (w->have_tiles && blade_canopy_make(&canopy, &(blade_canopy_desc_t){
+                                                        .density = g->density,
+                                                        .height = {g->height[0], g->height[1]},
+                                                        .width = {g->width[0], g->width[1]},
+                                                        .stiffness = {g->stiffness[0], g->stiffness[1]},
+                                                        .shape = g->shape,
+                                                        .gravity = w->blade_env.gravity,
+                                                        .seed = s->seed,
+                                                        .sun = APP_SUN_DIR,
+                                                    }))
+        app_terrain_set_canopy(&w->terrain, &canopy, w->tiles.extent.id, td.extent_origin, td.extent_spacing);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
 }

@@ -38,20 +38,21 @@ typedef struct app_terrain_t {
     GLuint vao, empty_vao;
     int index_count;
     gfx_program_t prog, sky;
-    /* Ground canopy: its table, the extent map that thins it, and this
-     * frame's fade (start, end of the switch distance; end 0: none). */
+    /* Ground canopy: its table, the extent map that thins it (the tiles'
+     * texture, borrowed), and this frame's fade (start, end of the switch
+     * distance; end 0: none). */
     blade_canopy_uniforms_t canopy;
-    gfx_texture_t extent;
+    GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
 } app_terrain_t;
 
 bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh);
 void app_terrain_destroy(app_terrain_t *t);
-/* The canopy's table and the extent map (NULL: none) that thins it, whose
- * texel of ground point p is floor((p.xz - origin) / spacing) wrapped. */
-bool app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, const core_image_t *extent,
-                            const float origin[2], float spacing);
+/* The canopy's table and the extent map that thins it (an R8 texture the
+ * caller owns, 0: none; common/extent.glsl says which texel). */
+void app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
+                            float spacing);
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v);
 
 
