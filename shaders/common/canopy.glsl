@@ -43,8 +43,9 @@ vec3 canopy_table_color(float e, float phi, out float cover)
     vec4 amb = mix(u_canopy_amb[i], u_canopy_amb[i + 1], f);
     cover = mix(u_canopy_cover[i], u_canopy_cover[i + 1], f);
     vec3 r = u_canopy_albedo_root, dt = u_canopy_albedo_tip - u_canopy_albedo_root;
-    return SUN_COLOR * SUN_DIFFUSE * (r * s.x + dt * s.y) + r * (AMBIENT_DOWN * amb.x + (AMBIENT_UP - AMBIENT_DOWN) * amb.y) +
-           dt * (AMBIENT_DOWN * amb.z + (AMBIENT_UP - AMBIENT_DOWN) * amb.w);
+    vec3 up = AMBIENT_UP - AMBIENT_DOWN;
+    return SUN_COLOR * SUN_DIFFUSE * (r * s.x + dt * s.y) + r * (AMBIENT_DOWN * amb.x + up * amb.y) +
+           dt * (AMBIENT_DOWN * amb.z + up * amb.w);
 }
 
 /* The canopy's colour (unfogged) and cover at ground point pos of unit

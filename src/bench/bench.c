@@ -69,6 +69,9 @@ typedef struct bench_config_t {
  * collider's path. */
 static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
 
+/* The least canopy distance beyond a switch distance: the two fade bands apart. */
+#define CANOPY_GAP (APP_SWITCH_FADE + APP_CANOPY_FADE)
+
 static void tweak(scene_desc_t *s, void *user)
 {
     const bench_config_t *c = user;
@@ -78,7 +81,7 @@ static void tweak(scene_desc_t *s, void *user)
     if (c->switch_distance > 0) s->grass.switch_distance = c->switch_distance;
     if (c->canopy_distance > 0) s->grass.canopy_distance = c->canopy_distance;
     /* A switch sweep keeps the canopy's band beyond the blades' (app_world_load's rule). */
-    s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + 5.0f);
+    s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + CANOPY_GAP);
     if (c->density_scale > 0) {
         s->grass.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
@@ -431,6 +434,15 @@ static const char *front_name(int front) { return front == 1 ? "hardware" : fron
  * the cheapest hybrid row whose image error is within the blade row's plus
  * the noise floor (else the least error, "met": false). Rows that leave a
  * distance at 0 take the scene's. Nothing when the run holds no such rows. */
+/* Row i is a measured row of the hybrid_canopy_distance chart on path
+ * path_k (0 hw, 1 compute). */
+static bool lod_row(const bench_run_t *b, int i, int path_k)
+{
+    const bench_config_t *c = &b->cfg[i];
+    bool compute = c->raster == 1 + SCENE_RASTER_COMPUTE;
+    return strcmp(c->group, "hybrid_canopy_distance") == 0 && compute == (path_k == 1) && b->err[i] >= 0.0;
+}
+
 static bool write_lod(const char *out, const app_options_t *o, const bench_run_t *b)
 {
     const char *scene_path = o->scene ? o->scene : "scenes/meadow.json";
@@ -447,30 +459,23 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     for (int path_k = 0; path_k < 2; path_k++) {
         int blade = -1, best = -1, least = -1, candidates = 0;
         for (int i = 0; i < b->n; i++) {
-            const bench_config_t *c = &b->cfg[i];
-            bool compute = c->raster == 1 + SCENE_RASTER_COMPUTE;
-            if (strcmp(c->group, "hybrid_canopy_distance") != 0 || compute != (path_k == 1) || b->err[i] < 0.0)
-                continue;
-            if (c->mode == SCENE_MODE_BLADE) blade = i;
-            if (c->mode != SCENE_MODE_HYBRID) continue;
+            if (!lod_row(b, i, path_k)) continue;
+            if (b->cfg[i].mode == SCENE_MODE_BLADE) blade = i;
+            if (b->cfg[i].mode != SCENE_MODE_HYBRID) continue;
             candidates++;
             if (least < 0 || b->err[i] < b->err[least]) least = i;
         }
         if (blade < 0 || least < 0) continue;
         double budget = b->err[blade] + b->floor;
         for (int i = 0; i < b->n; i++) {
-            const bench_config_t *c = &b->cfg[i];
-            bool compute = c->raster == 1 + SCENE_RASTER_COMPUTE;
-            if (strcmp(c->group, "hybrid_canopy_distance") != 0 || compute != (path_k == 1) ||
-                c->mode != SCENE_MODE_HYBRID || b->err[i] < 0.0 || b->err[i] > budget)
-                continue;
+            if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget) continue;
             if (best < 0 || b->met[i].frame_ms < b->met[best].frame_ms) best = i;
         }
         int pick = best >= 0 ? best : least;
         const bench_config_t *c = &b->cfg[pick];
         float sw = c->switch_distance > 0 ? c->switch_distance : s.grass.switch_distance;
         float cd = c->canopy_distance > 0 ? c->canopy_distance : s.grass.canopy_distance;
-        cd = fmaxf(cd, sw + 5.0f);
+        cd = fmaxf(cd, sw + CANOPY_GAP);
         core_buf_printf(&json,
                         "%s\n    \"%s\": {\"switch_distance\": %g, \"canopy_distance\": %g, \"gpu_ms\": %.4f, "
                         "\"image_error\": %.6f, \"budget\": %.6f, \"met\": %s, \"label\": \"%s\", "

@@ -36,13 +36,21 @@ typedef struct canopy_strip_t {
     float xlo, xhi; /* over its entries */
 } canopy_strip_t;
 
+/* A [min, max] range left at zero takes [lo, hi]. */
+static void default_range(float r[2], float lo, float hi)
+{
+    if (r[1] > 0.0f) return;
+    r[0] = lo;
+    r[1] = hi;
+}
+
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
 {
     blade_canopy_desc_t d = *desc;
     if (d.density <= 0.0f) d.density = SCENE_DEFAULT_DENSITY;
-    if (d.height[1] <= 0.0f) d.height[0] = SCENE_DEFAULT_BLADE_HEIGHT_MIN, d.height[1] = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
-    if (d.width[1] <= 0.0f) d.width[0] = SCENE_DEFAULT_BLADE_WIDTH_MIN, d.width[1] = SCENE_DEFAULT_BLADE_WIDTH_MAX;
-    if (d.stiffness[1] <= 0.0f) d.stiffness[0] = SCENE_DEFAULT_STIFFNESS_MIN, d.stiffness[1] = SCENE_DEFAULT_STIFFNESS_MAX;
+    default_range(d.height, SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX);
+    default_range(d.width, SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX);
+    default_range(d.stiffness, SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX);
     if (d.gravity <= 0.0f) d.gravity = SCENE_DEFAULT_BLADE_GRAVITY;
     if (d.rows <= 0) d.rows = 16;
     if (d.rays <= 0) d.rays = 4096;
