@@ -704,11 +704,11 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
-    bool canopy = w->mode == SCENE_MODE_HYBRID && w->have_tiles && uses_tiles(w);
+    bool tiles = w->have_tiles && uses_tiles(w); /* the hybrid's near blades, and its canopy */
     float far_lo = w->scene.grass.canopy_distance - APP_CANOPY_FADE;
     float far_hi = w->scene.grass.canopy_distance + APP_CANOPY_FADE;
-    w->terrain.canopy_fade[0] = canopy ? far_lo : 0.0f;
-    w->terrain.canopy_fade[1] = canopy ? far_hi : 0.0f;
+    w->terrain.canopy_fade[0] = tiles ? far_lo : 0.0f;
+    w->terrain.canopy_fade[1] = tiles ? far_hi : 0.0f;
     gfx_timer_begin("terrain");
     app_terrain_draw(&w->terrain, v);
     app_colliders_draw(&w->colliders, v);
@@ -722,7 +722,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     /* raster_begin takes the opaque depth (also read by occlusion culling). */
     if (raster) raster_begin(raster, target);
     bool raster_ok = true;
-    if (w->have_tiles && uses_tiles(w)) {
+    if (tiles) {
         blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi};
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
@@ -777,11 +777,11 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             d.fade_start = fade_lo;
             d.fade_end = fade_hi;
         }
-        if (canopy) {
+        if (tiles) {
             d.far_start = far_lo;
             d.far_end = far_hi;
         }
-        if (w->have_tiles && uses_tiles(w)) {
+        if (tiles) {
             blade_tiles_slope(&w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
         }
         if (raster) raster_ok = bb_field_raster(&w->bb, raster, &d) && raster_ok;
