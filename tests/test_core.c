@@ -74,6 +74,17 @@ int main(void)
     CHECK(back.w == 7 && back.h == 5 && memcmp(img.px, back.px, 7 * 5 * 4) == 0);
     core_image_free(&img);
     core_image_free(&back);
+    /* JPEG for docs: 200x100, left half dark, right half bright, written at
+     * most 64 wide -> a factor of 4, 50x25, the halves kept. */
+    CHECK(core_image_alloc(&img, 200, 100, 4));
+    for (int i = 0; i < 200 * 100; i++) memset(img.px + i * 4, i % 200 < 100 ? 40 : 220, 4);
+    snprintf(path, sizeof path, "%s/img.jpg", dir);
+    CHECK(core_image_write_jpg(&img, path, 64, 0));
+    CHECK(core_image_load(&back, path, 3));
+    CHECK(back.w == 50 && back.h == 25);
+    CHECK(abs(back.px[(12 * 50 + 5) * 3] - 40) < 6 && abs(back.px[(12 * 50 + 45) * 3] - 220) < 6);
+    core_image_free(&img);
+    core_image_free(&back);
     /* Drawing: text lands inside its box, blit copies, fill clips. */
     core_image_t canvas, tile;
     CHECK(core_image_alloc(&canvas, 64, 32, 4) && core_image_alloc(&tile, 4, 4, 1));

@@ -784,10 +784,13 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
     }
     snprintf(path, sizeof path, "%s/compare/compare.png", out);
-    snprintf(to, sizeof to, "%s/images/bench_compare.png", dir);
-    if (copy_file(path, to))
+    snprintf(to, sizeof to, "%s/images/bench_compare.jpg", dir);
+    core_image_t montage = {0};
+    if (core_image_load(&montage, path, 3) && core_image_write_jpg(&montage, to, 2560, 85))
         core_buf_printf(&r, "## Montage\n\n`meadow compare`: billboard, blade, hybrid and reference, with diff "
-                            "heatmaps against the reference.\n\n![compare](images/bench_compare.png)\n");
+                            "heatmaps against the reference (a half-size JPEG; `compare.png` beside the run is "
+                            "full size).\n\n![compare](images/bench_compare.jpg)\n");
+    core_image_free(&montage);
     snprintf(path, sizeof path, "%s/RESULTS.md", dir);
     int rc = core_buf_write(&r, path) ? 0 : 1;
     core_buf_free(&r);

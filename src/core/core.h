@@ -93,6 +93,10 @@ void core_image_free(core_image_t *img);
 bool core_image_load(core_image_t *img, const char *path, int channels);
 /* Writes PNG atomically (tmp + rename). */
 bool core_image_write_png(const core_image_t *img, const char *path);
+/* Writes an RGB JPEG atomically, box-filtered down by the smallest integer
+ * factor that brings the width to at most max_width (0: full size);
+ * quality 0 means 85. For images committed to docs/ (kept under 500 KB). */
+bool core_image_write_jpg(const core_image_t *img, const char *path, int max_width, int quality);
 
 /* Copies src (any channels, expanded to RGBA) into dst (RGBA) at (x, y),
  * clipped. */

@@ -98,3 +98,28 @@ bool core_image_write_png(const core_image_t *img, const char *path)
     free(b.data);
     return done;
 }
+
+bool core_image_write_jpg(const core_image_t *img, const char *path, int max_width, int quality)
+{
+    int f = max_width > 0 && img->w > max_width ? (img->w + max_width - 1) / max_width : 1;
+    core_image_t s = {0};
+    if (!core_image_alloc(&s, img->w / f, img->h / f, 3)) return false;
+    for (int y = 0; y < s.h; ++y)
+        for (int x = 0; x < s.w; ++x)
+            for (int c = 0; c < 3; ++c) {
+                int sum = 0;
+                for (int j = 0; j < f; ++j)
+                    for (int i = 0; i < f; ++i) {
+                        const uint8_t *q = img->px + ((size_t)(y * f + j) * img->w + (x * f + i)) * img->channels;
+                        sum += q[img->channels >= 3 ? c : 0];
+                    }
+                s.px[((size_t)y * s.w + x) * 3 + c] = (uint8_t)((sum + f * f / 2) / (f * f));
+            }
+    png_buf_t b = {0};
+    int ok = stbi_write_jpg_to_func(png_append, &b, s.w, s.h, 3, s.px, quality > 0 ? quality : 85);
+    bool done = ok && !b.failed && core_fs_write_atomic(path, b.data, b.size);
+    if (!ok || b.failed) core_log_error("%s: JPEG encoding failed", path);
+    free(b.data);
+    core_image_free(&s);
+    return done;
+}
