@@ -1,6 +1,6 @@
 /* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
- * simulates it in a compute shader (eq. 1-16 plus the collision exit of
+ * simulates it in a compute shader (eq. 3-16 plus the collision exit of
  * blade_ref.h), culls it per patch on the CPU and per blade in a compute
  * shader (eq. 17-20) into an indirect draw command, and draws the
  * survivors either through tessellation (GL_PATCHES; the control shader
@@ -13,7 +13,7 @@
  *
  * Beyond both papers: the cube proxies of the collide set add depth
  * cube-map colliders (the billboard model's, Orthmann et al. 2009 eq. 1-5)
- * to the physics, see the blade_ref.h banner.
+ * to the physics (docs/BLADES.md).
  *
  * Timer passes: "blade.physics", "blade.cull", "blade.draw".
  *

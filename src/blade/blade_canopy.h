@@ -7,7 +7,7 @@
  * A periodic square patch of blades, seeded as blade_seed seeds them
  * (height, width, stiffness and facing uniform in the scene's ranges, roots
  * uniform) and settled under gravity by the blade physics
- * (blade_ref_step_one, eq. 1-16, no wind), is ray-cast orthographically at
+ * (blade_ref_step_one, eq. 3-16, no wind), is ray-cast orthographically at
  * `rows` view elevations: row i looks down at elevation 90 i / (rows - 1)
  * degrees (row 0 at 1 degree: a ray along the ground meets no ground).
  * Each blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21
