@@ -2,7 +2,7 @@
 # bench_perf: `meadow bench --perf DIR --quick` on llvmpipe writes a
 # perf.json with every run (tiny.json in each mode, hw and compute; both
 # floors measured) and
-# regenerates only the marked section of a doc; `meadow bench --baseline`
+# regenerates only the marked sections of a doc (the table, the summary); `meadow bench --baseline`
 # on synthetic perf.json files fails a pass 20 % + 0.03 ms slower (exit 1),
 # passes one 10 % slower (exit 0), notes faster, missing and new passes, and
 # refuses a renderer mismatch (exit 2) unless --force.
@@ -15,6 +15,7 @@ fail=0
 # ---- --perf --quick ----
 printf '# Doc\n\nhand-written above\n\n<!-- perf:begin -->\nstale table\n<!-- perf:end -->\n\nhand-written below\n' \
   >"$out/doc.md"
+printf '<!-- perf-summary:begin -->\nstale summary\n<!-- perf-summary:end -->\n' >>"$out/doc.md"
 "$bin" bench --perf "$out/perf" --quick --quiet --doc "$out/doc.md" 2>"$out/perf.log" \
   || { echo "FAIL: bench --perf --quick exit $?"; cat "$out/perf.log"; fail=1; }
 python3 - "$out/perf/perf.json" <<'EOF' || fail=1
@@ -37,6 +38,9 @@ done
 grep -q "hand-written above" "$out/doc.md" && grep -q "hand-written below" "$out/doc.md" \
   || { echo "FAIL: the doc lost its hand-written text"; fail=1; }
 grep -q "stale table" "$out/doc.md" && { echo "FAIL: the doc's section was not replaced"; fail=1; }
+grep -q "stale summary" "$out/doc.md" && { echo "FAIL: the doc's summary was not replaced"; fail=1; }
+grep -q "^tiny at 320x180 on .*: hybrid [0-9.]* -> [0-9.]* ms, billboard" "$out/doc.md" \
+  || { echo "FAIL: the doc's summary has no tiny hybrid/billboard/blade line"; fail=1; }
 grep -q "^| tiny/blade/compute | 320x180" "$out/doc.md" || { echo "FAIL: the doc has no tiny/blade/compute row"; fail=1; }
 cp "$out/doc.md" "$out/doc2.md"
 "$bin" bench --perf "$out/x" --from "$out/perf/perf.json" --doc "$out/doc2.md" --quiet \

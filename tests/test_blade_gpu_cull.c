@@ -1,4 +1,4 @@
-/* test_blade_gpu_cull: blade_cull.comp (Jahrmann & Wimmer 2017 eq. 14-20)
+/* test_blade_gpu_cull: blade_cull.comp (Jahrmann & Wimmer 2017 eq. 17-20)
  * through blade_gpu_cull against the CPU reference blade_ref_cull for a
  * fixed camera: per-test culled counts equal (patch culling off), survivor
  * sets equal (patch culling on and off), with and without a depth texture,

@@ -1,5 +1,5 @@
 /* test_blade_gpu_physics: blade_physics.comp (Jahrmann & Wimmer 2017
- * eq. 1-13 and the collision exit) against the CPU reference blade_ref_step,
+ * eq. 3-13 and the collision exit) against the CPU reference blade_ref_step,
  * blade for blade, over several steps of random winds, spheres and gravity
  * variants; then the invariants after as many GPU frames as fit in ~15 s
  * with moving spheres, wind and random dt in [1/240, 1/10]: v0 unchanged,

@@ -1,6 +1,6 @@
 /* test_blade_ref: the CPU reference of the Jahrmann & Wimmer 2017 blade
- * simulation and culling. Hand-computed single steps for recovery (eq. 1),
- * gravity (eq. 2-4), wind (eq. 5-8), collision (sec. 5.2) and validation
+ * simulation and culling. Hand-computed single steps for recovery (eq. 3),
+ * gravity (eq. 4-6), wind (eq. 7-8), collision (eq. 14-16) and validation
  * (eq. 9-13); invariants over 1000 steps with wind, moving spheres and
  * random dt; culling counts against an independent brute-force recount. */
 #include "blade/blade_ref.h"
@@ -46,7 +46,7 @@ static void test_frame_and_forces(void)
     blade_ref_frame(&side, w, f);
     CHECK_V3(w, 0, 0, 1, EPS);
 
-    /* recovery, eq. 1 */
+    /* recovery, eq. 3 */
     b = upright(0, 0, 1, 0.0f, 2.0f);
     b.v2[0] = 0.5f;
     b.v2[1] = 0.5f;
@@ -57,7 +57,7 @@ static void test_frame_and_forces(void)
     blade_ref_recovery(&b, 0.95f, o); /* max(1 - eta, 0.1) */
     CHECK_V3(o, -0.1, 0.1, 0, EPS);
 
-    /* gravity, eq. 2-4: direction only */
+    /* gravity, eq. 4-6: direction only */
     b = upright(0, 0, 1, 0.0f, 2.0f);
     blade_env_t env = blade_env_defaults(&(blade_env_t){.gravity = 10.0f});
     blade_ref_gravity(&b, &env, o);
@@ -90,7 +90,7 @@ static void test_frame_and_forces(void)
     blade_ref_wind_field(&point, (float[3]){0, 0, -3}, 0.0f, o);
     CHECK_V3(o, 0, 0, 0, 0);
 
-    /* wind on a blade, eq. 5-8 */
+    /* wind on a blade, eq. 7-8 */
     env = blade_env_defaults(&(blade_env_t){.wind_count = 1});
     env.winds[0] = blade_wind_point((float[3]){-1, 0, 0}, 4.0f, 2.0f); /* w_i(0) = (2, 0, 0) */
     b = upright(0, 0, 1, 0.0f, 2.0f);

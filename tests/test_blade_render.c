@@ -75,7 +75,7 @@ static bool seed_square(blade_field_t *f, float half, float density, uint64_t se
 /* A heavy ball (radius 0.45, sunk to y = 0.3) rolls along z = 0 from
  * x = -2.5 to 0.7 in 2 s (120 steps of 1/60 s); the image is taken with the
  * ball at 0.7 (not drawn): the blades under and just behind it are pressed
- * down, the path behind it stays parted (stiffness 8-12, gravity 1 m/s^2: the forces of eq. 1-4 are
+ * down, the path behind it stays parted (stiffness 8-12, gravity 1 m/s^2: the forces of eq. 3-6 are
  * displacement rates, so standing blades need s h >> g; slow eta decay); seen along the
  * trail, it is the furrow in the middle. */
 static void simulate_trail(blade_gpu_t *g)

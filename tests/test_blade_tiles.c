@@ -6,7 +6,7 @@
  *      terrain_height_at; the procedural pose is a fixed point of the
  *      physics under static wind (a slot left alone for 1 s barely moves);
  *   b) physics only on active slots: pool slots outside the dispatch list
- *      keep their bytes; a dispatched slot equals blade_ref_step (eq. 1-13)
+ *      keep their bytes; a dispatched slot equals blade_ref_step (eq. 3-13)
  *      with ALL spheres (so the per-tile sphere lists lose nothing); the
  *      slots dispatched per frame are the same for a 16 m and a 64 m
  *      field (16x the tiles) with the same ball;

@@ -76,6 +76,8 @@ uint cull(Blade b, uint index)
         float dproj = length(view_ground);
         int n = u_distance_levels;
         if (dproj > u_max_distance) return BLADE_CULL_DISTANCE;
+        /* Eq. 20 as the paper's text states it, not as printed (the printed
+         * inequality is inverted; blade_ref_cull_one, docs/BLADES.md). */
         int level = max(int(floor(float(n) * (1.0 - dproj / u_level_distance))), 0);
         if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
     }

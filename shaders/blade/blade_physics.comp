@@ -1,6 +1,6 @@
 #version 450
 /* blade_physics.comp: one simulation step per blade (Jahrmann & Wimmer
- * 2017 eq. 1-16), the twin of blade_ref_step_one in src/blade/blade_ref.c:
+ * 2017 eq. 3-16), the twin of blade_ref_step_one in src/blade/blade_ref.c:
  * forces r + g + w on the start-of-step state, v2 += (r + g + w) k with
  * k = blade_step_gain (exact for frozen g, w),
  * validation, sphere collision, and only after a contact the validation of

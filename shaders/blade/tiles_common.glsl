@@ -6,7 +6,7 @@
  *                barycentric interpolation of terrain_height_at, up the
  *                interpolated vertex normal, rest pose v1 = v2 = v0 + up h.
  *                Roots outside the field and template padding get h = 0.
- *   tiles_pose   the procedural pose: quasi-static equilibrium of eq. 1-16
+ *   tiles_pose   the procedural pose: quasi-static equilibrium of eq. 3-16
  *                (eta = 0) under gravity (eq. 4-6) and the wind of u_time
  *                (eq. 7-8), by relaxed fixed-point iteration
  *                v2 <- validate(v2 + 0.7 (v0 + up h + (g + w(v2)) / s - v2)),

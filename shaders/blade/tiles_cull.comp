@@ -106,6 +106,8 @@ uint cull(Blade b, uint index, vec3 view_ground, float width_scale)
         int n = u_distance_levels;
         float d = grass_distance(v0, u_cam_pos);
         if (d > u_max_distance) return BLADE_CULL_DISTANCE;
+        /* Eq. 20 as the paper's text states it, not as printed (the printed
+         * inequality is inverted; blade_ref_cull_one, docs/BLADES.md). */
         int level = int(floor(float(n) * (1.0 - d / u_max_distance)));
         if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
     }

@@ -1,5 +1,5 @@
 #version 450
-/* tiles_physics.comp: one Jahrmann & Wimmer 2017 step (eq. 1-16, the twin
+/* tiles_physics.comp: one Jahrmann & Wimmer 2017 step (eq. 3-16, the twin
  * of blade_physics.comp / blade_ref_step_one, second validation, friction
  * and collision exit included) for
  * the blades of the listed pool slots only (Fan et al. 2015: simulate what

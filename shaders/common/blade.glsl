@@ -16,7 +16,7 @@
  *   BladeSphere = blade_sphere_t (32 bytes)
  *   BladeCube   = collide_cube_proxy_t (160 bytes, collide/collide_cube.h)
  *
- * The cube-map collider functions (beyond both papers; blade_ref.h banner)
+ * The cube-map collider functions (beyond both papers; docs/BLADES.md)
  * are compiled only when common/bb.glsl is included before this file. */
 #ifndef BLADE_GLSL
 #define BLADE_GLSL
@@ -80,7 +80,7 @@ void blade_frame(Blade b, out vec3 width_dir, out vec3 front)
     front = blade_safe_normalize(cross(up, width_dir));
 }
 
-/* Eq. 1: r = (I_v2 - v2) s max(1 - eta, 0.1). */
+/* Eq. 3: r = (I_v2 - v2) s max(1 - eta, 0.1). */
 vec3 blade_recovery(Blade b, float eta)
 {
     vec3 v0 = b.v0.xyz;
@@ -92,14 +92,15 @@ vec3 blade_recovery(Blade b, float eta)
 }
 
 /* Step gain k = (1 - exp(-s' dt)) / s' of v2 += (r + g + w) k, the exact
- * solution of eq. 1 with g, w frozen (departure; blade_ref_step_gain). */
+ * solution of the paper's tip update v2 += (r + g + w) dt with g, w frozen
+ * (departure; blade_ref_step_gain). */
 float blade_step_gain(float s, float dt)
 {
     float x = s * dt;
     return x > 1e-3 ? (1.0 - exp(-x)) / s : dt * (1.0 - 0.5 * x);
 }
 
-/* Eq. 2-4. gravity: xyz unit direction, w magnitude (0 when off);
+/* Eq. 4-6. gravity: xyz unit direction, w magnitude (0 when off);
  * centre: xyz gravity centre, w mix t. */
 vec3 blade_gravity(Blade b, vec4 gravity, vec4 centre)
 {
@@ -131,7 +132,7 @@ vec3 blade_wind_field(BladeWind w, vec3 p, float time)
     return blade_safe_normalize(rel) * (strength * falloff);
 }
 
-/* Eq. 5-8: w = w_sum theta, theta = f_d f_r. w_sum = sum of
+/* Eq. 7-8: w = w_sum theta, theta = f_d f_r. w_sum = sum of
  * blade_wind_field(field_i, v0, time), summed by the caller in field order. */
 vec3 blade_wind(Blade b, vec3 wi)
 {

@@ -335,7 +335,7 @@ static const stab_case_t cases[] = {
      setup_tunnel, judge_tunnel},
     {"framerate_blade", SCENE_MODE_BLADE, "simulation rate Hz (dt = 1/Hz)", {144, 240, 60, 30, 15, 4}, MEASURE_PASS,
      "recovery s", "abs(recovery - recovery at 144 Hz) > 5%, or NaN",
-     "eq. 1 is integrated exactly for the step's forces (v2 += (r + g + w) (1 - exp(-s' dt)) / s', docs/BLADES.md) and eta gains collision_gain |d|^2 (1/60 s) / dt, so the recovery does not depend on the rate; the ball is swept (a capsule per step, less the half of its start sphere it moves away from), so at 4 Hz it still presses every blade on its path, but its last step presses the last 1.25 m of the path at once, sideways: at 4 Hz the recovery is 4.3 % longer than at 144 Hz (5.4 % while the capsule's trailing half held the blades under the lifted ball for the whole 0.25 s step)", setup_rate, judge_rate_blade},
+     "the step's forces (eq. 3-8) are integrated exactly (v2 += (r + g + w) (1 - exp(-s' dt)) / s', docs/BLADES.md) and eta gains collision_gain |d|^2 (1/60 s) / dt, so the recovery does not depend on the rate; the ball is swept (a capsule per step, less the half of its start sphere it moves away from), so at 4 Hz it still presses every blade on its path, but its last step presses the last 1.25 m of the path at once, sideways: at 4 Hz the recovery is 4.3 % longer than at 144 Hz (5.4 % while the capsule's trailing half held the blades under the lifted ball for the whole 0.25 s step)", setup_rate, judge_rate_blade},
     {"framerate_bb", SCENE_MODE_BILLBOARD, "simulation rate Hz (dt = 1/Hz)", {144, 60, 30, 15, 8, 4},
      MEASURE_PASS, "recovery s", "abs(recovery - recovery at 144 Hz) > max(15%, 2 dt), or NaN",
      "eq. 8 recovery is a function of the remaining time, not of the step count; the ball is swept, so at 8 and 4 "
@@ -384,7 +384,7 @@ static const stab_case_t cases[] = {
     {"spikes_blade", SCENE_MODE_BLADE, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball resting)",
      {16.7f, 33, 66, 100, 250, 500}, MEASURE_STATIC, "max depth m (after a spike)",
      "NaN, length error > 5%, or deepest sample > max(0.05 m, 2 x first value's)",
-     "forces are displacement rates times dt (eq. 1-8): one long step moves a tip by (r + g + w) dt at once, "
+     "forces are displacement rates times dt (eq. 3-8): one long step moves a tip by (r + g + w) dt at once, "
      "then validation (eq. 9-13) and the collision exit put it back on a valid curve outside the sphere",
      setup_spikes, judge_spikes},
     {"spikes_bb", SCENE_MODE_BILLBOARD, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball resting)",
@@ -394,7 +394,7 @@ static const stab_case_t cases[] = {
      setup_spikes, judge_spikes},
     {"steep_blade", SCENE_MODE_BLADE, "heightfield amplitude m (6 m terrain)", {0.5f, 1, 2, 4, 8, 16},
      MEASURE_STATIC, "max(length error, tips under ground)", "> 5%, or a sample > 0.05 m deep, or NaN",
-     "gravity (eq. 2-4) pulls tips downhill; blades stand along the surface normal", setup_steep, judge_steep},
+     "gravity (eq. 4-6) pulls tips downhill; blades stand along the surface normal", setup_steep, judge_steep},
     {"many_bb", SCENE_MODE_BILLBOARD, "resting r 0.12 m balls (mesh 6 x 6)", {1, 4, 16, 17, 32, 128}, MEASURE_STATIC,
      "max depth m", "deepest sample > max(0.05 m, 2 x first value's)",
      "the field collides with up to BB_MAX_OBJECTS (128) objects: colliding leaves are grouped into collide passes "

@@ -1,8 +1,9 @@
 /* bb: GL driver of the responsive billboard grass of Orthmann, Rezk-Salama &
  * Kolb 2009: GPU generation from layout textures into one leaf-ordered
  * buffer, the CPU octree broad phase, depth cube maps, the collision pass
- * (eq. 1-7) and the recovery pass (eq. 8) as geometry shaders with
- * transform feedback, and rendering. See bb.h for the overview. */
+ * (eq. 1-7) as a geometry shader with transform feedback, the recovery
+ * pass (eq. 8) as a compute shader, and rendering. See bb.h for the
+ * overview. */
 #include "billboard/bb.h"
 
 #include <assert.h>
@@ -12,7 +13,7 @@
 #include <time.h>
 
 /* The octree keeps a leaf RECOVERING this much longer than a billboard's own
- * recovery (bb_recover.geom), so float drift in the two timers can never
+ * recovery (bb_recover.comp), so float drift in the two timers can never
  * leave a billboard deformed in a leaf that already went IDLE. */
 #define BB_LEAF_RECOVER_SLACK 0.25f
 

@@ -3,34 +3,26 @@
  *
  *   make:    layout textures + clump texture array (bb_layout), then a
  *            geometry shader that runs once per tile of candidate cells and
- *            emits one point per billboard (bb_generate), captured with
- *            transform feedback into ONE buffer ordered by octree leaf
- *            (generated leaf by leaf; per-leaf counts from SSBO atomics).
+ *            emits one point per billboard (bb_generate.geom), captured with
+ *            transform feedback into ONE buffer ordered by octree leaf.
  *   update:  CPU broad phase (bb_octree_update on the objects' bounding
  *            spheres); for COLLIDING leaves only: depth cube maps of the
  *            objects (eq. 1-3 lookups), the collision geometry shader
- *            (push-out eq. 4-5, springs eq. 6-7) with transform feedback in
- *            and out, run over batches of leaves that each see at most
- *            BB_PASS_OBJECTS objects; for COLLIDING and RECOVERING leaves:
- *            the recovery geometry shader (eq. 8). Idle leaves cost nothing.
- *   draw:    frustum-culled octree leaves, one point per billboard expanded
- *            by a geometry shader into a wind-animated quad or its deformed
- *            N x M mesh; alpha-to-coverage, two-sided lighting, distance fade.
+ *            bb_collide.geom (push-out eq. 4-5, springs eq. 6-7) with
+ *            transform feedback in and out, in batches of leaves that each
+ *            see at most BB_PASS_OBJECTS objects; for COLLIDING and
+ *            RECOVERING leaves: the recovery compute pass bb_recover.comp
+ *            (eq. 8). Idle leaves cost nothing.
+ *   draw:    frustum-culled octree leaves, nearest first: the plain quads
+ *            of idle leaves by vertex pulling with no geometry shader
+ *            (bb_quad.vert), the other leaves' wind-animated quads and
+ *            deformed N x M meshes by bb_render.geom; coverage written as
+ *            the sample mask, two-sided lighting, distance fades.
  *
- * Where billboards stand: on a heightfield, the candidate grid of the
- * generation rule (bb_layout_sample) over a height texture holding the grid
- * vertices (the shader interpolates the same two triangles per cell as
- * terrain_height_at). On a mesh terrain, each triangle's own candidates
- * (bb_layout_sample_tri: by true area, roots on the triangle, so a steep or
- * vertical face is as dense per m^2 as the floor; faces looking down get
- * none): the triangles' frames go to the GPU once, and one generation entry
- * per (leaf, triangle) pair whose boxes overlap. The collision's ground
- * clamp still reads a height texture, for a mesh terrain resampled on the
- * CPU with terrain_height_at onto a grid of candidate spacing.
- *
- * Deformed meshes live in a fixed pool (desc.max_deformed slots of N*M vec4);
- * a billboard's slot index is stored in bb_point_t.pad[0] (BB_NO_SLOT when
- * plain). Allocation failures are counted on the GPU and logged. */
+ * Heightfields and mesh terrains (candidates per triangle), the pool of
+ * deformed meshes (desc.max_deformed slots, the slot index in
+ * bb_point_t.pad[0]) and every departure with its measurement:
+ * docs/BILLBOARDS.md. */
 #ifndef MEADOW_BB_H
 #define MEADOW_BB_H
 

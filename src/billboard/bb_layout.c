@@ -1,6 +1,6 @@
 /* bb_layout: procedural layout textures (extent, direction, messiness), the
  * grass-clump texture array drawn from the blade model of Jahrmann & Wimmer
- * 2017 (eq. 1-13 settle the blades, eq. 21 shapes them), and the CPU twin
+ * 2017 (eq. 3-13 settle the blades, eq. 21 shapes them), and the CPU twin
  * of the billboard generation rule of Orthmann et al. 2009 (sec. 3); see
  * bb_layout.h. */
 #include "billboard/bb_layout.h"

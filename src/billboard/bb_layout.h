@@ -11,7 +11,7 @@
  * (orthographic), its blades seeded as blade_seed seeds them (height,
  * width, stiffness and direction angle uniform in the scene's ranges),
  * settled under the program's gravity by the blade physics (blade_ref_step,
- * eq. 1-13, no wind: the billboards sway on their own) and rasterised on
+ * eq. 3-13, no wind: the billboards sway on their own) and rasterised on
  * the CPU from the C twin of blade_geom.glsl (blade_ref_surface, eq. 21 and
  * the scene's shape). A texel holds the blades' albedo, the root-to-tip mix
  * of blade_shade (unlit: bb_shade lights it), and their coverage as

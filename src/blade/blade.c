@@ -1,5 +1,5 @@
 /* blade: GPU driver of the Jahrmann & Wimmer 2017 blades: upload, physics
- * dispatch (eq. 1-16), CPU patch culling and per-blade culling dispatch
+ * dispatch (eq. 3-16), CPU patch culling and per-blade culling dispatch
  * (eq. 17-20) into an indirect command, tessellated or vertex-pulled
  * drawing (eq. 21-24), statistics read back a frame late; beyond both
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009

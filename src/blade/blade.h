@@ -1,6 +1,6 @@
 /* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
- * simulates it in a compute shader (eq. 1-16 plus the collision exit of
+ * simulates it in a compute shader (eq. 3-16 plus the collision exit of
  * blade_ref.h), culls it per patch on the CPU and per blade in a compute
  * shader (eq. 17-20) into an indirect draw command, and draws the
  * survivors either through tessellation (GL_PATCHES; the control shader
@@ -13,21 +13,11 @@
  *
  * Beyond both papers: the cube proxies of the collide set add depth
  * cube-map colliders (the billboard model's, Orthmann et al. 2009 eq. 1-5)
- * to the physics, see the blade_ref.h banner.
+ * to the physics. The patch test keeps the survivors blade_ref_cull keeps;
+ * the blades of a culled patch are counted in blade_gpu_stats_t.patch_culled
+ * only. Both, and every departure with its measurement: docs/BLADES.md.
  *
- * Timer passes: "blade.physics", "blade.cull", "blade.draw".
- *
- * Patch-level culling is on the CPU: each patch AABB (blade_field_t) is
- * tested against the six clip planes grown by frustum_tolerance (the same
- * slack the per-blade test uses), and only the blades of the patches that
- * pass are dispatched. A patch outside one grown plane holds only blades
- * whose three sample points are outside that plane, so the survivors equal
- * blade_ref_cull's; the blades of a culled patch are counted in
- * blade_gpu_stats_t.patch_culled (the per-blade counters never see them,
- * while blade_ref_cull may count some of them as orientation-culled:
- * compare per-test counts with no_patch_cull). The per-blade counters and
- * the draw command are reset with glClearBufferSubData before the
- * dispatch; the shader has no barrier. */
+ * Timer passes: "blade.physics", "blade.cull", "blade.draw". */
 #ifndef MEADOW_BLADE_H
 #define MEADOW_BLADE_H
 

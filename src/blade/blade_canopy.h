@@ -2,34 +2,19 @@
  * the ground itself shaded as a grass canopy, its coverage and colour and
  * their change with the view elevation measured on the blade model
  * (GL-free; the GLSL twin that shades with the table is
- * shaders/common/canopy.glsl, docs/HYBRID.md "Ground canopy").
+ * shaders/common/canopy.glsl).
  *
- * A periodic square patch of blades, seeded as blade_seed seeds them
- * (height, width, stiffness and facing uniform in the scene's ranges, roots
- * uniform) and settled under gravity by the blade physics
- * (blade_ref_step_one, eq. 1-16, no wind), is ray-cast orthographically at
- * `rows` view elevations: row i looks down at elevation 90 i / (rows - 1)
- * degrees (row 0 at 1 degree: a ray along the ground meets no ground).
- * Each blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21
- * with the scene's shape), as the clump layers and the pulled strips draw
- * it. The points the rays meet are shaded as blade_shade shades blades
- * (common/lighting.glsl's shade(): the normal flipped to the viewer,
- * albedo mix(root, tip, v), ambient occlusion ao = 0.45 + 0.55 v, Lambert
- * sun and the sky ambient mix(down, up, u), u = n.y / 2 + 1 / 2), and the
- * table keeps the means over them that make that colour's mean exact:
- *   cover   the fraction of rays that meet a blade before the ground;
- *   ao, u_ao, v_ao, vu_ao   the means of ao, u ao, v ao and v u ao (the
- *           ambient term, linear in them);
- *   sun[k]  the means of D and v D, D = max(n . sun, 0), with the sun at
- *           azimuth k pi / (BLADE_CANOPY_AZIMUTHS - 1) from the horizontal
- *           direction towards the viewer (blade facings are uniform, so
- *           the mean depends on that angle alone, symmetric about 0).
- * The mean colour is then, albedo mix(R, T, v):
- *   SUN_DIFFUSE SUN (R E[D] + (T - R) E[vD])
- *   + R (DOWN E[ao] + (UP - DOWN) E[u ao]) + (T - R) (DOWN E[v ao] + (UP - DOWN) E[v u ao]).
- * Thinned by the extent map to a fraction E of the density, the ground a
- * ray meets before any blade is (1 - cover)^E (the gaps of independent
- * thinned layers multiply: Campbell's exp(-E rate)). */
+ * A periodic square patch of blades, seeded as blade_seed seeds them and
+ * settled under gravity by the blade physics (blade_ref_step_one,
+ * eq. 3-16, no wind), is ray-cast orthographically at `rows` view
+ * elevations (row i at 90 i / (rows - 1) degrees, row 0 at 1 degree). Each
+ * blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21 with
+ * the scene's shape). Per row the table keeps the cover (rays that meet a
+ * blade before the ground) and the means of the ambient-occlusion and sun
+ * terms of blade_shade over the points met, from which the mean colour is
+ * exact; thinned by the extent map to a fraction E, the ground shows
+ * through as (1 - cover)^E. The table's terms and the colour formula:
+ * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
 #define MEADOW_BLADE_CANOPY_H
 

@@ -1,5 +1,5 @@
 /* blade_ref: CPU reference of the blade simulation (Jahrmann & Wimmer 2017
- * eq. 1-16) and culling (eq. 17-20). Every function mirrors, statement by
+ * eq. 3-16) and culling (eq. 17-20). Every function mirrors, statement by
  * statement, its twin in shaders/common/blade.glsl (same names without the
  * ref_ prefix), so the GPU result can be compared with an epsilon. Beyond
  * both papers: collision against depth cube maps (Orthmann et al. 2009
@@ -870,6 +870,10 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
         int n = desc->distance_levels;
         if (dist > desc->max_distance) return BLADE_CULL_DISTANCE;
         float span = desc->level_distance > 0.0f ? desc->level_distance : desc->max_distance;
+        /* Eq. 20 as the paper's text states it (all blades near the camera,
+         * one in n at the cut), not as printed: the printed inequality is
+         * inverted and would keep 1 blade in 8 within 7.5 m and all of them
+         * from 52.5 to 60 m (n = 8, 60 m; docs/BLADES.md). */
         int level = (int)floorf((float)n * (1.0f - dist / span));
         if (level < 0) level = 0;
         if ((int)(index % (uint32_t)n) > level) return BLADE_CULL_DISTANCE;

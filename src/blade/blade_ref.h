@@ -5,107 +5,21 @@
  * shaders/common/blade.glsl, shaders/blade/blade_physics.comp,
  * shaders/blade/blade_cull.comp and shaders/blade/blade_geom.glsl, one
  * function per step so tests can check each: recovery (eq. 3), gravity
- * (eq. 4-6), wind (eq. 7-8), collision (sec. 5.2, eq. 14-16), state validation
- * (eq. 9-13), culling (eq. 17-20), the blade surface (eq. 21).
+ * (eq. 4-6), wind (eq. 7-8), state validation (eq. 9-13), collision
+ * (eq. 14-16), culling (eq. 17-20), the blade surface (eq. 21, 23, 24).
  *
- * One simulation step of blade_ref_step_one, in this order:
- *   1. height <= 0 (a padding blade): nothing happens.
- *   2. r, g, w are evaluated on the state at the start of the step.
- *   3. v2 += (r + g + w) k, k = (1 - exp(-s' dt)) / s' with
- *      s' = s max(1 - eta, 0.1) (blade_ref_step_gain): the exact solution
- *      of eq. 1 with g and w frozen over the step, where the paper's
- *      k = dt (explicit Euler) overshoots the rest pose for s' dt > 1 and
- *      swings forever for s' dt >= 2 (departure; docs/BLADES.md).
- *   4. validation (eq. 9-13) so v1 and the curve are valid for step 5; it
- *      rescales the tip about v0 by r (eq. 13).
- *   5. collision: v2 += d, detected on v2 and on the midpoint m of the valid
- *      curve of step 4 (the paper tests m of a curve whose v1 still belongs
- *      to the previous position; validating first makes m the real midpoint).
- *      m's 4x push is cut back when the validated result would carry m
- *      beyond the surface (secant step, blade_ref.c midpoint_push).
- *   6. only when step 5 moved v2: the validation again, of the tip mapped
- *      back through step 4's rescale (blade_ref_revalidate: the step
- *      validates the tip of step 3 plus d / r once, as the paper validates
- *      its total translation once). The validation is not idempotent (eq. 11
- *      places v1 from the tip before eq. 13 rescales it): validating the
- *      validated blade again moved it by about h (1 - r) for any push,
- *      however small, and a resting contact alternated between the two.
- *   6b. only after a contact: Coulomb friction (blade_ref_friction,
- *      departure, below), then blade_ref_exit (departure, below).
+ * blade_ref_step_one, in this order:
+ *   1. height <= 0 (a padding blade): nothing happens;
+ *   2. r, g, w are evaluated on the state at the start of the step;
+ *   3. v2 += (r + g + w) k, k of blade_ref_step_gain (the paper's k is dt);
+ *   4. validation (eq. 9-13): v1 placed, the tip rescaled about v0 by r;
+ *   5. collision: v2 += d from v2 and the validated midpoint m, spheres
+ *      first, then the depth cube maps of Orthmann et al. 2009 (eq. 1-5);
+ *   6. after a contact only: the total translation validated once
+ *      (blade_ref_revalidate), Coulomb friction, the collision exit;
  *   7. eta += k d.d (BLADE_ETA_DT / dt), then eta = clamp(eta - a dt, 0, 1).
- *      The paper adds k d.d per step; the push d of a collider moving or
- *      pressing at a given speed shrinks with dt, so d.d / dt is what is
- *      rate-independent (one ball pass gave eta 0.20 at 240 Hz, 0.45 at
- *      60 Hz, 0.70 at 30 Hz); the factor makes k mean the paper's k at
- *      60 Hz (dt = 0: BLADE_ETA_DT / dt is taken as 1). eq. 1 only uses
- *      max(1 - eta, 0.1), so eta above 1 would only delay recovery without
- *      bound (measured: one strong push added ~90 and flattened blades never
- *      stood up again).
- * The paper's total translation is delta = (r + g + w) dt + d; here it is
- * applied in two parts with a validation in between (steps 3 and 5), and
- * after a contact step 6 validates their sum.
- *
- * Departure from the paper: the curve length used by eq. 13 is, by default,
- * the arc length by 3-point Gauss-Legendre quadrature on each side of the
- * speed minimum t* = clamp(-(a.e0)/(a.a), 0, 1) (a = v0 - 2 v1 + v2,
- * e0 = v1 - v0), 6 square roots, within 0.2% of the true length for every
- * valid control polygon. Eq. 12's estimate (2 L0 + L1) / 3 errs by up to
- * 5% on ordinary bends and up to ~50% on blades folded back onto their
- * root (measured by tests/test_blade_ref.c); it is kept as
- * BLADE_LENGTH_PAPER for comparisons.
- *
- * Departure from the paper, collision exit: the paper's one radial push per
- * step is followed by the length correction, which pulls a tip pushed away
- * from the root back towards it, so after a step with a contact v2 and m
- * could stay inside the sphere (measured on the test scene: blades
- * 0.2-0.8 m, spheres r 0.4-0.5 m, roots outside: mean penetration 0.09 h,
- * worst 0.56 h). The requirement is that no sample point (v2, m) stays
- * inside a sphere after the update that detected the contact, so step 6 is
- * followed by blade_ref_exit (rigid rotations about v0, which keep the
- * length, then a straight-blade fallback that also keeps v2 above the
- * ground). After it v2 and m are outside every sphere that does not contain
- * the root (spheres overlapping each other can still trap a point).
- *
- * Departure from the paper, Coulomb friction: a push d only cancels the
- * normal part of the step, so a blade pressed against a resting sphere by
- * its recovery (or rooted under it) slid along the surface every step
- * (measured under a resting ball: 2-4 mm per frame for seconds at
- * stiffness 5-50, with eta held where |d| is 5.5 mm per step by the
- * program's gain at 60 Hz). After a contact,
- * when the pose at the start of the step has v2 and m outside every
- * collider (also those holding the root: a blade rooted under a ball that
- * rolls onto it is crushed, not held; with the exit's exception the
- * blade_trail golden's flattened tips stood at 0.26 h instead of 0.04 h),
- * the step's motion is cut as positional Coulomb friction with
- * one coefficient mu = BLADE_FRICTION (the friction of position-based
- * dynamics, Macklin et al. 2014): a tip that would move by |mv| <= mu |d|
- * keeps the start pose (stick); otherwise v1 and v2 keep the fraction
- * 1 - mu |d| / |mv| of their motion from the start pose (slip, continuous
- * at the threshold), rescaled about v0 to length h by eq. 12-13. The
- * exit runs after it, so nothing stays inside. eta still gains d.d, so it
- * settles as before. A collider moving into the blade makes the start pose
- * invalid, so it pushes as before; friction is taken in the world, not
- * relative to a moving collider (a rolling ball does not drag blades).
- *
- * Beyond both papers, cube-map colliders: besides spheres, a blade can
- * collide against the depth cube maps of the billboard model (Orthmann et
- * al. 2009 eq. 1-5, collide/collide_cube.h), so a complex shape needs no
- * sphere packing.
- * Per object, in order after the spheres: v2 and then the recomputed m are
- * pushed out as by collide_push_out (smallest-penetration face, along the
- * stored normal by the penetration; m's push is applied 4x to v2, as for
- * spheres) and the pushes join d (eta as for spheres). The exit after a
- * contact (after the sphere exit): BLADE_EXIT_ROUNDS passes over the
- * objects rotate v1, v2 rigidly about v0 so that the point (v2, then m)
- * points at its push-out target moved BLADE_CUBE_MARGIN * half further
- * along the normal (skipped when v2 would go under the ground plane); then,
- * if v2 or m is still inside an object (cube-map test, collide_test_inside), the
- * blade becomes the straight segment v0 + u [0, h] along the first of
- * BLADE_CUBE_DIRECTIONS fixed directions (up, then rings of 8 at 22.5,
- * 45, 67.5, 90 degrees from up) ordered by closeness to the tip direction
- * that clears both points of every object. Objects whose cube map holds
- * the root are skipped by the exit; when no direction clears, the blade is
- * left as the rotations left it. */
+ * Why each step departs from the paper, with the measurements:
+ * docs/BLADES.md ("One simulation step", "Departures from the paper"). */
 #ifndef MEADOW_BLADE_REF_H
 #define MEADOW_BLADE_REF_H
 
@@ -148,7 +62,7 @@ typedef struct blade_wind_t {
 typedef collide_sphere_t blade_sphere_t;
 
 #define BLADE_MAX_WINDS 8
-#define BLADE_LENGTH_QUADRATURE 0 /* default: see the banner */
+#define BLADE_LENGTH_QUADRATURE 0 /* default: docs/BLADES.md */
 #define BLADE_LENGTH_PAPER 1      /* eq. 12 with n = 2 */
 #define BLADE_MAX_SPHERES COLLIDE_MAX_SPHERES
 #define BLADE_ETA_DT (1.0f / 60.0f) /* step at which k d.d is the paper's eta gain */
@@ -199,21 +113,21 @@ blade_wind_t blade_wind_point(const float position[3], float strength, float rad
  * direction f = normalize(cross(up, width)). */
 void blade_ref_frame(const blade_t *b, float width_dir[3], float front[3]);
 
-/* Eq. 1: r = (I_v2 - v2) s max(1 - eta, 0.1), I_v2 = v0 + up h. */
+/* Eq. 3: r = (I_v2 - v2) s max(1 - eta, 0.1), I_v2 = v0 + up h. */
 void blade_ref_recovery(const blade_t *b, float eta, float out[3]);
 
-/* Eq. 2-4: g_E = gravity ((1-t) D + t normalize(C - v0)), g_F = 1/4 |g_E| f,
+/* Eq. 4-6: g_E = gravity ((1-t) D + t normalize(C - v0)), g_F = 1/4 |g_E| f,
  * g = g_E + g_F. env must be resolved (blade_env_defaults). */
 void blade_ref_gravity(const blade_t *b, const blade_env_t *env, float out[3]);
 
 /* w_i(p, time) of one field (see blade_wind_t). */
 void blade_ref_wind_field(const blade_wind_t *w, const float p[3], float time, float out[3]);
 
-/* Eq. 5-8: w = (sum_i w_i(v0, time)) theta, theta = f_d f_r,
+/* Eq. 7-8: w = (sum_i w_i(v0, time)) theta, theta = f_d f_r,
  * f_d = 1 - |normalize(w_sum) . normalize(v2 - v0)|, f_r = (v2 - v0).up / h. */
 void blade_ref_wind(const blade_t *b, const blade_env_t *env, float out[3]);
 
-/* Sec. 5.2 collision, spheres in order (residual: see the banner). Per sphere: v2 is pushed out of the
+/* Sec. 5.2 collision (eq. 14-16), spheres in order (residual: docs/BLADES.md). Per sphere: v2 is pushed out of the
  * sphere along (v2 - c); then m = 1/4 v0 + 1/2 v1 + 1/4 v2 is recomputed and
  * v2 moves by 4 times m's push-out (a move of v2 moves m by a quarter),
  * scaled by p / (p + q) when a copy revalidated as the step will
@@ -235,7 +149,7 @@ void blade_ref_sphere_at(const blade_sphere_t *s, const float p[3], blade_sphere
 void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int length_mode, float rescale,
                        float d[3]);
 
-/* Departure from the paper (collision exit, see the banner); no-op for a
+/* Departure from the paper (collision exit, docs/BLADES.md); no-op for a
  * padding blade. Rounds: BLADE_EXIT_ROUNDS passes over the spheres in
  * order, each moving first v2 then m onto the distance r * BLADE_EXIT_MARGIN
  * from the centre by a rigid rotation of v1 and v2 about v0 in the plane of
@@ -252,7 +166,7 @@ void blade_ref_collide(blade_t *b, const blade_sphere_t *spheres, int count, int
 #define BLADE_EXIT_MARGIN 1.0001f
 void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
 
-/* Coulomb friction after a contact (departure, see the banner), applied
+/* Coulomb friction after a contact (departure, docs/BLADES.md), applied
  * after the revalidation and before the exit. Skipped when a sphere or cube
  * proxy of colliders holds start's v2 or m (wherever the root is).
  * Else, with mv = b.v2 - start.v2: |mv| <= BLADE_FRICTION |d|: b takes
@@ -269,11 +183,11 @@ void blade_ref_exit(blade_t *b, const blade_sphere_t *spheres, int count);
 void blade_ref_friction(blade_t *b, const blade_t *start, const float d[3], const collide_set_t *colliders,
                         int length_mode);
 
-/* Cube-map collision of one blade (see the banner): every object's push of
+/* Cube-map collision of one blade (docs/BLADES.md): every object's push of
  * v2 and then of m, applied to b->v2; the total goes into d. */
 void blade_ref_collide_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes,
                              int count, float d[3]);
-/* The cube-map collision exit (see the banner); no-op for a padding blade. */
+/* The cube-map collision exit (docs/BLADES.md); no-op for a padding blade. */
 void blade_ref_exit_cubes(blade_t *b, const collide_cube_proxy_t *objects, const collide_cubemap_t *cubes, int count);
 /* Whether world point p is inside object k's shape per its cube map
  * (collide_test_inside after the broad phase). */

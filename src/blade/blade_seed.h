@@ -2,18 +2,6 @@
  * on any triangle mesh and groups them into spatially ordered patches.
  * GL-free, deterministic from desc.seed (core_rng_t).
  *
- * Modes:
- *   BLADE_SEED_UNIFORM: N = round(density * area) roots, each on a triangle
- *     picked with probability proportional to its area, uniform inside it.
- *   BLADE_SEED_TUFTS: tuft centres by dart throwing (uniform candidates as
- *     above, rejected when closer than tuft_min_distance to an accepted one)
- *     until round(density * area / tuft_blades) centres or
- *     tuft_attempts_per_centre * target candidates were tried (a warning is
- *     logged when the target is not reached); then tuft_blades roots around
- *     each centre, uniform in a disc of tuft_radius on the plane of the
- *     centre's triangle. An offset that leaves the triangle is redrawn up to 8
- *     times, then replaced by the closest point of the triangle, so every
- *     root lies on the mesh.
  * Every blade: up = interpolated vertex normal (face normal when normals is
  * NULL or the interpolation degenerates), height/width/stiffness/direction
  * angle uniform in their ranges, rest pose v1 = v2 = v0 + up * height.
@@ -46,6 +34,18 @@ typedef struct blade_mesh_t {
     size_t index_count;
 } blade_mesh_t;
 
+/* Seeding modes:
+ *   BLADE_SEED_UNIFORM: N = round(density * area) roots, each on a triangle
+ *     picked with probability proportional to its area, uniform inside it.
+ *   BLADE_SEED_TUFTS: tuft centres by dart throwing (uniform candidates as
+ *     above, rejected when closer than tuft_min_distance to an accepted one)
+ *     until round(density * area / tuft_blades) centres or
+ *     tuft_attempts_per_centre * target candidates were tried (a warning is
+ *     logged when the target is not reached); then tuft_blades roots around
+ *     each centre, uniform in a disc of tuft_radius on the plane of the
+ *     centre's triangle. An offset that leaves the triangle is redrawn up to 8
+ *     times, then replaced by the closest point of the triangle, so every
+ *     root lies on the mesh. */
 enum { BLADE_SEED_UNIFORM = 0, BLADE_SEED_TUFTS = 1 };
 
 /* Zero means default:

@@ -1,5 +1,5 @@
 /* blade_tiles: tiled blade field of Fan et al. 2015 over the Jahrmann &
- * Wimmer 2017 blades (eq. 1-16 physics on active slots only, eq. 17-20
+ * Wimmer 2017 blades (eq. 3-16 physics on active slots only, eq. 17-20
  * culling, eq. 21 drawing): template seeding, ground texture, slot pool,
  * activation through src/hybrid, motion readback, per-tile CPU frustum
  * test, cull (occlusion included) + vertex-pulled or tessellated draw.

@@ -4,77 +4,24 @@
  *
  * The field is a grid of square tiles (src/hybrid keeps the bookkeeping:
  * representation with hysteresis, ACTIVE / RECOVERING / IDLE, slot pool,
- * per-tile object lists). Every tile is an instance of one of a few
- * template tiles, seeded once on a flat tile (blade_seed, Morton order,
- * tile-local xz, rest pose) and shared by all instances; an instance picks
- * its template and one of the 8 symmetries of the square (4 rotations x
- * mirror) by hashing its world tile coordinates, and its roots sit on the heightfield,
- * sampled on the GPU from an RGBA32F texture of the grid (xyz vertex
- * normal, w height) with the exact barycentric interpolation of
- * terrain_height_at (up = interpolated vertex normal, as blade_seed).
- * Mesh terrains are rejected (logged error): use blade_gpu for them.
- *
- * Idle tiles have no per-blade state: they are drawn from the templates in
- * the procedural pose P(t), the equilibrium of the blade physics (eq. 1-16
- * with eta = 0) under gravity and the wind of time t. One physics step is
- *   v2 <- validate(v2 + a (T(v2) - v2)),  T(v2) = v0 + up h + (g + w(v2)) / s,
- * with a = 1 - exp(-s dt) (the exact step of eq. 1, blade_ref_step_gain
- * times s; s at least BLADE_STIFFNESS_MIN), g of eq. 4-6,
- * w(v2) = (sum_i w_i(v0, t)) theta(v2) of eq. 7-8, validate = eq. 9-13.
- * P(t) iterates this map from the rest pose: TILES_POSE_ITERATIONS (6)
- * times with a = 0.7 (fast approach), then TILES_POSE_STEPS (24) times
- * with a = min(1 - exp(-s dt), 0.7), dt of the latest update (the validation is not a radial
- * projection, so the fixed point depends on a: this phase lands on the
- * physics' own fixed point). Under static wind a freshly activated slot
- * therefore stays where the template drawing put it (test: tips move
- * < 2e-4 m in 1 s); under travelling waves the simulated blades lag P(t)
- * by about 1/s seconds.
- *
- * Active and recovering tiles own a slot of a preallocated pool of
- * template-sized per-blade state (blade_t + eta). On activation the slot
- * is initialised with P(t) (no pop); the Jahrmann step (the twin of
- * blade_physics.comp) runs in one dispatch over the blades of the listed
- * slots only, each slot testing only the spheres of its tile's object
- * list. Every step writes the slot's motion max |v2 - P(t)| (atomicMax of
- * the float bits); it is read back through a ring of copies fenced by
- * timestamp queries, typically 1-2 frames late, never stalling. A
- * RECOVERING tile goes IDLE (slot released) when its motion falls below
- * motion_epsilon or after recover_timeout. Active tiles simulate whether
- * on screen or not. Pool exhaustion is reported (stats.pool_denied and a
- * warning from hybrid).
- *
- * Activation bound: a sphere (c, r) touches a tile when the sphere grown by
- * height_max + width_max / 2 (how far a blade reaches from its root)
- * touches the tile's box (hybrid_tile_touched_brute on the grown spheres).
- *
- * Drawing: CPU frustum test per tile (box of the tile grown by the blade
- * reach), then tiles_cull.comp over the blades of the listed blade-
- * representation tiles: orientation, frustum, distance-level and
- * occlusion tests of blade_cull (eq. 17-20 and the occlusion test against
- * the opaque depth, same rule and bias; the distance level uses the
- * template index, and templates are Morton ordered, so thinning stays
- * hole-free), culled blades counted per test; survivors are appended as
- * whole blades to a per-frame buffer (capacity: the blades of every tile
- * within switch_distance + hysteresis, counted at make; an overflow is
- * logged and counted) and drawn by vertex pulling (tiles_draw.vert) or,
- * with desc.tessellate, through blade mode's tessellation stages
- * (tiles_tess.vert, blade.tesc, blade.tese: one patch per blade), with the
- * geometry of blade_geom.glsl and blade.frag (fade band of
- * blade_draw_desc_t).
- *
- * GPU memory: templates + pool + draw buffer, independent of the field
- * size; the tile table lives on the CPU (hybrid_grid_t), plus the height
- * texture of the terrain grid.
- *
- * Hand-over (after Qiu et al.; formulas in src/hybrid/hybrid_slope.h): a
- * tile that turns to billboards while RECOVERING gives its blades' tilt
- * offsets against P(t) to the slope cells of the tile (tiles_handover.comp
- * sums, tiles_slope_resolve.comp means) and frees its slot; the billboards
- * draw the cells (bb_draw_desc_t.slopes). A tile that turns to blades
- * within slope_recover seconds of its last touch or hand-over takes a slot
- * whose blades are seeded from the cells and from the deformed billboards
- * of the moment (the slope source callback) in tiles_init.comp.
- *
+ * per-tile object lists), each an instance of one of a few template tiles
+ * (blade_seed, Morton order) under one of the 8 symmetries of the square,
+ * its roots on the heightfield (mesh terrains are rejected: use blade_gpu).
+ * Idle tiles have no per-blade state: they are drawn in the procedural pose
+ * P(t), the equilibrium of the blade physics (eq. 3-16, eta = 0) under
+ * gravity and the wind of time t. Active and recovering tiles own a slot of
+ * a preallocated pool and run the Jahrmann step (tiles_physics.comp, the
+ * twin of blade_physics.comp) against their tile's objects; a recovering
+ * tile goes IDLE when its measured motion falls below motion_epsilon or
+ * after recover_timeout. Drawing: CPU frustum test per tile, then
+ * tiles_cull.comp (eq. 17-20 and the occlusion test) into a per-frame
+ * buffer drawn by vertex pulling or, with desc.tessellate, one patch per
+ * blade. At a representation switch a tile hands its deformation to the
+ * billboards' slope cells and back (hybrid_slope.h). GPU memory: templates,
+ * pool and draw buffer, independent of the field size.
+ * The pose iteration, the activation bound, the drawing and the hand-over
+ * with their measurements: docs/BLADES.md ("Tiled field") and
+ * docs/HYBRID.md ("Simulation, hand-over, overlays").
  * Timer passes: "tiles.physics" (hand-over and seeding included),
  * "tiles.cull", "tiles.draw". */
 #ifndef MEADOW_BLADE_TILES_H
@@ -105,8 +52,8 @@
  *   pool_slots       64 simulation slots of one template each
  *   switch_distance  12 m (scene): tiles nearer are drawn as blades (hybrid rule,
  *                    with hysteresis 1 m); far tiles are left to billboards
- *   recover_timeout  5 s; motion_epsilon 2 mm (scene, not a key; see the
- *                    banner)
+ *   recover_timeout  5 s; motion_epsilon 2 mm (scene, not a key;
+ *                    docs/BLADES.md)
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on

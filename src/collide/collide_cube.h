@@ -7,9 +7,26 @@
  * lookup, the inside test (eq. 1-3) and the push-out (eq. 4-5). GL-free;
  * shaders/common/bb.glsl mirrors the lookup, inside test and push-out
  * (collide_lookup_texel -> bb_lookup, collide_test_inside -> bb_inside,
- * collide_push_out -> bb_push_out) line by line.
- *
- * ---- depth cube map convention (shared with the GPU side) -----------------
+ * collide_push_out -> bb_push_out) line by line. The texel layout both
+ * sides share is written above collide_cubemap_t; the method and its
+ * departures: docs/BILLBOARDS.md. */
+#ifndef MEADOW_COLLIDE_CUBE_H
+#define MEADOW_COLLIDE_CUBE_H
+
+#include <cglm/cglm.h>
+#include <stdbool.h>
+
+enum {
+    COLLIDE_FACE_PX,
+    COLLIDE_FACE_NX,
+    COLLIDE_FACE_PY,
+    COLLIDE_FACE_NY,
+    COLLIDE_FACE_PZ,
+    COLLIDE_FACE_NZ,
+    COLLIDE_FACE_COUNT
+};
+
+/* Depth cube map convention (shared with the GPU side).
  * A cube map surrounds an object's bounding cube [centre-half, centre+half]^3
  * given in the object's local ("cube") space. Face f (0..5 = +X,-X,+Y,-Y,+Z,-Z)
  * is the plane at centre + half*outward; its camera looks inward. Texel (i,j)
@@ -37,22 +54,6 @@
  * to the projected depth d_f = (q-c).inward + half (0 on the face plane, 2*half
  * on the opposite face). Lookups are NEAREST texel (no bilinear filtering), so
  * the GPU side can use texelFetch and match bit for bit. */
-#ifndef MEADOW_COLLIDE_CUBE_H
-#define MEADOW_COLLIDE_CUBE_H
-
-#include <cglm/cglm.h>
-#include <stdbool.h>
-
-enum {
-    COLLIDE_FACE_PX,
-    COLLIDE_FACE_NX,
-    COLLIDE_FACE_PY,
-    COLLIDE_FACE_NY,
-    COLLIDE_FACE_PZ,
-    COLLIDE_FACE_NZ,
-    COLLIDE_FACE_COUNT
-};
-
 typedef struct collide_cubemap_t {
     int res;        /* texels per face side */
     float *texels;  /* 6*res*res*4 floats: distance, nx, ny, nz */

@@ -4,27 +4,16 @@
  * billboard's slope seeds the blades). GL-free reference and the layout
  * the shaders share (shaders/common/slope.glsl twins every function).
  *
- * A grid of square cells covers the field (cells_per_tile per tile side,
- * so every tile owns whole cells). A grass element, blade or billboard,
- * with pose direction d_p (unit, root to tip in the undisturbed wind pose)
- * and deformed direction d has the tilt offset
- *     o = (d.x - d_p.x, d.z - d_p.z)            (|o| <= 2),
- * the horizontal change of its unit direction. A cell stores, over the
- * elements rooted in it, the mean offset T, the mean magnitude M = mean |o|,
- * the mean collision strength eta (blades; billboards give 0) and the time
- * tau it was written. Means are taken over fixed-point sums
- * (HYBRID_SLOPE_FIXED per unit, integer atomics on the GPU), so the GPU
- * and CPU sums agree exactly on the same offsets.
- *
- * An element with pose direction d_p and fallback direction f (unit,
- * horizontal: a blade's front, a billboard's normal) takes the offset
- *     o' = w (T + f (M - |T|)),  w = (1 - clamp((now - tau) / R, 0, 1))^3
- * i.e. the mean vector, plus the magnitude that cancelled in the mean (blades
- * pushed apart to both sides of a trail) along the element's own facing,
- * blended back to the wind pose with eq. 8's t^3 over the billboards'
- * recover time R. Its new direction is d' = (q.x, sqrt(1 - |q|^2), q.y),
- * q = d_p.xz + o' shortened to |q| <= HYBRID_SLOPE_MAX_TILT; it keeps its
- * length (a blade is validated by eq. 9-13 afterwards). */
+ * A grid of square cells covers the field (cells_per_tile per tile side).
+ * An element's tilt offset is o = d.xz - d_p.xz, the horizontal change of
+ * its unit direction d against its wind pose d_p. A cell stores the mean
+ * offset T, the mean magnitude M = mean |o|, the blades' mean eta and the
+ * time tau it was written, from fixed-point sums (HYBRID_SLOPE_FIXED per
+ * unit; integer atomics on the GPU), so GPU and CPU agree exactly. An
+ * element with horizontal facing f takes o' = w (T + f (M - |T|)),
+ * w = (1 - clamp((now - tau) / R, 0, 1))^3 (Orthmann's eq. 8 weight over
+ * the billboards' recover time R). The reasoning, the new direction and
+ * the measurements: docs/HYBRID.md ("Simulation, hand-over, overlays"). */
 #ifndef MEADOW_HYBRID_SLOPE_H
 #define MEADOW_HYBRID_SLOPE_H
 
@@ -76,7 +65,7 @@ void hybrid_slope_add(hybrid_slope_sum_t *s, const float o[2], float eta);
 hybrid_slope_cell_t hybrid_slope_resolve(const hybrid_slope_sum_t *s, float tau);
 /* Eq. 8's weight (1 - clamp(age / recover, 0, 1))^3. */
 float hybrid_slope_weight(float age, float recover);
-/* The new unit direction of an element (see the banner); w the weight. */
+/* The new unit direction of an element (docs/HYBRID.md); w the weight. */
 void hybrid_slope_apply(const float pose_dir[3], const float fallback[2], const hybrid_slope_cell_t *c, float w,
                         float out_dir[3]);
 

@@ -417,7 +417,7 @@ static bool parse_grass(sp_t *sp, const json_t *o, scene_grass_desc_t *g)
     const json_t *v = scene_json_get(o, "stiffness");
     if (v && !(g->stiffness[0] > 0))
         return sp_fail(sp, v->line, "grass.stiffness",
-                       "%g is out of range (0, %g]: a blade of stiffness 0 never stands up (eq. 1)",
+                       "%g is out of range (0, %g]: a blade of stiffness 0 never stands up (eq. 3)",
                        (double)g->stiffness[0], scene_field_find(SCENE_SEC_GRASS, "stiffness")->hi);
     if (!(v = scene_json_get(o, "clearings"))) return true;
     int type = 0;

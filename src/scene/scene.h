@@ -93,7 +93,7 @@ typedef struct scene_grass_desc_t {
     vec2 height;             /* blade height [min, max] m, each [0, 10]; default [0.35, 0.7] */
     vec2 width;              /* blade width [min, max] m, each [0, 1]; default [0.02, 0.05] */
     vec2 stiffness;          /* blade stiffness [min, max] (1/s: recovery speed per metre of
-                                deflection, eq. 1), each (0, 100]; default [8, 12] */
+                                deflection, eq. 3), each (0, 100]; default [8, 12] */
     float billboard_density; /* billboards per m^2 [0, 1000]; default 6 */
     vec2 billboard_size;     /* billboard [w, h] m, each [0, 20]; default [1.0, 0.6] */
     float switch_distance;   /* hybrid blade->billboard distance m [0, 1000]; default 12 */

@@ -96,7 +96,7 @@ const scene_field_t scene_fields[] = {
       .def = {SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX}, .doc = "blade width (m)"},
     {GRASS(stiffness), .key = "stiffness", .type = SCENE_FIELD_RANGE, .hi = 100,
       .def = {SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX},
-      .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 1); min > 0"},
+      .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 3); min > 0"},
     {GRASS(billboard_density), .key = "billboard_density", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_BILLBOARD_DENSITY}, .doc = "billboards per m^2"},
     {GRASS(billboard_size), .key = "billboard_size", .type = SCENE_FIELD_FLOATS, .n = 2, .hi = 20,
