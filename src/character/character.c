@@ -109,12 +109,37 @@ static void asset_texture(character_asset_t *a)
     core_image_free(&img);
 }
 
+/* With no forward axis from the scene, the file or its format, and no
+ * rotation asked for, the walk decides (character_walk_facing): a model
+ * whose stance feet slide along X or +Z is turned to face +Z. */
+static bool asset_face_walk(character_asset_t *a, char *err, size_t err_size)
+{
+    character_import_t *im = &a->import;
+    if (strcmp(im->forward_from, "default") != 0 || a->import_desc.yaw != 0.0f) return true;
+    int facing = character_walk_facing(&a->model, im->height);
+    if (facing == 0 || facing == 3) return true;
+    character_import_t turn;
+    if (!character_import(&a->model, a->path, &(character_import_desc_t){.height = im->height, .up = 2,
+                                                                         .forward = facing},
+                          &turn, err, err_size))
+        return false;
+    /* the file's axis that now faces +Z: row |facing| of the first import's rotation */
+    float r[16];
+    character_import_matrix(1.0f, im->up, im->forward, 0.0f, 0.0f, r);
+    int row = abs(facing) - 1;
+    for (int k = 0; k < 3; k++)
+        if (fabsf(r[4 * k + row]) > 0.5f) im->forward = (k + 1) * (r[4 * k + row] * (float)facing > 0.0f ? 1 : -1);
+    im->forward_from = "walk";
+    return true;
+}
+
 static bool asset_load(character_asset_t *a, const char *resolved, int index)
 {
     char err[512];
     snprintf(a->path, sizeof a->path, "%s", resolved);
     if (!character_load(&a->model, resolved, err, sizeof err)) return false; /* logged by the loader */
-    if (!character_import(&a->model, resolved, &a->import_desc, &a->import, err, sizeof err)) {
+    if (!character_import(&a->model, resolved, &a->import_desc, &a->import, err, sizeof err) ||
+        !asset_face_walk(a, err, sizeof err)) {
         core_log_error("character %d: %s: %s", index, resolved, err);
         return false;
     }

@@ -64,6 +64,8 @@ typedef struct character_stride_t {
      * end in [begin, begin + 1] (past 1 wraps into the next loop) */
     float contact_begin[CHARACTER_MAX_FEET], contact_end[CHARACTER_MAX_FEET];
     float natural_speed;                 /* model units per clip second, signed; 0 = no stride */
+    float contact_motion[2];             /* sum over feet of the (x, z) moved during contact (units) */
+    float contact_time;                  /* sum of the contact durations (s) */
 } character_stride_t;
 
 void character_clip_stride(const character_model_t *model, int clip, character_stride_t *out);
