@@ -8,7 +8,11 @@
  *   small, and is far smaller than with the clip played the other way;
  * - proxy spheres contain >= 95% of the skinned vertices of their bones, and
  *   the swept spheres contain the vertices at the middle of a long step;
- * - the stride estimate of a synthetic foot moving at a known speed. */
+ * - the stride estimate of a synthetic foot moving at a known speed;
+ * - facing from the walk: the generated models face +Z; turned by 90, -90
+ *   and 180 degrees they face +X, -X, -Z; a humanoid.gltf whose root node
+ *   turns it to face +X is turned back by character_set_make (summary:
+ *   forward from "walk") and walks with its +Z along the path. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -263,6 +267,54 @@ static void check_stride_synthetic(void)
     CHECK_NEAR(character_walk_rate(&st, 1.0f, 2.0f), 1.0, 1e-3); /* 1 m/s at scale 2: one clip second per second */
 }
 
+static void check_facing(void)
+{
+    static const struct { float yaw; int facing; } turns[] = {{0, 3}, {90, 1}, {-90, -1}, {180, -3}};
+    const char *names[2] = {"models/humanoid.gltf", "models/quadruped.gltf"};
+    for (int k = 0; k < 2; k++)
+        for (int t = 0; t < 4; t++) {
+            char path[1024], err[256];
+            character_model_t m;
+            character_import_t o;
+            CHECK(core_fs_resolve(names[k], path, sizeof path) && character_load(&m, path, err, sizeof err));
+            CHECK(character_import(&m, path, &(character_import_desc_t){.yaw = turns[t].yaw}, &o, err, sizeof err));
+            int f = character_walk_facing(&m, o.height);
+            CHECK_MSG(f == turns[t].facing, "%s turned %g: facing %d, want %d", names[k], (double)turns[t].yaw, f,
+                      turns[t].facing);
+            character_model_free(&m);
+        }
+    /* a file whose root node turns the humanoid to face +X */
+    char src[1024], dst[1100], err[256];
+    CHECK(core_fs_resolve("models/humanoid.gltf", src, sizeof src));
+    size_t size = 0;
+    char *text = core_fs_read(src, &size, err, sizeof err), *at = text ? strstr(text, "\"name\":\"humanoid\"") : NULL;
+    CHECK(at != NULL);
+    if (!at) {
+        free(text);
+        return;
+    }
+    const char *env = getenv("MEADOW_TEST_OUT"), *dir = env ? env : "/tmp/meadow-test_character_walk";
+    CHECK(core_fs_mkdirs(dir));
+    snprintf(dst, sizeof dst, "%s/turned.gltf", dir);
+    core_buf_t b = {0};
+    core_buf_put(&b, text, (size_t)(at - text));
+    core_buf_printf(&b, "\"rotation\":[0,0.70710678,0,0.70710678],%s", at);
+    CHECK(core_buf_write(&b, dst));
+    core_buf_free(&b);
+    free(text);
+    const float wp[2][2] = {{0, 0}, {0, 10}};
+    scene_character_t c = walker(dst, 2, wp, false);
+    character_set_t set;
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    if (!set.count) return;
+    const character_import_t *im = &set.assets[0].import;
+    CHECK_MSG(!strcmp(im->forward_from, "walk") && im->forward == 1, "forward %d from %s", im->forward,
+              im->forward_from);
+    /* walking +Z: the walk's facing after the turn is +Z again */
+    CHECK(character_walk_facing(&set.assets[0].model, im->height) == 3);
+    character_set_destroy(&set);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -273,6 +325,7 @@ int main(void)
     check_slip("models/quadruped.gltf", 0.3, 1.2);  /* 0.6 m animal, 0.8 s cycle */
     check_proxies("models/humanoid.gltf");
     check_proxies("models/quadruped.gltf");
+    check_facing();
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

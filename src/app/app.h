@@ -37,6 +37,8 @@ typedef struct app_options_t {
     app_mode_t mode;
     const char *character;    /* --character PATH: replaces the scene's models */
     const char *clip;         /* --clip NAME|INDEX|START:END */
+    float character_height;   /* --character-height M: every character's height; 0 = automatic */
+    const char *list_clips;   /* --list-clips MODEL: print its clips and exit */
     int blade_render;         /* --blade-render: 0 = the scene's, else 1 + scene_blade_render_t */
     int raster;               /* --raster: 0 = the scene's, else 1 + scene_raster_t */
     int raster_samples;       /* --raster-samples 1|4: compute rasterizer samples per pixel; 0 = the scene's */

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "character/character_import.h"
 #include "scene/scene.h"
 #include "scene/scene_fields.h"
 
@@ -24,6 +25,8 @@ void app_print_usage(void)
            "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
+           "  --character-height M  fit every character to M metres tall (0.01..1000; default: automatic)\n"
+           "  --list-clips MODEL    print MODEL's clips (name, duration, keys) and exit\n"
            "  --blade-render R      pull (vertex pulling) | tess (tessellation shaders), blade mode and the\n"
            "                        hybrid's tiles; default: the scene's (pull)\n"
            "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
@@ -168,6 +171,19 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
         } else if (strcmp(a, "--clip") == 0) {
             NEED_VALUE();
             o->clip = v;
+        } else if (strcmp(a, "--list-clips") == 0) {
+            NEED_NONEMPTY("model path");
+            o->list_clips = v;
+        } else if (strcmp(a, "--character-height") == 0) {
+            NEED_VALUE();
+            char *end;
+            double h = strtod(v, &end);
+            if (end == v || *end || !(h >= 0.01 && h <= CHARACTER_IMPORT_MAX_FIT)) {
+                snprintf(err, err_size, "--character-height '%s': expected metres in 0.01..%g", v,
+                         (double)CHARACTER_IMPORT_MAX_FIT);
+                return 2;
+            }
+            o->character_height = (float)h;
         } else if (strcmp(a, "--frames") == 0) {
             NEED_VALUE();
             if (!parse_int(v, 1, APP_MAX_FRAMES, &n)) {

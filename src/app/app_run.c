@@ -316,6 +316,10 @@ static void write_summary(app_t *app, double wall_s)
                       r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
                       rs.overflow);
     }
+    if (app->world.have_chars && n < (int)sizeof buf) {
+        character_set_describe(&app->world.chars, buf + n, sizeof buf - (size_t)n);
+        n += (int)strlen(buf + n);
+    }
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
     n += summary_work(buf + n, sizeof buf - (size_t)n);

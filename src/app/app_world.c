@@ -79,6 +79,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->raster_samples = o->raster_samples ? o->raster_samples : s->raster_samples;
     w->character_override = o->character;
     w->clip_override = o->clip;
+    w->character_height = o->character_height;
     float canopy_min = s->grass.switch_distance + APP_SWITCH_FADE + APP_CANOPY_FADE;
     if (s->grass.canopy_distance < canopy_min) {
         core_log_error("%s: grass.canopy_distance %g is less than grass.switch_distance + %g (%g): the blades' and "
@@ -529,6 +530,13 @@ bool app_world_make_gpu(app_world_t *w)
     double mark = plat_time();
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
     stage_done(w, APP_STAGE_TERRAIN_GPU, &mark);
+    if (w->gpu_ready && !w->scene.character_count && !w->character_override &&
+        (w->clip_override || w->character_height > 0.0f)) {
+        core_log_error("%s: the scene has no characters and there is no --character",
+                       w->clip_override ? "--clip" : "--character-height");
+        w->input_error = true;
+        w->gpu_ready = false;
+    }
     if (w->gpu_ready && (w->scene.character_count || w->character_override)) {
         w->have_chars = character_set_make(&w->chars, &(character_set_desc_t){
                                                           .characters = w->scene.characters,
@@ -537,6 +545,7 @@ bool app_world_make_gpu(app_world_t *w)
                                                           .capsules = APP_CHARACTER_CAPSULES,
                                                           .model_override = w->character_override,
                                                           .clip_override = w->clip_override,
+                                                          .height_override = w->character_height,
                                                       });
         w->input_error = !w->have_chars;
         w->gpu_ready = w->have_chars;

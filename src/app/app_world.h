@@ -172,6 +172,7 @@ typedef struct app_world_t {
     character_set_t chars;
     bool have_chars;
     const char *character_override, *clip_override;
+    float character_height; /* --character-height; 0 = the scene's */
     bool input_error; /* a model file failed to load: exit code 2 */
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
     bool warned_objects;

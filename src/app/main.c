@@ -3,6 +3,7 @@
 #include "app/app.h"
 #include "bench/bench.h"
 
+#include "character/character_load.h"
 #include "core/core.h"
 
 int main(int argc, char **argv)
@@ -15,6 +16,7 @@ int main(int argc, char **argv)
         core_log_error("%s", err);
         return 2;
     }
+    if (opts.list_clips) return character_print_clips(opts.list_clips, stdout) ? 0 : 2;
     app_signal_install();
     core_log_set_quiet(opts.quiet);
     switch (opts.command) {

@@ -70,34 +70,93 @@ static bool asset_bone_spheres(character_asset_t *a)
     return true;
 }
 
-static bool asset_load(character_asset_t *a, const char *resolved)
+/* The model's texture (embedded or a file) as a GL texture; problems are
+ * warnings and leave the plain base colour. */
+static void asset_texture(character_asset_t *a)
+{
+    const character_model_t *m = &a->model;
+    const character_image_t *e = &m->texture_embedded;
+    core_image_t img = {0};
+    char why[256] = "";
+    bool ok = false;
+    if (e->data && e->height > 0) {
+        ok = core_image_alloc(&img, e->width, e->height, 4);
+        for (size_t i = 0; ok && i < (size_t)e->width * (size_t)e->height; i++) {
+            const unsigned char *bgra = e->data + 4 * i;
+            img.px[4 * i] = bgra[2], img.px[4 * i + 1] = bgra[1], img.px[4 * i + 2] = bgra[0];
+            img.px[4 * i + 3] = bgra[3];
+        }
+        if (!ok) snprintf(why, sizeof why, "out of memory");
+    } else if (e->data) {
+        ok = core_image_decode(&img, e->data, e->size, 4, why, sizeof why);
+    } else if (m->texture_path[0]) {
+        size_t size = 0;
+        char *file = core_fs_read(m->texture_path, &size, why, sizeof why);
+        ok = file && core_image_decode(&img, file, size, 4, why, sizeof why);
+        free(file);
+    } else {
+        return;
+    }
+    if (!ok) {
+        core_log_warn("%s: texture %s unreadable (%s); using the base colour", a->path,
+                      e->data ? "(embedded)" : m->texture_path, why);
+        core_image_free(&img);
+        return;
+    }
+    a->texture = gfx_texture_make(&(gfx_texture_desc_t){.w = img.w, .h = img.h, .mip_levels = -1, .wrap = GL_REPEAT,
+                                                        .format = GL_SRGB8_ALPHA8, .data = img.px,
+                                                        .label = "character.texture"});
+    core_image_free(&img);
+}
+
+/* With no forward axis from the scene, the file or its format, and no
+ * rotation asked for, the walk decides (character_walk_facing): a model
+ * whose stance feet slide along X or +Z is turned to face +Z. */
+static bool asset_face_walk(character_asset_t *a, char *err, size_t err_size)
+{
+    character_import_t *im = &a->import;
+    if (strcmp(im->forward_from, "default") != 0 || a->import_desc.yaw != 0.0f) return true;
+    int facing = character_walk_facing(&a->model, im->height);
+    if (facing == 0 || facing == 3) return true;
+    character_import_t turn;
+    if (!character_import(&a->model, a->path, &(character_import_desc_t){.height = im->height, .up = 2,
+                                                                         .forward = facing},
+                          &turn, err, err_size))
+        return false;
+    /* the file's axis that now faces +Z: row |facing| of the first import's rotation */
+    float r[16];
+    character_import_matrix(1.0f, im->up, im->forward, 0.0f, 0.0f, r);
+    int row = abs(facing) - 1;
+    for (int k = 0; k < 3; k++)
+        if (fabsf(r[4 * k + row]) > 0.5f) im->forward = (k + 1) * (r[4 * k + row] * (float)facing > 0.0f ? 1 : -1);
+    im->forward_from = "walk";
+    return true;
+}
+
+static bool asset_load(character_asset_t *a, const char *resolved, int index)
 {
     char err[512];
     snprintf(a->path, sizeof a->path, "%s", resolved);
     if (!character_load(&a->model, resolved, err, sizeof err)) return false; /* logged by the loader */
+    if (!character_import(&a->model, resolved, &a->import_desc, &a->import, err, sizeof err) ||
+        !asset_face_walk(a, err, sizeof err)) {
+        core_log_error("character %d: %s: %s", index, resolved, err);
+        return false;
+    }
     const character_model_t *m = &a->model;
     a->vertices = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->vertex_count * sizeof(character_vertex_t),
                                                        .data = m->vertices, .label = "character.bind_vertices"});
     a->indices = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->index_count * sizeof(uint32_t),
                                                       .data = m->indices, .label = "character.indices"});
     if (!a->vertices.id || !a->indices.id) return false;
-    if (m->texture_path[0]) {
-        core_image_t img;
-        if (core_image_load(&img, m->texture_path, 4)) {
-            a->texture = gfx_texture_make(&(gfx_texture_desc_t){.w = img.w, .h = img.h, .mip_levels = -1,
-                                                                .wrap = GL_REPEAT, .format = GL_SRGB8_ALPHA8,
-                                                                .data = img.px, .label = "character.texture"});
-            core_image_free(&img);
-        } else {
-            core_log_warn("%s: texture %s unreadable; using the base colour", a->path, m->texture_path);
-        }
-    }
+    asset_texture(a);
     return asset_bone_spheres(a);
 }
 
-/* Finds the asset for a (repository-relative or absolute) path, loading it
- * the first time. Returns its index or -1 after one error line. */
-static int asset_get(character_set_t *set, const char *path, int index)
+/* Finds the asset for a (repository-relative or absolute) path and import
+ * settings, loading it the first time. Returns its index or -1 after one
+ * error line. */
+static int asset_get(character_set_t *set, const char *path, const character_import_desc_t *imp, int index)
 {
     char resolved[1024];
     if (!core_fs_resolve(path, resolved, sizeof resolved)) {
@@ -105,9 +164,11 @@ static int asset_get(character_set_t *set, const char *path, int index)
         return -1;
     }
     for (int i = 0; i < set->asset_count; i++)
-        if (strcmp(set->assets[i].path, resolved) == 0) return i;
+        if (strcmp(set->assets[i].path, resolved) == 0 && !memcmp(&set->assets[i].import_desc, imp, sizeof *imp))
+            return i;
     character_asset_t *a = &set->assets[set->asset_count++];
-    return asset_load(a, resolved) ? set->asset_count - 1 : -1;
+    a->import_desc = *imp;
+    return asset_load(a, resolved, index) ? set->asset_count - 1 : -1;
 }
 
 /* ---- instances ------------------------------------------------------------------ */
@@ -124,7 +185,9 @@ static bool instance_make(character_set_t *set, character_instance_t *inst, int 
     } else {
         inst->clip = character_clip_find(m, spec);
         if (inst->clip < 0) {
-            core_log_error("character %d: no clip \"%s\" in %s (%d clips)", index, spec, a->path, m->clip_count);
+            char list[768];
+            character_clip_list(m, list, sizeof list);
+            core_log_error("character %d: no clip \"%s\" in %s; its clips: %s", index, spec, a->path, list);
             return false;
         }
     }
@@ -228,7 +291,10 @@ bool character_set_make(character_set_t *set, const character_set_desc_t *desc_i
         if (d.model_override && d.model_override[0])
             snprintf(inst->desc.model, sizeof inst->desc.model, "%s", d.model_override);
         if (inst->desc.scale <= 0.0f) inst->desc.scale = 1.0f;
-        inst->asset = asset_get(set, inst->desc.model, i);
+        if (d.height_override > 0.0f) inst->desc.height = d.height_override;
+        character_import_desc_t imp = {.height = inst->desc.height, .up = scene_axis_code(inst->desc.up),
+                                       .forward = scene_axis_code(inst->desc.forward), .yaw = inst->desc.rotation};
+        inst->asset = asset_get(set, inst->desc.model, &imp, i);
         if (inst->asset < 0 || !instance_make(set, inst, i, d.clip_override)) {
             character_set_destroy(set);
             return false;
@@ -444,3 +510,22 @@ int character_set_objects(const character_set_t *set, character_object_t *out, i
 }
 
 int character_set_count(const character_set_t *set) { return set->count; }
+
+int character_set_describe(const character_set_t *set, char *buf, size_t size)
+{
+    size_t n = 0;
+    if (size) buf[0] = 0;
+    for (int i = 0; i < set->count && n < size; i++) {
+        const character_instance_t *inst = &set->items[i];
+        const character_asset_t *a = &set->assets[inst->asset];
+        const character_import_t *im = &a->import;
+        int w = snprintf(buf + n, size - n,
+                         "character %d: %s: height %.3f m, scale %.6g (units: %s; up %s: %s; forward %s: %s)\n", i,
+                         inst->desc.model, (double)(im->height * inst->desc.scale),
+                         (double)(im->scale * inst->desc.scale), im->scale_from, character_axis_name(im->up),
+                         im->up_from, character_axis_name(im->forward), im->forward_from);
+        if (w < 0) break;
+        n += (size_t)w;
+    }
+    return set->count;
+}

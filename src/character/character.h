@@ -15,6 +15,7 @@
 
 #include <stdbool.h>
 
+#include "character/character_import.h"
 #include "character/character_load.h"
 #include "character/character_ref.h"
 #include "gfx/gfx.h"
@@ -63,6 +64,8 @@ typedef struct character_stride_t {
      * end in [begin, begin + 1] (past 1 wraps into the next loop) */
     float contact_begin[CHARACTER_MAX_FEET], contact_end[CHARACTER_MAX_FEET];
     float natural_speed;                 /* model units per clip second, signed; 0 = no stride */
+    float contact_motion[2];             /* sum over feet of the (x, z) moved during contact (units) */
+    float contact_time;                  /* sum of the contact durations (s) */
 } character_stride_t;
 
 void character_clip_stride(const character_model_t *model, int clip, character_stride_t *out);
@@ -70,6 +73,8 @@ void character_clip_stride(const character_model_t *model, int clip, character_s
 /* One model file on the GPU, shared by every instance that uses it. */
 typedef struct character_asset_t {
     char path[1024];
+    character_import_desc_t import_desc; /* assets are shared by path and import */
+    character_import_t import;           /* what character_import applied */
     character_model_t model;
     gfx_buffer_t vertices; /* character_vertex_t array: SSBO for skinning, uv source */
     gfx_buffer_t indices;  /* uint32 triangles */
@@ -112,6 +117,7 @@ typedef struct character_set_desc_t {
     int capsules;                        /* capsules per character; default 16 */
     const char *model_override;          /* --character PATH: replaces every model */
     const char *clip_override;           /* --clip SPEC: name, index or "A:B" frames */
+    float height_override;               /* --character-height M: every character's height; 0 = none */
 } character_set_desc_t;
 
 character_set_desc_t character_set_desc_defaults(const character_set_desc_t *d);
@@ -145,6 +151,10 @@ void character_set_destroy(character_set_t *set);
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max);
 /* The same for every character of the set, concatenated. */
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max);
+/* One line per character for summary.txt: model, fitted height (m, scale
+ * included) and scale (metres per file unit times the scene's scale), and
+ * where units and axes came from. Returns the characters written. */
+int character_set_describe(const character_set_t *set, char *buf, size_t size);
 /* Characters in the set. */
 int character_set_count(const character_set_t *set);
 /* Billboard proxy of one character. */

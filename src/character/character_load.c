@@ -10,8 +10,10 @@
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>
+#include <assimp/metadata.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -77,6 +79,7 @@ void character_model_free(character_model_t *model)
     free(model->bones);
     free(model->vertices);
     free(model->indices);
+    free(model->texture_embedded.data);
     memset(model, 0, sizeof *model);
 }
 
@@ -208,10 +211,7 @@ static int clip_from_range(character_model_t *model, const char *spec, double a,
                       (double)(src->duration * tps));
         t1 = src->duration;
     }
-    if (!(t1 > t0)) {
-        core_log_warn("character: frame range '%s' is empty", spec);
-        return -1;
-    }
+    if (!(t1 > t0)) return -1;
     character_clip_t *grown = realloc(model->clips, sizeof *grown * (size_t)(model->clip_count + 1));
     if (!grown) return -1;
     model->clips = grown;
@@ -247,9 +247,7 @@ int character_clip_find(character_model_t *model, const char *spec)
     char *end;
     long idx = strtol(spec, &end, 10);
     if (end != spec && *end == 0) {
-        if (idx >= 0 && idx < model->clip_count) return (int)idx;
-        core_log_warn("character: clip index %ld out of range (%d clips)", idx, model->clip_count);
-        return -1;
+        return idx >= 0 && idx < model->clip_count ? (int)idx : -1;
     }
     const char *colon = strchr(spec, ':');
     if (colon && model->clip_count > 0) {
@@ -257,8 +255,33 @@ int character_clip_find(character_model_t *model, const char *spec)
         double a = strtod(spec, &e1), b = strtod(colon + 1, &e2);
         if (e1 == colon && e2 != colon + 1 && *e2 == 0) return clip_from_range(model, spec, a, b);
     }
-    core_log_warn("character: no clip matches '%s' (%d clips)", spec, model->clip_count);
     return -1;
+}
+
+int character_clip_keys(const character_clip_t *clip, int bone_count)
+{
+    int keys = 0;
+    for (int b = 0; b < bone_count; b++)
+        keys += clip->channels[b].pos.count + clip->channels[b].rot.count + clip->channels[b].scale.count;
+    return keys;
+}
+
+size_t character_clip_list(const character_model_t *model, char *buf, size_t size)
+{
+    size_t n = 0;
+    if (size) buf[0] = 0;
+    for (int i = 0; i < model->clip_count && n < size; i++) {
+        const character_clip_t *c = &model->clips[i];
+        int w = snprintf(buf + n, size - n, "%s%d '%s' (%.3g s)", i ? ", " : "", i, c->name, (double)c->duration);
+        n += w > 0 ? (size_t)w : 0;
+    }
+    if (model->clip_count && n < size) {
+        const character_clip_t *c = &model->clips[0];
+        int w = snprintf(buf + n, size - n, ", or a range A:B of clip 0's %.6g ticks",
+                         (double)(c->duration * c->ticks_per_second));
+        n += w > 0 ? (size_t)w : 0;
+    }
+    return n;
 }
 
 /* ---- import ------------------------------------------------------------------- */
@@ -297,9 +320,15 @@ static void flatten(load_ctx_t *ctx, character_model_t *m, const struct aiNode *
     for (unsigned i = 0; i < n->mNumChildren; i++) flatten(ctx, m, n->mChildren[i], idx);
 }
 
+/* A mesh with triangles. Faces decide, not mPrimitiveTypes: assimp 5.2's
+ * triangulation leaves the flags of a polygon mesh saying LINE | TRIANGLE |
+ * POLYGON (Blender's all-quad OBJ export was taken for lines). */
 static bool is_triangle_mesh(const struct aiMesh *mesh)
 {
-    return mesh->mNumVertices > 0 && mesh->mPrimitiveTypes == aiPrimitiveType_TRIANGLE;
+    if (mesh->mNumVertices == 0 || !mesh->mFaces) return false;
+    for (unsigned f = 0; f < mesh->mNumFaces; f++)
+        if (mesh->mFaces[f].mNumIndices == 3) return true;
+    return false;
 }
 
 /* Inserts (bone, w) into the 4 slots, keeping the largest weights.
@@ -315,6 +344,99 @@ static bool add_influence(character_vertex_t *v, int bone, float w)
         v->joints[smallest] = (uint16_t)bone;
     }
     return dropped;
+}
+
+/* ---- textures ----------------------------------------------------------------- */
+/* The embedded texture that `ref` names ("*N", or an mTextures entry's
+ * file name), or NULL. */
+static const struct aiTexture *embedded_texture(const struct aiScene *scene, const char *ref)
+{
+    if (!scene->mTextures || !scene->mNumTextures) return NULL;
+    if (ref[0] == '*') {
+        char *end;
+        long i = strtol(ref + 1, &end, 10);
+        return end != ref + 1 && !*end && i >= 0 && i < (long)scene->mNumTextures ? scene->mTextures[i] : NULL;
+    }
+    const char *base = character_path_basename(ref);
+    for (unsigned i = 0; i < scene->mNumTextures; i++) {
+        const struct aiTexture *t = scene->mTextures[i];
+        if (t->mFilename.length && !strcmp(character_path_basename(t->mFilename.data), base)) return t;
+    }
+    return NULL;
+}
+
+/* Copies an embedded texture into m->texture_embedded: a compressed file as
+ * is, raw BGRA texels as they are. */
+static bool copy_embedded(character_model_t *m, const struct aiTexture *t)
+{
+    size_t size = t->mHeight ? (size_t)t->mWidth * t->mHeight * 4 : t->mWidth;
+    if (!t->pcData || size == 0) return false;
+    m->texture_embedded.data = malloc(size);
+    if (!m->texture_embedded.data) return false;
+    memcpy(m->texture_embedded.data, t->pcData, size);
+    m->texture_embedded.size = size;
+    m->texture_embedded.width = (int)t->mWidth;
+    m->texture_embedded.height = (int)t->mHeight;
+    return true;
+}
+
+const char *character_path_basename(const char *p)
+{
+    const char *slash = strrchr(p, '/'), *back = strrchr(p, '\\');
+    const char *last = slash > back ? slash : back;
+    return last ? last + 1 : p;
+}
+
+bool character_texture_find(const char *model_path, const char *ref, char *out, size_t out_size, char *tried,
+                            size_t tried_size)
+{
+    const char *slash = strrchr(model_path, '/');
+    int dir = slash ? (int)(slash - model_path) + 1 : 0;
+    const char *base = character_path_basename(ref);
+    char cand[4][1024];
+    int n = 0;
+    if (ref[0] == '/') snprintf(cand[n++], sizeof cand[0], "%s", ref);
+    else if (base != ref) snprintf(cand[n++], sizeof cand[0], "%.*s%s", dir, model_path, ref);
+    snprintf(cand[n++], sizeof cand[0], "%.*s%s", dir, model_path, base);
+    snprintf(cand[n++], sizeof cand[0], "%.*stextures/%s", dir, model_path, base);
+    snprintf(cand[n++], sizeof cand[0], "%.*s../textures/%s", dir, model_path, base);
+    size_t used = 0;
+    if (tried_size) tried[0] = 0;
+    for (int i = 0; i < n; i++) {
+        if (access(cand[i], R_OK) == 0 && strlen(cand[i]) < out_size) {
+            snprintf(out, out_size, "%s", cand[i]);
+            return true;
+        }
+        if (used < tried_size) {
+            int w = snprintf(tried + used, tried_size - used, "%s%s", i ? ", " : "", cand[i]);
+            used += w > 0 ? (size_t)w : 0;
+        }
+    }
+    return false;
+}
+
+/* The diffuse texture named `ref`: embedded, else a file found by
+ * character_texture_find. Every problem is a warning (the model draws in its
+ * base colour). */
+static void load_texture(character_model_t *m, const struct aiScene *scene, const char *ref, const char *path)
+{
+    const struct aiTexture *emb = embedded_texture(scene, ref);
+    if (emb) {
+        if (!copy_embedded(m, emb))
+            core_log_warn("%s: embedded texture '%s' is empty; using the plain base colour", path, ref);
+        return;
+    }
+    const char *base = character_path_basename(ref);
+    if (!base[0] || base[0] == '$' || ref[0] == '*') {
+        /* "", a folder, "*N" past mTextures, assimp's "$texture_dummy.bmp" */
+        core_log_warn("%s: the material names no usable texture file; using the plain base colour", path);
+        return;
+    }
+    char tried[2048];
+    if (!character_texture_find(path, ref, m->texture_path, sizeof m->texture_path, tried, sizeof tried)) {
+        m->texture_path[0] = 0;
+        core_log_warn("%s: texture '%s' not found (tried %s); using the plain base colour", path, ref, tried);
+    }
 }
 
 static void load_material(character_model_t *m, const struct aiScene *scene, const struct aiMesh *mesh,
@@ -336,24 +458,7 @@ static void load_material(character_model_t *m, const struct aiScene *scene, con
         aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &tex, NULL, NULL, NULL, NULL, NULL, NULL) !=
             aiReturn_SUCCESS)
         return;
-    if (tex.data[0] == '*') {
-        core_log_warn("%s: embedded texture '%s' is not supported; using the plain base colour", path, tex.data);
-        return;
-    }
-    char full[sizeof m->texture_path];
-    const char *slash = strrchr(path, '/');
-    int dir_len = slash ? (int)(slash - path) + 1 : 0;
-    int n = tex.data[0] == '/' ? snprintf(full, sizeof full, "%s", tex.data)
-                               : snprintf(full, sizeof full, "%.*s%s", dir_len, path, tex.data);
-    if (n < 0 || (size_t)n >= sizeof full) {
-        core_log_warn("%s: texture path '%s' too long; using the plain base colour", path, tex.data);
-        return;
-    }
-    if (access(full, R_OK) != 0) {
-        core_log_warn("%s: texture '%s' not found; using the plain base colour", path, full);
-        return;
-    }
-    memcpy(m->texture_path, full, sizeof full);
+    load_texture(m, scene, tex.data, path);
 }
 
 static bool load_clips(load_ctx_t *ctx, character_model_t *m)
@@ -560,6 +665,61 @@ static bool collapse_to_rigid(character_model_t *m)
     return b->name != NULL;
 }
 
+/* ---- file metadata ---------------------------------------------------------------- */
+static bool meta_number(const struct aiMetadata *md, const char *key, double *out)
+{
+    for (unsigned i = 0; md && i < md->mNumProperties; i++) {
+        if (strcmp(md->mKeys[i].data, key) != 0 || !md->mValues[i].mData) continue;
+        const void *d = md->mValues[i].mData;
+        switch (md->mValues[i].mType) {
+        case AI_BOOL: *out = *(const bool *)d; return true;
+        case AI_INT32: *out = *(const int32_t *)d; return true;
+        case AI_UINT64: *out = (double)*(const uint64_t *)d; return true;
+        case AI_FLOAT: *out = *(const float *)d; return true;
+        case AI_DOUBLE: *out = *(const double *)d; return true;
+        default: return false;
+        }
+    }
+    return false;
+}
+
+/* Signed axis code from "<name>Axis" (0, 1, 2) and "<name>AxisSign". */
+static int meta_axis(const struct aiMetadata *md, const char *axis_key, const char *sign_key)
+{
+    double a, s = 1.0;
+    if (!meta_number(md, axis_key, &a) || !(a == 0.0 || a == 1.0 || a == 2.0)) return 0;
+    meta_number(md, sign_key, &s);
+    return (s < 0.0 ? -1 : 1) * (int)(a + 1.0);
+}
+
+/* Units (FBX's UnitScaleFactor: centimetres per unit), axes and the
+ * extension; also warns when an OBJ names a material library that is not
+ * there (assimp only falls back to a default material). */
+static void load_file_info(character_model_t *m, const struct aiScene *sc, const char *path)
+{
+    const struct aiMetadata *md = sc->mMetaData;
+    double unit;
+    if ((meta_number(md, "UnitScaleFactor", &unit) || meta_number(md, "OriginalUnitScaleFactor", &unit)) &&
+        unit > 0.0 && isfinite(unit))
+        m->file.unit_metres = (float)(unit / 100.0);
+    m->file.up = meta_axis(md, "UpAxis", "UpAxisSign");
+    m->file.front = meta_axis(md, "FrontAxis", "FrontAxisSign");
+    if (abs(m->file.up) == abs(m->file.front)) m->file.front = 0;
+    const char *base = character_path_basename(path), *dot = strrchr(base, '.');
+    size_t k = 0;
+    for (const char *c = dot ? dot + 1 : ""; *c && k + 1 < sizeof m->file.format; c++)
+        m->file.format[k++] = (char)tolower((unsigned char)*c);
+    m->file.format[k] = 0;
+    if (strcmp(m->file.format, "obj") != 0) return;
+    FILE *f = fopen(path, "r");
+    char line[1024], lib[1024], found[1024], tried[2048];
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, " mtllib %1023[^\r\n]", lib) == 1 &&
+            !character_texture_find(path, lib, found, sizeof found, tried, sizeof tried))
+            core_log_warn("%s: material library '%s' not found (tried %s); default material", path, lib, tried);
+    if (f) fclose(f);
+}
+
 static bool fail(char *err, size_t err_size, const char *path, const char *fmt, const char *arg)
 {
     char msg[512];
@@ -642,6 +802,7 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
                           CHARACTER_MAX_INFLUENCES);
         if (unbound) core_log_warn("%s: %d skinned vertices had zero total weight; bound to their mesh node", path, unbound);
         if (bad) core_log_warn("%s: dropped %d invalid vertex weights (NaN, negative or bad vertex id)", path, bad);
+        load_file_info(model, sc, path);
         ok = ok && load_clips(&ctx, model);
         if (ok && model->clip_count == 0) ok = collapse_to_rigid(model);
     }
@@ -653,5 +814,26 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
     }
     core_log_info("%s: %d vertices, %d triangles, %d bones, %d clips%s", path, model->vertex_count,
                   model->index_count / 3, model->bone_count, model->clip_count, model->rigid ? " (rigid)" : "");
+    return true;
+}
+
+bool character_print_clips(const char *path, FILE *out)
+{
+    char resolved[1024], err[512];
+    if (!core_fs_resolve(path, resolved, sizeof resolved)) {
+        core_log_error("--list-clips: model file %s not found", path);
+        return false;
+    }
+    character_model_t m;
+    if (!character_load(&m, resolved, err, sizeof err)) return false; /* logged by the loader */
+    fprintf(out, "%s: %d clip%s%s\n", path, m.clip_count, m.clip_count == 1 ? "" : "s",
+            m.clip_count ? "" : " (the model stands in its bind pose)");
+    for (int i = 0; i < m.clip_count; i++) {
+        const character_clip_t *c = &m.clips[i];
+        fprintf(out, "  %d \"%s\": %.3f s, %d keys, %.6g ticks at %.6g per s\n", i, c->name, (double)c->duration,
+                character_clip_keys(c, m.bone_count), (double)(c->duration * c->ticks_per_second),
+                (double)c->ticks_per_second);
+    }
+    character_model_free(&m);
     return true;
 }

@@ -12,6 +12,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #define CHARACTER_MAX_INFLUENCES 4
 
@@ -63,6 +64,25 @@ typedef struct character_clip_t {
     character_channel_t *channels; /* bone_count entries */
 } character_clip_t;
 
+/* What the file states about its units and axes (assimp's scene metadata:
+ * UnitScaleFactor or OriginalUnitScaleFactor, UpAxis/UpAxisSign,
+ * FrontAxis/FrontAxisSign), read by character_import. Axis codes as in
+ * character_import.h: +-1 x, +-2 y, +-3 z; 0 = not stated. */
+typedef struct character_file_info_t {
+    float unit_metres; /* metres per file unit; 0 = not stated (FBX: cm per unit / 100) */
+    int up, front;
+    char format[16];   /* lower-case file extension, e.g. "b3d" */
+} character_file_info_t;
+
+/* An embedded texture (aiScene mTextures, referenced as "*N" or by name):
+ * either a compressed image file (png, jpg...) in memory (height 0, size
+ * bytes) or raw BGRA texels (width x height). */
+typedef struct character_image_t {
+    unsigned char *data;
+    size_t size;
+    int width, height; /* height 0: data is a compressed file */
+} character_image_t;
+
 typedef struct character_model_t {
     character_vertex_t *vertices;
     int vertex_count;
@@ -73,7 +93,9 @@ typedef struct character_model_t {
     character_clip_t *clips;
     int clip_count;
     float base_color[4];      /* from the first mesh's material; default 0.8 grey */
-    char texture_path[1024];  /* diffuse/base-colour texture, "" when none */
+    char texture_path[1024];  /* diffuse/base-colour texture file, "" when none */
+    character_image_t texture_embedded; /* data NULL when none; wins over texture_path */
+    character_file_info_t file;
     bool rigid;               /* no skin and no animation: one bone */
 } character_model_t;
 
@@ -82,6 +104,17 @@ typedef struct character_model_t {
  * released with character_model_free. */
 bool character_load(character_model_t *model, const char *path, char *err, size_t err_size);
 void character_model_free(character_model_t *model);
+
+/* The part of a path after its last '/' or '\\' (Windows paths stored in
+ * files). */
+const char *character_path_basename(const char *path);
+/* Finds the texture file `ref` that a material of model_path names, trying
+ * in turn: ref itself (absolute) or beside the model (relative, with its
+ * folders); its file name beside the model; in textures/ beside the model;
+ * in ../textures/ (Minetest's layout). Writes the first readable one into
+ * out and returns true; otherwise lists the candidates in tried. */
+bool character_texture_find(const char *model_path, const char *ref, char *out, size_t out_size, char *tried,
+                            size_t tried_size);
 
 /* Bone index by exact name, or -1. */
 int character_bone_find(const character_model_t *model, const char *name);
@@ -94,8 +127,19 @@ int character_bone_find(const character_model_t *model, const char *name);
  *   "A:B"          frames/ticks A..B of the first clip (files with a single
  *                  timeline); a new clip named "A:B" is appended (once),
  *                  which may move model->clips (re-read pointers after)
- * Returns the clip index or -1 (and logs a warning). */
+ * Returns the clip index, or -1 (nothing logged: the caller names the
+ * available clips with character_clip_list). A range that ends past the
+ * timeline is clamped with a warning. */
 int character_clip_find(character_model_t *model, const char *spec);
+/* `meadow --list-clips`: loads the (repository-relative or absolute) model
+ * and prints each clip's index, name, duration (s), key count and timeline
+ * ticks (for A:B ranges) to out. false after one error line. */
+bool character_print_clips(const char *path, FILE *out);
+/* Keys of a clip over all tracks. */
+int character_clip_keys(const character_clip_t *clip, int bone_count);
+/* "0 'walk' (1 s), 1 'idle' (2 s), or a range A:B of clip 0's 25 ticks"
+ * into buf (truncated to size). Returns the length written. */
+size_t character_clip_list(const character_model_t *model, char *buf, size_t size);
 
 /* Repairs one clip in place: drops keys with NaN time or value and zero
  * quaternions, clamps negative times to 0, sorts keys by time, normalises

@@ -43,12 +43,13 @@ void character_clip_stride(const character_model_t *model, int clip, character_s
         if (leaf[b] && dominates[b] && pose.global[b][13] < foot_limit) out->feet[out->foot_count++] = b;
 
     enum { N = CHARACTER_STRIDE_SAMPLES };
-    float y[CHARACTER_MAX_FEET][N], z[CHARACTER_MAX_FEET][N];
+    float x[CHARACTER_MAX_FEET][N], y[CHARACTER_MAX_FEET][N], z[CHARACTER_MAX_FEET][N];
     float dur = model->clips[clip].duration, dt = dur / N;
     for (int i = 0; i < N; i++) {
         character_sample_clip(model, clip, (float)i * dt, true, &pose);
         character_pose_globals(model, &pose);
         for (int f = 0; f < out->foot_count; f++) {
+            x[f][i] = pose.global[out->feet[f]][12];
             y[f][i] = pose.global[out->feet[f]][13];
             z[f][i] = pose.global[out->feet[f]][14];
         }
@@ -66,16 +67,39 @@ void character_clip_stride(const character_model_t *model, int clip, character_s
         int begin = 0, end = 0;
         while (begin > -(N - 1) && y[f][(low + begin - 1 + N) % N] <= limit) begin--;
         while (end - begin < N - 1 && y[f][(low + end + 1) % N] <= limit) end++;
-        float z0 = z[f][(low + begin + N) % N], z1 = z[f][(low + end) % N];
+        int i0 = (low + begin + N) % N, i1 = (low + end) % N;
+        float z0 = z[f][i0], z1 = z[f][i1];
         back -= z1 - z0;
+        out->contact_motion[0] += x[f][i1] - x[f][i0];
+        out->contact_motion[1] += z1 - z0;
         time += (end - begin) * dt;
         float b = (float)((low + begin + N) % N) / N;
         out->contact_begin[f] = b;
         out->contact_end[f] = b + (float)(end - begin) / N;
     }
     out->natural_speed = time > 0.0 ? (float)(back / time) : 0.0f;
+    out->contact_time = (float)time;
     character_pose_free(&pose);
     free(leaf), free(dominates);
+}
+
+int character_walk_facing(const character_model_t *model, float height)
+{
+    float best[2] = {0.0f, 0.0f}, best_speed = 0.0f;
+    for (int c = 0; c < model->clip_count; c++) {
+        character_stride_t st;
+        character_clip_stride(model, c, &st);
+        if (!(st.contact_time > 0.0f)) continue;
+        float mx = st.contact_motion[0], mz = st.contact_motion[1];
+        float speed = sqrtf(mx * mx + mz * mz) / st.contact_time;
+        if (speed > best_speed) best_speed = speed, best[0] = mx, best[1] = mz;
+    }
+    if (best_speed < CHARACTER_FACING_MIN_SPEED * height) return 0;
+    /* the stance feet move backwards: the model faces -motion */
+    float fx = -best[0], fz = -best[1];
+    if (fabsf(fx) > 2.0f * fabsf(fz)) return fx > 0.0f ? 1 : -1;
+    if (fabsf(fz) > 2.0f * fabsf(fx)) return fz > 0.0f ? 3 : -3;
+    return 0;
 }
 
 float character_walk_rate(const character_stride_t *stride, float speed, float scale)

@@ -9,6 +9,18 @@
 /* Strides slower than this (m/s) are "no stride": the clip plays at rate 1. */
 #define CHARACTER_MIN_STRIDE_SPEED 1e-3f
 
+/* Stance feet slower than this many heights per second say nothing about
+ * where a model faces. */
+#define CHARACTER_FACING_MIN_SPEED 0.05f
+
+/* Where a model faces, judged from its walk: over every clip, the one whose
+ * stance feet (character_clip_stride) move fastest; they move backwards, so
+ * the model faces the opposite way, snapped to +X (1), -X (-1), +Z (3) or
+ * -Z (-3) when that axis is at least twice the other component. 0: no clip
+ * moves its feet at CHARACTER_FACING_MIN_SPEED * height (m/s) or more, or
+ * the direction is diagonal. */
+int character_walk_facing(const character_model_t *model, float height);
+
 /* Clip seconds per second of walking: speed / (natural_speed * scale),
  * negative for clips that walk backwards in model space (played in
  * reverse); 1 when the clip has no stride. */

@@ -91,6 +91,9 @@ bool core_image_alloc(core_image_t *img, int w, int h, int channels);
 void core_image_free(core_image_t *img);
 /* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's). */
 bool core_image_load(core_image_t *img, const char *path, int channels);
+/* Decodes a PNG/JPG/TGA file held in memory, forcing `channels`. Logs
+ * nothing: on failure returns false with the reason in err. */
+bool core_image_decode(core_image_t *img, const void *data, size_t size, int channels, char *err, size_t err_size);
 /* Writes PNG atomically (tmp + rename). */
 bool core_image_write_png(const core_image_t *img, const char *path);
 /* Writes an RGB JPEG atomically, box-filtered down by the smallest integer

@@ -2,6 +2,8 @@
  * stb_image_write (atomically, through core_fs_write_atomic). */
 #include "core.h"
 
+#include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -40,6 +42,20 @@ void core_image_free(core_image_t *img)
     memset(img, 0, sizeof *img);
 }
 
+/* Moves stb's pixels into img (malloc'd, so core_image_free owns them). */
+static bool image_take(core_image_t *img, uint8_t *px, int w, int h, int channels)
+{
+    size_t bytes = (size_t)w * (size_t)h * (size_t)channels;
+    img->px = malloc(bytes);
+    if (img->px) memcpy(img->px, px, bytes);
+    stbi_image_free(px);
+    if (!img->px) return false;
+    img->w = w;
+    img->h = h;
+    img->channels = channels;
+    return true;
+}
+
 bool core_image_load(core_image_t *img, const char *path, int channels)
 {
     memset(img, 0, sizeof *img);
@@ -49,18 +65,21 @@ bool core_image_load(core_image_t *img, const char *path, int channels)
         core_log_error("%s: cannot load image: %s", path, stbi_failure_reason());
         return false;
     }
-    size_t bytes = (size_t)w * (size_t)h * (size_t)(channels ? channels : n);
-    img->px = malloc(bytes);
-    if (!img->px) {
-        stbi_image_free(px);
+    return image_take(img, px, w, h, channels ? channels : n);
+}
+
+bool core_image_decode(core_image_t *img, const void *data, size_t size, int channels, char *err, size_t err_size)
+{
+    memset(img, 0, sizeof *img);
+    int w, h, n;
+    uint8_t *px = size <= INT32_MAX ? stbi_load_from_memory(data, (int)size, &w, &h, &n, channels) : NULL;
+    if (!px) {
+        snprintf(err, err_size, "%s", size <= INT32_MAX ? stbi_failure_reason() : "image file too large");
         return false;
     }
-    memcpy(img->px, px, bytes);
-    stbi_image_free(px);
-    img->w = w;
-    img->h = h;
-    img->channels = channels ? channels : n;
-    return true;
+    if (image_take(img, px, w, h, channels ? channels : n)) return true;
+    snprintf(err, err_size, "out of memory");
+    return false;
 }
 
 typedef struct png_buf_t {

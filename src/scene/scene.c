@@ -528,6 +528,10 @@ static bool parse_characters(sp_t *sp, const json_t *arr, scene_desc_t *d)
         if (!get_members(sp, e, p, SCENE_SEC_CHARACTER, 0, c)) return false;
         if (!c->model[0]) return sp_fail(sp, scene_json_get(e, "model")->line, field_join(f, sizeof f, p, "model", 0),
                                          "must not be empty");
+        int up = scene_axis_code(c->up), fwd = scene_axis_code(c->forward);
+        if (up && fwd && abs(up) == abs(fwd))
+            return sp_fail(sp, scene_json_get(e, "forward")->line, field_join(f, sizeof f, p, "forward", 0),
+                           "lies along up; choose an axis perpendicular to it");
         if ((v = MEMBER(e, p, "clip"))) {
             if (v->type == SCENE_JSON_STRING) {
                 if (!get_string(sp, v, f, c->clip_name, sizeof c->clip_name)) return false;

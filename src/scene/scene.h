@@ -170,18 +170,26 @@ typedef struct scene_collider_t {
     bool loop;         /* default false; see scene_path_eval */
 } scene_collider_t;
 
-/* "characters" array entry. Keys: model (required), clip, speed, scale, path,
- * loop. */
+/* "characters" array entry. Keys: model (required), clip, speed, scale,
+ * height, up, forward, rotation, path, loop. up and forward are
+ * SCENE_AXIS_* indices into "auto", "+x", "-x", "+y", "-y", "+z", "-z"
+ * (scene_axis_code turns them into character_import's axis codes). */
 typedef struct scene_character_t {
     char model[SCENE_PATH_MAX];    /* model file, e.g. "models/humanoid.gltf" */
     char clip_name[SCENE_NAME_MAX]; /* "clip": "walk" -> name, clip_index = -1 */
     int clip_index;                /* "clip": 2 -> index [0, 1000]; default 0 (first clip) */
     float speed;                   /* walking speed m/s [0, 100]; default 1.2 */
-    float scale;                   /* uniform model scale [0, 1000]; default 1 */
+    float scale;                   /* uniform scale on top of the import [0, 1000]; default 1 */
+    float height;                  /* fit the bind pose to this height m [0, 1000]; 0 = automatic */
+    int up, forward;               /* the file's axes; 0 = automatic */
+    float rotation;                /* yaw after import, degrees [-360, 360]; default 0 */
     int waypoint_count;            /* "path": [[x, z], ...]; none = stands at the origin */
     vec2 waypoints[SCENE_MAX_PATH_KEYS];
     bool loop;                     /* closed walk, default false; see scene_walk_eval */
 } scene_character_t;
+
+/* Axis code of an up/forward index: 0 (auto), +1/-1 x, +2/-2 y, +3/-3 z. */
+static inline int scene_axis_code(int index) { return index <= 0 ? 0 : ((index + 1) / 2) * (index % 2 ? 1 : -1); }
 
 /* The whole scene. Top-level keys: seed, frames, dt, size, msaa, mode,
  * terrain, grass, camera, wind, colliders, characters.

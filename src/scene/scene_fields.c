@@ -18,6 +18,7 @@ static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
 static const char *const clearings_names[] = {"noise", "none", "image", NULL};
+static const char *const axis_names[] = {"auto", "+x", "-x", "+y", "-y", "+z", "-z", NULL};
 
 /* Entry-type bits of scene_field_t.variants. */
 #define DIRECTIONAL (1u << SCENE_WIND_DIRECTIONAL)
@@ -236,7 +237,19 @@ const scene_field_t scene_fields[] = {
     {CHARACTER(speed), .key = "speed", .type = SCENE_FIELD_FLOAT, .hi = 100, .def = {SCENE_DEFAULT_WALK_SPEED},
       .doc = "walking speed (m/s)"},
     {CHARACTER(scale), .key = "scale", .type = SCENE_FIELD_FLOAT, .hi = 1000,
-      .def = {SCENE_DEFAULT_CHARACTER_SCALE}, .doc = "uniform model scale"},
+      .def = {SCENE_DEFAULT_CHARACTER_SCALE}, .doc = "uniform scale on top of the import's fit (height and summary.txt include it)"},
+    {CHARACTER(height), .key = "height", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .doc = "fit the bind pose to this height (m); `--character-height` overrides it",
+      .def_doc = "0 (automatic: the file's unit, else metres when 0.25-3 units tall, else fitted to 1.75 m with a warning; docs/CHARACTERS.md)"},
+    {CHARACTER(up), .key = "up", .type = SCENE_FIELD_ENUM, .names = axis_names,
+      .doc = "the file's up axis", .def_doc = "auto (the file's metadata, else its format's convention, else +y)"},
+    {CHARACTER(forward), .key = "forward", .type = SCENE_FIELD_ENUM, .names = axis_names,
+      .doc = "the file's forward axis (where the model faces); not along `up`",
+      .def_doc = "auto (the file's metadata, else its format's convention, else +z)"},
+    {CHARACTER(rotation), .key = "rotation", .type = SCENE_FIELD_FLOAT, .lo = -360, .hi = 360,
+      .flags = SCENE_FIELD_NO_DEFAULT,
+      .doc = "turn about the vertical after import (degrees, counter-clockwise seen from above: 90 turns +z to +x)",
+      .def_doc = "0"},
     {CHARACTER(waypoints), .key = "path", .type = SCENE_FIELD_ARRAY, .hi = SCENE_MAX_PATH_KEYS,
       .limit = "SCENE_MAX_PATH_KEYS", .doc = "waypoints [[x, z], ...], each component in [-1e6, 1e6]",
      .type_doc = "array of [x, z]", .def_doc = "stands at the origin"},
