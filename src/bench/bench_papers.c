@@ -92,6 +92,7 @@ typedef struct papers_run_t {
     double cubemaps_ms, collide_ms, recover_ms, render_ms; /* bb.*; render: bb.render or bb.raster */
     long blades, drawn, billboards;
     unsigned culled[4];
+    long patch_culled; /* blades of patches culled whole (blade_gpu stats; no BLADE_CULL test) */
     double leaves, recovering; /* colliding / recovering leaves, mean over the timed frames */
 } papers_run_t;
 
@@ -167,6 +168,7 @@ static void papers_frame(app_world_t *w, int frame, float t, void *user)
     p->run->drawn = st.blade_survivors;
     p->run->billboards = st.billboards;
     memcpy(p->run->culled, st.blade_culled, sizeof p->run->culled);
+    p->run->patch_culled = st.blade_patch_culled;
     p->run->colliders = app_world_colliders(w)->count + st.characters;
     const scene_desc_t *s = app_world_scene(w);
     p->run->size[0] = s->size[0];
@@ -314,13 +316,14 @@ static bool write_json(const papers_t *P, const char *dir)
                         "\"fell_back\": %s, \"colliders\": %d, \"frame_ms\": %.4f, \"physics_ms\": %.4f, "
                         "\"cull_ms\": %.4f, \"draw_ms\": %.4f, \"cubemaps_ms\": %.4f, \"collide_ms\": %.4f, "
                         "\"recover_ms\": %.4f, \"render_ms\": %.4f, \"blades\": %ld, \"drawn\": %ld, "
-                        "\"billboards\": %ld, \"culled\": [%u, %u, %u, %u], \"colliding_leaves\": %.2f, "
+                        "\"billboards\": %ld, \"culled\": [%u, %u, %u, %u], \"patch_culled\": %ld, "
+                        "\"colliding_leaves\": %.2f, "
                         "\"recovering_leaves\": %.2f}%s\n",
                         r->scene >= 0 ? P->name[r->scene] : "orthmann", variant_name(r), scene_mode_name(r->mode),
                         r->compute ? "compute" : "hw", r->fell_back ? "true" : "false", r->colliders, r->frame_ms,
                         r->physics_ms, r->cull_ms, r->draw_ms, r->cubemaps_ms, r->collide_ms, r->recover_ms,
                         r->render_ms, r->blades, r->drawn, r->billboards, r->culled[0], r->culled[1], r->culled[2],
-                        r->culled[3], r->leaves, r->recovering, i + 1 < P->run_count ? "," : "");
+                        r->culled[3], r->patch_culled, r->leaves, r->recovering, i + 1 < P->run_count ? "," : "");
     }
     core_buf_printf(&b, "  ]\n}\n");
     char path[1200];
@@ -335,17 +338,17 @@ static bool write_tables(const papers_t *P, const char *dir)
 {
     core_buf_t a = {0}, l = {0}, d = {0};
     core_buf_printf(&a, "scene,variant,raster,frame_ms,physics_ms,cull_ms,draw_ms,blades,drawn,culled_orientation,"
-                        "culled_frustum,culled_distance,culled_occlusion,colliders\n");
+                        "culled_frustum,culled_distance,culled_occlusion,patch_culled,colliders\n");
     core_buf_printf(&l, "colliders,raster,colliding_leaves,recovering_leaves,cubemaps_ms,collide_ms,recover_ms,"
                         "render_ms,frame_ms,billboards\n");
     core_buf_printf(&d, "# colliding_leaves collide_ms recover_ms render_ms cubemaps_ms colliders compute\n");
     for (int i = 0; i < P->run_count; i++) {
         const papers_run_t *r = &P->runs[i];
         if (r->variant >= 0)
-            core_buf_printf(&a, "%s,%s,%s,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%u,%u,%u,%u,%d\n", P->name[r->scene],
+            core_buf_printf(&a, "%s,%s,%s,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%u,%u,%u,%u,%ld,%d\n", P->name[r->scene],
                             variant_name(r), path_name(r), r->frame_ms, r->physics_ms, r->cull_ms, r->draw_ms,
                             r->blades, r->drawn, r->culled[0], r->culled[1], r->culled[2], r->culled[3],
-                            r->colliders);
+                            r->patch_culled, r->colliders);
         if (r->variant != -2) continue;
         core_buf_printf(&l, "%d,%s,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld\n", r->colliders, path_name(r), r->leaves,
                         r->recovering, r->cubemaps_ms, r->collide_ms, r->recover_ms, r->render_ms, r->frame_ms,
@@ -400,12 +403,15 @@ static void md_ablation(const papers_t *P, core_buf_t *md)
                         "orientation, frustum, distance and occlusion tests all skipped; `X_off`: that test alone "
                         "skipped. GPU ms: pass medians after warm-up (frame: their sum; draw: blade.draw on the "
                         "hardware path, blade.raster on the compute path). Blades drawn and culled by each test: "
-                        "the last frame's counters (summary.txt's `blade_culled`).\n\n");
+                        "the last frame's counters (summary.txt's `blade_culled`); patch: blades of patches culled "
+                        "whole before the per-blade tests (the CPU's frustum test, off with the frustum test). "
+                        "Drawn plus culled can be fewer than the blades: blades of height 0 (thinned) fall in "
+                        "no column.\n\n");
     for (int s = 0; s < P->scene_count; s++) {
         core_buf_printf(md, "#### %s (%s)\n\n| variant | path | frame ms | physics ms | cull ms | draw ms | "
                             "colliders | blades drawn | culled orientation | culled frustum | culled distance | "
-                            "culled occlusion |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | "
-                            "--- |\n",
+                            "culled occlusion | patch |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | "
+                            "--- | --- | --- |\n",
                         P->name[s], P->scene[s]);
         for (int i = 0; i < P->run_count; i++) {
             const papers_run_t *r = &P->runs[i];
@@ -414,9 +420,9 @@ static void md_ablation(const papers_t *P, core_buf_t *md)
             ms_cell(c[0], r->physics_ms);
             ms_cell(c[1], r->cull_ms);
             ms_cell(c[2], r->draw_ms);
-            core_buf_printf(md, "| %s | %s | %.3f | %s | %s | %s | %d | %ld of %ld | %u | %u | %u | %u |\n",
+            core_buf_printf(md, "| %s | %s | %.3f | %s | %s | %s | %d | %ld of %ld | %u | %u | %u | %u | %ld |\n",
                             variant_name(r), path_name(r), r->frame_ms, c[0], c[1], c[2], r->colliders, r->drawn,
-                            r->blades, r->culled[0], r->culled[1], r->culled[2], r->culled[3]);
+                            r->blades, r->culled[0], r->culled[1], r->culled[2], r->culled[3], r->patch_culled);
         }
         core_buf_printf(md, "\n");
     }
@@ -553,8 +559,10 @@ int bench_papers_run(const app_options_t *o, const char *dir, core_buf_t *md)
     int rc = papers_scenes(md ? NULL : o->scene, P);
     if (rc == 0) rc = papers_measure(o, P);
     if (rc == 0 && !(write_json(P, dir) && write_tables(P, dir))) rc = 1;
+    bool leaves = false;
+    for (int i = 0; i < P->run_count; i++) leaves = leaves || P->runs[i].variant == -2;
+    if (rc == 0 && leaves) write_chart(dir);
     if (rc == 0) {
-        write_chart(dir);
         for (int k = 0; k < (md ? 2 : 1); k++) {
             core_buf_t section = {0};
             md_papers(P, &section);
