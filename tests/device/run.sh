@@ -15,6 +15,8 @@
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
 #                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
+#                REPORT_PAPERS=1: with --papers too (RESULTS.md's papers section; adds
+#                the papers section's ~68 sessions to the 560 s limit)
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
 #                side by side, and four meadow_large screenshots -> $OUT
@@ -103,7 +105,7 @@ tilescaling() {
 report() {
   echo "== bench report"
   ( time timeout -k 10 560 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
-      --quiet --out /tmp/rep/out ) 2>&1 | tail -20
+      ${REPORT_PAPERS:+--papers /tmp/rep/papers} --quiet --out /tmp/rep/out ) 2>&1 | tail -20
   tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
   ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
   ls -la $OUT
