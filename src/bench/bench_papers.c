@@ -1,13 +1,13 @@
 /* bench_papers: `meadow bench --papers DIR`: the measurements that make the
  * papers' own numbers readable beside ours.
  *   ablation  blade mode (forced) on each paper scene
- *             (scenes/bench/{orthmann,nature,helicopter,fan128}.json, or the
- *             --scene alone when not part of --report): all features, collision off (no colliders and
- *             no characters), culling off (every BLADE_CULL_* test skipped,
- *             app_tuning_t.cull_disable) and each culling test alone off, on
- *             the hardware and the compute rasterizer: GPU pass medians,
- *             blades drawn and blades culled by each test (the counters of
- *             summary.txt, app_world_stats) at the last frame;
+ *             (scenes/bench/{orthmann,nature,helicopter,fan128}.json; the
+ *             --scene alone outside --report): all features, collision off
+ *             (no colliders and no characters), culling off (every
+ *             BLADE_CULL_* test skipped, app_tuning_t.cull_disable) and each
+ *             test alone off, on the hardware and the compute rasterizer:
+ *             GPU pass medians, blades drawn and culled by each test (the
+ *             counters of summary.txt, app_world_stats) at the last frame;
  *   leaves    Orthmann et al. 2009's cost against the number of colliding
  *             octree leaves: orthmann.json in billboard mode with 1, 2, 4,
  *             8, 16 balls (--quick: 1, 4) spread over its field, the mean
