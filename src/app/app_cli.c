@@ -51,6 +51,9 @@ void app_print_usage(void)
            "  --doc FILE            bench --perf: the doc to regenerate (default docs/PERFORMANCE.md; none\n"
            "                        with --quick)\n"
            "  --force               bench --baseline: compare even when the renderers differ\n"
+           "  --papers DIR          bench: blade ablations, billboard cost vs colliding leaves, papers table into\n"
+           "                        DIR (with --report: the paper scenes, into RESULTS.md too; else --scene: that\n"
+           "                        scene's ablations alone)\n"
            "  --quiet               only warnings and errors\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n"
@@ -155,6 +158,9 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             const char **slot = a[2] == 'p' ? &o->perf : a[2] == 'b' ? &o->baseline : a[2] == 'f' ? &o->perf_from
                                                                                              : &o->doc;
             *slot = v;
+        } else if (strcmp(a, "--papers") == 0) {
+            NEED_NONEMPTY("folder name");
+            o->papers = v;
         } else if (strcmp(a, "--force") == 0) {
             o->force = true;
         } else if (strcmp(a, "--quiet") == 0) {
@@ -280,6 +286,10 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
     }
     if (o->chart && (o->command != APP_CMD_BENCH || o->stability || o->scaling || o->report || perf)) {
         snprintf(err, err_size, "--chart needs `meadow bench` without --stability, --scaling, --report or --perf");
+        return 2;
+    }
+    if (o->papers && (o->command != APP_CMD_BENCH || perf || o->chart)) {
+        snprintf(err, err_size, "--papers needs `meadow bench` without --perf, --baseline or --chart");
         return 2;
     }
     if (perf && (o->report || o->stability || o->scaling)) {

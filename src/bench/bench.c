@@ -27,7 +27,9 @@
  * tile scaling sweeps (bench_scaling.c) with --scaling; --report DIR runs
  * the sweep, both of those and `meadow compare`, and writes
  * DIR/RESULTS.md with its charts and screenshots in DIR/images. --perf and
- * --baseline (bench_perf.c, bench_baseline.c) time the bench scenes. */
+ * --baseline (bench_perf.c, bench_baseline.c) time the bench scenes;
+ * --papers DIR (bench_papers.c, with --report also in RESULTS.md) runs the
+ * papers' ablations, leaves figure and table. */
 #include "bench/bench_local.h"
 
 #include <assert.h>
@@ -700,7 +702,7 @@ static void cell(char out[32], double v, int digits)
 /* RESULTS.md: every chart with its numbers, the stability table, the
  * tile scaling sweeps, the comparison montage. */
 static int write_report(const char *dir, const char *out, const app_options_t *o, const bench_run_t *b,
-                        const char *stability_md, const char *scaling_md)
+                        const char *stability_md, const char *scaling_md, const char *papers_md)
 {
     char path[1200], to[1200];
     snprintf(path, sizeof path, "%s/images", dir);
@@ -715,10 +717,11 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                     "It runs the bench sweep, the stability suite, the tile scaling sweeps and `meadow compare`, writes the raw data "
                     "(bench.csv, bench.json, stability.csv, scaling.csv, *.dat, *.gp) to `--out` (default out/bench), and this "
                     "file with its charts and screenshots to `%s/images`. Metric definitions: docs/METRICS.md.\n\n"
-                    "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s`\n"
+                    "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s%s%s`\n"
                     "- renderer: `%s`\n- frames per configuration: %d%s\n\n",
                     dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
                     o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
+                    o->papers ? " --papers " : "", o->papers ? o->papers : "",
                     b->renderer[0] ? b->renderer : "?", b->frames,
                     o->quick ? "" : "; sweep timings: the faster of two runs of each configuration");
     if (strstr(b->renderer, "llvmpipe"))
@@ -783,6 +786,11 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             "scaling_active.png)\n\n%s\n",
                         o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
     }
+    if (papers_md) {
+        copy_chart(dir, o->papers, "papers_leaves");
+        core_buf_printf(&r, "## The papers' scenes, ablations and colliding leaves\n\n`meadow bench --papers DIR` "
+                            "(src/bench/bench_papers.c).\n\n%s", papers_md);
+    }
     snprintf(path, sizeof path, "%s/compare/compare.png", out);
     snprintf(to, sizeof to, "%s/images/bench_compare.jpg", dir);
     core_image_t montage = {0};
@@ -810,7 +818,7 @@ int bench_run(const app_options_t *o)
     const char *report = o->report;
     bool full = report && *report;
     bool stability = o->stability || full, scaling = o->scaling || full;
-    bool sweep = (!o->stability && !o->scaling) || full;
+    bool sweep = (!o->stability && !o->scaling && !o->papers) || full;
     if (full && (!core_fs_mkdirs(report) || !core_fs_check_writable_dir(report, err, sizeof err))) {
         core_log_error("--report: %s", err);
         return 2;
@@ -821,7 +829,7 @@ int bench_run(const app_options_t *o)
     }
     gfx_init();
     bench_run_t b = {0};
-    core_buf_t md = {0}, scaling_md = {0};
+    core_buf_t md = {0}, scaling_md = {0}, papers_md = {0};
     bench_scaling_t sc;
     if (full) {
         snprintf(path, sizeof path, "%s/images", report);
@@ -830,6 +838,7 @@ int bench_run(const app_options_t *o)
     int rc = sweep ? run_sweep(o, o->quick, out, &b) : 0;
     if (rc == 0 && stability) rc = bench_stability_run(o, out, o->quick, &md, full ? report : NULL);
     if (rc == 0 && scaling) rc = bench_scaling_run(o, out, o->quick, &sc, &scaling_md);
+    if (rc == 0 && o->papers) rc = bench_papers_run(o, o->papers, full ? &papers_md : NULL);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -843,8 +852,9 @@ int bench_run(const app_options_t *o)
         oc.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
         if (rc == 0) rc = bench_compare(&oc);
-        if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data);
+        if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data, papers_md.data);
     }
+    core_buf_free(&papers_md);
     core_buf_free(&md);
     core_buf_free(&scaling_md);
     free(b.cfg);

@@ -3,7 +3,8 @@
  * (offscreen runs with per-frame hooks), bench.c (sweeps and charts),
  * bench_stability.c (where each method breaks), bench_scaling.c (tile
  * simulation cost), bench_perf.c (the bench scenes' pass medians, perf.json,
- * docs/PERFORMANCE.md), bench_baseline.c (against a committed baseline) and
+ * docs/PERFORMANCE.md), bench_baseline.c (against a committed baseline),
+ * bench_papers.c (ablations, Orthmann's leaves figure, the papers table) and
  * bench_compare.c. */
 #ifndef MEADOW_BENCH_LOCAL_H
 #define MEADOW_BENCH_LOCAL_H
@@ -120,6 +121,16 @@ typedef struct bench_scaling_t {
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
 int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md);
+
+/* `bench --papers DIR` (bench_papers.c): blade-mode ablations of the papers'
+ * scenes (or --scene alone, unless md is given: --report's --scene is the
+ * sweep's), billboard cost against colliding leaves, the
+ * papers table; writes papers.json, ablation.csv, leaves.csv, the
+ * papers_leaves chart and papers.md into dir, and (md non-NULL) appends the
+ * RESULTS.md section, its chart linked as images/papers_leaves.png. Needs a
+ * current GL context (gfx_init done). Returns 0, 1, or 2 (bad folder or
+ * scene). */
+int bench_papers_run(const app_options_t *o, const char *dir, core_buf_t *md);
 
 /* ---- bench --perf / --baseline (bench_perf.c, bench_baseline.c) ------------------ */
 #define BENCH_PERF_MAX_RUNS 32

@@ -15,6 +15,8 @@
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
 #                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
+#                REPORT_PAPERS=1: with --papers too (RESULTS.md's papers section; adds
+#                the papers section's ~68 sessions to the 560 s limit)
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
 #                side by side, and four meadow_large screenshots -> $OUT
@@ -48,6 +50,10 @@
 #                meadow_large and meadow.json on both paths
 #                -> $OUT/large_chart.tgz (bench.csv/json, lod.json, .dat/.gp),
 #                three of the chart's frames
+#   papers       `meadow bench --papers` (blade ablations of the four paper scenes
+#                on both paths, billboard cost vs colliding leaves with 1-16 balls,
+#                the papers table; $PAPERS_FRAMES frames, default 60; 500 s limit)
+#                -> $OUT/papers.tgz (papers.md, .json, .csv, chart); papers.md to $R
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -99,7 +105,7 @@ tilescaling() {
 report() {
   echo "== bench report"
   ( time timeout -k 10 560 $M bench --report /tmp/rep/docs --scene scenes/meadow.json --frames 60 --size 1280x720 \
-      --quiet --out /tmp/rep/out ) 2>&1 | tail -20
+      ${REPORT_PAPERS:+--papers /tmp/rep/papers} --quiet --out /tmp/rep/out ) 2>&1 | tail -20
   tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
   ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
   ls -la $OUT
@@ -225,6 +231,18 @@ large() {
         | sed -e 's/ (.*score/ score/' -e 's/, Delta E.*//' | tr '\n' ' ')"
     done
   done; done
+}
+
+papers() {
+  echo "== bench --papers"
+  rm -rf /tmp/papers
+  # SIGINT first: the bench stops after the session it is running (its tables
+  # are written only by a complete run; the log says how far it got).
+  ( time timeout -s INT -k 30 500 $M bench --papers /tmp/papers --frames ${PAPERS_FRAMES:-60} --quiet ) \
+    > $OUT/papers.log 2>&1
+  echo "rc=$?"; tail -6 $OUT/papers.log
+  cat /tmp/papers/papers.md 2>/dev/null || echo "no papers.md: bench --papers failed"
+  tar czf $OUT/papers.tgz -C /tmp papers 2>/dev/null
 }
 
 perf() {
