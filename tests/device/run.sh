@@ -52,7 +52,7 @@
 #                three of the chart's frames
 #   papers       `meadow bench --papers` (blade ablations of the four paper scenes
 #                on both paths, billboard cost vs colliding leaves with 1-16 balls,
-#                the papers table; $PAPERS_FRAMES frames, default 60; 500 s limit)
+#                the papers table; $PAPERS_FRAMES frames, default 60; $PAPERS_LIMIT s limit, default 500)
 #                -> $OUT/papers.tgz (papers.md, .json, .csv, chart); papers.md to $R
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
@@ -238,7 +238,7 @@ papers() {
   rm -rf /tmp/papers
   # SIGINT first: the bench stops after the session it is running (its tables
   # are written only by a complete run; the log says how far it got).
-  ( time timeout -s INT -k 30 500 $M bench --papers /tmp/papers --frames ${PAPERS_FRAMES:-60} --quiet ) \
+  ( time timeout -s INT -k 30 ${PAPERS_LIMIT:-500} $M bench --papers /tmp/papers --frames ${PAPERS_FRAMES:-60} --quiet ) \
     > $OUT/papers.log 2>&1
   echo "rc=$?"; tail -6 $OUT/papers.log
   cat /tmp/papers/papers.md 2>/dev/null || echo "no papers.md: bench --papers failed"
