@@ -13,7 +13,8 @@ fail=0
 for f in bench.csv bench.json; do
   [ -s "$out/bench/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
-for g in billboard_collision billboard_springs blade_proxies blade_tessellation blade_distance_levels hybrid_switch_distance modes; do
+for g in billboard_collision billboard_springs blade_proxies blade_proxies_overpush blade_tessellation blade_distance_levels \
+         hybrid_switch_distance modes; do
   for ext in dat png svg; do
     [ -s "$out/bench/bench_$g.$ext" ] || { echo "FAIL: missing bench_$g.$ext"; fail=1; }
   done
@@ -34,6 +35,22 @@ a, b = rows.get("cube8_sub6_k2"), rows.get("cube32_sub6_k2")
 if a is None or b is None or not (a > 1.2 * b > 0):
     print(f"FAIL: billboard penetration does not respond to the cube map: cube8 {a}, cube32 {b}")
     sys.exit(1)
+EOF
+# Chart measures that answer their knob (issue 33): the billboards' shape
+# deviation from their finest configuration is 0 for it and larger for the
+# coarser cube map; the blade proxies' over-push is largest for the
+# bounding sphere (cover_16 lies closer to the box).
+python3 - "$out/bench/bench.csv" <<'EOF' || fail=1
+import csv, sys
+rows = {r["label"]: r for r in csv.DictReader(open(sys.argv[1]))}
+dev = {k: float(rows[k]["shape_deviation"]) for k in ("cube8_sub6_k2", "cube32_sub6_k2", "cube32_sub6_k8") if k in rows}
+push = {k: float(rows[k]["overpush_p95"]) for k in ("bound_1", "cover_16") if k in rows}
+bad = 0
+if len(dev) != 3 or not (dev["cube32_sub6_k8"] == 0 and dev["cube8_sub6_k2"] > dev["cube32_sub6_k2"] > 0):
+    print(f"FAIL: shape deviation does not answer the billboard knobs: {dev}"); bad = 1
+if len(push) != 2 or not (push["bound_1"] > 2 * push["cover_16"] > 0):
+    print(f"FAIL: over-push does not answer the blade proxies: {push}"); bad = 1
+sys.exit(bad)
 EOF
 "$bin" bench --stability --quick --quiet --scene scenes/tiny.json --out "$out/stability" \
   || { echo "FAIL: bench stability exit $?"; fail=1; }
