@@ -213,6 +213,40 @@ static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
 }
 
+/* The papers' own evaluations: Jahrmann & Wimmer's ablation (blade mode
+ * with every feature, without collision, without culling, without each
+ * culling test) and Orthmann et al.'s billboard cost against the colliding
+ * leaves. Returns the new count. */
+static int add_paper_configs(bench_config_t *c, int n, bool quick)
+{
+    static const struct {
+        const char *name;
+        bool no_colliders;
+        unsigned cull;
+    } ablation[] = {{"all", false, 0},
+                    {"no_culling", false, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE |
+                                              BLADE_CULL_OCCLUSION},
+                    {"no_collision", true, 0},
+                    {"no_orientation_cull", false, BLADE_CULL_ORIENTATION},
+                    {"no_frustum_cull", false, BLADE_CULL_FRUSTUM},
+                    {"no_distance_cull", false, BLADE_CULL_DISTANCE},
+                    {"no_occlusion_cull", false, BLADE_CULL_OCCLUSION}};
+    for (int i = 0; i < (quick ? 2 : (int)(sizeof ablation / sizeof ablation[0])); i++) {
+        bench_config_t *x = add(c, &n, "blade_ablation", SCENE_MODE_BLADE);
+        x->no_colliders = ablation[i].no_colliders;
+        x->tuning.cull_disable = ablation[i].cull;
+        snprintf(x->label, sizeof x->label, "%s", ablation[i].name);
+    }
+    /* Orthmann's figure: billboard cost against the number of colliding leaves. */
+    static const int balls[] = {1, 2, 4, 8, 16, 32};
+    for (int i = 0; i < (quick ? 2 : 6); i++) {
+        bench_config_t *x = add(c, &n, "billboard_leaves", SCENE_MODE_BILLBOARD);
+        x->balls = balls[i];
+        snprintf(x->label, sizeof x->label, "balls%d", balls[i]);
+    }
+    return n;
+}
+
 static int build_configs(bench_config_t *c, bool quick)
 {
     int n = 0;
@@ -264,33 +298,7 @@ static int build_configs(bench_config_t *c, bool quick)
         x->tuning.blade_cube_proxies = true;
         snprintf(x->label, sizeof x->label, "cubemap_%d", cube_res[i]);
     }
-    /* Jahrmann & Wimmer's ablation: blade mode with every feature, without
-     * collision, without culling, and without each culling test. */
-    static const struct {
-        const char *name;
-        bool no_colliders;
-        unsigned cull;
-    } ablation[] = {{"all", false, 0},
-                    {"no_culling", false, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE |
-                                              BLADE_CULL_OCCLUSION},
-                    {"no_collision", true, 0},
-                    {"no_orientation_cull", false, BLADE_CULL_ORIENTATION},
-                    {"no_frustum_cull", false, BLADE_CULL_FRUSTUM},
-                    {"no_distance_cull", false, BLADE_CULL_DISTANCE},
-                    {"no_occlusion_cull", false, BLADE_CULL_OCCLUSION}};
-    for (int i = 0; i < (quick ? 2 : (int)(sizeof ablation / sizeof ablation[0])); i++) {
-        bench_config_t *x = add(c, &n, "blade_ablation", SCENE_MODE_BLADE);
-        x->no_colliders = ablation[i].no_colliders;
-        x->tuning.cull_disable = ablation[i].cull;
-        snprintf(x->label, sizeof x->label, "%s", ablation[i].name);
-    }
-    /* Orthmann's figure: billboard cost against the number of colliding leaves. */
-    static const int balls[] = {1, 2, 4, 8, 16, 32};
-    for (int i = 0; i < (quick ? 2 : 6); i++) {
-        bench_config_t *x = add(c, &n, "billboard_leaves", SCENE_MODE_BILLBOARD);
-        x->balls = balls[i];
-        snprintf(x->label, sizeof x->label, "balls%d", balls[i]);
-    }
+    n = add_paper_configs(c, n, quick);
     static const int tess[] = {1, 2, 3, 5, 7, 10}, levels[] = {1, 2, 4, 8, 16, 32};
     static const float sw[] = {2, 4, 8, 12, 16, 20, 25, 30, 40};
     int nt = quick ? 2 : 6;
