@@ -348,20 +348,24 @@ static void judge_wall(stab_result_t *r, const stab_result_t *first, float v, fl
 }
 
 static const stab_case_t cases[] = {
-    {"tunnelling", SCENE_MODE_BLADE, "ball speed m/s (r 0.3 m, dt 1/60)", {2, 5, 10, 20, 40, 80, 160, 300}, MEASURE_PASS,
+    {"tunnelling", SCENE_MODE_BLADE, "ball speed m/s (r 0.3 m, dt 1/60)", {2, 5, 10, 20, 40, 80, 160, 300},
+     MEASURE_PASS,
      "trail coverage", "coverage < 0.9 (blades within r/2 of the path ever deflected > 0.2 h while the ball passes)",
      "a sphere is the capsule between its previous and current centre (swept collision, blade_ref.h), so blades "
-     "between two frames' spheres are bent even when the step exceeds 2 r; without it (the paper variant) they are never touched",
+     "between two frames' spheres are bent even when the step exceeds 2 r; without it (the paper variant) they are "
+     "never touched",
      setup_tunnel, judge_tunnel, .count = 8,
      .limit = "300 m/s: a step of 5 m, the whole path in one step"},
-    {"tunnelling_bb", SCENE_MODE_BILLBOARD, "ball speed m/s (r 0.3 m, dt 1/60)", {2, 5, 10, 20, 40, 80, 160, 300}, MEASURE_PASS,
+    {"tunnelling_bb", SCENE_MODE_BILLBOARD, "ball speed m/s (r 0.3 m, dt 1/60)", {2, 5, 10, 20, 40, 80, 160, 300},
+     MEASURE_PASS,
      "trail coverage", "coverage < 0.9 (billboards within r/2 of the path ever bent > 0.2 h while the ball passes)",
      "each object's cube map is looked up as if the object stood at the point of its step's path nearest the vertex "
      "(swept collision, bb_collide_desc_t.sweep) and the broad phase boxes the path, so billboards between two "
      "frames' positions are bent at any speed; the paper looks the cube map up where the object stands",
      setup_tunnel, judge_tunnel, .count = 8,
      .limit = "300 m/s: a step of 5 m, the whole path in one step"},
-    {"framerate_blade", SCENE_MODE_BLADE, "simulation rate Hz (dt = 1/Hz)", {144, 240, 60, 30, 15, 8, 4, 2}, MEASURE_PASS,
+    {"framerate_blade", SCENE_MODE_BLADE, "simulation rate Hz (dt = 1/Hz)", {144, 240, 60, 30, 15, 8, 4, 2},
+     MEASURE_PASS,
      "recovery s", "abs(recovery - recovery at 144 Hz) > 10%, never, or NaN",
      "eq. 1 is integrated exactly for the step's forces (v2 += (r + g + w) (1 - exp(-s' dt)) / s', docs/BLADES.md) and eta gains collision_gain |d|^2 (1/60 s) / dt, so the recovery does not depend on the rate; the ball is swept (a capsule per step, less the half of its start sphere it moves away from), so at 4 Hz it still presses every blade on its path, but its last step presses the last 1.25 m of the path at once, sideways: at 4 Hz the recovery is 4.3 % longer than at 144 Hz (5.4 % while the capsule's trailing half held the blades under the lifted ball for the whole 0.25 s step). The paper's explicit Euler step overshoots the rest pose for s' dt > 1 and swings forever for s' dt >= 2", setup_rate, judge_rate, .count = 8,
      .limit = "2 Hz: the 1 s pass in two steps"},
@@ -388,7 +392,8 @@ static const stab_case_t cases[] = {
      "blade_ref_exit handles several spheres; only v2 and the midpoint are tested (the paper: no exit)",
      setup_concave, judge_depth_blade, .count = 7, .limit = "0.7 m: the spheres touch"},
     {"large_bb", SCENE_MODE_BILLBOARD, "sphere radius m (cube 16)", {0.25f, 0.5f, 1, 2, 3, 4, 6},
-     MEASURE_STATIC, "depth p95 m", "95th percentile over frames and seeds of the deepest sample > 0.1 x billboard height (0.04 m)",
+     MEASURE_STATIC, "depth p95 m",
+     "95th percentile over frames and seeds of the deepest sample > 0.1 x billboard height (0.04 m)",
      "the cube covers the bounding sphere, so at a fixed resolution its texel grows with the collider (2 r / 16: "
      "the case broke from r 1 m, 0.056 m deep, 0.23 m at 4 m); grass.cube_texel raises the resolution until a "
      "texel is at most 2 cm (400 texels per face at 4 m); the 0.062 m then left at r 3 m were vertices the ground "
@@ -396,11 +401,13 @@ static const stab_case_t cases[] = {
      setup_large, judge_depth_bb, .count = 7, .limit = "6 m: the ball covers the 6 m field",
      .tuned = "grass.cube_texel 0.02", .tune = tune_texel},
     {"squeeze_blade", SCENE_MODE_BLADE, "gap between two r 0.35 m spheres m", {0.4f, 0.2f, 0.1f, 0.05f, 0.02f, 0},
-     MEASURE_STATIC, "depth p95 m", "95th percentile over frames and seeds of the deepest sample > 0.1 x blade height (0.0425 m), or NaN",
+     MEASURE_STATIC, "depth p95 m",
+     "95th percentile over frames and seeds of the deepest sample > 0.1 x blade height (0.0425 m), or NaN",
      "a blade between two spheres is pushed by both", setup_squeeze, judge_depth_blade,
      .limit = "gap 0: the spheres touch"},
     {"squeeze_bb", SCENE_MODE_BILLBOARD, "gap between two r 0.35 m spheres m", {0.4f, 0.2f, 0.1f, 0.05f, 0.02f, 0},
-     MEASURE_STATIC, "depth p95 m", "95th percentile over frames and seeds of the deepest sample > 0.1 x billboard height (0.04 m), or NaN",
+     MEASURE_STATIC, "depth p95 m",
+     "95th percentile over frames and seeds of the deepest sample > 0.1 x billboard height (0.04 m), or NaN",
      "eq. 5 pushes along one face's normal per object and pass", setup_squeeze, judge_depth_bb,
      .limit = "gap 0: the spheres touch"},
     {"resting_blade", SCENE_MODE_BLADE, "blade stiffness (r 0.35 m ball resting, 5 cm sunk)",
@@ -419,14 +426,17 @@ static const stab_case_t cases[] = {
      "but validates the step's total translation once, as printed (0.49 mm at stiffness 2 on llvmpipe): the 18.4 mm "
      "before came from this project's earlier second validation, not from the paper's step",
      setup_resting, judge_jitter, .count = 7, .limit = "stiffness 1: a pressed blade takes 10 s to rise (eta)"},
-    {"spikes_blade", SCENE_MODE_BLADE, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball passing at 5 m/s, then leaving)",
-     {16.7f, 33, 66, 100, 250, 500, 1000}, MEASURE_SPIKES, "pose jump m (largest step change of a tip from its twin while the grass recovers)",
+    {"spikes_blade", SCENE_MODE_BLADE,
+     "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball passing at 5 m/s, then leaving)",
+     {16.7f, 33, 66, 100, 250, 500, 1000}, MEASURE_SPIKES,
+     "pose jump m (largest step change of a tip from its twin while the grass recovers)",
      "jump > 0.5 x blade height, depth p95 (while the ball passes) > 0.1 x blade height, length error > 5%, or NaN",
      "forces are displacement rates times dt (eq. 1-8): one long step moves a tip by (r + g + w) dt at once, "
      "then validation (eq. 9-13) and the collision exit put it back on a valid curve outside the sphere; the "
      "exact integration of eq. 1 never overshoots the rest pose, the paper's explicit Euler does for s' dt > 1",
      setup_spikes, judge_spikes, .count = 7, .limit = "1 s: a step as long as the recovery"},
-    {"spikes_bb", SCENE_MODE_BILLBOARD, "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball passing at 5 m/s, then leaving)",
+    {"spikes_bb", SCENE_MODE_BILLBOARD,
+     "spike step ms (every 10th step; the others 1/60 s; r 0.35 m ball passing at 5 m/s, then leaving)",
      {16.7f, 33, 66, 100, 250, 500, 1000}, MEASURE_SPIKES,
      "pose jump m (largest step change of a vertex's offset from its wind pose while the grass recovers)",
      "jump > 0.5 x billboard height, depth p95 (while the ball passes) > 0.1 x billboard height, or NaN",
@@ -596,7 +606,8 @@ static void frame_distortion(int f, stab_run_t *r, app_world_t *w)
 static void frame_wall(app_world_t *w, stab_run_t *r)
 {
     float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
-    long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr}, (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
+    long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
+                                       (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
     long floor = bench_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
     double face_area = 0.8 * WALL_H / sin(glm_rad(r->v)) * 2.0 * zr, floor_area = 2.7 * 2.0 * zr;
     r->coverage = floor ? ((double)face / face_area) / ((double)floor / floor_area) : 0.0;
@@ -833,7 +844,8 @@ static void csv_row(core_buf_t *csv, const stab_case_t *c, int variant, float v,
     const bench_metrics_t *m = &r->m;
     const bench_bb_distortion_t *dd = &r->distortion;
     bool distortion = c->measure == MEASURE_DISTORTION;
-    core_buf_printf(csv, "%s,%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%.4f,%.6f,%ld,%.4f,%.6g,%ld\n",
+    core_buf_printf(csv,
+                    "%s,%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%.4f,%.6f,%ld,%.4f,%.6g,%ld\n",
                     c->name, variant_names[variant], scene_mode_name(c->mode), c->param, v, r->measure, r->fails,
                     m->penetration_fraction, m->penetration_max, r->depth95, m->blade_length_error, m->spring_error,
                     r->recovery, r->jitter, r->coverage, r->crossing, r->jump, r->x.nonfinite + dd->nonfinite,
@@ -944,7 +956,8 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
             rc = run_variant(o, c, var, quick, out, report, &csv, &row, &done, total, t0);
             if (rc) break;
             broke = broke || row.broke >= 0;
-            if (row.constant) core_buf_printf(&constant, "%s%s/%s", constant.len ? ", " : "", c->name, variant_names[var]);
+            if (row.constant)
+                core_buf_printf(&constant, "%s%s/%s", constant.len ? ", " : "", c->name, variant_names[var]);
             md_row(&md, c, var, &row, false);
             md_row(&mdr, c, var, &row, true);
         }
