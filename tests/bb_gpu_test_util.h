@@ -95,7 +95,7 @@ static inline float test_ground_at(const void *terrain, float x, float z)
 static inline bb_collide_desc_t test_collide_desc(const bb_field_t *f)
 {
     return (bb_collide_desc_t){.r1 = f->desc.r1, .r2 = f->desc.r2, .iterations = f->desc.iterations,
-                               .ground = test_ground_at, .ground_user = f->desc.terrain};
+                               .ground = test_ground_at, .ground_user = f->desc.terrain, .paper = f->desc.paper};
 }
 
 /* Whether world point p lies on the ground (within 0.1 mm above it) or

@@ -2,7 +2,8 @@
  * (bb_collide.geom, eq. 1-7) against the CPU reference bb_ref_collide.
  *  A: the CPU cube map of the sphere (collide_render_sphere) uploaded with
  *     bb_field_set_cube: GPU meshes equal bb_ref_collide to float rounding;
- *     A2 the same for the sphere swept over the last step.
+ *     A2 the same for the sphere swept over the last step; P the same
+ *     for the paper's collision as printed (bb_field_desc_t.paper).
  *  B: the GPU cube map of the sphere mesh from shapes.h: its texels against
  *     the CPU ones, the GPU meshes against bb_ref_collide on the CPU cube,
  *     and no refined vertex deeper than one texel inside the analytic sphere. */
@@ -118,6 +119,22 @@ int main(void)
     bb_field_stats(&fa, true, &st);
     CHECK(st.deformed == da && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] > 0 && st.objects_hidden == 0);
+
+    /* P: the paper's collision as printed (no slide, ground, bend limit or
+     * push after the sweeps) equals bb_ref_collide with paper set. */
+    bb_field_t fp;
+    bb_field_desc_t dp = desc;
+    dp.paper = true;
+    CHECK(bb_field_make(&fp, &dp));
+    bb_field_set_cube(&fp, 0, &cpu_cube);
+    bb_field_update(&fp, test_set(&oa, 1), time, 1.0f / 30.0f);
+    double pmax, pmean, pdeep;
+    int phits, pbelow;
+    int dpp = compare(&fp, &cpu_cube, centre, still, radius, time, &pmax, &pmean, &pdeep, &phits, &pbelow);
+    printf("P (paper's collision): %d deformed, max |dv| %.3g m, mean %.3g m, deepest %.3g m\n", dpp, pmax, pmean,
+           pdeep);
+    CHECK(dpp == da && pmax < 1e-4);
+    bb_field_destroy(&fp);
 
     /* H: the hybrid's hidden region (bb_field_set_hidden). A camera 2 m
      * above the sphere: with a fade start just beyond the sphere's reach

@@ -77,6 +77,7 @@ static void random_env(core_rng_t *rng, blade_env_t *env, collide_set_t *set, in
         env->gravity_centre_mix = 0.5f;
     }
     if (variant == 3) env->length_mode = BLADE_LENGTH_PAPER;
+    if (variant == 4) env->paper = true; /* the paper's step as printed */
 }
 
 static void test_against_reference(void)
@@ -91,7 +92,7 @@ static void test_against_reference(void)
     float *ecpu = calloc(n, sizeof *ecpu), *egpu = calloc(n, sizeof *egpu);
     core_rng_t rng;
     core_rng_seed(&rng, 5, 2);
-    for (int variant = 0; variant < 4; variant++) {
+    for (int variant = 0; variant < 5; variant++) {
         memcpy(cpu, f.blades, n * sizeof *cpu);
         memset(ecpu, 0, n * sizeof *ecpu);
         blade_gpu_write_blades(&g, cpu, NULL);
@@ -117,7 +118,7 @@ static void test_against_reference(void)
             }
         }
         printf("  variant %d (%s): 6 steps, worst |gpu-cpu| %.2e m, eta %.2e, blades over 1e-4 m: %zu\n",
-               variant, (const char *[]){"gravity", "no gravity", "centre gravity", "eq. 12 length"}[variant],
+               variant, (const char *[]){"gravity", "no gravity", "centre gravity", "eq. 12 length", "paper's step"}[variant],
                worst, worst_eta, over);
         /* Nearly every blade agrees to 0.1 mm. A collision exit is a branch
          * (rotate or straighten): a blade sitting on a branch boundary may

@@ -39,6 +39,7 @@ uniform float u_recover;
 uniform float u_r1;
 uniform float u_r2;
 uniform int u_iterations;
+uniform int u_paper; /* bb_field_desc_t.paper */
 uniform bb_wind u_wind;
 
 void main()
@@ -84,7 +85,7 @@ void main()
             bb_load_mesh(slot);
         }
         if (ok) {
-            bb_collide(u_cubes, cubes, w2c, c2w, sweep, n, u_r1, u_r2, u_iterations);
+            bb_collide(u_cubes, cubes, w2c, c2w, sweep, n, u_r1, u_r2, u_iterations, u_paper != 0);
             bb_store_mesh(slot);
             p.pad0 = slot;
             p.state = BB_STATE_COLLIDING;

@@ -38,6 +38,7 @@ uniform float u_collision_gain;
 uniform int u_wind_count;
 uniform int u_sphere_count;
 uniform int u_length_mode;     /* BLADE_LENGTH_QUADRATURE or BLADE_LENGTH_PAPER */
+uniform int u_paper;           /* 1: the paper's step as printed (blade_env_t.paper) */
 #ifdef BLADE_CUBES
 uniform int u_cube_count;      /* cube-map colliders (0: none) */
 uniform int u_cube_res;
@@ -175,7 +176,8 @@ void main()
         vec3 wi = vec3(0.0);
         for (int k = 0; k < u_wind_count; k++) wi = wi + blade_wind_field(winds[k], b.v0.xyz, u_time);
         vec3 w = blade_wind(b, wi);
-        b.v2.xyz = b.v2.xyz + ((r + g) + w) * blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
+        float k = u_paper != 0 ? u_dt : blade_step_gain(b.up.w * max(1.0 - e, 0.1), u_dt);
+        b.v2.xyz = b.v2.xyz + ((r + g) + w) * k;
         rescale = blade_validate(b, u_length_mode);
     }
     list_near_spheres(live, b);
@@ -186,7 +188,9 @@ void main()
 #ifdef BLADE_CUBES
     for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
 #endif
-    if (dot(d, d) > 0.0) {
+    if (dot(d, d) > 0.0 && u_paper != 0) {
+        blade_revalidate(b, u_length_mode, rescale);
+    } else if (dot(d, d) > 0.0) {
         blade_revalidate(b, u_length_mode, rescale);
         bool held = false;
         for (uint j = 0u; j < ns && !held; j++) held = blade_sphere_holds(start, spheres[s_list[j]]);
@@ -216,7 +220,7 @@ void main()
         cube_exit_straight(b);
 #endif
     }
-    e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 ? BLADE_ETA_DT / u_dt : 1.0);
+    e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 && u_paper == 0 ? BLADE_ETA_DT / u_dt : 1.0);
     eta[i] = clamp(e - u_collision_decay * u_dt, 0.0, 1.0);
     blades[i] = b;
 }

@@ -248,7 +248,7 @@ vec3 bb_slide(vec3 a, float l0, vec3 x, vec3 to)
 }
 
 void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
-                  mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count)
+                  mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count, bool paper)
 {
     for (int v = BB_N; v < BB_N * BB_M; v++) {
         float l0 = distance(bb_rest[v], bb_rest[v - BB_N]);
@@ -257,12 +257,16 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
         for (int c = 0; c < count; c++) {
             vec3 to;
             if (!bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) continue;
+            if (paper) {
+                bb_pos[v] = to;
+                continue;
+            }
             bb_pos[v] = bb_slide(bb_pos[v - BB_N], l0, bb_pos[v], to);
             if (bb_push_target(tex, cubes[c], w2c[c], c2w[c], sweep[c], bb_pos[v], to)) bb_pos[v] = to;
         }
 #ifdef BB_GROUND
         float g = terrain_height(bb_pos[v].x, bb_pos[v].z);
-        if (bb_pos[v].y >= g) continue;
+        if (paper || bb_pos[v].y >= g) continue;
         bb_pos[v].y = g;
         /* Raised back into an object whose push pointed down: leave sideways
          * (bb_ref.c bb_ground_vertex). */
@@ -281,17 +285,23 @@ void bb_push_mesh(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_M
 }
 
 /* bb_ref_collide: push-out, then K x (bend limit, one relaxation sweep,
- * push-out), each push with the slide (bb_slide).
+ * push-out), each push with the slide (bb_slide); paper: the push-out
+ * alone, then K relaxation sweeps (bb_collide_desc_t.paper).
  * c2w[c] must be inverse(w2c[c]) (computed once on the CPU); sweep[c] as
  * bb_collide_desc_t.sweep (0: the object where it is). */
 void bb_collide(sampler2DArray tex, bb_cube cubes[BB_MAX_CUBES], mat4 w2c[BB_MAX_CUBES],
-                mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count, float r1, float r2, int iterations)
+                mat4 c2w[BB_MAX_CUBES], vec3 sweep[BB_MAX_CUBES], int count, float r1, float r2, int iterations,
+                bool paper)
 {
-    bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
+    bb_push_mesh(tex, cubes, w2c, c2w, sweep, count, paper);
+    if (paper) {
+        bb_relax_springs(r1, r2, iterations);
+        return;
+    }
     for (int it = 0; it < iterations; it++) {
         bb_bend_limit();
         bb_relax_springs(r1, r2, 1);
-        bb_push_mesh(tex, cubes, w2c, c2w, sweep, count);
+        bb_push_mesh(tex, cubes, w2c, c2w, sweep, count, false);
     }
 }
 

@@ -252,6 +252,7 @@ static bool make_bb(app_world_t *w)
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
                                            .iterations = g->spring_iterations,
+                                           .paper = w->tuning.paper,
                                            .max_deformed = g->deformed_pool,
                                            .cube_res = w->cube_res,
                                            .recover_time = g->recover_time,
@@ -359,6 +360,11 @@ static void make_blade_env(app_world_t *w)
     w->blade_env = (blade_env_t){.gravity = SCENE_DEFAULT_BLADE_GRAVITY,
                                  .collision_gain = 1.0f / (0.01f * h * h),
                                  .collision_decay = 1.0f / g->recover_time};
+    if (w->tuning.paper) {
+        w->blade_env.paper = true;
+        w->blade_env.length_mode = BLADE_LENGTH_PAPER;
+        w->blade_env.collision_gain = 1.0f;
+    }
     for (int i = 0; i < s->wind_count && i < BLADE_MAX_WINDS; i++) {
         const scene_wind_t *sw = &s->wind[i];
         w->blade_env.winds[w->blade_env.wind_count++] =
@@ -677,6 +683,9 @@ void app_world_update(app_world_t *w, float t, float dt)
     w->stepped = true;
     collide_begin_set(set);
     add_objects(w, set, dt);
+    /* The papers' colliders stand where they are at each step (no sweep). */
+    for (int i = 0; i < set->object_count && w->tuning.paper; i++)
+        memcpy(set->objects[i].prev_position, set->objects[i].position, sizeof set->objects[i].prev_position);
     if (w->have_bb) {
         /* The hybrid draws no billboard nearer than its fade band: objects
          * there bend the blades alone (unless the blades borrow the

@@ -97,6 +97,10 @@ typedef struct app_tuning_t {
                                 clearings and clump textures keep the scene seed (not the
                                 hybrid tiles). The image error's noise floor (docs/METRICS.md) */
     bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
+    bool paper;              /* both papers' methods as printed (the stability suite's paper
+                                variant): blade_env_t.paper with eq. 12's length and the
+                                paper's eta gain k = 1, bb_field_desc_t.paper, and no swept
+                                colliders (the collide set's objects do not sweep) */
 } app_tuning_t;
 
 /* ---- start-up stages -------------------------------------------------------------

@@ -63,6 +63,8 @@ typedef struct bench_config_t {
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
     bool box;                             /* proxy_box is the only collider */
+    bool no_colliders;                    /* ablation: no collider, no character */
+    int balls;                            /* leaves sweep: resting r 0.3 m balls in the view */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
@@ -73,6 +75,24 @@ static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
 
 /* The least canopy distance beyond a switch distance: the two fade bands apart. */
 #define CANOPY_GAP (APP_SWITCH_FADE + APP_CANOPY_FADE)
+
+/* Orthmann's figure: n resting r 0.3 m balls on a grid of 1.5 m around the
+ * camera's target, the scene's colliders and characters removed. */
+static void add_balls(scene_desc_t *s, int n)
+{
+    cam_t cam;
+    scene_camera_init(s, &cam);
+    int side = (int)ceilf(sqrtf((float)n));
+    s->character_count = 0;
+    s->collider_count = n < SCENE_MAX_COLLIDERS ? n : SCENE_MAX_COLLIDERS;
+    for (int i = 0; i < s->collider_count; i++) {
+        scene_collider_t *k = &s->colliders[i];
+        *k = (scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = 0.3f, .path.count = 1};
+        k->path.keys[0].position[0] = cam.target[0] + 1.5f * ((float)(i % side) - 0.5f * (float)(side - 1));
+        k->path.keys[0].position[1] = 0.25f;
+        k->path.keys[0].position[2] = cam.target[2] + 1.5f * ((float)(i / side) - 0.5f * (float)(side - 1));
+    }
+}
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -88,6 +108,8 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
     }
+    if (c->no_colliders) s->collider_count = s->character_count = 0;
+    if (c->balls > 0) add_balls(s, c->balls);
     if (c->proxy != PROXY_WORLD || c->box) {
         /* Characters would keep their own proxy spheres (the variants could
          * not be told apart): only the box collides. A scene without
@@ -115,11 +137,26 @@ static void tweak(scene_desc_t *s, void *user)
     }
 }
 
+/* Per-frame measures of one run of a configuration (sweep_frame). */
+typedef struct sweep_run_t {
+    const bench_config_t *c;
+    int warmup, frames;
+    bool depth, overpush, pose; /* what this configuration measures */
+    double *depths;             /* the deepest sample of every measured frame */
+    long nd;
+    float *eta_prev;            /* over-push: eta of the frame before */
+    double *push;               /* over-push distances of every measured frame */
+    long np, push_cap;
+    bench_bb_pose_t *pose_out;  /* the last frame's billboard shape */
+    app_world_stats_t *stats;   /* the last frame's world stats (NULL: not taken) */
+    int *leaves;                /* the last frame's colliding leaves (NULL: not taken) */
+} sweep_run_t;
+
 /* Sphere proxies of the blade_proxies sweep for box colliders (other
  * colliders get their bounding sphere). */
 static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
 {
-    const bench_config_t *c = user;
+    const bench_config_t *c = ((const sweep_run_t *)user)->c;
     int n = 0;
     const app_colliders_t *colliders = app_world_colliders(w);
     for (int i = 0; i < colliders->count && n < max; i++) {
@@ -178,6 +215,40 @@ static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
 }
 
+/* The papers' own evaluations: Jahrmann & Wimmer's ablation (blade mode
+ * with every feature, without collision, without culling, without each
+ * culling test) and Orthmann et al.'s billboard cost against the colliding
+ * leaves. Returns the new count. */
+static int add_paper_configs(bench_config_t *c, int n, bool quick)
+{
+    static const struct {
+        const char *name;
+        bool no_colliders;
+        unsigned cull;
+    } ablation[] = {{"all", false, 0},
+                    {"no_culling", false, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE |
+                                              BLADE_CULL_OCCLUSION},
+                    {"no_collision", true, 0},
+                    {"no_orientation_cull", false, BLADE_CULL_ORIENTATION},
+                    {"no_frustum_cull", false, BLADE_CULL_FRUSTUM},
+                    {"no_distance_cull", false, BLADE_CULL_DISTANCE},
+                    {"no_occlusion_cull", false, BLADE_CULL_OCCLUSION}};
+    for (int i = 0; i < (quick ? 2 : (int)(sizeof ablation / sizeof ablation[0])); i++) {
+        bench_config_t *x = add(c, &n, "blade_ablation", SCENE_MODE_BLADE);
+        x->no_colliders = ablation[i].no_colliders;
+        x->tuning.cull_disable = ablation[i].cull;
+        snprintf(x->label, sizeof x->label, "%s", ablation[i].name);
+    }
+    /* Orthmann's figure: billboard cost against the number of colliding leaves. */
+    static const int balls[] = {1, 2, 4, 8, 16, 32};
+    for (int i = 0; i < (quick ? 2 : 6); i++) {
+        bench_config_t *x = add(c, &n, "billboard_leaves", SCENE_MODE_BILLBOARD);
+        x->balls = balls[i];
+        snprintf(x->label, sizeof x->label, "balls%d", balls[i]);
+    }
+    return n;
+}
+
 static int build_configs(bench_config_t *c, bool quick)
 {
     int n = 0;
@@ -197,6 +268,15 @@ static int build_configs(bench_config_t *c, bool quick)
                 x->box = true;
                 snprintf(x->label, sizeof x->label, "cube%d_sub%d_k%d", cube, sub, spr);
             }
+    /* The billboards' reference: the finest cube map, the 6 x 6 mesh (8 x 8
+     * exceeds the geometry shader's output) and 8 spring sweeps; the
+     * billboard_springs chart's shape deviation is taken from it. */
+    bench_config_t *bref = add(c, &n, "billboard_reference", SCENE_MODE_BILLBOARD);
+    bref->cube_resolution = quick ? 32 : 64;
+    bref->subdiv = 6;
+    bref->springs = 8;
+    bref->box = true;
+    snprintf(bref->label, sizeof bref->label, "cube%d_sub6_k8", bref->cube_resolution);
     static const struct {
         bench_proxy_t p;
         int g[3];
@@ -220,6 +300,7 @@ static int build_configs(bench_config_t *c, bool quick)
         x->tuning.blade_cube_proxies = true;
         snprintf(x->label, sizeof x->label, "cubemap_%d", cube_res[i]);
     }
+    n = add_paper_configs(c, n, quick);
     static const int tess[] = {1, 2, 3, 5, 7, 10}, levels[] = {1, 2, 4, 8, 16, 32};
     static const float sw[] = {2, 4, 8, 12, 16, 20, 25, 30, 40};
     int nt = quick ? 2 : 6;
@@ -305,7 +386,7 @@ static int build_configs(bench_config_t *c, bool quick)
  * medians are summed, up to a NULL; none: the whole frame), the frame
  * beside it in the tables. Timing only those passes keeps a knob's cost
  * from drowning in the run-to-run noise of the rest of the frame. */
-typedef enum bench_y_t { Y_IMAGE = 0, Y_PEN_MAX, Y_SPRING } bench_y_t;
+typedef enum bench_y_t { Y_IMAGE = 0, Y_PEN_MAX, Y_SPRING, Y_OVERPUSH, Y_COUNT } bench_y_t;
 #define CHART_PASSES 4
 typedef struct bench_chart_t {
     const char *name, *group, *ylabel;
@@ -316,10 +397,15 @@ typedef struct bench_chart_t {
 #define BB_KNOB_PASSES {"bb.cubemaps", "bb.collide", "bb.recover"}
 #define DRAW_PASSES {"blade.cull", "blade.draw", "blade.raster"}
 static const bench_chart_t charts[] = {
-    {"billboard_collision", "billboard_collision", "penetration max depth (m, exact shape)", Y_PEN_MAX,
+    {"billboard_collision", "billboard_collision", "penetration depth p95 (m, exact box)", Y_PEN_MAX,
      BB_KNOB_PASSES},
-    {"billboard_springs", "billboard_collision", "spring error (mean |l - l0| / l0)", Y_SPRING, BB_KNOB_PASSES},
-    {"blade_proxies", "blade_proxies", "penetration max depth (m, exact box)", Y_PEN_MAX, {"blade.physics"}},
+    {"billboard_springs", "billboard_collision", "shape deviation from the finest configuration (m)", Y_SPRING,
+     BB_KNOB_PASSES},
+    {"blade_proxies", "blade_proxies", "penetration depth p95 (m, exact box)", Y_PEN_MAX, {"blade.physics"}},
+    {"blade_proxies_overpush", "blade_proxies", "over-push p95 (m beyond the exact box)", Y_OVERPUSH,
+     {"blade.physics"}},
+    {"blade_ablation", "blade_ablation", "image error (eval_image vs reference)", Y_IMAGE,
+     {"blade.physics", "blade.cull", "blade.draw", "blade.raster"}},
     {"blade_tessellation", "blade_tessellation", "image error (eval_image vs reference)", Y_IMAGE, DRAW_PASSES},
     {"blade_distance_levels", "blade_distance_levels", "image error (eval_image vs reference)", Y_IMAGE,
      DRAW_PASSES},
@@ -354,15 +440,6 @@ static void knob_label(const bench_chart_t *ch, char *out, size_t size)
     if (n > 0 && (size_t)n < size) snprintf(out + n, size - (size_t)n, " per frame");
 }
 
-static double y_of(const bench_chart_t *ch, const bench_metrics_t *m, double image_error)
-{
-    switch (ch->y) {
-    case Y_PEN_MAX: return m->penetration_max;
-    case Y_SPRING: return m->spring_error;
-    default: return image_error;
-    }
-}
-
 /* floor >= 0: a dashed line at the image error's noise floor. */
 static void write_chart(const char *out, const bench_chart_t *ch, double floor)
 {
@@ -386,48 +463,121 @@ static void write_chart(const char *out, const bench_chart_t *ch, double floor)
     eval_gnuplot_chart(out, name, body);
 }
 
+/* Runs of every configuration, each with its own placement seed (and
+ * the reference drawn with that seed). */
+#define SWEEP_RUNS 3
+
+/* Per configuration: each run's timings and measures, and what the charts
+ * take from them (-1: not measured). */
+typedef struct bench_acc_t {
+    bench_metrics_t runs[SWEEP_RUNS];
+    double y_runs[Y_COUNT][SWEEP_RUNS]; /* each run's value of every chart measure */
+    double y[Y_COUNT];                  /* the chart value: image error and deviation the mean,
+                                           depth and over-push the p95 over every run's frames */
+    bench_bb_pose_t pose[SWEEP_RUNS];   /* billboard configurations: the last frame's shape */
+    app_world_stats_t stats;            /* the first run's last frame: blades culled per test */
+    int colliding_leaves;               /* the first run's last frame (billboards) */
+} bench_acc_t;
+
 typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
-    bench_metrics_t *met;
-    double *err;       /* eval_image score against the reference */
-    double *ssim_err;  /* 1 - SSIM against the reference */
-    eval_image_error_t *terms; /* the image error's terms */
-    double floor;      /* eval_image score of the reference with another placement seed */
-    double floor_ssim; /* its 1 - SSIM */
+    bench_metrics_t *met;  /* the first run's accuracy with the fastest run's timings */
+    double *err;       /* eval_image score against the reference (mean over the runs) */
+    double *ssim_err;  /* 1 - SSIM against the reference (first run) */
+    eval_image_error_t *terms; /* the image error's terms (first run) */
+    bench_acc_t *acc;
+    double floor;      /* eval_image score of a reference against another placement's, mean of SWEEP_RUNS pairs */
+    double floor_spread; /* half the range of those */
+    double floor_ssim; /* 1 - SSIM of the first pair */
     char renderer[256];
     int frames;
 } bench_run_t;
 
-/* A chart's configurations (idx, xs, ys: k of them) and their Pareto
- * fronts, one per rasterizer path: a configuration is compared only with
- * those drawn by the same path (the modes chart holds both), as the path
- * is a property of the GPU rather than a knob of the method. front[j]: 0
- * off the fronts, 1 on the hardware path's, 2 on the compute path's. */
-static int chart_points(const bench_run_t *b, const bench_chart_t *ch, int *idx, double *xs, double *ys, int *front)
+static double y_of(const bench_chart_t *ch, const bench_run_t *b, int i) { return b->acc[i].y[ch->y]; }
+
+/* Half the range of v[0..n) over its non-negative entries (0 when fewer than two). */
+static double half_range(const double *v, int n)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    int k = 0;
+    for (int j = 0; j < n; j++)
+        if (v[j] >= 0.0) lo = fmin(lo, v[j]), hi = fmax(hi, v[j]), k++;
+    return k > 1 ? 0.5 * (hi - lo) : 0.0;
+}
+
+/* A configuration's x: the fastest run's knob ms; its spread ex: the
+ * second fastest's minus it (one slow run, as the H100 showed now and
+ * then, widens nothing). */
+static double x_of(const bench_chart_t *ch, const bench_run_t *b, int i, double *ex)
+{
+    double r[SWEEP_RUNS];
+    int n = 0;
+    for (int k = 0; k < SWEEP_RUNS; k++)
+        if (b->acc[i].runs[k].pass_count > 0) r[n++] = knob_ms(ch, &b->acc[i].runs[k]);
+    for (int a = 1; a < n; a++)
+        for (int c = a; c > 0 && r[c - 1] > r[c]; c--) {
+            double t = r[c];
+            r[c] = r[c - 1];
+            r[c - 1] = t;
+        }
+    *ex = n > 1 ? r[1] - r[0] : 0.0;
+    return n ? r[0] : knob_ms(ch, &b->met[i]);
+}
+
+/* A chart's configurations (idx, xs, ys and their spreads: k of them) and
+ * their Pareto fronts, one per rasterizer path: a configuration is compared
+ * only with those drawn by the same path (the modes chart holds both), as
+ * the path is a property of the GPU rather than a knob of the method; a
+ * configuration dominates another only beyond their measured spreads
+ * (eval_pareto_noise). front[j]: 0 off the fronts, 1 on the hardware
+ * path's, 2 on the compute path's. */
+static int chart_points(const bench_run_t *b, const bench_chart_t *ch, int *idx, double *xs, double *ys,
+                        double *exs, double *eys, int *front)
 {
     int k = 0;
     for (int i = 0; i < b->n; i++)
         if (strcmp(b->cfg[i].group, ch->group) == 0) {
             idx[k] = i;
-            xs[k] = knob_ms(ch, &b->met[i]);
-            ys[k] = y_of(ch, &b->met[i], b->err[i]);
+            xs[k] = x_of(ch, b, i, &exs[k]);
+            ys[k] = y_of(ch, b, i);
+            eys[k] = half_range(b->acc[i].y_runs[ch->y], SWEEP_RUNS);
             k++;
         }
     for (int path = 0; path < 2; path++) {
-        double px[MAX_CONFIGS], py[MAX_CONFIGS];
+        double px[MAX_CONFIGS], py[MAX_CONFIGS], pex[MAX_CONFIGS], pey[MAX_CONFIGS];
         bool on[MAX_CONFIGS];
         int map[MAX_CONFIGS], m = 0;
         for (int j = 0; j < k; j++)
             if ((int)b->met[idx[j]].raster_compute == path) {
-                px[m] = xs[j];
-                py[m] = ys[j];
+                px[m] = xs[j], py[m] = ys[j], pex[m] = exs[j], pey[m] = eys[j];
                 map[m++] = j;
             }
-        eval_pareto(px, py, m, on);
+        eval_pareto_noise(px, py, pex, pey, m, on);
         for (int j = 0; j < m; j++) front[map[j]] = on[j] ? 1 + path : 0;
     }
     return k;
+}
+
+/* Configurations of a chart whose accuracy is identical (to 1e-12 m or
+ * score) to another's: a y that does not answer the knob between them.
+ * Writes "a = b, ..." into out; returns the number of such pairs. */
+static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *out, size_t size)
+{
+    int pairs = 0;
+    size_t len = 0;
+    out[0] = 0;
+    for (int i = 0; i < b->n; i++) {
+        if (strcmp(b->cfg[i].group, ch->group) != 0 || y_of(ch, b, i) < 0.0) continue;
+        for (int j = i + 1; j < b->n; j++) {
+            if (strcmp(b->cfg[j].group, ch->group) != 0 || fabs(y_of(ch, b, i) - y_of(ch, b, j)) > 1e-12) continue;
+            pairs++;
+            if (len + 1 < size)
+                len += (size_t)snprintf(out + len, size - len, "%s%s = %s", len ? ", " : "", b->cfg[i].label,
+                                        b->cfg[j].label);
+        }
+    }
+    return pairs;
 }
 
 static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
@@ -495,137 +645,240 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     return ok;
 }
 
-static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
+/* Placement seeds of a configuration's runs (app_tuning_t.placement_seed;
+ * 0: the scene's), each run compared with the reference of its own. */
+static const uint32_t placements[SWEEP_RUNS] = {0, FLOOR_PLACEMENT_SEED, 0x85ebca6bu};
+#define MEASURE_EVERY 4 /* frames between per-frame measures after warm-up */
+
+static void sweep_frame(app_world_t *w, int f, float t, void *user)
+{
+    (void)t;
+    sweep_run_t *r = user;
+    if (r->pose && f + 1 == r->frames && !bench_metrics_bb_pose(w, r->pose_out))
+        core_log_warn("bench: no memory for the billboard shape of %s", r->c->label);
+    if (f + 1 == r->frames && r->stats) app_world_stats(w, r->stats);
+    if (f + 1 == r->frames && r->leaves && app_world_billboards(w)) {
+        bb_stats_t st;
+        bb_field_stats(app_world_billboards(w), true, &st);
+        *r->leaves = st.leaves[BB_NODE_COLLIDING];
+    }
+    if (f < r->warmup) return;
+    int phase = f % MEASURE_EVERY;
+    if (r->depth && phase == 0 && r->nd < r->frames) {
+        bench_metrics_t m;
+        bench_metrics_measure(w, &m, NULL);
+        if (m.penetration_max >= 0.0) r->depths[r->nd++] = m.penetration_max;
+    }
+    blade_gpu_t *g = app_world_blades(w);
+    if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
+    if (!r->eta_prev) r->eta_prev = calloc(g->padded_count, sizeof(float));
+    if (r->np + (long)g->padded_count > r->push_cap) {
+        long cap = r->np + (long)g->padded_count * 4;
+        double *p = realloc(r->push, sizeof *p * (size_t)cap);
+        if (!p) return;
+        r->push = p, r->push_cap = cap;
+    }
+    if (r->eta_prev) r->np += bench_metrics_blade_overpush(w, r->eta_prev, phase == 0, r->push + r->np);
+}
+
+/* The q95 of v[0..n) on a copy (-1 when n is 0: not measured). */
+static double p95_copy(const double *v, long n)
+{
+    if (n <= 0) return -1.0;
+    double *c = malloc(sizeof *c * (size_t)n);
+    if (!c) return -1.0;
+    memcpy(c, v, sizeof *c * (size_t)n);
+    double q = bench_percentile(c, n, 0.95);
+    free(c);
+    return q;
+}
+
+/* The references of the runs (one per placement seed), the grass-free
+ * background and the noise floor: each reference against the next's
+ * placement, mean and half range over the SWEEP_RUNS pairs. */
+static int make_references(const app_options_t *oh, int frames, const char *out, core_image_t *refs, core_image_t *bg,
+                           bench_run_t *b)
 {
     char path[1200];
-    b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
-    b->met = calloc(MAX_CONFIGS, sizeof *b->met);
-    b->err = calloc(MAX_CONFIGS, sizeof(double));
-    b->ssim_err = calloc(MAX_CONFIGS, sizeof(double));
-    b->terms = calloc(MAX_CONFIGS, sizeof *b->terms);
-    if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms) return 1;
-    b->n = build_configs(b->cfg, quick);
-    /* Every row names its rasterizer path: hw unless the row or --raster
-     * says otherwise (the scene default, auto, would pick one by timing). */
-    app_options_t oh = *o;
-    if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
-    if (o->chart) {
-        int k = 0;
-        for (int i = 0; i < b->n; i++)
-            if (strcmp(b->cfg[i].group, o->chart) == 0) b->cfg[k++] = b->cfg[i];
-        if (k == 0) {
-            core_buf_t names = {0};
-            for (int ci = 0; ci < CHART_COUNT; ci++)
-                if (ci == 0 || strcmp(charts[ci].group, charts[ci - 1].group) != 0)
-                    core_buf_printf(&names, "%s%s", ci ? ", " : "", charts[ci].group);
-            core_log_error("--chart '%s': no such chart (%s)", o->chart, names.data);
-            core_buf_free(&names);
-            return 2;
-        }
-        b->n = k;
-    }
-    int n = b->n;
-    b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
-    int frames = b->frames;
-    core_image_t ref = {0}, img = {0}, bg = {0}, other = {0};
-    bench_session_desc_t rd = {.opts = &oh, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+    bench_session_desc_t rd = {.opts = oh, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
-    core_log_info("bench: reference rendering (%d frames), its grass-free view and another placement", frames);
-    int rc = bench_session_run(&rd, &ref, NULL);
-    /* The image error's background (no blade) and noise floor. */
+    core_log_info("bench: %d reference renderings (%d frames, one per placement seed) and the grass-free view",
+                  SWEEP_RUNS, frames);
+    int rc = 0;
+    for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
+        bench_session_desc_t d = rd;
+        d.tuning.placement_seed = placements[k];
+        rc = bench_session_run(&d, &refs[k], NULL);
+    }
     bench_session_desc_t bd = rd;
     bd.tweak = no_grass;
-    if (rc == 0) rc = bench_session_run(&bd, &bg, NULL);
-    bench_session_desc_t fd = rd;
-    fd.tuning.placement_seed = FLOOR_PLACEMENT_SEED;
-    if (rc == 0) rc = bench_session_run(&fd, &other, NULL);
-    const eval_image_desc_t ed = {.background = &bg};
-    eval_image_error_t e = {0};
-    snprintf(path, sizeof path, "%s/frames", out);
-    if (rc == 0 && !core_fs_mkdirs(path)) core_log_warn("bench: cannot create %s", path);
-    const struct {
-        const core_image_t *img;
-        const char *name;
-    } fixed[] = {{&ref, "reference"}, {&bg, "background"}, {&other, "floor"}};
-    for (int i = 0; i < 3 && rc == 0; i++) {
-        snprintf(path, sizeof path, "%s/frames/%s.png", out, fixed[i].name);
-        if (!core_image_write_png(fixed[i].img, path)) core_log_warn("bench: cannot write %s", path);
-    }
-    if (rc == 0 && eval_image_error(&other, &ref, &ed, &e)) {
-        b->floor = e.score;
-        b->floor_ssim = 1.0 - eval_image_ssim(&other, &ref);
-        core_log_info("bench: image error noise floor %.4f (colour %.3f, coverage %.4f, structure %.4f; 1 - SSIM %.4f)",
-                      b->floor, e.colour, e.coverage, e.structure, b->floor_ssim);
-    }
-    double t0 = plat_time();
-    for (int i = 0; i < n && rc == 0; i++) {
-        app_signal_reclaim(); /* llvmpipe's LLVM takes SIGINT when it first compiles */
-        if (app_interrupted()) {
-            core_log_warn("bench: interrupted after %d of %d configurations; writing those", i, n);
-            b->n = n = i;
-            break;
-        }
-        bench_config_t *c = &b->cfg[i];
-        app_options_t oc = oh;
-        if (c->blade_render) oc.blade_render = c->blade_render;
-        if (c->raster) oc.raster = c->raster;
-        if (c->raster_samples) oc.raster_samples = c->raster_samples;
-        bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames,
-                                  .tweak = tweak, .user = c, .tuning = c->tuning};
-        bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
-        bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .user = c};
-        rc = bench_session_run_hooks(&d, &h, &img, &b->met[i]);
-        /* Timing: the faster of two runs (image and accuracy from the first;
-         * not with --quick). On the H100 a run now and then had every pass
-         * slower, the unchanged terrain pass too: billboard_x1_compute read
-         * 5.21 ms in one report (terrain 0.78 ms) and 1.70 ms alone (0.23). */
-        if (rc == 0 && !quick) {
-            bench_metrics_t again;
-            rc = bench_session_run_hooks(&d, &h, NULL, &again);
-            if (rc == 0 && again.frame_ms < b->met[i].frame_ms) keep_timing(&b->met[i], &again);
-        }
-        if (rc) break;
-        b->err[i] = eval_image_error(&img, &ref, &ed, &e) ? e.score : -1.0;
-        b->terms[i] = e;
-        b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &ref);
-        snprintf(path, sizeof path, "%s/frames/%s_%s.png", out, c->group, c->label);
-        if (!core_image_write_png(&img, path)) core_log_warn("bench: cannot write %s", path);
-        core_image_free(&img);
-        double el = plat_time() - t0;
-        fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,
-                c->group, c->label, b->met[i].frame_ms, b->err[i], b->met[i].penetration_max,
-                el / (i + 1) * (n - i - 1));
-    }
-    fputc('\n', stderr);
-    core_image_free(&ref);
-    core_image_free(&bg);
-    core_image_free(&other);
+    if (rc == 0) rc = bench_session_run(&bd, bg, NULL);
     if (rc) return rc;
-    snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    snprintf(path, sizeof path, "%s/frames", out);
+    if (!core_fs_mkdirs(path)) core_log_warn("bench: cannot create %s", path);
+    const core_image_t *fixed[3] = {&refs[0], bg, &refs[1]};
+    static const char *names[3] = {"reference", "background", "floor"};
+    for (int i = 0; i < 3; i++) {
+        snprintf(path, sizeof path, "%s/frames/%s.png", out, names[i]);
+        if (!core_image_write_png(fixed[i], path)) core_log_warn("bench: cannot write %s", path);
+    }
+    const eval_image_desc_t ed = {.background = bg};
+    double f[SWEEP_RUNS];
+    b->floor = 0.0;
+    for (int k = 0; k < SWEEP_RUNS; k++) {
+        eval_image_error_t e = {0};
+        f[k] = eval_image_error(&refs[(k + 1) % SWEEP_RUNS], &refs[k], &ed, &e) ? e.score : 0.0;
+        b->floor += f[k] / SWEEP_RUNS;
+    }
+    b->floor_spread = half_range(f, SWEEP_RUNS);
+    b->floor_ssim = 1.0 - eval_image_ssim(&refs[1], &refs[0]);
+    core_log_info("bench: image error noise floor %.4f +- %.4f over %d placement pairs (1 - SSIM %.4f)", b->floor,
+                  b->floor_spread, SWEEP_RUNS, b->floor_ssim);
+    return 0;
+}
+
+/* Configuration i's SWEEP_RUNS runs: timings from the fastest, accuracy
+ * of the first run in b->met, every chart measure per run and pooled. */
+static int run_config(const app_options_t *oh, bench_run_t *b, int i, const core_image_t *refs, const core_image_t *bg,
+                      const char *out)
+{
+    bench_config_t *c = &b->cfg[i];
+    bench_acc_t *acc = &b->acc[i];
+    app_options_t oc = *oh;
+    if (c->blade_render) oc.blade_render = c->blade_render;
+    if (c->raster) oc.raster = c->raster;
+    if (c->raster_samples) oc.raster_samples = c->raster_samples;
+    bool depth = strcmp(c->group, "billboard_collision") == 0 || strcmp(c->group, "blade_proxies") == 0;
+    bool pose = c->mode == SCENE_MODE_BILLBOARD && c->box;
+    long cap = (long)b->frames * SWEEP_RUNS;
+    double *depths = depth ? malloc(sizeof *depths * (size_t)cap) : NULL;
+    sweep_run_t r = {.c = c, .frames = b->frames, .warmup = b->frames / 4, .depth = depths != NULL,
+                     .overpush = strcmp(c->group, "blade_proxies") == 0, .pose = pose};
+    const eval_image_desc_t ed = {.background = bg};
+    double err_sum = 0.0;
+    int rc = 0;
+    for (int y = 0; y < Y_COUNT; y++)
+        for (int k = 0; k < SWEEP_RUNS; k++) acc->y_runs[y][k] = -1.0;
+    for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
+        bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = b->frames,
+                                  .tweak = tweak, .user = c, .tuning = c->tuning};
+        d.tuning.placement_seed = placements[k];
+        bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
+        long nd0 = r.nd, np0 = r.np;
+        r.depths = depths;
+        r.pose_out = &acc->pose[k];
+        r.stats = k == 0 ? &acc->stats : NULL;
+        r.leaves = k == 0 ? &acc->colliding_leaves : NULL;
+        free(r.eta_prev);
+        r.eta_prev = NULL;
+        bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .frame = sweep_frame, .user = &r};
+        core_image_t img = {0};
+        rc = bench_session_run_hooks(&d, &h, &img, &acc->runs[k]);
+        if (rc) break;
+        eval_image_error_t e = {0};
+        acc->y_runs[Y_IMAGE][k] = eval_image_error(&img, &refs[k], &ed, &e) ? e.score : -1.0;
+        err_sum += acc->y_runs[Y_IMAGE][k];
+        acc->y_runs[Y_PEN_MAX][k] = p95_copy(depths ? depths + nd0 : NULL, r.nd - nd0);
+        acc->y_runs[Y_OVERPUSH][k] = p95_copy(r.push ? r.push + np0 : NULL, r.np - np0);
+        if (k == 0) {
+            b->met[i] = acc->runs[0];
+            b->terms[i] = e;
+            b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &refs[0]);
+            char path[1200];
+            snprintf(path, sizeof path, "%s/frames/%s_%s.png", out, c->group, c->label);
+            if (!core_image_write_png(&img, path)) core_log_warn("bench: cannot write %s", path);
+        } else if (acc->runs[k].frame_ms < b->met[i].frame_ms) {
+            keep_timing(&b->met[i], &acc->runs[k]);
+        }
+        core_image_free(&img);
+    }
+    acc->y[Y_IMAGE] = b->err[i] = err_sum / SWEEP_RUNS;
+    acc->y[Y_PEN_MAX] = p95_copy(depths, r.nd);
+    acc->y[Y_OVERPUSH] = p95_copy(r.push, r.np);
+    acc->y[Y_SPRING] = -1.0;
+    free(depths);
+    free(r.push);
+    free(r.eta_prev);
+    return rc;
+}
+
+/* billboard_springs' y: each billboard configuration's shape deviation from
+ * the billboard_reference run of the same placement, mean over the runs. */
+static void shape_deviations(bench_run_t *b)
+{
+    int ref = -1;
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->cfg[i].group, "billboard_reference") == 0) ref = i;
+    for (int i = 0; i < b->n && ref >= 0; i++) {
+        if (!(b->cfg[i].mode == SCENE_MODE_BILLBOARD && b->cfg[i].box)) continue;
+        double sum = 0.0;
+        for (int k = 0; k < SWEEP_RUNS; k++) {
+            b->acc[i].y_runs[Y_SPRING][k] = bench_bb_pose_deviation(&b->acc[i].pose[k], &b->acc[ref].pose[k]);
+            sum += b->acc[i].y_runs[Y_SPRING][k];
+        }
+        b->acc[i].y[Y_SPRING] = sum / SWEEP_RUNS;
+    }
+}
+
+/* --chart NAME keeps that chart's configurations (and the billboard
+ * reference with billboard_collision); 2 after an error line when none. */
+static int filter_chart(const app_options_t *o, bench_run_t *b)
+{
+    int k = 0;
+    bool bb = strcmp(o->chart, "billboard_collision") == 0;
+    for (int i = 0; i < b->n; i++)
+        if (strcmp(b->cfg[i].group, o->chart) == 0 || (bb && strcmp(b->cfg[i].group, "billboard_reference") == 0))
+            b->cfg[k++] = b->cfg[i];
+    if (k == 0 || (bb && k == 1)) {
+        core_buf_t names = {0};
+        for (int ci = 0; ci < CHART_COUNT; ci++)
+            if (ci == 0 || strcmp(charts[ci].group, charts[ci - 1].group) != 0)
+                core_buf_printf(&names, "%s%s", ci ? ", " : "", charts[ci].group);
+        core_log_error("--chart '%s': no such chart (%s)", o->chart, names.data);
+        core_buf_free(&names);
+        return 2;
+    }
+    b->n = k;
+    return 0;
+}
+
+/* bench.csv, bench.json, lod.json and one data file and chart per chart
+ * entry (x GPU ms, y its measure, both with their spreads); warns of
+ * charts whose accuracy is identical between configurations. */
+static int write_sweep(const app_options_t *o, const char *out, const bench_run_t *b)
+{
+    char path[1200];
+    int rc = 0, n = b->n;
     core_buf_t csv = {0}, json = {0};
     core_buf_printf(&csv, "group,label,mode,gpu_ms,cpu_ms,image_error,image_ssim_error,penetration_fraction,penetration_max,"
-                          "blade_length_error,spring_error,passes\n");
+                          "blade_length_error,spring_error,depth_p95,shape_deviation,overpush_p95,image_error_spread,"
+                          "passes\n");
     core_buf_printf(&json,
                     "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"image_error_floor\": %.6f,\n"
+                    "  \"image_error_floor_spread\": %.6f,\n  \"runs\": %d,\n"
                     "  \"image_ssim_error_floor\": %.6f,\n  \"configs\": [\n",
-                    b->renderer, frames, b->floor, b->floor_ssim);
+                    b->renderer, b->frames, b->floor, b->floor_spread, SWEEP_RUNS, b->floor_ssim);
     for (int i = 0; i < n; i++) {
         const bench_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
-        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group, c->label,
-                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], b->ssim_err[i],
-                        m->penetration_fraction,
-                        m->penetration_max, m->blade_length_error, m->spring_error);
+        const bench_acc_t *a = &b->acc[i];
+        double espread = half_range(a->y_runs[Y_IMAGE], SWEEP_RUNS);
+        core_buf_printf(&csv, "%s,%s,%s,%.4f,%.3f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,%.6f,", c->group,
+                        c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], b->ssim_err[i],
+                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
+                        a->y[Y_PEN_MAX], a->y[Y_SPRING], a->y[Y_OVERPUSH], espread);
         core_buf_printf(&json,
                         "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
                         "\"image_terms\": {\"colour\": %.4f, \"coverage\": %.4f, \"structure\": %.4f}, "
                         "\"penetration_fraction\": %.6f, "
                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
-                        "\"passes\": {",
+                        "\"depth_p95\": %.6f, \"shape_deviation\": %.6f, \"overpush_p95\": %.6f, "
+                        "\"image_error_spread\": %.6f, \"passes\": {",
                         c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
                         b->ssim_err[i], b->terms[i].colour, b->terms[i].coverage, b->terms[i].structure,
-                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error);
+                        m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
+                        a->y[Y_PEN_MAX], a->y[Y_SPRING], a->y[Y_OVERPUSH], espread);
         for (int p = 0; p < m->pass_count; p++) {
             core_buf_printf(&csv, "%s%s=%.4f", p ? ";" : "", m->pass_name[p], m->pass_ms[p]);
             core_buf_printf(&json, "%s\"%s\": %.4f", p ? ", " : "", m->pass_name[p], m->pass_ms[p]);
@@ -644,19 +897,23 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     /* One data file and chart per chart entry: x GPU ms, y its measure. */
     for (int ci = 0; ci < CHART_COUNT && rc == 0; ci++) {
         const bench_chart_t *ch = &charts[ci];
-        double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
+        double xs[MAX_CONFIGS], ys[MAX_CONFIGS], exs[MAX_CONFIGS], eys[MAX_CONFIGS];
         int front[MAX_CONFIGS], idx[MAX_CONFIGS];
-        int k = chart_points(b, ch, idx, xs, ys, front);
+        int k = chart_points(b, ch, idx, xs, ys, exs, eys, front);
         if (k == 0) continue;
+        char same[1024];
+        if (identical_rows(b, ch, same, sizeof same))
+            core_log_warn("bench: chart %s: identical accuracy (the measure does not answer the knob): %s", ch->name,
+                          same);
         core_buf_t dat = {0};
         char xlabel[160];
         knob_label(ch, xlabel, sizeof xlabel);
-        core_buf_printf(&dat, "# x y label pareto frame_ms (x: %s; y: %s; pareto: 0 off, 1 hardware path's "
-                              "front, 2 compute path's)\n",
+        core_buf_printf(&dat, "# x y label pareto frame_ms ex ey (x: %s; y: %s; pareto: 0 off, 1 hardware path's "
+                              "front, 2 compute path's; ex, ey: the spreads over the runs)\n",
                         xlabel, ch->ylabel);
         for (int j = 0; j < k; j++)
-            core_buf_printf(&dat, "%.5f %.6f %s %d %.5f\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j],
-                            b->met[idx[j]].frame_ms);
+            core_buf_printf(&dat, "%.5f %.6f %s %d %.5f %.5f %.6f\n", xs[j], ys[j], b->cfg[idx[j]].label, front[j],
+                            b->met[idx[j]].frame_ms, exs[j], eys[j]);
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
         if (!core_buf_write(&dat, path)) rc = 1;
         core_buf_free(&dat);
@@ -665,6 +922,51 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
     return rc;
 }
+
+static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
+{
+    char path[1200];
+    b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
+    b->met = calloc(MAX_CONFIGS, sizeof *b->met);
+    b->err = calloc(MAX_CONFIGS, sizeof(double));
+    b->ssim_err = calloc(MAX_CONFIGS, sizeof(double));
+    b->terms = calloc(MAX_CONFIGS, sizeof *b->terms);
+    b->acc = calloc(MAX_CONFIGS, sizeof *b->acc);
+    if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms || !b->acc) return 1;
+    b->n = build_configs(b->cfg, quick);
+    /* Every row names its rasterizer path: hw unless the row or --raster
+     * says otherwise (the scene default, auto, would pick one by timing). */
+    app_options_t oh = *o;
+    if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
+    if (o->chart && filter_chart(o, b)) return 2;
+    int n = b->n;
+    b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
+    core_image_t refs[SWEEP_RUNS] = {0}, bg = {0};
+    int rc = make_references(&oh, b->frames, out, refs, &bg, b);
+    double t0 = plat_time();
+    for (int i = 0; i < n && rc == 0; i++) {
+        app_signal_reclaim(); /* llvmpipe's LLVM takes SIGINT when it first compiles */
+        if (app_interrupted()) {
+            core_log_warn("bench: interrupted after %d of %d configurations; writing those", i, n);
+            b->n = n = i;
+            break;
+        }
+        rc = run_config(&oh, b, i, refs, &bg, out);
+        double el = plat_time() - t0;
+        fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  depth p95 %.4f m  (eta %.0f s)   ", i + 1, n,
+                b->cfg[i].group, b->cfg[i].label, b->met[i].frame_ms, b->err[i], b->acc[i].y[Y_PEN_MAX],
+                el / (i + 1) * (n - i - 1));
+    }
+    fputc('\n', stderr);
+    for (int k = 0; k < SWEEP_RUNS; k++) core_image_free(&refs[k]);
+    core_image_free(&bg);
+    if (rc) return rc;
+    (void)path;
+    shape_deviations(b);
+    snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
+    return write_sweep(o, out, b);
+}
+
 
 static bool copy_file(const char *from, const char *to)
 {
@@ -699,6 +1001,52 @@ static void cell(char out[32], double v, int digits)
     else snprintf(out, 32, "%.*f", digits, v);
 }
 
+/* Pass p's median in run m (0 when absent). */
+static double pass_ms(const bench_metrics_t *m, const char *name)
+{
+    for (int p = 0; p < m->pass_count; p++)
+        if (strcmp(m->pass_name[p], name) == 0) return m->pass_ms[p];
+    return 0.0;
+}
+
+/* The ablation's blades culled by each test and Orthmann's figure (the
+ * billboard passes against the colliding leaves), when the run holds them. */
+static void write_extra_tables(core_buf_t *r, const bench_run_t *b)
+{
+    bool head = false;
+    for (int i = 0; i < b->n; i++) {
+        if (strcmp(b->cfg[i].group, "blade_ablation") != 0) continue;
+        const app_world_stats_t *st = &b->acc[i].stats;
+        if (!head)
+            core_buf_printf(r, "Blades culled by each test (blade_ablation, last frame of the first run; the "
+                               "patches' CPU test before them):\n\n| configuration | blades | drawn | orientation | "
+                               "frustum | distance | occlusion | patches (CPU) | blade.physics ms | blade.cull ms | "
+                               "frame GPU ms |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        head = true;
+        core_buf_printf(r, "| %s | %ld | %ld | %u | %u | %u | %u | %ld | %.4f | %.4f | %.3f |\n", b->cfg[i].label,
+                        st->blades, st->blade_survivors, st->blade_culled[0], st->blade_culled[1], st->blade_culled[2],
+                        st->blade_culled[3], st->blade_patch_culled, pass_ms(&b->met[i], "blade.physics"),
+                        pass_ms(&b->met[i], "blade.cull"), b->met[i].frame_ms);
+    }
+    if (head) core_buf_printf(r, "\n");
+    head = false;
+    for (int i = 0; i < b->n; i++) {
+        if (strcmp(b->cfg[i].group, "billboard_leaves") != 0) continue;
+        const bench_metrics_t *m = &b->met[i];
+        if (!head)
+            core_buf_printf(r, "### billboard_leaves\n\nOrthmann et al. 2009's figure: the billboard passes against "
+                               "the number of colliding octree leaves (resting r 0.3 m balls on a 1.5 m grid around the "
+                               "camera's target; GPU ms, fastest of 3 runs).\n\n| balls | colliding leaves | "
+                               "deformed | bb.cubemaps | bb.collide | bb.recover | bb.render | frame GPU ms |\n"
+                               "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        head = true;
+        core_buf_printf(r, "| %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.3f |\n", b->cfg[i].balls,
+                        b->acc[i].colliding_leaves, b->acc[i].stats.bb_deformed, pass_ms(m, "bb.cubemaps"),
+                        pass_ms(m, "bb.collide"), pass_ms(m, "bb.recover"), pass_ms(m, "bb.render"), m->frame_ms);
+    }
+    if (head) core_buf_printf(r, "\n");
+}
+
 /* RESULTS.md: every chart with its numbers, the stability table, the
  * tile scaling sweeps, the comparison montage. */
 static int write_report(const char *dir, const char *out, const app_options_t *o, const bench_run_t *b,
@@ -723,7 +1071,10 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                     o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
                     o->papers ? " --papers " : "", o->papers ? o->papers : "",
                     b->renderer[0] ? b->renderer : "?", b->frames,
-                    o->quick ? "" : "; sweep timings: the faster of two runs of each configuration");
+                    "; every configuration runs 3 times, each with its own placement seed against the reference "
+                    "of that seed: timings from the fastest run (spread: the second fastest's excess), image error "
+                    "and shape deviation the mean over the runs (spread: half their range), depths and over-push "
+                    "the 95th percentile over every run's frames after warm-up");
     if (strstr(b->renderer, "llvmpipe"))
         core_buf_printf(&r, "GPU times from llvmpipe are not meaningful (CPU rasteriser, timer queries are "
                             "coarse); rerun on a GPU for real timings. Accuracy columns do not depend on the "
@@ -734,10 +1085,12 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         "configurations of each rasterizer path (solid: hardware, dotted: compute; a configuration "
                         "competes only with those of its own path). Image error: "
                         "the block-statistics score of docs/METRICS.md against the reference (0 = indistinguishable, "
-                        "1 = one clearly visible unit); its noise floor, the reference drawn with another placement "
-                        "seed, is %.4f (dashed line; 1 - SSIM of the same pair: %.4f). n/a: the measure does not "
+                        "1 = one clearly visible unit); its noise floor, the reference against the reference drawn "
+                        "with another placement seed (mean of 3 pairs), is %.4f +- %.4f (dashed line; 1 - SSIM of the "
+                        "first pair: %.4f). A configuration leaves a front only for one that is no worse within the "
+                        "two's spreads and better beyond them in x or y (eval_pareto_noise). n/a: the measure does not "
                         "apply to that mode.\n\n",
-                    b->floor, b->floor_ssim);
+                    b->floor, b->floor_spread, b->floor_ssim);
     for (int ci = 0; ci < CHART_COUNT; ci++) {
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
@@ -749,29 +1102,37 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             "Pareto front |\n"
                             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
                         ch->name, ch->name, ch->name, xlabel, ch->ylabel);
-        double xs[MAX_CONFIGS], ys[MAX_CONFIGS];
+        double xs[MAX_CONFIGS], ys[MAX_CONFIGS], exs[MAX_CONFIGS], eys[MAX_CONFIGS];
         int front[MAX_CONFIGS], idx[MAX_CONFIGS];
-        int k = chart_points(b, ch, idx, xs, ys, front);
+        int k = chart_points(b, ch, idx, xs, ys, exs, eys, front);
         for (int j = 0; j < k; j++) {
             int i = idx[j];
             const bench_metrics_t *m = &b->met[i];
             char v[5][32];
-            cell(v[0], y_of(ch, m, b->err[i]), 5);
+            cell(v[0], ys[j], 5);
             cell(v[1], b->err[i], 4);
             cell(v[2], b->ssim_err[i], 4);
             cell(v[3], m->penetration_fraction, 4);
             cell(v[4], m->blade_length_error, 4);
-            core_buf_printf(&r, "| %s | %.4f | %.3f | %s | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
-                            knob_ms(ch, m), m->frame_ms, v[0], v[1], v[2], v[3], v[4], front_name(front[j]));
+            core_buf_printf(&r, "| %s | %.4f +- %.4f | %.3f | %s +- %.5f | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
+                            xs[j], exs[j], m->frame_ms, v[0], eys[j], v[1], v[2], v[3], v[4], front_name(front[j]));
         }
+        char same[1024];
+        if (identical_rows(b, ch, same, sizeof same))
+            core_buf_printf(&r, "\nIdentical accuracy (the measure does not answer the knob between these): %s.\n",
+                            same);
         core_buf_printf(&r, "\n");
     }
+    write_extra_tables(&r, b);
     core_buf_printf(&r, "blade_proxies and billboard_collision run a 1 x 0.4 x 0.4 m box (the scene's first "
                         "collider's path, or a path across the view) with the scene's characters removed; "
                         "blade_proxies compares sphere sets with the box's depth cube map (cubemap_N, N^2 texels per "
                         "face, rasterised on the CPU), billboard_collision the billboards' cube map resolution "
                         "(cubeN), mesh (subN) and spring iterations (kN). Billboard penetration is sampled at the "
-                        "mesh vertices, inside its edges and at its cell centres.\n\n");
+                        "mesh vertices, inside its edges and at its cell centres. billboard_springs charts the shape "
+                        "deviation of the same runs from the billboards' reference (billboard_reference: the finest "
+                        "cube map, the 6 x 6 mesh, 8 spring sweeps; not charted); blade_proxies_overpush the distance "
+                        "from the exact box of the blades each step pushes (95th percentile).\n\n");
     core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
                         "(src/bench/bench_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
@@ -862,5 +1223,8 @@ int bench_run(const app_options_t *o)
     free(b.err);
     free(b.ssim_err);
     free(b.terms);
+    for (int i = 0; b.acc && i < b.n; i++)
+        for (int k = 0; k < SWEEP_RUNS; k++) bench_bb_pose_free(&b.acc[i].pose[k]);
+    free(b.acc);
     return rc;
 }

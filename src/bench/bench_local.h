@@ -60,6 +60,43 @@ typedef struct bench_bb_distortion_t {
 /* Measures the deformed billboards of w now (all zero without billboards). */
 void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out);
 
+/* ---- measures that grow with their failure (docs/METRICS.md) ---- */
+/* Wall crossing (stability case thin_bb): of the billboards rooted outside
+ * box collider `collider` within reach (max(width, height)) of its thin
+ * face and along its length, the share with a non-root vertex (deformed
+ * mesh or wind pose) beyond the box's mid-plane, under its top and within
+ * its length; *near gets their count. */
+double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near);
+/* Pose jump of billboards: the largest change of any vertex's offset from
+ * its wind pose since the previous call with the same prev (billboards x
+ * N x M x 3 floats; 0 while *primed is false, which the call sets). */
+double bench_metrics_bb_jump(app_world_t *w, float *prev, bool *primed);
+/* Deformed billboards' offsets from their wind pose, sampled bilinearly
+ * at BENCH_POSE_SIDE^2 points of (u, v) in [0, 1]^2 (any mesh size), in
+ * billboard order: a configuration's shape against a reference's
+ * (bench_bb_pose_deviation). */
+#define BENCH_POSE_SIDE 5
+#define BENCH_POSE_SAMPLES (BENCH_POSE_SIDE * BENCH_POSE_SIDE)
+typedef struct bench_bb_pose_t {
+    int count;
+    int *index;                            /* billboard index, ascending */
+    float (*off)[BENCH_POSE_SAMPLES][3];   /* offsets from the wind pose (m) */
+} bench_bb_pose_t;
+bool bench_metrics_bb_pose(app_world_t *w, bench_bb_pose_t *out);
+void bench_bb_pose_free(bench_bb_pose_t *p);
+/* Shape deviation: mean over the billboards deformed in either of the
+ * largest sample distance between a's offsets and ref's (a billboard not
+ * deformed in one has zero offsets there), m. */
+double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *ref);
+/* Over-push of blade proxies: for every real blade whose eta rose since
+ * the previous call (pushed this step; eta_prev, padded_count floats,
+ * updated; nothing counts while primed is false), the distance (m, >= 0)
+ * of its curve (8 samples) from the nearest exact collider into dist
+ * (padded_count entries). Returns their count. */
+long bench_metrics_blade_overpush(app_world_t *w, float *eta_prev, bool primed, double *dist);
+/* The q-quantile (0..1, linear between ranks) of v[0..n) (sorts v); 0 for n = 0. */
+double bench_percentile(double *v, long n, double q);
+
 /* Grass roots inside the world-space box lo..hi: real blade roots v0 in
  * blade mode, billboard root centres in billboard mode (0 otherwise). */
 long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]);

@@ -33,6 +33,7 @@
 #include "bench/bench_local.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define SAMPLES_PER_BLADE 8
@@ -193,6 +194,35 @@ static bool read_bb(bb_field_t *f, bb_point_t **pts, float (**mesh)[4])
     return true;
 }
 
+/* Billboard p's wind pose at the field's time into grid (N x M). */
+static void bb_wind_grid(const bb_field_t *f, const bb_point_t *p, vec3 *grid)
+{
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1];
+    vec3 right, up;
+    bb_point_frame(p, right, up);
+    for (int j = 0; j < mm; j++)
+        for (int c = 0; c < nn; c++) {
+            float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
+            float yo = p->size[1] * (float)j / (float)(mm - 1);
+            vec3 rest;
+            for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
+            bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), f->time,
+                               grid[j * nn + c]);
+        }
+}
+
+/* Billboard p's pose into grid: its deformed mesh, else its wind pose. */
+static void bb_grid(const bb_field_t *f, const bb_point_t *p, const float (*mesh)[4], vec3 *grid)
+{
+    int nv = f->desc.subdiv[0] * f->desc.subdiv[1];
+    uint32_t slot = p->pad[0];
+    if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) {
+        bb_wind_grid(f, p, grid);
+        return;
+    }
+    for (int v = 0; v < nv; v++) glm_vec3_copy((float *)mesh[(size_t)slot * nv + v], grid[v]);
+}
+
 static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
                        bench_metrics_ext_t *x)
 {
@@ -209,14 +239,11 @@ static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc,
         const bb_point_t *p = &pts[i];
         uint32_t slot = p->pad[0];
         bool deformed = slot != BB_NO_SLOT && slot < (uint32_t)f->desc.max_deformed;
-        vec3 right, up;
-        bb_point_frame(p, right, up);
+        bb_grid(f, p, (const float (*)[4])mesh, grid);
         if (deformed) {
             x->deformed++;
-            for (int v = 0; v < nv; v++) {
-                glm_vec3_copy(mesh[(size_t)slot * nv + v], grid[v]);
+            for (int v = 0; v < nv; v++)
                 if (!isfinite(grid[v][0]) || !isfinite(grid[v][1]) || !isfinite(grid[v][2])) x->nonfinite++;
-            }
             float l0x = p->size[0] / (float)(nn - 1), l0y = p->size[1] / (float)(mm - 1);
             for (int j = 0; j < mm; j++)
                 for (int c = 0; c < nn; c++) {
@@ -229,16 +256,6 @@ static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc,
                             fabsf(glm_vec3_distance(grid[j * nn + c], grid[(j + 1) * nn + c]) - l0y) / l0y;
                         springs++;
                     }
-                }
-        } else {
-            for (int j = 0; j < mm; j++)
-                for (int c = 0; c < nn; c++) {
-                    float xo = p->size[0] * ((float)c / (float)(nn - 1) - 0.5f);
-                    float yo = p->size[1] * (float)j / (float)(mm - 1);
-                    vec3 rest;
-                    for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
-                    bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1),
-                                       f->time, grid[j * nn + c]);
                 }
         }
         float reach = fmaxf(p->size[0], p->size[1]);
@@ -511,4 +528,208 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
         free(mesh);
     }
     return n;
+}
+
+/* ---- measures that grow with their failure (issue 33) ---------------------------- */
+
+double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near)
+{
+    *near = 0;
+    bb_field_t *f = app_world_billboards(w);
+    const app_colliders_t *cs = app_world_colliders(w);
+    if (!f || collider < 0 || collider >= cs->count) return 0.0;
+    const float *c = cs->items[collider].position, *h = cs->items[collider].desc.half_extents;
+    int nv = f->desc.subdiv[0] * f->desc.subdiv[1], nn = f->desc.subdiv[0];
+    int a = h[0] <= h[2] ? 0 : 2, b = 2 - a; /* the wall's thin axis a, its length along b */
+    bb_point_t *pts;
+    float (*mesh)[4];
+    vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
+    if (!grid || !read_bb(f, &pts, &mesh)) {
+        free(grid);
+        return 0.0;
+    }
+    long crossed = 0;
+    for (int i = 0; i < f->billboards; i++) {
+        const bb_point_t *p = &pts[i];
+        float side = p->position[a] - c[a], reach = fmaxf(p->size[0], p->size[1]);
+        if (fabsf(side) <= h[a] || fabsf(side) > h[a] + reach || fabsf(p->position[b] - c[b]) > h[b]) continue;
+        (*near)++;
+        bb_grid(f, p, (const float (*)[4])mesh, grid);
+        for (int v = nn; v < nv; v++) {
+            const float *q = grid[v];
+            if (q[1] <= c[1] + h[1] && fabsf(q[b] - c[b]) <= h[b] && (q[a] - c[a]) * side < 0.0f) {
+                crossed++;
+                break;
+            }
+        }
+    }
+    free(pts);
+    free(mesh);
+    free(grid);
+    return *near ? (double)crossed / (double)*near : 0.0;
+}
+
+double bench_metrics_bb_jump(app_world_t *w, float *prev, bool *primed)
+{
+    bb_field_t *f = app_world_billboards(w);
+    if (!f) return 0.0;
+    int nv = f->desc.subdiv[0] * f->desc.subdiv[1];
+    bb_point_t *pts;
+    float (*mesh)[4];
+    vec3 *grid = malloc(sizeof(vec3) * (size_t)nv * 2), *wind = grid + nv;
+    if (!grid || !read_bb(f, &pts, &mesh)) {
+        free(grid);
+        return 0.0;
+    }
+    double jump = 0.0;
+    for (int i = 0; i < f->billboards; i++) {
+        bb_grid(f, &pts[i], (const float (*)[4])mesh, grid);
+        bb_wind_grid(f, &pts[i], wind);
+        for (int v = 0; v < nv; v++) {
+            float *o = &prev[((size_t)i * (size_t)nv + (size_t)v) * 3], d[3];
+            for (int k = 0; k < 3; k++) d[k] = grid[v][k] - wind[v][k];
+            double dj = sqrt((double)(d[0] - o[0]) * (d[0] - o[0]) + (double)(d[1] - o[1]) * (d[1] - o[1]) +
+                             (double)(d[2] - o[2]) * (d[2] - o[2]));
+            if (!isfinite(dj)) dj = INFINITY;
+            if (*primed && dj > jump) jump = dj;
+            memcpy(o, d, sizeof d);
+        }
+    }
+    *primed = true;
+    free(pts);
+    free(mesh);
+    free(grid);
+    return jump;
+}
+
+/* Bilinear sample (u, v in [0, 1]) of an N x M grid of offsets. */
+static void grid_sample(const vec3 *g, int nn, int mm, float u, float v, float out[3])
+{
+    float x = u * (float)(nn - 1), y = v * (float)(mm - 1);
+    int c = x >= (float)(nn - 1) ? nn - 2 : (int)x, r = y >= (float)(mm - 1) ? mm - 2 : (int)y;
+    float s = x - (float)c, t = y - (float)r;
+    for (int k = 0; k < 3; k++)
+        out[k] = (1 - t) * ((1 - s) * g[r * nn + c][k] + s * g[r * nn + c + 1][k]) +
+                 t * ((1 - s) * g[(r + 1) * nn + c][k] + s * g[(r + 1) * nn + c + 1][k]);
+}
+
+bool bench_metrics_bb_pose(app_world_t *w, bench_bb_pose_t *out)
+{
+    memset(out, 0, sizeof *out);
+    bb_field_t *f = app_world_billboards(w);
+    if (!f) return true;
+    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    bb_point_t *pts;
+    float (*mesh)[4];
+    vec3 *grid = malloc(sizeof(vec3) * (size_t)nv * 2), *wind = grid + nv;
+    if (!grid || !read_bb(f, &pts, &mesh)) {
+        free(grid);
+        return false;
+    }
+    int deformed = 0;
+    for (int i = 0; i < f->billboards; i++) deformed += pts[i].pad[0] < (uint32_t)f->desc.max_deformed;
+    out->index = malloc(sizeof *out->index * (size_t)(deformed + 1));
+    out->off = malloc(sizeof *out->off * (size_t)(deformed + 1));
+    bool ok = out->index && out->off;
+    for (int i = 0; i < f->billboards && ok; i++) {
+        if (pts[i].pad[0] >= (uint32_t)f->desc.max_deformed) continue;
+        bb_grid(f, &pts[i], (const float (*)[4])mesh, grid);
+        bb_wind_grid(f, &pts[i], wind);
+        for (int v = 0; v < nv; v++) glm_vec3_sub(grid[v], wind[v], grid[v]);
+        for (int s = 0; s < BENCH_POSE_SAMPLES; s++)
+            grid_sample(grid, nn, mm, (float)(s % BENCH_POSE_SIDE) / (BENCH_POSE_SIDE - 1),
+                        (float)(s / BENCH_POSE_SIDE) / (BENCH_POSE_SIDE - 1), out->off[out->count][s]);
+        out->index[out->count++] = i;
+    }
+    free(pts);
+    free(mesh);
+    free(grid);
+    if (!ok) bench_bb_pose_free(out);
+    return ok;
+}
+
+void bench_bb_pose_free(bench_bb_pose_t *p)
+{
+    free(p->index);
+    free(p->off);
+    memset(p, 0, sizeof *p);
+}
+
+/* Largest sample distance between offsets a and b (either NULL: zero). */
+static double pose_distance(const float (*a)[3], const float (*b)[3])
+{
+    static const float zero[BENCH_POSE_SAMPLES][3];
+    if (!a) a = zero;
+    if (!b) b = zero;
+    double worst = 0.0;
+    for (int s = 0; s < BENCH_POSE_SAMPLES; s++) {
+        double d = glm_vec3_distance((float *)a[s], (float *)b[s]);
+        worst = isfinite(d) ? fmax(worst, d) : INFINITY;
+    }
+    return worst;
+}
+
+double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *ref)
+{
+    int i = 0, j = 0;
+    long n = 0;
+    double sum = 0.0;
+    while (i < a->count || j < ref->count) {
+        bool take_a = j >= ref->count || (i < a->count && a->index[i] <= ref->index[j]);
+        bool take_r = i >= a->count || (j < ref->count && ref->index[j] <= a->index[i]);
+        sum += pose_distance(take_a ? a->off[i] : NULL, take_r ? ref->off[j] : NULL);
+        n++;
+        i += take_a;
+        j += take_r;
+    }
+    return n ? sum / (double)n : 0.0;
+}
+
+long bench_metrics_blade_overpush(app_world_t *w, float *eta_prev, bool primed, double *dist)
+{
+    blade_gpu_t *g = app_world_blades(w);
+    if (!g) return 0;
+    uint32_t count = g->padded_count;
+    blade_t *b = malloc(sizeof *b * count);
+    float *eta = malloc(sizeof *eta * count);
+    exact_t *ex = malloc(sizeof *ex * MAX_EXACT);
+    long n = 0;
+    if (b && eta && ex) {
+        blade_gpu_read_blades(g, b, eta);
+        int ne = gather_exact(w, ex);
+        for (uint32_t i = 0; i < count && ne > 0; i++) {
+            bool pushed = primed && b[i].v1[3] > 0.0f && eta[i] > eta_prev[i];
+            eta_prev[i] = eta[i];
+            if (!pushed) continue;
+            float nearest = INFINITY;
+            for (int k = 1; k <= SAMPLES_PER_BLADE; k++) {
+                float p[3];
+                bezier(&b[i], (float)k / SAMPLES_PER_BLADE, p);
+                for (int e = 0; e < ne; e++) {
+                    float q[3] = {p[0] - ex[e].pos[0], p[1] - ex[e].pos[1], p[2] - ex[e].pos[2]};
+                    nearest = fminf(nearest, collide_signed_distance(&ex[e].shape, q));
+                }
+            }
+            dist[n++] = fmax(0.0, (double)nearest);
+        }
+    }
+    free(b);
+    free(eta);
+    free(ex);
+    return n;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double bench_percentile(double *v, long n, double q)
+{
+    if (n <= 0) return 0.0;
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    double pos = q * (double)(n - 1);
+    long lo = (long)pos;
+    return lo + 1 < n ? v[lo] + (pos - (double)lo) * (v[lo + 1] - v[lo]) : v[lo];
 }

@@ -1255,6 +1255,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
         glUniform1f(loc(p, "u_r1"), d->r1);
         glUniform1f(loc(p, "u_r2"), d->r2);
         glUniform1i(loc(p, "u_iterations"), d->iterations);
+        glUniform1i(loc(p, "u_paper"), d->paper ? 1 : 0);
         set_wind(p.id, &d->wind);
         f->batches_last = planned ? f->plan.count : 0;
         if (f->batches_last > 0) {

@@ -74,6 +74,9 @@ typedef struct bb_field_desc_t {
     int iterations;                /* spring sweeps K, default 2 (scene,
                                       grass.spring_iterations) */
     float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
+    bool paper;                    /* the paper's collision as printed
+                                      (bb_collide_desc_t.paper), default false;
+                                      may change between updates */
     int cube_res;                  /* depth cube map side in texels, default 32 (scene,
                                       grass.cube_resolution); the
                                       array takes 6 * max_objects * res^2 * 16 bytes

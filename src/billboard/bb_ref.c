@@ -265,11 +265,15 @@ static void bb_push_mesh(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const 
             const float *sweep = d->sweep ? d->sweep[c] : NULL;
             vec3 to;
             if (!push_target(&cubes[c], w2c[c], c2w[c], sweep, x, to)) continue;
+            if (d->paper) {
+                glm_vec3_copy(to, x);
+                continue;
+            }
             bb_slide(a, l0, x, to);
             glm_vec3_copy(to, x);
             push_target(&cubes[c], w2c[c], c2w[c], sweep, x, x);
         }
-        if (d->ground) bb_ground_vertex(x, cubes, w2c, c2w, count, d);
+        if (d->ground && !d->paper) bb_ground_vertex(x, cubes, w2c, c2w, count, d);
     }
 }
 
@@ -282,6 +286,10 @@ void bb_ref_collide(bb_mesh_t *mesh, const collide_cubemap_t *cubes, const mat4 
     mat4 c2w[BB_MAX_CUBES];
     for (int c = 0; c < count; c++) glm_mat4_inv((vec4 *)world_to_cube[c], c2w[c]);
     bb_push_mesh(mesh, cubes, world_to_cube, (const mat4 *)c2w, count, &d);
+    if (d.paper) {
+        bb_ref_relax_springs(mesh, d.r1, d.r2, d.iterations);
+        return;
+    }
     for (int it = 0; it < d.iterations; it++) {
         bb_ref_bend_limit(mesh);
         bb_ref_relax_springs(mesh, d.r1, d.r2, 1);

@@ -72,6 +72,11 @@ typedef struct bb_collide_desc_t {
      * the cube centre in world space), so the step's whole path pushes, as
      * blade_ref's swept spheres. GPU twin: bb_push_mesh's sweep. */
     const float (*sweep)[3];
+    /* The paper's collision as printed (the stability suite's paper
+     * variant): the push-out of eq. 4-5 alone (no slide, no ground), then K
+     * relaxation sweeps (eq. 6-7) with no bend limit and no push after
+     * them. Default false. */
+    bool paper;
 } bb_collide_desc_t;
 bb_collide_desc_t bb_collide_desc_defaults(const bb_collide_desc_t *desc);
 

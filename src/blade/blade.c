@@ -186,6 +186,7 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_se
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
     glUniform1i(gfx_uniform(p, "u_sphere_count"), c->sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
+    glUniform1i(gfx_uniform(p, "u_paper"), e.paper ? 1 : 0);
     if (cubes) {
         glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
         glUniform1i(gfx_uniform(p, "u_cube_res"), c->cube_res);

@@ -759,18 +759,21 @@ void blade_ref_step_one(blade_t *b, float *eta, const blade_env_t *env, const co
     v3 r = recovery(b, *eta);
     v3 g = gravity(b, env);
     v3 w = wind(b, env);
-    float k = step_gain(b->up[3] * fmaxf(1.0f - *eta, 0.1f), dt);
+    float k = env->paper ? dt : step_gain(b->up[3] * fmaxf(1.0f - *eta, 0.1f), dt);
     v3_store(b->v2, v3_add(v3_load(b->v2), v3_scale(v3_add(v3_add(r, g), w), k)));
     float rescale = validate(b, env->length_mode);
     v3 d = collide(b, c->spheres, c->sphere_count, env->length_mode, rescale);
     d = v3_add(d, collide_cubes(b, c->cubes, c->cube_maps, c->cube_count));
     if (v3_dot(d, d) > 0.0f) {
         revalidate(b, env->length_mode, rescale);
-        friction(b, &start, d, c, env->length_mode);
-        exit_spheres(b, c->spheres, c->sphere_count);
-        exit_cubes(b, c->cubes, c->cube_maps, c->cube_count);
+        if (!env->paper) {
+            friction(b, &start, d, c, env->length_mode);
+            exit_spheres(b, c->spheres, c->sphere_count);
+            exit_cubes(b, c->cubes, c->cube_maps, c->cube_count);
+        }
     }
-    float e = *eta + env->collision_gain * v3_dot(d, d) * (dt > 0.0f ? BLADE_ETA_DT / dt : 1.0f);
+    float rate = dt > 0.0f && !env->paper ? BLADE_ETA_DT / dt : 1.0f;
+    float e = *eta + env->collision_gain * v3_dot(d, d) * rate;
     *eta = fminf(fmaxf(e - env->collision_decay * dt, 0.0f), 1.0f);
 }
 

@@ -85,6 +85,12 @@ typedef collide_sphere_t blade_sphere_t;
  *                      makes a push of a tenth of the height count fully,
  *                      which keeps a trodden trail down while eta decays
  *   length_mode        BLADE_LENGTH_QUADRATURE (0) or BLADE_LENGTH_PAPER
+ *   paper              false (default): this project's step; true: the
+ *                      paper's step as printed, for the stability suite's
+ *                      paper variant: explicit Euler (v2 += (r + g + w) dt),
+ *                      eta += k d.d per step whatever dt, no friction and no
+ *                      collision exit (the validation after a contact stays:
+ *                      the paper validates its total translation once)
  * dt and time are used as given (seconds). */
 typedef struct blade_env_t {
     float dt;
@@ -97,6 +103,7 @@ typedef struct blade_env_t {
     float collision_decay;
     float collision_gain;
     int length_mode;
+    bool paper;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;
 } blade_env_t;

@@ -80,6 +80,20 @@ void eval_pareto(const double *x, const double *y, int n, bool *on_front)
     }
 }
 
+void eval_pareto_noise(const double *x, const double *y, const double *ex, const double *ey, int n, bool *on_front)
+{
+    for (int i = 0; i < n; i++) {
+        on_front[i] = true;
+        for (int j = 0; j < n && on_front[i]; j++) {
+            if (j == i) continue;
+            double tx = ex ? fmax(ex[i], ex[j]) : 0.0, ty = ey ? fmax(ey[i], ey[j]) : 0.0;
+            bool no_worse = x[j] <= x[i] + tx && y[j] <= y[i] + ty;
+            bool better = x[j] < x[i] - tx || y[j] < y[i] - ty;
+            if (no_worse && better) on_front[i] = false;
+        }
+    }
+}
+
 double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept)
 {
     double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;

@@ -20,6 +20,14 @@ bool eval_image_heatmap(const core_image_t *a, const core_image_t *b, int full_s
 
 /* Marks the Pareto-optimal points (minimise both x and y). */
 void eval_pareto(const double *x, const double *y, int n, bool *on_front);
+/* The same with each point's measured spread ex[i], ey[i] (>= 0; NULL: 0):
+ * j dominates i only beyond the spread, tx = max(ex[i], ex[j]) and ty
+ * likewise: x[j] <= x[i] + tx, y[j] <= y[i] + ty, and x[j] < x[i] - tx or
+ * y[j] < y[i] - ty (no worse within the noise, better beyond it in one).
+ * A point better than another by less than the spread in one measure and
+ * worse beyond it in the other leaves the front; two points apart by less
+ * than the spread in both stay on it. With zero spreads: eval_pareto. */
+void eval_pareto_noise(const double *x, const double *y, const double *ex, const double *ey, int n, bool *on_front);
 /* Least squares line y = intercept + slope x over n points; returns R^2
  * (0 when x or y does not vary, slope then 0). */
 double eval_linear_fit(const double *x, const double *y, int n, double *slope, double *intercept);

@@ -12,6 +12,7 @@
 #   bench        benchmark scenes with the floor (summary per scene)
 #   scaling      tiled vs full-field blades, field 25..200 m (memory, counts)
 #   tilescaling  `meadow bench --scaling` (also part of report) -> $OUT/tilescaling.tgz
+#   stability    `meadow bench --stability` alone -> $OUT/stability.tgz
 #   report       `meadow bench --report` on scenes/meadow.json at 1280x720
 #                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
@@ -109,6 +110,14 @@ report() {
   tar czf $OUT/report_docs.tgz -C /tmp/rep docs 2>/dev/null
   ( cd /tmp/rep && tar czf $OUT/report_data.tgz --exclude='*.png' --exclude='*.mp4' out ) 2>/dev/null
   ls -la $OUT
+}
+
+# The stability suite alone (three variants per case): $OUT/stability.tgz
+# (stability.csv, stability.md, screenshots).
+stability() {
+  echo "== bench --stability"
+  ( time timeout -k 10 560 $M bench --stability --quiet --out /tmp/stab ) 2>&1 | tr '\r' '\n' | tail -6
+  tar czf $OUT/stability.tgz -C /tmp stab 2>/dev/null
 }
 
 naturesweep() {
