@@ -64,7 +64,6 @@ typedef struct bench_config_t {
     bench_proxy_t proxy;
     bool box;                             /* proxy_box is the only collider */
     bool no_colliders;                    /* ablation: no collider, no character */
-    int balls;                            /* leaves sweep: resting r 0.3 m balls in the view */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
@@ -75,24 +74,6 @@ static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
 
 /* The least canopy distance beyond a switch distance: the two fade bands apart. */
 #define CANOPY_GAP (APP_SWITCH_FADE + APP_CANOPY_FADE)
-
-/* Orthmann's figure: n resting r 0.3 m balls on a grid of 1.5 m around the
- * camera's target, the scene's colliders and characters removed. */
-static void add_balls(scene_desc_t *s, int n)
-{
-    cam_t cam;
-    scene_camera_init(s, &cam);
-    int side = (int)ceilf(sqrtf((float)n));
-    s->character_count = 0;
-    s->collider_count = n < SCENE_MAX_COLLIDERS ? n : SCENE_MAX_COLLIDERS;
-    for (int i = 0; i < s->collider_count; i++) {
-        scene_collider_t *k = &s->colliders[i];
-        *k = (scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = 0.3f, .path.count = 1};
-        k->path.keys[0].position[0] = cam.target[0] + 1.5f * ((float)(i % side) - 0.5f * (float)(side - 1));
-        k->path.keys[0].position[1] = 0.25f;
-        k->path.keys[0].position[2] = cam.target[2] + 1.5f * ((float)(i / side) - 0.5f * (float)(side - 1));
-    }
-}
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -109,7 +90,6 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.billboard_density *= c->density_scale;
     }
     if (c->no_colliders) s->collider_count = s->character_count = 0;
-    if (c->balls > 0) add_balls(s, c->balls);
     if (c->proxy != PROXY_WORLD || c->box) {
         /* Characters would keep their own proxy spheres (the variants could
          * not be told apart): only the box collides. A scene without
@@ -148,8 +128,6 @@ typedef struct sweep_run_t {
     double *push;               /* over-push distances of every measured frame */
     long np, push_cap;
     bench_bb_pose_t *pose_out;  /* the last frame's billboard shape */
-    app_world_stats_t *stats;   /* the last frame's world stats (NULL: not taken) */
-    int *leaves;                /* the last frame's colliding leaves (NULL: not taken) */
 } sweep_run_t;
 
 /* Sphere proxies of the blade_proxies sweep for box colliders (other
@@ -215,10 +193,10 @@ static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
 }
 
-/* The papers' own evaluations: Jahrmann & Wimmer's ablation (blade mode
- * with every feature, without collision, without culling, without each
- * culling test) and Orthmann et al.'s billboard cost against the colliding
- * leaves. Returns the new count. */
+/* Jahrmann & Wimmer's ablation on the sweep's scene, for its image error:
+ * blade mode with every feature, without collision, without culling,
+ * without each culling test (costs and culled counts on the papers' own
+ * scenes: bench --papers). Returns the new count. */
 static int add_paper_configs(bench_config_t *c, int n, bool quick)
 {
     static const struct {
@@ -238,13 +216,6 @@ static int add_paper_configs(bench_config_t *c, int n, bool quick)
         x->no_colliders = ablation[i].no_colliders;
         x->tuning.cull_disable = ablation[i].cull;
         snprintf(x->label, sizeof x->label, "%s", ablation[i].name);
-    }
-    /* Orthmann's figure: billboard cost against the number of colliding leaves. */
-    static const int balls[] = {1, 2, 4, 8, 16, 32};
-    for (int i = 0; i < (quick ? 2 : 6); i++) {
-        bench_config_t *x = add(c, &n, "billboard_leaves", SCENE_MODE_BILLBOARD);
-        x->balls = balls[i];
-        snprintf(x->label, sizeof x->label, "balls%d", balls[i]);
     }
     return n;
 }
@@ -475,8 +446,6 @@ typedef struct bench_acc_t {
     double y[Y_COUNT];                  /* the chart value: image error and deviation the mean,
                                            depth and over-push the p95 over every run's frames */
     bench_bb_pose_t pose[SWEEP_RUNS];   /* billboard configurations: the last frame's shape */
-    app_world_stats_t stats;            /* the first run's last frame: blades culled per test */
-    int colliding_leaves;               /* the first run's last frame (billboards) */
 } bench_acc_t;
 
 typedef struct bench_run_t {
@@ -656,12 +625,6 @@ static void sweep_frame(app_world_t *w, int f, float t, void *user)
     sweep_run_t *r = user;
     if (r->pose && f + 1 == r->frames && !bench_metrics_bb_pose(w, r->pose_out))
         core_log_warn("bench: no memory for the billboard shape of %s", r->c->label);
-    if (f + 1 == r->frames && r->stats) app_world_stats(w, r->stats);
-    if (f + 1 == r->frames && r->leaves && app_world_billboards(w)) {
-        bb_stats_t st;
-        bb_field_stats(app_world_billboards(w), true, &st);
-        *r->leaves = st.leaves[BB_NODE_COLLIDING];
-    }
     if (f < r->warmup) return;
     int phase = f % MEASURE_EVERY;
     if (r->depth && phase == 0 && r->nd < r->frames) {
@@ -767,8 +730,6 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const core
         long nd0 = r.nd, np0 = r.np;
         r.depths = depths;
         r.pose_out = &acc->pose[k];
-        r.stats = k == 0 ? &acc->stats : NULL;
-        r.leaves = k == 0 ? &acc->colliding_leaves : NULL;
         free(r.eta_prev);
         r.eta_prev = NULL;
         bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .frame = sweep_frame, .user = &r};
@@ -1001,52 +962,6 @@ static void cell(char out[32], double v, int digits)
     else snprintf(out, 32, "%.*f", digits, v);
 }
 
-/* Pass p's median in run m (0 when absent). */
-static double pass_ms(const bench_metrics_t *m, const char *name)
-{
-    for (int p = 0; p < m->pass_count; p++)
-        if (strcmp(m->pass_name[p], name) == 0) return m->pass_ms[p];
-    return 0.0;
-}
-
-/* The ablation's blades culled by each test and Orthmann's figure (the
- * billboard passes against the colliding leaves), when the run holds them. */
-static void write_extra_tables(core_buf_t *r, const bench_run_t *b)
-{
-    bool head = false;
-    for (int i = 0; i < b->n; i++) {
-        if (strcmp(b->cfg[i].group, "blade_ablation") != 0) continue;
-        const app_world_stats_t *st = &b->acc[i].stats;
-        if (!head)
-            core_buf_printf(r, "Blades culled by each test (blade_ablation, last frame of the first run; the "
-                               "patches' CPU test before them):\n\n| configuration | blades | drawn | orientation | "
-                               "frustum | distance | occlusion | patches (CPU) | blade.physics ms | blade.cull ms | "
-                               "frame GPU ms |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
-        head = true;
-        core_buf_printf(r, "| %s | %ld | %ld | %u | %u | %u | %u | %ld | %.4f | %.4f | %.3f |\n", b->cfg[i].label,
-                        st->blades, st->blade_survivors, st->blade_culled[0], st->blade_culled[1], st->blade_culled[2],
-                        st->blade_culled[3], st->blade_patch_culled, pass_ms(&b->met[i], "blade.physics"),
-                        pass_ms(&b->met[i], "blade.cull"), b->met[i].frame_ms);
-    }
-    if (head) core_buf_printf(r, "\n");
-    head = false;
-    for (int i = 0; i < b->n; i++) {
-        if (strcmp(b->cfg[i].group, "billboard_leaves") != 0) continue;
-        const bench_metrics_t *m = &b->met[i];
-        if (!head)
-            core_buf_printf(r, "### billboard_leaves\n\nOrthmann et al. 2009's figure: the billboard passes against "
-                               "the number of colliding octree leaves (resting r 0.3 m balls on a 1.5 m grid around the "
-                               "camera's target; GPU ms, fastest of 3 runs).\n\n| balls | colliding leaves | "
-                               "deformed | bb.cubemaps | bb.collide | bb.recover | bb.render | frame GPU ms |\n"
-                               "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
-        head = true;
-        core_buf_printf(r, "| %d | %d | %d | %.4f | %.4f | %.4f | %.4f | %.3f |\n", b->cfg[i].balls,
-                        b->acc[i].colliding_leaves, b->acc[i].stats.bb_deformed, pass_ms(m, "bb.cubemaps"),
-                        pass_ms(m, "bb.collide"), pass_ms(m, "bb.recover"), pass_ms(m, "bb.render"), m->frame_ms);
-    }
-    if (head) core_buf_printf(r, "\n");
-}
-
 /* RESULTS.md: every chart with its numbers, the stability table, the
  * tile scaling sweeps, the comparison montage. */
 static int write_report(const char *dir, const char *out, const app_options_t *o, const bench_run_t *b,
@@ -1123,7 +1038,6 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             same);
         core_buf_printf(&r, "\n");
     }
-    write_extra_tables(&r, b);
     core_buf_printf(&r, "blade_proxies and billboard_collision run a 1 x 0.4 x 0.4 m box (the scene's first "
                         "collider's path, or a path across the view) with the scene's characters removed; "
                         "blade_proxies compares sphere sets with the box's depth cube map (cubemap_N, N^2 texels per "
