@@ -622,11 +622,13 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &max_comps);
     int render_verts = (m - 1) * 2 * n > 4 ? (m - 1) * 2 * n : 4;
     /* bb_render.geom's vertex: g_world, g_normal, g_uvl (3 each), g_tint,
-     * g_card, g_overlay (1 each) and gl_Position (4) = 16 components. */
-    if (render_verts > max_verts || render_verts * 16 > max_comps) {
-        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components); "
-                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 16,
-                       max_verts, max_comps);
+     * g_card, g_overlay (1 each) and gl_Position (4) = 16 components; with
+     * BB_GI g_amb_front and g_amb_back (3 each) too. */
+    int comps = render_verts * (d->gi ? 22 : 16);
+    if (render_verts > max_verts || comps > max_comps) {
+        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
+                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, comps,
+                       d->gi ? " with grass.gi" : "", max_verts, max_comps);
         return false;
     }
     /* Generation tiles of 2 x 2 candidate cells: at most 4 points (64
@@ -683,11 +685,11 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     char *defines = f->defines;
     snprintf(f->defines, sizeof f->defines,
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
-             "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n%s",
+             "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n%s%s",
              n, m, pass_objects(f), tile, tile * tile, render_verts,
              /* the view cards' code only where they are on: compiled in, unused, it
               * cost bb.raster 22 % on the H100 (meadow_large billboard mode) */
-             f->views.on ? "#define BB_VIEW_CARDS 1\n" : "");
+             f->views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
     char gen_defines[sizeof f->defines + 32];
     snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, tris ? "#define BB_GEN_TRIANGLES\n" : "");
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
@@ -1322,6 +1324,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(loc(p, "u_slope_cell"), g->cell);
     glUniform2i(loc(p, "u_slope_dims"), g->nx, g->nz);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, dd->slope_map.id);
+    gi_set_uniforms(p.id, &dd->gi);
 }
 
 void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)

@@ -42,6 +42,7 @@
 #include "billboard/bb_ref.h"
 #include "collide/collide_set.h"
 #include "gfx/gfx.h"
+#include "gi/gi.h"
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
 #include "scene/scene_fields.h"
@@ -79,6 +80,10 @@ typedef struct bb_field_desc_t {
                                       (scene, grass.subdiv), each in [SCENE_SUBDIV_MIN,
                                       SCENE_SUBDIV_MAX] = [2, 8], limited by the GPU's
                                       geometry shader output (checked, logged) */
+    bool gi;                       /* per-vertex global illumination compiled in
+                                   (BB_GI; scene, grass.gi): 6 more geometry-shader
+                                   output components per vertex; lit once a draw
+                                   desc's gi is on */
     int iterations;                /* spring sweeps K, default 2 (scene,
                                       grass.spring_iterations) */
     float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
@@ -116,6 +121,7 @@ typedef struct bb_draw_desc_t {
     gfx_buffer_t slope_map;
     hybrid_slope_grid_t slope_grid;
     float slope_recover;
+    gi_bind_t gi;        /* global illumination (common/gi.glsl); zero: off */
 } bb_draw_desc_t;
 
 /* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)
