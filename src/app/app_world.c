@@ -251,6 +251,7 @@ static bool make_bb(app_world_t *w)
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
                                            .gi = g->gi,
+                                           .occlusion = g->bb_occlusion,
                                            .iterations = g->spring_iterations,
                                            .max_deformed = g->deformed_pool,
                                            .cube_res = w->cube_res,

@@ -715,6 +715,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
         !f->quad_prog.id || !f->slope_prog.id)
         goto fail;
+    if (d->occlusion && !bb_occlusion_make(f)) goto fail;
     stage_done(f, BB_MAKE_PROGRAMS, &mark);
 
     size_t pool_words = 4 + (size_t)d->max_deformed;
@@ -795,6 +796,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->quad_prog);
     gfx_program_destroy(&f->cube_prog);
     gfx_program_destroy(&f->slope_prog);
+    bb_occlusion_destroy(f);
     bb_octree_free(&f->tree);
     free(f->ranges);
     free(f->sort_keys);
@@ -1367,6 +1369,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
+    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->camera);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
@@ -1381,6 +1384,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
                           f->ranges, f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
+    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->camera);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
@@ -1389,6 +1393,11 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
         glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
     }
     gfx_timer_end();
+    if (f->desc.occlusion) {
+        gfx_timer_begin("bb.occlusion");
+        bb_occlusion_query(f, dd);
+        gfx_timer_end();
+    }
     glBindVertexArray(0);
 }
 
@@ -1432,6 +1441,7 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
 {
     memset(out, 0, sizeof *out);
     out->billboards = f->billboards;
+    out->occluded = f->occluded_last;
     const bb_octree_t *t = &f->tree;
     for (int k = 0; k < t->leaf_count; k++) {
         int node = bb_octree_leaf_node(t, (uint32_t)k);
