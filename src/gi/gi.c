@@ -6,12 +6,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/core.h"
+
 bool gi_gpu_make(gi_gpu_t *g, const gi_volume_t *v)
 {
     memset(g, 0, sizeof *g);
     size_t cells = (size_t)v->res[0] * (size_t)v->res[1] * (size_t)v->res[2];
     float *part = malloc(sizeof(float) * 4 * cells);
-    if (!part) return false;
+    if (!part) {
+        core_log_error("gi: out of memory for the volumes' upload");
+        return false;
+    }
     gfx_texture_desc_t d = {.target = GL_TEXTURE_3D, .w = v->res[0], .h = v->res[1], .layers = v->res[2],
                             .format = GL_R16F, .data = v->ao, .upload_format = GL_RED, .upload_type = GL_FLOAT,
                             .label = "gi.ao"};
