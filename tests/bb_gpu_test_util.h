@@ -107,6 +107,16 @@ static inline bool test_on_ground(const bb_field_t *f, const float *p, int *belo
     return p[1] <= g + 1e-4f;
 }
 
+/* The small field of the render tests: an 8 m heightfield of 0.2 m hills
+ * (seed 11) into terrain, and its billboards' desc (64 per m^2 of 0.5 m,
+ * octree depth 3, a 32-texel layout of 64-texel clumps). */
+static inline bool test_small_field(terrain_mesh_t *terrain, bb_field_desc_t *desc)
+{
+    *desc = (bb_field_desc_t){.terrain = terrain, .seed = 11, .density = 64, .octree_depth = 3,
+                              .size = {0.5f, 0.5f}, .layout = {.size = 32, .clump_size = 64}};
+    return terrain_make_heightfield(terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11);
+}
+
 /* The view-projection of the 192 x 128 test views: from eye towards the
  * origin, 50 degrees, near 0.1, far 50. */
 static inline void test_view(const vec3 eye, mat4 vp)

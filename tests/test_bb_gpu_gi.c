@@ -58,11 +58,11 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11));
+    bb_field_desc_t desc;
+    CHECK(test_small_field(&terrain, &desc));
+    desc.gi = true;
     bb_field_t f;
-    CHECK(bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 11, .density = 64, .octree_depth = 3,
-                                               .size = {0.5f, 0.5f}, .gi = true,
-                                               .layout = {.size = 32, .clump_size = 64}}));
+    CHECK(bb_field_make(&f, &desc));
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
     raster_t r;
     CHECK(raster_make(&r, &(raster_desc_t){.w = 192, .h = 128}));

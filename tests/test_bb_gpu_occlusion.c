@@ -37,9 +37,8 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11));
-    bb_field_desc_t desc = {.terrain = &terrain, .seed = 11, .density = 64, .octree_depth = 3, .size = {0.5f, 0.5f},
-                            .layout = {.size = 32, .clump_size = 64}};
+    bb_field_desc_t desc;
+    CHECK(test_small_field(&terrain, &desc));
     bb_field_t plain, culled;
     CHECK(bb_field_make(&plain, &desc));
     desc.occlusion = true;

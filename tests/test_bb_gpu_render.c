@@ -34,11 +34,12 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11));
+    bb_field_desc_t desc;
+    CHECK(test_small_field(&terrain, &desc));
+    desc.cube_res = 32;
+    desc.recover_time = 30;
     bb_field_t f;
-    CHECK(bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 11, .density = 64, .octree_depth = 3,
-                                               .cube_res = 32, .recover_time = 30, .size = {0.5f, 0.5f},
-                                               .layout = {.size = 32, .clump_size = 64}}));
+    CHECK(bb_field_make(&f, &desc));
     scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
