@@ -1,7 +1,9 @@
 /* gi_volume.c: the ambient-occlusion and irradiance volumes of gi_volume.h.
- * Per column of cells (x, z): the ground height, the grass cover and the
- * terrain's height profile along every ray azimuth (steps samples out to
- * reach, quadratically spaced so that the near ground is sampled finely).
+ * The scene's heights are sampled once on a grid of half a cell (read
+ * bilinearly). Per column of cells (x, z): the ground height, the grass
+ * cover and the terrain's height profile along every ray azimuth (steps
+ * samples out to reach, quadratically spaced so that the near ground is
+ * sampled finely), and the height above which every ray clears it.
  * Per cell: the horizon angle of that profile per azimuth, then per ray
  * (azimuth, elevation; elevations at equal steps of sin e, so every ray
  * stands for the same solid angle 2 pi / rays) the transmittance
@@ -137,35 +139,73 @@ static float box_hit(const gi_object_t *o, const float p[3], const float d[3], f
     return t0 <= t1 ? t0 : -1.0f;
 }
 
+/* The ground heights the rays see: the scene's height function sampled
+ * once on a grid of half a cell over the volume and reach around it, read
+ * bilinearly (no ground: GI_NO_GROUND). */
+#define GI_NO_GROUND -1e30f
+typedef struct gi_heights_t {
+    float x0, z0, inv; /* the grid's first sample, 1 / spacing */
+    int nx, nz;
+    float *h;
+} gi_heights_t;
+
+static bool heights_make(gi_heights_t *g, const gi_volume_desc_t *d, const gi_scene_t *s)
+{
+    float cell = fminf((d->hi[0] - d->lo[0]) / (float)d->res[0], (d->hi[2] - d->lo[2]) / (float)d->res[2]);
+    float spacing = 0.5f * cell;
+    g->x0 = d->lo[0] - d->reach - spacing;
+    g->z0 = d->lo[2] - d->reach - spacing;
+    g->inv = 1.0f / spacing;
+    g->nx = (int)ceilf((d->hi[0] - d->lo[0] + 2.0f * d->reach) / spacing) + 3;
+    g->nz = (int)ceilf((d->hi[2] - d->lo[2] + 2.0f * d->reach) / spacing) + 3;
+    g->h = malloc(sizeof(float) * (size_t)g->nx * (size_t)g->nz);
+    if (!g->h) return false;
+    for (int j = 0; j < g->nz; j++)
+        for (int i = 0; i < g->nx; i++) {
+            float x = g->x0 + (float)i * spacing, z = g->z0 + (float)j * spacing;
+            float h = s->height ? s->height(s->user, x, z) : d->lo[1];
+            g->h[(size_t)j * (size_t)g->nx + (size_t)i] = isfinite(h) && h > GI_NO_GROUND ? h : GI_NO_GROUND;
+        }
+    return true;
+}
+
+static float heights_at(const gi_heights_t *g, float x, float z)
+{
+    float u = (x - g->x0) * g->inv, w = (z - g->z0) * g->inv;
+    int i = (int)u, j = (int)w;
+    i = i < 0 ? 0 : (i > g->nx - 2 ? g->nx - 2 : i);
+    j = j < 0 ? 0 : (j > g->nz - 2 ? g->nz - 2 : j);
+    float fu = clamp01(u - (float)i), fw = clamp01(w - (float)j);
+    const float *r0 = g->h + (size_t)j * (size_t)g->nx + (size_t)i, *r1 = r0 + g->nx;
+    return (r0[0] + (r0[1] - r0[0]) * fu) * (1.0f - fw) + (r1[0] + (r1[1] - r1[0]) * fu) * fw;
+}
+
 /* One column's inputs: ground, cover, the terrain profile per azimuth and
  * the objects within reach. */
 typedef struct gi_column_t {
     float x, z, ground, cover;
-    float *profile; /* na * steps heights */
+    float *profile;        /* na * steps heights */
     const float *inv_dist; /* steps inverse distances */
-    float top;      /* the highest profile height */
+    const gi_heights_t *heights;
+    float open_y;          /* above this every ray clears the terrain (horizon() returns low) */
     int near_objects[64];
     int near_count;
 } gi_column_t;
 
-static float scene_height(const gi_scene_t *s, const gi_volume_desc_t *d, float x, float z)
+/* tan_low: the tangent of cell_eval's low horizon. */
+static void column_make(gi_column_t *col, const gi_volume_desc_t *d, const gi_scene_t *s, const gi_rays_t *r,
+                        float tan_low)
 {
-    float h = s->height ? s->height(s->user, x, z) : d->lo[1];
-    return isfinite(h) ? h : -FLT_MAX;
-}
-
-static void column_make(gi_column_t *col, const gi_volume_desc_t *d, const gi_scene_t *s, const gi_rays_t *r)
-{
-    col->ground = scene_height(s, d, col->x, col->z);
+    col->ground = heights_at(col->heights, col->x, col->z);
     col->cover = s->cover ? fminf(fmaxf(s->cover(s->user, col->x, col->z), 0.0f), 1.0f) : 1.0f;
-    col->top = col->ground;
+    col->open_y = col->ground;
     for (int a = 0; a < r->na; a++) {
         float az = 2.0f * GI_PI * (float)a / (float)r->na, cx = cosf(az), sz = sinf(az);
         for (int k = 0; k < d->steps; k++) {
             float dist = 1.0f / col->inv_dist[k];
-            float h = scene_height(s, d, col->x + cx * dist, col->z + sz * dist);
+            float h = heights_at(col->heights, col->x + cx * dist, col->z + sz * dist);
             col->profile[a * d->steps + k] = h;
-            col->top = fmaxf(col->top, h);
+            col->open_y = max2(col->open_y, h - tan_low * dist);
         }
     }
     col->near_count = 0;
@@ -196,7 +236,7 @@ static void cell_eval(const gi_column_t *col, const gi_volume_desc_t *d, const g
      * step off, between two. A horizon below low = e_0 - soft / 2 hides
      * nothing (tan low < low: the test needs no arc tangent). */
     float above = p[1] - col->ground, hz[GI_MAX_RAYS], low = r->elev[0] - 0.5f * d->soft;
-    for (int a = 0; a < r->na; a++) hz[a] = p[1] >= col->top ? low : horizon(col, d, a, p[1], low);
+    for (int a = 0; a < r->na; a++) hz[a] = p[1] >= col->open_y ? low : horizon(col, d, a, p[1], low);
     float sum_ao = 0.0f, m0[3] = {0}, m1[3][3] = {{0}};
     for (int j = 0; j < r->ne; j++) {
         float tg = 1.0f;
@@ -256,11 +296,14 @@ bool gi_volume_make(gi_volume_t *v, const gi_volume_desc_t *desc, const gi_scene
     size_t cells = (size_t)d.res[0] * (size_t)d.res[1] * (size_t)d.res[2];
     gi_rays_t *r = malloc(sizeof *r);
     float *profile = malloc(sizeof(float) * (size_t)(d.azimuths * d.steps)), inv_dist[256];
+    gi_heights_t heights;
+    bool have_heights = heights_make(&heights, &d, &s);
     v->ao = malloc(sizeof(float) * cells);
     v->irr = malloc(sizeof(float) * GI_IRR_FLOATS * cells);
-    if (!r || !profile || !v->ao || !v->irr) {
+    if (!r || !profile || !have_heights || !v->ao || !v->irr) {
         free(r);
         free(profile);
+        free(heights.h);
         gi_volume_free(v);
         core_log_error("gi: out of memory for a %dx%dx%d volume", d.res[0], d.res[1], d.res[2]);
         return false;
@@ -273,20 +316,21 @@ bool gi_volume_make(gi_volume_t *v, const gi_volume_desc_t *desc, const gi_scene
     memcpy(v->bounce, d.bounce, sizeof v->bounce);
     float cell[3];
     for (int i = 0; i < 3; i++) cell[i] = (d.hi[i] - d.lo[i]) / (float)d.res[i];
-    /* A cell above every height its rays sample, above the grass and with no
+    /* A cell whose rays all clear the terrain, above the grass and with no
      * object within reach sees the open sky: evaluated once. */
-    gi_column_t col = {.profile = profile, .inv_dist = inv_dist, .ground = -FLT_MAX, .top = -FLT_MAX};
-    float open_ao, open_irr[GI_IRR_FLOATS];
+    gi_column_t col = {.profile = profile, .inv_dist = inv_dist, .heights = &heights, .ground = GI_NO_GROUND,
+                       .open_y = GI_NO_GROUND};
+    float open_ao, open_irr[GI_IRR_FLOATS], tan_low = tanf(r->elev[0] - 0.5f * d.soft);
     cell_eval(&col, &d, &s, r, 0.0f, &open_ao, open_irr);
     for (int iz = 0; iz < d.res[2]; iz++)
         for (int ix = 0; ix < d.res[0]; ix++) {
             col.x = d.lo[0] + ((float)ix + 0.5f) * cell[0];
             col.z = d.lo[2] + ((float)iz + 0.5f) * cell[2];
-            column_make(&col, &d, &s, r);
+            column_make(&col, &d, &s, r, tan_low);
             for (int iy = 0; iy < d.res[1]; iy++) {
                 size_t c = ((size_t)iz * (size_t)d.res[1] + (size_t)iy) * (size_t)d.res[0] + (size_t)ix;
                 float y = d.lo[1] + ((float)iy + 0.5f) * cell[1];
-                if (y >= col.top && y >= col.ground + s.grass_height && col.near_count == 0) {
+                if (y >= col.open_y && y >= col.ground + s.grass_height && col.near_count == 0) {
                     v->ao[c] = open_ao;
                     memcpy(&v->irr[c * GI_IRR_FLOATS], open_irr, sizeof open_irr);
                 } else {
@@ -296,6 +340,7 @@ bool gi_volume_make(gi_volume_t *v, const gi_volume_desc_t *desc, const gi_scene
         }
     free(r);
     free(profile);
+    free(heights.h);
     v->build_ms = now_ms() - t0;
     return true;
 }
