@@ -10,7 +10,7 @@
 #include "test_gl.h"
 
 #include "bb_gpu_test_util.h"
-#include "gi/gi.h"
+#include "gi_test_util.h"
 
 static void draw(bb_field_t *f, const gfx_target_t *tgt, raster_t *r, const gi_bind_t *gi, core_image_t *out)
 {
@@ -30,20 +30,6 @@ static void draw(bb_field_t *f, const gfx_target_t *tgt, raster_t *r, const gi_b
         bb_field_draw(f, &d);
     }
     CHECK(gfx_target_read(tgt, out));
-}
-
-/* The volume of a sky of one colour over open ground below the field. */
-static bool volume(gi_gpu_t *g, const float sky[3], const float bounce[3])
-{
-    gi_volume_desc_t d = {.res = {8, 4, 8}, .lo = {-5.0f, -1.0f, -5.0f}, .hi = {5.0f, 2.0f, 5.0f}};
-    memcpy(d.sky_zenith, sky, sizeof d.sky_zenith);
-    memcpy(d.sky_horizon, sky, sizeof d.sky_horizon);
-    memcpy(d.bounce, bounce, sizeof d.bounce);
-    gi_volume_t v;
-    if (!gi_volume_make(&v, &d, &(gi_scene_t){0})) return false;
-    bool ok = gi_gpu_make(g, &v);
-    gi_volume_free(&v);
-    return ok;
 }
 
 static double mean(const core_image_t *img)
@@ -68,8 +54,9 @@ int main(void)
     CHECK(raster_make(&r, &(raster_desc_t){.w = 192, .h = 128}));
     const float up[3] = GI_AMBIENT_UP, down[3] = GI_AMBIENT_DOWN, black[3] = {1e-6f, 1e-6f, 1e-6f};
     gi_gpu_t neutral, dark;
-    CHECK(volume(&neutral, up, down));
-    CHECK(volume(&dark, black, black));
+    const float lo[3] = {-5.0f, -1.0f, -5.0f}, hi[3] = {5.0f, 2.0f, 5.0f};
+    CHECK(test_gi_sky(&neutral, lo, hi, up, down));
+    CHECK(test_gi_sky(&dark, lo, hi, black, black));
     gi_bind_t off = {0}, b_neutral = gi_gpu_bind(&neutral), b_dark = gi_gpu_bind(&dark);
     for (int path = 0; path < 2; path++) {
         raster_t *rp = path ? &r : NULL;

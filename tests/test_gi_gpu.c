@@ -40,7 +40,9 @@ static void eval(gfx_program_t prog, const gi_bind_t *b, int mode, const float (
                                                            .label = "gi_eval.items"});
     gfx_buffer_t bo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(float) * 4 * (size_t)count,
                                                            .label = "gi_eval.out"});
-    const float camera[3] = {0.0f, -0.3f + 0.8f * 0.5f, 30.0f}, sun[3] = {0.0f, 0.8f, 0.6f}, albedo[3] = {0.3f, 0.5f, 0.2f};
+    /* The camera level with both cards (y 0.3) and the sun without an x
+     * part: the valley's card and the peak's see the same light and fog. */
+    const float camera[3] = {0.0f, 0.3f, 30.0f}, sun[3] = {0.0f, 0.8f, 0.6f}, albedo[3] = {0.3f, 0.5f, 0.2f};
     glUseProgram(prog.id);
     gi_set_uniforms(prog.id, b);
     glUniform1ui(gfx_uniform(prog, "u_count"), (GLuint)count);

@@ -111,7 +111,8 @@ void bb_occlusion_query(bb_field_t *f, const bb_draw_desc_t *dd)
     for (int i = 0; i < f->occ_tested_count; i++) {
         uint32_t leaf = f->occ_tested[i];
         if (f->occ_state[leaf] & BB_OCC_PENDING) continue;
-        if (!f->occ_query[leaf]) f->occ_query[leaf] = gfx_query_make(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, "bb.occlusion");
+        if (!f->occ_query[leaf])
+            f->occ_query[leaf] = gfx_query_make(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, "bb.occlusion");
         float lo[3], hi[3];
         leaf_box(f, leaf, 0.0f, lo, hi);
         glUniform3fv(gfx_uniform(p, "u_lo"), 1, lo);
