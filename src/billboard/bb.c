@@ -1326,7 +1326,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(loc(p, "u_slope_cell"), g->cell);
     glUniform2i(loc(p, "u_slope_dims"), g->nx, g->nz);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, dd->slope_map.id);
-    gi_set_uniforms(p.id, &dd->gi);
+    gi_set_uniforms(p.id, f->desc.gi ? &dd->gi : NULL); /* without BB_GI no vertex carries it */
 }
 
 void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)

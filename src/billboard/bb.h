@@ -123,7 +123,8 @@ typedef struct bb_draw_desc_t {
     gfx_buffer_t slope_map;
     hybrid_slope_grid_t slope_grid;
     float slope_recover;
-    gi_bind_t gi;        /* global illumination (common/gi.glsl); zero: off */
+    gi_bind_t gi;        /* global illumination (common/gi.glsl); zero: off; read only
+                            by a field made with desc.gi */
 } bb_draw_desc_t;
 
 /* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)
