@@ -107,4 +107,38 @@ static inline bool test_on_ground(const bb_field_t *f, const float *p, int *belo
     return p[1] <= g + 1e-4f;
 }
 
+/* The small field of the render tests: an 8 m heightfield of 0.2 m hills
+ * (seed 11) into terrain, and its billboards' desc (64 per m^2 of 0.5 m,
+ * octree depth 3, a 32-texel layout of 64-texel clumps). */
+static inline bool test_small_field(terrain_mesh_t *terrain, bb_field_desc_t *desc)
+{
+    *desc = (bb_field_desc_t){.terrain = terrain, .seed = 11, .density = 64, .octree_depth = 3,
+                              .size = {0.5f, 0.5f}, .layout = {.size = 32, .clump_size = 64}};
+    return terrain_make_heightfield(terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11);
+}
+
+/* The view-projection of the 192 x 128 test views: from eye towards the
+ * origin, 50 degrees, near 0.1, far 50. */
+static inline void test_view(const vec3 eye, mat4 vp)
+{
+    mat4 view, proj;
+    glm_lookat((float *)eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
+    glm_perspective(glm_rad(50.0f), 192.0f / 128.0f, 0.1f, 50.0f, proj);
+    glm_mat4_mul(proj, view, vp);
+}
+
+/* A draw desc for view-projection vp from eye at time t under the tests'
+ * sun, with vp's frustum planes. */
+static inline bb_draw_desc_t test_draw_desc(const mat4 vp, const vec3 eye, float time)
+{
+    bb_draw_desc_t d = {.time = time, .sun_dir = {0.4f, 0.8f, 0.3f}};
+    memcpy(d.viewproj, vp, sizeof d.viewproj);
+    memcpy(d.camera, eye, sizeof d.camera);
+    glm_vec3_normalize(d.sun_dir);
+    vec4 planes[6];
+    glm_frustum_planes((vec4 *)vp, planes);
+    memcpy(d.planes, planes, sizeof d.planes);
+    return d;
+}
+
 #endif

@@ -13,13 +13,9 @@
 static void draw(bb_field_t *f, const gfx_target_t *tgt, const mat4 vp, const vec3 eye, float time, float fs,
                  float fe)
 {
-    bb_draw_desc_t d = {.time = time, .fade_start = fs, .fade_end = fe, .sun_dir = {0.4f, 0.8f, 0.3f}};
-    memcpy(d.viewproj, vp, sizeof d.viewproj);
-    memcpy(d.camera, eye, sizeof d.camera);
-    glm_vec3_normalize(d.sun_dir);
-    vec4 planes[6];
-    glm_frustum_planes((vec4 *)vp, planes);
-    memcpy(d.planes, planes, sizeof d.planes);
+    bb_draw_desc_t d = test_draw_desc(vp, eye, time);
+    d.fade_start = fs;
+    d.fade_end = fe;
     gfx_target_bind(tgt);
     glClearColor(0.33f, 0.27f, 0.2f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -38,11 +34,12 @@ int main(void)
     test_gl_init();
     core_log_set_quiet(true);
     terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.2f}, 11));
+    bb_field_desc_t desc;
+    CHECK(test_small_field(&terrain, &desc));
+    desc.cube_res = 32;
+    desc.recover_time = 30;
     bb_field_t f;
-    CHECK(bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 11, .density = 64, .octree_depth = 3,
-                                               .cube_res = 32, .recover_time = 30, .size = {0.5f, 0.5f},
-                                               .layout = {.size = 32, .clump_size = 64}}));
+    CHECK(bb_field_make(&f, &desc));
     scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
@@ -61,11 +58,9 @@ int main(void)
     CHECK(st.deformed > 50);
 
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
-    mat4 view, proj, vp;
+    mat4 vp;
     vec3 eye = {0.0f, 4.5f, 4.0f};
-    glm_lookat(eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
-    glm_perspective(glm_rad(50.0f), 192.0f / 128.0f, 0.1f, 50.0f, proj);
-    glm_mat4_mul(proj, view, vp);
+    test_view(eye, vp);
     gfx_timer_frame_begin();
     draw(&f, &tgt, vp, eye, time, 0, 0);
     core_image_t img;

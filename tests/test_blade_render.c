@@ -8,8 +8,10 @@
  *                (interpolated, found by brute force) and the simulated
  *                blades leave the root along it (up . n > 0.99);
  * and the tessellation and vertex-pulling paths give nearly the same image
- * (test_image_diff defaults). Golden images: MEADOW_UPDATE_GOLDEN=1. */
+ * (test_image_diff defaults); the global illumination reaches both paths
+ * (test_gi). Golden images: MEADOW_UPDATE_GOLDEN=1. */
 #include "blade/blade.h"
+#include "gi_test_util.h"
 #include "scene/terrain.h"
 #include "test.h"
 #include "test_gl.h"
@@ -31,9 +33,9 @@ typedef struct view_t {
     int w, h;
 } view_t;
 
-/* Culls and draws g (optionally several) into a 4x MSAA target; returns the
- * resolved image. */
-static core_image_t render(blade_gpu_t **gs, int count, const view_t *v, uint32_t disable)
+/* Culls and draws g (optionally several) into a 4x MSAA target, lit by gi
+ * (NULL: off); returns the resolved image. */
+static core_image_t render_lit(blade_gpu_t **gs, int count, const view_t *v, uint32_t disable, const gi_bind_t *gi)
 {
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = v->w, .h = v->h, .label = "render_test.target"});
     mat4 view, proj, vp;
@@ -43,7 +45,7 @@ static core_image_t render(blade_gpu_t **gs, int count, const view_t *v, uint32_
     blade_cull_desc_t cd = {.disable = disable};
     memcpy(cd.view_proj, vp, sizeof vp);
     memcpy(cd.cam_pos, v->eye, sizeof cd.cam_pos);
-    blade_draw_desc_t dd = {0};
+    blade_draw_desc_t dd = {.gi = gi ? *gi : (gi_bind_t){0}};
     memcpy(dd.view_proj, vp, sizeof vp);
     memcpy(dd.camera, v->eye, sizeof dd.camera);
     gfx_timer_frame_begin();
@@ -58,6 +60,11 @@ static core_image_t render(blade_gpu_t **gs, int count, const view_t *v, uint32_
     CHECK(gfx_target_read(&t, &img));
     gfx_target_destroy(&t);
     return img;
+}
+
+static core_image_t render(blade_gpu_t **gs, int count, const view_t *v, uint32_t disable)
+{
+    return render_lit(gs, count, v, disable, NULL);
 }
 
 static bool seed_square(blade_field_t *f, float half, float density, uint64_t seed)
@@ -316,6 +323,48 @@ static void test_torus(void)
     terrain_free(&mesh);
 }
 
+static double mean_rgb(const core_image_t *img)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < (size_t)img->w * (size_t)img->h; i++)
+        s += img->px[4 * i] + img->px[4 * i + 1] + img->px[4 * i + 2];
+    return s / (3.0 * (double)img->w * (double)img->h);
+}
+
+/* The global illumination reaches blade.frag on both hardware paths: a
+ * neutral volume (gi_test_util.h) draws the GI-off image to a small mean, a
+ * dark one a clearly darker image. */
+static void test_gi(void)
+{
+    blade_field_t f;
+    CHECK(seed_square(&f, 1.0f, 150.0f, 7));
+    gi_gpu_t neutral, dark;
+    const float lo[3] = {-3.0f, -1.0f, -3.0f}, hi[3] = {3.0f, 2.0f, 3.0f}, up[3] = GI_AMBIENT_UP,
+                down[3] = GI_AMBIENT_DOWN, black[3] = {1e-6f, 1e-6f, 1e-6f};
+    CHECK(test_gi_sky(&neutral, lo, hi, up, down));
+    CHECK(test_gi_sky(&dark, lo, hi, black, black));
+    gi_bind_t b_neutral = gi_gpu_bind(&neutral), b_dark = gi_gpu_bind(&dark);
+    view_t v = {{-2.0f, 1.2f, 0.5f}, {0.0f, 0.1f, 0.0f}, 128, 96};
+    for (int path = 0; path < 2; path++) {
+        blade_gpu_t g, *gp = &g;
+        CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .path = (blade_render_path_t)path, .label = "gi"}));
+        core_image_t a = render(&gp, 1, &v, 0), b = render_lit(&gp, 1, &v, 0, &b_neutral);
+        core_image_t c = render_lit(&gp, 1, &v, 0, &b_dark);
+        test_image_result_t same = test_image_diff(&a, &b, &(test_image_cmp_t){0}, NULL);
+        printf("gi, path %d: off mean %.2f; neutral volume mean diff %.3f (max %d); dark volume %.2f\n", path,
+               mean_rgb(&a), same.mean_diff, same.max_diff, mean_rgb(&c));
+        CHECK(same.mean_diff < 0.5);
+        CHECK(mean_rgb(&c) < mean_rgb(&a) - 2.0); /* the clear colour fills much of the view: 45.1 -> 41.3 */
+        core_image_free(&a);
+        core_image_free(&b);
+        core_image_free(&c);
+        blade_gpu_destroy(&g);
+    }
+    gi_gpu_destroy(&neutral);
+    gi_gpu_destroy(&dark);
+    blade_field_free(&f);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -324,6 +373,7 @@ int main(void)
     test_shapes();
     test_midrib();
     test_torus();
+    test_gi();
     gfx_timer_flush();
     for (int i = 0; i < gfx_timer_count(); i++)
         printf("timer %-14s median %.3f ms, mean %.3f ms\n", gfx_timer_name(i), gfx_timer_median_ms(i),

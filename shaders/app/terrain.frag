@@ -3,12 +3,16 @@
 // the ground's colour mixed with the canopy's by its cover, thinned by the
 // extent map as the blades and billboards are, faded in over
 // u_canopy_fade (start, end of the switch distance; end <= 0: no canopy).
+// Ground and canopy take the global illumination's ambient light per
+// fragment when it is on (common/gi.glsl; the canopy's table is linear in
+// the blade normals' height, so it takes the ambient facing down and up).
 #version 450 core
 #include "common/lighting.glsl"
 #include "common/hash.glsl"
 #include "common/canopy.glsl"
 #include "common/switch.glsl"
 #include "common/extent.glsl"
+#include "common/gi.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
 uniform vec3 u_camera;
@@ -44,14 +48,15 @@ void main()
     vec3 soil = vec3(0.30, 0.24, 0.16);
     vec3 turf = vec3(0.20, 0.32, 0.10);
     vec3 albedo = mix(soil, turf, smoothstep(0.3, 0.7, noise));
-    vec3 c = shade(albedo, n, u_sun, 1.0);
+    vec3 c = shade_lit(albedo, n, u_sun, 1.0, grass_ambient(v_pos, n));
     vec3 to_frag = v_pos - u_camera;
     if (u_canopy_fade.y > 0.0) {
         float d = grass_distance(v_pos, u_camera);
         float ramp = clamp((d - u_canopy_fade.x) / max(u_canopy_fade.y - u_canopy_fade.x, 1e-6), 0.0, 1.0);
         if (ramp > 0.0) {
             float cover;
-            vec3 grass = canopy_color(v_pos, n, u_camera, u_sun, cover);
+            vec3 down = grass_ambient(v_pos, vec3(0.0, -1.0, 0.0)), up = grass_ambient(v_pos, vec3(0.0, 1.0, 0.0));
+            vec3 grass = canopy_color_lit(v_pos, n, u_camera, u_sun, down, up, cover);
             c = mix(c, grass, ramp * canopy_thinned(cover, extent_at(v_pos.xz)));
         }
     }

@@ -6,11 +6,14 @@
  * hold no deformed billboard; a point that does, or that lies wholly nearer
  * than the hybrid fade band, is emitted degenerate. The top edge takes the
  * handed-over slope of its cell (bb_slope.glsl); the normal is the moved
- * quad's (bb_plain_normal). Outputs match bb_render.frag's inputs. */
+ * quad's (bb_plain_normal); with BB_GI the vertex takes the global
+ * illumination's ambient light (bb_vertex_ambient, Orthmann et al. sec.
+ * 6.1). Outputs match bb_render.frag's inputs. */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_slope.glsl"
+#include "common/grass_shade.glsl"
 
 layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
 
@@ -28,6 +31,10 @@ out vec3 g_uvl;
 flat out float g_tint;
 flat out float g_card; /* always 1: a plain quad */
 flat out uint g_overlay; /* packUnorm4x8; idle leaves: never tinted */
+#ifdef BB_GI
+out vec3 g_amb_front;
+out vec3 g_amb_back;
+#endif
 
 void main()
 {
@@ -42,6 +49,9 @@ void main()
         g_tint = 0.0;
         g_card = 1.0;
         g_overlay = 0u;
+#ifdef BB_GI
+        g_amb_front = g_amb_back = vec3(0.0);
+#endif
         gl_Position = vec4(0.0, 0.0, 2.0, 1.0); /* beyond the far plane */
         return;
     }
@@ -58,6 +68,9 @@ void main()
     g_overlay = 0u;
     g_world = pos;
     g_normal = bb_plain_normal(a, b, ta, tb);
+#ifdef BB_GI
+    bb_vertex_ambient(pos, g_normal, g_amb_front, g_amb_back);
+#endif
     g_uvl = vec3(float(c & 1), 1.0 - float(c >> 1), float(p.layer));
     gl_Position = u_viewproj * vec4(pos, 1.0);
 }

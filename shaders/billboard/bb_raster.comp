@@ -12,7 +12,8 @@
  * chosen by a hash of the pixel (grass_coverage_mask, the hardware path's
  * rule too).
  * The texel and the lit colour cards show are the view-dependent blend of
- * the clump bakes (bb_view.glsl, bb_shade).
+ * the clump bakes (bb_view.glsl, bb_shade); with BB_GI each triangle vertex
+ * takes the global illumination's ambient light, interpolated per pixel.
  * Fragments behind what the samples already hold are skipped before the
  * texel fetch. With RASTER_BIG the queued large triangles, each scanned by
  * its whole work group sharing out the covered pixels (RASTER_GROUP_SCAN,
@@ -65,6 +66,7 @@ vec3 g_plain_n;
 vec3 g_pos[3];
 vec3 g_nrm[3];
 vec2 g_uv[3]; /* u, height h (0 root) */
+vec3 g_amb[3][2]; /* per vertex: global illumination of the two faces (bb_vertex_ambient) */
 
 /* Loads billboard `prim`; false when it is culled or dropped. Sets the
  * plain corners (a, b, c, d) or the mesh in bb_pos. The RASTER_BIG pass
@@ -133,6 +135,9 @@ vec4 bb_vertex(int i, int j, int slot)
     g_pos[slot] = pos;
     g_nrm[slot] = n;
     g_uv[slot] = uv;
+#ifdef BB_GI
+    bb_vertex_ambient(pos, n, g_amb[slot][0], g_amb[slot][1]);
+#endif
     return u_viewproj * vec4(pos, 1.0);
 }
 
@@ -184,8 +189,14 @@ void raster_fragment(int s0, vec3 w, float depth)
     if (raster_color_pass()) {
         vec3 nrm = w.x * g_nrm[0] + w.y * g_nrm[1] + w.z * g_nrm[2];
         float card = g_p.pad0 == BB_NO_SLOT ? 1.0 : 0.0;
+#ifdef BB_GI
+        vec3 amb_front = w.x * g_amb[0][0] + w.y * g_amb[1][0] + w.z * g_amb[2][0];
+        vec3 amb_back = w.x * g_amb[0][1] + w.y * g_amb[1][1] + w.z * g_amb[2][1];
+#else
+        const vec3 amb_front = vec3(0.0), amb_back = vec3(0.0);
+#endif
         vec3 c = bb_shade(tex.rgb, g_tint, world, nrm, light, lit, card, 1.0 - uv.y, u_camera, u_sun,
-                          vec4(0.0));
+                          vec4(0.0), amb_front, amb_back);
         rgba = packUnorm4x8(vec4(c, 1.0));
     }
     for (int k = 0; k < n; k++)

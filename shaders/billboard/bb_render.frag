@@ -8,7 +8,8 @@
  * blending; the canopy's fade (u_far_start to u_far_end) ramps it back down
  * the same way, where the ground canopy fades in (terrain.frag). The texel
  * is the view-dependent blend of the clump bakes (bb_view.glsl), and so is
- * the lit colour cards show (bb_shade). */
+ * the lit colour cards show (bb_shade), lit by the global illumination's
+ * per-vertex ambient light with BB_GI (common/gi.glsl). */
 #include "common/grass_shade.glsl"
 #include "billboard/bb_view.glsl"
 
@@ -26,6 +27,12 @@ in vec3 g_uvl;
 flat in float g_tint;
 flat in float g_card; /* 1: plain card; 0: deformed mesh (bb_shade) */
 flat in uint g_overlay; /* packUnorm4x8 */
+#ifdef BB_GI
+in vec3 g_amb_front; /* per-vertex global illumination, interpolated (bb_shade) */
+in vec3 g_amb_back;
+#else
+const vec3 g_amb_front = vec3(0.0), g_amb_back = vec3(0.0);
+#endif
 
 out vec4 frag;
 
@@ -43,7 +50,7 @@ void main()
     const float lit = 0.0;
 #endif
     vec3 c = bb_shade(tex.rgb, g_tint, g_world, g_normal, light, lit, g_card, g_uvl.y, u_camera, u_sun,
-                      unpackUnorm4x8(g_overlay));
+                      unpackUnorm4x8(g_overlay), g_amb_front, g_amb_back);
     float dist = grass_distance(g_world, u_camera);
     float a = bb_fade_alpha(tex.a, dist, u_fade_start, u_fade_end, gl_FragCoord.xy);
     a = bb_far_alpha(a, dist, u_far_start, u_far_end, gl_FragCoord.xy);

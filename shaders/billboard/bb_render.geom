@@ -5,13 +5,15 @@
  * stored N x M mesh as M-1 triangle strips with normals from central
  * differences. Billboards wholly nearer than the hybrid fade band are
  * dropped here. Plain quads and deformed meshes take the handed-over slope
- * of their cell (bb_slope.glsl). */
+ * of their cell (bb_slope.glsl). With BB_GI each vertex takes the global
+ * illumination's ambient light (bb_vertex_ambient, Orthmann et al. sec. 6.1). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
 #define BB_POINTS_IN
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
 #include "billboard/bb_slope.glsl"
+#include "common/grass_shade.glsl"
 
 layout(points) in;
 layout(triangle_strip, max_vertices = BB_RENDER_VERTS) out;
@@ -31,12 +33,19 @@ flat out float g_tint;
 flat out float g_card; /* 1: plain quad, 0: deformed mesh (bb_render.frag) */
 flat out uint g_overlay; /* debug overlay, packUnorm4x8 (u_overlay 1: colliding red, recovering yellow);
                           one component: the vertex is 16 (bb.c checks the GPU's limit) */
+#ifdef BB_GI
+out vec3 g_amb_front; /* the vertex's global illumination (bb_vertex_ambient): 6 more */
+out vec3 g_amb_back;
+#endif
 uniform int u_overlay;
 
 void put(vec3 pos, vec3 n, float u, float h, float layer)
 {
     g_world = pos;
     g_normal = n;
+#ifdef BB_GI
+    bb_vertex_ambient(pos, n, g_amb_front, g_amb_back);
+#endif
     g_uvl = vec3(u, 1.0 - h, layer);
     gl_Position = u_viewproj * vec4(pos, 1.0);
     EmitVertex();

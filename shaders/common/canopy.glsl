@@ -28,8 +28,11 @@ float canopy_thinned(float cover, float e)
     return 1.0 - pow(max(1.0 - cover, 1e-6), clamp(e, 0.0, 1.0));
 }
 
-/* blade_canopy_color at elevation e and sun azimuth phi (radians). */
-vec3 canopy_table_color(float e, float phi, out float cover)
+/* blade_canopy_color at elevation e and sun azimuth phi (radians), under
+ * an ambient light linear in the normal's height, amb_down facing down and
+ * amb_up facing up (the hemisphere of common/lighting.glsl: AMBIENT_DOWN,
+ * AMBIENT_UP). */
+vec3 canopy_table_color(float e, float phi, vec3 amb_down, vec3 amb_up, out float cover)
 {
     float x = clamp(e / 1.5707963, 0.0, 1.0) * float(u_canopy_rows - 1);
     int i = min(int(floor(x)), u_canopy_rows - 2);
@@ -43,14 +46,15 @@ vec3 canopy_table_color(float e, float phi, out float cover)
     vec4 amb = mix(u_canopy_amb[i], u_canopy_amb[i + 1], f);
     cover = mix(u_canopy_cover[i], u_canopy_cover[i + 1], f);
     vec3 r = u_canopy_albedo_root, dt = u_canopy_albedo_tip - u_canopy_albedo_root;
-    vec3 up = AMBIENT_UP - AMBIENT_DOWN;
-    return SUN_COLOR * SUN_DIFFUSE * (r * s.x + dt * s.y) + r * (AMBIENT_DOWN * amb.x + up * amb.y) +
-           dt * (AMBIENT_DOWN * amb.z + up * amb.w);
+    vec3 up = amb_up - amb_down;
+    return SUN_COLOR * SUN_DIFFUSE * (r * s.x + dt * s.y) + r * (amb_down * amb.x + up * amb.y) +
+           dt * (amb_down * amb.z + up * amb.w);
 }
 
 /* The canopy's colour (unfogged) and cover at ground point pos of unit
- * ground normal gn, seen from camera, lit by the sun (unit). */
-vec3 canopy_color(vec3 pos, vec3 gn, vec3 camera, vec3 sun, out float cover)
+ * ground normal gn, seen from camera, lit by the sun (unit) and an ambient
+ * light linear in the normal's height (amb_down, amb_up). */
+vec3 canopy_color_lit(vec3 pos, vec3 gn, vec3 camera, vec3 sun, vec3 amb_down, vec3 amb_up, out float cover)
 {
     vec3 to_eye = camera - pos;
     float len = max(length(to_eye), 1e-6);
@@ -58,7 +62,13 @@ vec3 canopy_color(vec3 pos, vec3 gn, vec3 camera, vec3 sun, out float cover)
     vec3 h = to_eye - gn * dot(to_eye, gn), sh = sun - gn * dot(sun, gn);
     float phi = dot(h, h) > 1e-12 && dot(sh, sh) > 1e-12 ? acos(clamp(dot(normalize(h), normalize(sh)), -1.0, 1.0))
                                                          : 0.0;
-    return canopy_table_color(e, phi, cover);
+    return canopy_table_color(e, phi, amb_down, amb_up, cover);
+}
+
+/* canopy_color_lit under the hemispheric ambient. */
+vec3 canopy_color(vec3 pos, vec3 gn, vec3 camera, vec3 sun, out float cover)
+{
+    return canopy_color_lit(pos, gn, camera, sun, AMBIENT_DOWN, AMBIENT_UP, cover);
 }
 
 #endif

@@ -2,13 +2,15 @@
  * hardware render paths (blade.frag, bb_render.frag) and the compute
  * rasterizer (shaders/raster/), so both paths shade alike: two-sided
  * lighting (normal flipped towards the viewer), the shared sun, sky ambient
- * and fog (common/lighting.glsl), and a debug overlay mixed in before fog
+ * (or the global illumination volumes', common/gi.glsl) and fog
+ * (common/lighting.glsl), and a debug overlay mixed in before fog
  * (weight 0: none); and the hybrid fade's alpha of blades and billboards,
  * which the hardware path turns into coverage with alpha-to-coverage and
  * the compute path with per-sample thresholds. */
 #ifndef GRASS_SHADE_GLSL
 #define GRASS_SHADE_GLSL
 
+#include "common/gi.glsl"
 #include "common/hash.glsl"
 #include "common/lighting.glsl"
 #include "common/switch.glsl"
@@ -95,9 +97,18 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
     vec3 n = normalize(normal);
     if (dot(n, view) < 0.0) n = -n;
     vec3 albedo = mix(albedo_root, albedo_tip, v);
-    vec3 c = shade(albedo, n, sun, mix(0.45, 1.0, v));
+    vec3 c = shade_lit(albedo, n, sun, mix(0.45, 1.0, v), grass_ambient(pos, n));
     c = mix(c, overlay.rgb, overlay.a);
     return apply_fog(c, length(view), normalize(-view));
+}
+
+/* The ambient light of a billboard vertex at pos of normal n, for its two
+ * faces (bb_shade's amb_front, amb_back); zero with GI off. */
+void bb_vertex_ambient(vec3 pos, vec3 n, out vec3 front, out vec3 back)
+{
+    vec3 u = normalize(n);
+    front = u_gi_on != 0 ? gi_ambient(pos, u) : vec3(0.0);
+    back = u_gi_on != 0 ? gi_ambient(pos, -u) : vec3(0.0);
 }
 
 /* A billboard point. Views off (lit 0, Orthmann's cards): clump texel
@@ -114,21 +125,33 @@ vec3 blade_shade(vec3 pos, vec3 normal, float v, vec3 camera, vec3 sun, vec3 alb
  * tint; a deformed mesh (card 0) scales it by how much more (or less)
  * light its own normal takes than the same normal stood upright (its
  * horizontal part; at most twice), so a billboard pressed flat turns to
- * the sky and one barely touched keeps the plain card's colour. */
+ * the sky and one barely touched keeps the plain card's colour.
+ * Global illumination (u_gi_on, common/gi.glsl): the ambient light of the
+ * card's two faces, amb_front for the normal as given and amb_back for
+ * its flip, computed per vertex (bb_vertex_ambient) and interpolated, as
+ * Orthmann et al. sec. 6.1 do; the views' lit colour is scaled by how much
+ * it changes the plain shading. */
 vec3 bb_shade(vec3 texel, float tint, vec3 world, vec3 normal, vec3 light, float lit, float card, float v_img,
-              vec3 camera, vec3 sun, vec4 overlay)
+              vec3 camera, vec3 sun, vec4 overlay, vec3 amb_front, vec3 amb_back)
 {
     vec3 to_eye = camera - world;
     float dist = length(to_eye);
     vec3 n = normalize(normal);
-    if (dot(n, to_eye) < 0.0) n = -n;
+    bool back = dot(n, to_eye) < 0.0;
+    if (back) n = -n;
     float ao = mix(0.45, 1.0, 1.0 - v_img);
     vec3 c = shade(texel * tint, n, sun, ao);
+    vec3 gi = vec3(1.0);
+    if (u_gi_on != 0) {
+        vec3 c_gi = shade_lit(texel * tint, n, sun, ao, back ? amb_back : amb_front);
+        gi = c_gi / max(c, vec3(1e-4));
+        c = c_gi;
+    }
     if (lit > 0.5) {
         vec3 flat_n = vec3(n.x, 0.0, n.z), eye_h = vec3(to_eye.x, 0.0, to_eye.z);
         vec3 stood = dot(flat_n, flat_n) > 1e-6 ? normalize(flat_n) : eye_h / max(length(eye_h), 1e-6);
         vec3 scale = card > 0.5 ? vec3(1.0) : min(c / max(shade(texel * tint, stood, sun, ao), vec3(1e-4)), vec3(2.0));
-        c = light * tint * scale;
+        c = light * tint * scale * (card > 0.5 ? gi : vec3(1.0));
     }
     c = mix(c, overlay.rgb, overlay.a);
     return apply_fog(c, dist, -to_eye / max(dist, 1e-6));

@@ -65,6 +65,7 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
     glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    gi_set_uniforms(t->prog.id, &t->gi);
     bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
                 canopy ? t->canopy_fade[1] : 0.0f);

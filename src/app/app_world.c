@@ -151,7 +151,7 @@ static bb_extent_desc_t extent_desc(const app_world_t *w, const bb_gen_desc_t *g
 
 /* The shared layout's extent map alone (the clump texture is the billboard
  * field's business): one tiny clump layer is enough for bb_layout. */
-static bool extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
+bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
 {
     int size = layout_for(w, gen);
     return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
@@ -174,7 +174,7 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
 {
     bb_gen_desc_t gen;
     bb_layout_t lay;
-    if (!extent_layout(w, &lay, &gen)) return 0;
+    if (!app_world_extent_layout(w, &lay, &gen)) return 0;
     size_t dropped = 0;
     for (size_t i = 0; i < field->blade_count; i++) {
         blade_t *b = &field->blades[i];
@@ -251,6 +251,8 @@ static bool make_bb(app_world_t *w)
                                            .density = g->billboard_density,
                                            .size = {g->billboard_size[0], g->billboard_size[1]},
                                            .subdiv = {g->subdiv[0], g->subdiv[1]},
+                                           .gi = g->gi,
+                                           .occlusion = g->bb_occlusion,
                                            .iterations = g->spring_iterations,
                                            .paper = w->tuning.paper,
                                            .max_deformed = g->deformed_pool,
@@ -410,7 +412,7 @@ static bool make_tiles(app_world_t *w)
     /* The billboards' extent map thins the tiles too (same clearings). */
     bb_gen_desc_t gen;
     bb_layout_t lay;
-    bool have_layout = extent_layout(w, &lay, &gen);
+    bool have_layout = app_world_extent_layout(w, &lay, &gen);
     if (have_layout) {
         td.extent = &lay.extent;
         memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);
@@ -535,6 +537,7 @@ bool app_world_make_gpu(app_world_t *w)
 {
     double mark = plat_time();
     w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
+    if (w->gpu_ready && w->scene.grass.gi) w->gpu_ready = app_gi_make(w);
     stage_done(w, APP_STAGE_TERRAIN_GPU, &mark);
     if (w->gpu_ready && !w->scene.character_count && !w->character_override &&
         (w->clip_override || w->character_height > 0.0f)) {
@@ -741,7 +744,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     if (raster) raster_begin(raster, target);
     bool raster_ok = true;
     if (tiles) {
-        blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi};
+        blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi, .gi = w->terrain.gi};
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
@@ -774,7 +777,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         blade_gpu_cull(&w->blades, &cd, w->reference ? 0 : depth);
         glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
         glViewport(0, 0, target->w, target->h);
-        blade_draw_desc_t dd = {.time = v->time};
+        blade_draw_desc_t dd = {.time = v->time, .gi = w->terrain.gi};
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
@@ -786,7 +789,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         else blade_gpu_draw(&w->blades, &dd);
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
-        bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1};
+        bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
         memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
@@ -904,6 +907,7 @@ void app_world_destroy(app_world_t *w)
     raster_destroy(&w->raster);
     w->blade_cubes = 0;
     app_colliders_destroy(&w->colliders);
+    gi_gpu_destroy(&w->gi);
     app_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);
     core_image_free(&w->clearings_image);

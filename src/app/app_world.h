@@ -45,6 +45,7 @@ typedef struct app_terrain_t {
     GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
+    gi_bind_t gi; /* global illumination of the ground and its canopy; zero: off */
 } app_terrain_t;
 
 bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh);
@@ -178,12 +179,22 @@ typedef struct app_world_t {
     const char *character_override, *clip_override;
     float character_height; /* --character-height; 0 = the scene's */
     bool input_error; /* a model file failed to load: exit code 2 */
+    /* Global illumination (scene grass.gi, app_gi.c): the volumes, made at
+     * start-up; gi.ao.id 0 when off. */
+    gi_gpu_t gi;
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
     bool warned_objects;
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;
     double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */
 } app_world_t;
+
+/* Module-internal (app_world.c, app_gi.c): the extent map of the layout both
+ * grass models share (bb_layout_free it). */
+bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen);
+/* The global illumination volumes of w's scene into w->gi and the
+ * terrain's bind; false (logged) when they cannot be made. */
+bool app_gi_make(app_world_t *w);
 
 /* Scene file, CLI overrides and terrain (no GL). Returns 0, or 2 after one
  * error line (bad scene file or terrain mesh). */

@@ -623,11 +623,13 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &max_comps);
     int render_verts = (m - 1) * 2 * n > 4 ? (m - 1) * 2 * n : 4;
     /* bb_render.geom's vertex: g_world, g_normal, g_uvl (3 each), g_tint,
-     * g_card, g_overlay (1 each) and gl_Position (4) = 16 components. */
-    if (render_verts > max_verts || render_verts * 16 > max_comps) {
-        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components); "
-                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, render_verts * 16,
-                       max_verts, max_comps);
+     * g_card, g_overlay (1 each) and gl_Position (4) = 16 components; with
+     * BB_GI g_amb_front and g_amb_back (3 each) too. */
+    int comps = render_verts * (d->gi ? 22 : 16);
+    if (render_verts > max_verts || comps > max_comps) {
+        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
+                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, comps,
+                       d->gi ? " with grass.gi" : "", max_verts, max_comps);
         return false;
     }
     /* Generation tiles of 2 x 2 candidate cells: at most 4 points (64
@@ -684,11 +686,11 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     char *defines = f->defines;
     snprintf(f->defines, sizeof f->defines,
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
-             "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n%s",
+             "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n%s%s",
              n, m, pass_objects(f), tile, tile * tile, render_verts,
              /* the view cards' code only where they are on: compiled in, unused, it
               * cost bb.raster 22 % on the H100 (meadow_large billboard mode) */
-             f->views.on ? "#define BB_VIEW_CARDS 1\n" : "");
+             f->views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
     char gen_defines[sizeof f->defines + 32];
     snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, tris ? "#define BB_GEN_TRIANGLES\n" : "");
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
@@ -714,6 +716,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
         !f->quad_prog.id || !f->slope_prog.id)
         goto fail;
+    if (d->occlusion && !bb_occlusion_make(f)) goto fail;
     stage_done(f, BB_MAKE_PROGRAMS, &mark);
 
     size_t pool_words = 4 + (size_t)d->max_deformed;
@@ -794,6 +797,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->quad_prog);
     gfx_program_destroy(&f->cube_prog);
     gfx_program_destroy(&f->slope_prog);
+    bb_occlusion_destroy(f);
     bb_octree_free(&f->tree);
     free(f->ranges);
     free(f->sort_keys);
@@ -1324,6 +1328,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(loc(p, "u_slope_cell"), g->cell);
     glUniform2i(loc(p, "u_slope_dims"), g->nx, g->nz);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, dd->slope_map.id);
+    gi_set_uniforms(p.id, f->desc.gi ? &dd->gi : NULL); /* without BB_GI no vertex carries it */
 }
 
 void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)
@@ -1366,6 +1371,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     const float(*planes)[4] = (const float (*)[4])dd->planes;
     int n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_IDLE), planes, f->ranges, f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
+    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->camera);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
@@ -1380,6 +1386,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     n = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), planes,
                           f->ranges, f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
+    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->camera);
     if (n > 0) {
         bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
         int nr = merge_ranges(f, n);
@@ -1388,6 +1395,11 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
         glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
     }
     gfx_timer_end();
+    if (f->desc.occlusion) {
+        gfx_timer_begin("bb.occlusion");
+        bb_occlusion_query(f, dd);
+        gfx_timer_end();
+    }
     glBindVertexArray(0);
 }
 
@@ -1431,6 +1443,7 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
 {
     memset(out, 0, sizeof *out);
     out->billboards = f->billboards;
+    out->occluded = f->occluded_last;
     const bb_octree_t *t = &f->tree;
     for (int k = 0; k < t->leaf_count; k++) {
         int node = bb_octree_leaf_node(t, (uint32_t)k);

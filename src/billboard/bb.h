@@ -34,6 +34,7 @@
 #include "billboard/bb_ref.h"
 #include "collide/collide_set.h"
 #include "gfx/gfx.h"
+#include "gi/gi.h"
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
 #include "scene/scene_fields.h"
@@ -71,6 +72,12 @@ typedef struct bb_field_desc_t {
                                       (scene, grass.subdiv), each in [SCENE_SUBDIV_MIN,
                                       SCENE_SUBDIV_MAX] = [2, 8], limited by the GPU's
                                       geometry shader output (checked, logged) */
+    bool occlusion;                /* occlusion culling of leaf batches (bb_occlude.c;
+                                      scene, grass.bb_occlusion); default off */
+    bool gi;                       /* per-vertex global illumination compiled in
+                                   (BB_GI; scene, grass.gi): 6 more geometry-shader
+                                   output components per vertex; lit once a draw
+                                   desc's gi is on */
     int iterations;                /* spring sweeps K, default 2 (scene,
                                       grass.spring_iterations) */
     float r1, r2;                  /* spring responsiveness, default 1.0, 0.5 */
@@ -111,6 +118,8 @@ typedef struct bb_draw_desc_t {
     gfx_buffer_t slope_map;
     hybrid_slope_grid_t slope_grid;
     float slope_recover;
+    gi_bind_t gi;        /* global illumination (common/gi.glsl); zero: off; read only
+                            by a field made with desc.gi */
 } bb_draw_desc_t;
 
 /* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)
@@ -135,6 +144,7 @@ typedef struct bb_stats_t {
     float generate_ms;    /* GPU time of the make-time generation pass: two
                              GL_TIMESTAMP queries around it; -1 when the GPU
                              has no timestamp counter */
+    int occluded;         /* leaves the last draw skipped as occluded (desc.occlusion) */
     long triangles;       /* drawn per frame at most: 2 per plain billboard, the
                              mesh's 2 (N-1)(M-1) per deformed one */
     float make_ms;        /* CPU wall time of bb_field_make (ends after the
@@ -208,7 +218,22 @@ typedef struct bb_field_t {
     float generate_ms, make_ms;
     float make_stage_ms[BB_MAKE_STAGES];
     float time;
+    /* Occlusion culling (desc.occlusion, bb_occlude.c): per leaf its query
+     * (made on first use), BB_OCC_* state and the draw it was last queried
+     * in; the leaves of this draw to query; leaves skipped by this and by
+     * the last draw; draws so far. */
+    GLuint *occ_query;
+    uint8_t *occ_state;
+    uint32_t *occ_frame;
+    uint32_t *occ_tested;
+    int occ_tested_count, occ_skipped, occluded_last;
+    uint32_t occ_draws;
+    gfx_program_t occlude_prog;
 } bb_field_t;
+
+/* Occlusion query state of a leaf: a query is in flight; its latest result
+ * passed no sample. */
+enum { BB_OCC_PENDING = 1, BB_OCC_HIDDEN = 2 };
 
 bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
 void bb_field_destroy(bb_field_t *f);
@@ -242,8 +267,17 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
  * hybrid calls it with the camera of its last draw. */
 void bb_field_set_hidden(bb_field_t *f, const float camera[3], float fade_start);
 /* Draws into the bound framebuffer (MSAA expected for alpha-to-coverage);
- * timer "bb.render". */
+ * timer "bb.render". With desc.occlusion, leaves whose box was hidden at
+ * their latest query are skipped, and the boxes of the leaves in the
+ * frustum are queried after the draw (timer "bb.occlusion"). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
+/* Module-internal (bb.c, bb_occlude.c): occlusion culling's state; ranges
+ * of leaves in the frustum less those hidden (returns how many are kept,
+ * in order; records the leaves to query); the queries after the draw. */
+bool bb_occlusion_make(bb_field_t *f);
+void bb_occlusion_destroy(bb_field_t *f);
+int bb_occlusion_filter(bb_field_t *f, bb_range_t *ranges, int n, const float camera[3]);
+void bb_occlusion_query(bb_field_t *f, const bb_draw_desc_t *dd);
 /* The same billboards as bb_field_draw, drawn by the compute rasterizer
  * (timer "bb.raster"): every billboard is tested against the frustum on
  * the GPU (no octree walk), coverage comes from r's samples instead

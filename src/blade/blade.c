@@ -360,6 +360,7 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
     glUniform1f(gfx_uniform(p, "u_width_correction"), surf->width_correction);
     glUniform1i(gfx_uniform(p, "u_max_level"), surf->max_level);
     glUniform1f(gfx_uniform(p, "u_lod_distance"), surf->lod_distance);
+    gi_set_uniforms(p.id, &desc->gi);
 }
 
 static blade_surface_t surface_of(const blade_gpu_desc_t *d)

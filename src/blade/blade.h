@@ -27,6 +27,7 @@
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "gfx/gfx.h"
+#include "gi/gi.h"
 #include "raster/raster.h"
 #include "scene/scene.h"
 
@@ -118,6 +119,7 @@ typedef struct blade_draw_desc_t {
     float time;
     float fade_start, fade_end;
     float albedo_root[3], albedo_tip[3];
+    gi_bind_t gi; /* global illumination (common/gi.glsl); zero: off */
 } blade_draw_desc_t;
 
 blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc);

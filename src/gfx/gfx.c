@@ -336,6 +336,7 @@ gfx_texture_t gfx_texture_make(const gfx_texture_desc_t *d)
         glTextureStorage2DMultisample(t.id, t.samples, t.format, t.w, t.h, GL_TRUE);
         break;
     case GL_TEXTURE_2D_ARRAY:
+    case GL_TEXTURE_3D:
         glTextureStorage3D(t.id, mips, t.format, t.w, t.h, t.layers);
         break;
     default:
@@ -350,11 +351,12 @@ gfx_texture_t gfx_texture_make(const gfx_texture_desc_t *d)
         glTextureParameteri(t.id, GL_TEXTURE_MAG_FILTER, (GLint)filter);
         glTextureParameteri(t.id, GL_TEXTURE_WRAP_S, (GLint)wrap);
         glTextureParameteri(t.id, GL_TEXTURE_WRAP_T, (GLint)wrap);
+        if (t.target == GL_TEXTURE_3D) glTextureParameteri(t.id, GL_TEXTURE_WRAP_R, (GLint)wrap);
         if (d->data) {
             GLenum fmt = d->upload_format ? d->upload_format : GL_RGBA;
             GLenum type = d->upload_type ? d->upload_type : GL_UNSIGNED_BYTE;
             glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-            if (t.target == GL_TEXTURE_2D_ARRAY)
+            if (t.target == GL_TEXTURE_2D_ARRAY || t.target == GL_TEXTURE_3D)
                 glTextureSubImage3D(t.id, 0, 0, 0, 0, t.w, t.h, t.layers, fmt, type, d->data);
             else
                 glTextureSubImage2D(t.id, 0, 0, 0, t.w, t.h, fmt, type, d->data);

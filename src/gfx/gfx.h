@@ -82,9 +82,10 @@ typedef struct gfx_texture_t {
 } gfx_texture_t;
 
 typedef struct gfx_texture_desc_t {
-    GLenum target;        /* default GL_TEXTURE_2D; GL_TEXTURE_2D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE */
+    GLenum target;        /* default GL_TEXTURE_2D; GL_TEXTURE_2D_ARRAY, GL_TEXTURE_2D_MULTISAMPLE,
+                             GL_TEXTURE_3D */
     int w, h;             /* required */
-    int layers;           /* arrays: default 1 */
+    int layers;           /* arrays: default 1; 3-D textures: the depth */
     int samples;          /* multisample: default 4 */
     GLenum format;        /* sized internal format, default GL_RGBA8 */
     int mip_levels;       /* default 1; -1 = full chain (generated after upload) */

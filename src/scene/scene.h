@@ -115,6 +115,9 @@ typedef struct scene_grass_desc_t {
     float blade_distance;    /* blade mode: blades drawn up to this distance m [0, 1e6]; default 0:
                                 as far as grass is visible (scene_blade_distance) */
     scene_clearings_desc_t clearings; /* default noise */
+    bool gi;                 /* Orthmann sec. 6.1 global illumination volumes; default false */
+    bool bb_occlusion;       /* occlusion queries per billboard leaf batch (Orthmann sec. 6);
+                                default false */
     char lod_table[SCENE_PATH_MAX]; /* hybrid: switch distances measured by the bench for a GL
                                        renderer (scene_lod.h), repository-relative; default "": the
                                        scene's switch_distance and canopy_distance */

@@ -155,6 +155,13 @@ const scene_field_t scene_fields[] = {
       .doc = "blade mode: blades are drawn up to this distance (m) from the camera; 0: as far as grass is visible, "
              "the field's farthest corner or camera.far, whichever is nearer (the hybrid uses switch_distance)",
       .def_doc = "0 (the field)"},
+    {GRASS(gi), .key = "gi", .type = SCENE_FIELD_BOOL,
+      .doc = "global illumination (Orthmann et al. 2009 sec. 6.1): an ambient-occlusion and an irradiance volume of "
+             "the terrain, static colliders and grass, computed at start-up, light billboards per vertex, blades, "
+             "the ground and its canopy alike (docs/BILLBOARDS.md)"},
+    {GRASS(bb_occlusion), .key = "bb_occlusion", .type = SCENE_FIELD_BOOL,
+      .doc = "occlusion culling of billboard batches (Orthmann et al. 2009 sec. 6): an occlusion query per octree "
+             "leaf's box; a leaf whose box was hidden last frame is not drawn (hardware path, docs/BILLBOARDS.md)"},
     {GRASS(clearings), .key = "clearings", .type = SCENE_FIELD_OBJECT,
       .doc = "bare ground of both models, the extent map (keys `grass.clearings.*`)", .def_doc = "noise"},
 

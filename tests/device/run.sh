@@ -55,6 +55,16 @@
 #                on both paths, billboard cost vs colliding leaves with 1-16 balls,
 #                the papers table; $PAPERS_FRAMES frames, default 60; $PAPERS_LIMIT s limit, default 500)
 #                -> $OUT/papers.tgz (papers.md, .json, .csv, chart); papers.md to $R
+#   occlusion    occlusion culling of billboard batches (grass.bb_occlusion,
+#                docs/BILLBOARDS.md) A/B: meadow_large in hybrid and
+#                billboard mode and orthmann, --raster hw, 400 frames, the
+#                key off then on: pass medians (bb.render + bb.occlusion on
+#                against bb.render off), drawn quads, skipped leaves, frame
+#                times; the frame-400 screenshots of each -> $OUT/occ-*.png
+#   gi           global illumination (grass.gi) A/B: meadow_large hybrid on
+#                both paths and billboard mode (hw), 400 frames, the key off
+#                then on: pass medians, frame times, the volumes' start-up
+#                line; the frame-400 screenshots -> $OUT/gi-*.png
 #   startup      every bench scene, 400 frames: start-up stages, frame-time
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
@@ -273,6 +283,34 @@ perf() {
   else
     echo "note: no docs/perf/h100.json yet; commit \$OUT/perf.json as docs/perf/h100.json to make this run the baseline"
   fi
+}
+
+# A/B of a boolean grass key: each scene:mode:raster of the list with the
+# key off, then on (scene a bench scene's name).
+key_ab() {
+  local key=$1 tag=$2 runs=$3
+  for sm in $runs; do
+    s=${sm%%:*}; mode=${sm#*:}; mode=${mode%%:*}; r=${sm##*:}
+    for on in false true; do
+      sed "s/\"grass\": {/\"grass\": {\"$key\": $on,/" scenes/bench/$s.json > /tmp/$tag-$s.json
+      o=/tmp/$tag-$s-$mode-$r-$on
+      timeout -k 10 150 $M --headless --scene /tmp/$tag-$s.json --mode $mode --raster $r --frames 400 \
+        --screenshot-every 400 --out $o > $o.log 2>&1
+      echo "== $tag $s $mode $r $key=$on rc=$?"
+      grep -E "^  (terrain|tiles\.draw|tiles\.raster|bb\.render|bb\.raster|bb\.occlusion) |gpu_frame_ms|bb\.drawn|bb\.occlu|wall \(CPU" \
+        $o/summary.txt 2>/dev/null
+      grep -E "gi: |error|warn" $o.log | head -3
+      cp $o/shot-000400.png $OUT/$tag-$s-$mode-$r-$on.png 2>/dev/null
+    done
+  done
+}
+
+occlusion() {
+  key_ab bb_occlusion occ "meadow_large:hybrid:hw meadow_large:billboard:hw orthmann:billboard:hw"
+}
+
+gi() {
+  key_ab gi gi "meadow_large:hybrid:hw meadow_large:hybrid:compute meadow_large:billboard:hw"
 }
 
 sections=${*:-tests bench scaling report}
