@@ -15,7 +15,11 @@
 
 #include "common/lighting.glsl"
 
+#ifdef GRASS_GI_OFF
+const int u_gi_on = 0; /* compiled out (blade_raster_list without GI) */
+#else
 uniform int u_gi_on;
+#endif
 uniform vec3 u_gi_lo;
 uniform vec3 u_gi_inv_size;
 uniform vec3 u_gi_bounce;

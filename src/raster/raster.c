@@ -115,8 +115,13 @@ void raster_program_destroy(raster_program_t *p)
 bool raster_program_ensure(const raster_t *r, raster_program_t *p, const char *cs, const char *defines,
                            const char *label)
 {
-    if (p->prim.id && p->atomic64 != r->atomic64) raster_program_destroy(p);
-    if (!p->prim.id) *p = raster_program_make(r, cs, defines, label);
+    uint32_t h = 2166136261u; /* FNV-1a: remade when the defines change */
+    for (const char *c = defines ? defines : ""; *c; c++) h = (h ^ (uint8_t)*c) * 16777619u;
+    if (p->prim.id && (p->atomic64 != r->atomic64 || p->defines != h)) raster_program_destroy(p);
+    if (!p->prim.id) {
+        *p = raster_program_make(r, cs, defines, label);
+        p->defines = h;
+    }
     return p->prim.id != 0;
 }
 

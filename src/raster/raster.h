@@ -65,7 +65,8 @@ typedef struct raster_t {
  * thread, the large ones one per work group). */
 typedef struct raster_program_t {
     gfx_program_t prim, big;
-    bool atomic64; /* made for a one-pass (64-bit atomic) raster_t */
+    bool atomic64;    /* made for a one-pass (64-bit atomic) raster_t */
+    uint32_t defines; /* hash of the defines it was made with */
 } raster_program_t;
 
 /* True when the current context has 64-bit atomics for the one-pass buffer. */
