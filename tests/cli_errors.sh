@@ -130,4 +130,33 @@ rc=$?
 grep -q "interrupted" "$tmp/intr/summary.txt" 2>/dev/null \
   || { echo "FAIL: a run interrupted by timeout -s INT wrote no summary saying so"; fail=1; }
 [ "$rc" = 130 ] || { echo "FAIL: an interrupted run exited $rc, not 130"; fail=1; }
+# Output a script can trust. A run that cannot write what it promised (here
+# summary.txt and the first screenshot, each blocked by a folder of its
+# name, as a full disk would) exits 1 naming what is missing.
+mkdir -p "$tmp/blocked/summary.txt" "$tmp/blocked/shot-000001.png"
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 2 --screenshot-every 1 \
+  --out "$tmp/blocked" >/dev/null 2>"$tmp/blocked.log"
+rc=$?
+{ [ "$rc" = 1 ] && grep -q "error: .*could not write summary.txt and 1 of 2 screenshots (first shot-000001.png)" \
+  "$tmp/blocked.log"; } || { echo "FAIL: unwritten outputs gave exit $rc:"; sed 's/^/    /' "$tmp/blocked.log"; fail=1; }
+# An --out folder in use by another run is refused: first held by flock(1)
+# (in a process that becomes the sleep, so killing it frees the lock),
+# then by a second meadow run; the lock goes with the process that held it.
+mkdir -p "$tmp/shared"
+(exec 9>"$tmp/shared/.meadow.lock" && flock 9 && exec sleep 30) &
+holder=$!
+sleep 0.2
+expect2 'shared is in use by another run' --headless --scene "$root/scenes/tiny.json" --out "$tmp/shared"
+kill "$holder"
+wait "$holder" 2>/dev/null
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 --screenshot-every 0 \
+  --out "$tmp/shared" >/dev/null 2>&1 &
+runner=$!
+for _ in $(seq 50); do [ -s "$tmp/shared/.meadow.lock" ] && break; sleep 0.1; done
+expect2 "shared is in use by another run (.*locked by process $runner)" --headless --scene "$root/scenes/tiny.json" \
+  --out "$tmp/shared"
+kill -INT "$runner"
+wait "$runner"
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1 --screenshot-every 0 \
+  --out "$tmp/shared" >/dev/null 2>&1 || { echo "FAIL: --out still refused after the run holding it ended"; fail=1; }
 exit $fail

@@ -1,5 +1,6 @@
 /* test_app_cli: option parsing accepts good values and rejects each bad one
- * with a message naming the option and the bound. */
+ * with a message naming the option and the bound; the HUD's timing list
+ * leaves out passes that no longer run. */
 #include "app/app.h"
 #include "test.h"
 
@@ -42,5 +43,15 @@ int main(void)
     }
     char *missing[] = {"meadow", "--frames"};
     CHECK(parse(&o, err, 2, missing) == 2 && strstr(err, "needs a value"));
+    /* HUD: after a switch from blade to billboard mode the blade passes
+     * stop; past APP_HUD_STALE_FRAMES frames they leave the list. */
+    app_hud_pass_t passes[] = {{"bb.draw", 0.5, 0}, {"blade.sim", 1.25, APP_HUD_STALE_FRAMES},
+                               {"blade.draw", 2.0, APP_HUD_STALE_FRAMES + 1}, {"bb.generate", 9.0, 5000}};
+    char hud[512];
+    int len = app_hud_timings(passes, 4, hud, sizeof hud);
+    CHECK_MSG(strstr(hud, "bb.draw") && strstr(hud, "0.500 ms") && strstr(hud, "blade.sim") &&
+                  !strstr(hud, "blade.draw") && !strstr(hud, "bb.generate") && len == (int)strlen(hud),
+              "hud:\n%s", hud);
+    CHECK(app_hud_timings(passes + 2, 2, hud, sizeof hud) == 0 && hud[0] == 0);
     TEST_END();
 }

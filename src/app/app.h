@@ -84,6 +84,18 @@ bool app_interrupted(void);
  * src/bench). Returns 0 or 1. */
 typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int frames);
 
+/* The HUD's pass timings (app_hud.c): one line per pass that ran within
+ * the last APP_HUD_STALE_FRAMES frames; passes that no longer run (after a
+ * mode switch) are left out. Writes at most size bytes to buf (NUL
+ * terminated when size > 0) and returns the length written. */
+#define APP_HUD_STALE_FRAMES 30
+typedef struct app_hud_pass_t {
+    const char *name;
+    double ms;        /* latest timing */
+    int frames_since; /* frames since the pass last ran (0: this frame) */
+} app_hud_pass_t;
+int app_hud_timings(const app_hud_pass_t *passes, int count, char *buf, size_t size);
+
 /* Runs the program; returns the process exit code: 0, 1 (a failure), 2 (bad
  * input) or APP_EXIT_INTERRUPTED (SIGINT or SIGTERM ended the run early;
  * the summary was written and says frames done of asked). `montage` may be

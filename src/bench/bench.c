@@ -800,7 +800,7 @@ int bench_run(const app_options_t *o)
     if (o->perf || o->baseline) return bench_perf_main(o);
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
-    if (!core_fs_check_writable_dir(out, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
     }

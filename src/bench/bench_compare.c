@@ -31,7 +31,7 @@ int bench_compare(const app_options_t *o)
 {
     char out[1024], err[1024];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
-    if (!core_fs_check_writable_dir(out, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
     }

@@ -58,6 +58,13 @@ bool core_fs_mkdirs(const char *path);
 /* Creates dir (mkdir -p) and proves it is writable by writing and removing a
  * probe file. Returns false with a reason in err. */
 bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size);
+/* Claims dir for this process until it exits: an exclusive flock(2) on
+ * dir/CORE_FS_LOCK_NAME (which then holds the process id), released by the
+ * kernel when the process ends, however it ends. A folder this process
+ * already holds is fine. Returns false with a reason in err when another
+ * process holds it (two runs writing one folder mixed their files). */
+#define CORE_FS_LOCK_NAME ".meadow.lock"
+bool core_fs_lock_dir(const char *dir, char *err, size_t err_size);
 /* Resolves a repository-relative path (e.g. "shaders/gfx/x.vert") by trying,
  * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel. Writes
  * the first that exists into out. Returns false if none exists. */

@@ -232,6 +232,7 @@ void gfx_timer_end(void);
 int gfx_timer_count(void);
 const char *gfx_timer_name(int i);
 double gfx_timer_last_ms(int i);  /* latest available result */
+int gfx_timer_frames_since(int i); /* frames begun since the pass last ran (0: this frame) */
 double gfx_timer_avg_ms(int i);   /* mean over every result so far */
 double gfx_timer_max_ms(int i);   /* largest result so far */
 double gfx_timer_median_ms(int i); /* median of the last 256 results */
