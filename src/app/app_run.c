@@ -321,6 +321,14 @@ static bool write_summary(app_t *app, double wall_s)
                   st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
+    const app_admit_t *ad = &app->world.admitted;
+    n += snprintf(buf + n, sizeof buf - (size_t)n, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
+                  ad->gpu_total / (1024.0 * 1024.0));
+    for (int k = 0; k < APP_ADMIT_PARTS; k++)
+        if (ad->gpu[k] > 0.0)
+            n += snprintf(buf + n, sizeof buf - (size_t)n, " %s %.1f", app_admit_part_name(k),
+                          ad->gpu[k] / (1024.0 * 1024.0));
+    n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
     if (app->world.scene.mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
@@ -393,11 +401,11 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     app.hud = !headless;
     gfx_init();
     app.target = (gfx_target_t){.w = s->size[0], .h = s->size[1]};
-    bool ok = app_world_fit_target(w, &app.target, "main");
     scene_camera_init(s, &app.cam);
     w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
                                      w->stage_ms[APP_STAGE_TERRAIN];
-    ok = ok && app_world_make_gpu(w);
+    /* The world first: its admission (app_admit) counts the target too. */
+    bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app.target, "main");
     if (ok && s->raster == SCENE_RASTER_AUTO) {
         app_view_t view;
         app_view_make(&view, &app.cam, app.target.w, app.target.h, 0.0f, (float)s->dt);

@@ -8,6 +8,7 @@
 #include <cglm/cglm.h>
 
 #include "app/app.h"
+#include "app/app_admit.h"
 #include "gfx/gfx.h"
 #include "scene/camera.h"
 #include "scene/terrain.h"
@@ -174,6 +175,7 @@ typedef struct app_world_t {
     const char *character_override, *clip_override;
     bool input_error; /* a model file failed to load: exit code 2 */
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
+    app_admit_t admitted; /* the memory and work estimate the run was admitted with (app_admit.h) */
     bool warned_objects;
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;

@@ -73,10 +73,12 @@ static uint32_t template_blades(const blade_tiles_desc_t *d)
 
 /* Most tiles whose nearest point can be within r of one camera position:
  * offsets (di, dj) from the camera's tile whose gap T * max(|d| - 1, 0)
- * per axis stays below r. */
+ * per axis stays below r. Offsets past twice the grid's larger side are not
+ * visited: a reach that long already counts more offsets than the grid has
+ * tiles, the cap below (a 1 km reach over 4 cm tiles looped 2.5e9 times). */
 static int max_tiles_within(float r, float tile, int nx, int nz)
 {
-    int k = (int)ceilf(r / tile) + 1, count = 0;
+    int k = (int)fminf(ceilf(r / tile) + 1.0f, 2.0f * (float)(nx > nz ? nx : nz) + 2.0f), count = 0;
     for (int dj = -k; dj <= k; dj++)
         for (int di = -k; di <= k; di++) {
             float gx = tile * fmaxf((float)abs(di) - 1.0f, 0.0f), gz = tile * fmaxf((float)abs(dj) - 1.0f, 0.0f);

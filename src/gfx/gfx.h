@@ -27,6 +27,15 @@ long gfx_objects_made(void);
 /* Bytes of buffer and texture storage those objects hold (textures:
  * texels x format size x samples, +1/3 with mipmaps). */
 size_t gfx_memory_bytes(void);
+/* The GL's limits that decide what a scene may ask (app_admit), and the
+ * GPU memory free now (GL_NVX_gpu_memory_info or GL_ATI_meminfo; 0 when the
+ * GL tells neither, as llvmpipe, whose storage is host memory). */
+typedef struct gfx_limits_t {
+    GLint max_texture_size, max_renderbuffer_size;
+    GLint max_gs_vertices, max_gs_components, max_compute_groups;
+    double gpu_bytes;
+} gfx_limits_t;
+gfx_limits_t gfx_limits(void);
 /* Returns the number of GL errors seen by glGetError since the last call,
  * logging each with `where`. Cheap enough for tests, not for the frame. */
 int gfx_check_errors(const char *where);
