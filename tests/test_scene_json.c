@@ -108,7 +108,7 @@ static void test_bad_files(void)
     expect_load_fail("bad_out_of_range.json", "bad_out_of_range.json:4: field \"camera.fov\"",
                      "200 is out of range [0, 179]");
     expect_load_fail("bad_too_many.json", "bad_too_many.json:2: field \"wind\"",
-                     "17 entries, more than the maximum 16");
+                     "17 entries, more than the maximum 8");
     expect_load_fail("bad_trailing.json", "bad_trailing.json:4:", "end of file after the top-level");
     expect_load_fail("bad_wrong_type_vec.json",
                      "bad_wrong_type_vec.json:5: field \"characters[0].path[1][1]\": expected number, "

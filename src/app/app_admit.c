@@ -84,7 +84,8 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
     e->gpu[APP_ADMIT_TARGETS] = px * 8.0 * (ts > 1 ? ts + 1.0 : 1.0);
     if (w->raster) {
         double rs = s->raster_samples > 0 ? s->raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-        e->gpu[APP_ADMIT_RASTER] = px * (rs * 8.0 + 4.0) + 16.0 * MIB; /* visibility, depth, triangle queues */
+        double queue = fmin(fmax(px * rs * APP_ADMIT_RASTER_QUEUE_LAYERS / 64.0, (double)(1 << 20)), (double)(1 << 26));
+        e->gpu[APP_ADMIT_RASTER] = px * (rs * 8.0 + 4.0) + 16.0 * queue; /* visibility, depth, triangle queues */
         if (s->raster == SCENE_RASTER_AUTO) e->transient = px * 8.0 * (ts > 1 ? ts + 2.0 : 2.0);
     }
     double verts, indices;

@@ -71,6 +71,8 @@ typedef struct app_admit_t {
     int cube_res;                /* texels per cube face after grass.cube_texel */
 } app_admit_t;
 
+/* RASTER_QUEUE_LAYERS of raster.h (a GL header; app_world.c asserts they agree). */
+#define APP_ADMIT_RASTER_QUEUE_LAYERS 16
 /* Host memory set aside for the GL driver when checking before it starts
  * (llvmpipe's threads and code took ~0.5 GB of address space here). */
 #define APP_ADMIT_GL_RESERVE (512.0 * 1024.0 * 1024.0)

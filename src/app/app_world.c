@@ -362,6 +362,8 @@ static bool make_blades(app_world_t *w)
     return w->have_blades;
 }
 
+_Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the blade physics");
+
 /* The blade environment shared by the full field and the tiles. */
 static void make_blade_env(app_world_t *w)
 {
@@ -375,16 +377,13 @@ static void make_blade_env(app_world_t *w)
     w->blade_env = (blade_env_t){.gravity = SCENE_DEFAULT_BLADE_GRAVITY,
                                  .collision_gain = 1.0f / (0.01f * h * h),
                                  .collision_decay = 1.0f / g->recover_time};
-    for (int i = 0; i < s->wind_count && i < BLADE_MAX_WINDS; i++) {
+    for (int i = 0; i < s->wind_count; i++) {
         const scene_wind_t *sw = &s->wind[i];
         w->blade_env.winds[w->blade_env.wind_count++] =
             sw->type == SCENE_WIND_POINT
                 ? blade_wind_point(sw->position, sw->strength, sw->radius)
                 : blade_wind_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
     }
-    if (s->wind_count > BLADE_MAX_WINDS)
-        core_log_warn("blades: %d wind fields, the blade physics takes %d: the rest are ignored", s->wind_count,
-                      BLADE_MAX_WINDS);
 }
 
 /* Billboards -> blades hand-over: the deformed billboards of the moment
@@ -540,6 +539,8 @@ static void apply_lod_table(app_world_t *w)
              p->met ? "within its" : "NOT within its (the least error measured)", p->budget, p->candidates);
     core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, w->lod_note);
 }
+
+_Static_assert(APP_ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "app_admit's raster queue estimate");
 
 /* Resource admission (app_admit.h) once the GL's limits are known, before
  * any grass is allocated: a scene that does not fit is bad input. */
