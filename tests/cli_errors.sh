@@ -50,7 +50,7 @@ expect2 'wrongtype.json:3.*grass.density' --headless --scene "$tmp/wrongtype.jso
 printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"
 expect2 'unknown.json:2.*sed' --headless --scene "$tmp/unknown.json"
 printf '{\n  "grass": { "stiffness": [0, 10] }\n}\n' >"$tmp/stiffness0.json"
-expect2 'stiffness0.json:2: field "grass.stiffness": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
+expect2 'stiffness0.json:2: field "grass.stiffness\[0\]": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
 printf '{\n  "raster": "gpu"\n}\n' >"$tmp/raster.json"
 expect2 'raster.json:2.*raster' --headless --scene "$tmp/raster.json"
 printf '{\n  "grass": { "blade_distance": "far" }\n}\n' >"$tmp/bladedist.json"
@@ -93,6 +93,28 @@ expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tm
 expect2 'more than 64 MiB, the most this program reads' --headless --scene /dev/zero
 printf '{ "grass": { "tile_size": 0.001 } }\n' >"$tmp/tiny_tiles.json"
 expect2 'the smallest tile_size that fits is' --headless --scene "$tmp/tiny_tiles.json"
+# Values in range that cannot run are refused by resource admission
+# (app_admit.h) with the key and the value that fits; the command line
+# takes the scene key's range (one table); a NUL is not an end of file;
+# a key of the other terrain type is refused.
+printf '{ "grass": { "tile_size": 1000 } }\n' >"$tmp/tile1000.json"
+expect2 'grass.tile_size 1000 needs .*: the largest grass.tile_size that fits is' --headless --scene "$tmp/tile1000.json"
+printf '{ "terrain": { "size": 10000 } }\n' >"$tmp/terrain10k.json"
+expect2 'the smallest tile_size that fits is 9.77 m' --headless --scene "$tmp/terrain10k.json"
+printf '{ "grass": { "subdiv": [8, 8] } }\n' >"$tmp/subdiv8.json"
+expect2 'grass.subdiv \[8, 8\] needs 112 geometry-shader output vertices.*the largest that fits is \[8, ' \
+  --headless --scene "$tmp/subdiv8.json"
+printf '{ "grass": { "density": 0.001, "tile_size": 2 } }\n' >"$tmp/sparse.json"
+expect2 'grass.density 0.001 puts 0.004 blades on a tile.*smallest grass.density that fits is 0.25' \
+  --headless --scene "$tmp/sparse.json"
+printf '{ "size": [8, 100] }\n' >"$tmp/size8.json"
+expect2 'field "size\[0\]": 8 is out of range \[16, 16384\]' --headless --scene "$tmp/size8.json"
+expect2 "--size '16385x100': expected WxH with each side in 16..16384 (scene key size)" --size 16385x100
+expect2 "--seed '4294967296': expected an integer in 0..4294967295 (scene key seed)" --seed 4294967296
+printf '{ "seed": 1\0 }' >"$tmp/nul.json"
+expect2 'nul.json:1: a NUL byte at offset 11' --headless --scene "$tmp/nul.json"
+printf '{ "terrain": { "mesh": "models/torus.obj" } }\n' >"$tmp/hfmesh.json"
+expect2 'unknown key "mesh" for terrain type "heightfield"' --headless --scene "$tmp/hfmesh.json"
 # A UTF-8 byte order mark before the scene's JSON is accepted.
 { printf '\xef\xbb\xbf'; sed "s|\"models/|\"$root/models/|g" "$root/scenes/tiny.json"; } >"$tmp/bom.json"
 "$bin" --headless --quiet --scene "$tmp/bom.json" --size 64x36 --frames 1 --screenshot-every 0 --out "$tmp/bom" \

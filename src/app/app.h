@@ -29,9 +29,9 @@ typedef struct app_options_t {
     bool headless;            /* force EGL */
     int frames;               /* default: 300 headless, unlimited windowed */
     bool frames_set;
-    uint64_t seed;
+    uint64_t seed;            /* as the scene key seed, 0..2^32-1 */
     bool seed_set;
-    int width, height;        /* --size WxH, 16..8192 */
+    int width, height;        /* --size WxH, each side as the scene key size (16..16384) */
     const char *out;          /* default "out" */
     int screenshot_every;     /* default: frames/3 headless (3 shots), 0 windowed */
     app_mode_t mode;
@@ -60,9 +60,6 @@ typedef struct app_options_t {
     bool quiet;
 } app_options_t;
 
-#define APP_MAX_FRAMES 10000000
-#define APP_MAX_SIZE 8192
-#define APP_MIN_SIZE 16
 
 /* Returns 0 to run, 1 when --help was printed, 2 on a bad argument (err
  * holds one line saying which and why). */

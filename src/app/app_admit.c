@@ -177,7 +177,7 @@ static int knob_format(char *buf, size_t size, const scene_desc_t *s, const knob
     const void *at = field_at((scene_desc_t *)s, f);
     if (f->type == SCENE_FIELD_INTS) return snprintf(buf, size, "[%d, %d]", ((const int *)at)[0], ((const int *)at)[1]);
     if (f->type == SCENE_FIELD_INT) return snprintf(buf, size, "%d", ((const int *)at)[0]);
-    return snprintf(buf, size, "%.4g", (double)((const float *)at)[0]);
+    return snprintf(buf, size, "%.6g", (double)((const float *)at)[0]);
 }
 
 /* The part that does not fit (-1: all fit); *why: what it exceeds, *count
