@@ -107,6 +107,10 @@ expect2 'grass.subdiv \[8, 8\] needs 112 geometry-shader output vertices.*the la
 printf '{ "grass": { "density": 0.001, "tile_size": 2 } }\n' >"$tmp/sparse.json"
 expect2 'grass.density 0.001 puts 0.004 blades on a tile.*smallest grass.density that fits is 0.25' \
   --headless --scene "$tmp/sparse.json"
+python3 -c "import json; print(json.dumps({'colliders': [{'type': 'sphere', 'position': [i, 0.5, 0]} for i in range(120)],
+  'characters': [{'model': 'models/humanoid.gltf'}] * 9}))" >"$tmp/objects.json"
+expect2 'colliders: 120 colliders and 9 character(s) are 129 objects, more than the 128 .* is 119' \
+  --headless --scene "$tmp/objects.json"
 printf '{ "size": [8, 100] }\n' >"$tmp/size8.json"
 expect2 'field "size\[0\]": 8 is out of range \[16, 16384\]' --headless --scene "$tmp/size8.json"
 expect2 "--size '16385x100': expected WxH with each side in 16..16384 (scene key size)" --size 16385x100

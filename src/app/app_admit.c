@@ -120,7 +120,7 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
                                        (double)g->deformed_pool * g->subdiv[0] * g->subdiv[1] * 16.0 +
                                        layout * layout * 5.0 + 0.5 * MIB;
         e->cube_res = cube_res(s, w, 0);
-        int objects = s->collider_count + s->character_count;
+        int objects = w->objects;
         e->gpu[APP_ADMIT_CUBES] = (double)e->cube_res * e->cube_res * 6.0 * (objects > 1 ? objects : 1) *
                                   CUBE_TEXEL_BYTES;
     }
@@ -311,6 +311,13 @@ static bool gl_limits(const scene_desc_t *s, const app_admit_world_t *w, const a
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size)
 {
+    if (w->objects > APP_ADMIT_MAX_OBJECTS) {
+        int most = APP_ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);
+        snprintf(err, err_size, "colliders: %d colliders and %d character(s) are %d objects, more than the %d that "
+                 "bend grass: the most colliders that fit beside the characters is %d", s->collider_count,
+                 w->objects - s->collider_count, w->objects, APP_ADMIT_MAX_OBJECTS, most > 0 ? most : 0);
+        return false;
+    }
     if (!gl_limits(s, w, lim, err, err_size)) return false;
     app_admit_t e;
     const char *why = "";

@@ -47,6 +47,7 @@ typedef struct app_admit_world_t {
     bool raster;           /* the compute rasterizer's buffers (raster compute or auto) */
     int target_samples;    /* samples of the main target (the GL's cap applied) */
     float collider_radius; /* largest collider's bounding radius (grass.cube_texel) */
+    int objects;           /* colliders and characters that bend grass (--character adds one to none) */
 } app_admit_world_t;
 
 enum {
@@ -78,6 +79,9 @@ typedef struct app_admit_t {
 #define APP_ADMIT_GL_RESERVE (512.0 * 1024.0 * 1024.0)
 /* Most billboard candidates a field holds (bb_field_make's limit). */
 #define APP_ADMIT_MAX_BB_CANDIDATES (1u << 26)
+/* Most colliders and characters together (COLLIDE_MAX_OBJECTS, a collide
+ * set's; app_world.c asserts they agree). */
+#define APP_ADMIT_MAX_OBJECTS 128
 /* Most blades of a full blade field: 50M x 68 B = 3.4 GB of GPU state. */
 #define APP_ADMIT_MAX_FIELD_BLADES 50000000
 

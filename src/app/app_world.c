@@ -541,6 +541,7 @@ static void apply_lod_table(app_world_t *w)
 }
 
 _Static_assert(APP_ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "app_admit's raster queue estimate");
+_Static_assert(APP_ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "app_admit's object count is a collide set's");
 
 /* Resource admission (app_admit.h) once the GL's limits are known, before
  * any grass is allocated: a scene that does not fit is bad input. */
@@ -561,7 +562,10 @@ static bool admit(app_world_t *w)
                             .full_field = (wants_blades(w->mode) && !uses_tiles(w)) || w->reference,
                             .raster = w->scene.raster != SCENE_RASTER_HW,
                             .target_samples = gfx_target_samples(app_world_target_samples(w)),
-                            .collider_radius = largest_object_radius(w)};
+                            .collider_radius = largest_object_radius(w),
+                            .objects = w->scene.collider_count +
+                                       (w->scene.character_count ? w->scene.character_count
+                                                                 : w->character_override != NULL)};
     char err[1024];
     app_admit_estimate(&w->scene, &aw, &w->admitted);
     if (app_admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
@@ -613,10 +617,9 @@ bool app_world_make_gpu(app_world_t *w)
 
 /* This step's objects of the collide set: every analytic collider (its
  * mesh VAO has position at attribute 0 and normal at 1), then every
- * character. More than the set holds are reported once; the first win. */
+ * character. Admission (app_admit) keeps them within the set. */
 static void add_objects(app_world_t *w, collide_set_t *set, float dt)
 {
-    int total = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
@@ -638,13 +641,7 @@ static void add_objects(app_world_t *w, collide_set_t *set, float dt)
             memcpy(o.centre, co[i].centre, sizeof o.centre);
             collide_add_object(set, &o, dt);
         }
-        full = want > room;
     }
-    if (full && !w->warned_objects)
-        core_log_warn("colliders: %d colliders and characters, a collide set holds at most %d "
-                      "(COLLIDE_MAX_OBJECTS): the rest do not bend grass",
-                      total, COLLIDE_MAX_OBJECTS);
-    w->warned_objects = w->warned_objects || full;
 }
 
 /* Cube-map proxies of the blade physics (tuning.blade_cube_proxies; beyond

@@ -176,7 +176,6 @@ typedef struct app_world_t {
     bool input_error; /* a model file failed to load: exit code 2 */
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
     app_admit_t admitted; /* the memory and work estimate the run was admitted with (app_admit.h) */
-    bool warned_objects;
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;
     double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */
