@@ -5,8 +5,9 @@
  *   scenes/meadow.json with 4x MSAA, through the whole program.
  * - GL-free: the estimate grows with density and size; a scene over a
  *   budget is refused naming the key that deviates most from its default,
- *   and the value it names fits while 5 % beyond it does not; a GL limit
- *   (geometry-shader output) names grass.subdiv and a size that fits. */
+ *   and the value it names fits while 5 % beyond it does not; the cube
+ *   maps of a huge character name grass.cube_texel; a GL limit (geometry-
+ *   shader output) names grass.subdiv, the texture size a size that fits. */
 #include "app/app.h"
 #include "app/app_admit.h"
 #include "test.h"
@@ -124,6 +125,17 @@ static void check_gl_free(void)
     s.grass.density = 1600.0f;
     CHECK(!app_admit_check(&s, &w, &(app_admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "the largest grass.density that fits is 555"), "%s", err);
+
+    /* A 1000x character (bounding radius 950 m) with grass.cube_texel: the
+     * cube maps, capped at 16384 / 6 texels a side, name cube_texel. */
+    base_scene(&s, &t, &w);
+    s.grass.cube_texel = 0.01f;
+    w.collider_radius = 950.0f;
+    w.objects = 4;
+    lim = (app_admit_limits_t){.host_bytes = 1.5e9};
+    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    CHECK_MSG(strstr(err, "(cube maps 2.86 GB)") && strstr(err, "the smallest grass.cube_texel that fits is 0.9"),
+              "%s", err);
 
     /* The geometry shader's output: llvmpipe's and NVIDIA's 1024 components. */
     base_scene(&s, &t, &w);

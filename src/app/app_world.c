@@ -597,7 +597,7 @@ bool app_world_make_gpu(app_world_t *w)
     /* Again with the characters' size, which grass.cube_texel scales the
      * cube maps by. */
     if (w->gpu_ready && w->have_chars && w->scene.grass.cube_texel > 0.0f) w->gpu_ready = admit(w);
-    w->cube_res = cube_resolution_for(w);
+    if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
