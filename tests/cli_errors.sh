@@ -111,6 +111,9 @@ python3 -c "import json; print(json.dumps({'colliders': [{'type': 'sphere', 'pos
   'characters': [{'model': 'models/humanoid.gltf'}] * 9}))" >"$tmp/objects.json"
 expect2 'colliders: 120 colliders and 9 character(s) are 129 objects, more than the 128 .* is 119' \
   --headless --scene "$tmp/objects.json"
+printf '{ "colliders": [ { "type": "capsule", "radius": 0.01, "length": 10 } ] }\n' >"$tmp/capsule.json"
+expect2 'colliders\[0\].length 10 over radius 0.01 takes 1001 .* the largest colliders\[0\].length that fits is 5.11' \
+  --headless --scene "$tmp/capsule.json"
 printf '{ "size": [8, 100] }\n' >"$tmp/size8.json"
 expect2 'field "size\[0\]": 8 is out of range \[16, 16384\]' --headless --scene "$tmp/size8.json"
 expect2 "--size '16385x100': expected WxH with each side in 16..16384 (scene key size)" --size 16385x100

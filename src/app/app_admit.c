@@ -308,9 +308,40 @@ static bool gl_limits(const scene_desc_t *s, const app_admit_world_t *w, const a
     return true;
 }
 
+/* The blade physics' sphere proxies: a capsule takes 1 + ceil(length /
+ * radius) (collide_pack_spheres), so one thin capsule can take them all. */
+static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t size)
+{
+    if (!w->collider_spheres || (!w->full_field && !w->tiles)) return true;
+    int total = w->character_spheres, worst = -1;
+    for (int i = 0; i < s->collider_count; i++) {
+        total += w->collider_spheres[i];
+        if (worst < 0 || w->collider_spheres[i] > w->collider_spheres[worst]) worst = i;
+    }
+    if (total <= APP_ADMIT_MAX_SPHERES) return true;
+    const scene_collider_t *c = &s->colliders[worst];
+    int room = APP_ADMIT_MAX_SPHERES - (total - w->collider_spheres[worst]);
+    if (c->type == SCENE_COLLIDER_CAPSULE && room >= 2) {
+        snprintf(err, size, "colliders[%d].length %g over radius %g takes %d of the blade physics' sphere proxies, "
+                 "%d with the rest, more than its %d: the largest colliders[%d].length that fits is %.3g", worst,
+                 (double)c->length, (double)c->radius, w->collider_spheres[worst], total, APP_ADMIT_MAX_SPHERES,
+                 worst, floor((room - 1) * (double)c->radius * 1e3) / 1e3);
+        return false;
+    }
+    int fit = 0;
+    for (int n = w->character_spheres; fit < s->collider_count && n + w->collider_spheres[fit] <= APP_ADMIT_MAX_SPHERES;
+         fit++)
+        n += w->collider_spheres[fit];
+    snprintf(err, size, "colliders: %d colliders and the characters need %d sphere proxies in the blade physics "
+             "(characters %d), more than its %d: the most colliders that fit is %d", s->collider_count, total,
+             w->character_spheres, APP_ADMIT_MAX_SPHERES, fit);
+    return false;
+}
+
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size)
 {
+    if (!sphere_limit(s, w, err, err_size)) return false;
     if (w->objects > APP_ADMIT_MAX_OBJECTS) {
         int most = APP_ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);
         snprintf(err, err_size, "colliders: %d colliders and %d character(s) are %d objects, more than the %d that "

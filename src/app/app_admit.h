@@ -48,6 +48,8 @@ typedef struct app_admit_world_t {
     int target_samples;    /* samples of the main target (the GL's cap applied) */
     float collider_radius; /* largest collider's bounding radius (grass.cube_texel) */
     int objects;           /* colliders and characters that bend grass (--character adds one to none) */
+    const int *collider_spheres; /* sphere proxies of each scene collider in the blade physics (NULL: none) */
+    int character_spheres;       /* the characters' (0 before they are loaded) */
 } app_admit_world_t;
 
 enum {
@@ -82,6 +84,9 @@ typedef struct app_admit_t {
 /* Most colliders and characters together (COLLIDE_MAX_OBJECTS, a collide
  * set's; app_world.c asserts they agree). */
 #define APP_ADMIT_MAX_OBJECTS 128
+/* Most sphere proxies of the blade physics (BLADE_MAX_SPHERES; asserted
+ * in app_world.c). */
+#define APP_ADMIT_MAX_SPHERES 512
 /* Most blades of a full blade field: 50M x 68 B = 3.4 GB of GPU state. */
 #define APP_ADMIT_MAX_FIELD_BLADES 50000000
 

@@ -468,8 +468,8 @@ static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max
 }
 
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
- * with its sweep, then the characters'). More than BLADE_MAX_SPHERES is
- * reported once. */
+ * with its sweep, then the characters'). Admission (app_admit) keeps them
+ * within BLADE_MAX_SPHERES. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
@@ -491,9 +491,6 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
         full = want > max - n;
         n += full ? max - n : want;
     }
-    if (full && !w->warned_spheres)
-        core_log_warn("blades: colliders need more than %d spheres: the rest do not bend blades", max);
-    w->warned_spheres = w->warned_spheres || full;
     return n;
 }
 
@@ -542,6 +539,7 @@ static void apply_lod_table(app_world_t *w)
 
 _Static_assert(APP_ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "app_admit's raster queue estimate");
 _Static_assert(APP_ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "app_admit's object count is a collide set's");
+_Static_assert(APP_ADMIT_MAX_SPHERES == BLADE_MAX_SPHERES, "app_admit's sphere count is the blade physics'");
 
 /* Resource admission (app_admit.h) once the GL's limits are known, before
  * any grass is allocated: a scene that does not fit is bad input. */
@@ -566,6 +564,12 @@ static bool admit(app_world_t *w)
                             .objects = w->scene.collider_count +
                                        (w->scene.character_count ? w->scene.character_count
                                                                  : w->character_override != NULL)};
+    static int spheres[SCENE_MAX_COLLIDERS];
+    static float packed[BLADE_MAX_SPHERES][4];
+    for (int i = 0; i < w->scene.collider_count; i++)
+        spheres[i] = collide_pack_spheres(&w->scene.colliders[i], (float[3]){0}, packed, BLADE_MAX_SPHERES);
+    aw.collider_spheres = spheres;
+    aw.character_spheres = w->have_chars ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
     char err[1024];
     app_admit_estimate(&w->scene, &aw, &w->admitted);
     if (app_admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
@@ -594,9 +598,9 @@ bool app_world_make_gpu(app_world_t *w)
         w->gpu_ready = w->have_chars;
     }
     stage_done(w, APP_STAGE_CHARACTERS, &mark);
-    /* Again with the characters' size, which grass.cube_texel scales the
-     * cube maps by. */
-    if (w->gpu_ready && w->have_chars && w->scene.grass.cube_texel > 0.0f) w->gpu_ready = admit(w);
+    /* Again with the characters: their size (grass.cube_texel scales the
+     * cube maps by it) and their sphere proxies in the blade physics. */
+    if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
     if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);

@@ -153,7 +153,6 @@ typedef struct app_world_t {
                               (cube_resolution_for) */
     GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
                               (blade_gpu_upload_cubes; owned by blades) */
-    bool warned_spheres;
     /* Grass through the compute rasterizer (scene "raster" compute, or auto
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
