@@ -91,6 +91,10 @@ expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tm
 # Inputs that exhaust the machine are refused before anything is allocated:
 # an endless file, and tiles too small for the hybrid's table.
 expect2 'more than 64 MiB, the most this program reads' --headless --scene /dev/zero
+printf '{ "terrain": { "type": "mesh", "mesh": "/dev/zero" } }\n' >"$tmp/zeromesh.json"
+expect2 'terrain.mesh: /dev/zero: not a regular file' --headless --scene "$tmp/zeromesh.json"
+printf '{ "grass": { "clearings": { "type": "image", "image": "/dev/zero" } } }\n' >"$tmp/zeroimage.json"
+expect2 '/dev/zero: cannot load image: not a regular file' --headless --scene "$tmp/zeroimage.json"
 printf '{ "grass": { "tile_size": 0.001 } }\n' >"$tmp/tiny_tiles.json"
 expect2 'the smallest tile_size that fits is' --headless --scene "$tmp/tiny_tiles.json"
 # Values in range that cannot run are refused by resource admission

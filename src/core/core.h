@@ -96,7 +96,11 @@ typedef struct core_image_t {
 
 bool core_image_alloc(core_image_t *img, int w, int h, int channels);
 void core_image_free(core_image_t *img);
-/* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's). */
+/* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's).
+ * Refuses (logged) what is not a regular file, a file over
+ * CORE_FS_READ_MAX, and an image of more than CORE_IMAGE_MAX_PIXELS (a
+ * small PNG can declare 2^24 x 2^24 pixels). */
+#define CORE_IMAGE_MAX_PIXELS (8192.0 * 8192.0)
 bool core_image_load(core_image_t *img, const char *path, int channels);
 /* Writes PNG atomically (tmp + rename). */
 bool core_image_write_png(const core_image_t *img, const char *path);
