@@ -49,13 +49,15 @@ static double ground_area(const scene_desc_t *s, const app_admit_world_t *w)
     return w->terrain_area * (ext[0] / loaded) * (ext[0] / loaded);
 }
 
-static int cube_res(const scene_desc_t *s, const app_admit_world_t *w, int max_texture_size)
+/* cube_resolution_for's side: raised by grass.cube_texel, capped where a
+ * cube's 6 faces side by side exceed the GL's texture size. */
+static int cube_res(const scene_desc_t *s, const app_admit_world_t *w)
 {
     const scene_grass_desc_t *g = &s->grass;
     int res = g->cube_resolution;
     if (g->cube_texel <= 0.0f) return res;
     double want = ceil(2.0 * w->collider_radius / g->cube_texel);
-    int cap = (max_texture_size > 0 ? max_texture_size : 16384) / 6;
+    int cap = (w->max_texture_size > 0 ? w->max_texture_size : 16384) / 6;
     if (want > cap) want = cap;
     return want > res ? (int)want : res;
 }
@@ -119,10 +121,8 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
         e->gpu[APP_ADMIT_BILLBOARDS] = e->bb_candidates * (2.0 * BB_POINT_BYTES + 8.0) +
                                        (double)g->deformed_pool * g->subdiv[0] * g->subdiv[1] * 16.0 +
                                        layout * layout * 5.0 + 0.5 * MIB;
-        e->cube_res = cube_res(s, w, 0);
-        int objects = w->objects;
-        e->gpu[APP_ADMIT_CUBES] = (double)e->cube_res * e->cube_res * 6.0 * (objects > 1 ? objects : 1) *
-                                  CUBE_TEXEL_BYTES;
+        double res = cube_res(s, w);
+        e->gpu[APP_ADMIT_CUBES] = res * res * 6.0 * (w->objects > 1 ? w->objects : 1) * CUBE_TEXEL_BYTES;
     }
     for (int k = 0; k < APP_ADMIT_PARTS; k++) e->gpu_total += e->gpu[k];
 }

@@ -47,6 +47,7 @@ typedef struct app_admit_world_t {
     bool raster;           /* the compute rasterizer's buffers (raster compute or auto) */
     int target_samples;    /* samples of the main target (the GL's cap applied) */
     float collider_radius; /* largest collider's bounding radius (grass.cube_texel) */
+    int max_texture_size;  /* GL_MAX_TEXTURE_SIZE: caps those cube maps (0: 16384) */
     int objects;           /* colliders and characters that bend grass (--character adds one to none) */
     const int *collider_spheres; /* sphere proxies of each scene collider in the blade physics (NULL: none) */
     int character_spheres;       /* the characters' (0 before they are loaded) */
@@ -71,7 +72,6 @@ typedef struct app_admit_t {
     double host;                 /* bytes of host memory beyond the GPU's (terrain, seeding) */
     double blades;               /* blades simulated per frame (full field: all; tiles: the pool) */
     double bb_candidates;        /* billboard candidate cells (work of a regeneration) */
-    int cube_res;                /* texels per cube face after grass.cube_texel */
 } app_admit_t;
 
 /* RASTER_QUEUE_LAYERS of raster.h (a GL header; app_world.c asserts they agree). */

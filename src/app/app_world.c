@@ -561,6 +561,7 @@ static bool admit(app_world_t *w)
                             .raster = w->scene.raster != SCENE_RASTER_HW,
                             .target_samples = gfx_target_samples(app_world_target_samples(w)),
                             .collider_radius = largest_object_radius(w),
+                            .max_texture_size = gl.max_texture_size,
                             .objects = w->scene.collider_count +
                                        (w->scene.character_count ? w->scene.character_count
                                                                  : w->character_override != NULL)};
