@@ -7,6 +7,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/resource.h>
 
@@ -414,5 +415,9 @@ double app_admit_host_bytes(void)
         double left = (double)rl.rlim_cur - used;
         avail = avail > 0.0 ? fmin(avail, left) : left;
     }
-    return avail > 0.0 ? 0.8 * avail : 0.0;
+    avail = avail > 0.0 ? 0.8 * avail : 0.0;
+    const char *cap = getenv("MEADOW_MEMORY_LIMIT_MB");
+    double mb = cap ? atof(cap) : 0.0;
+    if (mb > 0.0 && (avail <= 0.0 || mb * MIB < avail)) avail = mb * MIB;
+    return avail;
 }

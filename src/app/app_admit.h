@@ -96,8 +96,10 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
  * and the largest value that fits) when it does not fit. */
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size);
-/* This process's host memory headroom: MemAvailable, and under a
- * finite RLIMIT_AS the address space left; 0 when neither is readable. */
+/* This process's host memory headroom: 80 % of MemAvailable, and under a
+ * finite RLIMIT_AS of the address space left, at most
+ * $MEADOW_MEMORY_LIMIT_MB MiB when that is set (a cap where RLIMIT_AS
+ * cannot be used: ASan reserves terabytes); 0 when nothing is known. */
 double app_admit_host_bytes(void);
 
 #endif
