@@ -547,7 +547,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     } fixed[] = {{&ref, "reference"}, {&bg, "background"}, {&other, "floor"}};
     for (int i = 0; i < 3 && rc == 0; i++) {
         snprintf(path, sizeof path, "%s/frames/%s.png", out, fixed[i].name);
-        if (!core_image_write_png(fixed[i].img, path)) core_log_warn("bench: cannot write %s", path);
+        if (!core_image_write_png(fixed[i].img, path)) rc = 1; /* logged with the path and why */
     }
     if (rc == 0 && eval_image_error(&other, &ref, &ed, &e)) {
         b->floor = e.score;
@@ -587,7 +587,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
         b->terms[i] = e;
         b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &ref);
         snprintf(path, sizeof path, "%s/frames/%s_%s.png", out, c->group, c->label);
-        if (!core_image_write_png(&img, path)) core_log_warn("bench: cannot write %s", path);
+        if (!core_image_write_png(&img, path)) rc = 1; /* logged; the sweep stops: its output is incomplete */
         core_image_free(&img);
         double el = plat_time() - t0;
         fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  pen %.4f m  (eta %.0f s)   ", i + 1, n,

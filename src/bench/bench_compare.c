@@ -75,7 +75,7 @@ int bench_compare_write(const app_options_t *o, const char *out, int frames)
         rc = bench_session_run(&d, &img[i], &met[i]);
         if (rc == 0) {
             snprintf(path, sizeof path, "%s/compare-%s.png", out, panels[i].name);
-            core_image_write_png(&img[i], path);
+            if (!core_image_write_png(&img[i], path)) rc = 1; /* logged with the path and why */
         }
     }
     if (rc == 0) {
