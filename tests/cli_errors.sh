@@ -50,7 +50,7 @@ expect2 'wrongtype.json:3.*grass.density' --headless --scene "$tmp/wrongtype.jso
 printf '{\n  "sed": 1\n}\n' >"$tmp/unknown.json"
 expect2 'unknown.json:2.*sed' --headless --scene "$tmp/unknown.json"
 printf '{\n  "grass": { "stiffness": [0, 10] }\n}\n' >"$tmp/stiffness0.json"
-expect2 'stiffness0.json:2: field "grass.stiffness": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
+expect2 'stiffness0.json:2: field "grass.stiffness\[0\]": 0 is out of range (0, 100\]' --headless --scene "$tmp/stiffness0.json"
 printf '{\n  "raster": "gpu"\n}\n' >"$tmp/raster.json"
 expect2 'raster.json:2.*raster' --headless --scene "$tmp/raster.json"
 printf '{\n  "grass": { "blade_distance": "far" }\n}\n' >"$tmp/bladedist.json"
@@ -91,8 +91,41 @@ expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tm
 # Inputs that exhaust the machine are refused before anything is allocated:
 # an endless file, and tiles too small for the hybrid's table.
 expect2 'more than 64 MiB, the most this program reads' --headless --scene /dev/zero
+printf '{ "terrain": { "type": "mesh", "mesh": "/dev/zero" } }\n' >"$tmp/zeromesh.json"
+expect2 'terrain.mesh: /dev/zero: not a regular file' --headless --scene "$tmp/zeromesh.json"
+printf '{ "grass": { "clearings": { "type": "image", "image": "/dev/zero" } } }\n' >"$tmp/zeroimage.json"
+expect2 '/dev/zero: cannot load image: not a regular file' --headless --scene "$tmp/zeroimage.json"
 printf '{ "grass": { "tile_size": 0.001 } }\n' >"$tmp/tiny_tiles.json"
 expect2 'the smallest tile_size that fits is' --headless --scene "$tmp/tiny_tiles.json"
+# Values in range that cannot run are refused by resource admission
+# (app_admit.h) with the key and the value that fits; the command line
+# takes the scene key's range (one table); a NUL is not an end of file;
+# a key of the other terrain type is refused.
+printf '{ "grass": { "tile_size": 1000 } }\n' >"$tmp/tile1000.json"
+expect2 'grass.tile_size 1000 needs .*: the largest grass.tile_size that fits is' --headless --scene "$tmp/tile1000.json"
+printf '{ "terrain": { "size": 10000 } }\n' >"$tmp/terrain10k.json"
+expect2 'the smallest tile_size that fits is 9.77 m' --headless --scene "$tmp/terrain10k.json"
+printf '{ "grass": { "subdiv": [8, 8] } }\n' >"$tmp/subdiv8.json"
+expect2 'grass.subdiv \[8, 8\] needs 112 geometry-shader output vertices.*the largest that fits is \[8, ' \
+  --headless --scene "$tmp/subdiv8.json"
+printf '{ "grass": { "density": 0.001, "tile_size": 2 } }\n' >"$tmp/sparse.json"
+expect2 'grass.density 0.001 puts 0.004 blades on a tile.*smallest grass.density that fits is 0.25' \
+  --headless --scene "$tmp/sparse.json"
+python3 -c "import json; print(json.dumps({'colliders': [{'type': 'sphere', 'position': [i, 0.5, 0]} for i in range(120)],
+  'characters': [{'model': 'models/humanoid.gltf'}] * 9}))" >"$tmp/objects.json"
+expect2 'colliders: 120 colliders and 9 character(s) are 129 objects, more than the 128 .* is 119' \
+  --headless --scene "$tmp/objects.json"
+printf '{ "colliders": [ { "type": "capsule", "radius": 0.01, "length": 10 } ] }\n' >"$tmp/capsule.json"
+expect2 'colliders\[0\].length 10 over radius 0.01 takes 1001 .* the largest colliders\[0\].length that fits is 5.11' \
+  --headless --scene "$tmp/capsule.json"
+printf '{ "size": [8, 100] }\n' >"$tmp/size8.json"
+expect2 'field "size\[0\]": 8 is out of range \[16, 16384\]' --headless --scene "$tmp/size8.json"
+expect2 "--size '16385x100': expected WxH with each side in 16..16384 (scene key size)" --size 16385x100
+expect2 "--seed '4294967296': expected an integer in 0..4294967295 (scene key seed)" --seed 4294967296
+printf '{ "seed": 1\0 }' >"$tmp/nul.json"
+expect2 'nul.json:1: a NUL byte at offset 11' --headless --scene "$tmp/nul.json"
+printf '{ "terrain": { "mesh": "models/torus.obj" } }\n' >"$tmp/hfmesh.json"
+expect2 'unknown key "mesh" for terrain type "heightfield"' --headless --scene "$tmp/hfmesh.json"
 # A UTF-8 byte order mark before the scene's JSON is accepted.
 { printf '\xef\xbb\xbf'; sed "s|\"models/|\"$root/models/|g" "$root/scenes/tiny.json"; } >"$tmp/bom.json"
 "$bin" --headless --quiet --scene "$tmp/bom.json" --size 64x36 --frames 1 --screenshot-every 0 --out "$tmp/bom" \
@@ -130,4 +163,33 @@ rc=$?
 grep -q "interrupted" "$tmp/intr/summary.txt" 2>/dev/null \
   || { echo "FAIL: a run interrupted by timeout -s INT wrote no summary saying so"; fail=1; }
 [ "$rc" = 130 ] || { echo "FAIL: an interrupted run exited $rc, not 130"; fail=1; }
+# Output a script can trust. A run that cannot write what it promised (here
+# summary.txt and the first screenshot, each blocked by a folder of its
+# name, as a full disk would) exits 1 naming what is missing.
+mkdir -p "$tmp/blocked/summary.txt" "$tmp/blocked/shot-000001.png"
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 2 --screenshot-every 1 \
+  --out "$tmp/blocked" >/dev/null 2>"$tmp/blocked.log"
+rc=$?
+{ [ "$rc" = 1 ] && grep -q "error: .*could not write summary.txt and 1 of 2 screenshots (first shot-000001.png)" \
+  "$tmp/blocked.log"; } || { echo "FAIL: unwritten outputs gave exit $rc:"; sed 's/^/    /' "$tmp/blocked.log"; fail=1; }
+# An --out folder in use by another run is refused: first held by flock(1)
+# (in a process that becomes the sleep, so killing it frees the lock),
+# then by a second meadow run; the lock goes with the process that held it.
+mkdir -p "$tmp/shared"
+(exec 9>"$tmp/shared/.meadow.lock" && flock 9 && exec sleep 30) &
+holder=$!
+sleep 0.2
+expect2 'shared is in use by another run' --headless --scene "$root/scenes/tiny.json" --out "$tmp/shared"
+kill "$holder"
+wait "$holder" 2>/dev/null
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 --screenshot-every 0 \
+  --out "$tmp/shared" >/dev/null 2>&1 &
+runner=$!
+for _ in $(seq 50); do [ -s "$tmp/shared/.meadow.lock" ] && break; sleep 0.1; done
+expect2 "shared is in use by another run (.*locked by process $runner)" --headless --scene "$root/scenes/tiny.json" \
+  --out "$tmp/shared"
+kill -INT "$runner"
+wait "$runner"
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1 --screenshot-every 0 \
+  --out "$tmp/shared" >/dev/null 2>&1 || { echo "FAIL: --out still refused after the run holding it ended"; fail=1; }
 exit $fail

@@ -108,7 +108,7 @@ static void test_bad_files(void)
     expect_load_fail("bad_out_of_range.json", "bad_out_of_range.json:4: field \"camera.fov\"",
                      "200 is out of range [0, 179]");
     expect_load_fail("bad_too_many.json", "bad_too_many.json:2: field \"wind\"",
-                     "17 entries, more than the maximum 16");
+                     "17 entries, more than the maximum 8");
     expect_load_fail("bad_trailing.json", "bad_trailing.json:4:", "end of file after the top-level");
     expect_load_fail("bad_wrong_type_vec.json",
                      "bad_wrong_type_vec.json:5: field \"characters[0].path[1][1]\": expected number, "
@@ -154,13 +154,14 @@ static void test_bad_inline(void)
 
     expect_parse_fail("{\n\"seed\": -1}", "negative seed", "inline.json:2: field \"seed\"",
                       "-1 is out of range [0, 4.29497e+09]");
-    expect_parse_fail("{\n\"grass\": {\"stiffness\": [0, 10]}}", "stiffness 0", "inline.json:2: field \"grass.stiffness\"",
+    expect_parse_fail("{\n\"grass\": {\"stiffness\": [0, 10]}}", "stiffness 0", "inline.json:2: field \"grass.stiffness[0]\"",
                       "0 is out of range (0, 100]");
     expect_parse_fail("{\"frames\": 2.5}", "fraction", "field \"frames\": expected an integer, got 2.5",
                       NULL);
     expect_parse_fail("{\"msaa\": 3}", "msaa", "field \"msaa\"", "3 is not one of");
     expect_parse_fail("{\n\"raster_samples\": 2}", "raster_samples 2", "inline.json:2: field \"raster_samples\"",
                       "2 is not 1 or 4");
+    expect_parse_fail("{\"size\": [8, 100]}", "size 8", "field \"size[0]\"", "8 is out of range [16, 16384]");
     {
         scene_desc_t d;
         char err[256];
@@ -227,7 +228,7 @@ static void test_bad_inline(void)
     }
     {
         static char text[1024];
-        strcpy(text, "{\"terrain\": {\"mesh\": \"");
+        strcpy(text, "{\"terrain\": {\"type\": \"mesh\", \"mesh\": \"");
         for (int i = 0; i < 300; i++) strcat(text, "a");
         strcat(text, "\"}}");
         expect_parse_fail(text, "long path", "field \"terrain.mesh\"", "longer than the maximum 255");
@@ -462,6 +463,61 @@ static void test_grass_keys(void)
     CHECK(scene_blade_distance(&g, cam, 5.0f, lo, hi) == 12.5f);
 }
 
+/* SCENES.md's rule about 0, against the table: every numeric key of the
+ * non-array sections set to 0 parses exactly when its accepted column
+ * allows 0 (scene_field_accepts, which renders that column), and then
+ * holds its default (or 0 where 0 is a value of its own). */
+static void test_zero_rule(void)
+{
+    static const char *const open[] = {[SCENE_SEC_ROOT] = "", [SCENE_SEC_TERRAIN] = "\"terrain\": {",
+                                       [SCENE_SEC_GRASS] = "\"grass\": {",
+                                       [SCENE_SEC_CLEARINGS] = "\"grass\": {\"clearings\": {",
+                                       [SCENE_SEC_CAMERA] = "\"camera\": {"};
+    static const char *const close[] = {[SCENE_SEC_ROOT] = "", [SCENE_SEC_TERRAIN] = "}", [SCENE_SEC_GRASS] = "}",
+                                        [SCENE_SEC_CLEARINGS] = "}}", [SCENE_SEC_CAMERA] = "}"};
+    int checked = 0;
+    for (int i = 0; i < scene_field_count; i++) {
+        const scene_field_t *f = &scene_fields[i];
+        if (f->section > SCENE_SEC_CAMERA || f->type > SCENE_FIELD_RANGE || f->type == SCENE_FIELD_CUSTOM) continue;
+        int n = f->type == SCENE_FIELD_RANGE ? 2 : (f->type == SCENE_FIELD_INTS || f->type == SCENE_FIELD_FLOATS) ? f->n : 1;
+        char value[64] = "0", text[256], why[160];
+        if (f->type >= SCENE_FIELD_INTS) snprintf(value, sizeof value, n == 2 ? "[0, 0]" : "[0, 0, 0]");
+        char type[48] = ""; /* a key of some entry types only: the first of them */
+        for (int v = 0; f->variants && v < 32; v++)
+            if (f->variants & (1u << v)) {
+                const char *name = scene_field_find(f->section, "type")->names[v];
+                snprintf(type, sizeof type, "\"type\": \"%s\", %s", name,
+                         strcmp(name, "mesh") == 0 && strcmp(f->key, "mesh") ? "\"mesh\": \"m.obj\", " : "");
+                break;
+            }
+        snprintf(text, sizeof text, "{%s%s\"%s\": %s%s}", open[f->section], type, f->key, value, close[f->section]);
+        scene_desc_t d;
+        char err[256];
+        bool allowed = scene_field_accepts(f, 0.0, why, sizeof why);
+        bool parsed = scene_parse(&d, text, "zero.json", err, sizeof err);
+        CHECK_MSG(parsed == allowed, "%s: 0 %s by the parser, %s by the table (%s)", text,
+                  parsed ? "accepted" : "refused", allowed ? "allowed" : "not allowed", parsed ? "" : err);
+        /* A value of its own that scene.c resolves (camera.position: its default column says how). */
+        if (!parsed || !allowed || ((f->flags & SCENE_FIELD_NO_DEFAULT) && f->def_doc && strcmp(f->def_doc, "0")))
+            continue;
+        char *base = f->section == SCENE_SEC_TERRAIN ? (char *)&d.terrain
+                     : f->section == SCENE_SEC_GRASS ? (char *)&d.grass
+                     : f->section == SCENE_SEC_CLEARINGS ? (char *)&d.grass.clearings
+                     : f->section == SCENE_SEC_CAMERA ? (char *)&d.camera
+                                                      : (char *)&d;
+        for (int k = 0; k < n; k++) {
+            bool ints = f->type == SCENE_FIELD_INT || f->type == SCENE_FIELD_INTS || f->type == SCENE_FIELD_U32;
+            double got = f->type == SCENE_FIELD_U32 ? ((uint32_t *)(base + f->offset))[k]
+                         : ints                      ? ((int *)(base + f->offset))[k]
+                                                     : ((float *)(base + f->offset))[k];
+            double want = (f->flags & SCENE_FIELD_NO_DEFAULT) ? 0.0 : f->def[k];
+            CHECK_MSG(got == want, "%s: component %d is %g, want %g", text, k, got, want);
+        }
+        checked++;
+    }
+    CHECK_MSG(checked > 30, "only %d keys took 0", checked);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -474,5 +530,6 @@ int main(void)
     test_all_truncations();
     test_subdiv_bounds();
     test_keys_doc();
+    test_zero_rule();
     TEST_END();
 }

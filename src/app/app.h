@@ -29,9 +29,9 @@ typedef struct app_options_t {
     bool headless;            /* force EGL */
     int frames;               /* default: 300 headless, unlimited windowed */
     bool frames_set;
-    uint64_t seed;
+    uint64_t seed;            /* as the scene key seed, 0..2^32-1 */
     bool seed_set;
-    int width, height;        /* --size WxH, 16..8192 */
+    int width, height;        /* --size WxH, each side as the scene key size (16..16384) */
     const char *out;          /* default "out" */
     int screenshot_every;     /* default: frames/3 headless (3 shots), 0 windowed */
     app_mode_t mode;
@@ -63,9 +63,6 @@ typedef struct app_options_t {
     bool quiet;
 } app_options_t;
 
-#define APP_MAX_FRAMES 10000000
-#define APP_MAX_SIZE 8192
-#define APP_MIN_SIZE 16
 
 /* Returns 0 to run, 1 when --help was printed, 2 on a bad argument (err
  * holds one line saying which and why). */
@@ -86,6 +83,18 @@ bool app_interrupted(void);
  * `meadow compare` montage of frame `frames` into `out` (bench_compare_write,
  * src/bench). Returns 0 or 1. */
 typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int frames);
+
+/* The HUD's pass timings (app_hud.c): one line per pass that ran within
+ * the last APP_HUD_STALE_FRAMES frames; passes that no longer run (after a
+ * mode switch) are left out. Writes at most size bytes to buf (NUL
+ * terminated when size > 0) and returns the length written. */
+#define APP_HUD_STALE_FRAMES 30
+typedef struct app_hud_pass_t {
+    const char *name;
+    double ms;        /* latest timing */
+    int frames_since; /* frames since the pass last ran (0: this frame) */
+} app_hud_pass_t;
+int app_hud_timings(const app_hud_pass_t *passes, int count, char *buf, size_t size);
 
 /* Runs the program; returns the process exit code: 0, 1 (a failure), 2 (bad
  * input) or APP_EXIT_INTERRUPTED (SIGINT or SIGTERM ended the run early;

@@ -1,5 +1,7 @@
 /* app_cli: parsing and validation of the meadow command line. Every bad
- * value gets one line naming the option, the value and the allowed range. */
+ * value gets one line naming the option, the value and the allowed range;
+ * options that set a scene value (--frames, --seed, --size,
+ * --raster-samples) take their range from the scene's key table. */
 #include "app/app.h"
 
 #include <errno.h>
@@ -18,7 +20,7 @@ void app_print_usage(void)
            "  --scene FILE          scene description (default scenes/meadow.json)\n"
            "  --headless            render offscreen through EGL (automatic without a display)\n"
            "  --frames N            frames to run (default 300 headless, unlimited in a window)\n"
-           "  --seed N              random seed (default: the scene's)\n"
+           "  --seed N              random seed, 0..4294967295 (default: the scene's)\n"
            "  --size WxH            framebuffer size, %d..%d per side (default: the scene's)\n"
            "  --out DIR             output folder for screenshots and summary (default out)\n"
            "  --screenshot-every N  write a PNG every N frames (default: 3 per headless run)\n"
@@ -60,7 +62,7 @@ void app_print_usage(void)
            "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
            "      F wireframe, 1/2/3 billboard/blade/hybrid, R hardware/compute raster, O overlays (state, LOD,\n"
            "      collision), H HUD, Esc quit\n",
-           APP_MIN_SIZE, APP_MAX_SIZE);
+           (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi);
 }
 
 static bool parse_int(const char *s, long lo, long hi, long *out)
@@ -72,6 +74,45 @@ static bool parse_int(const char *s, long lo, long hi, long *out)
     if (errno || *end || v < lo || v > hi) return false;
     *out = v;
     return true;
+}
+
+/* The value of an option that sets top-level scene key `key`: what the key
+ * accepts (scene_field_accepts, the scene's one limit table), 0 excepted
+ * where 0 would mean "the default" (give no option for that). On failure
+ * err says "OPTION 'VALUE': expected ... (scene key KEY)". */
+static bool scene_option(const char *opt, const char *v, const char *key, long *out, char *err, size_t err_size)
+{
+    const scene_field_t *f = scene_field_find(SCENE_SEC_ROOT, key);
+    char why[160];
+    long n;
+    if (parse_int(v, LONG_MIN, LONG_MAX, &n) && scene_field_accepts(f, (double)n, why, sizeof why) &&
+        !(n == 0 && (f->flags & SCENE_FIELD_ZERO_OK))) {
+        *out = n;
+        return true;
+    }
+    if (f->flags & SCENE_FIELD_ENDS)
+        snprintf(err, err_size, "%s '%s': expected %.10g or %.10g (scene key %s)", opt, v, f->lo, f->hi, key);
+    else
+        snprintf(err, err_size, "%s '%s': expected an integer in %.10g..%.10g (scene key %s)", opt, v, f->lo, f->hi,
+                 key);
+    return false;
+}
+
+/* --size WxH: each side what the scene key size accepts. */
+static bool size_option(const char *v, app_options_t *o, char *err, size_t err_size)
+{
+    const scene_field_t *f = scene_field_find(SCENE_SEC_ROOT, "size");
+    char extra, why[160];
+    long w, h;
+    if (sscanf(v, "%ldx%ld%c", &w, &h, &extra) == 2 && w != 0 && h != 0 &&
+        scene_field_accepts(f, (double)w, why, sizeof why) && scene_field_accepts(f, (double)h, why, sizeof why)) {
+        o->width = (int)w;
+        o->height = (int)h;
+        return true;
+    }
+    snprintf(err, err_size, "--size '%s': expected WxH with each side in %.10g..%.10g (scene key size)", v, f->lo,
+             f->hi);
+    return false;
 }
 
 int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t err_size)
@@ -192,43 +233,25 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->character_height = (float)h;
         } else if (strcmp(a, "--frames") == 0) {
             NEED_VALUE();
-            if (!parse_int(v, 1, APP_MAX_FRAMES, &n)) {
-                snprintf(err, err_size, "--frames '%s': expected an integer in 1..%d", v, APP_MAX_FRAMES);
-                return 2;
-            }
+            if (!scene_option(a, v, "frames", &n, err, err_size)) return 2;
             o->frames = (int)n;
             o->frames_set = true;
         } else if (strcmp(a, "--screenshot-every") == 0) {
             NEED_VALUE();
-            if (!parse_int(v, 0, APP_MAX_FRAMES, &n)) {
-                snprintf(err, err_size, "--screenshot-every '%s': expected an integer in 0..%d (0 = never)", v,
-                         APP_MAX_FRAMES);
+            long most = (long)scene_field_find(SCENE_SEC_ROOT, "frames")->hi;
+            if (!parse_int(v, 0, most, &n)) {
+                snprintf(err, err_size, "--screenshot-every '%s': expected an integer in 0..%ld (0 = never)", v, most);
                 return 2;
             }
             o->screenshot_every = (int)n;
         } else if (strcmp(a, "--seed") == 0) {
             NEED_VALUE();
-            errno = 0;
-            char *end;
-            unsigned long long s = strtoull(v, &end, 10);
-            if (errno || *end || !*v || v[0] == '-') {
-                snprintf(err, err_size, "--seed '%s': expected an unsigned 64-bit integer", v);
-                return 2;
-            }
-            o->seed = s;
+            if (!scene_option(a, v, "seed", &n, err, err_size)) return 2;
+            o->seed = (uint32_t)n;
             o->seed_set = true;
         } else if (strcmp(a, "--size") == 0) {
             NEED_VALUE();
-            char extra;
-            long w, h;
-            if (sscanf(v, "%ldx%ld%c", &w, &h, &extra) != 2 || w < APP_MIN_SIZE || h < APP_MIN_SIZE ||
-                w > APP_MAX_SIZE || h > APP_MAX_SIZE) {
-                snprintf(err, err_size, "--size '%s': expected WxH with each side in %d..%d", v, APP_MIN_SIZE,
-                         APP_MAX_SIZE);
-                return 2;
-            }
-            o->width = (int)w;
-            o->height = (int)h;
+            if (!size_option(v, o, err, err_size)) return 2;
         } else if (strcmp(a, "--blade-render") == 0) {
             NEED_VALUE();
             if (strcmp(v, "pull") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_PULL;
@@ -247,11 +270,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
             o->raster = 1 + (int)r;
         } else if (strcmp(a, "--raster-samples") == 0) {
             NEED_VALUE();
-            if (strcmp(v, "1") != 0 && strcmp(v, "4") != 0) {
-                snprintf(err, err_size, "--raster-samples '%s': expected 1 or 4", v);
-                return 2;
-            }
-            o->raster_samples = v[0] - '0';
+            if (!scene_option(a, v, "raster_samples", &n, err, err_size)) return 2;
+            o->raster_samples = (int)n;
         } else if (strcmp(a, "--mode") == 0) {
             NEED_VALUE();
             if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;

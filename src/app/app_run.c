@@ -21,7 +21,8 @@ typedef struct app_t {
     bool follow_path;
     bool paused, step_once, wireframe, hud;
     int overlay;
-    int frames, shot_every, shots_written;
+    int frames, shot_every, shots_written, shots_failed;
+    char shot_missing[64]; /* the first screenshot that could not be written */
     int frames_asked; /* --frames, when an interrupt ended the run early (frames: those done) */
     char out[1024];
     char shots[16][1100];
@@ -112,8 +113,11 @@ static void draw_hud(const app_t *app, double sim_time)
     int n = snprintf(text, sizeof text, "meadow  %s  %s raster  %.2f ms/frame  t=%.2fs%s%s\n",
                      scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw",
                      app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "", overlays[app->overlay]);
-    for (int i = 0; i < gfx_timer_count() && n < (int)sizeof text - 64; i++)
-        n += snprintf(text + n, sizeof text - (size_t)n, "%-12s %7.3f ms\n", gfx_timer_name(i), gfx_timer_last_ms(i));
+    app_hud_pass_t passes[GFX_TIMER_MAX_PASSES];
+    int count = gfx_timer_count();
+    for (int i = 0; i < count; i++)
+        passes[i] = (app_hud_pass_t){gfx_timer_name(i), gfx_timer_last_ms(i), gfx_timer_frames_since(i)};
+    if (n > 0 && n < (int)sizeof text) app_hud_timings(passes, count, text + n, sizeof text - (size_t)n);
     static const float white[4] = {1, 1, 1, 1}, shadow[4] = {0, 0, 0, 0.8f};
     gfx_text_draw(text, 11, 11, 2.0f, shadow);
     gfx_text_draw(text, 10, 10, 2.0f, white);
@@ -127,7 +131,23 @@ static void screenshot(app_t *app, int frame)
         if (app->shots_written < 16) snprintf(app->shots[app->shots_written], sizeof app->shots[0], "%s", path);
         app->shots_written++;
         core_log_info("wrote %s", path);
+    } else if (app->shots_failed++ == 0) {
+        snprintf(app->shot_missing, sizeof app->shot_missing, "shot-%06d.png", frame);
     }
+}
+
+/* One error line naming what a run promised and could not write (the
+ * summary, screenshots; disk full, a folder in the way); false when none. */
+static bool report_missing(const app_t *app, bool summary_ok)
+{
+    if (summary_ok && app->shots_failed == 0) return false;
+    char shots[160] = "";
+    if (app->shots_failed)
+        snprintf(shots, sizeof shots, "%s%d of %d screenshots (first %s)", summary_ok ? "" : " and ",
+                 app->shots_failed, app->shots_failed + app->shots_written, app->shot_missing);
+    core_log_error("%s: the run could not write %s%s; its output is incomplete", app->out,
+                   summary_ok ? "" : "summary.txt", shots);
+    return true;
 }
 
 static int summary_frame_times(const app_t *app, char *buf, size_t size)
@@ -249,7 +269,7 @@ static int summary_work(char *buf, size_t size)
     return n < (int)size ? n : (int)size - 1;
 }
 
-static void write_summary(app_t *app, double wall_s)
+static bool write_summary(app_t *app, double wall_s)
 {
     app_world_stats_t st;
     app_world_stats(&app->world, &st);
@@ -301,6 +321,14 @@ static void write_summary(app_t *app, double wall_s)
                   st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
+    const app_admit_t *ad = &app->world.admitted;
+    n += snprintf(buf + n, sizeof buf - (size_t)n, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
+                  ad->gpu_total / (1024.0 * 1024.0));
+    for (int k = 0; k < APP_ADMIT_PARTS; k++)
+        if (ad->gpu[k] > 0.0)
+            n += snprintf(buf + n, sizeof buf - (size_t)n, " %s %.1f", app_admit_part_name(k),
+                          ad->gpu[k] / (1024.0 * 1024.0));
+    n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
     if (app->world.scene.mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
@@ -338,8 +366,10 @@ static void write_summary(app_t *app, double wall_s)
     n += summary_seam(app, buf + n, sizeof buf - (size_t)n);
     char path[1100];
     snprintf(path, sizeof path, "%s/summary.txt", app->out);
-    if (core_fs_write_atomic(path, buf, (size_t)n)) core_log_info("wrote %s", path);
+    bool written = core_fs_write_atomic(path, buf, (size_t)n);
+    if (written) core_log_info("wrote %s", path);
     fputs(buf, stdout);
+    return written;
 }
 
 int app_run(const app_options_t *o, app_montage_fn montage)
@@ -349,7 +379,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     core_log_set_quiet(o->quiet);
     snprintf(app.out, sizeof app.out, "%s", o->out ? o->out : "out");
     char err[1024];
-    if (!core_fs_check_writable_dir(app.out, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(app.out, err, sizeof err) || !core_fs_lock_dir(app.out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
     }
@@ -375,11 +405,11 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     app.hud = !headless;
     gfx_init();
     app.target = (gfx_target_t){.w = s->size[0], .h = s->size[1]};
-    bool ok = app_world_fit_target(w, &app.target, "main");
     scene_camera_init(s, &app.cam);
     w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
                                      w->stage_ms[APP_STAGE_TERRAIN];
-    ok = ok && app_world_make_gpu(w);
+    /* The world first: its admission (app_admit) counts the target too. */
+    bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app.target, "main");
     if (ok && s->raster == SCENE_RASTER_AUTO) {
         app_view_t view;
         app_view_make(&view, &app.cam, app.target.w, app.target.h, 0.0f, (float)s->dt);
@@ -471,7 +501,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     app.frames = frame;
     if (ok) {
         gfx_timer_flush();
-        write_summary(&app, plat_time() - t0);
+        if (report_missing(&app, write_summary(&app, plat_time() - t0))) rc = 1;
     }
     if (ok && headless && o->montage) {
         /* The same frame in billboard, blade and hybrid modes (and the

@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "app/app_admit.h"
 #include "core/core.h"
 #include "platform/plat.h"
 #include "scene/scene_lod.h"
@@ -49,6 +50,13 @@ static bool tile_admission(const app_world_t *w)
     double tiles = ceil(sx / g->tile_size) * ceil(sz / g->tile_size);
     double per_tile = (double)g->density * g->tile_size * g->tile_size;
     if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || g->density <= 0.0f)) return true;
+    if (tiles <= HYBRID_MAX_TILES && g->density < SCENE_DEFAULT_DENSITY) {
+        core_log_error("%s: grass.density %g puts %.3g blades on a tile of grass.tile_size %g m, less than one: the "
+                       "smallest grass.density that fits is %.3g (or a tile_size of %.3g m)",
+                       w->scene_path, g->density, per_tile, g->tile_size,
+                       ceil(1e3 / (g->tile_size * g->tile_size)) / 1e3, ceil(1e3 / sqrt(g->density)) / 1e3);
+        return false;
+    }
     double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), g->density > 0.0f ? 1.0 / sqrt(g->density) : 0.0);
     core_log_error("%s: grass.tile_size %g m cuts the %.0f x %.0f m field into %.3g tiles of %.3g blades; the "
                    "hybrid holds at most %d tiles of at least one blade: the smallest tile_size that fits is %.3g m",
@@ -88,6 +96,15 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         return 2;
     }
     stage_done(w, APP_STAGE_SCENE, &mark);
+    /* Before the heightfield is built: its host and GPU copies, the targets
+     * (app_admit; the rest is checked once the GL is up, which takes some
+     * memory of its own: APP_ADMIT_GL_RESERVE). */
+    if (!app_admit_check(s, &(app_admit_world_t){0},
+                         &(app_admit_limits_t){.host_bytes = app_admit_host_bytes() - APP_ADMIT_GL_RESERVE}, err,
+                         sizeof err)) {
+        core_log_error("%s: %s", w->scene_path, err);
+        return 2;
+    }
     if (s->terrain.type == TERRAIN_MESH) {
         char mesh[1024];
         if (!core_fs_resolve(s->terrain.mesh, mesh, sizeof mesh)) snprintf(mesh, sizeof mesh, "%s", s->terrain.mesh);
@@ -193,6 +210,19 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
     return dropped;
 }
 
+/* Largest bounding radius of a collider or character (grass.cube_texel). */
+static float largest_object_radius(app_world_t *w)
+{
+    float r = 0.0f;
+    for (int i = 0; i < w->scene.collider_count; i++) r = fmaxf(r, collide_bounding_radius(&w->scene.colliders[i]));
+    if (w->have_chars) {
+        character_object_t co[COLLIDE_MAX_OBJECTS];
+        int n = character_set_objects(&w->chars, co, COLLIDE_MAX_OBJECTS);
+        for (int i = 0; i < n && i < COLLIDE_MAX_OBJECTS; i++) r = fmaxf(r, co[i].radius);
+    }
+    return r;
+}
+
 /* The collision cube-map side: grass.cube_resolution, raised (grass.cube_texel
  * > 0) until the largest collider or character, of bounding radius r, has
  * texels 2 r / res no larger than cube_texel (large_bb in the stability
@@ -203,13 +233,7 @@ static int cube_resolution_for(app_world_t *w)
     const scene_grass_desc_t *g = &w->scene.grass;
     int res = g->cube_resolution;
     if (g->cube_texel <= 0.0f) return res;
-    float r = 0.0f;
-    for (int i = 0; i < w->colliders.count; i++) r = fmaxf(r, w->colliders.items[i].bound_radius);
-    if (w->have_chars) {
-        character_object_t co[COLLIDE_MAX_OBJECTS];
-        int n = character_set_objects(&w->chars, co, COLLIDE_MAX_OBJECTS);
-        for (int i = 0; i < n && i < COLLIDE_MAX_OBJECTS; i++) r = fmaxf(r, co[i].radius);
-    }
+    float r = largest_object_radius(w);
     int want = (int)ceilf(2.0f * r / g->cube_texel);
     GLint max_size = 4096;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
@@ -294,8 +318,21 @@ static bool uses_tiles(const app_world_t *w)
     return w->mode == SCENE_MODE_HYBRID && !w->reference && w->terrain_mesh.grid_res > 0;
 }
 
-/* Blades of a full (blade-mode) field: 50M x 68 B = 3.4 GB of GPU state. */
-#define APP_MAX_FIELD_BLADES 50000000
+/* m^2 of the terrain's surface. */
+static double terrain_area(const terrain_mesh_t *t)
+{
+    double area = 0;
+    for (uint32_t i = 0; i + 2 < t->index_count; i += 3) {
+        const float *a = t->positions + 3 * t->indices[i], *b = t->positions + 3 * t->indices[i + 1],
+                    *c = t->positions + 3 * t->indices[i + 2];
+        vec3 e1, e2, n;
+        glm_vec3_sub((float *)b, (float *)a, e1);
+        glm_vec3_sub((float *)c, (float *)a, e2);
+        glm_vec3_cross(e1, e2, n);
+        area += 0.5 * glm_vec3_norm(n);
+    }
+    return area;
+}
 
 static bool make_blades(app_world_t *w)
 {
@@ -310,27 +347,7 @@ static bool make_blades(app_world_t *w)
                             .height_min = g->height[0], .height_max = g->height[1],
                             .width_min = g->width[0], .width_max = g->width[1],
                             .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
-                            .max_blades = APP_MAX_FIELD_BLADES};
-    /* The full field keeps every blade on the GPU: refuse, with the numbers,
-     * fields beyond APP_MAX_FIELD_BLADES instead of failing deep inside. */
-    double area = 0;
-    for (uint32_t i = 0; i + 2 < t->index_count; i += 3) {
-        const float *a = t->positions + 3 * t->indices[i], *b = t->positions + 3 * t->indices[i + 1],
-                    *c = t->positions + 3 * t->indices[i + 2];
-        vec3 e1, e2, n;
-        glm_vec3_sub((float *)b, (float *)a, e1);
-        glm_vec3_sub((float *)c, (float *)a, e2);
-        glm_vec3_cross(e1, e2, n);
-        area += 0.5 * glm_vec3_norm(n);
-    }
-    if (area * g->density > (double)APP_MAX_FIELD_BLADES) {
-        core_log_error("%s: grass.density %g over %.0f m^2 of terrain is %.3g blades, more than the %d a full blade "
-                       "field holds (%.1f GB): lower grass.density or terrain.size, or use mode hybrid",
-                       w->scene_path, g->density, area, area * g->density, APP_MAX_FIELD_BLADES,
-                       (double)APP_MAX_FIELD_BLADES * 68.0 / 1e9);
-        w->input_error = true;
-        return false;
-    }
+                            .max_blades = APP_ADMIT_MAX_FIELD_BLADES};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
@@ -348,6 +365,8 @@ static bool make_blades(app_world_t *w)
     blade_field_free(&field);
     return w->have_blades;
 }
+
+_Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the blade physics");
 
 /* The blade environment shared by the full field and the tiles. */
 static void make_blade_env(app_world_t *w)
@@ -374,9 +393,6 @@ static void make_blade_env(app_world_t *w)
                 ? blade_wind_point(sw->position, sw->strength, sw->radius)
                 : blade_wind_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
     }
-    if (s->wind_count > BLADE_MAX_WINDS)
-        core_log_warn("blades: %d wind fields, the blade physics takes %d: the rest are ignored", s->wind_count,
-                      BLADE_MAX_WINDS);
 }
 
 /* Billboards -> blades hand-over: the deformed billboards of the moment
@@ -461,8 +477,8 @@ static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max
 }
 
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
- * with its sweep, then the characters'). More than BLADE_MAX_SPHERES is
- * reported once. */
+ * with its sweep, then the characters'). Admission (app_admit) keeps them
+ * within BLADE_MAX_SPHERES. */
 static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
@@ -484,9 +500,6 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
         full = want > max - n;
         n += full ? max - n : want;
     }
-    if (full && !w->warned_spheres)
-        core_log_warn("blades: colliders need more than %d spheres: the rest do not bend blades", max);
-    w->warned_spheres = w->warned_spheres || full;
     return n;
 }
 
@@ -533,10 +546,54 @@ static void apply_lod_table(app_world_t *w)
     core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, w->lod_note);
 }
 
+_Static_assert(APP_ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "app_admit's raster queue estimate");
+_Static_assert(APP_ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "app_admit's object count is a collide set's");
+_Static_assert(APP_ADMIT_MAX_SPHERES == BLADE_MAX_SPHERES, "app_admit's sphere count is the blade physics'");
+
+/* Resource admission (app_admit.h) once the GL's limits are known, before
+ * any grass is allocated: a scene that does not fit is bad input. */
+static bool admit(app_world_t *w)
+{
+    gfx_limits_t gl = gfx_limits();
+    app_admit_limits_t lim = {.max_texture_size = gl.max_texture_size,
+                              .max_renderbuffer_size = gl.max_renderbuffer_size,
+                              .max_gs_vertices = gl.max_gs_vertices,
+                              .max_gs_components = gl.max_gs_components,
+                              .max_compute_groups = gl.max_compute_groups,
+                              .gpu_bytes = 0.9 * gl.gpu_bytes,
+                              .host_bytes = app_admit_host_bytes()};
+    app_admit_world_t aw = {.terrain = &w->terrain_mesh,
+                            .terrain_area = terrain_area(&w->terrain_mesh),
+                            .billboards = wants_bb(w->mode) && !w->reference,
+                            .tiles = uses_tiles(w),
+                            .full_field = (wants_blades(w->mode) && !uses_tiles(w)) || w->reference,
+                            .raster = w->scene.raster != SCENE_RASTER_HW,
+                            .target_samples = gfx_target_samples(app_world_target_samples(w)),
+                            .collider_radius = largest_object_radius(w),
+                            .max_texture_size = gl.max_texture_size,
+                            .objects = w->scene.collider_count +
+                                       (w->scene.character_count ? w->scene.character_count
+                                                                 : w->character_override != NULL)};
+    static int spheres[SCENE_MAX_COLLIDERS];
+    static float packed[BLADE_MAX_SPHERES][4];
+    for (int i = 0; i < w->scene.collider_count; i++)
+        spheres[i] = collide_pack_spheres(&w->scene.colliders[i], (float[3]){0}, packed, BLADE_MAX_SPHERES);
+    aw.collider_spheres = spheres;
+    aw.character_spheres = w->have_chars ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
+    char err[1024];
+    app_admit_estimate(&w->scene, &aw, &w->admitted);
+    if (app_admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
+    core_log_error("%s: %s", w->scene_path, err);
+    w->input_error = true;
+    return false;
+}
+
 bool app_world_make_gpu(app_world_t *w)
 {
     double mark = plat_time();
-    w->gpu_ready = app_terrain_make(&w->terrain, &w->terrain_mesh) && app_colliders_make(&w->colliders, &w->scene);
+    apply_lod_table(w);
+    w->gpu_ready = admit(w) && app_terrain_make(&w->terrain, &w->terrain_mesh) &&
+                   app_colliders_make(&w->colliders, &w->scene);
     if (w->gpu_ready && w->scene.grass.gi) w->gpu_ready = app_gi_make(w);
     stage_done(w, APP_STAGE_TERRAIN_GPU, &mark);
     if (w->gpu_ready && !w->scene.character_count && !w->character_override &&
@@ -560,8 +617,10 @@ bool app_world_make_gpu(app_world_t *w)
         w->gpu_ready = w->have_chars;
     }
     stage_done(w, APP_STAGE_CHARACTERS, &mark);
-    w->cube_res = cube_resolution_for(w);
-    apply_lod_table(w);
+    /* Again with the characters: their size (grass.cube_texel scales the
+     * cube maps by it) and their sphere proxies in the blade physics. */
+    if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
+    if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
     if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
@@ -581,10 +640,9 @@ bool app_world_make_gpu(app_world_t *w)
 
 /* This step's objects of the collide set: every analytic collider (its
  * mesh VAO has position at attribute 0 and normal at 1), then every
- * character. More than the set holds are reported once; the first win. */
+ * character. Admission (app_admit) keeps them within the set. */
 static void add_objects(app_world_t *w, collide_set_t *set, float dt)
 {
-    int total = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
         const app_collider_t *c = &w->colliders.items[i];
@@ -606,13 +664,7 @@ static void add_objects(app_world_t *w, collide_set_t *set, float dt)
             memcpy(o.centre, co[i].centre, sizeof o.centre);
             collide_add_object(set, &o, dt);
         }
-        full = want > room;
     }
-    if (full && !w->warned_objects)
-        core_log_warn("colliders: %d colliders and characters, a collide set holds at most %d "
-                      "(COLLIDE_MAX_OBJECTS): the rest do not bend grass",
-                      total, COLLIDE_MAX_OBJECTS);
-    w->warned_objects = w->warned_objects || full;
 }
 
 /* Cube-map proxies of the blade physics (tuning.blade_cube_proxies; beyond

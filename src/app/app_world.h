@@ -8,6 +8,7 @@
 #include <cglm/cglm.h>
 
 #include "app/app.h"
+#include "app/app_admit.h"
 #include "gfx/gfx.h"
 #include "scene/camera.h"
 #include "scene/terrain.h"
@@ -157,7 +158,6 @@ typedef struct app_world_t {
                               (cube_resolution_for) */
     GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
                               (blade_gpu_upload_cubes; owned by blades) */
-    bool warned_spheres;
     /* Grass through the compute rasterizer (scene "raster" compute, or auto
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
@@ -183,7 +183,7 @@ typedef struct app_world_t {
      * start-up; gi.ao.id 0 when off. */
     gi_gpu_t gi;
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
-    bool warned_objects;
+    app_admit_t admitted; /* the memory and work estimate the run was admitted with (app_admit.h) */
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;
     double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */

@@ -683,7 +683,7 @@ static int make_references(const app_options_t *oh, int frames, const char *out,
     static const char *names[3] = {"reference", "background", "floor"};
     for (int i = 0; i < 3; i++) {
         snprintf(path, sizeof path, "%s/frames/%s.png", out, names[i]);
-        if (!core_image_write_png(fixed[i], path)) core_log_warn("bench: cannot write %s", path);
+        if (!core_image_write_png(fixed[i], path)) return 1; /* logged with the path and why */
     }
     const eval_image_desc_t ed = {.background = bg};
     double f[SWEEP_RUNS];
@@ -747,7 +747,7 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const core
             b->ssim_err[i] = 1.0 - eval_image_ssim(&img, &refs[0]);
             char path[1200];
             snprintf(path, sizeof path, "%s/frames/%s_%s.png", out, c->group, c->label);
-            if (!core_image_write_png(&img, path)) core_log_warn("bench: cannot write %s", path);
+            if (!core_image_write_png(&img, path)) rc = 1; /* logged; the sweep stops: its output is incomplete */
         } else if (acc->runs[k].frame_ms < b->met[i].frame_ms) {
             keep_timing(&b->met[i], &acc->runs[k]);
         }
@@ -1086,7 +1086,7 @@ int bench_run(const app_options_t *o)
     if (o->perf || o->baseline) return bench_perf_main(o);
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
-    if (!core_fs_check_writable_dir(out, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
     }

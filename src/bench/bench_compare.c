@@ -31,7 +31,7 @@ int bench_compare(const app_options_t *o)
 {
     char out[1024], err[1024];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
-    if (!core_fs_check_writable_dir(out, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
     }
@@ -75,7 +75,7 @@ int bench_compare_write(const app_options_t *o, const char *out, int frames)
         rc = bench_session_run(&d, &img[i], &met[i]);
         if (rc == 0) {
             snprintf(path, sizeof path, "%s/compare-%s.png", out, panels[i].name);
-            core_image_write_png(&img[i], path);
+            if (!core_image_write_png(&img[i], path)) rc = 1; /* logged with the path and why */
         }
     }
     if (rc == 0) {

@@ -544,7 +544,7 @@ static int measure_and_write(const app_options_t *o, bench_perf_t *p, char *json
 {
     char err[1024];
     const char *dir = o->perf ? o->perf : o->out ? o->out : "out/bench";
-    if (!core_fs_check_writable_dir(dir, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(dir, err, sizeof err) || !core_fs_lock_dir(dir, err, sizeof err)) {
         core_log_error("%s: %s", o->perf ? "--perf" : "--out", err);
         return 2;
     }

@@ -140,7 +140,7 @@ static bool upload_layout(bb_field_t *f)
                                                            .layers = array_layers, .mip_levels = -1, .data = all,
                                                            .label = "bb.clumps"});
     } else {
-        core_log_error("%s:%d: out of memory for %d clump images", __FILE__, __LINE__, array_layers);
+        core_log_error("out of memory for %d clump images", array_layers);
     }
     free(all);
     f->gen.layers = (uint32_t)layers;
@@ -280,7 +280,7 @@ static bb_gen_tri_t *mesh_tris(const terrain_mesh_t *t, float spacing, int *seed
     uint32_t n = t->index_count / 3;
     bb_gen_tri_t *tris = malloc(sizeof *tris * (size_t)n);
     if (!tris) {
-        core_log_error("%s:%d: out of memory for %u terrain triangles", __FILE__, __LINE__, n);
+        core_log_error("out of memory for %u terrain triangles", n);
         return NULL;
     }
     *seeding = 0, *cells = 0.0;
@@ -418,7 +418,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t 
                                    : grid_entries(f, t, tile, &nentries, &vertices);
     if (!counts || !entries) {
         free(counts), free(entries);
-        core_log_error("%s:%d: out of memory for generation", __FILE__, __LINE__);
+        core_log_error("out of memory for generation");
         return false;
     }
     gfx_buffer_t tri_buf = {0};
@@ -499,8 +499,8 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t 
     for (int k = 0; k < tr->leaf_count; k++) total += counts[k];
     bool ok = true;
     if (total != written || total > (uint64_t)f->capacity) {
-        core_log_error("%s:%d: billboard generation overflow: %llu billboards counted, %u captured, "
-                       "buffer holds %d", __FILE__, __LINE__, (unsigned long long)total, written, f->capacity);
+        core_log_error("billboard generation overflow: %llu billboards counted, %u captured, "
+                       "buffer holds %d", (unsigned long long)total, written, f->capacity);
         ok = false;
     }
     f->billboards = (int)written;
@@ -518,8 +518,7 @@ static bool generate(bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t 
         bb_octree_assign(tr, (const float (*)[3])pos, (int)total, order);
         for (size_t q = 0; q < total; q++) assert(order[q] == q);
     } else if (ok) {
-        core_log_error("%s:%d: out of memory for %llu billboard ranges", __FILE__, __LINE__,
-                       (unsigned long long)total);
+        core_log_error("out of memory for %llu billboard ranges", (unsigned long long)total);
         ok = false;
     }
     if (tris)
@@ -542,7 +541,7 @@ static bool read_spheres(bb_field_t *f)
     bb_point_t *pts = malloc(sizeof *pts * CHUNK);
     if (!f->spheres || !pts) {
         free(pts);
-        core_log_error("%s:%d: out of memory for %d billboard spheres", __FILE__, __LINE__, f->billboards);
+        core_log_error("out of memory for %d billboard spheres", f->billboards);
         return false;
     }
     for (int i0 = 0; i0 < f->billboards; i0 += CHUNK) {
@@ -612,8 +611,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     assert(t && t->positions && t->index_count >= 3);
     if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < SCENE_SUBDIV_MIN || d->subdiv[0] > SCENE_SUBDIV_MAX ||
         d->subdiv[1] < SCENE_SUBDIV_MIN || d->subdiv[1] > SCENE_SUBDIV_MAX || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
-        core_log_error("%s:%d: bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
-                       "(at most %d) out of range", __FILE__, __LINE__, d->max_objects, BB_MAX_OBJECTS,
+        core_log_error("bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
+                       "(at most %d) out of range", d->max_objects, BB_MAX_OBJECTS,
                        d->subdiv[0], d->subdiv[1], SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
         return false;
     }
@@ -627,8 +626,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
      * BB_GI g_amb_front and g_amb_back (3 each) too. */
     int comps = render_verts * (d->gi ? 22 : 16);
     if (render_verts > max_verts || comps > max_comps) {
-        core_log_error("%s:%d: bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
-                       "this GPU allows %d (%d)", __FILE__, __LINE__, n, m, render_verts, comps,
+        core_log_error("bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
+                       "this GPU allows %d (%d)", n, m, render_verts, comps,
                        d->gi ? " with grass.gi" : "", max_verts, max_comps);
         return false;
     }
@@ -657,8 +656,8 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
         goto fail;
     }
     if (cap > (double)(1u << 26)) {
-        core_log_error("%s:%d: bb_field_make: %.0f candidate billboards exceed the limit of %u; lower the density",
-                       __FILE__, __LINE__, cap, 1u << 26);
+        core_log_error("bb_field_make: %.0f candidate billboards exceed the limit of %u; lower grass.billboard_density",
+                       cap, 1u << 26);
         goto fail;
     }
     f->capacity = (int)cap > 0 ? (int)cap : 1;
@@ -677,7 +676,7 @@ bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc)
     f->counts_gl = malloc(sizeof *f->counts_gl * (size_t)f->tree.leaf_count);
     f->recover_ranges = malloc(sizeof *f->recover_ranges * 4 * (size_t)f->tree.leaf_count);
     if (!f->ranges || !f->sort_keys || !f->firsts || !f->counts_gl || !f->recover_ranges) {
-        core_log_error("%s:%d: out of memory", __FILE__, __LINE__);
+        core_log_error("out of memory");
         goto fail;
     }
 
@@ -1017,7 +1016,7 @@ static bool plan_batches(bb_field_t *f, int ncol, const bb_bound_t *bounds, int 
         bool ok = n <= limit ? n == 0 || plan_add(pl, limit, (GLint)r->first, (GLsizei)r->count, objs, n)
                              : plan_split_leaf(f, limit, r, bounds, objs, n);
         if (!ok) {
-            core_log_error("%s:%d: out of memory for %d collide batches", __FILE__, __LINE__, pl->count);
+            core_log_error("out of memory for %d collide batches", pl->count);
             return false;
         }
     }
@@ -1094,7 +1093,7 @@ static bool collide_batches(bb_field_t *f, const bb_object_gpu_t *gpu)
     }
     uint8_t *staging = calloc(need, 1);
     if (!staging) {
-        core_log_error("%s:%d: out of memory for %d collide batches", __FILE__, __LINE__, pl->count);
+        core_log_error("out of memory for %d collide batches", pl->count);
         return false;
     }
     for (int b = 0; b < pl->count; b++) {

@@ -652,18 +652,18 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
         ok = core_image_alloc(&layout->clumps[k], d.clump_size, d.clump_size, 4) &&
              core_image_alloc(&layout->clump_light[k], d.clump_size, d.clump_size, 4);
     if (!ok) {
-        core_log_error("%s:%d: out of memory for billboard layout textures", __FILE__, __LINE__);
+        core_log_error("out of memory for billboard layout textures");
         bb_layout_free(layout);
         return false;
     }
     if (!bb_layout_maps(layout, d.seed, &d.extent)) {
-        core_log_error("%s:%d: out of memory for the billboard layout's noise", __FILE__, __LINE__);
+        core_log_error("out of memory for the billboard layout's noise");
         bb_layout_free(layout);
         return false;
     }
     for (int k = 0; ok && k < d.clump_layers; k++) ok = bb_clump_draw(layout, d.seed, k, d.blades, &d.clump);
     if (!ok) {
-        core_log_error("%s:%d: out of memory drawing the clump layers", __FILE__, __LINE__);
+        core_log_error("out of memory drawing the clump layers");
         bb_layout_free(layout);
     }
     return ok;

@@ -45,7 +45,7 @@ bool bb_octree_build(bb_octree_t *tree, const bb_octree_desc_t *desc)
     float ext = 0.0f;
     for (int a = 0; a < 3; a++) {
         if (!(d.max[a] > d.min[a])) {
-            core_log_error("%s:%d: octree AABB axis %d is empty (%g..%g)", __FILE__, __LINE__, a,
+            core_log_error("octree AABB axis %d is empty (%g..%g)", a,
                            (double)d.min[a], (double)d.max[a]);
             return false;
         }
@@ -78,7 +78,7 @@ bool bb_octree_build(bb_octree_t *tree, const bb_octree_desc_t *desc)
     tree->timer = calloc(n, sizeof *tree->timer);
     if (!tree->lo || !tree->hi || !tree->first || !tree->count || !tree->state || !tree->mask ||
         !tree->timer) {
-        core_log_error("%s:%d: out of memory for an octree of %d nodes", __FILE__, __LINE__, count);
+        core_log_error("out of memory for an octree of %d nodes", count);
         bb_octree_free(tree);
         return false;
     }

@@ -21,7 +21,7 @@ bool bb_mesh_init_quad(bb_mesh_t *mesh, const vec3 root_centre, const vec3 right
     mesh->pos = malloc(sizeof(vec3) * (size_t)n * (size_t)m);
     mesh->rest = malloc(sizeof(vec3) * (size_t)n * (size_t)m);
     if (!mesh->pos || !mesh->rest) {
-        core_log_error("%s:%d: out of memory for a %dx%d billboard mesh", __FILE__, __LINE__, n, m);
+        core_log_error("out of memory for a %dx%d billboard mesh", n, m);
         bb_mesh_free(mesh);
         return false;
     }

@@ -79,8 +79,7 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->visible_patches = calloc(np, sizeof *g->visible_patches);
     g->patch_order = calloc(np, sizeof *g->patch_order);
     if (!g->patch_aabbs || !g->patch_real || !g->visible_patches || !g->patch_order) {
-        core_log_error("%s:%d: blade_gpu_make: out of memory (%u patches)", __FILE__, __LINE__,
-                       g->patch_count);
+        core_log_error("blade_gpu_make: out of memory (%u patches)", g->patch_count);
         blade_gpu_destroy(g);
         return false;
     }
@@ -130,8 +129,7 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->vao = gfx_vertex_array_make(label);
     ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->vao;
     if (!ok) {
-        core_log_error("%s:%d: blade_gpu_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
-                       g->desc.label);
+        core_log_error("blade_gpu_make: could not create the GL objects of '%s'", g->desc.label);
         blade_gpu_destroy(g);
         return false;
     }
@@ -218,8 +216,7 @@ GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, in
                                                                .layers = 6 * count, .format = GL_RGBA32F,
                                                                .filter = GL_NEAREST, .label = label});
         if (!g->own_cubes.id) {
-            core_log_error("%s:%d: blade_gpu_upload_cubes: cannot make a %dx%d x %d texture", __FILE__, __LINE__,
-                           res, res, 6 * count);
+            core_log_error("blade_gpu_upload_cubes: cannot make a %dx%d x %d texture", res, res, 6 * count);
             return 0;
         }
     }

@@ -54,7 +54,10 @@ blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
     if (d.gravity <= 0.0f) d.gravity = SCENE_DEFAULT_BLADE_GRAVITY;
     if (d.rows <= 0) d.rows = 16;
     if (d.rays <= 0) d.rays = 4096;
-    if (d.patch <= 0.0f) d.patch = 2.0f;
+    /* A denser field gets a smaller patch of at most BLADE_CANOPY_PATCH_BLADES
+     * blades: every ray meets the blades of its strip, so the bake grew with
+     * the density (10,000 blades/m^2 took 47 s on 2 cores for 2 m). */
+    if (d.patch <= 0.0f) d.patch = fminf(2.0f, sqrtf(BLADE_CANOPY_PATCH_BLADES / d.density));
     return d;
 }
 

@@ -27,6 +27,7 @@
 
 /* Zero means default; defaults marked (scene) are SCENE_DEFAULT_* of
  * scene/scene_fields.h (scene key in brackets). */
+#define BLADE_CANOPY_PATCH_BLADES 2048.0f
 typedef struct blade_canopy_desc_t {
     float density;      /* blades per m^2, default 200 (scene, grass.density) */
     float height[2];    /* [min, max] m, default [0.35, 0.7] (scene, grass.height) */
@@ -37,7 +38,8 @@ typedef struct blade_canopy_desc_t {
     uint32_t seed;      /* any value (0 included) */
     int rows;           /* view elevations, default 16, at most BLADE_CANOPY_MAX_ROWS */
     int rays;           /* rays per row, default 4096 */
-    float patch;        /* side of the periodic patch, m, default 2 */
+    float patch;        /* side of the periodic patch, m, default 2, smaller where
+                           the density puts more than BLADE_CANOPY_PATCH_BLADES in it */
     float sun[3];       /* towards the sun, required (unit: normalised here) */
 } blade_canopy_desc_t;
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);

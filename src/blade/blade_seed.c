@@ -298,7 +298,7 @@ static int cmp_key(const void *a, const void *b)
 
 static bool fail(blade_field_t *out, const char *msg, size_t a, size_t b)
 {
-    core_log_error("%s:%d: blade_seed_mesh: %s (%zu, %zu)", __FILE__, __LINE__, msg, a, b);
+    core_log_error("blade_seed_mesh: %s (%zu, %zu)", msg, a, b);
     blade_field_free(out);
     return false;
 }

@@ -53,7 +53,11 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
     d.cull = blade_cull_desc_defaults(&d.cull);
     d.cull.eye_distance = true; /* the hybrid's one switch distance (tiles_cull.comp) */
-    if (d.slope_cells_per_tile <= 0) d.slope_cells_per_tile = (int)fmaxf(1.0f, roundf(d.tile_size / 0.5f));
+    /* Half-metre cells, finer where a cell would hold more blades than
+     * HYBRID_SLOPE_MAX_PER_CELL (dense grass on large tiles). */
+    if (d.slope_cells_per_tile <= 0)
+        d.slope_cells_per_tile = (int)fmaxf(fmaxf(1.0f, roundf(d.tile_size / 0.5f)),
+                                            ceilf(d.tile_size * sqrtf(d.density / (float)HYBRID_SLOPE_MAX_PER_CELL)));
     if (d.slope_recover <= 0.0f) d.slope_recover = SCENE_DEFAULT_RECOVER_TIME;
     if (!d.label) d.label = "tiles";
     assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
@@ -73,10 +77,12 @@ static uint32_t template_blades(const blade_tiles_desc_t *d)
 
 /* Most tiles whose nearest point can be within r of one camera position:
  * offsets (di, dj) from the camera's tile whose gap T * max(|d| - 1, 0)
- * per axis stays below r. */
+ * per axis stays below r. Offsets past twice the grid's larger side are not
+ * visited: a reach that long already counts more offsets than the grid has
+ * tiles, the cap below (a 1 km reach over 4 cm tiles looped 2.5e9 times). */
 static int max_tiles_within(float r, float tile, int nx, int nz)
 {
-    int k = (int)ceilf(r / tile) + 1, count = 0;
+    int k = (int)fminf(ceilf(r / tile) + 1.0f, 2.0f * (float)(nx > nz ? nx : nz) + 2.0f), count = 0;
     for (int dj = -k; dj <= k; dj++)
         for (int di = -k; di <= k; di++) {
             float gx = tile * fmaxf((float)abs(di) - 1.0f, 0.0f), gz = tile * fmaxf((float)abs(dj) - 1.0f, 0.0f);
@@ -236,7 +242,7 @@ static bool seed_templates(blade_tiles_t *t)
                                 .stiffness_min = d->stiffness_min, .stiffness_max = d->stiffness_max};
         if (!blade_seed_mesh(&mesh, &sd, &f)) return false;
         if (f.padded_count != B) {
-            core_log_error("%s:%d: blade_tiles: template %d has %zu blades, expected %u", __FILE__, __LINE__, k,
+            core_log_error("blade_tiles: template %d has %zu blades, expected %u", k,
                            f.padded_count, B);
             blade_field_free(&f);
             return false;
@@ -256,8 +262,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->desc.terrain = NULL;
     t->desc.cull.depth = NULL;
     if (!m || m->grid_res <= 0) {
-        core_log_error("%s:%d: blade_tiles_make: the terrain must be a heightfield (mesh terrains: use blade_gpu)",
-                       __FILE__, __LINE__);
+        core_log_error("blade_tiles_make: the terrain must be a heightfield (mesh terrains: use blade_gpu)");
         return false;
     }
     const blade_tiles_desc_t *d = &t->desc;
@@ -303,7 +308,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     }
     ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
     if (!ok || !seed_templates(t)) {
-        core_log_error("%s:%d: blade_tiles_make: out of memory or seeding failed", __FILE__, __LINE__);
+        core_log_error("blade_tiles_make: out of memory or seeding failed");
         blade_tiles_destroy(t);
         return false;
     }
@@ -361,9 +366,9 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->slope_grid = hybrid_slope_grid(t->field_min[0], t->field_min[1], d->tile_size, t->grid.nx, t->grid.nz, cpt);
     float per_cell = d->density * t->slope_grid.cell * t->slope_grid.cell;
     if (per_cell > (float)HYBRID_SLOPE_MAX_PER_CELL) {
-        core_log_error("%s:%d: blade_tiles_make: %.0f blades per slope cell, at most %d: raise "
-                       "slope_cells_per_tile",
-                       __FILE__, __LINE__, per_cell, HYBRID_SLOPE_MAX_PER_CELL);
+        core_log_error("blade_tiles_make: %.0f blades per slope cell, at most %d (the default "
+                       "blade_tiles_desc_t.slope_cells_per_tile keeps within it)",
+                       per_cell, HYBRID_SLOPE_MAX_PER_CELL);
         blade_tiles_destroy(t);
         return false;
     }
@@ -399,8 +404,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->vao = gfx_vertex_array_make(label);
     ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
     if (!ok) {
-        core_log_error("%s:%d: blade_tiles_make: could not create the GL objects of '%s'", __FILE__, __LINE__,
-                       d->label);
+        core_log_error("blade_tiles_make: could not create the GL objects of '%s'", d->label);
         blade_tiles_destroy(t);
         return false;
     }
@@ -834,7 +838,8 @@ blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait)
         memcpy(t->stats.culled, &v[RING_CULLED], sizeof t->stats.culled);
         t->stats.tile_culled = t->ring_tile_culled[r];
         if (over && !t->warned_overflow)
-            core_log_warn("blade_tiles: %u blades did not fit the draw buffer (%u); raise draw_capacity", over,
+            core_log_warn("blade_tiles: %u blades did not fit the draw buffer (%u, blade_tiles_desc_t.draw_capacity; "
+                          "its default holds every blade of the tiles in reach)", over,
                           t->draw_capacity);
         t->warned_overflow = t->warned_overflow || over;
     }

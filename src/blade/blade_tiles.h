@@ -76,8 +76,9 @@
  *                    blade of every tile that can be within
  *                    switch_distance + 1 m of the camera (worst case)
  *   slope_cells_per_tile  slope cells per tile side: default the nearest
- *                    count to 0.5 m cells (at least 1); more than
- *                    HYBRID_SLOPE_MAX_PER_CELL blades per cell is an error
+ *                    count to 0.5 m cells (at least 1), more where a cell
+ *                    would hold more than HYBRID_SLOPE_MAX_PER_CELL blades
+ *                    (an explicit count that does is an error)
  *   slope_recover    R of the hand-over (the billboards' recover time) and
  *                    how long a tile may carry deformation: default 3 s
  *                    (scene, grass.recover_time)

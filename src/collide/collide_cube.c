@@ -37,7 +37,7 @@ bool collide_init_cubemap(collide_cubemap_t *cube, int res, const vec3 centre, f
     memset(cube, 0, sizeof *cube);
     cube->texels = malloc(sizeof(float) * 4u * 6u * (size_t)res * (size_t)res);
     if (!cube->texels) {
-        core_log_error("%s:%d: out of memory for a %d^2 cube map", __FILE__, __LINE__, res);
+        core_log_error("out of memory for a %d^2 cube map", res);
         return false;
     }
     cube->res = res;

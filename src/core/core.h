@@ -58,6 +58,13 @@ bool core_fs_mkdirs(const char *path);
 /* Creates dir (mkdir -p) and proves it is writable by writing and removing a
  * probe file. Returns false with a reason in err. */
 bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size);
+/* Claims dir for this process until it exits: an exclusive flock(2) on
+ * dir/CORE_FS_LOCK_NAME (which then holds the process id), released by the
+ * kernel when the process ends, however it ends. A folder this process
+ * already holds is fine. Returns false with a reason in err when another
+ * process holds it (two runs writing one folder mixed their files). */
+#define CORE_FS_LOCK_NAME ".meadow.lock"
+bool core_fs_lock_dir(const char *dir, char *err, size_t err_size);
 /* Resolves a repository-relative path (e.g. "shaders/gfx/x.vert") by trying,
  * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel. Writes
  * the first that exists into out. Returns false if none exists. */
@@ -89,7 +96,11 @@ typedef struct core_image_t {
 
 bool core_image_alloc(core_image_t *img, int w, int h, int channels);
 void core_image_free(core_image_t *img);
-/* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's). */
+/* Loads PNG/JPG/TGA via stb_image, forcing `channels` (0 keeps the file's).
+ * Refuses (logged) what is not a regular file, a file over
+ * CORE_FS_READ_MAX, and an image of more than CORE_IMAGE_MAX_PIXELS (a
+ * small PNG can declare 2^24 x 2^24 pixels). */
+#define CORE_IMAGE_MAX_PIXELS (8192.0 * 8192.0)
 bool core_image_load(core_image_t *img, const char *path, int channels);
 /* Decodes a PNG/JPG/TGA file held in memory, forcing `channels`. Logs
  * nothing: on failure returns false with the reason in err. */

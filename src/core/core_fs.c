@@ -1,11 +1,14 @@
 /* core_fs: whole-file reads, atomic writes (tmp + rename), directory checks
- * and lookup of repository files (shaders/, models/, textures/, scenes/). */
+ * and locks, and lookup of repository files (shaders/, models/, textures/,
+ * scenes/). */
 #include "core.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -142,6 +145,48 @@ bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size)
         return false;
     }
     return true;
+}
+
+bool core_fs_lock_dir(const char *dir, char *err, size_t err_size)
+{
+    static struct {
+        dev_t dev;
+        ino_t ino;
+    } held[16];
+    static int held_count;
+    struct stat st;
+    if (stat(dir, &st) != 0) {
+        snprintf(err, err_size, "%s: %s", dir, strerror(errno));
+        return false;
+    }
+    for (int i = 0; i < held_count; i++)
+        if (held[i].dev == st.st_dev && held[i].ino == st.st_ino) return true;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/" CORE_FS_LOCK_NAME, dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        snprintf(err, err_size, "cannot create %s: %s", path, strerror(errno));
+        return false;
+    }
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+        char pid[32] = "";
+        ssize_t n = pread(fd, pid, sizeof pid - 1, 0);
+        pid[n > 0 ? n : 0] = 0;
+        pid[strcspn(pid, "\n")] = 0;
+        snprintf(err, err_size, "%s is in use by another run (%s is locked%s%s); wait for it or choose another "
+                 "folder", dir, path, pid[0] ? " by process " : "", pid);
+        close(fd);
+        return false;
+    }
+    char pid[32];
+    int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+    if (ftruncate(fd, 0) != 0 || pwrite(fd, pid, (size_t)len, 0) != len)
+        core_log_warn("%s: cannot note the process id: %s", path, strerror(errno));
+    if (held_count < (int)(sizeof held / sizeof held[0])) {
+        held[held_count].dev = st.st_dev;
+        held[held_count++].ino = st.st_ino;
+    }
+    return true; /* fd stays open: the kernel releases the lock at exit */
 }
 
 bool core_fs_resolve(const char *rel, char *out, size_t out_size)

@@ -4,6 +4,8 @@
 
 #include <stdint.h>
 #include <stdio.h>
+#include <sys/stat.h>
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -60,6 +62,17 @@ bool core_image_load(core_image_t *img, const char *path, int channels)
 {
     memset(img, 0, sizeof *img);
     int w, h, n;
+    struct stat st;
+    if (stat(path, &st) == 0 && (!S_ISREG(st.st_mode) || (uint64_t)st.st_size > CORE_FS_READ_MAX)) {
+        core_log_error("%s: cannot load image: %s", path,
+                       S_ISREG(st.st_mode) ? "larger than the 64 MiB this program reads" : "not a regular file");
+        return false;
+    }
+    if (stbi_info(path, &w, &h, &n) && (double)w * h > CORE_IMAGE_MAX_PIXELS) {
+        core_log_error("%s: cannot load image: %d x %d pixels, more than the %.0f this program decodes", path, w, h,
+                       (double)CORE_IMAGE_MAX_PIXELS);
+        return false;
+    }
     uint8_t *px = stbi_load(path, &w, &h, &n, channels);
     if (!px) {
         core_log_error("%s: cannot load image: %s", path, stbi_failure_reason());

@@ -403,6 +403,25 @@ static GLuint make_fbo(const char *label, const char *suffix, GLuint color, GLui
     return fbo;
 }
 
+gfx_limits_t gfx_limits(void)
+{
+    gfx_limits_t l = {0};
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &l.max_texture_size);
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &l.max_renderbuffer_size);
+    glGetIntegerv(GL_MAX_GEOMETRY_OUTPUT_VERTICES, &l.max_gs_vertices);
+    glGetIntegerv(GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS, &l.max_gs_components);
+    glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &l.max_compute_groups);
+    GLint kb[4] = {0};
+    if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+        glGetIntegerv(0x9049 /* GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX */, kb);
+        l.gpu_bytes = (double)kb[0] * 1024.0;
+    } else if (epoxy_has_gl_extension("GL_ATI_meminfo")) {
+        glGetIntegerv(0x87FC /* GL_TEXTURE_FREE_MEMORY_ATI */, kb);
+        l.gpu_bytes = (double)kb[0] * 1024.0;
+    }
+    return l;
+}
+
 int gfx_target_samples(int requested)
 {
     int samples = requested > 0 ? requested : 4;

@@ -27,6 +27,15 @@ long gfx_objects_made(void);
 /* Bytes of buffer and texture storage those objects hold (textures:
  * texels x format size x samples, +1/3 with mipmaps). */
 size_t gfx_memory_bytes(void);
+/* The GL's limits that decide what a scene may ask (app_admit), and the
+ * GPU memory free now (GL_NVX_gpu_memory_info or GL_ATI_meminfo; 0 when the
+ * GL tells neither, as llvmpipe, whose storage is host memory). */
+typedef struct gfx_limits_t {
+    GLint max_texture_size, max_renderbuffer_size;
+    GLint max_gs_vertices, max_gs_components, max_compute_groups;
+    double gpu_bytes;
+} gfx_limits_t;
+gfx_limits_t gfx_limits(void);
 /* Returns the number of GL errors seen by glGetError since the last call,
  * logging each with `where`. Cheap enough for tests, not for the frame. */
 int gfx_check_errors(const char *where);
@@ -233,6 +242,7 @@ void gfx_timer_end(void);
 int gfx_timer_count(void);
 const char *gfx_timer_name(int i);
 double gfx_timer_last_ms(int i);  /* latest available result */
+int gfx_timer_frames_since(int i); /* frames begun since the pass last ran (0: this frame) */
 double gfx_timer_avg_ms(int i);   /* mean over every result so far */
 double gfx_timer_max_ms(int i);   /* largest result so far */
 double gfx_timer_median_ms(int i); /* median of the last 256 results */

@@ -116,7 +116,7 @@ void gfx_count_pass_end(void)
     glEndQuery(GL_PRIMITIVES_GENERATED);
     glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
     if (!push(&c.pending, &c.pending_count, &c.pending_cap, c.running)) {
-        core_log_error("%s:%d: out of memory for counter queries", __FILE__, __LINE__);
+        core_log_error("out of memory for counter queries");
         glDeleteQueries(2, c.running.q);
     }
     if (c.pending_count >= PENDING_SOFT) harvest(false);

@@ -25,6 +25,7 @@ typedef struct pass_t {
     GLuint q[GFX_TIMER_LATENCY];
     bool pending[GFX_TIMER_LATENCY];
     int frame_of[GFX_TIMER_LATENCY]; /* frame each slot's query ran in */
+    int last_frame;                  /* frame the pass last began in */
     double last, sum, max;
     long n;
     double hist[HISTORY];
@@ -108,6 +109,7 @@ void gfx_timer_begin(const char *pass)
     }
     int slot = t.frame % GFX_TIMER_LATENCY;
     pass_t *p = &t.passes[i];
+    p->last_frame = t.frame;
     if (p->pending[slot]) {
         /* Still in flight after LATENCY frames: drop this frame's sample
          * rather than stall. */
@@ -130,6 +132,7 @@ void gfx_timer_end(void)
 int gfx_timer_count(void) { return t.count; }
 const char *gfx_timer_name(int i) { return t.passes[i].name; }
 double gfx_timer_last_ms(int i) { return t.passes[i].last; }
+int gfx_timer_frames_since(int i) { return t.frame - t.passes[i].last_frame; }
 double gfx_timer_max_ms(int i) { return t.passes[i].max; }
 double gfx_timer_avg_ms(int i) { return t.passes[i].n ? t.passes[i].sum / (double)t.passes[i].n : 0.0; }
 

@@ -5,6 +5,8 @@
  * raster.h; the shader side is shaders/raster/raster.glsl. */
 #include "raster/raster.h"
 
+#include <math.h>
+
 #include <stdio.h>
 #include <string.h>
 
@@ -25,7 +27,12 @@ bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out)
     if (!d.samples) d.samples = 4;
     if (!d.small_samples) d.small_samples = 64;
     if (!d.medium_samples) d.medium_samples = 4096;
-    if (!d.queue_capacity) d.queue_capacity = 1 << 20;
+    /* Derived from the target: RASTER_QUEUE_LAYERS layers of the smallest
+     * queued triangles over every sample, at least 1 << 20. */
+    if (!d.queue_capacity && d.w > 0 && d.h > 0 && d.small_samples > 0) {
+        double fill = (double)d.w * d.h * (d.samples ? d.samples : 4) * RASTER_QUEUE_LAYERS / d.small_samples;
+        d.queue_capacity = fill > (double)(1 << 20) ? (int)fmin(fill, (double)(1 << 26)) : 1 << 20;
+    }
     if (!d.label) d.label = "raster";
     if (d.w <= 0 || d.h <= 0 || (d.samples != 1 && d.samples != 4) || d.small_samples < 1 ||
         d.medium_samples < d.small_samples || d.queue_capacity < 1) {
@@ -239,8 +246,9 @@ void raster_read_stats(raster_t *r, raster_stats_t *out)
     r->stats.medium = hdr[2];
     r->stats.overflow = hdr[1] + hdr[3];
     if (r->stats.overflow && !r->warned_overflow) {
-        core_log_warn("raster: %u queued triangles past the lists' %d were not drawn (raise queue_capacity)",
-                      r->stats.overflow, r->desc.queue_capacity);
+        core_log_warn("raster: %u queued triangles past the lists' %d (sized for %d layers of them over the "
+                      "target) were not drawn",
+                      r->stats.overflow, r->desc.queue_capacity, RASTER_QUEUE_LAYERS);
         r->warned_overflow = true;
     }
     *out = r->stats;

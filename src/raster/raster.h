@@ -28,6 +28,7 @@
 
 #include "gfx/gfx.h"
 
+#define RASTER_QUEUE_LAYERS 16
 typedef struct raster_desc_t {
     int w, h;               /* target pixels, required */
     int samples;            /* per pixel: 4 (default; the standard 4x MSAA pattern) or 1 (the centre) */
@@ -35,7 +36,8 @@ typedef struct raster_desc_t {
                                by its primitive's thread at once; default 64 */
     int medium_samples;     /* up to this it is queued and scanned one per thread among
                                similar ones, beyond it by a work group; default 4096 */
-    int queue_capacity;     /* queued triangles per list (medium, large) per draw; default 1 << 20 */
+    int queue_capacity;     /* queued triangles per list (medium, large) per draw; default RASTER_QUEUE_LAYERS
+                               layers of small_samples-sample triangles over the target, at least 1 << 20 */
     bool no_atomic64;       /* force the two-pass 32-bit variant (tests); default: 64-bit
                                atomics when the GL has GL_NV_shader_atomic_int64 */
     const char *label;      /* default "raster" */

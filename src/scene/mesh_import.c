@@ -8,10 +8,15 @@
 #include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+/* Largest model or terrain mesh file imported (assimp holds it whole,
+ * several times over, before meadow sees a vertex). */
+#define MESH_IMPORT_MAX_BYTES (256 << 20)
 /* Seconds the probe may take before the file is declared to hang assimp. */
 #define MESH_IMPORT_PROBE_SECONDS 120
 
@@ -116,6 +121,12 @@ static bool probe_in_child(const char *path, unsigned flags, char *err, size_t e
 
 const struct aiScene *mesh_import(const char *path, unsigned flags, char *err, size_t err_size)
 {
+    struct stat st;
+    if (stat(path, &st) == 0 && (!S_ISREG(st.st_mode) || (uint64_t)st.st_size > MESH_IMPORT_MAX_BYTES)) {
+        if (!S_ISREG(st.st_mode)) snprintf(err, err_size, "not a regular file");
+        else snprintf(err, err_size, "larger than %d MiB, the most this program imports", MESH_IMPORT_MAX_BYTES >> 20);
+        return NULL;
+    }
     if (!ply_header_ok(path, err, err_size)) return NULL;
     if (!probe_in_child(path, flags, err, err_size)) return NULL;
     const struct aiScene *sc = aiImportFile(path, 0);

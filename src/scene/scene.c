@@ -195,17 +195,8 @@ static bool get_number(sp_t *sp, const json_t *v, const char *field, const scene
     if (!want(sp, v, field, SCENE_JSON_NUMBER)) return false;
     double x = v->number;
     if (integer && x != floor(x)) return sp_fail(sp, v->line, field, "expected an integer, got %g", x);
-    bool zero_ok = (f->flags & SCENE_FIELD_ZERO_OK) && x == 0;
-    if (!zero_ok && (x < f->lo || x > f->hi))
-        return sp_fail(sp, v->line, field, "%g is out of range [%g, %g]%s", x, f->lo, f->hi,
-                       f->flags & SCENE_FIELD_ZERO_OK ? " (or 0 for the default)" : "");
-    if ((f->flags & SCENE_FIELD_POW2) && ((long)x & ((long)x - 1))) {
-        char list[128];
-        int used = snprintf(list, sizeof list, "0");
-        for (long p = 1; p <= (long)f->hi && used > 0 && (size_t)used < sizeof list; p *= 2)
-            used += snprintf(list + used, sizeof list - (size_t)used, ", %ld", p);
-        return sp_fail(sp, v->line, field, "%ld is not one of %s", (long)x, list);
-    }
+    char why[160];
+    if (!scene_field_accepts(f, x, why, sizeof why)) return sp_fail(sp, v->line, field, "%s", why);
     *out = x;
     return true;
 }
@@ -403,8 +394,9 @@ static bool check_time_order(sp_t *sp, const json_t *v, const char *field, float
 
 static bool parse_terrain(sp_t *sp, const json_t *o, terrain_desc_t *t)
 {
-    if (!check_members(sp, o, "terrain", SCENE_SEC_TERRAIN, 0, "")) return false;
-    if (!get_members(sp, o, "terrain", SCENE_SEC_TERRAIN, 0, t)) return false;
+    int type = 0;
+    if (!get_typed_entry(sp, o, "terrain", SCENE_SEC_TERRAIN, "terrain", &type, t)) return false;
+    t->type = (terrain_type_t)type;
     if (t->type == TERRAIN_MESH && !t->mesh[0])
         return sp_fail(sp, o->line, "terrain.mesh", "required when terrain.type is \"mesh\"");
     return true;
@@ -414,12 +406,8 @@ static bool parse_grass(sp_t *sp, const json_t *o, scene_grass_desc_t *g)
 {
     if (!check_members(sp, o, "grass", SCENE_SEC_GRASS, 0, "")) return false;
     if (!get_members(sp, o, "grass", SCENE_SEC_GRASS, 0, g)) return false;
-    const json_t *v = scene_json_get(o, "stiffness");
-    if (v && !(g->stiffness[0] > 0))
-        return sp_fail(sp, v->line, "grass.stiffness",
-                       "%g is out of range (0, %g]: a blade of stiffness 0 never stands up (eq. 3)",
-                       (double)g->stiffness[0], scene_field_find(SCENE_SEC_GRASS, "stiffness")->hi);
-    if (!(v = scene_json_get(o, "clearings"))) return true;
+    const json_t *v = scene_json_get(o, "clearings");
+    if (!v) return true;
     int type = 0;
     if (!get_typed_entry(sp, v, "grass.clearings", SCENE_SEC_CLEARINGS, "clearings", &type, &g->clearings))
         return false;
@@ -563,9 +551,6 @@ static bool parse_root(sp_t *sp, const json_t *o, scene_desc_t *d)
     const json_t *v;
     if (!check_members(sp, o, "", SCENE_SEC_ROOT, 0, "")) return false;
     if (!get_members(sp, o, "", SCENE_SEC_ROOT, 0, d)) return false;
-    if ((v = scene_json_get(o, "raster_samples")) && d->raster_samples != 1 && d->raster_samples != 4)
-        return sp_fail(sp, v->line, "raster_samples", "%d is not 1 or 4 (the compute rasterizer's sample patterns)",
-                       d->raster_samples);
     if ((v = scene_json_get(o, "terrain")) && !parse_terrain(sp, v, &d->terrain)) return false;
     if ((v = scene_json_get(o, "grass")) && !parse_grass(sp, v, &d->grass)) return false;
     if ((v = scene_json_get(o, "camera")) && !parse_camera(sp, v, &d->camera)) return false;
@@ -599,11 +584,22 @@ bool scene_parse(scene_desc_t *out, const char *text, const char *name_for_error
 bool scene_load(scene_desc_t *out, const char *path, char *err, size_t err_size)
 {
     char why[256];
-    char *text = core_fs_read(path, NULL, why, sizeof why);
+    size_t size = 0;
+    char *text = core_fs_read(path, &size, why, sizeof why);
+    const char *nul = text ? memchr(text, 0, size) : NULL;
+    if (nul) {
+        /* The parser reads a C string: without this a NUL read as the end. */
+        int line = 1;
+        for (const char *c = text; c < nul; c++) line += *c == '\n';
+        snprintf(why, sizeof why, "%d: a NUL byte at offset %zu: a scene file is UTF-8 text", line,
+                 (size_t)(nul - text));
+        free(text);
+        text = NULL;
+    }
     if (!text) {
         memset(out, 0, sizeof *out);
-        if (err && err_size) snprintf(err, err_size, "%s: cannot read: %s", path, why);
-        core_log_error("%s: cannot read: %s", path, why);
+        if (err && err_size) snprintf(err, err_size, "%s:%s%s", path, nul ? "" : " cannot read: ", why);
+        core_log_error("%s:%s%s", path, nul ? "" : " cannot read: ", why);
         return false;
     }
     bool ok = scene_parse(out, text, path, err, err_size);

@@ -29,7 +29,8 @@
 #include "scene/path.h"
 #include "scene/terrain.h"
 
-#define SCENE_MAX_WIND 16
+/* The blade physics's wind fields (BLADE_MAX_WINDS; app_world.c asserts it). */
+#define SCENE_MAX_WIND 8
 #define SCENE_MAX_COLLIDERS 128
 #define SCENE_MAX_CHARACTERS 16
 /* Paths (camera.path, colliders[].path, characters[].path) hold at most

@@ -28,6 +28,8 @@ static const char *const axis_names[] = {"auto", "+x", "-x", "+y", "-y", "+z", "
 #define BOX (1u << SCENE_COLLIDER_BOX)
 #define NOISE (1u << SCENE_CLEARINGS_NOISE)
 #define IMAGE (1u << SCENE_CLEARINGS_IMAGE)
+#define HEIGHTFIELD (1u << TERRAIN_HEIGHTFIELD)
+#define MESH (1u << TERRAIN_MESH)
 
 #define AT(T, m) .offset = offsetof(T, m), .size = sizeof(((T *)0)->m)
 #define ROOT(m) .section = SCENE_SEC_ROOT, AT(scene_desc_t, m)
@@ -46,12 +48,14 @@ const scene_field_t scene_fields[] = {
     /* ---- top level ---- */
     {ROOT(seed), .key = "seed", .type = SCENE_FIELD_U32, .hi = 4294967295.0, .flags = SCENE_FIELD_NO_DEFAULT,
       .doc = "random seed of everything generated (0 is a valid seed)", .def_doc = "0"},
-    {ROOT(frames), .key = "frames", .type = SCENE_FIELD_INT, .hi = 1e7, .def = {SCENE_DEFAULT_FRAMES},
+    {ROOT(frames), .key = "frames", .type = SCENE_FIELD_INT, .lo = 1, .hi = 1e7, .def = {SCENE_DEFAULT_FRAMES},
+      .flags = SCENE_FIELD_ZERO_OK,
       .doc = "frames of a headless run"},
     {ROOT(dt), .key = "dt", .type = SCENE_FIELD_FLOAT, .hi = 1, .def = {SCENE_DEFAULT_DT},
       .doc = "fixed timestep (s)", .def_doc = "1/60"},
-    {ROOT(size), .key = "size", .type = SCENE_FIELD_INTS, .n = 2, .hi = 16384,
-      .def = {SCENE_DEFAULT_WIDTH, SCENE_DEFAULT_HEIGHT}, .doc = "framebuffer [w, h] (px)"},
+    {ROOT(size), .key = "size", .type = SCENE_FIELD_INTS, .n = 2, .lo = 16, .hi = 16384,
+      .def = {SCENE_DEFAULT_WIDTH, SCENE_DEFAULT_HEIGHT}, .flags = SCENE_FIELD_ZERO_OK,
+      .doc = "framebuffer [w, h] (px); --size overrides it"},
     {ROOT(msaa), .key = "msaa", .type = SCENE_FIELD_INT, .hi = 16, .def = {SCENE_DEFAULT_MSAA},
       .flags = SCENE_FIELD_POW2, .doc = "samples per pixel of the hardware path (1 = off); the compute rasterizer draws the opaque "
              "scene single-sampled and the grass with its own samples"},
@@ -61,7 +65,7 @@ const scene_field_t scene_fields[] = {
       .doc = "how grass is rasterized: the faster of the two measured at start-up (summary.txt says which "
              "and what the measure cost), the hardware pipeline, or compute shaders (docs/RASTER.md)"},
     {ROOT(raster_samples), .key = "raster_samples", .type = SCENE_FIELD_INT, .lo = 1, .hi = 4,
-      .def = {SCENE_DEFAULT_RASTER_SAMPLES}, .type_doc = "integer: 1 or 4",
+      .def = {SCENE_DEFAULT_RASTER_SAMPLES}, .flags = SCENE_FIELD_ENDS,
       .doc = "compute rasterizer samples per pixel: 4 (the 4x MSAA pattern) or 1 (the pixel centre); "
              "--raster-samples overrides it"},
     {ROOT(terrain), .key = "terrain", .type = SCENE_FIELD_OBJECT, .doc = "the ground (keys `terrain.*`)"},
@@ -77,15 +81,15 @@ const scene_field_t scene_fields[] = {
     /* ---- terrain ---- */
     {TERRAIN(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = terrain_names,
       .doc = "procedural heightfield or an imported mesh"},
-    {TERRAIN(size), .key = "size", .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
+    {TERRAIN(size), .key = "size", .variants = HEIGHTFIELD, .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
       .doc = "heightfield side (m), square"},
-    {TERRAIN(resolution), .key = "resolution", .type = SCENE_FIELD_INT, .hi = SCENE_TERRAIN_RESOLUTION_MAX,
+    {TERRAIN(resolution), .key = "resolution", .variants = HEIGHTFIELD, .type = SCENE_FIELD_INT, .hi = SCENE_TERRAIN_RESOLUTION_MAX,
       .def = {SCENE_DEFAULT_TERRAIN_RESOLUTION}, .doc = "heightfield grid cells per side"},
-    {TERRAIN(height), .key = "height", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+    {TERRAIN(height), .key = "height", .variants = HEIGHTFIELD, .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_TERRAIN_HEIGHT}, .doc = "heightfield amplitude: heights in [-height, height] (m)"},
-    {TERRAIN(mesh), .key = "mesh", .type = SCENE_FIELD_STRING, .flags = SCENE_FIELD_NO_DEFAULT,
+    {TERRAIN(mesh), .key = "mesh", .variants = MESH, .type = SCENE_FIELD_STRING, .flags = SCENE_FIELD_NO_DEFAULT,
       .doc = "mesh file, repository-relative; required when type is \"mesh\""},
-    {TERRAIN(scale), .key = "scale", .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_TERRAIN_SCALE},
+    {TERRAIN(scale), .key = "scale", .variants = MESH, .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_TERRAIN_SCALE},
       .doc = "uniform scale of the mesh"},
 
     /* ---- grass ---- */
@@ -96,8 +100,9 @@ const scene_field_t scene_fields[] = {
     {GRASS(width), .key = "width", .type = SCENE_FIELD_RANGE, .hi = 1,
       .def = {SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX}, .doc = "blade width (m)"},
     {GRASS(stiffness), .key = "stiffness", .type = SCENE_FIELD_RANGE, .hi = 100,
-      .def = {SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX},
-      .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 3); min > 0"},
+      .def = {SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX}, .flags = SCENE_FIELD_ABOVE_LO,
+      .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 3); 0 is refused: such a blade "
+             "never stands up"},
     {GRASS(billboard_density), .key = "billboard_density", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_BILLBOARD_DENSITY}, .doc = "billboards per m^2"},
     {GRASS(billboard_size), .key = "billboard_size", .type = SCENE_FIELD_FLOATS, .n = 2, .hi = 20,
@@ -280,6 +285,29 @@ const scene_field_t *scene_field_find(scene_section_t section, const char *key)
     return NULL;
 }
 
+bool scene_field_accepts(const scene_field_t *f, double x, char *why, size_t why_size)
+{
+    if ((f->flags & SCENE_FIELD_ZERO_OK) && x == 0) return true;
+    if (f->flags & SCENE_FIELD_ENDS) {
+        if (x == f->lo || x == f->hi) return true;
+        snprintf(why, why_size, "%g is not %g or %g", x, f->lo, f->hi);
+        return false;
+    }
+    bool above = f->flags & SCENE_FIELD_ABOVE_LO;
+    if (x < f->lo || x > f->hi || (above && x == f->lo)) {
+        snprintf(why, why_size, "%g is out of range %c%g, %g]%s", x, above ? '(' : '[', f->lo, f->hi,
+                 f->flags & SCENE_FIELD_ZERO_OK ? " (or 0 for the default)" : "");
+        return false;
+    }
+    if ((f->flags & SCENE_FIELD_POW2) && ((long)x & ((long)x - 1))) {
+        int used = snprintf(why, why_size, "%ld is not one of 0", (long)x);
+        for (long p = 1; p <= (long)f->hi && used > 0 && (size_t)used < why_size; p *= 2)
+            used += snprintf(why + used, why_size - (size_t)used, ", %ld", p);
+        return false;
+    }
+    return true;
+}
+
 /* ---- markdown ------------------------------------------------------------ */
 
 typedef struct md_t {
@@ -350,7 +378,8 @@ static void md_accepted(md_t *m, const scene_field_t *f)
         if (f->type == SCENE_FIELD_INTS || f->type == SCENE_FIELD_FLOATS || f->type == SCENE_FIELD_RANGE)
             md_printf(m, "each ");
         if (f->flags & SCENE_FIELD_ZERO_OK) md_printf(m, "0 or ");
-        md_printf(m, "[%.10g, %.10g]", f->lo, f->hi);
+        if (f->flags & SCENE_FIELD_ENDS) md_printf(m, "%.10g or %.10g", f->lo, f->hi);
+        else md_printf(m, "%c%.10g, %.10g]", f->flags & SCENE_FIELD_ABOVE_LO ? '(' : '[', f->lo, f->hi);
         if (f->type == SCENE_FIELD_RANGE) md_printf(m, ", min <= max");
         break;
     }
@@ -402,10 +431,14 @@ char *scene_keys_markdown(void)
                   "     test_scene_json fails when this file differs from its output. -->\n\n"
                   "Scene files (`scenes/*.json`) are strict JSON: unknown keys, wrong types, values out\n"
                   "of range and too many entries are errors naming the file, line and field. Every\n"
-                  "key is optional unless marked *required*; absent or 0 selects the default (an\n"
-                  "explicit 0 is the default too). `[]` in a key is an array entry. The defaults are\n"
-                  "the constants of src/scene/scene_fields.h, which the modules' descs default to as\n"
-                  "well.\n");
+                  "key is optional unless marked *required*; absent selects the default. An explicit\n"
+                  "0 selects the default too where the *accepted* column allows 0, except where the\n"
+                  "default column gives 0 a meaning of its own (a seed, a coordinate, \"0 (off)\");\n"
+                  "where the column does not allow 0 (`raster_samples`, `grass.stiffness`) 0 is\n"
+                  "refused. Command-line options that set a key (`--frames`, `--seed`, `--size`,\n"
+                  "`--raster-samples`) accept what the key accepts, 0 for the default excepted.\n"
+                  "`[]` in a key is an array entry. The defaults are the constants of\n"
+                  "src/scene/scene_fields.h, which the modules' descs default to as well.\n");
     for (int s = 0; s < SCENE_SEC_COUNT; s++) {
         md_printf(&m, "\n## %s\n\n", s == SCENE_SEC_ROOT ? "Top level" : section_names[s]);
         md_printf(&m, "| key | type | accepted | default | meaning |\n| --- | --- | --- | --- | --- |\n");

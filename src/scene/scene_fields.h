@@ -11,10 +11,11 @@
  *   scene_keys_markdown renders it as docs/SCENES.md (`meadow --scene-keys`;
  *   test_scene_json fails when the committed file differs).
  *
- * GL-free and free of includes beyond <stddef.h>. */
+ * GL-free and free of includes beyond <stdbool.h> and <stddef.h>. */
 #ifndef MEADOW_SCENE_FIELDS_H
 #define MEADOW_SCENE_FIELDS_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 /* ---- defaults and bounds shared with the modules ------------------------ */
@@ -135,6 +136,8 @@ enum {
     SCENE_FIELD_ZERO_OK = 1 << 1,  /* 0 (the default) is accepted besides [lo, hi] */
     SCENE_FIELD_POW2 = 1 << 2,     /* integer, 0 or a power of two */
     SCENE_FIELD_NO_DEFAULT = 1 << 3, /* 0 is a value: never replaced (or replaced by scene.c) */
+    SCENE_FIELD_ABOVE_LO = 1 << 4,   /* the range is (lo, hi]: lo itself is refused */
+    SCENE_FIELD_ENDS = 1 << 5,       /* only lo or hi (raster_samples: 1 or 4) */
 };
 
 typedef struct scene_field_t {
@@ -162,6 +165,12 @@ extern const int scene_field_count;
 const char *scene_section_name(scene_section_t section);
 /* The row of section.key; NULL when there is none. */
 const scene_field_t *scene_field_find(scene_section_t section, const char *key);
+/* Whether number x is a value row f accepts (its range and flags; not the
+ * integer check, which is the type's). The scene parser and the command
+ * line's options that set a scene value (--frames, --size, --seed,
+ * --raster-samples) both ask this. False with why = "<x> is out of range
+ * [lo, hi]" or "<x> is not ..." when not. */
+bool scene_field_accepts(const scene_field_t *f, double x, char *why, size_t why_size);
 /* The key reference (docs/SCENES.md) as markdown, malloc'd (caller frees);
  * NULL when out of memory. */
 char *scene_keys_markdown(void);

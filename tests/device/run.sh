@@ -28,6 +28,9 @@
 #   perf         `meadow bench --perf` (bench scenes x {hw, compute}, 400 frames): $OUT/perf.json and the
 #                regenerated $OUT/PERFORMANCE.md; then `meadow bench --baseline docs/perf/h100.json`
 #                on that perf.json (a note instead when the baseline does not exist yet)
+#   admission    test_app_admit, the bench scenes' gpu_memory_mb against
+#                gpu_memory_estimate_mb, and a scene past the GPU's memory
+#                (exit 2 naming grass.cube_resolution)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
 #                debug callback on (MEADOW_GL_DEBUG=1), log -> $OUT
 #   ab           shader A/B in one command: meadow_large (hybrid, billboard,
@@ -311,6 +314,25 @@ occlusion() {
 
 gi() {
   key_ab gi gi "meadow_large:hybrid:hw meadow_large:hybrid:compute meadow_large:billboard:hw"
+}
+
+# Resource admission on the NVIDIA GL (GL_NVX_gpu_memory_info): the
+# estimate against gfx's count after start-up (test_app_admit and the bench
+# scenes' summaries), and a scene past the GPU's memory refused naming it.
+admission() {
+  echo "== test_app_admit"
+  MEADOW_TEST_OUT=/tmp/t-admit timeout -k 10 120 .bundle/bin/test_app_admit > /tmp/admit.log 2>&1; echo "rc=$?"
+  grep -E "counted|CHECK|refused" /tmp/admit.log
+  for s in orthmann nature meadow_large; do
+    echo "== $s"
+    timeout -k 10 120 $M --headless --quiet --scene scenes/bench/$s.json --frames 2 --screenshot-every 0 \
+      --out /tmp/a-$s > /dev/null 2>&1; echo "rc=$?"; grep -E "^gpu_memory" /tmp/a-$s/summary.txt
+  done
+  echo "== 100 colliders, grass.cube_resolution 4096 (206 GB of cube maps)"
+  python3 -c "import json; print(json.dumps({'grass': {'cube_resolution': 4096}, 'colliders':
+    [{'type': 'sphere', 'position': [i, 0.5, 0]} for i in range(100)]}))" > /tmp/a-cubes.json
+  timeout -k 10 120 $M --headless --scene /tmp/a-cubes.json --frames 2 --out /tmp/a-cubes 2>&1 | grep -E "error"
+  echo "rc=${PIPESTATUS[0]} (want 2)"
 }
 
 sections=${*:-tests bench scaling report}

@@ -1,0 +1,105 @@
+/* app_admit: resource admission. Before anything of the grass is allocated
+ * the program estimates, from the scene and the loaded ground alone, the
+ * GPU and host memory a run will hold (render targets, the compute
+ * rasterizer's visibility buffer, terrain, the full blade field or the
+ * hybrid's tiles, billboards, collision cube arrays) and its per-frame work
+ * (blades simulated, billboard candidates), and checks them and the GL's
+ * limits (texture size, geometry-shader output, compute dispatch size). A
+ * scene that does not fit is refused with one line naming the key and the
+ * largest (or smallest) value of it that fits, found by bisecting the same
+ * estimate.
+ *
+ * GL-free: the GL's limits come in as numbers (gfx_limits), the machine's
+ * memory from app_admit_host_bytes (/proc/meminfo, RLIMIT_AS). The estimate
+ * follows the allocations of bb_field_make, blade_gpu_make,
+ * blade_tiles_make (blade_tiles_estimate_bytes), raster_make,
+ * gfx_target_make and app_terrain_make; test_app_admit compares it with
+ * gfx_memory_bytes after start-up. */
+#ifndef MEADOW_APP_ADMIT_H
+#define MEADOW_APP_ADMIT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "scene/scene.h"
+#include "scene/terrain.h"
+
+/* The GL's limits (0: unknown, not checked) and the memory a run may use. */
+typedef struct app_admit_limits_t {
+    int max_texture_size;     /* GL_MAX_TEXTURE_SIZE */
+    int max_renderbuffer_size; /* GL_MAX_RENDERBUFFER_SIZE */
+    int max_gs_vertices;      /* GL_MAX_GEOMETRY_OUTPUT_VERTICES */
+    int max_gs_components;    /* GL_MAX_GEOMETRY_TOTAL_OUTPUT_COMPONENTS */
+    int max_compute_groups;   /* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]: blade kernels run 256 blades a group */
+    double gpu_bytes;         /* the GPU's own memory; 0: it shares host memory (llvmpipe, unknown) */
+    double host_bytes;        /* host memory the process may still take */
+} app_admit_limits_t;
+
+/* What the estimate needs beyond the scene: the ground as loaded (mesh
+ * terrains: its size; heightfields scale with terrain.size) and which
+ * systems this run makes. */
+typedef struct app_admit_world_t {
+    const terrain_mesh_t *terrain;
+    double terrain_area;   /* m^2 of ground surface at the scene's terrain.size */
+    bool billboards;       /* bb field (billboard and hybrid modes) */
+    bool tiles;            /* the hybrid's blade tiles (heightfields) */
+    bool full_field;       /* every blade of the field (blade mode, hybrid on a mesh) */
+    bool raster;           /* the compute rasterizer's buffers (raster compute or auto) */
+    int target_samples;    /* samples of the main target (the GL's cap applied) */
+    float collider_radius; /* largest collider's bounding radius (grass.cube_texel) */
+    int max_texture_size;  /* GL_MAX_TEXTURE_SIZE: caps those cube maps (0: 16384) */
+    int objects;           /* colliders and characters that bend grass (--character adds one to none) */
+    const int *collider_spheres; /* sphere proxies of each scene collider in the blade physics (NULL: none) */
+    int character_spheres;       /* the characters' (0 before they are loaded) */
+} app_admit_world_t;
+
+enum {
+    APP_ADMIT_FIXED = 0, /* gfx's upload ring, the rasterizer's triangle queues, programs */
+    APP_ADMIT_TARGETS,   /* main target and its resolve */
+    APP_ADMIT_RASTER,    /* compute rasterizer: visibility buffer, opaque depth */
+    APP_ADMIT_TERRAIN,
+    APP_ADMIT_BLADES,    /* the full blade field */
+    APP_ADMIT_TILES,     /* the hybrid's tiles */
+    APP_ADMIT_BILLBOARDS,
+    APP_ADMIT_CUBES,     /* collision cube arrays */
+    APP_ADMIT_PARTS
+};
+
+typedef struct app_admit_t {
+    double gpu[APP_ADMIT_PARTS]; /* bytes of GPU storage by part */
+    double gpu_total;            /* held for the run (what gfx_memory_bytes then reports) */
+    double transient;            /* held at start-up only: raster auto's calibration targets */
+    double host;                 /* bytes of host memory beyond the GPU's (terrain, seeding) */
+    double blades;               /* blades simulated per frame (full field: all; tiles: the pool) */
+    double bb_candidates;        /* billboard candidate cells (work of a regeneration) */
+} app_admit_t;
+
+/* RASTER_QUEUE_LAYERS of raster.h (a GL header; app_world.c asserts they agree). */
+#define APP_ADMIT_RASTER_QUEUE_LAYERS 16
+/* Host memory set aside for the GL driver when checking before it starts
+ * (llvmpipe's threads and code took ~0.5 GB of address space here). */
+#define APP_ADMIT_GL_RESERVE (512.0 * 1024.0 * 1024.0)
+/* Most billboard candidates a field holds (bb_field_make's limit). */
+#define APP_ADMIT_MAX_BB_CANDIDATES (1u << 26)
+/* Most colliders and characters together (COLLIDE_MAX_OBJECTS, a collide
+ * set's; app_world.c asserts they agree). */
+#define APP_ADMIT_MAX_OBJECTS 128
+/* Most sphere proxies of the blade physics (BLADE_MAX_SPHERES; asserted
+ * in app_world.c). */
+#define APP_ADMIT_MAX_SPHERES 512
+/* Most blades of a full blade field: 50M x 68 B = 3.4 GB of GPU state. */
+#define APP_ADMIT_MAX_FIELD_BLADES 50000000
+
+const char *app_admit_part_name(int part);
+void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_admit_t *out);
+/* Checks s against the limits; false with one line in err (naming the key
+ * and the largest value that fits) when it does not fit. */
+bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
+                     size_t err_size);
+/* This process's host memory headroom: 80 % of MemAvailable, and under a
+ * finite RLIMIT_AS of the address space left, at most
+ * $MEADOW_MEMORY_LIMIT_MB MiB when that is set (a cap where RLIMIT_AS
+ * cannot be used: ASan reserves terabytes); 0 when nothing is known. */
+double app_admit_host_bytes(void);
+
+#endif
