@@ -176,16 +176,16 @@ int main(void)
     CHECK(w->have_blades);
     int f = 0;
     for (int i = 0; i < 10; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
-    size_t n = w->blades.padded_count;
+    size_t n = blade_gpu_info(app_world_blades(w)).padded_count;
     blade_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
-    blade_gpu_read_blades(&w->blades, a, NULL);
+    blade_gpu_read_blades(app_world_blades(w), a, NULL);
     static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_HYBRID, SCENE_MODE_BLADE,
                                         SCENE_MODE_BILLBOARD};
     for (int k = 0; k < 4; k++) {
         app_world_set_mode(w, seq[k]);
         for (int i = 0; i < 20; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     }
-    blade_gpu_read_blades(&w->blades, b, NULL);
+    blade_gpu_read_blades(app_world_blades(w), b, NULL);
     int moved = 0, bad = 0;
     for (size_t i = 0; i < n; i++) {
         if (a[i].v1[3] <= 0.0f) continue;

@@ -195,20 +195,20 @@ int main(void)
     core_log_set_quiet(true);
     blade_field_t f;
     CHECK(seed_field(&f, 7));
-    blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "cube_test"}));
+    blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = &f, .label = "cube_test"});
+    CHECK(g);
     collide_cubemap_t cube;
     CHECK(collide_init_cubemap(&cube, RES, (vec3){0, 0, 0}, HALF));
     collide_render_sphere(&cube, (vec3){0, 0, 0}, RADIUS);
-    GLuint tex = blade_gpu_upload_cubes(&g, &cube, 1);
+    GLuint tex = blade_gpu_upload_cubes(g, &cube, 1);
     CHECK(tex != 0);
 
-    test_gpu_vs_cpu(&g, &f, &cube, tex);
+    test_gpu_vs_cpu(g, &f, &cube, tex);
 
     blade_t *free_run = malloc((size_t)STEPS * f.padded_count * sizeof *free_run);
-    sweep(&g, &f, &cube, tex, 0, free_run);
-    sweep_t sc = sweep(&g, &f, &cube, tex, 1, free_run);
-    sweep_t ss = sweep(&g, &f, &cube, tex, 2, free_run);
+    sweep(g, &f, &cube, tex, 0, free_run);
+    sweep_t sc = sweep(g, &f, &cube, tex, 1, free_run);
+    sweep_t ss = sweep(g, &f, &cube, tex, 2, free_run);
     free(free_run);
     double texel = 2.0 * HALF / RES;
     printf("sweep, 60 steps, %zu blades, penetration of v2 / m into the exact sphere (r %.2f m, texel %.4f m):\n"
@@ -224,7 +224,7 @@ int main(void)
     CHECK(sc.bent > 4 * ss.bent / 5 && sc.bent < 5 * ss.bent / 4);
 
     collide_free_cubemap(&cube);
-    blade_gpu_destroy(&g);
+    blade_gpu_destroy(g);
     blade_field_free(&f);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

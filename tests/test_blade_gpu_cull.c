@@ -55,11 +55,11 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
         cd.level_distance = cd.max_distance;
         cd.max_distance = cut;
     }
-    blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = f, .path = path, .no_patch_cull = !patch_cull,
-                                                 .label = "cull_test"}));
-    blade_gpu_cull(&g, &cd, depth_tex);
-    blade_gpu_stats_t st = blade_gpu_stats(&g, true);
+    blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = f, .path = path, .no_patch_cull = !patch_cull,
+                                                         .label = "cull_test"});
+    CHECK(g);
+    blade_gpu_cull(g, &cd, depth_tex);
+    blade_gpu_stats_t st = blade_gpu_stats(g, true);
 
     blade_cull_desc_t rd = cd;
     rd.depth = depth;
@@ -68,9 +68,9 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
     uint32_t *ref = malloc(f->padded_count * sizeof *ref), *got = malloc(f->padded_count * sizeof *got);
     blade_cull_stats_t rs;
     size_t nref = blade_ref_cull(f->blades, f->padded_count, &rd, ref, &rs);
-    uint32_t ngot = blade_gpu_read_survivors(&g, got);
+    uint32_t ngot = blade_gpu_read_survivors(g, got);
     uint32_t cmd[4];
-    blade_gpu_read_command(&g, cmd);
+    blade_gpu_read_command(g, cmd);
     qsort(got, ngot, sizeof *got, cmp_u32);
     printf("%-34s ref: orient %u frustum %u dist %u occl %u visible %zu | gpu: %u %u %u %u visible %u "
            "patch-culled %u (%u patches drawn of %zu)\n",
@@ -98,12 +98,15 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
          * counts it as orientation or frustum; the later tests agree exactly */
         CHECK(st.patch_culled > 0);
         int unordered = 0;
+        uint32_t *listed = malloc(f->patch_count * sizeof *listed);
+        CHECK(blade_gpu_read_patches(g, listed) == st.patches_drawn);
         for (uint32_t k = 1; k < st.patches_drawn; k++) {
-            const blade_aabb_t *here = &f->patch_aabbs[g.visible_patches[k]];
-            const blade_aabb_t *prev = &f->patch_aabbs[g.visible_patches[k - 1]];
+            const blade_aabb_t *here = &f->patch_aabbs[listed[k]];
+            const blade_aabb_t *prev = &f->patch_aabbs[listed[k - 1]];
             unordered += core_box_dist2(cd.cam_pos, here->min, here->max) <
                          core_box_dist2(cd.cam_pos, prev->min, prev->max);
         }
+        free(listed);
         printf("%-34s %u visible patches, %d out of distance order\n", name, st.patches_drawn, unordered);
         CHECK(st.patches_drawn > 2 && unordered == 0);
         CHECK(st.culled[0] + st.culled[1] + st.patch_culled == rs.culled[0] + rs.culled[1]);
@@ -112,7 +115,7 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
     if (depth) CHECK(rs.culled[3] > 100);
     free(ref);
     free(got);
-    blade_gpu_destroy(&g);
+    blade_gpu_destroy(g);
 }
 
 int main(void)
@@ -148,21 +151,21 @@ int main(void)
 
     /* non-blocking statistics: invalid before any cull, valid after a few
      * frames of culling without ever waiting */
-    blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "cull_async"}));
-    CHECK(!blade_gpu_stats(&g, false).valid);
+    blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = &f, .label = "cull_async"});
+    CHECK(g);
+    CHECK(!blade_gpu_stats(g, false).valid);
     blade_cull_desc_t cd = {0};
     camera(&cd);
     bool valid = false;
     int frames = 0;
     for (; frames < 50 && !valid; frames++) {
-        blade_gpu_cull(&g, &cd, 0);
+        blade_gpu_cull(g, &cd, 0);
         glFlush();
-        valid = blade_gpu_stats(&g, false).valid;
+        valid = blade_gpu_stats(g, false).valid;
     }
     printf("non-blocking stats valid after %d cull(s)\n", frames);
     CHECK(valid);
-    blade_gpu_destroy(&g);
+    blade_gpu_destroy(g);
 
     gfx_texture_destroy(&tex);
     free(depth);

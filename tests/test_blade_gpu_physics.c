@@ -85,8 +85,8 @@ static void test_against_reference(void)
     blade_field_t f;
     CHECK(seed_field(&f, 120.0f, 11));
     printf("reference comparison: %zu blades (%zu padded)\n", f.blade_count, f.padded_count);
-    blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "physics_test"}));
+    blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = &f, .label = "physics_test"});
+    CHECK(g);
     size_t n = f.padded_count;
     blade_t *cpu = malloc(n * sizeof *cpu), *gpu = malloc(n * sizeof *gpu);
     float *ecpu = calloc(n, sizeof *ecpu), *egpu = calloc(n, sizeof *egpu);
@@ -95,16 +95,16 @@ static void test_against_reference(void)
     for (int variant = 0; variant < 5; variant++) {
         memcpy(cpu, f.blades, n * sizeof *cpu);
         memset(ecpu, 0, n * sizeof *ecpu);
-        blade_gpu_write_blades(&g, cpu, NULL);
+        blade_gpu_write_blades(g, cpu, NULL);
         double worst = 0.0, worst_eta = 0.0;
         size_t over = 0;
         for (int step = 0; step < 6; step++) {
             blade_env_t env;
             static collide_set_t set;
             random_env(&rng, &env, &set, variant);
-            blade_gpu_simulate(&g, &env, &set);
+            blade_gpu_simulate(g, &env, &set);
             blade_ref_step(cpu, ecpu, n, &env, &set);
-            blade_gpu_read_blades(&g, gpu, egpu);
+            blade_gpu_read_blades(g, gpu, egpu);
             for (size_t i = 0; i < n; i++) {
                 double d = 0.0;
                 for (int k = 0; k < 3; k++) {
@@ -133,7 +133,7 @@ static void test_against_reference(void)
     free(gpu);
     free(ecpu);
     free(egpu);
-    blade_gpu_destroy(&g);
+    blade_gpu_destroy(g);
     blade_field_free(&f);
 }
 
@@ -141,8 +141,8 @@ static void test_invariants(double budget_s)
 {
     blade_field_t f;
     CHECK(seed_field(&f, 100.0f, 3));
-    blade_gpu_t g;
-    CHECK(blade_gpu_make(&g, &(blade_gpu_desc_t){.field = &f, .label = "physics_inv"}));
+    blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = &f, .label = "physics_inv"});
+    CHECK(g);
     size_t n = f.padded_count;
     blade_t *b = malloc(n * sizeof *b);
     core_rng_t rng;
@@ -163,8 +163,8 @@ static void test_invariants(double budget_s)
         set.spheres[0] = (blade_sphere_t){.centre_radius = {1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
         set.spheres[1] = (blade_sphere_t){.centre_radius = {sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
-        blade_gpu_simulate(&g, &env, &set);
-        blade_gpu_read_blades(&g, b, NULL);
+        blade_gpu_simulate(g, &env, &set);
+        blade_gpu_read_blades(g, b, NULL);
         frames++;
         for (size_t i = 0; i < f.blade_count; i++) {
             blade_t *x = &b[i];
@@ -203,7 +203,7 @@ static void test_invariants(double budget_s)
     CHECK(worst_pen <= 1e-5);
     (void)checked;
     free(b);
-    blade_gpu_destroy(&g);
+    blade_gpu_destroy(g);
     blade_field_free(&f);
 }
 

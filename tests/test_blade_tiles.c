@@ -69,7 +69,7 @@ static terrain_mesh_t make_terrain(float size, int res, bool flat)
     return m;
 }
 
-static bool make_tiles(blade_tiles_t *t, const terrain_mesh_t *m, int pool, float speed)
+static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int pool, float speed)
 {
     blade_tiles_desc_t d = {.terrain = m, .tile_size = 2.0f, .density = 64.0f, .height_min = 0.3f,
                             .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
@@ -77,7 +77,7 @@ static bool make_tiles(blade_tiles_t *t, const terrain_mesh_t *m, int pool, floa
                             .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, speed);
     d.wind_count = 1;
-    return blade_tiles_make(t, &d);
+    return blade_tiles_make(&d);
 }
 
 static blade_env_t make_env(float time, float dt)
@@ -121,33 +121,36 @@ static float dist3(const float *a, const float *b)
 static void test_no_pop(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, false);
-    blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 8, 0.0f));
-    uint32_t B = t.template_blades;
+    blade_tiles_t *t = make_tiles(&m, 8, 0.0f);
+    CHECK(t);
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    uint32_t B = ti.template_blades;
     CHECK(B == 256);
-    int tile = hybrid_tile_at(&t.grid, 1.0f, 1.0f);
+    int tile = hybrid_tile_at(ti.grid, 1.0f, 1.0f);
     const float cam[3] = {1.0f, 3.0f, 6.0f};
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, &env);
-    draw_all(&t, cam);
-    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
-    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
+    blade_tiles_update(t, cam, NULL, &env);
+    draw_all(t, cam);
+    blade_t *drawn = malloc(ti.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(ti.draw_capacity * sizeof *ids);
     blade_t idle[B_MAX], slot_b[B_MAX], again[B_MAX];
     memset(idle, 0, sizeof idle);
-    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids), found = 0;
+    uint32_t n = blade_tiles_read_drawn(t, drawn, ids), found = 0;
     for (uint32_t i = 0; i < n; i++)
         if (ids[i] / B == (uint32_t)tile) idle[ids[i] % B] = drawn[i], found++;
     CHECK_MSG(found == 64 * 4, "tile %d drew %u blades (expected the 256 of the template)", tile, found);
 
     /* roots: GPU placement = CPU twin = terrain_height_at */
     int tmpl, sym;
-    blade_tiles_instance(&t, tile, &tmpl, &sym);
+    blade_tiles_instance(t, tile, &tmpl, &sym);
+    blade_t template_b[B_MAX];
+    blade_tiles_read_template(t, tmpl, template_b);
     float worst_root = 0, worst_ground = 0, bend = 0;
     for (uint32_t k = 0; k < B; k++) {
-        const blade_t *tb = &t.template_cpu[(size_t)tmpl * B + k];
+        const blade_t *tb = &template_b[k];
         if (tb->v1[3] <= 0) continue;
         float root[3], up[3];
-        blade_tiles_root(&t, tile, (float[2]){tb->v0[0], tb->v0[2]}, root, up);
+        blade_tiles_root(t, tile, (float[2]){tb->v0[0], tb->v0[2]}, root, up);
         worst_root = fmaxf(worst_root, dist3(root, idle[k].v0));
         worst_ground = fmaxf(worst_ground, fabsf(terrain_height_at(&m, root[0], root[2], NULL) - root[1]));
         float rest[3] = {idle[k].v0[0] + idle[k].up[0] * idle[k].v1[3], idle[k].v0[1] + idle[k].up[1] * idle[k].v1[3],
@@ -162,16 +165,16 @@ static void test_no_pop(void)
 
     /* activate the tile with a sphere above its blades (touches the grown
      * bound, not the blades): init + one step at the same time */
-    float top = m.aabb_max[1] + t.reach;
+    float top = m.aabb_max[1] + ti.reach;
     const float ball[1][4] = {{1.0f, top + 0.4f, 1.0f, 0.1f}};
-    blade_tiles_update(&t, cam, test_sphere_set(ball, 1), &env);
-    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    blade_tiles_update(t, cam, test_sphere_set(ball, 1), &env);
+    blade_tiles_stats_t st = blade_tiles_stats(t, true);
     CHECK(st.active == 1 && st.slots_used == 1);
-    int slot = t.grid.tiles[tile].slot;
+    int slot = ti.grid->tiles[tile].slot;
     CHECK(slot >= 0);
-    blade_tiles_read_slot(&t, slot, slot_b, NULL);
-    draw_all(&t, cam);
-    n = blade_tiles_read_drawn(&t, drawn, ids);
+    blade_tiles_read_slot(t, slot, slot_b, NULL);
+    draw_all(t, cam);
+    n = blade_tiles_read_drawn(t, drawn, ids);
     for (uint32_t i = 0; i < n; i++)
         if (ids[i] / B == (uint32_t)tile) again[ids[i] % B] = drawn[i];
     float pop = 0, pop_drawn = 0;
@@ -190,10 +193,10 @@ static void test_no_pop(void)
     env.dt = 1.0f / 60.0f;
     for (int f = 0; f < 60; f++) {
         env.time += env.dt;
-        blade_tiles_update(&t, cam, test_sphere_set(ball, 1), &env);
+        blade_tiles_update(t, cam, test_sphere_set(ball, 1), &env);
     }
     blade_t later[B_MAX];
-    blade_tiles_read_slot(&t, slot, later, NULL);
+    blade_tiles_read_slot(t, slot, later, NULL);
     float drift = 0;
     for (uint32_t k = 0; k < B; k++)
         if (slot_b[k].v1[3] > 0) drift = fmaxf(drift, dist3(slot_b[k].v2, later[k].v2));
@@ -201,7 +204,7 @@ static void test_no_pop(void)
     CHECK(drift < 2e-4f);
     free(drawn);
     free(ids);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -227,10 +230,11 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
 {
     memset(r, 0, sizeof *r);
     terrain_mesh_t m = make_terrain(size, res, true);
-    blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 16, 0.0f));
-    uint32_t B = t.template_blades;
-    int S = t.desc.pool_slots, ntiles = t.grid.nx * t.grid.nz;
+    blade_tiles_t *t = make_tiles(&m, 16, 0.0f);
+    CHECK(t);
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    uint32_t B = ti.template_blades;
+    int S = ti.desc.pool_slots, ntiles = ti.grid->nx * ti.grid->nz;
     size_t pool_n = (size_t)S * B;
     blade_t *before = malloc(pool_n * sizeof *before), *after = malloc(pool_n * sizeof *after);
     float *eta_before = malloc(pool_n * sizeof(float)), *eta_gpu = malloc(B * sizeof(float));
@@ -250,14 +254,14 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
         bool probe = f % 10 == 5;
         int owner_before[64];
         if (probe) {
-            blade_tiles_read_pool(&t, before);
+            blade_tiles_read_pool(t, before);
             for (int s = 0; s < S; s++) {
-                owner_before[s] = t.slot_owner[s];
-                blade_tiles_read_slot(&t, s, NULL, &eta_before[(size_t)s * B]);
+                owner_before[s] = blade_tiles_slot_owner(t, s);
+                blade_tiles_read_slot(t, s, NULL, &eta_before[(size_t)s * B]);
             }
         }
-        blade_tiles_update(&t, cam, test_swept_set((const float (*)[4])ball, (const float (*)[3])sweep, nb), &env);
-        blade_tiles_stats_t st = blade_tiles_stats(&t, false);
+        blade_tiles_update(t, cam, test_swept_set((const float (*)[4])ball, (const float (*)[3])sweep, nb), &env);
+        blade_tiles_stats_t st = blade_tiles_stats(t, false);
         r->dispatched[f] = st.slots_dispatched;
         r->max_active = st.active > r->max_active ? st.active : r->max_active;
         /* c) activation = brute force on the grown spheres (the bounding
@@ -266,11 +270,11 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
                                 ball[0][2] + 0.5f * sweep[0][2],
                                 ball[0][3] + 0.5f * sqrtf(sweep[0][0] * sweep[0][0] + sweep[0][1] * sweep[0][1] +
                                                           sweep[0][2] * sweep[0][2]) +
-                                    t.reach}};
+                                    ti.reach}};
         int live = 0;
         for (int i = 0; i < ntiles; i++) {
-            const hybrid_tile_t *tl = &t.grid.tiles[i];
-            bool touched = nb && hybrid_tile_touched_brute(&t.grid, i, &obj, 1);
+            const hybrid_tile_t *tl = &ti.grid->tiles[i];
+            bool touched = nb && hybrid_tile_touched_brute(ti.grid, i, &obj, 1);
             if ((tl->state == HYBRID_ACTIVE) != touched) r->active_mismatch = true;
             if ((tl->slot >= 0) != (tl->state != HYBRID_IDLE)) r->active_mismatch = true;
             live += tl->slot >= 0;
@@ -285,9 +289,9 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
         }
         if (live != st.slots_dispatched) r->active_mismatch = true;
         if (!probe) continue;
-        blade_tiles_read_pool(&t, after);
+        blade_tiles_read_pool(t, after);
         for (int s = 0; s < S; s++) {
-            int o = t.slot_owner[s];
+            int o = blade_tiles_slot_owner(t, s);
             blade_t *a = &after[(size_t)s * B], *b = &before[(size_t)s * B];
             if (o < 0) {
                 /* b) free slots are never written */
@@ -313,11 +317,11 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
              * reference with every sphere */
             if (!check_ref || owner_before[s] != o) continue;
             blade_env_t ce = env;
-            ce.winds[0] = t.env.winds[0];
+            ce.winds[0] = blade_tiles_info(t).env.winds[0];
             ce.wind_count = 1;
             float *eta = &eta_before[(size_t)s * B];
             blade_ref_step(b, eta, B, &ce, test_swept_set((const float (*)[4])ball, (const float (*)[3])sweep, nb));
-            blade_tiles_read_slot(&t, s, NULL, eta_gpu);
+            blade_tiles_read_slot(t, s, NULL, eta_gpu);
             for (uint32_t k = 0; k < B; k++) {
                 if (b[k].v1[3] <= 0) continue;
                 float d = fmaxf(dist3(b[k].v2, a[k].v2), dist3(b[k].v1, a[k].v1));
@@ -335,7 +339,7 @@ static void run_ball(float size, int res, run_t *r, bool check_ref)
     free(v0_at);
     free(v0_owner);
     free(recover_start);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -385,14 +389,15 @@ static void test_ball(void)
 static void test_fast_ball(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, true);
-    blade_tiles_t t;
     blade_tiles_desc_t d = {.terrain = &m, .tile_size = 2.0f, .density = 64.0f, .height_min = 0.3f,
                             .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
                             .stiffness_max = 12.0f, .seed = 3, .pool_slots = 64, .switch_distance = 12.0f,
                             .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
-    CHECK(blade_tiles_make(&t, &d)); /* no wind */
-    uint32_t B = t.template_blades;
-    int S = t.desc.pool_slots, ntiles = t.grid.nx * t.grid.nz;
+    blade_tiles_t *t = blade_tiles_make(&d); /* no wind */
+    CHECK(t);
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    uint32_t B = ti.template_blades;
+    int S = ti.desc.pool_slots, ntiles = ti.grid->nx * ti.grid->nz;
     blade_t *pool = malloc((size_t)S * B * sizeof *pool);
     unsigned char *bent = calloc((size_t)ntiles * B, 1), *path = calloc((size_t)ntiles * B, 1);
     float from = -6.0f, z = 0.5f;
@@ -400,10 +405,10 @@ static void test_fast_ball(void)
         blade_env_t env = {.dt = 1.0f / 60.0f, .time = (float)f / 60.0f, .gravity_off = true};
         const float ball[1][4] = {{from + FAST_STEP * (float)f, 0.3f, z, 0.3f}};
         const float sweep[1][3] = {{f > 0 ? -FAST_STEP : 0.0f, 0.0f, 0.0f}};
-        blade_tiles_update(&t, (float[3]){0, 3, 6}, test_swept_set(ball, sweep, 1), &env);
-        blade_tiles_read_pool(&t, pool);
+        blade_tiles_update(t, (float[3]){0, 3, 6}, test_swept_set(ball, sweep, 1), &env);
+        blade_tiles_read_pool(t, pool);
         for (int s = 0; s < S; s++) {
-            int o = t.slot_owner[s];
+            int o = blade_tiles_slot_owner(t, s);
             for (uint32_t k = 0; o >= 0 && k < B; k++) {
                 const blade_t *b = &pool[(size_t)s * B + k];
                 float h = b->v1[3];
@@ -428,69 +433,74 @@ static void test_fast_ball(void)
     free(pool);
     free(bent);
     free(path);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
 static void test_exhaustion(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, true);
-    blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 2, 0.0f));
+    blade_tiles_t *t = make_tiles(&m, 2, 0.0f);
+    CHECK(t);
     int warns = core_log_warn_count();
     const float ball[1][4] = {{0.0f, 0.3f, 0.0f, 0.5f}}; /* on a tile corner: 4 tiles */
     blade_env_t env = make_env(0.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, (float[3]){0, 3, 6}, test_sphere_set(ball, 1), &env);
-    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    blade_tiles_update(t, (float[3]){0, 3, 6}, test_sphere_set(ball, 1), &env);
+    blade_tiles_stats_t st = blade_tiles_stats(t, true);
     printf("c) pool of 2 slots, 4 tiles touched: active %d, slots %d/%d, denied %d, warnings %d\n", st.active,
            st.slots_used, st.slots_total, st.pool_denied, core_log_warn_count() - warns);
     CHECK(st.active == 2 && st.slots_used == 2 && st.pool_denied == 2);
     CHECK(core_log_warn_count() > warns);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
 /* f) and g): a 16 m field of 2 m tiles, distance levels to 10 m (8), the
  * tests `disable` names off, drawn once from `cam`; the drawn blades and
- * their ids into *drawn and *ids (t.draw_capacity each), their count
+ * their ids into *drawn and *ids (draw_capacity each), their count
  * returned. */
-static uint32_t draw_thinned(blade_tiles_t *t, terrain_mesh_t *m, uint32_t disable, const float cam[3],
+static uint32_t draw_thinned(blade_tiles_t **t, terrain_mesh_t *m, uint32_t disable, const float cam[3],
                              blade_t **drawn, uint32_t **ids)
 {
     *m = make_terrain(16.0f, 32, true);
-    CHECK(make_tiles(t, m, 8, 0.0f));
-    t->desc.cull.disable = disable;
-    t->desc.cull.max_distance = 10.0f;
-    t->desc.cull.distance_levels = 8;
-    t->desc.cull.orientation_threshold = 0.9f;
+    *t = make_tiles(m, 8, 0.0f);
+    CHECK(*t);
+    blade_tiles_info_t ti = blade_tiles_info(*t);
+    blade_cull_desc_t cull = ti.desc.cull;
+    cull.disable = disable;
+    cull.max_distance = 10.0f;
+    cull.distance_levels = 8;
+    cull.orientation_threshold = 0.9f;
+    blade_tiles_set_cull(*t, &cull);
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(t, cam, NULL, &env);
-    draw_all(t, cam);
-    *drawn = malloc(t->draw_capacity * sizeof **drawn);
-    *ids = malloc(t->draw_capacity * sizeof **ids);
-    return blade_tiles_read_drawn(t, *drawn, *ids);
+    blade_tiles_update(*t, cam, NULL, &env);
+    draw_all(*t, cam);
+    *drawn = malloc(ti.draw_capacity * sizeof **drawn);
+    *ids = malloc(ti.draw_capacity * sizeof **ids);
+    return blade_tiles_read_drawn(*t, *drawn, *ids);
 }
 
 /* ---- f) ------------------------------------------------------------------ */
 static void test_lod_width(void)
 {
     terrain_mesh_t m;
-    blade_tiles_t t;
+    blade_tiles_t *t;
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
     blade_t *drawn;
     uint32_t *ids;
     uint32_t n = draw_thinned(&t, &m, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM, cam, &drawn, &ids);
-    uint32_t B = t.template_blades;
-    blade_cull_desc_t cull = t.desc.cull;
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    uint32_t B = ti.template_blades;
+    blade_cull_desc_t cull = ti.desc.cull;
     memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
     enum { RINGS = 4 }; /* 2-4 .. 8-10 m: the camera is 2 m up */
     double all[RINGS] = {0}, kept[RINGS] = {0}, thin[RINGS] = {0};
     float worst = 0.0f;
     int not_survivor = 0;
-    bool *listed = calloc((size_t)t.grid.nx * (size_t)t.grid.nz, sizeof *listed);
+    bool *listed = calloc((size_t)ti.grid->nx * (size_t)ti.grid->nz, sizeof *listed);
     for (uint32_t i = 0; i < n; i++) {
         blade_t pose;
-        blade_tiles_pose(&t, (int)(ids[i] / B), ids[i] % B, &pose);
+        blade_tiles_pose(t, (int)(ids[i] / B), ids[i] % B, &pose);
         listed[ids[i] / B] = true;
         not_survivor += blade_ref_cull_one(&pose, ids[i] % B, &cull) != BLADE_CULL_VISIBLE;
         float d = blade_ref_cull_distance(&pose, &cull);
@@ -500,11 +510,11 @@ static void test_lod_width(void)
         if (r >= 0 && r < RINGS) kept[r] += drawn[i].v2[3], thin[r] += pose.v2[3];
     }
     /* every blade of the tiles that were drawn, as if nothing were thinned */
-    for (int tile = 0; tile < t.grid.nx * t.grid.nz; tile++) {
+    for (int tile = 0; tile < ti.grid->nx * ti.grid->nz; tile++) {
         if (!listed[tile]) continue;
         for (uint32_t k = 0; k < B; k++) {
             blade_t pose;
-            blade_tiles_pose(&t, tile, k, &pose);
+            blade_tiles_pose(t, tile, k, &pose);
             if (pose.v1[3] <= 0.0f) continue;
             int r = (int)(blade_ref_cull_distance(&pose, &cull) / 2.0f) - 1;
             if (r >= 0 && r < RINGS) all[r] += pose.v2[3];
@@ -523,7 +533,7 @@ static void test_lod_width(void)
     free(listed);
     free(drawn);
     free(ids);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -531,16 +541,17 @@ static void test_lod_width(void)
 static void test_lod_orientation(void)
 {
     terrain_mesh_t m;
-    blade_tiles_t t;
+    blade_tiles_t *t;
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
     blade_t *drawn;
     uint32_t *ids;
     uint32_t n = draw_thinned(&t, &m, BLADE_CULL_FRUSTUM, cam, &drawn, &ids);
-    uint32_t B = t.template_blades;
-    int tiles = t.grid.nx * t.grid.nz;
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    uint32_t B = ti.template_blades;
+    int tiles = ti.grid->nx * ti.grid->nz;
     int *gpu = calloc((size_t)tiles, sizeof *gpu);
     for (uint32_t i = 0; i < n; i++) gpu[ids[i] / B]++;
-    blade_cull_desc_t cull = t.desc.cull;
+    blade_cull_desc_t cull = ti.desc.cull;
     cull.disable = BLADE_CULL_FRUSTUM | BLADE_CULL_ORIENTATION;
     memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
     int mismatched_tiles = 0, rescued = 0, expected = 0;
@@ -549,7 +560,7 @@ static void test_lod_orientation(void)
         int want = 0;
         for (uint32_t k = 0; k < B; k++) {
             blade_t pose;
-            blade_tiles_pose(&t, tile, k, &pose);
+            blade_tiles_pose(t, tile, k, &pose);
             if (pose.v1[3] <= 0.0f || blade_ref_cull_one(&pose, k, &cull) != BLADE_CULL_VISIBLE) continue;
             float g[3] = {pose.v0[0] - cam[0], pose.v0[1] - cam[1], pose.v0[2] - cam[2]};
             float along = g[0] * pose.up[0] + g[1] * pose.up[1] + g[2] * pose.up[2];
@@ -575,7 +586,7 @@ static void test_lod_orientation(void)
     free(gpu);
     free(drawn);
     free(ids);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -589,29 +600,29 @@ static int cmp_u32(const void *a, const void *b)
 static void test_draw_lists(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, false);
-    blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 8, 0.0f));
+    blade_tiles_t *t = make_tiles(&m, 8, 0.0f);
+    CHECK(t);
+    blade_tiles_info_t ti = blade_tiles_info(t);
     const float cam[3] = {-5.0f, 2.0f, 3.0f}, fade_start = 6.0f;
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, &env);
-    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
-    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids), *ids_split = malloc(t.draw_capacity * sizeof *ids);
+    blade_tiles_update(t, cam, NULL, &env);
+    blade_t *drawn = malloc(ti.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(ti.draw_capacity * sizeof *ids), *ids_split = malloc(ti.draw_capacity * sizeof *ids);
 
-    draw_all(&t, cam);
-    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
-    int listed = t.stats.tiles_drawn, unordered = 0;
-    uint32_t *list = malloc((size_t)listed * 2 * sizeof *list);
-    gfx_buffer_read(t.tile_list, 0, (size_t)listed * 2 * sizeof *list, list);
+    draw_all(t, cam);
+    uint32_t n = blade_tiles_read_drawn(t, drawn, ids);
+    uint32_t *list = malloc((size_t)ti.max_draw_tiles * 2 * sizeof *list);
+    int listed = blade_tiles_read_tile_list(t, list), unordered = 0;
     float last = 0.0f;
     for (int k = 0; k < listed; k++) {
-        const hybrid_tile_t *tile = &t.grid.tiles[list[2 * k]];
+        const hybrid_tile_t *tile = &ti.grid->tiles[list[2 * k]];
         float d2 = core_box_dist2(cam, tile->min, tile->max);
         unordered += d2 < last;
         last = d2;
     }
 
-    draw_faded(&t, cam, fade_start, fade_start + 2.0f);
-    uint32_t n_split = blade_tiles_read_drawn(&t, drawn, ids_split), near = 0, misplaced = 0;
+    draw_faded(t, cam, fade_start, fade_start + 2.0f);
+    uint32_t n_split = blade_tiles_read_drawn(t, drawn, ids_split), near = 0, misplaced = 0;
     bool beyond = false;
     for (uint32_t i = 0; i < n_split; i++) {
         bool far = dist3(drawn[i].v0, cam) > fade_start;
@@ -632,7 +643,7 @@ static void test_draw_lists(void)
     free(drawn);
     free(ids);
     free(ids_split);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -642,15 +653,19 @@ static void test_draw_lists(void)
 static void test_occlusion(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, true);
-    blade_tiles_t t;
-    CHECK(make_tiles(&t, &m, 8, 0.0f));
-    t.desc.cull.disable = BLADE_CULL_ORIENTATION; /* the tiles' own rule for widened blades: test g */
-    t.desc.cull.max_distance = 10.0f;
-    t.desc.cull.distance_levels = 8;
+    blade_tiles_t *t = make_tiles(&m, 8, 0.0f);
+    CHECK(t);
+    blade_tiles_info_t ti = blade_tiles_info(t);
+    blade_cull_desc_t tiles_cull = ti.desc.cull;
+    tiles_cull.disable = BLADE_CULL_ORIENTATION; /* the tiles' own rule for widened blades: test g */
+    tiles_cull.max_distance = 10.0f;
+    tiles_cull.distance_levels = 8;
+    blade_tiles_set_cull(t, &tiles_cull);
+    ti = blade_tiles_info(t);
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
-    blade_tiles_update(&t, cam, NULL, &env);
-    uint32_t B = t.template_blades;
+    blade_tiles_update(t, cam, NULL, &env);
+    uint32_t B = ti.template_blades;
 
     /* the wall: the left half of the image at the window depth of the
      * point 6 m ahead of the camera, the right half open (depth 1) */
@@ -672,17 +687,16 @@ static void test_occlusion(void)
         .upload_format = GL_RED, .upload_type = GL_FLOAT, .label = "tiles.test_depth"});
     CHECK(depth.id != 0);
 
-    draw_occluded(&t, cam, 0.0f, 0.0f, depth.id);
-    blade_t *drawn = malloc(t.draw_capacity * sizeof *drawn);
-    uint32_t *ids = malloc(t.draw_capacity * sizeof *ids);
-    uint32_t n = blade_tiles_read_drawn(&t, drawn, ids);
-    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
-    int listed = t.stats.tiles_drawn, ntiles = t.grid.nx * t.grid.nz;
-    uint32_t *list = malloc((size_t)listed * 2 * sizeof *list);
-    gfx_buffer_read(t.tile_list, 0, (size_t)listed * 2 * sizeof *list, list);
+    draw_occluded(t, cam, 0.0f, 0.0f, depth.id);
+    blade_t *drawn = malloc(ti.draw_capacity * sizeof *drawn);
+    uint32_t *ids = malloc(ti.draw_capacity * sizeof *ids);
+    uint32_t n = blade_tiles_read_drawn(t, drawn, ids);
+    blade_tiles_stats_t st = blade_tiles_stats(t, true);
+    uint32_t *list = malloc((size_t)ti.max_draw_tiles * 2 * sizeof *list);
+    int listed = blade_tiles_read_tile_list(t, list), ntiles = ti.grid->nx * ti.grid->nz;
 
     /* the CPU twin over the listed tiles, with the same depth */
-    blade_cull_desc_t cull = t.desc.cull;
+    blade_cull_desc_t cull = ti.desc.cull;
     memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
     memcpy(cull.view_proj, vp, sizeof cull.view_proj);
     cull.depth = ndc;
@@ -692,7 +706,7 @@ static void test_occlusion(void)
     for (int k = 0; k < listed; k++)
         for (uint32_t b = 0; b < B; b++) {
             blade_t pose;
-            blade_tiles_pose(&t, (int)list[2 * k], b, &pose);
+            blade_tiles_pose(t, (int)list[2 * k], b, &pose);
             int why = blade_ref_cull_one(&pose, b, &cull);
             if (why == BLADE_CULL_VISIBLE) {
                 want[list[2 * k] * B + b] = 1;
@@ -706,10 +720,10 @@ static void test_occlusion(void)
     /* every blade of the blade-representation tiles */
     uint32_t blade_tiles_blades = 0, counted = st.blades_drawn + st.tile_culled;
     for (int i = 0; i < ntiles; i++) {
-        if (t.grid.tiles[i].rep != HYBRID_REP_BLADE) continue;
+        if (ti.grid->tiles[i].rep != HYBRID_REP_BLADE) continue;
         int tmpl, sym;
-        blade_tiles_instance(&t, i, &tmpl, &sym);
-        blade_tiles_blades += t.template_real[tmpl];
+        blade_tiles_instance(t, i, &tmpl, &sym);
+        blade_tiles_blades += ti.template_real[tmpl];
     }
     for (int k = 0; k < 4; k++) counted += st.culled[k];
     printf("i) wall at window depth %.4f over the left half: GPU culled (orientation frustum distance occlusion "
@@ -724,9 +738,9 @@ static void test_occlusion(void)
     CHECK(st.tile_culled > 0 && counted == blade_tiles_blades);
 
     /* without the depth texture the occluded blades come back */
-    draw_occluded(&t, cam, 0.0f, 0.0f, 0);
-    uint32_t n_open = blade_tiles_read_drawn(&t, drawn, ids);
-    blade_tiles_stats_t open = blade_tiles_stats(&t, true);
+    draw_occluded(t, cam, 0.0f, 0.0f, 0);
+    uint32_t n_open = blade_tiles_read_drawn(t, drawn, ids);
+    blade_tiles_stats_t open = blade_tiles_stats(t, true);
     printf("i) without the depth texture: %u drawn (%u more), occlusion count %u\n", n_open, n_open - n,
            open.culled[3]);
     CHECK(open.culled[3] == 0 && n_open == n + st.culled[3]);
@@ -736,7 +750,7 @@ static void test_occlusion(void)
     free(list);
     free(drawn);
     free(ids);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
 }
 
@@ -756,9 +770,10 @@ int main(void)
     /* a mesh terrain is rejected */
     terrain_mesh_t mesh = make_terrain(8.0f, 8, true);
     mesh.grid_res = 0;
-    blade_tiles_t t;
     int errors = core_log_error_count();
-    CHECK(!blade_tiles_make(&t, &(blade_tiles_desc_t){.terrain = &mesh}));
+    blade_tiles_t *t = blade_tiles_make(&(blade_tiles_desc_t){.terrain = &mesh});
+    CHECK(!t);
+    blade_tiles_destroy(t);
     CHECK(core_log_error_count() == errors + 1);
     mesh.grid_res = 8;
     terrain_free(&mesh);

@@ -39,8 +39,8 @@ static void memory_report(void)
 
 /* The field of the golden, drawn by `tessellate`'s path, after `frames`
  * updates with the ball rolling from x = -3.5 m at `speed` m per frame. */
-static void make_field(blade_tiles_t *t, const terrain_mesh_t *m, bool tessellate, float density, const float eye[3],
-                       int frames, float speed, blade_env_t *env)
+static blade_tiles_t *make_field(const terrain_mesh_t *m, bool tessellate, float density, const float eye[3],
+                                 int frames, float speed, blade_env_t *env)
 {
     blade_tiles_desc_t d = {.terrain = m, .tile_size = 2.0f, .density = density, .height_min = 0.25f,
                             .height_max = 0.45f, .width_min = 0.02f, .width_max = 0.035f, .stiffness_min = 8.0f,
@@ -48,16 +48,18 @@ static void make_field(blade_tiles_t *t, const terrain_mesh_t *m, bool tessellat
                             .tessellate = tessellate};
     d.winds[0] = blade_wind_wave(1.0f, 0.3f, 1.0f, 5.0f, 1.5f);
     d.wind_count = 1;
-    CHECK(blade_tiles_make(t, &d));
+    blade_tiles_t *t = blade_tiles_make(&d);
+    CHECK(t);
     float h = 0.35f;
     *env = (blade_env_t){.gravity = 1.0f, .collision_gain = 1.0f / (0.01f * h * h), .collision_decay = 0.1f};
-    for (int f = 0; f < frames; f++) {
+    for (int f = 0; t && f < frames; f++) {
         env->time = (float)f / 60.0f;
         env->dt = 1.0f / 60.0f;
         float x = -3.5f + speed * (float)f;
         float ball[1][4] = {{x, terrain_height_at(m, x, 0.0f, NULL) + 0.3f, 0.0f, 0.45f}};
         blade_tiles_update(t, eye, test_sphere_set((const float (*)[4])ball, 1), env);
     }
+    return t;
 }
 
 /* One frame of t into target (cleared to soil), read back into img; a
@@ -105,17 +107,16 @@ static double covered(const core_image_t *img)
  * patches: mean 0.001, max 6), so every draw here stays below 2,048. */
 static void compare_paths(const terrain_mesh_t *m, const gfx_target_t *target, const float eye[3], const float at[3])
 {
-    blade_tiles_t pull, tess;
     blade_env_t env;
     double t0 = plat_time();
-    make_field(&pull, m, false, 64.0f, eye, 30, 0.0f, &env);
-    make_field(&tess, m, true, 64.0f, eye, 30, 0.0f, &env);
+    blade_tiles_t *pull = make_field(m, false, 64.0f, eye, 30, 0.0f, &env);
+    blade_tiles_t *tess = make_field(m, true, 64.0f, eye, 30, 0.0f, &env);
     static const float fades[2][2] = {{0.0f, 0.0f}, {3.0f, 5.0f}};
     for (int f = 0; f < 2; f++) {
         core_image_t a = {0}, b = {0};
-        render(&pull, target, eye, at, env.time, fades[f][0], fades[f][1], &a);
-        render(&tess, target, eye, at, env.time, fades[f][0], fades[f][1], &b);
-        blade_tiles_stats_t sp = blade_tiles_stats(&pull, true), st = blade_tiles_stats(&tess, true);
+        render(pull, target, eye, at, env.time, fades[f][0], fades[f][1], &a);
+        render(tess, target, eye, at, env.time, fades[f][0], fades[f][1], &b);
+        blade_tiles_stats_t sp = blade_tiles_stats(pull, true), st = blade_tiles_stats(tess, true);
         double grass_a = covered(&a), grass_b = covered(&b);
         test_image_result_t r = test_image_diff(&a, &b, &(test_image_cmp_t){.mean_threshold = 0.1,
                                                                            .fail_budget = 0.001},
@@ -131,8 +132,8 @@ static void compare_paths(const terrain_mesh_t *m, const gfx_target_t *target, c
         core_image_free(&b);
     }
     printf("tess vs pull: %.2f s\n", plat_time() - t0);
-    blade_tiles_destroy(&pull);
-    blade_tiles_destroy(&tess);
+    blade_tiles_destroy(pull);
+    blade_tiles_destroy(tess);
 }
 
 int main(void)
@@ -141,14 +142,13 @@ int main(void)
     memory_report();
     terrain_mesh_t m;
     CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = 16.0f, .resolution = 32, .height = 0.3f}, 11));
-    blade_tiles_t t;
     blade_env_t env;
     const float eye[3] = {3.2f, 1.5f, 0.9f}, at[3] = {-2.0f, 0.0f, -0.2f};
-    make_field(&t, &m, false, 200.0f, eye, 120, 4.5f / 120.0f, &env);
+    blade_tiles_t *t = make_field(&m, false, 200.0f, eye, 120, 4.5f / 120.0f, &env);
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 160, .h = 96, .label = "tiles_render.target"});
     core_image_t img = {0};
-    render(&t, &target, eye, at, env.time, 0.0f, 0.0f, &img);
-    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    render(t, &target, eye, at, env.time, 0.0f, 0.0f, &img);
+    blade_tiles_stats_t st = blade_tiles_stats(t, true);
     printf("render: tiles %d (blade rep %d, drawn %d), active %d, recovering %d, slots %d/%d, blades drawn %u, "
            "GPU %.1f MB\n",
            st.tiles, st.blade_tiles, st.tiles_drawn, st.active, st.recovering, st.slots_used, st.slots_total,
@@ -160,7 +160,7 @@ int main(void)
     core_image_free(&img);
     compare_paths(&m, &target, eye, at);
     gfx_target_destroy(&target);
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

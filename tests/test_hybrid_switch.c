@@ -68,7 +68,7 @@ static void first_update_near_tiles(void)
     glm_vec3_copy((vec3){3.0f, 0.5f, 3.0f}, w->scene.camera.position);
     CHECK(app_world_make_gpu(w));
     app_world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
-    const hybrid_grid_t *g = &w->tiles.grid;
+    const hybrid_grid_t *g = blade_tiles_info(app_world_tiles(w)).grid;
     int under = hybrid_tile_at(g, 3.0f, 3.0f);
     CHECK(under >= 0);
     printf("first update: tile under the camera drawn as %s\n",

@@ -45,11 +45,12 @@ static double up_height(const blade_t *b)
 }
 
 /* Mean tip height over blade height of a slot's real blades. */
-static double mean_height(const app_world_t *w, int slot)
+static double mean_height(app_world_t *w, int slot)
 {
-    uint32_t B = w->tiles.template_blades;
+    blade_tiles_t *bt = app_world_tiles(w);
+    uint32_t B = blade_tiles_info(bt).template_blades;
     blade_t *b = malloc(B * sizeof *b);
-    blade_tiles_read_slot(&w->tiles, slot, b, NULL);
+    blade_tiles_read_slot(bt, slot, b, NULL);
     double sum = 0;
     int n = 0;
     for (uint32_t i = 0; i < B; i++) {
@@ -125,33 +126,35 @@ int main(void)
     p->keys[2] = (scene_path_key_t){1.6f, {30.0f, 0.3f, 30.0f}};
     CHECK(app_world_make_gpu(w));
     CHECK(w->have_tiles);
-    blade_tiles_t *bt = &w->tiles;
-    const hybrid_slope_grid_t *sg = &bt->slope_grid;
+    blade_tiles_t *bt = app_world_tiles(w);
+    blade_tiles_info_t bi = blade_tiles_info(bt);
+    const hybrid_slope_grid_t *sg = &bi.slope_grid;
     size_t ncells = (size_t)sg->nx * sg->nz;
     g_bb_sums = calloc(ncells, sizeof *g_bb_sums);
     blade_tiles_set_slope_source(bt, capture_source, w);
-    int tile = hybrid_tile_at(&bt->grid, 1.0f, 0.5f);
+    int tile = hybrid_tile_at(bi.grid, 1.0f, 0.5f);
     CHECK(tile >= 0);
     /* near: the tile is blades; far (xz 5.5 m from the tile, switch 4 m,
      * hysteresis 1 m): billboards */
     const float near_cam[3] = {1.0f, 1.5f, 2.0f}, far_cam[3] = {1.0f, 2.5f, 7.5f};
     int frame = 0;
     run(w, &frame, 100, near_cam); /* the ball passes */
-    const hybrid_tile_t *t = &bt->grid.tiles[tile];
+    const hybrid_tile_t *t = &bi.grid->tiles[tile];
     CHECK(t->rep == HYBRID_REP_BLADE);
     CHECK(t->state == HYBRID_RECOVERING && t->slot >= 0);
     int slot = t->slot;
     double pressed = mean_height(w, slot);
-    uint32_t B = bt->template_blades;
+    uint32_t B = bi.template_blades;
     blade_t *before = malloc(B * sizeof *before), *seeded = malloc(B * sizeof *seeded);
     float *eta = malloc(B * sizeof *eta), *eta_seeded = malloc(B * sizeof *eta_seeded);
     blade_tiles_read_slot(bt, slot, before, eta);
 
     /* a) blades -> billboards */
     run(w, &frame, 1, far_cam);
+    bi = blade_tiles_info(bt);
     CHECK(t->rep == HYBRID_REP_BILLBOARD);
     CHECK_MSG(t->slot < 0 && t->state == HYBRID_IDLE, "slot %d state %d after the hand-over", t->slot, t->state);
-    CHECK(bt->stats.handovers >= 1);
+    CHECK(blade_tiles_stats(bt, false).handovers >= 1);
     hybrid_slope_sum_t *sums = calloc(ncells, sizeof *sums);
     for (uint32_t k = 0; k < B; k++) {
         if (before[k].v1[3] <= 0.0f) continue;
@@ -167,21 +170,21 @@ int main(void)
     }
     hybrid_slope_cell_t *cells = malloc(ncells * sizeof *cells);
     blade_tiles_read_slopes(bt, cells);
-    int cpt = bt->desc.slope_cells_per_tile, ti = tile % bt->grid.nx, tj = tile / bt->grid.nx;
+    int cpt = bi.desc.slope_cells_per_tile, ti = tile % bi.grid->nx, tj = tile / bi.grid->nx;
     double worst = 0, deepest = 0;
     int compared = 0;
     for (int j = 0; j < cpt; j++)
         for (int i = 0; i < cpt; i++) {
             int c = (tj * cpt + j) * sg->nx + ti * cpt + i;
-            hybrid_slope_cell_t ref = hybrid_slope_resolve(&sums[c], bt->time);
+            hybrid_slope_cell_t ref = hybrid_slope_resolve(&sums[c], bi.time);
             CHECK_MSG(ref.count == cells[c].count, "cell %d: %g blades on the GPU, %g on the CPU", c, cells[c].count,
                       ref.count);
             double e = fmax(fmax(fabs(ref.t[0] - cells[c].t[0]), fabs(ref.t[1] - cells[c].t[1])),
                             fmax(fabs(ref.m - cells[c].m), fabs(ref.eta - cells[c].eta)));
             worst = fmax(worst, e);
             deepest = fmax(deepest, cells[c].m);
-            CHECK_MSG(fabsf(cells[c].tau - bt->time) < 1e-6f, "cell %d written at %.7f s, hand-over at %.7f s", c,
-                      cells[c].tau, bt->time);
+            CHECK_MSG(fabsf(cells[c].tau - bi.time) < 1e-6f, "cell %d written at %.7f s, hand-over at %.7f s", c,
+                      cells[c].tau, bi.time);
             compared += ref.count > 0;
         }
     printf("a) hand-over: %d cells of tile %d, GPU vs CPU twin %.2g (mean |o| up to %.3f)\n", compared, tile, worst,
@@ -194,10 +197,12 @@ int main(void)
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 160, .h = 120, .samples = 4, .label = "trail"});
     float now = (float)frame / 60.0f;
     core_image_t with = render(w, &target, now);
-    gfx_buffer_t map = bt->slope_map;
-    bt->slope_map.id = 0; /* the same frame without the cells */
+    hybrid_slope_cell_t *none = calloc(ncells, sizeof *none);
+    blade_tiles_read_slopes(bt, cells);
+    blade_tiles_write_slopes(bt, none); /* the same frame without the cells */
     core_image_t without = render(w, &target, now);
-    bt->slope_map = map;
+    blade_tiles_write_slopes(bt, cells);
+    free(none);
     double mad = eval_image_mad(&with, &without);
     int changed = changed_pixels(&with, &without);
     printf("b) far view with vs without the slope cells: %d pixels changed by > %d levels, mean abs difference "
@@ -214,12 +219,13 @@ int main(void)
     blade_tiles_read_slopes(bt, cells);
     int calls = g_source_calls;
     run(w, &frame, 1, near_cam);
+    bi = blade_tiles_info(bt);
     CHECK(t->rep == HYBRID_REP_BLADE);
     CHECK_MSG(t->slot >= 0 && t->state == HYBRID_RECOVERING, "slot %d state %d after coming back", t->slot,
               t->state);
-    CHECK(bt->stats.seeded >= 1 && g_source_calls == calls + 1);
+    CHECK(blade_tiles_stats(bt, false).seeded >= 1 && g_source_calls == calls + 1);
     blade_tiles_read_slot(bt, t->slot, seeded, eta_seeded);
-    blade_env_t env = blade_env_defaults(&bt->env);
+    blade_env_t env = blade_env_defaults(&bi.env);
     double v2_err = 0, eta_err = 0;
     int moved = 0;
     bool finite = true;
@@ -230,7 +236,7 @@ int main(void)
         int c = hybrid_slope_cell_at(sg, ref.v0[0], ref.v0[2]);
         if (ref.v1[3] > 0.0f && c >= 0) {
             hybrid_slope_cell_t m = cells[c];
-            float wgt = m.count > 0 ? hybrid_slope_weight(bt->time - m.tau, bt->desc.slope_recover) : 0.0f;
+            float wgt = m.count > 0 ? hybrid_slope_weight(bi.time - m.tau, bi.desc.slope_recover) : 0.0f;
             hybrid_slope_cell_t use = m;
             float eta0 = m.eta;
             if (g_bb_sums[c].count > 0) {

@@ -78,19 +78,22 @@ int main(void)
     glFinish();
     /* No NaN anywhere the simulation writes. */
     int bad = 0;
-    size_t n = w->blades.padded_count;
-    if (w->have_blades && n) {
+    blade_gpu_t *blades = app_world_blades(w);
+    size_t n = blades ? blade_gpu_info(blades).padded_count : 0;
+    if (n) {
         blade_t *b = malloc(n * sizeof *b);
         float *eta = malloc(n * sizeof *eta);
-        blade_gpu_read_blades(&w->blades, b, eta);
+        blade_gpu_read_blades(blades, b, eta);
         bad += non_finite((const float *)b, n * 16) + non_finite(eta, n);
         free(b);
         free(eta);
     }
-    if (w->have_tiles) {
-        size_t pool = (size_t)w->tiles.desc.pool_slots * w->tiles.template_blades;
+    blade_tiles_t *tiles = app_world_tiles(w);
+    if (tiles) {
+        blade_tiles_info_t ti = blade_tiles_info(tiles);
+        size_t pool = (size_t)ti.desc.pool_slots * ti.template_blades;
         blade_t *b = malloc(pool * sizeof *b);
-        blade_tiles_read_pool(&w->tiles, b);
+        blade_tiles_read_pool(tiles, b);
         bad += non_finite((const float *)b, pool * 16);
         free(b);
     }

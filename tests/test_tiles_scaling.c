@@ -62,8 +62,8 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
                             .stiffness_max = 12.0f, .seed = 3, .pool_slots = 32, .switch_distance = 12.0f};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, 2.0f);
     d.wind_count = 1;
-    blade_tiles_t t;
-    CHECK(blade_tiles_make(&t, &d));
+    blade_tiles_t *t = blade_tiles_make(&d);
+    CHECK(t);
     /* tile centres in rings around the origin: distinct tiles */
     static const int ring[16][2] = {{0, 0},  {-1, 0}, {0, -1}, {-1, -1}, {1, 0},  {1, -1}, {1, 1},  {0, 1},
                                     {-1, 1}, {-2, 1}, {-2, 0}, {-2, -1}, {-2, -2}, {-1, -2}, {0, -2}, {1, -2}};
@@ -81,7 +81,7 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
         glFinish();
         gfx_timer_frame_begin();
         double t0 = plat_time();
-        blade_tiles_update(&t, cam, test_sphere_set((const float(*)[4])spheres, balls), &env);
+        blade_tiles_update(t, cam, test_sphere_set((const float(*)[4])spheres, balls), &env);
         glFinish();
         double wall = (plat_time() - t0) * 1e3;
         gfx_timer_flush();
@@ -89,10 +89,10 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
     }
     qsort(ms, 15, sizeof ms[0], cmp_double);
     double least = ms[0];
-    blade_tiles_stats_t st = blade_tiles_stats(&t, true);
+    blade_tiles_stats_t st = blade_tiles_stats(t, true);
     *slots = st.slots_dispatched;
     *blades = st.blades_dispatched;
-    blade_tiles_destroy(&t);
+    blade_tiles_destroy(t);
     terrain_free(&m);
     return least;
 }

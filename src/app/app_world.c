@@ -359,7 +359,8 @@ static bool make_blades(app_world_t *w)
         gd.max_tess_level = 16;
         gd.no_patch_cull = true;
     }
-    w->have_blades = blade_gpu_make(&w->blades, &gd);
+    w->blades = blade_gpu_make(&gd);
+    w->have_blades = w->blades != NULL;
     core_log_info("blades: %zu blades in %zu patches (%zu in clearings of the extent map)",
                   field.blade_count - dropped, field.patch_count, dropped);
     blade_field_free(&field);
@@ -435,8 +436,9 @@ static bool make_tiles(app_world_t *w)
         td.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
         td.extent_seed = s->seed;
     }
-    w->have_tiles = blade_tiles_make(&w->tiles, &td);
-    if (w->have_tiles) blade_tiles_set_slope_source(&w->tiles, bb_slope_source, w);
+    w->tiles = blade_tiles_make(&td);
+    w->have_tiles = w->tiles != NULL;
+    if (w->have_tiles) blade_tiles_set_slope_source(w->tiles, bb_slope_source, w);
     /* The ground canopy beyond the billboards, thinned by the tiles' extent
      * map (its texture). */
     blade_canopy_t canopy;
@@ -450,7 +452,8 @@ static bool make_tiles(app_world_t *w)
                                                         .seed = s->seed,
                                                         .sun = APP_SUN_DIR,
                                                     }))
-        app_terrain_set_canopy(&w->terrain, &canopy, w->tiles.extent.id, td.extent_origin, td.extent_spacing);
+        app_terrain_set_canopy(&w->terrain, &canopy, blade_tiles_info(w->tiles).extent_texture, td.extent_origin,
+                               td.extent_spacing);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
 }
@@ -693,7 +696,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
             }
             collide_render_shape(&cubes[k], &c->desc);
         }
-        if (ok && nc > 0) w->blade_cubes = blade_gpu_upload_cubes(&w->blades, cubes, nc);
+        if (ok && nc > 0) w->blade_cubes = blade_gpu_upload_cubes(w->blades, cubes, nc);
         for (int k = 0; k < nc; k++) collide_free_cubemap(&cubes[k]);
     }
     if (!w->blade_cubes) nc = 0;
@@ -755,8 +758,8 @@ void app_world_update(app_world_t *w, float t, float dt)
         env->time = t;
         if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, set);
         else set->sphere_count = blade_spheres(w, set->spheres, BLADE_MAX_SPHERES);
-        if (w->have_blades) blade_gpu_simulate(&w->blades, env, set);
-        if (w->have_tiles) blade_tiles_update(&w->tiles, w->camera, set, env);
+        if (w->have_blades) blade_gpu_simulate(w->blades, env, set);
+        if (w->have_tiles) blade_tiles_update(w->tiles, w->camera, set, env);
     }
 }
 
@@ -800,13 +803,13 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
         memcpy(dd.camera, v->camera, sizeof dd.camera);
         memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
-        blade_tiles_set_overlay(&w->tiles, v->overlay);
+        blade_tiles_set_overlay(w->tiles, v->overlay);
         /* Occlusion culling reads the opaque depth, as blade mode's below. */
         if (raster) {
-            raster_ok = blade_tiles_raster(&w->tiles, raster, &dd, raster->opaque_depth.id) && raster_ok;
+            raster_ok = blade_tiles_raster(w->tiles, raster, &dd, raster->opaque_depth.id) && raster_ok;
         } else {
             gfx_target_resolve_depth(target);
-            blade_tiles_draw(&w->tiles, &dd, target->resolve_depth.id);
+            blade_tiles_draw(w->tiles, &dd, target->resolve_depth.id);
         }
     } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
         /* Occlusion culling reads the resolved depth of the opaque pass (the
@@ -826,7 +829,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
         memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
         GLuint depth = raster ? raster->opaque_depth.id : target->resolve_depth.id;
-        blade_gpu_cull(&w->blades, &cd, w->reference ? 0 : depth);
+        blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
         glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
         glViewport(0, 0, target->w, target->h);
         blade_draw_desc_t dd = {.time = v->time, .gi = w->terrain.gi};
@@ -837,8 +840,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             dd.fade_start = fade_lo;
             dd.fade_end = fade_hi;
         }
-        if (raster) raster_ok = blade_gpu_raster(&w->blades, raster, &dd) && raster_ok;
-        else blade_gpu_draw(&w->blades, &dd);
+        if (raster) raster_ok = blade_gpu_raster(w->blades, raster, &dd) && raster_ok;
+        else blade_gpu_draw(w->blades, &dd);
     }
     if (w->have_bb && wants_bb(w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
@@ -855,7 +858,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
             d.far_end = far_hi;
         }
         if (tiles) {
-            blade_tiles_slope(&w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
+            blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
         }
         if (raster) raster_ok = bb_field_raster(&w->bb, raster, &d) && raster_ok;
         else bb_field_draw(&w->bb, &d);
@@ -950,8 +953,10 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
 void app_world_destroy(app_world_t *w)
 {
     if (w->have_bb) bb_field_destroy(&w->bb);
-    if (w->have_blades) blade_gpu_destroy(&w->blades);
-    if (w->have_tiles) blade_tiles_destroy(&w->tiles);
+    blade_gpu_destroy(w->blades);
+    blade_tiles_destroy(w->tiles);
+    w->blades = NULL;
+    w->tiles = NULL;
     w->have_tiles = false;
     if (w->have_chars) character_set_destroy(&w->chars);
     w->have_chars = false;
@@ -988,7 +993,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
 {
     memset(st, 0, sizeof *st);
     if (w->have_blades) {
-        blade_gpu_stats_t b = blade_gpu_stats(&w->blades, true);
+        blade_gpu_stats_t b = blade_gpu_stats(w->blades, true);
         st->blades = b.total;
         st->blade_survivors = b.survivors;
         memcpy(st->blade_culled, b.culled, sizeof st->blade_culled);
@@ -1006,7 +1011,7 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->triangles += s.triangles;
     }
     if (w->have_tiles) {
-        blade_tiles_stats_t ts = blade_tiles_stats(&w->tiles, true);
+        blade_tiles_stats_t ts = blade_tiles_stats(w->tiles, true);
         st->blades += (long)ts.blades_drawn;
         st->blade_survivors += (long)ts.blades_drawn;
         st->tiles_active = ts.active;

@@ -151,7 +151,7 @@ typedef struct app_world_t {
     bb_field_t bb;
     bool have_bb;
     /* Blades (Jahrmann & Wimmer 2017), built for blade and hybrid modes. */
-    blade_gpu_t blades;
+    blade_gpu_t *blades; /* NULL until made */
     bool have_blades;
     blade_env_t blade_env; /* winds fixed at load */
     int cube_res;          /* collision cube-map side: grass.cube_resolution, raised by grass.cube_texel
@@ -166,7 +166,7 @@ typedef struct app_world_t {
     raster_t raster;
     /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
      * per-blade state only for tiles objects touch. */
-    blade_tiles_t tiles;
+    blade_tiles_t *tiles; /* NULL until made */
     bool have_tiles;
     float camera[3]; /* of the last draw (activation and representation) */
     bool drawn;      /* camera holds a draw's camera */

@@ -13,9 +13,9 @@ const app_colliders_t *app_world_colliders(const app_world_t *w) { return &w->co
 scene_mode_t app_world_mode(const app_world_t *w) { return w->mode; }
 bool app_world_is_reference(const app_world_t *w) { return w->reference; }
 bool app_world_input_error(const app_world_t *w) { return w->input_error; }
-blade_gpu_t *app_world_blades(app_world_t *w) { return w->have_blades ? &w->blades : NULL; }
+blade_gpu_t *app_world_blades(app_world_t *w) { return w->have_blades ? w->blades : NULL; }
 bb_field_t *app_world_billboards(app_world_t *w) { return w->have_bb ? &w->bb : NULL; }
-blade_tiles_t *app_world_tiles(app_world_t *w) { return w->have_tiles ? &w->tiles : NULL; }
+blade_tiles_t *app_world_tiles(app_world_t *w) { return w->have_tiles ? w->tiles : NULL; }
 character_set_t *app_world_characters(app_world_t *w) { return w->have_chars ? &w->chars : NULL; }
 
 bool app_world_setup(app_world_t *w, const app_world_setup_t *setup)
@@ -47,5 +47,5 @@ void app_world_update_spheres(app_world_t *w, float t, float dt, app_world_spher
     env->time = t;
     collide_begin_set(&w->collide);
     w->collide.sphere_count = spheres(w, w->collide.spheres, BLADE_MAX_SPHERES, user);
-    blade_gpu_simulate(&w->blades, env, &w->collide);
+    blade_gpu_simulate(w->blades, env, &w->collide);
 }

@@ -634,9 +634,10 @@ static void sweep_frame(app_world_t *w, int f, float t, void *user)
     }
     blade_gpu_t *g = app_world_blades(w);
     if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
-    if (!r->eta_prev) r->eta_prev = calloc(g->padded_count, sizeof(float));
-    if (r->np + (long)g->padded_count > r->push_cap) {
-        long cap = r->np + (long)g->padded_count * 4;
+    uint32_t padded = blade_gpu_info(g).padded_count;
+    if (!r->eta_prev) r->eta_prev = calloc(padded, sizeof(float));
+    if (r->np + (long)padded > r->push_cap) {
+        long cap = r->np + (long)padded * 4;
         double *p = realloc(r->push, sizeof *p * (size_t)cap);
         if (!p) return;
         r->push = p, r->push_cap = cap;

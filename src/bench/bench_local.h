@@ -26,7 +26,7 @@ typedef struct bench_metrics_ext_t {
 void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x);
 /* Largest tip offset max |v2 - v2_twin| (m) between two blade worlds built
  * from the same scene and seed; INFINITY when a value is not finite. When
- * prev (app_world_blades(w)->padded_count x 3 floats, NULL to skip) is
+ * prev (blade_gpu_info(app_world_blades(w)).padded_count x 3 floats, NULL to skip) is
  * given, *jitter gets the largest change of (v2 - v2_twin) since the
  * previous call with the same prev (0 while *primed is false), prev is
  * updated and *primed set. */
@@ -34,7 +34,7 @@ double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev
 /* Fraction of real blades whose roots lie inside `radius` of the line from
  * a to b (xz plane, roots between the ends) that are deflected from the twin
  * by more than frac x their height; *corridor gets their count. With `ever`
- * (app_world_blades(w)->padded_count bytes, zeroed before the first call;
+ * (blade_gpu_info(app_world_blades(w)).padded_count bytes, zeroed before the first call;
  * NULL to skip) a blade counts once deflected in this or any earlier call
  * with the same mask. */
 double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],

@@ -143,7 +143,7 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
     blade_gpu_t *g = app_world_blades(w);
     const terrain_mesh_t *terrain = app_world_terrain(w);
     bool heightfield = app_world_scene(w)->terrain.type == TERRAIN_HEIGHTFIELD;
-    uint32_t count = g->padded_count;
+    uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);
     if (!b) return;
     blade_gpu_read_blades(g, b, NULL);
@@ -307,7 +307,7 @@ void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext
 
 static blade_t *read_blades(blade_gpu_t *g)
 {
-    blade_t *b = malloc(sizeof *b * g->padded_count);
+    blade_t *b = malloc(sizeof *b * blade_gpu_info(g).padded_count);
     if (b) blade_gpu_read_blades(g, b, NULL);
     return b;
 }
@@ -315,11 +315,12 @@ static blade_t *read_blades(blade_gpu_t *g)
 double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter)
 {
     blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
-    if (!gw || !gt || gw->padded_count != gt->padded_count) return 0;
+    uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
+    if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *a = read_blades(gw), *b = read_blades(gt);
     double worst = 0, jit = 0;
     bool first = prev && !*primed;
-    for (uint32_t i = 0; a && b && i < gw->padded_count; i++) {
+    for (uint32_t i = 0; a && b && i < count; i++) {
         if (a[i].v1[3] <= 0.0f) continue;
         float d[3];
         for (int k = 0; k < 3; k++) d[k] = a[i].v2[k] - b[i].v2[k];
@@ -348,12 +349,13 @@ double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const flo
 {
     *corridor = 0;
     blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
-    if (!gw || !gt || gw->padded_count != gt->padded_count) return 0;
+    uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
+    if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *x = read_blades(gw), *y = read_blades(gt);
     long hit = 0;
     float ab[2] = {b[0] - a[0], b[1] - a[1]};
     float ab2 = ab[0] * ab[0] + ab[1] * ab[1];
-    for (uint32_t i = 0; x && y && i < gw->padded_count; i++) {
+    for (uint32_t i = 0; x && y && i < count; i++) {
         float h = x[i].v1[3];
         if (h <= 0.0f) continue;
         float ap[2] = {x[i].v0[0] - a[0], x[i].v0[2] - a[1]};
@@ -508,7 +510,8 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
     bb_field_t *f = app_world_billboards(w);
     if (app_world_mode(w) == SCENE_MODE_BLADE && g) {
         blade_t *b = read_blades(g);
-        for (uint32_t i = 0; b && i < g->padded_count; i++) {
+        uint32_t count = blade_gpu_info(g).padded_count;
+        for (uint32_t i = 0; b && i < count; i++) {
             const float *p = b[i].v0;
             if (b[i].v1[3] > 0.0f && p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] &&
                 p[2] >= lo[2] && p[2] <= hi[2])
@@ -689,7 +692,7 @@ long bench_metrics_blade_overpush(app_world_t *w, float *eta_prev, bool primed, 
 {
     blade_gpu_t *g = app_world_blades(w);
     if (!g) return 0;
-    uint32_t count = g->padded_count;
+    uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);
     float *eta = malloc(sizeof *eta * count);
     exact_t *ex = malloc(sizeof *ex * MAX_EXACT);

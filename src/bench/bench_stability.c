@@ -562,8 +562,9 @@ static void make_twin(app_world_t *w, stab_run_t *r)
         free(r->twin);
         r->twin = NULL;
     }
-    r->prev = calloc((size_t)app_world_blades(w)->padded_count * 3, sizeof(float));
-    r->ever = calloc(app_world_blades(w)->padded_count, 1);
+    uint32_t padded = blade_gpu_info(app_world_blades(w)).padded_count;
+    r->prev = calloc((size_t)padded * 3, sizeof(float));
+    r->ever = calloc(padded, 1);
 }
 
 /* Recovery bookkeeping and trail coverage of a passing ball. */

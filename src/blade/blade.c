@@ -4,7 +4,7 @@
  * drawing (eq. 21-24), statistics read back a frame late; beyond both
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
  * eq. 1-5). GL objects come from gfx only. */
-#include "blade/blade.h"
+#include "blade/blade_local.h"
 
 #include "scene/scene_fields.h"
 
@@ -61,10 +61,9 @@ static void command_initial(const blade_gpu_t *g, uint32_t cmd[4])
     cmd[3] = 0u;
 }
 
-bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
+/* Fills the zeroed g; false (logged) on failure, the caller releases. */
+static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
 {
-    memset(g, 0, sizeof *g);
-    assert(desc->field);
     const blade_field_t *f = desc->field;
     g->desc = blade_gpu_desc_defaults(desc);
     g->desc.field = NULL;
@@ -80,7 +79,6 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->patch_order = calloc(np, sizeof *g->patch_order);
     if (!g->patch_aabbs || !g->patch_real || !g->visible_patches || !g->patch_order) {
         core_log_error("blade_gpu_make: out of memory (%u patches)", g->patch_count);
-        blade_gpu_destroy(g);
         return false;
     }
     if (g->patch_count) memcpy(g->patch_aabbs, f->patch_aabbs, g->patch_count * sizeof *g->patch_aabbs);
@@ -130,14 +128,14 @@ bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->vao;
     if (!ok) {
         core_log_error("blade_gpu_make: could not create the GL objects of '%s'", g->desc.label);
-        blade_gpu_destroy(g);
         return false;
     }
     g->stats.total = g->blade_count;
     return true;
 }
 
-void blade_gpu_destroy(blade_gpu_t *g)
+/* Every object and allocation of g (members without one are zero). */
+static void release(blade_gpu_t *g)
 {
     gfx_buffer_t *bufs[] = {&g->blades,  &g->eta,     &g->winds,    &g->spheres,     &g->survivors,
                             &g->command, &g->counters, &g->patches, &g->cube_objects};
@@ -154,7 +152,37 @@ void blade_gpu_destroy(blade_gpu_t *g)
     free(g->patch_real);
     free(g->visible_patches);
     free(g->patch_order);
-    memset(g, 0, sizeof *g);
+}
+
+blade_gpu_t *blade_gpu_make(const blade_gpu_desc_t *desc)
+{
+    assert(desc->field);
+    blade_gpu_t *g = calloc(1, sizeof *g);
+    if (!g) {
+        core_log_error("blade_gpu_make: out of memory");
+        return NULL;
+    }
+    if (!gpu_init(g, desc)) {
+        blade_gpu_destroy(g);
+        return NULL;
+    }
+    return g;
+}
+
+void blade_gpu_destroy(blade_gpu_t *g)
+{
+    if (!g) return;
+    release(g);
+    free(g);
+}
+
+blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g)
+{
+    return (blade_gpu_info_t){.desc = g->desc,
+                              .blade_count = g->blade_count,
+                              .padded_count = g->padded_count,
+                              .patch_count = g->patch_count,
+                              .patch_size = g->patch_size};
 }
 
 void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders)
@@ -265,6 +293,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
         blade_order_sort(g->patch_order, visible);
         for (uint32_t k = 0; k < visible; k++) g->visible_patches[k] = g->patch_order[k].id;
         if (visible) gfx_buffer_update(g->patches, 0, visible * sizeof(uint32_t), g->visible_patches);
+        g->patches_listed = visible;
     } else {
         visible = g->patch_count;
     }
@@ -459,6 +488,13 @@ uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out)
     assert(n <= g->padded_count);
     if (n) gfx_buffer_read(g->survivors, 0, n * sizeof(uint32_t), out);
     return n;
+}
+
+uint32_t blade_gpu_read_patches(const blade_gpu_t *g, uint32_t *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (g->patches_listed) gfx_buffer_read(g->patches, 0, g->patches_listed * sizeof(uint32_t), out);
+    return g->patches_listed;
 }
 
 void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4])

@@ -69,8 +69,6 @@ typedef struct blade_gpu_desc_t {
     const char *label;
 } blade_gpu_desc_t;
 
-#define BLADE_GPU_READBACK_SLOTS 3
-
 /* Latest culling statistics. */
 typedef struct blade_gpu_stats_t {
     uint32_t total;        /* real blades (padding excluded) */
@@ -83,25 +81,17 @@ typedef struct blade_gpu_stats_t {
                               drawn triangles (level of detail lowers it with distance) */
 } blade_gpu_stats_t;
 
-typedef struct blade_gpu_t {
-    blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
-    uint32_t blade_count, padded_count, patch_count, patch_size;
-    blade_aabb_t *patch_aabbs;
-    uint32_t *patch_real;    /* real blades per patch */
-    uint32_t *visible_patches;
-    blade_order_key_t *patch_order; /* the visible patches, nearest first */
-    gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
-    raster_program_t raster; /* made on the first blade_gpu_raster */
-    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
-    gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
-    gfx_readback_t readback;                              /* counters (16 bytes), then the command */
-    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
-    blade_gpu_stats_t stats;
-    gfx_program_t physics, physics_cubes, cull; /* physics_cubes: with cube proxies */
-    gfx_program_t draw, draw_fade;              /* the path's: opaque, and with the hybrid fade */
-    GLuint vao;
-    bool culled_once;
-} blade_gpu_t;
+/* The blade field on the GPU (opaque; blade_local.h). */
+typedef struct blade_gpu_t blade_gpu_t;
+
+/* What a made field holds (blade_gpu_info). */
+typedef struct blade_gpu_info_t {
+    blade_gpu_desc_t desc;  /* resolved; desc.field is NULL */
+    uint32_t blade_count;   /* real blades */
+    uint32_t padded_count;  /* blades in the GPU arrays (padding has height 0): the length of
+                               blade_gpu_read_blades' arrays */
+    uint32_t patch_count, patch_size;
+} blade_gpu_info_t;
 
 /* Per-frame drawing parameters. Zero means default:
  *   view_proj, camera required; sun (0,0,0) -> normalize(0.4, 0.8, 0.3);
@@ -124,10 +114,12 @@ typedef struct blade_draw_desc_t {
 
 blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc);
 
-/* Uploads the field and builds the programs. Returns false (logged, *g
- * zeroed and every object released) on failure. */
-bool blade_gpu_make(blade_gpu_t *g, const blade_gpu_desc_t *desc);
+/* Uploads the field and builds the programs. Returns NULL (logged, every
+ * object released) on failure. */
+blade_gpu_t *blade_gpu_make(const blade_gpu_desc_t *desc);
+/* Releases every object and g itself (NULL: nothing). */
 void blade_gpu_destroy(blade_gpu_t *g);
+blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g);
 
 /* One physics step of every blade (timer "blade.physics") against the
  * spheres and cube proxies of `colliders` (NULL: none; its cube_texture
@@ -165,30 +157,6 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
  * coverage from r's samples. Between raster_begin and raster_end. False
  * when the raster program cannot be made (logged). */
 bool blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
-/* Module-internal (blade.c, blade_tiles.c). The surface of drawn blades
- * (blade_geom.glsl uniforms). */
-typedef struct blade_surface_t {
-    scene_blade_shape_t shape;
-    float displacement, width_correction;
-    int max_level;
-    float lod_distance;
-} blade_surface_t;
-/* Vertices of one pulled strip (blade_geom.glsl blade_strip_uv):
- * S = 2 (max_level + 1), or 2 S + 2 with the eq. 23 displacement (two
- * columns across the width). */
-uint32_t blade_strip_vertices(int max_level, float displacement);
-/* Sets the surface and shading uniforms (blade_geom.glsl,
- * grass_shade.glsl) of program p (in use); zero sun and albedos take the
- * blade_draw_desc_t defaults. */
-void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc);
-/* Rasterizes the blades of
- * `blades` listed in `ids` (id 0: blades[i] directly), as many as the uint
- * at word count_index of `count` (at most count_max); `prog` is made on
- * first use and kept by the caller. */
-bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
-                       const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
-                       uint32_t count_index, uint32_t count_max);
-
 /* Latest culling statistics without stalling (a result is read once its
  * GPU copy has completed, typically a frame or two late); with wait, the
  * latest cull is waited for and read (tests). */
@@ -198,6 +166,10 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait);
  * list of the latest cull (returns the count; out holds padded_count). */
 void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out);
 uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out);
+/* Blocking read of the patch list of the latest cull as the GPU read it
+ * (nearest first; out holds patch_count); returns its length, 0 without
+ * the patch test (no_patch_cull). */
+uint32_t blade_gpu_read_patches(const blade_gpu_t *g, uint32_t *out);
 /* Blocking read of the indirect command {count, instanceCount, first, base}. */
 void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4]);
 /* Replaces the blade state (tests): padded_count blades and eta (NULL: 0). */

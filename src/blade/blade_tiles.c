@@ -5,7 +5,7 @@
  * test, cull (occlusion included) + vertex-pulled or tessellated draw.
  * See blade_tiles.h. GL objects come from
  * gfx only. */
-#include "blade/blade_tiles.h"
+#include "blade/blade_local.h"
 
 #include <assert.h>
 #include <float.h>
@@ -254,9 +254,117 @@ static bool seed_templates(blade_tiles_t *t)
     return true;
 }
 
-bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
+/* The GL objects of t (tiles_init's second half): buffers, readback rings,
+ * textures, slope cells and programs; false (one logged error) on failure. */
+static bool make_objects(blade_tiles_t *t, const layout_t *l)
 {
-    memset(t, 0, sizeof *t);
+    const blade_tiles_desc_t *d = &t->desc;
+    int ntiles = t->grid.nx * t->grid.nz;
+    size_t side = (size_t)t->grid_res + 1;
+    uint32_t B = t->template_blades;
+    size_t S = (size_t)d->pool_slots;
+    t->templates = make_buffer(t, "templates", (size_t)d->template_count * B * sizeof(blade_t), t->template_cpu);
+    t->pool = make_buffer(t, "pool", S * B * sizeof(blade_t), NULL);
+    t->eta = make_buffer(t, "eta", S * B * sizeof(float), NULL);
+    t->motion = make_buffer(t, "motion", S * sizeof(uint32_t), NULL);
+    t->slot_spheres = make_buffer(t, "slot_spheres", S * SLOT_STRIDE * sizeof(uint32_t), NULL);
+    t->slot_list = make_buffer(t, "slot_list", S * sizeof(uint32_t), NULL);
+    t->init_list = make_buffer(t, "init_list", S * 2 * sizeof(uint32_t), NULL);
+    t->winds = make_buffer(t, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
+    t->spheres = make_buffer(t, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
+    t->tile_list = make_buffer(t, "tile_list", (size_t)l->draw_tiles * 2 * sizeof(uint32_t), NULL);
+    t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
+    t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
+    uint32_t cmd[TILES_COMMAND_WORDS] = {0};
+    t->count_word = d->tessellate ? 0 : 1;
+    for (int k = 0; k < 2; k++) {
+        uint32_t *c = &cmd[k ? CMD_FADE : CMD_SOLID];
+        if (d->tessellate) c[1] = 1u; /* one instance of `count` patches */
+        else c[0] = blade_strip_vertices(d->max_level, d->displacement); /* vertices of one strip */
+    }
+    t->command = make_buffer(t, "command", sizeof cmd, cmd);
+    bool ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
+              t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id &&
+              t->drawn_ids.id && t->command.id;
+    char label[128];
+    snprintf(label, sizeof label, "%s.motion_readback", d->label);
+    t->motion_ring = gfx_readback_make(S * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
+    snprintf(label, sizeof label, "%s.draw_readback", d->label);
+    t->draw_ring = gfx_readback_make(RING_WORDS * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
+    ok = ok && t->motion_ring.depth && t->draw_ring.depth;
+    snprintf(label, sizeof label, "%s.ground", d->label);
+    t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
+                                                       .filter = GL_NEAREST, .data = t->ground_cpu,
+                                                       .upload_format = GL_RGBA, .upload_type = GL_FLOAT,
+                                                       .label = label});
+    if (d->extent) {
+        snprintf(label, sizeof label, "%s.extent", d->label);
+        t->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = d->extent->w, .h = d->extent->h, .format = GL_R8,
+                                                           .filter = GL_NEAREST, .data = d->extent->px,
+                                                           .upload_format = GL_RED, .label = label});
+        ok = ok && t->extent.id;
+    }
+    int cpt = d->slope_cells_per_tile;
+    t->slope_grid = hybrid_slope_grid(t->field_min[0], t->field_min[1], d->tile_size, t->grid.nx, t->grid.nz, cpt);
+    float per_cell = d->density * t->slope_grid.cell * t->slope_grid.cell;
+    if (per_cell > (float)HYBRID_SLOPE_MAX_PER_CELL) {
+        core_log_error("blade_tiles_make: %.0f blades per slope cell, at most %d (the default "
+                       "blade_tiles_desc_t.slope_cells_per_tile keeps within it)",
+                       per_cell, HYBRID_SLOPE_MAX_PER_CELL);
+        return false;
+    }
+    size_t cells = (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz;
+    t->slope_map = make_buffer(t, "slope_map", cells * sizeof(hybrid_slope_cell_t), NULL);
+    t->slope_sums = make_buffer(t, "slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
+    t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
+    ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
+    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp"});
+    t->resolve = make_program(t, "slope_resolve", &(gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp"});
+    ok = ok && t->handover.id && t->resolve.id;
+    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
+    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
+    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
+    for (int fade = 0; fade < 2; fade++) {
+        /* the pulled strips carry the debug overlays; the tessellation
+         * stages are blade mode's (blade.tesc, blade.tese) */
+        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
+                                                 : "#define BLADE_OVERLAY 1\n"};
+        if (d->tessellate) {
+            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
+                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
+                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        }
+        char what[32];
+        snprintf(what, sizeof what, "draw_%s%s", d->tessellate ? "tess" : "pull", fade ? "_fade" : "");
+        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
+    }
+    t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
+    ok = ok && t->tile_info.id;
+    snprintf(label, sizeof label, "%s.vao", d->label);
+    t->vao = gfx_vertex_array_make(label);
+    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
+    if (!ok) {
+        core_log_error("blade_tiles_make: could not create the GL objects of '%s'", d->label);
+        return false;
+    }
+    uint32_t zero = 0;
+    glClearNamedBufferData(t->pool.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->eta.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->slope_map.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->slope_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    t->stats.gpu_bytes = l->bytes;
+    t->stats.slots_total = d->pool_slots;
+    t->stats.blades_per_template = B;
+    t->stats.tiles = ntiles;
+    return true;
+}
+
+/* Fills the zeroed t; false (one logged error) on failure, the caller
+ * releases. */
+static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
+{
     t->desc = blade_tiles_desc_defaults(desc);
     const terrain_mesh_t *m = desc->terrain;
     t->desc.terrain = NULL;
@@ -309,7 +417,6 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
     if (!ok || !seed_templates(t)) {
         core_log_error("blade_tiles_make: out of memory or seeding failed");
-        blade_tiles_destroy(t);
         return false;
     }
     for (int s = 0; s < d->pool_slots; s++) t->slot_owner[s] = -1, t->slot_motion[s] = 0.0f;
@@ -318,110 +425,13 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc)
         memcpy(&t->ground_cpu[4 * v], &m->normals[3 * v], 3 * sizeof(float));
         t->ground_cpu[4 * v + 3] = m->positions[3 * v + 1];
     }
-
-    uint32_t B = t->template_blades;
-    size_t S = (size_t)d->pool_slots;
-    t->templates = make_buffer(t, "templates", (size_t)d->template_count * B * sizeof(blade_t), t->template_cpu);
-    t->pool = make_buffer(t, "pool", S * B * sizeof(blade_t), NULL);
-    t->eta = make_buffer(t, "eta", S * B * sizeof(float), NULL);
-    t->motion = make_buffer(t, "motion", S * sizeof(uint32_t), NULL);
-    t->slot_spheres = make_buffer(t, "slot_spheres", S * SLOT_STRIDE * sizeof(uint32_t), NULL);
-    t->slot_list = make_buffer(t, "slot_list", S * sizeof(uint32_t), NULL);
-    t->init_list = make_buffer(t, "init_list", S * 2 * sizeof(uint32_t), NULL);
-    t->winds = make_buffer(t, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
-    t->spheres = make_buffer(t, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
-    t->tile_list = make_buffer(t, "tile_list", (size_t)l.draw_tiles * 2 * sizeof(uint32_t), NULL);
-    t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
-    t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
-    uint32_t cmd[TILES_COMMAND_WORDS] = {0};
-    t->count_word = d->tessellate ? 0 : 1;
-    for (int k = 0; k < 2; k++) {
-        uint32_t *c = &cmd[k ? CMD_FADE : CMD_SOLID];
-        if (d->tessellate) c[1] = 1u; /* one instance of `count` patches */
-        else c[0] = blade_strip_vertices(d->max_level, d->displacement); /* vertices of one strip */
-    }
-    t->command = make_buffer(t, "command", sizeof cmd, cmd);
-    ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
-         t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id && t->drawn_ids.id &&
-         t->command.id;
-    char label[128];
-    snprintf(label, sizeof label, "%s.motion_readback", d->label);
-    t->motion_ring = gfx_readback_make(S * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
-    snprintf(label, sizeof label, "%s.draw_readback", d->label);
-    t->draw_ring = gfx_readback_make(RING_WORDS * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
-    ok = ok && t->motion_ring.depth && t->draw_ring.depth;
-    snprintf(label, sizeof label, "%s.ground", d->label);
-    t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
-                                                       .filter = GL_NEAREST, .data = t->ground_cpu,
-                                                       .upload_format = GL_RGBA, .upload_type = GL_FLOAT,
-                                                       .label = label});
-    if (d->extent) {
-        snprintf(label, sizeof label, "%s.extent", d->label);
-        t->extent = gfx_texture_make(&(gfx_texture_desc_t){.w = d->extent->w, .h = d->extent->h, .format = GL_R8,
-                                                           .filter = GL_NEAREST, .data = d->extent->px,
-                                                           .upload_format = GL_RED, .label = label});
-        ok = ok && t->extent.id;
-    }
-    int cpt = d->slope_cells_per_tile;
-    t->slope_grid = hybrid_slope_grid(t->field_min[0], t->field_min[1], d->tile_size, t->grid.nx, t->grid.nz, cpt);
-    float per_cell = d->density * t->slope_grid.cell * t->slope_grid.cell;
-    if (per_cell > (float)HYBRID_SLOPE_MAX_PER_CELL) {
-        core_log_error("blade_tiles_make: %.0f blades per slope cell, at most %d (the default "
-                       "blade_tiles_desc_t.slope_cells_per_tile keeps within it)",
-                       per_cell, HYBRID_SLOPE_MAX_PER_CELL);
-        blade_tiles_destroy(t);
-        return false;
-    }
-    size_t cells = (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz;
-    t->slope_map = make_buffer(t, "slope_map", cells * sizeof(hybrid_slope_cell_t), NULL);
-    t->slope_sums = make_buffer(t, "slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
-    t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
-    ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
-    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp"});
-    t->resolve = make_program(t, "slope_resolve", &(gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp"});
-    ok = ok && t->handover.id && t->resolve.id;
-    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
-    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
-    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
-    for (int fade = 0; fade < 2; fade++) {
-        /* the pulled strips carry the debug overlays; the tessellation
-         * stages are blade mode's (blade.tesc, blade.tese) */
-        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
-                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
-                                                 : "#define BLADE_OVERLAY 1\n"};
-        if (d->tessellate) {
-            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
-                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
-                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
-        }
-        char what[32];
-        snprintf(what, sizeof what, "draw_%s%s", d->tessellate ? "tess" : "pull", fade ? "_fade" : "");
-        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
-    }
-    t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
-    ok = ok && t->tile_info.id;
-    snprintf(label, sizeof label, "%s.vao", d->label);
-    t->vao = gfx_vertex_array_make(label);
-    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
-    if (!ok) {
-        core_log_error("blade_tiles_make: could not create the GL objects of '%s'", d->label);
-        blade_tiles_destroy(t);
-        return false;
-    }
-    uint32_t zero = 0;
-    glClearNamedBufferData(t->pool.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(t->eta.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(t->slope_map.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(t->slope_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    t->stats.gpu_bytes = l.bytes;
-    t->stats.slots_total = d->pool_slots;
-    t->stats.blades_per_template = B;
-    t->stats.tiles = ntiles;
+    if (!make_objects(t, &l)) return false;
+    t->desc.extent = NULL; /* borrowed during make only, as the terrain */
     return true;
 }
 
-void blade_tiles_destroy(blade_tiles_t *t)
+/* Every object and allocation of t (members without one are zero). */
+static void release(blade_tiles_t *t)
 {
     gfx_buffer_t *bufs[] = {&t->templates, &t->pool, &t->eta, &t->motion, &t->winds, &t->spheres,
                             &t->slot_spheres, &t->slot_list, &t->init_list, &t->tile_list, &t->drawn,
@@ -447,7 +457,43 @@ void blade_tiles_destroy(blade_tiles_t *t)
     free(t->order);
     free(t->template_cpu);
     free(t->ground_cpu);
-    memset(t, 0, sizeof *t);
+}
+
+blade_tiles_t *blade_tiles_make(const blade_tiles_desc_t *desc)
+{
+    blade_tiles_t *t = calloc(1, sizeof *t);
+    if (!t) {
+        core_log_error("blade_tiles_make: out of memory");
+        return NULL;
+    }
+    if (!tiles_init(t, desc)) {
+        blade_tiles_destroy(t);
+        return NULL;
+    }
+    return t;
+}
+
+void blade_tiles_destroy(blade_tiles_t *t)
+{
+    if (!t) return;
+    release(t);
+    free(t);
+}
+
+blade_tiles_info_t blade_tiles_info(const blade_tiles_t *t)
+{
+    blade_tiles_info_t info = {.desc = t->desc,
+                               .grid = &t->grid,
+                               .slope_grid = t->slope_grid,
+                               .template_blades = t->template_blades,
+                               .draw_capacity = t->draw_capacity,
+                               .max_draw_tiles = t->max_draw_tiles,
+                               .reach = t->reach,
+                               .env = t->env,
+                               .time = t->time,
+                               .extent_texture = t->extent.id};
+    memcpy(info.template_real, t->template_real, sizeof info.template_real);
+    return info;
 }
 
 /* Uniforms of slope.glsl. */
@@ -890,6 +936,28 @@ uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *
     return solid + fade;
 }
 
+int blade_tiles_read_tile_list(const blade_tiles_t *t, uint32_t *out)
+{
+    int n = t->stats.tiles_drawn;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (n) gfx_buffer_read(t->tile_list, 0, (size_t)n * 2 * sizeof(uint32_t), out);
+    return n;
+}
+
+void blade_tiles_read_template(const blade_tiles_t *t, int index, blade_t *out)
+{
+    assert(index >= 0 && index < t->desc.template_count);
+    memcpy(out, &t->template_cpu[(size_t)index * t->template_blades], t->template_blades * sizeof *out);
+}
+
+int blade_tiles_slot_owner(const blade_tiles_t *t, int slot) { return t->slot_owner[slot]; }
+
+void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull)
+{
+    t->desc.cull = *cull;
+    t->desc.cull.depth = NULL;
+}
+
 float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)
 {
     return t->slot_motion[slot];
@@ -908,4 +976,11 @@ void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_buffer_read(t->slope_map, 0,
                     (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz * sizeof(hybrid_slope_cell_t), out);
+}
+
+void blade_tiles_write_slopes(blade_tiles_t *t, const hybrid_slope_cell_t *cells)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_update(t->slope_map, 0,
+                      (size_t)t->slope_grid.nx * (size_t)t->slope_grid.nz * sizeof(hybrid_slope_cell_t), cells);
 }

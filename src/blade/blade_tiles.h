@@ -36,8 +36,6 @@
 #include "scene/terrain.h"
 
 #define BLADE_TILES_MAX_TEMPLATES 8
-#define BLADE_TILES_READBACK_SLOTS 4
-
 
 /* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
  * scene/scene_fields.h:
@@ -152,54 +150,32 @@ typedef struct blade_tiles_stats_t {
  * hybrid_slope_sum_t per cell of `grid`; bb_field_add_slopes does this). */
 typedef void (*blade_tiles_slope_source_fn)(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums);
 
-typedef struct blade_tiles_t {
-    blade_tiles_desc_t desc; /* resolved; desc.terrain is NULL after make */
-    hybrid_grid_t grid;
-    float field_min[2], field_size; /* heightfield square */
-    int grid_res;
-    int tile_offset[2];             /* world tile coordinates of tile 0 (template hash) */
-    float reach;                    /* height_max + width_max / 2 */
-    uint32_t template_blades;       /* padded blades per template */
-    uint32_t draw_capacity;
-    int *slot_owner;                /* tile per slot, -1 free */
-    float *tile_motion;             /* per tile, for hybrid */
-    uint32_t *scratch;              /* per-frame upload lists */
-    blade_order_key_t *order;       /* max_draw_tiles: the drawn tiles, nearest first */
-    blade_t *template_cpu;          /* template_count * template_blades, tile-local */
+/* The tiled field (opaque; blade_local.h). */
+typedef struct blade_tiles_t blade_tiles_t;
+
+/* What a made field holds (blade_tiles_info). */
+typedef struct blade_tiles_info_t {
+    blade_tiles_desc_t desc;        /* resolved; desc.terrain and desc.extent are NULL */
+    const hybrid_grid_t *grid;      /* the tile bookkeeping (read only; valid until destroy) */
+    hybrid_slope_grid_t slope_grid; /* the slope cells of the hand-over */
+    uint32_t template_blades;       /* blades per template, padded: the length of a slot */
     uint32_t template_real[BLADE_TILES_MAX_TEMPLATES]; /* blades per template, padding excluded */
-    int count_word;                 /* the word a draw command counts blades in: 1 instances (pull),
-                                       0 patch vertices (tessellate) */
-    uint32_t ring_tile_culled[BLADE_TILES_READBACK_SLOTS]; /* stats.tile_culled per draw_ring slot */
-    float *ground_cpu;              /* the ground texture: xyz normal, w height per grid vertex */
-    int max_draw_tiles;
-    blade_env_t env;                /* latest resolved env (gravity, winds) */
-    float time;
-    gfx_buffer_t templates, pool, eta, motion, winds, spheres, slot_spheres, slot_list, init_list,
-        tile_list, drawn, drawn_ids, command;
-    gfx_readback_t motion_ring, draw_ring; /* BLADE_TILES_READBACK_SLOTS deep */
-    int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
-    float *slot_motion;                            /* latest read back, per slot */
-    gfx_texture_t ground;
-    gfx_texture_t extent; /* R8, id 0 when the desc gave none */
-    gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
-    int overlay;            /* BLADE_TILES_OVERLAY_* */
-    gfx_program_t init, physics, cull, draw, draw_fade, handover, resolve;
-    raster_program_t raster; /* made on the first blade_tiles_raster */
-    hybrid_slope_grid_t slope_grid;
-    gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
-    blade_tiles_slope_source_fn source;
-    void *source_user;
-    GLuint vao;
-    blade_tiles_stats_t stats;
-    bool culled_once, warned_overflow;
-} blade_tiles_t;
+    uint32_t draw_capacity;         /* blades the per-frame draw buffer holds */
+    int max_draw_tiles;             /* tiles the per-frame tile list holds */
+    float reach;                    /* height_max + width_max / 2: a tile's bounds grow by it */
+    blade_env_t env;                /* the latest resolved env (gravity, winds) */
+    float time;                     /* of the latest update (s) */
+    GLuint extent_texture;          /* the desc's extent map as an R8 texture (owned by the
+                                       field), 0 without one */
+} blade_tiles_info_t;
 
 blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc);
 
 /* Seeds the templates, uploads templates and ground, allocates the pool.
- * Returns false (one logged error, *t zeroed, nothing held) for a mesh
- * terrain, bad sizes, or GL failure. */
-bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc);
+ * Returns NULL (one logged error, nothing held) for a mesh terrain, bad
+ * sizes, or GL failure. */
+blade_tiles_t *blade_tiles_make(const blade_tiles_desc_t *desc);
+blade_tiles_info_t blade_tiles_info(const blade_tiles_t *t);
 /* Debug overlays drawn over the tiled blades:
  *   STATE  tile state: active red, recovering yellow, idle unchanged
  *   LOD    level of detail: blue (1 segment) .. red (max_level)
@@ -207,6 +183,7 @@ bool blade_tiles_make(blade_tiles_t *t, const blade_tiles_desc_t *desc);
 enum { BLADE_TILES_OVERLAY_OFF = 0, BLADE_TILES_OVERLAY_STATE, BLADE_TILES_OVERLAY_LOD, BLADE_TILES_OVERLAY_ETA };
 void blade_tiles_set_overlay(blade_tiles_t *t, int overlay);
 
+/* Releases every object and t itself (NULL: nothing). */
 void blade_tiles_destroy(blade_tiles_t *t);
 /* The billboards' side of the billboards -> blades hand-over (NULL: only
  * the slope cells seed blades). */
@@ -244,6 +221,11 @@ bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *
 void blade_tiles_slope(const blade_tiles_t *t, gfx_buffer_t *map, hybrid_slope_grid_t *grid, float *recover);
 blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);
 
+/* Replaces the cull settings (tests; the resolved desc.cull of
+ * blade_tiles_info with changes): used from the next draw on, taken as
+ * they are (no defaults); view_proj, cam_pos and depth are not read. */
+void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull);
+
 /* ---- test helpers (blocking) ---------------------------------------------- */
 /* The template_blades blades (and eta, may be NULL) of a pool slot. */
 void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float *eta_out);
@@ -255,6 +237,18 @@ void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out);
 uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids);
 /* The slope cells (slope_grid.nx * slope_grid.nz). */
 void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out);
+/* Replaces the slope cells (slope_grid.nx * slope_grid.nz); zeroed cells
+ * draw the billboards as without the hand-over. */
+void blade_tiles_write_slopes(blade_tiles_t *t, const hybrid_slope_cell_t *cells);
+/* The tile list of the latest cull as the GPU read it, nearest first:
+ * (tile, slot or 0xffffffff) per listed tile; returns the count (out holds
+ * 2 * max_draw_tiles). */
+int blade_tiles_read_tile_list(const blade_tiles_t *t, uint32_t *out);
+/* The template_blades blades of template `index` as seeded (tile-local;
+ * from the CPU copy, no GL). */
+void blade_tiles_read_template(const blade_tiles_t *t, int index, blade_t *out);
+/* The tile owning a pool slot, -1 when free. */
+int blade_tiles_slot_owner(const blade_tiles_t *t, int slot);
 /* Latest motion per slot as read back (m). */
 float blade_tiles_slot_motion(const blade_tiles_t *t, int slot);
 /* CPU twin of the GPU root placement: world root and up of template blade

@@ -1,0 +1,101 @@
+/* blade_local: the bodies of the blade module's GPU objects (blade_gpu_t,
+ * blade_tiles_t) and the helpers blade.c and blade_tiles.c share. Included
+ * by the .c files of src/blade only; everything else goes through blade.h and
+ * blade_tiles.h (make, info, stats, the read functions). */
+#ifndef MEADOW_BLADE_LOCAL_H
+#define MEADOW_BLADE_LOCAL_H
+
+#include "blade/blade.h"
+#include "blade/blade_tiles.h"
+
+#define BLADE_GPU_READBACK_SLOTS 3
+#define BLADE_TILES_READBACK_SLOTS 4
+
+struct blade_gpu_t {
+    blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
+    uint32_t blade_count, padded_count, patch_count, patch_size;
+    blade_aabb_t *patch_aabbs;
+    uint32_t *patch_real;    /* real blades per patch */
+    uint32_t *visible_patches;
+    uint32_t patches_listed;        /* visible_patches of the latest cull (0: no patch cull) */
+    blade_order_key_t *patch_order; /* the visible patches, nearest first */
+    gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
+    raster_program_t raster; /* made on the first blade_gpu_raster */
+    gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
+    gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
+    gfx_readback_t readback;                              /* counters (16 bytes), then the command */
+    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
+    blade_gpu_stats_t stats;
+    gfx_program_t physics, physics_cubes, cull; /* physics_cubes: with cube proxies */
+    gfx_program_t draw, draw_fade;              /* the path's: opaque, and with the hybrid fade */
+    GLuint vao;
+    bool culled_once;
+};
+
+struct blade_tiles_t {
+    blade_tiles_desc_t desc; /* resolved; desc.terrain and desc.extent are NULL after make */
+    hybrid_grid_t grid;
+    float field_min[2], field_size; /* heightfield square */
+    int grid_res;
+    int tile_offset[2];             /* world tile coordinates of tile 0 (template hash) */
+    float reach;                    /* height_max + width_max / 2 */
+    uint32_t template_blades;       /* padded blades per template */
+    uint32_t draw_capacity;
+    int *slot_owner;                /* tile per slot, -1 free */
+    float *tile_motion;             /* per tile, for hybrid */
+    uint32_t *scratch;              /* per-frame upload lists */
+    blade_order_key_t *order;       /* max_draw_tiles: the drawn tiles, nearest first */
+    blade_t *template_cpu;          /* template_count * template_blades, tile-local */
+    uint32_t template_real[BLADE_TILES_MAX_TEMPLATES]; /* blades per template, padding excluded */
+    int count_word;                 /* the word a draw command counts blades in: 1 instances (pull),
+                                       0 patch vertices (tessellate) */
+    uint32_t ring_tile_culled[BLADE_TILES_READBACK_SLOTS]; /* stats.tile_culled per draw_ring slot */
+    float *ground_cpu;              /* the ground texture: xyz normal, w height per grid vertex */
+    int max_draw_tiles;
+    blade_env_t env;                /* latest resolved env (gravity, winds) */
+    float time;
+    gfx_buffer_t templates, pool, eta, motion, winds, spheres, slot_spheres, slot_list, init_list,
+        tile_list, drawn, drawn_ids, command;
+    gfx_readback_t motion_ring, draw_ring; /* BLADE_TILES_READBACK_SLOTS deep */
+    int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
+    float *slot_motion;                            /* latest read back, per slot */
+    gfx_texture_t ground;
+    gfx_texture_t extent; /* R8, id 0 when the desc gave none */
+    gfx_buffer_t tile_info; /* per tile: state | slot << 2, for the overlays */
+    int overlay;            /* BLADE_TILES_OVERLAY_* */
+    gfx_program_t init, physics, cull, draw, draw_fade, handover, resolve;
+    raster_program_t raster; /* made on the first blade_tiles_raster */
+    hybrid_slope_grid_t slope_grid;
+    gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
+    blade_tiles_slope_source_fn source;
+    void *source_user;
+    GLuint vao;
+    blade_tiles_stats_t stats;
+    bool culled_once, warned_overflow;
+};
+
+/* The surface of drawn blades (blade_geom.glsl uniforms). */
+typedef struct blade_surface_t {
+    scene_blade_shape_t shape;
+    float displacement, width_correction;
+    int max_level;
+    float lod_distance;
+} blade_surface_t;
+/* Vertices of one pulled strip (blade_geom.glsl blade_strip_uv):
+ * S = 2 (max_level + 1), or 2 S + 2 with the eq. 23 displacement (two
+ * columns across the width). */
+uint32_t blade_strip_vertices(int max_level, float displacement);
+/* Sets the surface and shading uniforms (blade_geom.glsl,
+ * grass_shade.glsl) of program p (in use); zero sun and albedos take the
+ * blade_draw_desc_t defaults. */
+void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc);
+/* Rasterizes the blades of
+ * `blades` listed in `ids` (id 0: blades[i] directly), as many as the uint
+ * at word count_index of `count` (at most count_max); `prog` is made on
+ * first use and kept by the caller. */
+bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
+                       const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
+                       uint32_t count_index, uint32_t count_max);
+
+
+#endif
