@@ -86,31 +86,33 @@ static int compare(const bb_field_t *f, const collide_cubemap_t *cube, const flo
     return deformed;
 }
 
-int main(void)
-{
-    test_gl_init();
-    core_log_set_quiet(true);
+/* What every part shares: the field's desc on its terrain, the sphere
+ * (centre sunk 0.2 m into the ground), the update time and the sphere's
+ * CPU cube map. */
+typedef struct fixture_t {
     terrain_mesh_t terrain;
-    bb_field_desc_t desc = test_field_desc(&terrain, RES, 0);
-    const float radius = 0.5f, time = 0.7f;
-    float centre[3] = {0.3f, 0, -0.2f};
-    centre[1] = sphere_y(&terrain, centre[0], centre[2]);
-
+    bb_field_desc_t desc;
+    float radius, time, centre[3];
     collide_cubemap_t cpu_cube;
-    CHECK(collide_init_cubemap(&cpu_cube, RES, (vec3){0, 0, 0}, radius));
-    collide_render_sphere(&cpu_cube, (vec3){0, 0, 0}, radius);
+} fixture_t;
 
-    /* A: CPU cube map uploaded: same inputs on both sides. */
-    bb_field_t *fa = bb_field_make(&desc);
+/* A: the CPU cube map uploaded, same inputs on both sides; P: the paper's
+ * collision as printed; H: the hybrid's hidden region. Returns A's
+ * deformed billboards. */
+static int check_cpu_cube(const fixture_t *x)
+{
+    const float radius = x->radius, time = x->time, *centre = x->centre;
+    const collide_cubemap_t *cpu_cube = &x->cpu_cube;
+    bb_field_t *fa = bb_field_make(&x->desc);
     CHECK(fa);
-    bb_field_set_cube(fa, 0, &cpu_cube);
+    bb_field_set_cube(fa, 0, cpu_cube);
     collide_object_t oa = test_object(NULL, centre, radius);
     gfx_timer_frame_begin();
     bb_field_update(fa, test_set(&oa, 1), time, 1.0f / 30.0f);
     double max_err, mean_err, deepest;
     int cpu_hits, below;
     const float still[3] = {0, 0, 0};
-    int da = compare(fa, &cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    int da = compare(fa, cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     printf("A (CPU cube): %d of %d billboards deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m, "
            "%d vertices under the terrain\n",
            da, test_info(fa).billboards, cpu_hits, max_err, mean_err, deepest, below);
@@ -124,15 +126,15 @@ int main(void)
 
     /* P: the paper's collision as printed (no slide, ground, bend limit or
      * push after the sweeps) equals bb_ref_collide with paper set. */
-    bb_field_desc_t dp = desc;
+    bb_field_desc_t dp = x->desc;
     dp.paper = true;
     bb_field_t *fp = bb_field_make(&dp);
     CHECK(fp);
-    bb_field_set_cube(fp, 0, &cpu_cube);
+    bb_field_set_cube(fp, 0, cpu_cube);
     bb_field_update(fp, test_set(&oa, 1), time, 1.0f / 30.0f);
     double pmax, pmean, pdeep;
     int phits, pbelow;
-    int dpp = compare(fp, &cpu_cube, centre, still, radius, time, &pmax, &pmean, &pdeep, &phits, &pbelow);
+    int dpp = compare(fp, cpu_cube, centre, still, radius, time, &pmax, &pmean, &pdeep, &phits, &pbelow);
     printf("P (paper's collision): %d deformed, max |dv| %.3g m, mean %.3g m, deepest %.3g m\n", dpp, pmax, pmean,
            pdeep);
     CHECK(dpp == da && pmax < 1e-4);
@@ -158,6 +160,16 @@ int main(void)
     }
     bb_field_destroy(fa);
 
+    return da;
+}
+
+/* A2: the sphere swept (da: billboards A deformed where it stands). */
+static void check_swept(const fixture_t *x, int da)
+{
+    const float radius = x->radius, time = x->time, *centre = x->centre;
+    const collide_cubemap_t *cpu_cube = &x->cpu_cube;
+    double max_err, mean_err, deepest;
+    int cpu_hits, below;
     /* A2: the same sphere swept: one step ago it was 1.0 m back along x and
      * 0.7 m along z (collide_add_object with dt > 0 gives prev_position);
      * GPU meshes equal bb_ref_collide with the same sweep, and more
@@ -167,9 +179,9 @@ int main(void)
      * at even resolutions, and the GPU and the CPU then round to texels on
      * either side (normals tilted +-half a texel: 0.019 m apart along the
      * sweep without springs, 0.056 m with them, measured). */
-    bb_field_t *fs = bb_field_make(&desc);
+    bb_field_t *fs = bb_field_make(&x->desc);
     CHECK(fs);
-    bb_field_set_cube(fs, 0, &cpu_cube);
+    bb_field_set_cube(fs, 0, cpu_cube);
     const float sweep[3] = {-1.0f, 0.0f, -0.7f};
     float before[3] = {centre[0] + sweep[0], centre[1] + sweep[1], centre[2] + sweep[2]};
     collide_object_t os[2] = {test_object(NULL, before, radius), test_object(NULL, centre, radius)};
@@ -180,7 +192,7 @@ int main(void)
     collide_add_object(&moving, &os[1], 1.0f / 30.0f);
     gfx_timer_frame_begin();
     bb_field_update(fs, &moving, time, 1.0f / 30.0f);
-    int ds = compare(fs, &cpu_cube, centre, sweep, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    int ds = compare(fs, cpu_cube, centre, sweep, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     printf("A2 (swept 1.22 m): %d billboards deformed (CPU: %d hit; %d standing), max |dv| %.3g m, %d under the "
            "terrain\n",
            ds, cpu_hits, da, max_err, below);
@@ -189,11 +201,17 @@ int main(void)
     CHECK(below == 0);
     bb_field_destroy(fs);
 
+}
+
+static void check_lend(const fixture_t *x)
+{
+    const float radius = x->radius, *centre = x->centre;
+    const collide_cubemap_t *cpu_cube = &x->cpu_cube;
     /* Lent cube proxies keep the object's index (layers 6k .. 6k+5): object
      * 0 without a map, object 1 with one. */
-    bb_field_t *fl = bb_field_make(&desc);
+    bb_field_t *fl = bb_field_make(&x->desc);
     CHECK(fl);
-    bb_field_set_cube(fl, 1, &cpu_cube);
+    bb_field_set_cube(fl, 1, cpu_cube);
     float far_centre[3] = {centre[0] + 3.0f, centre[1], centre[2]};
     collide_object_t two[2] = {test_object(NULL, centre, radius), test_object(NULL, far_centre, radius)};
     collide_set_t lend = *test_set(two, 2);
@@ -204,13 +222,19 @@ int main(void)
     CHECK(lend.cubes[1].sphere[3] > 0.0f && fabsf(lend.cubes[1].sphere[0] - far_centre[0]) < 1e-4f);
     bb_field_destroy(fl);
 
-    /* B: GPU cube map of the sphere mesh. */
-    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
-    test_mesh_t mesh;
-    test_mesh_make(&mesh, &sc);
-    bb_field_t *fb = bb_field_make(&desc);
+}
+
+/* B: the GPU cube map of the sphere mesh; returns its six layers (for B2). */
+static float *check_gpu_cube(const fixture_t *x, const test_mesh_t *mesh)
+{
+    const float radius = x->radius, time = x->time, *centre = x->centre;
+    const collide_cubemap_t *cpu_cube = &x->cpu_cube;
+    double max_err, mean_err, deepest;
+    int cpu_hits, below;
+    const float still[3] = {0, 0, 0};
+    bb_field_t *fb = bb_field_make(&x->desc);
     CHECK(fb);
-    collide_object_t ob = test_object(&mesh, centre, radius);
+    collide_object_t ob = test_object(mesh, centre, radius);
     gfx_timer_frame_begin();
     bb_field_update(fb, test_set(&ob, 1), time, 1.0f / 30.0f);
     float *tex = malloc(sizeof(float) * 4 * 6 * RES * RES);
@@ -218,7 +242,7 @@ int main(void)
     int both = 0, disagree = 0, far = 0;
     double max_dd = 0, max_dn = 0, mean_dd = 0;
     for (int t = 0; t < 6 * RES * RES; t++) {
-        const float *g = &tex[4 * t], *c = &cpu_cube.texels[4 * t];
+        const float *g = &tex[4 * t], *c = &cpu_cube->texels[4 * t];
         bool gh = g[0] < 2 * radius - 1e-5f, ch = c[0] < 2 * radius - 1e-5f;
         if (gh != ch) {
             disagree++;
@@ -242,7 +266,7 @@ int main(void)
     CHECK(far < both / 20);
     CHECK(mean_dd / both < 0.01); /* the flat facets lie up to ~1.4 cm inside the sphere */
     CHECK(max_dn < 0.15);
-    int db = compare(fb, &cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
+    int db = compare(fb, cpu_cube, centre, still, radius, time, &max_err, &mean_err, &deepest, &cpu_hits, &below);
     float texel = 2 * radius / RES;
     printf("B (GPU cube): %d deformed (CPU: %d hit), max |dv| %.3g m, mean %.3g m, deepest %.3g m (texel %.3g m), "
            "%d vertices under the terrain\n",
@@ -257,14 +281,20 @@ int main(void)
     CHECK(deepest > -texel);
     bb_field_destroy(fb);
 
+    return tex;
+}
+
+static void check_two_objects(const fixture_t *x, const test_mesh_t *mesh, const float *tex)
+{
+    const float radius = x->radius, time = x->time, *centre = x->centre;
+    bb_field_t *fb = bb_field_make(&x->desc);
     /* B2: two spheres in one update, each in its own six layers (one draw
      * per object, the geometry shader picks the layer): both maps equal
      * B's texel for texel. */
-    fb = bb_field_make(&desc);
     CHECK(fb);
     float other[3] = {centre[0] - 2.0f, 0.0f, centre[2] + 1.5f};
-    other[1] = sphere_y(&terrain, other[0], other[2]);
-    collide_object_t pair[2] = {test_object(&mesh, other, radius), test_object(&mesh, centre, radius)};
+    other[1] = sphere_y(&x->terrain, other[0], other[2]);
+    collide_object_t pair[2] = {test_object(mesh, other, radius), test_object(mesh, centre, radius)};
     gfx_timer_frame_begin();
     bb_field_update(fb, test_set(pair, 2), time, 1.0f / 30.0f);
     float *tex2 = malloc(sizeof(float) * 4 * 12 * RES * RES);
@@ -274,11 +304,30 @@ int main(void)
     printf("B2 two objects: %d of %d cube map floats differ from B's\n", differ, 12 * 4 * RES * RES);
     CHECK(differ == 0);
     free(tex2);
-    free(tex);
     bb_field_destroy(fb);
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    fixture_t x = {.radius = 0.5f, .time = 0.7f, .centre = {0.3f, 0, -0.2f}};
+    x.desc = test_field_desc(&x.terrain, RES, 0);
+    x.centre[1] = sphere_y(&x.terrain, x.centre[0], x.centre[2]);
+    CHECK(collide_init_cubemap(&x.cpu_cube, RES, (vec3){0, 0, 0}, x.radius));
+    collide_render_sphere(&x.cpu_cube, (vec3){0, 0, 0}, x.radius);
+
+    check_swept(&x, check_cpu_cube(&x));
+    check_lend(&x);
+    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = x.radius};
+    test_mesh_t mesh;
+    test_mesh_make(&mesh, &sc);
+    float *tex = check_gpu_cube(&x, &mesh);
+    check_two_objects(&x, &mesh, tex);
+    free(tex);
     test_mesh_destroy(&mesh);
-    collide_free_cubemap(&cpu_cube);
-    terrain_free(&terrain);
+    collide_free_cubemap(&x.cpu_cube);
+    terrain_free(&x.terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

@@ -21,14 +21,11 @@
 #define CLUSTER 12  /* spheres around one point */
 #define OBJECTS (GRID * (GRID - 1) + CLUSTER)
 
-int main(void)
+/* The spheres: GRID x (GRID - 1) of 0.3 m on a grid over the field and
+ * CLUSTER of 0.12 m around one point, sunk half their radius into the
+ * terrain. */
+static void place_spheres(const terrain_mesh_t *terrain, float centre[OBJECTS][3], float radius[OBJECTS])
 {
-    test_gl_init();
-    core_log_set_quiet(true);
-    terrain_mesh_t terrain;
-    bb_field_desc_t desc = test_field_desc(&terrain, RES, OBJECTS);
-    const float time = 0.7f;
-    float centre[OBJECTS][3], radius[OBJECTS];
     for (int k = 0; k < OBJECTS; k++) {
         if (k < GRID * (GRID - 1)) {
             centre[k][0] = -3.4f + 6.8f * (float)(k % GRID) / (GRID - 1);
@@ -40,16 +37,18 @@ int main(void)
             centre[k][2] = 0.6f + 0.45f * sinf(a);
             radius[k] = 0.12f;
         }
-        centre[k][1] = terrain_height_at(&terrain, centre[k][0], centre[k][2], NULL) + 0.5f * radius[k];
+        centre[k][1] = terrain_height_at(terrain, centre[k][0], centre[k][2], NULL) + 0.5f * radius[k];
     }
-    collide_cubemap_t cube[2];
-    const float radii[2] = {0.3f, 0.12f};
-    for (int c = 0; c < 2; c++) {
-        CHECK(collide_init_cubemap(&cube[c], RES, (vec3){0, 0, 0}, radii[c]));
-        collide_render_sphere(&cube[c], (vec3){0, 0, 0}, radii[c]);
-    }
+}
 
-    bb_field_t *f = bb_field_make(&desc);
+/* A: every object with the CPU cube map of its sphere (cube[0] 0.3 m,
+ * cube[1] 0.12 m). Returns the field's points (*n of them; the caller
+ * frees them). */
+static bb_point_t *check_many(const bb_field_desc_t *desc, const collide_cubemap_t cube[2], float time, int *n_out)
+{
+    float centre[OBJECTS][3], radius[OBJECTS];
+    place_spheres(desc->terrain, centre, radius);
+    bb_field_t *f = bb_field_make(desc);
     CHECK(f);
     bb_field_info_t fi = test_info(f);
     const bb_field_desc_t *d = &fi.desc;
@@ -131,10 +130,22 @@ int main(void)
     CHECK(worst > -1.0);
     CHECK(st.batches > 1 && st.objects_dropped == 0 && st.pool_exhausted == 0 && st.deformed == deformed);
 
-    /* B: one billboard inside 20 spheres' reach, on a fresh field. */
+    free(meshes);
     bb_field_destroy(f);
-    f = bb_field_make(&desc);
+    *n_out = n;
+    return pts;
+}
+
+/* B: billboard n / 2 of pts (a field made from desc) inside 20 small
+ * spheres' reach, on a fresh field. */
+static void check_nearest(const bb_field_desc_t *desc, const bb_point_t *pts, int n, float time)
+{
+    bb_field_t *f = bb_field_make(desc);
     CHECK(f);
+    bb_field_info_t fi = test_info(f);
+    const bb_field_desc_t *d = &fi.desc;
+    int nm = fi.mesh_vertices;
+    bb_stats_t st;
     int i0 = n / 2;
     const bb_point_t *p0 = &pts[i0];
     vec3 right, up;
@@ -145,6 +156,7 @@ int main(void)
     CHECK(collide_init_cubemap(&sc, RES, (vec3){0, 0, 0}, small));
     collide_render_sphere(&sc, (vec3){0, 0, 0}, small);
     enum { NB = BB_PASS_OBJECTS + 4 };
+    collide_object_t objs[NB];
     float cb[NB][3], db[NB];
     int order[NB];
     for (int k = 0; k < NB; k++) {
@@ -196,9 +208,26 @@ int main(void)
     CHECK(berr < 1e-4);
     collide_free_cubemap(&sc);
 
-    free(pts);
-    free(meshes);
     bb_field_destroy(f);
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    terrain_mesh_t terrain;
+    bb_field_desc_t desc = test_field_desc(&terrain, RES, OBJECTS);
+    const float time = 0.7f;
+    collide_cubemap_t cube[2];
+    const float radii[2] = {0.3f, 0.12f};
+    for (int c = 0; c < 2; c++) {
+        CHECK(collide_init_cubemap(&cube[c], RES, (vec3){0, 0, 0}, radii[c]));
+        collide_render_sphere(&cube[c], (vec3){0, 0, 0}, radii[c]);
+    }
+    int n = 0;
+    bb_point_t *pts = check_many(&desc, cube, time, &n);
+    check_nearest(&desc, pts, n, time);
+    free(pts);
     for (int c = 0; c < 2; c++) collide_free_cubemap(&cube[c]);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
