@@ -75,14 +75,23 @@ static inline bb_field_desc_t test_field_desc(terrain_mesh_t *terrain, int cube_
                              .layout = {.size = 32, .clump_size = 32}};
 }
 
-/* CPU twin of a billboard's mesh as the collision pass starts it: the rest
- * quad, moved to the wind pose at `time`. */
-static inline void test_cpu_mesh(const bb_field_t *f, const bb_point_t *p, float time, bb_mesh_t *mesh)
+/* What field f holds (bb_field_info). */
+static inline bb_field_info_t test_info(const bb_field_t *f)
+{
+    bb_field_info_t info;
+    bb_field_info(f, &info);
+    return info;
+}
+
+/* CPU twin of a billboard's mesh of a field of resolved desc d as the
+ * collision pass starts it: the rest quad, moved to the wind pose at
+ * `time`. */
+static inline void test_cpu_mesh(const bb_field_desc_t *d, const bb_point_t *p, float time, bb_mesh_t *mesh)
 {
     vec3 right, up;
     bb_point_frame(p, right, up);
-    bb_mesh_init_quad(mesh, p->position, right, up, p->size[0], p->size[1], f->desc.subdiv[0], f->desc.subdiv[1]);
-    bb_ref_wind_pose(mesh, &f->desc.wind, time, mesh->pos);
+    bb_mesh_init_quad(mesh, p->position, right, up, p->size[0], p->size[1], d->subdiv[0], d->subdiv[1]);
+    bb_ref_wind_pose(mesh, &d->wind, time, mesh->pos);
 }
 
 static inline float test_ground_at(const void *terrain, float x, float z)
@@ -90,19 +99,20 @@ static inline float test_ground_at(const void *terrain, float x, float z)
     return terrain_height_at(terrain, x, z, NULL);
 }
 
-/* The CPU twin of the field's collision pass: its springs and its terrain
- * as the ground (bb_collide_desc_t.ground). */
-static inline bb_collide_desc_t test_collide_desc(const bb_field_t *f)
+/* The CPU twin of the collision pass of a field of resolved desc d (its
+ * bb_field_info): its springs and its terrain as the ground
+ * (bb_collide_desc_t.ground). */
+static inline bb_collide_desc_t test_collide_desc(const bb_field_desc_t *d)
 {
-    return (bb_collide_desc_t){.r1 = f->desc.r1, .r2 = f->desc.r2, .iterations = f->desc.iterations,
-                               .ground = test_ground_at, .ground_user = f->desc.terrain, .paper = f->desc.paper};
+    return (bb_collide_desc_t){.r1 = d->r1, .r2 = d->r2, .iterations = d->iterations,
+                               .ground = test_ground_at, .ground_user = d->terrain, .paper = d->paper};
 }
 
-/* Whether world point p lies on the ground (within 0.1 mm above it) or
- * under it (below counts it, more than 0.1 mm under). */
-static inline bool test_on_ground(const bb_field_t *f, const float *p, int *below)
+/* Whether world point p lies on the terrain of desc d (within 0.1 mm
+ * above it) or under it (below counts it, more than 0.1 mm under). */
+static inline bool test_on_ground(const bb_field_desc_t *d, const float *p, int *below)
 {
-    float g = terrain_height_at(f->desc.terrain, p[0], p[2], NULL);
+    float g = terrain_height_at(d->terrain, p[0], p[2], NULL);
     if (p[1] < g - 1e-4f) (*below)++;
     return p[1] <= g + 1e-4f;
 }

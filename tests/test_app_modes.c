@@ -171,7 +171,7 @@ int main(void)
     app_world_t *w = calloc(1, sizeof *w);
     CHECK(app_world_load(w, &o) == 0);
     CHECK(app_world_make_gpu(w));
-    CHECK(w->have_tiles && w->have_bb && !w->have_blades);
+    CHECK(w->have_tiles && w->bb && !w->have_blades);
     app_world_set_mode(w, SCENE_MODE_BLADE);
     CHECK(w->have_blades);
     int f = 0;
@@ -195,7 +195,7 @@ int main(void)
     }
     printf("mode switches: %d blades moved (wind, ball), %d bad\n", moved, bad);
     CHECK(bad == 0 && moved > 0);
-    CHECK(w->have_bb && w->have_blades && w->have_tiles && w->mode == SCENE_MODE_BILLBOARD);
+    CHECK(w->bb && w->have_blades && w->have_tiles && w->mode == SCENE_MODE_BILLBOARD);
     free(a);
     free(b);
     app_world_destroy(w);

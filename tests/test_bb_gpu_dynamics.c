@@ -14,40 +14,31 @@
 
 #include <string.h>
 
-int main(void)
+/* A fast sphere (mesh, radius) over 60 frames of varying dt from *time on:
+ * roots stay, every value finite, the pool counts what is deformed. */
+static void check_moving(bb_field_t *f, const terrain_mesh_t *terrain, const test_mesh_t *mesh, float radius,
+                         float *time)
 {
-    test_gl_init();
-    core_log_set_quiet(true);
-    terrain_mesh_t terrain;
-    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 5));
-    bb_field_t f;
-    const float T = 0.5f;
-    CHECK(bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 5, .density = 36, .octree_depth = 3,
-                                               .cube_res = 32, .recover_time = T, .max_deformed = 512,
-                                               .layout = {.size = 32, .clump_size = 32}}));
-    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.45f};
-    test_mesh_t mesh;
-    test_mesh_make(&mesh, &sc);
-    int n = f.billboards, nm = f.desc.subdiv[0] * f.desc.subdiv[1], N = f.desc.subdiv[0];
+    bb_field_info_t fi = test_info(f);
+    const bb_field_desc_t *d = &fi.desc;
+    int n = fi.billboards, nm = fi.mesh_vertices;
     bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
-    size_t mesh_floats = (size_t)4 * (size_t)nm * (size_t)f.desc.max_deformed;
-    float *meshes = malloc(sizeof(float) * mesh_floats);
-
-    float time = 0;
+    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)d->max_deformed);
+    int N = d->subdiv[0];
     int max_deformed = 0, bad_roots = 0, nonfinite = 0;
     double max_root = 0;
     for (int frame = 0; frame < 60; frame++) {
         float dt = (frame % 3 == 0) ? 1.0f / 15.0f : (frame % 3 == 1 ? 1.0f / 60.0f : 1.0f / 30.0f);
-        time += dt;
+        *time += dt;
         /* 6 m/s zig-zag across the field, bouncing between x = -3.5 and 3.5 */
-        float s = fmodf(time * 6.0f, 14.0f), x = s < 7.0f ? s - 3.5f : 10.5f - s, z = 1.5f * sinf(time * 3.0f);
-        float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.25f, z};
-        collide_object_t o = test_object(&mesh, c, sc.radius);
+        float s = fmodf(*time * 6.0f, 14.0f), x = s < 7.0f ? s - 3.5f : 10.5f - s, z = 1.5f * sinf(*time * 3.0f);
+        float c[3] = {x, terrain_height_at(terrain, x, z, NULL) + 0.25f, z};
+        collide_object_t o = test_object(mesh, c, radius);
         gfx_timer_frame_begin();
-        bb_field_update(&f, test_set(&o, 1), time, dt);
+        bb_field_update(f, test_set(&o, 1), *time, dt);
         if (frame % 6 != 5) continue;
-        gfx_buffer_read(f.points, 0, sizeof *pts * (size_t)n, pts);
-        gfx_buffer_read(f.meshes, 0, sizeof(float) * mesh_floats, meshes);
+        CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
+        CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)d->max_deformed, meshes));
         int deformed = 0;
         for (int i = 0; i < n; i++) {
             const float *pf = (const float *)&pts[i];
@@ -55,7 +46,7 @@ int main(void)
             if (pts[i].pad[0] == BB_NO_SLOT) continue;
             deformed++;
             bb_mesh_t cpu;
-            test_cpu_mesh(&f, &pts[i], time, &cpu);
+            test_cpu_mesh(d, &pts[i], *time, &cpu);
             const float *g = &meshes[(size_t)pts[i].pad[0] * (size_t)nm * 4];
             for (int v = 0; v < nm; v++) {
                 for (int k = 0; k < 3; k++) nonfinite += !isfinite(g[4 * v + k]);
@@ -69,7 +60,7 @@ int main(void)
             bb_mesh_free(&cpu);
         }
         bb_stats_t st;
-        bb_field_stats(&f, true, &st);
+        bb_field_stats(f, true, &st);
         CHECK(st.deformed == deformed);
         max_deformed = deformed > max_deformed ? deformed : max_deformed;
     }
@@ -78,24 +69,35 @@ int main(void)
     CHECK(max_deformed > 20);
     CHECK(bad_roots == 0 && nonfinite == 0);
 
-    /* Recovery: no objects any more. Track every deformed billboard until it
-     * is released and compare the released mesh with the CPU wind pose. */
-    gfx_buffer_read(f.points, 0, sizeof *pts * (size_t)n, pts);
+    free(pts);
+    free(meshes);
+}
+
+/* Recovery: no objects any more. Track every deformed billboard until it
+ * is released and compare the released mesh with the CPU wind pose. */
+static void check_recovery(bb_field_t *f, float *time)
+{
+    bb_field_info_t fi = test_info(f);
+    const bb_field_desc_t *d = &fi.desc;
+    int n = fi.billboards, nm = fi.mesh_vertices;
+    bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
+    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)d->max_deformed);
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
     uint32_t *slot = malloc(sizeof *slot * (size_t)n);
     for (int i = 0; i < n; i++) slot[i] = pts[i].pad[0];
     double max_release = 0, max_before = 0;
     int released = 0;
     for (int frame = 0; frame < 40; frame++) {
         float dt = 1.0f / 30.0f;
-        time += dt;
+        *time += dt;
         gfx_timer_frame_begin();
-        bb_field_update(&f, NULL, time, dt);
-        gfx_buffer_read(f.points, 0, sizeof *pts * (size_t)n, pts);
-        gfx_buffer_read(f.meshes, 0, sizeof(float) * mesh_floats, meshes);
+        bb_field_update(f, NULL, *time, dt);
+        CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
+        CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)d->max_deformed, meshes));
         for (int i = 0; i < n; i++) {
             if (slot[i] == BB_NO_SLOT) continue;
             bb_mesh_t cpu;
-            test_cpu_mesh(&f, &pts[i], time, &cpu);
+            test_cpu_mesh(d, &pts[i], *time, &cpu);
             const float *g = &meshes[(size_t)slot[i] * (size_t)nm * 4];
             double e = 0;
             for (int v = 0; v < nm; v++)
@@ -112,9 +114,9 @@ int main(void)
         }
     }
     bb_stats_t st;
-    bb_field_stats(&f, true, &st);
+    bb_field_stats(f, true, &st);
     uint32_t hdr[2];
-    gfx_buffer_read(f.pool, 0, sizeof hdr, hdr);
+    CHECK(bb_field_read(f, BB_DATA_POOL, 0, 2, hdr));
     printf("recovery: %d released, max |mesh - wind pose| at release %.3g m, one frame before %.3g m; "
            "%d deformed left, free %u of %d, leaves colliding %d recovering %d idle %d\n",
            released, max_release, max_before, st.deformed, hdr[0], st.pool_capacity, st.leaves[1], st.leaves[2],
@@ -128,42 +130,68 @@ int main(void)
     CHECK(st.deformed == 0 && hdr[0] == (uint32_t)st.pool_capacity && st.pool_exhausted == 0);
     CHECK(st.leaves[BB_NODE_COLLIDING] == 0 && st.leaves[BB_NODE_RECOVERING] == 0);
 
-    /* Pool exhaustion through the non-blocking readback. */
-    bb_field_t small;
-    CHECK(bb_field_make(&small, &(bb_field_desc_t){.terrain = &terrain, .seed = 5, .density = 36, .octree_depth = 3,
-                                                   .cube_res = 32, .recover_time = T, .max_deformed = 8,
-                                                   .layout = {.size = 32, .clump_size = 32}}));
+    free(slot);
+    free(pts);
+    free(meshes);
+}
+
+/* Pool exhaustion through the non-blocking readback: an 8-slot pool. */
+static void check_pool_readback(const terrain_mesh_t *terrain, const test_mesh_t *mesh, float radius,
+                                float recover_time, float *time)
+{
+    bb_field_t *small = bb_field_make(&(bb_field_desc_t){.terrain = terrain, .seed = 5, .density = 36,
+                                                         .octree_depth = 3, .cube_res = 32, .recover_time = recover_time,
+                                                         .max_deformed = 8, .layout = {.size = 32, .clump_size = 32}});
+    CHECK(small);
     int warns = core_log_warn_count();
     bb_stats_t late = {0}, exact = {0};
     for (int frame = 0; frame < 12; frame++) {
-        time += 1.0f / 30.0f;
-        float x = -2.0f + 0.3f * (float)frame, c[3] = {x, terrain_height_at(&terrain, x, 0.0f, NULL) + 0.25f, 0.0f};
-        collide_object_t o = test_object(&mesh, c, sc.radius);
-        bb_field_update(&small, test_set(&o, 1), time, 1.0f / 30.0f);
+        *time += 1.0f / 30.0f;
+        float x = -2.0f + 0.3f * (float)frame, c[3] = {x, terrain_height_at(terrain, x, 0.0f, NULL) + 0.25f, 0.0f};
+        collide_object_t o = test_object(mesh, c, radius);
+        bb_field_update(small, test_set(&o, 1), *time, 1.0f / 30.0f);
     }
-    bb_field_stats(&small, true, &exact);
+    bb_field_stats(small, true, &exact);
     /* No more GPU work: updates only poll, so the late numbers settle. */
     for (int frame = 0; frame < 6 && late.pool_exhausted != exact.pool_exhausted; frame++) {
         glFinish();
-        bb_field_update(&small, NULL, time, 0.0f);
-        bb_field_stats(&small, false, &late);
+        bb_field_update(small, NULL, *time, 0.0f);
+        bb_field_stats(small, false, &late);
     }
     printf("8-slot pool: exact %d deformed, %d refused; late %d deformed, %d refused; %d warnings\n",
            exact.deformed, exact.pool_exhausted, late.deformed, late.pool_exhausted, core_log_warn_count() - warns);
     CHECK(exact.deformed == 8 && exact.pool_exhausted > 0);
     CHECK(late.pool_exhausted == exact.pool_exhausted && late.deformed == exact.deformed);
     CHECK(core_log_warn_count() > warns);
-    bb_field_destroy(&small);
+    bb_field_destroy(small);
+
+}
+
+int main(void)
+{
+    test_gl_init();
+    core_log_set_quiet(true);
+    terrain_mesh_t terrain;
+    CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 8, .resolution = 8, .height = 0.3f}, 5));
+    const float T = 0.5f;
+    bb_field_t *f = bb_field_make(&(bb_field_desc_t){.terrain = &terrain, .seed = 5, .density = 36, .octree_depth = 3,
+                                                     .cube_res = 32, .recover_time = T, .max_deformed = 512,
+                                                     .layout = {.size = 32, .clump_size = 32}});
+    CHECK(f);
+    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.45f};
+    test_mesh_t mesh;
+    test_mesh_make(&mesh, &sc);
+    float time = 0;
+    check_moving(f, &terrain, &mesh, sc.radius, &time);
+    check_recovery(f, &time);
+    check_pool_readback(&terrain, &mesh, sc.radius, T, &time);
 
     gfx_timer_flush();
     for (int i = 0; i < gfx_timer_count(); i++)
         printf("timer %-12s median %.3f ms, mean %.3f ms\n", gfx_timer_name(i), gfx_timer_median_ms(i),
                gfx_timer_avg_ms(i));
 
-    free(slot);
-    free(pts);
-    free(meshes);
-    bb_field_destroy(&f);
+    bb_field_destroy(f);
     test_mesh_destroy(&mesh);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);

@@ -58,20 +58,21 @@ static void compare_points(const bb_point_t *gpu, int ngpu, const bb_point_t *cp
 }
 
 /* Leaf order: every leaf's range holds exactly its billboards. */
-static void check_leaf_order(const bb_field_t *f, const bb_point_t *gpu)
+static void check_leaf_order(const bb_field_info_t *fi, const bb_point_t *gpu)
 {
+    const bb_octree_t *tree = fi->tree;
     int wrong_leaf = 0;
     uint32_t covered = 0;
-    for (int k = 0; k < f->tree.leaf_count; k++) {
-        int node = bb_octree_leaf_node(&f->tree, (uint32_t)k);
-        covered += f->tree.count[node];
-        for (uint32_t s = f->tree.first[node]; s < f->tree.first[node] + f->tree.count[node]; s++)
-            wrong_leaf += bb_octree_leaf_of(&f->tree, gpu[s].position) != (uint32_t)k;
+    for (int k = 0; k < tree->leaf_count; k++) {
+        int node = bb_octree_leaf_node(tree, (uint32_t)k);
+        covered += tree->count[node];
+        for (uint32_t s = tree->first[node]; s < tree->first[node] + tree->count[node]; s++)
+            wrong_leaf += bb_octree_leaf_of(tree, gpu[s].position) != (uint32_t)k;
     }
     printf("billboards in the wrong leaf range: %d\n", wrong_leaf);
     CHECK(wrong_leaf == 0);
-    CHECK(covered == (uint32_t)f->billboards);
-    CHECK(f->tree.count[0] == (uint32_t)f->billboards);
+    CHECK(covered == (uint32_t)fi->billboards);
+    CHECK(tree->count[0] == (uint32_t)fi->billboards);
 }
 
 /* Distance from p to triangle (a, b, c): the plane distance when p
@@ -136,42 +137,43 @@ static void test_mesh_wall(void)
 {
     terrain_mesh_t terrain;
     wall_terrain(&terrain);
-    bb_field_t f;
-    bool ok = bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 99, .octree_depth = 3, .density = 25,
-                                                   .layout = {.size = 64, .clump_size = 32}});
-    CHECK(ok);
-    if (!ok) return;
-    CHECK(f.triangles == 6);
+    bb_field_t *f = bb_field_make(&(bb_field_desc_t){.terrain = &terrain, .seed = 99, .octree_depth = 3,
+                                                     .density = 25, .layout = {.size = 64, .clump_size = 32}});
+    CHECK(f);
+    if (!f) return;
+    bb_field_info_t fi;
+    bb_field_info(f, &fi);
+    CHECK(fi.triangles == 6);
     bb_layout_t lay;
-    CHECK(bb_layout_generate(&lay, &f.desc.layout));
-    bb_point_t *cpu = malloc(sizeof *cpu * (size_t)f.capacity);
+    CHECK(bb_layout_generate(&lay, &fi.desc.layout));
+    bb_point_t *cpu = malloc(sizeof *cpu * (size_t)fi.capacity);
     int ncpu = 0, faces_down = 0;
     for (uint32_t k = 0; k < terrain.index_count / 3; k++) {
         const float *v[3];
         for (int c = 0; c < 3; c++) v[c] = &terrain.positions[3 * terrain.indices[3 * k + (uint32_t)c]];
         bb_gen_tri_t tri;
-        if (!bb_gen_tri_make(v[0], v[1], v[2], f.gen.spacing, &tri)) {
+        if (!bb_gen_tri_make(v[0], v[1], v[2], fi.gen.spacing, &tri)) {
             faces_down++;
             continue;
         }
         for (int j = 0; j < tri.cells[1]; j++)
             for (int i = 0; i < tri.cells[0]; i++)
-                if (bb_layout_sample_tri(&lay, &f.gen, &tri, k, i, j, &cpu[ncpu])) ncpu++;
+                if (bb_layout_sample_tri(&lay, &fi.gen, &tri, k, i, j, &cpu[ncpu])) ncpu++;
     }
     CHECK(faces_down == 2);
-    bb_point_t *gpu = malloc(sizeof *gpu * (size_t)(f.billboards + 1));
-    gfx_buffer_read(f.points, 0, sizeof *gpu * (size_t)f.billboards, gpu);
-    printf("mesh: gpu %d, cpu %d billboards (capacity %d)\n", f.billboards, ncpu, f.capacity);
-    CHECK(f.billboards == ncpu && ncpu > 500 && ncpu <= f.capacity);
-    compare_points(gpu, f.billboards, cpu, ncpu, 1e-5);
-    check_leaf_order(&f, gpu);
+    bb_point_t *gpu = malloc(sizeof *gpu * (size_t)(fi.billboards + 1));
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)fi.billboards, gpu));
+    printf("mesh: gpu %d, cpu %d billboards (capacity %d)\n", fi.billboards, ncpu, fi.capacity);
+    CHECK(fi.billboards == ncpu && ncpu > 500 && ncpu <= fi.capacity);
+    compare_points(gpu, fi.billboards, cpu, ncpu, 1e-5);
+    check_leaf_order(&fi, gpu);
 
     /* Every root on a triangle that seeds (not the ledge's underside);
      * roots per m^2 of the face (x = 0, 0.1 < y < 2.9) over those of the
      * floor (y = 0). */
     double worst = 0.0;
     int face = 0, floor = 0, ledge = 0;
-    for (int i = 0; i < f.billboards; i++) {
+    for (int i = 0; i < fi.billboards; i++) {
         const float *p = gpu[i].position;
         double best = INFINITY;
         for (uint32_t k = 0; k < 18 / 3; k++) {
@@ -194,7 +196,7 @@ static void test_mesh_wall(void)
     free(cpu);
     free(gpu);
     bb_layout_free(&lay);
-    bb_field_destroy(&f);
+    bb_field_destroy(f);
     terrain_free(&terrain);
 }
 
@@ -206,44 +208,45 @@ int main(void)
     terrain_mesh_t terrain;
     CHECK(terrain_make_heightfield(&terrain, &(terrain_desc_t){.size = 16, .resolution = 16, .height = 0.8f}, 7));
 
-    bb_field_t f;
     struct timespec t0, t1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
-    bool ok = bb_field_make(&f, &(bb_field_desc_t){.terrain = &terrain, .seed = 1234, .octree_depth = 3, .density = 25,
-                                                   .layout = {.size = 64, .clump_size = 32}});
+    bb_field_t *f = bb_field_make(&(bb_field_desc_t){.terrain = &terrain, .seed = 1234, .octree_depth = 3,
+                                                     .density = 25, .layout = {.size = 64, .clump_size = 32}});
     clock_gettime(CLOCK_MONOTONIC, &t1);
-    CHECK(ok);
-    if (!ok) return 1;
+    CHECK(f);
+    if (!f) return 1;
+    bb_field_info_t fi;
+    bb_field_info(f, &fi);
     printf("make: %.1f ms, %d billboards of %d candidates\n",
-           (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6, f.billboards,
-           f.capacity);
+           (double)(t1.tv_sec - t0.tv_sec) * 1e3 + (double)(t1.tv_nsec - t0.tv_nsec) * 1e-6, fi.billboards,
+           fi.capacity);
 
     /* CPU reference over every candidate cell. */
     bb_layout_t lay;
-    CHECK(bb_layout_generate(&lay, &f.desc.layout));
-    bb_point_t *cpu = malloc(sizeof *cpu * (size_t)f.capacity);
+    CHECK(bb_layout_generate(&lay, &fi.desc.layout));
+    bb_point_t *cpu = malloc(sizeof *cpu * (size_t)fi.capacity);
     int ncpu = 0;
-    for (int iz = 0; iz < f.cells[1]; iz++) {
-        for (int ix = 0; ix < f.cells[0]; ix++) {
+    for (int iz = 0; iz < fi.cells[1]; iz++) {
+        for (int ix = 0; ix < fi.cells[0]; ix++) {
             bb_point_t p;
-            if (!bb_layout_sample(&lay, &f.gen, ix, iz, &p)) continue;
-            if (p.position[0] > f.tree.desc.max[0] || p.position[2] > f.tree.desc.max[2]) continue;
+            if (!bb_layout_sample(&lay, &fi.gen, ix, iz, &p)) continue;
+            if (p.position[0] > fi.tree->desc.max[0] || p.position[2] > fi.tree->desc.max[2]) continue;
             p.position[1] = terrain_height_at(&terrain, p.position[0], p.position[2], NULL);
             cpu[ncpu++] = p;
         }
     }
-    bb_point_t *gpu = malloc(sizeof *gpu * (size_t)(f.billboards + 1));
-    gfx_buffer_read(f.points, 0, sizeof *gpu * (size_t)f.billboards, gpu);
-    printf("gpu %d, cpu %d billboards\n", f.billboards, ncpu);
-    CHECK(f.billboards == ncpu);
+    bb_point_t *gpu = malloc(sizeof *gpu * (size_t)(fi.billboards + 1));
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)fi.billboards, gpu));
+    printf("gpu %d, cpu %d billboards\n", fi.billboards, ncpu);
+    CHECK(fi.billboards == ncpu);
     CHECK(ncpu > 1000);
 
-    compare_points(gpu, f.billboards, cpu, ncpu, 1e-4);
-    check_leaf_order(&f, gpu);
+    compare_points(gpu, fi.billboards, cpu, ncpu, 1e-4);
+    check_leaf_order(&fi, gpu);
 
     bb_stats_t st;
-    bb_field_stats(&f, true, &st);
-    CHECK(st.billboards == f.billboards && st.deformed == 0 && st.pool_capacity == 4096);
+    bb_field_stats(f, true, &st);
+    CHECK(st.billboards == fi.billboards && st.deformed == 0 && st.pool_capacity == 4096);
     CHECK(st.leaves[BB_NODE_IDLE] > 1 && st.leaves[BB_NODE_COLLIDING] == 0);
     /* Generation timing: GPU timestamps inside the CPU wall time of make. */
     printf("generation pass %.2f ms (GPU timestamps), make %.2f ms (wall)\n", st.generate_ms, st.make_ms);
@@ -253,7 +256,7 @@ int main(void)
     free(cpu);
     free(gpu);
     bb_layout_free(&lay);
-    bb_field_destroy(&f);
+    bb_field_destroy(f);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -47,8 +47,8 @@ int main(void)
     bb_field_desc_t desc;
     CHECK(test_small_field(&terrain, &desc));
     desc.gi = true;
-    bb_field_t f;
-    CHECK(bb_field_make(&f, &desc));
+    bb_field_t *f = bb_field_make(&desc);
+    CHECK(f);
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
     raster_t r;
     CHECK(raster_make(&r, &(raster_desc_t){.w = 192, .h = 128}));
@@ -61,9 +61,9 @@ int main(void)
     for (int path = 0; path < 2; path++) {
         raster_t *rp = path ? &r : NULL;
         core_image_t a, b, c;
-        draw(&f, &tgt, rp, &off, &a);
-        draw(&f, &tgt, rp, &b_neutral, &b);
-        draw(&f, &tgt, rp, &b_dark, &c);
+        draw(f, &tgt, rp, &off, &a);
+        draw(f, &tgt, rp, &b_neutral, &b);
+        draw(f, &tgt, rp, &b_dark, &c);
         test_image_result_t same = test_image_diff(&a, &b, &(test_image_cmp_t){0}, NULL);
         printf("%s: GI off mean %.2f; neutral volume %.2f (mean diff %.3f, max %d); dark volume %.2f\n",
                path ? "compute" : "hardware", mean(&a), mean(&b), same.mean_diff, same.max_diff, mean(&c));
@@ -77,7 +77,7 @@ int main(void)
     gi_gpu_destroy(&dark);
     raster_destroy(&r);
     gfx_target_destroy(&tgt);
-    bb_field_destroy(&f);
+    bb_field_destroy(f);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -39,22 +39,23 @@ int main(void)
     terrain_mesh_t terrain;
     bb_field_desc_t desc;
     CHECK(test_small_field(&terrain, &desc));
-    bb_field_t plain, culled;
-    CHECK(bb_field_make(&plain, &desc));
+    bb_field_t *plain = bb_field_make(&desc);
+    CHECK(plain);
     desc.occlusion = true;
-    CHECK(bb_field_make(&culled, &desc));
+    bb_field_t *culled = bb_field_make(&desc);
+    CHECK(culled);
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 192, .h = 128, .samples = 4, .label = "bb.test"});
     mat4 vp;
     vec3 eye = {0.0f, 4.5f, 4.0f};
     test_view(eye, vp);
 
     core_image_t ref, img;
-    draw(&plain, &tgt, vp, eye, 1.0f);
+    draw(plain, &tgt, vp, eye, 1.0f);
     CHECK(gfx_target_read(&tgt, &ref));
     bb_stats_t st;
     for (int frame = 0; frame < 3; frame++) {
-        draw(&culled, &tgt, vp, eye, 1.0f);
-        bb_field_stats(&culled, true, &st);
+        draw(culled, &tgt, vp, eye, 1.0f);
+        bb_field_stats(culled, true, &st);
         CHECK(st.occluded == 0);
     }
     CHECK(gfx_target_read(&tgt, &img));
@@ -63,19 +64,18 @@ int main(void)
 
     int hidden = 0;
     for (int frame = 0; frame < 3; frame++) {
-        draw(&culled, &tgt, vp, eye, 0.05f);
-        bb_field_stats(&culled, true, &st);
+        draw(culled, &tgt, vp, eye, 0.05f);
+        bb_field_stats(culled, true, &st);
         hidden = st.occluded > hidden ? st.occluded : hidden;
     }
-    int leaves = 0;
-    for (int i = 0; i < culled.tree.leaf_count; i++) leaves += culled.occ_state[i] & BB_OCC_HIDDEN ? 1 : 0;
+    int leaves = st.occlusion_hidden;
     printf("behind the wall: %d leaves skipped by a draw, %d hidden\n", hidden, leaves);
     CHECK(hidden > 10);
     CHECK(hidden == leaves);
 
     int back = -1;
     for (int frame = 0; frame < 3 && back < 0; frame++) {
-        draw(&culled, &tgt, vp, eye, 1.0f);
+        draw(culled, &tgt, vp, eye, 1.0f);
         CHECK(gfx_target_read(&tgt, &img));
         if (max_diff(&img, &ref) == 0) back = frame + 1;
         core_image_free(&img);
@@ -85,8 +85,8 @@ int main(void)
 
     core_image_free(&ref);
     gfx_target_destroy(&tgt);
-    bb_field_destroy(&plain);
-    bb_field_destroy(&culled);
+    bb_field_destroy(plain);
+    bb_field_destroy(culled);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -38,8 +38,8 @@ int main(void)
     CHECK(test_small_field(&terrain, &desc));
     desc.cube_res = 32;
     desc.recover_time = 30;
-    bb_field_t f;
-    CHECK(bb_field_make(&f, &desc));
+    bb_field_t *f = bb_field_make(&desc);
+    CHECK(f);
     scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
@@ -50,10 +50,10 @@ int main(void)
         float c[3] = {x, terrain_height_at(&terrain, x, z, NULL) + 0.5f, z};
         collide_object_t o = test_object(&mesh, c, sc.radius);
         gfx_timer_frame_begin();
-        bb_field_update(&f, test_set(&o, 1), time, 1.0f / 30.0f);
+        bb_field_update(f, test_set(&o, 1), time, 1.0f / 30.0f);
     }
     bb_stats_t st;
-    bb_field_stats(&f, true, &st);
+    bb_field_stats(f, true, &st);
     printf("%d billboards, %d deformed after the roll\n", st.billboards, st.deformed);
     CHECK(st.deformed > 50);
 
@@ -62,14 +62,14 @@ int main(void)
     vec3 eye = {0.0f, 4.5f, 4.0f};
     test_view(eye, vp);
     gfx_timer_frame_begin();
-    draw(&f, &tgt, vp, eye, time, 0, 0);
+    draw(f, &tgt, vp, eye, time, 0, 0);
     core_image_t img;
     CHECK(gfx_target_read(&tgt, &img));
     CHECK(test_image_check(&img, "bb_trail", NULL));
     double g_full = green(&img);
 
     /* Distance fade: everything nearer than 20 m is invisible. */
-    draw(&f, &tgt, vp, eye, time, 20, 25);
+    draw(f, &tgt, vp, eye, time, 20, 25);
     core_image_t faded;
     CHECK(gfx_target_read(&tgt, &faded));
     double g_fade = green(&faded);
@@ -83,7 +83,7 @@ int main(void)
     core_image_free(&img);
     core_image_free(&faded);
     gfx_target_destroy(&tgt);
-    bb_field_destroy(&f);
+    bb_field_destroy(f);
     test_mesh_destroy(&mesh);
     terrain_free(&terrain);
     CHECK(test_gl_shutdown() == 0);

@@ -31,7 +31,7 @@ static int g_source_calls;
 static void capture_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
 {
     app_world_t *w = user;
-    bb_field_add_slopes(&w->bb, grid, sums);
+    bb_field_add_slopes(w->bb, grid, sums);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_buffer_read(sums, 0, (size_t)grid->nx * grid->nz * sizeof(hybrid_slope_sum_t), g_bb_sums);
     g_source_calls++;

@@ -97,10 +97,14 @@ int main(void)
         bad += non_finite((const float *)b, pool * 16);
         free(b);
     }
-    if (w->have_bb) {
-        float *m = malloc(w->bb.meshes.size);
-        gfx_buffer_read(w->bb.meshes, 0, w->bb.meshes.size, m);
-        bad += non_finite(m, w->bb.meshes.size / sizeof(float));
+    if (w->bb) {
+        bb_field_info_t fi;
+        bb_field_info(w->bb, &fi);
+        size_t floats = (size_t)fi.desc.max_deformed * (size_t)fi.mesh_vertices * 4;
+        float *m = malloc(floats * sizeof *m);
+        bool read = m && bb_field_read(w->bb, BB_DATA_MESHES, 0, (size_t)fi.desc.max_deformed, m);
+        CHECK(read);
+        if (read) bad += non_finite(m, floats);
         free(m);
     }
     printf("soak: %d frames in %.1f s; GL objects %d; GPU memory %.1f MB; RSS %ld kB at warm-up, %ld..%ld kB after; "
@@ -108,7 +112,7 @@ int main(void)
            frames, plat_time() - t0, objects_after_warmup, (double)memory_after_warmup / 1048576.0, rss_warm, rss_min,
            rss_max, bad);
     CHECK(bad == 0);
-    CHECK(w->have_bb && w->have_blades && w->have_tiles && w->have_chars);
+    CHECK(w->bb && w->have_blades && w->have_tiles && w->have_chars);
     /* Under ASan (.ci/sanitize sets MEADOW_SANITIZED=1) freed memory sits in
      * the allocator's quarantine and RSS creeps by design; LeakSanitizer
      * checks leaks there instead. */

@@ -86,16 +86,20 @@ bool app_seam_frame_draw(app_world_t *w, const app_view_t *v, const gfx_target_t
                          app_seam_frame_t *f)
 {
     scene_mode_t keep = w->mode;
-    bool bb = w->have_bb, blades = w->have_blades, tiles = w->have_tiles;
+    bb_field_t *bb = w->bb;
+    bool blades = w->have_blades, tiles = w->have_tiles;
     w->mode = mode;
-    if (!grass) w->have_bb = w->have_blades = w->have_tiles = false;
+    if (!grass) {
+        w->bb = NULL;
+        w->have_blades = w->have_tiles = false;
+    }
     gfx_target_bind(t);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     app_world_draw(w, v, t, false);
     w->mode = keep;
-    w->have_bb = bb;
+    w->bb = bb;
     w->have_blades = blades;
     w->have_tiles = tiles;
     return app_seam_frame_read(w, v, t, f);
@@ -129,7 +133,7 @@ static bool world_seam(app_world_t *w, const app_view_t *v, const gfx_target_t *
                        eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
-    if (w->mode != SCENE_MODE_HYBRID || !w->have_bb) return false;
+    if (w->mode != SCENE_MODE_HYBRID || !w->bb) return false;
     app_seam_frame_t frame = {0}, ref = {0}, bg = {0};
     bool ok = app_seam_frame_read(w, v, t, &frame) && app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               app_seam_frame_draw(w, v, t, w->mode, false, &bg);
@@ -161,11 +165,11 @@ bool app_world_canopy_seam(app_world_t *w, const app_view_t *v, const gfx_target
 bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, app_seam_floor_t *out)
 {
     memset(out, 0, sizeof *out);
-    if (w->mode != SCENE_MODE_HYBRID || !w->have_bb) return false;
+    if (w->mode != SCENE_MODE_HYBRID || !w->bb) return false;
     app_seam_frame_t ref = {0}, bg = {0};
     bool ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               app_seam_frame_draw(w, v, t, w->mode, false, &bg);
-    bb_field_t keep = w->bb;
+    bb_field_t *keep = w->bb;
     uint32_t seed = w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
     for (int k = 0; ok && k < APP_SEAM_FLOOR_PLACEMENTS; k++) {
         app_seam_frame_t other = {0};
@@ -173,7 +177,7 @@ bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_
         ok = app_world_make_billboards(w, seed ^ (APP_SEAM_FLOOR_SEED * (uint32_t)(k + 1)));
         if (ok) {
             ok = app_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &other);
-            bb_field_destroy(&w->bb);
+            bb_field_destroy(w->bb);
         }
         /* seam_of classifies ref again against the same background: the
          * same classes every time. */
@@ -187,7 +191,6 @@ bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_
         out->mean.coverage += e.coverage / APP_SEAM_FLOOR_PLACEMENTS;
     }
     w->bb = keep;
-    w->have_bb = true;
     app_seam_frame_free(&ref);
     app_seam_frame_free(&bg);
     if (!ok) memset(out, 0, sizeof *out);

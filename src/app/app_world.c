@@ -268,35 +268,35 @@ static bool make_bb(app_world_t *w)
     int layout_size = layout_for(w, &gen);
     int objects = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
-    w->have_bb = bb_field_make(&w->bb, &(bb_field_desc_t){
-                                           .terrain = &w->terrain_mesh,
-                                           .seed = s->seed,
-                                           .placement_seed = w->tuning.placement_seed,
-                                           .density = g->billboard_density,
-                                           .size = {g->billboard_size[0], g->billboard_size[1]},
-                                           .subdiv = {g->subdiv[0], g->subdiv[1]},
-                                           .gi = g->gi,
-                                           .occlusion = g->bb_occlusion,
-                                           .iterations = g->spring_iterations,
-                                           .paper = w->tuning.paper,
-                                           .max_deformed = g->deformed_pool,
-                                           .cube_res = w->cube_res,
-                                           .recover_time = g->recover_time,
-                                           .max_objects = objects > 0 ? objects : 1,
-                                           .wind = wind,
-                                           .layout = {.size = layout_size,
-                                                      .blades = bb_clump_blades(g->density, g->billboard_density),
-                                                      .clump = {.height = {g->height[0], g->height[1]},
-                                                                .width = {g->width[0], g->width[1]},
-                                                                .stiffness = {g->stiffness[0], g->stiffness[1]},
-                                                                .shape = (int)g->shape,
-                                                                .gravity = SCENE_DEFAULT_BLADE_GRAVITY,
-                                                                .wind = wind_strength,
-                                                                .wind_dir = {wind.dir[0], wind.dir[1]}},
-                                                      .extent = extent_desc(w, &gen),
-                                                      .views = {.on = w->tuning.view_cards}},
-                                       });
-    return w->have_bb;
+    w->bb = bb_field_make(&(bb_field_desc_t){
+        .terrain = &w->terrain_mesh,
+        .seed = s->seed,
+        .placement_seed = w->tuning.placement_seed,
+        .density = g->billboard_density,
+        .size = {g->billboard_size[0], g->billboard_size[1]},
+        .subdiv = {g->subdiv[0], g->subdiv[1]},
+        .gi = g->gi,
+        .occlusion = g->bb_occlusion,
+        .iterations = g->spring_iterations,
+        .paper = w->tuning.paper,
+        .max_deformed = g->deformed_pool,
+        .cube_res = w->cube_res,
+        .recover_time = g->recover_time,
+        .max_objects = objects > 0 ? objects : 1,
+        .wind = wind,
+        .layout = {.size = layout_size,
+                   .blades = bb_clump_blades(g->density, g->billboard_density),
+                   .clump = {.height = {g->height[0], g->height[1]},
+                             .width = {g->width[0], g->width[1]},
+                             .stiffness = {g->stiffness[0], g->stiffness[1]},
+                             .shape = (int)g->shape,
+                             .gravity = SCENE_DEFAULT_BLADE_GRAVITY,
+                             .wind = wind_strength,
+                             .wind_dir = {wind.dir[0], wind.dir[1]}},
+                   .extent = extent_desc(w, &gen),
+                   .views = {.on = w->tuning.view_cards}},
+    });
+    return w->bb != NULL;
 }
 
 bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed)
@@ -401,7 +401,7 @@ static void make_blade_env(app_world_t *w)
 static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
 {
     app_world_t *w = user;
-    if (w->have_bb) bb_field_add_slopes(&w->bb, grid, sums);
+    if (w->bb) bb_field_add_slopes(w->bb, grid, sums);
 }
 
 static bool make_tiles(app_world_t *w)
@@ -679,8 +679,8 @@ static void add_objects(app_world_t *w, collide_set_t *set, float dt)
  * their bounding sphere and characters by their proxy spheres. */
 static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
 {
-    if (w->have_bb) {
-        bb_field_lend_cubes(&w->bb, set);
+    if (w->bb) {
+        bb_field_lend_cubes(w->bb, set);
         return;
     }
     int nc = w->colliders.count < BLADE_MAX_CUBES ? w->colliders.count : BLADE_MAX_CUBES;
@@ -744,13 +744,13 @@ void app_world_update(app_world_t *w, float t, float dt)
     /* The papers' colliders stand where they are at each step (no sweep). */
     for (int i = 0; i < set->object_count && w->tuning.paper; i++)
         memcpy(set->objects[i].prev_position, set->objects[i].position, sizeof set->objects[i].prev_position);
-    if (w->have_bb) {
+    if (w->bb) {
         /* The hybrid draws no billboard nearer than its fade band: objects
          * there bend the blades alone (unless the blades borrow the
          * billboards' cube maps). */
         bool hide = w->mode == SCENE_MODE_HYBRID && !w->reference && w->drawn && !w->tuning.blade_cube_proxies;
-        bb_field_set_hidden(&w->bb, w->camera, hide ? w->scene.grass.switch_distance - APP_SWITCH_FADE : 0.0f);
-        bb_field_update(&w->bb, set, t, dt);
+        bb_field_set_hidden(w->bb, w->camera, hide ? w->scene.grass.switch_distance - APP_SWITCH_FADE : 0.0f);
+        bb_field_update(w->bb, set, t, dt);
     }
     if (w->have_blades || w->have_tiles) {
         blade_env_t *env = &w->blade_env;
@@ -843,7 +843,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (raster) raster_ok = blade_gpu_raster(w->blades, raster, &dd) && raster_ok;
         else blade_gpu_draw(w->blades, &dd);
     }
-    if (w->have_bb && wants_bb(w->mode) && !w->reference) {
+    if (w->bb && wants_bb(w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
@@ -860,8 +860,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (tiles) {
             blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
         }
-        if (raster) raster_ok = bb_field_raster(&w->bb, raster, &d) && raster_ok;
-        else bb_field_draw(&w->bb, &d);
+        if (raster) raster_ok = bb_field_raster(w->bb, raster, &d) && raster_ok;
+        else bb_field_draw(w->bb, &d);
     }
     if (raster) raster_end(raster, target);
     if (!raster_ok) {
@@ -945,14 +945,15 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
 {
     w->mode = mode;
     w->scene.mode = mode;
-    if (w->gpu_ready && wants_bb(mode) && !w->have_bb && !w->reference) make_bb(w);
+    if (w->gpu_ready && wants_bb(mode) && !w->bb && !w->reference) make_bb(w);
     if (w->gpu_ready && uses_tiles(w) && !w->have_tiles) make_tiles(w);
     else if (w->gpu_ready && wants_blades(mode) && !uses_tiles(w) && !w->have_blades) make_blades(w);
 }
 
 void app_world_destroy(app_world_t *w)
 {
-    if (w->have_bb) bb_field_destroy(&w->bb);
+    bb_field_destroy(w->bb);
+    w->bb = NULL;
     blade_gpu_destroy(w->blades);
     blade_tiles_destroy(w->tiles);
     w->blades = NULL;
@@ -960,7 +961,7 @@ void app_world_destroy(app_world_t *w)
     w->have_tiles = false;
     if (w->have_chars) character_set_destroy(&w->chars);
     w->have_chars = false;
-    w->have_bb = w->have_blades = false;
+    w->have_blades = false;
     raster_destroy(&w->raster);
     w->blade_cubes = 0;
     app_colliders_destroy(&w->colliders);
@@ -1000,9 +1001,9 @@ void app_world_stats(app_world_t *w, app_world_stats_t *st)
         st->blade_patch_culled = b.patch_culled;
         st->triangles += b.triangles_max;
     }
-    if (w->have_bb) {
+    if (w->bb) {
         bb_stats_t s;
-        bb_field_stats(&w->bb, true, &s);
+        bb_field_stats(w->bb, true, &s);
         st->billboards = s.billboards;
         st->bb_deformed = s.deformed;
         st->bb_generate_ms = s.generate_ms;

@@ -147,9 +147,8 @@ typedef struct app_world_t {
     app_tuning_t tuning;
     bool gpu_ready;
     /* Billboards (Orthmann et al. 2009), built for billboard and hybrid
-     * modes (and on the first switch to them). */
-    bb_field_t bb;
-    bool have_bb;
+     * modes (and on the first switch to them); NULL while there are none. */
+    bb_field_t *bb;
     /* Blades (Jahrmann & Wimmer 2017), built for blade and hybrid modes. */
     blade_gpu_t *blades; /* NULL until made */
     bool have_blades;
@@ -265,7 +264,7 @@ typedef struct app_seam_floor_t {
     double score[APP_SEAM_FLOOR_PLACEMENTS];
 } app_seam_floor_t;
 bool app_world_seam_floor(app_world_t *w, const app_view_t *v, const gfx_target_t *t, app_seam_floor_t *out);
-/* Builds the world's billboard field (w->bb, have_bb) for placement seed
+/* Builds the world's billboard field (w->bb) for placement seed
  * `placement_seed` (0: the scene seed); app_world_seam_floor's second field. */
 bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed);
 /* Switches between the hardware and the compute rasterizer at run time. */

@@ -14,7 +14,7 @@ scene_mode_t app_world_mode(const app_world_t *w) { return w->mode; }
 bool app_world_is_reference(const app_world_t *w) { return w->reference; }
 bool app_world_input_error(const app_world_t *w) { return w->input_error; }
 blade_gpu_t *app_world_blades(app_world_t *w) { return w->have_blades ? w->blades : NULL; }
-bb_field_t *app_world_billboards(app_world_t *w) { return w->have_bb ? &w->bb : NULL; }
+bb_field_t *app_world_billboards(app_world_t *w) { return w->bb; }
 blade_tiles_t *app_world_tiles(app_world_t *w) { return w->have_tiles ? w->tiles : NULL; }
 character_set_t *app_world_characters(app_world_t *w) { return w->have_chars ? &w->chars : NULL; }
 

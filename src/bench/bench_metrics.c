@@ -174,30 +174,37 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
     free(b);
 }
 
-/* Reads the billboard points and the deformed-mesh pool back from the GPU
- * (false, with both NULL, when out of memory; the caller frees both). */
-static bool read_bb(bb_field_t *f, bb_point_t **pts, float (**mesh)[4])
+/* The world's billboard field and what it holds (NULL without one). */
+static bb_field_t *bb_of(app_world_t *w, bb_field_info_t *fi)
 {
-    size_t nv = (size_t)f->desc.subdiv[0] * (size_t)f->desc.subdiv[1];
-    *pts = malloc(sizeof **pts * (size_t)(f->billboards > 0 ? f->billboards : 1));
-    *mesh = malloc(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv);
-    if (!*pts || !*mesh) {
+    bb_field_t *f = app_world_billboards(w);
+    if (f) bb_field_info(f, fi);
+    return f;
+}
+
+/* Reads the billboard points and the deformed-mesh pool back from the GPU
+ * (false, with both NULL, when out of memory or a read fails; the caller
+ * frees both). */
+static bool read_bb(const bb_field_t *f, const bb_field_info_t *fi, bb_point_t **pts, float (**mesh)[4])
+{
+    size_t slots = (size_t)fi->desc.max_deformed;
+    *pts = malloc(sizeof **pts * (size_t)(fi->billboards > 0 ? fi->billboards : 1));
+    *mesh = malloc(sizeof(float[4]) * slots * (size_t)fi->mesh_vertices);
+    if (!*pts || !*mesh || !bb_field_read(f, BB_DATA_POINTS, 0, (size_t)fi->billboards, *pts) ||
+        !bb_field_read(f, BB_DATA_MESHES, 0, slots, *mesh)) {
         free(*pts);
         free(*mesh);
         *pts = NULL;
         *mesh = NULL;
         return false;
     }
-    glGetNamedBufferSubData(f->points.id, 0, (GLsizeiptr)(sizeof **pts * (size_t)f->billboards), *pts);
-    glGetNamedBufferSubData(f->meshes.id, 0, (GLsizeiptr)(sizeof(float[4]) * (size_t)f->desc.max_deformed * nv),
-                            *mesh);
     return true;
 }
 
 /* Billboard p's wind pose at the field's time into grid (N x M). */
-static void bb_wind_grid(const bb_field_t *f, const bb_point_t *p, vec3 *grid)
+static void bb_wind_grid(const bb_field_info_t *fi, const bb_point_t *p, vec3 *grid)
 {
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1];
+    int nn = fi->desc.subdiv[0], mm = fi->desc.subdiv[1];
     vec3 right, up;
     bb_point_frame(p, right, up);
     for (int j = 0; j < mm; j++)
@@ -206,18 +213,18 @@ static void bb_wind_grid(const bb_field_t *f, const bb_point_t *p, vec3 *grid)
             float yo = p->size[1] * (float)j / (float)(mm - 1);
             vec3 rest;
             for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
-            bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), f->time,
+            bb_ref_wind_vertex(&fi->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), fi->time,
                                grid[j * nn + c]);
         }
 }
 
 /* Billboard p's pose into grid: its deformed mesh, else its wind pose. */
-static void bb_grid(const bb_field_t *f, const bb_point_t *p, const float (*mesh)[4], vec3 *grid)
+static void bb_grid(const bb_field_info_t *fi, const bb_point_t *p, const float (*mesh)[4], vec3 *grid)
 {
-    int nv = f->desc.subdiv[0] * f->desc.subdiv[1];
+    int nv = fi->desc.subdiv[0] * fi->desc.subdiv[1];
     uint32_t slot = p->pad[0];
-    if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) {
-        bb_wind_grid(f, p, grid);
+    if (slot == BB_NO_SLOT || slot >= (uint32_t)fi->desc.max_deformed) {
+        bb_wind_grid(fi, p, grid);
         return;
     }
     for (int v = 0; v < nv; v++) glm_vec3_copy((float *)mesh[(size_t)slot * nv + v], grid[v]);
@@ -226,20 +233,21 @@ static void bb_grid(const bb_field_t *f, const bb_point_t *p, const float (*mesh
 static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
                        bench_metrics_ext_t *x)
 {
-    bb_field_t *f = app_world_billboards(w);
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
+    int nn = fi.desc.subdiv[0], mm = fi.desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
-    bool have = read_bb(f, &pts, &mesh);
+    bool have = read_bb(f, &fi, &pts, &mesh);
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
     if (!have || !grid) goto done;
     double spring_sum = 0;
     long springs = 0;
-    for (int i = 0; i < f->billboards; i++) {
+    for (int i = 0; i < fi.billboards; i++) {
         const bb_point_t *p = &pts[i];
         uint32_t slot = p->pad[0];
-        bool deformed = slot != BB_NO_SLOT && slot < (uint32_t)f->desc.max_deformed;
-        bb_grid(f, p, (const float (*)[4])mesh, grid);
+        bool deformed = slot != BB_NO_SLOT && slot < (uint32_t)fi.desc.max_deformed;
+        bb_grid(&fi, p, (const float (*)[4])mesh, grid);
         if (deformed) {
             x->deformed++;
             for (int v = 0; v < nv; v++)
@@ -375,11 +383,11 @@ double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const flo
 }
 
 /* Largest distance of billboard p's deformed mesh (slot) from its wind pose. */
-static double bb_mesh_offset(const bb_field_t *f, const bb_point_t *p, const float (*mesh)[4])
+static double bb_mesh_offset(const bb_field_info_t *fi, const bb_point_t *p, const float (*mesh)[4])
 {
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    int nn = fi->desc.subdiv[0], mm = fi->desc.subdiv[1], nv = nn * mm;
     uint32_t slot = p->pad[0];
-    if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) return 0.0;
+    if (slot == BB_NO_SLOT || slot >= (uint32_t)fi->desc.max_deformed) return 0.0;
     vec3 right, up;
     bb_point_frame(p, right, up);
     double worst = 0.0;
@@ -389,7 +397,7 @@ static double bb_mesh_offset(const bb_field_t *f, const bb_point_t *p, const flo
             float yo = p->size[1] * (float)j / (float)(mm - 1);
             vec3 rest, wind;
             for (int k = 0; k < 3; k++) rest[k] = p->position[k] + xo * right[k] + yo * up[k];
-            bb_ref_wind_vertex(&f->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), f->time, wind);
+            bb_ref_wind_vertex(&fi->desc.wind, rest, (float *)p->position, (float)j / (float)(mm - 1), fi->time, wind);
             double d = glm_vec3_distance(wind, (float *)mesh[(size_t)slot * nv + j * nn + c]);
             if (!isfinite(d)) return INFINITY;
             if (d > worst) worst = d;
@@ -401,14 +409,15 @@ double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b
                                  uint8_t *ever, long *corridor)
 {
     *corridor = 0;
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     bb_point_t *pts;
     float (*mesh)[4];
-    if (!f || !read_bb(f, &pts, &mesh)) return 0.0;
+    if (!f || !read_bb(f, &fi, &pts, &mesh)) return 0.0;
     float ab[2] = {b[0] - a[0], b[1] - a[1]};
     float ab2 = ab[0] * ab[0] + ab[1] * ab[1];
     long hit = 0;
-    for (int i = 0; i < f->billboards; i++) {
+    for (int i = 0; i < fi.billboards; i++) {
         const bb_point_t *p = &pts[i];
         float ap[2] = {p->position[0] - a[0], p->position[2] - a[1]};
         float t = (ap[0] * ab[0] + ap[1] * ab[1]) / ab2;
@@ -416,7 +425,7 @@ double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b
         float dx = ap[0] - t * ab[0], dz = ap[1] - t * ab[1];
         if (dx * dx + dz * dz > radius * radius) continue;
         (*corridor)++;
-        ever[i] |= bb_mesh_offset(f, p, (const float (*)[4])mesh) > frac * p->size[1];
+        ever[i] |= bb_mesh_offset(&fi, p, (const float (*)[4])mesh) > frac * p->size[1];
         hit += ever[i];
     }
     free(pts);
@@ -426,14 +435,15 @@ double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b
 
 double bench_metrics_bb_offset(app_world_t *w)
 {
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     if (!f) return 0;
     bb_point_t *pts;
     float (*mesh)[4];
     double worst = 0;
-    if (read_bb(f, &pts, &mesh)) {
-        for (int i = 0; i < f->billboards; i++) {
-            double d = bb_mesh_offset(f, &pts[i], (const float (*)[4])mesh);
+    if (read_bb(f, &fi, &pts, &mesh)) {
+        for (int i = 0; i < fi.billboards; i++) {
+            double d = bb_mesh_offset(&fi, &pts[i], (const float (*)[4])mesh);
             if (d > worst) worst = d;
         }
     }
@@ -456,20 +466,21 @@ static void cell_area(const float *a, const float *b, const float *d, const floa
 void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out)
 {
     memset(out, 0, sizeof *out);
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     if (!f) return;
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    int nn = fi.desc.subdiv[0], mm = fi.desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
     vec3 *unit = malloc(sizeof(vec3) * (size_t)nv); /* unit cell normals of the billboard at hand */
-    if (!unit || !read_bb(f, &pts, &mesh)) {
+    if (!unit || !read_bb(f, &fi, &pts, &mesh)) {
         free(unit);
         return;
     }
-    for (int i = 0; i < f->billboards; i++) {
+    for (int i = 0; i < fi.billboards; i++) {
         const bb_point_t *p = &pts[i];
         uint32_t slot = p->pad[0];
-        if (slot == BB_NO_SLOT || slot >= (uint32_t)f->desc.max_deformed) continue;
+        if (slot == BB_NO_SLOT || slot >= (uint32_t)fi.desc.max_deformed) continue;
         out->deformed++;
         float (*g)[4] = &mesh[(size_t)slot * nv];
         vec3 right, up, rest;
@@ -507,7 +518,8 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
 {
     long n = 0;
     blade_gpu_t *g = app_world_blades(w);
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     if (app_world_mode(w) == SCENE_MODE_BLADE && g) {
         blade_t *b = read_blades(g);
         uint32_t count = blade_gpu_info(g).padded_count;
@@ -521,8 +533,8 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
     } else if (app_world_mode(w) == SCENE_MODE_BILLBOARD && f) {
         bb_point_t *pts;
         float (*mesh)[4];
-        if (!read_bb(f, &pts, &mesh)) return 0;
-        for (int i = 0; i < f->billboards; i++) {
+        if (!read_bb(f, &fi, &pts, &mesh)) return 0;
+        for (int i = 0; i < fi.billboards; i++) {
             const float *p = pts[i].position;
             if (p[0] >= lo[0] && p[0] <= hi[0] && p[1] >= lo[1] && p[1] <= hi[1] && p[2] >= lo[2] && p[2] <= hi[2])
                 n++;
@@ -538,26 +550,27 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
 double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near)
 {
     *near = 0;
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     const app_colliders_t *cs = app_world_colliders(w);
     if (!f || collider < 0 || collider >= cs->count) return 0.0;
     const float *c = cs->items[collider].position, *h = cs->items[collider].desc.half_extents;
-    int nv = f->desc.subdiv[0] * f->desc.subdiv[1], nn = f->desc.subdiv[0];
+    int nv = fi.desc.subdiv[0] * fi.desc.subdiv[1], nn = fi.desc.subdiv[0];
     int a = h[0] <= h[2] ? 0 : 2, b = 2 - a; /* the wall's thin axis a, its length along b */
     bb_point_t *pts;
     float (*mesh)[4];
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
-    if (!grid || !read_bb(f, &pts, &mesh)) {
+    if (!grid || !read_bb(f, &fi, &pts, &mesh)) {
         free(grid);
         return 0.0;
     }
     long crossed = 0;
-    for (int i = 0; i < f->billboards; i++) {
+    for (int i = 0; i < fi.billboards; i++) {
         const bb_point_t *p = &pts[i];
         float side = p->position[a] - c[a], reach = fmaxf(p->size[0], p->size[1]);
         if (fabsf(side) <= h[a] || fabsf(side) > h[a] + reach || fabsf(p->position[b] - c[b]) > h[b]) continue;
         (*near)++;
-        bb_grid(f, p, (const float (*)[4])mesh, grid);
+        bb_grid(&fi, p, (const float (*)[4])mesh, grid);
         for (int v = nn; v < nv; v++) {
             const float *q = grid[v];
             if (q[1] <= c[1] + h[1] && fabsf(q[b] - c[b]) <= h[b] && (q[a] - c[a]) * side < 0.0f) {
@@ -574,20 +587,21 @@ double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near)
 
 double bench_metrics_bb_jump(app_world_t *w, float *prev, bool *primed)
 {
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     if (!f) return 0.0;
-    int nv = f->desc.subdiv[0] * f->desc.subdiv[1];
+    int nv = fi.desc.subdiv[0] * fi.desc.subdiv[1];
     bb_point_t *pts;
     float (*mesh)[4];
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv * 2), *wind = grid + nv;
-    if (!grid || !read_bb(f, &pts, &mesh)) {
+    if (!grid || !read_bb(f, &fi, &pts, &mesh)) {
         free(grid);
         return 0.0;
     }
     double jump = 0.0;
-    for (int i = 0; i < f->billboards; i++) {
-        bb_grid(f, &pts[i], (const float (*)[4])mesh, grid);
-        bb_wind_grid(f, &pts[i], wind);
+    for (int i = 0; i < fi.billboards; i++) {
+        bb_grid(&fi, &pts[i], (const float (*)[4])mesh, grid);
+        bb_wind_grid(&fi, &pts[i], wind);
         for (int v = 0; v < nv; v++) {
             float *o = &prev[((size_t)i * (size_t)nv + (size_t)v) * 3], d[3];
             for (int k = 0; k < 3; k++) d[k] = grid[v][k] - wind[v][k];
@@ -619,25 +633,26 @@ static void grid_sample(const vec3 *g, int nn, int mm, float u, float v, float o
 bool bench_metrics_bb_pose(app_world_t *w, bench_bb_pose_t *out)
 {
     memset(out, 0, sizeof *out);
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_info_t fi;
+    bb_field_t *f = bb_of(w, &fi);
     if (!f) return true;
-    int nn = f->desc.subdiv[0], mm = f->desc.subdiv[1], nv = nn * mm;
+    int nn = fi.desc.subdiv[0], mm = fi.desc.subdiv[1], nv = nn * mm;
     bb_point_t *pts;
     float (*mesh)[4];
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv * 2), *wind = grid + nv;
-    if (!grid || !read_bb(f, &pts, &mesh)) {
+    if (!grid || !read_bb(f, &fi, &pts, &mesh)) {
         free(grid);
         return false;
     }
     int deformed = 0;
-    for (int i = 0; i < f->billboards; i++) deformed += pts[i].pad[0] < (uint32_t)f->desc.max_deformed;
+    for (int i = 0; i < fi.billboards; i++) deformed += pts[i].pad[0] < (uint32_t)fi.desc.max_deformed;
     out->index = malloc(sizeof *out->index * (size_t)(deformed + 1));
     out->off = malloc(sizeof *out->off * (size_t)(deformed + 1));
     bool ok = out->index && out->off;
-    for (int i = 0; i < f->billboards && ok; i++) {
-        if (pts[i].pad[0] >= (uint32_t)f->desc.max_deformed) continue;
-        bb_grid(f, &pts[i], (const float (*)[4])mesh, grid);
-        bb_wind_grid(f, &pts[i], wind);
+    for (int i = 0; i < fi.billboards && ok; i++) {
+        if (pts[i].pad[0] >= (uint32_t)fi.desc.max_deformed) continue;
+        bb_grid(&fi, &pts[i], (const float (*)[4])mesh, grid);
+        bb_wind_grid(&fi, &pts[i], wind);
         for (int v = 0; v < nv; v++) glm_vec3_sub(grid[v], wind[v], grid[v]);
         for (int s = 0; s < BENCH_POSE_SAMPLES; s++)
             grid_sample(grid, nn, mm, (float)(s % BENCH_POSE_SIDE) / (BENCH_POSE_SIDE - 1),

@@ -585,7 +585,11 @@ static void frame_pass(app_world_t *w, float t, stab_run_t *r)
     const float a[2] = {PASS_FROM + 0.3f, 0}, b[2] = {PASS_TO - 0.3f, 0};
     if (r->c->mode == SCENE_MODE_BILLBOARD) {
         bb_field_t *bf = app_world_billboards(w);
-        if (!r->ever && bf) r->ever = calloc((size_t)bf->billboards, 1);
+        if (!r->ever && bf) {
+            bb_field_info_t fi;
+            bb_field_info(bf, &fi);
+            r->ever = calloc((size_t)fi.billboards, 1);
+        }
         if (r->ever) r->coverage = bench_metrics_bb_coverage(w, a, b, 0.15f, 0.2f, r->ever, &corridor);
     } else if (r->twin && r->ever) {
         r->coverage = bench_metrics_blade_coverage(w, r->twin, a, b, 0.15f, 0.2f, r->ever, &corridor);
@@ -629,9 +633,11 @@ static void frame_jump(app_world_t *w, stab_run_t *r)
         bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
     } else if (r->c->mode == SCENE_MODE_BILLBOARD) {
         bb_field_t *bf = app_world_billboards(w);
-        if (!r->prev && bf)
-            r->prev = calloc((size_t)bf->billboards * (size_t)(bf->desc.subdiv[0] * bf->desc.subdiv[1]) * 3,
-                             sizeof(float));
+        if (!r->prev && bf) {
+            bb_field_info_t fi;
+            bb_field_info(bf, &fi);
+            r->prev = calloc((size_t)fi.billboards * (size_t)fi.mesh_vertices * 3, sizeof(float));
+        }
         if (r->prev) j = bench_metrics_bb_jump(w, r->prev, &r->primed);
     }
     if (!(j <= r->jump)) r->jump = j;

@@ -49,11 +49,13 @@
  * billboard whose bounding sphere meets more keeps the nearest ones
  * (counted in bb_stats_t.objects_dropped, warned once). */
 #define BB_PASS_OBJECTS 16
-/* Pool-header readbacks in flight (see bb_field_update): the CPU reads a
- * copy once its timestamp query is available, never waiting on the GPU. */
-#define BB_READBACK_SLOTS 3
-
+/* bb_point_t.pad[0] of a billboard without a deformed mesh (else its slot
+ * in the pool, below desc.max_deformed). */
 #define BB_NO_SLOT 0xffffffffu
+
+/* The field (bb_local.h): GPU buffers, octree, programs; made, updated,
+ * drawn and read only through the functions below. */
+typedef struct bb_field_t bb_field_t;
 
 typedef struct bb_field_desc_t {
     const terrain_mesh_t *terrain; /* required; only read during make */
@@ -151,92 +153,51 @@ typedef struct bb_stats_t {
                              generation results were read back) */
     float make_stage_ms[BB_MAKE_STAGES]; /* make_ms split by stage (wall
                              clock, see bb_make_stage_name) */
+    int occlusion_hidden; /* leaves whose latest occlusion query passed no
+                             sample (desc.occlusion; skipped by the next draw) */
 } bb_stats_t;
 
-/* Object batches of one collide update (see BB_PASS_OBJECTS): batch b draws
- * the ranges [range_start[b], range_start[b+1]) of first/count and tests
- * objects obj[b][0..obj_count[b]) (global indices, ascending). Capacities
- * grow on demand. */
-typedef struct bb_batch_plan_t {
-    int count, cap, range_count, range_cap;
-    int *range_start;              /* cap + 1 */
-    int *obj_count;                /* cap */
-    int (*obj)[BB_PASS_OBJECTS];   /* cap */
-    GLint *first;                  /* range_cap */
-    GLsizei *size;                 /* range_cap */
-} bb_batch_plan_t;
+/* What a field holds, for callers that size arrays or rebuild poses on the
+ * CPU (tests, the bench's metrics). `tree` points into the field: read
+ * only, valid until bb_field_destroy; its leaves' node ranges index the
+ * points buffer (bb_field_read). */
+typedef struct bb_field_info_t {
+    bb_field_desc_t desc;      /* resolved (bb_field_desc_defaults) */
+    bb_gen_desc_t gen;         /* the generation rule (spacing, origin, seed, layers) */
+    int billboards;            /* valid points, leaf-ordered */
+    int capacity;              /* points the buffer holds (an upper bound on billboards) */
+    int cells[2];              /* heightfields: candidate cells along x, z (0 on meshes) */
+    int triangles;             /* mesh terrains: triangles that seed billboards (0 on heightfields) */
+    int mesh_vertices;         /* desc.subdiv[0] * desc.subdiv[1]: vec4 per deformed mesh */
+    float sphere_max;          /* the largest billboard bounding-sphere radius */
+    float time;                /* of the latest bb_field_update (wind pose) */
+    const bb_octree_t *tree;
+} bb_field_info_t;
 
-typedef struct bb_field_t {
-    bb_field_desc_t desc; /* resolved */
-    bb_octree_t tree;
-    bb_gen_desc_t gen;
-    int cells[2];          /* heightfields: candidate cells along x, z (0 on mesh terrains) */
-    int triangles;         /* mesh terrains: triangles that seed billboards
-                              (bb_gen_tri_make; 0 on heightfields) */
-    int billboards;
-    int capacity;          /* points buffer size in billboards (upper bound) */
-    gfx_texture_t extent, direction, messiness, clumps, heights;
-    bb_view_desc_t views;  /* the clump array's views (bb_view.h): the V L albedo layers,
-                              then (views on) their V L light layers */
-    size_t clump_bytes;    /* the clump array with its mipmaps */
-    float hgrid[5];        /* heights: first vertex (x, z), clamp bound (x, z), cell */
-    gfx_texture_t cubes;   /* RGBA32F 2D array, 6 layers per object */
-    gfx_layered_target_t cube_target; /* over `cubes`: each object's faces in one draw */
-    gfx_buffer_t points;   /* capacity bb_point_t, leaf-ordered; first `billboards` valid */
-    gfx_buffer_t scratch;  /* transform-feedback target of the collide/recover passes */
-    gfx_buffer_t pool;     /* int free_top, uint exhausted, 2 pad, uint free_stack[max_deformed] */
-    gfx_buffer_t meshes;   /* max_deformed * N*M vec4, world space */
-    gfx_buffer_t objects, counts;
-    GLuint points_vao, empty_vao, tf;
-    gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog, slope_prog;
-    char defines[256];          /* the programs' mesh size and limits */
-    raster_program_t raster_prog; /* made on the first bb_field_raster */
-    bb_range_t *ranges;    /* leaf_count scratch */
-    bb_range_key_t *sort_keys; /* leaf_count scratch of bb_octree_sort_near_first */
-    GLint *firsts;
-    GLsizei *counts_gl;
-    uint32_t *recover_ranges;      /* leaf_count x (first, count, first thread, 0) */
-    gfx_buffer_t recover_range_buf; /* the same, for bb_recover.comp */
-    float cube_half[BB_MAX_OBJECTS], cube_centre[BB_MAX_OBJECTS][3];
-    /* Collide batches: each billboard's bounding sphere (centre, radius, as
-     * bb_collide.geom computes it) read back once after generation, for
-     * splitting leaves that overlap more than BB_PASS_OBJECTS objects; the
-     * batch plan of one update (draw ranges, per-batch object lists) and the
-     * objects uniform buffer, one aligned region of BB_PASS_OBJECTS entries
-     * per batch (grown on demand). */
-    float (*spheres)[4];
-    float sphere_max;      /* the largest of their radii */
-    float hidden[4];       /* bb_field_set_hidden: camera, fade start (0: off) */
-    int hidden_last;       /* objects left out by it in the last update */
-    bb_batch_plan_t plan;
-    size_t objects_stride, objects_size;
-    int batches_last, dropped, dropped_logged;
-    /* Pool header copies (16 bytes each), BB_READBACK_SLOTS deep. */
-    gfx_readback_t readback;
-    int deformed_last, exhausted_last; /* newest pool header that reached the CPU */
-    int exhausted_logged;              /* refused count of the last warning */
-    float generate_ms, make_ms;
-    float make_stage_ms[BB_MAKE_STAGES];
-    float time;
-    /* Occlusion culling (desc.occlusion, bb_occlude.c): per leaf its query
-     * (made on first use), BB_OCC_* state and the draw it was last queried
-     * in; the leaves of this draw to query; leaves skipped by this and by
-     * the last draw; draws so far. */
-    GLuint *occ_query;
-    uint8_t *occ_state;
-    uint32_t *occ_frame;
-    uint32_t *occ_tested;
-    int occ_tested_count, occ_skipped, occluded_last;
-    uint32_t occ_draws;
-    gfx_program_t occlude_prog;
-} bb_field_t;
+/* The field's GPU data bb_field_read copies, in elements of: */
+typedef enum bb_data_t {
+    BB_DATA_POINTS, /* bb_point_t; [0, info.billboards) valid */
+    BB_DATA_MESHES, /* one deformed mesh: info.mesh_vertices float[4] (world
+                       space, row-major N x M), slot s for a point whose
+                       pad[0] is s; [0, desc.max_deformed) */
+    BB_DATA_POOL,   /* uint32_t: free top, exhausted count, 2 pad, then the
+                       free stack; [0, 4 + desc.max_deformed) */
+    BB_DATA_CUBES   /* one cube-map layer: desc.cube_res^2 float[4] (RGBA32F);
+                       object k's faces are layers 6k .. 6k+5;
+                       [0, 6 * desc.max_objects) */
+} bb_data_t;
 
-/* Occlusion query state of a leaf: a query is in flight; its latest result
- * passed no sample. */
-enum { BB_OCC_PENDING = 1, BB_OCC_HIDDEN = 2 };
-
-bool bb_field_make(bb_field_t *f, const bb_field_desc_t *desc);
+/* NULL when the field cannot be made (logged: desc out of range, the GPU's
+ * limits, out of memory, generation overflow). */
+bb_field_t *bb_field_make(const bb_field_desc_t *desc);
+/* Frees the field and its GL objects; NULL is ignored. */
 void bb_field_destroy(bb_field_t *f);
+void bb_field_info(const bb_field_t *f, bb_field_info_t *out);
+/* Copies elements [first, first + count) of `what` into out (blocking:
+ * gfx_buffer_read's staging copy, never a direct read of a buffer the
+ * passes use; tests and the bench's metrics, not per frame). False, out
+ * untouched, when the range lies outside the data or the copy fails. */
+bool bb_field_read(const bb_field_t *f, bb_data_t what, size_t first, size_t count, void *out);
 /* Broad phase, cube maps, collision, recovery (timers "bb.cubemaps",
  * "bb.collide", "bb.recover") against the objects of `colliders` (NULL:
  * none; at most desc.max_objects, assert; its spheres and cube proxies are
@@ -271,13 +232,6 @@ void bb_field_set_hidden(bb_field_t *f, const float camera[3], float fade_start)
  * their latest query are skipped, and the boxes of the leaves in the
  * frustum are queried after the draw (timer "bb.occlusion"). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
-/* Module-internal (bb.c, bb_occlude.c): occlusion culling's state; ranges
- * of leaves in the frustum less those hidden (returns how many are kept,
- * in order; records the leaves to query); the queries after the draw. */
-bool bb_occlusion_make(bb_field_t *f);
-void bb_occlusion_destroy(bb_field_t *f);
-int bb_occlusion_filter(bb_field_t *f, bb_range_t *ranges, int n, const float camera[3]);
-void bb_occlusion_query(bb_field_t *f, const bb_draw_desc_t *dd);
 /* The same billboards as bb_field_draw, drawn by the compute rasterizer
  * (timer "bb.raster"): every billboard is tested against the frustum on
  * the GPU (no octree walk), coverage comes from r's samples instead

@@ -196,7 +196,7 @@ bool bb_layout_sample(const bb_layout_t *layout, const bb_gen_desc_t *desc, int 
  * corners are (0, 0), (length, 0) and (foot, height), foot in [0, length].
  * Its candidates form a grid of `spacing` metres over [0, length] x
  * [0, height]: cell (i, j), 0 <= i < cells[0], 0 <= j < cells[1], of
- * triangle index t (any number naming it, the mesh's triangle index in bb.c)
+ * triangle index t (any number naming it, the mesh's triangle index in bb_generate.c)
  * is decided by
  *   h      = hash(uint(i) * 0x8da6b343u ^ hash(uint(j) ^ hash(t ^ hash(seed))))
  *   (pu, pv) = ((i + hf(h+1)) * spacing, (j + hf(h+2)) * spacing)

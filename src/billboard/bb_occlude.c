@@ -8,7 +8,7 @@
  * queried again every frame, so it comes back one or two frames after it
  * shows. A leaf whose box holds the camera is always drawn and never
  * queried (its box's faces would be clipped away). */
-#include "billboard/bb.h"
+#include "billboard/bb_local.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -133,4 +133,12 @@ void bb_occlusion_query(bb_field_t *f, const bb_draw_desc_t *dd)
     f->occ_tested_count = 0;
     f->occ_skipped = 0;
     f->occ_draws++;
+}
+
+int bb_occlusion_hidden(const bb_field_t *f)
+{
+    int n = 0;
+    if (f->occ_state)
+        for (int i = 0; i < f->tree.leaf_count; i++) n += f->occ_state[i] & BB_OCC_HIDDEN ? 1 : 0;
+    return n;
 }

@@ -93,7 +93,7 @@ bool collide_test_inside(const collide_cubemap_t *cube, const vec3 q);
 bool collide_push_out(const collide_cubemap_t *cube, const vec3 q, vec3 out);
 
 /* A placed cube map (a "cube proxy"), 160 bytes, std430; mirrors `struct
- * BladeCube` in shaders/common/blade.glsl and bb.c's per-object UBO record:
+ * BladeCube` in shaders/common/blade.glsl and bb_local.h's bb_object_gpu_t:
  *   w2c    world -> cube space (column-major), c2w its inverse
  *   cube   xyz cube centre (cube space), w half edge length
  *   sphere xyz world centre, w radius of a sphere holding the whole cube
