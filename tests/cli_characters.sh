@@ -57,7 +57,7 @@ scene() { # scene FILE CHARACTER_JSON: scenes/tiny.json with one character
   python3 -c 'import json,sys; s=json.load(open("scenes/tiny.json")); s["characters"]=[json.loads(sys.argv[2])]; json.dump(s,open(sys.argv[1],"w"))' "$1" "$2"
 }
 scene "$tmp/bad.json" '{"model": "models/humanoid.gltf", "up": "+z", "forward": "-z"}'
-expect2 "characters\[0\].forward.*lies along up" --headless --scene "$tmp/bad.json" --frames 1
+expect2 "characters\[0\].forward.*lies along up" --headless --scene "$tmp/bad.json" --frames 1 --out "$tmp/out"
 scene "$tmp/keys.json" '{"model": "models/humanoid.gltf", "up": "+y", "forward": "+x", "height": 1.2, "rotation": 45}'
 expect0 "height 1.200 m" --headless --scene "$tmp/keys.json" --frames 1 --size 64x48 --screenshot-every 0 --out "$tmp/out"
 grep -q "^character 0: models/humanoid.gltf: height 1.200 m, .*up +y: scene; forward +x: scene" "$tmp/out/summary.txt" ||
