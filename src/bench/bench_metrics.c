@@ -17,8 +17,10 @@
  * Only samples whose root lies within reach of a collider (horizontal
  * distance < bounding radius + grass height) count towards the fraction,
  * and a collider is ignored for samples anchored inside it (blade root v0;
- * for a billboard sample, the row-0 vertex of its column), since no method
- * can move grass rooted inside a collider.
+ * for a billboard sample, the row-0 vertex of each column it lies on or
+ * between: a cell centre or a row edge beside a column rooted inside is
+ * held there by that fixed root), since no method can move grass rooted
+ * inside a collider.
  *
  * Shape errors: blade length |L - h| / h with L = blade_ref_curve_length
  * (32 samples), mean over real blades; billboard spring error |l - l0| / l0
@@ -75,11 +77,23 @@ typedef struct pen_acc_t {
     double max_depth;
 } pen_acc_t;
 
+/* The sample's fixed root points: the row-0 vertices of the one or two
+ * columns it lies on or between. */
+typedef struct anchors_t {
+    const float *a, *b;
+} anchors_t;
+
+static bool anchored_inside(const exact_t *e, const float a[3])
+{
+    float q[3] = {a[0] - e->pos[0], a[1] - e->pos[1], a[2] - e->pos[2]};
+    return collide_signed_distance(&e->shape, q) < 0.0f;
+}
+
 /* Depth of p inside the deepest collider among those within reach of the
  * root (0 when outside all). *near is set when any collider is in reach.
- * A collider that contains the sample's anchor (the fixed root point below
- * it) is skipped: no method can move grass rooted inside a collider. */
-static float depth_at(const exact_t *ex, int n, const float root[3], float reach_extra, const float anchor[3],
+ * A collider that contains one of the sample's anchors is skipped: no
+ * method can move grass rooted inside a collider. */
+static float depth_at(const exact_t *ex, int n, const float root[3], float reach_extra, anchors_t an,
                       const float p[3], bool *near)
 {
     float depth = 0.0f;
@@ -88,8 +102,7 @@ static float depth_at(const exact_t *ex, int n, const float root[3], float reach
         float dx = root[0] - ex[i].pos[0], dz = root[2] - ex[i].pos[2];
         float r = ex[i].reach + reach_extra;
         if (dx * dx + dz * dz >= r * r) continue;
-        float qa[3] = {anchor[0] - ex[i].pos[0], anchor[1] - ex[i].pos[1], anchor[2] - ex[i].pos[2]};
-        if (collide_signed_distance(&ex[i].shape, qa) < 0.0f) continue;
+        if (anchored_inside(&ex[i], an.a) || anchored_inside(&ex[i], an.b)) continue;
         *near = true;
         float q[3] = {p[0] - ex[i].pos[0], p[1] - ex[i].pos[1], p[2] - ex[i].pos[2]};
         float d = -collide_signed_distance(&ex[i].shape, q);
@@ -98,11 +111,11 @@ static float depth_at(const exact_t *ex, int n, const float root[3], float reach
     return depth;
 }
 
-static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra,
-                   const float anchor[3], const float p[3])
+static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra, anchors_t an,
+                   const float p[3])
 {
     bool near;
-    float d = depth_at(ex, n, root, reach_extra, anchor, p, &near);
+    float d = depth_at(ex, n, root, reach_extra, an, p, &near);
     if (!near) return;
     acc->near++;
     if (d > 0.0f) {
@@ -115,12 +128,12 @@ static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3]
  * vertices a sphere or a box corner can poke through where no vertex is). */
 #define EDGE_SAMPLES 3
 static void sample_edge(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra,
-                        const float anchor[3], const float a[3], const float b[3])
+                        anchors_t an, const float a[3], const float b[3])
 {
     for (int i = 1; i <= EDGE_SAMPLES; i++) {
         float t = (float)i / (float)(EDGE_SAMPLES + 1), q[3];
         for (int k = 0; k < 3; k++) q[k] = a[k] + t * (b[k] - a[k]);
-        sample(acc, ex, n, root, reach_extra, anchor, q);
+        sample(acc, ex, n, root, reach_extra, an, q);
     }
 }
 
@@ -164,7 +177,7 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
         for (int k = 1; k <= SAMPLES_PER_BLADE; k++) {
             float p[3];
             bezier(&b[i], (float)k / SAMPLES_PER_BLADE, p);
-            sample(acc, ex, n, b[i].v0, h, b[i].v0, p);
+            sample(acc, ex, n, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p);
         }
     }
     if (real) {
@@ -269,15 +282,16 @@ static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc,
         float reach = fmaxf(p->size[0], p->size[1]);
         for (int j = 1; j < mm; j++)
             for (int c = 0; c < nn; c++) {
-                sample(acc, ex, n, p->position, reach, grid[c], grid[j * nn + c]);
-                sample_edge(acc, ex, n, p->position, reach, grid[c], grid[(j - 1) * nn + c], grid[j * nn + c]);
-                if (c + 1 < nn) sample_edge(acc, ex, n, p->position, reach, grid[c], grid[j * nn + c], grid[j * nn + c + 1]);
+                anchors_t col = {grid[c], grid[c]}, row = {grid[c], grid[c + 1 < nn ? c + 1 : c]};
+                sample(acc, ex, n, p->position, reach, col, grid[j * nn + c]);
+                sample_edge(acc, ex, n, p->position, reach, col, grid[(j - 1) * nn + c], grid[j * nn + c]);
                 if (c + 1 < nn) {
+                    sample_edge(acc, ex, n, p->position, reach, row, grid[j * nn + c], grid[j * nn + c + 1]);
                     vec3 q;
                     for (int k = 0; k < 3; k++)
                         q[k] = 0.25f * (grid[j * nn + c][k] + grid[j * nn + c + 1][k] + grid[(j - 1) * nn + c][k] +
                                         grid[(j - 1) * nn + c + 1][k]);
-                    sample(acc, ex, n, p->position, reach, grid[c], q);
+                    sample(acc, ex, n, p->position, reach, row, q);
                 }
             }
     }
