@@ -19,9 +19,13 @@ typedef struct app_t {
     gfx_target_t target;
     cam_t cam;
     bool follow_path;
+    bool headless;
     bool paused, step_once, wireframe, hud;
     int overlay;
     int frames, shot_every, shots_written, shots_failed;
+    int done;         /* frames done */
+    double t_frames;  /* plat_time at the start of the first frame */
+    double submitted; /* plat_time once the frame was submitted (frame_drawn) */
     char shot_missing[64]; /* the first screenshot that could not be written */
     int frames_asked; /* --frames, when an interrupt ended the run early (frames: those done) */
     char out[1024];
@@ -372,6 +376,99 @@ static bool write_summary(app_t *app, double wall_s)
     return written;
 }
 
+/* After the world's draw of a frame, before pacing (app_frame_desc_t.drawn):
+ * the HUD, the screenshot, the window. */
+static void frame_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user)
+{
+    (void)w;
+    (void)target;
+    app_t *app = user;
+    if (app->hud) draw_hud(app, v->time);
+    app->last_view = *v;
+    app->last_hud = app->hud || app->wireframe || app->overlay;
+    int frame = app->done + 1;
+    bool shot = (app->shot_every && frame % app->shot_every == 0) || (!app->headless && plat_key_pressed(PLAT_KEY_C));
+    if (shot) screenshot(app, frame);
+    if (!app->headless) {
+        int fw, fh;
+        plat_framebuffer_size(&fw, &fh);
+        gfx_target_present(&app->target, fw, fh);
+        plat_swap();
+    }
+    app->submitted = plat_time();
+}
+
+/* The frames (app_world_frame) until the run's count, a close or an
+ * interrupt; app->done counts them. Returns 0, or 1 when the target or the
+ * GPU failed (logged). */
+static int run_frames(app_t *app)
+{
+    app_world_t *w = &app->world;
+    const scene_desc_t *s = &w->scene;
+    scene_clock_t clock;
+    scene_clock_init(&clock, s->dt, app->headless);
+    app->t_frames = plat_time();
+    double last = app->t_frames, frame_end = app->t_frames;
+    while (!plat_should_close() && !app_interrupted() && (app->frames == 0 || app->done < app->frames)) {
+        if (app->done == app->times.warmup) gfx_timer_skip_warmup();
+        plat_poll_events();
+        double now = plat_time(), real_dt = now - last;
+        last = now;
+        if (!app->headless) handle_keys(app, (float)real_dt);
+        int steps;
+        if (!app->paused) {
+            steps = scene_clock_advance(&clock, real_dt);
+        } else {
+            /* Paused: time stands still; N advances exactly one step. */
+            steps = app->step_once ? 1 : 0;
+            clock.steps += (uint64_t)steps;
+        }
+        app->step_once = false;
+        /* The first frame is waited for: the end of start-up. */
+        app_frame_desc_t fd = {.target = &app->target, .label = "main", .cam = &app->cam,
+                               .follow_path = app->follow_path, .t = scene_clock_time(&clock), .dt = s->dt,
+                               .steps = steps, .overlay = app->overlay, .wireframe = app->wireframe,
+                               .drawn = frame_drawn, .user = app,
+                               .in_flight = app->done == 0 ? 1 : APP_FRAMES_IN_FLIGHT};
+        app_frame_result_t r = app_world_frame(w, &fd);
+        if (r == APP_FRAME_NO_TARGET) return 1;
+        app->done++;
+        app->frame_ms_avg = app->frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
+        if (r == APP_FRAME_GPU_LOST) {
+            core_log_error("giving up at frame %d: the GPU did not finish it", app->done);
+            return 1;
+        }
+        double end = plat_time();
+        if (app->done == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
+        app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
+        frame_times_add(&app->times, app->done - 1, (end - frame_end) * 1e3, (app->submitted - frame_end) * 1e3);
+        frame_end = end;
+        if (app->headless && app->done % 100 == 0) core_log_info("frame %d/%d", app->done, app->frames);
+    }
+    return 0;
+}
+
+/* The world's GPU side and the target, the `raster: auto` measure and the
+ * start-up work counters; false when the renderer cannot be made. */
+static bool start_world(app_t *app)
+{
+    app_world_t *w = &app->world;
+    /* The world first: its admission (app_admit) counts the target too. */
+    bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app->target, "main");
+    if (ok && w->scene.raster == SCENE_RASTER_AUTO)
+        app_world_raster_auto(w, &app->cam, &app->target, app->raster_calib_ms, &app->raster_calib_wall_ms);
+    gfx_count_flush();
+    for (int i = 0; i < gfx_count_pass_count(); i++) {
+        app->startup_draws += gfx_count_pass_total(i, GFX_COUNT_DRAWS);
+        app->startup_ranges += gfx_count_pass_total(i, GFX_COUNT_DRAW_RANGES);
+        app->startup_dispatches += gfx_count_pass_total(i, GFX_COUNT_DISPATCHES);
+    }
+    gfx_count_reset();
+    /* Warm-up: a quarter of a fixed run, at most APP_WARMUP_FRAMES. */
+    app->times.warmup = app->frames > 0 && app->frames / 4 < APP_WARMUP_FRAMES ? app->frames / 4 : APP_WARMUP_FRAMES;
+    return ok;
+}
+
 int app_run(const app_options_t *o, app_montage_fn montage)
 {
     assert(montage || !o->montage);
@@ -398,112 +495,34 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         app_world_destroy(w);
         return 1;
     }
-    bool headless = plat_is_headless();
-    app.frames = o->frames_set ? o->frames : (headless ? s->frames : 0);
+    app.headless = plat_is_headless();
+    app.frames = o->frames_set ? o->frames : (app.headless ? s->frames : 0);
     app.shot_every = o->screenshot_every;
-    if (!app.shot_every && headless && o->screenshot_every == 0 && app.frames >= 3) app.shot_every = app.frames / 3;
-    app.hud = !headless;
+    if (!app.shot_every && app.headless && o->screenshot_every == 0 && app.frames >= 3)
+        app.shot_every = app.frames / 3;
+    app.hud = !app.headless;
     gfx_init();
     app.target = (gfx_target_t){.w = s->size[0], .h = s->size[1]};
     scene_camera_init(s, &app.cam);
     w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
                                      w->stage_ms[APP_STAGE_TERRAIN];
-    /* The world first: its admission (app_admit) counts the target too. */
-    bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app.target, "main");
-    if (ok && s->raster == SCENE_RASTER_AUTO) {
-        app_view_t view;
-        app_view_make(&view, &app.cam, app.target.w, app.target.h, 0.0f, (float)s->dt);
-        double t0 = plat_time();
-        app_world_calibrate_raster(w, &view, &app.target, app.raster_calib_ms);
-        app.raster_calib_wall_ms = (plat_time() - t0) * 1e3;
-    }
-    gfx_count_flush();
-    for (int i = 0; i < gfx_count_pass_count(); i++) {
-        app.startup_draws += gfx_count_pass_total(i, GFX_COUNT_DRAWS);
-        app.startup_ranges += gfx_count_pass_total(i, GFX_COUNT_DRAW_RANGES);
-        app.startup_dispatches += gfx_count_pass_total(i, GFX_COUNT_DISPATCHES);
-    }
-    gfx_count_reset();
-    /* Warm-up: a quarter of a fixed run, at most APP_WARMUP_FRAMES. */
-    app.times.warmup = app.frames > 0 && app.frames / 4 < APP_WARMUP_FRAMES ? app.frames / 4 : APP_WARMUP_FRAMES;
+    bool ok = start_world(&app);
     if (!ok) {
         if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
         rc = w->input_error ? 2 : 1;
     }
-    scene_clock_t clock;
-    scene_clock_init(&clock, s->dt, headless);
-    double t0 = plat_time(), last = t0, frame_end = t0;
-    int frame = 0;
-    while (ok && !plat_should_close() && !app_interrupted() && (app.frames == 0 || frame < app.frames)) {
-        if (frame == app.times.warmup) gfx_timer_skip_warmup();
-        plat_poll_events();
-        double now = plat_time(), real_dt = now - last;
-        last = now;
-        if (!headless) handle_keys(&app, (float)real_dt);
-        int steps;
-        if (!app.paused) {
-            steps = scene_clock_advance(&clock, real_dt);
-        } else {
-            /* Paused: time stands still; N advances exactly one step. */
-            steps = app.step_once ? 1 : 0;
-            clock.steps += (uint64_t)steps;
-        }
-        app.step_once = false;
-        gfx_timer_frame_begin();
-        double end_t = scene_clock_time(&clock);
-        for (int i = steps - 1; i >= 0; i--) app_world_update(w, (float)(end_t - i * s->dt), (float)s->dt);
-        float sim_t = (float)end_t;
-        if (app.follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, sim_t, &app.cam);
-
-        app_view_t view;
-        app_view_make(&view, &app.cam, app.target.w, app.target.h, sim_t, (float)s->dt);
-        view.overlay = app.overlay;
-        if (!app_world_fit_target(w, &app.target, "main")) {
-            ok = false;
-            rc = 1;
-            break;
-        }
-        gfx_target_bind(&app.target);
-        glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &view, &app.target, app.wireframe);
-        if (app.hud) draw_hud(&app, sim_t);
-        app.last_view = view;
-        app.last_hud = app.hud || app.wireframe || app.overlay;
-        frame++;
-        app.frame_ms_avg = app.frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
-        bool shot = (app.shot_every && frame % app.shot_every == 0) || (!headless && plat_key_pressed(PLAT_KEY_C));
-        if (shot) screenshot(&app, frame);
-        if (!headless) {
-            int fw, fh;
-            plat_framebuffer_size(&fw, &fh);
-            gfx_target_present(&app.target, fw, fh);
-            plat_swap();
-        }
-        double submitted = plat_time();
-        /* The first frame is waited for: the end of start-up. */
-        if (gfx_frame_end(frame == 1 ? 1 : APP_FRAMES_IN_FLIGHT) < 0.0) {
-            core_log_error("giving up at frame %d: the GPU did not finish it", frame);
-            ok = false;
-            rc = 1;
-            break;
-        }
-        double end = plat_time();
-        if (frame == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - t0) * 1e3;
-        app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
-        frame_times_add(&app.times, frame - 1, (end - frame_end) * 1e3, (submitted - frame_end) * 1e3);
-        frame_end = end;
-        if (headless && frame % 100 == 0) core_log_info("frame %d/%d", frame, app.frames);
+    if (ok && run_frames(&app) != 0) {
+        ok = false;
+        rc = 1;
     }
-    if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", frame);
+    if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", app.done);
     app.frames_asked = app.frames;
-    app.frames = frame;
+    app.frames = app.done;
     if (ok) {
         gfx_timer_flush();
-        if (report_missing(&app, write_summary(&app, plat_time() - t0))) rc = 1;
+        if (report_missing(&app, write_summary(&app, plat_time() - app.t_frames))) rc = 1;
     }
-    if (ok && headless && o->montage) {
+    if (ok && app.headless && o->montage) {
         /* The same frame in billboard, blade and hybrid modes (and the
          * reference), side by side: compare.png in the output folder. */
         int mframes = app.frames < 120 ? app.frames : 120;

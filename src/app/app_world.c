@@ -893,54 +893,6 @@ bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *lab
     return t->fbo != 0;
 }
 
-bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2])
-{
-    /* Each path draws into the target it would use (app_world_fit_target). */
-    gfx_target_t tg[2] = {{.w = target->w, .h = target->h}, {.w = target->w, .h = target->h}};
-    for (int c = 0; c < 2; c++) {
-        app_world_set_raster(w, c == 1);
-        if (!app_world_fit_target(w, &tg[c], c ? "raster.calibrate.compute" : "raster.calibrate.hw")) {
-            gfx_target_destroy(&tg[0]);
-            gfx_target_destroy(&tg[1]);
-            app_world_set_raster(w, false);
-            ms[0] = ms[1] = 0.0;
-            return false;
-        }
-    }
-    GLuint q[2] = {gfx_query_make(GL_TIMESTAMP, "raster.calibrate.begin"),
-                   gfx_query_make(GL_TIMESTAMP, "raster.calibrate.end")};
-    double best[2] = {1e30, 1e30};
-    for (int rep = 0; rep < 6; rep++) {
-        for (int c = 0; c < 2; c++) {
-            app_world_set_raster(w, c == 1);
-            gfx_timer_frame_begin();
-            gfx_target_bind(&tg[c]);
-            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            glEnable(GL_DEPTH_TEST);
-            glQueryCounter(q[0], GL_TIMESTAMP);
-            app_world_draw(w, view, &tg[c], false);
-            glQueryCounter(q[1], GL_TIMESTAMP);
-            GLuint64 t0 = 0, t1 = 0;
-            glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
-            glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &t1);
-            if (rep > 0 && (double)(t1 - t0) * 1e-6 < best[c]) best[c] = (double)(t1 - t0) * 1e-6;
-        }
-    }
-    gfx_query_destroy(&q[0]);
-    gfx_query_destroy(&q[1]);
-    gfx_target_destroy(&tg[0]);
-    gfx_target_destroy(&tg[1]);
-    /* A path that fell back (no compute rasterizer) cannot be chosen. */
-    bool compute = best[1] < best[0] && w->raster_compute;
-    app_world_set_raster(w, compute);
-    ms[0] = best[0];
-    ms[1] = best[1];
-    gfx_timer_reset_stats();
-    core_log_info("raster auto: a frame takes %.3f ms with the hardware path, %.3f ms with compute: %s", best[0],
-                  best[1], compute ? "compute" : "hw");
-    return compute;
-}
-
 void app_world_set_mode(app_world_t *w, scene_mode_t mode)
 {
     w->mode = mode;

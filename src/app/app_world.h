@@ -281,12 +281,6 @@ int app_world_target_samples(const app_world_t *w);
  * the rasterizer (or a fall-back) gets its target. False when it cannot be
  * made (logged). */
 bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label);
-/* The scene's `raster: auto`: draws `view` with each rasterizer into a
- * target of `target`'s size and that path's samples (one warm-up draw,
- * then the least of 5, GL timestamps around the whole draw), keeps the faster (hardware when compute fell back) and
- * returns true for compute; ms gets the hardware and compute times. Clears
- * the pass timers' statistics. */
-bool app_world_calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2]);
 /* Switches the grass mode at run time, keeping the simulation state. */
 void app_world_set_mode(app_world_t *w, scene_mode_t mode);
 void app_world_destroy(app_world_t *w);
@@ -362,5 +356,48 @@ typedef int (*app_world_spheres_fn)(app_world_t *w, blade_sphere_t *out, int max
  * tiles) with the spheres of `spheres` in place of the world's (same order:
  * colliders, then one blade step). */
 void app_world_update_spheres(app_world_t *w, float t, float dt, app_world_spheres_fn spheres, void *user);
+
+/* ---- one frame (app_frame.c) ------------------------------------------------------
+ * The frame sequence of the program (app_run) and of every bench session:
+ * written once here so both measure and show the same work. */
+typedef enum app_frame_result_t {
+    APP_FRAME_DRAWN,     /* simulated, drawn, paced */
+    APP_FRAME_UPDATED,   /* simulated only (update_only) */
+    APP_FRAME_NO_TARGET, /* the target could not be made (logged) */
+    APP_FRAME_GPU_LOST,  /* the GPU did not finish the frame (the caller logs) */
+} app_frame_result_t;
+/* One frame. Zero means default where noted. */
+typedef struct app_frame_desc_t {
+    gfx_target_t *target; /* fitted (app_world_fit_target), cleared and drawn into */
+    const char *label;    /* the target's label when it is remade */
+    cam_t *cam;           /* the view; moved along the scene's camera path with follow_path */
+    bool follow_path;
+    double t;  /* simulated time at the end of the frame */
+    float dt;  /* step length */
+    int steps; /* app_world_update steps ending at t, dt apart; 0: none (paused) */
+    /* Non-NULL: the steps are app_world_update_spheres with these spheres. */
+    app_world_spheres_fn spheres;
+    /* Called after the steps, with t. */
+    void (*updated)(app_world_t *w, float t, void *user);
+    bool update_only; /* return after the steps (nothing drawn, nothing paced) */
+    int overlay;      /* app_view_t.overlay */
+    bool wireframe;
+    /* Called after the draw, before pacing (HUD, screenshots, present). */
+    void (*drawn)(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user);
+    void *user;    /* for spheres, updated and drawn */
+    int in_flight; /* gfx_frame_end's frames left unfinished; 0: APP_FRAMES_IN_FLIGHT */
+} app_frame_desc_t;
+/* Steps, camera path, view (scene dt), target fit, clear, app_world_draw,
+ * drawn, gfx_frame_end. Starts the pass timers' frame. */
+app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d);
+/* The scene's `raster: auto` at start-up: draws cam's view at time 0 with
+ * each rasterizer into a target of `target`'s size and that path's samples
+ * (one warm-up draw, then the least of 5, GL timestamps around the whole
+ * draw), keeps the faster (hardware when compute fell back) and returns
+ * true for compute; ms gets the hardware and compute times, wall_ms (when
+ * non-NULL) the wall ms the measure took. Clears the pass timers'
+ * statistics. */
+bool app_world_raster_auto(app_world_t *w, const cam_t *cam, const gfx_target_t *target, double ms[2],
+                           double *wall_ms);
 
 #endif

@@ -30,6 +30,32 @@ int bench_session_world(const bench_session_desc_t *d, app_world_t *w)
     return 0;
 }
 
+/* A session's hooks inside app_world_frame: the frame's number beside them. */
+typedef struct session_frame_t {
+    const bench_session_hooks_t *h;
+    int frame;
+} session_frame_t;
+
+static int session_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
+{
+    const session_frame_t *sf = user;
+    return sf->h->blade_spheres(w, out, max, sf->h->user);
+}
+
+static void session_updated(app_world_t *w, float t, void *user)
+{
+    const session_frame_t *sf = user;
+    if (sf->h->frame) sf->h->frame(w, sf->frame, t, sf->h->user);
+}
+
+static void session_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user)
+{
+    (void)w;
+    (void)v;
+    const session_frame_t *sf = user;
+    if (sf->h->drawn) sf->h->drawn(target, sf->frame, sf->h->user);
+}
+
 int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_hooks_t *h, core_image_t *last,
                             bench_metrics_t *m)
 {
@@ -62,11 +88,10 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
      * default, auto, would make a session's images depend on timing (CI's
      * test_eval_image under ASan measured its noise floor on compute). */
     if (d->opts->raster == 1 + SCENE_RASTER_AUTO) {
-        app_view_t view;
         double ms[2];
-        app_view_make(&view, &cam, target.w, target.h, 0.0f, s->dt);
-        app_world_calibrate_raster(w, &view, &target, ms);
+        app_world_raster_auto(w, &cam, &target, ms, NULL);
     }
+    session_frame_t sf = {.h = h};
     double cpu0 = 0, t_acc = 0;
     bool ran = true; /* false: the target could not be made, or the GPU hung */
     for (int f = 0; f < frames; f++) {
@@ -75,31 +100,17 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
             glFinish();
             cpu0 = plat_time();
         }
-        gfx_timer_frame_begin();
         float dt = h->step_dt ? h->step_dt(f, s->dt, h->user) : s->dt;
         t_acc += dt;
-        float t = (float)t_acc;
-        if (own_update) app_world_update_spheres(w, t, dt, h->blade_spheres, h->user);
-        else app_world_update(w, t, dt);
-        if (h->frame) h->frame(w, f, t, h->user);
-        if (h->draw_last_only && f + 1 < frames) continue;
-        if (s->camera.path.count) cam_path_eval(&s->camera.path, t, &cam);
-        app_view_t view;
-        app_view_make(&view, &cam, target.w, target.h, t, s->dt);
-        if (!app_world_fit_target(w, &target, "session")) {
-            ran = false;
-            break;
-        }
-        gfx_target_bind(&target);
-        glClearColor(0, 0, 0, 1);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &view, &target, false);
-        if (h->drawn) h->drawn(&target, f, h->user);
-        /* Paced as the app is (at most APP_FRAMES_IN_FLIGHT frames queued),
-         * so a hung GPU ends the session (logged) instead of waiting forever. */
-        if (gfx_frame_end(APP_FRAMES_IN_FLIGHT) < 0.0) {
+        sf.frame = f;
+        app_frame_desc_t fd = {.target = &target, .label = "session", .cam = &cam, .follow_path = true,
+                               .t = t_acc, .dt = dt, .steps = 1, .spheres = own_update ? session_spheres : NULL,
+                               .updated = session_updated, .update_only = h->draw_last_only && f + 1 < frames,
+                               .drawn = session_drawn, .user = &sf};
+        app_frame_result_t r = app_world_frame(w, &fd);
+        if (r == APP_FRAME_GPU_LOST)
             core_log_error("session: %s: the GPU did not finish frame %d", app_world_scene_path(w), f);
+        if (r == APP_FRAME_NO_TARGET || r == APP_FRAME_GPU_LOST) {
             ran = false;
             break;
         }

@@ -1,5 +1,6 @@
-/* main: entry point of the meadow program (see app.h and --help): runs the
- * program (src/app) or its evaluation harness (src/bench). */
+/* main: entry point of the meadow program (see app.h and --help), above
+ * both modules it runs: the program (src/app) or its evaluation harness
+ * (src/bench). */
 #include "app/app.h"
 #include "bench/bench.h"
 
