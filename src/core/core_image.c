@@ -1,5 +1,5 @@
-/* core_image: 8-bit images loaded with stb_image and written as PNG with
- * stb_image_write (atomically, through core_fs_write_atomic). */
+/* core_image: 8-bit images loaded with stb_image and written as PNG or JPEG
+ * with stb_image_write (implementations in core_stb.c) (atomically, through core_fs_write_atomic). */
 #include "core.h"
 
 #include <stdint.h>
@@ -9,22 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Third-party code: its own warnings are not ours to fix. */
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-but-set-variable"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wmissing-prototypes"
-#pragma GCC diagnostic ignored "-Wshadow"
-#define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
 #define STBI_ONLY_TGA
 #define STBI_FAILURE_USERMSG
 #include <stb_image.h>
-#define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb_image_write.h>
-#pragma GCC diagnostic pop
 
 bool core_image_alloc(core_image_t *img, int w, int h, int channels)
 {
