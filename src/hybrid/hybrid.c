@@ -23,17 +23,48 @@ hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *in)
     return d;
 }
 
+/* Places the held tile at index i over field tile (gi, gj): its box, and a
+ * fresh IDLE state. */
+static void place_tile(const hybrid_grid_t *g, hybrid_tile_t *t, int gi, int gj)
+{
+    const hybrid_desc_t *d = &g->desc;
+    t->coord[0] = gi;
+    t->coord[1] = gj;
+    t->present = gi >= 0 && gj >= 0 && gi < g->field_nx && gj < g->field_nz;
+    t->min[0] = d->min_x + (float)gi * d->tile_size;
+    t->min[2] = d->min_z + (float)gj * d->tile_size;
+    t->max[0] = fminf(t->min[0] + d->tile_size, d->min_x + d->size_x);
+    t->max[2] = fminf(t->min[2] + d->tile_size, d->min_z + d->size_z);
+    float y[2] = {d->min_y, d->max_y};
+    if (d->window > 0 && d->tile_range && t->present)
+        d->tile_range(d->range_user, (float[2]){t->min[0], t->min[2]}, (float[2]){t->max[0], t->max[2]}, y);
+    t->min[1] = y[0];
+    t->max[1] = y[1] + d->grass_height;
+    t->state = HYBRID_IDLE;
+    t->rep = HYBRID_REP_BILLBOARD;
+    t->recover_left = t->motion = t->memory_left = 0.0f;
+    t->slot = t->handover_slot = -1;
+    t->seed = false;
+    t->object_count = 0;
+}
+
+/* Window: the field tile coordinate the index along one axis holds when the
+ * window starts at `base` (the one in [base, base + W) congruent to i). */
+static int window_coord(int i, int base, int w) { return base + ((i - base) % w + w) % w; }
+
 bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc)
 {
     memset(g, 0, sizeof *g);
     g->desc = hybrid_desc_defaults(desc);
     const hybrid_desc_t *d = &g->desc;
-    if (d->size_x <= 0 || d->size_z <= 0) {
-        core_log_error("hybrid: field size %gx%g m must be positive", d->size_x, d->size_z);
+    if (d->size_x <= 0 || d->size_z <= 0 || d->window < 0) {
+        core_log_error("hybrid: field size %gx%g m must be positive (window %d)", d->size_x, d->size_z, d->window);
         return false;
     }
-    g->nx = (int)ceilf(d->size_x / d->tile_size);
-    g->nz = (int)ceilf(d->size_z / d->tile_size);
+    g->field_nx = (int)ceilf(d->size_x / d->tile_size);
+    g->field_nz = (int)ceilf(d->size_z / d->tile_size);
+    g->nx = d->window > 0 ? d->window : g->field_nx;
+    g->nz = d->window > 0 ? d->window : g->field_nz;
     g->tiles = calloc((size_t)g->nx * (size_t)g->nz, sizeof *g->tiles);
     g->free_slots = malloc((size_t)d->pool_slots * sizeof(int));
     if (!g->tiles || !g->free_slots) {
@@ -41,18 +72,7 @@ bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc)
         return false;
     }
     for (int j = 0; j < g->nz; j++)
-        for (int i = 0; i < g->nx; i++) {
-            hybrid_tile_t *t = &g->tiles[j * g->nx + i];
-            t->min[0] = d->min_x + (float)i * d->tile_size;
-            t->min[2] = d->min_z + (float)j * d->tile_size;
-            t->max[0] = fminf(t->min[0] + d->tile_size, d->min_x + d->size_x);
-            t->max[2] = fminf(t->min[2] + d->tile_size, d->min_z + d->size_z);
-            t->min[1] = d->min_y;
-            t->max[1] = d->max_y + d->grass_height;
-            t->slot = -1;
-            t->handover_slot = -1;
-            t->rep = HYBRID_REP_BILLBOARD;
-        }
+        for (int i = 0; i < g->nx; i++) place_tile(g, &g->tiles[j * g->nx + i], i, j);
     for (int s = 0; s < d->pool_slots; s++) g->free_slots[s] = d->pool_slots - 1 - s;
     g->free_count = d->pool_slots;
     return true;
@@ -65,12 +85,20 @@ void hybrid_grid_free(hybrid_grid_t *g)
     memset(g, 0, sizeof *g);
 }
 
+/* Index of field tile (gi, gj), -1 outside the field or the window. */
+static int index_of(const hybrid_grid_t *g, int gi, int gj)
+{
+    if (gi < 0 || gj < 0 || gi >= g->field_nx || gj >= g->field_nz) return -1;
+    if (g->desc.window <= 0) return gj * g->nx + gi;
+    int w = g->desc.window;
+    if (gi < g->base[0] || gj < g->base[1] || gi >= g->base[0] + w || gj >= g->base[1] + w) return -1;
+    return (gj % w) * w + gi % w;
+}
+
 int hybrid_tile_at(const hybrid_grid_t *g, float x, float z)
 {
-    int i = (int)floorf((x - g->desc.min_x) / g->desc.tile_size);
-    int j = (int)floorf((z - g->desc.min_z) / g->desc.tile_size);
-    if (i < 0 || j < 0 || i >= g->nx || j >= g->nz) return -1;
-    return j * g->nx + i;
+    return index_of(g, (int)floorf((x - g->desc.min_x) / g->desc.tile_size),
+                    (int)floorf((z - g->desc.min_z) / g->desc.tile_size));
 }
 
 bool hybrid_tile_touched_brute(const hybrid_grid_t *g, int i, const hybrid_object_t *o, int count)
@@ -90,12 +118,34 @@ static void release_slot(hybrid_grid_t *g, hybrid_tile_t *t)
     t->slot = -1;
 }
 
+/* Window: centres the window on the camera's tile and moves every index
+ * whose field tile left it to the one that entered (a fresh IDLE tile). */
+static void recentre(hybrid_grid_t *g, const float cam[3], hybrid_stats_t *st)
+{
+    const hybrid_desc_t *d = &g->desc;
+    int w = d->window;
+    g->base[0] = (int)floorf((cam[0] - d->min_x) / d->tile_size) - w / 2;
+    g->base[1] = (int)floorf((cam[2] - d->min_z) / d->tile_size) - w / 2;
+    for (int j = 0; j < w; j++)
+        for (int i = 0; i < w; i++) {
+            hybrid_tile_t *t = &g->tiles[j * w + i];
+            int gi = window_coord(i, g->base[0], w), gj = window_coord(j, g->base[1], w);
+            if (t->coord[0] == gi && t->coord[1] == gj) continue;
+            st->streamed++;
+            if (t->slot >= 0) st->dropped++;
+            release_slot(g, t);
+            place_tile(g, t, gi, gj);
+            t->epoch++;
+        }
+}
+
 void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt)
 {
     const hybrid_desc_t *d = &g->desc;
     hybrid_stats_t st = {.tiles = g->nx * g->nz, .slots_total = d->pool_slots};
     int ntiles = g->nx * g->nz;
+    if (d->window > 0) recentre(g, cam, &st);
     for (int i = 0; i < ntiles; i++) g->tiles[i].object_count = 0;
     /* Object lists: visit only the tiles under each object's bounds (one
      * tile of margin so spheres touching a tile edge exactly are found by
@@ -106,9 +156,16 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
         int i1 = (int)floorf((s[0] + s[3] - d->min_x) / d->tile_size) + 1;
         int j0 = (int)floorf((s[2] - s[3] - d->min_z) / d->tile_size) - 1;
         int j1 = (int)floorf((s[2] + s[3] - d->min_z) / d->tile_size) + 1;
-        for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < g->nz; j++)
-            for (int i = i0 < 0 ? 0 : i0; i <= i1 && i < g->nx; i++) {
-                hybrid_tile_t *t = &g->tiles[j * g->nx + i];
+        int lo[2] = {0, 0}, hi[2] = {g->field_nx - 1, g->field_nz - 1};
+        for (int a = 0; a < 2 && d->window > 0; a++) {
+            lo[a] = g->base[a] > lo[a] ? g->base[a] : lo[a];
+            hi[a] = g->base[a] + d->window - 1 < hi[a] ? g->base[a] + d->window - 1 : hi[a];
+        }
+        for (int j = j0 > lo[1] ? j0 : lo[1]; j <= j1 && j <= hi[1]; j++)
+            for (int i = i0 > lo[0] ? i0 : lo[0]; i <= i1 && i <= hi[0]; i++) {
+                int ti = index_of(g, i, j);
+                if (ti < 0) continue;
+                hybrid_tile_t *t = &g->tiles[ti];
                 if (core_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
                 if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
                     st.list_overflow++;
@@ -119,6 +176,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
     }
     for (int i = 0; i < ntiles; i++) {
         hybrid_tile_t *t = &g->tiles[i];
+        if (!t->present) continue; /* a window tile beyond the field's edge */
         /* Representation with hysteresis on the switch distance (the eye
          * distance, shaders/common/switch.glsl) to the tile's box: no blade
          * of a billboard tile is nearer than the box. */

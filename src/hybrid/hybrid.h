@@ -17,7 +17,14 @@
  *   may still carry deformation (memory_left > 0: touched, or handed over,
  *   less than `memory` seconds ago) takes a slot to be seeded from the
  *   slope cells (seed, for that one update) and turns RECOVERING.
- * - Per-tile object lists, built every update. */
+ * - Per-tile object lists, built every update.
+ * - Window (desc.window > 0, the open world, docs/WORLD.md): the grid is a
+ *   W x W square of tiles that follows the camera over a field of any size.
+ *   Field tile (gi, gj) lives at index (gj mod W) W + (gi mod W) while it
+ *   is inside the window; a tile leaving it drops its state (slot released,
+ *   stats.dropped) and its index is reused by the tile entering opposite
+ *   (stats.streamed), with a new epoch. Memory and the per-update loop
+ *   depend on W, not on the field. */
 #ifndef MEADOW_HYBRID_H
 #define MEADOW_HYBRID_H
 
@@ -48,6 +55,9 @@ typedef struct hybrid_tile_t {
     int slot;               /* pool slot of its simulation state, -1 = none */
     float memory_left;      /* s it may still carry deformation without a slot */
     int handover_slot;      /* slot handed over to billboards this update, else -1 */
+    int32_t coord[2];       /* field tile coordinates (gi, gj): the tile's place in the field's grid */
+    uint32_t epoch;         /* bumped each time the index takes a new field tile (window) */
+    bool present;           /* inside the field (window tiles beyond its edge are not) */
     bool seed;              /* slot taken this update, to be seeded from the slope cells */
     int object_count;       /* objects touching it this update */
     uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
@@ -72,6 +82,12 @@ typedef struct hybrid_desc_t {
     bool keep_state;          /* false (default): hand over (see the banner);
                                  true: RECOVERING tiles keep their slot whatever
                                  their representation, nothing is handed over */
+    int window;               /* tiles per side of the window that follows the
+                                 camera; 0 (default): the grid covers the field */
+    /* Window only: the ground height range under a tile entering the
+     * window (y_out[0] lowest, y_out[1] highest); NULL: min_y..max_y. */
+    void (*tile_range)(void *user, const float min_xz[2], const float max_xz[2], float y_out[2]);
+    void *range_user;
 } hybrid_desc_t;
 
 hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *d);
@@ -85,11 +101,15 @@ typedef struct hybrid_stats_t {
     int handovers;          /* tiles handed from blades to billboards this update */
     int seeded;             /* tiles taking a slot to be seeded from billboards this update */
     int list_overflow;      /* objects left out of full per-tile lists this update */
+    int streamed;           /* window: tiles that entered the window this update */
+    int dropped;            /* window: of those, indices whose leaving tile held a slot */
 } hybrid_stats_t;
 
 typedef struct hybrid_grid_t {
     hybrid_desc_t desc;
-    int nx, nz;
+    int nx, nz;             /* tiles held: the field's, or W x W in a window */
+    int field_nx, field_nz; /* tiles of the field */
+    int base[2];            /* window: field tile coordinates of its first corner */
     hybrid_tile_t *tiles;
     int *free_slots;
     int free_count;
@@ -114,7 +134,7 @@ void hybrid_grid_free(hybrid_grid_t *g);
  * the measured motion per tile from the last simulation step. */
 void hybrid_grid_update(hybrid_grid_t *g, const float camera[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt);
-/* Tile index of a world position, -1 outside. */
+/* Tile index of a world position, -1 outside the field (or the window). */
 int hybrid_tile_at(const hybrid_grid_t *g, float x, float z);
 /* Independent brute-force activity test (tests): does any object touch
  * tile i? */
