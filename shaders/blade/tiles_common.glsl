@@ -14,13 +14,20 @@
  *                0.7); s below BLADE_STIFFNESS_MIN counts as that minimum.
  * Twins on the CPU: blade_tiles_root / blade_tiles_instance. Bindings:
  * SSBO 0 templates, 3 winds; texture unit 0 the ground (xyz normal, w
- * height per grid vertex). */
+ * height per grid vertex), or with TILES_WORLD the world's height function
+ * (world_height.glsl, its #defines from terrain_world_defines).
+ * Tile index -> field tile coordinates: row-major over the field, or in a
+ * window (u_window > 0, hybrid.h) the one in [base, base + W) congruent to
+ * the index, base + (i + shift) mod W with shift = -base mod W. */
 #ifndef TILES_COMMON_GLSL
 #define TILES_COMMON_GLSL
 
 #include "common/switch.glsl"
 #include "common/blade.glsl"
 #include "common/hash.glsl"
+#ifdef TILES_WORLD
+#include "common/world_height.glsl"
+#endif
 
 #define TILES_POSE_ITERATIONS 6
 #define TILES_POSE_RELAX 0.7
@@ -35,7 +42,10 @@ uniform uint u_template_blades;  /* padded blades per template */
 uniform uint u_template_count;
 uniform uint u_seed_hash;
 uniform int u_tiles_x;
-uniform ivec2 u_tile_offset;     /* world tile coordinates of tile 0 */
+uniform ivec2 u_tile_offset;     /* world tile coordinates of field tile (0, 0) */
+uniform int u_window;            /* tiles per side of the window, 0: the whole field */
+uniform ivec2 u_window_base;     /* field tile coordinates of the window's first corner */
+uniform ivec2 u_window_shift;    /* -u_window_base mod u_window */
 uniform float u_tile_size;
 uniform float u_half;            /* heightfield half size (centred on the origin) */
 uniform int u_grid_res;
@@ -46,11 +56,20 @@ uniform int u_wind_count;
 uniform int u_length_mode;
 uniform float u_pose_dt;         /* the physics step the pose settles for */
 
-/* Hash of the tile's world coordinates (tile index + u_tile_offset), so a
+/* Field tile coordinates of a tile index (see the banner). */
+ivec2 tiles_cell(uint tile)
+{
+    ivec2 c = ivec2(int(tile) % u_tiles_x, int(tile) / u_tiles_x);
+    if (u_window > 0) c = u_window_base + (c + u_window_shift) % u_window;
+    return c;
+}
+
+/* Hash of the tile's world coordinates (field tile + u_tile_offset), so a
  * world tile looks the same in fields of any size. */
 void tiles_instance(uint tile, out uint tmpl, out uint sym)
 {
-    int wi = int(tile) % u_tiles_x + u_tile_offset.x, wj = int(tile) / u_tiles_x + u_tile_offset.y;
+    ivec2 c = tiles_cell(tile);
+    int wi = c.x + u_tile_offset.x, wj = c.y + u_tile_offset.y;
     uint h = hash_u32(uint(wi) * 0x8da6b343u ^ hash_u32(uint(wj) ^ u_seed_hash));
     tmpl = h % u_template_count;
     sym = (h >> 8) & 7u;
@@ -59,6 +78,10 @@ void tiles_instance(uint tile, out uint tmpl, out uint sym)
 /* Ground height and interpolated normal at (x, z), as terrain_height_at. */
 float tiles_ground(float x, float z, out vec3 n)
 {
+#ifdef TILES_WORLD
+    n = world_normal(vec2(x, z));
+    return world_height(vec2(x, z));
+#else
     int res = u_grid_res;
     float cell = (2.0 * u_half) / float(res);
     float fx = (clamp(x, -u_half, u_half) + u_half) / cell;
@@ -76,6 +99,7 @@ float tiles_ground(float x, float z, out vec3 n)
     }
     n = blade_safe_normalize(r.xyz);
     return r.w;
+#endif
 }
 
 Blade tiles_rest(uint tile, uint k)
@@ -97,9 +121,9 @@ Blade tiles_rest(uint tile, uint k)
         x = -x;
         a = 3.14159265 - a;
     }
-    int ti = int(tile) % u_tiles_x, tj = int(tile) / u_tiles_x;
-    x = x + half_tile + (-u_half + float(ti) * u_tile_size);
-    z = z + half_tile + (-u_half + float(tj) * u_tile_size);
+    ivec2 c = tiles_cell(tile);
+    x = x + half_tile + (-u_half + float(c.x) * u_tile_size);
+    z = z + half_tile + (-u_half + float(c.y) * u_tile_size);
     float h = t.v1.w;
     if (x > u_half || z > u_half) h = 0.0;
     vec3 up;

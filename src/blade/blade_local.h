@@ -37,7 +37,12 @@ struct blade_tiles_t {
     hybrid_grid_t grid;
     float field_min[2], field_size; /* heightfield square */
     int grid_res;
-    int tile_offset[2];             /* world tile coordinates of tile 0 (template hash) */
+    int tile_offset[2];             /* world tile coordinates of field tile (0, 0) (template hash) */
+    bool world;                     /* the ground is a world terrain's function (no ground texture) */
+    terrain_world_t world_fn;       /* its parameters (CPU twin of the ground) */
+    char defines[512];              /* the programs' #defines: the world's, and TILES_WORLD */
+    uint32_t *slot_epoch;           /* per slot: the owner's epoch when the slot was initialised */
+    uint32_t *motion_epoch[BLADE_TILES_READBACK_SLOTS]; /* the owners' epochs at copy time */
     float reach;                    /* height_max + width_max / 2 */
     uint32_t template_blades;       /* padded blades per template */
     uint32_t draw_capacity;

@@ -98,13 +98,22 @@ typedef struct layout_t {
     size_t bytes;
 } layout_t;
 
+/* The default window (blade_tiles_desc_t.window): every tile whose box can
+ * be within the switch distance plus the hysteresis of the camera, and a
+ * tile of margin for the camera's tile. */
+static int default_window(const blade_tiles_desc_t *d)
+{
+    return 2 * (int)ceilf((d->switch_distance + HYSTERESIS) / d->tile_size) + 3;
+}
+
+/* grid_res 0: a world terrain, no ground texture. */
 static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int grid_res)
 {
     layout_t l = {.blades = template_blades(d)};
-    l.tiles_x = l.tiles_z = (int)ceilf(field_size / d->tile_size);
+    l.tiles_x = l.tiles_z = d->window > 0 ? d->window : (int)ceilf(field_size / d->tile_size);
     l.draw_tiles = max_tiles_within(d->switch_distance + HYSTERESIS, d->tile_size, l.tiles_x, l.tiles_z);
     l.draw_capacity = d->draw_capacity ? d->draw_capacity : (uint32_t)l.draw_tiles * l.blades;
-    size_t S = (size_t)d->pool_slots, B = l.blades, side = (size_t)grid_res + 1;
+    size_t S = (size_t)d->pool_slots, B = l.blades, side = grid_res > 0 ? (size_t)grid_res + 1 : 0;
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */
               + S * sizeof(uint32_t) * (1 + SLOT_STRIDE + 1 + 2)       /* motion, sphere lists, slot / init lists */
@@ -119,18 +128,28 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     return l;
 }
 
+/* The field's side, and the window resolved (0: none). */
+static float field_side(const blade_tiles_desc_t *d, const terrain_mesh_t *m, int *window)
+{
+    bool world = m->type == TERRAIN_WORLD;
+    *window = d->window > 0 ? d->window : world ? default_window(d) : 0;
+    return world ? m->world.size : m->grid_size;
+}
+
 size_t blade_tiles_estimate_bytes(const blade_tiles_desc_t *desc, uint32_t *template_blades_out)
 {
-    assert(desc->terrain && desc->terrain->grid_res > 0);
+    assert(desc->terrain && (desc->terrain->grid_res > 0 || desc->terrain->type == TERRAIN_WORLD));
     blade_tiles_desc_t d = blade_tiles_desc_defaults(desc);
-    layout_t l = layout_of(&d, desc->terrain->grid_size, desc->terrain->grid_res);
+    float side = field_side(&d, desc->terrain, &d.window);
+    layout_t l = layout_of(&d, side, desc->terrain->grid_res);
     if (template_blades_out) *template_blades_out = l.blades;
     return l.bytes;
 }
 
 void blade_tiles_instance(const blade_tiles_t *t, int tile, int *template_index, int *symmetry)
 {
-    int wi = tile % t->grid.nx + t->tile_offset[0], wj = tile / t->grid.nx + t->tile_offset[1];
+    const int32_t *cell = t->grid.tiles[tile].coord;
+    int wi = cell[0] + t->tile_offset[0], wj = cell[1] + t->tile_offset[1];
     uint32_t h = core_hash_u32((uint32_t)wi * 0x8da6b343u ^
                                core_hash_u32((uint32_t)wj ^ (uint32_t)(t->desc.seed * 0x9e3779b9u)));
     *template_index = (int)(h % (uint32_t)t->desc.template_count);
@@ -148,10 +167,14 @@ void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2],
         x = nx;
     }
     if (sym & 4) x = -x;
-    int ti = tile % t->grid.nx, tj = tile / t->grid.nx;
+    const int32_t *cell = t->grid.tiles[tile].coord;
     float half = 0.5f * t->field_size;
-    root[0] = x + half_tile + (-half + (float)ti * t->desc.tile_size);
-    root[2] = z + half_tile + (-half + (float)tj * t->desc.tile_size);
+    root[0] = x + half_tile + (-half + (float)cell[0] * t->desc.tile_size);
+    root[2] = z + half_tile + (-half + (float)cell[1] * t->desc.tile_size);
+    if (t->world) {
+        root[1] = terrain_world_height(&t->world_fn, root[0], root[2], up);
+        return;
+    }
     /* ground: the height of terrain_height_at, the normal interpolated
      * from the vertex normals with the same weights */
     const float *g = t->ground_cpu;
@@ -293,7 +316,8 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->draw_ring = gfx_readback_make(RING_WORDS * sizeof(uint32_t), BLADE_TILES_READBACK_SLOTS, label);
     ok = ok && t->motion_ring.depth && t->draw_ring.depth;
     snprintf(label, sizeof label, "%s.ground", d->label);
-    t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
+    if (!t->world)
+        t->ground = gfx_texture_make(&(gfx_texture_desc_t){.w = (int)side, .h = (int)side, .format = GL_RGBA32F,
                                                        .filter = GL_NEAREST, .data = t->ground_cpu,
                                                        .upload_format = GL_RGBA, .upload_type = GL_FLOAT,
                                                        .label = label});
@@ -318,12 +342,12 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->slope_sums = make_buffer(t, "slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
     t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
     ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
-    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp"});
+    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp", .defines = t->defines});
     t->resolve = make_program(t, "slope_resolve", &(gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp"});
     ok = ok && t->handover.id && t->resolve.id;
-    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp"});
-    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp"});
-    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp"});
+    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp", .defines = t->defines});
+    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp", .defines = t->defines});
+    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = t->defines});
     for (int fade = 0; fade < 2; fade++) {
         /* the pulled strips carry the debug overlays; the tessellation
          * stages are blade mode's (blade.tesc, blade.tese) */
@@ -343,7 +367,7 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
     t->vao = gfx_vertex_array_make(label);
-    ok = ok && t->ground.id && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
+    ok = ok && (t->world || t->ground.id) && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
     if (!ok) {
         core_log_error("blade_tiles_make: could not create the GL objects of '%s'", d->label);
         return false;
@@ -361,6 +385,30 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     return true;
 }
 
+/* hybrid_desc_t.tile_range for a window: the ground's range under a tile
+ * from 5 x 5 samples, padded by half the sample spacing times the steepest
+ * slope seen (the ground between samples may rise that much). */
+static void tile_range(void *user, const float min_xz[2], const float max_xz[2], float y[2])
+{
+    const terrain_mesh_t *m = user;
+    enum { N = 5 };
+    float lo = FLT_MAX, hi = -FLT_MAX, slope = 0.0f;
+    float step = fmaxf(max_xz[0] - min_xz[0], max_xz[1] - min_xz[1]) / (float)(N - 1);
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            vec3 n;
+            float x = fminf(min_xz[0] + step * (float)i, max_xz[0]);
+            float z = fminf(min_xz[1] + step * (float)j, max_xz[1]);
+            float h = terrain_height_at(m, x, z, n);
+            lo = fminf(lo, h);
+            hi = fmaxf(hi, h);
+            slope = fmaxf(slope, sqrtf(n[0] * n[0] + n[2] * n[2]) / fmaxf(n[1], 0.05f));
+        }
+    float pad = 0.5f * step * slope + 0.05f;
+    y[0] = lo - pad;
+    y[1] = hi + pad;
+}
+
 /* Fills the zeroed t; false (one logged error) on failure, the caller
  * releases. */
 static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
@@ -369,14 +417,22 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     const terrain_mesh_t *m = desc->terrain;
     t->desc.terrain = NULL;
     t->desc.cull.depth = NULL;
-    if (!m || m->grid_res <= 0) {
-        core_log_error("blade_tiles_make: the terrain must be a heightfield (mesh terrains: use blade_gpu)");
+    if (!m || (m->grid_res <= 0 && m->type != TERRAIN_WORLD)) {
+        core_log_error("blade_tiles_make: the terrain must be a heightfield or a world (mesh terrains: use "
+                       "blade_gpu)");
         return false;
     }
     const blade_tiles_desc_t *d = &t->desc;
-    t->field_size = m->grid_size;
-    t->field_min[0] = t->field_min[1] = -0.5f * m->grid_size;
-    t->grid_res = m->grid_res;
+    t->world = m->type == TERRAIN_WORLD;
+    t->field_size = field_side(d, m, &t->desc.window);
+    t->field_min[0] = t->field_min[1] = -0.5f * t->field_size;
+    t->grid_res = t->world ? 0 : m->grid_res;
+    if (t->world) {
+        t->world_fn = m->world;
+        int n = terrain_world_defines(&m->world, t->defines, sizeof t->defines - 32);
+        if (n < 0) return false;
+        snprintf(t->defines + n, sizeof t->defines - (size_t)n, "#define TILES_WORLD 1\n");
+    }
     t->reach = d->height_max + 0.5f * d->width_max;
     t->tile_offset[0] = t->tile_offset[1] = (int)lroundf(t->field_min[0] / d->tile_size);
     layout_t l = layout_of(d, t->field_size, t->grid_res);
@@ -401,10 +457,14 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
                                                           .motion_epsilon = d->motion_epsilon,
                                                           .pool_slots = d->pool_slots,
                                                           .memory = d->slope_recover,
-                                                          .keep_state = d->keep_state});
+                                                          .keep_state = d->keep_state || d->window > 0,
+                                                          .window = d->window,
+                                                          .tile_range = tile_range,
+                                                          .range_user = (void *)m});
     int ntiles = t->grid.nx * t->grid.nz;
-    size_t side = (size_t)t->grid_res + 1;
+    size_t side = t->world ? 1 : (size_t)t->grid_res + 1;
     t->slot_owner = malloc((size_t)d->pool_slots * sizeof(int));
+    t->slot_epoch = calloc((size_t)d->pool_slots, sizeof(uint32_t));
     t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
     t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
@@ -412,16 +472,17 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->ground_cpu = malloc(side * side * 4 * sizeof(float));
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
         t->motion_owner[i] = malloc((size_t)d->pool_slots * sizeof(int));
-        ok = ok && t->motion_owner[i];
+        t->motion_epoch[i] = malloc((size_t)d->pool_slots * sizeof(uint32_t));
+        ok = ok && t->motion_owner[i] && t->motion_epoch[i];
     }
-    ok = ok && t->slot_owner && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
+    ok = ok && t->slot_owner && t->slot_epoch && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
     if (!ok || !seed_templates(t)) {
         core_log_error("blade_tiles_make: out of memory or seeding failed");
         return false;
     }
     for (int s = 0; s < d->pool_slots; s++) t->slot_owner[s] = -1, t->slot_motion[s] = 0.0f;
     for (int i = 0; i < ntiles; i++) t->tile_motion[i] = FLT_MAX;
-    for (size_t v = 0; v < side * side; v++) {
+    for (size_t v = 0; v < side * side && !t->world; v++) {
         memcpy(&t->ground_cpu[4 * v], &m->normals[3 * v], 3 * sizeof(float));
         t->ground_cpu[4 * v + 3] = m->positions[3 * v + 1];
     }
@@ -449,8 +510,9 @@ static void release(blade_tiles_t *t)
     if (t->tile_info.id) gfx_buffer_destroy(&t->tile_info);
     if (t->vao) gfx_vertex_array_destroy(&t->vao);
     hybrid_grid_free(&t->grid);
-    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]);
+    for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]), free(t->motion_epoch[i]);
     free(t->slot_owner);
+    free(t->slot_epoch);
     free(t->slot_motion);
     free(t->tile_motion);
     free(t->scratch);
@@ -514,6 +576,12 @@ static void set_common(const blade_tiles_t *t, gfx_program_t p)
     glUniform1ui(gfx_uniform(p, "u_seed_hash"), (uint32_t)(t->desc.seed * 0x9e3779b9u));
     glUniform1i(gfx_uniform(p, "u_tiles_x"), t->grid.nx);
     glUniform2i(gfx_uniform(p, "u_tile_offset"), t->tile_offset[0], t->tile_offset[1]);
+    int w = t->desc.window;
+    glUniform1i(gfx_uniform(p, "u_window"), w);
+    glUniform2i(gfx_uniform(p, "u_window_base"), t->grid.base[0], t->grid.base[1]);
+    if (w > 0)
+        glUniform2i(gfx_uniform(p, "u_window_shift"), ((-t->grid.base[0]) % w + w) % w,
+                    ((-t->grid.base[1]) % w + w) % w);
     glUniform1f(gfx_uniform(p, "u_tile_size"), t->desc.tile_size);
     glUniform1f(gfx_uniform(p, "u_half"), 0.5f * t->field_size);
     glUniform1i(gfx_uniform(p, "u_grid_res"), t->grid_res);
@@ -543,7 +611,7 @@ static void poll_motion(blade_tiles_t *t)
         gfx_readback_read(&t->motion_ring, r, 0, (size_t)S * sizeof(uint32_t), bits);
         for (int s = 0; s < S; s++) {
             int owner = t->motion_owner[r][s];
-            if (owner < 0 || t->slot_owner[s] != owner) continue;
+            if (owner < 0 || t->slot_owner[s] != owner || t->slot_epoch[s] != t->motion_epoch[r][s]) continue;
             float v;
             memcpy(&v, &bits[s], sizeof v);
             t->slot_motion[s] = v;
@@ -608,7 +676,8 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     const int S = t->desc.pool_slots, ntiles = t->grid.nx * t->grid.nz;
     for (int s = 0; s < S; s++) {
         int o = t->slot_owner[s];
-        if (o >= 0 && t->grid.tiles[o].slot != s) t->slot_owner[s] = -1;
+        if (o >= 0 && (t->grid.tiles[o].slot != s || t->grid.tiles[o].epoch != t->slot_epoch[s]))
+            t->slot_owner[s] = -1;
     }
     uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
     uint32_t *list = init + 2 * S, *handover = list + S;
@@ -625,6 +694,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         int s = tile->slot;
         if (t->slot_owner[s] != i) {
             t->slot_owner[s] = i;
+            t->slot_epoch[s] = tile->epoch;
             t->slot_motion[s] = FLT_MAX;
             t->tile_motion[i] = FLT_MAX;
             init[2 * ninit] = (uint32_t)s;
@@ -695,6 +765,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         for (int s = 0; s < S; s++) {
             int o = t->slot_owner[s];
             t->motion_owner[r][s] = o >= 0 && t->grid.tiles[o].state == HYBRID_RECOVERING ? o : -1;
+            t->motion_epoch[r][s] = t->slot_epoch[s];
         }
     }
     glBindTextureUnit(0, 0);

@@ -6,7 +6,10 @@
  * representation with hysteresis, ACTIVE / RECOVERING / IDLE, slot pool,
  * per-tile object lists), each an instance of one of a few template tiles
  * (blade_seed, Morton order) under one of the 8 symmetries of the square,
- * its roots on the heightfield (mesh terrains are rejected: use blade_gpu).
+ * its roots on the heightfield or a world terrain's height function (mesh
+ * terrains are rejected: use blade_gpu). On a world the grid is a window of
+ * tiles that follows the camera (hybrid.h): every tile is a function of its
+ * coordinates and the seed, so a tile streamed in again is the same.
  * Idle tiles have no per-blade state: they are drawn in the procedural pose
  * P(t), the equilibrium of the blade physics (eq. 3-16, eta = 0) under
  * gravity and the wind of time t. Active and recovering tiles own a slot of
@@ -39,8 +42,14 @@
 
 /* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
  * scene/scene_fields.h:
- *   terrain          required, a heightfield (grid_res > 0); borrowed
- *                    during make only
+ *   terrain          required, a heightfield (grid_res > 0) or a world
+ *                    terrain (TERRAIN_WORLD); borrowed during make only
+ *   window           tiles per side of the window that follows the camera
+ *                    (hybrid_desc_t.window): 0 is the whole field on a
+ *                    heightfield and, on a world, the smallest window that
+ *                    holds every tile within switch_distance + 1 m of the
+ *                    camera plus a tile. A window keeps the state of
+ *                    recovering tiles (keep_state: no hand-over)
  *   tile_size        4 m (scene, grass.tile_size)
  *   template_count   4 (1..BLADE_TILES_MAX_TEMPLATES)
  *   density          200 blades/m^2; height [0.35, 0.7] m; width
@@ -86,6 +95,7 @@
  *   label            "tiles" */
 typedef struct blade_tiles_desc_t {
     const terrain_mesh_t *terrain;
+    int window;
     float tile_size;
     int template_count;
     float density;
@@ -155,7 +165,8 @@ typedef struct blade_tiles_t blade_tiles_t;
 
 /* What a made field holds (blade_tiles_info). */
 typedef struct blade_tiles_info_t {
-    blade_tiles_desc_t desc;        /* resolved; desc.terrain and desc.extent are NULL */
+    blade_tiles_desc_t desc;        /* resolved (desc.window: the window, 0 without one);
+                                       desc.terrain and desc.extent are NULL */
     const hybrid_grid_t *grid;      /* the tile bookkeeping (read only; valid until destroy) */
     hybrid_slope_grid_t slope_grid; /* the slope cells of the hand-over */
     uint32_t template_blades;       /* blades per template, padded: the length of a slot */
