@@ -339,9 +339,20 @@ static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char
     return false;
 }
 
+bool app_admit_world_supported(const scene_desc_t *s, char *err, size_t err_size)
+{
+    if (s->terrain.type != TERRAIN_WORLD) return true;
+    snprintf(err, err_size,
+             "terrain.type \"world\" has no vertices and mode \"%s\" still grows its grass from them: streamed "
+             "grass on world terrains is not built yet",
+             scene_mode_name(s->mode));
+    return false;
+}
+
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size)
 {
+    if (!app_admit_world_supported(s, err, err_size)) return false;
     if (!sphere_limit(s, w, err, err_size)) return false;
     if (w->objects > APP_ADMIT_MAX_OBJECTS) {
         int most = APP_ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);

@@ -91,9 +91,17 @@ typedef struct app_admit_t {
 #define APP_ADMIT_MAX_FIELD_BLADES 50000000
 
 const char *app_admit_part_name(int part);
+/* False with one line in err when s has a world terrain (terrain.type
+ * "world", no vertices) and asks for something that still needs the
+ * terrain's vertices: today every grass mode (blade seeding, billboard
+ * layout, hybrid tiles), so the world's terrain and clipmap are reachable
+ * from tests only until the streamed grass lifts this. */
+bool app_admit_world_supported(const scene_desc_t *s, char *err, size_t err_size);
 void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_admit_t *out);
 /* Checks s against the limits; false with one line in err (naming the key
- * and the largest value that fits) when it does not fit. */
+ * and the largest value that fits) when it does not fit. A terrain of type
+ * "world" is refused here, in app_admit_world_supported, the one place to
+ * lift as its streamed grass lands (issue 32). */
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size);
 /* This process's host memory headroom: 80 % of MemAvailable, and under a

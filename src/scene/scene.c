@@ -399,6 +399,9 @@ static bool parse_terrain(sp_t *sp, const json_t *o, terrain_desc_t *t)
     t->type = (terrain_type_t)type;
     if (t->type == TERRAIN_MESH && !t->mesh[0])
         return sp_fail(sp, o->line, "terrain.mesh", "required when terrain.type is \"mesh\"");
+    if (t->type == TERRAIN_WORLD && t->size > TERRAIN_WORLD_SIZE_MAX)
+        return sp_fail(sp, o->line, "terrain.size", "%g is above %g, the largest world (TERRAIN_WORLD_SIZE_MAX)",
+                       (double)t->size, (double)TERRAIN_WORLD_SIZE_MAX);
     return true;
 }
 

@@ -14,7 +14,7 @@ static const char *const mode_names[] = {"hybrid", "billboard", "blade", NULL};
 static const char *const raster_names[] = {"auto", "hw", "compute", NULL};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
 static const char *const blade_render_names[] = {"pull", "tess", NULL};
-static const char *const terrain_names[] = {"heightfield", "mesh", NULL};
+static const char *const terrain_names[] = {"heightfield", "mesh", "world", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
 static const char *const clearings_names[] = {"noise", "none", "image", NULL};
@@ -30,6 +30,7 @@ static const char *const axis_names[] = {"auto", "+x", "-x", "+y", "-y", "+z", "
 #define IMAGE (1u << SCENE_CLEARINGS_IMAGE)
 #define HEIGHTFIELD (1u << TERRAIN_HEIGHTFIELD)
 #define MESH (1u << TERRAIN_MESH)
+#define WORLD (1u << TERRAIN_WORLD)
 
 #define AT(T, m) .offset = offsetof(T, m), .size = sizeof(((T *)0)->m)
 #define ROOT(m) .section = SCENE_SEC_ROOT, AT(scene_desc_t, m)
@@ -80,13 +81,13 @@ const scene_field_t scene_fields[] = {
 
     /* ---- terrain ---- */
     {TERRAIN(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = terrain_names,
-      .doc = "procedural heightfield or an imported mesh"},
-    {TERRAIN(size), .key = "size", .variants = HEIGHTFIELD, .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
-      .doc = "heightfield side (m), square"},
+      .doc = "procedural heightfield, an imported mesh, or the open world's height function (docs/WORLD.md)"},
+    {TERRAIN(size), .key = "size", .variants = HEIGHTFIELD | WORLD, .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
+      .doc = "heightfield or world side (m), square; a world's at most 8192 (TERRAIN_WORLD_SIZE_MAX)"},
     {TERRAIN(resolution), .key = "resolution", .variants = HEIGHTFIELD, .type = SCENE_FIELD_INT, .hi = SCENE_TERRAIN_RESOLUTION_MAX,
       .def = {SCENE_DEFAULT_TERRAIN_RESOLUTION}, .doc = "heightfield grid cells per side"},
-    {TERRAIN(height), .key = "height", .variants = HEIGHTFIELD, .type = SCENE_FIELD_FLOAT, .hi = 1000,
-      .def = {SCENE_DEFAULT_TERRAIN_HEIGHT}, .doc = "heightfield amplitude: heights in [-height, height] (m)"},
+    {TERRAIN(height), .key = "height", .variants = HEIGHTFIELD | WORLD, .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .def = {SCENE_DEFAULT_TERRAIN_HEIGHT}, .doc = "heightfield or world amplitude: heights in [-height, height] (m)"},
     {TERRAIN(mesh), .key = "mesh", .variants = MESH, .type = SCENE_FIELD_STRING, .flags = SCENE_FIELD_NO_DEFAULT,
       .doc = "mesh file, repository-relative; required when type is \"mesh\""},
     {TERRAIN(scale), .key = "scale", .variants = MESH, .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_TERRAIN_SCALE},

@@ -119,8 +119,26 @@ static void compute_normals(terrain_mesh_t *m)
     }
 }
 
+bool terrain_make_world(terrain_mesh_t *mesh, const terrain_desc_t *desc, uint64_t seed)
+{
+    memset(mesh, 0, sizeof *mesh);
+    terrain_world_t w = terrain_world_make(desc, seed);
+    if (!(w.size <= TERRAIN_WORLD_SIZE_MAX)) {
+        core_log_error("terrain: world size %g m exceeds the maximum %g (TERRAIN_WORLD_SIZE_MAX)", (double)w.size,
+                       (double)TERRAIN_WORLD_SIZE_MAX);
+        return false;
+    }
+    mesh->type = TERRAIN_WORLD;
+    mesh->world = w;
+    float half = w.size * 0.5f;
+    glm_vec3_copy((vec3){-half, -w.height, -half}, mesh->aabb_min);
+    glm_vec3_copy((vec3){half, w.height, half}, mesh->aabb_max);
+    return true;
+}
+
 bool terrain_make_heightfield(terrain_mesh_t *mesh, const terrain_desc_t *desc, uint64_t seed)
 {
+    if (desc->type == TERRAIN_WORLD) return terrain_make_world(mesh, desc, seed);
     memset(mesh, 0, sizeof *mesh);
     terrain_desc_t d = terrain_desc_defaults(desc);
     if (d.resolution > SCENE_TERRAIN_RESOLUTION_MAX) {
@@ -254,6 +272,7 @@ bool terrain_load_mesh(terrain_mesh_t *mesh, const char *path, float scale, char
         base += am->mNumVertices;
     }
     aiReleaseImport(sc);
+    mesh->type = TERRAIN_MESH;
     compute_aabb(mesh);
     if (!has_uv) {
         float wx = fmaxf(mesh->aabb_max[0] - mesh->aabb_min[0], 1e-6f);
@@ -369,6 +388,7 @@ static float grid_height(const terrain_mesh_t *m, float x, float z, vec3 normal_
 
 float terrain_height_at(const terrain_mesh_t *m, float x, float z, vec3 normal_out)
 {
+    if (m->type == TERRAIN_WORLD) return terrain_world_height(&m->world, x, z, normal_out);
     if (m->grid_res > 0) return grid_height(m, x, z, normal_out);
     assert(m->cell_start && "terrain_build_grid not called");
     float best = -FLT_MAX;
@@ -415,6 +435,8 @@ float terrain_height_at(const terrain_mesh_t *m, float x, float z, vec3 normal_o
 uint64_t terrain_hash(const terrain_mesh_t *m)
 {
     uint64_t h = core_hash_bytes(m->positions, sizeof(float) * 3 * m->vertex_count, 0);
+    h = core_hash_bytes(&m->type, sizeof m->type, h);
+    h = core_hash_bytes(&m->world, sizeof m->world, h);
     h = core_hash_bytes(m->normals, sizeof(float) * 3 * m->vertex_count, h);
     h = core_hash_bytes(m->uvs, sizeof(float) * 2 * m->vertex_count, h);
     return core_hash_bytes(m->indices, sizeof(uint32_t) * m->index_count, h);

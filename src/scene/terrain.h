@@ -1,8 +1,10 @@
 /* terrain: the ground grass grows on. A deterministic procedural heightfield
- * (value-noise fBm from core_hash_u32, seeded by the scene seed) or an
- * arbitrary triangle mesh loaded with assimp, plus ground-height queries
+ * (value-noise fBm from core_hash_u32, seeded by the scene seed), an
+ * arbitrary triangle mesh loaded with assimp, or the open world's height
+ * function (terrain_world.h: no vertices held), plus ground-height queries
  * (exact barycentric lookup on the heightfield grid; downward ray cast through
- * a uniform 2D grid of triangles for meshes). GL-free. */
+ * a uniform 2D grid of triangles for meshes; the function itself for worlds).
+ * GL-free. */
 #ifndef MEADOW_SCENE_TERRAIN_H
 #define MEADOW_SCENE_TERRAIN_H
 
@@ -12,20 +14,24 @@
 
 #include <cglm/cglm.h>
 
+#include "scene/terrain_world.h"
+
 #define TERRAIN_PATH_MAX 256 /* bytes of a mesh path, including the NUL */
 
 typedef enum terrain_type_t {
     TERRAIN_HEIGHTFIELD = 0, /* default */
     TERRAIN_MESH,
+    TERRAIN_WORLD, /* terrain_world_t: a height function, drawn as a clipmap */
 } terrain_type_t;
 
 /* Zero means default: the program's, SCENE_DEFAULT_TERRAIN_* of
  * scene/scene_fields.h. resolution is at most SCENE_TERRAIN_RESOLUTION_MAX (4096). */
 typedef struct terrain_desc_t {
     terrain_type_t type;         /* default heightfield */
-    float size;                  /* heightfield side, metres, square; default 40 */
+    float size;                  /* heightfield or world side, metres, square; default 40
+                                    (at most TERRAIN_WORLD_SIZE_MAX for worlds) */
     int resolution;              /* heightfield grid cells per side; default 64 */
-    float height;                /* heightfield amplitude: heights in [-height, height]; default 1.5 */
+    float height;                /* heightfield or world amplitude: heights in [-height, height]; default 1.5 */
     char mesh[TERRAIN_PATH_MAX]; /* mesh file (repository-relative or absolute), type mesh */
     float scale;                 /* uniform scale applied to the mesh; default 1 */
 } terrain_desc_t;
@@ -33,7 +39,12 @@ typedef struct terrain_desc_t {
 /* Returns d with the zero fields resolved to the defaults above. */
 terrain_desc_t terrain_desc_defaults(const terrain_desc_t *d);
 
+/* A world terrain (type TERRAIN_WORLD) holds no vertices, indices or grid:
+ * vertex_count, index_count, grid_res and cells_x are 0 and the arrays NULL;
+ * aabb is the world square and [-height, height]. */
 typedef struct terrain_mesh_t {
+    terrain_type_t type;
+    terrain_world_t world; /* type TERRAIN_WORLD: the height function's parameters */
     float *positions; /* xyz per vertex */
     float *normals;   /* xyz per vertex, unit */
     float *uvs;       /* uv per vertex: [0,1] across the heightfield; the file's
@@ -57,9 +68,15 @@ typedef struct terrain_mesh_t {
 /* Procedural heightfield centred on the origin, y up: 4 octaves of value
  * noise, base wavelength 16 m, gain 0.5, lacunarity 2, normalised to
  * [-height, height]. Same desc and seed give bit-identical meshes. Vertex
- * normals are area-weighted face normals. Returns false (logged) when out of
- * memory or the desc is invalid. */
+ * normals are area-weighted face normals. A desc of type TERRAIN_WORLD makes
+ * a world terrain instead (terrain_make_world). Returns false (logged) when
+ * out of memory or the desc is invalid. */
 bool terrain_make_heightfield(terrain_mesh_t *mesh, const terrain_desc_t *desc, uint64_t seed);
+
+/* World terrain (terrain_world_make of desc and seed): no allocation, a
+ * few dozen bytes whatever desc->size. Returns false (logged) when the size
+ * exceeds TERRAIN_WORLD_SIZE_MAX. */
+bool terrain_make_world(terrain_mesh_t *mesh, const terrain_desc_t *desc, uint64_t seed);
 
 /* Loads every mesh of a file with assimp (triangulate, generate smooth
  * normals, join identical vertices, pre-transform node matrices), merges them
@@ -77,10 +94,12 @@ bool terrain_build_grid(terrain_mesh_t *mesh);
 /* Ground height under (x, z) and the unit face normal there (normal_out may be
  * NULL). Heightfield: exact barycentric interpolation on the grid triangle,
  * (x, z) clamped to the terrain square. Mesh: the highest surface hit by a
- * vertical ray; -FLT_MAX and normal (0,1,0) when nothing lies under (x, z). */
+ * vertical ray; -FLT_MAX and normal (0,1,0) when nothing lies under (x, z).
+ * World: terrain_world_height (analytic normal), not clamped. */
 float terrain_height_at(const terrain_mesh_t *mesh, float x, float z, vec3 normal_out);
 
-/* Hash of positions, normals, uvs and indices (determinism tests). */
+/* Hash of positions, normals, uvs and indices, and of the type and world
+ * parameters (determinism tests). */
 uint64_t terrain_hash(const terrain_mesh_t *mesh);
 
 void terrain_free(terrain_mesh_t *mesh);

@@ -1,0 +1,20 @@
+#version 450
+/* world_eval.comp: world_height and world_normal of common/world_height.glsl
+ * for test_terrain_world_gpu (CPU twin: terrain_world_height): item i is the
+ * point pts[i].xy (world x, z); out[i] = (normal, height). Configured only
+ * by the defines of terrain_world_defines. */
+#include "common/world_height.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Pts { vec2 pts[]; };
+layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
+
+uniform uint u_count;
+
+void main()
+{
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= u_count) return;
+    result[i] = vec4(world_normal(pts[i]), world_height(pts[i]));
+}

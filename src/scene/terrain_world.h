@@ -1,0 +1,51 @@
+/* terrain_world: the procedural open-world terrain (terrain.type "world"), a
+ * height function of (x, z) and nothing else: no vertices are held, so the
+ * memory does not grow with the world's size. Value noise from
+ * core_hash_u32 on integer lattices in four layers:
+ *   macro   3 octaves, wavelengths 1024/512/256 m: the large shape;
+ *   valleys 2 octaves, 128/64 m, smooth |n|: ridges and V-ish valleys
+ *           along the zero lines of the noise;
+ *   detail  3 octaves, 64/32/16 m: small bumps;
+ *   flat    1 octave, 512 m, smoothstep: the meadow mask, 1 where the
+ *           ground is only the (gentle) macro shape plus faint detail.
+ * h/height = mix(0.5 macro + 0.35 valleys + 0.15 detail,
+ *                0.5 macro + 0.03 detail, flat), within [-1, 1].
+ * All wavelengths are powers of two (exact reciprocals), so C and GLSL see
+ * the same lattice cells; the normal is analytic (derivatives of the same
+ * expressions). shaders/common/world_height.glsl is the GLSL twin
+ * (world_height, world_normal), configured only by the #define lines of
+ * terrain_world_defines. The world is centred on the origin, the square
+ * [-size/2, size/2]^2; the function is defined (and continuous) beyond it.
+ * GL-free. */
+#ifndef MEADOW_SCENE_TERRAIN_WORLD_H
+#define MEADOW_SCENE_TERRAIN_WORLD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cglm/cglm.h>
+
+#define TERRAIN_WORLD_SIZE_MAX 8192.0f /* terrain.size limit of type world (m) */
+
+typedef struct terrain_world_t {
+    float size;       /* side of the world square (m) */
+    float height;     /* amplitude: heights in [-height, height] (m) */
+    uint32_t seed[2]; /* seed words: low and high 32 bits of the seed */
+} terrain_world_t;
+
+struct terrain_desc_t;
+
+/* Parameters from the desc's size and height (zero fields resolved by
+ * terrain_desc_defaults) and the seed. */
+terrain_world_t terrain_world_make(const struct terrain_desc_t *desc, uint64_t seed);
+
+/* Height at (x, z) in [-height, height] and the unit analytic normal there
+ * (normal_out may be NULL). */
+float terrain_world_height(const terrain_world_t *w, float x, float z, vec3 normal_out);
+
+/* Writes the #define lines world_height.glsl needs (WORLD_SEED0,
+ * WORLD_SEED1, WORLD_SIZE, WORLD_HEIGHT; floats exact) into buf. Returns
+ * the length written, or -1 when n is too small. */
+int terrain_world_defines(const terrain_world_t *w, char *buf, size_t n);
+
+#endif
