@@ -167,10 +167,10 @@ void blade_tiles_root(const blade_tiles_t *t, int tile, const float local_xz[2],
         x = nx;
     }
     if (sym & 4) x = -x;
-    const int32_t *cell = t->grid.tiles[tile].coord;
+    const int32_t *at = t->grid.tiles[tile].coord;
     float half = 0.5f * t->field_size;
-    root[0] = x + half_tile + (-half + (float)cell[0] * t->desc.tile_size);
-    root[2] = z + half_tile + (-half + (float)cell[1] * t->desc.tile_size);
+    root[0] = x + half_tile + (-half + (float)at[0] * t->desc.tile_size);
+    root[2] = z + half_tile + (-half + (float)at[1] * t->desc.tile_size);
     if (t->world) {
         root[1] = terrain_world_height(&t->world_fn, root[0], root[2], up);
         return;
