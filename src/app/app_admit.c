@@ -67,13 +67,15 @@ static double tiles_bytes(const scene_desc_t *s, const app_admit_world_t *w)
 {
     const scene_grass_desc_t *g = &s->grass;
     terrain_mesh_t t = *w->terrain;
-    t.grid_size = s->terrain.size;
+    t.grid_size = t.world.size = s->terrain.size;
     double tiles = ceil(t.grid_size / g->tile_size) * ceil(t.grid_size / g->tile_size);
+    if (t.type == TERRAIN_WORLD) tiles = 0; /* a window of tiles, whatever the size */
     if (tiles > HYBRID_MAX_TILES || g->density * g->tile_size * g->tile_size < 1.0f) return INFINITY;
     blade_tiles_desc_t d = {.terrain = &t, .tile_size = g->tile_size, .density = g->density,
                             .height_min = g->height[0], .height_max = g->height[1], .width_min = g->width[0],
                             .width_max = g->width[1], .stiffness_min = g->stiffness[0],
-                            .stiffness_max = g->stiffness[1], .switch_distance = g->switch_distance,
+                            .stiffness_max = g->stiffness[1],
+                            .switch_distance = w->tiles_distance > 0.0f ? w->tiles_distance : g->switch_distance,
                             .pool_slots = g->tile_pool};
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
@@ -339,20 +341,22 @@ static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char
     return false;
 }
 
-bool app_admit_world_supported(const scene_desc_t *s, char *err, size_t err_size)
+bool app_admit_world_supported(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t err_size)
 {
     if (s->terrain.type != TERRAIN_WORLD) return true;
-    snprintf(err, err_size,
-             "terrain.type \"world\" has no vertices and mode \"%s\" still grows its grass from them: streamed "
-             "grass on world terrains is not built yet",
-             scene_mode_name(s->mode));
+    const char *what = w->billboards   ? "billboards (billboard mode) are not streamed yet: use mode blade or hybrid"
+                       : w->full_field ? "the full blade field (the bench's reference) needs the terrain's vertices"
+                       : s->grass.gi   ? "grass.gi needs the terrain's vertices: set it false"
+                                       : NULL;
+    if (!what) return true;
+    snprintf(err, err_size, "terrain.type \"world\": %s", what);
     return false;
 }
 
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size)
 {
-    if (!app_admit_world_supported(s, err, err_size)) return false;
+    if (!app_admit_world_supported(s, w, err, err_size)) return false;
     if (!sphere_limit(s, w, err, err_size)) return false;
     if (w->objects > APP_ADMIT_MAX_OBJECTS) {
         int most = APP_ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);

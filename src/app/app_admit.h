@@ -42,7 +42,8 @@ typedef struct app_admit_world_t {
     const terrain_mesh_t *terrain;
     double terrain_area;   /* m^2 of ground surface at the scene's terrain.size */
     bool billboards;       /* bb field (billboard and hybrid modes) */
-    bool tiles;            /* the hybrid's blade tiles (heightfields) */
+    bool tiles;            /* blade tiles: the hybrid's on heightfields, every grass mode's on worlds */
+    float tiles_distance;  /* the tiles' blade distance (0: grass.switch_distance) */
     bool full_field;       /* every blade of the field (blade mode, hybrid on a mesh) */
     bool raster;           /* the compute rasterizer's buffers (raster compute or auto) */
     int target_samples;    /* samples of the main target (the GL's cap applied) */
@@ -92,16 +93,15 @@ typedef struct app_admit_t {
 
 const char *app_admit_part_name(int part);
 /* False with one line in err when s has a world terrain (terrain.type
- * "world", no vertices) and asks for something that still needs the
- * terrain's vertices: today every grass mode (blade seeding, billboard
- * layout, hybrid tiles), so the world's terrain and clipmap are reachable
- * from tests only until the streamed grass lifts this. */
-bool app_admit_world_supported(const scene_desc_t *s, char *err, size_t err_size);
+ * "world", no vertices) and w asks for grass that still needs the
+ * terrain's vertices: billboards (not streamed yet), the full blade field
+ * (the bench's reference) or the GI volumes. Blade and hybrid modes draw
+ * streamed tiles there (docs/WORLD.md). */
+bool app_admit_world_supported(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t err_size);
 void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_admit_t *out);
 /* Checks s against the limits; false with one line in err (naming the key
- * and the largest value that fits) when it does not fit. A terrain of type
- * "world" is refused here, in app_admit_world_supported, the one place to
- * lift as its streamed grass lands (issue 32). */
+ * and the largest value that fits) when it does not fit; what a world
+ * terrain cannot draw yet is refused here (app_admit_world_supported). */
 bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
                      size_t err_size);
 /* This process's host memory headroom: 80 % of MemAvailable, and under a

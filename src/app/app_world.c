@@ -308,14 +308,34 @@ bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed)
     return ok;
 }
 
-static bool wants_bb(scene_mode_t m) { return m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID; }
+static bool on_world(const app_world_t *w) { return w->terrain_mesh.type == TERRAIN_WORLD; }
+/* Billboards: billboard and hybrid modes, except on a world terrain, where
+ * they are not streamed yet (billboard mode is refused there, the hybrid
+ * draws tiles and the canopy). */
+static bool wants_bb(const app_world_t *w, scene_mode_t m)
+{
+    return (m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID) && (!on_world(w) || m == SCENE_MODE_BILLBOARD);
+}
 static bool wants_blades(scene_mode_t m) { return m == SCENE_MODE_BLADE || m == SCENE_MODE_HYBRID; }
 
-/* Hybrid mode on a heightfield draws its near blades from tiles; blade mode
- * (and the reference) simulates every blade of the field, as the paper. */
+/* Hybrid mode on a heightfield draws its near blades from tiles, and blade
+ * and hybrid modes on a world terrain, streamed around the camera; blade
+ * mode elsewhere (and the reference) simulates every blade of the field,
+ * as the paper. */
 static bool uses_tiles(const app_world_t *w)
 {
-    return w->mode == SCENE_MODE_HYBRID && !w->reference && w->terrain_mesh.grid_res > 0;
+    if (w->reference) return false;
+    if (on_world(w)) return wants_blades(w->mode);
+    return w->mode == SCENE_MODE_HYBRID && w->terrain_mesh.grid_res > 0;
+}
+
+/* How far the tiles draw blades: the switch distance, or on a world in
+ * blade mode grass.blade_distance (default APP_WORLD_BLADE_DISTANCE). */
+static float tiles_distance(const app_world_t *w)
+{
+    const scene_grass_desc_t *g = &w->scene.grass;
+    if (!on_world(w) || w->mode != SCENE_MODE_BLADE) return g->switch_distance;
+    return g->blade_distance > 0.0f ? g->blade_distance : APP_WORLD_BLADE_DISTANCE;
 }
 
 /* m^2 of the terrain's surface. */
@@ -415,14 +435,14 @@ static bool make_tiles(app_world_t *w)
                              .width_min = g->width[0], .width_max = g->width[1],
                              .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
                              .seed = s->seed,
-                             .switch_distance = g->switch_distance,
+                             .switch_distance = tiles_distance(w),
                              .pool_slots = g->tile_pool,
                              .shape = g->shape,
                              .displacement = g->displacement,
                              .width_correction = g->width_correction,
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = w->blade_env.wind_count,
-                             .cull = {.max_distance = g->switch_distance + 1.0f},
+                             .cull = {.max_distance = tiles_distance(w) + 1.0f},
                              .slope_recover = g->recover_time,
                              .label = "tiles"};
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
@@ -567,8 +587,9 @@ static bool admit(app_world_t *w)
                               .host_bytes = app_admit_host_bytes()};
     app_admit_world_t aw = {.terrain = &w->terrain_mesh,
                             .terrain_area = terrain_area(&w->terrain_mesh),
-                            .billboards = wants_bb(w->mode) && !w->reference,
+                            .billboards = wants_bb(w, w->mode) && !w->reference,
                             .tiles = uses_tiles(w),
+                            .tiles_distance = tiles_distance(w),
                             .full_field = (wants_blades(w->mode) && !uses_tiles(w)) || w->reference,
                             .raster = w->scene.raster != SCENE_RASTER_HW,
                             .target_samples = gfx_target_samples(app_world_target_samples(w)),
@@ -624,7 +645,7 @@ bool app_world_make_gpu(app_world_t *w)
      * cube maps by it) and their sphere proxies in the blade physics. */
     if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
     if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
-    if (w->gpu_ready && wants_bb(w->mode) && !w->reference) w->gpu_ready = make_bb(w);
+    if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) w->gpu_ready = make_bb(w);
     stage_done(w, APP_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
@@ -781,8 +802,11 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
     bool tiles = w->have_tiles && uses_tiles(w); /* the hybrid's near blades, and its canopy */
-    float far_lo = w->scene.grass.canopy_distance - APP_CANOPY_FADE;
-    float far_hi = w->scene.grass.canopy_distance + APP_CANOPY_FADE;
+    float fade_lo = tiles_distance(w) - APP_SWITCH_FADE, fade_hi = tiles_distance(w) + APP_SWITCH_FADE;
+    /* The canopy fades in beyond the billboards, or on a world (no
+     * billboards yet) where the blades fade out. */
+    float far_lo = on_world(w) ? fade_lo : w->scene.grass.canopy_distance - APP_CANOPY_FADE;
+    float far_hi = on_world(w) ? fade_hi : w->scene.grass.canopy_distance + APP_CANOPY_FADE;
     w->terrain.canopy_fade[0] = tiles ? far_lo : 0.0f;
     w->terrain.canopy_fade[1] = tiles ? far_hi : 0.0f;
     gfx_timer_begin("terrain");
@@ -790,8 +814,6 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     app_colliders_draw(&w->colliders, v);
     gfx_timer_end();
     if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
-    float fade_lo = w->scene.grass.switch_distance - APP_SWITCH_FADE;
-    float fade_hi = w->scene.grass.switch_distance + APP_SWITCH_FADE;
     glm_vec3_copy((float *)v->camera, w->camera);
     w->drawn = true;
     raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
@@ -843,7 +865,7 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
         if (raster) raster_ok = blade_gpu_raster(w->blades, raster, &dd) && raster_ok;
         else blade_gpu_draw(w->blades, &dd);
     }
-    if (w->bb && wants_bb(w->mode) && !w->reference) {
+    if (w->bb && wants_bb(w, w->mode) && !w->reference) {
         bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
         memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
         memcpy(d.camera, v->camera, sizeof d.camera);
@@ -897,7 +919,7 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
 {
     w->mode = mode;
     w->scene.mode = mode;
-    if (w->gpu_ready && wants_bb(mode) && !w->bb && !w->reference) make_bb(w);
+    if (w->gpu_ready && wants_bb(w, mode) && !w->bb && !w->reference) make_bb(w);
     if (w->gpu_ready && uses_tiles(w) && !w->have_tiles) make_tiles(w);
     else if (w->gpu_ready && wants_blades(mode) && !uses_tiles(w) && !w->have_blades) make_blades(w);
 }

@@ -212,6 +212,9 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
  * billboards fade out and the ground canopy fades in over [canopy - it,
  * canopy + it]. */
 #define APP_CANOPY_FADE 4.0f
+/* Blade mode on a world terrain: blades drawn to grass.blade_distance,
+ * default this (m); the ground canopy beyond (docs/WORLD.md). */
+#define APP_WORLD_BLADE_DISTANCE 80.0f
 /* Towards the sun (normalised where used): every view's sun_dir, the one
  * the clump bakes (BB_CLUMP_SUN) and the canopy's table light with. */
 #define APP_SUN_DIR BB_CLUMP_SUN

@@ -91,6 +91,27 @@ static int max_tiles_within(float r, float tile, int nx, int nz)
     return count < nx * nz ? count : nx * nz;
 }
 
+/* Blades the distance test (eq. 19-20 with the eye distance, tiles_cull.comp)
+ * can keep of the tiles within r of one camera position: per tile offset,
+ * the blades of one template times the share kept at its nearest point,
+ * (floor(n (1 - d / R)) + 1) / n. A window's draw buffer default. */
+static double max_blades_within(float r, float tile, uint32_t blades, const blade_cull_desc_t *c)
+{
+    int k = (int)ceilf(r / tile) + 1, n = c->distance_levels > 0 ? c->distance_levels : 1;
+    double sum = 0.0;
+    for (int dj = -k; dj <= k; dj++)
+        for (int di = -k; di <= k; di++) {
+            float gx = tile * fmaxf((float)abs(di) - 1.0f, 0.0f), gz = tile * fmaxf((float)abs(dj) - 1.0f, 0.0f);
+            float d = sqrtf(gx * gx + gz * gz);
+            if (d >= r) continue;
+            double keep = 1.0;
+            if ((c->disable & BLADE_CULL_DISTANCE) == 0 && c->max_distance > 0.0f)
+                keep = fmin(1.0, (floor((double)n * (1.0 - (double)d / c->max_distance)) + 1.0) / n);
+            sum += keep * blades;
+        }
+    return sum;
+}
+
 typedef struct layout_t {
     uint32_t blades; /* per template, padded */
     int tiles_x, tiles_z, draw_tiles;
@@ -113,6 +134,9 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     l.tiles_x = l.tiles_z = d->window > 0 ? d->window : (int)ceilf(field_size / d->tile_size);
     l.draw_tiles = max_tiles_within(d->switch_distance + HYSTERESIS, d->tile_size, l.tiles_x, l.tiles_z);
     l.draw_capacity = d->draw_capacity ? d->draw_capacity : (uint32_t)l.draw_tiles * l.blades;
+    if (!d->draw_capacity && d->window > 0)
+        l.draw_capacity = (uint32_t)ceil(max_blades_within(d->switch_distance + HYSTERESIS, d->tile_size, l.blades,
+                                                           &d->cull));
     size_t S = (size_t)d->pool_slots, B = l.blades, side = grid_res > 0 ? (size_t)grid_res + 1 : 0;
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */

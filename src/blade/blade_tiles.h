@@ -81,7 +81,10 @@
  *                    call
  *   draw_capacity    blades the per-frame draw buffer holds; 0: every
  *                    blade of every tile that can be within
- *                    switch_distance + 1 m of the camera (worst case)
+ *                    switch_distance + 1 m of the camera (worst case); in a
+ *                    window, the share of them the distance test keeps at
+ *                    each tile's nearest point (eq. 19-20 levels; what is
+ *                    dropped is counted in stats.draw_overflow and logged)
  *   slope_cells_per_tile  slope cells per tile side: default the nearest
  *                    count to 0.5 m cells (at least 1), more where a cell
  *                    would hold more than HYBRID_SLOPE_MAX_PER_CELL blades
