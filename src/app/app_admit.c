@@ -13,6 +13,7 @@
 
 #include "blade/blade_tiles.h"
 #include "scene/scene_fields.h"
+#include "scene/terrain_clipmap.h"
 
 #define MIB (1024.0 * 1024.0)
 #define BLADE_BYTES 64.0   /* sizeof(blade_t) */
@@ -94,7 +95,9 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
         if (s->raster == SCENE_RASTER_AUTO) e->transient = px * 8.0 * (ts > 1 ? ts + 2.0 : 2.0);
     }
     double verts, indices;
-    if (s->terrain.type == TERRAIN_HEIGHTFIELD || !w->terrain) {
+    if (s->terrain.type == TERRAIN_WORLD) {
+        verts = indices = 0.0; /* a function: the clipmap's bytes below, the same for any size */
+    } else if (s->terrain.type == TERRAIN_HEIGHTFIELD || !w->terrain) {
         double r = s->terrain.resolution;
         verts = (r + 1.0) * (r + 1.0);
         indices = 6.0 * r * r;
@@ -102,7 +105,10 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
         verts = w->terrain->vertex_count;
         indices = w->terrain->index_count;
     }
-    e->gpu[APP_ADMIT_TERRAIN] = verts * 32.0 + indices * 4.0 + (w->billboards ? verts * 4.0 : 0.0);
+    e->gpu[APP_ADMIT_TERRAIN] = verts * 32.0 + indices * 4.0 + (w->billboards ? verts * 4.0 : 0.0) +
+                                (s->terrain.type == TERRAIN_WORLD
+                                     ? (double)terrain_clipmap_estimate_bytes(&(terrain_clipmap_desc_t){0})
+                                     : 0.0);
     e->host = verts * 32.0 + indices * 4.0 + indices / 3.0 * 4.0; /* the mesh and its cell grid */
     double area = ground_area(s, w), ext[2];
     ground_extent(s, w, ext);

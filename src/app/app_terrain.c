@@ -1,13 +1,52 @@
 /* app_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
- * ground), and draws the sky gradient behind everything. */
+ * ground), and draws the sky gradient behind everything. A world terrain
+ * (no vertices) is drawn as a clipmap (scene/terrain_clipmap.h): one vertex
+ * grid of integer coordinates, five index ranges, a draw per level of
+ * terrain_world.vert, displaced by world_height; the same terrain.frag. */
 #include "app/app_world.h"
 #include "scene/scene_fields.h"
 
 #include <string.h>
 
+static bool make_sky(app_terrain_t *t)
+{
+    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
+                                                    .label = "sky.program"});
+    t->empty_vao = gfx_vertex_array_make("sky.vao");
+    return t->sky.id != 0;
+}
+
+/* The clipmap's grid and index ranges on the GPU and the world program. */
+static bool make_world(app_terrain_t *t, const terrain_mesh_t *mesh)
+{
+    t->world = true;
+    terrain_clipmap_t *c = &t->clipmap;
+    if (!terrain_clipmap_make(c, &(terrain_clipmap_desc_t){0})) return false;
+    t->vbo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint16_t) * 2 * c->vertex_count, .data = c->grid,
+                                                  .label = "terrain.clipmap.grid"});
+    t->ibo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint32_t) * c->index_count, .data = c->indices,
+                                                  .label = "terrain.clipmap.indices"});
+    free(c->grid);
+    free(c->indices);
+    c->grid = NULL;
+    c->indices = NULL;
+    t->vao = gfx_vertex_array_make("terrain.clipmap.vao");
+    glVertexArrayVertexBuffer(t->vao, 0, t->vbo.id, 0, 2 * sizeof(uint16_t));
+    glVertexArrayElementBuffer(t->vao, t->ibo.id);
+    glEnableVertexArrayAttrib(t->vao, 0);
+    glVertexArrayAttribIFormat(t->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
+    glVertexArrayAttribBinding(t->vao, 0, 0);
+    char defines[256];
+    if (terrain_world_defines(&mesh->world, defines, sizeof defines) < 0) return false;
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain_world.vert", .fs = "app/terrain.frag",
+                                                     .defines = defines, .label = "terrain.world.program"});
+    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
+}
+
 bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
 {
     memset(t, 0, sizeof *t);
+    if (mesh->type == TERRAIN_WORLD) return make_world(t, mesh);
     size_t nv = mesh->vertex_count;
     float *interleaved = malloc(nv * 8 * sizeof(float));
     if (!interleaved) return false;
@@ -34,10 +73,7 @@ bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
     }
     t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain.vert", .fs = "app/terrain.frag",
                                                      .label = "terrain.program"});
-    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
-                                                    .label = "sky.program"});
-    t->empty_vao = gfx_vertex_array_make("sky.vao");
-    return t->vbo.id && t->ibo.id && t->prog.id && t->sky.id;
+    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
 void app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
@@ -57,6 +93,26 @@ void app_terrain_destroy(app_terrain_t *t)
     gfx_vertex_array_destroy(&t->empty_vao);
     gfx_program_destroy(&t->prog);
     gfx_program_destroy(&t->sky);
+    terrain_clipmap_free(&t->clipmap);
+}
+
+/* One draw per clipmap level around the camera. */
+static void draw_world(const app_terrain_t *t, const app_view_t *v)
+{
+    const terrain_clipmap_t *c = &t->clipmap;
+    GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
+          morph = gfx_uniform(t->prog, "u_morph");
+    double tris = 0.0;
+    for (int l = 0; l < c->desc.levels; l++) {
+        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->camera[0], v->camera[2]);
+        glUniform2fv(origin, 1, lv.origin);
+        glUniform1f(cell, lv.cell);
+        glUniform2fv(morph, 1, lv.morph);
+        glDrawElements(GL_TRIANGLES, (GLsizei)c->count[lv.range], GL_UNSIGNED_INT,
+                       (const void *)(sizeof(uint32_t) * c->first[lv.range]));
+        tris += c->count[lv.range] / 3.0;
+    }
+    gfx_count_add("terrain.clipmap.triangles", tris);
 }
 
 void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
@@ -85,7 +141,8 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
         glBindTextureUnit(0, t->extent);
     }
     glBindVertexArray(t->vao);
-    glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
+    if (t->world) draw_world(t, v);
+    else glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
 
     /* Sky after the ground, at the far plane with LEQUAL and no depth write:
      * only pixels the terrain left empty run the sky shader. */

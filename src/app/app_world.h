@@ -12,6 +12,7 @@
 #include "gfx/gfx.h"
 #include "scene/camera.h"
 #include "scene/terrain.h"
+#include "scene/terrain_clipmap.h"
 #include "billboard/bb.h"
 #include "blade/blade.h"
 #include "blade/blade_canopy.h"
@@ -38,6 +39,11 @@ typedef struct app_terrain_t {
     gfx_buffer_t vbo, ibo;
     GLuint vao, empty_vao;
     int index_count;
+    /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
+     * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
+     * prog is terrain_world.vert made with terrain_world_defines. */
+    bool world;
+    terrain_clipmap_t clipmap;
     gfx_program_t prog, sky;
     /* Ground canopy: its table, the extent map that thins it (the tiles'
      * texture, borrowed), and this frame's fade (start, end of the switch
