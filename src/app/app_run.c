@@ -310,6 +310,7 @@ static bool write_summary(app_t *app, double wall_s)
     n += snprintf(buf + n, sizeof buf - (size_t)n,
                   "gpu_frame_ms (sum of pass medians): %.4f\n"
                   "gpu_memory_mb: %.1f\n"
+                  "host_memory_mb: %.1f (peak resident)\n"
                   "blades: %ld\nblade_survivors: %ld\nblade_culled (orientation frustum distance occlusion "
                   "patch): %u %u %u %u %ld\n"
                   "tiles_culled (orientation frustum distance occlusion tile): %u %u %u %u %ld\n"
@@ -318,7 +319,7 @@ static bool write_summary(app_t *app, double wall_s)
                   "blade_tiles (near) %d, active %d, recovering %d, state slots %d/%d, blades simulated %ld\n"
                   "tile hand-overs (run totals): blades -> billboards %ld, billboards -> blades %ld\n"
                   "grass_triangles_max: %ld\n",
-                  frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), st.blades, st.blade_survivors,
+                  frame_gpu, (double)gfx_memory_bytes() / (1024.0 * 1024.0), plat_peak_rss_mb(), st.blades, st.blade_survivors,
                   st.blade_culled[0], st.blade_culled[1], st.blade_culled[2], st.blade_culled[3],
                   st.blade_patch_culled, st.tiles_culled[0], st.tiles_culled[1], st.tiles_culled[2],
                   st.tiles_culled[3], st.tiles_tile_culled, st.billboards, st.bb_deformed, st.bb_generate_ms,

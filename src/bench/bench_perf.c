@@ -1,6 +1,7 @@
 /* bench_perf: `meadow bench --perf DIR`: the bench scenes
  * (scenes/bench/{orthmann,nature,helicopter,fan128}.json in their own mode,
- * meadow_large.json in hybrid, billboard and blade mode), each through the
+ * meadow_large.json in hybrid, billboard and blade mode, the 1, 2 and 4 km
+ * worlds in hybrid mode and the 2 km world in blade mode), each through the
  * hardware and the compute rasterizer, in one process (one offscreen
  * session each, bench_session.c). Per run: the median of every GPU pass
  * over the frames after warm-up (frames/4), their sum, the hardware floor
@@ -39,6 +40,8 @@ static const perf_case_t full_cases[] = {
     {"scenes/bench/helicopter.json", SCENE_MODE_BLADE},     {"scenes/bench/fan128.json", SCENE_MODE_BLADE},
     {"scenes/bench/meadow_large.json", SCENE_MODE_HYBRID},  {"scenes/bench/meadow_large.json", SCENE_MODE_BILLBOARD},
     {"scenes/bench/meadow_large.json", SCENE_MODE_BLADE},
+    {"scenes/bench/world_1km.json", SCENE_MODE_HYBRID},     {"scenes/bench/world.json", SCENE_MODE_HYBRID},
+    {"scenes/bench/world_4km.json", SCENE_MODE_HYBRID},     {"scenes/bench/world.json", SCENE_MODE_BLADE},
 };
 static const perf_case_t quick_cases[] = {
     {"scenes/tiny.json", SCENE_MODE_HYBRID},
@@ -359,6 +362,7 @@ static const perf_target_t targets[] = {
      {"bb.cubemaps", "bb.collide", "bb.recover"}, 0.5},
     {"meadow: frame <= 8 ms", "meadow_large/hybrid", MEASURE_FRAME, {0}, 8.0},
     {"meadow: GPU memory <= 512 MB", "meadow_large/hybrid", MEASURE_MEMORY, {0}, 512.0},
+    {"world: GPU memory <= 512 MB", "world/hybrid", MEASURE_MEMORY, {0}, 512.0},
 };
 
 static double target_value(const perf_target_t *t, const bench_perf_run_t *r)

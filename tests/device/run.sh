@@ -335,5 +335,20 @@ admission() {
   echo "rc=${PIPESTATUS[0]} (want 2)"
 }
 
+# The open world (docs/WORLD.md): the 1, 2 and 4 km worlds over their whole
+# camera path on the compute path (hybrid), and the 2 km world in blade
+# mode; memory, frame percentiles, submit and start-up from summary.txt.
+world() {
+  for sm in world_1km:hybrid world:hybrid world_4km:hybrid world:blade; do
+    s=${sm%%:*}; mode=${sm#*:}; o=/tmp/world-$s-$mode
+    ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
+      --screenshot-every 0 --out $o ) > $o.log 2>&1
+    echo "== $s $mode rc=$?"
+    grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(submit|p99/p50|^startup_ms|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|character[a-z.]*) " \
+      $o/summary.txt 2>/dev/null || tail -5 $o.log
+    grep -E "real|error|warn" $o.log | head -4
+  done
+}
+
 sections=${*:-tests bench scaling report}
 for s in $sections; do $s >> $R 2>&1; done
