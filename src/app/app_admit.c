@@ -321,6 +321,9 @@ static bool gl_limits(const scene_desc_t *s, const app_admit_world_t *w, const a
  * radius) (collide_pack_spheres), so one thin capsule can take them all. */
 static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t size)
 {
+    /* On a world only the characters near the tile window pack spheres
+     * (app_world.c character_spheres); more than fit there is warned. */
+    if (s->terrain.type == TERRAIN_WORLD) return true;
     if (!w->collider_spheres || (!w->full_field && !w->tiles)) return true;
     int total = w->character_spheres, worst = -1;
     for (int i = 0; i < s->collider_count; i++) {

@@ -489,11 +489,18 @@ static void collider_sweep(const app_world_t *w, int i, float out[4])
 }
 
 /* The characters' proxy spheres (already swept by character_set_update:
- * each holds its previous and current pose) appended to out[n..max). */
+ * each holds its previous and current pose) appended to out[n..max). On a
+ * world only those of characters that can touch the tile window: the
+ * window's half diagonal around the camera (docs/WORLD.md). */
 static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
-    int room = max - n, want = character_set_spheres(&w->chars, packed, room);
+    float reach = 0.0f;
+    if (on_world(w) && w->tiles) {
+        blade_tiles_info_t ti = blade_tiles_info(w->tiles);
+        reach = (0.5f * (float)ti.desc.window + 1.0f) * ti.desc.tile_size * 1.4142136f + ti.reach;
+    }
+    int room = max - n, want = character_set_spheres_near(&w->chars, w->camera, reach, packed, room);
     for (int k = 0; k < room && k < want; k++)
         out[n + k] = (blade_sphere_t){.centre_radius = {packed[k][0], packed[k][1], packed[k][2], packed[k][3]}};
     return want;
@@ -603,7 +610,10 @@ static bool admit(app_world_t *w)
     for (int i = 0; i < w->scene.collider_count; i++)
         spheres[i] = collide_pack_spheres(&w->scene.colliders[i], (float[3]){0}, packed, BLADE_MAX_SPHERES);
     aw.collider_spheres = spheres;
-    aw.character_spheres = w->have_chars ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
+    /* On a world only the characters near the camera pack spheres (see
+     * character_spheres): the sphere limit is not a static one there. */
+    aw.character_spheres =
+        w->have_chars && !on_world(w) ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
     char err[1024];
     app_admit_estimate(&w->scene, &aw, &w->admitted);
     if (app_admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;

@@ -471,10 +471,20 @@ int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], i
 
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max)
 {
+    return character_set_spheres_near(set, NULL, 0.0f, out, max);
+}
+
+int character_set_spheres_near(const character_set_t *set, const float centre[3], float reach, float (*out)[4],
+                               int max)
+{
     static bool warned;
     int total = 0;
     for (int i = 0; i < set->count; i++) {
         const character_instance_t *inst = &set->items[i];
+        if (centre && reach > 0.0f) {
+            float dx = inst->centre[0] - centre[0], dz = inst->centre[2] - centre[2], r = reach + inst->radius;
+            if (dx * dx + dz * dz > r * r) continue;
+        }
         int room = max - total > 0 ? max - total : 0, n = inst->sphere_count < room ? inst->sphere_count : room;
         if (n > 0) memcpy(out + total, inst->spheres, (size_t)n * sizeof *out);
         total += inst->sphere_count;

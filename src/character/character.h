@@ -151,6 +151,11 @@ void character_set_destroy(character_set_t *set);
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max);
 /* The same for every character of the set, concatenated. */
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max);
+/* The same for the characters whose bounding sphere comes within `reach`
+ * of centre horizontally (the open world's tile window; reach <= 0 or
+ * centre NULL: every character). */
+int character_set_spheres_near(const character_set_t *set, const float centre[3], float reach, float (*out)[4],
+                               int max);
 /* One line per character for summary.txt: model, fitted height (m, scale
  * included) and scale (metres per file unit times the scene's scale), and
  * where units and axes came from. Returns the characters written. */
