@@ -51,6 +51,7 @@ typedef struct app_t {
 static void frame_times_add(app_frame_times_t *ft, int frame, double wall_ms, double cpu_ms)
 {
     if (frame < ft->warmup) return;
+    ft->total++;
     ft->wall[ft->next] = wall_ms;
     ft->cpu[ft->next] = cpu_ms;
     ft->next = (ft->next + 1) % APP_FRAME_HISTORY;
@@ -154,20 +155,54 @@ static bool report_missing(const app_t *app, bool summary_ok)
     return true;
 }
 
+/* Spikes against the frames around them (a hitch, not a heavier view):
+ * each wall time over the median of the SPIKE_WINDOW frames centred on it;
+ * the largest ratio, its frame, and how many frames exceed 1.5. The frames
+ * in order, oldest first. */
+#define SPIKE_WINDOW 61
+static void spikes(const app_frame_times_t *ft, double *worst, int *worst_frame, int *over)
+{
+    static double ordered[APP_FRAME_HISTORY];
+    int n = ft->count, first = n < APP_FRAME_HISTORY ? 0 : ft->next;
+    for (int i = 0; i < n; i++) ordered[i] = ft->wall[(first + i) % APP_FRAME_HISTORY];
+    *worst = 0.0;
+    *worst_frame = -1;
+    *over = 0;
+    for (int i = 0; i < n; i++) {
+        int lo = i - SPIKE_WINDOW / 2 < 0 ? 0 : i - SPIKE_WINDOW / 2;
+        int hi = lo + SPIKE_WINDOW > n ? n : lo + SPIKE_WINDOW;
+        lo = hi - SPIKE_WINDOW < 0 ? 0 : hi - SPIKE_WINDOW;
+        double local[SPIKE_WINDOW];
+        memcpy(local, &ordered[lo], sizeof *local * (size_t)(hi - lo));
+        qsort(local, (size_t)(hi - lo), sizeof *local, cmp_double);
+        double r = ordered[i] / local[(hi - lo) / 2];
+        *over += r > 1.5;
+        if (r > *worst) *worst = r, *worst_frame = i;
+    }
+    /* the frame number of the run: warm-up frames and dropped history first */
+    if (*worst_frame >= 0) *worst_frame += ft->warmup + (ft->total - n);
+}
+
 static int summary_frame_times(const app_t *app, char *buf, size_t size)
 {
     const app_frame_times_t *ft = &app->times;
     if (ft->count == 0) return snprintf(buf, size, "frame times: no frame after the %d warm-up frames\n", ft->warmup);
-    double w[4], c[4];
+    double w[4], c[4], spike;
+    int spike_frame, spike_over;
     percentiles(ft->wall, ft->count, w);
     percentiles(ft->cpu, ft->count, c);
-    return snprintf(buf, size,
+    spikes(ft, &spike, &spike_frame, &spike_over);
+    int n = snprintf(buf, size,
                     "frame times after warm-up (%d frames left out; %d frames, at most %d in flight), ms:\n"
                     "  wall (CPU and GPU)  p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  cpu (submit)        p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  p99/p50: %.2f (target <= 1.5: %s)\n",
                     ft->warmup, ft->count, APP_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3],
                     w[2] / w[0], w[2] <= 1.5 * w[0] ? "met" : "missed");
+    return n + snprintf(buf + n, size - (size_t)n,
+                        "  spikes: worst frame %.2f x the median of the %d around it (frame %d); %d frames over "
+                        "1.5 x (target: none)\n",
+                        spike, SPIKE_WINDOW, spike_frame, spike_over);
 }
 
 static int summary_startup(const app_t *app, const app_world_stats_t *st, char *buf, size_t size)

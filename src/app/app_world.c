@@ -172,7 +172,7 @@ bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc
 {
     int size = layout_for(w, gen);
     return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
-                                                        .clump_size = 8, .blades = 1,
+                                                        .clump_size = 8, .blades = 1, .extent_only = true,
                                                         .extent = extent_desc(w, gen)});
 }
 

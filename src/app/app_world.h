@@ -138,6 +138,7 @@ typedef struct app_frame_times_t {
     double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
     double cpu[APP_FRAME_HISTORY];  /* ms, frame start to the last command submitted */
     int count, next;
+    int total;                      /* frames added (count is at most APP_FRAME_HISTORY) */
 } app_frame_times_t;
 
 /* ---- the world ------------------------------------------------------------------ */

@@ -245,13 +245,14 @@ static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_de
     return ok;
 }
 
-static bool bb_layout_maps(bb_layout_t *l, uint32_t seed, const bb_extent_desc_t *e)
+static bool bb_layout_maps(bb_layout_t *l, uint32_t seed, const bb_extent_desc_t *e, bool extent_only)
 {
     int n = l->extent.w;
     bool ok = true;
     if (e->clearings == BB_CLEARINGS_NONE) memset(l->extent.px, 255, (size_t)n * (size_t)n);
     else if (e->clearings == BB_CLEARINGS_IMAGE) bb_extent_image(&l->extent, e);
     else ok = bb_extent_noise(&l->extent, seed, e);
+    if (extent_only) return ok;
     static const uint32_t salts[3] = {0x3003u, 0x4004u, 0x5005u};
     bb_fbm_t fields[3];
     for (int k = 0; k < 3; k++)
@@ -656,7 +657,7 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
         bb_layout_free(layout);
         return false;
     }
-    if (!bb_layout_maps(layout, d.seed, &d.extent)) {
+    if (!bb_layout_maps(layout, d.seed, &d.extent, d.extent_only)) {
         core_log_error("out of memory for the billboard layout's noise");
         bb_layout_free(layout);
         return false;
