@@ -34,6 +34,7 @@ typedef struct app_options_t {
     int width, height;        /* --size WxH, each side as the scene key size (16..16384) */
     const char *out;          /* default "out" */
     int screenshot_every;     /* default: frames/3 headless (3 shots), 0 windowed */
+    bool screenshot_every_set; /* --screenshot-every given (0: never) */
     app_mode_t mode;
     const char *character;    /* --character PATH: replaces the scene's models */
     const char *clip;         /* --clip NAME|INDEX|START:END */

@@ -244,6 +244,7 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
                 return 2;
             }
             o->screenshot_every = (int)n;
+            o->screenshot_every_set = true;
         } else if (strcmp(a, "--seed") == 0) {
             NEED_VALUE();
             if (!scene_option(a, v, "seed", &n, err, err_size)) return 2;

@@ -23,6 +23,7 @@ typedef struct app_t {
     bool paused, step_once, wireframe, hud;
     int overlay;
     int frames, shot_every, shots_written, shots_failed;
+    bool shot_taken; /* the latest frame wrote a screenshot (left out of the frame times) */
     int done;         /* frames done */
     double t_frames;  /* plat_time at the start of the first frame */
     double submitted; /* plat_time once the frame was submitted (frame_drawn) */
@@ -51,7 +52,7 @@ typedef struct app_t {
 static void frame_times_add(app_frame_times_t *ft, int frame, double wall_ms, double cpu_ms)
 {
     if (frame < ft->warmup) return;
-    ft->total++;
+    ft->frame[ft->next] = frame;
     ft->wall[ft->next] = wall_ms;
     ft->cpu[ft->next] = cpu_ms;
     ft->next = (ft->next + 1) % APP_FRAME_HISTORY;
@@ -179,8 +180,7 @@ static void spikes(const app_frame_times_t *ft, double *worst, int *worst_frame,
         *over += r > 1.5;
         if (r > *worst) *worst = r, *worst_frame = i;
     }
-    /* the frame number of the run: warm-up frames and dropped history first */
-    if (*worst_frame >= 0) *worst_frame += ft->warmup + (ft->total - n);
+    if (*worst_frame >= 0) *worst_frame = ft->frame[(first + *worst_frame) % APP_FRAME_HISTORY];
 }
 
 static int summary_frame_times(const app_t *app, char *buf, size_t size)
@@ -193,11 +193,12 @@ static int summary_frame_times(const app_t *app, char *buf, size_t size)
     percentiles(ft->cpu, ft->count, c);
     spikes(ft, &spike, &spike_frame, &spike_over);
     int n = snprintf(buf, size,
-                    "frame times after warm-up (%d frames left out; %d frames, at most %d in flight), ms:\n"
+                    "frame times after warm-up (%d frames left out, and %d that wrote a screenshot; %d frames, "
+                    "at most %d in flight), ms:\n"
                     "  wall (CPU and GPU)  p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  cpu (submit)        p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  p99/p50: %.2f (target <= 1.5: %s)\n",
-                    ft->warmup, ft->count, APP_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3],
+                    ft->warmup, ft->shots, ft->count, APP_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3],
                     w[2] / w[0], w[2] <= 1.5 * w[0] ? "met" : "missed");
     return n + snprintf(buf + n, size - (size_t)n,
                         "  spikes: worst frame %.2f x the median of the %d around it (frame %d); %d frames over "
@@ -425,6 +426,7 @@ static void frame_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *targe
     int frame = app->done + 1;
     bool shot = (app->shot_every && frame % app->shot_every == 0) || (!app->headless && plat_key_pressed(PLAT_KEY_C));
     if (shot) screenshot(app, frame);
+    app->shot_taken = shot;
     if (!app->headless) {
         int fw, fh;
         plat_framebuffer_size(&fw, &fh);
@@ -477,7 +479,8 @@ static int run_frames(app_t *app)
         double end = plat_time();
         if (app->done == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
         app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
-        frame_times_add(&app->times, app->done - 1, (end - frame_end) * 1e3, (app->submitted - frame_end) * 1e3);
+        if (app->shot_taken) app->times.shots++;
+        else frame_times_add(&app->times, app->done - 1, (end - frame_end) * 1e3, (app->submitted - frame_end) * 1e3);
         frame_end = end;
         if (app->headless && app->done % 100 == 0) core_log_info("frame %d/%d", app->done, app->frames);
     }
@@ -534,7 +537,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     app.headless = plat_is_headless();
     app.frames = o->frames_set ? o->frames : (app.headless ? s->frames : 0);
     app.shot_every = o->screenshot_every;
-    if (!app.shot_every && app.headless && o->screenshot_every == 0 && app.frames >= 3)
+    if (!o->screenshot_every_set && app.headless && app.frames >= 3)
         app.shot_every = app.frames / 3;
     app.hud = !app.headless;
     gfx_init();

@@ -137,8 +137,9 @@ typedef struct app_frame_times_t {
     int warmup;                     /* frames left out at the start */
     double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
     double cpu[APP_FRAME_HISTORY];  /* ms, frame start to the last command submitted */
+    int frame[APP_FRAME_HISTORY];   /* the frame's number in the run */
     int count, next;
-    int total;                      /* frames added (count is at most APP_FRAME_HISTORY) */
+    int shots;                      /* frames left out for writing a screenshot */
 } app_frame_times_t;
 
 /* ---- the world ------------------------------------------------------------------ */
