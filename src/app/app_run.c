@@ -370,10 +370,24 @@ static bool write_summary(app_t *app, double wall_s)
             n += snprintf(buf + n, sizeof buf - (size_t)n, " %s %.1f", app_admit_part_name(k),
                           ad->gpu[k] / (1024.0 * 1024.0));
     n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
-    if (app->world.scene.mode == SCENE_MODE_HYBRID)
+    bool world = app->world.terrain_mesh.type == TERRAIN_WORLD;
+    if (app->world.scene.mode == SCENE_MODE_HYBRID && world)
+        n += snprintf(buf + n, sizeof buf - (size_t)n,
+                      "hybrid distances: switch %.1f m, the canopy from there (a world: no billboards)\n",
+                      app->world.scene.grass.switch_distance);
+    else if (app->world.scene.mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
                       app->world.lod_note[0] ? app->world.lod_note : "the scene's; no grass.lod_table");
+    if (world && app->world.tiles) {
+        blade_tiles_info_t ti = blade_tiles_info(app->world.tiles);
+        blade_tiles_stats_t ts = blade_tiles_stats(app->world.tiles, false);
+        n += snprintf(buf + n, sizeof buf - (size_t)n,
+                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
+                      "tiles streamed in %ld, state dropped leaving it %ld\n",
+                      app->world.terrain_mesh.world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
+                      ti.desc.switch_distance, ts.streamed_total, ts.dropped_total);
+    }
     raster_t *r = &app->world.raster;
     if (r->vis.id) {
         raster_stats_t rs;

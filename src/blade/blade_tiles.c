@@ -696,6 +696,8 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         objs[k].sphere[3] = cr[3] + 0.5f * sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + t->reach;
     }
     hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
+    t->stats.streamed_total += t->grid.stats.streamed;
+    t->stats.dropped_total += t->grid.stats.dropped;
 
     const int S = t->desc.pool_slots, ntiles = t->grid.nx * t->grid.nz;
     for (int s = 0; s < S; s++) {

@@ -143,6 +143,8 @@ typedef struct blade_tiles_stats_t {
     int pool_denied;            /* tiles wanting a slot this update that got none */
     int handovers, seeded;      /* hand-overs to billboards / seedings from them, this update */
     long handovers_total, seeded_total; /* the same since make */
+    long streamed_total, dropped_total; /* window: tiles streamed in, and those whose index dropped a
+                                           slot, since make (hybrid_stats_t streamed, dropped) */
     int slots_dispatched;       /* slots simulated by the latest update */
     uint32_t blades_dispatched; /* physics invocations of the latest update */
     int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */
