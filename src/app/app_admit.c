@@ -72,12 +72,12 @@ static double tiles_bytes(const scene_desc_t *s, const app_admit_world_t *w)
     double tiles = ceil(t.grid_size / g->tile_size) * ceil(t.grid_size / g->tile_size);
     if (t.type == TERRAIN_WORLD) tiles = 0; /* a window of tiles, whatever the size */
     if (tiles > HYBRID_MAX_TILES || g->density * g->tile_size * g->tile_size < 1.0f) return INFINITY;
+    float distance = w->tiles_distance > 0.0f ? w->tiles_distance : g->switch_distance;
     blade_tiles_desc_t d = {.terrain = &t, .tile_size = g->tile_size, .density = g->density,
                             .height_min = g->height[0], .height_max = g->height[1], .width_min = g->width[0],
                             .width_max = g->width[1], .stiffness_min = g->stiffness[0],
-                            .stiffness_max = g->stiffness[1],
-                            .switch_distance = w->tiles_distance > 0.0f ? w->tiles_distance : g->switch_distance,
-                            .pool_slots = g->tile_pool};
+                            .stiffness_max = g->stiffness[1], .switch_distance = distance,
+                            .pool_slots = g->tile_pool, .cull = {.max_distance = distance + 1.0f}};
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
 
