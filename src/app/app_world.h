@@ -137,6 +137,7 @@ typedef struct app_frame_times_t {
     int warmup;                     /* frames left out at the start */
     double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
     double cpu[APP_FRAME_HISTORY];  /* ms, frame start to the last command submitted */
+    double thread[APP_FRAME_HISTORY]; /* ms of the main thread's CPU time over the same span */
     int frame[APP_FRAME_HISTORY];   /* the frame's number in the run */
     int count, next;
     int shots;                      /* frames left out for writing a screenshot */

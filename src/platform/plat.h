@@ -42,6 +42,7 @@ void plat_poll_events(void);
 void plat_swap(void);
 void plat_framebuffer_size(int *w, int *h);
 double plat_time(void); /* seconds, monotonic */
+double plat_thread_time(void); /* seconds of CPU time of the calling thread */
 double plat_peak_rss_mb(void); /* the process's peak resident memory (MiB), 0 if unknown */
 
 /* Keys, window only. Edge-triggered "pressed" is true once per press. */
