@@ -8,6 +8,7 @@
  * or a light layer read at the wrong offset shows in the colour), and the
  * pixel draw itself (bb_view_xi); over many draws each view is picked in
  * proportion to its weight. */
+#include "common/bindings_tests.glsl"
 #include "billboard/bb_view.h"
 #include "gfx/gfx.h"
 #include "test.h"
@@ -82,10 +83,9 @@ int main(void)
             glUniform1i(gfx_uniform(p, "u_view_lit"), 1);
             glUniform2f(gfx_uniform(p, "u_view_wind"), winds[wi][0], winds[wi][1]);
             glUniform1ui(gfx_uniform(p, "u_count"), QUERIES);
-            glUniform1i(gfx_uniform(p, "u_clumps"), 0);
-            glBindTextureUnit(0, tex.id);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, qb.id);
-            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, ob.id);
+            glBindTextureUnit(TEST_TEX_IN, tex.id);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, qb.id);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, ob.id);
             glDispatchCompute((QUERIES + 63) / 64, 1, 1);
             glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
             CHECK(gfx_buffer_read(ob, 0, sizeof(float) * 20 * QUERIES, res));

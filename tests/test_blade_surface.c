@@ -8,6 +8,7 @@
  * numbers on the C twin (test_terms).
  * The profile's documented values (blade_geom.glsl banner) are checked on
  * the CPU. */
+#include "common/bindings_tests.glsl"
 #include "blade/blade_ref.h"
 #include "gfx/gfx.h"
 #include "test.h"
@@ -121,8 +122,8 @@ int main(void)
         glUniform1ui(gfx_uniform(prog, "u_count"), BLADES);
         glUniform1i(gfx_uniform(prog, "u_us"), US);
         glUniform1i(gfx_uniform(prog, "u_vs"), VS);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, in.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, out.id);
         glDispatchCompute((GLuint)((n + 63) / 64), 1, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         CHECK(gfx_buffer_read(out, 0, n * 32, gpu));

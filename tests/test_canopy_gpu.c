@@ -7,6 +7,7 @@
  * come from float dot products, ill-conditioned near 0 and pi). The twin's inputs (elevation, azimuth of
  * the sun from the direction to the viewer) are computed here from the
  * same vectors. */
+#include "common/bindings_tests.glsl"
 #include "blade/blade_canopy.h"
 #include "gfx/gfx.h"
 #include "test.h"
@@ -53,9 +54,9 @@ int main(void)
     glUniform2fv(gfx_uniform(prog, "u_canopy_sun"), u.rows * BLADE_CANOPY_AZIMUTHS, &u.sun[0][0]);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_root"), 1, root);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_tip"), 1, tip);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bc.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bs.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, bo.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bc.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN2, bs.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, bo.id);
     glDispatchCompute((N + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     memset(got, 0, sizeof got);

@@ -8,6 +8,7 @@
  * Also: more bytes than the ring holds, in uneven pieces, land intact, and
  * nothing leaks. On llvmpipe the spin is cut short (Mesa caps shader loop
  * iterations), so there the test checks the ring's addressing only. */
+#include "common/bindings_tests.glsl"
 #include "gfx/gfx.h"
 #include "test.h"
 #include "test_gl.h"
@@ -38,8 +39,8 @@ int main(void)
         static const uint32_t zero = 0;
         glClearNamedBufferData(out.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glUseProgram(p.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, src.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, out.id);
         glUniform1ui(gfx_uniform(p, "u_len"), LEN);
         /* Long enough on the H100 (about 1 s) that the queued rounds wrap
          * the upload ring while the GPU is still spinning: only the ring's

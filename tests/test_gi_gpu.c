@@ -8,6 +8,7 @@
  * same card on the peak with GI on, and equal with GI off (the camera, sun
  * and fog are symmetric between the two), so the test fails when GI is
  * dropped from the billboards. */
+#include "common/bindings_tests.glsl"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
 #include "test.h"
@@ -50,8 +51,8 @@ static void eval(gfx_program_t prog, const gi_bind_t *b, int mode, const float (
     glUniform3fv(gfx_uniform(prog, "u_camera"), 1, camera);
     glUniform3fv(gfx_uniform(prog, "u_sun"), 1, sun);
     glUniform3fv(gfx_uniform(prog, "u_albedo"), 1, albedo);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bi.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bo.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bi.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, bo.id);
     glDispatchCompute((GLuint)(count + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     memset(out, 0, sizeof(float) * 4 * (size_t)count);

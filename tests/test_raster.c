@@ -10,6 +10,7 @@
  * depth equal to 1e-5 (window depth; fused multiply-adds on GPUs), except for a small budget of samples on edges
  * (float rounding); the queue was used; the composite writes the mean
  * colour of a pixel's samples and coverage over the background. */
+#include "common/bindings_tests.glsl"
 #include "raster/raster.h"
 #include "raster/raster_ref.h"
 #include "test.h"
@@ -65,7 +66,7 @@ static void bind(gfx_program_t p, void *user)
 {
     const bind_t *b = user;
     glUniform1ui(gfx_uniform(p, "u_count"), NTRI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b->tris.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, b->tris.id);
 }
 
 static void run_variant(bool no_atomic64, bool group_scan, const float *tris, const raster_ref_t *ref)

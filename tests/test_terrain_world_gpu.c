@@ -6,6 +6,7 @@
  * only by terrain_world_defines: dropping any one of its lines must fail to
  * build, and the defines of another seed must miss by metres (the
  * comparison compares something). */
+#include "common/bindings_tests.glsl"
 #include "gfx/gfx.h"
 #include "scene/terrain.h"
 #include "test.h"
@@ -27,8 +28,8 @@ static bool eval_gpu(const char *defines)
     gfx_buffer_t bo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof got, .label = "world.out"});
     glUseProgram(prog.id);
     glUniform1ui(gfx_uniform(prog, "u_count"), N);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, bp.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, bo.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bp.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, bo.id);
     glDispatchCompute((N + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     memset(got, 0, sizeof got);

@@ -11,6 +11,7 @@
  * one batch of at most BB_MAX_CUBES objects (bb.c: BB_PASS_OBJECTS, bound
  * as a range of the objects buffer); entries carry their cube-array layer. */
 #define BB_NO_GENERATE
+#include "common/bindings_billboard.glsl"
 #include "billboard/bb_ground.glsl"
 #include "common/bb.glsl"
 #define BB_POINTS_IN
@@ -29,9 +30,9 @@ struct bb_object {
     ivec4 layer; /* x: first of the object's 6 cube-array layers */
     vec4 sweep;  /* xyz previous - current world position (swept collision; 0: none) */
 };
-layout(std140, binding = 0) uniform Objects { bb_object u_obj[BB_MAX_CUBES]; };
+layout(std140, binding = BB_UBO_OBJECTS) uniform Objects { bb_object u_obj[BB_MAX_CUBES]; };
 
-uniform sampler2DArray u_cubes;
+layout(binding = BB_TEX_CUBES) uniform sampler2DArray u_cubes;
 uniform int u_count;
 uniform int u_res;
 uniform float u_time;

@@ -11,6 +11,7 @@
  * transform feedback keeps primitive order, so the buffer is ordered by
  * leaf; the per-leaf count goes to an SSBO with atomics. */
 #include "common/hash.glsl"
+#include "common/bindings_billboard.glsl"
 #include "billboard/bb_ground.glsl"
 #include "common/bb.glsl"
 #define BB_POINTS_OUT
@@ -23,17 +24,17 @@ layout(points, max_vertices = BB_TILE_POINTS) out;
 flat in int v_tile[];
 flat in int v_entry[];
 
-uniform sampler2D u_extent;
-uniform sampler2D u_direction;
-uniform sampler2D u_messiness;
+layout(binding = BB_TEX_EXTENT) uniform sampler2D u_extent;
+layout(binding = BB_TEX_DIRECTION) uniform sampler2D u_direction;
+layout(binding = BB_TEX_MESSINESS) uniform sampler2D u_messiness;
 uniform bb_gen u_gen;
 uniform vec3 u_tree_min;
 uniform vec3 u_tree_max;
 uniform int u_side;
 
-layout(std430, binding = 0) buffer LeafCounts { uint leaf_count[]; };
+layout(std430, binding = BB_BIND_LEAF_COUNTS) buffer LeafCounts { uint leaf_count[]; };
 #ifdef BB_GEN_TRIANGLES
-layout(std430, binding = 2) readonly buffer GenTris { bb_gen_tri tris[]; };
+layout(std430, binding = BB_BIND_GEN_TRIS) readonly buffer GenTris { bb_gen_tri tris[]; };
 #endif
 
 /* Twin of bb_leaf_coord / bb_leaf_of in src/billboard/bb_octree.c. */

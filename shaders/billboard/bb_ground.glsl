@@ -7,10 +7,13 @@
 #define BB_GROUND_GLSL
 #define BB_GROUND
 
-uniform sampler2D u_heights; /* R32F grid vertex heights */
-uniform vec2 u_hmin;         /* height grid: first vertex (x, z) */
-uniform vec2 u_hmax;         /* height grid: clamp bound (x, z) */
-uniform float u_hcell;       /* height grid cell size */
+#include "common/bindings_billboard.glsl"
+
+/* R32F grid vertex heights */
+layout(binding = BB_TEX_HEIGHTS) uniform sampler2D u_heights;
+uniform vec2 u_hmin;   /* height grid: first vertex (x, z) */
+uniform vec2 u_hmax;   /* height grid: clamp bound (x, z) */
+uniform float u_hcell; /* height grid cell size */
 
 /* Twin of grid_height in src/scene/terrain.c (same two triangles per cell). */
 float terrain_height(float x, float z)

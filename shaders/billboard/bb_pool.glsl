@@ -7,7 +7,9 @@
 #ifndef BB_POOL_GLSL
 #define BB_POOL_GLSL
 
-layout(std430, binding = 1) buffer Pool {
+#include "common/bindings_billboard.glsl"
+
+layout(std430, binding = BB_BIND_POOL) buffer Pool {
     int free_top;
     uint exhausted;
     uint pad_a;
@@ -15,7 +17,7 @@ layout(std430, binding = 1) buffer Pool {
     uint free_stack[];
 };
 
-layout(std430, binding = 2) buffer Meshes { vec4 meshes[]; };
+layout(std430, binding = BB_BIND_MESHES) buffer Meshes { vec4 meshes[]; };
 
 void bb_load_mesh(uint slot)
 {

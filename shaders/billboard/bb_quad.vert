@@ -10,12 +10,13 @@
  * illumination's ambient light (bb_vertex_ambient, Orthmann et al. sec.
  * 6.1). Outputs match bb_render.frag's inputs. */
 #define BB_NO_GENERATE
+#include "common/bindings_billboard.glsl"
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_slope.glsl"
 #include "common/grass_shade.glsl"
 
-layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
+layout(std430, binding = BB_BIND_POINTS) readonly buffer Points { bb_point points[]; };
 
 uniform mat4 u_viewproj;
 uniform vec3 u_camera;

@@ -19,6 +19,7 @@
  * its whole work group sharing out the covered pixels (RASTER_GROUP_SCAN,
  * raster.glsl). */
 #define BB_NO_GENERATE
+#include "common/bindings_billboard.glsl"
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
@@ -38,9 +39,9 @@ layout(local_size_x = RASTER_BIG_THREADS) in;
 layout(local_size_x = 64) in;
 #endif
 
-layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
+layout(std430, binding = BB_BIND_POINTS) readonly buffer Points { bb_point points[]; };
 
-uniform sampler2DArray u_clumps;
+layout(binding = BB_TEX_CLUMPS) uniform sampler2DArray u_clumps;
 uniform mat4 u_viewproj;
 uniform vec4 u_planes[6];
 uniform vec3 u_camera;

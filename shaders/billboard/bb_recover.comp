@@ -14,15 +14,16 @@
  * H100 that cost 4.2 ms for 28k billboards on meadow_large, for about 400
  * deformed ones.) */
 #define BB_NO_GENERATE
+#include "common/bindings_billboard.glsl"
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 3) buffer Points { bb_point points[]; };
+layout(std430, binding = BB_BIND_POINTS) buffer Points { bb_point points[]; };
 /* Range r: x first billboard, y count, z first thread (running sum of y). */
-layout(std430, binding = 4) readonly buffer Ranges { uvec4 ranges[]; };
+layout(std430, binding = BB_BIND_RANGES) readonly buffer Ranges { uvec4 ranges[]; };
 
 uniform int u_range_count;
 uniform uint u_threads;

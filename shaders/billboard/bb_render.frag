@@ -10,10 +10,11 @@
  * is the view-dependent blend of the clump bakes (bb_view.glsl), and so is
  * the lit colour cards show (bb_shade), lit by the global illumination's
  * per-vertex ambient light with BB_GI (common/gi.glsl). */
+#include "common/bindings_billboard.glsl"
 #include "common/grass_shade.glsl"
 #include "billboard/bb_view.glsl"
 
-uniform sampler2DArray u_clumps;
+layout(binding = BB_TEX_CLUMPS) uniform sampler2DArray u_clumps;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
 uniform float u_fade_start;

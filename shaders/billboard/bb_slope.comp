@@ -8,15 +8,16 @@
  * collapsed onto its root (or with a zero-height wind pose) has no tilt
  * direction and adds nothing. Invocation i: billboard i. */
 #define BB_NO_GENERATE
+#include "common/bindings_billboard.glsl"
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "common/slope.glsl"
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 2) readonly buffer Meshes { vec4 meshes[]; };
-layout(std430, binding = 3) readonly buffer Points { bb_point points[]; };
-layout(std430, binding = 14) buffer Sums { SlopeSum sums[]; };
+layout(std430, binding = BB_BIND_MESHES) readonly buffer Meshes { vec4 meshes[]; };
+layout(std430, binding = BB_BIND_POINTS) readonly buffer Points { bb_point points[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_SUMS) buffer Sums { SlopeSum sums[]; };
 
 uniform uint u_count;
 uniform float u_time;

@@ -13,7 +13,7 @@
 
 #include "common/slope.glsl"
 
-layout(std430, binding = 13) readonly buffer SlopeMap { SlopeCell slope_cells[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_MAP) readonly buffer SlopeMap { SlopeCell slope_cells[]; };
 
 uniform int u_slope_on;
 uniform float u_slope_time;

@@ -3,11 +3,12 @@
  * sec. 6.3): quads domain, u across the width (1 segment, 2 with the eq. 23
  * displacement so the raised midrib u = 0.5 has vertices), v along the
  * blade (blade_lod segments, the same count the vertex-pulling path uses). */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(vertices = 1) out;
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
 
 in flat uint vs_blade[];
 patch out uint tc_blade;

@@ -1,12 +1,13 @@
 #version 450
 /* blade.tese: builds the blade surface at (u, v) with De Casteljau and the
  * shape functions (Jahrmann & Wimmer 2017 eq. 21, 23, 24; blade_geom.glsl). */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(quads, equal_spacing, ccw) in;
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
 
 patch in uint tc_blade;
 uniform mat4 u_view_proj;

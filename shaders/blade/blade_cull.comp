@@ -14,23 +14,24 @@
  * invocations cover only the patches listed in `patches` (the CPU patch
  * frustum test): invocation i handles blade patches[i / P] * P + i % P,
  * P = u_patch_size; the distance test still uses the global blade index. */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = 1) writeonly buffer Survivors { uint survivors[]; };
-layout(std430, binding = 2) buffer Command {
+layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_SURVIVORS) writeonly buffer Survivors { uint survivors[]; };
+layout(std430, binding = BLADE_BIND_COMMAND) buffer Command {
     uint count;
     uint instanceCount;
     uint first;
     uint baseInstance;
 } cmd;
-layout(std430, binding = 3) buffer Counters { uint counters[4]; };
-layout(std430, binding = 4) readonly buffer Patches { uint patches[]; };
+layout(std430, binding = BLADE_BIND_COUNTERS) buffer Counters { uint counters[4]; };
+layout(std430, binding = BLADE_BIND_PATCHES) readonly buffer Patches { uint patches[]; };
 
 /* Window depth of the previous frame (or a depth pre-pass); NDC = 2 d - 1. */
-layout(binding = 0) uniform sampler2D u_depth;
+layout(binding = BLADE_TEX_DEPTH) uniform sampler2D u_depth;
 
 uniform uint u_blade_count;    /* invocations: blades, or listed patches * P */
 uniform vec3 u_cam_pos;

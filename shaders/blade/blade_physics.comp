@@ -18,15 +18,16 @@
  * 0.066 -> 0.101 ms, commit a4a6f17). */
 #define BB_NO_GENERATE
 #include "common/bb.glsl"
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 
 layout(local_size_x = 256) in; /* GROUP_SIZE */
 
-layout(std430, binding = 0) buffer Blades { Blade blades[]; };
-layout(std430, binding = 1) buffer Eta { float eta[]; };
-layout(std430, binding = 2) readonly buffer Winds { BladeWind winds[]; };
-layout(std430, binding = 3) readonly buffer Spheres { BladeSphere spheres[]; };
-layout(std430, binding = 4) readonly buffer Cubes { BladeCube cubes[]; };
+layout(std430, binding = BLADE_BIND_BLADES) buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_ETA) buffer Eta { float eta[]; };
+layout(std430, binding = BLADE_BIND_WINDS) readonly buffer Winds { BladeWind winds[]; };
+layout(std430, binding = BLADE_BIND_SPHERES) readonly buffer Spheres { BladeSphere spheres[]; };
+layout(std430, binding = BLADE_BIND_CUBES) readonly buffer Cubes { BladeCube cubes[]; };
 
 uniform uint u_blade_count;
 uniform float u_dt;
@@ -42,7 +43,7 @@ uniform int u_paper;           /* 1: the paper's step as printed (blade_env_t.pa
 #ifdef BLADE_CUBES
 uniform int u_cube_count;      /* cube-map colliders (0: none) */
 uniform int u_cube_res;
-uniform sampler2DArray u_cube_tex; /* layers 6k .. 6k+5: object k */
+layout(binding = BLADE_TEX_CUBES) uniform sampler2DArray u_cube_tex; /* layers 6k .. 6k+5: object k */
 
 bb_cube cube_of(int k)
 {

@@ -4,12 +4,13 @@
  * column, 2 S + 2 with the eq. 23 displacement (blade_strip_uv; blade.c
  * command_initial). Same geometry as blade.tese
  * (Jahrmann & Wimmer 2017 eq. 21, 23, 24). */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = 1) readonly buffer Survivors { uint survivors[]; };
+layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_SURVIVORS) readonly buffer Survivors { uint survivors[]; };
 
 uniform mat4 u_view_proj;
 

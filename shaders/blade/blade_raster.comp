@@ -11,6 +11,7 @@
  * coverage by fixed per-sample thresholds (blade_fade_covers, the rule
  * blade.frag's sample mask follows).
  * With RASTER_BIG the queued medium and large triangles (raster.glsl). */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "blade/blade_geom.glsl"
 #include "common/grass_shade.glsl"
@@ -23,9 +24,9 @@ layout(local_size_x = RASTER_BIG_THREADS) in;
 layout(local_size_x = 64) in;
 #endif
 
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = 1) readonly buffer Ids { uint ids[]; };
-layout(std430, binding = 2) readonly buffer Count { uint count_words[]; };
+layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_RASTER_IDS) readonly buffer Ids { uint ids[]; };
+layout(std430, binding = BLADE_BIND_RASTER_COUNT) readonly buffer Count { uint count_words[]; };
 
 uniform mat4 u_view_proj;
 uniform int u_use_ids;

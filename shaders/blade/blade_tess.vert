@@ -2,7 +2,9 @@
 /* blade_tess.vert: tessellation path, one patch vertex per surviving blade
  * (Jahrmann & Wimmer 2017 sec. 6.3): passes the blade index from the
  * survivor list written by blade_cull.comp to the control shader. */
-layout(std430, binding = 1) readonly buffer Survivors { uint survivors[]; };
+#include "common/bindings_blade.glsl"
+
+layout(std430, binding = BLADE_BIND_SURVIVORS) readonly buffer Survivors { uint survivors[]; };
 
 out flat uint vs_blade;
 

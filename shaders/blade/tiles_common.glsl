@@ -23,6 +23,7 @@
 #define TILES_COMMON_GLSL
 
 #include "common/switch.glsl"
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/hash.glsl"
 #ifdef TILES_WORLD
@@ -34,9 +35,9 @@
 #define TILES_POSE_STEPS 24
 #define TILES_NO_SLOT 0xffffffffu
 
-layout(std430, binding = 0) readonly buffer Templates { Blade templates[]; };
-layout(std430, binding = 3) readonly buffer Winds { BladeWind winds[]; };
-layout(binding = 0) uniform sampler2D u_ground;
+layout(std430, binding = BLADE_TILES_BIND_TEMPLATES) readonly buffer Templates { Blade templates[]; };
+layout(std430, binding = BLADE_TILES_BIND_WINDS) readonly buffer Winds { BladeWind winds[]; };
+layout(binding = BLADE_TILES_TEX_GROUND) uniform sampler2D u_ground;
 
 uniform uint u_template_blades;  /* padded blades per template */
 uniform uint u_template_count;

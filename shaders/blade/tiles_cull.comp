@@ -29,10 +29,10 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 1) readonly buffer Pool { Blade pool[]; };
-layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
-layout(std430, binding = 8) writeonly buffer Drawn { Blade drawn[]; };
-layout(std430, binding = 9) buffer Command {
+layout(std430, binding = BLADE_TILES_BIND_POOL) readonly buffer Pool { Blade pool[]; };
+layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uvec2 list[]; };
+layout(std430, binding = BLADE_TILES_BIND_DRAWN) writeonly buffer Drawn { Blade drawn[]; };
+layout(std430, binding = BLADE_TILES_BIND_COMMAND) buffer Command {
     uint solid[4]; /* count, instanceCount, first, baseInstance */
     uint overflow;
     uint total;
@@ -40,7 +40,7 @@ layout(std430, binding = 9) buffer Command {
     uint fade[4];
     uint culled[4];
 } cmd;
-layout(std430, binding = 10) writeonly buffer DrawnIds { uint drawn_ids[]; };
+layout(std430, binding = BLADE_TILES_BIND_DRAWN_IDS) writeonly buffer DrawnIds { uint drawn_ids[]; };
 
 uniform uint u_count; /* entries * B */
 uniform uint u_capacity;
@@ -56,12 +56,12 @@ uniform float u_fade_start;
 uniform uint u_count_word; /* 1: instanceCount (pulled strips), 0: count (patches) */
 /* Opaque window depth (blade_cull.comp's u_depth): the hardware path's
  * resolved depth, the compute path's farthest opaque sample. */
-layout(binding = 2) uniform sampler2D u_depth;
+layout(binding = BLADE_TILES_TEX_DEPTH) uniform sampler2D u_depth;
 uniform bool u_use_depth;
 uniform float u_depth_bias;
 /* Shared coverage map (blade_tiles_desc_t.extent): the billboards' rule. */
 uniform bool u_extent_on;
-uniform sampler2D u_extent;
+layout(binding = BLADE_TILES_TEX_EXTENT) uniform sampler2D u_extent;
 uniform vec2 u_extent_origin;
 uniform float u_extent_spacing;
 uniform uint u_extent_seed;

@@ -7,14 +7,15 @@
  * is blade u_capacity - 1 - i (the fade list, tiles_cull.comp). The
  * debug overlays (blade_tiles_set_overlay) tint blades by tile state, level
  * of detail or collision strength. */
+#include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
-layout(std430, binding = 8) readonly buffer Drawn { Blade drawn[]; };
-layout(std430, binding = 10) readonly buffer DrawnIds { uint drawn_ids[]; };
-layout(std430, binding = 11) readonly buffer TileInfo { uint tile_info[]; }; /* state | slot << 2 */
-layout(std430, binding = 12) readonly buffer Eta { float eta[]; };
+layout(std430, binding = BLADE_TILES_BIND_DRAWN) readonly buffer Drawn { Blade drawn[]; };
+layout(std430, binding = BLADE_TILES_BIND_DRAWN_IDS) readonly buffer DrawnIds { uint drawn_ids[]; };
+layout(std430, binding = BLADE_TILES_BIND_TILE_INFO) readonly buffer TileInfo { uint tile_info[]; }; /* state | slot << 2 */
+layout(std430, binding = BLADE_TILES_BIND_DRAW_ETA) readonly buffer Eta { float eta[]; };
 
 uniform mat4 u_view_proj;
 uniform uint u_capacity;

@@ -10,10 +10,10 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 1) readonly buffer Pool { Blade pool[]; };
-layout(std430, binding = 2) readonly buffer Eta { float eta[]; };
-layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
-layout(std430, binding = 14) buffer Sums { SlopeSum sums[]; };
+layout(std430, binding = BLADE_TILES_BIND_POOL) readonly buffer Pool { Blade pool[]; };
+layout(std430, binding = BLADE_TILES_BIND_ETA) readonly buffer Eta { float eta[]; };
+layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uvec2 list[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_SUMS) buffer Sums { SlopeSum sums[]; };
 
 uniform uint u_count; /* entries * B */
 

@@ -18,11 +18,11 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 1) writeonly buffer Pool { Blade pool[]; };
-layout(std430, binding = 2) writeonly buffer Eta { float eta[]; };
-layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
-layout(std430, binding = 13) readonly buffer Map { SlopeCell cells[]; };
-layout(std430, binding = 15) readonly buffer BbSums { SlopeSum bb_sums[]; };
+layout(std430, binding = BLADE_TILES_BIND_POOL) writeonly buffer Pool { Blade pool[]; };
+layout(std430, binding = BLADE_TILES_BIND_ETA) writeonly buffer Eta { float eta[]; };
+layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uvec2 list[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_MAP) readonly buffer Map { SlopeCell cells[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_BB_SUMS) readonly buffer BbSums { SlopeSum bb_sums[]; };
 
 uniform uint u_count; /* entries * B */
 uniform float u_slope_recover;

@@ -13,12 +13,12 @@
 
 layout(local_size_x = 256) in;
 
-layout(std430, binding = 1) buffer Pool { Blade pool[]; };
-layout(std430, binding = 2) buffer Eta { float eta[]; };
-layout(std430, binding = 4) readonly buffer Spheres { BladeSphere spheres[]; };
-layout(std430, binding = 5) readonly buffer SlotSpheres { uint slot_spheres[]; };
-layout(std430, binding = 6) readonly buffer List { uint list[]; };
-layout(std430, binding = 7) buffer Motion { uint motion[]; };
+layout(std430, binding = BLADE_TILES_BIND_POOL) buffer Pool { Blade pool[]; };
+layout(std430, binding = BLADE_TILES_BIND_ETA) buffer Eta { float eta[]; };
+layout(std430, binding = BLADE_TILES_BIND_SPHERES) readonly buffer Spheres { BladeSphere spheres[]; };
+layout(std430, binding = BLADE_TILES_BIND_SLOT_SPHERES) readonly buffer SlotSpheres { uint slot_spheres[]; };
+layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uint list[]; };
+layout(std430, binding = BLADE_TILES_BIND_MOTION) buffer Motion { uint motion[]; };
 
 uniform uint u_count; /* slots * B */
 uniform uint u_slot_stride;

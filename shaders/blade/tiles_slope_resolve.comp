@@ -4,12 +4,13 @@
  * u_time) and zeroes the sums for the next hand-over. Invocation i: tile
  * list[i / (C * C)].y, cell i % (C * C) of it (C = u_cells_per_tile). */
 #include "common/slope.glsl"
+#include "common/bindings_blade.glsl"
 
 layout(local_size_x = 64) in;
 
-layout(std430, binding = 6) readonly buffer List { uvec2 list[]; };
-layout(std430, binding = 13) buffer Map { SlopeCell cells[]; };
-layout(std430, binding = 14) buffer Sums { SlopeSum sums[]; };
+layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uvec2 list[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_MAP) buffer Map { SlopeCell cells[]; };
+layout(std430, binding = HYBRID_BIND_SLOPE_SUMS) buffer Sums { SlopeSum sums[]; };
 
 uniform uint u_count; /* entries * C * C */
 uniform int u_cells_per_tile;

@@ -2,6 +2,7 @@
 // sun, sky ambient and fog); base colour times the diffuse texture when the
 // model has one.
 #version 450 core
+#include "common/bindings_character.glsl"
 #include "common/lighting.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
@@ -10,7 +11,7 @@ uniform vec3 u_sun;
 uniform vec3 u_camera;
 uniform vec4 u_base_color;
 uniform bool u_use_texture;
-layout(binding = 0) uniform sampler2D u_texture;
+layout(binding = CHARACTER_TEX_DIFFUSE) uniform sampler2D u_texture;
 out vec4 o_color;
 void main()
 {

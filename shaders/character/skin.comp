@@ -5,17 +5,18 @@
 // vec4 position (w = 1), vec4 normal (w = 0), 32 bytes per vertex.
 #version 450 core
 layout(local_size_x = 64) in;
+#include "common/bindings_character.glsl"
 
 // character_vertex_t (56 bytes = 14 words): pos[3], normal[3], uv[2],
 // uint16 joints[4] (2 words), weights[4]. Read as words so the packed
 // joints are never reinterpreted as floats.
-layout(std430, binding = 0) readonly buffer BindVertices { uint bind_words[]; };
-layout(std430, binding = 1) readonly buffer Bones { mat4 skin[]; };
+layout(std430, binding = CHARACTER_BIND_VERTICES) readonly buffer BindVertices { uint bind_words[]; };
+layout(std430, binding = CHARACTER_BIND_BONES) readonly buffer Bones { mat4 skin[]; };
 struct SkinnedVertex {
     vec4 pos;
     vec4 normal;
 };
-layout(std430, binding = 2) writeonly buffer Skinned { SkinnedVertex skinned[]; };
+layout(std430, binding = CHARACTER_BIND_SKINNED) writeonly buffer Skinned { SkinnedVertex skinned[]; };
 
 uniform uint u_vertex_count;
 

@@ -6,13 +6,14 @@
  * hidden:
  *   ambient(p, n) = a + B n + bounce (1 - A (1 + n.y) / 2).
  * The volumes span the box u_gi_lo + [0, 1] / u_gi_inv_size, on fixed
- * texture units (gi.h GI_UNIT). u_gi_on 0 (the default of a program no one
+ * texture units (common/bindings_gi.glsl). u_gi_on 0 (the default of a program no one
  * sets it on): the hemispheric ambient of common/lighting.glsl instead.
  * Billboards take it per vertex (Orthmann's interpolation), blades and the
  * ground per fragment. docs/BILLBOARDS.md "Global illumination". */
 #ifndef GI_GLSL
 #define GI_GLSL
 
+#include "common/bindings_gi.glsl"
 #include "common/lighting.glsl"
 
 #ifdef GRASS_GI_OFF
@@ -23,10 +24,10 @@ uniform int u_gi_on;
 uniform vec3 u_gi_lo;
 uniform vec3 u_gi_inv_size;
 uniform vec3 u_gi_bounce;
-layout(binding = 12) uniform sampler3D u_gi_ao;
-layout(binding = 13) uniform sampler3D u_gi_irr0; /* a.rgb, Bx.r */
-layout(binding = 14) uniform sampler3D u_gi_irr1; /* Bx.gb, By.rg */
-layout(binding = 15) uniform sampler3D u_gi_irr2; /* By.b, Bz.rgb */
+layout(binding = GI_TEX_AO) uniform sampler3D u_gi_ao;
+layout(binding = GI_TEX_IRR0) uniform sampler3D u_gi_irr0;
+layout(binding = GI_TEX_IRR1) uniform sampler3D u_gi_irr1;
+layout(binding = GI_TEX_IRR2) uniform sampler3D u_gi_irr2;
 
 /* The volumes' ambient at pos for the unit normal n. */
 vec3 gi_ambient(vec3 pos, vec3 n)

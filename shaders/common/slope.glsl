@@ -7,6 +7,8 @@
 #ifndef SLOPE_GLSL
 #define SLOPE_GLSL
 
+#include "common/bindings_hybrid.glsl"
+
 #define SLOPE_FIXED 16384.0
 #define SLOPE_MAX_TILT 0.999
 

@@ -4,10 +4,12 @@
  * as glReadPixels): gfx_target_read_depth_nearest. */
 layout(local_size_x = 8, local_size_y = 8) in;
 
-uniform sampler2DMS u_depth;
+#include "common/bindings_gfx.glsl"
+
+layout(binding = GFX_TEX_DEPTH) uniform sampler2DMS u_depth;
 uniform int u_samples;
 
-layout(std430, binding = 0) writeonly buffer Nearest { float nearest[]; };
+layout(std430, binding = GFX_BIND_NEAREST) writeonly buffer Nearest { float nearest[]; };
 
 void main()
 {

@@ -54,7 +54,7 @@
 #define RASTER_BIG_THREADS 64
 #endif
 
-layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
+layout(std430, binding = RASTER_BIND_VIS) buffer RasterVis {
 #ifdef RASTER_ATOMIC64
     uint64_t raster_vis[];
 #else
@@ -65,7 +65,7 @@ layout(std430, binding = RASTER_VIS_BINDING) buffer RasterVis {
 /* Large count and overflow, medium count and overflow, then the large
  * list (u_raster_queue_capacity (primitive, triangle) pairs) and the
  * medium list (as many); see raster.c. */
-layout(std430, binding = RASTER_QUEUE_BINDING) buffer RasterQueue {
+layout(std430, binding = RASTER_BIND_QUEUE) buffer RasterQueue {
     uint raster_large_count;
     uint raster_large_overflow;
     uint raster_medium_count;

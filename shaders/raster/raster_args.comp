@@ -7,8 +7,10 @@
  * u_max. */
 layout(local_size_x = 1) in;
 
-layout(std430, binding = 0) readonly buffer Src { uint src[]; };
-layout(std430, binding = 1) writeonly buffer Args { uint args[]; };
+#include "common/bindings_raster.glsl"
+
+layout(std430, binding = RASTER_BIND_ARGS_SRC) readonly buffer Src { uint src[]; };
+layout(std430, binding = RASTER_BIND_ARGS) writeonly buffer Args { uint args[]; };
 
 uniform uint u_src_index;
 uniform uint u_max;

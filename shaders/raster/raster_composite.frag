@@ -10,8 +10,8 @@
 /* (colour, depth) words, read with the widest loads the sample count
  * allows (H100, meadow_large at 1080p: 0.545 ms with 32-bit loads, 0.391
  * with 128-bit). */
-layout(std430, binding = RASTER_VIS_BINDING) readonly buffer RasterVis { uvec2 words2[]; };
-layout(std430, binding = RASTER_VIS_BINDING) readonly buffer RasterVis4 { uvec4 words4[]; };
+layout(std430, binding = RASTER_BIND_VIS) readonly buffer RasterVis { uvec2 words2[]; };
+layout(std430, binding = RASTER_BIND_VIS) readonly buffer RasterVis4 { uvec4 words4[]; };
 
 out vec4 o_color;
 

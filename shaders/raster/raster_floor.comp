@@ -11,7 +11,7 @@ layout(local_size_x = RASTER_BIG_THREADS) in;
 layout(local_size_x = 64) in;
 #endif
 
-layout(std430, binding = 0) readonly buffer Tris { vec4 tri_v[]; };
+layout(std430, binding = RASTER_BIND_FLOOR_TRIS) readonly buffer Tris { vec4 tri_v[]; };
 
 uniform uint u_count;
 

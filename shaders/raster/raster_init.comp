@@ -20,16 +20,16 @@ layout(local_size_x = 16, local_size_y = 16) in;
  * a pixel's samples are written with the widest stores its count allows
  * (H100, meadow_large at 1080p: 0.138 ms with one 32-bit store per word,
  * 0.098 with 64-bit, 0.066 with 128-bit). */
-layout(std430, binding = RASTER_VIS_BINDING) writeonly buffer RasterVis { uvec2 words2[]; };
-layout(std430, binding = RASTER_VIS_BINDING) writeonly buffer RasterVis4 { uvec4 words4[]; };
+layout(std430, binding = RASTER_BIND_VIS) writeonly buffer RasterVis { uvec2 words2[]; };
+layout(std430, binding = RASTER_BIND_VIS) writeonly buffer RasterVis4 { uvec4 words4[]; };
 
 #ifdef RASTER_DEPTH_MS
-layout(binding = 0) uniform sampler2DMS u_depth;
+layout(binding = RASTER_TEX_DEPTH) uniform sampler2DMS u_depth;
 uniform int u_target_samples;
 #else
-layout(binding = 0) uniform sampler2D u_depth;
+layout(binding = RASTER_TEX_DEPTH) uniform sampler2D u_depth;
 #endif
-layout(binding = 0, r32f) uniform writeonly image2D u_opaque;
+layout(binding = RASTER_IMG_OPAQUE, r32f) uniform writeonly image2D u_opaque;
 
 float target_depth(ivec2 px, int k)
 {

@@ -8,11 +8,12 @@
 #include "billboard/bb_view.glsl"
 
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Queries { vec4 queries[]; };
-layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Queries { vec4 queries[]; };
+layout(std430, binding = TEST_BIND_OUT) writeonly buffer Out { vec4 result[]; };
 
-uniform sampler2DArray u_clumps;
+layout(binding = TEST_TEX_IN) uniform sampler2DArray u_clumps;
 uniform uint u_count;
 
 void main()

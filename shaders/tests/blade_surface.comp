@@ -8,9 +8,10 @@
 #include "blade/blade_geom.glsl"
 
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = 1) writeonly buffer Out { vec4 points[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Blades { Blade blades[]; };
+layout(std430, binding = TEST_BIND_OUT) writeonly buffer Out { vec4 points[]; };
 
 uniform uint u_count; /* blades */
 uniform int u_us;

@@ -6,10 +6,11 @@
 #include "common/canopy.glsl"
 
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Cams { vec4 cams[]; };
-layout(std430, binding = 1) readonly buffer Suns { vec4 suns[]; };
-layout(std430, binding = 2) writeonly buffer Out { vec4 result[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Cams { vec4 cams[]; };
+layout(std430, binding = TEST_BIND_IN2) readonly buffer Suns { vec4 suns[]; };
+layout(std430, binding = TEST_BIND_OUT) writeonly buffer Out { vec4 result[]; };
 
 uniform uint u_count;
 

@@ -8,9 +8,10 @@
 #include "common/grass_shade.glsl"
 
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Items { vec4 items[]; };
-layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Items { vec4 items[]; };
+layout(std430, binding = TEST_BIND_OUT) writeonly buffer Out { vec4 result[]; };
 
 uniform uint u_count;
 uniform int u_mode;

@@ -4,6 +4,7 @@
  * is tris[4i .. 4i+2] (clip positions) and floatBitsToUint(tris[4i+3].x)
  * (its colour word). */
 #include "raster/raster.glsl"
+#include "common/bindings_tests.glsl"
 
 #ifdef RASTER_BIG
 layout(local_size_x = RASTER_BIG_THREADS) in;
@@ -11,7 +12,7 @@ layout(local_size_x = RASTER_BIG_THREADS) in;
 layout(local_size_x = 64) in;
 #endif
 
-layout(std430, binding = 0) readonly buffer Tris { vec4 tris[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Tris { vec4 tris[]; };
 
 uniform uint u_count;
 

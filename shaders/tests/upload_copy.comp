@@ -5,9 +5,10 @@
  * u_row of the output, as a queued dispatch reads a list the CPU uploaded
  * just before it. */
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Src { uint src[]; };
-layout(std430, binding = 1) buffer Out { uint result[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Src { uint src[]; };
+layout(std430, binding = TEST_BIND_OUT) buffer Out { uint result[]; };
 
 uniform uint u_iters;
 uniform uint u_row;

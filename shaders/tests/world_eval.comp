@@ -6,9 +6,10 @@
 #include "common/world_height.glsl"
 
 layout(local_size_x = 64) in;
+#include "common/bindings_tests.glsl"
 
-layout(std430, binding = 0) readonly buffer Pts { vec2 pts[]; };
-layout(std430, binding = 1) writeonly buffer Out { vec4 result[]; };
+layout(std430, binding = TEST_BIND_IN) readonly buffer Pts { vec2 pts[]; };
+layout(std430, binding = TEST_BIND_OUT) writeonly buffer Out { vec4 result[]; };
 
 uniform uint u_count;
 

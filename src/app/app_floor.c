@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/bindings_raster.glsl"
 #include "platform/plat.h"
 
 static int cmp_double(const void *a, const void *b)
@@ -87,7 +88,7 @@ static void bind_floor(gfx_program_t p, void *user)
 {
     const gfx_buffer_t *buf = user;
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)(buf->size / (12 * sizeof(float))));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf->id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_FLOOR_TRIS, buf->id);
 }
 
 double app_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples)

@@ -8,6 +8,8 @@
 
 #include <string.h>
 
+#include "common/bindings_app.glsl"
+
 static bool make_sky(app_terrain_t *t)
 {
     t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
@@ -135,10 +137,9 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
         glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);
-        glUniform1i(gfx_uniform(t->prog, "u_extent"), 0);
         glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
         glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
-        glBindTextureUnit(0, t->extent);
+        glBindTextureUnit(APP_TEX_EXTENT, t->extent);
     }
     glBindVertexArray(t->vao);
     if (t->world) draw_world(t, v);

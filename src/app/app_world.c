@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "app/app_admit.h"
+#include "app/app_pass.h"
 #include "core/core.h"
 #include "platform/plat.h"
 #include "scene/scene_lod.h"
@@ -310,25 +311,18 @@ bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed)
 }
 
 static bool on_world(const app_world_t *w) { return w->terrain_mesh.type == TERRAIN_WORLD; }
-/* Billboards: billboard and hybrid modes, except on a world terrain, where
- * they are not streamed yet (billboard mode is refused there, the hybrid
- * draws tiles and the canopy). */
-static bool wants_bb(const app_world_t *w, scene_mode_t m)
+static app_ground_t ground_of(const app_world_t *w)
 {
-    return (m == SCENE_MODE_BILLBOARD || m == SCENE_MODE_HYBRID) && (!on_world(w) || m == SCENE_MODE_BILLBOARD);
+    if (on_world(w)) return APP_GROUND_WORLD;
+    return w->terrain_mesh.grid_res > 0 ? APP_GROUND_HEIGHTFIELD : APP_GROUND_MESH;
 }
-static bool wants_blades(scene_mode_t m) { return m == SCENE_MODE_BLADE || m == SCENE_MODE_HYBRID; }
-
-/* Hybrid mode on a heightfield draws its near blades from tiles, and blade
- * and hybrid modes on a world terrain, streamed around the camera; blade
- * mode elsewhere (and the reference) simulates every blade of the field,
- * as the paper. */
-static bool uses_tiles(const app_world_t *w)
-{
-    if (w->reference) return false;
-    if (on_world(w)) return wants_blades(w->mode);
-    return w->mode == SCENE_MODE_HYBRID && w->terrain_mesh.grid_res > 0;
-}
+/* What the world makes and draws: the rules of app_pass.h for its ground
+ * (billboards are refused in billboard mode on a world; the hybrid there
+ * draws tiles and the canopy; blade mode off a world and the reference
+ * simulate every blade of the field, as the paper). */
+static bool wants_bb(const app_world_t *w, scene_mode_t m) { return app_pass_wants_billboards(m, ground_of(w)); }
+static bool wants_blades(scene_mode_t m) { return app_pass_wants_blades(m); }
+static bool uses_tiles(const app_world_t *w) { return app_pass_uses_tiles(w->mode, ground_of(w), w->reference); }
 
 /* How far the tiles draw blades: the switch distance, or on a world in
  * blade mode grass.blade_distance (default APP_WORLD_BLADE_DISTANCE). */
@@ -826,95 +820,138 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
     return r;
 }
 
+/* One frame's draw state shared by its passes (app_world_draw). */
+typedef struct frame_draw_t {
+    const app_view_t *v;
+    const gfx_target_t *target;
+    raster_t *raster;       /* NULL: the hardware path */
+    bool tiles;             /* the frame draws tiles (and the canopy beyond) */
+    float fade_lo, fade_hi; /* the blades' fade band (hybrid) */
+    float far_lo, far_hi;   /* the canopy's fade band */
+    bool raster_ok;
+} frame_draw_t;
+
+static void draw_tiles(app_world_t *w, frame_draw_t *f)
+{
+    const app_view_t *v = f->v;
+    blade_draw_desc_t dd = {.time = v->time, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->terrain.gi};
+    memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
+    memcpy(dd.camera, v->camera, sizeof dd.camera);
+    memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+    blade_tiles_set_overlay(w->tiles, v->overlay);
+    /* Occlusion culling reads the opaque depth, as blade mode's below. */
+    if (f->raster) {
+        f->raster_ok = blade_tiles_raster(w->tiles, f->raster, &dd, f->raster->opaque_depth.id) && f->raster_ok;
+    } else {
+        gfx_target_resolve_depth(f->target);
+        blade_tiles_draw(w->tiles, &dd, f->target->resolve_depth.id);
+    }
+}
+
+static void draw_blades(app_world_t *w, frame_draw_t *f)
+{
+    const app_view_t *v = f->v;
+    const gfx_target_t *target = f->target;
+    /* Occlusion culling reads the resolved depth of the opaque pass (the
+     * compute path: the farthest opaque sample, from raster_begin). */
+    if (!f->raster) gfx_target_resolve_depth(target);
+    /* Blade mode draws as far as grass.blade_distance (default: the
+     * field's edge or the far plane) with the levels of the 60 m cut
+     * (blade_cull_desc_t.level_distance, docs/BLADES.md). */
+    bool hybrid = w->mode == SCENE_MODE_HYBRID;
+    blade_cull_desc_t cd = {.max_distance = hybrid ? f->fade_hi
+                                                   : scene_blade_distance(&w->scene.grass, v->camera, v->far,
+                                                                          w->terrain_mesh.aabb_min,
+                                                                          w->terrain_mesh.aabb_max),
+                            .level_distance = hybrid ? 0.0f : BLADE_CULL_MAX_DISTANCE_DEFAULT,
+                            .distance_levels = w->tuning.distance_levels,
+                            .disable = w->reference ? 0xffu : w->tuning.cull_disable};
+    memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
+    memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
+    GLuint depth = f->raster ? f->raster->opaque_depth.id : target->resolve_depth.id;
+    blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
+    glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
+    glViewport(0, 0, target->w, target->h);
+    blade_draw_desc_t dd = {.time = v->time, .gi = w->terrain.gi};
+    memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
+    memcpy(dd.camera, v->camera, sizeof dd.camera);
+    memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+    if (hybrid && !w->reference) {
+        dd.fade_start = f->fade_lo;
+        dd.fade_end = f->fade_hi;
+    }
+    if (f->raster) f->raster_ok = blade_gpu_raster(w->blades, f->raster, &dd) && f->raster_ok;
+    else blade_gpu_draw(w->blades, &dd);
+}
+
+static void draw_billboards(app_world_t *w, frame_draw_t *f)
+{
+    const app_view_t *v = f->v;
+    bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
+    memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
+    memcpy(d.camera, v->camera, sizeof d.camera);
+    memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
+    memcpy(d.planes, v->planes, sizeof d.planes);
+    if (w->mode == SCENE_MODE_HYBRID) {
+        d.fade_start = f->fade_lo;
+        d.fade_end = f->fade_hi;
+    }
+    if (f->tiles) {
+        d.far_start = f->far_lo;
+        d.far_end = f->far_hi;
+        blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
+    }
+    if (f->raster) f->raster_ok = bb_field_raster(w->bb, f->raster, &d) && f->raster_ok;
+    else bb_field_draw(w->bb, &d);
+}
+
+static void run_pass(app_world_t *w, frame_draw_t *f, app_pass_kind_t kind)
+{
+    switch (kind) {
+    case APP_PASS_TERRAIN:
+        gfx_timer_begin("terrain");
+        app_terrain_draw(&w->terrain, f->v);
+        app_colliders_draw(&w->colliders, f->v);
+        gfx_timer_end();
+        break;
+    case APP_PASS_CHARACTERS:
+        character_set_draw(&w->chars, (const float *)f->v->viewproj, f->v->camera, f->v->sun_dir);
+        break;
+    /* raster_begin takes the opaque depth (also read by occlusion culling). */
+    case APP_PASS_RASTER_BEGIN: raster_begin(f->raster, f->target); break;
+    case APP_PASS_TILES: draw_tiles(w, f); break;
+    case APP_PASS_BLADES: draw_blades(w, f); break;
+    case APP_PASS_BILLBOARDS: draw_billboards(w, f); break;
+    case APP_PASS_RASTER_END: raster_end(f->raster, f->target); break;
+    case APP_PASS_KINDS: break;
+    }
+}
+
+/* The passes of app_pass_list, in order. */
 void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
-    bool tiles = w->have_tiles && uses_tiles(w); /* the hybrid's near blades, and its canopy */
-    float fade_lo = tiles_distance(w) - APP_SWITCH_FADE, fade_hi = tiles_distance(w) + APP_SWITCH_FADE;
-    /* The canopy fades in beyond the billboards, or on a world (no
-     * billboards yet) where the blades fade out. */
-    float far_lo = on_world(w) ? fade_lo : w->scene.grass.canopy_distance - APP_CANOPY_FADE;
-    float far_hi = on_world(w) ? fade_hi : w->scene.grass.canopy_distance + APP_CANOPY_FADE;
-    w->terrain.canopy_fade[0] = tiles ? far_lo : 0.0f;
-    w->terrain.canopy_fade[1] = tiles ? far_hi : 0.0f;
-    gfx_timer_begin("terrain");
-    app_terrain_draw(&w->terrain, v);
-    app_colliders_draw(&w->colliders, v);
-    gfx_timer_end();
-    if (w->have_chars) character_set_draw(&w->chars, (const float *)v->viewproj, v->camera, v->sun_dir);
     glm_vec3_copy((float *)v->camera, w->camera);
     w->drawn = true;
-    raster_t *raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
-    /* raster_begin takes the opaque depth (also read by occlusion culling). */
-    if (raster) raster_begin(raster, target);
-    bool raster_ok = true;
-    if (tiles) {
-        blade_draw_desc_t dd = {.time = v->time, .fade_start = fade_lo, .fade_end = fade_hi, .gi = w->terrain.gi};
-        memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
-        memcpy(dd.camera, v->camera, sizeof dd.camera);
-        memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
-        blade_tiles_set_overlay(w->tiles, v->overlay);
-        /* Occlusion culling reads the opaque depth, as blade mode's below. */
-        if (raster) {
-            raster_ok = blade_tiles_raster(w->tiles, raster, &dd, raster->opaque_depth.id) && raster_ok;
-        } else {
-            gfx_target_resolve_depth(target);
-            blade_tiles_draw(w->tiles, &dd, target->resolve_depth.id);
-        }
-    } else if (w->have_blades && (wants_blades(w->mode) || w->reference)) {
-        /* Occlusion culling reads the resolved depth of the opaque pass (the
-         * compute path: the farthest opaque sample, from raster_begin). */
-        if (!raster) gfx_target_resolve_depth(target);
-        /* Blade mode draws as far as grass.blade_distance (default: the
-         * field's edge or the far plane) with the levels of the 60 m cut
-         * (blade_cull_desc_t.level_distance, docs/BLADES.md). */
-        bool hybrid = w->mode == SCENE_MODE_HYBRID;
-        blade_cull_desc_t cd = {.max_distance = hybrid ? fade_hi
-                                                       : scene_blade_distance(&w->scene.grass, v->camera, v->far,
-                                                                              w->terrain_mesh.aabb_min,
-                                                                              w->terrain_mesh.aabb_max),
-                                .level_distance = hybrid ? 0.0f : BLADE_CULL_MAX_DISTANCE_DEFAULT,
-                                .distance_levels = w->tuning.distance_levels,
-                                .disable = w->reference ? 0xffu : w->tuning.cull_disable};
-        memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
-        memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
-        GLuint depth = raster ? raster->opaque_depth.id : target->resolve_depth.id;
-        blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
-        glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
-        glViewport(0, 0, target->w, target->h);
-        blade_draw_desc_t dd = {.time = v->time, .gi = w->terrain.gi};
-        memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
-        memcpy(dd.camera, v->camera, sizeof dd.camera);
-        memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
-        if (w->mode == SCENE_MODE_HYBRID && !w->reference) {
-            dd.fade_start = fade_lo;
-            dd.fade_end = fade_hi;
-        }
-        if (raster) raster_ok = blade_gpu_raster(w->blades, raster, &dd) && raster_ok;
-        else blade_gpu_draw(w->blades, &dd);
-    }
-    if (w->bb && wants_bb(w, w->mode) && !w->reference) {
-        bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
-        memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
-        memcpy(d.camera, v->camera, sizeof d.camera);
-        memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
-        memcpy(d.planes, v->planes, sizeof d.planes);
-        if (w->mode == SCENE_MODE_HYBRID) {
-            d.fade_start = fade_lo;
-            d.fade_end = fade_hi;
-        }
-        if (tiles) {
-            d.far_start = far_lo;
-            d.far_end = far_hi;
-        }
-        if (tiles) {
-            blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
-        }
-        if (raster) raster_ok = bb_field_raster(w->bb, raster, &d) && raster_ok;
-        else bb_field_draw(w->bb, &d);
-    }
-    if (raster) raster_end(raster, target);
-    if (!raster_ok) {
+    frame_draw_t f = {.v = v, .target = target, .raster_ok = true};
+    f.raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
+    app_pass_t passes[APP_PASS_KINDS];
+    int n = app_pass_list(&(app_pass_desc_t){.mode = w->mode, .ground = ground_of(w), .compute = f.raster != NULL,
+                                             .reference = w->reference, .have_tiles = w->have_tiles,
+                                             .have_blades = w->have_blades, .have_billboards = w->bb != NULL,
+                                             .have_characters = w->have_chars},
+                          passes);
+    f.tiles = app_pass_has(passes, n, APP_PASS_TILES); /* the hybrid's near blades, and its canopy */
+    f.fade_lo = tiles_distance(w) - APP_SWITCH_FADE;
+    f.fade_hi = tiles_distance(w) + APP_SWITCH_FADE;
+    /* The canopy fades in beyond the billboards, or on a world (no
+     * billboards yet) where the blades fade out. */
+    f.far_lo = on_world(w) ? f.fade_lo : w->scene.grass.canopy_distance - APP_CANOPY_FADE;
+    f.far_hi = on_world(w) ? f.fade_hi : w->scene.grass.canopy_distance + APP_CANOPY_FADE;
+    w->terrain.canopy_fade[0] = f.tiles ? f.far_lo : 0.0f;
+    w->terrain.canopy_fade[1] = f.tiles ? f.far_hi : 0.0f;
+    for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
+    if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
         w->raster_compute = false;
     }

@@ -176,16 +176,16 @@ static void tf_pass(bb_field_t *f, gfx_program_t prog, const GLint *first, const
     glEnable(GL_RASTERIZER_DISCARD);
     glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->scratch.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
     glBeginTransformFeedback(GL_POINTS);
     if (!pl) {
         glMultiDrawArrays(GL_POINTS, first, size, nranges);
     } else {
         GLint count_loc = gfx_uniform(prog, "u_count");
         for (int b = 0; b < pl->count; b++) {
-            glBindBufferRange(GL_UNIFORM_BUFFER, 0, f->objects.id, (GLintptr)(f->objects_stride * (size_t)b),
-                              (GLsizeiptr)f->objects_stride);
+            glBindBufferRange(GL_UNIFORM_BUFFER, BB_UBO_OBJECTS, f->objects.id,
+                              (GLintptr)(f->objects_stride * (size_t)b), (GLsizeiptr)f->objects_stride);
             glUniform1i(count_loc, pl->obj_count[b]);
             int r0 = pl->range_start[b];
             glMultiDrawArrays(GL_POINTS, first + r0, size + r0, pl->range_start[b + 1] - r0);

@@ -26,7 +26,6 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform1f(gfx_uniform(p, "u_fade_end"), dd->fade_end);
     glUniform1f(gfx_uniform(p, "u_far_start"), dd->far_start);
     glUniform1f(gfx_uniform(p, "u_far_end"), dd->far_end);
-    glUniform1i(gfx_uniform(p, "u_clumps"), 0);
     glUniform1i(gfx_uniform(p, "u_overlay"), dd->overlay);
     bb_set_wind(p.id, &f->desc.wind);
     set_views(f, p.id);
@@ -37,7 +36,7 @@ static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_
     glUniform2fv(gfx_uniform(p, "u_slope_origin"), 1, g->origin);
     glUniform1f(gfx_uniform(p, "u_slope_cell"), g->cell);
     glUniform2i(gfx_uniform(p, "u_slope_dims"), g->nx, g->nz);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, dd->slope_map.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, dd->slope_map.id);
     gi_set_uniforms(p.id, f->desc.gi ? &dd->gi : NULL); /* without BB_GI no vertex carries it */
 }
 
@@ -52,9 +51,9 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
     glUniform1f(gfx_uniform(p, "u_slope_cell"), g->cell);
     glUniform2i(gfx_uniform(p, "u_slope_dims"), g->nx, g->nz);
     bb_set_wind(p.id, &f->desc.wind);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, sums.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, f->points.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_SUMS, sums.id);
     glDispatchCompute(((GLuint)f->billboards + 255u) / 256u, 1, 1);
     gfx_count_add("bb.slope_read", f->billboards);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -82,10 +81,10 @@ static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t
  * already cover (docs/PERFORMANCE.md). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
 {
-    glBindTextureUnit(0, f->clumps.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
+    glBindTextureUnit(BB_TEX_CLUMPS, f->clumps.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, f->points.id);
     glBindVertexArray(f->points_vao);
     glEnable(GL_DEPTH_TEST);
     glDepthMask(GL_TRUE);
@@ -128,10 +127,10 @@ static void bind_raster(gfx_program_t p, void *user)
     render_uniforms(b->f, p, b->dd);
     glUniform4fv(gfx_uniform(p, "u_planes"), 6, &b->dd->planes[0][0]);
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)b->f->billboards);
-    glBindTextureUnit(0, b->f->clumps.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b->f->pool.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->f->meshes.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, b->f->points.id);
+    glBindTextureUnit(BB_TEX_CLUMPS, b->f->clumps.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, b->f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, b->f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, b->f->points.id);
 }
 
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
@@ -148,7 +147,7 @@ bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
         raster_items_t items = {.count = (uint32_t)f->billboards, .small_samples = 256};
         raster_draw(r, prog, &items, bind_raster, &b);
     }
-    glBindTextureUnit(0, 0);
+    glBindTextureUnit(BB_TEX_CLUMPS, 0);
     gfx_timer_end();
     return ok;
 }

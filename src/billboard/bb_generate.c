@@ -67,10 +67,9 @@ bool bb_upload_layout(bb_field_t *f)
  * resampled with terrain_height_at at the candidate spacing (-1e30 where no
  * ground lies under a grid vertex); read by generation and collision
  * (shaders/billboard/bb_ground.glsl). */
-void bb_set_heights(const bb_field_t *f, gfx_program_t p, int unit)
+void bb_set_heights(const bb_field_t *f, gfx_program_t p)
 {
-    glBindTextureUnit((GLuint)unit, f->heights.id);
-    glUniform1i(gfx_uniform(p, "u_heights"), unit);
+    glBindTextureUnit(BB_TEX_HEIGHTS, f->heights.id);
     glUniform2f(gfx_uniform(p, "u_hmin"), f->hgrid[0], f->hgrid[1]);
     glUniform2f(gfx_uniform(p, "u_hmax"), f->hgrid[2], f->hgrid[3]);
     glUniform1f(gfx_uniform(p, "u_hcell"), f->hgrid[4]);
@@ -323,20 +322,17 @@ static bb_gen_entry_t *grid_entries(const bb_field_t *f, const terrain_mesh_t *t
     return entries;
 }
 
-/* The generation program's uniforms and textures (layout on units 0-2,
- * heights on 3). */
+/* The generation program's uniforms and textures (the layout maps and the
+ * heights, on their bindings_billboard.glsl units). */
 static void gen_uniforms(const bb_field_t *f, int nentries)
 {
     const bb_octree_t *tr = &f->tree;
     gfx_program_t p = f->gen_prog;
     glUseProgram(p.id);
-    glBindTextureUnit(0, f->extent.id);
-    glBindTextureUnit(1, f->direction.id);
-    glBindTextureUnit(2, f->messiness.id);
-    glUniform1i(gfx_uniform(p, "u_extent"), 0);
-    glUniform1i(gfx_uniform(p, "u_direction"), 1);
-    glUniform1i(gfx_uniform(p, "u_messiness"), 2);
-    bb_set_heights(f, p, 3);
+    glBindTextureUnit(BB_TEX_EXTENT, f->extent.id);
+    glBindTextureUnit(BB_TEX_DIRECTION, f->direction.id);
+    glBindTextureUnit(BB_TEX_MESSINESS, f->messiness.id);
+    bb_set_heights(f, p);
     const bb_gen_desc_t *g = &f->gen;
     glUniform1f(gfx_uniform(p, "u_gen.spacing"), g->spacing);
     glUniform2f(gfx_uniform(p, "u_gen.origin"), g->origin[0], g->origin[1]);
@@ -407,9 +403,9 @@ bool bb_generate(bb_field_t *f, const terrain_mesh_t *t, const bb_gen_tri_t *tri
     glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &stamp_bits);
     GLuint stamps[2] = {gfx_query_make(GL_TIMESTAMP, "bb.generate.t0"), gfx_query_make(GL_TIMESTAMP, "bb.generate.t1")};
     gen_uniforms(f, nentries);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, f->counts.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, entry_buf.id);
-    if (tris) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tri_buf.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_LEAF_COUNTS, f->counts.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_GEN_ENTRIES, entry_buf.id);
+    if (tris) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_GEN_TRIS, tri_buf.id);
     glBindVertexArray(f->empty_vao);
     GLint fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);

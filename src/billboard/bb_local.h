@@ -14,6 +14,8 @@
 #define MEADOW_BB_LOCAL_H
 
 #include "billboard/bb.h"
+#include "common/bindings_billboard.glsl"
+#include "common/bindings_hybrid.glsl"
 
 /* Pool-header readbacks in flight (see bb_field_update): the CPU reads a
  * copy once its timestamp query is available, never waiting on the GPU. */
@@ -120,13 +122,13 @@ int bb_pass_objects(const bb_field_t *f);
 double bb_range_total(const GLsizei *size, int n);
 int bb_merge_ranges(bb_field_t *f, int count);
 
-/* bb_generate.c: the height grid's uniforms (texture on unit `unit`); and
+/* bb_generate.c: the height grid's uniforms and texture (BB_TEX_HEIGHTS); and
  * make's stages (each false when it fails, logged): the layout textures
  * and clump array; the height grid; mesh terrains' triangle
  * frames (NULL when out of memory; *seeding triangles holding *cells
  * candidates); the generation pass in tiles of tile x tile cells (tris NULL
  * on heightfields); each billboard's bounding sphere read back. */
-void bb_set_heights(const bb_field_t *f, gfx_program_t p, int unit);
+void bb_set_heights(const bb_field_t *f, gfx_program_t p);
 bool bb_upload_layout(bb_field_t *f);
 bool bb_upload_heights(bb_field_t *f, const terrain_mesh_t *t);
 bb_gen_tri_t *bb_mesh_tris(const terrain_mesh_t *t, float spacing, int *seeding, double *cells);

@@ -204,9 +204,8 @@ static bool collide(bb_field_t *f, int ncol, const collide_object_t *objs, int c
     }
     gfx_program_t p = f->collide_prog;
     glUseProgram(p.id);
-    glBindTextureUnit(0, f->cubes.id);
-    glUniform1i(gfx_uniform(p, "u_cubes"), 0);
-    bb_set_heights(f, p, 1);
+    glBindTextureUnit(BB_TEX_CUBES, f->cubes.id);
+    bb_set_heights(f, p);
     glUniform1i(gfx_uniform(p, "u_res"), d->cube_res);
     glUniform1f(gfx_uniform(p, "u_time"), time);
     glUniform1f(gfx_uniform(p, "u_recover"), d->recover_time);
@@ -246,10 +245,10 @@ static void recover(bb_field_t *f, int nrec, float time, float dt)
     bb_set_wind(p.id, &f->desc.wind);
     gfx_timer_begin("bb.recover");
     gfx_buffer_update(f->recover_range_buf, 0, (size_t)nr * 16, f->recover_ranges);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, f->pool.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, f->meshes.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, f->points.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, f->recover_range_buf.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, f->points.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_RANGES, f->recover_range_buf.id);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glDispatchCompute((threads + 63u) / 64u, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |

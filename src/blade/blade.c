@@ -216,17 +216,16 @@ void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_se
     if (cubes) {
         glUniform1i(gfx_uniform(p, "u_cube_count"), cubes);
         glUniform1i(gfx_uniform(p, "u_cube_res"), c->cube_res);
-        glUniform1i(gfx_uniform(p, "u_cube_tex"), 0);
-        glBindTextureUnit(0, c->cube_texture);
+        glBindTextureUnit(BLADE_TEX_CUBES, c->cube_texture);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->eta.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->winds.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->spheres.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->cube_objects.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_BLADES, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_ETA, g->eta.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_WINDS, g->winds.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_SPHERES, g->spheres.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_CUBES, g->cube_objects.id);
     if (g->padded_count) glDispatchCompute((g->padded_count + 255u) / 256u, 1, 1);
     gfx_count_add("blade.simulated", (double)g->padded_count);
-    glBindTextureUnit(0, 0);
+    glBindTextureUnit(BLADE_TEX_CUBES, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_timer_end();
 }
@@ -322,16 +321,15 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glUniform1i(gfx_uniform(p, "u_count_instances"), pull);
     glUniform1i(gfx_uniform(p, "u_use_patches"), use_patches);
     glUniform1ui(gfx_uniform(p, "u_patch_size"), g->patch_size);
-    glUniform1i(gfx_uniform(p, "u_depth"), 0);
-    glBindTextureUnit(0, depth_texture);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->survivors.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, g->command.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g->counters.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g->patches.id);
+    glBindTextureUnit(BLADE_TEX_DEPTH, depth_texture);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_BLADES, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_SURVIVORS, g->survivors.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_COMMAND, g->command.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_COUNTERS, g->counters.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_PATCHES, g->patches.id);
     if (invocations) glDispatchCompute((invocations + 255u) / 256u, 1, 1);
     gfx_count_add("blade.cull_tested", (double)invocations);
-    glBindTextureUnit(0, 0);
+    glBindTextureUnit(BLADE_TEX_DEPTH, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 
     /* statistics: the counters and the command into a fenced ring slot,
@@ -410,8 +408,8 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
     glUseProgram(p.id);
     blade_surface_t surf = surface_of(&g->desc);
     blade_set_surface_uniforms(p, &surf, desc);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g->blades.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g->survivors.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_BLADES, g->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_SURVIVORS, g->survivors.id);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, g->command.id);
     glBindVertexArray(g->vao);
     glEnable(GL_DEPTH_TEST);
@@ -442,9 +440,9 @@ static void bind_raster(gfx_program_t p, void *user)
     glUniform1ui(gfx_uniform(p, "u_count_index"), b->count_index);
     glUniform1ui(gfx_uniform(p, "u_count_max"), 0xffffffffu);
     glUniform1f(gfx_uniform(p, "u_segment_pixels"), BLADE_RASTER_SEGMENT_PIXELS);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, b->blades.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, b->ids.id ? b->ids.id : b->blades.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, b->count.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_BLADES, b->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_RASTER_IDS, b->ids.id ? b->ids.id : b->blades.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_RASTER_COUNT, b->count.id);
 }
 
 bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,

@@ -7,6 +7,8 @@
 
 #include "blade/blade.h"
 #include "blade/blade_tiles.h"
+#include "common/bindings_blade.glsl"
+#include "common/bindings_hybrid.glsl"
 
 #define BLADE_GPU_READBACK_SLOTS 3
 #define BLADE_TILES_READBACK_SLOTS 4

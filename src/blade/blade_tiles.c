@@ -617,12 +617,11 @@ static void set_common(const blade_tiles_t *t, gfx_program_t p)
     glUniform1i(gfx_uniform(p, "u_length_mode"), e->length_mode);
     glUniform1f(gfx_uniform(p, "u_pose_dt"), e->dt > 0.0f ? e->dt : 1.0f / 60.0f);
     set_slope_grid(p, &t->slope_grid);
-    glUniform1i(gfx_uniform(p, "u_ground"), 0);
-    glBindTextureUnit(0, t->ground.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, t->templates.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, t->pool.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, t->eta.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, t->winds.id);
+    glBindTextureUnit(BLADE_TILES_TEX_GROUND, t->ground.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_TEMPLATES, t->templates.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_POOL, t->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_ETA, t->eta.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_WINDS, t->winds.id);
 }
 
 /* Applies every completed motion readback, oldest first: a value counts
@@ -655,8 +654,8 @@ static void hand_over(blade_tiles_t *t, const uint32_t *entries, int n)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     set_common(t, t->handover);
     glUniform1ui(gfx_uniform(t->handover, "u_count"), (GLuint)n * B);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->init_list.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 14, t->slope_sums.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->init_list.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_SUMS, t->slope_sums.id);
     glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     gfx_program_t p = t->resolve;
@@ -666,7 +665,7 @@ static void hand_over(blade_tiles_t *t, const uint32_t *entries, int n)
     glUniform1i(gfx_uniform(p, "u_cells_per_tile"), t->desc.slope_cells_per_tile);
     glUniform1i(gfx_uniform(p, "u_tiles_x"), t->grid.nx);
     glUniform1f(gfx_uniform(p, "u_time"), t->time);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, t->slope_map.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, t->slope_map.id);
     glDispatchCompute(((GLuint)n * per + 63u) / 64u, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
@@ -755,9 +754,9 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         set_common(t, t->init);
         glUniform1ui(gfx_uniform(t->init, "u_count"), (GLuint)ninit * B);
         glUniform1f(gfx_uniform(t->init, "u_slope_recover"), t->desc.slope_recover);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->init_list.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 13, t->slope_map.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 15, t->bb_sums.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->init_list.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, t->slope_map.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_BB_SUMS, t->bb_sums.id);
         glDispatchCompute(((GLuint)ninit * B + 255u) / 256u, 1, 1);
         gfx_count_add("tiles.initialised", (double)ninit * B);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -779,10 +778,10 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         glUniform1f(gfx_uniform(p, "u_dt"), e.dt);
         glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
         glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, t->spheres.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, t->slot_spheres.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->slot_list.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, t->motion.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_SPHERES, t->spheres.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_SLOT_SPHERES, t->slot_spheres.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->slot_list.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_MOTION, t->motion.id);
         glDispatchCompute(((GLuint)nslots * B + 255u) / 256u, 1, 1);
         gfx_count_add("tiles.simulated", (double)nslots * B);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -794,7 +793,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
             t->motion_epoch[r][s] = t->slot_epoch[s];
         }
     }
-    glBindTextureUnit(0, 0);
+    glBindTextureUnit(BLADE_TILES_TEX_GROUND, 0);
     gfx_timer_end();
 }
 
@@ -881,21 +880,21 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glUniform1ui(gfx_uniform(p, "u_count_word"), (GLuint)t->count_word);
     glUniform1i(gfx_uniform(p, "u_use_depth"), depth != 0);
     glUniform1f(gfx_uniform(p, "u_depth_bias"), c->depth_bias);
-    glUniform1i(gfx_uniform(p, "u_depth"), 2);
-    glBindTextureUnit(2, depth);
+    glBindTextureUnit(BLADE_TILES_TEX_DEPTH, depth);
     glUniform1i(gfx_uniform(p, "u_extent_on"), t->extent.id != 0);
-    glUniform1i(gfx_uniform(p, "u_extent"), 1);
     glUniform2fv(gfx_uniform(p, "u_extent_origin"), 1, t->desc.extent_origin);
     glUniform1f(gfx_uniform(p, "u_extent_spacing"), t->desc.extent_spacing);
     glUniform1ui(gfx_uniform(p, "u_extent_seed"), t->desc.extent_seed);
-    glBindTextureUnit(1, t->extent.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, t->tile_list.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, t->drawn.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, t->command.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
+    glBindTextureUnit(BLADE_TILES_TEX_EXTENT, t->extent.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->tile_list.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_DRAWN, t->drawn.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_COMMAND, t->command.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_DRAWN_IDS, t->drawn_ids.id);
     if (n) glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
     gfx_count_add("tiles.cull_tested", (double)n * B);
-    for (int unit = 0; unit < 3; unit++) glBindTextureUnit((GLuint)unit, 0);
+    glBindTextureUnit(BLADE_TILES_TEX_GROUND, 0);
+    glBindTextureUnit(BLADE_TILES_TEX_EXTENT, 0);
+    glBindTextureUnit(BLADE_TILES_TEX_DEPTH, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     /* appends tried, those past the capacity, and the culled counts */
     gfx_readback_copy(&t->draw_ring, t->command, 4 * CMD_TOTAL, 4 * RING_TOTAL, 4);
@@ -932,10 +931,10 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
         if (info) gfx_buffer_update(t->tile_info, 0, (size_t)ntiles_all * sizeof(uint32_t), info);
         free(info);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, tess ? 0 : 8, t->drawn.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, t->drawn_ids.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, t->tile_info.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, t->eta.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, tess ? BLADE_BIND_BLADES : BLADE_TILES_BIND_DRAWN, t->drawn.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_DRAWN_IDS, t->drawn_ids.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_TILE_INFO, t->tile_info.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_DRAW_ETA, t->eta.id);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, t->command.id);
     glBindVertexArray(t->vao);
     glEnable(GL_DEPTH_TEST);

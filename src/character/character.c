@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/bindings_character.glsl"
+
 character_set_desc_t character_set_desc_defaults(const character_set_desc_t *d)
 {
     character_set_desc_t r = *d;
@@ -419,14 +421,16 @@ void character_set_update(character_set_t *set, float time, float dt)
         const character_instance_t *inst = &set->items[i];
         const character_asset_t *a = &set->assets[inst->asset];
         glUniform1ui(loc, (GLuint)a->model.vertex_count);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, a->vertices.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, inst->bones.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, inst->skinned.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_VERTICES, a->vertices.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_BONES, inst->bones.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_SKINNED, inst->skinned.id);
         glDispatchCompute((GLuint)(a->model.vertex_count + 63) / 64, 1, 1);
         gfx_count_add("character.skinned", (double)a->model.vertex_count);
     }
     glMemoryBarrier(GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    for (GLuint k = 0; k < 3; k++) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, k, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_VERTICES, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_BONES, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_SKINNED, 0);
     glUseProgram(0);
     gfx_timer_end();
 }
@@ -447,7 +451,7 @@ void character_set_draw(const character_set_t *set, const float viewproj[16], co
         glUniformMatrix4fv(gfx_uniform(p, "u_model"), 1, GL_FALSE, inst->model);
         glUniform4fv(gfx_uniform(p, "u_base_color"), 1, a->model.base_color);
         glUniform1i(gfx_uniform(p, "u_use_texture"), a->texture.id != 0);
-        if (a->texture.id) glBindTextureUnit(0, a->texture.id);
+        if (a->texture.id) glBindTextureUnit(CHARACTER_TEX_DIFFUSE, a->texture.id);
         glBindVertexArray(inst->vao);
         glDrawElements(GL_TRIANGLES, a->model.index_count, GL_UNSIGNED_INT, NULL);
     }

@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/bindings_gfx.glsl"
+
 static struct {
     GLuint prog;
     bool failed;
@@ -46,13 +48,12 @@ bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out)
     bool ok = buf.id && tmp;
     if (ok) {
         glUseProgram(g_depth.prog);
-        glBindTextureUnit(0, t->depth.id);
-        glUniform1i(glGetUniformLocation(g_depth.prog, "u_depth"), 0);
+        glBindTextureUnit(GFX_TEX_DEPTH, t->depth.id);
         glUniform1i(glGetUniformLocation(g_depth.prog, "u_samples"), t->samples);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buf.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GFX_BIND_NEAREST, buf.id);
         glDispatchCompute(((GLuint)t->w + 7u) / 8u, ((GLuint)t->h + 7u) / 8u, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        glBindTextureUnit(0, 0);
+        glBindTextureUnit(GFX_TEX_DEPTH, 0);
         ok = gfx_buffer_read(buf, 0, sizeof(float) * n, tmp);
     }
     if (ok) {

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "common/bindings_gi.glsl"
 #include "core/core.h"
 
 bool gi_gpu_make(gi_gpu_t *g, const gi_volume_t *v)
@@ -72,6 +73,6 @@ void gi_set_uniforms(GLuint p, const gi_bind_t *b)
     glUniform3fv(glGetUniformLocation(p, "u_gi_lo"), 1, b->lo);
     glUniform3fv(glGetUniformLocation(p, "u_gi_inv_size"), 1, b->inv_size);
     glUniform3fv(glGetUniformLocation(p, "u_gi_bounce"), 1, b->bounce);
-    glBindTextureUnit(GI_UNIT, b->ao);
-    for (int t = 0; t < 3; t++) glBindTextureUnit(GI_UNIT + 1 + (GLuint)t, b->irr[t]);
+    glBindTextureUnit(GI_TEX_AO, b->ao);
+    for (int t = 0; t < 3; t++) glBindTextureUnit(GI_TEX_IRR0 + (GLuint)t, b->irr[t]);
 }

@@ -1,16 +1,14 @@
 /* gi: the GL half of the global illumination (gi_volume.h): uploads the
  * ambient-occlusion and irradiance volumes as 3-D textures and binds them
- * for the shaders of common/gi.glsl, on texture units GI_UNIT .. GI_UNIT + 3
- * (fixed in the shader: layout(binding)), so a program needs no sampler
- * uniforms. A draw desc carries a gi_bind_t: zero is GI off (the
- * hemispheric ambient of common/lighting.glsl). */
+ * for the shaders of common/gi.glsl, on the texture units of
+ * shaders/common/bindings_gi.glsl (fixed in the shader: layout(binding)),
+ * so a program needs no sampler uniforms. A draw desc carries a gi_bind_t:
+ * zero is GI off (the hemispheric ambient of common/lighting.glsl). */
 #ifndef MEADOW_GI_H
 #define MEADOW_GI_H
 
 #include "gfx/gfx.h"
 #include "gi/gi_volume.h"
-
-#define GI_UNIT 12
 
 /* The volumes on the GPU: ao R16F, irr[3] RGBA16F (the 12 floats of a
  * cell, 4 per texture), all res[0] x res[1] x res[2], linear, clamped. */

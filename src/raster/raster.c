@@ -10,8 +10,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#define RASTER_VIS_BINDING 20   /* raster_frame.glsl */
-#define RASTER_QUEUE_BINDING 21 /* raster_frame.glsl */
+#include "common/bindings_raster.glsl"
+
 #define RASTER_BIG_THREADS 64   /* raster.glsl */
 #define RASTER_PRIM_THREADS 64  /* local size of the per-primitive variants */
 #define QUEUE_HEADER 16         /* large count, overflow, medium count, overflow */
@@ -146,14 +146,14 @@ void raster_begin(raster_t *r, const gfx_target_t *target)
     glUseProgram(p.id);
     set_frame_uniforms(r, p);
     if (ms) glUniform1i(gfx_uniform(p, "u_target_samples"), target->samples);
-    glBindTextureUnit(0, target->depth.id);
-    glBindImageTexture(0, r->opaque_depth.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
+    glBindTextureUnit(RASTER_TEX_DEPTH, target->depth.id);
+    glBindImageTexture(RASTER_IMG_OPAQUE, r->opaque_depth.id, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_VIS, r->vis.id);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
     glDispatchCompute((GLuint)(r->desc.w + 15) / 16, (GLuint)(r->desc.h + 15) / 16, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    glBindTextureUnit(0, 0);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindTextureUnit(RASTER_TEX_DEPTH, 0);
+    glBindImageTexture(RASTER_IMG_OPAQUE, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     gfx_timer_end();
 }
 
@@ -166,8 +166,8 @@ static void write_args(raster_t *r, gfx_buffer_t src, uint32_t index, uint32_t m
     glUniform1ui(gfx_uniform(p, "u_src_index"), index);
     glUniform1ui(gfx_uniform(p, "u_max"), max);
     glUniform1ui(gfx_uniform(p, "u_group"), group);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, src.id);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, r->args.id, (GLintptr)slot * 16, 12);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_ARGS_SRC, src.id);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_ARGS, r->args.id, (GLintptr)slot * 16, 12);
     glDispatchCompute(1, 1, 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -184,8 +184,8 @@ static void use_raster_program(const raster_t *r, gfx_program_t p, int pass, con
     glUniform1ui(gfx_uniform(p, "u_raster_medium_samples"), medium > small ? medium : small);
     glUniform1ui(gfx_uniform(p, "u_raster_queue_capacity"), (GLuint)r->desc.queue_capacity);
     bind(p, user);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_QUEUE_BINDING, r->queue.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_VIS, r->vis.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_QUEUE, r->queue.id);
 }
 
 void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *items, raster_bind_fn bind,
@@ -223,7 +223,7 @@ void raster_end(raster_t *r, const gfx_target_t *target)
     glViewport(0, 0, target->w, target->h);
     glUseProgram(r->composite.id);
     set_frame_uniforms(r, r->composite);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_VIS_BINDING, r->vis.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_VIS, r->vis.id);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_ALWAYS);
