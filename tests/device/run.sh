@@ -344,7 +344,7 @@ world() {
     ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
       --screenshot-every 0 --out $o ) > $o.log 2>&1
     echo "== $s $mode rc=$?"
-    grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(submit|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|character[a-z.]*) " \
+    grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|character[a-z.]*) " \
       $o/summary.txt 2>/dev/null || tail -5 $o.log
     grep -E "real|error|warn" $o.log | head -4
   done
