@@ -1,12 +1,14 @@
 /* bb_gpu_test_util: helpers shared by the billboard GPU tests (Orthmann et
- * al. 2009): an uploaded collider mesh and the CPU twin of one billboard's
- * refined mesh (bb_mesh_init_quad + wind pose). */
+ * al. 2009): an uploaded collider mesh, the CPU twin of one billboard's
+ * refined mesh (bb_mesh_init_quad + wind pose) and the readback of a
+ * field's points and deformed meshes. */
 #ifndef MEADOW_BB_GPU_TEST_UTIL_H
 #define MEADOW_BB_GPU_TEST_UTIL_H
 
 #include "billboard/bb.h"
 #include "collide/collide_shape.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 typedef struct test_mesh_t {
@@ -92,6 +94,42 @@ static inline void test_cpu_mesh(const bb_field_desc_t *d, const bb_point_t *p, 
     bb_point_frame(p, right, up);
     bb_mesh_init_quad(mesh, p->position, right, up, p->size[0], p->size[1], d->subdiv[0], d->subdiv[1]);
     bb_ref_wind_pose(mesh, &d->wind, time, mesh->pos);
+}
+
+/* A field's points and deformed meshes read back (test_readback_*). */
+typedef struct test_readback_t {
+    bb_field_info_t info;
+    bb_point_t *pts;   /* info.billboards */
+    float *meshes;     /* desc.max_deformed slots of info.mesh_vertices x 4 floats */
+} test_readback_t;
+
+/* Room for field f's points and meshes (read nothing yet). */
+static inline test_readback_t test_readback_make(const bb_field_t *f)
+{
+    test_readback_t r = {.info = test_info(f)};
+    r.pts = malloc(sizeof *r.pts * (size_t)r.info.billboards);
+    r.meshes = malloc(sizeof(float) * 4 * (size_t)r.info.mesh_vertices * (size_t)r.info.desc.max_deformed);
+    CHECK(r.pts && r.meshes);
+    return r;
+}
+
+/* Reads f's points and, with meshes, its deformed meshes into r. */
+static inline void test_readback_read(const bb_field_t *f, test_readback_t *r, bool meshes)
+{
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)r->info.billboards, r->pts));
+    if (meshes) CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)r->info.desc.max_deformed, r->meshes));
+}
+
+/* The deformed mesh of pool slot `slot` (mesh_vertices x 4 floats). */
+static inline const float *test_readback_mesh(const test_readback_t *r, uint32_t slot)
+{
+    return &r->meshes[(size_t)slot * (size_t)r->info.mesh_vertices * 4];
+}
+
+static inline void test_readback_free(test_readback_t *r)
+{
+    free(r->pts);
+    free(r->meshes);
 }
 
 static inline float test_ground_at(const void *terrain, float x, float z)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # bench_papers: `meadow bench --papers DIR --quick` on llvmpipe, on a tiny
 # variant (scenes/tiny.json for the ablations, 96x64, 4 frames; the leaves
-# figure on orthmann.json with 1 and 4 balls) writes every table it promises,
+# figure on orthmann.json with 1 and 4 balls; every figure the median of 3
+# sessions) writes every table it promises,
 # complete (every ablation on both paths, every column filled, the papers
 # table with the four papers' rows and ours on both paths), and its measures
 # move: a culling test switched off culls nothing and draws more blades than
@@ -69,6 +70,12 @@ for s in ("### Ablations", "#### tiny", "### Billboard cost against colliding le
 j = json.load(open(f"{d}/papers.json"))
 if not j["renderer"] or len(j["runs"]) != 2 * (len(variants) + 1) + 4:
     bad.append(f"papers.json: renderer {j['renderer']!r}, {len(j['runs'])} runs")
+# Every figure is the median of 3 sessions (issue 33: each configuration
+# runs at least 3 times), its frame spread beside it.
+if j.get("runs_per_figure") != 3 or any(r["frame_ms_spread"] < 0 for r in j["runs"]):
+    bad.append(f"papers.json: runs_per_figure {j.get('runs_per_figure')}")
+if any(float(r["frame_ms_spread"]) < 0 for r in rows + leaves) or "median of 3 runs" not in md:
+    bad.append("ablation/leaves tables without the spread over their 3 runs")
 for b in bad:
     print("FAIL:", b)
 sys.exit(1 if bad else 0)

@@ -9,7 +9,8 @@ set -u
 bin=$1; out=$2
 rm -rf "$out"; mkdir -p "$out"
 fail=0
-"$bin" bench --quick --quiet --scene scenes/tiny.json --out "$out/bench" || { echo "FAIL: bench exit $?"; fail=1; }
+"$bin" bench --quick --quiet --scene scenes/tiny.json --out "$out/bench" 2>"$out/bench.log" \
+  || { echo "FAIL: bench exit $?"; cat "$out/bench.log"; fail=1; }
 for f in bench.csv bench.json; do
   [ -s "$out/bench/$f" ] || { echo "FAIL: missing $f"; fail=1; }
 done
@@ -53,6 +54,44 @@ if len(push) != 2 or not (push["bound_1"] > 2 * push["cover_16"] > 0):
     print(f"FAIL: over-push does not answer the blade proxies: {push}"); bad = 1
 sys.exit(bad)
 EOF
+# Charts whose accuracy once did not answer their knob (issue 33): the blade
+# proxies' cube maps at 16 and 32 texels (an axis-aligned box whose edges
+# snapped to the same texel borders at both), the over-push of proxies
+# inside the box (0 by construction: left out of that chart), the canopy
+# distances on a field that ended before them (the chart runs on
+# scenes/bench/canopy.json). The bench warns of identical rows; none here.
+for g in blade_proxies blade_proxies_overpush hybrid_canopy_distance; do
+  if grep -q "chart $g: identical accuracy" "$out/bench.log"; then
+    echo "FAIL: $(grep "chart $g: identical accuracy" "$out/bench.log")"; fail=1
+  fi
+done
+python3 - "$out/bench" <<'EOF3' || fail=1
+import json, sys
+d = sys.argv[1]
+bad = []
+def labels(chart):
+    return [l.split()[2] for l in open(f"{d}/bench_{chart}.dat") if not l.startswith("#")]
+p, o = labels("blade_proxies"), labels("blade_proxies_overpush")
+inside = ["inscribed_1", "cubemap_16"]  # the 16-texel map snaps every edge of the box inward
+if any(x not in p or x in o for x in inside) or sorted(o + inside) != sorted(p):
+    bad.append(f"over-push chart {o} against the proxies' {p}: {inside} (inside the box) belong to the first only")
+j = json.load(open(f"{d}/bench.json"))
+rows = {c["label"]: c for c in j["configs"]}
+# The tested points' depth: the 16-texel map (edges inward) leaves some
+# inside the box, the 32-texel one (edges outward) fewer.
+a, b = rows.get("cubemap_16", {}).get("depth_p95"), rows.get("cubemap_32", {}).get("depth_p95")
+if a is None or b is None or not (a > b + 1e-4 and b >= 0):
+    bad.append(f"blade cube maps: depth p95 {a} at 16 texels, {b} at 32")
+can = [c for c in j["configs"] if c["group"] == "hybrid_canopy_distance"]
+if len(can) != 2 or any(c["scene"] != "scenes/bench/canopy.json" for c in can) or "canopy_image_error_floor" not in j:
+    got = [(c["label"], c["scene"]) for c in can]
+    bad.append(f"canopy chart not on scenes/bench/canopy.json with its own floor: {got}")
+elif not can[0]["image_error"] > can[1]["image_error"] > 0:
+    bad.append(f"canopy 45 m does not err more than 60 m: {[(c['label'], c['image_error']) for c in can]}")
+for m in bad:
+    print("FAIL:", m)
+sys.exit(1 if bad else 0)
+EOF3
 "$bin" bench --stability --quick --quiet --scene scenes/tiny.json --out "$out/stability" \
   || { echo "FAIL: bench stability exit $?"; fail=1; }
 for f in stability.csv stability.md; do

@@ -26,13 +26,11 @@ static int compare(const bb_field_t *f, const collide_cubemap_t *cube, const flo
                    float radius, float time, double *max_err, double *mean_err, double *deepest, int *cpu_hits,
                    int *below)
 {
-    bb_field_info_t fi = test_info(f);
-    const bb_field_desc_t *d = &fi.desc;
-    int n = fi.billboards, nm = fi.mesh_vertices;
-    bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
-    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)d->max_deformed);
-    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
-    CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)d->max_deformed, meshes));
+    test_readback_t rb = test_readback_make(f);
+    const bb_field_desc_t *d = &rb.info.desc;
+    int n = rb.info.billboards, nm = rb.info.mesh_vertices;
+    const bb_point_t *pts = rb.pts;
+    test_readback_read(f, &rb, true);
     mat4 w2c;
     glm_translate_make(w2c, (vec3){-centre[0], -centre[1], -centre[2]});
     scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
@@ -65,7 +63,7 @@ static int compare(const bb_field_t *f, const collide_cubemap_t *cube, const flo
         const float sweeps[1][3] = {{sweep[0], sweep[1], sweep[2]}};
         cd.sweep = sweeps;
         bb_ref_collide(&mesh, cube, (const mat4 *)&w2c, 1, &cd);
-        const float *g = &meshes[(size_t)p->pad[0] * (size_t)nm * 4];
+        const float *g = test_readback_mesh(&rb, p->pad[0]);
         for (int v = 0; v < nm; v++) {
             double e = 0;
             for (int k = 0; k < 3; k++) e = fmax(e, fabs(g[4 * v + k] - mesh.pos[v][k]));
@@ -81,8 +79,7 @@ static int compare(const bb_field_t *f, const collide_cubemap_t *cube, const flo
         bb_mesh_free(&mesh);
     }
     if (sum_n) *mean_err /= sum_n;
-    free(pts);
-    free(meshes);
+    test_readback_free(&rb);
     return deformed;
 }
 

@@ -19,11 +19,10 @@
 static void check_moving(bb_field_t *f, const terrain_mesh_t *terrain, const test_mesh_t *mesh, float radius,
                          float *time)
 {
-    bb_field_info_t fi = test_info(f);
-    const bb_field_desc_t *d = &fi.desc;
-    int n = fi.billboards, nm = fi.mesh_vertices;
-    bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
-    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)d->max_deformed);
+    test_readback_t rb = test_readback_make(f);
+    const bb_field_desc_t *d = &rb.info.desc;
+    int n = rb.info.billboards, nm = rb.info.mesh_vertices;
+    bb_point_t *pts = rb.pts;
     int N = d->subdiv[0];
     int max_deformed = 0, bad_roots = 0, nonfinite = 0;
     double max_root = 0;
@@ -37,8 +36,7 @@ static void check_moving(bb_field_t *f, const terrain_mesh_t *terrain, const tes
         gfx_timer_frame_begin();
         bb_field_update(f, test_set(&o, 1), *time, dt);
         if (frame % 6 != 5) continue;
-        CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
-        CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)d->max_deformed, meshes));
+        test_readback_read(f, &rb, true);
         int deformed = 0;
         for (int i = 0; i < n; i++) {
             const float *pf = (const float *)&pts[i];
@@ -47,7 +45,7 @@ static void check_moving(bb_field_t *f, const terrain_mesh_t *terrain, const tes
             deformed++;
             bb_mesh_t cpu;
             test_cpu_mesh(d, &pts[i], *time, &cpu);
-            const float *g = &meshes[(size_t)pts[i].pad[0] * (size_t)nm * 4];
+            const float *g = test_readback_mesh(&rb, pts[i].pad[0]);
             for (int v = 0; v < nm; v++) {
                 for (int k = 0; k < 3; k++) nonfinite += !isfinite(g[4 * v + k]);
                 if (v < N)
@@ -69,20 +67,18 @@ static void check_moving(bb_field_t *f, const terrain_mesh_t *terrain, const tes
     CHECK(max_deformed > 20);
     CHECK(bad_roots == 0 && nonfinite == 0);
 
-    free(pts);
-    free(meshes);
+    test_readback_free(&rb);
 }
 
 /* Recovery: no objects any more. Track every deformed billboard until it
  * is released and compare the released mesh with the CPU wind pose. */
 static void check_recovery(bb_field_t *f, float *time)
 {
-    bb_field_info_t fi = test_info(f);
-    const bb_field_desc_t *d = &fi.desc;
-    int n = fi.billboards, nm = fi.mesh_vertices;
-    bb_point_t *pts = malloc(sizeof *pts * (size_t)n);
-    float *meshes = malloc(sizeof(float) * 4 * (size_t)nm * (size_t)d->max_deformed);
-    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
+    test_readback_t rb = test_readback_make(f);
+    const bb_field_desc_t *d = &rb.info.desc;
+    int n = rb.info.billboards, nm = rb.info.mesh_vertices;
+    bb_point_t *pts = rb.pts;
+    test_readback_read(f, &rb, false);
     uint32_t *slot = malloc(sizeof *slot * (size_t)n);
     for (int i = 0; i < n; i++) slot[i] = pts[i].pad[0];
     double max_release = 0, max_before = 0;
@@ -92,13 +88,12 @@ static void check_recovery(bb_field_t *f, float *time)
         *time += dt;
         gfx_timer_frame_begin();
         bb_field_update(f, NULL, *time, dt);
-        CHECK(bb_field_read(f, BB_DATA_POINTS, 0, (size_t)n, pts));
-        CHECK(bb_field_read(f, BB_DATA_MESHES, 0, (size_t)d->max_deformed, meshes));
+        test_readback_read(f, &rb, true);
         for (int i = 0; i < n; i++) {
             if (slot[i] == BB_NO_SLOT) continue;
             bb_mesh_t cpu;
             test_cpu_mesh(d, &pts[i], *time, &cpu);
-            const float *g = &meshes[(size_t)slot[i] * (size_t)nm * 4];
+            const float *g = test_readback_mesh(&rb, slot[i]);
             double e = 0;
             for (int v = 0; v < nm; v++)
                 e = fmax(e, sqrt(glm_vec3_distance2((float *)&g[4 * v], cpu.pos[v])));
@@ -131,8 +126,7 @@ static void check_recovery(bb_field_t *f, float *time)
     CHECK(st.leaves[BB_NODE_COLLIDING] == 0 && st.leaves[BB_NODE_RECOVERING] == 0);
 
     free(slot);
-    free(pts);
-    free(meshes);
+    test_readback_free(&rb);
 }
 
 /* Pool exhaustion through the non-blocking readback: an 8-slot pool. */

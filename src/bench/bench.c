@@ -14,15 +14,16 @@
  *   blade_proxies        sphere sets standing in for a box collider
  *                        (Jahrmann & Wimmer 2017 sec. 5.3) and, beyond both
  *                        papers, the box's depth cube map at 16/32/64 texels
- *                        (penetration depth against the exact box),
+ *                        (depth of the tested points in the exact box; and
+ *                        over-push beyond it),
  *   blade_tessellation (blade mode drawn through the tessellation
  *                        shaders, tess_max 1..10 segments), blade_distance_levels
  *                        (eq. 19-20),
  *   hybrid_switch_distance, hybrid_canopy_distance (both rasterizer paths,
- *   billboard and blade mode beside it),
+ *   billboard and blade mode beside it; on CANOPY_SCENE),
  *   modes (mode x density x render path, hardware
  *   and compute rasterizer at 4 and 1 samples per pixel) (image error).
- * --quick runs two configurations per sweep for CI. The stability suite
+ * --quick runs two to five configurations per sweep for CI. The stability suite
  * (bench_stability.c) runs with --stability (--case NAME: one case), the
  * tile scaling sweeps (bench_scaling.c) with --scaling; --report DIR runs
  * the sweep, both of those and `meadow compare`, and writes
@@ -62,14 +63,30 @@ typedef struct bench_config_t {
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
     bench_proxy_t proxy;
+    const char *scene;                    /* NULL: the sweep's (--scene) */
     bool ball;                            /* the ball (BALL_RADIUS) is the only collider */
     bool no_colliders;                    /* ablation: no collider, no character */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
     app_tuning_t tuning;
 } bench_config_t;
 
-/* The box that blade_proxies runs on the first collider's path. */
-static const float proxy_box[3] = {0.5f, 0.2f, 0.2f};
+/* The box that blade_proxies runs on the first collider's path: 1 x 0.32
+ * x 0.32 m. Colliders are axis aligned, and so are the blades' cube maps
+ * (centred on the box, half size its bounding radius 0.5488 m): the box's
+ * faces come out exact at every resolution and only its edges snap to
+ * texel borders (texels whose centre ray hits the box). The 1 x 0.4 x 0.4 m
+ * box had its edges at 14.96 and 10.78 texels of 16 (29.92 and 21.57 of
+ * 32): the same borders at both, so cubemap_16 and cubemap_32 ran the same
+ * shape. This one's edges lie at 15.29 and 10.33 of 16, 30.58 and 20.66
+ * of 32, 61.15 and 41.33 of 64: each resolution snaps them elsewhere
+ * (under, over, nearly exact). */
+static const float proxy_box[3] = {0.5f, 0.16f, 0.16f};
+
+/* The scene of the hybrid_canopy_distance chart (unless --chart names it
+ * alone: then the --scene, whose lod.json it writes): ground from 10 to
+ * 195 m in view, where the canopy distances 35-90 m each change the
+ * picture (meadow.json's 40 m field ends before the first). */
+#define CANOPY_SCENE "scenes/bench/canopy.json"
 
 /* The ball that billboard_collision runs on that path, its lowest point
  * at half the billboards' height. Not the box: the cube maps are
@@ -131,6 +148,7 @@ typedef struct sweep_run_t {
     const bench_config_t *c;
     int warmup, frames;
     bool depth, overpush, pose; /* what this configuration measures */
+    bool tested;                /* depth: of the blades' tested points alone (bench_metrics_ext_t.tested_max) */
     double *depths;             /* the deepest sample of every measured frame */
     long nd;
     float *eta_prev;            /* over-push: eta of the frame before */
@@ -202,34 +220,56 @@ static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
 }
 
-/* Jahrmann & Wimmer's ablation on the sweep's scene, for its image error:
- * blade mode with every feature, without collision, without culling,
- * without each culling test (costs and culled counts on the papers' own
- * scenes: bench --papers). Returns the new count. */
+/* Jahrmann & Wimmer's ablation (bench_ablations) on the sweep's scene, for
+ * its image error (costs and culled counts on the papers' own scenes:
+ * bench --papers). Returns the new count. */
 static int add_paper_configs(bench_config_t *c, int n, bool quick)
 {
-    static const struct {
-        const char *name;
-        bool no_colliders;
-        unsigned cull;
-    } ablation[] = {{"all", false, 0},
-                    {"no_culling", false, BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE |
-                                              BLADE_CULL_OCCLUSION},
-                    {"no_collision", true, 0},
-                    {"no_orientation_cull", false, BLADE_CULL_ORIENTATION},
-                    {"no_frustum_cull", false, BLADE_CULL_FRUSTUM},
-                    {"no_distance_cull", false, BLADE_CULL_DISTANCE},
-                    {"no_occlusion_cull", false, BLADE_CULL_OCCLUSION}};
-    for (int i = 0; i < (quick ? 2 : (int)(sizeof ablation / sizeof ablation[0])); i++) {
+    for (int i = 0; i < (quick ? 2 : BENCH_ABLATION_COUNT); i++) {
         bench_config_t *x = add(c, &n, "blade_ablation", SCENE_MODE_BLADE);
-        x->no_colliders = ablation[i].no_colliders;
-        x->tuning.cull_disable = ablation[i].cull;
-        snprintf(x->label, sizeof x->label, "%s", ablation[i].name);
+        x->no_colliders = bench_ablations[i].no_collision;
+        x->tuning.cull_disable = bench_ablations[i].cull_disable;
+        snprintf(x->label, sizeof x->label, "%s", bench_ablations[i].name);
     }
     return n;
 }
 
-static int build_configs(bench_config_t *c, bool quick)
+/* The ground canopy's distance (100 km: no canopy) on both rasterizer
+ * paths, after blade mode drawn as far (blade mode to the field's edge,
+ * grass.blade_distance's default: the budget) and before billboard mode,
+ * on canopy_scene (NULL: the sweep's). Returns the new count. */
+static int add_canopy_configs(bench_config_t *c, int n, bool quick, const char *canopy_scene)
+{
+    static const float canopy[] = {45, 60, 35, 90, 100000};
+    int ncan = quick ? 2 : (int)(sizeof canopy / sizeof canopy[0]);
+    for (int r = 0; r < (quick ? 1 : 2); r++) {
+        const char *path = r ? "_compute" : "";
+        if (!quick) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BLADE);
+            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+            x->scene = canopy_scene;
+            snprintf(x->label, sizeof x->label, "blade%s", path);
+        }
+        for (int i = 0; i < ncan; i++) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
+            x->canopy_distance = canopy[i];
+            x->scene = canopy_scene;
+            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+            if (x->canopy_distance >= 100000) snprintf(x->label, sizeof x->label, "no_canopy%s", path);
+            else snprintf(x->label, sizeof x->label, "canopy%gm%s", (double)x->canopy_distance, path);
+        }
+    }
+    for (int r = 0; r < 2 && !quick; r++) {
+        bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BILLBOARD);
+        x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+        x->scene = canopy_scene;
+        snprintf(x->label, sizeof x->label, "billboard%s", r ? "_compute" : "");
+    }
+    return n;
+}
+
+/* canopy_scene: the hybrid_canopy_distance rows' scene (NULL: the sweep's). */
+static int build_configs(bench_config_t *c, bool quick, const char *canopy_scene)
 {
     int n = 0;
     static const int cubes[] = {8, 16, 32}, subdivs[] = {2, 4, 6}, springs[] = {1, 2, 4};
@@ -265,20 +305,23 @@ static int build_configs(bench_config_t *c, bool quick)
                    {PROXY_INSCRIBED, {1, 1, 1}, "inscribed_1"}, {PROXY_COVER, {2, 1, 1}, "cover_2"},
                    {PROXY_COVER, {8, 4, 4}, "cover_128"},   {PROXY_INNER, {4, 2, 2}, "inner_16"},
                    {PROXY_INNER, {8, 4, 4}, "inner_128"}};
-    int np = quick ? 2 : (int)(sizeof proxies / sizeof proxies[0]);
+    /* --quick: the bounding sphere, a cover and the inscribed sphere (left
+     * out of the over-push chart: bench_quick.sh). */
+    int np = quick ? 3 : (int)(sizeof proxies / sizeof proxies[0]);
     for (int i = 0; i < np; i++) {
         bench_config_t *x = add(c, &n, "blade_proxies", SCENE_MODE_BLADE);
         x->proxy = proxies[i].p;
         memcpy(x->grid, proxies[i].g, sizeof x->grid);
         snprintf(x->label, sizeof x->label, "%s", proxies[i].name);
     }
+    /* --quick: 16 and 32 texels, once identical (proxy_box). */
     static const int cube_res[] = {16, 32, 64};
-    for (int i = 0; i < (quick ? 0 : 3); i++) {
+    for (int i = 0; i < (quick ? 2 : 3); i++) {
         bench_config_t *x = add(c, &n, "blade_proxies", SCENE_MODE_BLADE);
         x->proxy = PROXY_CUBE;
         x->cube_resolution = cube_res[i];
         x->tuning.blade_cube_proxies = true;
-        snprintf(x->label, sizeof x->label, "cubemap_%d", cube_res[i]);
+        snprintf(x->label, sizeof x->label, "cubemap_%d", x->cube_resolution);
     }
     n = add_paper_configs(c, n, quick);
     static const int tess[] = {1, 2, 3, 5, 7, 10}, levels[] = {1, 2, 4, 8, 16, 32};
@@ -307,31 +350,7 @@ static int build_configs(bench_config_t *c, bool quick)
         x->switch_distance = sw[i];
         snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
     }
-    /* The ground canopy's distance (100 km: no canopy) on both rasterizer
-     * paths, after blade mode drawn as far (blade mode to the field's edge,
-     * grass.blade_distance's default: the budget) and before billboard mode. */
-    static const float canopy[] = {45, 60, 35, 90, 100000};
-    int ncan = quick ? 2 : (int)(sizeof canopy / sizeof canopy[0]);
-    for (int r = 0; r < (quick ? 1 : 2); r++) {
-        const char *path = r ? "_compute" : "";
-        if (!quick) {
-            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BLADE);
-            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-            snprintf(x->label, sizeof x->label, "blade%s", path);
-        }
-        for (int i = 0; i < ncan; i++) {
-            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
-            x->canopy_distance = canopy[i];
-            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-            if (x->canopy_distance >= 100000) snprintf(x->label, sizeof x->label, "no_canopy%s", path);
-            else snprintf(x->label, sizeof x->label, "canopy%gm%s", (double)x->canopy_distance, path);
-        }
-    }
-    for (int r = 0; r < 2 && !quick; r++) {
-        bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BILLBOARD);
-        x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-        snprintf(x->label, sizeof x->label, "billboard%s", r ? "_compute" : "");
-    }
+    n = add_canopy_configs(c, n, quick, canopy_scene);
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     for (int d = 0; d < (quick ? 1 : 2); d++)
         for (int i = 0; i < 3; i++) {
@@ -381,7 +400,8 @@ static const bench_chart_t charts[] = {
      BB_KNOB_PASSES},
     {"billboard_springs", "billboard_collision", "shape deviation from the finest configuration (m)", Y_SPRING,
      BB_KNOB_PASSES},
-    {"blade_proxies", "blade_proxies", "penetration depth p95 (m, exact box)", Y_PEN_MAX, {"blade.physics"}},
+    {"blade_proxies", "blade_proxies", "tested-point depth p95 (m, tip and midpoint in the exact box)", Y_PEN_MAX,
+     {"blade.physics"}},
     {"blade_proxies_overpush", "blade_proxies", "over-push p95 (m beyond the exact box)", Y_OVERPUSH,
      {"blade.physics"}},
     {"blade_ablation", "blade_ablation", "image error (eval_image vs reference)", Y_IMAGE,
@@ -457,6 +477,21 @@ typedef struct bench_acc_t {
     bench_bb_pose_t pose[SWEEP_RUNS];   /* billboard configurations: the last frame's shape */
 } bench_acc_t;
 
+/* The references of one scene: one per placement seed, its grass-free
+ * view, and its image error's noise floor. */
+typedef struct bench_refs_t {
+    const char *scene;            /* NULL: the sweep's (--scene) */
+    const char *tag;              /* its frames' file name prefix ("" or "canopy_") */
+    core_image_t img[SWEEP_RUNS]; /* the reference drawn with placements[k] */
+    core_image_t bg;              /* the grass-free view (the image error's background) */
+    double floor;        /* eval_image score of a reference against another placement's, mean of SWEEP_RUNS pairs */
+    double floor_spread; /* half the range of those */
+    double floor_ssim;   /* 1 - SSIM of the first pair */
+    bool made;           /* rendered (a configuration runs on this scene) */
+} bench_refs_t;
+/* The sweep's scene (0) and the canopy chart's (1: CANOPY_SCENE). */
+#define REF_SETS 2
+
 typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
@@ -465,14 +500,39 @@ typedef struct bench_run_t {
     double *ssim_err;  /* 1 - SSIM against the reference (first run) */
     eval_image_error_t *terms; /* the image error's terms (first run) */
     bench_acc_t *acc;
-    double floor;      /* eval_image score of a reference against another placement's, mean of SWEEP_RUNS pairs */
-    double floor_spread; /* half the range of those */
-    double floor_ssim; /* 1 - SSIM of the first pair */
+    bench_refs_t refs[REF_SETS];
     char renderer[256];
     int frames;
 } bench_run_t;
 
 static double y_of(const bench_chart_t *ch, const bench_run_t *b, int i) { return b->acc[i].y[ch->y]; }
+
+/* The references configuration c is measured against. */
+static const bench_refs_t *refs_of(const bench_run_t *b, const bench_config_t *c) { return &b->refs[c->scene ? 1 : 0]; }
+
+/* Proxies inside the exact box: over-push 0 by construction. Spheres
+ * inscribed in it or in its cells; a cube map whose every edge snaps
+ * inward (proxy_box: the texels whose centre ray hits the box, at
+ * (h / R + 1) / 2 x N texels for an edge at h, R the bounding radius). */
+static bool proxy_inside(const bench_config_t *c)
+{
+    if (c->proxy == PROXY_INSCRIBED || c->proxy == PROXY_INNER) return true;
+    if (c->proxy != PROXY_CUBE) return false;
+    float r = sqrtf(proxy_box[0] * proxy_box[0] + proxy_box[1] * proxy_box[1] + proxy_box[2] * proxy_box[2]);
+    bool inward = true;
+    for (int k = 0; k < 3; k++) {
+        float edge = 0.5f * (proxy_box[k] / r + 1.0f) * (float)c->cube_resolution;
+        inward = inward && edge - floorf(edge) < 0.5f;
+    }
+    return inward;
+}
+
+/* Whether configuration c is a point of chart ch: the over-push chart
+ * leaves out the proxies inside the shape (their penetration is charted). */
+static bool in_chart(const bench_chart_t *ch, const bench_config_t *c)
+{
+    return strcmp(c->group, ch->group) == 0 && !(ch->y == Y_OVERPUSH && proxy_inside(c));
+}
 
 /* Half the range of v[0..n) over its non-negative entries (0 when fewer than two). */
 static double half_range(const double *v, int n)
@@ -515,7 +575,7 @@ static int chart_points(const bench_run_t *b, const bench_chart_t *ch, int *idx,
 {
     int k = 0;
     for (int i = 0; i < b->n; i++)
-        if (strcmp(b->cfg[i].group, ch->group) == 0) {
+        if (in_chart(ch, &b->cfg[i])) {
             idx[k] = i;
             xs[k] = x_of(ch, b, i, &exs[k]);
             ys[k] = y_of(ch, b, i);
@@ -546,9 +606,9 @@ static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *o
     size_t len = 0;
     out[0] = 0;
     for (int i = 0; i < b->n; i++) {
-        if (strcmp(b->cfg[i].group, ch->group) != 0 || y_of(ch, b, i) < 0.0) continue;
+        if (!in_chart(ch, &b->cfg[i]) || y_of(ch, b, i) < 0.0) continue;
         for (int j = i + 1; j < b->n; j++) {
-            if (strcmp(b->cfg[j].group, ch->group) != 0 || fabs(y_of(ch, b, i) - y_of(ch, b, j)) > 1e-12) continue;
+            if (!in_chart(ch, &b->cfg[j]) || fabs(y_of(ch, b, i) - y_of(ch, b, j)) > 1e-12) continue;
             pairs++;
             if (len + 1 < size)
                 len += (size_t)snprintf(out + len, size - len, "%s%s = %s", len ? ", " : "", b->cfg[i].label,
@@ -575,7 +635,11 @@ static bool lod_row(const bench_run_t *b, int i, int path_k)
 
 static bool write_lod(const char *out, const app_options_t *o, const bench_run_t *b)
 {
-    const char *scene_path = o->scene ? o->scene : "scenes/meadow.json";
+    int first = 0;
+    while (first < b->n && strcmp(b->cfg[first].group, "hybrid_canopy_distance") != 0) first++;
+    if (first == b->n) return true;
+    const bench_refs_t *R = refs_of(b, &b->cfg[first]);
+    const char *scene_path = R->scene ? R->scene : o->scene ? o->scene : "scenes/meadow.json";
     scene_desc_t s;
     char err[1024], path[1200];
     if (!scene_load(&s, scene_path, err, sizeof err)) return false;
@@ -596,7 +660,7 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
             if (least < 0 || b->err[i] < b->err[least]) least = i;
         }
         if (blade < 0 || least < 0) continue;
-        double budget = b->err[blade] + b->floor;
+        double budget = b->err[blade] + R->floor;
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget) continue;
             if (best < 0 || b->met[i].frame_ms < b->met[best].frame_ms) best = i;
@@ -638,8 +702,9 @@ static void sweep_frame(app_world_t *w, int f, float t, void *user)
     int phase = f % MEASURE_EVERY;
     if (r->depth && phase == 0 && r->nd < r->frames) {
         bench_metrics_t m;
-        bench_metrics_measure(w, &m, NULL);
-        if (m.penetration_max >= 0.0) r->depths[r->nd++] = m.penetration_max;
+        bench_metrics_ext_t x;
+        bench_metrics_measure(w, &m, &x);
+        if (m.penetration_max >= 0.0) r->depths[r->nd++] = r->tested ? x.tested_max : m.penetration_max;
     }
     blade_gpu_t *g = app_world_blades(w);
     if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
@@ -666,58 +731,62 @@ static double p95_copy(const double *v, long n)
     return q;
 }
 
-/* The references of the runs (one per placement seed), the grass-free
- * background and the noise floor: each reference against the next's
+/* The references of R's scene (one per placement seed), its grass-free
+ * background and its noise floor: each reference against the next's
  * placement, mean and half range over the SWEEP_RUNS pairs. */
-static int make_references(const app_options_t *oh, int frames, const char *out, core_image_t *refs, core_image_t *bg,
-                           bench_run_t *b)
+static int make_references(const app_options_t *oh, int frames, const char *out, bench_refs_t *R)
 {
     char path[1200];
-    bench_session_desc_t rd = {.opts = oh, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+    app_options_t os = *oh;
+    if (R->scene) os.scene = R->scene;
+    bench_session_desc_t rd = {.opts = &os, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
-    core_log_info("bench: %d reference renderings (%d frames, one per placement seed) and the grass-free view",
-                  SWEEP_RUNS, frames);
+    core_log_info("bench: %d reference renderings of %s (%d frames, one per placement seed) and the grass-free view",
+                  SWEEP_RUNS, os.scene ? os.scene : "the default scene", frames);
     int rc = 0;
     for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
         bench_session_desc_t d = rd;
         d.tuning.placement_seed = placements[k];
-        rc = bench_session_run(&d, &refs[k], NULL);
+        rc = bench_session_run(&d, &R->img[k], NULL);
     }
     bench_session_desc_t bd = rd;
     bd.tweak = no_grass;
-    if (rc == 0) rc = bench_session_run(&bd, bg, NULL);
+    if (rc == 0) rc = bench_session_run(&bd, &R->bg, NULL);
     if (rc) return rc;
     snprintf(path, sizeof path, "%s/frames", out);
     if (!core_fs_mkdirs(path)) core_log_warn("bench: cannot create %s", path);
-    const core_image_t *fixed[3] = {&refs[0], bg, &refs[1]};
+    const core_image_t *fixed[3] = {&R->img[0], &R->bg, &R->img[1]};
     static const char *names[3] = {"reference", "background", "floor"};
     for (int i = 0; i < 3; i++) {
-        snprintf(path, sizeof path, "%s/frames/%s.png", out, names[i]);
+        snprintf(path, sizeof path, "%s/frames/%s%s.png", out, R->tag, names[i]);
         if (!core_image_write_png(fixed[i], path)) return 1; /* logged with the path and why */
     }
-    const eval_image_desc_t ed = {.background = bg};
+    const eval_image_desc_t ed = {.background = &R->bg};
     double f[SWEEP_RUNS];
-    b->floor = 0.0;
+    R->floor = 0.0;
     for (int k = 0; k < SWEEP_RUNS; k++) {
         eval_image_error_t e = {0};
-        f[k] = eval_image_error(&refs[(k + 1) % SWEEP_RUNS], &refs[k], &ed, &e) ? e.score : 0.0;
-        b->floor += f[k] / SWEEP_RUNS;
+        f[k] = eval_image_error(&R->img[(k + 1) % SWEEP_RUNS], &R->img[k], &ed, &e) ? e.score : 0.0;
+        R->floor += f[k] / SWEEP_RUNS;
     }
-    b->floor_spread = half_range(f, SWEEP_RUNS);
-    b->floor_ssim = 1.0 - eval_image_ssim(&refs[1], &refs[0]);
-    core_log_info("bench: image error noise floor %.4f +- %.4f over %d placement pairs (1 - SSIM %.4f)", b->floor,
-                  b->floor_spread, SWEEP_RUNS, b->floor_ssim);
+    R->floor_spread = half_range(f, SWEEP_RUNS);
+    R->floor_ssim = 1.0 - eval_image_ssim(&R->img[1], &R->img[0]);
+    core_log_info("bench: image error noise floor %.4f +- %.4f over %d placement pairs (1 - SSIM %.4f)", R->floor,
+                  R->floor_spread, SWEEP_RUNS, R->floor_ssim);
+    R->made = true;
     return 0;
 }
 
 /* Configuration i's SWEEP_RUNS runs: timings from the fastest, accuracy
  * of the first run in b->met, every chart measure per run and pooled. */
-static int run_config(const app_options_t *oh, bench_run_t *b, int i, const core_image_t *refs, const core_image_t *bg,
-                      const char *out)
+static int run_config(const app_options_t *oh, bench_run_t *b, int i, const char *out)
 {
     bench_config_t *c = &b->cfg[i];
     bench_acc_t *acc = &b->acc[i];
+    const bench_refs_t *R = refs_of(b, c);
+    const core_image_t *refs = R->img, *bg = &R->bg;
     app_options_t oc = *oh;
+    if (c->scene) oc.scene = c->scene;
     if (c->blade_render) oc.blade_render = c->blade_render;
     if (c->raster) oc.raster = c->raster;
     if (c->raster_samples) oc.raster_samples = c->raster_samples;
@@ -725,8 +794,9 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const core
     bool pose = c->mode == SCENE_MODE_BILLBOARD && c->ball;
     long cap = (long)b->frames * SWEEP_RUNS;
     double *depths = depth ? malloc(sizeof *depths * (size_t)cap) : NULL;
+    bool proxies = strcmp(c->group, "blade_proxies") == 0;
     sweep_run_t r = {.c = c, .frames = b->frames, .warmup = b->frames / 4, .depth = depths != NULL,
-                     .overpush = strcmp(c->group, "blade_proxies") == 0, .pose = pose};
+                     .tested = proxies, .overpush = proxies, .pose = pose};
     const eval_image_desc_t ed = {.background = bg};
     double err_sum = 0.0;
     int rc = 0;
@@ -827,8 +897,15 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
     core_buf_printf(&json,
                     "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"image_error_floor\": %.6f,\n"
                     "  \"image_error_floor_spread\": %.6f,\n  \"runs\": %d,\n"
-                    "  \"image_ssim_error_floor\": %.6f,\n  \"configs\": [\n",
-                    b->renderer, b->frames, b->floor, b->floor_spread, SWEEP_RUNS, b->floor_ssim);
+                    "  \"image_ssim_error_floor\": %.6f,\n",
+                    b->renderer, b->frames, b->refs[0].floor, b->refs[0].floor_spread, SWEEP_RUNS,
+                    b->refs[0].floor_ssim);
+    const bench_refs_t *cr = &b->refs[1];
+    if (cr->made)
+        core_buf_printf(&json, "  \"canopy_scene\": \"%s\",\n  \"canopy_image_error_floor\": %.6f,\n"
+                               "  \"canopy_image_error_floor_spread\": %.6f,\n",
+                        cr->scene, cr->floor, cr->floor_spread);
+    core_buf_printf(&json, "  \"configs\": [\n");
     for (int i = 0; i < n; i++) {
         const bench_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
@@ -839,15 +916,17 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
                         a->y[Y_PEN_MAX], a->y[Y_SPRING], a->y[Y_OVERPUSH], espread);
         core_buf_printf(&json,
-                        "    { \"group\": \"%s\", \"label\": \"%s\", \"mode\": \"%s\", \"gpu_ms\": %.4f, "
+                        "    { \"group\": \"%s\", \"label\": \"%s\", \"scene\": \"%s\", \"mode\": \"%s\", "
+                        "\"gpu_ms\": %.4f, "
                         "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
                         "\"image_terms\": {\"colour\": %.4f, \"coverage\": %.4f, \"structure\": %.4f}, "
                         "\"penetration_fraction\": %.6f, "
                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
                         "\"depth_p95\": %.6f, \"shape_deviation\": %.6f, \"overpush_p95\": %.6f, "
                         "\"image_error_spread\": %.6f, \"passes\": {",
-                        c->group, c->label, scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i],
-                        b->ssim_err[i], b->terms[i].colour, b->terms[i].coverage, b->terms[i].structure,
+                        c->group, c->label, c->scene ? c->scene : o->scene ? o->scene : "scenes/meadow.json",
+                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], b->ssim_err[i],
+                        b->terms[i].colour, b->terms[i].coverage, b->terms[i].structure,
                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
                         a->y[Y_PEN_MAX], a->y[Y_SPRING], a->y[Y_OVERPUSH], espread);
         for (int p = 0; p < m->pass_count; p++) {
@@ -888,7 +967,7 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
         snprintf(path, sizeof path, "%s/bench_%s.dat", out, ch->name);
         if (!core_buf_write(&dat, path)) rc = 1;
         core_buf_free(&dat);
-        write_chart(out, ch, ch->y == Y_IMAGE ? b->floor : -1.0);
+        write_chart(out, ch, ch->y == Y_IMAGE ? refs_of(b, &b->cfg[idx[0]])->floor : -1.0);
     }
     if (rc == 0) core_log_info("bench: wrote %s/bench.csv, bench.json and charts (%d configurations)", out, n);
     return rc;
@@ -896,7 +975,6 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
 
 static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
 {
-    char path[1200];
     b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
     b->met = calloc(MAX_CONFIGS, sizeof *b->met);
     b->err = calloc(MAX_CONFIGS, sizeof(double));
@@ -904,7 +982,13 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     b->terms = calloc(MAX_CONFIGS, sizeof *b->terms);
     b->acc = calloc(MAX_CONFIGS, sizeof *b->acc);
     if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms || !b->acc) return 1;
-    b->n = build_configs(b->cfg, quick);
+    /* The canopy chart runs on its own scene unless --chart names it alone
+     * (then on --scene: the lod.json of that scene) or --scene is that one. */
+    bool canopy_alone = o->chart && strcmp(o->chart, "hybrid_canopy_distance") == 0;
+    bool canopy_own = !canopy_alone && !(o->scene && strcmp(o->scene, CANOPY_SCENE) == 0);
+    b->n = build_configs(b->cfg, quick, canopy_own ? CANOPY_SCENE : NULL);
+    b->refs[0].tag = "";
+    b->refs[1] = (bench_refs_t){.scene = CANOPY_SCENE, .tag = "canopy_"};
     /* Every row names its rasterizer path: hw unless the row or --raster
      * says otherwise (the scene default, auto, would pick one by timing). */
     app_options_t oh = *o;
@@ -912,8 +996,12 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     if (o->chart && filter_chart(o, b)) return 2;
     int n = b->n;
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
-    core_image_t refs[SWEEP_RUNS] = {0}, bg = {0};
-    int rc = make_references(&oh, b->frames, out, refs, &bg, b);
+    int rc = 0;
+    for (int r = 0; r < REF_SETS && rc == 0; r++) {
+        bool used = false;
+        for (int i = 0; i < n; i++) used = used || refs_of(b, &b->cfg[i]) == &b->refs[r];
+        if (used) rc = make_references(&oh, b->frames, out, &b->refs[r]);
+    }
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
         app_signal_reclaim(); /* llvmpipe's LLVM takes SIGINT when it first compiles */
@@ -922,17 +1010,18 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
             b->n = n = i;
             break;
         }
-        rc = run_config(&oh, b, i, refs, &bg, out);
+        rc = run_config(&oh, b, i, out);
         double el = plat_time() - t0;
         fprintf(stderr, "\rbench: %d/%d %-22s %-22s %8.3f ms  image %.4f  depth p95 %.4f m  (eta %.0f s)   ", i + 1, n,
                 b->cfg[i].group, b->cfg[i].label, b->met[i].frame_ms, b->err[i], b->acc[i].y[Y_PEN_MAX],
                 el / (i + 1) * (n - i - 1));
     }
     fputc('\n', stderr);
-    for (int k = 0; k < SWEEP_RUNS; k++) core_image_free(&refs[k]);
-    core_image_free(&bg);
+    for (int r = 0; r < REF_SETS; r++) {
+        for (int k = 0; k < SWEEP_RUNS; k++) core_image_free(&b->refs[r].img[k]);
+        core_image_free(&b->refs[r].bg);
+    }
     if (rc) return rc;
-    (void)path;
     shape_deviations(b);
     snprintf(b->renderer, sizeof b->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     return write_sweep(o, out, b);
@@ -970,6 +1059,32 @@ static void cell(char out[32], double v, int digits)
 {
     if (v < 0.0) snprintf(out, 32, "n/a");
     else snprintf(out, 32, "%.*f", digits, v);
+}
+
+/* What a chart's table leaves unsaid: the configurations it leaves out,
+ * the scene it runs on when not the sweep's, identical accuracy. */
+static void chart_notes(const bench_run_t *b, const bench_chart_t *ch, core_buf_t *r)
+{
+    core_buf_t out = {0};
+    const bench_refs_t *R = NULL;
+    for (int i = 0; i < b->n; i++) {
+        const bench_config_t *c = &b->cfg[i];
+        if (strcmp(c->group, ch->group) != 0) continue;
+        if (!R) R = refs_of(b, c);
+        if (!in_chart(ch, c)) core_buf_printf(&out, "%s%s", out.len ? ", " : "", c->label);
+    }
+    if (out.len)
+        core_buf_printf(r, "\nLeft out: %s (inside the box: spheres inscribed in it or in its cells, cube maps whose "
+                           "every edge snaps inward; over-push 0 by construction; their depth is in "
+                           "blade_proxies).\n", out.data);
+    if (R && R->scene)
+        core_buf_printf(r, "\nOn `%s` (ground from 10 to 195 m in view; meadow.json's 40 m field ends before the "
+                           "nearest canopy distance), against that scene's own references: noise floor %.4f +- %.4f "
+                           "(1 - SSIM %.4f).\n", R->scene, R->floor, R->floor_spread, R->floor_ssim);
+    char same[1024];
+    if (identical_rows(b, ch, same, sizeof same))
+        core_buf_printf(r, "\nIdentical accuracy (the measure does not answer the knob between these): %s.\n", same);
+    core_buf_free(&out);
 }
 
 /* RESULTS.md: every chart with its numbers, the stability table, the
@@ -1015,7 +1130,7 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         "first pair: %.4f). A configuration leaves a front only for one that is no worse within the "
                         "two's spreads and better beyond them in x or y (eval_pareto_noise). n/a: the measure does not "
                         "apply to that mode.\n\n",
-                    b->floor, b->floor_spread, b->floor_ssim);
+                    b->refs[0].floor, b->refs[0].floor_spread, b->refs[0].floor_ssim);
     for (int ci = 0; ci < CHART_COUNT; ci++) {
         const bench_chart_t *ch = &charts[ci];
         snprintf(path, sizeof path, "bench_%s", ch->name);
@@ -1042,20 +1157,24 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
             core_buf_printf(&r, "| %s | %.4f +- %.4f | %.3f | %s +- %.5f | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
                             xs[j], exs[j], m->frame_ms, v[0], eys[j], v[1], v[2], v[3], v[4], front_name(front[j]));
         }
-        char same[1024];
-        if (identical_rows(b, ch, same, sizeof same))
-            core_buf_printf(&r, "\nIdentical accuracy (the measure does not answer the knob between these): %s.\n",
-                            same);
+        chart_notes(b, ch, &r);
         core_buf_printf(&r, "\n");
     }
-    core_buf_printf(&r, "blade_proxies runs a 1 x 0.4 x 0.4 m box, billboard_collision a ball of radius 0.3 m "
+    core_buf_printf(&r, "blade_proxies runs a 1 x 0.32 x 0.32 m box (axis aligned, as every collider: its faces "
+                        "are exact in the axis-aligned cube maps at any resolution and only its edges snap to texel "
+                        "borders; they lie at other fractions of a texel at 16, 32 and 64 texels, inward at 16 and "
+                        "64, outward at 32), billboard_collision a ball of radius 0.3 m "
                         "whose lowest point stays 0.05 m above the ground (both on the scene's first collider's "
                         "path, or a path across the view, with the scene's characters removed); blade_proxies "
                         "compares sphere sets with the box's depth cube map (cubemap_N, N^2 texels per face, "
                         "rasterised on the CPU), billboard_collision the billboards' cube map resolution (cubeN), "
-                        "mesh (subN) and spring iterations (kN). Billboard penetration is sampled at the mesh "
-                        "vertices, inside its edges and at its cell centres, for the collider only when no root of "
-                        "the columns a sample lies between is inside it. billboard_springs charts the shape "
+                        "mesh (subN) and spring iterations (kN). blade_proxies' depth is that of the points the "
+                        "blades' collision tests (tip v2 and midpoint m, Jahrmann & Wimmer 2017 sec. 5.3) in the "
+                        "exact box, the deepest per frame: the proxy's own error; the whole curve (pen. fraction) "
+                        "also crosses the box between those points, alike for every proxy that fits the box. "
+                        "Billboard penetration is sampled at the mesh vertices, inside its edges and at its cell "
+                        "centres, for the collider only when no root of the columns a sample lies between is "
+                        "inside it. billboard_springs charts the shape "
                         "deviation of the same runs from the billboards' reference (billboard_reference: the finest "
                         "cube map, the 6 x 6 mesh, 8 spring sweeps; not charted); blade_proxies_overpush the distance "
                         "from the exact box of the blades each step pushes (95th percentile).\n\n");

@@ -19,6 +19,8 @@ typedef struct bench_metrics_ext_t {
     long nonfinite;      /* blade or billboard values that are NaN or infinite */
     double below_ground; /* fraction of blade tips more than 1 cm under the terrain */
     int deformed;        /* billboards with a deformed mesh */
+    double tested_max;   /* deepest of the points the blades' collision tests (tip v2 and midpoint m,
+                            Jahrmann & Wimmer 2017 sec. 5.3) inside an exact collider, m */
 } bench_metrics_ext_t;
 
 /* Accuracy metrics of the world's current state into m (reads GPU buffers
@@ -158,6 +160,20 @@ typedef struct bench_scaling_t {
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
 int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md);
+
+/* Jahrmann & Wimmer 2017's ablation (one table, bench_papers.c): blade
+ * mode with every feature, without collision (no colliders and no
+ * characters), without culling (every BLADE_CULL_* test skipped,
+ * app_tuning_t.cull_disable), without each test alone. Run on the papers'
+ * scenes for costs and culled counts (bench --papers) and on the sweep's
+ * scene for image error (the blade_ablation chart). */
+typedef struct bench_ablation_t {
+    const char *name;      /* "all", "collision_off", "culling_off", "<test>_off" */
+    bool no_collision;
+    unsigned cull_disable; /* BLADE_CULL_* bits */
+} bench_ablation_t;
+#define BENCH_ABLATION_COUNT 7
+extern const bench_ablation_t bench_ablations[BENCH_ABLATION_COUNT];
 
 /* `bench --papers DIR` (bench_papers.c): blade-mode ablations of the papers'
  * scenes (or --scene alone, unless md is given: --report's --scene is the

@@ -179,6 +179,13 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
             bezier(&b[i], (float)k / SAMPLES_PER_BLADE, p);
             sample(acc, ex, n, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p);
         }
+        for (int k = 0; k < 2; k++) {
+            float p[3];
+            bool near;
+            bezier(&b[i], k ? 1.0f : 0.5f, p);
+            double d = depth_at(ex, n, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p, &near);
+            if (d > x->tested_max) x->tested_max = d;
+        }
     }
     if (real) {
         m->blade_length_error = len_sum / (double)real;

@@ -22,9 +22,12 @@
  * Writes DIR/papers.json, ablation.csv, leaves.csv, papers_leaves.dat, its
  * gnuplot chart (papers_leaves.png/.svg) and papers.md, the RESULTS.md
  * section (bench --report with --papers). Timings: the median of each pass
- * over the frames after warm-up (frames/4), as bench --perf. */
+ * over the frames after warm-up (frames/4), as bench --perf; every figure
+ * is the median over PAPERS_RUNS (3) sessions. */
 #include "bench/bench_local.h"
 
+#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -56,14 +59,8 @@ static const paper_fact_t paper_facts[] = {
 };
 #define PAPER_COUNT ((int)(sizeof paper_facts / sizeof paper_facts[0]))
 
-typedef struct ablation_t {
-    const char *name;
-    bool no_collision;
-    unsigned cull_disable;
-} ablation_t;
-
 #define CULL_ALL (BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE | BLADE_CULL_OCCLUSION)
-static const ablation_t ablations[] = {
+const bench_ablation_t bench_ablations[BENCH_ABLATION_COUNT] = {
     {"all", false, 0},
     {"collision_off", true, 0},
     {"culling_off", false, CULL_ALL},
@@ -72,7 +69,6 @@ static const ablation_t ablations[] = {
     {"distance_off", false, BLADE_CULL_DISTANCE},
     {"occlusion_off", false, BLADE_CULL_OCCLUSION},
 };
-#define ABLATION_COUNT ((int)(sizeof ablations / sizeof ablations[0]))
 
 #define MAX_SCENES PAPER_COUNT
 #define MAX_LEAF_RUNS 5
@@ -94,9 +90,20 @@ typedef struct papers_run_t {
     unsigned culled[4];
     long patch_culled; /* blades of patches culled whole (blade_gpu stats; no BLADE_CULL test) */
     double leaves, recovering; /* colliding / recovering leaves, mean over the timed frames */
+    double frame_spread; /* half the range of frame_ms over the PAPERS_RUNS runs */
 } papers_run_t;
 
-#define MAX_RUNS (MAX_SCENES * (ABLATION_COUNT + 1) * 2 + MAX_LEAF_RUNS * 2)
+/* Sessions behind every figure: the timings (and leaves) are their
+ * medians, the counters the first's (the same in every run: fixed seeds). */
+#define PAPERS_RUNS 3
+/* The fields a figure takes as the median over its runs. */
+static const size_t papers_timed[] = {
+    offsetof(papers_run_t, frame_ms),    offsetof(papers_run_t, physics_ms),  offsetof(papers_run_t, cull_ms),
+    offsetof(papers_run_t, draw_ms),     offsetof(papers_run_t, cubemaps_ms), offsetof(papers_run_t, collide_ms),
+    offsetof(papers_run_t, recover_ms),  offsetof(papers_run_t, render_ms),   offsetof(papers_run_t, leaves),
+    offsetof(papers_run_t, recovering)};
+
+#define MAX_RUNS (MAX_SCENES * (BENCH_ABLATION_COUNT + 1) * 2 + MAX_LEAF_RUNS * 2)
 typedef struct papers_t {
     char renderer[256];
     int frames, scene_count, run_count;
@@ -113,7 +120,7 @@ typedef struct papers_probe_t {
     papers_run_t *run;
     int warmup, last, samples;
     int colliders_wanted; /* leaves runs: balls spread over the field; 0 = the scene's */
-    const ablation_t *ablation;
+    const bench_ablation_t *ablation;
 } papers_probe_t;
 
 /* Leaves runs: n balls like the scene's first, each crossing the field
@@ -250,44 +257,70 @@ static const char *plan_run(const app_options_t *o, const papers_t *P, int s, in
     r->scene = s;
     r->variant = v;
     r->mode = v < 0 ? P->desc[s].mode : SCENE_MODE_BLADE;
-    probe->ablation = v < 0 ? NULL : &ablations[v];
+    probe->ablation = v < 0 ? NULL : &bench_ablations[v];
     return P->scene[s];
 }
 
-/* Every session of the set, in order: per scene its own mode when that is
+/* Figure r (scene s, variant v, path k; plan_run) from PAPERS_RUNS
+ * sessions: the first's counters, the median of each timed field, the
+ * frame's spread. Returns 0 or the failed session's code. */
+static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v, int k, papers_run_t *r)
+{
+    papers_run_t runs[PAPERS_RUNS];
+    for (int n = 0; n < PAPERS_RUNS; n++) {
+        papers_probe_t probe;
+        const char *file = plan_run(o, P, s, v, k, &runs[n], &probe);
+        int rc = papers_session(o, file, &runs[n], P->frames, &probe);
+        if (rc) {
+            core_log_error("papers: %s failed", file);
+            return rc;
+        }
+    }
+    *r = runs[0];
+    for (size_t f = 0; f < sizeof papers_timed / sizeof papers_timed[0]; f++) {
+        double v3[PAPERS_RUNS];
+        for (int n = 0; n < PAPERS_RUNS; n++) v3[n] = *(const double *)((const char *)&runs[n] + papers_timed[f]);
+        *(double *)((char *)r + papers_timed[f]) = bench_percentile(v3, PAPERS_RUNS, 0.5);
+    }
+    double lo = runs[0].frame_ms, hi = lo;
+    for (int n = 1; n < PAPERS_RUNS; n++) {
+        lo = fmin(lo, runs[n].frame_ms);
+        hi = fmax(hi, runs[n].frame_ms);
+        r->fell_back = r->fell_back || runs[n].fell_back;
+    }
+    r->frame_spread = 0.5 * (hi - lo);
+    return 0;
+}
+
+/* Every figure of the set, in order: per scene its own mode when that is
  * not blade, then the ablations; then the leaves. Interrupted (Ctrl-C):
- * returns 0 with the runs made so far. */
+ * returns 0 with the figures made so far. */
 static int papers_measure(const app_options_t *o, papers_t *P)
 {
     int leaf_n = o->quick ? 2 : MAX_LEAF_RUNS;
     P->planned = 2 * leaf_n;
     for (int s = 0; s < P->scene_count; s++)
-        P->planned += 2 * (ABLATION_COUNT + (P->desc[s].mode != SCENE_MODE_BLADE));
+        P->planned += 2 * (BENCH_ABLATION_COUNT + (P->desc[s].mode != SCENE_MODE_BLADE));
     double t0 = plat_time();
     for (int s = 0; s <= P->scene_count; s++) {
         bool leaves = s == P->scene_count;
         int v0 = !leaves && P->desc[s].mode != SCENE_MODE_BLADE ? -1 : 0;
-        for (int v = v0; v < (leaves ? leaf_n : ABLATION_COUNT); v++)
+        for (int v = v0; v < (leaves ? leaf_n : BENCH_ABLATION_COUNT); v++)
             for (int k = 0; k < 2; k++) {
                 app_signal_reclaim();
                 if (app_interrupted()) {
-                    core_log_warn("papers: interrupted after %d of %d runs; writing those", P->run_count,
+                    core_log_warn("papers: interrupted after %d of %d figures; writing those", P->run_count,
                                   P->planned);
                     return 0;
                 }
                 papers_run_t *r = &P->runs[P->run_count];
-                papers_probe_t probe;
-                const char *file = plan_run(o, P, s, v, k, r, &probe);
-                int rc = papers_session(o, file, r, P->frames, &probe);
-                if (rc) {
-                    core_log_error("papers: %s failed", file);
-                    return rc;
-                }
+                int rc = papers_figure(o, P, s, v, k, r);
+                if (rc) return rc;
                 P->run_count++;
-                fprintf(stderr, "papers: %2d/%d %-12s %-16s %-7s frame %8.3f ms  (%.0f s)\n", P->run_count,
+                fprintf(stderr, "papers: %2d/%d %-12s %-16s %-7s frame %8.3f +- %.3f ms  (%.0f s)\n", P->run_count,
                         P->planned, leaves ? "orthmann" : P->name[s],
-                        leaves ? "leaves" : v < 0 ? scene_mode_name(r->mode) : ablations[v].name,
-                        r->compute ? "compute" : "hw", r->frame_ms, plat_time() - t0);
+                        leaves ? "leaves" : v < 0 ? scene_mode_name(r->mode) : bench_ablations[v].name,
+                        r->compute ? "compute" : "hw", r->frame_ms, r->frame_spread, plat_time() - t0);
             }
     }
     return 0;
@@ -302,18 +335,20 @@ static const char *path_name(const papers_run_t *r)
 
 static const char *variant_name(const papers_run_t *r)
 {
-    return r->variant >= 0 ? ablations[r->variant].name : r->variant == -1 ? "own_mode" : "leaves";
+    return r->variant >= 0 ? bench_ablations[r->variant].name : r->variant == -1 ? "own_mode" : "leaves";
 }
 
 static bool write_json(const papers_t *P, const char *dir)
 {
     core_buf_t b = {0};
-    core_buf_printf(&b, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"runs\": [\n", P->renderer, P->frames);
+    core_buf_printf(&b, "{\n  \"renderer\": \"%s\",\n  \"frames\": %d,\n  \"runs_per_figure\": %d,\n  \"runs\": [\n",
+                    P->renderer, P->frames, PAPERS_RUNS);
     for (int i = 0; i < P->run_count; i++) {
         const papers_run_t *r = &P->runs[i];
         core_buf_printf(&b,
                         "    {\"scene\": \"%s\", \"variant\": \"%s\", \"mode\": \"%s\", \"raster\": \"%s\", "
-                        "\"fell_back\": %s, \"colliders\": %d, \"frame_ms\": %.4f, \"physics_ms\": %.4f, "
+                        "\"fell_back\": %s, \"colliders\": %d, \"frame_ms\": %.4f, \"frame_ms_spread\": %.4f, "
+                        "\"physics_ms\": %.4f, "
                         "\"cull_ms\": %.4f, \"draw_ms\": %.4f, \"cubemaps_ms\": %.4f, \"collide_ms\": %.4f, "
                         "\"recover_ms\": %.4f, \"render_ms\": %.4f, \"blades\": %ld, \"drawn\": %ld, "
                         "\"billboards\": %ld, \"culled\": [%u, %u, %u, %u], \"patch_culled\": %ld, "
@@ -321,7 +356,8 @@ static bool write_json(const papers_t *P, const char *dir)
                         "\"recovering_leaves\": %.2f}%s\n",
                         r->scene >= 0 ? P->name[r->scene] : "orthmann", variant_name(r), scene_mode_name(r->mode),
                         r->compute ? "compute" : "hw", r->fell_back ? "true" : "false", r->colliders, r->frame_ms,
-                        r->physics_ms, r->cull_ms, r->draw_ms, r->cubemaps_ms, r->collide_ms, r->recover_ms,
+                        r->frame_spread, r->physics_ms, r->cull_ms, r->draw_ms, r->cubemaps_ms, r->collide_ms,
+                        r->recover_ms,
                         r->render_ms, r->blades, r->drawn, r->billboards, r->culled[0], r->culled[1], r->culled[2],
                         r->culled[3], r->patch_culled, r->leaves, r->recovering, i + 1 < P->run_count ? "," : "");
     }
@@ -338,21 +374,21 @@ static bool write_tables(const papers_t *P, const char *dir)
 {
     core_buf_t a = {0}, l = {0}, d = {0};
     core_buf_printf(&a, "scene,variant,raster,frame_ms,physics_ms,cull_ms,draw_ms,blades,drawn,culled_orientation,"
-                        "culled_frustum,culled_distance,culled_occlusion,patch_culled,colliders\n");
+                        "culled_frustum,culled_distance,culled_occlusion,patch_culled,colliders,frame_ms_spread\n");
     core_buf_printf(&l, "colliders,raster,colliding_leaves,recovering_leaves,cubemaps_ms,collide_ms,recover_ms,"
-                        "render_ms,frame_ms,billboards\n");
+                        "render_ms,frame_ms,billboards,frame_ms_spread\n");
     core_buf_printf(&d, "# colliding_leaves collide_ms recover_ms render_ms cubemaps_ms colliders compute\n");
     for (int i = 0; i < P->run_count; i++) {
         const papers_run_t *r = &P->runs[i];
         if (r->variant >= 0)
-            core_buf_printf(&a, "%s,%s,%s,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%u,%u,%u,%u,%ld,%d\n", P->name[r->scene],
+            core_buf_printf(&a, "%s,%s,%s,%.4f,%.4f,%.4f,%.4f,%ld,%ld,%u,%u,%u,%u,%ld,%d,%.4f\n", P->name[r->scene],
                             variant_name(r), path_name(r), r->frame_ms, r->physics_ms, r->cull_ms, r->draw_ms,
                             r->blades, r->drawn, r->culled[0], r->culled[1], r->culled[2], r->culled[3],
-                            r->patch_culled, r->colliders);
+                            r->patch_culled, r->colliders, r->frame_spread);
         if (r->variant != -2) continue;
-        core_buf_printf(&l, "%d,%s,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld\n", r->colliders, path_name(r), r->leaves,
-                        r->recovering, r->cubemaps_ms, r->collide_ms, r->recover_ms, r->render_ms, r->frame_ms,
-                        r->billboards);
+        core_buf_printf(&l, "%d,%s,%.2f,%.2f,%.4f,%.4f,%.4f,%.4f,%.4f,%ld,%.4f\n", r->colliders, path_name(r),
+                        r->leaves, r->recovering, r->cubemaps_ms, r->collide_ms, r->recover_ms, r->render_ms,
+                        r->frame_ms, r->billboards, r->frame_spread);
         core_buf_printf(&d, "%.2f %.4f %.4f %.4f %.4f %d %d\n", r->leaves, r->collide_ms, r->recover_ms,
                         r->render_ms, r->cubemaps_ms, r->colliders, r->compute ? 1 : 0);
     }
@@ -402,11 +438,13 @@ static void md_ablation(const papers_t *P, core_buf_t *md)
                         "and no characters (a scene without either reads as `all`); `culling_off`: the "
                         "orientation, frustum, distance and occlusion tests all skipped; `X_off`: that test alone "
                         "skipped. GPU ms: pass medians after warm-up (frame: their sum; draw: blade.draw on the "
-                        "hardware path, blade.raster on the compute path). Blades drawn and culled by each test: "
+                        "hardware path, blade.raster on the compute path), each the median over %d runs (frame: +- "
+                        "half their range). Blades drawn and culled by each test: "
                         "the last frame's counters (summary.txt's `blade_culled`); patch: blades of patches culled "
                         "whole before the per-blade tests (the CPU's frustum test, off with the frustum test). "
                         "Drawn plus culled can be fewer than the blades: blades of height 0 (thinned) fall in "
-                        "no column.\n\n");
+                        "no column.\n\n",
+                    PAPERS_RUNS);
     for (int s = 0; s < P->scene_count; s++) {
         core_buf_printf(md, "#### %s (%s)\n\n| variant | path | frame ms | physics ms | cull ms | draw ms | "
                             "colliders | blades drawn | culled orientation | culled frustum | culled distance | "
@@ -420,8 +458,10 @@ static void md_ablation(const papers_t *P, core_buf_t *md)
             ms_cell(c[0], r->physics_ms);
             ms_cell(c[1], r->cull_ms);
             ms_cell(c[2], r->draw_ms);
-            core_buf_printf(md, "| %s | %s | %.3f | %s | %s | %s | %d | %ld of %ld | %u | %u | %u | %u | %ld |\n",
-                            variant_name(r), path_name(r), r->frame_ms, c[0], c[1], c[2], r->colliders, r->drawn,
+            core_buf_printf(md,
+                            "| %s | %s | %.3f +- %.3f | %s | %s | %s | %d | %ld of %ld | %u | %u | %u | %u | %ld |\n",
+                            variant_name(r), path_name(r), r->frame_ms, r->frame_spread, c[0], c[1], c[2],
+                            r->colliders, r->drawn,
                             r->blades, r->culled[0], r->culled[1], r->culled[2], r->culled[3], r->patch_culled);
         }
         core_buf_printf(md, "\n");
@@ -435,11 +475,12 @@ static void md_leaves(const papers_t *P, core_buf_t *md, const char *images)
                         "%s in billboard mode with N balls like its own crossing the field on lines spread over "
                         "80 %% of its side. Colliding leaves: octree leaves in the colliding state, mean over the "
                         "timed frames; pass medians after warm-up (render: bb.render on the hardware path, "
-                        "bb.raster on the compute path).\n\n![papers_leaves](%spapers_leaves.png)\n\n"
+                        "bb.raster on the compute path); each figure the median over %d runs (frame: +- half their "
+                        "range).\n\n![papers_leaves](%spapers_leaves.png)\n\n"
                         "| balls | path | colliding leaves | recovering leaves | bb.cubemaps ms | bb.collide ms | "
                         "bb.recover ms | render ms | frame ms | billboards |\n"
                         "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                    LEAVES_SCENE, images);
+                    LEAVES_SCENE, PAPERS_RUNS, images);
     for (int i = 0; i < P->run_count; i++) {
         const papers_run_t *r = &P->runs[i];
         if (r->variant != -2) continue;
@@ -448,8 +489,9 @@ static void md_leaves(const papers_t *P, core_buf_t *md, const char *images)
         ms_cell(c[1], r->collide_ms);
         ms_cell(c[2], r->recover_ms);
         ms_cell(c[3], r->render_ms);
-        core_buf_printf(md, "| %d | %s | %.1f | %.1f | %s | %s | %s | %s | %.3f | %ld |\n", r->colliders,
-                        path_name(r), r->leaves, r->recovering, c[0], c[1], c[2], c[3], r->frame_ms, r->billboards);
+        core_buf_printf(md, "| %d | %s | %.1f | %.1f | %s | %s | %s | %s | %.3f +- %.3f | %ld |\n", r->colliders,
+                        path_name(r), r->leaves, r->recovering, c[0], c[1], c[2], c[3], r->frame_ms, r->frame_spread,
+                        r->billboards);
     }
     core_buf_printf(md, "\n");
 }
@@ -480,14 +522,15 @@ static void ours_cell(const papers_run_t *r, char *out, size_t size)
 static void md_papers(const papers_t *P, core_buf_t *md)
 {
     core_buf_printf(md, "### The papers' scenes: published figures and ours\n\n"
-                        "Ours: the scene in its own mode on `%s`, %d frames; frame = the summed GPU pass "
-                        "medians, simulation = blade.physics (blades) or bb.cubemaps + bb.collide + bb.recover "
+                        "Ours: the scene in its own mode on `%s`, %d frames, the median of %d runs; frame = the "
+                        "summed GPU pass medians, simulation = blade.physics (blades) or bb.cubemaps + bb.collide + "
+                        "bb.recover "
                         "(billboards). The papers' hardware and figures are quoted from the source named; "
                         "\"%s\": none of the sources at hand states it.%s\n\n"
                         "| scene | paper | paper's hardware | published figure | paper's scene | ours, hardware path "
                         "| ours, compute path | our scene | source |\n"
                         "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                    P->renderer, P->frames, NOT_HERE,
+                    P->renderer, P->frames, PAPERS_RUNS, NOT_HERE,
                     P->run_count < P->planned ? " **Interrupted: only the runs listed below were made.**" : "");
     /* The papers' scenes, then the scenes run that are none of them (--scene). */
     for (int f = 0; f < PAPER_COUNT + P->scene_count; f++) {

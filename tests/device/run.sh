@@ -17,7 +17,8 @@
 #                (RESULTS.md, charts' data, stability, scaling) -> $OUT/report_docs.tgz
 #                (docs/RESULTS.md and images) and $OUT/report_data.tgz (CSV, JSON, .dat, .gp)
 #                REPORT_PAPERS=1: with --papers too (RESULTS.md's papers section; adds
-#                the papers section's ~68 sessions to the 560 s limit)
+#                the papers section's 68 figures, each the median of 3 sessions, to
+#                the 560 s limit)
 #   raster       every bench scene (and meadow_large in each mode) with
 #                --raster hw and --raster compute, 300 frames: pass medians
 #                side by side, and four meadow_large screenshots -> $OUT
@@ -56,7 +57,8 @@
 #                three of the chart's frames
 #   papers       `meadow bench --papers` (blade ablations of the four paper scenes
 #                on both paths, billboard cost vs colliding leaves with 1-16 balls,
-#                the papers table; $PAPERS_FRAMES frames, default 60; $PAPERS_LIMIT s limit, default 500)
+#                the papers table; each figure the median of 3 sessions;
+#                $PAPERS_FRAMES frames, default 60; $PAPERS_LIMIT s limit, default 500)
 #                -> $OUT/papers.tgz (papers.md, .json, .csv, chart); papers.md to $R
 #   occlusion    occlusion culling of billboard batches (grass.bb_occlusion,
 #                docs/BILLBOARDS.md) A/B: meadow_large in hybrid and
