@@ -225,6 +225,39 @@ static float bb_select_float(float *a, size_t n, size_t k)
     return a[k];
 }
 
+/* The two passes of bb_extent_noise over rows [begin, end) (core_parallel_for):
+ * the clearing field, then the cover from it and the detail noise. */
+typedef struct extent_rows_t {
+    core_image_t *ext;
+    float *field;
+    const bb_fbm_t *clear, *detail;
+    float lo, hi;
+} extent_rows_t;
+
+static void extent_field_rows(void *user, int begin, int end)
+{
+    const extent_rows_t *r = user;
+    int n = r->ext->w;
+    for (int y = begin; y < end; y++)
+        for (int x = 0; x < n; x++)
+            r->field[(size_t)y * n + x] = bb_fbm(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, r->clear);
+}
+
+static void extent_cover_rows(void *user, int begin, int end)
+{
+    const extent_rows_t *r = user;
+    int n = r->ext->w;
+    for (int y = begin; y < end; y++) {
+        for (int x = 0; x < n; x++) {
+            float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
+            size_t i = (size_t)y * n + x;
+            float cover = bb_smoothstep(r->lo, r->hi, r->field[i]);
+            cover *= 0.8f + 0.2f * bb_fbm(2.0f * u, 2.0f * v, r->detail);
+            r->ext->px[i] = bb_byte(cover);
+        }
+    }
+}
+
 static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_desc_t *e)
 {
     int n = ext->w, base = BB_BASE_PERIOD, octaves = 0;
@@ -241,9 +274,8 @@ static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_de
     float *field = malloc(count * sizeof *field), *sorted = e->fraction > 0.0f ? malloc(count * sizeof *sorted) : NULL;
     bool ok = ok_clear && ok_detail && field && (sorted || e->fraction <= 0.0f);
     if (ok) {
-        for (int y = 0; y < n; y++)
-            for (int x = 0; x < n; x++)
-                field[(size_t)y * n + x] = bb_fbm(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, &clear);
+        extent_rows_t rows = {.ext = ext, .field = field, .clear = &clear, .detail = &detail};
+        core_parallel_for(n, extent_field_rows, &rows);
         float lo = 0.42f, hi = 0.51f;
         if (sorted) {
             memcpy(sorted, field, count * sizeof *sorted);
@@ -259,15 +291,9 @@ static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_de
             lo = centre - 0.045f;
             hi = centre + 0.045f;
         }
-        for (int y = 0; y < n; y++) {
-            for (int x = 0; x < n; x++) {
-                float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
-                size_t i = (size_t)y * n + x;
-                float cover = bb_smoothstep(lo, hi, field[i]);
-                cover *= 0.8f + 0.2f * bb_fbm(2.0f * u, 2.0f * v, &detail);
-                ext->px[i] = bb_byte(cover);
-            }
-        }
+        rows.lo = lo;
+        rows.hi = hi;
+        core_parallel_for(n, extent_cover_rows, &rows);
     }
     free(clear.lattice);
     free(detail.lattice);

@@ -39,6 +39,15 @@ float core_hash_float(uint32_t x);
 /* FNV-1a over bytes, for state hashes in determinism tests. */
 uint64_t core_hash_bytes(const void *data, size_t size, uint64_t h);
 
+/* ---- parallel loops ---------------------------------------------------------
+ * fn(user, begin, end) over [0, n) split into contiguous bands, one per
+ * thread (at most CORE_PARALLEL_MAX, the machine's cores), the caller's
+ * thread taking the first; returns when every band is done. fn must only
+ * write what its band owns. Falls back to one call when threads cannot be
+ * made. */
+#define CORE_PARALLEL_MAX 8
+void core_parallel_for(int n, void (*fn)(void *user, int begin, int end), void *user);
+
 /* ---- geometry --------------------------------------------------------------
  * Squared distance from p to the axis-aligned box [lo, hi] (0 inside it). */
 float core_box_dist2(const float p[3], const float lo[3], const float hi[3]);
