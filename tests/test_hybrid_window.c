@@ -3,8 +3,10 @@
  * the window holds is the field tile its coordinates name, at the index
  * hybrid_tile_at gives; representation, state and object lists equal the
  * whole grid's tile; tiles streamed in come back IDLE with a new epoch; a
- * touched tile carried out of the window drops its slot (stats.dropped) and
- * the pool gets it back; the held tile count does not depend on the field. */
+ * touched tile carried out of the window keeps its slot away from it
+ * (stats.detached), takes it back when it returns in time
+ * (stats.reattached) and frees it after recover_timeout away; the held
+ * tile count does not depend on the field. */
 #include "hybrid/hybrid.h"
 #include "core/core.h"
 #include "test.h"
@@ -71,21 +73,41 @@ int main(void)
     CHECK_MSG(streamed > 1000, "only %ld tiles streamed in", streamed);
     CHECK(whole.stats.pool_denied == 0 && win.stats.pool_denied == 0);
 
-    /* A touched tile carried out of the window: its slot is dropped and
-     * returns to the pool; the tile streamed in at its index is IDLE. */
-    float cam[3] = {0.0f, 2.0f, 0.0f};
+    /* A touched tile carried out of the window keeps its slot away from
+     * it, comes back to it, and frees it after recover_timeout away. */
+    float cam[3] = {0.0f, 2.0f, 0.0f}, far_cam[3] = {40.0f, 2.0f, 0.0f};
     hybrid_object_t ball = {{1.0f, 0.0f, 1.0f, 0.5f}};
+    for (int f = 0; f < 30; f++) hybrid_grid_update(&win, cam, NULL, 0, NULL, 0.1f); /* the walk's tiles settle */
+    CHECK(win.stats.away == 0 && win.free_count == win.desc.pool_slots);
     hybrid_grid_update(&win, cam, &ball, 1, NULL, 0.1f);
     int ti = hybrid_tile_at(&win, 1.0f, 1.0f);
     CHECK(ti >= 0 && win.tiles[ti].state == HYBRID_ACTIVE && win.tiles[ti].slot >= 0);
+    int slot = win.tiles[ti].slot, free_before = win.free_count;
     uint32_t epoch = win.tiles[ti].epoch;
-    int free_before = win.free_count;
-    float far_cam[3] = {40.0f, 2.0f, 0.0f};
-    hybrid_grid_update(&win, far_cam, &ball, 1, NULL, 0.1f);
-    CHECK_MSG(win.stats.dropped == 1 && win.free_count == free_before + 1, "dropped %d, free %d -> %d",
-              win.stats.dropped, free_before, win.free_count);
+    hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+    CHECK_MSG(win.stats.detached == 1 && win.stats.away == 1 && win.free_count == free_before,
+              "leaving: detached %d, away %d, free %d -> %d", win.stats.detached, win.stats.away, free_before,
+              win.free_count);
     CHECK(hybrid_tile_at(&win, 1.0f, 1.0f) == -1);
     CHECK(win.tiles[ti].epoch == epoch + 1 && win.tiles[ti].state == HYBRID_IDLE && win.tiles[ti].slot < 0);
+    hybrid_grid_update(&win, cam, NULL, 0, NULL, 0.1f);
+    ti = hybrid_tile_at(&win, 1.0f, 1.0f);
+    CHECK_MSG(win.stats.reattached == 1 && win.tiles[ti].slot == slot && win.tiles[ti].state == HYBRID_RECOVERING &&
+                  win.tiles[ti].reattached && win.stats.away == 0,
+              "back: reattached %d, slot %d (was %d), state %d", win.stats.reattached, win.tiles[ti].slot, slot,
+              win.tiles[ti].state);
+    hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+    CHECK(win.stats.away == 1);
+    float away_for = 0.0f;
+    while (win.stats.away > 0 && away_for < 10.0f) {
+        hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+        away_for += 0.1f;
+    }
+    CHECK_MSG(win.stats.away == 0 && win.free_count == free_before + 1 && away_for > 1.0f &&
+                  away_for <= win.desc.recover_timeout + 0.2f,
+              "away for %.1f s (timeout %.1f), free %d", away_for, win.desc.recover_timeout, win.free_count);
+    hybrid_grid_update(&win, cam, NULL, 0, NULL, 0.1f);
+    CHECK(win.stats.reattached == 0 && win.tiles[hybrid_tile_at(&win, 1.0f, 1.0f)].slot < 0);
 
     /* The tile range callback sets the boxes of tiles streamed in. */
     hybrid_desc_t dr = dw;

@@ -390,9 +390,9 @@ static bool write_summary(app_t *app, double wall_s)
         blade_tiles_stats_t ts = blade_tiles_stats(app->world.tiles, false);
         n += snprintf(buf + n, sizeof buf - (size_t)n,
                       "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
-                      "tiles streamed in %ld, state dropped leaving it %ld\n",
+                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
                       app->world.terrain_mesh.world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
-                      ti.desc.switch_distance, ts.streamed_total, ts.dropped_total);
+                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
     }
     raster_t *r = &app->world.raster;
     if (r->vis.id) {

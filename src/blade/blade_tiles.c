@@ -28,6 +28,7 @@ enum { CMD_SOLID = 0, CMD_OVERFLOW = 4, CMD_TOTAL = 5, CMD_FADE = 8, CMD_CULLED 
 /* t->draw_ring, uint words: appends tried, past the capacity, culled per test. */
 enum { RING_TOTAL = 0, RING_OVERFLOW = 1, RING_CULLED = 2, RING_WORDS = 6 };
 #define RECOVERING_BIT 0x80000000u
+#define SLOT_AWAY (-2) /* t->slot_owner of a slot kept by a tile away from the window */
 #define HYSTERESIS 1.0f /* hybrid's default dead band, used for the draw capacity */
 #define TILES_POSE_ITERATIONS 6 /* tiles_common.glsl */
 #define TILES_POSE_RELAX 0.7f
@@ -696,14 +697,16 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     }
     hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
     t->stats.streamed_total += t->grid.stats.streamed;
-    t->stats.dropped_total += t->grid.stats.dropped;
+    t->stats.detached_total += t->grid.stats.detached;
+    t->stats.reattached_total += t->grid.stats.reattached;
 
     const int S = t->desc.pool_slots, ntiles = t->grid.nx * t->grid.nz;
     for (int s = 0; s < S; s++) {
         int o = t->slot_owner[s];
-        if (o >= 0 && (t->grid.tiles[o].slot != s || t->grid.tiles[o].epoch != t->slot_epoch[s]))
+        if (o == SLOT_AWAY || (o >= 0 && (t->grid.tiles[o].slot != s || t->grid.tiles[o].epoch != t->slot_epoch[s])))
             t->slot_owner[s] = -1;
     }
+    for (int k = 0; k < t->grid.away_count; k++) t->slot_owner[t->grid.away[k].slot] = SLOT_AWAY;
     uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
     uint32_t *list = init + 2 * S, *handover = list + S;
     int ninit = 0, nslots = 0, nhand = 0, nseed = 0;
@@ -717,7 +720,10 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         if (tile->state != HYBRID_RECOVERING) t->tile_motion[i] = FLT_MAX;
         if (tile->slot < 0) continue;
         int s = tile->slot;
-        if (t->slot_owner[s] != i) {
+        if (t->slot_owner[s] != i && tile->reattached) {
+            t->slot_owner[s] = i; /* back from away: its state goes on */
+            t->slot_epoch[s] = tile->epoch;
+        } else if (t->slot_owner[s] != i) {
             t->slot_owner[s] = i;
             t->slot_epoch[s] = tile->epoch;
             t->slot_motion[s] = FLT_MAX;
@@ -731,6 +737,12 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         uint32_t *ss = &slot_spheres[s * SLOT_STRIDE];
         ss[0] = (uint32_t)tile->object_count;
         for (int k = 0; k < tile->object_count; k++) ss[1 + k] = tile->objects[k];
+    }
+    /* tiles away from the camera recover on, with no objects */
+    for (int k = 0; k < t->grid.away_count; k++) {
+        int s = t->grid.away[k].slot;
+        list[nslots++] = (uint32_t)s | RECOVERING_BIT;
+        slot_spheres[s * SLOT_STRIDE] = 0;
     }
     uint32_t B = t->template_blades;
     t->stats.slots_dispatched = nslots;

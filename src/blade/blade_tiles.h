@@ -49,7 +49,8 @@
  *                    heightfield and, on a world, the smallest window that
  *                    holds every tile within switch_distance + 1 m of the
  *                    camera plus a tile. A window keeps the state of
- *                    recovering tiles (keep_state: no hand-over)
+ *                    recovering tiles (keep_state: no hand-over), also
+ *                    away from the window (hybrid.h)
  *   tile_size        4 m (scene, grass.tile_size)
  *   template_count   4 (1..BLADE_TILES_MAX_TEMPLATES)
  *   density          200 blades/m^2; height [0.35, 0.7] m; width
@@ -143,8 +144,9 @@ typedef struct blade_tiles_stats_t {
     int pool_denied;            /* tiles wanting a slot this update that got none */
     int handovers, seeded;      /* hand-overs to billboards / seedings from them, this update */
     long handovers_total, seeded_total; /* the same since make */
-    long streamed_total, dropped_total; /* window: tiles streamed in, and those whose index dropped a
-                                           slot, since make (hybrid_stats_t streamed, dropped) */
+    long streamed_total;        /* window: tiles streamed in since make (hybrid_stats_t.streamed) */
+    long detached_total, reattached_total; /* window: tiles that left it keeping their slot, and that
+                                              came back to it, since make */
     int slots_dispatched;       /* slots simulated by the latest update */
     uint32_t blades_dispatched; /* physics invocations of the latest update */
     int tiles_drawn;            /* tiles passing the CPU frustum test, latest draw */

@@ -67,7 +67,8 @@ bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc)
     g->nz = d->window > 0 ? d->window : g->field_nz;
     g->tiles = calloc((size_t)g->nx * (size_t)g->nz, sizeof *g->tiles);
     g->free_slots = malloc((size_t)d->pool_slots * sizeof(int));
-    if (!g->tiles || !g->free_slots) {
+    g->away = d->window > 0 ? malloc((size_t)d->pool_slots * sizeof *g->away) : NULL;
+    if (!g->tiles || !g->free_slots || (d->window > 0 && !g->away)) {
         hybrid_grid_free(g);
         return false;
     }
@@ -82,6 +83,7 @@ void hybrid_grid_free(hybrid_grid_t *g)
 {
     free(g->tiles);
     free(g->free_slots);
+    free(g->away);
     memset(g, 0, sizeof *g);
 }
 
@@ -119,7 +121,9 @@ static void release_slot(hybrid_grid_t *g, hybrid_tile_t *t)
 }
 
 /* Window: centres the window on the camera's tile and moves every index
- * whose field tile left it to the one that entered (a fresh IDLE tile). */
+ * whose field tile left it to the one that entered: the leaving tile keeps
+ * its slot away from the camera, the entering one takes back the slot it
+ * kept away, if any, or starts IDLE. */
 static void recentre(hybrid_grid_t *g, const float cam[3], hybrid_stats_t *st)
 {
     const hybrid_desc_t *d = &g->desc;
@@ -129,14 +133,50 @@ static void recentre(hybrid_grid_t *g, const float cam[3], hybrid_stats_t *st)
     for (int j = 0; j < w; j++)
         for (int i = 0; i < w; i++) {
             hybrid_tile_t *t = &g->tiles[j * w + i];
+            t->reattached = false;
             int gi = window_coord(i, g->base[0], w), gj = window_coord(j, g->base[1], w);
             if (t->coord[0] == gi && t->coord[1] == gj) continue;
             st->streamed++;
-            if (t->slot >= 0) st->dropped++;
-            release_slot(g, t);
+            if (t->slot >= 0) {
+                g->away[g->away_count++] = (hybrid_away_t){
+                    .coord = {t->coord[0], t->coord[1]},
+                    .slot = t->slot,
+                    .recover_left = t->state == HYBRID_RECOVERING ? t->recover_left : d->recover_timeout,
+                    .memory_left = t->memory_left};
+                st->detached++;
+            }
             place_tile(g, t, gi, gj);
             t->epoch++;
+            for (int k = 0; k < g->away_count; k++) {
+                hybrid_away_t *a = &g->away[k];
+                if (a->coord[0] != gi || a->coord[1] != gj) continue;
+                t->slot = a->slot;
+                t->state = HYBRID_RECOVERING;
+                t->recover_left = a->recover_left;
+                t->memory_left = a->memory_left;
+                t->reattached = true;
+                st->reattached++;
+                *a = g->away[--g->away_count];
+                break;
+            }
         }
+}
+
+/* Window: tiles away from the camera recover without objects until their
+ * time is up, then free their slot. */
+static void recover_away(hybrid_grid_t *g, float dt)
+{
+    for (int k = 0; k < g->away_count;) {
+        hybrid_away_t *a = &g->away[k];
+        a->recover_left -= dt;
+        a->memory_left = fmaxf(a->memory_left - dt, 0.0f);
+        if (a->recover_left > 0.0f) {
+            k++;
+            continue;
+        }
+        g->free_slots[g->free_count++] = a->slot;
+        *a = g->away[--g->away_count];
+    }
 }
 
 void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_object_t *objects, int count,
@@ -145,7 +185,11 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
     const hybrid_desc_t *d = &g->desc;
     hybrid_stats_t st = {.tiles = g->nx * g->nz, .slots_total = d->pool_slots};
     int ntiles = g->nx * g->nz;
-    if (d->window > 0) recentre(g, cam, &st);
+    if (d->window > 0) {
+        recentre(g, cam, &st);
+        recover_away(g, dt);
+        st.away = g->away_count;
+    }
     for (int i = 0; i < ntiles; i++) g->tiles[i].object_count = 0;
     /* Object lists: visit only the tiles under each object's bounds (one
      * tile of margin so spheres touching a tile edge exactly are found by

@@ -21,10 +21,12 @@
  * - Window (desc.window > 0, the open world, docs/WORLD.md): the grid is a
  *   W x W square of tiles that follows the camera over a field of any size.
  *   Field tile (gi, gj) lives at index (gj mod W) W + (gi mod W) while it
- *   is inside the window; a tile leaving it drops its state (slot released,
- *   stats.dropped) and its index is reused by the tile entering opposite
- *   (stats.streamed), with a new epoch. Memory and the per-update loop
- *   depend on W, not on the field. */
+ *   is inside the window; its index is reused by the tile entering opposite
+ *   (stats.streamed), with a new epoch. A tile leaving with a slot keeps
+ *   it away from the camera (stats.detached): it recovers with no objects
+ *   for recover_timeout, then frees the slot, unless it comes back first
+ *   and takes its slot and state again (stats.reattached). Memory and the
+ *   per-update loop depend on W and the pool, not on the field. */
 #ifndef MEADOW_HYBRID_H
 #define MEADOW_HYBRID_H
 
@@ -58,6 +60,7 @@ typedef struct hybrid_tile_t {
     int32_t coord[2];       /* field tile coordinates (gi, gj): the tile's place in the field's grid */
     uint32_t epoch;         /* bumped each time the index takes a new field tile (window) */
     bool present;           /* inside the field (window tiles beyond its edge are not) */
+    bool reattached;        /* window: took back the slot it kept away, this update */
     bool seed;              /* slot taken this update, to be seeded from the slope cells */
     int object_count;       /* objects touching it this update */
     uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
@@ -102,14 +105,26 @@ typedef struct hybrid_stats_t {
     int seeded;             /* tiles taking a slot to be seeded from billboards this update */
     int list_overflow;      /* objects left out of full per-tile lists this update */
     int streamed;           /* window: tiles that entered the window this update */
-    int dropped;            /* window: of those, indices whose leaving tile held a slot */
+    int detached;           /* window: tiles that left it holding a slot, this update */
+    int reattached;         /* window: tiles that came back to the slot they kept, this update */
+    int away;               /* window: tiles recovering outside it now */
 } hybrid_stats_t;
+
+/* A tile that left the window holding a slot: it recovers there. */
+typedef struct hybrid_away_t {
+    int32_t coord[2];
+    int slot;
+    float recover_left;
+    float memory_left;
+} hybrid_away_t;
 
 typedef struct hybrid_grid_t {
     hybrid_desc_t desc;
     int nx, nz;             /* tiles held: the field's, or W x W in a window */
     int field_nx, field_nz; /* tiles of the field */
     int base[2];            /* window: field tile coordinates of its first corner */
+    hybrid_away_t *away;    /* window: tiles recovering outside it (at most pool_slots) */
+    int away_count;
     hybrid_tile_t *tiles;
     int *free_slots;
     int free_count;
