@@ -27,7 +27,7 @@ for r in "w1:world_1km:hybrid" "w4:world_4km:hybrid" "w1b:world_1km:blade"; do
   if [ $rc -ne 0 ] || [ ! -f "$tmp/$name/summary.txt" ]; then
     echo "FAIL: $scene in $mode mode: exit $rc"; tail -3 "$tmp/$name.log"; fail=1; continue
   fi
-  streamed=$(sed -n 's/.*tiles streamed in \([0-9]*\),.*/\1/p' "$tmp/$name/summary.txt")
+  streamed=$(sed -n 's/.*tiles streamed in \([0-9]*\)[,;].*/\1/p' "$tmp/$name/summary.txt")
   if [ -z "$streamed" ] || [ "$streamed" -le 0 ]; then
     echo "FAIL: $scene in $mode mode: no tiles streamed in (summary: '$streamed')"; fail=1
   fi
