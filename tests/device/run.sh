@@ -84,7 +84,8 @@ tests() {
   for t in test_gfx_smoke test_gfx_upload test_blade_gpu_physics test_blade_gpu_cull test_blade_tiles test_bb_gpu_collide \
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
            test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam \
-           test_bb_gpu_generate test_gi_gpu test_bb_gpu_gi test_bb_gpu_occlusion test_blade_render; do
+           test_bb_gpu_generate test_gi_gpu test_bb_gpu_gi test_bb_gpu_occlusion test_blade_render \
+           test_tiles_stream test_terrain_world_gpu test_terrain_world_render; do
     echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout -k 10 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
     grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)|variant|queued|mismatch|grass share" /tmp/$t.log | head -14
   done
