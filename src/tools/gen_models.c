@@ -291,6 +291,53 @@ static bool gltf_finish(gltf_t *g, core_buf_t *body, const char *path)
     return ok;
 }
 
+/* The animations: one shared time accessor per clip; rotation channels for
+ * every joint the clip moves, translation for the root joint (node J0). */
+static void write_clips(gltf_t *g, core_buf_t *body, const gen_rig_t *rig, int J0)
+{
+    core_buf_printf(body, ",\"animations\":[");
+    for (int c = 0; c < rig->clip_count; c++) {
+        const gen_clip_t *clip = &rig->clips[c];
+        int k = clip->keys;
+        float *times = malloc(sizeof(float) * (size_t)k);
+        gen_anim_t *frames = calloc((size_t)k, sizeof *frames);
+        if (!times || !frames) exit(1);
+        for (int i = 0; i < k; i++) {
+            times[i] = clip->duration * (float)i / (float)(k - 1);
+            for (int j = 0; j < MAX_JOINTS; j++) frames[i].r[j][3] = 1.0f;
+            clip->fn((float)i / (float)(k - 1), &frames[i]);
+        }
+        float tmin = 0.0f, tmax = clip->duration;
+        int a_time = gltf_accessor(g, times, k, GL_FLOAT, "SCALAR", 1, &tmin, &tmax);
+        core_buf_printf(body, "%s{\"name\":\"%s\",\"samplers\":[", c ? "," : "", clip->name);
+        int sampler = 0;
+        core_buf_t channels = {0};
+        float *out = malloc(sizeof(float) * 4 * (size_t)k);
+        if (!out) exit(1);
+        for (int j = 0; j < rig->joint_count; j++) {
+            bool moves = false;
+            for (int i = 0; i < k; i++) moves |= fabsf(frames[i].r[j][3]) < 0.999999f;
+            if (!moves) continue;
+            for (int i = 0; i < k; i++) memcpy(out + 4 * i, frames[i].r[j], 16);
+            int a_out = gltf_accessor(g, out, k, GL_FLOAT, "VEC4", 4, NULL, NULL);
+            core_buf_printf(body, "%s{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", sampler ? "," : "",
+                            a_time, a_out);
+            core_buf_printf(&channels, "%s{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"rotation\"}}",
+                            sampler ? "," : "", sampler, J0 + j);
+            sampler++;
+        }
+        for (int i = 0; i < k; i++)
+            for (int a = 0; a < 3; a++) out[3 * i + a] = rig->joints[0].t[a] + frames[i].t[a];
+        int a_out = gltf_accessor(g, out, k, GL_FLOAT, "VEC3", 3, NULL, NULL);
+        core_buf_printf(body, ",{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", a_time, a_out);
+        core_buf_printf(&channels, ",{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"translation\"}}", sampler, J0);
+        core_buf_printf(body, "],\"channels\":[%s]}", channels.data);
+        core_buf_free(&channels);
+        free(out), free(times), free(frames);
+    }
+    core_buf_printf(body, "]");
+}
+
 static bool write_rig(const gen_rig_t *rig, const char *path)
 {
     gen_mesh_t mesh = {0};
@@ -360,49 +407,7 @@ static bool write_rig(const gen_rig_t *rig, const char *path)
                     rig->name, (double)rig->color[0], (double)rig->color[1], (double)rig->color[2],
                     (double)rig->color[3]);
 
-    /* animations: one shared time accessor per clip; rotation channels for
-     * every joint the clip moves, translation for the root joint */
-    core_buf_printf(&body, ",\"animations\":[");
-    for (int c = 0; c < rig->clip_count; c++) {
-        const gen_clip_t *clip = &rig->clips[c];
-        int k = clip->keys;
-        float *times = malloc(sizeof(float) * (size_t)k);
-        gen_anim_t *frames = calloc((size_t)k, sizeof *frames);
-        if (!times || !frames) exit(1);
-        for (int i = 0; i < k; i++) {
-            times[i] = clip->duration * (float)i / (float)(k - 1);
-            for (int j = 0; j < MAX_JOINTS; j++) frames[i].r[j][3] = 1.0f;
-            clip->fn((float)i / (float)(k - 1), &frames[i]);
-        }
-        float tmin = 0.0f, tmax = clip->duration;
-        int a_time = gltf_accessor(&g, times, k, GL_FLOAT, "SCALAR", 1, &tmin, &tmax);
-        core_buf_printf(&body, "%s{\"name\":\"%s\",\"samplers\":[", c ? "," : "", clip->name);
-        int sampler = 0;
-        core_buf_t channels = {0};
-        float *out = malloc(sizeof(float) * 4 * (size_t)k);
-        if (!out) exit(1);
-        for (int j = 0; j < rig->joint_count; j++) {
-            bool moves = false;
-            for (int i = 0; i < k; i++) moves |= fabsf(frames[i].r[j][3]) < 0.999999f;
-            if (!moves) continue;
-            for (int i = 0; i < k; i++) memcpy(out + 4 * i, frames[i].r[j], 16);
-            int a_out = gltf_accessor(&g, out, k, GL_FLOAT, "VEC4", 4, NULL, NULL);
-            core_buf_printf(&body, "%s{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", sampler ? "," : "",
-                            a_time, a_out);
-            core_buf_printf(&channels, "%s{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"rotation\"}}",
-                            sampler ? "," : "", sampler, J0 + j);
-            sampler++;
-        }
-        for (int i = 0; i < k; i++)
-            for (int a = 0; a < 3; a++) out[3 * i + a] = rig->joints[0].t[a] + frames[i].t[a];
-        int a_out = gltf_accessor(&g, out, k, GL_FLOAT, "VEC3", 3, NULL, NULL);
-        core_buf_printf(&body, ",{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", a_time, a_out);
-        core_buf_printf(&channels, ",{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"translation\"}}", sampler, J0);
-        core_buf_printf(&body, "],\"channels\":[%s]}", channels.data);
-        core_buf_free(&channels);
-        free(out), free(times), free(frames);
-    }
-    core_buf_printf(&body, "]");
+    write_clips(&g, &body, rig, J0);
 
     bool ok = gltf_finish(&g, &body, path);
     printf("%s: %d vertices, %d triangles, %d joints, %d clips\n", path, n, mesh.icount / 3, rig->joint_count,
