@@ -1,28 +1,56 @@
-/* main: entry point of the meadow program (see app.h and --help), above
- * both modules it runs: the program (src/app) or its evaluation harness
- * (src/bench). */
+/* main: entry point of the meadow program, above both modules it runs:
+ * `meadow bench ...` and `meadow compare ...` go to the evaluation harness
+ * (src/bench, which parses its own options and the program's), everything
+ * else to the program (src/app, see app.h and --help). */
 #include "app/app.h"
 #include "bench/bench.h"
+
+#include <string.h>
 
 #include "character/character_load.h"
 #include "core/core.h"
 
+/* The program's command line; an option of the harness's given without its
+ * command is named as such. Returns 0, 1 (help printed) or 2 (err). */
+static int parse_program(int argc, char **argv, app_options_t *o, char *err, size_t err_size)
+{
+    memset(o, 0, sizeof *o);
+    for (int i = 1; i < argc; i++) {
+        switch (app_parse_option(argc, argv, &i, o, err, err_size)) {
+        case APP_OPTION_TAKEN: continue;
+        case APP_OPTION_EXIT: return 1;
+        case APP_OPTION_BAD: return 2;
+        case APP_OPTION_UNKNOWN: break;
+        }
+        if (bench_is_option(argv[i]))
+            snprintf(err, err_size, "'%s' is one of the options of `meadow bench` or `meadow compare` (see meadow "
+                     "bench --help)", argv[i]);
+        else if (i == 1 && argv[i][0] != '-')
+            snprintf(err, err_size, "unknown command '%s' (expected bench or compare; see --help)", argv[i]);
+        else
+            snprintf(err, err_size, "unknown option '%s' (see --help)", argv[i]);
+        return 2;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
-    app_options_t opts;
-    char err[512];
-    int rc = app_parse_args(argc, argv, &opts, err, sizeof err);
+    char err[512] = "";
+    bool harness = argc > 1 && (strcmp(argv[1], "bench") == 0 || strcmp(argv[1], "compare") == 0);
+    bench_options_t b;
+    app_options_t o;
+    int rc = harness ? bench_parse_options(argc, argv, &b, err, sizeof err)
+                     : parse_program(argc, argv, &o, err, sizeof err);
     if (rc == 1) return 0;
     if (rc == 2) {
         core_log_error("%s", err);
         return 2;
     }
-    if (opts.list_clips) return character_print_clips(opts.list_clips, stdout) ? 0 : 2;
+    const app_options_t *a = harness ? &b.app : &o;
+    if (a->list_clips) return character_print_clips(a->list_clips, stdout) ? 0 : 2;
     app_signal_install();
-    core_log_set_quiet(opts.quiet);
-    switch (opts.command) {
-    case APP_CMD_COMPARE: return bench_compare(&opts);
-    case APP_CMD_BENCH: return bench_run(&opts);
-    default: return app_run(&opts, bench_compare_write);
-    }
+    core_log_set_quiet(a->quiet);
+    if (!harness) return app_run(&o, bench_compare_write);
+    return b.compare ? bench_compare(&b) : bench_run(&b);
 }

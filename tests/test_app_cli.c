@@ -21,9 +21,10 @@ int main(void)
     CHECK(parse(&o, err, 16, good) == 0);
     CHECK(o.headless && o.frames == 10 && o.frames_set && o.seed == 4294967295u && o.seed_set);
     CHECK(o.width == 640 && o.height == 480 && strcmp(o.out, "o") == 0 && o.screenshot_every == 5);
-    CHECK(o.mode == APP_MODE_BLADE && strcmp(o.scene, "s.json") == 0 && o.command == APP_CMD_RUN);
-    char *bench[] = {"meadow", "bench", "--quick"};
-    CHECK(parse(&o, err, 3, bench) == 0 && o.command == APP_CMD_BENCH && o.quick);
+    CHECK(o.mode == APP_MODE_BLADE && strcmp(o.scene, "s.json") == 0);
+    /* The harness's options are not the program's (src/bench parses them). */
+    char *bench[] = {"meadow", "--quick"};
+    CHECK(parse(&o, err, 2, bench) == 2 && strstr(err, "unknown option '--quick'"));
 
     struct {
         char *a, *b;

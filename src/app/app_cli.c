@@ -1,5 +1,7 @@
-/* app_cli: parsing and validation of the meadow command line. Every bad
- * value gets one line naming the option, the value and the allowed range;
+/* app_cli: parsing and validation of the program's options (`meadow
+ * bench` parses its own in src/bench/bench_cli.c and hands the rest here).
+ * Every bad value gets one line naming the option, the value and the
+ * allowed range;
  * options that set a scene value (--frames, --seed, --size,
  * --raster-samples) take their range from the scene's key table. */
 #include "app/app.h"
@@ -14,10 +16,9 @@
 #include "scene/scene.h"
 #include "scene/scene_fields.h"
 
-void app_print_usage(void)
+void app_print_options(void)
 {
-    printf("usage: meadow [bench|compare] [options]\n"
-           "  --scene FILE          scene description (default scenes/meadow.json)\n"
+    printf("  --scene FILE          scene description (default scenes/meadow.json)\n"
            "  --headless            render offscreen through EGL (automatic without a display)\n"
            "  --frames N            frames to run (default 300 headless, unlimited in a window)\n"
            "  --seed N              random seed, 0..4294967295 (default: the scene's)\n"
@@ -34,35 +35,24 @@ void app_print_usage(void)
            "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
            "                        of the two, measured at start-up); default: the scene's (hw)\n"
            "  --raster-samples N    compute rasterizer samples per pixel: 4 (default, the 4x MSAA pattern) or 1\n"
-           "  --quick               bench: small sweep for CI\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --view-cards          billboards whose clump appearance follows the view and the wind\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
-           "  --video               compare: record each mode as PNG frames and an mp4 (ffmpeg)\n"
-           "  --stability           bench: run the stability suite (where each method breaks)\n"
-           "  --case NAME           bench --stability: run only the case NAME (e.g. resting_blade)\n"
-           "  --chart NAME          bench: run only the sweep's configurations of chart NAME (e.g. modes)\n"
-           "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
-           "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
-           "  --perf DIR            bench: bench scenes x {hw, compute}, pass medians to DIR/perf.json,\n"
-           "                        regenerates docs/PERFORMANCE.md's measured section (--quick: tiny scenes)\n"
-           "  --baseline FILE       bench: run (or --from) and compare every pass median with FILE; exit 1\n"
-           "                        when one is slower by more than 15 %% + 0.02 ms\n"
-           "  --from FILE           bench --perf/--baseline: use a saved perf.json instead of running\n"
-           "  --doc FILE            bench --perf: the doc to regenerate (default docs/PERFORMANCE.md; none\n"
-           "                        with --quick)\n"
-           "  --force               bench --baseline: compare even when the renderers differ\n"
-           "  --papers DIR          bench: blade ablations, billboard cost vs colliding leaves, papers table into\n"
-           "                        DIR (with --report: the paper scenes, into RESULTS.md too; else --scene: that\n"
-           "                        scene's ablations alone)\n"
            "  --quiet               only warnings and errors\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
-           "  --help                this text\n"
-           "keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
-           "      F wireframe, 1/2/3 billboard/blade/hybrid, R hardware/compute raster, O overlays (state, LOD,\n"
-           "      collision), H HUD, Esc quit\n",
+           "  --help                this text\n",
            (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi);
+}
+
+void app_print_usage(void)
+{
+    printf("usage: meadow [options]\n"
+           "       meadow bench|compare [options]   the evaluation harness (meadow bench --help)\n");
+    app_print_options();
+    printf("keys: WASD/QE move, arrows look, Shift fast, P pause, N single step, F12/C screenshot,\n"
+           "      F wireframe, 1/2/3 billboard/blade/hybrid, R hardware/compute raster, O overlays (state, LOD,\n"
+           "      collision), H HUD, Esc quit\n");
 }
 
 static bool parse_int(const char *s, long lo, long hi, long *out)
@@ -115,207 +105,161 @@ static bool size_option(const char *v, app_options_t *o, char *err, size_t err_s
     return false;
 }
 
+/* The options without a value. */
+static bool flag_option(const char *a, app_options_t *o)
+{
+    if (strcmp(a, "--headless") == 0) o->headless = true;
+    else if (strcmp(a, "--floor") == 0) o->floor = true;
+    else if (strcmp(a, "--view-cards") == 0) o->view_cards = true;
+    else if (strcmp(a, "--montage") == 0) o->montage = true;
+    else if (strcmp(a, "--quiet") == 0) o->quiet = true;
+    else return false;
+    return true;
+}
+
+/* The options with a value; `empty` names what an empty value would be
+ * when one is refused ("OPTION: empty WHAT"). */
+static const struct {
+    const char *name, *empty;
+} value_options[] = {
+    {"--scene", NULL},  {"--out", "folder name"},   {"--character", NULL},      {"--clip", NULL},
+    {"--list-clips", "model path"}, {"--character-height", NULL}, {"--frames", NULL}, {"--screenshot-every", NULL},
+    {"--seed", NULL},   {"--size", NULL},           {"--blade-render", NULL},   {"--raster", NULL},
+    {"--raster-samples", NULL}, {"--mode", NULL},   {"--overlay", NULL},
+};
+
+/* The options that name one of a few choices: --mode, --blade-render,
+ * --raster, --overlay. */
+static bool choice_option(const char *a, const char *v, app_options_t *o, char *err, size_t err_size)
+{
+    long n;
+    if (strcmp(a, "--blade-render") == 0) {
+        if (strcmp(v, "pull") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_PULL;
+        else if (strcmp(v, "tess") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_TESS;
+        else {
+            snprintf(err, err_size, "--blade-render '%s': expected pull or tess", v);
+            return false;
+        }
+    } else if (strcmp(a, "--raster") == 0) {
+        scene_raster_t r;
+        if (!scene_raster_parse(v, &r)) {
+            snprintf(err, err_size, "--raster '%s': expected hw, compute or auto", v);
+            return false;
+        }
+        o->raster = 1 + (int)r;
+    } else if (strcmp(a, "--mode") == 0) {
+        if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;
+        else if (strcmp(v, "blade") == 0) o->mode = APP_MODE_BLADE;
+        else if (strcmp(v, "hybrid") == 0) o->mode = APP_MODE_HYBRID;
+        else {
+            snprintf(err, err_size, "--mode '%s': expected billboard, blade or hybrid", v);
+            return false;
+        }
+    } else {
+        if (!parse_int(v, 0, 3, &n)) {
+            snprintf(err, err_size, "--overlay '%s': expected 0 (off), 1 (state), 2 (LOD) or 3 (collision)", v);
+            return false;
+        }
+        o->overlay = (int)n;
+    }
+    return true;
+}
+
+/* Option a (one of value_options) with its value v; false after err. */
+static bool value_option(const char *a, const char *v, app_options_t *o, char *err, size_t err_size)
+{
+    long n;
+    if (strcmp(a, "--scene") == 0) {
+        o->scene = v;
+    } else if (strcmp(a, "--out") == 0) {
+        o->out = v;
+    } else if (strcmp(a, "--character") == 0) {
+        o->character = v;
+    } else if (strcmp(a, "--clip") == 0) {
+        o->clip = v;
+    } else if (strcmp(a, "--list-clips") == 0) {
+        o->list_clips = v;
+    } else if (strcmp(a, "--character-height") == 0) {
+        char *end;
+        double h = strtod(v, &end);
+        if (end == v || *end || !(h >= 0.01 && h <= CHARACTER_IMPORT_MAX_FIT)) {
+            snprintf(err, err_size, "--character-height '%s': expected metres in 0.01..%g", v,
+                     (double)CHARACTER_IMPORT_MAX_FIT);
+            return false;
+        }
+        o->character_height = (float)h;
+    } else if (strcmp(a, "--frames") == 0) {
+        if (!scene_option(a, v, "frames", &n, err, err_size)) return false;
+        o->frames = (int)n;
+        o->frames_set = true;
+    } else if (strcmp(a, "--screenshot-every") == 0) {
+        long most = (long)scene_field_find(SCENE_SEC_ROOT, "frames")->hi;
+        if (!parse_int(v, 0, most, &n)) {
+            snprintf(err, err_size, "--screenshot-every '%s': expected an integer in 0..%ld (0 = never)", v, most);
+            return false;
+        }
+        o->screenshot_every = (int)n;
+        o->screenshot_every_set = true;
+    } else if (strcmp(a, "--seed") == 0) {
+        if (!scene_option(a, v, "seed", &n, err, err_size)) return false;
+        o->seed = (uint32_t)n;
+        o->seed_set = true;
+    } else if (strcmp(a, "--size") == 0) {
+        return size_option(v, o, err, err_size);
+    } else if (strcmp(a, "--raster-samples") == 0) {
+        if (!scene_option(a, v, "raster_samples", &n, err, err_size)) return false;
+        o->raster_samples = (int)n;
+    } else {
+        return choice_option(a, v, o, err, err_size);
+    }
+    return true;
+}
+
+app_option_status_t app_parse_option(int argc, char **argv, int *i, app_options_t *o, char *err, size_t err_size)
+{
+    const char *a = argv[*i];
+    if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
+        app_print_usage();
+        return APP_OPTION_EXIT;
+    }
+    if (strcmp(a, "--scene-keys") == 0) {
+        char *md = scene_keys_markdown();
+        if (!md) {
+            snprintf(err, err_size, "--scene-keys: out of memory");
+            return APP_OPTION_BAD;
+        }
+        fputs(md, stdout);
+        free(md);
+        return APP_OPTION_EXIT;
+    }
+    if (flag_option(a, o)) return APP_OPTION_TAKEN;
+    size_t k = 0, count = sizeof value_options / sizeof value_options[0];
+    while (k < count && strcmp(a, value_options[k].name) != 0) k++;
+    if (k == count) return APP_OPTION_UNKNOWN;
+    if (*i + 1 >= argc) {
+        snprintf(err, err_size, "option %s needs a value (see --help)", a);
+        return APP_OPTION_BAD;
+    }
+    const char *v = argv[++*i];
+    if (value_options[k].empty && !*v) {
+        snprintf(err, err_size, "%s: empty %s", a, value_options[k].empty);
+        return APP_OPTION_BAD;
+    }
+    return value_option(a, v, o, err, err_size) ? APP_OPTION_TAKEN : APP_OPTION_BAD;
+}
+
 int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t err_size)
 {
     memset(o, 0, sizeof *o);
-    int i = 1;
-    if (argc > 1 && argv[1][0] != '-') {
-        if (strcmp(argv[1], "bench") == 0) o->command = APP_CMD_BENCH;
-        else if (strcmp(argv[1], "compare") == 0) o->command = APP_CMD_COMPARE;
-        else {
-            snprintf(err, err_size, "unknown command '%s' (expected bench or compare; see --help)", argv[1]);
+    for (int i = 1; i < argc; i++) {
+        switch (app_parse_option(argc, argv, &i, o, err, err_size)) {
+        case APP_OPTION_TAKEN: break;
+        case APP_OPTION_EXIT: return 1;
+        case APP_OPTION_BAD: return 2;
+        case APP_OPTION_UNKNOWN:
+            snprintf(err, err_size, "unknown option '%s' (see --help)", argv[i]);
             return 2;
         }
-        i = 2;
-    }
-    for (; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        long n;
-#define NEED_VALUE()                                                              \
-    do {                                                                          \
-        if (!v) {                                                                 \
-            snprintf(err, err_size, "option %s needs a value (see --help)", a); \
-            return 2;                                                             \
-        }                                                                         \
-        i++;                                                                      \
-    } while (0)
-/* NEED_VALUE, and the value may not be empty ("OPTION: empty WHAT"). */
-#define NEED_NONEMPTY(what)                                                       \
-    do {                                                                          \
-        NEED_VALUE();                                                             \
-        if (!*v) {                                                                \
-            snprintf(err, err_size, "%s: empty %s", a, what);                     \
-            return 2;                                                             \
-        }                                                                         \
-    } while (0)
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            app_print_usage();
-            return 1;
-        } else if (strcmp(a, "--scene-keys") == 0) {
-            char *md = scene_keys_markdown();
-            if (!md) {
-                snprintf(err, err_size, "--scene-keys: out of memory");
-                return 2;
-            }
-            fputs(md, stdout);
-            free(md);
-            return 1;
-        } else if (strcmp(a, "--headless") == 0) {
-            o->headless = true;
-        } else if (strcmp(a, "--quick") == 0) {
-            o->quick = true;
-        } else if (strcmp(a, "--floor") == 0) {
-            o->floor = true;
-        } else if (strcmp(a, "--view-cards") == 0) {
-            o->view_cards = true;
-        } else if (strcmp(a, "--montage") == 0) {
-            o->montage = true;
-        } else if (strcmp(a, "--overlay") == 0) {
-            NEED_VALUE();
-            if (!parse_int(v, 0, 3, &n)) {
-                snprintf(err, err_size, "--overlay '%s': expected 0 (off), 1 (state), 2 (LOD) or 3 (collision)", v);
-                return 2;
-            }
-            o->overlay = (int)n;
-        } else if (strcmp(a, "--video") == 0) {
-            o->video = true;
-        } else if (strcmp(a, "--stability") == 0) {
-            o->stability = true;
-        } else if (strcmp(a, "--case") == 0) {
-            NEED_NONEMPTY("case name");
-            o->stability_case = v;
-        } else if (strcmp(a, "--chart") == 0) {
-            NEED_NONEMPTY("chart name");
-            o->chart = v;
-        } else if (strcmp(a, "--scaling") == 0) {
-            o->scaling = true;
-        } else if (strcmp(a, "--report") == 0) {
-            NEED_NONEMPTY("folder name");
-            o->report = v;
-        } else if (strcmp(a, "--perf") == 0 || strcmp(a, "--baseline") == 0 || strcmp(a, "--from") == 0 ||
-                   strcmp(a, "--doc") == 0) {
-            NEED_NONEMPTY("path");
-            const char **slot = a[2] == 'p' ? &o->perf : a[2] == 'b' ? &o->baseline : a[2] == 'f' ? &o->perf_from
-                                                                                             : &o->doc;
-            *slot = v;
-        } else if (strcmp(a, "--papers") == 0) {
-            NEED_NONEMPTY("folder name");
-            o->papers = v;
-        } else if (strcmp(a, "--force") == 0) {
-            o->force = true;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o->quiet = true;
-        } else if (strcmp(a, "--scene") == 0) {
-            NEED_VALUE();
-            o->scene = v;
-        } else if (strcmp(a, "--out") == 0) {
-            NEED_NONEMPTY("folder name");
-            o->out = v;
-        } else if (strcmp(a, "--character") == 0) {
-            NEED_VALUE();
-            o->character = v;
-        } else if (strcmp(a, "--clip") == 0) {
-            NEED_VALUE();
-            o->clip = v;
-        } else if (strcmp(a, "--list-clips") == 0) {
-            NEED_NONEMPTY("model path");
-            o->list_clips = v;
-        } else if (strcmp(a, "--character-height") == 0) {
-            NEED_VALUE();
-            char *end;
-            double h = strtod(v, &end);
-            if (end == v || *end || !(h >= 0.01 && h <= CHARACTER_IMPORT_MAX_FIT)) {
-                snprintf(err, err_size, "--character-height '%s': expected metres in 0.01..%g", v,
-                         (double)CHARACTER_IMPORT_MAX_FIT);
-                return 2;
-            }
-            o->character_height = (float)h;
-        } else if (strcmp(a, "--frames") == 0) {
-            NEED_VALUE();
-            if (!scene_option(a, v, "frames", &n, err, err_size)) return 2;
-            o->frames = (int)n;
-            o->frames_set = true;
-        } else if (strcmp(a, "--screenshot-every") == 0) {
-            NEED_VALUE();
-            long most = (long)scene_field_find(SCENE_SEC_ROOT, "frames")->hi;
-            if (!parse_int(v, 0, most, &n)) {
-                snprintf(err, err_size, "--screenshot-every '%s': expected an integer in 0..%ld (0 = never)", v, most);
-                return 2;
-            }
-            o->screenshot_every = (int)n;
-            o->screenshot_every_set = true;
-        } else if (strcmp(a, "--seed") == 0) {
-            NEED_VALUE();
-            if (!scene_option(a, v, "seed", &n, err, err_size)) return 2;
-            o->seed = (uint32_t)n;
-            o->seed_set = true;
-        } else if (strcmp(a, "--size") == 0) {
-            NEED_VALUE();
-            if (!size_option(v, o, err, err_size)) return 2;
-        } else if (strcmp(a, "--blade-render") == 0) {
-            NEED_VALUE();
-            if (strcmp(v, "pull") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_PULL;
-            else if (strcmp(v, "tess") == 0) o->blade_render = 1 + SCENE_BLADE_RENDER_TESS;
-            else {
-                snprintf(err, err_size, "--blade-render '%s': expected pull or tess", v);
-                return 2;
-            }
-        } else if (strcmp(a, "--raster") == 0) {
-            NEED_VALUE();
-            scene_raster_t r;
-            if (!scene_raster_parse(v, &r)) {
-                snprintf(err, err_size, "--raster '%s': expected hw, compute or auto", v);
-                return 2;
-            }
-            o->raster = 1 + (int)r;
-        } else if (strcmp(a, "--raster-samples") == 0) {
-            NEED_VALUE();
-            if (!scene_option(a, v, "raster_samples", &n, err, err_size)) return 2;
-            o->raster_samples = (int)n;
-        } else if (strcmp(a, "--mode") == 0) {
-            NEED_VALUE();
-            if (strcmp(v, "billboard") == 0) o->mode = APP_MODE_BILLBOARD;
-            else if (strcmp(v, "blade") == 0) o->mode = APP_MODE_BLADE;
-            else if (strcmp(v, "hybrid") == 0) o->mode = APP_MODE_HYBRID;
-            else {
-                snprintf(err, err_size, "--mode '%s': expected billboard, blade or hybrid", v);
-                return 2;
-            }
-        } else {
-            snprintf(err, err_size, "unknown option '%s' (see --help)", a);
-            return 2;
-        }
-#undef NEED_VALUE
-    }
-    bool perf = o->perf || o->baseline;
-    if ((perf || o->perf_from || o->doc || o->force) && o->command != APP_CMD_BENCH) {
-        snprintf(err, err_size, "--perf, --baseline, --from, --doc and --force are options of `meadow bench`");
-        return 2;
-    }
-    if ((o->perf_from || o->doc) && !perf) {
-        snprintf(err, err_size, "%s needs --perf or --baseline (see --help)", o->doc ? "--doc" : "--from");
-        return 2;
-    }
-    if (o->force && !o->baseline) {
-        snprintf(err, err_size, "--force needs --baseline (see --help)");
-        return 2;
-    }
-    if (o->stability_case && (o->command != APP_CMD_BENCH || !o->stability)) {
-        snprintf(err, err_size, "--case needs `meadow bench --stability` (see --help)");
-        return 2;
-    }
-    if (o->chart && (o->command != APP_CMD_BENCH || o->stability || o->scaling || o->report || perf)) {
-        snprintf(err, err_size, "--chart needs `meadow bench` without --stability, --scaling, --report or --perf");
-        return 2;
-    }
-    if (o->papers && (o->command != APP_CMD_BENCH || perf || o->chart)) {
-        snprintf(err, err_size, "--papers needs `meadow bench` without --perf, --baseline or --chart");
-        return 2;
-    }
-    if (perf && (o->report || o->stability || o->scaling)) {
-        snprintf(err, err_size, "--perf and --baseline cannot be combined with --report, --stability or --scaling");
-        return 2;
     }
     return 0;
 }

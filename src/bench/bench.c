@@ -863,19 +863,19 @@ static void shape_deviations(bench_run_t *b)
 
 /* --chart NAME keeps that chart's configurations (and the billboard
  * reference with billboard_collision); 2 after an error line when none. */
-static int filter_chart(const app_options_t *o, bench_run_t *b)
+static int filter_chart(const char *chart, bench_run_t *b)
 {
     int k = 0;
-    bool bb = strcmp(o->chart, "billboard_collision") == 0;
+    bool bb = strcmp(chart, "billboard_collision") == 0;
     for (int i = 0; i < b->n; i++)
-        if (strcmp(b->cfg[i].group, o->chart) == 0 || (bb && strcmp(b->cfg[i].group, "billboard_reference") == 0))
+        if (strcmp(b->cfg[i].group, chart) == 0 || (bb && strcmp(b->cfg[i].group, "billboard_reference") == 0))
             b->cfg[k++] = b->cfg[i];
     if (k == 0 || (bb && k == 1)) {
         core_buf_t names = {0};
         for (int ci = 0; ci < CHART_COUNT; ci++)
             if (ci == 0 || strcmp(charts[ci].group, charts[ci - 1].group) != 0)
                 core_buf_printf(&names, "%s%s", ci ? ", " : "", charts[ci].group);
-        core_log_error("--chart '%s': no such chart (%s)", o->chart, names.data);
+        core_log_error("--chart '%s': no such chart (%s)", chart, names.data);
         core_buf_free(&names);
         return 2;
     }
@@ -973,7 +973,7 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
     return rc;
 }
 
-static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_run_t *b)
+static int run_sweep(const app_options_t *o, const char *chart, bool quick, const char *out, bench_run_t *b)
 {
     b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
     b->met = calloc(MAX_CONFIGS, sizeof *b->met);
@@ -984,7 +984,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
     if (!b->cfg || !b->met || !b->err || !b->ssim_err || !b->terms || !b->acc) return 1;
     /* The canopy chart runs on its own scene unless --chart names it alone
      * (then on --scene: the lod.json of that scene) or --scene is that one. */
-    bool canopy_alone = o->chart && strcmp(o->chart, "hybrid_canopy_distance") == 0;
+    bool canopy_alone = chart && strcmp(chart, "hybrid_canopy_distance") == 0;
     bool canopy_own = !canopy_alone && !(o->scene && strcmp(o->scene, CANOPY_SCENE) == 0);
     b->n = build_configs(b->cfg, quick, canopy_own ? CANOPY_SCENE : NULL);
     b->refs[0].tag = "";
@@ -993,7 +993,7 @@ static int run_sweep(const app_options_t *o, bool quick, const char *out, bench_
      * says otherwise (the scene default, auto, would pick one by timing). */
     app_options_t oh = *o;
     if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
-    if (o->chart && filter_chart(o, b)) return 2;
+    if (chart && filter_chart(chart, b)) return 2;
     int n = b->n;
     b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
     int rc = 0;
@@ -1087,11 +1087,48 @@ static void chart_notes(const bench_run_t *b, const bench_chart_t *ch, core_buf_
     core_buf_free(&out);
 }
 
+/* RESULTS.md's charts: each one's image (copied from out into dir/images)
+ * and its table of points. */
+static void report_charts(core_buf_t *r, const char *dir, const char *out, const bench_run_t *b)
+{
+    char path[1200];
+    for (int ci = 0; ci < CHART_COUNT; ci++) {
+        const bench_chart_t *ch = &charts[ci];
+        snprintf(path, sizeof path, "bench_%s", ch->name);
+        copy_chart(dir, out, path);
+        char xlabel[160];
+        knob_label(ch, xlabel, sizeof xlabel);
+        core_buf_printf(r, "### %s\n\n![%s](images/bench_%s.png)\n\nx: %s.\n\n| configuration | x (ms) | "
+                            "frame GPU ms | %s | image error | 1 - SSIM | pen. fraction | blade length err | "
+                            "Pareto front |\n"
+                            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
+                        ch->name, ch->name, ch->name, xlabel, ch->ylabel);
+        double xs[MAX_CONFIGS], ys[MAX_CONFIGS], exs[MAX_CONFIGS], eys[MAX_CONFIGS];
+        int front[MAX_CONFIGS], idx[MAX_CONFIGS];
+        int k = chart_points(b, ch, idx, xs, ys, exs, eys, front);
+        for (int j = 0; j < k; j++) {
+            int i = idx[j];
+            const bench_metrics_t *m = &b->met[i];
+            char v[5][32];
+            cell(v[0], ys[j], 5);
+            cell(v[1], b->err[i], 4);
+            cell(v[2], b->ssim_err[i], 4);
+            cell(v[3], m->penetration_fraction, 4);
+            cell(v[4], m->blade_length_error, 4);
+            core_buf_printf(r, "| %s | %.4f +- %.4f | %.3f | %s +- %.5f | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
+                            xs[j], exs[j], m->frame_ms, v[0], eys[j], v[1], v[2], v[3], v[4], front_name(front[j]));
+        }
+        chart_notes(b, ch, r);
+        core_buf_printf(r, "\n");
+    }
+}
+
 /* RESULTS.md: every chart with its numbers, the stability table, the
  * tile scaling sweeps, the comparison montage. */
-static int write_report(const char *dir, const char *out, const app_options_t *o, const bench_run_t *b,
+static int write_report(const char *dir, const char *out, const bench_options_t *bo, const bench_run_t *b,
                         const char *stability_md, const char *scaling_md, const char *papers_md)
 {
+    const app_options_t *o = &bo->app;
     char path[1200], to[1200];
     snprintf(path, sizeof path, "%s/images", dir);
     if (!core_fs_mkdirs(path)) return 1;
@@ -1108,8 +1145,8 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                     "- this run: `meadow bench --report %s --scene %s --frames %d%s%s%s%s%s`\n"
                     "- renderer: `%s`\n- frames per configuration: %d%s\n\n",
                     dir, dir, dir, o->scene ? o->scene : "scenes/meadow.json", b->frames,
-                    o->width ? " --size " : "", o->width ? size : "", o->quick ? " --quick" : "",
-                    o->papers ? " --papers " : "", o->papers ? o->papers : "",
+                    o->width ? " --size " : "", o->width ? size : "", bo->quick ? " --quick" : "",
+                    bo->papers ? " --papers " : "", bo->papers ? bo->papers : "",
                     b->renderer[0] ? b->renderer : "?", b->frames,
                     "; every configuration runs 3 times, each with its own placement seed against the reference "
                     "of that seed: timings from the fastest run (spread: the second fastest's excess), image error "
@@ -1131,35 +1168,7 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                         "two's spreads and better beyond them in x or y (eval_pareto_noise). n/a: the measure does not "
                         "apply to that mode.\n\n",
                     b->refs[0].floor, b->refs[0].floor_spread, b->refs[0].floor_ssim);
-    for (int ci = 0; ci < CHART_COUNT; ci++) {
-        const bench_chart_t *ch = &charts[ci];
-        snprintf(path, sizeof path, "bench_%s", ch->name);
-        copy_chart(dir, out, path);
-        char xlabel[160];
-        knob_label(ch, xlabel, sizeof xlabel);
-        core_buf_printf(&r, "### %s\n\n![%s](images/bench_%s.png)\n\nx: %s.\n\n| configuration | x (ms) | "
-                            "frame GPU ms | %s | image error | 1 - SSIM | pen. fraction | blade length err | "
-                            "Pareto front |\n"
-                            "| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n",
-                        ch->name, ch->name, ch->name, xlabel, ch->ylabel);
-        double xs[MAX_CONFIGS], ys[MAX_CONFIGS], exs[MAX_CONFIGS], eys[MAX_CONFIGS];
-        int front[MAX_CONFIGS], idx[MAX_CONFIGS];
-        int k = chart_points(b, ch, idx, xs, ys, exs, eys, front);
-        for (int j = 0; j < k; j++) {
-            int i = idx[j];
-            const bench_metrics_t *m = &b->met[i];
-            char v[5][32];
-            cell(v[0], ys[j], 5);
-            cell(v[1], b->err[i], 4);
-            cell(v[2], b->ssim_err[i], 4);
-            cell(v[3], m->penetration_fraction, 4);
-            cell(v[4], m->blade_length_error, 4);
-            core_buf_printf(&r, "| %s | %.4f +- %.4f | %.3f | %s +- %.5f | %s | %s | %s | %s | %s |\n", b->cfg[i].label,
-                            xs[j], exs[j], m->frame_ms, v[0], eys[j], v[1], v[2], v[3], v[4], front_name(front[j]));
-        }
-        chart_notes(b, ch, &r);
-        core_buf_printf(&r, "\n");
-    }
+    report_charts(&r, dir, out, b);
     core_buf_printf(&r, "blade_proxies runs a 1 x 0.32 x 0.32 m box (axis aligned, as every collider: its faces "
                         "are exact in the axis-aligned cube maps at any resolution and only its edges snap to texel "
                         "borders; they lie at other fractions of a texel at 16, 32 and 64 texels, inward at 16 and "
@@ -1190,10 +1199,10 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
                             "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
                             "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
                             "scaling_active.png)\n\n%s\n",
-                        o->quick ? 16 : 64, o->quick ? 16 : 32, scaling_md);
+                        bo->quick ? 16 : 64, bo->quick ? 16 : 32, scaling_md);
     }
     if (papers_md) {
-        copy_chart(dir, o->papers, "papers_leaves");
+        copy_chart(dir, bo->papers, "papers_leaves");
         core_buf_printf(&r, "## The papers' scenes, ablations and colliding leaves\n\n`meadow bench --papers DIR` "
                             "(src/bench/bench_papers.c).\n\n%s", papers_md);
     }
@@ -1212,11 +1221,11 @@ static int write_report(const char *dir, const char *out, const app_options_t *o
     return rc;
 }
 
-int bench_run(const app_options_t *o)
+int bench_run(const bench_options_t *o)
 {
     if (o->perf || o->baseline) return bench_perf_main(o);
     char out[1024], err[1024], path[1200];
-    snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
+    snprintf(out, sizeof out, "%s", o->app.out ? o->app.out : "out/bench");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
@@ -1241,9 +1250,9 @@ int bench_run(const app_options_t *o)
         snprintf(path, sizeof path, "%s/images", report);
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
-    int rc = sweep ? run_sweep(o, o->quick, out, &b) : 0;
-    if (rc == 0 && stability) rc = bench_stability_run(o, out, o->quick, &md, full ? report : NULL);
-    if (rc == 0 && scaling) rc = bench_scaling_run(o, out, o->quick, &sc, &scaling_md);
+    int rc = sweep ? run_sweep(&o->app, o->chart, o->quick, out, &b) : 0;
+    if (rc == 0 && stability) rc = bench_stability_run(o, out, &md, full ? report : NULL);
+    if (rc == 0 && scaling) rc = bench_scaling_run(&o->app, out, o->quick, &sc, &scaling_md);
     if (rc == 0 && o->papers) rc = bench_papers_run(o, o->papers, full ? &papers_md : NULL);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
@@ -1253,9 +1262,9 @@ int bench_run(const app_options_t *o)
         rc = rc ? rc : 1;
     }
     if (rc == 0 && full) {
-        app_options_t oc = *o;
+        bench_options_t oc = *o;
         snprintf(path, sizeof path, "%s/compare", out);
-        oc.out = path;
+        oc.app.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
         if (rc == 0) rc = bench_compare(&oc);
         if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data, papers_md.data);

@@ -27,8 +27,9 @@ static void no_grass(scene_desc_t *s, void *user)
  * PNG frames and an H.264 clip per mode (ffmpeg), written to `out`. */
 static int write_clips(const app_options_t *o, const char *out, int frames);
 
-int bench_compare(const app_options_t *o)
+int bench_compare(const bench_options_t *bo)
 {
+    const app_options_t *o = &bo->app;
     char out[1024], err[1024];
     snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
@@ -40,7 +41,7 @@ int bench_compare(const app_options_t *o)
         return 1;
     }
     gfx_init();
-    int rc = o->video ? write_clips(o, out, o->frames_set ? o->frames : 120)
+    int rc = bo->video ? write_clips(o, out, o->frames_set ? o->frames : 120)
                       : bench_compare_write(o, out, o->frames_set ? o->frames : 60);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();

@@ -130,10 +130,11 @@ int bench_session_run_hooks(const bench_session_desc_t *desc, const bench_sessio
 /* Stability suite: writes stability.csv, stability.md and
  * stability_<case>.png into out; with report (a folder) the screenshots
  * also go to report/images and md (when non-NULL) gets the table with links
- * relative to report; o->stability_case, when set, runs that case alone.
+ * relative to report; o->stability_case, when set, runs that case alone
+ * (o->quick: two values per case).
  * Needs a current GL context (gfx_init done). Returns 0 or 1 (1 also for
  * an unknown case name). */
-int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md, const char *report);
+int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *md, const char *report);
 
 /* Simulation cost of the tiled blade field (bench_scaling.c): one run. */
 typedef struct bench_scaling_point_t {
@@ -183,7 +184,7 @@ extern const bench_ablation_t bench_ablations[BENCH_ABLATION_COUNT];
  * RESULTS.md section, its chart linked as images/papers_leaves.png. Needs a
  * current GL context (gfx_init done). Returns 0, 1, or 2 (bad folder or
  * scene). */
-int bench_papers_run(const app_options_t *o, const char *dir, core_buf_t *md);
+int bench_papers_run(const bench_options_t *o, const char *dir, core_buf_t *md);
 
 /* ---- bench --perf / --baseline (bench_perf.c, bench_baseline.c) ------------------ */
 #define BENCH_PERF_MAX_RUNS 32
@@ -229,6 +230,6 @@ const bench_perf_run_t *bench_perf_find(const bench_perf_t *p, const char *name)
 int bench_baseline_check(const bench_perf_t *cur, const bench_perf_t *base, const char *base_path, bool force);
 /* `bench --perf DIR` and `bench --baseline FILE` (dispatched from bench_run).
  * Returns the process exit code. */
-int bench_perf_main(const app_options_t *o);
+int bench_perf_main(const bench_options_t *o);
 
 #endif

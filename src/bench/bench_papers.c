@@ -107,6 +107,7 @@ static const size_t papers_timed[] = {
 typedef struct papers_t {
     char renderer[256];
     int frames, scene_count, run_count;
+    bool quick;  /* --quick: fewer leaf runs, fewer colliders */
     int planned; /* runs of the whole set; more than run_count when interrupted */
     char scene[MAX_SCENES][256]; /* scene files */
     char name[MAX_SCENES][32];   /* their short names */
@@ -241,7 +242,7 @@ static void scene_short(const char *path, char *out, size_t size)
 /* Sets up run r and its probe: scene s of P (scene_count: the leaves
  * figure), variant v (-1 the scene's own mode; the leaves: the v-th
  * collider count), path k (1 compute). Returns the scene file. */
-static const char *plan_run(const app_options_t *o, const papers_t *P, int s, int v, int k, papers_run_t *r,
+static const char *plan_run(const papers_t *P, int s, int v, int k, papers_run_t *r,
                             papers_probe_t *probe)
 {
     memset(r, 0, sizeof *r);
@@ -251,7 +252,7 @@ static const char *plan_run(const app_options_t *o, const papers_t *P, int s, in
         r->scene = -1;
         r->variant = -2;
         r->mode = SCENE_MODE_BILLBOARD;
-        probe->colliders_wanted = leaf_colliders[o->quick ? 2 * v : v];
+        probe->colliders_wanted = leaf_colliders[P->quick ? 2 * v : v];
         return LEAVES_SCENE;
     }
     r->scene = s;
@@ -269,7 +270,7 @@ static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v
     papers_run_t runs[PAPERS_RUNS];
     for (int n = 0; n < PAPERS_RUNS; n++) {
         papers_probe_t probe;
-        const char *file = plan_run(o, P, s, v, k, &runs[n], &probe);
+        const char *file = plan_run(P, s, v, k, &runs[n], &probe);
         int rc = papers_session(o, file, &runs[n], P->frames, &probe);
         if (rc) {
             core_log_error("papers: %s failed", file);
@@ -297,7 +298,7 @@ static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v
  * returns 0 with the figures made so far. */
 static int papers_measure(const app_options_t *o, papers_t *P)
 {
-    int leaf_n = o->quick ? 2 : MAX_LEAF_RUNS;
+    int leaf_n = P->quick ? 2 : MAX_LEAF_RUNS;
     P->planned = 2 * leaf_n;
     for (int s = 0; s < P->scene_count; s++)
         P->planned += 2 * (BENCH_ABLATION_COUNT + (P->desc[s].mode != SCENE_MODE_BLADE));
@@ -582,8 +583,9 @@ static int papers_scenes(const char *one, papers_t *P)
     return 0;
 }
 
-int bench_papers_run(const app_options_t *o, const char *dir, core_buf_t *md)
+int bench_papers_run(const bench_options_t *bo, const char *dir, core_buf_t *md)
 {
+    const app_options_t *o = &bo->app;
     char err[1024];
     if (!core_fs_mkdirs(dir) || !core_fs_check_writable_dir(dir, err, sizeof err)) {
         core_log_error("--papers: %s", err);
@@ -596,7 +598,8 @@ int bench_papers_run(const app_options_t *o, const char *dir, core_buf_t *md)
         return 1;
     }
     P->desc = desc;
-    P->frames = o->frames_set ? o->frames : (o->quick ? 6 : 120);
+    P->quick = bo->quick;
+    P->frames = o->frames_set ? o->frames : (bo->quick ? 6 : 120);
     snprintf(P->renderer, sizeof P->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     /* With the report, --scene names the sweep's scene: the set runs the papers'. */
     int rc = papers_scenes(md ? NULL : o->scene, P);

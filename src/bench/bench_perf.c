@@ -137,13 +137,13 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     return 0;
 }
 
-static int measure(const app_options_t *o, bench_perf_t *p)
+static int measure(const app_options_t *o, bool quick, bench_perf_t *p)
 {
-    const perf_case_t *cases = o->quick ? quick_cases : full_cases;
-    int nc = o->quick ? (int)(sizeof quick_cases / sizeof quick_cases[0])
-                      : (int)(sizeof full_cases / sizeof full_cases[0]);
-    p->frames = o->frames_set ? o->frames : (o->quick ? 16 : 400);
-    p->quick = o->quick;
+    const perf_case_t *cases = quick ? quick_cases : full_cases;
+    int nc = quick ? (int)(sizeof quick_cases / sizeof quick_cases[0])
+                   : (int)(sizeof full_cases / sizeof full_cases[0]);
+    p->frames = o->frames_set ? o->frames : (quick ? 16 : 400);
+    p->quick = quick;
     snprintf(p->renderer, sizeof p->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     snprintf(p->gl_version, sizeof p->gl_version, "%s", (const char *)glGetString(GL_VERSION));
     time_t now = time(NULL);
@@ -544,10 +544,10 @@ static int update_doc(const bench_perf_t *p, const char *doc)
 
 /* ---- the command ------------------------------------------------------------------- */
 
-static int measure_and_write(const app_options_t *o, bench_perf_t *p, char *json, size_t json_size)
+static int measure_and_write(const bench_options_t *o, bench_perf_t *p, char *json, size_t json_size)
 {
     char err[1024];
-    const char *dir = o->perf ? o->perf : o->out ? o->out : "out/bench";
+    const char *dir = o->perf ? o->perf : o->app.out ? o->app.out : "out/bench";
     if (!core_fs_check_writable_dir(dir, err, sizeof err) || !core_fs_lock_dir(dir, err, sizeof err)) {
         core_log_error("%s: %s", o->perf ? "--perf" : "--out", err);
         return 2;
@@ -557,7 +557,7 @@ static int measure_and_write(const app_options_t *o, bench_perf_t *p, char *json
         return 1;
     }
     gfx_init();
-    int rc = measure(o, p);
+    int rc = measure(&o->app, o->quick, p);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -574,7 +574,7 @@ static int measure_and_write(const app_options_t *o, bench_perf_t *p, char *json
     return bench_perf_read(json, p);
 }
 
-int bench_perf_main(const app_options_t *o)
+int bench_perf_main(const bench_options_t *o)
 {
     bench_perf_t *cur = calloc(1, sizeof *cur), *base = NULL;
     if (!cur) return 1;

@@ -832,7 +832,7 @@ static int run_value(const app_options_t *o, const stab_case_t *c, int variant, 
 /* ---- the suite ---------------------------------------------------------------------------- */
 
 /* Every case, or only the one named by --case. */
-static bool case_selected(const app_options_t *o, const stab_case_t *c)
+static bool case_selected(const bench_options_t *o, const stab_case_t *c)
 {
     return !o->stability_case || strcmp(o->stability_case, c->name) == 0;
 }
@@ -933,8 +933,9 @@ static void md_row(core_buf_t *md, const stab_case_t *c, int variant, const stab
                     row->constant ? " (constant)" : "", c->criterion, brk, images ? "images/" : "", name);
 }
 
-int bench_stability_run(const app_options_t *o, const char *out, bool quick, core_buf_t *md_out, const char *report)
+int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *md_out, const char *report)
 {
+    bool quick = o->quick;
     char path[1200];
     core_buf_t csv = {0}, md = {0}, mdr = {0};
     core_buf_printf(&csv, "case,variant,method,parameter,value,measure,fails,penetration_fraction,penetration_max,"
@@ -966,7 +967,7 @@ int bench_stability_run(const app_options_t *o, const char *out, bool quick, cor
         for (int var = 0; var < VAR_COUNT && rc == 0; var++) {
             if (var == VAR_TUNED && (!c->tuned || quick)) continue;
             stab_row_t row;
-            rc = run_variant(o, c, var, quick, out, report, &csv, &row, &done, total, t0);
+            rc = run_variant(&o->app, c, var, quick, out, report, &csv, &row, &done, total, t0);
             if (rc) break;
             broke = broke || row.broke >= 0;
             if (row.constant)

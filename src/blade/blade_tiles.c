@@ -671,6 +671,33 @@ static void hand_over(blade_tiles_t *t, const uint32_t *entries, int n)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
+/* Initialises the blades of the slots that changed owner (entries: slot,
+ * tile | RECOVERING_BIT when seeded); nseed of them are seeded from the
+ * billboards' slope sums, which the source callback fills first. */
+static void init_slots(blade_tiles_t *t, const uint32_t *entries, int n, int nseed)
+{
+    uint32_t B = t->template_blades;
+    if (nseed && t->source) {
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        t->source(t->source_user, &t->slope_grid, t->bb_sums);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    gfx_buffer_update(t->init_list, 0, (size_t)n * 2 * sizeof(uint32_t), entries);
+    set_common(t, t->init);
+    glUniform1ui(gfx_uniform(t->init, "u_count"), (GLuint)n * B);
+    glUniform1f(gfx_uniform(t->init, "u_slope_recover"), t->desc.slope_recover);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->init_list.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, t->slope_map.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_BB_SUMS, t->bb_sums.id);
+    glDispatchCompute(((GLuint)n * B + 255u) / 256u, 1, 1);
+    gfx_count_add("tiles.initialised", (double)n * B);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    if (nseed && t->source) {
+        uint32_t zero = 0;
+        glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    }
+}
+
 void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_set_t *colliders,
                         const blade_env_t *env)
 {
@@ -756,27 +783,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * sizeof(collide_sphere_t), spheres);
     if (nhand) hand_over(t, handover, nhand);
-    if (ninit) {
-        if (nseed && t->source) {
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-            t->source(t->source_user, &t->slope_grid, t->bb_sums);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
-        gfx_buffer_update(t->init_list, 0, (size_t)ninit * 2 * sizeof(uint32_t), init);
-        set_common(t, t->init);
-        glUniform1ui(gfx_uniform(t->init, "u_count"), (GLuint)ninit * B);
-        glUniform1f(gfx_uniform(t->init, "u_slope_recover"), t->desc.slope_recover);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_TILES_BIND_LIST, t->init_list.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, t->slope_map.id);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_BB_SUMS, t->bb_sums.id);
-        glDispatchCompute(((GLuint)ninit * B + 255u) / 256u, 1, 1);
-        gfx_count_add("tiles.initialised", (double)ninit * B);
-        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        if (nseed && t->source) {
-            uint32_t zero = 0;
-            glClearNamedBufferData(t->bb_sums.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-        }
-    }
+    if (ninit) init_slots(t, init, ninit, nseed);
     uint32_t zero = 0;
     glClearNamedBufferData(t->motion.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     if (nslots) {
