@@ -34,33 +34,19 @@ bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc)
     d.extent = bb_extent_desc_defaults(&d.extent, d.size);
     if (d.clump_size == 0) d.clump_size = 128;
     if (d.clump_layers == 0) d.clump_layers = 4;
-    if (d.blades == 0) d.blades = bb_clump_blades(SCENE_DEFAULT_DENSITY, SCENE_DEFAULT_BILLBOARD_DENSITY);
     bb_clump_desc_t *c = &d.clump;
+    c->population = blade_population_defaults(&c->population);
+    if (d.blades == 0) d.blades = bb_clump_blades(c->population.density, SCENE_DEFAULT_BILLBOARD_DENSITY);
     if (c->size[0] <= 0.0f) c->size[0] = SCENE_DEFAULT_BILLBOARD_WIDTH;
     if (c->size[1] <= 0.0f) c->size[1] = SCENE_DEFAULT_BILLBOARD_HEIGHT;
-    if (c->height[0] == 0.0f && c->height[1] == 0.0f) {
-        c->height[0] = SCENE_DEFAULT_BLADE_HEIGHT_MIN;
-        c->height[1] = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
-    }
-    if (c->width[0] == 0.0f && c->width[1] == 0.0f) {
-        c->width[0] = SCENE_DEFAULT_BLADE_WIDTH_MIN;
-        c->width[1] = SCENE_DEFAULT_BLADE_WIDTH_MAX;
-    }
-    if (c->stiffness[0] == 0.0f && c->stiffness[1] == 0.0f) {
-        c->stiffness[0] = SCENE_DEFAULT_STIFFNESS_MIN;
-        c->stiffness[1] = SCENE_DEFAULT_STIFFNESS_MAX;
-    }
-    static const float root[3] = SCENE_DEFAULT_ALBEDO_ROOT, tip[3] = SCENE_DEFAULT_ALBEDO_TIP;
-    if (bb_zero3(c->albedo_root)) memcpy(c->albedo_root, root, sizeof root);
-    if (bb_zero3(c->albedo_tip)) memcpy(c->albedo_tip, tip, sizeof tip);
-    if (c->gravity == 0.0f) c->gravity = SCENE_DEFAULT_BLADE_GRAVITY;
     static const float sun[3] = BB_CLUMP_SUN;
     if (bb_zero3(c->sun)) memcpy(c->sun, sun, sizeof sun);
     if (c->wind_dir[0] == 0.0f && c->wind_dir[1] == 0.0f) c->wind_dir[0] = 1.0f;
     if (c->depth <= 0.0f) c->depth = 1.5707963f / (c->size[0] * SCENE_DEFAULT_BILLBOARD_DENSITY);
     d.views = bb_view_desc_defaults(&d.views);
-    assert(c->shape >= BLADE_SHAPE_QUADRATIC && c->shape <= BLADE_SHAPE_DANDELION);
-    assert(c->height[0] <= c->height[1] && c->width[0] <= c->width[1] && c->stiffness[0] <= c->stiffness[1]);
+    assert(c->population.shape >= BLADE_SHAPE_QUADRATIC && c->population.shape <= BLADE_SHAPE_DANDELION);
+    assert(c->population.height[0] <= c->population.height[1] && c->population.width[0] <= c->population.width[1] &&
+           c->population.stiffness[0] <= c->population.stiffness[1]);
     return d;
 }
 
@@ -356,7 +342,8 @@ static float bb_range(core_rng_t *rng, const float r[2]) { return core_rng_range
 static void bb_clump_blade(blade_t *b, core_rng_t *rng, const bb_clump_desc_t *c, const blade_env_t *env, bool front,
                            float *x, float *z)
 {
-    float h = bb_range(rng, c->height), w = bb_range(rng, c->width), s = bb_range(rng, c->stiffness);
+    const blade_population_t *pop = &c->population;
+    float h = bb_range(rng, pop->height), w = bb_range(rng, pop->width), s = bb_range(rng, pop->stiffness);
     float angle = core_rng_range(rng, 0.0f, 6.2831853f);
     *x = core_rng_float(rng);
     float u = core_rng_float(rng);
@@ -388,7 +375,7 @@ static blade_t bb_clump_place(const blade_t *b, const bb_clump_desc_t *c, float 
     for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++)
         for (int e = 0; e < 2; e++) {
             float p[3], n[3];
-            blade_ref_surface(&t, c->shape, (float)e, (float)i / BB_CLUMP_SEGMENTS, p, n);
+            blade_ref_surface(&t, c->population.shape, (float)e, (float)i / BB_CLUMP_SEGMENTS, p, n);
             lo = fminf(lo, p[0]);
             hi = fmaxf(hi, p[0]);
         }
@@ -494,7 +481,7 @@ static void bb_clump_raster(bb_samples_t *sb, const blade_t *b, const bb_clump_d
         float v = (float)i / BB_CLUMP_SEGMENTS;
         for (int u = 0; u < 2; u++) {
             float p[3], nrm[3];
-            blade_ref_surface(b, c->shape, (float)u, v, p, nrm);
+            blade_ref_surface(b, c->population.shape, (float)u, v, p, nrm);
             q[i][u][0] = (p[0] + 0.5f * c->size[0]) * sx;
             q[i][u][1] = (float)sb->h - bb_proj_y(pr, p) * sy;
             q[i][u][2] = p[1] * pr->sin_t + p[2] * pr->cos_t;
@@ -549,7 +536,7 @@ static bool bb_clump_view(core_image_t *img, core_image_t *light, bb_samples_t *
                       layer, stats->alpha, n, blades, BB_CLUMP_MAX_BLADES, target);
     /* Resolve: coverage, mean albedo and mean lit colour per texel;
      * transparent texels take the view's means. */
-    const float *ra = c->albedo_root, *ta = c->albedo_tip;
+    const float *ra = c->population.albedo_root, *ta = c->population.albedo_tip;
     float d[3] = {0.0f, pr.sin_t, pr.cos_t};
     double mean[6] = {0}, wsum = 0.0;
     float *acc = malloc(sizeof(float) * 7 * (size_t)w * (size_t)h);
@@ -620,7 +607,7 @@ static bool bb_clump_draw(bb_layout_t *l, uint32_t seed, int layer, int blades, 
     bool ok = sb.z && sb.v && sb.n && sb.hits && b && turned && place;
     core_rng_t rng;
     core_rng_seed(&rng, seed, 100u + (uint64_t)layer);
-    blade_env_t env = {.dt = SCENE_DEFAULT_DT, .gravity = c->gravity};
+    blade_env_t env = {.dt = SCENE_DEFAULT_DT, .gravity = c->population.gravity};
     if (c->wind > 0.0f && !!l->views.on)
         env.winds[env.wind_count++] = blade_wind_wave(0.0f, -1.0f, c->wind, 1.0f, 0.0f);
     env = blade_env_defaults(&env);
@@ -629,7 +616,7 @@ static bool bb_clump_draw(bb_layout_t *l, uint32_t seed, int layer, int blades, 
         bb_clump_blade(&b[n], &rng, c, &env, !l->views.on, &place[2 * n], &place[2 * n + 1]);
         for (int i = 0; i <= BB_CLUMP_SEGMENTS; i++) {
             float p[3], nrm[3];
-            blade_ref_surface(&b[n], c->shape, 0.5f, (float)i / BB_CLUMP_SEGMENTS, p, nrm);
+            blade_ref_surface(&b[n], c->population.shape, 0.5f, (float)i / BB_CLUMP_SEGMENTS, p, nrm);
             top = fmaxf(top, p[1]);
         }
     }

@@ -24,6 +24,7 @@
 
 #include "billboard/bb_ref.h"
 #include "billboard/bb_view.h"
+#include "blade/blade_population.h"
 #include "core/core.h"
 
 #include <stdbool.h>
@@ -50,13 +51,10 @@ typedef struct bb_clump_desc_t {
                               Blades are drawn at their size in metres; when the
                               tallest settled blade of a layer reaches above 0.98 x
                               size[1], the layer's vertical scale shrinks so it fits */
-    float height[2];       /* blade height [min, max] m, default [0.35, 0.7] (scene, grass.height) */
-    float width[2];        /* blade width [min, max] m, default [0.02, 0.05] (scene, grass.width) */
-    float stiffness[2];    /* blade stiffness [min, max], default [8, 12] (scene, grass.stiffness) */
-    int shape;             /* BLADE_SHAPE_* (blade_ref.h), default quadratic (0) (scene, grass.shape) */
-    float albedo_root[3];  /* (0,0,0): (0.10, 0.25, 0.05) (SCENE_DEFAULT_ALBEDO_ROOT) */
-    float albedo_tip[3];   /* (0,0,0): (0.45, 0.65, 0.20) (SCENE_DEFAULT_ALBEDO_TIP) */
-    float gravity;         /* m/s the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
+    /* The blades (blade_population.h; the scene's): ranges, shape, albedo,
+     * the gravity they settle under; the density sets bb_layout_desc_t.blades
+     * when that is 0. */
+    blade_population_t population;
     float wind;            /* strength of the scene's wind wave (blade_wind_wave); the blades
                               settle under its mean, half of it, default 0 (no wind: the
                               azimuth views differ only by the blades' turn) */
@@ -99,7 +97,8 @@ typedef struct bb_layout_desc_t {
     int blades;        /* blades per clump layer before the coverage calibration (the
                           layer adds blades until its union covers as much as these
                           do counted with their overlaps; bb_layout.c), default
-                          bb_clump_blades(200, 6) = 52 (the scene's default densities) */
+                          bb_clump_blades(clump.population.density, 6): 52 at the
+                          scene's default densities */
     bb_clump_desc_t clump;
     bb_extent_desc_t extent;
     bb_view_desc_t views; /* the views each clump layer is baked for (bb_view.h) */
