@@ -4,7 +4,7 @@
  * must have 10-60 % opaque coverage in many thin blades, not a rectangle;
  * the generation rule must follow the extent map and its documented hash
  * formula, on the candidate grid and on mesh triangles (by true area, a
- * vertical face as dense as level ground). The clumps are the blade model's (bb_clump_desc_t): every texel
+ * vertical face as dense as level ground). The clumps are the blade model's (blade_clump_desc_t): every texel
  * holds an albedo on the line from the root's to the tip's (the desc's, not
  * a fixed green), darker below; blades stand at their height in metres, or
  * the layer shrinks so the tallest fits; nothing is cut at the sides or the
@@ -135,7 +135,7 @@ static void test_clumps(const bb_layout_t *l)
         /* The coverage calibration: more blades than the field's density
          * gives (their overlaps made the layer let more ground through),
          * stopping at the blade that reaches the target. */
-        const bb_clump_stats_t *st = &l->clump_stats[k];
+        const blade_clump_stats_t *st = &l->clump_stats[k];
         printf("clump %d: %d blades (52 for the density), mean alpha %.3f, target %.3f\n", k, st->blades, st->alpha,
                st->target);
         CHECK(st->blades > 52 && st->alpha >= st->target && st->alpha < st->target + 0.02);

@@ -55,7 +55,7 @@ static void test_billboards(const scene_grass_desc_t *g)
     CHECK_MSG(bb.recover_time == g->recover_time, "bb recover_time %g, scene %g", bb.recover_time,
               g->recover_time);
     /* The clump layers are drawn from the scene's blades (bb_layout.h). */
-    const bb_clump_desc_t *c = &bb.layout.clump;
+    const blade_clump_desc_t *c = &bb.layout.clump;
     CHECK(c->size[0] == g->billboard_size[0] && c->size[1] == g->billboard_size[1]);
     CHECK_MSG(same_population(&c->population, g), "bb clump population");
     CHECK_MSG(bb.layout.blades == bb_clump_blades(g->population.density, g->billboard_density), "bb clump blades %d",

@@ -4,7 +4,7 @@
  * (sec. 6.3), their albedo from root to tip and the gravity they settle
  * under. The scene's "grass" keys fill one (scene_grass_desc_t.population);
  * the seeder (blade_seed), the tiled field (blade_tiles), the ground canopy
- * (blade_canopy) and the billboards' clump layers (bb_clump_desc_t) each
+ * (blade_canopy) and the billboards' clump layers (blade_clump_desc_t) each
  * take it whole, so the two grass models draw the same blades.
  *
  * The BLADE_DEFAULT_* values are the program's: the scene keys' defaults
