@@ -88,7 +88,7 @@ static void check_gl_free(void)
     app_admit_t a, b;
     app_admit_estimate(&s, &w, &a);
     CHECK(a.gpu[APP_ADMIT_TILES] > 0.0 && a.gpu[APP_ADMIT_BILLBOARDS] > 0.0 && a.gpu[APP_ADMIT_BLADES] == 0.0);
-    s.grass.density *= 4.0f;
+    s.grass.population.density *= 4.0f;
     s.size[0] *= 2;
     app_admit_estimate(&s, &w, &b);
     CHECK(b.gpu[APP_ADMIT_TILES] > 2.0 * a.gpu[APP_ADMIT_TILES]);
@@ -98,7 +98,7 @@ static void check_gl_free(void)
      * default), and the value it names fits where 5 % more does not. */
     app_admit_limits_t lim = {.host_bytes = 512e6};
     base_scene(&s, &t, &w);
-    s.grass.density = 8000.0f;
+    s.grass.population.density = 8000.0f;
     char err[512];
     CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
     printf("refused: %s\n", err);
@@ -106,9 +106,9 @@ static void check_gl_free(void)
     const char *at = strstr(err, "the largest grass.density that fits is ");
     CHECK_MSG(at && sscanf(at + strlen("the largest grass.density that fits is "), "%f", &largest) == 1, "%s", err);
     CHECK(strstr(err, "grass.density 8000 needs ") == err);
-    s.grass.density = largest;
+    s.grass.population.density = largest;
     CHECK_MSG(app_admit_check(&s, &w, &lim, err, sizeof err), "%g: %s", (double)largest, err);
-    s.grass.density = largest * 1.05f;
+    s.grass.population.density = largest * 1.05f;
     CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
 
     /* A full blade field past 50 M blades names the density too. */
@@ -117,12 +117,12 @@ static void check_gl_free(void)
     w.full_field = true;
     s.terrain.size = t.grid_size = 1000.0f;
     w.terrain_area = 1e6;
-    s.grass.density = 100.0f;
+    s.grass.population.density = 100.0f;
     CHECK(!app_admit_check(&s, &w, &(app_admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "more than the 50000000") && strstr(err, "the largest terrain.size that fits is 707"),
               "%s", err);
     s.terrain.size = 300.0f; /* 7.5x its default: now the density, at 8x, is the key */
-    s.grass.density = 1600.0f;
+    s.grass.population.density = 1600.0f;
     CHECK(!app_admit_check(&s, &w, &(app_admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "the largest grass.density that fits is 555"), "%s", err);
 

@@ -44,7 +44,7 @@ static void top_down(scene_desc_t *s, void *user)
 static void no_grass(scene_desc_t *s, void *user)
 {
     (void)user;
-    s->grass.density = 1e-7f;
+    s->grass.population.density = 1e-7f;
 }
 
 /* Over the pixels where bg shows the ground (not the sky: blue below

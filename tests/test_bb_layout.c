@@ -4,7 +4,7 @@
  * must have 10-60 % opaque coverage in many thin blades, not a rectangle;
  * the generation rule must follow the extent map and its documented hash
  * formula, on the candidate grid and on mesh triangles (by true area, a
- * vertical face as dense as level ground). The clumps are the blade model's (bb_clump_desc_t): every texel
+ * vertical face as dense as level ground). The clumps are the blade model's (blade_clump_desc_t): every texel
  * holds an albedo on the line from the root's to the tip's (the desc's, not
  * a fixed green), darker below; blades stand at their height in metres, or
  * the layer shrinks so the tallest fits; nothing is cut at the sides or the
@@ -135,7 +135,7 @@ static void test_clumps(const bb_layout_t *l)
         /* The coverage calibration: more blades than the field's density
          * gives (their overlaps made the layer let more ground through),
          * stopping at the blade that reaches the target. */
-        const bb_clump_stats_t *st = &l->clump_stats[k];
+        const blade_clump_stats_t *st = &l->clump_stats[k];
         printf("clump %d: %d blades (52 for the density), mean alpha %.3f, target %.3f\n", k, st->blades, st->alpha,
                st->target);
         CHECK(st->blades > 52 && st->alpha >= st->target && st->alpha < st->target + 0.02);
@@ -325,16 +325,18 @@ static void test_blade_clumps(void)
     CHECK(bb_clump_blades(200.0f, 6.0f) == 52 && bb_clump_blades(160.0f, 6.0f) == 42);
     CHECK(bb_clump_blades(20.0f, 2.0f) == 16 && bb_clump_blades(0.01f, 6.0f) == 1);
     bb_layout_desc_t dd = bb_layout_desc_defaults(NULL);
-    CHECK(dd.blades == 52 && dd.clump.size[0] == 1.0f && dd.clump.size[1] == 0.6f && dd.clump.gravity == 1.0f);
-    CHECK(dd.clump.height[0] == 0.35f && dd.clump.height[1] == 0.7f && dd.clump.width[1] == 0.05f);
-    CHECK(dd.clump.albedo_root[1] == 0.25f && dd.clump.albedo_tip[1] == 0.65f);
+    CHECK(dd.blades == 52 && dd.clump.size[0] == 1.0f && dd.clump.size[1] == 0.6f &&
+          dd.clump.population.gravity == 1.0f);
+    CHECK(dd.clump.population.height[0] == 0.35f && dd.clump.population.height[1] == 0.7f &&
+          dd.clump.population.width[1] == 0.05f);
+    CHECK(dd.clump.population.albedo_root[1] == 0.25f && dd.clump.population.albedo_tip[1] == 0.65f);
 
     /* The default blades: albedo on the root -> tip line, roots darker. */
     bb_layout_t l;
     CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16}));
     for (int k = 0; k < l.clump_layers; k++) {
         double off, lo, hi;
-        albedo_line(&l.clumps[k], dd.clump.albedo_root, dd.clump.albedo_tip, &off, &lo, &hi);
+        albedo_line(&l.clumps[k], dd.clump.population.albedo_root, dd.clump.population.albedo_tip, &off, &lo, &hi);
         int first, last;
         bool sides;
         covered_rows(&l.clumps[k], &first, &last, &sides);
@@ -350,17 +352,18 @@ static void test_blade_clumps(void)
     bb_layout_free(&l);
 
     /* Another albedo is taken as it is. */
-    bb_layout_desc_t d = {.seed = 3, .size = 16,
-                          .clump = {.albedo_root = {0.8f, 0.1f, 0.1f}, .albedo_tip = {0.1f, 0.1f, 0.9f}}};
+    bb_layout_desc_t d = {.seed = 3,
+                          .size = 16,
+                          .clump.population = {.albedo_root = {0.8f, 0.1f, 0.1f}, .albedo_tip = {0.1f, 0.1f, 0.9f}}};
     CHECK(bb_layout_generate(&l, &d));
     double off, lo, hi;
-    albedo_line(&l.clumps[0], d.clump.albedo_root, d.clump.albedo_tip, &off, &lo, &hi);
+    albedo_line(&l.clumps[0], d.clump.population.albedo_root, d.clump.population.albedo_tip, &off, &lo, &hi);
     printf("red-to-blue blades: off the line %.4f, t bottom %.2f top %.2f\n", off, lo, hi);
     CHECK(off < 3.0 / 255.0 && lo < 0.3 && hi > 0.6);
     bb_layout_free(&l);
 
     /* Short blades stand at their height in metres: 0.3 m of 0.6 m. */
-    d = (bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.height = {0.29f, 0.3f}}};
+    d = (bb_layout_desc_t){.seed = 3, .size = 16, .clump.population.height = {0.29f, 0.3f}};
     CHECK(bb_layout_generate(&l, &d));
     int first, last;
     bool sides;
@@ -373,10 +376,12 @@ static void test_blade_clumps(void)
     CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .blades = 20}));
     double a20 = mean_alpha(&l);
     bb_layout_free(&l);
-    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.shape = BLADE_SHAPE_QUAD}}));
+    CHECK(
+        bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump.population.shape = BLADE_SHAPE_QUAD}));
     double aquad = mean_alpha(&l);
     bb_layout_free(&l);
-    CHECK(bb_layout_generate(&l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump = {.shape = BLADE_SHAPE_TRIANGLE}}));
+    CHECK(bb_layout_generate(
+        &l, &(bb_layout_desc_t){.seed = 3, .size = 16, .clump.population.shape = BLADE_SHAPE_TRIANGLE}));
     double atri = mean_alpha(&l);
     bb_layout_free(&l);
     printf("mean alpha: 20 blades %.3f, 52 blades %.3f; 52 quad blades %.3f, 52 triangle blades %.3f\n", a20, a52,

@@ -25,9 +25,9 @@ static double projected_area(const float dir[3], int n)
     enum { NV = 32, NU = 4 };
     double sum = 0.0;
     for (int k = 0; k < n; k++) {
-        float h = core_rng_range(&rng, SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX);
-        float w = core_rng_range(&rng, SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX);
-        float s = core_rng_range(&rng, SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX);
+        float h = core_rng_range(&rng, BLADE_DEFAULT_HEIGHT_MIN, BLADE_DEFAULT_HEIGHT_MAX);
+        float w = core_rng_range(&rng, BLADE_DEFAULT_WIDTH_MIN, BLADE_DEFAULT_WIDTH_MAX);
+        float s = core_rng_range(&rng, BLADE_DEFAULT_STIFFNESS_MIN, BLADE_DEFAULT_STIFFNESS_MAX);
         float a = core_rng_range(&rng, 0.0f, 6.2831853f);
         blade_t b = {.v0 = {0, 0, 0, a}, .v1 = {0, h, 0, h}, .v2 = {0, h, 0, w}, .up = {0, 1, 0, s}};
         float eta = 0.0f;
@@ -100,7 +100,8 @@ int main(void)
 
     CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}}));
     CHECK(memcmp(&c, &again, sizeof c) == 0);
-    CHECK(blade_canopy_make(&dense, &(blade_canopy_desc_t){.seed = 3, .density = 400.0f, .sun = {0, 1, 0}}));
+    CHECK(blade_canopy_make(&dense,
+                            &(blade_canopy_desc_t){.seed = 3, .population = {.density = 400.0f}, .sun = {0, 1, 0}}));
     CHECK(dense.row[c.rows - 1].cover > c.row[c.rows - 1].cover + 0.05f);
 
     blade_canopy_row_t mid = blade_canopy_at(&c, 0.5f * (c.elevation[3] + c.elevation[4]));

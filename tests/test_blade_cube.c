@@ -29,10 +29,11 @@ static bool seed_field(blade_field_t *f, uint64_t seed)
     static const float nrm[] = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0};
     static const uint32_t idx[] = {0, 2, 1, 0, 3, 2};
     blade_mesh_t mesh = {pos, nrm, 4, idx, 6};
-    return blade_seed_mesh(&mesh,
-                           &(blade_seed_desc_t){.seed = seed, .density = 100.0f, .height_min = 0.2f,
-                                                .height_max = 0.8f, .stiffness_min = 1.0f, .stiffness_max = 9.0f},
-                           f);
+    return blade_seed_mesh(
+        &mesh,
+        &(blade_seed_desc_t){.seed = seed,
+                             .population = {.density = 100.0f, .height = {0.2f, 0.8f}, .stiffness = {1.0f, 9.0f}}},
+        f);
 }
 
 /* The sphere's centre at step s: it crosses the square along a slanted line. */

@@ -22,7 +22,8 @@ static bool seed_plane(blade_field_t *f)
     static const float pos[] = {-14, 0, -14, 14, 0, -14, 14, 0, 14, -14, 0, 14};
     static const uint32_t idx[] = {0, 2, 1, 0, 3, 2};
     blade_mesh_t mesh = {pos, NULL, 4, idx, 6};
-    return blade_seed_mesh(&mesh, &(blade_seed_desc_t){.seed = 21, .density = 6.0f, .patch_size = 64}, f);
+    return blade_seed_mesh(&mesh, &(blade_seed_desc_t){.seed = 21, .population = {.density = 6.0f}, .patch_size = 64},
+                           f);
 }
 
 static int cmp_u32(const void *a, const void *b)

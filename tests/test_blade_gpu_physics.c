@@ -24,10 +24,11 @@ static bool seed_field(blade_field_t *f, float density, uint64_t seed)
                                 -0.5f, 0.8660254f, 0};
     static const uint32_t idx[] = {0, 2, 1, 0, 3, 2, 4, 6, 5, 4, 7, 6};
     blade_mesh_t mesh = {pos, nrm, 8, idx, 12};
-    return blade_seed_mesh(&mesh,
-                           &(blade_seed_desc_t){.seed = seed, .density = density, .height_min = 0.2f,
-                                                .height_max = 0.8f, .stiffness_min = 1.0f, .stiffness_max = 9.0f},
-                           f);
+    return blade_seed_mesh(
+        &mesh,
+        &(blade_seed_desc_t){.seed = seed,
+                             .population = {.density = density, .height = {0.2f, 0.8f}, .stiffness = {1.0f, 9.0f}}},
+        f);
 }
 
 static bool bad_float(const blade_t *b)

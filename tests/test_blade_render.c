@@ -73,9 +73,12 @@ static bool seed_square(blade_field_t *f, float half, float density, uint64_t se
     static const uint32_t idx[] = {0, 2, 1, 0, 3, 2};
     blade_mesh_t mesh = {pos, NULL, 4, idx, 6};
     return blade_seed_mesh(&mesh,
-                           &(blade_seed_desc_t){.seed = seed, .density = density, .height_min = 0.25f,
-                                                .height_max = 0.45f, .width_min = 0.02f, .width_max = 0.035f,
-                                                .stiffness_min = 8.0f, .stiffness_max = 12.0f, .patch_size = 64},
+                           &(blade_seed_desc_t){.seed = seed,
+                                                .population = {.density = density,
+                                                               .height = {0.25f, 0.45f},
+                                                               .width = {0.02f, 0.035f},
+                                                               .stiffness = {8.0f, 12.0f}},
+                                                .patch_size = 64},
                            f);
 }
 
@@ -166,8 +169,8 @@ static void test_shapes(void)
         aabb[i] = (blade_aabb_t){{x - h, -h, -h}, {x + h, h, h}};
         f[i] = (blade_field_t){.blades = &blades[i], .eta = &eta[i], .patch_aabbs = &aabb[i], .blade_count = 1,
                                .padded_count = 1, .patch_count = 1, .patch_size = 1};
-        g[i] = blade_gpu_make(&(blade_gpu_desc_t){.field = &f[i], .shape = (scene_blade_shape_t)i,
-                                                  .max_tess_level = 16, .displacement = 0.3f, .label = "shape"});
+        g[i] = blade_gpu_make(&(blade_gpu_desc_t){
+            .field = &f[i], .shape = (blade_shape_t)i, .max_tess_level = 16, .displacement = 0.3f, .label = "shape"});
         CHECK(g[i]);
     }
     view_t v = {{0.0f, 0.4f, 1.25f}, {0.0f, 0.3f, 0.0f}, 256, 128};
@@ -274,9 +277,12 @@ static void test_torus(void)
     /* Stiffness [4, 8]: the golden was drawn with blade_seed's former default
      * (the program's, now the module default, is [8, 12]). */
     CHECK(blade_seed_mesh(&bm,
-                          &(blade_seed_desc_t){.seed = 8, .density = 250.0f, .height_min = 0.08f,
-                                               .height_max = 0.16f, .width_min = 0.008f, .width_max = 0.014f,
-                                               .stiffness_min = 4.0f, .stiffness_max = 8.0f, .patch_size = 64},
+                          &(blade_seed_desc_t){.seed = 8,
+                                               .population = {.density = 250.0f,
+                                                              .height = {0.08f, 0.16f},
+                                                              .width = {0.008f, 0.014f},
+                                                              .stiffness = {4.0f, 8.0f}},
+                                               .patch_size = 64},
                           &f));
     printf("torus: %u vertices, %u triangles, aabb (%.2f %.2f %.2f)-(%.2f %.2f %.2f), %zu blades\n", mesh.vertex_count,
            mesh.index_count / 3, mesh.aabb_min[0], mesh.aabb_min[1], mesh.aabb_min[2], mesh.aabb_max[0],

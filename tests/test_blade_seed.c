@@ -7,7 +7,6 @@
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "core/core.h"
-#include "scene/scene_fields.h"
 #include "test.h"
 
 #include <stdint.h>
@@ -241,7 +240,7 @@ int main(void)
 
     /* uniform by area */
     blade_field_t f;
-    blade_seed_desc_t desc = {.seed = 1, .density = 60.0f};
+    blade_seed_desc_t desc = {.seed = 1, .population = {.density = 60.0f}};
     CHECK(blade_seed_mesh(&tv, &desc, &f));
     long want = lround(60.0 * area);
     printf("uniform: area %.3f m^2, %zu blades (want %ld)\n", area, f.blade_count, want);
@@ -254,9 +253,9 @@ int main(void)
     CHECK(fabs(frac - want_frac) < 4 * sigma);
     for (size_t i = 0; i < f.blade_count; i++) {
         const blade_t *b = &f.blades[i];
-        CHECK(b->v1[3] >= SCENE_DEFAULT_BLADE_HEIGHT_MIN && b->v1[3] < SCENE_DEFAULT_BLADE_HEIGHT_MAX);
-        CHECK(b->v2[3] >= SCENE_DEFAULT_BLADE_WIDTH_MIN && b->v2[3] < SCENE_DEFAULT_BLADE_WIDTH_MAX);
-        CHECK(b->up[3] >= SCENE_DEFAULT_STIFFNESS_MIN && b->up[3] < SCENE_DEFAULT_STIFFNESS_MAX);
+        CHECK(b->v1[3] >= BLADE_DEFAULT_HEIGHT_MIN && b->v1[3] < BLADE_DEFAULT_HEIGHT_MAX);
+        CHECK(b->v2[3] >= BLADE_DEFAULT_WIDTH_MIN && b->v2[3] < BLADE_DEFAULT_WIDTH_MAX);
+        CHECK(b->up[3] >= BLADE_DEFAULT_STIFFNESS_MIN && b->up[3] < BLADE_DEFAULT_STIFFNESS_MAX);
         CHECK(b->v0[3] >= 0.0f && b->v0[3] < 6.2831854f);
         if (test_failures) break;
     }
@@ -305,8 +304,12 @@ int main(void)
     blade_field_free(&f);
 
     /* tufts */
-    desc = (blade_seed_desc_t){.seed = 9, .mode = BLADE_SEED_TUFTS, .density = 80.0f,
-                               .tuft_blades = 10, .tuft_min_distance = 0.2f, .tuft_radius = 0.08f,
+    desc = (blade_seed_desc_t){.seed = 9,
+                               .mode = BLADE_SEED_TUFTS,
+                               .population = {.density = 80.0f},
+                               .tuft_blades = 10,
+                               .tuft_min_distance = 0.2f,
+                               .tuft_radius = 0.08f,
                                .patch_size = 128};
     CHECK(blade_seed_mesh(&tv, &desc, &f));
     long want_tufts = lround(80.0 * area / 10.0);
@@ -330,7 +333,7 @@ int main(void)
     /* a closed rotated cube without normals: up = face normal, outward */
     mesh_t cube = make_cube();
     blade_mesh_t cv = view(&cube);
-    desc = (blade_seed_desc_t){.seed = 3, .density = 200.0f, .patch_size = 100};
+    desc = (blade_seed_desc_t){.seed = 3, .population = {.density = 200.0f}, .patch_size = 100};
     CHECK(blade_seed_mesh(&cv, &desc, &f));
     CHECK(labs((long)f.blade_count - 4800) <= 1);
     check_field(&cube, &f, &rng);
@@ -356,7 +359,7 @@ int main(void)
     CHECK(core_log_error_count() == errs + 2);
 
     blade_seed_desc_t dd = blade_seed_desc_defaults(&(blade_seed_desc_t){0});
-    CHECK(dd.density == SCENE_DEFAULT_DENSITY && dd.patch_size == 256 && dd.tuft_blades == 8);
+    CHECK(dd.population.density == BLADE_DEFAULT_DENSITY && dd.patch_size == 256 && dd.tuft_blades == 8);
     CHECK(dd.max_blades == (size_t)1 << 22);
     mesh_free(&terrain);
     mesh_free(&cube);

@@ -71,10 +71,14 @@ static terrain_mesh_t make_terrain(float size, int res, bool flat)
 
 static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int pool, float speed)
 {
-    blade_tiles_desc_t d = {.terrain = m, .tile_size = 2.0f, .density = 64.0f, .height_min = 0.3f,
-                            .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
-                            .stiffness_max = 12.0f, .seed = 3, .pool_slots = pool, .switch_distance = 12.0f,
-                            .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
+    blade_tiles_desc_t d = {
+        .terrain = m,
+        .tile_size = 2.0f,
+        .population = {.density = 64.0f, .height = {0.3f, 0.5f}, .width = {0.02f, 0.03f}, .stiffness = {8.0f, 12.0f}},
+        .seed = 3,
+        .pool_slots = pool,
+        .switch_distance = 12.0f,
+        .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, speed);
     d.wind_count = 1;
     return blade_tiles_make(&d);
@@ -389,10 +393,14 @@ static void test_ball(void)
 static void test_fast_ball(void)
 {
     terrain_mesh_t m = make_terrain(16.0f, 32, true);
-    blade_tiles_desc_t d = {.terrain = &m, .tile_size = 2.0f, .density = 64.0f, .height_min = 0.3f,
-                            .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
-                            .stiffness_max = 12.0f, .seed = 3, .pool_slots = 64, .switch_distance = 12.0f,
-                            .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
+    blade_tiles_desc_t d = {
+        .terrain = &m,
+        .tile_size = 2.0f,
+        .population = {.density = 64.0f, .height = {0.3f, 0.5f}, .width = {0.02f, 0.03f}, .stiffness = {8.0f, 12.0f}},
+        .seed = 3,
+        .pool_slots = 64,
+        .switch_distance = 12.0f,
+        .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
     blade_tiles_t *t = blade_tiles_make(&d); /* no wind */
     CHECK(t);
     blade_tiles_info_t ti = blade_tiles_info(t);

@@ -24,9 +24,11 @@ static void memory_report(void)
     terrain_mesh_t big = {.grid_res = 256, .grid_size = 200.0f};
     for (int templates = 4; templates <= 8; templates += 4) {
         uint32_t per = 0;
-        size_t bytes = blade_tiles_estimate_bytes(&(blade_tiles_desc_t){.terrain = &big, .tile_size = 8.0f,
+        size_t bytes = blade_tiles_estimate_bytes(&(blade_tiles_desc_t){.terrain = &big,
+                                                                        .tile_size = 8.0f,
                                                                         .template_count = templates,
-                                                                        .density = 250.0f, .pool_slots = 64,
+                                                                        .population = {.density = 250.0f},
+                                                                        .pool_slots = 64,
                                                                         .switch_distance = 25.0f},
                                                   &per);
         printf("memory: 200x200 m, 250 /m^2, 8 m tiles, %d templates of %u blades, 64 slots: %.1f MB\n", templates,
@@ -42,9 +44,15 @@ static void memory_report(void)
 static blade_tiles_t *make_field(const terrain_mesh_t *m, bool tessellate, float density, const float eye[3],
                                  int frames, float speed, blade_env_t *env)
 {
-    blade_tiles_desc_t d = {.terrain = m, .tile_size = 2.0f, .density = density, .height_min = 0.25f,
-                            .height_max = 0.45f, .width_min = 0.02f, .width_max = 0.035f, .stiffness_min = 8.0f,
-                            .stiffness_max = 12.0f, .seed = 5, .pool_slots = 16, .switch_distance = 7.0f,
+    blade_tiles_desc_t d = {.terrain = m,
+                            .tile_size = 2.0f,
+                            .population = {.density = density,
+                                           .height = {0.25f, 0.45f},
+                                           .width = {0.02f, 0.035f},
+                                           .stiffness = {8.0f, 12.0f}},
+                            .seed = 5,
+                            .pool_slots = 16,
+                            .switch_distance = 7.0f,
                             .tessellate = tessellate};
     d.winds[0] = blade_wind_wave(1.0f, 0.3f, 1.0f, 5.0f, 1.5f);
     d.wind_count = 1;

@@ -91,7 +91,7 @@ typedef struct knob_t {
 static void tweak(scene_desc_t *s, void *user)
 {
     const knob_t *k = user;
-    if (k->density > 0) s->grass.density *= k->density;
+    if (k->density > 0) s->grass.population.density *= k->density;
     if (k->billboard_density > 0) s->grass.billboard_density *= k->billboard_density;
 }
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "billboard/bb.h"
+#include "blade/blade_canopy.h"
 #include "blade/blade_seed.h"
 #include "blade/blade_tiles.h"
 #include "core/core.h"
@@ -16,6 +17,31 @@
 #include "test.h"
 
 static scene_desc_t scene; /* large: keep off the stack */
+
+/* Whether a module's resolved population is the scene's: its keys as the
+ * scene resolved them, the rest (albedo, gravity: not keys, left 0 by the
+ * scene) as blade_population_defaults resolves them. */
+static bool same_population(const blade_population_t *m, const scene_grass_desc_t *g)
+{
+    blade_population_t p = blade_population_defaults(&g->population);
+    return m->density == g->population.density && m->height[0] == g->population.height[0] &&
+           m->height[1] == g->population.height[1] && m->width[0] == g->population.width[0] &&
+           m->width[1] == g->population.width[1] && m->stiffness[0] == g->population.stiffness[0] &&
+           m->stiffness[1] == g->population.stiffness[1] && m->shape == g->population.shape &&
+           memcmp(m->albedo_root, p.albedo_root, sizeof p.albedo_root) == 0 &&
+           memcmp(m->albedo_tip, p.albedo_tip, sizeof p.albedo_tip) == 0 && m->gravity == p.gravity;
+}
+
+/* The scene's keys default to the population's defaults. */
+static void test_population(const scene_grass_desc_t *g)
+{
+    blade_population_t p = blade_population_defaults(NULL);
+    CHECK_MSG(p.density == g->population.density, "population density %g, scene %g", p.density, g->population.density);
+    CHECK(p.height[0] == g->population.height[0] && p.height[1] == g->population.height[1]);
+    CHECK(p.width[0] == g->population.width[0] && p.width[1] == g->population.width[1]);
+    CHECK(p.stiffness[0] == g->population.stiffness[0] && p.stiffness[1] == g->population.stiffness[1]);
+    CHECK(p.shape == g->population.shape && p.gravity == BLADE_DEFAULT_GRAVITY);
+}
 
 static void test_billboards(const scene_grass_desc_t *g)
 {
@@ -29,13 +55,10 @@ static void test_billboards(const scene_grass_desc_t *g)
     CHECK_MSG(bb.recover_time == g->recover_time, "bb recover_time %g, scene %g", bb.recover_time,
               g->recover_time);
     /* The clump layers are drawn from the scene's blades (bb_layout.h). */
-    const bb_clump_desc_t *c = &bb.layout.clump;
+    const blade_clump_desc_t *c = &bb.layout.clump;
     CHECK(c->size[0] == g->billboard_size[0] && c->size[1] == g->billboard_size[1]);
-    CHECK(c->height[0] == g->height[0] && c->height[1] == g->height[1]);
-    CHECK(c->width[0] == g->width[0] && c->width[1] == g->width[1]);
-    CHECK(c->stiffness[0] == g->stiffness[0] && c->stiffness[1] == g->stiffness[1]);
-    CHECK(c->shape == (int)g->shape && c->gravity == SCENE_DEFAULT_BLADE_GRAVITY);
-    CHECK_MSG(bb.layout.blades == bb_clump_blades(g->density, g->billboard_density), "bb clump blades %d",
+    CHECK_MSG(same_population(&c->population, g), "bb clump population");
+    CHECK_MSG(bb.layout.blades == bb_clump_blades(g->population.density, g->billboard_density), "bb clump blades %d",
               bb.layout.blades);
     /* The scene accepts exactly the subdivisions bb_field_make accepts. */
     const scene_field_t *subdiv = scene_field_find(SCENE_SEC_GRASS, "subdiv");
@@ -46,17 +69,15 @@ static void test_billboards(const scene_grass_desc_t *g)
 static void test_blades(const scene_grass_desc_t *g)
 {
     blade_seed_desc_t sd = blade_seed_desc_defaults(&(blade_seed_desc_t){0});
-    CHECK_MSG(sd.density == g->density, "blade_seed density %g, scene %g", sd.density, g->density);
-    CHECK(sd.height_min == g->height[0] && sd.height_max == g->height[1]);
-    CHECK(sd.width_min == g->width[0] && sd.width_max == g->width[1]);
-    CHECK(sd.stiffness_min == g->stiffness[0] && sd.stiffness_max == g->stiffness[1]);
+    CHECK_MSG(same_population(&sd.population, g), "blade_seed population, density %g, scene %g", sd.population.density,
+              g->population.density);
+    blade_canopy_desc_t cd = blade_canopy_desc_defaults(&(blade_canopy_desc_t){0});
+    CHECK_MSG(same_population(&cd.population, g), "blade_canopy population");
 
     blade_tiles_desc_t td = blade_tiles_desc_defaults(&(blade_tiles_desc_t){0});
     CHECK_MSG(td.tile_size == g->tile_size, "blade_tiles tile_size %g, scene %g", td.tile_size, g->tile_size);
-    CHECK(td.density == g->density && td.height_min == g->height[0] && td.height_max == g->height[1]);
-    CHECK(td.width_min == g->width[0] && td.width_max == g->width[1]);
-    CHECK(td.stiffness_min == g->stiffness[0] && td.stiffness_max == g->stiffness[1]);
-    CHECK(td.switch_distance == g->switch_distance && td.shape == g->shape);
+    CHECK_MSG(same_population(&td.population, g), "blade_tiles population");
+    CHECK(td.switch_distance == g->switch_distance);
     CHECK_MSG(td.slope_recover == g->recover_time, "blade_tiles slope_recover %g, scene recover_time %g",
               td.slope_recover, g->recover_time);
     CHECK(td.motion_epsilon == SCENE_DEFAULT_MOTION_EPSILON);
@@ -94,6 +115,7 @@ int main(void)
     core_log_set_quiet(true);
     char err[256];
     CHECK(scene_parse(&scene, "{}", "defaults.json", err, sizeof err));
+    test_population(&scene.grass);
     test_billboards(&scene.grass);
     test_blades(&scene.grass);
     test_hybrid(&scene.grass);

@@ -91,7 +91,7 @@ static void test_scene_files(void)
 
     CHECK(scene_load(&desc, MEADOW_SOURCE_DIR "/scenes/tiny.json", err, sizeof err));
     CHECK_NEAR(desc.terrain.size, 8, 0);
-    CHECK(desc.grass.density <= 50);
+    CHECK(desc.grass.population.density <= 50);
 }
 
 static void test_bad_files(void)
@@ -251,16 +251,16 @@ static void test_good_full(void)
     CHECK(strcmp(desc.terrain.mesh, "models/torus.obj") == 0);
     CHECK_NEAR(desc.terrain.scale, 2.5, 0);
     const scene_grass_desc_t *g = &desc.grass;
-    CHECK_NEAR(g->density, 55.5, 0);
-    CHECK_NEAR(g->height[0], 0.1, 1e-7);
-    CHECK_NEAR(g->height[1], 0.2, 1e-7);
-    CHECK_NEAR(g->width[1], 0.03, 1e-7);
-    CHECK_NEAR(g->stiffness[0], 2, 0);
+    CHECK_NEAR(g->population.density, 55.5, 0);
+    CHECK_NEAR(g->population.height[0], 0.1, 1e-7);
+    CHECK_NEAR(g->population.height[1], 0.2, 1e-7);
+    CHECK_NEAR(g->population.width[1], 0.03, 1e-7);
+    CHECK_NEAR(g->population.stiffness[0], 2, 0);
     CHECK_NEAR(g->billboard_density, 3, 0);
     CHECK_NEAR(g->billboard_size[0], 0.8, 1e-7);
     CHECK_NEAR(g->switch_distance, 9, 0);
     CHECK_NEAR(g->tile_size, 2, 0);
-    CHECK(g->shape == SCENE_SHAPE_TRIANGLE_TIP);
+    CHECK(g->population.shape == BLADE_SHAPE_TRIANGLE_TIP);
     CHECK(g->subdiv[0] == 6 && g->subdiv[1] == 3);
     CHECK(g->spring_iterations == 5 && g->cube_resolution == 64);
     CHECK_NEAR(g->recover_time, 1.5, 0);
@@ -307,10 +307,10 @@ static void test_defaults_and_values(void)
         CHECK(desc.mode == SCENE_MODE_HYBRID);
         CHECK(desc.terrain.type == TERRAIN_HEIGHTFIELD && desc.terrain.size == 40);
         CHECK(desc.terrain.resolution == 64 && desc.terrain.height == 1.5f && desc.terrain.scale == 1);
-        CHECK(desc.grass.density == 200 && desc.grass.billboard_density == 6);
-        CHECK(desc.grass.height[0] == 0.35f && desc.grass.height[1] == 0.7f);
+        CHECK(desc.grass.population.density == 200 && desc.grass.billboard_density == 6);
+        CHECK(desc.grass.population.height[0] == 0.35f && desc.grass.population.height[1] == 0.7f);
         CHECK(desc.grass.switch_distance == 12 && desc.grass.tile_size == 4);
-        CHECK(desc.grass.shape == SCENE_SHAPE_QUADRATIC);
+        CHECK(desc.grass.population.shape == BLADE_SHAPE_QUADRATIC);
         CHECK(desc.grass.subdiv[0] == 4 && desc.grass.subdiv[1] == 4);
         CHECK(desc.grass.spring_iterations == 2 && desc.grass.cube_resolution == 32);
         CHECK(desc.grass.recover_time == 3);
@@ -344,7 +344,7 @@ static void test_defaults_and_values(void)
     parse_ok(" \r\n\t{ \"seed\" : 7 }\n\n");
     CHECK(desc.seed == 7);
     CHECK(strcmp(scene_mode_name(SCENE_MODE_BLADE), "blade") == 0);
-    CHECK(strcmp(scene_blade_shape_name(SCENE_SHAPE_DANDELION), "dandelion") == 0);
+    CHECK(strcmp(scene_blade_shape_name(BLADE_SHAPE_DANDELION), "dandelion") == 0);
 }
 
 /* Every proper prefix of a real scene file is rejected with a line number

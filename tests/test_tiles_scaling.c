@@ -57,9 +57,13 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
         m.normals[3 * v + 1] = 1.0f;
     }
     m.aabb_min[1] = m.aabb_max[1] = 0.0f;
-    blade_tiles_desc_t d = {.terrain = &m, .tile_size = TILE, .density = 512.0f, .height_min = 0.3f,
-                            .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f, .stiffness_min = 8.0f,
-                            .stiffness_max = 12.0f, .seed = 3, .pool_slots = 32, .switch_distance = 12.0f};
+    blade_tiles_desc_t d = {
+        .terrain = &m,
+        .tile_size = TILE,
+        .population = {.density = 512.0f, .height = {0.3f, 0.5f}, .width = {0.02f, 0.03f}, .stiffness = {8.0f, 12.0f}},
+        .seed = 3,
+        .pool_slots = 32,
+        .switch_distance = 12.0f};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, 2.0f);
     d.wind_count = 1;
     blade_tiles_t *t = blade_tiles_make(&d);

@@ -27,11 +27,16 @@
 
 static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int window)
 {
-    blade_tiles_desc_t d = {.terrain = m, .window = window, .tile_size = 2.0f, .density = 24.0f,
-                            .height_min = 0.3f, .height_max = 0.5f, .width_min = 0.02f, .width_max = 0.03f,
-                            .stiffness_min = 8.0f, .stiffness_max = 12.0f, .seed = 5, .pool_slots = 16,
-                            .switch_distance = SWITCH, .keep_state = true,
-                            .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
+    blade_tiles_desc_t d = {
+        .terrain = m,
+        .window = window,
+        .tile_size = 2.0f,
+        .population = {.density = 24.0f, .height = {0.3f, 0.5f}, .width = {0.02f, 0.03f}, .stiffness = {8.0f, 12.0f}},
+        .seed = 5,
+        .pool_slots = 16,
+        .switch_distance = SWITCH,
+        .keep_state = true,
+        .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, 1.0f);
     d.wind_count = 1;
     return blade_tiles_make(&d);

@@ -60,7 +60,7 @@ float bb_view_xi(uvec2 px)
 
 /* Clump layer `layer` at uv (gradients dx, dy) seen along to_eye, from the
  * view the pixel's draw xi picks (bb_view_pick): its albedo and alpha, and
- * in light its light layer (the blades' lit colour, bb_layout.c; views
+ * in light its light layer (the blades' lit colour, blade_clump.c; views
  * off: none in the array, 0). A pixel shows one bake, not a mix: the
  * views' alpha images are calibrated one by one, and a mix of two would
  * put half-alpha ghosts of both where alpha-to-coverage rounds up; the

@@ -37,8 +37,8 @@ vec3 shade_lit(vec3 albedo, vec3 n, vec3 sun_dir, float ao, vec3 ambient)
 }
 
 // Lambert sun + hemispheric sky ambient. two_sided flips the normal toward
-// the viewer (grass is lit from both faces). Twin: bb_shade_ref in
-// src/billboard/bb_layout.c (the clump bakes' lit colour).
+// the viewer (grass is lit from both faces). Twin: clump_shade in
+// src/blade/blade_clump.c (the clump bakes' lit colour).
 vec3 shade(vec3 albedo, vec3 n, vec3 sun_dir, float ao)
 {
     return shade_lit(albedo, n, sun_dir, ao, hemisphere_ambient(n));

@@ -71,13 +71,11 @@ static double tiles_bytes(const scene_desc_t *s, const app_admit_world_t *w)
     t.grid_size = t.world.size = s->terrain.size;
     double tiles = ceil(t.grid_size / g->tile_size) * ceil(t.grid_size / g->tile_size);
     if (t.type == TERRAIN_WORLD) tiles = 0; /* a window of tiles, whatever the size */
-    if (tiles > HYBRID_MAX_TILES || g->density * g->tile_size * g->tile_size < 1.0f) return INFINITY;
+    if (tiles > HYBRID_MAX_TILES || g->population.density * g->tile_size * g->tile_size < 1.0f) return INFINITY;
     float distance = w->tiles_distance > 0.0f ? w->tiles_distance : g->switch_distance;
-    blade_tiles_desc_t d = {.terrain = &t, .tile_size = g->tile_size, .density = g->density,
-                            .height_min = g->height[0], .height_max = g->height[1], .width_min = g->width[0],
-                            .width_max = g->width[1], .stiffness_min = g->stiffness[0],
-                            .stiffness_max = g->stiffness[1], .switch_distance = distance,
-                            .pool_slots = g->tile_pool, .cull = {.max_distance = distance + 1.0f}};
+    blade_tiles_desc_t d = {.terrain = &t, .tile_size = g->tile_size, .population = g->population,
+                            .switch_distance = distance, .pool_slots = g->tile_pool,
+                            .cull = {.max_distance = distance + 1.0f}};
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
 
@@ -113,13 +111,13 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
     double area = ground_area(s, w), ext[2];
     ground_extent(s, w, ext);
     if (w->full_field) {
-        e->blades = area * g->density;
+        e->blades = area * g->population.density;
         e->gpu[APP_ADMIT_BLADES] = e->blades * (BLADE_BYTES + 8.0) + MIB;
         e->host += e->blades * (BLADE_BYTES + 4.0); /* seeded on the CPU, then uploaded */
     }
     if (w->tiles && w->terrain) {
         e->gpu[APP_ADMIT_TILES] = tiles_bytes(s, w);
-        e->blades = (double)g->tile_pool * g->density * g->tile_size * g->tile_size;
+        e->blades = (double)g->tile_pool * g->population.density * g->tile_size * g->tile_size;
     }
     if (w->billboards) {
         double spacing = 1.0 / sqrt(g->billboard_density);

@@ -73,17 +73,19 @@ bool app_gi_make(app_world_t *w)
     app_gi_src_t src = {.terrain = t};
     src.have_layout = app_world_extent_layout(w, &src.lay, &src.gen);
     gi_object_t boxes[SCENE_MAX_COLLIDERS];
-    float grass_height = 0.5f * (g->height[0] + g->height[1]);
+    float grass_height = 0.5f * (g->population.height[0] + g->population.height[1]);
     gi_scene_t scene = {.height = gi_height,
                         .cover = gi_cover,
                         .user = &src,
                         .grass_height = grass_height,
                         /* blade area per volume (density x mean width) over 2 */
-                        .grass_extinction = 0.5f * g->density * 0.5f * (g->width[0] + g->width[1]),
+                        .grass_extinction =
+                            0.5f * g->population.density * 0.5f * (g->population.width[0] + g->population.width[1]),
                         .objects = boxes,
                         .object_count = static_boxes(w, boxes)};
-    gi_volume_desc_t desc = {.lo = {t->aabb_min[0], t->aabb_min[1], t->aabb_min[2]},
-                             .hi = {t->aabb_max[0], t->aabb_max[1] + g->height[1] + APP_GI_TOP, t->aabb_max[2]}};
+    gi_volume_desc_t desc = {
+        .lo = {t->aabb_min[0], t->aabb_min[1], t->aabb_min[2]},
+        .hi = {t->aabb_max[0], t->aabb_max[1] + g->population.height[1] + APP_GI_TOP, t->aabb_max[2]}};
     gi_volume_t v;
     bool ok = gi_volume_make(&v, &desc, &scene);
     if (src.have_layout) bb_layout_free(&src.lay);

@@ -4,7 +4,6 @@
  * grid of integer coordinates, five index ranges, a draw per level of
  * terrain_world.vert, displaced by world_height; the same terrain.frag. */
 #include "app/app_world.h"
-#include "scene/scene_fields.h"
 
 #include <string.h>
 
@@ -128,7 +127,7 @@ void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
                 canopy ? t->canopy_fade[1] : 0.0f);
     if (canopy) {
-        static const float root[3] = SCENE_DEFAULT_ALBEDO_ROOT, tip[3] = SCENE_DEFAULT_ALBEDO_TIP;
+        static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
         const blade_canopy_uniforms_t *u = &t->canopy;
         glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), u->rows);
         glUniform1fv(gfx_uniform(t->prog, "u_canopy_cover"), u->rows, u->cover);

@@ -47,19 +47,20 @@ static bool tile_admission(const app_world_t *w)
 {
     const terrain_mesh_t *t = &w->terrain_mesh;
     const scene_grass_desc_t *g = &w->scene.grass;
+    const float density = g->population.density;
     if (w->scene.terrain.type != TERRAIN_HEIGHTFIELD || g->tile_size <= 0.0f) return true;
     double sx = t->aabb_max[0] - t->aabb_min[0], sz = t->aabb_max[2] - t->aabb_min[2];
     double tiles = ceil(sx / g->tile_size) * ceil(sz / g->tile_size);
-    double per_tile = (double)g->density * g->tile_size * g->tile_size;
-    if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || g->density <= 0.0f)) return true;
-    if (tiles <= HYBRID_MAX_TILES && g->density < SCENE_DEFAULT_DENSITY) {
+    double per_tile = (double)density * g->tile_size * g->tile_size;
+    if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || density <= 0.0f)) return true;
+    if (tiles <= HYBRID_MAX_TILES && density < BLADE_DEFAULT_DENSITY) {
         core_log_error("%s: grass.density %g puts %.3g blades on a tile of grass.tile_size %g m, less than one: the "
                        "smallest grass.density that fits is %.3g (or a tile_size of %.3g m)",
-                       w->scene_path, g->density, per_tile, g->tile_size,
-                       ceil(1e3 / (g->tile_size * g->tile_size)) / 1e3, ceil(1e3 / sqrt(g->density)) / 1e3);
+                       w->scene_path, density, per_tile, g->tile_size,
+                       ceil(1e3 / (g->tile_size * g->tile_size)) / 1e3, ceil(1e3 / sqrt(density)) / 1e3);
         return false;
     }
-    double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), g->density > 0.0f ? 1.0 / sqrt(g->density) : 0.0);
+    double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), density > 0.0f ? 1.0 / sqrt(density) : 0.0);
     core_log_error("%s: grass.tile_size %g m cuts the %.0f x %.0f m field into %.3g tiles of %.3g blades; the "
                    "hybrid holds at most %d tiles of at least one blade: the smallest tile_size that fits is %.3g m",
                    w->scene_path, g->tile_size, sx, sz, tiles, per_tile, HYBRID_MAX_TILES, ceil(smallest * 1e3) / 1e3);
@@ -287,12 +288,8 @@ static bool make_bb(app_world_t *w)
         .max_objects = objects > 0 ? objects : 1,
         .wind = wind,
         .layout = {.size = layout_size,
-                   .blades = bb_clump_blades(g->density, g->billboard_density),
-                   .clump = {.height = {g->height[0], g->height[1]},
-                             .width = {g->width[0], g->width[1]},
-                             .stiffness = {g->stiffness[0], g->stiffness[1]},
-                             .shape = (int)g->shape,
-                             .gravity = SCENE_DEFAULT_BLADE_GRAVITY,
+                   .blades = bb_clump_blades(g->population.density, g->billboard_density),
+                   .clump = {.population = g->population,
                              .wind = wind_strength,
                              .wind_dir = {wind.dir[0], wind.dir[1]}},
                    .extent = extent_desc(w, &gen),
@@ -358,14 +355,11 @@ static bool make_blades(app_world_t *w)
     blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
                          .indices = t->indices, .index_count = t->index_count};
     blade_seed_desc_t sd = {.seed = placement_seed(w),
-                            .density = g->density,
-                            .height_min = g->height[0], .height_max = g->height[1],
-                            .width_min = g->width[0], .width_max = g->width[1],
-                            .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
+                            .population = g->population,
                             .max_blades = APP_ADMIT_MAX_FIELD_BLADES};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
-    blade_gpu_desc_t gd = {.field = &field, .shape = g->shape, .label = "blades",
+    blade_gpu_desc_t gd = {.field = &field, .shape = g->population.shape, .label = "blades",
                            .displacement = g->displacement, .width_correction = g->width_correction,
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
                                                                               : BLADE_PATH_PULLING};
@@ -393,8 +387,9 @@ static void make_blade_env(app_world_t *w)
      * eta decays over the scene's recover time: a trail stays down about
      * that long, like the billboards' (departure from the paper's k = 1,
      * see blade_env_t.collision_gain). */
-    float h = 0.5f * (g->height[0] + g->height[1]);
-    w->blade_env = (blade_env_t){.gravity = SCENE_DEFAULT_BLADE_GRAVITY,
+    blade_population_t pop = blade_population_defaults(&g->population);
+    float h = 0.5f * (pop.height[0] + pop.height[1]);
+    w->blade_env = (blade_env_t){.gravity = pop.gravity,
                                  .collision_gain = 1.0f / (0.01f * h * h),
                                  .collision_decay = 1.0f / g->recover_time};
     if (w->tuning.paper) {
@@ -438,26 +433,17 @@ static bool make_tiles(app_world_t *w)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
-    canopy_job_t job = {.desc = {.density = g->density,
-                                 .height = {g->height[0], g->height[1]},
-                                 .width = {g->width[0], g->width[1]},
-                                 .stiffness = {g->stiffness[0], g->stiffness[1]},
-                                 .shape = g->shape,
-                                 .gravity = w->blade_env.gravity,
+    canopy_job_t job = {.desc = {.population = g->population,
                                  .seed = s->seed,
                                  .sun = APP_SUN_DIR}};
     pthread_t thread;
     bool threaded = pthread_create(&thread, NULL, canopy_thread, &job) == 0;
     blade_tiles_desc_t td = {.terrain = &w->terrain_mesh,
                              .tile_size = g->tile_size,
-                             .density = g->density,
-                             .height_min = g->height[0], .height_max = g->height[1],
-                             .width_min = g->width[0], .width_max = g->width[1],
-                             .stiffness_min = g->stiffness[0], .stiffness_max = g->stiffness[1],
+                             .population = g->population,
                              .seed = s->seed,
                              .switch_distance = tiles_distance(w),
                              .pool_slots = g->tile_pool,
-                             .shape = g->shape,
                              .displacement = g->displacement,
                              .width_correction = g->width_correction,
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,

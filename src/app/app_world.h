@@ -225,8 +225,8 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
  * default this (m); the ground canopy beyond (docs/WORLD.md). */
 #define APP_WORLD_BLADE_DISTANCE 80.0f
 /* Towards the sun (normalised where used): every view's sun_dir, the one
- * the clump bakes (BB_CLUMP_SUN) and the canopy's table light with. */
-#define APP_SUN_DIR BB_CLUMP_SUN
+ * the clump bakes (BLADE_CLUMP_SUN) and the canopy's table light with. */
+#define APP_SUN_DIR BLADE_CLUMP_SUN
 /* ---- hybrid seam (app_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
 /* A frame for eval_image_seam: colour, distance to the visible surface and
  * class per pixel (row 0 at the top). */

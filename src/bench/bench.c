@@ -112,7 +112,7 @@ static void tweak(scene_desc_t *s, void *user)
     /* A switch sweep keeps the canopy's band beyond the blades' (app_world_load's rule). */
     s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + CANOPY_GAP);
     if (c->density_scale > 0) {
-        s->grass.density *= c->density_scale;
+        s->grass.population.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
     }
     if (c->no_colliders) s->collider_count = s->character_count = 0;
@@ -199,7 +199,7 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
 static void no_grass(scene_desc_t *s, void *user)
 {
     (void)user;
-    s->grass.density = 1e-7f;
+    s->grass.population.density = 1e-7f;
 }
 
 static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_mode_t mode)

@@ -20,7 +20,7 @@
 static void no_grass(scene_desc_t *s, void *user)
 {
     (void)user;
-    s->grass.density = 1e-7f;
+    s->grass.population.density = 1e-7f;
 }
 
 /* `meadow compare --video`: the scene in billboard, blade and hybrid modes as

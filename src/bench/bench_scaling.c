@@ -49,7 +49,7 @@ static void tweak(scene_desc_t *s, void *user)
     const scaling_run_t *r = user;
     s->terrain = terrain_desc_defaults(&(terrain_desc_t){
         .type = TERRAIN_HEIGHTFIELD, .size = r->side, .resolution = (int)fminf(256.0f, r->side), .height = 0.3f});
-    s->grass.density = r->density;
+    s->grass.population.density = r->density;
     s->grass.billboard_density = 6;
     s->grass.tile_size = r->tile;
     s->grass.switch_distance = 12;

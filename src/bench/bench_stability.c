@@ -85,9 +85,9 @@ static void base_scene(scene_desc_t *s)
     s->terrain = (terrain_desc_t){.type = TERRAIN_HEIGHTFIELD, .size = 6, .resolution = 16, .height = 0.05f};
     terrain_desc_t td = terrain_desc_defaults(&s->terrain);
     s->terrain = td;
-    s->grass.density = 60;
-    s->grass.height[0] = 0.35f;
-    s->grass.height[1] = 0.5f;
+    s->grass.population.density = 60;
+    s->grass.population.height[0] = 0.35f;
+    s->grass.population.height[1] = 0.5f;
     s->grass.billboard_density = 6;
     s->grass.billboard_size[0] = 0.6f;
     s->grass.billboard_size[1] = 0.4f;
@@ -193,7 +193,7 @@ static void setup_squeeze(scene_desc_t *s, float v)
 static void setup_resting(scene_desc_t *s, float v)
 {
     s->wind_count = 0;
-    s->grass.stiffness[0] = s->grass.stiffness[1] = v;
+    s->grass.population.stiffness[0] = s->grass.population.stiffness[1] = v;
     add_sphere(s, 0.35f, 0, 0.3f, 0);
 }
 /* A ball passing (and leaving: the grass recovers for the rest of the

@@ -1,72 +1,26 @@
 /* bb_layout: procedural content for the billboard grass of Orthmann et al.
  * 2009 (sec. 3, "layout textures"): the extent map (where grass grows), the
  * direction map (growth direction), the messiness map, the grass-clump
- * texture array drawn on the billboards, and the CPU twin of the generation
- * rule that turns a candidate grid cell into a bb_point_t. The GLSL twin is
- * bb_generate() in shaders/common/bb.glsl; both use core_hash_u32 /
- * hash_u32 so the accept decision, layer and seed match bit for bit.
+ * texture array drawn on the billboards (baked by blade_clump), and the CPU
+ * twin of the generation rule that turns a candidate grid cell into a
+ * bb_point_t. The GLSL twin is bb_generate() in shaders/common/bb.glsl;
+ * both use core_hash_u32 / hash_u32 so the accept decision, layer and seed
+ * match bit for bit.
  *
- * The clumps are drawn from the blade model of Jahrmann & Wimmer 2017, not
- * painted: each layer is a patch of the blade field seen from the front
- * (orthographic), its blades seeded as blade_seed seeds them (height,
- * width, stiffness and direction angle uniform in the scene's ranges),
- * settled under the program's gravity by the blade physics (blade_ref_step,
- * eq. 3-13, no wind: the billboards sway on their own) and rasterised on
- * the CPU from the C twin of blade_geom.glsl (blade_ref_surface, eq. 21 and
- * the scene's shape). A texel holds the blades' albedo, the root-to-tip mix
- * of blade_shade (unlit: bb_shade lights it), and their coverage as
- * straight alpha; see bb_layout.c for the rasteriser. With the views on
- * (bb_view.h, beyond the paper) each layer is baked once per view, its
- * blades bent by the scene's mean wind, and every view also holds its
- * blades' mean lit colour. */
+ * The clump layers are the blade model's, baked by blade_clump
+ * (blade/blade_clump.h) from the scene's blade population, once per view
+ * with the views on (bb_view.h); this module allocates the images, picks
+ * the views and leaves the baking to it. */
 #ifndef MEADOW_BB_LAYOUT_H
 #define MEADOW_BB_LAYOUT_H
 
 #include "billboard/bb_ref.h"
 #include "billboard/bb_view.h"
+#include "blade/blade_clump.h"
 #include "core/core.h"
 
 #include <stdbool.h>
 #include <stdint.h>
-
-/* Clump rasteriser (bb_layout.c): samples per texel side, quads along a
- * blade, physics steps of SCENE_DEFAULT_DT that settle a blade under
- * gravity (1.5 s: the slowest stiffness, 8, leaves e^-12 of the start), texels
- * kept clear at the layer's sides, and the most blades bb_clump_blades
- * gives (it logs a warning when it caps). */
-#define BB_CLUMP_SS 4
-#define BB_CLUMP_SEGMENTS 16
-#define BB_CLUMP_SETTLE_STEPS 90
-#define BB_CLUMP_MARGIN 1.5f
-#define BB_CLUMP_MAX_BLADES 4096
-#define BB_CLUMP_SUN {0.45f, 0.8f, 0.35f}
-
-/* The blades of the clump layers. Zero means default; defaults marked
- * (scene) are SCENE_DEFAULT_* of scene/scene_fields.h (scene key in
- * brackets). */
-typedef struct bb_clump_desc_t {
-    float size[2];         /* metres a layer spans across and up: the billboard's base
-                              size, default 1.0 x 0.6 (scene, grass.billboard_size).
-                              Blades are drawn at their size in metres; when the
-                              tallest settled blade of a layer reaches above 0.98 x
-                              size[1], the layer's vertical scale shrinks so it fits */
-    float height[2];       /* blade height [min, max] m, default [0.35, 0.7] (scene, grass.height) */
-    float width[2];        /* blade width [min, max] m, default [0.02, 0.05] (scene, grass.width) */
-    float stiffness[2];    /* blade stiffness [min, max], default [8, 12] (scene, grass.stiffness) */
-    int shape;             /* BLADE_SHAPE_* (blade_ref.h), default quadratic (0) (scene, grass.shape) */
-    float albedo_root[3];  /* (0,0,0): (0.10, 0.25, 0.05) (SCENE_DEFAULT_ALBEDO_ROOT) */
-    float albedo_tip[3];   /* (0,0,0): (0.45, 0.65, 0.20) (SCENE_DEFAULT_ALBEDO_TIP) */
-    float gravity;         /* m/s the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
-    float wind;            /* strength of the scene's wind wave (blade_wind_wave); the blades
-                              settle under its mean, half of it, default 0 (no wind: the
-                              azimuth views differ only by the blades' turn) */
-    float wind_dir[2];     /* the wind's xz direction in the world, default (1, 0) */
-    float sun[3];          /* direction to the sun in the world (any length), default
-                              BB_CLUMP_SUN, the program's sun (app_world.c) */
-    float depth;           /* metres of field behind a card that its elevated views show (the
-                              mean free path between cards, pi / (2 size[0] billboard
-                              density)), default pi / (2 size[0] SCENE_DEFAULT_BILLBOARD_DENSITY) */
-} bb_clump_desc_t;
 
 /* The extent map's clearings (bb_layout.c, bb_layout_extent). */
 typedef enum bb_clearings_t {
@@ -98,9 +52,10 @@ typedef struct bb_layout_desc_t {
                           once per view */
     int blades;        /* blades per clump layer before the coverage calibration (the
                           layer adds blades until its union covers as much as these
-                          do counted with their overlaps; bb_layout.c), default
-                          bb_clump_blades(200, 6) = 52 (the scene's default densities) */
-    bb_clump_desc_t clump;
+                          do counted with their overlaps; blade_clump.c), default
+                          bb_clump_blades(clump.population.density, 6): 52 at the
+                          scene's default densities */
+    blade_clump_desc_t clump;
     bb_extent_desc_t extent;
     bb_view_desc_t views; /* the views each clump layer is baked for (bb_view.h) */
     bool extent_only;     /* only the extent map (the blade tiles' clearings): direction and
@@ -119,15 +74,6 @@ bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
  * surface as one through the blade field. */
 int bb_clump_blades(float blade_density, float billboard_density);
 
-/* A clump layer's coverage calibration (bb_layout.c, "Coverage,
- * calibrated"): the blades it took (desc.blades, then more until its mean
- * alpha reaches the target), its mean alpha (covered samples) and the
- * target (mean over sample rows of min(T_row, 1), T the overlap count of
- * desc.blades blades). */
-typedef struct bb_clump_stats_t {
-    int blades;
-    float alpha, target;
-} bb_clump_stats_t;
 
 /* All images have row 0 at the top; texel (x, y) covers layout cell x along
  * world +x and y along world +z. The layout textures tile seamlessly. */
@@ -143,8 +89,8 @@ typedef struct bb_layout_t {
                                 darken edges */
     core_image_t *clump_light; /* V L RGBA images beside clumps: the covered samples'
                                 mean colour lit as blade_shade lights it before fog
-                                (bb_layout.c), linear, alpha 255 */
-    bb_clump_stats_t *clump_stats; /* per image: the coverage calibration */
+                                (blade_clump.c), linear, alpha 255 */
+    blade_clump_stats_t *clump_stats; /* per image: the coverage calibration */
 } bb_layout_t;
 
 /* Deterministic from desc->seed. Returns false (and logs) on allocation failure. */

@@ -6,19 +6,11 @@
  * eq. 1-5). GL objects come from gfx only. */
 #include "blade/blade_local.h"
 
-#include "scene/scene_fields.h"
-
 #include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-_Static_assert((int)SCENE_SHAPE_QUADRATIC == BLADE_SHAPE_QUADRATIC && (int)SCENE_SHAPE_QUAD == BLADE_SHAPE_QUAD &&
-                   (int)SCENE_SHAPE_TRIANGLE == BLADE_SHAPE_TRIANGLE &&
-                   (int)SCENE_SHAPE_TRIANGLE_TIP == BLADE_SHAPE_TRIANGLE_TIP &&
-                   (int)SCENE_SHAPE_DANDELION == BLADE_SHAPE_DANDELION,
-               "scene_blade_shape_t and BLADE_SHAPE_* (blade_ref.h) name the same shapes");
 
 _Static_assert(BLADE_MAX_SPHERES == 512, "blade_physics.comp lists near spheres in a 512-bit mask (SPHERE_WORDS)");
 
@@ -30,7 +22,7 @@ blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
     if (!d.label) d.label = "blade";
     d.cull = blade_cull_desc_defaults(&d.cull);
     assert(d.max_tess_level >= 1 && d.max_tess_level <= 64);
-    assert(d.shape >= SCENE_SHAPE_QUADRATIC && d.shape <= SCENE_SHAPE_DANDELION);
+    assert(d.shape >= BLADE_SHAPE_QUADRATIC && d.shape <= BLADE_SHAPE_DANDELION);
     assert(d.path == BLADE_PATH_TESSELLATION || d.path == BLADE_PATH_PULLING);
     return d;
 }
@@ -370,7 +362,7 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
     }
     for (int i = 0; i < 3; i++) sun[i] /= sl;
     const float *root = desc->albedo_root, *tip = desc->albedo_tip;
-    static const float root_def[3] = SCENE_DEFAULT_ALBEDO_ROOT, tip_def[3] = SCENE_DEFAULT_ALBEDO_TIP;
+    static const float root_def[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip_def[3] = BLADE_DEFAULT_ALBEDO_TIP;
     if (root[0] == 0.0f && root[1] == 0.0f && root[2] == 0.0f) root = root_def;
     if (tip[0] == 0.0f && tip[1] == 0.0f && tip[2] == 0.0f) tip = tip_def;
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);

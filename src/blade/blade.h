@@ -38,7 +38,7 @@ typedef enum blade_render_path_t {
 
 /* Zero means default:
  *   field          required; copied to the GPU (the caller may free it)
- *   shape          SCENE_SHAPE_QUADRATIC (the enum's 0)
+ *   shape          BLADE_SHAPE_QUADRATIC (the enum's 0)
  *   max_tess_level 8 segments along the blade at the nearest LOD (1..64)
  *   lod_distance   30 m: the level falls linearly from max_tess_level at
  *                  the camera to max(max_tess_level / 4, 1) at lod_distance
@@ -58,7 +58,7 @@ typedef enum blade_render_path_t {
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
     const blade_field_t *field;
-    scene_blade_shape_t shape;
+    blade_shape_t shape;
     int max_tess_level;
     float lod_distance;
     blade_cull_desc_t cull;
@@ -101,7 +101,7 @@ typedef struct blade_gpu_info_t {
  *   the fragment shader turns into its sample mask (blade_fade_mask; enable
  *   MSAA on the target for a smooth fade).
  *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20)
- *   (SCENE_DEFAULT_ALBEDO_ROOT / _TIP of scene/scene_fields.h). */
+ *   (BLADE_DEFAULT_ALBEDO_ROOT / _TIP of blade/blade_population.h). */
 typedef struct blade_draw_desc_t {
     float view_proj[16];
     float camera[3];

@@ -36,28 +36,16 @@ typedef struct canopy_strip_t {
     float xlo, xhi; /* over its entries */
 } canopy_strip_t;
 
-/* A [min, max] range left at zero takes [lo, hi]. */
-static void default_range(float r[2], float lo, float hi)
-{
-    if (r[1] > 0.0f) return;
-    r[0] = lo;
-    r[1] = hi;
-}
-
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
 {
     blade_canopy_desc_t d = *desc;
-    if (d.density <= 0.0f) d.density = SCENE_DEFAULT_DENSITY;
-    default_range(d.height, SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX);
-    default_range(d.width, SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX);
-    default_range(d.stiffness, SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX);
-    if (d.gravity <= 0.0f) d.gravity = SCENE_DEFAULT_BLADE_GRAVITY;
+    d.population = blade_population_defaults(&d.population);
     if (d.rows <= 0) d.rows = 16;
     if (d.rays <= 0) d.rays = 4096;
     /* A denser field gets a smaller patch of at most BLADE_CANOPY_PATCH_BLADES
      * blades: every ray meets the blades of its strip, so the bake grew with
      * the density (10,000 blades/m^2 took 47 s on 2 cores for 2 m). */
-    if (d.patch <= 0.0f) d.patch = fminf(2.0f, sqrtf(BLADE_CANOPY_PATCH_BLADES / d.density));
+    if (d.patch <= 0.0f) d.patch = fminf(2.0f, sqrtf(BLADE_CANOPY_PATCH_BLADES / d.population.density));
     return d;
 }
 
@@ -127,19 +115,19 @@ static float intersect(const canopy_tri_t *tr, float sx, float sz, const float o
 /* Seeds and settles the patch's blades and cuts them into triangles. */
 static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_out, int *tri_count, float *top)
 {
-    int blades = (int)lroundf(d->density * d->patch * d->patch);
+    int blades = (int)lroundf(d->population.density * d->patch * d->patch);
     blades = blades < 1 ? 1 : blades;
     int per = 2 * BLADE_CANOPY_SEGMENTS;
     canopy_tri_t *tris = malloc(sizeof *tris * (size_t)blades * (size_t)per);
     if (!tris) return NULL;
     core_rng_t rng;
     core_rng_seed(&rng, d->seed, 0xca90u);
-    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = d->gravity});
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = d->population.gravity});
     *top = 0.0f;
     for (int n = 0; n < blades; n++) {
-        float h = core_rng_range(&rng, d->height[0], d->height[1]);
-        float w = core_rng_range(&rng, d->width[0], d->width[1]);
-        float s = core_rng_range(&rng, d->stiffness[0], d->stiffness[1]);
+        float h = core_rng_range(&rng, d->population.height[0], d->population.height[1]);
+        float w = core_rng_range(&rng, d->population.width[0], d->population.width[1]);
+        float s = core_rng_range(&rng, d->population.stiffness[0], d->population.stiffness[1]);
         float angle = core_rng_range(&rng, 0.0f, 6.2831853f);
         float x = core_rng_float(&rng) * d->patch, z = core_rng_float(&rng) * d->patch;
         blade_t b = {.v0 = {x, 0.0f, z, angle}, .v1 = {x, h, z, h}, .v2 = {x, h, z, w}, .up = {0.0f, 1.0f, 0.0f, s}};
@@ -148,7 +136,8 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_ou
         float p[BLADE_CANOPY_SEGMENTS + 1][2][3], nrm[BLADE_CANOPY_SEGMENTS + 1][2][3];
         for (int i = 0; i <= BLADE_CANOPY_SEGMENTS; i++)
             for (int u = 0; u < 2; u++) {
-                blade_ref_surface(&b, d->shape, (float)u, (float)i / BLADE_CANOPY_SEGMENTS, p[i][u], nrm[i][u]);
+                blade_ref_surface(&b, d->population.shape, (float)u, (float)i / BLADE_CANOPY_SEGMENTS, p[i][u],
+                                  nrm[i][u]);
                 *top = fmaxf(*top, p[i][u][1]);
             }
         for (int i = 0; i < BLADE_CANOPY_SEGMENTS; i++) {
@@ -238,11 +227,12 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
         core_log_error("blade_canopy_make: no sun direction");
         return false;
     }
-    if (d.rows < 2 || d.rows > BLADE_CANOPY_MAX_ROWS || d.height[0] > d.height[1] || d.width[0] > d.width[1] ||
-        d.density * d.patch * d.patch > 1e6f) {
+    const blade_population_t *b = &d.population;
+    if (d.rows < 2 || d.rows > BLADE_CANOPY_MAX_ROWS || b->height[0] > b->height[1] || b->width[0] > b->width[1] ||
+        b->density < 0.0f || b->density * d.patch * d.patch > 1e6f) {
         core_log_error("blade_canopy_make: rows %d (2..%d), height [%g, %g], width [%g, %g], %g blades per patch",
-                       d.rows, BLADE_CANOPY_MAX_ROWS, d.height[0], d.height[1], d.width[0], d.width[1],
-                       d.density * d.patch * d.patch);
+                       d.rows, BLADE_CANOPY_MAX_ROWS, b->height[0], b->height[1], b->width[0], b->width[1],
+                       b->density * d.patch * d.patch);
         return false;
     }
     int blades = 0, ntri = 0;

@@ -21,20 +21,18 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "blade/blade_population.h"
+
 #define BLADE_CANOPY_MAX_ROWS 32
 #define BLADE_CANOPY_AZIMUTHS 9
 #define BLADE_CANOPY_SEGMENTS 8
 
-/* Zero means default; defaults marked (scene) are SCENE_DEFAULT_* of
- * scene/scene_fields.h (scene key in brackets). */
+/* Zero means default. */
 #define BLADE_CANOPY_PATCH_BLADES 2048.0f
 typedef struct blade_canopy_desc_t {
-    float density;      /* blades per m^2, default 200 (scene, grass.density) */
-    float height[2];    /* [min, max] m, default [0.35, 0.7] (scene, grass.height) */
-    float width[2];     /* [min, max] m, default [0.02, 0.05] (scene, grass.width) */
-    float stiffness[2]; /* [min, max], default [8, 12] (scene, grass.stiffness) */
-    int shape;          /* BLADE_SHAPE_*, default quadratic (0) (scene, grass.shape) */
-    float gravity;      /* m/s^2 the blades settle under, default 1 (SCENE_DEFAULT_BLADE_GRAVITY) */
+    blade_population_t population; /* the blades (blade_population.h; the scene's): density,
+                                       ranges, shape, and the gravity they settle under; the
+                                       albedo is not used (blade_canopy_color takes it) */
     uint32_t seed;      /* any value (0 included) */
     int rows;           /* view elevations, default 16, at most BLADE_CANOPY_MAX_ROWS */
     int rays;           /* rays per row, default 4096 */

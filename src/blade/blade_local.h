@@ -83,7 +83,7 @@ struct blade_tiles_t {
 
 /* The surface of drawn blades (blade_geom.glsl uniforms). */
 typedef struct blade_surface_t {
-    scene_blade_shape_t shape;
+    blade_shape_t shape;
     float displacement, width_correction;
     int max_level;
     float lod_distance;

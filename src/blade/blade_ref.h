@@ -27,6 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "blade/blade_population.h"
 #include "collide/collide_set.h"
 
 /* One blade, 64 bytes (4 vec4), std430; mirrors `struct Blade` in
@@ -236,16 +237,9 @@ float blade_ref_curve_length(const blade_t *b, int samples);
 void blade_ref_midpoint(const blade_t *b, float m[3]);
 
 /* ---- geometry (sec. 6.3, eq. 21; twin of shaders/blade/blade_geom.glsl) ----
- * Shapes: BLADE_SHAPE_* are the values of scene_blade_shape_t and of the
- * GLSL's SHAPE_* (0 quadratic, 1 quad, 2 triangle, 3 triangle_tip,
- * 4 dandelion). The width profile f(v) of blade_profile. */
-enum {
-    BLADE_SHAPE_QUADRATIC = 0,
-    BLADE_SHAPE_QUAD = 1,
-    BLADE_SHAPE_TRIANGLE = 2,
-    BLADE_SHAPE_TRIANGLE_TIP = 3,
-    BLADE_SHAPE_DANDELION = 4
-};
+ * Shapes: BLADE_SHAPE_* (blade_population.h), the values of the GLSL's
+ * SHAPE_* (0 quadratic, 1 quad, 2 triangle, 3 triangle_tip, 4 dandelion).
+ * The width profile f(v) of blade_profile. */
 float blade_ref_profile(int shape, float v);
 
 /* The surface point of blade_build at u (0..1 across the width) and v

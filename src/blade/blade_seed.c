@@ -9,7 +9,6 @@
 #include <string.h>
 
 #include "core/core.h"
-#include "scene/scene_fields.h"
 
 #define MORTON_CELLS 2097152.0f /* 2^21 */
 #define TUFT_REDRAWS 8
@@ -17,19 +16,7 @@
 blade_seed_desc_t blade_seed_desc_defaults(const blade_seed_desc_t *desc)
 {
     blade_seed_desc_t d = *desc;
-    if (d.density == 0.0f) d.density = SCENE_DEFAULT_DENSITY;
-    if (d.height_min == 0.0f && d.height_max == 0.0f) {
-        d.height_min = SCENE_DEFAULT_BLADE_HEIGHT_MIN;
-        d.height_max = SCENE_DEFAULT_BLADE_HEIGHT_MAX;
-    }
-    if (d.width_min == 0.0f && d.width_max == 0.0f) {
-        d.width_min = SCENE_DEFAULT_BLADE_WIDTH_MIN;
-        d.width_max = SCENE_DEFAULT_BLADE_WIDTH_MAX;
-    }
-    if (d.stiffness_min == 0.0f && d.stiffness_max == 0.0f) {
-        d.stiffness_min = SCENE_DEFAULT_STIFFNESS_MIN;
-        d.stiffness_max = SCENE_DEFAULT_STIFFNESS_MAX;
-    }
+    d.population = blade_population_defaults(&d.population);
     if (d.angle_min == 0.0f && d.angle_max == 0.0f) d.angle_max = 6.28318531f;
     if (d.tuft_min_distance == 0.0f) d.tuft_min_distance = 0.25f;
     if (d.tuft_blades == 0) d.tuft_blades = 8;
@@ -187,9 +174,9 @@ static void closest_bary(const blade_mesh_t *m, size_t tri, const float p[3], fl
 static void make_blade(blade_t *b, const float v0[3], const float up[3], core_rng_t *rng,
                        const blade_seed_desc_t *d)
 {
-    float h = core_rng_range(rng, d->height_min, d->height_max);
-    float w = core_rng_range(rng, d->width_min, d->width_max);
-    float s = core_rng_range(rng, d->stiffness_min, d->stiffness_max);
+    float h = core_rng_range(rng, d->population.height[0], d->population.height[1]);
+    float w = core_rng_range(rng, d->population.width[0], d->population.width[1]);
+    float s = core_rng_range(rng, d->population.stiffness[0], d->population.stiffness[1]);
     float a = core_rng_range(rng, d->angle_min, d->angle_max);
     for (int k = 0; k < 3; k++) {
         b->v0[k] = v0[k];
@@ -420,7 +407,7 @@ bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, bl
     out->patch_size = d.patch_size;
     if (!mesh->positions || !mesh->indices || mesh->index_count % 3 != 0)
         return fail(out, "mesh needs positions and a multiple of 3 indices", mesh->index_count, 0);
-    if (d.patch_size <= 0 || d.tuft_blades <= 0 || d.density < 0.0f)
+    if (d.patch_size <= 0 || d.tuft_blades <= 0 || d.population.density < 0.0f)
         return fail(out, "bad patch_size or tuft_blades or density", (size_t)d.patch_size, (size_t)d.tuft_blades);
     for (size_t i = 0; i < mesh->index_count; i++)
         if (mesh->indices[i] >= mesh->vertex_count)
@@ -444,7 +431,7 @@ bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, bl
 
     core_rng_t rng;
     core_rng_seed(&rng, d.seed, 0x626c616465ULL);
-    double expected = (double)d.density * s.area;
+    double expected = (double)d.population.density * s.area;
     size_t count, tufts = 0, k = (size_t)d.tuft_blades;
     centre_t *centres = NULL;
     if (d.mode == BLADE_SEED_TUFTS) {

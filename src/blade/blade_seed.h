@@ -49,9 +49,10 @@ typedef struct blade_mesh_t {
 enum { BLADE_SEED_UNIFORM = 0, BLADE_SEED_TUFTS = 1 };
 
 /* Zero means default:
- *   density 200 blades/m^2; height [0.35, 0.7] m; width [0.02, 0.05] m;
- *   stiffness [8, 12] (the program's: SCENE_DEFAULT_* of
- *   scene/scene_fields.h, keys grass.density, height, width, stiffness); angle [0, 2 pi) (both 0 means the full circle);
+ *   population       density, height, width, stiffness: blade_population.h
+ *                    (the program's; shape, albedo and gravity are not used
+ *                    by the seeding); angle [0, 2 pi) (both 0 means the full
+ *                    circle);
  *   tuft_min_distance 0.25 m; tuft_blades 8; tuft_radius 0.06 m;
  *   tuft_attempts_per_centre 30; max_blades 4,194,304 (seeding fails with a
  *   logged error when the count, before padding, would exceed it);
@@ -59,10 +60,7 @@ enum { BLADE_SEED_UNIFORM = 0, BLADE_SEED_TUFTS = 1 };
 typedef struct blade_seed_desc_t {
     uint64_t seed;
     int mode;
-    float density;
-    float height_min, height_max;
-    float width_min, width_max;
-    float stiffness_min, stiffness_max;
+    blade_population_t population;
     float angle_min, angle_max;
     float tuft_min_distance;
     int tuft_blades;

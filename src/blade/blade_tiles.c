@@ -39,13 +39,7 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     blade_tiles_desc_t d = *desc;
     if (d.tile_size <= 0.0f) d.tile_size = SCENE_DEFAULT_TILE_SIZE;
     if (d.template_count <= 0) d.template_count = 4;
-    blade_seed_desc_t sd = blade_seed_desc_defaults(&(blade_seed_desc_t){
-        .density = d.density, .height_min = d.height_min, .height_max = d.height_max, .width_min = d.width_min,
-        .width_max = d.width_max, .stiffness_min = d.stiffness_min, .stiffness_max = d.stiffness_max});
-    d.density = sd.density;
-    d.height_min = sd.height_min, d.height_max = sd.height_max;
-    d.width_min = sd.width_min, d.width_max = sd.width_max;
-    d.stiffness_min = sd.stiffness_min, d.stiffness_max = sd.stiffness_max;
+    d.population = blade_population_defaults(&d.population);
     if (d.pool_slots <= 0) d.pool_slots = 64;
     if (d.switch_distance <= 0.0f) d.switch_distance = SCENE_DEFAULT_SWITCH_DISTANCE;
     if (d.recover_timeout <= 0.0f) d.recover_timeout = 5.0f;
@@ -57,8 +51,9 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
     /* Half-metre cells, finer where a cell would hold more blades than
      * HYBRID_SLOPE_MAX_PER_CELL (dense grass on large tiles). */
     if (d.slope_cells_per_tile <= 0)
-        d.slope_cells_per_tile = (int)fmaxf(fmaxf(1.0f, roundf(d.tile_size / 0.5f)),
-                                            ceilf(d.tile_size * sqrtf(d.density / (float)HYBRID_SLOPE_MAX_PER_CELL)));
+        d.slope_cells_per_tile =
+            (int)fmaxf(fmaxf(1.0f, roundf(d.tile_size / 0.5f)),
+                       ceilf(d.tile_size * sqrtf(d.population.density / (float)HYBRID_SLOPE_MAX_PER_CELL)));
     if (d.slope_recover <= 0.0f) d.slope_recover = SCENE_DEFAULT_RECOVER_TIME;
     if (!d.label) d.label = "tiles";
     assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
@@ -71,7 +66,7 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
  * area)), padded to the seeding patch size. */
 static uint32_t template_blades(const blade_tiles_desc_t *d)
 {
-    uint32_t n = (uint32_t)lroundf(d->density * d->tile_size * d->tile_size);
+    uint32_t n = (uint32_t)lroundf(d->population.density * d->tile_size * d->tile_size);
     uint32_t p = (uint32_t)blade_seed_desc_defaults(&(blade_seed_desc_t){0}).patch_size;
     return (n + p - 1) / p * p;
 }
@@ -284,10 +279,7 @@ static bool seed_templates(blade_tiles_t *t)
     if (!t->template_cpu) return false;
     for (int k = 0; k < d->template_count; k++) {
         blade_field_t f;
-        blade_seed_desc_t sd = {.seed = d->seed + (uint64_t)k, .density = d->density,
-                                .height_min = d->height_min, .height_max = d->height_max,
-                                .width_min = d->width_min, .width_max = d->width_max,
-                                .stiffness_min = d->stiffness_min, .stiffness_max = d->stiffness_max};
+        blade_seed_desc_t sd = {.seed = d->seed + (uint64_t)k, .population = d->population};
         if (!blade_seed_mesh(&mesh, &sd, &f)) return false;
         if (f.padded_count != B) {
             core_log_error("blade_tiles: template %d has %zu blades, expected %u", k,
@@ -355,7 +347,7 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     }
     int cpt = d->slope_cells_per_tile;
     t->slope_grid = hybrid_slope_grid(t->field_min[0], t->field_min[1], d->tile_size, t->grid.nx, t->grid.nz, cpt);
-    float per_cell = d->density * t->slope_grid.cell * t->slope_grid.cell;
+    float per_cell = d->population.density * t->slope_grid.cell * t->slope_grid.cell;
     if (per_cell > (float)HYBRID_SLOPE_MAX_PER_CELL) {
         core_log_error("blade_tiles_make: %.0f blades per slope cell, at most %d (the default "
                        "blade_tiles_desc_t.slope_cells_per_tile keeps within it)",
@@ -458,7 +450,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
         if (n < 0) return false;
         snprintf(t->defines + n, sizeof t->defines - (size_t)n, "#define TILES_WORLD 1\n");
     }
-    t->reach = d->height_max + 0.5f * d->width_max;
+    t->reach = d->population.height[1] + 0.5f * d->population.width[1];
     t->tile_offset[0] = t->tile_offset[1] = (int)lroundf(t->field_min[0] / d->tile_size);
     layout_t l = layout_of(d, t->field_size, t->grid_res);
     t->template_blades = l.blades;
@@ -926,8 +918,10 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
 
 static blade_surface_t tiles_surface(const blade_tiles_t *t)
 {
-    return (blade_surface_t){.shape = t->desc.shape, .displacement = t->desc.displacement,
-                             .width_correction = t->desc.width_correction, .max_level = t->desc.max_level,
+    return (blade_surface_t){.shape = t->desc.population.shape,
+                             .displacement = t->desc.displacement,
+                             .width_correction = t->desc.width_correction,
+                             .max_level = t->desc.max_level,
                              .lod_distance = t->desc.lod_distance};
 }
 

@@ -53,9 +53,10 @@
  *                    away from the window (hybrid.h)
  *   tile_size        4 m (scene, grass.tile_size)
  *   template_count   4 (1..BLADE_TILES_MAX_TEMPLATES)
- *   density          200 blades/m^2; height [0.35, 0.7] m; width
- *                    [0.02, 0.05] m; stiffness [8, 12] (blade_seed
- *                    defaults, scene)
+ *   population       the blades (blade_population.h, scene: density,
+ *                    height, width, stiffness, shape); albedo and gravity
+ *                    are not used here (blade_draw_desc_t and the env of
+ *                    blade_tiles_update carry them)
  *   seed             0 is a valid seed (templates use seed + k)
  *   pool_slots       64 simulation slots of one template each
  *   switch_distance  12 m (scene): tiles nearer are drawn as blades (hybrid rule,
@@ -65,7 +66,7 @@
  *   winds            the procedural wind and the physics' winds; an env
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
- *   shape, max_level (8 segments at the camera), lod_distance (30 m),
+ *   max_level (8 segments at the camera), lod_distance (30 m),
  *   displacement, width_correction (0: off; eq. 23, eq. 24; scene,
  *                    grass.displacement, grass.width_correction): as
  *                    blade_gpu_desc_t
@@ -102,10 +103,7 @@ typedef struct blade_tiles_desc_t {
     int window;
     float tile_size;
     int template_count;
-    float density;
-    float height_min, height_max;
-    float width_min, width_max;
-    float stiffness_min, stiffness_max;
+    blade_population_t population;
     uint64_t seed;
     int pool_slots;
     float switch_distance;
@@ -113,7 +111,6 @@ typedef struct blade_tiles_desc_t {
     float motion_epsilon;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;
-    scene_blade_shape_t shape;
     int max_level;
     float lod_distance;
     float displacement;

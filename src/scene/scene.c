@@ -16,7 +16,7 @@
 typedef scene_json_t json_t;
 
 static_assert(sizeof(scene_mode_t) == sizeof(int) && sizeof(scene_raster_t) == sizeof(int) &&
-                  sizeof(scene_blade_shape_t) == sizeof(int) && sizeof(terrain_type_t) == sizeof(int) &&
+                  sizeof(blade_shape_t) == sizeof(int) && sizeof(terrain_type_t) == sizeof(int) &&
                   sizeof(scene_wind_type_t) == sizeof(int) && sizeof(scene_collider_type_t) == sizeof(int) &&
                   sizeof(scene_clearings_type_t) == sizeof(int),
               "SCENE_FIELD_ENUM members are stored as int");
@@ -140,7 +140,7 @@ bool scene_raster_parse(const char *name, scene_raster_t *out)
         }
     return false;
 }
-const char *scene_blade_shape_name(scene_blade_shape_t shape)
+const char *scene_blade_shape_name(blade_shape_t shape)
 {
     return names_of(SCENE_SEC_GRASS, "shape")[shape];
 }

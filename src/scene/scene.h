@@ -25,6 +25,7 @@
 
 #include <cglm/cglm.h>
 
+#include "blade/blade_population.h"
 #include "scene/camera.h"
 #include "scene/path.h"
 #include "scene/terrain.h"
@@ -54,15 +55,6 @@ typedef enum scene_raster_t {
     SCENE_RASTER_COMPUTE,  /* "compute": compute shaders into a visibility buffer (src/raster) */
 } scene_raster_t;
 
-/* Blade shape functions of Jahrmann & Wimmer 2017, section 5. */
-typedef enum scene_blade_shape_t {
-    SCENE_SHAPE_QUADRATIC = 0, /* "quadratic" (default) */
-    SCENE_SHAPE_QUAD,          /* "quad" */
-    SCENE_SHAPE_TRIANGLE,      /* "triangle" */
-    SCENE_SHAPE_TRIANGLE_TIP,  /* "triangle_tip" */
-    SCENE_SHAPE_DANDELION,     /* "dandelion" */
-} scene_blade_shape_t;
-
 /* How the hardware path draws blades (docs/BLADES.md). */
 typedef enum scene_blade_render_t {
     SCENE_BLADE_RENDER_PULL = 0, /* "pull" (default): instanced triangle strips, vertex pulling */
@@ -90,17 +82,15 @@ typedef struct scene_clearings_desc_t {
 
 /* "grass" object. */
 typedef struct scene_grass_desc_t {
-    float density;           /* blades per m^2 [0, 10000]; default 200 */
-    vec2 height;             /* blade height [min, max] m, each [0, 10]; default [0.35, 0.7] */
-    vec2 width;              /* blade width [min, max] m, each [0, 1]; default [0.02, 0.05] */
-    vec2 stiffness;          /* blade stiffness [min, max] (1/s: recovery speed per metre of
-                                deflection, eq. 3), each (0, 100]; default [8, 12] */
+    blade_population_t population; /* keys density [0, 10000], height [min, max] each [0, 10],
+                                      width each [0, 1], stiffness each (0, 100], shape; albedo
+                                      and gravity are not keys (left 0: the defaults of
+                                      blade_population.h) */
     float billboard_density; /* billboards per m^2 [0, 1000]; default 6 */
     vec2 billboard_size;     /* billboard [w, h] m, each [0, 20]; default [1.0, 0.6] */
     float switch_distance;   /* hybrid blade->billboard distance m [0, 1000]; default 12 */
     float canopy_distance;   /* hybrid billboard->ground canopy distance m [0, 1e5]; default 60 */
     float tile_size;         /* grass tile side m [0, 1000]; default 4 */
-    scene_blade_shape_t shape; /* default quadratic */
     scene_blade_render_t blade_render; /* default pull */
     float displacement;      /* eq. 23 as printed, times this [0, 4]; default 0 (off) */
     float width_correction;  /* eq. 24 step (this project's reading) [0, 1]; default 0 (off) */
@@ -252,6 +242,6 @@ const char *scene_mode_name(scene_mode_t mode);
 const char *scene_raster_name(scene_raster_t raster);
 /* "hw", "compute" or "auto" into *out; false for anything else. */
 bool scene_raster_parse(const char *name, scene_raster_t *out);
-const char *scene_blade_shape_name(scene_blade_shape_t shape);
+const char *scene_blade_shape_name(blade_shape_t shape);
 
 #endif

@@ -94,14 +94,14 @@ const scene_field_t scene_fields[] = {
       .doc = "uniform scale of the mesh"},
 
     /* ---- grass ---- */
-    {GRASS(density), .key = "density", .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_DENSITY},
-      .doc = "blades per m^2"},
-    {GRASS(height), .key = "height", .type = SCENE_FIELD_RANGE, .hi = 10,
-      .def = {SCENE_DEFAULT_BLADE_HEIGHT_MIN, SCENE_DEFAULT_BLADE_HEIGHT_MAX}, .doc = "blade height (m)"},
-    {GRASS(width), .key = "width", .type = SCENE_FIELD_RANGE, .hi = 1,
-      .def = {SCENE_DEFAULT_BLADE_WIDTH_MIN, SCENE_DEFAULT_BLADE_WIDTH_MAX}, .doc = "blade width (m)"},
-    {GRASS(stiffness), .key = "stiffness", .type = SCENE_FIELD_RANGE, .hi = 100,
-      .def = {SCENE_DEFAULT_STIFFNESS_MIN, SCENE_DEFAULT_STIFFNESS_MAX}, .flags = SCENE_FIELD_ABOVE_LO,
+    {GRASS(population.density), .key = "density", .type = SCENE_FIELD_FLOAT, .hi = 10000,
+      .def = {BLADE_DEFAULT_DENSITY}, .doc = "blades per m^2"},
+    {GRASS(population.height), .key = "height", .type = SCENE_FIELD_RANGE, .hi = 10,
+      .def = {BLADE_DEFAULT_HEIGHT_MIN, BLADE_DEFAULT_HEIGHT_MAX}, .doc = "blade height (m)"},
+    {GRASS(population.width), .key = "width", .type = SCENE_FIELD_RANGE, .hi = 1,
+      .def = {BLADE_DEFAULT_WIDTH_MIN, BLADE_DEFAULT_WIDTH_MAX}, .doc = "blade width (m)"},
+    {GRASS(population.stiffness), .key = "stiffness", .type = SCENE_FIELD_RANGE, .hi = 100,
+      .def = {BLADE_DEFAULT_STIFFNESS_MIN, BLADE_DEFAULT_STIFFNESS_MAX}, .flags = SCENE_FIELD_ABOVE_LO,
       .doc = "blade stiffness (1/s: recovery speed per metre of deflection, eq. 3); 0 is refused: such a blade "
              "never stands up"},
     {GRASS(billboard_density), .key = "billboard_density", .type = SCENE_FIELD_FLOAT, .hi = 1000,
@@ -116,7 +116,7 @@ const scene_field_t scene_fields[] = {
              "at least switch_distance + 5 (the two fade bands apart)"},
     {GRASS(tile_size), .key = "tile_size", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_TILE_SIZE}, .doc = "side of the square grass tiles of the hybrid field (m)"},
-    {GRASS(shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,
+    {GRASS(population.shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,
       .doc = "blade shape function (Jahrmann & Wimmer 2017, section 5)"},
     {GRASS(blade_render), .key = "blade_render", .type = SCENE_FIELD_ENUM, .names = blade_render_names,
       .doc = "how the hardware path draws blades, in blade mode and the hybrid's tiles: instanced triangle strips "

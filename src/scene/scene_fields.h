@@ -1,10 +1,12 @@
 /* scene_fields: the one source of the scene's defaults and bounds.
  *
  * - The SCENE_DEFAULT_* and SCENE_*_MIN / _MAX constants below are the
- *   program's values. The modules that take a scene knob (bb, blade_seed,
- *   blade_tiles, hybrid, terrain, camera) resolve their zero desc fields to
- *   these same constants, so a module test run with a zero desc behaves as
- *   the program (test_scene_json checks every pair).
+ *   program's values. The modules that take a scene knob (bb, blade_tiles,
+ *   hybrid, terrain, camera) resolve their zero desc fields to these same
+ *   constants, so a module test run with a zero desc behaves as the program
+ *   (test_scene_defaults checks every pair). The blades' keys (density,
+ *   height, width, stiffness, shape) fill a blade_population_t, whose
+ *   defaults are BLADE_DEFAULT_* of blade/blade_population.h.
  * - scene_fields[] (scene_fields.c) lists every scene key with its type,
  *   accepted range, default and a doc line. scene.c takes its bounds checks,
  *   its unknown-key lists and scene_desc_defaults from it, and
@@ -35,22 +37,7 @@
 #define SCENE_DEFAULT_TERRAIN_SCALE 1.0f
 #define SCENE_TERRAIN_RESOLUTION_MAX 4096 /* also terrain_make_heightfield's limit */
 
-/* "grass": blades (blade_seed, blade_tiles). */
-#define SCENE_DEFAULT_DENSITY 200.0f
-#define SCENE_DEFAULT_BLADE_HEIGHT_MIN 0.35f
-#define SCENE_DEFAULT_BLADE_HEIGHT_MAX 0.7f
-#define SCENE_DEFAULT_BLADE_WIDTH_MIN 0.02f
-#define SCENE_DEFAULT_BLADE_WIDTH_MAX 0.05f
-#define SCENE_DEFAULT_STIFFNESS_MIN 8.0f
-#define SCENE_DEFAULT_STIFFNESS_MAX 12.0f
-/* Not scene keys: the blades' colour (blade_draw_desc_t, and the billboard
- * clumps drawn from the blade model, bb_clump_desc_t), albedo at the root
- * and at the tip, and the gravity of the program's blade physics (m/s: the
- * paper's forces are displacement rates; 1 m/s with stiffness 8-12 bends a
- * 0.5 m blade by ~0.1 m). */
-#define SCENE_DEFAULT_ALBEDO_ROOT {0.10f, 0.25f, 0.05f}
-#define SCENE_DEFAULT_ALBEDO_TIP {0.45f, 0.65f, 0.20f}
-#define SCENE_DEFAULT_BLADE_GRAVITY 1.0f
+/* "grass": blades: BLADE_DEFAULT_* of blade/blade_population.h. */
 /* "grass": billboards (bb_field_desc_t). */
 #define SCENE_DEFAULT_BILLBOARD_DENSITY 6.0f
 #define SCENE_DEFAULT_BILLBOARD_WIDTH 1.0f
