@@ -5,7 +5,8 @@
  * whole grid's tile; tiles streamed in come back IDLE with a new epoch; a
  * touched tile carried out of the window keeps its slot away from it
  * (stats.detached), takes it back when it returns in time
- * (stats.reattached) and frees it after recover_timeout away; the held
+ * (stats.reattached) and frees it after recover_timeout away, or once its
+ * measured motion dies down (hybrid_grid_settle_away); the held
  * tile count does not depend on the field. */
 #include "hybrid/hybrid.h"
 #include "core/core.h"
@@ -108,6 +109,24 @@ int main(void)
               "away for %.1f s (timeout %.1f), free %d", away_for, win.desc.recover_timeout, win.free_count);
     hybrid_grid_update(&win, cam, NULL, 0, NULL, 0.1f);
     CHECK(win.stats.reattached == 0 && win.tiles[hybrid_tile_at(&win, 1.0f, 1.0f)].slot < 0);
+
+    /* Away tiles end their recovery early once their slot's motion dies
+     * down (hybrid_grid_settle_away), as in the window. */
+    hybrid_grid_update(&win, cam, &ball, 1, NULL, 0.1f);
+    int held = win.tiles[hybrid_tile_at(&win, 1.0f, 1.0f)].slot;
+    hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+    CHECK(held >= 0 && win.stats.away == 1);
+    float *motion = malloc(sizeof(float) * (size_t)win.desc.pool_slots);
+    for (int k = 0; k < win.desc.pool_slots; k++) motion[k] = 1.0f;
+    hybrid_grid_settle_away(&win, motion);
+    hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+    CHECK_MSG(win.stats.away == 1, "moving away tile freed early");
+    motion[held] = 0.5f * win.desc.motion_epsilon;
+    hybrid_grid_settle_away(&win, motion);
+    hybrid_grid_update(&win, far_cam, NULL, 0, NULL, 0.1f);
+    CHECK_MSG(win.stats.away == 0 && win.free_count == win.desc.pool_slots, "settled away tile kept: away %d",
+              win.stats.away);
+    free(motion);
 
     /* The tile range callback sets the boxes of tiles streamed in. */
     hybrid_desc_t dr = dw;

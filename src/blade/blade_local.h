@@ -44,6 +44,7 @@ struct blade_tiles_t {
     terrain_world_t world_fn;       /* its parameters (CPU twin of the ground) */
     char defines[512];              /* the programs' #defines: the world's, and TILES_WORLD */
     uint32_t *slot_epoch;           /* per slot: the owner's epoch when the slot was initialised */
+    uint8_t *away_mark;             /* per slot: kept by a tile away from the window (this update) */
     uint32_t *motion_epoch[BLADE_TILES_READBACK_SLOTS]; /* the owners' epochs at copy time */
     float reach;                    /* height_max + width_max / 2 */
     uint32_t template_blades;       /* padded blades per template */

@@ -482,6 +482,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     size_t side = t->world ? 1 : (size_t)t->grid_res + 1;
     t->slot_owner = malloc((size_t)d->pool_slots * sizeof(int));
     t->slot_epoch = calloc((size_t)d->pool_slots, sizeof(uint32_t));
+    t->away_mark = calloc((size_t)d->pool_slots, 1);
     t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
     t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
@@ -492,7 +493,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
         t->motion_epoch[i] = malloc((size_t)d->pool_slots * sizeof(uint32_t));
         ok = ok && t->motion_owner[i] && t->motion_epoch[i];
     }
-    ok = ok && t->slot_owner && t->slot_epoch && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
+    ok = ok && t->slot_owner && t->slot_epoch && t->away_mark && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
     if (!ok || !seed_templates(t)) {
         core_log_error("blade_tiles_make: out of memory or seeding failed");
         return false;
@@ -530,6 +531,7 @@ static void release(blade_tiles_t *t)
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) free(t->motion_owner[i]), free(t->motion_epoch[i]);
     free(t->slot_owner);
     free(t->slot_epoch);
+    free(t->away_mark);
     free(t->slot_motion);
     free(t->tile_motion);
     free(t->scratch);
@@ -627,6 +629,7 @@ static void poll_motion(blade_tiles_t *t)
         gfx_readback_read(&t->motion_ring, r, 0, (size_t)S * sizeof(uint32_t), bits);
         for (int s = 0; s < S; s++) {
             int owner = t->motion_owner[r][s];
+            if (owner == SLOT_AWAY && t->slot_owner[s] == SLOT_AWAY) memcpy(&t->slot_motion[s], &bits[s], 4);
             if (owner < 0 || t->slot_owner[s] != owner || t->slot_epoch[s] != t->motion_epoch[r][s]) continue;
             float v;
             memcpy(&v, &bits[s], sizeof v);
@@ -714,6 +717,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         for (int a = 0; a < 3; a++) objs[k].sphere[a] = cr[a] + 0.5f * d[a];
         objs[k].sphere[3] = cr[3] + 0.5f * sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) + t->reach;
     }
+    hybrid_grid_settle_away(&t->grid, t->slot_motion);
     hybrid_grid_update(&t->grid, camera, objs, sphere_count, t->tile_motion, e.dt);
     t->stats.streamed_total += t->grid.stats.streamed;
     t->stats.detached_total += t->grid.stats.detached;
@@ -722,10 +726,18 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     const int S = t->desc.pool_slots, ntiles = t->grid.nx * t->grid.nz;
     for (int s = 0; s < S; s++) {
         int o = t->slot_owner[s];
-        if (o == SLOT_AWAY || (o >= 0 && (t->grid.tiles[o].slot != s || t->grid.tiles[o].epoch != t->slot_epoch[s])))
+        if (o >= 0 && (t->grid.tiles[o].slot != s || t->grid.tiles[o].epoch != t->slot_epoch[s]))
             t->slot_owner[s] = -1;
+        t->away_mark[s] = 0;
     }
-    for (int k = 0; k < t->grid.away_count; k++) t->slot_owner[t->grid.away[k].slot] = SLOT_AWAY;
+    for (int k = 0; k < t->grid.away_count; k++) t->away_mark[t->grid.away[k].slot] = 1;
+    for (int s = 0; s < S; s++) {
+        if (t->slot_owner[s] == SLOT_AWAY && !t->away_mark[s]) t->slot_owner[s] = -1; /* freed or back */
+        if (t->away_mark[s] && t->slot_owner[s] != SLOT_AWAY) {
+            t->slot_owner[s] = SLOT_AWAY; /* newly away: its motion is measured anew */
+            t->slot_motion[s] = FLT_MAX;
+        }
+    }
     uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
     uint32_t *list = init + 2 * S, *handover = list + S;
     int ninit = 0, nslots = 0, nhand = 0, nseed = 0;
@@ -800,7 +812,9 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
         int r = gfx_readback_fence(&t->motion_ring);
         for (int s = 0; s < S; s++) {
             int o = t->slot_owner[s];
-            t->motion_owner[r][s] = o >= 0 && t->grid.tiles[o].state == HYBRID_RECOVERING ? o : -1;
+            t->motion_owner[r][s] = o >= 0 && t->grid.tiles[o].state == HYBRID_RECOVERING ? o
+                                    : o == SLOT_AWAY                                      ? SLOT_AWAY
+                                                                                          : -1;
             t->motion_epoch[r][s] = t->slot_epoch[s];
         }
     }

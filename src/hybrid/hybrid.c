@@ -162,8 +162,14 @@ static void recentre(hybrid_grid_t *g, const float cam[3], hybrid_stats_t *st)
         }
 }
 
+void hybrid_grid_settle_away(hybrid_grid_t *g, const float *slot_motion)
+{
+    for (int k = 0; k < g->away_count; k++)
+        if (slot_motion[g->away[k].slot] < g->desc.motion_epsilon) g->away[k].recover_left = 0.0f;
+}
+
 /* Window: tiles away from the camera recover without objects until their
- * time is up, then free their slot. */
+ * time is up (or hybrid_grid_settle_away ended it), then free their slot. */
 static void recover_away(hybrid_grid_t *g, float dt)
 {
     for (int k = 0; k < g->away_count;) {

@@ -24,7 +24,8 @@
  *   is inside the window; its index is reused by the tile entering opposite
  *   (stats.streamed), with a new epoch. A tile leaving with a slot keeps
  *   it away from the camera (stats.detached): it recovers with no objects
- *   for recover_timeout, then frees the slot, unless it comes back first
+ *   until its motion dies down (hybrid_grid_settle_away) or recover_timeout
+ *   passes, then frees the slot, unless it comes back first
  *   and takes its slot and state again (stats.reattached). Memory and the
  *   per-update loop depend on W and the pool, not on the field. */
 #ifndef MEADOW_HYBRID_H
@@ -149,6 +150,10 @@ void hybrid_grid_free(hybrid_grid_t *g);
  * the measured motion per tile from the last simulation step. */
 void hybrid_grid_update(hybrid_grid_t *g, const float camera[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt);
+/* Window: tiles away from it whose slot's latest measured motion
+ * (slot_motion[slot], m) is below motion_epsilon end their recovery at the
+ * next update, as tiles in the window do. */
+void hybrid_grid_settle_away(hybrid_grid_t *g, const float *slot_motion);
 /* Tile index of a world position, -1 outside the field (or the window). */
 int hybrid_tile_at(const hybrid_grid_t *g, float x, float z);
 /* Independent brute-force activity test (tests): does any object touch
