@@ -479,7 +479,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
                                                           .tile_range = tile_range,
                                                           .range_user = (void *)m});
     int ntiles = t->grid.nx * t->grid.nz;
-    size_t side = t->world ? 1 : (size_t)t->grid_res + 1;
+    size_t side = t->world ? 0 : (size_t)t->grid_res + 1; /* the ground texture's; none on a world */
     t->slot_owner = malloc((size_t)d->pool_slots * sizeof(int));
     t->slot_epoch = calloc((size_t)d->pool_slots, sizeof(uint32_t));
     t->away_mark = calloc((size_t)d->pool_slots, 1);
@@ -487,20 +487,21 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
     t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
     t->order = malloc((size_t)(l.draw_tiles > 0 ? l.draw_tiles : 1) * sizeof(blade_order_key_t));
-    t->ground_cpu = malloc(side * side * 4 * sizeof(float));
+    t->ground_cpu = t->world ? NULL : malloc(side * side * 4 * sizeof(float));
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
         t->motion_owner[i] = malloc((size_t)d->pool_slots * sizeof(int));
         t->motion_epoch[i] = malloc((size_t)d->pool_slots * sizeof(uint32_t));
         ok = ok && t->motion_owner[i] && t->motion_epoch[i];
     }
-    ok = ok && t->slot_owner && t->slot_epoch && t->away_mark && t->slot_motion && t->tile_motion && t->scratch && t->order && t->ground_cpu;
+    ok = ok && t->slot_owner && t->slot_epoch && t->away_mark && t->slot_motion && t->tile_motion && t->scratch &&
+         t->order && (t->world || t->ground_cpu);
     if (!ok || !seed_templates(t)) {
         core_log_error("blade_tiles_make: out of memory or seeding failed");
         return false;
     }
     for (int s = 0; s < d->pool_slots; s++) t->slot_owner[s] = -1, t->slot_motion[s] = 0.0f;
     for (int i = 0; i < ntiles; i++) t->tile_motion[i] = FLT_MAX;
-    for (size_t v = 0; v < side * side && !t->world; v++) {
+    for (size_t v = 0; v < side * side; v++) {
         memcpy(&t->ground_cpu[4 * v], &m->normals[3 * v], 3 * sizeof(float));
         t->ground_cpu[4 * v + 3] = m->positions[3 * v + 1];
     }
@@ -629,10 +630,13 @@ static void poll_motion(blade_tiles_t *t)
         gfx_readback_read(&t->motion_ring, r, 0, (size_t)S * sizeof(uint32_t), bits);
         for (int s = 0; s < S; s++) {
             int owner = t->motion_owner[r][s];
-            if (owner == SLOT_AWAY && t->slot_owner[s] == SLOT_AWAY) memcpy(&t->slot_motion[s], &bits[s], 4);
-            if (owner < 0 || t->slot_owner[s] != owner || t->slot_epoch[s] != t->motion_epoch[r][s]) continue;
             float v;
             memcpy(&v, &bits[s], sizeof v);
+            if (owner == SLOT_AWAY) { /* a tile away from the window (hybrid_grid_settle_away) */
+                if (t->slot_owner[s] == SLOT_AWAY) t->slot_motion[s] = v;
+                continue;
+            }
+            if (owner < 0 || t->slot_owner[s] != owner || t->slot_epoch[s] != t->motion_epoch[r][s]) continue;
             t->slot_motion[s] = v;
             if (t->grid.tiles[owner].state == HYBRID_RECOVERING) t->tile_motion[owner] = v;
         }

@@ -2,6 +2,7 @@
  * with a fixed pool of simulation slots, and per-tile object lists. */
 #include "hybrid/hybrid.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -214,7 +215,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
         for (int j = j0 > lo[1] ? j0 : lo[1]; j <= j1 && j <= hi[1]; j++)
             for (int i = i0 > lo[0] ? i0 : lo[0]; i <= i1 && i <= hi[0]; i++) {
                 int ti = index_of(g, i, j);
-                if (ti < 0) continue;
+                assert(ti >= 0); /* lo, hi keep (i, j) in the field and the window */
                 hybrid_tile_t *t = &g->tiles[ti];
                 if (core_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
                 if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
