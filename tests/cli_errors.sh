@@ -178,17 +178,24 @@ rc=$?
 # An --out folder in use by another run is refused: first held by flock(1)
 # (in a process that becomes the sleep, so killing it frees the lock),
 # then by a second meadow run; the lock goes with the process that held it.
+# Each wait is for an event, not a guess of time: under ctest -j on a busy
+# machine the holder took longer than a fixed 0.2 s to lock, and the run
+# under test then took the lock itself and succeeded.
 mkdir -p "$tmp/shared"
-(exec 9>"$tmp/shared/.meadow.lock" && flock 9 && exec sleep 30) &
+(exec 9>"$tmp/shared/.meadow.lock" && flock 9 && touch "$tmp/held" && exec sleep 60) &
 holder=$!
-sleep 0.2
+wait_for() { # wait_for TEST-ARGS...: up to 60 s for `test ARGS` to hold
+  for _ in $(seq 600); do test "$@" && return 0; sleep 0.1; done
+  echo "FAIL: waited 60 s for: test $*"; fail=1; return 1
+}
+wait_for -e "$tmp/held"
 expect2 'shared is in use by another run' --headless --scene "$root/scenes/tiny.json" --out "$tmp/shared"
 kill "$holder"
 wait "$holder" 2>/dev/null
 "$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 --screenshot-every 0 \
   --out "$tmp/shared" >/dev/null 2>&1 &
 runner=$!
-for _ in $(seq 50); do [ -s "$tmp/shared/.meadow.lock" ] && break; sleep 0.1; done
+wait_for -s "$tmp/shared/.meadow.lock"
 expect2 "shared is in use by another run (.*locked by process $runner)" --headless --scene "$root/scenes/tiny.json" \
   --out "$tmp/shared"
 kill -INT "$runner"
