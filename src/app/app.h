@@ -44,6 +44,7 @@ typedef struct app_options_t {
     bool montage;             /* --montage: end a headless run with the mode montage */
     int overlay;              /* --overlay 0..3: debug overlay at start (key O cycles) */
     bool quiet;
+    bool frame_log;           /* --frame-log: OUT/frames.csv, a row per frame (app_trace.h) */
 } app_options_t;
 
 

@@ -39,6 +39,7 @@ void app_print_options(void)
            "  --view-cards          billboards whose clump appearance follows the view and the wind\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
+           "  --frame-log           also write frames.csv to --out: per frame its times, tile work and GPU passes\n"
            "  --quiet               only warnings and errors\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n",
@@ -113,6 +114,7 @@ static bool flag_option(const char *a, app_options_t *o)
     else if (strcmp(a, "--view-cards") == 0) o->view_cards = true;
     else if (strcmp(a, "--montage") == 0) o->montage = true;
     else if (strcmp(a, "--quiet") == 0) o->quiet = true;
+    else if (strcmp(a, "--frame-log") == 0) o->frame_log = true;
     else return false;
     return true;
 }

@@ -2,6 +2,7 @@
  * window, or headless EGL), simulates with a fixed timestep, renders into an
  * MSAA target, writes screenshots and the run summary. */
 #include "app/app_world.h"
+#include "app/app_trace.h"
 
 #include <assert.h>
 #include <math.h>
@@ -39,6 +40,7 @@ typedef struct app_t {
     app_view_t last_view; /* of the frame in the target */
     bool last_hud;        /* the HUD, wireframe or an overlay is in it */
     double startup_draws, startup_ranges, startup_dispatches;
+    app_trace_t *trace; /* --frame-log, else NULL */
 } app_t;
 
 /* ---- frame times -------------------------------------------------------------
@@ -500,9 +502,13 @@ static int run_frames(app_t *app)
         double end = plat_time();
         if (app->done == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
         app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
+        app_trace_frame_t tf = {.frame = app->done, .wall_ms = (end - frame_end) * 1e3,
+                                .submit_ms = (app->submitted - frame_end) * 1e3,
+                                .thread_ms = (app->submitted_cpu - frame_end_cpu) * 1e3,
+                                .screenshot = app->shot_taken};
+        app_trace_row(app->trace, w, &tf);
         if (app->shot_taken) app->times.shots++;
-        else frame_times_add(&app->times, app->done - 1, (end - frame_end) * 1e3, (app->submitted - frame_end) * 1e3,
-                             (app->submitted_cpu - frame_end_cpu) * 1e3);
+        else frame_times_add(&app->times, app->done - 1, tf.wall_ms, tf.submit_ms, tf.thread_ms);
         frame_end = end;
         frame_end_cpu = plat_thread_time();
         if (app->headless && app->done % 100 == 0) core_log_info("frame %d/%d", app->done, app->frames);
@@ -573,10 +579,12 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
         rc = w->input_error ? 2 : 1;
     }
+    if (ok && o->frame_log) app.trace = app_trace_open(app.out);
     if (ok && run_frames(&app) != 0) {
         ok = false;
         rc = 1;
     }
+    if (!app_trace_close(app.trace)) rc = rc ? rc : 1;
     if (app_interrupted()) core_log_warn("interrupted after %d frames; writing the summary", app.done);
     app.frames_asked = app.frames;
     app.frames = app.done;

@@ -1,0 +1,101 @@
+/* app_trace: `meadow --frame-log` writes OUT/frames.csv, one row per frame:
+ * the frame's wall, submit and thread times (as summary.txt measures them),
+ * whether it wrote a screenshot, the blade tiles' work of its update (tiles
+ * active and recovering, slots and blades simulated, tiles streamed into
+ * the window) and the latest GPU time of every timed pass. GPU timer results
+ * arrive one to three frames late (gfx_timer_last_ms), so a pass's column
+ * trails the frame it is written on; a pass that has not run yet reads
+ * empty. Rows are kept in memory and written at the end, when every pass
+ * is known: the last APP_FRAME_HISTORY frames, as summary.txt's times (a
+ * longer run says how many it left out). A tool for finding hitches
+ * (docs/METRICS.md, "Frame log"). */
+#include "app/app_trace.h"
+
+#include "app/app_world.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#define TRACE_PASSES 48
+#define TRACE_STATS 5
+
+typedef struct trace_row_t {
+    int frame;
+    bool screenshot;
+    double ms[3];         /* wall, submit, thread */
+    long stats[TRACE_STATS];
+    float pass_ms[TRACE_PASSES]; /* -1: not run yet */
+} trace_row_t;
+
+struct app_trace_t {
+    char path[1100];
+    trace_row_t *rows; /* a ring of APP_FRAME_HISTORY */
+    long count;        /* rows added */
+    long streamed_last; /* blade_tiles_stats_t.streamed_total of the previous row */
+};
+
+app_trace_t *app_trace_open(const char *out)
+{
+    app_trace_t *tr = calloc(1, sizeof *tr);
+    if (tr) tr->rows = malloc(sizeof *tr->rows * APP_FRAME_HISTORY);
+    if (!tr || !tr->rows) {
+        core_log_warn("--frame-log: no memory for %d rows; no frames.csv", APP_FRAME_HISTORY);
+        if (tr) free(tr);
+        return NULL;
+    }
+    snprintf(tr->path, sizeof tr->path, "%s/frames.csv", out);
+    return tr;
+}
+
+void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
+{
+    if (!tr) return;
+    trace_row_t *r = &tr->rows[tr->count % APP_FRAME_HISTORY];
+    tr->count++;
+    blade_tiles_t *tiles = app_world_tiles(w);
+    blade_tiles_stats_t ts = {0};
+    if (tiles) ts = blade_tiles_stats(tiles, false);
+    *r = (trace_row_t){.frame = fr->frame, .screenshot = fr->screenshot,
+                       .ms = {fr->wall_ms, fr->submit_ms, fr->thread_ms},
+                       .stats = {ts.active, ts.recovering, ts.slots_dispatched, (long)ts.blades_dispatched,
+                                 ts.streamed_total - tr->streamed_last}};
+    tr->streamed_last = ts.streamed_total;
+    int passes = gfx_timer_count();
+    for (int i = 0; i < TRACE_PASSES; i++) r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
+}
+
+static bool trace_write(const app_trace_t *tr, FILE *f)
+{
+    int passes = gfx_timer_count() < TRACE_PASSES ? gfx_timer_count() : TRACE_PASSES;
+    fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot,tiles_active,tiles_recovering,slots_simulated,"
+               "blades_simulated,tiles_streamed");
+    for (int i = 0; i < passes; i++) fprintf(f, ",%s_ms", gfx_timer_name(i));
+    fprintf(f, "\n");
+    long first = tr->count > APP_FRAME_HISTORY ? tr->count - APP_FRAME_HISTORY : 0;
+    for (long k = first; k < tr->count; k++) {
+        const trace_row_t *r = &tr->rows[k % APP_FRAME_HISTORY];
+        fprintf(f, "%d,%.3f,%.3f,%.3f,%d", r->frame, r->ms[0], r->ms[1], r->ms[2], r->screenshot ? 1 : 0);
+        for (int s = 0; s < TRACE_STATS; s++) fprintf(f, ",%ld", r->stats[s]);
+        for (int i = 0; i < passes; i++) {
+            if (r->pass_ms[i] < 0.0f) fprintf(f, ",");
+            else fprintf(f, ",%.3f", (double)r->pass_ms[i]);
+        }
+        fprintf(f, "\n");
+    }
+    if (gfx_timer_count() > TRACE_PASSES)
+        core_log_warn("--frame-log: %d timed passes, frames.csv holds the first %d", gfx_timer_count(), TRACE_PASSES);
+    if (first > 0) core_log_info("--frame-log: frames.csv holds the last %d of %ld frames", APP_FRAME_HISTORY, tr->count);
+    return !ferror(f);
+}
+
+bool app_trace_close(app_trace_t *tr)
+{
+    if (!tr) return true;
+    FILE *f = fopen(tr->path, "w");
+    bool ok = f && trace_write(tr, f);
+    ok = f && fclose(f) == 0 && ok;
+    if (!ok) core_log_warn("--frame-log: could not write %s", tr->path);
+    free(tr->rows);
+    free(tr);
+    return ok;
+}

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# frame_log: `meadow --frame-log` writes frames.csv (src/app/app_trace.c):
+# a header and one row per frame, screenshot frames flagged, and the wall
+# and submit times of the frames summary.txt times give its p50 and worst
+# (the same numbers, so the log cannot drift from the summary); the tile
+# and GPU pass columns are there and hold numbers; a run without the
+# option writes no frames.csv.
+# Usage: frame_log.sh MEADOW_BINARY
+set -u
+bin=$1
+root=$(cd "$(dirname "$0")/.." && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 96x54 --frames 40 --screenshot-every 10 \
+  --frame-log --out "$tmp/log" >/dev/null 2>"$tmp/log.err" || { echo "FAIL: the run failed"; cat "$tmp/log.err"; exit 1; }
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 96x54 --frames 2 --screenshot-every 0 \
+  --out "$tmp/none" >/dev/null 2>&1 || { echo "FAIL: the run without --frame-log failed"; exit 1; }
+python3 - "$tmp/log/frames.csv" "$tmp/log/summary.txt" "$tmp/none" <<'PY'
+import csv, math, os, re, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+summary = open(sys.argv[2]).read()
+fail = []
+if len(rows) != 40: fail.append(f"{len(rows)} rows, want 40")
+if [int(r["frame"]) for r in rows] != list(range(1, 41)): fail.append("frames are not 1..40 in order")
+shots = [int(r["frame"]) for r in rows if r["screenshot"] == "1"]
+if shots != [10, 20, 30, 40]: fail.append(f"screenshot frames {shots}, want 10, 20, 30, 40")
+for col in ("tiles_active", "blades_simulated", "tiles_streamed", "tiles.physics_ms", "terrain_ms"):
+    if col not in rows[0]: fail.append(f"no column {col}")
+    elif any(r[col] == "" or not math.isfinite(float(r[col])) for r in rows[-5:]): fail.append(f"{col} not a number")
+warm = int(re.search(r"\((\d+) frames left out", summary).group(1))
+timed = [r for r in rows if int(r["frame"]) > warm and r["screenshot"] == "0"]
+for name, col in (("wall \\(CPU and GPU\\)", "wall_ms"), ("cpu \\(submit\\)", "submit_ms")):
+    m = re.search(name + r"\s+p50\s+([\d.]+).*worst\s+([\d.]+)", summary)
+    v = sorted(float(r[col]) for r in timed)
+    p50 = v[math.ceil(0.5 * len(v)) - 1]
+    if abs(p50 - float(m.group(1))) > 0.002 or abs(v[-1] - float(m.group(2))) > 0.002:
+        fail.append(f"{col}: log p50 {p50} worst {v[-1]}, summary p50 {m.group(1)} worst {m.group(2)}")
+if os.path.exists(os.path.join(sys.argv[3], "frames.csv")): fail.append("a run without --frame-log wrote frames.csv")
+for f in fail: print("FAIL:", f)
+if not fail: print(f"ok: frames.csv has 40 rows, {len(rows[0])} columns, p50 and worst equal to summary.txt's")
+sys.exit(1 if fail else 0)
+PY
