@@ -3,7 +3,8 @@
 # a header and one row per frame, screenshot frames flagged, and the wall
 # and submit times of the frames summary.txt times give its p50 and worst
 # (the same numbers, so the log cannot drift from the summary); the tile
-# and GPU pass columns are there and hold numbers; a run without the
+# and GPU pass columns are there and hold numbers; the CPU time inside the
+# passes is positive and within the frame's submit time; a run without the
 # option writes no frames.csv.
 # Usage: frame_log.sh MEADOW_BINARY
 set -u
@@ -35,6 +36,13 @@ for name, col in (("wall \\(CPU and GPU\\)", "wall_ms"), ("cpu \\(submit\\)", "s
     p50 = v[math.ceil(0.5 * len(v)) - 1]
     if abs(p50 - float(m.group(1))) > 0.002 or abs(v[-1] - float(m.group(2))) > 0.002:
         fail.append(f"{col}: log p50 {p50} worst {v[-1]}, summary p50 {m.group(1)} worst {m.group(2)}")
+cpu_cols = [c for c in rows[0] if c.endswith("_cpu_ms")]
+if "tiles.physics_cpu_ms" not in cpu_cols: fail.append("no CPU column for tiles.physics")
+for r in rows[1:]:
+    inside = sum(float(r[c]) for c in cpu_cols if r[c])
+    if not 0.0 < inside <= float(r["submit_ms"]) + 0.01:
+        fail.append(f"frame {r['frame']}: CPU ms inside passes {inside:.3f} not in (0, submit {r['submit_ms']}]")
+        break
 if os.path.exists(os.path.join(sys.argv[3], "frames.csv")): fail.append("a run without --frame-log wrote frames.csv")
 for f in fail: print("FAIL:", f)
 if not fail: print(f"ok: frames.csv has 40 rows, {len(rows[0])} columns, p50 and worst equal to summary.txt's")

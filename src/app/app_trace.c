@@ -2,10 +2,11 @@
  * the frame's wall, submit and thread times (as summary.txt measures them),
  * whether it wrote a screenshot, the blade tiles' work of its update (tiles
  * active and recovering, slots and blades simulated, tiles streamed into
- * the window) and the latest GPU time of every timed pass. GPU timer results
- * arrive one to three frames late (gfx_timer_last_ms), so a pass's column
- * trails the frame it is written on; a pass that has not run yet reads
- * empty. Rows are kept in memory and written at the end, when every pass
+ * the window), the latest GPU time of every timed pass (`<pass>_ms`) and
+ * the CPU wall time spent in its calls this frame (`<pass>_cpu_ms`: where a
+ * blocking driver call sits). GPU timer results arrive one to three frames
+ * late (gfx_timer_last_ms), so a GPU column trails the frame it is written
+ * on; a pass that has not run yet reads empty. Rows are kept in memory and written at the end, when every pass
  * is known: the last APP_FRAME_HISTORY frames, as summary.txt's times (a
  * longer run says how many it left out). A tool for finding hitches
  * (docs/METRICS.md, "Frame log"). */
@@ -16,7 +17,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define TRACE_PASSES 48
+#define TRACE_PASSES GFX_TIMER_MAX_PASSES
 #define TRACE_STATS 5
 
 typedef struct trace_row_t {
@@ -24,7 +25,8 @@ typedef struct trace_row_t {
     bool screenshot;
     double ms[3];         /* wall, submit, thread */
     long stats[TRACE_STATS];
-    float pass_ms[TRACE_PASSES]; /* -1: not run yet */
+    float pass_ms[TRACE_PASSES]; /* GPU, latest result; -1: not run yet */
+    float cpu_ms[TRACE_PASSES];  /* CPU wall time in the pass's calls this frame */
 } trace_row_t;
 
 struct app_trace_t {
@@ -61,29 +63,32 @@ void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
                                  ts.streamed_total - tr->streamed_last}};
     tr->streamed_last = ts.streamed_total;
     int passes = gfx_timer_count();
-    for (int i = 0; i < TRACE_PASSES; i++) r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
+    for (int i = 0; i < TRACE_PASSES; i++) {
+        r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
+        r->cpu_ms[i] = i < passes ? (float)gfx_timer_cpu_ms(i) : -1.0f;
+    }
 }
 
 static bool trace_write(const app_trace_t *tr, FILE *f)
 {
-    int passes = gfx_timer_count() < TRACE_PASSES ? gfx_timer_count() : TRACE_PASSES;
+    int passes = gfx_timer_count();
     fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot,tiles_active,tiles_recovering,slots_simulated,"
                "blades_simulated,tiles_streamed");
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_ms", gfx_timer_name(i));
+    for (int i = 0; i < passes; i++) fprintf(f, ",%s_cpu_ms", gfx_timer_name(i));
     fprintf(f, "\n");
     long first = tr->count > APP_FRAME_HISTORY ? tr->count - APP_FRAME_HISTORY : 0;
     for (long k = first; k < tr->count; k++) {
         const trace_row_t *r = &tr->rows[k % APP_FRAME_HISTORY];
         fprintf(f, "%d,%.3f,%.3f,%.3f,%d", r->frame, r->ms[0], r->ms[1], r->ms[2], r->screenshot ? 1 : 0);
         for (int s = 0; s < TRACE_STATS; s++) fprintf(f, ",%ld", r->stats[s]);
-        for (int i = 0; i < passes; i++) {
-            if (r->pass_ms[i] < 0.0f) fprintf(f, ",");
-            else fprintf(f, ",%.3f", (double)r->pass_ms[i]);
+        for (int i = 0; i < 2 * passes; i++) {
+            float v = i < passes ? r->pass_ms[i] : r->cpu_ms[i - passes];
+            if (v < 0.0f) fprintf(f, ",");
+            else fprintf(f, ",%.3f", (double)v);
         }
         fprintf(f, "\n");
     }
-    if (gfx_timer_count() > TRACE_PASSES)
-        core_log_warn("--frame-log: %d timed passes, frames.csv holds the first %d", gfx_timer_count(), TRACE_PASSES);
     if (first > 0) core_log_info("--frame-log: frames.csv holds the last %d of %ld frames", APP_FRAME_HISTORY, tr->count);
     return !ferror(f);
 }

@@ -242,6 +242,9 @@ void gfx_timer_end(void);
 int gfx_timer_count(void);
 const char *gfx_timer_name(int i);
 double gfx_timer_last_ms(int i);  /* latest available result */
+double gfx_timer_cpu_ms(int i);   /* CPU wall ms between the pass's begin and end calls since the
+                                     latest gfx_timer_frame_begin (the driver's time in its calls,
+                                     blocking ones included) */
 int gfx_timer_frames_since(int i); /* frames begun since the pass last ran (0: this frame) */
 double gfx_timer_avg_ms(int i);   /* mean over every result so far */
 double gfx_timer_max_ms(int i);   /* largest result so far */

@@ -30,6 +30,7 @@ typedef struct pass_t {
     long n;
     double hist[HISTORY];
     int hist_n, hist_i;
+    double cpu_ms, cpu_t0; /* CPU wall ms inside the pass this frame; its latest begin (s) */
 } pass_t;
 
 static struct {
@@ -37,12 +38,13 @@ static struct {
     int count;
     int frame;
     int open;
+    int cpu_open; /* the pass between begin and end on the CPU clock, else -1 */
     int first_frame; /* samples of earlier frames are not recorded */
     GLsync fences[GFX_TIMER_LATENCY]; /* gfx_frame_end, oldest first */
     int fence_count;
     bool warned_full;
     int sync; /* -1 unread, else MEADOW_TIMER_SYNC */
-} t = {.open = -1, .sync = -1};
+} t = {.open = -1, .cpu_open = -1, .sync = -1};
 
 bool gfx_timer_sync(void)
 {
@@ -82,6 +84,7 @@ void gfx_timer_frame_begin(void)
     t.frame++;
     int slot = t.frame % GFX_TIMER_LATENCY;
     for (int i = 0; i < t.count; i++) {
+        t.passes[i].cpu_ms = 0.0;
         for (int s = 0; s < GFX_TIMER_LATENCY; s++)
             if (s != slot) harvest(&t.passes[i], s, false);
         /* The slot about to be reused: its result is LATENCY frames old. */
@@ -110,6 +113,8 @@ void gfx_timer_begin(const char *pass)
     int slot = t.frame % GFX_TIMER_LATENCY;
     pass_t *p = &t.passes[i];
     p->last_frame = t.frame;
+    p->cpu_t0 = plat_time();
+    t.cpu_open = i;
     if (p->pending[slot]) {
         /* Still in flight after LATENCY frames: drop this frame's sample
          * rather than stall. */
@@ -123,6 +128,11 @@ void gfx_timer_begin(const char *pass)
 void gfx_timer_end(void)
 {
     gfx_count_pass_end();
+    if (t.cpu_open >= 0) {
+        pass_t *c = &t.passes[t.cpu_open];
+        c->cpu_ms += (plat_time() - c->cpu_t0) * 1e3;
+        t.cpu_open = -1;
+    }
     if (t.open < 0) return;
     glEndQuery(GL_TIME_ELAPSED);
     t.passes[t.open].pending[t.frame % GFX_TIMER_LATENCY] = true;
@@ -132,6 +142,7 @@ void gfx_timer_end(void)
 int gfx_timer_count(void) { return t.count; }
 const char *gfx_timer_name(int i) { return t.passes[i].name; }
 double gfx_timer_last_ms(int i) { return t.passes[i].last; }
+double gfx_timer_cpu_ms(int i) { return t.passes[i].cpu_ms; }
 int gfx_timer_frames_since(int i) { return t.frame - t.passes[i].last_frame; }
 double gfx_timer_max_ms(int i) { return t.passes[i].max; }
 double gfx_timer_avg_ms(int i) { return t.passes[i].n ? t.passes[i].sum / (double)t.passes[i].n : 0.0; }
