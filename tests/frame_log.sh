@@ -36,7 +36,13 @@ for name, col in (("wall \\(CPU and GPU\\)", "wall_ms"), ("cpu \\(submit\\)", "s
     p50 = v[math.ceil(0.5 * len(v)) - 1]
     if abs(p50 - float(m.group(1))) > 0.002 or abs(v[-1] - float(m.group(2))) > 0.002:
         fail.append(f"{col}: log p50 {p50} worst {v[-1]}, summary p50 {m.group(1)} worst {m.group(2)}")
-cpu_cols = [c for c in rows[0] if c.endswith("_cpu_ms")]
+steps = ["timers_cpu_ms", "steps_cpu_ms", "target_cpu_ms", "draw_cpu_ms", "drawn_cpu_ms"]
+for r in rows[1:]:
+    total = sum(float(r[c]) for c in steps)
+    if not 0.0 < total <= float(r["submit_ms"]) + 0.01 or float(r["draw_cpu_ms"]) <= 0.0:
+        fail.append(f"frame {r['frame']}: the frame's steps {total:.3f} ms not in (0, submit {r['submit_ms']}]")
+        break
+cpu_cols = [c for c in rows[0] if c.endswith("_cpu_ms") and c not in steps]
 if "tiles.physics_cpu_ms" not in cpu_cols: fail.append("no CPU column for tiles.physics")
 for r in rows[1:]:
     inside = sum(float(r[c]) for c in cpu_cols if r[c])

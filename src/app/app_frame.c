@@ -10,7 +10,10 @@
 app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d)
 {
     const scene_desc_t *s = &w->scene;
+    double scratch[APP_FRAME_MARKS], *mark = d->marks ? d->marks : scratch;
+    mark[0] = plat_time();
     gfx_timer_frame_begin();
+    mark[1] = plat_time();
     for (int i = d->steps - 1; i >= 0; i--) {
         float t = (float)(d->t - i * d->dt);
         if (d->spheres) app_world_update_spheres(w, t, d->dt, d->spheres, d->user);
@@ -18,6 +21,7 @@ app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d)
     }
     float t = (float)d->t;
     if (d->updated) d->updated(w, t, d->user);
+    mark[2] = plat_time();
     if (d->update_only) return APP_FRAME_UPDATED;
     if (d->follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, t, d->cam);
     app_view_t view;
@@ -28,8 +32,11 @@ app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d)
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
+    mark[3] = plat_time();
     app_world_draw(w, &view, d->target, d->wireframe);
+    mark[4] = plat_time();
     if (d->drawn) d->drawn(w, &view, d->target, d->user);
+    mark[5] = plat_time();
     if (gfx_frame_end(d->in_flight > 0 ? d->in_flight : APP_FRAMES_IN_FLIGHT) < 0.0) return APP_FRAME_GPU_LOST;
     return APP_FRAME_DRAWN;
 }

@@ -485,12 +485,13 @@ static int run_frames(app_t *app)
             clock.steps += (uint64_t)steps;
         }
         app->step_once = false;
+        double marks[APP_FRAME_MARKS];
         /* The first frame is waited for: the end of start-up. */
         app_frame_desc_t fd = {.target = &app->target, .label = "main", .cam = &app->cam,
                                .follow_path = app->follow_path, .t = scene_clock_time(&clock), .dt = s->dt,
                                .steps = steps, .overlay = app->overlay, .wireframe = app->wireframe,
                                .drawn = frame_drawn, .user = app,
-                               .in_flight = app->done == 0 ? 1 : APP_FRAMES_IN_FLIGHT};
+                               .in_flight = app->done == 0 ? 1 : APP_FRAMES_IN_FLIGHT, .marks = marks};
         app_frame_result_t r = app_world_frame(w, &fd);
         if (r == APP_FRAME_NO_TARGET) return 1;
         app->done++;
@@ -505,7 +506,7 @@ static int run_frames(app_t *app)
         app_trace_frame_t tf = {.frame = app->done, .wall_ms = (end - frame_end) * 1e3,
                                 .submit_ms = (app->submitted - frame_end) * 1e3,
                                 .thread_ms = (app->submitted_cpu - frame_end_cpu) * 1e3,
-                                .screenshot = app->shot_taken};
+                                .screenshot = app->shot_taken, .marks = marks};
         app_trace_row(app->trace, w, &tf);
         if (app->shot_taken) app->times.shots++;
         else frame_times_add(&app->times, app->done - 1, tf.wall_ms, tf.submit_ms, tf.thread_ms);

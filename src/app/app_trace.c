@@ -2,7 +2,9 @@
  * the frame's wall, submit and thread times (as summary.txt measures them),
  * whether it wrote a screenshot, the blade tiles' work of its update (tiles
  * active and recovering, slots and blades simulated, tiles streamed into
- * the window), the latest GPU time of every timed pass (`<pass>_ms`) and
+ * the window), the CPU wall ms of the frame's steps (timer frame,
+ * simulation steps, target fit and clear, draw, the drawn callback:
+ * app_frame_desc_t.marks), the latest GPU time of every timed pass (`<pass>_ms`) and
  * the CPU wall time spent in its calls this frame (`<pass>_cpu_ms`: where a
  * blocking driver call sits). GPU timer results arrive one to three frames
  * late (gfx_timer_last_ms), so a GPU column trails the frame it is written
@@ -19,11 +21,13 @@
 
 #define TRACE_PASSES GFX_TIMER_MAX_PASSES
 #define TRACE_STATS 5
+#define TRACE_STEPS 5 /* the differences of APP_FRAME_MARKS marks */
 
 typedef struct trace_row_t {
     int frame;
     bool screenshot;
     double ms[3];         /* wall, submit, thread */
+    float step_ms[TRACE_STEPS]; /* CPU wall ms of the frame's steps (app_frame_desc_t.marks) */
     long stats[TRACE_STATS];
     float pass_ms[TRACE_PASSES]; /* GPU, latest result; -1: not run yet */
     float cpu_ms[TRACE_PASSES];  /* CPU wall time in the pass's calls this frame */
@@ -62,6 +66,7 @@ void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
                        .stats = {ts.active, ts.recovering, ts.slots_dispatched, (long)ts.blades_dispatched,
                                  ts.streamed_total - tr->streamed_last}};
     tr->streamed_last = ts.streamed_total;
+    for (int k = 0; k < TRACE_STEPS; k++) r->step_ms[k] = fr->marks ? (float)((fr->marks[k + 1] - fr->marks[k]) * 1e3) : 0.0f;
     int passes = gfx_timer_count();
     for (int i = 0; i < TRACE_PASSES; i++) {
         r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
@@ -73,7 +78,8 @@ static bool trace_write(const app_trace_t *tr, FILE *f)
 {
     int passes = gfx_timer_count();
     fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot,tiles_active,tiles_recovering,slots_simulated,"
-               "blades_simulated,tiles_streamed");
+               "blades_simulated,tiles_streamed,timers_cpu_ms,steps_cpu_ms,target_cpu_ms,draw_cpu_ms,"
+               "drawn_cpu_ms");
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_ms", gfx_timer_name(i));
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_cpu_ms", gfx_timer_name(i));
     fprintf(f, "\n");
@@ -82,6 +88,7 @@ static bool trace_write(const app_trace_t *tr, FILE *f)
         const trace_row_t *r = &tr->rows[k % APP_FRAME_HISTORY];
         fprintf(f, "%d,%.3f,%.3f,%.3f,%d", r->frame, r->ms[0], r->ms[1], r->ms[2], r->screenshot ? 1 : 0);
         for (int s = 0; s < TRACE_STATS; s++) fprintf(f, ",%ld", r->stats[s]);
+        for (int m = 0; m < TRACE_STEPS; m++) fprintf(f, ",%.3f", (double)r->step_ms[m]);
         for (int i = 0; i < 2 * passes; i++) {
             float v = i < passes ? r->pass_ms[i] : r->cpu_ms[i - passes];
             if (v < 0.0f) fprintf(f, ",");

@@ -11,6 +11,7 @@ typedef struct app_trace_frame_t {
     int frame;                           /* 1-based */
     double wall_ms, submit_ms, thread_ms; /* as summary.txt's frame times */
     bool screenshot;                     /* the frame wrote one */
+    const double *marks;                 /* app_frame_desc_t.marks of the frame, or NULL */
 } app_trace_frame_t;
 
 /* A log for frames.csv in folder `out`; NULL (logged) without memory. */

@@ -398,7 +398,12 @@ typedef struct app_frame_desc_t {
     void (*drawn)(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user);
     void *user;    /* for spheres, updated and drawn */
     int in_flight; /* gfx_frame_end's frames left unfinished; 0: APP_FRAMES_IN_FLIGHT */
+    /* Non-NULL: plat_time when the frame began and after each of its
+     * APP_FRAME_MARKS - 1 steps (timer frame, simulation steps, target fit
+     * and clear, app_world_draw, drawn); for the frame log (app_trace.h). */
+    double *marks;
 } app_frame_desc_t;
+#define APP_FRAME_MARKS 6
 /* Steps, camera path, view (scene dt), target fit, clear, app_world_draw,
  * drawn, gfx_frame_end. Starts the pass timers' frame. */
 app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d);
