@@ -42,7 +42,11 @@ for r in rows[1:]:
     if not 0.0 < total <= float(r["submit_ms"]) + 0.01 or float(r["draw_cpu_ms"]) <= 0.0:
         fail.append(f"frame {r['frame']}: the frame's steps {total:.3f} ms not in (0, submit {r['submit_ms']}]")
         break
-cpu_cols = [c for c in rows[0] if c.endswith("_cpu_ms") and c not in steps]
+    parts = sum(float(r[c]) for c in rows[0] if c.startswith("update_"))
+    if not 0.0 < parts <= float(r["steps_cpu_ms"]) + 0.01:
+        fail.append(f"frame {r['frame']}: the update's parts {parts:.3f} ms not in (0, steps {r['steps_cpu_ms']}]")
+        break
+cpu_cols = [c for c in rows[0] if c.endswith("_cpu_ms") and c not in steps and not c.startswith("update_")]
 if "tiles.physics_cpu_ms" not in cpu_cols: fail.append("no CPU column for tiles.physics")
 for r in rows[1:]:
     inside = sum(float(r[c]) for c in cpu_cols if r[c])

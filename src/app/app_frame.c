@@ -7,11 +7,14 @@
 
 #include "platform/plat.h"
 
+#include <string.h>
+
 app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d)
 {
     const scene_desc_t *s = &w->scene;
     double scratch[APP_FRAME_MARKS], *mark = d->marks ? d->marks : scratch;
     mark[0] = plat_time();
+    memset(w->update_ms, 0, sizeof w->update_ms);
     gfx_timer_frame_begin();
     mark[1] = plat_time();
     for (int i = d->steps - 1; i >= 0; i--) {

@@ -4,7 +4,9 @@
  * active and recovering, slots and blades simulated, tiles streamed into
  * the window), the CPU wall ms of the frame's steps (timer frame,
  * simulation steps, target fit and clear, draw, the drawn callback:
- * app_frame_desc_t.marks), the latest GPU time of every timed pass (`<pass>_ms`) and
+ * app_frame_desc_t.marks; the simulation steps split into colliders and
+ * characters, billboards, blade spheres, blades and tiles:
+ * app_world_t.update_ms), the latest GPU time of every timed pass (`<pass>_ms`) and
  * the CPU wall time spent in its calls this frame (`<pass>_cpu_ms`: where a
  * blocking driver call sits). GPU timer results arrive one to three frames
  * late (gfx_timer_last_ms), so a GPU column trails the frame it is written
@@ -21,7 +23,7 @@
 
 #define TRACE_PASSES GFX_TIMER_MAX_PASSES
 #define TRACE_STATS 5
-#define TRACE_STEPS 5 /* the differences of APP_FRAME_MARKS marks */
+#define TRACE_STEPS (5 + APP_UPDATE_PARTS) /* the differences of APP_FRAME_MARKS marks, the update's parts */
 
 typedef struct trace_row_t {
     int frame;
@@ -66,7 +68,9 @@ void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
                        .stats = {ts.active, ts.recovering, ts.slots_dispatched, (long)ts.blades_dispatched,
                                  ts.streamed_total - tr->streamed_last}};
     tr->streamed_last = ts.streamed_total;
-    for (int k = 0; k < TRACE_STEPS; k++) r->step_ms[k] = fr->marks ? (float)((fr->marks[k + 1] - fr->marks[k]) * 1e3) : 0.0f;
+    for (int k = 0; k < APP_FRAME_MARKS - 1; k++)
+        r->step_ms[k] = fr->marks ? (float)((fr->marks[k + 1] - fr->marks[k]) * 1e3) : 0.0f;
+    for (int k = 0; k < APP_UPDATE_PARTS; k++) r->step_ms[APP_FRAME_MARKS - 1 + k] = (float)w->update_ms[k];
     int passes = gfx_timer_count();
     for (int i = 0; i < TRACE_PASSES; i++) {
         r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
@@ -79,7 +83,8 @@ static bool trace_write(const app_trace_t *tr, FILE *f)
     int passes = gfx_timer_count();
     fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot,tiles_active,tiles_recovering,slots_simulated,"
                "blades_simulated,tiles_streamed,timers_cpu_ms,steps_cpu_ms,target_cpu_ms,draw_cpu_ms,"
-               "drawn_cpu_ms");
+               "drawn_cpu_ms,update_objects_cpu_ms,update_billboards_cpu_ms,update_spheres_cpu_ms,"
+               "update_blades_cpu_ms");
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_ms", gfx_timer_name(i));
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_cpu_ms", gfx_timer_name(i));
     fprintf(f, "\n");

@@ -752,9 +752,18 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
 
 /* One step: colliders and characters move, the collide set is built from
  * them, and every grass system takes it. */
+/* Adds the CPU ms since *mark to update part k and restarts the mark. */
+static void update_part(app_world_t *w, int k, double *mark)
+{
+    double now = plat_time();
+    w->update_ms[k] += (now - *mark) * 1e3;
+    *mark = now;
+}
+
 void app_world_update(app_world_t *w, float t, float dt)
 {
     w->time = t;
+    double mark = plat_time();
     app_colliders_update(&w->colliders, &w->terrain_mesh, t);
     if (w->have_chars) character_set_update(&w->chars, t, dt);
     collide_set_t *set = &w->collide;
@@ -773,6 +782,7 @@ void app_world_update(app_world_t *w, float t, float dt)
     /* The papers' colliders stand where they are at each step (no sweep). */
     for (int i = 0; i < set->object_count && w->tuning.paper; i++)
         memcpy(set->objects[i].prev_position, set->objects[i].position, sizeof set->objects[i].prev_position);
+    update_part(w, 0, &mark);
     if (w->bb) {
         /* The hybrid draws no billboard nearer than its fade band: objects
          * there bend the blades alone (unless the blades borrow the
@@ -781,15 +791,18 @@ void app_world_update(app_world_t *w, float t, float dt)
         bb_field_set_hidden(w->bb, w->camera, hide ? w->scene.grass.switch_distance - APP_SWITCH_FADE : 0.0f);
         bb_field_update(w->bb, set, t, dt);
     }
+    update_part(w, 1, &mark);
     if (w->have_blades || w->have_tiles) {
         blade_env_t *env = &w->blade_env;
         env->dt = dt;
         env->time = t;
         if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, set);
         else set->sphere_count = blade_spheres(w, set->spheres, BLADE_MAX_SPHERES);
+        update_part(w, 2, &mark);
         if (w->have_blades) blade_gpu_simulate(w->blades, env, set);
         if (w->have_tiles) blade_tiles_update(w->tiles, w->camera, set, env);
     }
+    update_part(w, 3, &mark);
 }
 
 /* The visibility buffer at the target's size (made or remade here). */

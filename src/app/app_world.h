@@ -133,6 +133,7 @@ const char *app_stage_name(int stage);
 #define APP_FRAMES_IN_FLIGHT 2
 #define APP_WARMUP_FRAMES 60
 #define APP_FRAME_HISTORY 16384
+#define APP_UPDATE_PARTS 4
 typedef struct app_frame_times_t {
     int warmup;                     /* frames left out at the start */
     double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
@@ -195,6 +196,11 @@ typedef struct app_world_t {
     bool stepped;          /* app_world_update ran (its first step seeds the collide set at t - dt) */
     float time;
     double stage_ms[APP_STAGES]; /* start-up, see APP_STAGE_* */
+    /* CPU wall ms of the latest app_world_update's parts, summed over the
+     * frame's steps until app_world_frame clears them (the frame log):
+     * colliders and characters, billboards, blade spheres, blades and
+     * tiles. */
+    double update_ms[APP_UPDATE_PARTS];
 } app_world_t;
 
 /* Module-internal (app_world.c, app_gi.c): the extent map of the layout both

@@ -142,9 +142,12 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
 {
     gfx_buffer_t b = {0};
     while (glGetError() != GL_NO_ERROR) {}
-    GLbitfield flags = 0;
+    /* Persistent: mapped for writing, or for reading when readable. */
+    GLbitfield map = desc->persistent ? (desc->readable ? GL_MAP_READ_BIT : GL_MAP_WRITE_BIT) | GL_MAP_PERSISTENT_BIT |
+                                            GL_MAP_COHERENT_BIT
+                                      : 0;
+    GLbitfield flags = map;
     if (desc->dynamic) flags |= GL_DYNAMIC_STORAGE_BIT;
-    if (desc->persistent) flags |= GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     if (desc->readable) flags |= GL_MAP_READ_BIT;
     glCreateBuffers(1, &b.id);
     glNamedBufferStorage(b.id, (GLsizeiptr)desc->size, desc->data, flags);
@@ -163,9 +166,7 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
     }
     b.size = desc->size;
     b.readable = desc->readable;
-    if (desc->persistent)
-        b.mapped = glMapNamedBufferRange(b.id, 0, (GLsizeiptr)desc->size,
-                                         GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT);
+    if (desc->persistent) b.mapped = glMapNamedBufferRange(b.id, 0, (GLsizeiptr)desc->size, map);
     gfx_track(GL_BUFFER, b.id, desc->label);
     set_bytes(GL_BUFFER, b.id, desc->size);
     return b;
@@ -283,7 +284,7 @@ long gfx_upload_waits(void) { return u.waits; }
 
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data)
 {
-    if (buf.mapped)
+    if (buf.mapped && !buf.readable)
         memcpy((char *)buf.mapped + offset, data, size);
     else
         gfx_upload_raw(buf.id, offset, size, data);

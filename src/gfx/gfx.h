@@ -52,7 +52,8 @@ typedef struct gfx_buffer_desc_t {
     size_t size;        /* bytes, required */
     const void *data;   /* initial contents, optional (default: zeros) */
     bool dynamic;       /* GL_DYNAMIC_STORAGE_BIT (glNamedBufferSubData) */
-    bool persistent;    /* mapped write-coherent for the buffer's life */
+    bool persistent;    /* mapped coherent for the buffer's life: for writing, or for
+                           reading when readable (gfx_readback) */
     bool readable;      /* GL_MAP_READ_BIT: a small buffer the CPU reads (readback rings, staging).
                            Never on a buffer the GPU uses every frame: on the H100 such buffers
                            can be placed where every GPU access crosses PCIe. */
@@ -196,14 +197,14 @@ void gfx_transform_feedback_destroy(GLuint *tf);
 /* ---- readback rings ----------------------------------------------------------
  * `depth` buffers of `size` bytes that GPU data is copied into, one slot per
  * frame: gfx_readback_copy (any number of copies into the slot being
- * written), then gfx_readback_fence (a GL_TIMESTAMP query after them; the
- * slot is pending until read). Later frames read pending slots whose fence
- * has passed, without stalling unless `wait`. The fence query and the
- * buffers are labelled "<label>.fence" and "<label>". */
+ * written), then gfx_readback_fence (a fence sync after them; the slot is
+ * pending until read). Later frames read pending slots whose fence has
+ * passed, without stalling unless `wait`, through the buffers' persistent
+ * read mapping (no GL call). The buffers are labelled "<label>". */
 #define GFX_READBACK_MAX_DEPTH 8
 typedef struct gfx_readback_t {
     gfx_buffer_t buf[GFX_READBACK_MAX_DEPTH];
-    GLuint fence[GFX_READBACK_MAX_DEPTH];
+    GLsync fence[GFX_READBACK_MAX_DEPTH]; /* after the slot's copies; 0 once passed */
     bool pending[GFX_READBACK_MAX_DEPTH]; /* fenced and not read yet */
     int depth, next;                      /* next: the slot being written (the oldest) */
 } gfx_readback_t;
