@@ -39,6 +39,12 @@ int main(void)
     CHECK(core_log_error_count() >= errs_before + 2); /* the shader's error and the link's */
     gfx_program_destroy(&d_bad);
     CHECK(gfx_program_defer(false)); /* nothing left to check */
+    /* A deferred program destroyed before the check is not checked. */
+    CHECK(gfx_program_defer(true));
+    d_bad = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/broken.frag"});
+    gfx_program_destroy(&d_bad);
+    errs_before = core_log_error_count();
+    CHECK(gfx_program_defer(false) && core_log_error_count() == errs_before);
 
     gfx_program_t prog = d_ok;
     CHECK(prog.id != 0);

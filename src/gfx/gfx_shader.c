@@ -285,6 +285,13 @@ gfx_program_t gfx_program_make(const gfx_program_desc_t *d)
 void gfx_program_destroy(gfx_program_t *p)
 {
     if (!p->id) return;
+    for (int i = 0; i < defer.count; i++) {
+        if (defer.p[i].prog != p->id) continue;
+        for (int k = 0; k < 6; k++)
+            if (defer.p[i].shaders[k]) glDeleteShader(defer.p[i].shaders[k]); /* freed with the program */
+        defer.p[i] = defer.p[--defer.count];
+        break;
+    }
     gfx_untrack(GL_PROGRAM, p->id);
     gfx_delete_object(GL_PROGRAM, p->id);
     p->id = 0;
