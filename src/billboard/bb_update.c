@@ -263,6 +263,7 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
     int count = colliders ? colliders->object_count : 0;
     assert(count >= 0 && count <= f->desc.max_objects);
     f->time = time;
+    if (f->ring_on) return; /* nothing collides with the ring yet (bb_ring.c) */
     f->batches_last = 0;
     poll_readbacks(f);
     bool gpu_work = false;
