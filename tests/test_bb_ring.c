@@ -12,10 +12,19 @@
  *   d) the same area of the whole-field generation (bb_generate.geom on a
  *      heightfield of the same square, seed and layout): the same
  *      billboards with every field bit for bit but the root's height
- *      (the heightfield's instead of the world function's). */
+ *      (the heightfield's instead of the world function's);
+ *   e) collision: a ball rolled 0.9 m where the ground lies well below 0
+ *      deforms billboards within its reach only, every mesh vertex above
+ *      the root row on or above terrain_world_height (the collide pass's
+ *      world ground; a flat ground at 0 would lift them) and within a
+ *      billboard's height of its root; when the cell leaves the window its meshes
+ *      go back to the pool (bb_ring_release.comp: the pool is full again,
+ *      no point holds a mesh), and the cell generated again is its first
+ *      generation (the state dropped). */
 #include "test.h"
 #include "test_gl.h"
 
+#include "bb_gpu_test_util.h"
 #include "billboard/bb.h"
 #include "billboard/bb_ring.h"
 
@@ -30,12 +39,23 @@ static void test_window(void)
     CHECK(bb_ring_window_make(&w, 5, 4, 0.5f, (const float[2]){-10.0f, -10.0f}));
     int slots[25];
     int32_t coords[25][2];
-    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, 0.1f}, slots, coords) == 25);
-    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, 0.1f}, slots, coords) == 0);
+    bool dropped[25];
+    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, 0.1f}, slots, coords, dropped) == 25);
+    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, 0.1f}, slots, coords, dropped) == 0);
+    /* an object on cell (5, 5) (x, z in [0, 2)): that slot collides, then recovers for 1 s */
+    w.y[0] = -1.0f, w.y[1] = 1.0f, w.margin = 0.5f;
+    bb_bound_t ball = {.kind = BB_BOUND_SPHERE, .centre = {1.0f, 0.0f, 1.0f}, .radius = 0.2f};
+    int hit = bb_ring_slot(5, (const int32_t[2]){5, 5});
+    bb_ring_window_touch(&w, &ball, 1, 0.1f, 1.0f);
+    int colliding = 0;
+    for (int k = 0; k < 25; k++) colliding += w.state[k] == BB_NODE_COLLIDING;
+    CHECK(colliding == 1 && w.state[hit] == BB_NODE_COLLIDING);
+    bb_ring_window_touch(&w, NULL, 0, 0.1f, 1.0f);
+    CHECK(w.state[hit] == BB_NODE_RECOVERING);
     /* one cell (2 m) along +x: a column of 5 enters; then one along -z, x back */
-    CHECK(bb_ring_window_plan(&w, (const float[3]){2.1f, 0.0f, 0.1f}, slots, coords) == 5);
-    for (int k = 0; k < 5; k++) CHECK(coords[k][0] == 5 + 3 && slots[k] == bb_ring_slot(5, coords[k]));
-    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, -1.9f}, slots, coords) == 9);
+    CHECK(bb_ring_window_plan(&w, (const float[3]){2.1f, 0.0f, 0.1f}, slots, coords, dropped) == 5);
+    for (int k = 0; k < 5; k++) CHECK(coords[k][0] == 5 + 3 && slots[k] == bb_ring_slot(5, coords[k]) && !dropped[k]);
+    CHECK(bb_ring_window_plan(&w, (const float[3]){0.1f, 0.0f, -1.9f}, slots, coords, dropped) == 9);
     int32_t centre[2];
     bb_ring_cell_of(&w, 0.1f, -1.9f, centre);
     CHECK(centre[0] == 5 && centre[1] == 4);
@@ -132,6 +152,95 @@ static void check_whole_field(const bb_field_info_t *fi, const bb_point_t *gpu)
     terrain_free(&hf);
 }
 
+/* e) The lowest ground on a 1 m grid of the square's inner part. */
+static void lowest(const terrain_mesh_t *t, float at[2])
+{
+    float best = INFINITY;
+    for (int j = -24; j <= 24; j++)
+        for (int i = -24; i <= 24; i++) {
+            float h = terrain_height_at(t, (float)i, (float)j, NULL);
+            if (h < best) best = h, at[0] = (float)i, at[1] = (float)j;
+        }
+}
+
+static void check_collision(bb_field_t *f, const terrain_mesh_t *t)
+{
+    float at[2] = {0.0f, 0.0f};
+    lowest(t, at);
+    float ground = terrain_height_at(t, at[0], at[1], NULL);
+    float cam[3] = {at[0], ground + 1.7f, at[1]};
+    bb_field_follow(f, cam);
+    bb_field_info_t fi = test_info(f);
+    size_t n = (size_t)fi.capacity;
+    bb_point_t *before = malloc(sizeof *before * n), *pts = malloc(sizeof *pts * n);
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, n, before));
+    test_mesh_t ball;
+    test_mesh_make(&ball, &(scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f});
+    for (int k = 0; k < 10; k++) {
+        float c[3] = {at[0] + 0.1f * (float)k, ground + 0.35f, at[1]};
+        collide_object_t o = test_object(&ball, c, 0.5f);
+        bb_field_update(f, test_set(&o, 1), 0.1f * (float)k, 0.1f);
+    }
+    bb_stats_t st;
+    bb_field_stats(f, true, &st);
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, n, pts));
+    int32_t cell[2] = {(int32_t)floorf((at[0] - fi.gen.origin[0]) / (fi.gen.spacing * (float)fi.ring_cand)),
+                       (int32_t)floorf((at[1] - fi.gen.origin[1]) / (fi.gen.spacing * (float)fi.ring_cand))};
+    int slot = bb_field_ring_slot(f, cell), deformed = 0, outside = 0;
+    /* a billboard the ball's path cannot reach: root (xz) farther from it
+     * than the ball's radius, the billboard's half diagonal and the wind */
+    float reach_xz = 0.5f + 0.5f * sqrtf(1.44f * fi.desc.size[0] * fi.desc.size[0] +
+                                         1.96f * fi.desc.size[1] * fi.desc.size[1]) + fi.desc.wind.strength;
+    float *mesh = malloc(sizeof *mesh * 4 * (size_t)fi.mesh_vertices);
+    double below = 0.0, reach = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        if (pts[i].pad[0] == BB_NO_SLOT) continue;
+        deformed++;
+        float dx = fmaxf(fmaxf(at[0] - pts[i].position[0], pts[i].position[0] - at[0] - 0.9f), 0.0f);
+        float dz = pts[i].position[2] - at[1];
+        outside += sqrtf(dx * dx + dz * dz) > reach_xz + 0.1f;
+        CHECK(bb_field_read(f, BB_DATA_MESHES, pts[i].pad[0], 1, mesh));
+        for (int v = fi.desc.subdiv[0]; v < fi.mesh_vertices; v++) { /* the root row stays at the root */
+            const float *p = &mesh[4 * v];
+            outside += !isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2]);
+            below = fmax(below, terrain_height_at(t, p[0], p[2], NULL) - p[1]);
+            reach = fmax(reach, p[1] - pts[i].position[1]);
+        }
+    }
+    printf("e) collision: ground %.2f m at (%g, %g); %d deformed billboards (pool says %d), %d out of the ball's "
+           "reach or not finite; mesh vertices below the world's ground by at most %.2g m, above their root by at most %.2f m "
+           "(billboard height at most %.2f m); leaves colliding %d, recovering %d\n", (double)ground,
+           (double)at[0], (double)at[1], deformed, st.deformed, outside, below, reach,
+           (double)(1.4f * fi.desc.size[1]), st.leaves[BB_NODE_COLLIDING], st.leaves[BB_NODE_RECOVERING]);
+    CHECK(ground < -1.0f && slot >= 0);
+    CHECK(deformed > 5 && deformed == st.deformed && outside == 0);
+    CHECK(below < 1e-3 && reach < 1.5 * 1.4 * fi.desc.size[1]);
+    CHECK(st.leaves[BB_NODE_COLLIDING] + st.leaves[BB_NODE_RECOVERING] >= 1);
+
+    /* the cell leaves (40 m away), then comes back */
+    float away[3] = {cam[0] + 40.0f, cam[1], cam[2]};
+    bb_field_follow(f, away);
+    CHECK(bb_field_ring_slot(f, cell) == -1);
+    uint32_t hdr[4];
+    CHECK(bb_field_read(f, BB_DATA_POOL, 0, 4, hdr));
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, n, pts));
+    int holding = 0;
+    for (size_t i = 0; i < n; i++) holding += pts[i].pad[0] != BB_NO_SLOT;
+    bb_field_follow(f, cam);
+    CHECK(bb_field_read(f, BB_DATA_POINTS, 0, n, pts));
+    bb_field_stats(f, true, &st);
+    bool same = memcmp(before, pts, sizeof *pts * n) == 0;
+    printf("e) the cell left: pool free %d of %d, points holding a mesh %d; back: ring %s its first generation, "
+           "leaves colliding %d, recovering %d\n", (int)hdr[0], fi.desc.max_deformed, holding,
+           same ? "equals" : "DIFFERS from", st.leaves[BB_NODE_COLLIDING], st.leaves[BB_NODE_RECOVERING]);
+    CHECK((int)hdr[0] == fi.desc.max_deformed && holding == 0 && same && st.deformed == 0);
+    CHECK(st.leaves[BB_NODE_COLLIDING] + st.leaves[BB_NODE_RECOVERING] == 0);
+    free(mesh);
+    free(before);
+    free(pts);
+    test_mesh_destroy(&ball);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -139,7 +248,7 @@ int main(void)
     test_window();
 
     terrain_mesh_t t;
-    CHECK(terrain_make_world(&t, &(terrain_desc_t){.type = TERRAIN_WORLD, .size = 64.0f, .height = 5.0f}, 3));
+    CHECK(terrain_make_world(&t, &(terrain_desc_t){.type = TERRAIN_WORLD, .size = 64.0f, .height = 30.0f}, 1));
     bb_field_desc_t desc = ring_desc(&t);
     bb_field_t *f = bb_field_make(&desc);
     CHECK(f);
@@ -176,6 +285,7 @@ int main(void)
     CHECK(fi.ring_generated > 81 + 2 * 9 * 4 && corner[0] < 0 && same && bytes0 == bytes1);
     CHECK(bb_field_ring_slot(f, (const int32_t[2]){0, 0}) >= 0);
     check_whole_field(&fi, first);
+    check_collision(f, &t);
 
     free(first);
     free(again);

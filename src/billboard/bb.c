@@ -210,8 +210,13 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
                                                              .gs = "billboard/bb_generate.geom",
                                                              .defines = gen_defines, .tf_varyings = bb_tf_varyings,
                                                              .label = "bb.generate"});
+    /* the ring's collide pass stands billboards on the world's function */
+    char collide_defines[sizeof f->defines + 320];
+    if (!f->ring_on) snprintf(collide_defines, sizeof collide_defines, "%s", defines);
+    else if (!bb_ring_defines(f, collide_defines, sizeof collide_defines)) return false;
     f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                             .gs = "billboard/bb_collide.geom", .defines = defines,
+                                                             .gs = "billboard/bb_collide.geom",
+                                                             .defines = collide_defines,
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
     f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
                                                              .label = "bb.recover"});
@@ -245,16 +250,18 @@ static bool make_buffers(bb_field_t *f)
     pool[0] = (uint32_t)d->max_deformed;
     for (int s = 0; s < d->max_deformed; s++) pool[4 + s] = (uint32_t)(d->max_deformed - 1 - s);
     f->pool = gfx_buffer_make(&(gfx_buffer_desc_t){.size = pool_words * 4, .data = pool, .label = "bb.pool"});
-    f->recover_range_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)(f->tree.leaf_count > 0 ? f->tree.leaf_count : 1) * 16,
-                                                                .dynamic = true,
+    size_t ranges = f->ring_on ? (size_t)f->ring.side * (size_t)f->ring.side : (size_t)f->tree.leaf_count;
+    f->recover_range_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = ranges * 16, .dynamic = true,
                                                                 .label = "bb.recover_ranges"});
     free(pool);
     f->meshes = gfx_buffer_make(&(gfx_buffer_desc_t){
         .size = (size_t)d->max_deformed * (size_t)(d->subdiv[0] * d->subdiv[1]) * 16, .label = "bb.meshes"});
     f->points = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
                                                      .label = "bb.points"});
-    /* The ring has no collide pass (bb_ring.c): no scratch to speak of. */
-    f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)(f->ring_on ? 1 : f->capacity) * sizeof(bb_point_t),
+    /* The ring's collide pass takes at most ring_collide_slots slots (bb_ring.c). */
+    size_t scratch = f->ring_on ? (size_t)f->ring_collide_slots * (size_t)(f->ring.cand * f->ring.cand)
+                                : (size_t)f->capacity;
+    f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = scratch * sizeof(bb_point_t),
                                                       .label = "bb.points_scratch"});
     GLint align = 256;
     glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &align);
@@ -415,6 +422,8 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
         int node = bb_octree_leaf_node(t, (uint32_t)k);
         if (t->count[node]) out->leaves[t->state[node]]++;
     }
+    for (int s = 0; f->ring_on && s < f->ring.side * f->ring.side; s++)
+        if (f->ring.held[s][0] != BB_RING_NONE) out->leaves[f->ring.state[s]]++;
     out->pool_capacity = f->desc.max_deformed;
     out->generate_ms = f->generate_ms;
     out->make_ms = f->make_ms;

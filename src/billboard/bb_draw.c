@@ -42,7 +42,7 @@ void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc
 
 void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)
 {
-    if (f->billboards == 0 || f->ring_on) return; /* nothing deforms the ring (bb_ring.c) */
+    if (f->billboards == 0) return;
     gfx_program_t p = f->slope_prog;
     glUseProgram(p.id);
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)f->billboards);
@@ -92,8 +92,8 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     gfx_timer_begin("bb.render");
-    /* The ring's cells hold plain quads only (nothing deforms them). */
-    int nr = f->ring_on ? bb_ring_ranges(f, dd) : drawn_ranges(f, BB_NODE_MASK(BB_NODE_IDLE), dd);
+    int nr = f->ring_on ? bb_ring_ranges(f, dd, BB_NODE_MASK(BB_NODE_IDLE))
+                        : drawn_ranges(f, BB_NODE_MASK(BB_NODE_IDLE), dd);
     if (nr > 0) {
         gfx_count_add("bb.drawn_quads", bb_range_total(f->counts_gl, nr));
         for (int i = 0; i < nr; i++) {
@@ -103,7 +103,8 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
         bb_render_uniforms(f, f->quad_prog, dd);
         glMultiDrawArrays(GL_TRIANGLES, f->firsts, f->counts_gl, nr);
     }
-    nr = f->ring_on ? 0 : drawn_ranges(f, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), dd);
+    uint32_t deformed = BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING);
+    nr = f->ring_on ? bb_ring_ranges(f, dd, deformed) : drawn_ranges(f, deformed, dd);
     if (nr > 0) {
         gfx_count_add("bb.drawn_meshes", bb_range_total(f->counts_gl, nr));
         bb_render_uniforms(f, f->render_prog, dd);

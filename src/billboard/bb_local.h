@@ -115,7 +115,7 @@ struct bb_field_t {
      * dead candidates are points of size 0); the generation tile, the
      * world square's candidate cells and far corner, the height range of
      * the billboards (for the per-cell culling), cells generated so far,
-     * and follow's scratch (W^2 slots and cells). */
+     * and follow's scratch (W^2 slots, cells and dropped flags). */
     bool ring_on;
     bb_ring_window_t ring;
     int ring_tile, ring_cells[2];
@@ -123,6 +123,14 @@ struct bb_field_t {
     long ring_generated;
     int *ring_slots;
     int32_t (*ring_coords)[2];
+    bool *ring_dropped;
+    /* The ring's collision: slots one collide pass takes at most (the
+     * scratch's size), slots left out of a pass so far (warned once), and
+     * the pass that frees a leaving cell's deformed meshes. */
+    int ring_collide_slots;
+    long ring_skipped;
+    int ring_released;
+    gfx_program_t release_prog;
 };
 
 /* Occlusion query state of a leaf: a query is in flight; its latest result
@@ -152,7 +160,13 @@ void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc
  * ring's share of bb_field_destroy. */
 bool bb_ring_make(bb_field_t *f, int tile);
 void bb_ring_follow(bb_field_t *f, const float camera[3]);
-int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd);
+int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd, uint32_t state_mask);
+/* bb_ring.c: the programs' defines with the world's height function
+ * (terrain_world_defines, BB_GROUND_WORLD) into buf; the held slots in
+ * state_mask (BB_NODE_MASK bits) as ranges in f->ranges (COLLIDING alone:
+ * at most f->ring_collide_slots), returns how many. */
+bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size);
+int bb_ring_collect(bb_field_t *f, uint32_t state_mask);
 void bb_ring_destroy(bb_field_t *f);
 
 /* bb_generate.c: the height grid's uniforms and texture (BB_TEX_HEIGHTS); and

@@ -10,13 +10,30 @@
  * size 0), so no count comes back and the slot's range is always whole.
  * Drawn by the hardware path per cell in view (a CPU loop over the W^2
  * slots) or by the compute rasterizer over the whole buffer (bb_draw.c).
- * Nothing collides with the ring yet (bb_field_update only keeps the time). */
+ * Collision (bb_update.c) takes the slots as the octree's leaves: a slot's
+ * state follows bb_ring_window_touch, its range goes through the same
+ * collide and recover passes (the collide pass's ground is the world
+ * function), at most BB_RING_COLLIDE_SLOTS slots per pass; a cell that
+ * leaves deformed gives its meshes back to the pool (bb_ring_release.comp)
+ * and its state is dropped. */
 #include "billboard/bb_local.h"
 
 #include <math.h>
 #include <stdlib.h>
 
 #include "scene/terrain_world.h"
+
+/* Slots one collide pass takes at most (the collide scratch holds their
+ * points): 32 cells of 8 m, 16 walkers touching two cells each. */
+#define BB_RING_COLLIDE_SLOTS 32
+
+bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size)
+{
+    char world[256];
+    if (terrain_world_defines(&f->desc.terrain->world, world, sizeof world) < 0) return false;
+    int n = snprintf(buf, size, "%s%s#define BB_GROUND_WORLD 1\n", f->defines, world);
+    return n > 0 && (size_t)n < size;
+}
 
 bool bb_ring_make(bb_field_t *f, int tile)
 {
@@ -38,26 +55,38 @@ bool bb_ring_make(bb_field_t *f, int tile)
     }
     f->ring_y[0] = t->aabb_min[1];
     f->ring_y[1] = t->aabb_max[1] + 1.4f * d->size[1] + 0.6f * d->size[0] + d->wind.strength;
+    /* the largest bounding sphere a billboard can have (bb_read_spheres'
+     * radius at the rule's largest width and height) */
+    float wmax = 1.2f * d->size[0], hmax = 1.4f * d->size[1];
+    f->sphere_max = 0.5f * sqrtf(wmax * wmax + hmax * hmax) + d->wind.strength;
     size_t slots = (size_t)side * (size_t)side;
+    f->ring_collide_slots = (int)slots < BB_RING_COLLIDE_SLOTS ? (int)slots : BB_RING_COLLIDE_SLOTS;
     f->ring_slots = malloc(sizeof *f->ring_slots * slots);
     f->ring_coords = malloc(sizeof *f->ring_coords * slots);
+    f->ring_dropped = malloc(sizeof *f->ring_dropped * slots);
     f->firsts = malloc(sizeof *f->firsts * slots);
     f->counts_gl = malloc(sizeof *f->counts_gl * slots);
-    if (!f->ring_slots || !f->ring_coords || !f->firsts || !f->counts_gl ||
-        !bb_ring_window_make(&f->ring, side, cand, f->gen.spacing, f->gen.origin)) {
+    f->ranges = malloc(sizeof *f->ranges * slots);
+    f->recover_ranges = malloc(sizeof *f->recover_ranges * 4 * slots);
+    if (!f->ring_slots || !f->ring_coords || !f->ring_dropped || !f->firsts || !f->counts_gl || !f->ranges ||
+        !f->recover_ranges || !bb_ring_window_make(&f->ring, side, cand, f->gen.spacing, f->gen.origin)) {
         core_log_error("out of memory for the billboard ring");
         return false;
     }
-    char world[256], defines[sizeof f->defines + sizeof world];
-    if (terrain_world_defines(&t->world, world, sizeof world) < 0) return false;
-    snprintf(defines, sizeof defines, "%s%s", f->defines, world);
+    float margin = 1.4f * d->size[1] + 0.6f * d->size[0] + d->wind.strength + 0.05f; /* the octree's (bb.c) */
+    f->ring.margin = margin > 1.0f ? margin : 1.0f;
+    f->ring.y[0] = f->ring_y[0], f->ring.y[1] = f->ring_y[1];
+    char defines[sizeof f->defines + 320];
+    if (!bb_ring_defines(f, defines, sizeof defines)) return false;
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_ring.vert", .gs = "billboard/bb_ring.geom",
                                                          .defines = defines, .tf_varyings = bb_tf_varyings,
                                                          .label = "bb.ring.generate"});
+    f->release_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp",
+                                                             .defines = f->defines, .label = "bb.ring.release"});
     core_log_info("bb: ring of %d x %d cells of %d x %d candidates (%.2f m), %d billboards, %.1f MiB", side, side,
                   cand, cand, (double)((float)cand * f->gen.spacing), f->capacity,
                   cap * (double)sizeof(bb_point_t) / 1048576.0);
-    return f->gen_prog.id != 0;
+    return f->gen_prog.id && f->release_prog.id;
 }
 
 void bb_ring_destroy(bb_field_t *f)
@@ -65,6 +94,44 @@ void bb_ring_destroy(bb_field_t *f)
     bb_ring_window_free(&f->ring);
     free(f->ring_slots);
     free(f->ring_coords);
+    free(f->ring_dropped);
+    gfx_program_destroy(&f->release_prog);
+}
+
+/* Gives the deformed meshes of slot s's points back to the pool. */
+static void release_slot(bb_field_t *f, int s)
+{
+    GLuint per = (GLuint)(f->ring.cand * f->ring.cand);
+    gfx_program_t p = f->release_prog;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_first"), (GLuint)s * per);
+    glUniform1ui(gfx_uniform(p, "u_count"), per);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, f->points.id);
+    glDispatchCompute((per + 63u) / 64u, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_TRANSFORM_FEEDBACK_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    f->ring_released++;
+}
+
+int bb_ring_collect(bb_field_t *f, uint32_t state_mask)
+{
+    int n = 0, per = f->ring.cand * f->ring.cand, skipped = 0;
+    bool colliding = state_mask == BB_NODE_MASK(BB_NODE_COLLIDING);
+    for (int s = 0; s < f->ring.side * f->ring.side; s++) {
+        if (f->ring.held[s][0] == BB_RING_NONE || !(BB_NODE_MASK(f->ring.state[s]) & state_mask)) continue;
+        if (colliding && n == f->ring_collide_slots) {
+            skipped++;
+            continue;
+        }
+        f->ranges[n++] = (bb_range_t){.first = (uint32_t)(s * per), .count = (uint32_t)per, .leaf = (uint32_t)s,
+                                      .state = f->ring.state[s], .recover_left = f->ring.timer[s]};
+    }
+    if (skipped > 0 && f->ring_skipped == 0)
+        core_log_warn("bb: %d billboard ring cells collide at once, a pass takes %d: the rest wait (warned once)",
+                      n + skipped, f->ring_collide_slots);
+    f->ring_skipped += skipped;
+    return n;
 }
 
 static void ring_uniforms(const bb_field_t *f)
@@ -78,9 +145,11 @@ static void ring_uniforms(const bb_field_t *f)
 
 void bb_ring_follow(bb_field_t *f, const float camera[3])
 {
-    int n = bb_ring_window_plan(&f->ring, camera, f->ring_slots, f->ring_coords);
+    int n = bb_ring_window_plan(&f->ring, camera, f->ring_slots, f->ring_coords, f->ring_dropped);
     if (n == 0) return;
     gfx_timer_begin("bb.ring");
+    for (int q = 0; q < n; q++)
+        if (f->ring_dropped[q]) release_slot(f, f->ring_slots[q]);
     ring_uniforms(f);
     GLint cell0 = gfx_uniform(f->gen_prog, "u_cell0");
     int k = f->ring.cand, tiles = (k / f->ring_tile) * (k / f->ring_tile);
@@ -112,11 +181,8 @@ void bb_ring_follow(bb_field_t *f, const float camera[3])
  * fade_start (less a metre). */
 static bool cell_drawn(const bb_field_t *f, int s, const bb_draw_desc_t *dd)
 {
-    const int32_t *c = f->ring.held[s];
-    if (c[0] == BB_RING_NONE) return false;
-    float cell = (float)f->ring.cand * f->ring.spacing;
-    float lo[3] = {f->ring.origin[0] + (float)c[0] * cell, f->ring_y[0], f->ring.origin[1] + (float)c[1] * cell};
-    float hi[3] = {lo[0] + cell, f->ring_y[1], lo[2] + cell};
+    float lo[3], hi[3];
+    if (!bb_ring_slot_box(&f->ring, s, lo, hi)) return false;
     if (hi[0] <= f->ring.origin[0] || hi[2] <= f->ring.origin[1] || lo[0] >= f->ring_max[0] || lo[2] >= f->ring_max[1])
         return false;
     for (int p = 0; p < 6; p++) {
@@ -136,11 +202,11 @@ static bool cell_drawn(const bb_field_t *f, int s, const bb_draw_desc_t *dd)
     return !(fade > 0.0f && far2 < fade * fade);
 }
 
-int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd)
+int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd, uint32_t state_mask)
 {
     int n = 0, per = f->ring.cand * f->ring.cand;
     for (int s = 0; s < f->ring.side * f->ring.side; s++) {
-        if (!cell_drawn(f, s, dd)) continue;
+        if (!(BB_NODE_MASK(f->ring.state[s]) & state_mask) || !cell_drawn(f, s, dd)) continue;
         if (n > 0 && f->firsts[n - 1] + f->counts_gl[n - 1] == s * per) {
             f->counts_gl[n - 1] += per;
             continue;

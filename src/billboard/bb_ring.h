@@ -10,12 +10,18 @@
  * it is inside the window, which is centred on the camera's cell (its
  * first corner at the camera's cell - W / 2) each time it follows. A slot
  * whose cell changed is generated again (bb_ring_window_plan lists them).
+ * Collision state per slot, as the octree's per leaf (bb_octree.h):
+ * COLLIDING while an object's bound meets the cell's box (grown by the
+ * margin), then RECOVERING for recover_time, then IDLE. A slot that takes
+ * a new cell drops its state (the caller frees the cell's deformed meshes).
  * Memory and the per-follow loop depend on W, not on the world. */
 #ifndef MEADOW_BB_RING_H
 #define MEADOW_BB_RING_H
 
 #include <stdbool.h>
 #include <stdint.h>
+
+#include "billboard/bb_octree.h"
 
 /* bb_ring_window_t.held of a slot that holds no cell yet. */
 #define BB_RING_NONE INT32_MIN
@@ -31,6 +37,10 @@ typedef struct bb_ring_window_t {
     float spacing;      /* candidate spacing (m) */
     float origin[2];    /* world xz of candidate cell (0, 0) */
     int32_t (*held)[2]; /* per slot: the ring cell it holds, or BB_RING_NONE */
+    uint8_t *state;     /* per slot: BB_NODE_* */
+    float *timer;       /* per slot: recovery seconds left (RECOVERING) */
+    float y[2];         /* height range of the cells' boxes (m) */
+    float margin;       /* broad-phase margin of the boxes (m) */
 } bb_ring_window_t;
 
 /* W for a reach of `reach` m with cells of `cell` m: every cell within
@@ -41,7 +51,8 @@ int bb_ring_side(float reach, float cell);
  * spacing) rounded up to a multiple of `tile` (the generation's tile of
  * tile x tile candidates), at least tile. */
 int bb_ring_cand(float cell, float spacing, int tile);
-/* Every slot empty. False when out of memory. */
+/* Every slot empty and IDLE; y range and margin zero (set them). False
+ * when out of memory. */
 bool bb_ring_window_make(bb_ring_window_t *w, int side, int cand, float spacing, const float origin[2]);
 void bb_ring_window_free(bb_ring_window_t *w);
 /* The ring cell under world (x, z). */
@@ -51,8 +62,16 @@ int bb_ring_slot(int side, const int32_t c[2]);
 /* The slot holding cell c, or -1. */
 int bb_ring_window_find(const bb_ring_window_t *w, const int32_t c[2]);
 /* Centres the window on the camera's cell: writes each slot whose cell
- * changes (slots[k], the cell it takes coords[k]; room for W^2), marks
- * them held and returns how many. */
-int bb_ring_window_plan(bb_ring_window_t *w, const float camera[3], int *slots, int32_t (*coords)[2]);
+ * changes (slots[k], the cell it takes coords[k], dropped[k] whether its
+ * state was not IDLE; room for W^2), marks them held and IDLE and returns
+ * how many. */
+int bb_ring_window_plan(bb_ring_window_t *w, const float camera[3], int *slots, int32_t (*coords)[2],
+                        bool *dropped);
+/* The box of slot s's cell (xz of the cell, y range); false when it holds
+ * none. */
+bool bb_ring_slot_box(const bb_ring_window_t *w, int s, float lo[3], float hi[3]);
+/* One broad-phase update of every held slot against objects[0..n) (the
+ * octree's leaf state machine, bb_octree_update). */
+void bb_ring_window_touch(bb_ring_window_t *w, const bb_bound_t *objects, int n, float dt, float recover_time);
 
 #endif

@@ -21,16 +21,23 @@ int bb_ring_cand(float cell, float spacing, int tile)
 bool bb_ring_window_make(bb_ring_window_t *w, int side, int cand, float spacing, const float origin[2])
 {
     *w = (bb_ring_window_t){.side = side, .cand = cand, .spacing = spacing, .origin = {origin[0], origin[1]}};
-    w->held = malloc(sizeof *w->held * (size_t)side * (size_t)side);
-    if (!w->held) return false;
-    for (int s = 0; s < side * side; s++) w->held[s][0] = w->held[s][1] = BB_RING_NONE;
+    size_t n = (size_t)side * (size_t)side;
+    w->held = malloc(sizeof *w->held * n);
+    w->state = calloc(n, sizeof *w->state);
+    w->timer = calloc(n, sizeof *w->timer);
+    if (!w->held || !w->state || !w->timer) return false;
+    for (size_t s = 0; s < n; s++) w->held[s][0] = w->held[s][1] = BB_RING_NONE;
     return true;
 }
 
 void bb_ring_window_free(bb_ring_window_t *w)
 {
     free(w->held);
+    free(w->state);
+    free(w->timer);
     w->held = NULL;
+    w->state = NULL;
+    w->timer = NULL;
 }
 
 void bb_ring_cell_of(const bb_ring_window_t *w, float x, float z, int32_t out[2])
@@ -52,7 +59,8 @@ int bb_ring_window_find(const bb_ring_window_t *w, const int32_t c[2])
     return w->held[s][0] == c[0] && w->held[s][1] == c[1] ? s : -1;
 }
 
-int bb_ring_window_plan(bb_ring_window_t *w, const float camera[3], int *slots, int32_t (*coords)[2])
+int bb_ring_window_plan(bb_ring_window_t *w, const float camera[3], int *slots, int32_t (*coords)[2],
+                        bool *dropped)
 {
     int32_t centre[2];
     bb_ring_cell_of(w, camera[0], camera[2], centre);
@@ -65,8 +73,32 @@ int bb_ring_window_plan(bb_ring_window_t *w, const float camera[3], int *slots, 
             w->held[s][0] = c[0], w->held[s][1] = c[1];
             slots[n] = s;
             coords[n][0] = c[0], coords[n][1] = c[1];
+            dropped[n] = w->state[s] != BB_NODE_IDLE;
+            w->state[s] = BB_NODE_IDLE;
+            w->timer[s] = 0.0f;
             n++;
         }
     }
     return n;
+}
+
+bool bb_ring_slot_box(const bb_ring_window_t *w, int s, float lo[3], float hi[3])
+{
+    const int32_t *c = w->held[s];
+    if (c[0] == BB_RING_NONE) return false;
+    float cell = (float)w->cand * w->spacing;
+    lo[0] = w->origin[0] + (float)c[0] * cell, lo[1] = w->y[0], lo[2] = w->origin[1] + (float)c[1] * cell;
+    hi[0] = lo[0] + cell, hi[1] = w->y[1], hi[2] = lo[2] + cell;
+    return true;
+}
+
+void bb_ring_window_touch(bb_ring_window_t *w, const bb_bound_t *objects, int n, float dt, float recover_time)
+{
+    for (int s = 0; s < w->side * w->side; s++) {
+        float lo[3], hi[3];
+        if (!bb_ring_slot_box(w, s, lo, hi)) continue;
+        bool hit = false;
+        for (int k = 0; k < n && !hit; k++) hit = bb_bound_overlaps_box(&objects[k], lo, hi, w->margin);
+        bb_leaf_step(&w->state[s], &w->timer[s], hit, dt, recover_time);
+    }
 }
