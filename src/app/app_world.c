@@ -695,7 +695,11 @@ static void add_objects(app_world_t *w, collide_set_t *set, float dt)
             collide_object_t o = {.radius = co[i].radius, .vao = co[i].vao, .index_count = co[i].index_count,
                                   .index_type = co[i].index_type};
             memcpy(o.model, co[i].model, sizeof o.model);
-            memcpy(o.centre, co[i].centre, sizeof o.centre);
+            /* the set's centre is in object space, the character's in the world */
+            mat4 model, inv;
+            memcpy(model, co[i].model, sizeof model);
+            glm_mat4_inv(model, inv);
+            glm_mat4_mulv3(inv, co[i].centre, 1.0f, o.centre);
             collide_add_object(set, &o, dt);
         }
     }
