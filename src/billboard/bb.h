@@ -202,8 +202,9 @@ typedef enum bb_data_t {
 /* NULL when the field cannot be made (logged: desc out of range, the GPU's
  * limits, out of memory, generation overflow). On a world terrain the
  * field is the ring of cells around the camera (bb_ring.h): no octree, no
- * cells until the first follow; its update only keeps the time (nothing
- * collides with it yet), its draws follow their camera first. */
+ * cells until the first follow; its update collides with the held
+ * cells (the slots stand in for the octree's leaves), its draws follow
+ * their camera first. */
 bb_field_t *bb_field_make(const bb_field_desc_t *desc);
 /* Frees the field and its GL objects; NULL is ignored. */
 void bb_field_destroy(bb_field_t *f);
