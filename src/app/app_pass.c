@@ -4,8 +4,8 @@
 
 bool app_pass_wants_billboards(scene_mode_t mode, app_ground_t ground)
 {
-    if (mode == SCENE_MODE_BILLBOARD) return true;
-    return mode == SCENE_MODE_HYBRID && ground != APP_GROUND_WORLD;
+    (void)ground; /* a world streams its billboards too (bb_ring.h) */
+    return mode == SCENE_MODE_BILLBOARD || mode == SCENE_MODE_HYBRID;
 }
 
 bool app_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLADE || mode == SCENE_MODE_HYBRID; }

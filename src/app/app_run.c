@@ -379,11 +379,8 @@ static bool write_summary(app_t *app, double wall_s)
                           ad->gpu[k] / (1024.0 * 1024.0));
     n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
     bool world = app->world.terrain_mesh.type == TERRAIN_WORLD;
-    if (app->world.scene.mode == SCENE_MODE_HYBRID && world)
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "hybrid distances: switch %.1f m, the canopy from there (a world: no billboards)\n",
-                      app->world.scene.grass.switch_distance);
-    else if (app->world.scene.mode == SCENE_MODE_HYBRID)
+    n += app_ring_summary(&app->world, buf + n, sizeof buf - (size_t)n);
+    if (app->world.scene.mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
                       app->world.lod_note[0] ? app->world.lod_note : "the scene's; no grass.lod_table");

@@ -206,6 +206,11 @@ typedef struct app_world_t {
 /* Module-internal (app_world.c, app_gi.c): the extent map of the layout both
  * grass models share (bb_layout_free it). */
 bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen);
+/* World terrains (app_bb_world.c): in billboard mode the ground canopy
+ * beyond the billboard ring (true when there is nothing to make); the
+ * ring's summary.txt line into buf (its length; 0 without a ring). */
+bool app_ring_make_canopy(app_world_t *w);
+int app_ring_summary(const app_world_t *w, char *buf, size_t size);
 /* The global illumination volumes of w's scene into w->gi and the
  * terrain's bind; false (logged) when they cannot be made. */
 bool app_gi_make(app_world_t *w);
