@@ -17,8 +17,10 @@ fail=0
 secs=120
 [ "${MEADOW_SANITIZED:-0}" = 1 ] && secs=480
 
+# The rasterizer is named: `raster: auto` picks by a timing, so a loaded
+# machine could pick another path (and its buffers) for one of the worlds.
 run() { # name scene mode
-  timeout $secs "$bin" --headless --quiet --scene "$root/scenes/bench/$2.json" --mode "$3" --size 96x54 \
+  timeout $secs "$bin" --headless --quiet --scene "$root/scenes/bench/$2.json" --mode "$3" --raster hw --size 96x54 \
     --frames 6 --screenshot-every 0 --out "$tmp/$1" >"$tmp/$1.log" 2>&1
 }
 for r in "w1:world_1km:hybrid" "w4:world_4km:hybrid" "w1b:world_1km:blade" "w1r:world_1km:billboard" \
