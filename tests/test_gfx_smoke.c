@@ -1,5 +1,4 @@
-/* test_gfx_smoke: a GL 4.5 context exists, shader errors name file:line
- * (deferred checks name the failing program),
+/* test_gfx_smoke: a GL 4.5 context exists, shader errors name file:line,
  * #include works, an MSAA FBO resolves and reads back (colour, depth, the
  * nearest depth sample per pixel), timers report, a
  * readback ring returns its copies in order, and nothing leaks. */
@@ -26,27 +25,7 @@ int main(void)
     CHECK(gfx_shader_preprocess("tests/missing.frag", NULL, err, sizeof err) == NULL);
     CHECK(strstr(err, "shaders/tests/missing.frag") != NULL);
 
-    /* Deferred checks: the ids come at once; the check at the end passes
-     * with good programs only, and names the broken one with its error. */
-    CHECK(gfx_program_defer(true));
-    gfx_program_t d_ok = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/tri.frag"});
-    CHECK(d_ok.id != 0);
-    CHECK(gfx_program_defer(true));
-    gfx_program_t d_bad = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/broken.frag"});
-    CHECK(d_bad.id != 0);
-    errs_before = core_log_error_count();
-    CHECK(!gfx_program_defer(false));
-    CHECK(core_log_error_count() >= errs_before + 2); /* the shader's error and the link's */
-    gfx_program_destroy(&d_bad);
-    CHECK(gfx_program_defer(false)); /* nothing left to check */
-    /* A deferred program destroyed before the check is not checked. */
-    CHECK(gfx_program_defer(true));
-    d_bad = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/broken.frag"});
-    gfx_program_destroy(&d_bad);
-    errs_before = core_log_error_count();
-    CHECK(gfx_program_defer(false) && core_log_error_count() == errs_before);
-
-    gfx_program_t prog = d_ok;
+    gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/tri.frag"});
     CHECK(prog.id != 0);
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 64, .h = 32, .samples = 4, .label = "smoke"});
     CHECK(tgt.fbo != 0 && tgt.resolve_fbo != 0 && tgt.resolve_fbo != tgt.fbo);

@@ -519,11 +519,8 @@ static int run_frames(app_t *app)
 static bool start_world(app_t *app)
 {
     app_world_t *w = &app->world;
-    /* The world first: its admission (app_admit) counts the target too.
-     * Its programs compile side by side, checked once it is made. */
-    gfx_program_defer(true);
+    /* The world first: its admission (app_admit) counts the target too. */
     bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app->target, "main");
-    ok = gfx_program_defer(false) && ok;
     if (ok && w->scene.raster == SCENE_RASTER_AUTO)
         app_world_raster_auto(w, &app->cam, &app->target, app->raster_calib_ms, &app->raster_calib_wall_ms);
     gfx_count_flush();

@@ -181,15 +181,6 @@ typedef struct gfx_program_t {
 
 gfx_program_t gfx_program_make(const gfx_program_desc_t *desc);
 void gfx_program_destroy(gfx_program_t *p);
-/* on: programs made from now on are compiled and linked without waiting
- * for their status (a driver with GL_KHR_parallel_shader_compile, whose
- * threads this turns on, builds them side by side); their ids are valid at
- * once, and a use waits for the link. off (and on again): checks every
- * program made since, logging each one that failed with its compiler's
- * message as the driver gives it. Returns false when one failed.
- * MEADOW_SERIAL_COMPILE=1 in the environment keeps every check immediate
- * (to time start-up both ways). */
-bool gfx_program_defer(bool on);
 /* Uniform location helper (-1 logged once per name when missing is fine). */
 GLint gfx_uniform(gfx_program_t p, const char *name);
 /* The preprocessed source of a file (tests): #include expanded with #line. */

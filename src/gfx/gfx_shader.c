@@ -1,11 +1,7 @@
 /* gfx_shader: GLSL programs from files under shaders/. Sources may
  * `#include "path"` (relative to shaders/); the preprocessor emits
  * `#line <line> <file-index>` so compiler messages (Mesa "0:12(3)" and NVIDIA
- * "0(12)" forms) are rewritten to "shaders/<file>:<line>: ...".
- * Between gfx_program_defer(true) and gfx_program_defer(false) programs are
- * compiled and linked without waiting for their status, so a driver with
- * GL_KHR_parallel_shader_compile builds them side by side; the second call
- * checks them all. */
+ * "0(12)" forms) are rewritten to "shaders/<file>:<line>: ...". */
 #include "gfx/gfx_local.h"
 
 #include <ctype.h>
@@ -121,73 +117,6 @@ static void log_shader_errors(const pp_t *pp, const char *log, const char *what)
     }
 }
 
-/* Programs made while checks are deferred, checked by gfx_program_defer. */
-#define DEFER_MAX 256
-typedef struct deferred_t {
-    GLuint prog;
-    GLuint shaders[6];
-    char path[6][96]; /* each stage's file, for messages */
-    char first[96];   /* the first stage's */
-} deferred_t;
-
-static struct {
-    bool on;
-    int count;
-    deferred_t p[DEFER_MAX];
-} defer;
-
-/* A deferred shader's compile log, as it stands (no #line mapping). */
-static void log_raw(GLuint sh, const char *first)
-{
-    GLint n = 0;
-    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
-    char *log = calloc(1, (size_t)n + 1);
-    if (log) glGetShaderInfoLog(sh, n, NULL, log);
-    core_log_error("shaders/%s: compile failed: %s", first, log ? log : "");
-    free(log);
-}
-
-static bool check_deferred(const deferred_t *d)
-{
-    GLint linked = 0;
-    glGetProgramiv(d->prog, GL_LINK_STATUS, &linked);
-    if (!linked) {
-        for (int i = 0; i < 6; i++) {
-            GLint ok = 1;
-            if (d->shaders[i]) glGetShaderiv(d->shaders[i], GL_COMPILE_STATUS, &ok);
-            if (!ok) log_raw(d->shaders[i], d->path[i]);
-        }
-        GLint n = 0;
-        glGetProgramiv(d->prog, GL_INFO_LOG_LENGTH, &n);
-        char *log = calloc(1, (size_t)n + 1);
-        if (log) glGetProgramInfoLog(d->prog, n, NULL, log);
-        core_log_error("shaders/%s: link failed: %s", d->first, log ? log : "");
-        free(log);
-    }
-    for (int i = 0; i < 6; i++) {
-        if (!d->shaders[i]) continue;
-        glDetachShader(d->prog, d->shaders[i]);
-        glDeleteShader(d->shaders[i]);
-    }
-    return linked != 0;
-}
-
-bool gfx_program_defer(bool on)
-{
-    static bool threads_set;
-    if (on && !threads_set) {
-        threads_set = true;
-        if (epoxy_has_gl_extension("GL_KHR_parallel_shader_compile")) glMaxShaderCompilerThreadsKHR(0xffffffffu);
-        else if (epoxy_has_gl_extension("GL_ARB_parallel_shader_compile")) glMaxShaderCompilerThreadsARB(0xffffffffu);
-    }
-    bool ok = true;
-    for (int i = 0; i < defer.count; i++) ok = check_deferred(&defer.p[i]) && ok;
-    defer.count = 0;
-    const char *serial = getenv("MEADOW_SERIAL_COMPILE");
-    defer.on = on && !(serial && strcmp(serial, "1") == 0);
-    return ok;
-}
-
 static GLuint compile(GLenum stage, const char *rel, const char *defines)
 {
     pp_t pp;
@@ -202,7 +131,6 @@ static GLuint compile(GLenum stage, const char *rel, const char *defines)
     glShaderSource(sh, 1, srcs, NULL);
     glCompileShader(sh);
     free(src);
-    if (defer.on) return sh; /* checked with its program (check_deferred) */
     GLint ok = 0;
     glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -245,16 +173,6 @@ gfx_program_t gfx_program_make(const gfx_program_desc_t *d)
         glTransformFeedbackVaryings(prog, n, (const GLchar *const *)d->tf_varyings,
                                     d->tf_separate ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS);
     }
-    if (ok && defer.on && defer.count < DEFER_MAX) {
-        glLinkProgram(prog);
-        deferred_t *q = &defer.p[defer.count++];
-        q->prog = prog;
-        memcpy(q->shaders, shaders, sizeof q->shaders);
-        for (int i = 0; i < 6; i++) snprintf(q->path[i], sizeof q->path[i], "%s", stages[i].path ? stages[i].path : "");
-        snprintf(q->first, sizeof q->first, "%s", first ? first : "?");
-        gfx_track(GL_PROGRAM, prog, d->label ? d->label : first);
-        return (gfx_program_t){prog};
-    }
     if (ok) {
         glLinkProgram(prog);
         GLint linked = 0;
@@ -285,13 +203,6 @@ gfx_program_t gfx_program_make(const gfx_program_desc_t *d)
 void gfx_program_destroy(gfx_program_t *p)
 {
     if (!p->id) return;
-    for (int i = 0; i < defer.count; i++) {
-        if (defer.p[i].prog != p->id) continue;
-        for (int k = 0; k < 6; k++)
-            if (defer.p[i].shaders[k]) glDeleteShader(defer.p[i].shaders[k]); /* freed with the program */
-        defer.p[i] = defer.p[--defer.count];
-        break;
-    }
     gfx_untrack(GL_PROGRAM, p->id);
     gfx_delete_object(GL_PROGRAM, p->id);
     p->id = 0;
