@@ -1,4 +1,4 @@
-/* test_app_admit: resource admission (app_admit.h).
+/* test_admit: resource admission (admit.h).
  * - The estimate made before allocating matches what the gfx layer counts
  *   after start-up (summary.txt: gpu_memory_estimate_mb against
  *   gpu_memory_mb) within 15 % for scenes/tiny.json in every mode and
@@ -9,7 +9,7 @@
  *   maps of a huge character name grass.cube_texel; a GL limit (geometry-
  *   shader output) names grass.subdiv, the texture size a size that fits. */
 #include "app/app.h"
-#include "app/app_admit.h"
+#include "admit/admit.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -67,7 +67,7 @@ static void check_against_gfx(void)
 }
 
 /* A hybrid heightfield scene of the defaults, 40 m, 1280x720. */
-static void base_scene(scene_desc_t *s, terrain_mesh_t *t, app_admit_world_t *w)
+static void base_scene(scene_desc_t *s, terrain_mesh_t *t, admit_world_t *w)
 {
     char err[256];
     CHECK(scene_parse(s, "{}", "base.json", err, sizeof err));
@@ -75,7 +75,7 @@ static void base_scene(scene_desc_t *s, terrain_mesh_t *t, app_admit_world_t *w)
     t->grid_res = s->terrain.resolution;
     t->grid_size = s->terrain.size;
     t->aabb_max[0] = t->aabb_max[2] = s->terrain.size;
-    *w = (app_admit_world_t){.terrain = t, .terrain_area = s->terrain.size * s->terrain.size, .billboards = true,
+    *w = (admit_world_t){.terrain = t, .terrain_area = s->terrain.size * s->terrain.size, .billboards = true,
                              .tiles = true, .target_samples = 4};
 }
 
@@ -83,33 +83,33 @@ static void check_gl_free(void)
 {
     scene_desc_t s;
     terrain_mesh_t t;
-    app_admit_world_t w;
+    admit_world_t w;
     base_scene(&s, &t, &w);
-    app_admit_t a, b;
-    app_admit_estimate(&s, &w, &a);
-    CHECK(a.gpu[APP_ADMIT_TILES] > 0.0 && a.gpu[APP_ADMIT_BILLBOARDS] > 0.0 && a.gpu[APP_ADMIT_BLADES] == 0.0);
+    admit_t a, b;
+    admit_estimate(&s, &w, &a);
+    CHECK(a.gpu[ADMIT_TILES] > 0.0 && a.gpu[ADMIT_BILLBOARDS] > 0.0 && a.gpu[ADMIT_BLADES] == 0.0);
     s.grass.population.density *= 4.0f;
     s.size[0] *= 2;
-    app_admit_estimate(&s, &w, &b);
-    CHECK(b.gpu[APP_ADMIT_TILES] > 2.0 * a.gpu[APP_ADMIT_TILES]);
-    CHECK(b.gpu[APP_ADMIT_TARGETS] == 2.0 * a.gpu[APP_ADMIT_TARGETS]);
+    admit_estimate(&s, &w, &b);
+    CHECK(b.gpu[ADMIT_TILES] > 2.0 * a.gpu[ADMIT_TILES]);
+    CHECK(b.gpu[ADMIT_TARGETS] == 2.0 * a.gpu[ADMIT_TARGETS]);
 
     /* 512 MB and a dense field: refused, naming grass.density (4x its
      * default), and the value it names fits where 5 % more does not. */
-    app_admit_limits_t lim = {.host_bytes = 512e6};
+    admit_limits_t lim = {.host_bytes = 512e6};
     base_scene(&s, &t, &w);
     s.grass.population.density = 8000.0f;
     char err[512];
-    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    CHECK(!admit_check(&s, &w, &lim, err, sizeof err));
     printf("refused: %s\n", err);
     float largest = 0.0f;
     const char *at = strstr(err, "the largest grass.density that fits is ");
     CHECK_MSG(at && sscanf(at + strlen("the largest grass.density that fits is "), "%f", &largest) == 1, "%s", err);
     CHECK(strstr(err, "grass.density 8000 needs ") == err);
     s.grass.population.density = largest;
-    CHECK_MSG(app_admit_check(&s, &w, &lim, err, sizeof err), "%g: %s", (double)largest, err);
+    CHECK_MSG(admit_check(&s, &w, &lim, err, sizeof err), "%g: %s", (double)largest, err);
     s.grass.population.density = largest * 1.05f;
-    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    CHECK(!admit_check(&s, &w, &lim, err, sizeof err));
 
     /* A full blade field past 50 M blades names the density too. */
     base_scene(&s, &t, &w);
@@ -118,12 +118,12 @@ static void check_gl_free(void)
     s.terrain.size = t.grid_size = 1000.0f;
     w.terrain_area = 1e6;
     s.grass.population.density = 100.0f;
-    CHECK(!app_admit_check(&s, &w, &(app_admit_limits_t){0}, err, sizeof err));
+    CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "more than the 50000000") && strstr(err, "the largest terrain.size that fits is 707"),
               "%s", err);
     s.terrain.size = 300.0f; /* 7.5x its default: now the density, at 8x, is the key */
     s.grass.population.density = 1600.0f;
-    CHECK(!app_admit_check(&s, &w, &(app_admit_limits_t){0}, err, sizeof err));
+    CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "the largest grass.density that fits is 555"), "%s", err);
 
     /* A 1000x character (bounding radius 950 m) with grass.cube_texel: the
@@ -132,23 +132,23 @@ static void check_gl_free(void)
     s.grass.cube_texel = 0.01f;
     w.collider_radius = 950.0f;
     w.objects = 4;
-    lim = (app_admit_limits_t){.host_bytes = 1.5e9};
-    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    lim = (admit_limits_t){.host_bytes = 1.5e9};
+    CHECK(!admit_check(&s, &w, &lim, err, sizeof err));
     CHECK_MSG(strstr(err, "(cube maps 2.86 GB)") && strstr(err, "the smallest grass.cube_texel that fits is 0.9"),
               "%s", err);
 
     /* The geometry shader's output: llvmpipe's and NVIDIA's 1024 components. */
     base_scene(&s, &t, &w);
     s.grass.subdiv[0] = s.grass.subdiv[1] = 8;
-    lim = (app_admit_limits_t){.max_gs_vertices = 256, .max_gs_components = 1024};
-    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    lim = (admit_limits_t){.max_gs_vertices = 256, .max_gs_components = 1024};
+    CHECK(!admit_check(&s, &w, &lim, err, sizeof err));
     CHECK_MSG(strstr(err, "grass.subdiv [8, 8]") && strstr(err, "the largest that fits is [8, 5]"), "%s", err);
     s.grass.subdiv[1] = 5;
-    CHECK(app_admit_check(&s, &w, &lim, err, sizeof err));
+    CHECK(admit_check(&s, &w, &lim, err, sizeof err));
     lim.max_texture_size = 4096;
     s.size[0] = 8192;
     s.size[1] = 1024;
-    CHECK(!app_admit_check(&s, &w, &lim, err, sizeof err));
+    CHECK(!admit_check(&s, &w, &lim, err, sizeof err));
     CHECK_MSG(strstr(err, "the largest size of this shape that fits is [4096, 512]"), "%s", err);
 }
 

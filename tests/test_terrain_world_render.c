@@ -9,7 +9,7 @@
  * terrain_world_height there within 5 cm; a walker's view 1.7 m above the
  * ground covers the lower half of the image. The walker's view is written
  * to $MEADOW_TEST_OUT/world_walk.png. */
-#include "app/app_world.h"
+#include "world/world_local.h"
 #include "platform/plat.h"
 #include "scene/terrain.h"
 #include "test.h"
@@ -20,7 +20,7 @@
 
 enum { W = 160, H = 120 };
 
-static void view_at(app_view_t *v, const float eye[3], const float target[3], const float up[3])
+static void view_at(world_view_t *v, const float eye[3], const float target[3], const float up[3])
 {
     memset(v, 0, sizeof *v);
     glm_lookat((float *)eye, (float *)target, (float *)up, v->view);
@@ -36,7 +36,7 @@ static void view_at(app_view_t *v, const float eye[3], const float target[3], co
 }
 
 /* Draws and reads depth; returns the pixels without terrain in rows [row0, H). */
-static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_view_t *v, int row0, float *depth)
+static int draw_holes(const world_terrain_t *t, const gfx_target_t *tg, const world_view_t *v, int row0, float *depth)
 {
     gfx_target_bind(tg);
     glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
@@ -44,7 +44,7 @@ static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    app_terrain_draw(t, v);
+    world_terrain_draw(t, v);
     gfx_target_resolve(tg);
     CHECK(gfx_target_read_depth(tg, depth));
     int holes = 0;
@@ -54,7 +54,7 @@ static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_
 }
 
 /* Every vertex of every level through terrain_world.vert, captured, against the CPU twin. */
-static void check_vertex_twin(const app_terrain_t *t, const terrain_world_t *w, const float eye[3])
+static void check_vertex_twin(const world_terrain_t *t, const terrain_world_t *w, const float eye[3])
 {
     static const char *const varyings[] = {"v_pos", "v_normal", NULL};
     char defines[256];
@@ -110,13 +110,13 @@ int main(void)
     test_gl_init();
     terrain_mesh_t mesh;
     CHECK(terrain_make_world(&mesh, &(terrain_desc_t){.type = TERRAIN_WORLD, .size = 4096, .height = 30}, 3));
-    app_terrain_t t;
-    CHECK(app_terrain_make(&t, &mesh));
+    world_terrain_t t;
+    CHECK(world_terrain_make(&t, &mesh));
     gfx_target_t tg = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "world.target"});
     float *depth = malloc(sizeof(float) * W * H);
     gfx_target_bind(&tg); /* draws need a complete framebuffer */
     check_vertex_twin(&t, &mesh.world, (float[3]){-1000.3f, 12.0f, 733.7f});
-    app_view_t v;
+    world_view_t v;
     static const float north[3] = {0.0f, 0.0f, -1.0f}, up[3] = {0.0f, 1.0f, 0.0f};
 
     float x = 1024.0f, z = -512.0f, g = terrain_world_height(&mesh.world, x, z, NULL);
@@ -159,7 +159,7 @@ int main(void)
     }
     free(depth);
     gfx_target_destroy(&tg);
-    app_terrain_destroy(&t);
+    world_terrain_destroy(&t);
     terrain_free(&mesh);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -1,37 +1,37 @@
-/* test_app_pass: the frame's passes (app_pass_list) for each mode, ground,
+/* test_world_pass: the frame's passes (world_pass_list) for each mode, ground,
  * rasterizer and the reference, written out as the expected sequence of
  * pass names; GL-free. Also the rules alone: billboards never on a world
  * in the hybrid, tiles never for the reference, and the whole field
  * standing in for tiles the world could not make. */
-#include "app/app_pass.h"
+#include "world/world_pass.h"
 #include "test.h"
 
 #include <string.h>
 
 /* The list as "name name ...", compute grass passes marked with "*". */
-static const char *listed(const app_pass_desc_t *d)
+static const char *listed(const world_pass_desc_t *d)
 {
     static char out[256];
-    app_pass_t p[APP_PASS_KINDS];
-    int n = app_pass_list(d, p);
+    world_pass_t p[WORLD_PASS_KINDS];
+    int n = world_pass_list(d, p);
     out[0] = '\0';
     for (int i = 0; i < n; i++) {
         strcat(out, i ? " " : "");
-        strcat(out, app_pass_name(p[i].kind));
+        strcat(out, world_pass_name(p[i].kind));
         if (p[i].compute) strcat(out, "*");
     }
     return out;
 }
 
 /* Fails, naming the caller's line, when the list of d is not want. */
-static void expect(app_pass_desc_t d, const char *want, int line)
+static void expect(world_pass_desc_t d, const char *want, int line)
 {
     const char *got = listed(&d);
     if (strcmp(got, want) == 0) return;
     fprintf(stderr, "line %d: got \"%s\", want \"%s\"\n", line, got, want);
     test_failures++;
 }
-#define CHECK_LIST(want, ...) expect((app_pass_desc_t){__VA_ARGS__}, want, __LINE__)
+#define CHECK_LIST(want, ...) expect((world_pass_desc_t){__VA_ARGS__}, want, __LINE__)
 
 #define ALL .have_tiles = true, .have_blades = true, .have_billboards = true
 
@@ -47,11 +47,11 @@ static void check_modes(void)
     CHECK_LIST("terrain blades", .mode = SCENE_MODE_BLADE, ALL);
     CHECK_LIST("terrain raster_begin blades* raster_end", .mode = SCENE_MODE_BLADE, ALL, .compute = true);
     /* Hybrid on a mesh: the whole field near, billboards far. */
-    CHECK_LIST("terrain blades billboards", .mode = SCENE_MODE_HYBRID, .ground = APP_GROUND_MESH, ALL);
+    CHECK_LIST("terrain blades billboards", .mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_MESH, ALL);
     /* A world: streamed tiles in blade and hybrid modes, no billboards in the hybrid. */
-    CHECK_LIST("terrain tiles", .mode = SCENE_MODE_HYBRID, .ground = APP_GROUND_WORLD, ALL);
-    CHECK_LIST("terrain tiles", .mode = SCENE_MODE_BLADE, .ground = APP_GROUND_WORLD, ALL);
-    CHECK_LIST("terrain billboards", .mode = SCENE_MODE_BILLBOARD, .ground = APP_GROUND_WORLD, ALL);
+    CHECK_LIST("terrain tiles", .mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_WORLD, ALL);
+    CHECK_LIST("terrain tiles", .mode = SCENE_MODE_BLADE, .ground = WORLD_GROUND_WORLD, ALL);
+    CHECK_LIST("terrain billboards", .mode = SCENE_MODE_BILLBOARD, .ground = WORLD_GROUND_WORLD, ALL);
 }
 
 static void check_reference_and_fallbacks(void)
@@ -72,23 +72,23 @@ static void check_reference_and_fallbacks(void)
 
 static void check_rules(void)
 {
-    CHECK(app_pass_wants_billboards(SCENE_MODE_HYBRID, APP_GROUND_HEIGHTFIELD));
-    CHECK(app_pass_wants_billboards(SCENE_MODE_HYBRID, APP_GROUND_MESH));
-    CHECK(!app_pass_wants_billboards(SCENE_MODE_HYBRID, APP_GROUND_WORLD));
-    CHECK(app_pass_wants_billboards(SCENE_MODE_BILLBOARD, APP_GROUND_WORLD));
-    CHECK(!app_pass_wants_billboards(SCENE_MODE_BLADE, APP_GROUND_HEIGHTFIELD));
-    CHECK(!app_pass_wants_blades(SCENE_MODE_BILLBOARD));
-    CHECK(app_pass_uses_tiles(SCENE_MODE_HYBRID, APP_GROUND_HEIGHTFIELD, false));
-    CHECK(!app_pass_uses_tiles(SCENE_MODE_HYBRID, APP_GROUND_MESH, false));
-    CHECK(!app_pass_uses_tiles(SCENE_MODE_BLADE, APP_GROUND_HEIGHTFIELD, false));
-    CHECK(app_pass_uses_tiles(SCENE_MODE_BLADE, APP_GROUND_WORLD, false));
-    CHECK(!app_pass_uses_tiles(SCENE_MODE_HYBRID, APP_GROUND_WORLD, true));
-    for (int k = 0; k < APP_PASS_KINDS; k++) CHECK(strcmp(app_pass_name((app_pass_kind_t)k), "?") != 0);
-    app_pass_t p[APP_PASS_KINDS];
-    int n = app_pass_list(&(app_pass_desc_t){.mode = SCENE_MODE_HYBRID, ALL, .have_characters = true, .compute = true},
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_MESH));
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD));
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD));
+    CHECK(!world_pass_wants_blades(SCENE_MODE_BILLBOARD));
+    CHECK(world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, false));
+    CHECK(!world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_MESH, false));
+    CHECK(!world_pass_uses_tiles(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD, false));
+    CHECK(world_pass_uses_tiles(SCENE_MODE_BLADE, WORLD_GROUND_WORLD, false));
+    CHECK(!world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD, true));
+    for (int k = 0; k < WORLD_PASS_KINDS; k++) CHECK(strcmp(world_pass_name((world_pass_kind_t)k), "?") != 0);
+    world_pass_t p[WORLD_PASS_KINDS];
+    int n = world_pass_list(&(world_pass_desc_t){.mode = SCENE_MODE_HYBRID, ALL, .have_characters = true, .compute = true},
                           p);
-    CHECK(n == APP_PASS_KINDS - 1); /* everything but the whole field: the most a frame holds */
-    CHECK(app_pass_has(p, n, APP_PASS_TILES) && !app_pass_has(p, n, APP_PASS_BLADES));
+    CHECK(n == WORLD_PASS_KINDS - 1); /* everything but the whole field: the most a frame holds */
+    CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BLADES));
 }
 
 int main(void)

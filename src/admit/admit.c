@@ -1,9 +1,9 @@
-/* app_admit: the memory and work estimate of a run and the check against
- * the GL's limits and the machine's memory (see app_admit.h). A scene that
+/* admit: the memory and work estimate of a run and the check against
+ * the GL's limits and the machine's memory (see admit.h). A scene that
  * does not fit names the key of the largest part that deviates most from
  * its default and the largest (or smallest) value of it that fits, found by
  * bisecting the same estimate. */
-#include "app/app_admit.h"
+#include "admit/admit.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -20,15 +20,15 @@
 #define BB_POINT_BYTES 64.0 /* sizeof(bb_point_t) */
 #define CUBE_TEXEL_BYTES 16.0 /* GL_RGBA32F */
 
-const char *app_admit_part_name(int part)
+const char *admit_part_name(int part)
 {
-    static const char *const names[APP_ADMIT_PARTS] = {"fixed",  "render targets", "compute rasterizer", "terrain",
+    static const char *const names[ADMIT_PARTS] = {"fixed",  "render targets", "compute rasterizer", "terrain",
                                                        "blades", "blade tiles",    "billboards",         "cube maps"};
-    return part >= 0 && part < APP_ADMIT_PARTS ? names[part] : "?";
+    return part >= 0 && part < ADMIT_PARTS ? names[part] : "?";
 }
 
 /* Side (m) of the ground: terrain.size for heightfields, the mesh's box. */
-static void ground_extent(const scene_desc_t *s, const app_admit_world_t *w, double ext[2])
+static void ground_extent(const scene_desc_t *s, const admit_world_t *w, double ext[2])
 {
     const terrain_mesh_t *t = w->terrain;
     if (s->terrain.type == TERRAIN_HEIGHTFIELD || !t) {
@@ -41,7 +41,7 @@ static void ground_extent(const scene_desc_t *s, const app_admit_world_t *w, dou
 
 /* Ground surface at the scene's terrain.size: the loaded terrain's area,
  * scaled with terrain.size for heightfields (the bisection changes it). */
-static double ground_area(const scene_desc_t *s, const app_admit_world_t *w)
+static double ground_area(const scene_desc_t *s, const admit_world_t *w)
 {
     double ext[2];
     ground_extent(s, w, ext);
@@ -53,7 +53,7 @@ static double ground_area(const scene_desc_t *s, const app_admit_world_t *w)
 
 /* cube_resolution_for's side: raised by grass.cube_texel, capped where a
  * cube's 6 faces side by side exceed the GL's texture size. */
-static int cube_res(const scene_desc_t *s, const app_admit_world_t *w)
+static int cube_res(const scene_desc_t *s, const admit_world_t *w)
 {
     const scene_grass_desc_t *g = &s->grass;
     int res = g->cube_resolution;
@@ -64,7 +64,7 @@ static int cube_res(const scene_desc_t *s, const app_admit_world_t *w)
     return want > res ? (int)want : res;
 }
 
-static double tiles_bytes(const scene_desc_t *s, const app_admit_world_t *w)
+static double tiles_bytes(const scene_desc_t *s, const admit_world_t *w)
 {
     const scene_grass_desc_t *g = &s->grass;
     terrain_mesh_t t = *w->terrain;
@@ -79,17 +79,17 @@ static double tiles_bytes(const scene_desc_t *s, const app_admit_world_t *w)
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
 
-void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_admit_t *e)
+void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *e)
 {
     memset(e, 0, sizeof *e);
     const scene_grass_desc_t *g = &s->grass;
     double px = (double)s->size[0] * s->size[1], ts = w->target_samples > 0 ? w->target_samples : 1;
-    e->gpu[APP_ADMIT_FIXED] = 9.0 * MIB; /* the upload ring (8 MiB), programs, small buffers */
-    e->gpu[APP_ADMIT_TARGETS] = px * 8.0 * (ts > 1 ? ts + 1.0 : 1.0);
+    e->gpu[ADMIT_FIXED] = 9.0 * MIB; /* the upload ring (8 MiB), programs, small buffers */
+    e->gpu[ADMIT_TARGETS] = px * 8.0 * (ts > 1 ? ts + 1.0 : 1.0);
     if (w->raster) {
         double rs = s->raster_samples > 0 ? s->raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-        double queue = fmin(fmax(px * rs * APP_ADMIT_RASTER_QUEUE_LAYERS / 64.0, (double)(1 << 20)), (double)(1 << 26));
-        e->gpu[APP_ADMIT_RASTER] = px * (rs * 8.0 + 4.0) + 16.0 * queue; /* visibility, depth, triangle queues */
+        double queue = fmin(fmax(px * rs * ADMIT_RASTER_QUEUE_LAYERS / 64.0, (double)(1 << 20)), (double)(1 << 26));
+        e->gpu[ADMIT_RASTER] = px * (rs * 8.0 + 4.0) + 16.0 * queue; /* visibility, depth, triangle queues */
         if (s->raster == SCENE_RASTER_AUTO) e->transient = px * 8.0 * (ts > 1 ? ts + 2.0 : 2.0);
     }
     double verts, indices;
@@ -103,7 +103,7 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
         verts = w->terrain->vertex_count;
         indices = w->terrain->index_count;
     }
-    e->gpu[APP_ADMIT_TERRAIN] = verts * 32.0 + indices * 4.0 + (w->billboards ? verts * 4.0 : 0.0) +
+    e->gpu[ADMIT_TERRAIN] = verts * 32.0 + indices * 4.0 + (w->billboards ? verts * 4.0 : 0.0) +
                                 (s->terrain.type == TERRAIN_WORLD
                                      ? (double)terrain_clipmap_estimate_bytes(&(terrain_clipmap_desc_t){0})
                                      : 0.0);
@@ -112,11 +112,11 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
     ground_extent(s, w, ext);
     if (w->full_field) {
         e->blades = area * g->population.density;
-        e->gpu[APP_ADMIT_BLADES] = e->blades * (BLADE_BYTES + 8.0) + MIB;
+        e->gpu[ADMIT_BLADES] = e->blades * (BLADE_BYTES + 8.0) + MIB;
         e->host += e->blades * (BLADE_BYTES + 4.0); /* seeded on the CPU, then uploaded */
     }
     if (w->tiles && w->terrain) {
-        e->gpu[APP_ADMIT_TILES] = tiles_bytes(s, w);
+        e->gpu[ADMIT_TILES] = tiles_bytes(s, w);
         e->blades = (double)g->tile_pool * g->population.density * g->tile_size * g->tile_size;
     }
     if (w->billboards) {
@@ -125,13 +125,13 @@ void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_a
                                ? ceil(ext[0] / spacing) * ceil(ext[1] / spacing)
                                : 1.3 * area * g->billboard_density;
         double layout = fmin(fmax(ceil(fmax(ext[0], ext[1]) / spacing), 32.0), 1024.0);
-        e->gpu[APP_ADMIT_BILLBOARDS] = e->bb_candidates * (2.0 * BB_POINT_BYTES + 8.0) +
+        e->gpu[ADMIT_BILLBOARDS] = e->bb_candidates * (2.0 * BB_POINT_BYTES + 8.0) +
                                        (double)g->deformed_pool * g->subdiv[0] * g->subdiv[1] * 16.0 +
                                        layout * layout * 5.0 + 0.5 * MIB;
         double res = cube_res(s, w);
-        e->gpu[APP_ADMIT_CUBES] = res * res * 6.0 * (w->objects > 1 ? w->objects : 1) * CUBE_TEXEL_BYTES;
+        e->gpu[ADMIT_CUBES] = res * res * 6.0 * (w->objects > 1 ? w->objects : 1) * CUBE_TEXEL_BYTES;
     }
-    for (int k = 0; k < APP_ADMIT_PARTS; k++) e->gpu_total += e->gpu[k];
+    for (int k = 0; k < ADMIT_PARTS; k++) e->gpu_total += e->gpu[k];
 }
 
 /* ---- the check ------------------------------------------------------------ */
@@ -189,24 +189,24 @@ static int knob_format(char *buf, size_t size, const scene_desc_t *s, const knob
 
 /* The part that does not fit (-1: all fit); *why: what it exceeds, *count
  * how many of the items a count limit counts (0: memory). */
-static int misfit(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, app_admit_t *e,
+static int misfit(const scene_desc_t *s, const admit_world_t *w, const admit_limits_t *lim, admit_t *e,
                   const char **why, double *count)
 {
-    app_admit_estimate(s, w, e);
+    admit_estimate(s, w, e);
     *count = e->blades;
-    if (e->blades > APP_ADMIT_MAX_FIELD_BLADES && w->full_field) {
+    if (e->blades > ADMIT_MAX_FIELD_BLADES && w->full_field) {
         *why = "blades, more than the 50000000 a full blade field holds (use mode hybrid for larger fields)";
-        return APP_ADMIT_BLADES;
+        return ADMIT_BLADES;
     }
     double groups = lim->max_compute_groups > 0 ? (double)lim->max_compute_groups * 256.0 : INFINITY;
     if (e->blades > groups) {
         *why = "blades simulated per frame, more than one compute dispatch of this GL reaches";
-        return w->full_field ? APP_ADMIT_BLADES : APP_ADMIT_TILES;
+        return w->full_field ? ADMIT_BLADES : ADMIT_TILES;
     }
-    if (e->bb_candidates > APP_ADMIT_MAX_BB_CANDIDATES) {
+    if (e->bb_candidates > ADMIT_MAX_BB_CANDIDATES) {
         *why = "billboard candidates, more than the 67108864 a billboard field holds";
         *count = e->bb_candidates;
-        return APP_ADMIT_BILLBOARDS;
+        return ADMIT_BILLBOARDS;
     }
     double gpu = lim->gpu_bytes > 0.0 ? lim->gpu_bytes : INFINITY;
     double host = lim->host_bytes > 0.0 ? lim->host_bytes : INFINITY;
@@ -215,8 +215,8 @@ static int misfit(const scene_desc_t *s, const app_admit_world_t *w, const app_a
     if (peak <= gpu && (shared ? peak + e->host : e->host) <= host) return -1;
     *why = shared ? "of memory (GPU storage and host, one pool here)" : "of memory";
     *count = 0.0;
-    int worst = APP_ADMIT_TERRAIN;
-    for (int k = APP_ADMIT_TARGETS; k < APP_ADMIT_PARTS; k++)
+    int worst = ADMIT_TERRAIN;
+    for (int k = ADMIT_TARGETS; k < ADMIT_PARTS; k++)
         if (e->gpu[k] > e->gpu[worst]) worst = k;
     return worst;
 }
@@ -235,10 +235,10 @@ static const knob_t *knobs_of(int part, int *count)
     static const struct {
         const knob_t *k;
         int n;
-    } by_part[APP_ADMIT_PARTS] = {[APP_ADMIT_TARGETS] = {targets, 1}, [APP_ADMIT_RASTER] = {targets, 1},
-                                  [APP_ADMIT_TERRAIN] = {terrain, 1}, [APP_ADMIT_BLADES] = {blades, 2},
-                                  [APP_ADMIT_TILES] = {tiles, 5},     [APP_ADMIT_BILLBOARDS] = {bb, 3},
-                                  [APP_ADMIT_CUBES] = {cubes, 2}};
+    } by_part[ADMIT_PARTS] = {[ADMIT_TARGETS] = {targets, 1}, [ADMIT_RASTER] = {targets, 1},
+                                  [ADMIT_TERRAIN] = {terrain, 1}, [ADMIT_BLADES] = {blades, 2},
+                                  [ADMIT_TILES] = {tiles, 5},     [ADMIT_BILLBOARDS] = {bb, 3},
+                                  [ADMIT_CUBES] = {cubes, 2}};
     *count = by_part[part].n;
     return by_part[part].k;
 }
@@ -246,7 +246,7 @@ static const knob_t *knobs_of(int part, int *count)
 /* The largest scale k of kn's value (sign > 0; the smallest above 1 when
  * sign < 0) with which the scene fits; false when even the cheap end does
  * not fit. */
-static bool bisect(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, const knob_t *kn,
+static bool bisect(const scene_desc_t *s, const admit_world_t *w, const admit_limits_t *lim, const knob_t *kn,
                    scene_desc_t *fit)
 {
     const scene_field_t *f = scene_field_find(kn->section, kn->key);
@@ -258,7 +258,7 @@ static bool bisect(const scene_desc_t *s, const app_admit_world_t *w, const app_
     double def = f->def[0] > 0.0f ? f->def[0] / fmax(v, 1e-12) : 0.0;
     double ends[2] = {(kn->sign > 0) == (def < 1.0) ? def : 0.0, kn->sign > 0 ? 1e-9 : f->hi / fmax(v, 1e-12)};
     double good = 0.0, bad = 1.0;
-    app_admit_t e;
+    admit_t e;
     const char *why;
     double count;
     *fit = *s;
@@ -288,7 +288,7 @@ static bool bisect(const scene_desc_t *s, const app_admit_world_t *w, const app_
     return true;
 }
 
-static bool gl_limits(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
+static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit_limits_t *lim, char *err,
                       size_t size)
 {
     int side = lim->max_texture_size;
@@ -317,10 +317,10 @@ static bool gl_limits(const scene_desc_t *s, const app_admit_world_t *w, const a
 
 /* The blade physics' sphere proxies: a capsule takes 1 + ceil(length /
  * radius) (collide_pack_spheres), so one thin capsule can take them all. */
-static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t size)
+static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *err, size_t size)
 {
     /* On a world only the characters near the tile window pack spheres
-     * (app_world.c character_spheres); more than fit there is warned. */
+     * (world.c character_spheres); more than fit there is warned. */
     if (s->terrain.type == TERRAIN_WORLD) return true;
     if (!w->collider_spheres || (!w->full_field && !w->tiles)) return true;
     int total = w->character_spheres, worst = -1;
@@ -328,27 +328,27 @@ static bool sphere_limit(const scene_desc_t *s, const app_admit_world_t *w, char
         total += w->collider_spheres[i];
         if (worst < 0 || w->collider_spheres[i] > w->collider_spheres[worst]) worst = i;
     }
-    if (total <= APP_ADMIT_MAX_SPHERES) return true;
+    if (total <= ADMIT_MAX_SPHERES) return true;
     const scene_collider_t *c = &s->colliders[worst];
-    int room = APP_ADMIT_MAX_SPHERES - (total - w->collider_spheres[worst]);
+    int room = ADMIT_MAX_SPHERES - (total - w->collider_spheres[worst]);
     if (c->type == SCENE_COLLIDER_CAPSULE && room >= 2) {
         snprintf(err, size, "colliders[%d].length %g over radius %g takes %d of the blade physics' sphere proxies, "
                  "%d with the rest, more than its %d: the largest colliders[%d].length that fits is %.3g", worst,
-                 (double)c->length, (double)c->radius, w->collider_spheres[worst], total, APP_ADMIT_MAX_SPHERES,
+                 (double)c->length, (double)c->radius, w->collider_spheres[worst], total, ADMIT_MAX_SPHERES,
                  worst, floor((room - 1) * (double)c->radius * 1e3) / 1e3);
         return false;
     }
     int fit = 0;
-    for (int n = w->character_spheres; fit < s->collider_count && n + w->collider_spheres[fit] <= APP_ADMIT_MAX_SPHERES;
+    for (int n = w->character_spheres; fit < s->collider_count && n + w->collider_spheres[fit] <= ADMIT_MAX_SPHERES;
          fit++)
         n += w->collider_spheres[fit];
     snprintf(err, size, "colliders: %d colliders and the characters need %d sphere proxies in the blade physics "
              "(characters %d), more than its %d: the most colliders that fit is %d", s->collider_count, total,
-             w->character_spheres, APP_ADMIT_MAX_SPHERES, fit);
+             w->character_spheres, ADMIT_MAX_SPHERES, fit);
     return false;
 }
 
-bool app_admit_world_supported(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t err_size)
+bool admit_world_supported(const scene_desc_t *s, const admit_world_t *w, char *err, size_t err_size)
 {
     if (s->terrain.type != TERRAIN_WORLD) return true;
     const char *what = w->billboards   ? "billboards (billboard mode) are not streamed yet: use mode blade or hybrid"
@@ -360,20 +360,20 @@ bool app_admit_world_supported(const scene_desc_t *s, const app_admit_world_t *w
     return false;
 }
 
-bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
+bool admit_check(const scene_desc_t *s, const admit_world_t *w, const admit_limits_t *lim, char *err,
                      size_t err_size)
 {
-    if (!app_admit_world_supported(s, w, err, err_size)) return false;
+    if (!admit_world_supported(s, w, err, err_size)) return false;
     if (!sphere_limit(s, w, err, err_size)) return false;
-    if (w->objects > APP_ADMIT_MAX_OBJECTS) {
-        int most = APP_ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);
+    if (w->objects > ADMIT_MAX_OBJECTS) {
+        int most = ADMIT_MAX_OBJECTS - (w->objects - s->collider_count);
         snprintf(err, err_size, "colliders: %d colliders and %d character(s) are %d objects, more than the %d that "
                  "bend grass: the most colliders that fit beside the characters is %d", s->collider_count,
-                 w->objects - s->collider_count, w->objects, APP_ADMIT_MAX_OBJECTS, most > 0 ? most : 0);
+                 w->objects - s->collider_count, w->objects, ADMIT_MAX_OBJECTS, most > 0 ? most : 0);
         return false;
     }
     if (!gl_limits(s, w, lim, err, err_size)) return false;
-    app_admit_t e;
+    admit_t e;
     const char *why = "";
     double items;
     int part = misfit(s, w, lim, &e, &why, &items);
@@ -395,7 +395,7 @@ bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const ap
     else
         snprintf(need, sizeof need, "%.2f GB %s (%s %.2f GB), where %.2f GB is free",
                  (e.gpu_total + e.transient + e.host) / 1e9,
-                 why, app_admit_part_name(part), e.gpu[part] / 1e9,
+                 why, admit_part_name(part), e.gpu[part] / 1e9,
                  (lim->gpu_bytes > 0.0 ? lim->gpu_bytes : lim->host_bytes) / 1e9);
     scene_desc_t fit;
     for (int i = 0; i < count; i++) {
@@ -411,11 +411,11 @@ bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const ap
         return false;
     }
     snprintf(err, err_size, "the scene needs %s, and no single key of the %s makes it fit", need,
-             app_admit_part_name(part));
+             admit_part_name(part));
     return false;
 }
 
-double app_admit_host_bytes(void)
+double admit_host_bytes(void)
 {
     double avail = 0.0;
     FILE *f = fopen("/proc/meminfo", "r");

@@ -1,4 +1,4 @@
-/* app_admit: resource admission. Before anything of the grass is allocated
+/* admit: resource admission. Before anything of the grass is allocated
  * the program estimates, from the scene and the loaded ground alone, the
  * GPU and host memory a run will hold (render targets, the compute
  * rasterizer's visibility buffer, terrain, the full blade field or the
@@ -10,13 +10,13 @@
  * estimate.
  *
  * GL-free: the GL's limits come in as numbers (gfx_limits), the machine's
- * memory from app_admit_host_bytes (/proc/meminfo, RLIMIT_AS). The estimate
+ * memory from admit_host_bytes (/proc/meminfo, RLIMIT_AS). The estimate
  * follows the allocations of bb_field_make, blade_gpu_make,
  * blade_tiles_make (blade_tiles_estimate_bytes), raster_make,
- * gfx_target_make and app_terrain_make; test_app_admit compares it with
+ * gfx_target_make and world_terrain_make; test_admit compares it with
  * gfx_memory_bytes after start-up. */
-#ifndef MEADOW_APP_ADMIT_H
-#define MEADOW_APP_ADMIT_H
+#ifndef MEADOW_ADMIT_H
+#define MEADOW_ADMIT_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -25,7 +25,7 @@
 #include "scene/terrain.h"
 
 /* The GL's limits (0: unknown, not checked) and the memory a run may use. */
-typedef struct app_admit_limits_t {
+typedef struct admit_limits_t {
     int max_texture_size;     /* GL_MAX_TEXTURE_SIZE */
     int max_renderbuffer_size; /* GL_MAX_RENDERBUFFER_SIZE */
     int max_gs_vertices;      /* GL_MAX_GEOMETRY_OUTPUT_VERTICES */
@@ -33,12 +33,12 @@ typedef struct app_admit_limits_t {
     int max_compute_groups;   /* GL_MAX_COMPUTE_WORK_GROUP_COUNT[0]: blade kernels run 256 blades a group */
     double gpu_bytes;         /* the GPU's own memory; 0: it shares host memory (llvmpipe, unknown) */
     double host_bytes;        /* host memory the process may still take */
-} app_admit_limits_t;
+} admit_limits_t;
 
 /* What the estimate needs beyond the scene: the ground as loaded (mesh
  * terrains: its size; heightfields scale with terrain.size) and which
  * systems this run makes. */
-typedef struct app_admit_world_t {
+typedef struct admit_world_t {
     const terrain_mesh_t *terrain;
     double terrain_area;   /* m^2 of ground surface at the scene's terrain.size */
     bool billboards;       /* bb field (billboard and hybrid modes) */
@@ -52,62 +52,62 @@ typedef struct app_admit_world_t {
     int objects;           /* colliders and characters that bend grass (--character adds one to none) */
     const int *collider_spheres; /* sphere proxies of each scene collider in the blade physics (NULL: none) */
     int character_spheres;       /* the characters' (0 before they are loaded) */
-} app_admit_world_t;
+} admit_world_t;
 
 enum {
-    APP_ADMIT_FIXED = 0, /* gfx's upload ring, the rasterizer's triangle queues, programs */
-    APP_ADMIT_TARGETS,   /* main target and its resolve */
-    APP_ADMIT_RASTER,    /* compute rasterizer: visibility buffer, opaque depth */
-    APP_ADMIT_TERRAIN,
-    APP_ADMIT_BLADES,    /* the full blade field */
-    APP_ADMIT_TILES,     /* the hybrid's tiles */
-    APP_ADMIT_BILLBOARDS,
-    APP_ADMIT_CUBES,     /* collision cube arrays */
-    APP_ADMIT_PARTS
+    ADMIT_FIXED = 0, /* gfx's upload ring, the rasterizer's triangle queues, programs */
+    ADMIT_TARGETS,   /* main target and its resolve */
+    ADMIT_RASTER,    /* compute rasterizer: visibility buffer, opaque depth */
+    ADMIT_TERRAIN,
+    ADMIT_BLADES,    /* the full blade field */
+    ADMIT_TILES,     /* the hybrid's tiles */
+    ADMIT_BILLBOARDS,
+    ADMIT_CUBES,     /* collision cube arrays */
+    ADMIT_PARTS
 };
 
-typedef struct app_admit_t {
-    double gpu[APP_ADMIT_PARTS]; /* bytes of GPU storage by part */
+typedef struct admit_t {
+    double gpu[ADMIT_PARTS]; /* bytes of GPU storage by part */
     double gpu_total;            /* held for the run (what gfx_memory_bytes then reports) */
     double transient;            /* held at start-up only: raster auto's calibration targets */
     double host;                 /* bytes of host memory beyond the GPU's (terrain, seeding) */
     double blades;               /* blades simulated per frame (full field: all; tiles: the pool) */
     double bb_candidates;        /* billboard candidate cells (work of a regeneration) */
-} app_admit_t;
+} admit_t;
 
-/* RASTER_QUEUE_LAYERS of raster.h (a GL header; app_world.c asserts they agree). */
-#define APP_ADMIT_RASTER_QUEUE_LAYERS 16
+/* RASTER_QUEUE_LAYERS of raster.h (a GL header; world.c asserts they agree). */
+#define ADMIT_RASTER_QUEUE_LAYERS 16
 /* Host memory set aside for the GL driver when checking before it starts
  * (llvmpipe's threads and code took ~0.5 GB of address space here). */
-#define APP_ADMIT_GL_RESERVE (512.0 * 1024.0 * 1024.0)
+#define ADMIT_GL_RESERVE (512.0 * 1024.0 * 1024.0)
 /* Most billboard candidates a field holds (bb_field_make's limit). */
-#define APP_ADMIT_MAX_BB_CANDIDATES (1u << 26)
+#define ADMIT_MAX_BB_CANDIDATES (1u << 26)
 /* Most colliders and characters together (COLLIDE_MAX_OBJECTS, a collide
- * set's; app_world.c asserts they agree). */
-#define APP_ADMIT_MAX_OBJECTS 128
+ * set's; world.c asserts they agree). */
+#define ADMIT_MAX_OBJECTS 128
 /* Most sphere proxies of the blade physics (BLADE_MAX_SPHERES; asserted
- * in app_world.c). */
-#define APP_ADMIT_MAX_SPHERES 512
+ * in world.c). */
+#define ADMIT_MAX_SPHERES 512
 /* Most blades of a full blade field: 50M x 68 B = 3.4 GB of GPU state. */
-#define APP_ADMIT_MAX_FIELD_BLADES 50000000
+#define ADMIT_MAX_FIELD_BLADES 50000000
 
-const char *app_admit_part_name(int part);
+const char *admit_part_name(int part);
 /* False with one line in err when s has a world terrain (terrain.type
  * "world", no vertices) and w asks for grass that still needs the
  * terrain's vertices: billboards (not streamed yet), the full blade field
  * (the bench's reference) or the GI volumes. Blade and hybrid modes draw
  * streamed tiles there (docs/WORLD.md). */
-bool app_admit_world_supported(const scene_desc_t *s, const app_admit_world_t *w, char *err, size_t err_size);
-void app_admit_estimate(const scene_desc_t *s, const app_admit_world_t *w, app_admit_t *out);
+bool admit_world_supported(const scene_desc_t *s, const admit_world_t *w, char *err, size_t err_size);
+void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *out);
 /* Checks s against the limits; false with one line in err (naming the key
  * and the largest value that fits) when it does not fit; what a world
- * terrain cannot draw yet is refused here (app_admit_world_supported). */
-bool app_admit_check(const scene_desc_t *s, const app_admit_world_t *w, const app_admit_limits_t *lim, char *err,
+ * terrain cannot draw yet is refused here (admit_world_supported). */
+bool admit_check(const scene_desc_t *s, const admit_world_t *w, const admit_limits_t *lim, char *err,
                      size_t err_size);
 /* This process's host memory headroom: 80 % of MemAvailable, and under a
  * finite RLIMIT_AS of the address space left, at most
  * $MEADOW_MEMORY_LIMIT_MB MiB when that is set (a cap where RLIMIT_AS
  * cannot be used: ASan reserves terabytes); 0 when nothing is known. */
-double app_admit_host_bytes(void);
+double admit_host_bytes(void);
 
 #endif

@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "world/world.h"
+
 typedef enum app_mode_t {
     APP_MODE_SCENE = 0, /* whatever the scene file says */
     APP_MODE_BILLBOARD,
@@ -46,6 +48,9 @@ typedef struct app_options_t {
     bool quiet;
 } app_options_t;
 
+
+/* What the world takes of the options (world_load). */
+world_options_t app_world_options(const app_options_t *o);
 
 /* What app_parse_option made of argv[*i]. */
 typedef enum app_option_status_t {

@@ -67,7 +67,7 @@ typedef struct bench_config_t {
     bool ball;                            /* the ball (BALL_RADIUS) is the only collider */
     bool no_colliders;                    /* ablation: no collider, no character */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
-    app_tuning_t tuning;
+    world_tuning_t tuning;
 } bench_config_t;
 
 /* The box that blade_proxies runs on the first collider's path: 1 x 0.32
@@ -99,7 +99,7 @@ static const float proxy_box[3] = {0.5f, 0.16f, 0.16f};
 #define BALL_RADIUS 0.3f
 
 /* The least canopy distance beyond a switch distance: the two fade bands apart. */
-#define CANOPY_GAP (APP_SWITCH_FADE + APP_CANOPY_FADE)
+#define CANOPY_GAP (WORLD_SWITCH_FADE + WORLD_CANOPY_FADE)
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -109,7 +109,7 @@ static void tweak(scene_desc_t *s, void *user)
     if (c->springs) s->grass.spring_iterations = c->springs;
     if (c->switch_distance > 0) s->grass.switch_distance = c->switch_distance;
     if (c->canopy_distance > 0) s->grass.canopy_distance = c->canopy_distance;
-    /* A switch sweep keeps the canopy's band beyond the blades' (app_world_load's rule). */
+    /* A switch sweep keeps the canopy's band beyond the blades' (world_load's rule). */
     s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + CANOPY_GAP);
     if (c->density_scale > 0) {
         s->grass.population.density *= c->density_scale;
@@ -159,19 +159,18 @@ typedef struct sweep_run_t {
 
 /* Sphere proxies of the blade_proxies sweep for box colliders (other
  * colliders get their bounding sphere). */
-static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
+static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
 {
     const bench_config_t *c = ((const sweep_run_t *)user)->c;
     int n = 0;
-    const app_colliders_t *colliders = app_world_colliders(w);
-    for (int i = 0; i < colliders->count && n < max; i++) {
-        const app_collider_t *k = &colliders->items[i];
-        const float *p = k->position;
-        if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
-            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k->bound_radius}};
+    for (int i = 0; i < world_collider_count(w) && n < max; i++) {
+        const world_collider_info_t k = world_collider(w, i);
+        const float *p = k.position;
+        if (k.desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k.bound_radius}};
             continue;
         }
-        const float *h = k->desc.half_extents;
+        const float *h = k.desc.half_extents;
         if (c->proxy == PROXY_INSCRIBED) {
             out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
             continue;
@@ -191,7 +190,7 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
 
 #define MAX_CONFIGS 96
 
-/* Placement seed of the noise-floor reference (app_tuning_t.placement_seed). */
+/* Placement seed of the noise-floor reference (world_tuning_t.placement_seed). */
 #define FLOOR_PLACEMENT_SEED 0x9e3779b9u
 
 /* The reference's grass-free view (the image error's background): a blade
@@ -687,12 +686,12 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     return ok;
 }
 
-/* Placement seeds of a configuration's runs (app_tuning_t.placement_seed;
+/* Placement seeds of a configuration's runs (world_tuning_t.placement_seed;
  * 0: the scene's), each run compared with the reference of its own. */
 static const uint32_t placements[SWEEP_RUNS] = {0, FLOOR_PLACEMENT_SEED, 0x85ebca6bu};
 #define MEASURE_EVERY 4 /* frames between per-frame measures after warm-up */
 
-static void sweep_frame(app_world_t *w, int f, float t, void *user)
+static void sweep_frame(world_t *w, int f, float t, void *user)
 {
     (void)t;
     sweep_run_t *r = user;
@@ -706,7 +705,7 @@ static void sweep_frame(app_world_t *w, int f, float t, void *user)
         bench_metrics_measure(w, &m, &x);
         if (m.penetration_max >= 0.0) r->depths[r->nd++] = r->tested ? x.tested_max : m.penetration_max;
     }
-    blade_gpu_t *g = app_world_blades(w);
+    blade_gpu_t *g = world_info(w).blades;
     if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
     uint32_t padded = blade_gpu_info(g).padded_count;
     if (!r->eta_prev) r->eta_prev = calloc(padded, sizeof(float));

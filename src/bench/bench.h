@@ -8,7 +8,7 @@
 #define MEADOW_BENCH_H
 
 #include "app/app.h"
-#include "app/app_world.h"
+#include "measure/measure.h"
 
 /* The command line of `meadow bench` and `meadow compare`: the program's
  * options (scene, frames, size, mode, out, ...) and the harness's own.
@@ -74,8 +74,8 @@ typedef struct bench_session_desc_t {
     int frames;       /* simulated and drawn; default 60 */
     int warmup;       /* frames excluded from timings; default frames/4 */
     int msaa;         /* 0 = the scene's */
-    bool reference;   /* the reference rendering (see app_world_t) */
-    app_tuning_t tuning;
+    bool reference;   /* the reference rendering (see world_t) */
+    world_tuning_t tuning;
     void (*tweak)(scene_desc_t *s, void *user); /* parameter overrides */
     void *user;
 } bench_session_desc_t;

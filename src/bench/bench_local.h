@@ -25,30 +25,30 @@ typedef struct bench_metrics_ext_t {
 
 /* Accuracy metrics of the world's current state into m (reads GPU buffers
  * back), plus the extra counts into x (may be NULL). */
-void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x);
+void bench_metrics_measure(world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x);
 /* Largest tip offset max |v2 - v2_twin| (m) between two blade worlds built
  * from the same scene and seed; INFINITY when a value is not finite. When
- * prev (blade_gpu_info(app_world_blades(w)).padded_count x 3 floats, NULL to skip) is
+ * prev (blade_gpu_info(world_info(w).blades).padded_count x 3 floats, NULL to skip) is
  * given, *jitter gets the largest change of (v2 - v2_twin) since the
  * previous call with the same prev (0 while *primed is false), prev is
  * updated and *primed set. */
-double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter);
+double bench_metrics_blade_offset(world_t *w, world_t *twin, float *prev, bool *primed, double *jitter);
 /* Fraction of real blades whose roots lie inside `radius` of the line from
  * a to b (xz plane, roots between the ends) that are deflected from the twin
  * by more than frac x their height; *corridor gets their count. With `ever`
- * (blade_gpu_info(app_world_blades(w)).padded_count bytes, zeroed before the first call;
+ * (blade_gpu_info(world_info(w).blades).padded_count bytes, zeroed before the first call;
  * NULL to skip) a blade counts once deflected in this or any earlier call
  * with the same mask. */
-double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+double bench_metrics_blade_coverage(world_t *w, world_t *twin, const float a[2], const float b[2],
                                     float radius, float frac, uint8_t *ever, long *corridor);
 /* Largest distance (m) of a deformed billboard mesh vertex from its wind
  * pose at the field's time; 0 when no mesh is deformed. */
-double bench_metrics_bb_offset(app_world_t *w);
+double bench_metrics_bb_offset(world_t *w);
 /* Trail coverage of billboards: of those rooted within `radius` of the
  * segment a-b (xz, strictly between its ends), the share whose deformed
  * mesh has moved a vertex more than frac x their height from the wind pose,
  * now or in an earlier call (ever[i], billboards entries, updated). */
-double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b[2], float radius, float frac,
+double bench_metrics_bb_coverage(world_t *w, const float a[2], const float b[2], float radius, float frac,
                                  uint8_t *ever, long *corridor);
 
 /* Texture distortion of the deformed billboard meshes (docs/METRICS.md). */
@@ -60,7 +60,7 @@ typedef struct bench_bb_distortion_t {
     int deformed;       /* billboards with a deformed mesh */
 } bench_bb_distortion_t;
 /* Measures the deformed billboards of w now (all zero without billboards). */
-void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out);
+void bench_metrics_bb_distortion(world_t *w, bench_bb_distortion_t *out);
 
 /* ---- measures that grow with their failure (docs/METRICS.md) ---- */
 /* Wall crossing (stability case thin_bb): of the billboards rooted outside
@@ -68,11 +68,11 @@ void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out);
  * face and along its length, the share with a non-root vertex (deformed
  * mesh or wind pose) beyond the box's mid-plane, under its top and within
  * its length; *near gets their count. */
-double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near);
+double bench_metrics_bb_crossing(world_t *w, int collider, long *near);
 /* Pose jump of billboards: the largest change of any vertex's offset from
  * its wind pose since the previous call with the same prev (billboards x
  * N x M x 3 floats; 0 while *primed is false, which the call sets). */
-double bench_metrics_bb_jump(app_world_t *w, float *prev, bool *primed);
+double bench_metrics_bb_jump(world_t *w, float *prev, bool *primed);
 /* Deformed billboards' offsets from their wind pose, sampled bilinearly
  * at BENCH_POSE_SIDE^2 points of (u, v) in [0, 1]^2 (any mesh size), in
  * billboard order: a configuration's shape against a reference's
@@ -84,7 +84,7 @@ typedef struct bench_bb_pose_t {
     int *index;                            /* billboard index, ascending */
     float (*off)[BENCH_POSE_SAMPLES][3];   /* offsets from the wind pose (m) */
 } bench_bb_pose_t;
-bool bench_metrics_bb_pose(app_world_t *w, bench_bb_pose_t *out);
+bool bench_metrics_bb_pose(world_t *w, bench_bb_pose_t *out);
 void bench_bb_pose_free(bench_bb_pose_t *p);
 /* Shape deviation: mean over the billboards deformed in either of the
  * largest sample distance between a's offsets and ref's (a billboard not
@@ -95,21 +95,21 @@ double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *
  * updated; nothing counts while primed is false), the distance (m, >= 0)
  * of its curve (8 samples) from the nearest exact collider into dist
  * (padded_count entries). Returns their count. */
-long bench_metrics_blade_overpush(app_world_t *w, float *eta_prev, bool primed, double *dist);
+long bench_metrics_blade_overpush(world_t *w, float *eta_prev, bool primed, double *dist);
 /* The q-quantile (0..1, linear between ranks) of v[0..n) (sorts v); 0 for n = 0. */
 double bench_percentile(double *v, long n, double q);
 
 /* Grass roots inside the world-space box lo..hi: real blade roots v0 in
  * blade mode, billboard root centres in billboard mode (0 otherwise). */
-long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]);
+long bench_metrics_roots_in(world_t *w, const float lo[3], const float hi[3]);
 
 /* Per-frame hooks of an offscreen session (all optional). */
 typedef struct bench_session_hooks_t {
     /* Replaces the world's blade sphere proxies; only for blade-mode worlds
-     * without characters (the world update is then app_world_update_spheres). */
-    app_world_spheres_fn blade_spheres;
+     * without characters (the world update is then world_update_spheres). */
+    world_spheres_fn blade_spheres;
     /* Called after every simulated step. */
-    void (*frame)(app_world_t *w, int frame, float t, void *user);
+    void (*frame)(world_t *w, int frame, float t, void *user);
     /* Step length of frame `frame` (default: the scene's dt every step);
      * lets the stability suite inject frame spikes. */
     float (*step_dt)(int frame, float dt, void *user);
@@ -121,9 +121,9 @@ typedef struct bench_session_hooks_t {
 } bench_session_hooks_t;
 
 /* Loads the world of a session (scene, mode, tweak; a tweaked heightfield is
- * rebuilt) and makes its GPU resources. Returns 0, or the exit code with w
- * destroyed. */
-int bench_session_world(const bench_session_desc_t *desc, app_world_t *w);
+ * rebuilt) and makes its GPU resources into *out. Returns 0, or the exit
+ * code with *out NULL. */
+int bench_session_world(const bench_session_desc_t *desc, world_t **out);
 int bench_session_run_hooks(const bench_session_desc_t *desc, const bench_session_hooks_t *hooks, core_image_t *last,
                             bench_metrics_t *metrics);
 
@@ -165,7 +165,7 @@ int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench
 /* Jahrmann & Wimmer 2017's ablation (one table, bench_papers.c): blade
  * mode with every feature, without collision (no colliders and no
  * characters), without culling (every BLADE_CULL_* test skipped,
- * app_tuning_t.cull_disable), without each test alone. Run on the papers'
+ * world_tuning_t.cull_disable), without each test alone. Run on the papers'
  * scenes for costs and culled counts (bench --papers) and on the sweep's
  * scene for image error (the blade_ablation chart). */
 typedef struct bench_ablation_t {
@@ -198,8 +198,8 @@ typedef struct bench_perf_run_t {
     int size[2], msaa;
     double frame_ms;      /* sum of the pass medians (bb.generate left out, as in summary.txt) */
     double cpu_ms;        /* mean wall-clock ms per frame after warm-up */
-    double floor_ms;      /* app_floor_ms of the grass triangles; -1 = not measured */
-    double compute_floor_ms; /* app_floor_compute_ms of the same; -1 = not measured */
+    double floor_ms;      /* measure_floor_ms of the grass triangles; -1 = not measured */
+    double compute_floor_ms; /* measure_floor_compute_ms of the same; -1 = not measured */
     double memory_mb;     /* GPU memory held by gfx at the last frame */
     long blades, blades_drawn, billboards, triangles;
     int pass_count;

@@ -34,6 +34,8 @@
  * of the neighbouring cells below and to the left above it. */
 #include "bench/bench_local.h"
 
+#include "collide/collide_shape.h"
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,18 +49,17 @@ typedef struct exact_t {
     float reach; /* bounding radius */
 } exact_t;
 
-static int gather_exact(app_world_t *w, exact_t *out)
+static int gather_exact(world_t *w, exact_t *out)
 {
     int n = 0;
-    const app_colliders_t *colliders = app_world_colliders(w);
-    for (int i = 0; i < colliders->count; i++) {
-        const app_collider_t *c = &colliders->items[i];
-        out[n].shape = c->desc;
-        glm_vec3_copy((float *)c->position, out[n].pos);
-        out[n].reach = c->bound_radius;
+    for (int i = 0; i < world_collider_count(w); i++) {
+        world_collider_info_t c = world_collider(w, i);
+        out[n].shape = c.desc;
+        glm_vec3_copy(c.position, out[n].pos);
+        out[n].reach = c.bound_radius;
         n++;
     }
-    character_set_t *chars = app_world_characters(w);
+    character_set_t *chars = world_info(w).characters;
     if (chars) {
         float (*s)[4] = malloc(sizeof(float[4]) * BLADE_MAX_SPHERES);
         int k = s ? character_set_spheres(chars, s, BLADE_MAX_SPHERES) : 0;
@@ -150,12 +151,12 @@ static bool blade_finite(const blade_t *b)
     return true;
 }
 
-static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
+static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
                           bench_metrics_ext_t *x)
 {
-    blade_gpu_t *g = app_world_blades(w);
-    const terrain_mesh_t *terrain = app_world_terrain(w);
-    bool heightfield = app_world_scene(w)->terrain.type == TERRAIN_HEIGHTFIELD;
+    blade_gpu_t *g = world_info(w).blades;
+    const terrain_mesh_t *terrain = world_info(w).terrain;
+    bool heightfield = world_info(w).scene->terrain.type == TERRAIN_HEIGHTFIELD;
     uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);
     if (!b) return;
@@ -195,9 +196,9 @@ static void blade_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *a
 }
 
 /* The world's billboard field and what it holds (NULL without one). */
-static bb_field_t *bb_of(app_world_t *w, bb_field_info_t *fi)
+static bb_field_t *bb_of(world_t *w, bb_field_info_t *fi)
 {
-    bb_field_t *f = app_world_billboards(w);
+    bb_field_t *f = world_info(w).billboards;
     if (f) bb_field_info(f, fi);
     return f;
 }
@@ -250,7 +251,7 @@ static void bb_grid(const bb_field_info_t *fi, const bb_point_t *p, const float 
     for (int v = 0; v < nv; v++) glm_vec3_copy((float *)mesh[(size_t)slot * nv + v], grid[v]);
 }
 
-static void bb_metrics(app_world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
+static void bb_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
                        bench_metrics_ext_t *x)
 {
     bb_field_info_t fi;
@@ -309,7 +310,7 @@ done:
     free(grid);
 }
 
-void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x)
+void bench_metrics_measure(world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x)
 {
     bench_metrics_ext_t dummy;
     if (!x) x = &dummy;
@@ -319,10 +320,10 @@ void bench_metrics_measure(app_world_t *w, bench_metrics_t *m, bench_metrics_ext
     if (!ex) return;
     int n = gather_exact(w, ex);
     pen_acc_t acc = {0};
-    scene_mode_t mode = app_world_mode(w);
-    bool reference = app_world_is_reference(w);
-    bool blades = app_world_blades(w) && (mode != SCENE_MODE_BILLBOARD || reference);
-    bool bbs = app_world_billboards(w) && mode != SCENE_MODE_BLADE && !reference;
+    scene_mode_t mode = world_info(w).mode;
+    bool reference = world_info(w).reference;
+    bool blades = world_info(w).blades && (mode != SCENE_MODE_BILLBOARD || reference);
+    bool bbs = world_info(w).billboards && mode != SCENE_MODE_BLADE && !reference;
     if (blades) blade_metrics(w, ex, n, &acc, m, x);
     if (bbs) bb_metrics(w, ex, n, &acc, m, x);
     if (blades || bbs) {
@@ -341,9 +342,9 @@ static blade_t *read_blades(blade_gpu_t *g)
     return b;
 }
 
-double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev, bool *primed, double *jitter)
+double bench_metrics_blade_offset(world_t *w, world_t *twin, float *prev, bool *primed, double *jitter)
 {
-    blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
+    blade_gpu_t *gw = world_info(w).blades, *gt = world_info(twin).blades;
     uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
     if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *a = read_blades(gw), *b = read_blades(gt);
@@ -373,11 +374,11 @@ double bench_metrics_blade_offset(app_world_t *w, app_world_t *twin, float *prev
     return worst;
 }
 
-double bench_metrics_blade_coverage(app_world_t *w, app_world_t *twin, const float a[2], const float b[2],
+double bench_metrics_blade_coverage(world_t *w, world_t *twin, const float a[2], const float b[2],
                                     float radius, float frac, uint8_t *ever, long *corridor)
 {
     *corridor = 0;
-    blade_gpu_t *gw = app_world_blades(w), *gt = app_world_blades(twin);
+    blade_gpu_t *gw = world_info(w).blades, *gt = world_info(twin).blades;
     uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
     if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *x = read_blades(gw), *y = read_blades(gt);
@@ -426,7 +427,7 @@ static double bb_mesh_offset(const bb_field_info_t *fi, const bb_point_t *p, con
     return worst;
 }
 
-double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b[2], float radius, float frac,
+double bench_metrics_bb_coverage(world_t *w, const float a[2], const float b[2], float radius, float frac,
                                  uint8_t *ever, long *corridor)
 {
     *corridor = 0;
@@ -454,7 +455,7 @@ double bench_metrics_bb_coverage(app_world_t *w, const float a[2], const float b
     return *corridor ? (double)hit / (double)*corridor : 0.0;
 }
 
-double bench_metrics_bb_offset(app_world_t *w)
+double bench_metrics_bb_offset(world_t *w)
 {
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
@@ -484,7 +485,7 @@ static void cell_area(const float *a, const float *b, const float *d, const floa
     glm_vec3_scale(out, 0.5f, out);
 }
 
-void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out)
+void bench_metrics_bb_distortion(world_t *w, bench_bb_distortion_t *out)
 {
     memset(out, 0, sizeof *out);
     bb_field_info_t fi;
@@ -535,13 +536,13 @@ void bench_metrics_bb_distortion(app_world_t *w, bench_bb_distortion_t *out)
     free(unit);
 }
 
-long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3])
+long bench_metrics_roots_in(world_t *w, const float lo[3], const float hi[3])
 {
     long n = 0;
-    blade_gpu_t *g = app_world_blades(w);
+    blade_gpu_t *g = world_info(w).blades;
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
-    if (app_world_mode(w) == SCENE_MODE_BLADE && g) {
+    if (world_info(w).mode == SCENE_MODE_BLADE && g) {
         blade_t *b = read_blades(g);
         uint32_t count = blade_gpu_info(g).padded_count;
         for (uint32_t i = 0; b && i < count; i++) {
@@ -551,7 +552,7 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
                 n++;
         }
         free(b);
-    } else if (app_world_mode(w) == SCENE_MODE_BILLBOARD && f) {
+    } else if (world_info(w).mode == SCENE_MODE_BILLBOARD && f) {
         bb_point_t *pts;
         float (*mesh)[4];
         if (!read_bb(f, &fi, &pts, &mesh)) return 0;
@@ -568,14 +569,14 @@ long bench_metrics_roots_in(app_world_t *w, const float lo[3], const float hi[3]
 
 /* ---- measures that grow with their failure (issue 33) ---------------------------- */
 
-double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near)
+double bench_metrics_bb_crossing(world_t *w, int collider, long *near)
 {
     *near = 0;
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
-    const app_colliders_t *cs = app_world_colliders(w);
-    if (!f || collider < 0 || collider >= cs->count) return 0.0;
-    const float *c = cs->items[collider].position, *h = cs->items[collider].desc.half_extents;
+    if (!f || collider < 0 || collider >= world_collider_count(w)) return 0.0;
+    const world_collider_info_t wc = world_collider(w, collider);
+    const float *c = wc.position, *h = wc.desc.half_extents;
     int nv = fi.desc.subdiv[0] * fi.desc.subdiv[1], nn = fi.desc.subdiv[0];
     int a = h[0] <= h[2] ? 0 : 2, b = 2 - a; /* the wall's thin axis a, its length along b */
     bb_point_t *pts;
@@ -606,7 +607,7 @@ double bench_metrics_bb_crossing(app_world_t *w, int collider, long *near)
     return *near ? (double)crossed / (double)*near : 0.0;
 }
 
-double bench_metrics_bb_jump(app_world_t *w, float *prev, bool *primed)
+double bench_metrics_bb_jump(world_t *w, float *prev, bool *primed)
 {
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
@@ -651,7 +652,7 @@ static void grid_sample(const vec3 *g, int nn, int mm, float u, float v, float o
                  t * ((1 - s) * g[(r + 1) * nn + c][k] + s * g[(r + 1) * nn + c + 1][k]);
 }
 
-bool bench_metrics_bb_pose(app_world_t *w, bench_bb_pose_t *out)
+bool bench_metrics_bb_pose(world_t *w, bench_bb_pose_t *out)
 {
     memset(out, 0, sizeof *out);
     bb_field_info_t fi;
@@ -724,9 +725,9 @@ double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *
     return n ? sum / (double)n : 0.0;
 }
 
-long bench_metrics_blade_overpush(app_world_t *w, float *eta_prev, bool primed, double *dist)
+long bench_metrics_blade_overpush(world_t *w, float *eta_prev, bool primed, double *dist)
 {
-    blade_gpu_t *g = app_world_blades(w);
+    blade_gpu_t *g = world_info(w).blades;
     if (!g) return 0;
     uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);

@@ -4,10 +4,10 @@
  *             (scenes/bench/{orthmann,nature,helicopter,fan128}.json; the
  *             --scene alone outside --report): all features, collision off
  *             (no colliders and no characters), culling off (every
- *             BLADE_CULL_* test skipped, app_tuning_t.cull_disable) and each
+ *             BLADE_CULL_* test skipped, world_tuning_t.cull_disable) and each
  *             test alone off, on the hardware and the compute rasterizer:
  *             GPU pass medians, blades drawn and culled by each test (the
- *             counters of summary.txt, app_world_stats) at the last frame;
+ *             counters of summary.txt, world_stats) at the last frame;
  *   leaves    Orthmann et al. 2009's cost against the number of colliding
  *             octree leaves: orthmann.json in billboard mode with 1, 2, 4,
  *             8, 16 balls (--quick: 1, 4) spread over its field, the mean
@@ -157,11 +157,11 @@ static void papers_tweak(scene_desc_t *s, void *user)
     if (p->colliders_wanted > 0 && s->collider_count > 0) spread_balls(s, p->colliders_wanted);
 }
 
-static void papers_frame(app_world_t *w, int frame, float t, void *user)
+static void papers_frame(world_t *w, int frame, float t, void *user)
 {
     (void)t;
     papers_probe_t *p = user;
-    bb_field_t *bb = app_world_billboards(w);
+    bb_field_t *bb = world_info(w).billboards;
     if (bb && frame >= p->warmup) {
         bb_stats_t st;
         bb_field_stats(bb, false, &st);
@@ -170,15 +170,15 @@ static void papers_frame(app_world_t *w, int frame, float t, void *user)
         p->samples++;
     }
     if (frame != p->last) return;
-    app_world_stats_t st;
-    app_world_stats(w, &st);
+    world_stats_t st;
+    world_stats(w, &st);
     p->run->blades = st.blades;
     p->run->drawn = st.blade_survivors;
     p->run->billboards = st.billboards;
     memcpy(p->run->culled, st.blade_culled, sizeof p->run->culled);
     p->run->patch_culled = st.blade_patch_culled;
-    p->run->colliders = app_world_colliders(w)->count + st.characters;
-    const scene_desc_t *s = app_world_scene(w);
+    p->run->colliders = world_collider_count(w) + st.characters;
+    const scene_desc_t *s = world_info(w).scene;
     p->run->size[0] = s->size[0];
     p->run->size[1] = s->size[1];
     p->run->msaa = s->msaa;

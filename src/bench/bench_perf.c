@@ -5,7 +5,7 @@
  * hardware and the compute rasterizer, in one process (one offscreen
  * session each, bench_session.c). Per run: the median of every GPU pass
  * over the frames after warm-up (frames/4), their sum, the hardware floor
- * of its grass triangles (app_floor_ms), grass counts and GPU memory.
+ * of its grass triangles (measure_floor_ms), grass counts and GPU memory.
  * Writes DIR/perf.json and regenerates from it the section of
  * docs/PERFORMANCE.md between PERF_BEGIN and PERF_END and README.md's
  * summary between SUMMARY_BEGIN and SUMMARY_END (the rest of each file is
@@ -55,24 +55,25 @@ static const perf_case_t quick_cases[] = {
 typedef struct perf_probe_t {
     int last;
     bench_perf_run_t *run;
-    app_world_stats_t stats;
+    world_stats_t stats;
     bool compute;
     int raster_samples; /* the world's compute rasterizer samples per pixel */
 } perf_probe_t;
 
-static void probe_frame(app_world_t *w, int frame, float t, void *user)
+static void probe_frame(world_t *w, int frame, float t, void *user)
 {
     (void)t;
     perf_probe_t *p = user;
     if (frame != p->last) return;
-    const scene_desc_t *s = app_world_scene(w);
+    const scene_desc_t *s = world_info(w).scene;
     p->run->size[0] = s->size[0];
     p->run->size[1] = s->size[1];
     p->run->msaa = s->msaa;
     p->run->memory_mb = (double)gfx_memory_bytes() / (1024.0 * 1024.0);
-    p->compute = w->raster_compute;
-    p->raster_samples = w->raster_samples ? w->raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-    app_world_stats(w, &p->stats);
+    world_info_t wi = world_info(w);
+    p->compute = wi.raster_compute;
+    p->raster_samples = wi.raster_samples ? wi.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
+    world_stats(w, &p->stats);
 }
 
 static void scene_short(const char *path, char *out, size_t size)
@@ -129,8 +130,8 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     r->floor_ms = -1.0;
     r->compute_floor_ms = -1.0;
     for (int k = 0; k < 2 && probe.stats.triangles > 0; k++) {
-        r->floor_ms = faster(r->floor_ms, app_floor_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa));
-        r->compute_floor_ms = faster(r->compute_floor_ms, app_floor_compute_ms(probe.stats.triangles, r->size[0],
+        r->floor_ms = faster(r->floor_ms, measure_floor_ms(probe.stats.triangles, r->size[0], r->size[1], r->msaa));
+        r->compute_floor_ms = faster(r->compute_floor_ms, measure_floor_compute_ms(probe.stats.triangles, r->size[0],
                                                                                r->size[1], r->msaa,
                                                                                probe.raster_samples));
     }
@@ -393,7 +394,7 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
                     p->frames, p->quick ? " (--quick: CI sizes, not the bench scenes)" : "", p->frames / 4);
     if (strstr(p->renderer, "llvmpipe"))
         core_buf_printf(b, "GPU times from llvmpipe are not meaningful (CPU rasteriser); rerun on a GPU.\n\n");
-    core_buf_printf(b, "### Per run\n\nfloor: the hardware floor (app_floor.c); compute floor: the same triangles "
+    core_buf_printf(b, "### Per run\n\nfloor: the hardware floor (measure_floor.c); compute floor: the same triangles "
                        "through the compute rasterizer with trivial shading, its start and composite included.\n\n"
                        "| run | size, MSAA | grass | frame ms (sum) | floor ms | frame/floor | compute floor ms | "
                        "frame/compute floor | GPU memory | CPU ms/frame |\n"

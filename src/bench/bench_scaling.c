@@ -71,14 +71,14 @@ static void tweak(scene_desc_t *s, void *user)
     }
 }
 
-static void last_frame(app_world_t *w, int frame, float t, void *user)
+static void last_frame(world_t *w, int frame, float t, void *user)
 {
     (void)t;
     scaling_run_t *r = user;
     if (frame + 1 < r->point->frames) return;
-    blade_tiles_t *tiles = app_world_tiles(w);
+    blade_tiles_t *tiles = world_info(w).tiles;
     if (r->full) {
-        r->point->full_blades = blade_gpu_stats(app_world_blades(w), false).total;
+        r->point->full_blades = blade_gpu_stats(world_info(w).blades, false).total;
     } else if (tiles) {
         blade_tiles_stats_t st = blade_tiles_stats(tiles, true);
         r->point->slots = st.slots_dispatched;

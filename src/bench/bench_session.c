@@ -8,47 +8,54 @@
 
 #include "platform/plat.h"
 
-int bench_session_world(const bench_session_desc_t *d, app_world_t *w)
+int bench_session_world(const bench_session_desc_t *d, world_t **out)
 {
-    int rc = app_world_load(w, d->opts);
-    if (rc) {
-        app_world_destroy(w);
-        return rc;
-    }
-    app_world_setup_t setup = {.mode = d->mode, .mode_set = d->mode_set, .msaa = d->msaa,
-                               .reference = d->reference, .tuning = d->tuning, .tweak = d->tweak, .user = d->user};
-    if (!app_world_setup(w, &setup)) {
-        app_world_destroy(w);
+    world_options_t wo = app_world_options(d->opts);
+    world_t *w;
+    *out = NULL;
+    int rc = world_load(&wo, &w);
+    if (rc) return rc;
+    world_setup_t setup = {.mode = d->mode, .mode_set = d->mode_set, .msaa = d->msaa,
+                           .reference = d->reference, .tuning = d->tuning, .tweak = d->tweak, .user = d->user};
+    if (!world_setup(w, &setup)) {
+        world_destroy(w);
         return 1;
     }
-    if (!app_world_make_gpu(w)) {
-        core_log_error("session: cannot build the renderer for %s", app_world_scene_path(w));
-        rc = app_world_input_error(w) ? 2 : 1;
-        app_world_destroy(w);
+    if (!world_make_gpu(w)) {
+        core_log_error("session: cannot build the renderer for %s", world_info(w).scene_path);
+        rc = world_info(w).input_error ? 2 : 1;
+        world_destroy(w);
         return rc;
     }
+    *out = w;
     return 0;
 }
 
-/* A session's hooks inside app_world_frame: the frame's number beside them. */
+/* A session's hooks inside world_frame: the frame's number beside them. */
 typedef struct session_frame_t {
     const bench_session_hooks_t *h;
     int frame;
 } session_frame_t;
 
-static int session_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
+static int session_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
 {
     const session_frame_t *sf = user;
     return sf->h->blade_spheres(w, out, max, sf->h->user);
 }
 
-static void session_updated(app_world_t *w, float t, void *user)
+/* A step with the hooks' blade spheres (world_update_spheres). */
+static void session_step(world_t *w, float t, float dt, void *user)
+{
+    world_update_spheres(w, t, dt, session_spheres, user);
+}
+
+static void session_updated(world_t *w, float t, void *user)
 {
     const session_frame_t *sf = user;
     if (sf->h->frame) sf->h->frame(w, sf->frame, t, sf->h->user);
 }
 
-static void session_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user)
+static void session_drawn(world_t *w, const world_view_t *v, gfx_target_t *target, void *user)
 {
     (void)w;
     (void)v;
@@ -61,26 +68,21 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
 {
     static const bench_session_hooks_t none = {0};
     if (!h) h = &none;
-    app_world_t *w = calloc(1, sizeof *w);
-    if (!w) return 1;
-    int rc = bench_session_world(d, w);
-    if (rc) {
-        free(w);
-        return rc;
-    }
-    const scene_desc_t *s = app_world_scene(w);
+    world_t *w;
+    int rc = bench_session_world(d, &w);
+    if (rc) return rc;
+    const scene_desc_t *s = world_info(w).scene;
     int frames = d->frames > 0 ? d->frames : 60;
     int warmup = d->warmup > 0 ? d->warmup : frames / 4;
     gfx_target_t target = {.w = s->size[0], .h = s->size[1]};
-    if (!app_world_fit_target(w, &target, "session")) {
+    if (!world_fit_target(w, &target, "session")) {
         core_log_error("session: cannot make the %dx%d target for %s", s->size[0], s->size[1],
-                       app_world_scene_path(w));
-        app_world_destroy(w);
-        free(w);
+                       world_info(w).scene_path);
+        world_destroy(w);
         return 1;
     }
-    bool own_update = h->blade_spheres && app_world_blades(w) && !app_world_billboards(w) &&
-                      !app_world_characters(w);
+    bool own_update = h->blade_spheres && world_info(w).blades && !world_info(w).billboards &&
+                      !world_info(w).characters;
     cam_t cam;
     scene_camera_init(s, &cam);
     /* A session draws a named path: the hardware one unless the options ask
@@ -89,7 +91,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
      * test_eval_image under ASan measured its noise floor on compute). */
     if (d->opts->raster == 1 + SCENE_RASTER_AUTO) {
         double ms[2];
-        app_world_raster_auto(w, &cam, &target, ms, NULL);
+        world_raster_auto(w, &cam, &target, ms, NULL);
     }
     session_frame_t sf = {.h = h};
     double cpu0 = 0, t_acc = 0;
@@ -103,22 +105,21 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
         float dt = h->step_dt ? h->step_dt(f, s->dt, h->user) : s->dt;
         t_acc += dt;
         sf.frame = f;
-        app_frame_desc_t fd = {.target = &target, .label = "session", .cam = &cam, .follow_path = true,
-                               .t = t_acc, .dt = dt, .steps = 1, .spheres = own_update ? session_spheres : NULL,
+        world_frame_desc_t fd = {.target = &target, .label = "session", .cam = &cam, .follow_path = true,
+                               .t = t_acc, .dt = dt, .steps = 1, .step = own_update ? session_step : NULL,
                                .updated = session_updated, .update_only = h->draw_last_only && f + 1 < frames,
                                .drawn = session_drawn, .user = &sf};
-        app_frame_result_t r = app_world_frame(w, &fd);
-        if (r == APP_FRAME_GPU_LOST)
-            core_log_error("session: %s: the GPU did not finish frame %d", app_world_scene_path(w), f);
-        if (r == APP_FRAME_NO_TARGET || r == APP_FRAME_GPU_LOST) {
+        world_frame_result_t r = world_frame(w, &fd);
+        if (r == WORLD_FRAME_GPU_LOST)
+            core_log_error("session: %s: the GPU did not finish frame %d", world_info(w).scene_path, f);
+        if (r == WORLD_FRAME_NO_TARGET || r == WORLD_FRAME_GPU_LOST) {
             ran = false;
             break;
         }
     }
     if (!ran) {
         gfx_target_destroy(&target);
-        app_world_destroy(w);
-        free(w);
+        world_destroy(w);
         return 1;
     }
     glFinish();
@@ -127,7 +128,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
     if (m) {
         memset(m, 0, sizeof *m);
         m->cpu_ms = cpu * 1000.0 / (frames - warmup > 0 ? frames - warmup : 1);
-        m->raster_compute = w->raster_compute;
+        m->raster_compute = world_info(w).raster_compute;
         m->pass_count = gfx_timer_count();
         for (int i = 0; i < m->pass_count; i++) {
             m->pass_ms[i] = gfx_timer_median_ms(i);
@@ -138,8 +139,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
     }
     bool ok = !last || gfx_target_read(&target, last);
     gfx_target_destroy(&target);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     return ok ? 0 : 1;
 }
 

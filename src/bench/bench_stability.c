@@ -40,7 +40,7 @@ typedef enum stab_measure_t {
 } stab_measure_t;
 
 /* The three variants of every case: both papers' methods as printed
- * (app_tuning_t.paper), this project's defaults, and settings tuned for the
+ * (world_tuning_t.paper), this project's defaults, and settings tuned for the
  * case (only where the case names them). */
 enum { VAR_PAPER, VAR_DEFAULT, VAR_TUNED, VAR_COUNT };
 static const char *const variant_names[VAR_COUNT] = {"paper", "default", "tuned"};
@@ -516,7 +516,7 @@ typedef struct stab_run_t {
     uint32_t seed; /* placement seed (0: the scene's) */
     bool twin_wanted, no_colliders;
     const app_options_t *o;
-    app_world_t *twin;
+    world_t *twin;
     float t_exit, t_end, t_prev;
     int frames;
     float *prev;
@@ -552,23 +552,19 @@ static bench_session_desc_t session_desc(const stab_run_t *r, int frames)
 }
 
 /* The twin (blade cases that compare with an undisturbed world) and its buffers. */
-static void make_twin(app_world_t *w, stab_run_t *r)
+static void make_twin(world_t *w, stab_run_t *r)
 {
     stab_run_t tw = *r;
     tw.no_colliders = true;
-    r->twin = calloc(1, sizeof *r->twin);
     bench_session_desc_t d = session_desc(&tw, 0);
-    if (r->twin && bench_session_world(&d, r->twin) != 0) {
-        free(r->twin);
-        r->twin = NULL;
-    }
-    uint32_t padded = blade_gpu_info(app_world_blades(w)).padded_count;
+    bench_session_world(&d, &r->twin); /* NULL when it cannot be made */
+    uint32_t padded = blade_gpu_info(world_info(w).blades).padded_count;
     r->prev = calloc((size_t)padded * 3, sizeof(float));
     r->ever = calloc(padded, 1);
 }
 
 /* Recovery bookkeeping and trail coverage of a passing ball. */
-static void frame_pass(app_world_t *w, float t, stab_run_t *r)
+static void frame_pass(world_t *w, float t, stab_run_t *r)
 {
     if (t > r->t_exit) {
         double off = r->twin ? bench_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : bench_metrics_bb_offset(w);
@@ -584,7 +580,7 @@ static void frame_pass(app_world_t *w, float t, stab_run_t *r)
     long corridor;
     const float a[2] = {PASS_FROM + 0.3f, 0}, b[2] = {PASS_TO - 0.3f, 0};
     if (r->c->mode == SCENE_MODE_BILLBOARD) {
-        bb_field_t *bf = app_world_billboards(w);
+        bb_field_t *bf = world_info(w).billboards;
         if (!r->ever && bf) {
             bb_field_info_t fi;
             bb_field_info(bf, &fi);
@@ -597,7 +593,7 @@ static void frame_pass(app_world_t *w, float t, stab_run_t *r)
     r->covered = t > r->t_exit;
 }
 
-static void frame_distortion(int f, stab_run_t *r, app_world_t *w)
+static void frame_distortion(int f, stab_run_t *r, world_t *w)
 {
     bench_bb_distortion_t d;
     bench_metrics_bb_distortion(w, &d);
@@ -614,7 +610,7 @@ static void frame_distortion(int f, stab_run_t *r, app_world_t *w)
 
 /* Root density on the face (its middle 80 % in height, 10 % from the
  * sides) over that on the floor away from the face. */
-static void frame_wall(app_world_t *w, stab_run_t *r)
+static void frame_wall(world_t *w, stab_run_t *r)
 {
     float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
     long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
@@ -626,13 +622,13 @@ static void frame_wall(app_world_t *w, stab_run_t *r)
 
 /* The pose jump of this step: blades against their twin, billboards
  * against their wind pose. */
-static void frame_jump(app_world_t *w, stab_run_t *r)
+static void frame_jump(world_t *w, stab_run_t *r)
 {
     double j = 0;
     if (r->twin && r->prev) {
         bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
     } else if (r->c->mode == SCENE_MODE_BILLBOARD) {
-        bb_field_t *bf = app_world_billboards(w);
+        bb_field_t *bf = world_info(w).billboards;
         if (!r->prev && bf) {
             bb_field_info_t fi;
             bb_field_info(bf, &fi);
@@ -643,11 +639,11 @@ static void frame_jump(app_world_t *w, stab_run_t *r)
     if (!(j <= r->jump)) r->jump = j;
 }
 
-static void frame(app_world_t *w, int f, float t, void *user)
+static void frame(world_t *w, int f, float t, void *user)
 {
     stab_run_t *r = user;
     if (f == 0 && r->twin_wanted) make_twin(w, r);
-    if (r->twin) app_world_update(r->twin, t, t - r->t_prev > 0.0f ? t - r->t_prev : app_world_scene(w)->dt);
+    if (r->twin) world_update(r->twin, t, t - r->t_prev > 0.0f ? t - r->t_prev : world_info(w).scene->dt);
     r->t_prev = t;
     if (r->c->measure == MEASURE_PASS) frame_pass(w, t, r);
     if (r->c->measure == MEASURE_DISTORTION) frame_distortion(f, r, w);
@@ -660,7 +656,7 @@ static void frame(app_world_t *w, int f, float t, void *user)
     }
     /* The deepest sample of every frame after the first (depth p95). */
     bool depth = r->c->measure == MEASURE_STATIC || (r->c->measure == MEASURE_SPIKES && t <= r->t_exit);
-    if (depth && f > 0 && f % r->depth_every == 0 && app_world_colliders(w)->count > 0 && *r->ndepth < r->cap) {
+    if (depth && f > 0 && f % r->depth_every == 0 && world_collider_count(w) > 0 && *r->ndepth < r->cap) {
         bench_metrics_t m;
         bench_metrics_measure(w, &m, NULL);
         r->depths[(*r->ndepth)++] = m.penetration_max;
@@ -759,10 +755,7 @@ static int run_one(const app_options_t *o, stab_run_t *r, bool quick, const char
         remove(obj);
         remove(scene);
     }
-    if (r->twin) {
-        app_world_destroy(r->twin);
-        free(r->twin);
-    }
+    world_destroy(r->twin);
     free(r->prev);
     free(r->ever);
     return rc;
@@ -983,7 +976,7 @@ int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *m
             core_buf_t *t = e ? &mdr : &md;
             core_buf_printf(t, "\n`*` marks a failing value; (constant): the measure did not change over the values "
                                "(the method holds at every value, or the measure does not answer the knob). Variants: paper = both papers' methods as printed "
-                               "(app_tuning_t.paper: explicit Euler, eq. 12's length, the paper's eta, no sweep, no "
+                               "(world_tuning_t.paper: explicit Euler, eq. 12's length, the paper's eta, no sweep, no "
                                "friction or collision exit; billboards without slide, ground, bend limit or push "
                                "after the spring sweeps), default = this project's defaults, tuned = the settings "
                                "named in the row. Notes per case (mechanism):\n\n");

@@ -52,7 +52,7 @@ typedef struct blade_clump_desc_t {
                               azimuth views differ only by the blades' turn) */
     float wind_dir[2];     /* the wind's xz direction in the world, default (1, 0) */
     float sun[3];          /* direction to the sun in the world (any length), default
-                              BLADE_CLUMP_SUN, the program's sun (app_world.c) */
+                              BLADE_CLUMP_SUN, the program's sun (world.c) */
     float depth;           /* metres of field behind a card that its elevated views show (the
                               mean free path between cards, pi / (2 size[0] billboard
                               density)), default pi / (2 size[0] SCENE_DEFAULT_BILLBOARD_DENSITY) */

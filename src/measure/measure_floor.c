@@ -1,10 +1,10 @@
-/* app_floor: the floors of a frame: the GPU time to draw the same number of
+/* measure_floor: the floors of a frame: the GPU time to draw the same number of
  * triangles with trivial shaders from a prebuilt buffer into a target of
- * the same size and MSAA, through the hardware pipeline (app_floor_ms) or
- * the compute rasterizer (app_floor_compute_ms: its start, the draw and
+ * the same size and MSAA, through the hardware pipeline (measure_floor_ms) or
+ * the compute rasterizer (measure_floor_compute_ms: its start, the draw and
  * its composite, raster_floor.comp). Blade-like thin triangles scattered
  * over the screen, so rasterisation and vertex work are both exercised. */
-#include "app/app_world.h"
+#include "measure/measure.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -46,7 +46,7 @@ static double median(double *ms, int n)
     return ms[n / 2];
 }
 
-double app_floor_ms(long triangles, int w, int h, int samples)
+double measure_floor_ms(long triangles, int w, int h, int samples)
 {
     if (triangles <= 0) return 0.0;
     gfx_buffer_t buf = floor_triangles(triangles, w, h);
@@ -91,7 +91,7 @@ static void bind_floor(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_FLOOR_TRIS, buf->id);
 }
 
-double app_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples)
+double measure_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples)
 {
     if (triangles <= 0) return 0.0;
     if (triangles > 0x7fffffffL / 3) return -1.0;

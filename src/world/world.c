@@ -1,49 +1,40 @@
-/* app_world: loads the scene and builds, updates and draws every system it
+/* world: loads the scene and builds, updates and draws every system it
  * needs (terrain, colliders, characters, billboards, blades). Used by the
- * main loop, `meadow bench` and `meadow compare` alike. */
-#include "app/app_world.h"
+ * main loop, `meadow bench` and `meadow compare` alike (world.h). */
+#include "world/world_local.h"
 
 #include <math.h>
 #include <pthread.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "app/app_admit.h"
-#include "app/app_pass.h"
+#include "admit/admit.h"
 #include "core/core.h"
 #include "platform/plat.h"
 #include "scene/scene_lod.h"
+#include "world/world_pass.h"
 
-const char *app_stage_name(int stage)
+const char *world_stage_name(int stage)
 {
-    static const char *const names[APP_STAGES] = {"scene",      "terrain",    "context", "terrain_gpu",
+    static const char *const names[WORLD_STAGES] = {"scene",      "terrain",    "context", "terrain_gpu",
                                                   "characters", "billboards", "blades",  "first_frame"};
-    return stage >= 0 && stage < APP_STAGES ? names[stage] : "?";
+    return stage >= 0 && stage < WORLD_STAGES ? names[stage] : "?";
 }
 
 /* Adds the wall time since *mark to the world's stage and moves the mark. */
-static void stage_done(app_world_t *w, int stage, double *mark)
+static void stage_done(world_t *w, int stage, double *mark)
 {
     double now = plat_time();
     w->stage_ms[stage] += (now - *mark) * 1e3;
     *mark = now;
 }
 
-static scene_mode_t mode_from_cli(app_mode_t m, scene_mode_t scene_mode)
-{
-    switch (m) {
-    case APP_MODE_BILLBOARD: return SCENE_MODE_BILLBOARD;
-    case APP_MODE_BLADE: return SCENE_MODE_BLADE;
-    case APP_MODE_HYBRID: return SCENE_MODE_HYBRID;
-    default: return scene_mode;
-    }
-}
-
 /* Refuses, before anything is allocated, a grass.tile_size that cuts a
  * heightfield into more than HYBRID_MAX_TILES tiles or that holds less than
  * one blade per tile (the hybrid's tiles and templates; a 0.001 m tile had
  * grown to 24 GB, 1e-6 m never finished), naming the smallest that fits. */
-static bool tile_admission(const app_world_t *w)
+static bool tile_admission(const world_t *w)
 {
     const terrain_mesh_t *t = &w->terrain_mesh;
     const scene_grass_desc_t *g = &w->scene.grass;
@@ -67,9 +58,9 @@ static bool tile_admission(const app_world_t *w)
     return false;
 }
 
-int app_world_load(app_world_t *w, const app_options_t *o)
+/* world_load's work on a zeroed world. */
+static int load(world_t *w, const world_options_t *o)
 {
-    memset(w, 0, sizeof *w);
     double mark = plat_time();
     char err[1024];
     if (o->scene) snprintf(w->scene_path, sizeof w->scene_path, "%s", o->scene);
@@ -81,7 +72,7 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         s->size[0] = o->width;
         s->size[1] = o->height;
     }
-    s->mode = mode_from_cli(o->mode, s->mode);
+    if (o->mode_set) s->mode = o->mode;
     w->mode = s->mode;
     if (o->blade_render) s->grass.blade_render = (scene_blade_render_t)(o->blade_render - 1);
     w->tuning.view_cards = o->view_cards;
@@ -91,19 +82,19 @@ int app_world_load(app_world_t *w, const app_options_t *o)
     w->character_override = o->character;
     w->clip_override = o->clip;
     w->character_height = o->character_height;
-    float canopy_min = s->grass.switch_distance + APP_SWITCH_FADE + APP_CANOPY_FADE;
+    float canopy_min = s->grass.switch_distance + WORLD_SWITCH_FADE + WORLD_CANOPY_FADE;
     if (s->grass.canopy_distance < canopy_min) {
         core_log_error("%s: grass.canopy_distance %g is less than grass.switch_distance + %g (%g): the blades' and "
                        "the canopy's fade bands would overlap",
-                       w->scene_path, s->grass.canopy_distance, APP_SWITCH_FADE + APP_CANOPY_FADE, canopy_min);
+                       w->scene_path, s->grass.canopy_distance, WORLD_SWITCH_FADE + WORLD_CANOPY_FADE, canopy_min);
         return 2;
     }
-    stage_done(w, APP_STAGE_SCENE, &mark);
+    stage_done(w, WORLD_STAGE_SCENE, &mark);
     /* Before the heightfield is built: its host and GPU copies, the targets
-     * (app_admit; the rest is checked once the GL is up, which takes some
-     * memory of its own: APP_ADMIT_GL_RESERVE). */
-    if (!app_admit_check(s, &(app_admit_world_t){0},
-                         &(app_admit_limits_t){.host_bytes = app_admit_host_bytes() - APP_ADMIT_GL_RESERVE}, err,
+     * (admit; the rest is checked once the GL is up, which takes some
+     * memory of its own: ADMIT_GL_RESERVE). */
+    if (!admit_check(s, &(admit_world_t){0},
+                         &(admit_limits_t){.host_bytes = admit_host_bytes() - ADMIT_GL_RESERVE}, err,
                          sizeof err)) {
         core_log_error("%s: %s", w->scene_path, err);
         return 2;
@@ -128,14 +119,25 @@ int app_world_load(app_world_t *w, const app_options_t *o)
         }
         if (!core_image_load(&w->clearings_image, image, 1)) return 2; /* logged: the file and why */
     }
-    stage_done(w, APP_STAGE_TERRAIN, &mark);
+    stage_done(w, WORLD_STAGE_TERRAIN, &mark);
     return tile_admission(w) ? 0 : 2;
+}
+
+int world_load(const world_options_t *o, world_t **out)
+{
+    world_t *w = calloc(1, sizeof *w);
+    *out = NULL;
+    if (!w) return 1;
+    int rc = load(w, o);
+    if (rc) world_destroy(w);
+    else *out = w;
+    return rc;
 }
 
 /* The layout shared by both grass models (so hybrid tiles cover the same
  * ground): one layout texel per billboard candidate cell over the terrain,
  * so the extent map's clearings are sized relative to the field. */
-static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
+static int layout_for(const world_t *w, bb_gen_desc_t *gen)
 {
     const scene_grass_desc_t *g = &w->scene.grass;
     float extent = fmaxf(w->terrain_mesh.aabb_max[0] - w->terrain_mesh.aabb_min[0],
@@ -152,7 +154,7 @@ static int layout_for(const app_world_t *w, bb_gen_desc_t *gen)
 /* The extent map's clearings (grass.clearings) on the layout of gen's
  * cells: the blob size in texels, the image stretched over the terrain's
  * xz box (the layout's origin is its corner). */
-static bb_extent_desc_t extent_desc(const app_world_t *w, const bb_gen_desc_t *gen)
+static bb_extent_desc_t extent_desc(const world_t *w, const bb_gen_desc_t *gen)
 {
     static const bb_clearings_t kinds[] = {[SCENE_CLEARINGS_NOISE] = BB_CLEARINGS_NOISE,
                                            [SCENE_CLEARINGS_NONE] = BB_CLEARINGS_NONE,
@@ -171,7 +173,7 @@ static bb_extent_desc_t extent_desc(const app_world_t *w, const bb_gen_desc_t *g
 
 /* The shared layout's extent map alone (the clump texture is the billboard
  * field's business): one tiny clump layer is enough for bb_layout. */
-bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
+bool world_extent_layout(const world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
 {
     int size = layout_for(w, gen);
     return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = w->scene.seed, .size = size, .clump_layers = 1,
@@ -179,8 +181,8 @@ bool app_world_extent_layout(const app_world_t *w, bb_layout_t *lay, bb_gen_desc
                                                         .extent = extent_desc(w, gen)});
 }
 
-/* The seed of where blades stand (app_tuning_t.placement_seed). */
-static uint32_t placement_seed(const app_world_t *w)
+/* The seed of where blades stand (world_tuning_t.placement_seed). */
+static uint32_t placement_seed(const world_t *w)
 {
     return w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
 }
@@ -190,11 +192,11 @@ static uint32_t placement_seed(const app_world_t *w)
  * representations share clearings and density ratio. A rejected blade gets
  * height and width 0: the physics and culling skip it like patch padding,
  * and the patch layout stays intact. */
-static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
+static size_t thin_blades_by_extent(const world_t *w, blade_field_t *field)
 {
     bb_gen_desc_t gen;
     bb_layout_t lay;
-    if (!app_world_extent_layout(w, &lay, &gen)) return 0;
+    if (!world_extent_layout(w, &lay, &gen)) return 0;
     size_t dropped = 0;
     for (size_t i = 0; i < field->blade_count; i++) {
         blade_t *b = &field->blades[i];
@@ -214,7 +216,7 @@ static size_t thin_blades_by_extent(const app_world_t *w, blade_field_t *field)
 }
 
 /* Largest bounding radius of a collider or character (grass.cube_texel). */
-static float largest_object_radius(app_world_t *w)
+static float largest_object_radius(world_t *w)
 {
     float r = 0.0f;
     for (int i = 0; i < w->scene.collider_count; i++) r = fmaxf(r, collide_bounding_radius(&w->scene.colliders[i]));
@@ -231,7 +233,7 @@ static float largest_object_radius(app_world_t *w)
  * texels 2 r / res no larger than cube_texel (large_bb in the stability
  * suite: a 4 m ball at 16 texels had 0.5 m texels). Capped where the cube
  * render target (res x 6 res) exceeds the GL's texture size, with a warning. */
-static int cube_resolution_for(app_world_t *w)
+static int cube_resolution_for(world_t *w)
 {
     const scene_grass_desc_t *g = &w->scene.grass;
     int res = g->cube_resolution;
@@ -256,7 +258,7 @@ static int cube_resolution_for(app_world_t *w)
     return res;
 }
 
-static bool make_bb(app_world_t *w)
+bb_field_t *world_make_bb(const world_t *w, uint32_t placement)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
@@ -271,10 +273,10 @@ static bool make_bb(app_world_t *w)
     int layout_size = layout_for(w, &gen);
     int objects = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
-    w->bb = bb_field_make(&(bb_field_desc_t){
+    return bb_field_make(&(bb_field_desc_t){
         .terrain = &w->terrain_mesh,
         .seed = s->seed,
-        .placement_seed = w->tuning.placement_seed,
+        .placement_seed = placement,
         .density = g->billboard_density,
         .size = {g->billboard_size[0], g->billboard_size[1]},
         .subdiv = {g->subdiv[0], g->subdiv[1]},
@@ -295,39 +297,35 @@ static bool make_bb(app_world_t *w)
                    .extent = extent_desc(w, &gen),
                    .views = {.on = w->tuning.view_cards}},
     });
+}
+
+static bool make_bb(world_t *w)
+{
+    w->bb = world_make_bb(w, w->tuning.placement_seed);
     return w->bb != NULL;
 }
 
-bool app_world_make_billboards(app_world_t *w, uint32_t placement_seed)
+static bool on_world(const world_t *w) { return w->terrain_mesh.type == TERRAIN_WORLD; }
+static world_ground_t ground_of(const world_t *w)
 {
-    uint32_t keep = w->tuning.placement_seed;
-    w->tuning.placement_seed = placement_seed;
-    bool ok = make_bb(w);
-    w->tuning.placement_seed = keep;
-    return ok;
+    if (on_world(w)) return WORLD_GROUND_WORLD;
+    return w->terrain_mesh.grid_res > 0 ? WORLD_GROUND_HEIGHTFIELD : WORLD_GROUND_MESH;
 }
-
-static bool on_world(const app_world_t *w) { return w->terrain_mesh.type == TERRAIN_WORLD; }
-static app_ground_t ground_of(const app_world_t *w)
-{
-    if (on_world(w)) return APP_GROUND_WORLD;
-    return w->terrain_mesh.grid_res > 0 ? APP_GROUND_HEIGHTFIELD : APP_GROUND_MESH;
-}
-/* What the world makes and draws: the rules of app_pass.h for its ground
+/* What the world makes and draws: the rules of world_pass.h for its ground
  * (billboards are refused in billboard mode on a world; the hybrid there
  * draws tiles and the canopy; blade mode off a world and the reference
  * simulate every blade of the field, as the paper). */
-static bool wants_bb(const app_world_t *w, scene_mode_t m) { return app_pass_wants_billboards(m, ground_of(w)); }
-static bool wants_blades(scene_mode_t m) { return app_pass_wants_blades(m); }
-static bool uses_tiles(const app_world_t *w) { return app_pass_uses_tiles(w->mode, ground_of(w), w->reference); }
+static bool wants_bb(const world_t *w, scene_mode_t m) { return world_pass_wants_billboards(m, ground_of(w)); }
+static bool wants_blades(scene_mode_t m) { return world_pass_wants_blades(m); }
+static bool uses_tiles(const world_t *w) { return world_pass_uses_tiles(w->mode, ground_of(w), w->reference); }
 
 /* How far the tiles draw blades: the switch distance, or on a world in
- * blade mode grass.blade_distance (default APP_WORLD_BLADE_DISTANCE). */
-static float tiles_distance(const app_world_t *w)
+ * blade mode grass.blade_distance (default WORLD_BLADE_DISTANCE). */
+static float tiles_distance(const world_t *w)
 {
     const scene_grass_desc_t *g = &w->scene.grass;
     if (!on_world(w) || w->mode != SCENE_MODE_BLADE) return g->switch_distance;
-    return g->blade_distance > 0.0f ? g->blade_distance : APP_WORLD_BLADE_DISTANCE;
+    return g->blade_distance > 0.0f ? g->blade_distance : WORLD_BLADE_DISTANCE;
 }
 
 /* m^2 of the terrain's surface. */
@@ -346,7 +344,7 @@ static double terrain_area(const terrain_mesh_t *t)
     return area;
 }
 
-static bool make_blades(app_world_t *w)
+static bool make_blades(world_t *w)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
@@ -356,7 +354,7 @@ static bool make_blades(app_world_t *w)
                          .indices = t->indices, .index_count = t->index_count};
     blade_seed_desc_t sd = {.seed = placement_seed(w),
                             .population = g->population,
-                            .max_blades = APP_ADMIT_MAX_FIELD_BLADES};
+                            .max_blades = ADMIT_MAX_FIELD_BLADES};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
     size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
     blade_gpu_desc_t gd = {.field = &field, .shape = g->population.shape, .label = "blades",
@@ -379,7 +377,7 @@ static bool make_blades(app_world_t *w)
 _Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the blade physics");
 
 /* The blade environment shared by the full field and the tiles. */
-static void make_blade_env(app_world_t *w)
+static void make_blade_env(world_t *w)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
@@ -410,7 +408,7 @@ static void make_blade_env(app_world_t *w)
  * seed the blades of tiles turning to blades (blade_tiles.h). */
 static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
 {
-    app_world_t *w = user;
+    world_t *w = user;
     if (w->bb) bb_field_add_slopes(w->bb, grid, sums);
 }
 
@@ -429,13 +427,13 @@ static void *canopy_thread(void *user)
     return NULL;
 }
 
-static bool make_tiles(app_world_t *w)
+static bool make_tiles(world_t *w)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
     canopy_job_t job = {.desc = {.population = g->population,
                                  .seed = s->seed,
-                                 .sun = APP_SUN_DIR}};
+                                 .sun = WORLD_SUN_DIR}};
     pthread_t thread;
     bool threaded = pthread_create(&thread, NULL, canopy_thread, &job) == 0;
     blade_tiles_desc_t td = {.terrain = &w->terrain_mesh,
@@ -455,7 +453,7 @@ static bool make_tiles(app_world_t *w)
     /* The billboards' extent map thins the tiles too (same clearings). */
     bb_gen_desc_t gen;
     bb_layout_t lay;
-    bool have_layout = app_world_extent_layout(w, &lay, &gen);
+    bool have_layout = world_extent_layout(w, &lay, &gen);
     if (have_layout) {
         td.extent = &lay.extent;
         memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);
@@ -470,7 +468,7 @@ static bool make_tiles(app_world_t *w)
     if (threaded) pthread_join(thread, NULL);
     else canopy_thread(&job);
     if (w->have_tiles && job.ok)
-        app_terrain_set_canopy(&w->terrain, &job.canopy, blade_tiles_info(w->tiles).extent_texture,
+        world_terrain_set_canopy(&w->terrain, &job.canopy, blade_tiles_info(w->tiles).extent_texture,
                                td.extent_origin, td.extent_spacing);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
@@ -479,7 +477,7 @@ static bool make_tiles(app_world_t *w)
 /* Collider i's sweep (previous - current centre) from this step's collide
  * set: the colliders are its first objects (add_objects) and only
  * translate, so every sphere of their proxies moves by the same vector. */
-static void collider_sweep(const app_world_t *w, int i, float out[4])
+static void collider_sweep(const world_t *w, int i, float out[4])
 {
     const collide_object_t *o = i < w->collide.object_count ? &w->collide.objects[i] : NULL;
     for (int k = 0; k < 3; k++) out[k] = o ? o->prev_position[k] - o->position[k] : 0.0f;
@@ -490,7 +488,7 @@ static void collider_sweep(const app_world_t *w, int i, float out[4])
  * each holds its previous and current pose) appended to out[n..max). On a
  * world only those of characters that can touch the tile window: the
  * window's half diagonal around the camera (docs/WORLD.md). */
-static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max)
+static int character_spheres(world_t *w, blade_sphere_t *out, int n, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
     float reach = 0.0f;
@@ -505,15 +503,15 @@ static int character_spheres(app_world_t *w, blade_sphere_t *out, int n, int max
 }
 
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
- * with its sweep, then the characters'). Admission (app_admit) keeps them
+ * with its sweep, then the characters'). Admission (admit) keeps them
  * within BLADE_MAX_SPHERES. */
-static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
+static int blade_spheres(world_t *w, blade_sphere_t *out, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
     int n = 0;
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
-        const app_collider_t *c = &w->colliders.items[i];
+        const world_collider_t *c = &w->colliders.items[i];
         int want = collide_pack_spheres(&c->desc, c->position, packed, max - n);
         full = want > max - n;
         int got = full ? max - n : want;
@@ -533,14 +531,14 @@ static int blade_spheres(app_world_t *w, blade_sphere_t *out, int max)
 
 /* Capsules per character for the blade proxies: 8 keeps a humanoid near 35
  * spheres (see character_proxy_spheres). */
-#define APP_CHARACTER_CAPSULES 8
+#define WORLD_CHARACTER_CAPSULES 8
 
 /* grass.lod_table: the switch and canopy distances the bench measured for
  * this GL renderer and path, and with raster auto the cheaper path
  * (scene_lod.h); they replace the scene's before anything is built. A table
  * of another renderer, or one that cannot be read, leaves the scene's with
  * a warning. */
-static void apply_lod_table(app_world_t *w)
+static void apply_lod_table(world_t *w)
 {
     scene_grass_desc_t *g = &w->scene.grass;
     if (!g->lod_table[0] || w->mode != SCENE_MODE_HYBRID || w->reference) return;
@@ -564,7 +562,7 @@ static void apply_lod_table(app_world_t *w)
     }
     g->switch_distance = p->switch_distance;
     g->canopy_distance = p->canopy_distance;
-    if (auto_path) app_world_set_raster(w, compute);
+    if (auto_path) world_set_raster(w, compute);
     snprintf(w->lod_note, sizeof w->lod_note,
              "%s path%s, from %.200s: %.3f ms at image error %.3f, %s budget %.3f (blade mode's error + noise "
              "floor); the cheapest within it of %d hybrid configurations",
@@ -574,30 +572,30 @@ static void apply_lod_table(app_world_t *w)
     core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, w->lod_note);
 }
 
-_Static_assert(APP_ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "app_admit's raster queue estimate");
-_Static_assert(APP_ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "app_admit's object count is a collide set's");
-_Static_assert(APP_ADMIT_MAX_SPHERES == BLADE_MAX_SPHERES, "app_admit's sphere count is the blade physics'");
+_Static_assert(ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "admit's raster queue estimate");
+_Static_assert(ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "admit's object count is a collide set's");
+_Static_assert(ADMIT_MAX_SPHERES == BLADE_MAX_SPHERES, "admit's sphere count is the blade physics'");
 
-/* Resource admission (app_admit.h) once the GL's limits are known, before
+/* Resource admission (admit.h) once the GL's limits are known, before
  * any grass is allocated: a scene that does not fit is bad input. */
-static bool admit(app_world_t *w)
+static bool admit(world_t *w)
 {
     gfx_limits_t gl = gfx_limits();
-    app_admit_limits_t lim = {.max_texture_size = gl.max_texture_size,
+    admit_limits_t lim = {.max_texture_size = gl.max_texture_size,
                               .max_renderbuffer_size = gl.max_renderbuffer_size,
                               .max_gs_vertices = gl.max_gs_vertices,
                               .max_gs_components = gl.max_gs_components,
                               .max_compute_groups = gl.max_compute_groups,
                               .gpu_bytes = 0.9 * gl.gpu_bytes,
-                              .host_bytes = app_admit_host_bytes()};
-    app_admit_world_t aw = {.terrain = &w->terrain_mesh,
+                              .host_bytes = admit_host_bytes()};
+    admit_world_t aw = {.terrain = &w->terrain_mesh,
                             .terrain_area = terrain_area(&w->terrain_mesh),
                             .billboards = wants_bb(w, w->mode) && !w->reference,
                             .tiles = uses_tiles(w),
                             .tiles_distance = tiles_distance(w),
                             .full_field = (wants_blades(w->mode) && !uses_tiles(w)) || w->reference,
                             .raster = w->scene.raster != SCENE_RASTER_HW,
-                            .target_samples = gfx_target_samples(app_world_target_samples(w)),
+                            .target_samples = gfx_target_samples(world_target_samples(w)),
                             .collider_radius = largest_object_radius(w),
                             .max_texture_size = gl.max_texture_size,
                             .objects = w->scene.collider_count +
@@ -613,21 +611,21 @@ static bool admit(app_world_t *w)
     aw.character_spheres =
         w->have_chars && !on_world(w) ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
     char err[1024];
-    app_admit_estimate(&w->scene, &aw, &w->admitted);
-    if (app_admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
+    admit_estimate(&w->scene, &aw, &w->admitted);
+    if (admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
     core_log_error("%s: %s", w->scene_path, err);
     w->input_error = true;
     return false;
 }
 
-bool app_world_make_gpu(app_world_t *w)
+bool world_make_gpu(world_t *w)
 {
     double mark = plat_time();
     apply_lod_table(w);
-    w->gpu_ready = admit(w) && app_terrain_make(&w->terrain, &w->terrain_mesh) &&
-                   app_colliders_make(&w->colliders, &w->scene);
-    if (w->gpu_ready && w->scene.grass.gi) w->gpu_ready = app_gi_make(w);
-    stage_done(w, APP_STAGE_TERRAIN_GPU, &mark);
+    w->gpu_ready = admit(w) && world_terrain_make(&w->terrain, &w->terrain_mesh) &&
+                   world_colliders_make(&w->colliders, &w->scene);
+    if (w->gpu_ready && w->scene.grass.gi) w->gpu_ready = world_gi_make(w);
+    stage_done(w, WORLD_STAGE_TERRAIN_GPU, &mark);
     if (w->gpu_ready && !w->scene.character_count && !w->character_override &&
         (w->clip_override || w->character_height > 0.0f)) {
         core_log_error("%s: the scene has no characters and there is no --character",
@@ -640,7 +638,7 @@ bool app_world_make_gpu(app_world_t *w)
                                                           .characters = w->scene.characters,
                                                           .count = w->scene.character_count,
                                                           .terrain = &w->terrain_mesh,
-                                                          .capsules = APP_CHARACTER_CAPSULES,
+                                                          .capsules = WORLD_CHARACTER_CAPSULES,
                                                           .model_override = w->character_override,
                                                           .clip_override = w->clip_override,
                                                           .height_override = w->character_height,
@@ -648,17 +646,17 @@ bool app_world_make_gpu(app_world_t *w)
         w->input_error = !w->have_chars;
         w->gpu_ready = w->have_chars;
     }
-    stage_done(w, APP_STAGE_CHARACTERS, &mark);
+    stage_done(w, WORLD_STAGE_CHARACTERS, &mark);
     /* Again with the characters: their size (grass.cube_texel scales the
      * cube maps by it) and their sphere proxies in the blade physics. */
     if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
     if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
     if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) w->gpu_ready = make_bb(w);
-    stage_done(w, APP_STAGE_BILLBOARDS, &mark);
+    stage_done(w, WORLD_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
     else if (w->gpu_ready && (wants_blades(w->mode) || w->reference)) w->gpu_ready = make_blades(w);
-    stage_done(w, APP_STAGE_BLADES, &mark);
+    stage_done(w, WORLD_STAGE_BLADES, &mark);
     if (!w->drawn) {
         /* Until the first draw, the scene's camera at t = 0 decides which
          * tiles are near (the first frame drew no grass near the camera
@@ -672,12 +670,12 @@ bool app_world_make_gpu(app_world_t *w)
 
 /* This step's objects of the collide set: every analytic collider (its
  * mesh VAO has position at attribute 0 and normal at 1), then every
- * character. Admission (app_admit) keeps them within the set. */
-static void add_objects(app_world_t *w, collide_set_t *set, float dt)
+ * character. Admission (admit) keeps them within the set. */
+static void add_objects(world_t *w, collide_set_t *set, float dt)
 {
     bool full = false;
     for (int i = 0; i < w->colliders.count && !full; i++) {
-        const app_collider_t *c = &w->colliders.items[i];
+        const world_collider_t *c = &w->colliders.items[i];
         collide_object_t o = {.radius = c->bound_radius, .vao = c->vao,
                               .index_count = (int32_t)c->mesh.index_count, .index_type = GL_UNSIGNED_INT};
         mat4 m;
@@ -706,7 +704,7 @@ static void add_objects(app_world_t *w, collide_set_t *set, float dt)
  * rasterised once on the CPU (collide_render_shape) at the scene's cube
  * resolution, the first BLADE_MAX_CUBES of them; further colliders by
  * their bounding sphere and characters by their proxy spheres. */
-static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
+static void blade_cube_proxies(world_t *w, collide_set_t *set)
 {
     if (w->bb) {
         bb_field_lend_cubes(w->bb, set);
@@ -717,7 +715,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
         collide_cubemap_t cubes[BLADE_MAX_CUBES];
         bool ok = true;
         for (int k = 0; k < nc; k++) {
-            const app_collider_t *c = &w->colliders.items[k];
+            const world_collider_t *c = &w->colliders.items[k];
             ok = ok && collide_init_cubemap(&cubes[k], w->cube_res, (vec3){0, 0, 0}, c->bound_radius);
             if (!ok) {
                 nc = k;
@@ -730,7 +728,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
     }
     if (!w->blade_cubes) nc = 0;
     for (int k = 0; k < nc; k++) {
-        const app_collider_t *c = &w->colliders.items[k];
+        const world_collider_t *c = &w->colliders.items[k];
         mat4 model;
         glm_translate_make(model, (float *)c->position);
         collide_make_cube_proxy((const float *)model, (vec3){0, 0, 0}, c->bound_radius, &set->cubes[set->cube_count++]);
@@ -738,7 +736,7 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
     set->cube_texture = w->blade_cubes;
     set->cube_res = w->cube_res;
     for (int k = nc; k < w->colliders.count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
-        const app_collider_t *c = &w->colliders.items[k];
+        const world_collider_t *c = &w->colliders.items[k];
         collide_sphere_t *s = &set->spheres[set->sphere_count++];
         *s = (collide_sphere_t){.centre_radius = {c->position[0], c->position[1], c->position[2], c->bound_radius}};
         collider_sweep(w, k, s->sweep);
@@ -752,20 +750,20 @@ static void blade_cube_proxies(app_world_t *w, collide_set_t *set)
 
 /* One step: colliders and characters move, the collide set is built from
  * them, and every grass system takes it. */
-void app_world_update(app_world_t *w, float t, float dt)
+void world_update(world_t *w, float t, float dt)
 {
     w->time = t;
-    app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+    world_colliders_update(&w->colliders, &w->terrain_mesh, t);
     if (w->have_chars) character_set_update(&w->chars, t, dt);
     collide_set_t *set = &w->collide;
     if (!w->stepped && dt > 0.0f) {
         /* The first step sweeps too: the colliders on paths stood at t - dt
          * before it (a fast ball's first step would skip its path
          * otherwise: stability cases tunnelling, tunnelling_bb). */
-        app_colliders_update(&w->colliders, &w->terrain_mesh, t - dt);
+        world_colliders_update(&w->colliders, &w->terrain_mesh, t - dt);
         collide_begin_set(set);
         add_objects(w, set, 0.0f);
-        app_colliders_update(&w->colliders, &w->terrain_mesh, t);
+        world_colliders_update(&w->colliders, &w->terrain_mesh, t);
     }
     w->stepped = true;
     collide_begin_set(set);
@@ -778,7 +776,7 @@ void app_world_update(app_world_t *w, float t, float dt)
          * there bend the blades alone (unless the blades borrow the
          * billboards' cube maps). */
         bool hide = w->mode == SCENE_MODE_HYBRID && !w->reference && w->drawn && !w->tuning.blade_cube_proxies;
-        bb_field_set_hidden(w->bb, w->camera, hide ? w->scene.grass.switch_distance - APP_SWITCH_FADE : 0.0f);
+        bb_field_set_hidden(w->bb, w->camera, hide ? w->scene.grass.switch_distance - WORLD_SWITCH_FADE : 0.0f);
         bb_field_update(w->bb, set, t, dt);
     }
     if (w->have_blades || w->have_tiles) {
@@ -793,7 +791,7 @@ void app_world_update(app_world_t *w, float t, float dt)
 }
 
 /* The visibility buffer at the target's size (made or remade here). */
-static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
+static raster_t *frame_raster(world_t *w, const gfx_target_t *target)
 {
     raster_t *r = &w->raster;
     if (r->vis.id && r->desc.w == target->w && r->desc.h == target->h) return r;
@@ -806,9 +804,9 @@ static raster_t *frame_raster(app_world_t *w, const gfx_target_t *target)
     return r;
 }
 
-/* One frame's draw state shared by its passes (app_world_draw). */
+/* One frame's draw state shared by its passes (world_draw). */
 typedef struct frame_draw_t {
-    const app_view_t *v;
+    const world_view_t *v;
     const gfx_target_t *target;
     raster_t *raster;       /* NULL: the hardware path */
     bool tiles;             /* the frame draws tiles (and the canopy beyond) */
@@ -817,9 +815,9 @@ typedef struct frame_draw_t {
     bool raster_ok;
 } frame_draw_t;
 
-static void draw_tiles(app_world_t *w, frame_draw_t *f)
+static void draw_tiles(world_t *w, frame_draw_t *f)
 {
-    const app_view_t *v = f->v;
+    const world_view_t *v = f->v;
     blade_draw_desc_t dd = {.time = v->time, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->terrain.gi};
     memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
     memcpy(dd.camera, v->camera, sizeof dd.camera);
@@ -834,9 +832,9 @@ static void draw_tiles(app_world_t *w, frame_draw_t *f)
     }
 }
 
-static void draw_blades(app_world_t *w, frame_draw_t *f)
+static void draw_blades(world_t *w, frame_draw_t *f)
 {
-    const app_view_t *v = f->v;
+    const world_view_t *v = f->v;
     const gfx_target_t *target = f->target;
     /* Occlusion culling reads the resolved depth of the opaque pass (the
      * compute path: the farthest opaque sample, from raster_begin). */
@@ -870,9 +868,9 @@ static void draw_blades(app_world_t *w, frame_draw_t *f)
     else blade_gpu_draw(w->blades, &dd);
 }
 
-static void draw_billboards(app_world_t *w, frame_draw_t *f)
+static void draw_billboards(world_t *w, frame_draw_t *f)
 {
-    const app_view_t *v = f->v;
+    const world_view_t *v = f->v;
     bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
     memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
     memcpy(d.camera, v->camera, sizeof d.camera);
@@ -891,49 +889,49 @@ static void draw_billboards(app_world_t *w, frame_draw_t *f)
     else bb_field_draw(w->bb, &d);
 }
 
-static void run_pass(app_world_t *w, frame_draw_t *f, app_pass_kind_t kind)
+static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
 {
     switch (kind) {
-    case APP_PASS_TERRAIN:
+    case WORLD_PASS_TERRAIN:
         gfx_timer_begin("terrain");
-        app_terrain_draw(&w->terrain, f->v);
-        app_colliders_draw(&w->colliders, f->v);
+        world_terrain_draw(&w->terrain, f->v);
+        world_colliders_draw(&w->colliders, f->v);
         gfx_timer_end();
         break;
-    case APP_PASS_CHARACTERS:
+    case WORLD_PASS_CHARACTERS:
         character_set_draw(&w->chars, (const float *)f->v->viewproj, f->v->camera, f->v->sun_dir);
         break;
     /* raster_begin takes the opaque depth (also read by occlusion culling). */
-    case APP_PASS_RASTER_BEGIN: raster_begin(f->raster, f->target); break;
-    case APP_PASS_TILES: draw_tiles(w, f); break;
-    case APP_PASS_BLADES: draw_blades(w, f); break;
-    case APP_PASS_BILLBOARDS: draw_billboards(w, f); break;
-    case APP_PASS_RASTER_END: raster_end(f->raster, f->target); break;
-    case APP_PASS_KINDS: break;
+    case WORLD_PASS_RASTER_BEGIN: raster_begin(f->raster, f->target); break;
+    case WORLD_PASS_TILES: draw_tiles(w, f); break;
+    case WORLD_PASS_BLADES: draw_blades(w, f); break;
+    case WORLD_PASS_BILLBOARDS: draw_billboards(w, f); break;
+    case WORLD_PASS_RASTER_END: raster_end(f->raster, f->target); break;
+    case WORLD_PASS_KINDS: break;
     }
 }
 
-/* The passes of app_pass_list, in order. */
-void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *target, bool wireframe)
+/* The passes of world_pass_list, in order. */
+void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
     glm_vec3_copy((float *)v->camera, w->camera);
     w->drawn = true;
     frame_draw_t f = {.v = v, .target = target, .raster_ok = true};
     f.raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
-    app_pass_t passes[APP_PASS_KINDS];
-    int n = app_pass_list(&(app_pass_desc_t){.mode = w->mode, .ground = ground_of(w), .compute = f.raster != NULL,
+    world_pass_t passes[WORLD_PASS_KINDS];
+    int n = world_pass_list(&(world_pass_desc_t){.mode = w->mode, .ground = ground_of(w), .compute = f.raster != NULL,
                                              .reference = w->reference, .have_tiles = w->have_tiles,
                                              .have_blades = w->have_blades, .have_billboards = w->bb != NULL,
                                              .have_characters = w->have_chars},
                           passes);
-    f.tiles = app_pass_has(passes, n, APP_PASS_TILES); /* the hybrid's near blades, and its canopy */
-    f.fade_lo = tiles_distance(w) - APP_SWITCH_FADE;
-    f.fade_hi = tiles_distance(w) + APP_SWITCH_FADE;
+    f.tiles = world_pass_has(passes, n, WORLD_PASS_TILES); /* the hybrid's near blades, and its canopy */
+    f.fade_lo = tiles_distance(w) - WORLD_SWITCH_FADE;
+    f.fade_hi = tiles_distance(w) + WORLD_SWITCH_FADE;
     /* The canopy fades in beyond the billboards, or on a world (no
      * billboards yet) where the blades fade out. */
-    f.far_lo = on_world(w) ? f.fade_lo : w->scene.grass.canopy_distance - APP_CANOPY_FADE;
-    f.far_hi = on_world(w) ? f.fade_hi : w->scene.grass.canopy_distance + APP_CANOPY_FADE;
+    f.far_lo = on_world(w) ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
+    f.far_hi = on_world(w) ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
     w->terrain.canopy_fade[0] = f.tiles ? f.far_lo : 0.0f;
     w->terrain.canopy_fade[1] = f.tiles ? f.far_hi : 0.0f;
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
@@ -944,20 +942,20 @@ void app_world_draw(app_world_t *w, const app_view_t *v, const gfx_target_t *tar
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }
 
-void app_world_set_raster(app_world_t *w, bool compute)
+void world_set_raster(world_t *w, bool compute)
 {
     w->raster_compute = compute;
     w->scene.raster = compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW;
 }
 
-int app_world_target_samples(const app_world_t *w)
+int world_target_samples(const world_t *w)
 {
     return w->raster_compute ? 1 : w->scene.msaa;
 }
 
-bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *label)
+bool world_fit_target(const world_t *w, gfx_target_t *t, const char *label)
 {
-    int samples = app_world_target_samples(w);
+    int samples = world_target_samples(w);
     if (t->fbo && t->samples == gfx_target_samples(samples)) return true;
     int tw = t->w, th = t->h;
     gfx_target_destroy(t);
@@ -966,7 +964,7 @@ bool app_world_fit_target(const app_world_t *w, gfx_target_t *t, const char *lab
     return t->fbo != 0;
 }
 
-void app_world_set_mode(app_world_t *w, scene_mode_t mode)
+void world_set_mode(world_t *w, scene_mode_t mode)
 {
     w->mode = mode;
     w->scene.mode = mode;
@@ -975,32 +973,27 @@ void app_world_set_mode(app_world_t *w, scene_mode_t mode)
     else if (w->gpu_ready && wants_blades(mode) && !uses_tiles(w) && !w->have_blades) make_blades(w);
 }
 
-void app_world_destroy(app_world_t *w)
+void world_destroy(world_t *w)
 {
+    if (!w) return;
     bb_field_destroy(w->bb);
-    w->bb = NULL;
     blade_gpu_destroy(w->blades);
     blade_tiles_destroy(w->tiles);
-    w->blades = NULL;
-    w->tiles = NULL;
-    w->have_tiles = false;
     if (w->have_chars) character_set_destroy(&w->chars);
-    w->have_chars = false;
-    w->have_blades = false;
     raster_destroy(&w->raster);
-    w->blade_cubes = 0;
-    app_colliders_destroy(&w->colliders);
+    world_colliders_destroy(&w->colliders);
     gi_gpu_destroy(&w->gi);
-    app_terrain_destroy(&w->terrain);
+    world_terrain_destroy(&w->terrain);
     terrain_free(&w->terrain_mesh);
     core_image_free(&w->clearings_image);
+    free(w);
 }
 
-void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, float time, float dt)
+void world_view_make(world_view_t *v, const cam_t *cam_in, int width, int height, float time, float dt)
 {
     cam_t cam = *cam_in;
     cam.aspect = (float)width / (float)height;
-    *v = (app_view_t){0};
+    *v = (world_view_t){0};
     cam_view(&cam, v->view);
     cam_proj(&cam, v->proj);
     glm_mat4_mul(v->proj, v->view, v->viewproj);
@@ -1008,14 +1001,14 @@ void app_view_make(app_view_t *v, const cam_t *cam_in, int width, int height, fl
     cam_frustum_planes(v->viewproj, v->planes);
     glm_vec3_copy(cam.position, v->camera);
     v->far = cam.far;
-    glm_vec3_normalize_to((vec3)APP_SUN_DIR, v->sun_dir); /* the clump bakes and the canopy light with it */
+    glm_vec3_normalize_to((vec3)WORLD_SUN_DIR, v->sun_dir); /* the clump bakes and the canopy light with it */
     v->width = width;
     v->height = height;
     v->time = time;
     v->dt = dt;
 }
 
-void app_world_stats(app_world_t *w, app_world_stats_t *st)
+void world_stats(world_t *w, world_stats_t *st)
 {
     memset(st, 0, sizeof *st);
     if (w->have_blades) {

@@ -1,15 +1,15 @@
-/* app_colliders: the scene's analytic colliders (spheres, capsules, boxes on
+/* world_colliders: the scene's analytic colliders (spheres, capsules, boxes on
  * keyed paths): meshes on the GPU, positions per frame, and drawing. */
-#include "app/app_world.h"
+#include "world/world_local.h"
 
 #include <string.h>
 
-bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s)
+bool world_colliders_make(world_colliders_t *c, const scene_desc_t *s)
 {
     memset(c, 0, sizeof *c);
     c->count = s->collider_count;
     for (int i = 0; i < c->count; i++) {
-        app_collider_t *a = &c->items[i];
+        world_collider_t *a = &c->items[i];
         a->desc = s->colliders[i];
         if (!collide_make_mesh(&a->mesh, &a->desc)) return false;
         size_t nv = a->mesh.vertex_count;
@@ -39,10 +39,10 @@ bool app_colliders_make(app_colliders_t *c, const scene_desc_t *s)
     return c->prog.id != 0;
 }
 
-void app_colliders_destroy(app_colliders_t *c)
+void world_colliders_destroy(world_colliders_t *c)
 {
     for (int i = 0; i < c->count; i++) {
-        app_collider_t *a = &c->items[i];
+        world_collider_t *a = &c->items[i];
         gfx_buffer_destroy(&a->vbo);
         gfx_buffer_destroy(&a->ibo);
         gfx_vertex_array_destroy(&a->vao);
@@ -52,16 +52,16 @@ void app_colliders_destroy(app_colliders_t *c)
     c->count = 0;
 }
 
-void app_colliders_update(app_colliders_t *c, const terrain_mesh_t *terrain, float t)
+void world_colliders_update(world_colliders_t *c, const terrain_mesh_t *terrain, float t)
 {
     for (int i = 0; i < c->count; i++) {
-        app_collider_t *a = &c->items[i];
+        world_collider_t *a = &c->items[i];
         scene_path_eval(&a->desc.path, t, a->desc.loop, a->position, a->velocity);
         if (terrain->grid_res > 0) a->position[1] += terrain_height_at(terrain, a->position[0], a->position[2], NULL);
     }
 }
 
-void app_colliders_draw(const app_colliders_t *c, const app_view_t *v)
+void world_colliders_draw(const world_colliders_t *c, const world_view_t *v)
 {
     if (!c->count) return;
     glUseProgram(c->prog.id);
@@ -70,7 +70,7 @@ void app_colliders_draw(const app_colliders_t *c, const app_view_t *v)
     glUniform3fv(gfx_uniform(c->prog, "u_camera"), 1, v->camera);
     glUniform3f(gfx_uniform(c->prog, "u_albedo"), 0.75f, 0.22f, 0.15f);
     for (int i = 0; i < c->count; i++) {
-        const app_collider_t *a = &c->items[i];
+        const world_collider_t *a = &c->items[i];
         mat4 model;
         glm_translate_make(model, (float *)a->position);
         glUniformMatrix4fv(gfx_uniform(c->prog, "u_model"), 1, GL_FALSE, (const float *)model);

@@ -1,52 +1,52 @@
-/* app_frame: one frame of the world, the sequence the program (app_run.c)
+/* world_frame: one frame of the world, the sequence the program (app_run.c)
  * and every offscreen bench session (src/bench/bench_session.c) run: the
  * simulation steps, the camera on its path, the view, the target fitted,
  * cleared and drawn into, then the frame paced at the GPU. Also the scene's
  * `raster: auto` measure at start-up, for both. */
-#include "app/app_world.h"
+#include "world/world_local.h"
 
 #include "platform/plat.h"
 
-app_frame_result_t app_world_frame(app_world_t *w, const app_frame_desc_t *d)
+world_frame_result_t world_frame(world_t *w, const world_frame_desc_t *d)
 {
     const scene_desc_t *s = &w->scene;
     gfx_timer_frame_begin();
     for (int i = d->steps - 1; i >= 0; i--) {
         float t = (float)(d->t - i * d->dt);
-        if (d->spheres) app_world_update_spheres(w, t, d->dt, d->spheres, d->user);
-        else app_world_update(w, t, d->dt);
+        if (d->step) d->step(w, t, d->dt, d->user);
+        else world_update(w, t, d->dt);
     }
     float t = (float)d->t;
     if (d->updated) d->updated(w, t, d->user);
-    if (d->update_only) return APP_FRAME_UPDATED;
+    if (d->update_only) return WORLD_FRAME_UPDATED;
     if (d->follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, t, d->cam);
-    app_view_t view;
-    app_view_make(&view, d->cam, d->target->w, d->target->h, t, s->dt);
+    world_view_t view;
+    world_view_make(&view, d->cam, d->target->w, d->target->h, t, s->dt);
     view.overlay = d->overlay;
-    if (!app_world_fit_target(w, d->target, d->label)) return APP_FRAME_NO_TARGET;
+    if (!world_fit_target(w, d->target, d->label)) return WORLD_FRAME_NO_TARGET;
     gfx_target_bind(d->target);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    app_world_draw(w, &view, d->target, d->wireframe);
+    world_draw(w, &view, d->target, d->wireframe);
     if (d->drawn) d->drawn(w, &view, d->target, d->user);
-    if (gfx_frame_end(d->in_flight > 0 ? d->in_flight : APP_FRAMES_IN_FLIGHT) < 0.0) return APP_FRAME_GPU_LOST;
-    return APP_FRAME_DRAWN;
+    if (gfx_frame_end(d->in_flight > 0 ? d->in_flight : WORLD_FRAMES_IN_FLIGHT) < 0.0) return WORLD_FRAME_GPU_LOST;
+    return WORLD_FRAME_DRAWN;
 }
 
 /* Draws `view` with each rasterizer into a target of `target`'s size and
  * that path's samples: one warm-up draw, then the least of 5, GL timestamps
  * around the whole draw. */
-static bool calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_target_t *target, double ms[2])
+static bool calibrate_raster(world_t *w, const world_view_t *view, const gfx_target_t *target, double ms[2])
 {
-    /* Each path draws into the target it would use (app_world_fit_target). */
+    /* Each path draws into the target it would use (world_fit_target). */
     gfx_target_t tg[2] = {{.w = target->w, .h = target->h}, {.w = target->w, .h = target->h}};
     for (int c = 0; c < 2; c++) {
-        app_world_set_raster(w, c == 1);
-        if (!app_world_fit_target(w, &tg[c], c ? "raster.calibrate.compute" : "raster.calibrate.hw")) {
+        world_set_raster(w, c == 1);
+        if (!world_fit_target(w, &tg[c], c ? "raster.calibrate.compute" : "raster.calibrate.hw")) {
             gfx_target_destroy(&tg[0]);
             gfx_target_destroy(&tg[1]);
-            app_world_set_raster(w, false);
+            world_set_raster(w, false);
             ms[0] = ms[1] = 0.0;
             return false;
         }
@@ -56,13 +56,13 @@ static bool calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_t
     double best[2] = {1e30, 1e30};
     for (int rep = 0; rep < 6; rep++) {
         for (int c = 0; c < 2; c++) {
-            app_world_set_raster(w, c == 1);
+            world_set_raster(w, c == 1);
             gfx_timer_frame_begin();
             gfx_target_bind(&tg[c]);
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             glEnable(GL_DEPTH_TEST);
             glQueryCounter(q[0], GL_TIMESTAMP);
-            app_world_draw(w, view, &tg[c], false);
+            world_draw(w, view, &tg[c], false);
             glQueryCounter(q[1], GL_TIMESTAMP);
             GLuint64 t0 = 0, t1 = 0;
             glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
@@ -76,7 +76,7 @@ static bool calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_t
     gfx_target_destroy(&tg[1]);
     /* A path that fell back (no compute rasterizer) cannot be chosen. */
     bool compute = best[1] < best[0] && w->raster_compute;
-    app_world_set_raster(w, compute);
+    world_set_raster(w, compute);
     ms[0] = best[0];
     ms[1] = best[1];
     gfx_timer_reset_stats();
@@ -85,11 +85,11 @@ static bool calibrate_raster(app_world_t *w, const app_view_t *view, const gfx_t
     return compute;
 }
 
-bool app_world_raster_auto(app_world_t *w, const cam_t *cam, const gfx_target_t *target, double ms[2],
+bool world_raster_auto(world_t *w, const cam_t *cam, const gfx_target_t *target, double ms[2],
                            double *wall_ms)
 {
-    app_view_t view;
-    app_view_make(&view, cam, target->w, target->h, 0.0f, w->scene.dt);
+    world_view_t view;
+    world_view_make(&view, cam, target->w, target->h, 0.0f, w->scene.dt);
     double t0 = plat_time();
     bool compute = calibrate_raster(w, &view, target, ms);
     if (wall_ms) *wall_ms = (plat_time() - t0) * 1e3;

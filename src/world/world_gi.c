@@ -1,11 +1,11 @@
-/* app_gi: the world's global illumination volumes (scene grass.gi, Orthmann
+/* world_gi: the world's global illumination volumes (scene grass.gi, Orthmann
  * et al. 2009 sec. 6.1; gi_volume.h): the terrain's heights, the grass as a
  * layer of its mean blade height thinned by the extent map's cover, and the
  * static colliders as boxes (spheres and capsules by their bounding
  * boxes; moving colliders and characters are left out: the volumes are
  * computed once). The volume spans the terrain's box, from its lowest
  * point to APP_GI_TOP above the tallest blade over its highest. */
-#include "app/app_world.h"
+#include "world/world_local.h"
 
 #include <math.h>
 #include <string.h>
@@ -41,7 +41,7 @@ static float gi_cover(const void *user, float x, float z)
 }
 
 /* Static colliders (a one-key path) as boxes; returns how many. */
-static int static_boxes(const app_world_t *w, gi_object_t *out)
+static int static_boxes(const world_t *w, gi_object_t *out)
 {
     int n = 0;
     for (int i = 0; i < w->scene.collider_count; i++) {
@@ -66,12 +66,12 @@ static int static_boxes(const app_world_t *w, gi_object_t *out)
     return n;
 }
 
-bool app_gi_make(app_world_t *w)
+bool world_gi_make(world_t *w)
 {
     const scene_grass_desc_t *g = &w->scene.grass;
     const terrain_mesh_t *t = &w->terrain_mesh;
     app_gi_src_t src = {.terrain = t};
-    src.have_layout = app_world_extent_layout(w, &src.lay, &src.gen);
+    src.have_layout = world_extent_layout(w, &src.lay, &src.gen);
     gi_object_t boxes[SCENE_MAX_COLLIDERS];
     float grass_height = 0.5f * (g->population.height[0] + g->population.height[1]);
     gi_scene_t scene = {.height = gi_height,

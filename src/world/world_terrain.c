@@ -1,15 +1,15 @@
-/* app_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
+/* world_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
  * ground), and draws the sky gradient behind everything. A world terrain
  * (no vertices) is drawn as a clipmap (scene/terrain_clipmap.h): one vertex
  * grid of integer coordinates, five index ranges, a draw per level of
  * terrain_world.vert, displaced by world_height; the same terrain.frag. */
-#include "app/app_world.h"
+#include "world/world_local.h"
 
 #include <string.h>
 
 #include "common/bindings_app.glsl"
 
-static bool make_sky(app_terrain_t *t)
+static bool make_sky(world_terrain_t *t)
 {
     t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
                                                     .label = "sky.program"});
@@ -18,7 +18,7 @@ static bool make_sky(app_terrain_t *t)
 }
 
 /* The clipmap's grid and index ranges on the GPU and the world program. */
-static bool make_world(app_terrain_t *t, const terrain_mesh_t *mesh)
+static bool make_world(world_terrain_t *t, const terrain_mesh_t *mesh)
 {
     t->world = true;
     terrain_clipmap_t *c = &t->clipmap;
@@ -44,7 +44,7 @@ static bool make_world(app_terrain_t *t, const terrain_mesh_t *mesh)
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
-bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
+bool world_terrain_make(world_terrain_t *t, const terrain_mesh_t *mesh)
 {
     memset(t, 0, sizeof *t);
     if (mesh->type == TERRAIN_WORLD) return make_world(t, mesh);
@@ -77,7 +77,7 @@ bool app_terrain_make(app_terrain_t *t, const terrain_mesh_t *mesh)
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
-void app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
+void world_terrain_set_canopy(world_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
                             float spacing)
 {
     blade_canopy_pack(c, &t->canopy);
@@ -86,7 +86,7 @@ void app_terrain_set_canopy(app_terrain_t *t, const blade_canopy_t *c, GLuint ex
     t->extent_spacing = spacing;
 }
 
-void app_terrain_destroy(app_terrain_t *t)
+void world_terrain_destroy(world_terrain_t *t)
 {
     gfx_buffer_destroy(&t->vbo);
     gfx_buffer_destroy(&t->ibo);
@@ -98,7 +98,7 @@ void app_terrain_destroy(app_terrain_t *t)
 }
 
 /* One draw per clipmap level around the camera. */
-static void draw_world(const app_terrain_t *t, const app_view_t *v)
+static void draw_world(const world_terrain_t *t, const world_view_t *v)
 {
     const terrain_clipmap_t *c = &t->clipmap;
     GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
@@ -116,7 +116,7 @@ static void draw_world(const app_terrain_t *t, const app_view_t *v)
     gfx_count_add("terrain.clipmap.triangles", tris);
 }
 
-void app_terrain_draw(const app_terrain_t *t, const app_view_t *v)
+void world_terrain_draw(const world_terrain_t *t, const world_view_t *v)
 {
     glUseProgram(t->prog.id);
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
