@@ -11,7 +11,10 @@
 #include <string.h>
 #include <sys/resource.h>
 
+#include <cglm/cglm.h>
+
 #include "blade/blade_tiles.h"
+#include "hybrid/hybrid.h"
 #include "scene/scene_fields.h"
 #include "scene/terrain_clipmap.h"
 
@@ -442,4 +445,44 @@ double admit_host_bytes(void)
     double mb = cap ? atof(cap) : 0.0;
     if (mb > 0.0 && (avail <= 0.0 || mb * MIB < avail)) avail = mb * MIB;
     return avail;
+}
+
+bool admit_tiles_check(const scene_desc_t *s, const terrain_mesh_t *t, char *err, size_t err_size)
+{
+    const scene_grass_desc_t *g = &s->grass;
+    const float density = g->population.density;
+    if (s->terrain.type != TERRAIN_HEIGHTFIELD || g->tile_size <= 0.0f) return true;
+    double sx = t->aabb_max[0] - t->aabb_min[0], sz = t->aabb_max[2] - t->aabb_min[2];
+    double tiles = ceil(sx / g->tile_size) * ceil(sz / g->tile_size);
+    double per_tile = (double)density * g->tile_size * g->tile_size;
+    if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || density <= 0.0f)) return true;
+    if (tiles <= HYBRID_MAX_TILES && density < BLADE_DEFAULT_DENSITY) {
+        snprintf(err, err_size,
+                 "grass.density %g puts %.3g blades on a tile of grass.tile_size %g m, less than one: the smallest "
+                 "grass.density that fits is %.3g (or a tile_size of %.3g m)",
+                 density, per_tile, g->tile_size, ceil(1e3 / (g->tile_size * g->tile_size)) / 1e3,
+                 ceil(1e3 / sqrt(density)) / 1e3);
+        return false;
+    }
+    double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), density > 0.0f ? 1.0 / sqrt(density) : 0.0);
+    snprintf(err, err_size,
+             "grass.tile_size %g m cuts the %.0f x %.0f m field into %.3g tiles of %.3g blades; the hybrid holds at "
+             "most %d tiles of at least one blade: the smallest tile_size that fits is %.3g m",
+             g->tile_size, sx, sz, tiles, per_tile, HYBRID_MAX_TILES, ceil(smallest * 1e3) / 1e3);
+    return false;
+}
+
+double admit_terrain_area(const terrain_mesh_t *t)
+{
+    double area = 0;
+    for (uint32_t i = 0; i + 2 < t->index_count; i += 3) {
+        const float *a = t->positions + 3 * t->indices[i], *b = t->positions + 3 * t->indices[i + 1],
+                    *c = t->positions + 3 * t->indices[i + 2];
+        vec3 e1, e2, n;
+        glm_vec3_sub((float *)b, (float *)a, e1);
+        glm_vec3_sub((float *)c, (float *)a, e2);
+        glm_vec3_cross(e1, e2, n);
+        area += 0.5 * glm_vec3_norm(n);
+    }
+    return area;
 }

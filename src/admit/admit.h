@@ -109,5 +109,12 @@ bool admit_check(const scene_desc_t *s, const admit_world_t *w, const admit_limi
  * $MEADOW_MEMORY_LIMIT_MB MiB when that is set (a cap where RLIMIT_AS
  * cannot be used: ASan reserves terabytes); 0 when nothing is known. */
 double admit_host_bytes(void);
+/* False with one line in err when grass.tile_size cuts a heightfield into
+ * more than HYBRID_MAX_TILES tiles or holds less than one blade per tile
+ * (the hybrid's tiles and templates; a 0.001 m tile had grown to 24 GB,
+ * 1e-6 m never finished), naming the smallest value that fits. */
+bool admit_tiles_check(const scene_desc_t *s, const terrain_mesh_t *t, char *err, size_t err_size);
+/* m^2 of a terrain mesh's surface (admit_world_t.terrain_area). */
+double admit_terrain_area(const terrain_mesh_t *t);
 
 #endif

@@ -228,7 +228,7 @@ static int summary_frame_times(const app_t *app, char *buf, size_t size)
                         spike, SPIKE_WINDOW, spike_frame, spike_over);
 }
 
-static int summary_startup(const app_t *app, const world_stats_t *st, char *buf, size_t size)
+static int summary_startup(const app_t *app, const measure_stats_t *st, char *buf, size_t size)
 {
     /* The world times its own stages; the run the context and first frame. */
     double s[WORLD_STAGES], total = 0.0;
@@ -334,8 +334,8 @@ static int summary_work(char *buf, size_t size)
 
 static bool write_summary(app_t *app, double wall_s)
 {
-    world_stats_t st;
-    world_stats(app->world, &st);
+    measure_stats_t st;
+    measure_stats(app->world, &st);
     world_info_t wi = world_info(app->world);
     char interrupted[96] = "";
     if (app_interrupted())

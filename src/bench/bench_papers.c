@@ -7,7 +7,7 @@
  *             BLADE_CULL_* test skipped, world_tuning_t.cull_disable) and each
  *             test alone off, on the hardware and the compute rasterizer:
  *             GPU pass medians, blades drawn and culled by each test (the
- *             counters of summary.txt, world_stats) at the last frame;
+ *             counters of summary.txt, measure_stats) at the last frame;
  *   leaves    Orthmann et al. 2009's cost against the number of colliding
  *             octree leaves: orthmann.json in billboard mode with 1, 2, 4,
  *             8, 16 balls (--quick: 1, 4) spread over its field, the mean
@@ -170,8 +170,8 @@ static void papers_frame(world_t *w, int frame, float t, void *user)
         p->samples++;
     }
     if (frame != p->last) return;
-    world_stats_t st;
-    world_stats(w, &st);
+    measure_stats_t st;
+    measure_stats(w, &st);
     p->run->blades = st.blades;
     p->run->drawn = st.blade_survivors;
     p->run->billboards = st.billboards;

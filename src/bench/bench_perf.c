@@ -55,7 +55,7 @@ static const perf_case_t quick_cases[] = {
 typedef struct perf_probe_t {
     int last;
     bench_perf_run_t *run;
-    world_stats_t stats;
+    measure_stats_t stats;
     bool compute;
     int raster_samples; /* the world's compute rasterizer samples per pixel */
 } perf_probe_t;
@@ -73,7 +73,7 @@ static void probe_frame(world_t *w, int frame, float t, void *user)
     world_info_t wi = world_info(w);
     p->compute = wi.raster_compute;
     p->raster_samples = wi.raster_samples ? wi.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-    world_stats(w, &p->stats);
+    measure_stats(w, &p->stats);
 }
 
 static void scene_short(const char *path, char *out, size_t size)

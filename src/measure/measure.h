@@ -2,8 +2,8 @@
  * (src/app) and the evaluation harness (src/bench): the hybrid seam at the
  * switch and canopy bands and its noise floor (measure_seam.c,
  * docs/METRICS.md "Hybrid seam"), and the hardware and compute floors of
- * trivial triangles (measure_floor.c). Through world.h and
- * world_harness.h only. */
+ * trivial triangles (measure_floor.c), the counts of a frame (measure_stats.c).
+ * Through world.h and world_harness.h only. */
 #ifndef MEADOW_MEASURE_H
 #define MEADOW_MEASURE_H
 
@@ -67,5 +67,26 @@ double measure_floor_ms(long triangles, int w, int h, int samples);
  * with trivial shading and raster_end, median GPU ms of 12; -1 when it
  * cannot be measured, 0 for no triangles. */
 double measure_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples);
+
+typedef struct measure_stats_t {
+    long blades;            /* real blades on the GPU */
+    long blade_survivors;   /* in the last draw command */
+    unsigned blade_culled[4]; /* orientation, frustum, distance, occlusion */
+    long blade_patch_culled;
+    unsigned tiles_culled[4]; /* the hybrid's tiles: orientation, frustum, distance, occlusion */
+    long tiles_tile_culled;   /* blades of blade tiles culled by the CPU frustum test */
+    long billboards;
+    int bb_deformed;
+    double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */
+    double bb_make_stage_ms[BB_MAKE_STAGES];
+    int characters;
+    int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
+    long tile_blades_simulated;
+    long tile_handovers, tile_seeded; /* blades -> billboards, billboards -> blades, run totals */
+    long triangles;         /* estimated triangles drawn by the grass */
+} measure_stats_t;
+
+/* Counts of the last frame (blocking reads: for summaries, not the frame). */
+void measure_stats(world_t *w, measure_stats_t *st);
 
 #endif

@@ -30,34 +30,6 @@ static void stage_done(world_t *w, int stage, double *mark)
     *mark = now;
 }
 
-/* Refuses, before anything is allocated, a grass.tile_size that cuts a
- * heightfield into more than HYBRID_MAX_TILES tiles or that holds less than
- * one blade per tile (the hybrid's tiles and templates; a 0.001 m tile had
- * grown to 24 GB, 1e-6 m never finished), naming the smallest that fits. */
-static bool tile_admission(const world_t *w)
-{
-    const terrain_mesh_t *t = &w->terrain_mesh;
-    const scene_grass_desc_t *g = &w->scene.grass;
-    const float density = g->population.density;
-    if (w->scene.terrain.type != TERRAIN_HEIGHTFIELD || g->tile_size <= 0.0f) return true;
-    double sx = t->aabb_max[0] - t->aabb_min[0], sz = t->aabb_max[2] - t->aabb_min[2];
-    double tiles = ceil(sx / g->tile_size) * ceil(sz / g->tile_size);
-    double per_tile = (double)density * g->tile_size * g->tile_size;
-    if (tiles <= HYBRID_MAX_TILES && (per_tile >= 1.0 || density <= 0.0f)) return true;
-    if (tiles <= HYBRID_MAX_TILES && density < BLADE_DEFAULT_DENSITY) {
-        core_log_error("%s: grass.density %g puts %.3g blades on a tile of grass.tile_size %g m, less than one: the "
-                       "smallest grass.density that fits is %.3g (or a tile_size of %.3g m)",
-                       w->scene_path, density, per_tile, g->tile_size,
-                       ceil(1e3 / (g->tile_size * g->tile_size)) / 1e3, ceil(1e3 / sqrt(density)) / 1e3);
-        return false;
-    }
-    double smallest = fmax(sqrt(sx * sz / HYBRID_MAX_TILES), density > 0.0f ? 1.0 / sqrt(density) : 0.0);
-    core_log_error("%s: grass.tile_size %g m cuts the %.0f x %.0f m field into %.3g tiles of %.3g blades; the "
-                   "hybrid holds at most %d tiles of at least one blade: the smallest tile_size that fits is %.3g m",
-                   w->scene_path, g->tile_size, sx, sz, tiles, per_tile, HYBRID_MAX_TILES, ceil(smallest * 1e3) / 1e3);
-    return false;
-}
-
 /* world_load's work on a zeroed world. */
 static int load(world_t *w, const world_options_t *o)
 {
@@ -120,7 +92,9 @@ static int load(world_t *w, const world_options_t *o)
         if (!core_image_load(&w->clearings_image, image, 1)) return 2; /* logged: the file and why */
     }
     stage_done(w, WORLD_STAGE_TERRAIN, &mark);
-    return tile_admission(w) ? 0 : 2;
+    if (admit_tiles_check(s, &w->terrain_mesh, err, sizeof err)) return 0;
+    core_log_error("%s: %s", w->scene_path, err);
+    return 2;
 }
 
 int world_load(const world_options_t *o, world_t **out)
@@ -181,12 +155,6 @@ bool world_extent_layout(const world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
                                                         .extent = extent_desc(w, gen)});
 }
 
-/* The seed of where blades stand (world_tuning_t.placement_seed). */
-static uint32_t placement_seed(const world_t *w)
-{
-    return w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
-}
-
 /* Thins seeded blades by the extent map with the billboards' acceptance
  * rule (accept with probability E/255, see bb_layout.h), so both
  * representations share clearings and density ratio. A rejected blade gets
@@ -205,7 +173,7 @@ static size_t thin_blades_by_extent(const world_t *w, blade_field_t *field)
         int tx = ((ix / gen.cells_per_texel) % lay.extent.w + lay.extent.w) % lay.extent.w;
         int tz = ((iz / gen.cells_per_texel) % lay.extent.h + lay.extent.h) % lay.extent.h;
         uint32_t e = lay.extent.px[(size_t)tz * (size_t)lay.extent.w + (size_t)tx];
-        if (core_hash_u32((uint32_t)i ^ core_hash_u32(placement_seed(w) ^ 0x5bd1e995u)) % 255u >= e) {
+        if (core_hash_u32((uint32_t)i ^ core_hash_u32(world_placement_seed(w) ^ 0x5bd1e995u)) % 255u >= e) {
             b->v1[3] = 0.0f;
             b->v2[3] = 0.0f;
             dropped++;
@@ -258,7 +226,7 @@ static int cube_resolution_for(world_t *w)
     return res;
 }
 
-bb_field_t *world_make_bb(const world_t *w, uint32_t placement)
+bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
@@ -301,7 +269,7 @@ bb_field_t *world_make_bb(const world_t *w, uint32_t placement)
 
 static bool make_bb(world_t *w)
 {
-    w->bb = world_make_bb(w, w->tuning.placement_seed);
+    w->bb = world_build_billboards(w, w->tuning.placement_seed);
     return w->bb != NULL;
 }
 
@@ -328,22 +296,6 @@ static float tiles_distance(const world_t *w)
     return g->blade_distance > 0.0f ? g->blade_distance : WORLD_BLADE_DISTANCE;
 }
 
-/* m^2 of the terrain's surface. */
-static double terrain_area(const terrain_mesh_t *t)
-{
-    double area = 0;
-    for (uint32_t i = 0; i + 2 < t->index_count; i += 3) {
-        const float *a = t->positions + 3 * t->indices[i], *b = t->positions + 3 * t->indices[i + 1],
-                    *c = t->positions + 3 * t->indices[i + 2];
-        vec3 e1, e2, n;
-        glm_vec3_sub((float *)b, (float *)a, e1);
-        glm_vec3_sub((float *)c, (float *)a, e2);
-        glm_vec3_cross(e1, e2, n);
-        area += 0.5 * glm_vec3_norm(n);
-    }
-    return area;
-}
-
 static bool make_blades(world_t *w)
 {
     const scene_desc_t *s = &w->scene;
@@ -352,7 +304,7 @@ static bool make_blades(world_t *w)
     blade_field_t field;
     blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
                          .indices = t->indices, .index_count = t->index_count};
-    blade_seed_desc_t sd = {.seed = placement_seed(w),
+    blade_seed_desc_t sd = {.seed = world_placement_seed(w),
                             .population = g->population,
                             .max_blades = ADMIT_MAX_FIELD_BLADES};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
@@ -533,43 +485,14 @@ static int blade_spheres(world_t *w, blade_sphere_t *out, int max)
  * spheres (see character_proxy_spheres). */
 #define WORLD_CHARACTER_CAPSULES 8
 
-/* grass.lod_table: the switch and canopy distances the bench measured for
- * this GL renderer and path, and with raster auto the cheaper path
- * (scene_lod.h); they replace the scene's before anything is built. A table
- * of another renderer, or one that cannot be read, leaves the scene's with
- * a warning. */
+/* grass.lod_table (scene_lod_apply) in hybrid mode, the reference aside. */
 static void apply_lod_table(world_t *w)
 {
-    scene_grass_desc_t *g = &w->scene.grass;
-    if (!g->lod_table[0] || w->mode != SCENE_MODE_HYBRID || w->reference) return;
-    char path[1024], err[1024];
-    if (!core_fs_resolve(g->lod_table, path, sizeof path)) snprintf(path, sizeof path, "%s", g->lod_table);
-    scene_lod_t t;
-    if (!scene_lod_read(&t, path, err, sizeof err)) {
-        core_log_warn("grass.lod_table: %s; keeping the scene's distances", err);
-        snprintf(w->lod_note, sizeof w->lod_note, "not read (%.400s): the scene's distances", err);
-        return;
-    }
-    const char *renderer = (const char *)glGetString(GL_RENDERER);
-    bool auto_path = w->scene.raster == SCENE_RASTER_AUTO, compute = w->raster_compute;
-    const scene_lod_pick_t *p = scene_lod_choose(&t, renderer, auto_path ? -1 : (compute ? 1 : 0), &compute);
-    if (!p) {
-        core_log_warn("grass.lod_table %s: measured on '%s' (or without the %s path), this GL is '%s': keeping the "
-                      "scene's distances", g->lod_table, t.renderer, compute ? "compute" : "hw", renderer);
-        snprintf(w->lod_note, sizeof w->lod_note, "%.200s measured on '%.200s', not this GL: the scene's distances",
-                 g->lod_table, t.renderer);
-        return;
-    }
-    g->switch_distance = p->switch_distance;
-    g->canopy_distance = p->canopy_distance;
-    if (auto_path) world_set_raster(w, compute);
-    snprintf(w->lod_note, sizeof w->lod_note,
-             "%s path%s, from %.200s: %.3f ms at image error %.3f, %s budget %.3f (blade mode's error + noise "
-             "floor); the cheapest within it of %d hybrid configurations",
-             compute ? "compute" : "hw",
-             auto_path ? " (the table's cheaper)" : "", g->lod_table, p->gpu_ms, p->image_error,
-             p->met ? "within its" : "NOT within its (the least error measured)", p->budget, p->candidates);
-    core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, w->lod_note);
+    if (!w->scene.grass.lod_table[0] || w->mode != SCENE_MODE_HYBRID || w->reference) return;
+    bool compute = w->raster_compute;
+    if (scene_lod_apply(&w->scene, (const char *)glGetString(GL_RENDERER), &compute, w->lod_note, sizeof w->lod_note) &&
+        w->scene.raster == SCENE_RASTER_AUTO)
+        world_set_raster(w, compute);
 }
 
 _Static_assert(ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "admit's raster queue estimate");
@@ -589,7 +512,7 @@ static bool admit(world_t *w)
                               .gpu_bytes = 0.9 * gl.gpu_bytes,
                               .host_bytes = admit_host_bytes()};
     admit_world_t aw = {.terrain = &w->terrain_mesh,
-                            .terrain_area = terrain_area(&w->terrain_mesh),
+                            .terrain_area = admit_terrain_area(&w->terrain_mesh),
                             .billboards = wants_bb(w, w->mode) && !w->reference,
                             .tiles = uses_tiles(w),
                             .tiles_distance = tiles_distance(w),
@@ -1006,44 +929,4 @@ void world_view_make(world_view_t *v, const cam_t *cam_in, int width, int height
     v->height = height;
     v->time = time;
     v->dt = dt;
-}
-
-void world_stats(world_t *w, world_stats_t *st)
-{
-    memset(st, 0, sizeof *st);
-    if (w->have_blades) {
-        blade_gpu_stats_t b = blade_gpu_stats(w->blades, true);
-        st->blades = b.total;
-        st->blade_survivors = b.survivors;
-        memcpy(st->blade_culled, b.culled, sizeof st->blade_culled);
-        st->blade_patch_culled = b.patch_culled;
-        st->triangles += b.triangles_max;
-    }
-    if (w->bb) {
-        bb_stats_t s;
-        bb_field_stats(w->bb, true, &s);
-        st->billboards = s.billboards;
-        st->bb_deformed = s.deformed;
-        st->bb_generate_ms = s.generate_ms;
-        st->bb_make_ms = s.make_ms;
-        for (int k = 0; k < BB_MAKE_STAGES; k++) st->bb_make_stage_ms[k] = s.make_stage_ms[k];
-        st->triangles += s.triangles;
-    }
-    if (w->have_tiles) {
-        blade_tiles_stats_t ts = blade_tiles_stats(w->tiles, true);
-        st->blades += (long)ts.blades_drawn;
-        st->blade_survivors += (long)ts.blades_drawn;
-        st->tiles_active = ts.active;
-        st->tiles_recovering = ts.recovering;
-        st->tiles_blade = ts.blade_tiles;
-        st->tile_slots_used = ts.slots_used;
-        st->tile_slots_total = ts.slots_total;
-        st->tile_blades_simulated = (long)ts.blades_dispatched;
-        st->tile_handovers = ts.handovers_total;
-        st->tile_seeded = ts.seeded_total;
-        memcpy(st->tiles_culled, ts.culled, sizeof st->tiles_culled);
-        st->tiles_tile_culled = ts.tile_culled;
-        st->triangles += ts.triangles_max;
-    }
-    st->characters = w->have_chars ? character_set_count(&w->chars) : 0;
 }

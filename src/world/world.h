@@ -61,11 +61,9 @@ typedef struct world_view_t {
  * field (overlay) is 0 = off. */
 void world_view_make(world_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
 
-/* ---- start-up stages -------------------------------------------------------------
- * Wall-clock ms of each stage from the start of a run to the end of its
- * first frame on the GPU (summary.txt "startup"). world_load and
- * world_make_gpu time their own stages; the program the context and the
- * first frame. */
+/* Start-up stages: wall-clock ms from the start of a run to the end of its
+ * first frame on the GPU (summary.txt "startup"). The world times its own;
+ * the program the context and the first frame. */
 enum {
     WORLD_STAGE_SCENE,       /* scene file and CLI overrides */
     WORLD_STAGE_TERRAIN,     /* heightfield or terrain mesh (CPU) */
@@ -134,20 +132,14 @@ void world_set_raster(world_t *w, bool compute);
 void world_set_mode(world_t *w, scene_mode_t mode);
 /* Samples per pixel of the frame's target: the scene's msaa with the
  * hardware path; 1 with the compute rasterizer, which anti-aliases the
- * grass with its own samples, so the opaque scene (terrain, sky,
- * characters, balls) is drawn single-sampled there. On the H100 the 4x
- * target's fill and the composite into it cost 2.3 ms of a 9.3 ms
- * meadow_large frame, 1.2 ms at one sample (docs/RASTER.md). */
+ * grass with its own samples (docs/RASTER.md says why). */
 int world_target_samples(const world_t *w);
 /* Remakes *t (size kept, `label`) when its samples differ from
- * world_target_samples: called before every frame, so a live switch of
- * the rasterizer (or a fall-back) gets its target. False when it cannot be
- * made (logged). */
+ * world_target_samples (a live switch of the rasterizer, a fall-back).
+ * False when it cannot be made (logged). */
 bool world_fit_target(const world_t *w, gfx_target_t *t, const char *label);
 
-/* ---- one frame (world_frame.c) ------------------------------------------------------
- * The frame sequence of the program (app_run) and of every bench session:
- * written once here so both measure and show the same work. */
+/* ---- one frame (world_frame.c): the program's and every bench session's ---- */
 typedef enum world_frame_result_t {
     WORLD_FRAME_DRAWN,     /* simulated, drawn, paced */
     WORLD_FRAME_UPDATED,   /* simulated only (update_only) */
@@ -180,33 +172,9 @@ typedef struct world_frame_desc_t {
  * gfx_frame_end. Starts the pass timers' frame. */
 world_frame_result_t world_frame(world_t *w, const world_frame_desc_t *d);
 /* The scene's `raster: auto` at start-up: draws cam's view at time 0 with
- * each rasterizer into a target of `target`'s size and that path's samples
- * (one warm-up draw, then the least of 5, GL timestamps around the whole
- * draw), keeps the faster (hardware when compute fell back) and returns
- * true for compute; ms gets the hardware and compute times, wall_ms (when
- * non-NULL) the wall ms the measure took. Clears the pass timers'
- * statistics. */
+ * each rasterizer (the least GPU ms of 5 after a warm-up draw), keeps the
+ * faster and returns true for compute; ms gets both times, wall_ms (when
+ * non-NULL) the measure's. Clears the pass timers' statistics. */
 bool world_raster_auto(world_t *w, const cam_t *cam, const gfx_target_t *target, double ms[2], double *wall_ms);
-
-typedef struct world_stats_t {
-    long blades;            /* real blades on the GPU */
-    long blade_survivors;   /* in the last draw command */
-    unsigned blade_culled[4]; /* orientation, frustum, distance, occlusion */
-    long blade_patch_culled;
-    unsigned tiles_culled[4]; /* the hybrid's tiles: orientation, frustum, distance, occlusion */
-    long tiles_tile_culled;   /* blades of blade tiles culled by the CPU frustum test */
-    long billboards;
-    int bb_deformed;
-    double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */
-    double bb_make_stage_ms[BB_MAKE_STAGES];
-    int characters;
-    int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
-    long tile_blades_simulated;
-    long tile_handovers, tile_seeded; /* blades -> billboards, billboards -> blades, run totals */
-    long triangles;         /* estimated triangles drawn by the grass */
-} world_stats_t;
-
-/* Counts of the last frame (blocking reads: for summaries, not the frame). */
-void world_stats(world_t *w, world_stats_t *st);
 
 #endif

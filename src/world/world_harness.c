@@ -29,8 +29,6 @@ world_info_t world_info(world_t *w)
                           .raster = &w->raster};
 }
 
-world_tuning_t world_tuning(const world_t *w) { return w->tuning; }
-
 uint32_t world_placement_seed(const world_t *w)
 {
     return w->tuning.placement_seed ? w->tuning.placement_seed : w->scene.seed;
@@ -47,11 +45,6 @@ world_collider_info_t world_collider(const world_t *w, int i)
 }
 
 void world_set_camera(world_t *w, const float camera[3]) { memcpy(w->camera, camera, sizeof w->camera); }
-
-bb_field_t *world_build_billboards(const world_t *w, uint32_t placement_seed)
-{
-    return world_make_bb(w, placement_seed);
-}
 
 bb_field_t *world_swap_billboards(world_t *w, bb_field_t *field)
 {

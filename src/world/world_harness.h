@@ -42,8 +42,6 @@ typedef struct world_setup_t {
 /* Applies `setup`; a tweak that changes a heightfield terrain rebuilds it.
  * Returns false after one error line when that fails. */
 bool world_setup(world_t *w, const world_setup_t *setup);
-/* The tuning world_setup gave (or the options' view_cards). */
-world_tuning_t world_tuning(const world_t *w);
 /* The seed of where grass stands: tuning.placement_seed, else the scene's. */
 uint32_t world_placement_seed(const world_t *w);
 

@@ -44,8 +44,6 @@ void world_terrain_set_canopy(world_terrain_t *t, const blade_canopy_t *c, GLuin
                             float spacing);
 void world_terrain_draw(const world_terrain_t *t, const world_view_t *v);
 
-
-
 /* ---- analytic colliders (scene "colliders") ---------------------------------- */
 typedef struct world_collider_t {
     scene_collider_t desc;
@@ -130,9 +128,5 @@ bool world_extent_layout(const world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
 /* The global illumination volumes of w's scene into w->gi and the
  * terrain's bind; false (logged) when they cannot be made. */
 bool world_gi_make(world_t *w);
-
-/* The billboard field of placement seed `placement` (0: the scene's), as
- * world_make_gpu makes it (world.c). */
-bb_field_t *world_make_bb(const world_t *w, uint32_t placement);
 
 #endif
