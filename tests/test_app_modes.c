@@ -15,7 +15,8 @@
  * 3. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
 #include "world/world_harness.h"
-#include "bench/bench.h"
+#include "app/app.h"
+#include "measure/measure_session.h"
 #include "eval/eval_image.h"
 #include "test.h"
 #include "test_gl.h"
@@ -72,12 +73,13 @@ static void side_view(void)
 {
     app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
     core_image_t bg, bb, bl;
-    bench_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = 4, .tweak = no_grass};
-    CHECK(bench_session_run(&d, &bg, NULL) == 0);
+    measure_session_desc_t d = {.world = app_world_options(&o),
+                                .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = 4, .tweak = no_grass};
+    CHECK(measure_session_run(&d, &bg, NULL) == 0);
     d.tweak = NULL;
-    CHECK(bench_session_run(&d, &bl, NULL) == 0);
+    CHECK(measure_session_run(&d, &bl, NULL) == 0);
     d.mode = SCENE_MODE_BILLBOARD;
-    CHECK(bench_session_run(&d, &bb, NULL) == 0);
+    CHECK(measure_session_run(&d, &bb, NULL) == 0);
     double lb[3], ll[3];
     double cb = side_grass(&bb, &bg, lb), cl = side_grass(&bl, &bg, ll);
     double de = sqrt((lb[0] - ll[0]) * (lb[0] - ll[0]) + (lb[1] - ll[1]) * (lb[1] - ll[1]) +
@@ -123,11 +125,12 @@ int main(void)
     core_log_set_quiet(true);
     app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
     core_image_t bb, bl;
-    bench_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
+    measure_session_desc_t d = {.world = app_world_options(&o),
+                                .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
                               .tweak = top_down};
-    CHECK(bench_session_run(&d, &bb, NULL) == 0);
+    CHECK(measure_session_run(&d, &bb, NULL) == 0);
     d.mode = SCENE_MODE_BLADE;
-    CHECK(bench_session_run(&d, &bl, NULL) == 0);
+    CHECK(measure_session_run(&d, &bl, NULL) == 0);
     enum { NB = 12 };
     float cb[NB * NB], cl[NB * NB];
     coverage(&bb, cb, NB);

@@ -11,7 +11,8 @@
  *    10 % (image space, see below) or a quarter fewer billboards
  *    (grass.billboard_density x 0.75) score above 3 F against the plain
  *    billboards. */
-#include "bench/bench.h"
+#include "app/app.h"
+#include "measure/measure_session.h"
 #include "eval/eval.h"
 #include "eval/eval_image.h"
 #include "test.h"
@@ -97,10 +98,11 @@ static void tweak(scene_desc_t *s, void *user)
 static core_image_t render(scene_mode_t mode, bool reference, world_tuning_t tuning, knob_t knob)
 {
     app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
-    bench_session_desc_t d = {.opts = &o, .mode = mode, .mode_set = true, .frames = 4, .reference = reference,
+    measure_session_desc_t d = {.world = app_world_options(&o),
+                                .mode = mode, .mode_set = true, .frames = 4, .reference = reference,
                               .msaa = reference ? 8 : 0, .tuning = tuning, .tweak = tweak, .user = &knob};
     core_image_t img = {0};
-    if (bench_session_run(&d, &img, NULL) != 0) {
+    if (measure_session_run(&d, &img, NULL) != 0) {
         fprintf(stderr, "render failed\n");
         exit(1);
     }

@@ -12,7 +12,8 @@
  * and a mean absolute channel difference of at most 3 (of 255). Writes
  * every image to the test output folder. Also: the frame target fits the
  * rasterizer (world_fit_target). */
-#include "bench/bench.h"
+#include "app/app.h"
+#include "measure/measure_session.h"
 #include "eval/eval.h"
 #include "test.h"
 #include "test_gl.h"
@@ -43,8 +44,9 @@ static void render_pair(const char *scene, scene_mode_t mode, bool mode_set, int
 {
     for (int r = 0; r < 2; r++) {
         app_options_t o = {.scene = scene, .headless = true, .raster = 1 + r};
-        bench_session_desc_t d = {.opts = &o, .mode = mode, .mode_set = mode_set, .frames = frames, .tweak = tweak};
-        CHECK(bench_session_run(&d, &img[r], NULL) == 0);
+        measure_session_desc_t d = {.world = app_world_options(&o),
+                                    .mode = mode, .mode_set = mode_set, .frames = frames, .tweak = tweak};
+        CHECK(measure_session_run(&d, &img[r], NULL) == 0);
         char path[1200];
         const char *base = strrchr(scene, '/') ? strrchr(scene, '/') + 1 : scene;
         snprintf(path, sizeof path, "%s/%.*s_%s_%s.png", test_out_dir(), (int)strcspn(base, "."), base,

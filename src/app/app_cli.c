@@ -266,7 +266,8 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
 
 world_options_t app_world_options(const app_options_t *o)
 {
-    static const scene_mode_t modes[] = {[APP_MODE_SCENE] = SCENE_MODE_HYBRID, [APP_MODE_BILLBOARD] = SCENE_MODE_BILLBOARD,
+    static const scene_mode_t modes[] = {[APP_MODE_SCENE] = SCENE_MODE_HYBRID,
+                                         [APP_MODE_BILLBOARD] = SCENE_MODE_BILLBOARD,
                                          [APP_MODE_BLADE] = SCENE_MODE_BLADE,
                                          [APP_MODE_HYBRID] = SCENE_MODE_HYBRID};
     return (world_options_t){.scene = o->scene,

@@ -332,6 +332,54 @@ static int summary_work(char *buf, size_t size)
     return n < (int)size ? n : (int)size - 1;
 }
 
+/* What the world holds: the admission estimate, the hybrid's distances, a
+ * world's tile window, the compute rasterizer's buffers, the characters. */
+static int summary_world(world_info_t wi, char *buf, size_t size)
+{
+    const admit_t *ad = wi.admitted;
+    int n = snprintf(buf, size, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
+                     ad->gpu_total / (1024.0 * 1024.0));
+    for (int k = 0; k < ADMIT_PARTS; k++)
+        if (ad->gpu[k] > 0.0)
+            n += snprintf(buf + n, size - (size_t)n, " %s %.1f", admit_part_name(k),
+                          ad->gpu[k] / (1024.0 * 1024.0));
+    n += snprintf(buf + n, size - (size_t)n, ")\n");
+    bool world = wi.terrain->type == TERRAIN_WORLD;
+    if (wi.scene->mode == SCENE_MODE_HYBRID && world)
+        n += snprintf(buf + n, size - (size_t)n,
+                      "hybrid distances: switch %.1f m, the canopy from there (a world: no billboards)\n",
+                      wi.scene->grass.switch_distance);
+    else if (wi.scene->mode == SCENE_MODE_HYBRID)
+        n += snprintf(buf + n, size - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
+                      wi.scene->grass.switch_distance, wi.scene->grass.canopy_distance,
+                      wi.lod_note[0] ? wi.lod_note : "the scene's; no grass.lod_table");
+    if (world && wi.tiles) {
+        blade_tiles_info_t ti = blade_tiles_info(wi.tiles);
+        blade_tiles_stats_t ts = blade_tiles_stats(wi.tiles, false);
+        n += snprintf(buf + n, size - (size_t)n,
+                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
+                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
+                      wi.terrain->world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
+                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
+    }
+    raster_t *r = wi.raster;
+    if (r->vis.id) {
+        raster_stats_t rs;
+        raster_read_stats(r, &rs);
+        n += snprintf(buf + n, size - (size_t)n,
+                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
+                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
+                      (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
+                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
+                      rs.overflow);
+    }
+    if (wi.characters && n < (int)size) {
+        character_set_describe(wi.characters, buf + n, size - (size_t)n);
+        n += (int)strlen(buf + n);
+    }
+    return n < (int)size ? n : (int)size - 1;
+}
+
 static bool write_summary(app_t *app, double wall_s)
 {
     measure_stats_t st;
@@ -386,54 +434,15 @@ static bool write_summary(app_t *app, double wall_s)
                   st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
-    const admit_t *ad = wi.admitted;
-    n += snprintf(buf + n, sizeof buf - (size_t)n, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
-                  ad->gpu_total / (1024.0 * 1024.0));
-    for (int k = 0; k < ADMIT_PARTS; k++)
-        if (ad->gpu[k] > 0.0)
-            n += snprintf(buf + n, sizeof buf - (size_t)n, " %s %.1f", admit_part_name(k),
-                          ad->gpu[k] / (1024.0 * 1024.0));
-    n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
-    bool world = wi.terrain->type == TERRAIN_WORLD;
-    if (wi.scene->mode == SCENE_MODE_HYBRID && world)
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "hybrid distances: switch %.1f m, the canopy from there (a world: no billboards)\n",
-                      wi.scene->grass.switch_distance);
-    else if (wi.scene->mode == SCENE_MODE_HYBRID)
-        n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
-                      wi.scene->grass.switch_distance, wi.scene->grass.canopy_distance,
-                      wi.lod_note[0] ? wi.lod_note : "the scene's; no grass.lod_table");
-    if (world && wi.tiles) {
-        blade_tiles_info_t ti = blade_tiles_info(wi.tiles);
-        blade_tiles_stats_t ts = blade_tiles_stats(wi.tiles, false);
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
-                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
-                      wi.terrain->world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
-                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
-    }
-    raster_t *r = wi.raster;
-    if (r->vis.id) {
-        raster_stats_t rs;
-        raster_read_stats(r, &rs);
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
-                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
-                      (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
-                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
-                      rs.overflow);
-    }
-    if (wi.characters && n < (int)sizeof buf) {
-        character_set_describe(wi.characters, buf + n, sizeof buf - (size_t)n);
-        n += (int)strlen(buf + n);
-    }
+    n += summary_world(wi, buf + n, sizeof buf - (size_t)n);
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
     n += summary_work(buf + n, sizeof buf - (size_t)n);
     if (app->opts->floor) {
         double floor_ms = measure_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
         int rs = wi.raster_samples ? wi.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-        double cfloor_ms = measure_floor_compute_ms(st.triangles, app->target.w, app->target.h, app->target.samples, rs);
+        double cfloor_ms =
+            measure_floor_compute_ms(st.triangles, app->target.w, app->target.h, app->target.samples, rs);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
                       st.triangles, floor_ms, floor_ms > 0 ? frame_gpu / floor_ms : 0.0);
         n += snprintf(buf + n, sizeof buf - (size_t)n,

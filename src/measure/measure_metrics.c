@@ -27,12 +27,12 @@
  * over the structural springs (eq. 6-7) of the deformed meshes, l0 from the
  * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)).
  *
- * Texture distortion of deformed billboards (bench_metrics_bb_distortion):
+ * Texture distortion of deformed billboards (measure_bb_distortion):
  * the largest structural-spring stretch |l / l0 - 1| and the folded cells,
  * a cell being folded when its signed area ratio against a reference
  * normal is <= 0: the rest normal right x up for the root row, the normals
  * of the neighbouring cells below and to the left above it. */
-#include "bench/bench_local.h"
+#include "measure/measure_metrics.h"
 
 #include "collide/collide_shape.h"
 
@@ -151,8 +151,8 @@ static bool blade_finite(const blade_t *b)
     return true;
 }
 
-static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
-                          bench_metrics_ext_t *x)
+static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, measure_metrics_t *m,
+                          measure_metrics_ext_t *x)
 {
     blade_gpu_t *g = world_info(w).blades;
     const terrain_mesh_t *terrain = world_info(w).terrain;
@@ -251,8 +251,8 @@ static void bb_grid(const bb_field_info_t *fi, const bb_point_t *p, const float 
     for (int v = 0; v < nv; v++) glm_vec3_copy((float *)mesh[(size_t)slot * nv + v], grid[v]);
 }
 
-static void bb_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, bench_metrics_t *m,
-                       bench_metrics_ext_t *x)
+static void bb_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, measure_metrics_t *m,
+                       measure_metrics_ext_t *x)
 {
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
@@ -310,9 +310,9 @@ done:
     free(grid);
 }
 
-void bench_metrics_measure(world_t *w, bench_metrics_t *m, bench_metrics_ext_t *x)
+void measure_metrics(world_t *w, measure_metrics_t *m, measure_metrics_ext_t *x)
 {
-    bench_metrics_ext_t dummy;
+    measure_metrics_ext_t dummy;
     if (!x) x = &dummy;
     memset(x, 0, sizeof *x);
     m->penetration_fraction = m->penetration_max = m->blade_length_error = m->spring_error = -1;
@@ -342,7 +342,7 @@ static blade_t *read_blades(blade_gpu_t *g)
     return b;
 }
 
-double bench_metrics_blade_offset(world_t *w, world_t *twin, float *prev, bool *primed, double *jitter)
+double measure_blade_offset(world_t *w, world_t *twin, float *prev, bool *primed, double *jitter)
 {
     blade_gpu_t *gw = world_info(w).blades, *gt = world_info(twin).blades;
     uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
@@ -374,7 +374,7 @@ double bench_metrics_blade_offset(world_t *w, world_t *twin, float *prev, bool *
     return worst;
 }
 
-double bench_metrics_blade_coverage(world_t *w, world_t *twin, const float a[2], const float b[2],
+double measure_blade_coverage(world_t *w, world_t *twin, const float a[2], const float b[2],
                                     float radius, float frac, uint8_t *ever, long *corridor)
 {
     *corridor = 0;
@@ -427,7 +427,7 @@ static double bb_mesh_offset(const bb_field_info_t *fi, const bb_point_t *p, con
     return worst;
 }
 
-double bench_metrics_bb_coverage(world_t *w, const float a[2], const float b[2], float radius, float frac,
+double measure_bb_coverage(world_t *w, const float a[2], const float b[2], float radius, float frac,
                                  uint8_t *ever, long *corridor)
 {
     *corridor = 0;
@@ -455,7 +455,7 @@ double bench_metrics_bb_coverage(world_t *w, const float a[2], const float b[2],
     return *corridor ? (double)hit / (double)*corridor : 0.0;
 }
 
-double bench_metrics_bb_offset(world_t *w)
+double measure_bb_offset(world_t *w)
 {
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
@@ -485,7 +485,7 @@ static void cell_area(const float *a, const float *b, const float *d, const floa
     glm_vec3_scale(out, 0.5f, out);
 }
 
-void bench_metrics_bb_distortion(world_t *w, bench_bb_distortion_t *out)
+void measure_bb_distortion(world_t *w, measure_bb_distortion_t *out)
 {
     memset(out, 0, sizeof *out);
     bb_field_info_t fi;
@@ -536,7 +536,7 @@ void bench_metrics_bb_distortion(world_t *w, bench_bb_distortion_t *out)
     free(unit);
 }
 
-long bench_metrics_roots_in(world_t *w, const float lo[3], const float hi[3])
+long measure_roots_in(world_t *w, const float lo[3], const float hi[3])
 {
     long n = 0;
     blade_gpu_t *g = world_info(w).blades;
@@ -569,7 +569,7 @@ long bench_metrics_roots_in(world_t *w, const float lo[3], const float hi[3])
 
 /* ---- measures that grow with their failure (issue 33) ---------------------------- */
 
-double bench_metrics_bb_crossing(world_t *w, int collider, long *near)
+double measure_bb_crossing(world_t *w, int collider, long *near)
 {
     *near = 0;
     bb_field_info_t fi;
@@ -607,7 +607,7 @@ double bench_metrics_bb_crossing(world_t *w, int collider, long *near)
     return *near ? (double)crossed / (double)*near : 0.0;
 }
 
-double bench_metrics_bb_jump(world_t *w, float *prev, bool *primed)
+double measure_bb_jump(world_t *w, float *prev, bool *primed)
 {
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
@@ -652,7 +652,7 @@ static void grid_sample(const vec3 *g, int nn, int mm, float u, float v, float o
                  t * ((1 - s) * g[(r + 1) * nn + c][k] + s * g[(r + 1) * nn + c + 1][k]);
 }
 
-bool bench_metrics_bb_pose(world_t *w, bench_bb_pose_t *out)
+bool measure_bb_pose(world_t *w, measure_bb_pose_t *out)
 {
     memset(out, 0, sizeof *out);
     bb_field_info_t fi;
@@ -676,19 +676,19 @@ bool bench_metrics_bb_pose(world_t *w, bench_bb_pose_t *out)
         bb_grid(&fi, &pts[i], (const float (*)[4])mesh, grid);
         bb_wind_grid(&fi, &pts[i], wind);
         for (int v = 0; v < nv; v++) glm_vec3_sub(grid[v], wind[v], grid[v]);
-        for (int s = 0; s < BENCH_POSE_SAMPLES; s++)
-            grid_sample(grid, nn, mm, (float)(s % BENCH_POSE_SIDE) / (BENCH_POSE_SIDE - 1),
-                        (float)(s / BENCH_POSE_SIDE) / (BENCH_POSE_SIDE - 1), out->off[out->count][s]);
+        for (int s = 0; s < MEASURE_POSE_SAMPLES; s++)
+            grid_sample(grid, nn, mm, (float)(s % MEASURE_POSE_SIDE) / (MEASURE_POSE_SIDE - 1),
+                        (float)(s / MEASURE_POSE_SIDE) / (MEASURE_POSE_SIDE - 1), out->off[out->count][s]);
         out->index[out->count++] = i;
     }
     free(pts);
     free(mesh);
     free(grid);
-    if (!ok) bench_bb_pose_free(out);
+    if (!ok) measure_bb_pose_free(out);
     return ok;
 }
 
-void bench_bb_pose_free(bench_bb_pose_t *p)
+void measure_bb_pose_free(measure_bb_pose_t *p)
 {
     free(p->index);
     free(p->off);
@@ -698,18 +698,18 @@ void bench_bb_pose_free(bench_bb_pose_t *p)
 /* Largest sample distance between offsets a and b (either NULL: zero). */
 static double pose_distance(const float (*a)[3], const float (*b)[3])
 {
-    static const float zero[BENCH_POSE_SAMPLES][3];
+    static const float zero[MEASURE_POSE_SAMPLES][3];
     if (!a) a = zero;
     if (!b) b = zero;
     double worst = 0.0;
-    for (int s = 0; s < BENCH_POSE_SAMPLES; s++) {
+    for (int s = 0; s < MEASURE_POSE_SAMPLES; s++) {
         double d = glm_vec3_distance((float *)a[s], (float *)b[s]);
         worst = isfinite(d) ? fmax(worst, d) : INFINITY;
     }
     return worst;
 }
 
-double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *ref)
+double measure_bb_pose_deviation(const measure_bb_pose_t *a, const measure_bb_pose_t *ref)
 {
     int i = 0, j = 0;
     long n = 0;
@@ -725,7 +725,7 @@ double bench_bb_pose_deviation(const bench_bb_pose_t *a, const bench_bb_pose_t *
     return n ? sum / (double)n : 0.0;
 }
 
-long bench_metrics_blade_overpush(world_t *w, float *eta_prev, bool primed, double *dist)
+long measure_blade_overpush(world_t *w, float *eta_prev, bool primed, double *dist)
 {
     blade_gpu_t *g = world_info(w).blades;
     if (!g) return 0;
@@ -765,7 +765,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-double bench_percentile(double *v, long n, double q)
+double measure_percentile(double *v, long n, double q)
 {
     if (n <= 0) return 0.0;
     qsort(v, (size_t)n, sizeof *v, cmp_double);

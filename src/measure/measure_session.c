@@ -1,19 +1,18 @@
 /* bench_session: one offscreen run of a scene in an existing GL context, for
  * `meadow compare`, `meadow bench` and the stability suite: world, frames,
- * timings, last frame, accuracy metrics (bench_metrics.c), and optional
+ * timings, last frame, accuracy metrics (measure_metrics.c), and optional
  * per-frame hooks (bench_local.h). */
-#include "bench/bench_local.h"
+#include "measure/measure_session.h"
 
 #include <string.h>
 
 #include "platform/plat.h"
 
-int bench_session_world(const bench_session_desc_t *d, world_t **out)
+int measure_session_world(const measure_session_desc_t *d, world_t **out)
 {
-    world_options_t wo = app_world_options(d->opts);
-    world_t *w;
+        world_t *w;
     *out = NULL;
-    int rc = world_load(&wo, &w);
+    int rc = world_load(&d->world, &w);
     if (rc) return rc;
     world_setup_t setup = {.mode = d->mode, .mode_set = d->mode_set, .msaa = d->msaa,
                            .reference = d->reference, .tuning = d->tuning, .tweak = d->tweak, .user = d->user};
@@ -33,7 +32,7 @@ int bench_session_world(const bench_session_desc_t *d, world_t **out)
 
 /* A session's hooks inside world_frame: the frame's number beside them. */
 typedef struct session_frame_t {
-    const bench_session_hooks_t *h;
+    const measure_session_hooks_t *h;
     int frame;
 } session_frame_t;
 
@@ -63,13 +62,13 @@ static void session_drawn(world_t *w, const world_view_t *v, gfx_target_t *targe
     if (sf->h->drawn) sf->h->drawn(target, sf->frame, sf->h->user);
 }
 
-int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_hooks_t *h, core_image_t *last,
-                            bench_metrics_t *m)
+int measure_session_run_hooks(const measure_session_desc_t *d, const measure_session_hooks_t *h, core_image_t *last,
+                            measure_metrics_t *m)
 {
-    static const bench_session_hooks_t none = {0};
+    static const measure_session_hooks_t none = {0};
     if (!h) h = &none;
     world_t *w;
-    int rc = bench_session_world(d, &w);
+    int rc = measure_session_world(d, &w);
     if (rc) return rc;
     const scene_desc_t *s = world_info(w).scene;
     int frames = d->frames > 0 ? d->frames : 60;
@@ -89,7 +88,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
      * for a path, or for auto (`--raster auto`: measured here). The scene's
      * default, auto, would make a session's images depend on timing (CI's
      * test_eval_image under ASan measured its noise floor on compute). */
-    if (d->opts->raster == 1 + SCENE_RASTER_AUTO) {
+    if (d->world.raster == 1 + SCENE_RASTER_AUTO) {
         double ms[2];
         world_raster_auto(w, &cam, &target, ms, NULL);
     }
@@ -135,7 +134,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
             snprintf(m->pass_name[i], sizeof m->pass_name[i], "%s", gfx_timer_name(i));
             m->frame_ms += m->pass_ms[i];
         }
-        bench_metrics_measure(w, m, h->ext);
+        measure_metrics(w, m, h->ext);
     }
     bool ok = !last || gfx_target_read(&target, last);
     gfx_target_destroy(&target);
@@ -143,7 +142,7 @@ int bench_session_run_hooks(const bench_session_desc_t *d, const bench_session_h
     return ok ? 0 : 1;
 }
 
-int bench_session_run(const bench_session_desc_t *d, core_image_t *last, bench_metrics_t *m)
+int measure_session_run(const measure_session_desc_t *d, core_image_t *last, measure_metrics_t *m)
 {
-    return bench_session_run_hooks(d, NULL, last, m);
+    return measure_session_run_hooks(d, NULL, last, m);
 }

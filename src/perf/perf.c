@@ -3,7 +3,7 @@
  * meadow_large.json in hybrid, billboard and blade mode, the 1, 2 and 4 km
  * worlds in hybrid mode and the 2 km world in blade mode), each through the
  * hardware and the compute rasterizer, in one process (one offscreen
- * session each, bench_session.c). Per run: the median of every GPU pass
+ * session each, measure_session.c). Per run: the median of every GPU pass
  * over the frames after warm-up (frames/4), their sum, the hardware floor
  * of its grass triangles (measure_floor_ms), grass counts and GPU memory.
  * Writes DIR/perf.json and regenerates from it the section of
@@ -12,8 +12,11 @@
  * hand-written and kept; --doc FILE regenerates whichever sections FILE
  * has). --quick runs scenes/tiny.json in each mode for CI.
  * `--from FILE` takes a saved perf.json instead of running; `--baseline
- * FILE` then checks it against a committed one (bench_baseline.c). */
-#include "bench/bench_local.h"
+ * FILE` then checks it against a committed one (perf_baseline.c). */
+#include "perf/perf.h"
+
+#include "measure/measure.h"
+#include "measure/measure_session.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -54,7 +57,7 @@ static const perf_case_t quick_cases[] = {
 /* Filled by the frame hook on the last frame. */
 typedef struct perf_probe_t {
     int last;
-    bench_perf_run_t *run;
+    perf_run_t *run;
     measure_stats_t stats;
     bool compute;
     int raster_samples; /* the world's compute rasterizer samples per pixel */
@@ -91,7 +94,7 @@ static double faster(double a, double b)
 }
 
 static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raster_t raster, int frames,
-                       bench_perf_run_t *r)
+                       perf_run_t *r)
 {
     char name[32];
     scene_short(c->scene, name, sizeof name);
@@ -103,11 +106,11 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     app_options_t oc = *o;
     oc.scene = c->scene;
     oc.raster = 1 + (int)raster;
-    bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = frames};
+    measure_session_desc_t d = {.world = app_world_options(&oc), .mode = c->mode, .mode_set = true, .frames = frames};
     perf_probe_t probe = {.last = frames - 1, .run = r};
-    bench_session_hooks_t h = {.frame = probe_frame, .user = &probe};
-    bench_metrics_t m;
-    int rc = bench_session_run_hooks(&d, &h, NULL, &m);
+    measure_session_hooks_t h = {.frame = probe_frame, .user = &probe};
+    measure_metrics_t m;
+    int rc = measure_session_run_hooks(&d, &h, NULL, &m);
     if (rc) return rc;
     r->fell_back = raster == SCENE_RASTER_COMPUTE && !probe.compute;
     if (r->fell_back) core_log_warn("perf: %s drew with the hardware path (no compute rasterizer)", r->name);
@@ -138,7 +141,7 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     return 0;
 }
 
-static int measure(const app_options_t *o, bool quick, bench_perf_t *p)
+static int measure(const app_options_t *o, bool quick, perf_t *p)
 {
     const perf_case_t *cases = quick ? quick_cases : full_cases;
     int nc = quick ? (int)(sizeof quick_cases / sizeof quick_cases[0])
@@ -157,7 +160,7 @@ static int measure(const app_options_t *o, bool quick, bench_perf_t *p)
                 core_log_error("perf: interrupted after %d of %d runs", p->run_count, total);
                 return 1;
             }
-            bench_perf_run_t *r = &p->runs[p->run_count];
+            perf_run_t *r = &p->runs[p->run_count];
             int rc = measure_run(o, &cases[i], k ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW, p->frames, r);
             if (rc) {
                 core_log_error("perf: %s failed", r->name);
@@ -183,7 +186,7 @@ static void json_string(core_buf_t *b, const char *s)
     core_buf_put(b, "\"", 1);
 }
 
-static bool write_json(const bench_perf_t *p, const char *path)
+static bool write_json(const perf_t *p, const char *path)
 {
     core_buf_t b = {0};
     core_buf_printf(&b, "{\n  \"renderer\": ");
@@ -193,7 +196,7 @@ static bool write_json(const bench_perf_t *p, const char *path)
     core_buf_printf(&b, ",\n  \"date\": \"%s\",\n  \"frames\": %d,\n  \"quick\": %s,\n  \"runs\": [\n", p->date,
                     p->frames, p->quick ? "true" : "false");
     for (int i = 0; i < p->run_count; i++) {
-        const bench_perf_run_t *r = &p->runs[i];
+        const perf_run_t *r = &p->runs[i];
         core_buf_printf(&b, "    {\n      \"name\": ");
         json_string(&b, r->name);
         core_buf_printf(&b, ",\n      \"scene\": ");
@@ -240,7 +243,7 @@ static bool get_bool(const scene_json_t *o, const char *key)
 }
 
 /* One run object; false with err set when it lacks name or passes. */
-static bool read_run(const scene_json_t *o, bench_perf_run_t *r, char *err, size_t err_size)
+static bool read_run(const scene_json_t *o, perf_run_t *r, char *err, size_t err_size)
 {
     const char *name = get_string(o, "name");
     const scene_json_t *passes = scene_json_get(o, "passes");
@@ -283,7 +286,7 @@ static bool read_run(const scene_json_t *o, bench_perf_run_t *r, char *err, size
     return true;
 }
 
-int bench_perf_read(const char *path, bench_perf_t *p)
+int perf_read(const char *path, perf_t *p)
 {
     memset(p, 0, sizeof *p);
     char err[512];
@@ -314,8 +317,8 @@ int bench_perf_read(const char *path, bench_perf_t *p)
     p->quick = get_bool(root, "quick");
     int rc = 0;
     for (const scene_json_t *r = runs->child; r && rc == 0; r = r->next) {
-        if (p->run_count == BENCH_PERF_MAX_RUNS) {
-            core_log_error("%s:%d: more than %d runs", path, r->line, BENCH_PERF_MAX_RUNS);
+        if (p->run_count == PERF_MAX_RUNS) {
+            core_log_error("%s:%d: more than %d runs", path, r->line, PERF_MAX_RUNS);
             rc = 2;
         } else if (!read_run(r, &p->runs[p->run_count++], err, sizeof err)) {
             core_log_error("%s:%s", path, err);
@@ -328,14 +331,14 @@ int bench_perf_read(const char *path, bench_perf_t *p)
 
 /* ---- docs/PERFORMANCE.md ----------------------------------------------------------- */
 
-const bench_perf_run_t *bench_perf_find(const bench_perf_t *p, const char *name)
+const perf_run_t *perf_find(const perf_t *p, const char *name)
 {
     for (int i = 0; i < p->run_count; i++)
         if (strcmp(p->runs[i].name, name) == 0) return &p->runs[i];
     return NULL;
 }
 
-static double pass_sum(const bench_perf_run_t *r, const char *const *names)
+static double pass_sum(const perf_run_t *r, const char *const *names)
 {
     double s = 0;
     for (; *names; names++)
@@ -366,7 +369,7 @@ static const perf_target_t targets[] = {
     {"world: GPU memory <= 512 MB", "world/hybrid", MEASURE_MEMORY, {0}, 512.0},
 };
 
-static double target_value(const perf_target_t *t, const bench_perf_run_t *r)
+static double target_value(const perf_target_t *t, const perf_run_t *r)
 {
     switch (t->measure) {
     case MEASURE_PASSES: return pass_sum(r, t->passes);
@@ -382,10 +385,10 @@ static void cell(char *out, size_t size, double v, const char *unit)
     else snprintf(out, size, "%.*f%s", strcmp(unit, " MB") == 0 ? 1 : 3, v, unit);
 }
 
-static void write_section(core_buf_t *b, const bench_perf_t *p)
+static void write_section(core_buf_t *b, const perf_t *p)
 {
     core_buf_printf(b,
-                    "<!-- generated by `meadow bench --perf` from its perf.json: edit src/bench/bench_perf.c, "
+                    "<!-- generated by `meadow bench --perf` from its perf.json: edit src/perf/perf.c, "
                     "not this section -->\n\n"
                     "- renderer: `%s` (%s)\n- run: %s, %d frames per run%s; each pass figure is the median of its "
                     "GL timer over the frames after the first %d (at most the last 256); frame = sum of the pass "
@@ -400,7 +403,7 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
                        "frame/compute floor | GPU memory | CPU ms/frame |\n"
                        "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
-        const bench_perf_run_t *r = &p->runs[i];
+        const perf_run_t *r = &p->runs[i];
         char grass[128] = "", fl[32], ratio[32] = "-", cfl[32], cratio[32] = "-";
         int n = 0;
         if (r->blades) n += snprintf(grass + n, sizeof grass - (size_t)n, "%ld blades, %ld drawn", r->blades,
@@ -417,7 +420,7 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
     }
     core_buf_printf(b, "\n### Pass medians (ms)\n\n| run | passes |\n| --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
-        const bench_perf_run_t *r = &p->runs[i];
+        const perf_run_t *r = &p->runs[i];
         core_buf_printf(b, "| %s |", r->name);
         for (int k = 0; k < r->pass_count; k++)
             core_buf_printf(b, "%s %s %.4f", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
@@ -426,11 +429,11 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
     core_buf_printf(b, "\n### Hardware vs compute rasterizer\n\n| scene/mode | hw frame ms | compute frame ms | "
                        "compute/hw |\n| --- | --- | --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
-        const bench_perf_run_t *hw = &p->runs[i];
+        const perf_run_t *hw = &p->runs[i];
         if (strcmp(hw->raster, "hw") != 0) continue;
         char name[80];
         snprintf(name, sizeof name, "%.*s/compute", (int)(strlen(hw->name) - 3), hw->name);
-        const bench_perf_run_t *cs = bench_perf_find(p, name);
+        const perf_run_t *cs = perf_find(p, name);
         if (!cs) continue;
         core_buf_printf(b, "| %.*s | %.3f | %.3f%s | %.2f |\n", (int)(strlen(hw->name) - 3), hw->name, hw->frame_ms,
                         cs->frame_ms, cs->fell_back ? " (fell back to hw)" : "",
@@ -441,9 +444,9 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
         const perf_target_t *t = &targets[i];
         char name[80];
         snprintf(name, sizeof name, "%s/hw", t->run);
-        const bench_perf_run_t *hw = bench_perf_find(p, name);
+        const perf_run_t *hw = perf_find(p, name);
         snprintf(name, sizeof name, "%s/compute", t->run);
-        const bench_perf_run_t *cs = bench_perf_find(p, name);
+        const perf_run_t *cs = perf_find(p, name);
         if (!hw && !cs) continue;
         if (!header)
             core_buf_printf(b, "\n### Targets\n\n| target | hw | compute | met? |\n| --- | --- | --- | --- |\n");
@@ -463,7 +466,7 @@ static void write_section(core_buf_t *b, const bench_perf_t *p)
 /* README.md's summary: frame times of the largest scene's runs (meadow_large
  * in the bench set, the first run's scene otherwise), hardware against
  * compute rasterizer per mode. */
-static void write_summary(core_buf_t *b, const bench_perf_t *p)
+static void write_summary(core_buf_t *b, const perf_t *p)
 {
     char scene[64] = "";
     for (int i = 0; i < p->run_count && !scene[0]; i++)
@@ -471,15 +474,15 @@ static void write_summary(core_buf_t *b, const bench_perf_t *p)
     if (!scene[0] && p->run_count) snprintf(scene, sizeof scene, "%.*s/", (int)strcspn(p->runs[0].name, "/"),
                                             p->runs[0].name);
     core_buf_printf(b, "<!-- generated by `meadow bench --perf` from its perf.json (the committed one: "
-                       "docs/perf/h100.json): edit src/bench/bench_perf.c, not this section -->\n\n");
+                       "docs/perf/h100.json): edit src/perf/perf.c, not this section -->\n\n");
     bool first = true;
     for (int i = 0; i < p->run_count; i++) {
-        const bench_perf_run_t *hw = &p->runs[i];
+        const perf_run_t *hw = &p->runs[i];
         size_t len = strlen(hw->name);
         if (strcmp(hw->raster, "hw") != 0 || strncmp(hw->name, scene, strlen(scene)) != 0 || len < 3) continue;
         char name[80];
         snprintf(name, sizeof name, "%.*s/compute", (int)(len - 3), hw->name);
-        const bench_perf_run_t *cs = bench_perf_find(p, name);
+        const perf_run_t *cs = perf_find(p, name);
         if (!cs) continue;
         if (first)
             core_buf_printf(b, "%.*s at %dx%d on `%s` (%s), frame = sum of the GL pass medians, hardware -> "
@@ -494,7 +497,7 @@ static void write_summary(core_buf_t *b, const bench_perf_t *p)
 
 typedef struct perf_section_t {
     const char *begin, *end;
-    void (*write)(core_buf_t *b, const bench_perf_t *p);
+    void (*write)(core_buf_t *b, const perf_t *p);
 } perf_section_t;
 
 static const perf_section_t sections[] = {
@@ -504,7 +507,7 @@ static const perf_section_t sections[] = {
 
 /* Replaces the text between the markers of every section doc holds; a doc
  * with none is an error. */
-static int update_doc(const bench_perf_t *p, const char *doc)
+static int update_doc(const perf_t *p, const char *doc)
 {
     char err[512];
     char *text = core_fs_read(doc, NULL, err, sizeof err);
@@ -545,10 +548,10 @@ static int update_doc(const bench_perf_t *p, const char *doc)
 
 /* ---- the command ------------------------------------------------------------------- */
 
-static int measure_and_write(const bench_options_t *o, bench_perf_t *p, char *json, size_t json_size)
+static int measure_and_write(const perf_options_t *o, perf_t *p, char *json, size_t json_size)
 {
     char err[1024];
-    const char *dir = o->perf ? o->perf : o->app.out ? o->app.out : "out/bench";
+    const char *dir = o->perf ? o->perf : o->app->out ? o->app->out : "out/bench";
     if (!core_fs_check_writable_dir(dir, err, sizeof err) || !core_fs_lock_dir(dir, err, sizeof err)) {
         core_log_error("%s: %s", o->perf ? "--perf" : "--out", err);
         return 2;
@@ -558,7 +561,7 @@ static int measure_and_write(const bench_options_t *o, bench_perf_t *p, char *js
         return 1;
     }
     gfx_init();
-    int rc = measure(&o->app, o->quick, p);
+    int rc = measure(o->app, o->quick, p);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -572,15 +575,15 @@ static int measure_and_write(const bench_options_t *o, bench_perf_t *p, char *js
     core_log_info("perf: wrote %s (%d runs)", json, p->run_count);
     /* The doc and the check take the numbers as written (rounded), so the
      * doc regenerated later from this file comes out the same. */
-    return bench_perf_read(json, p);
+    return perf_read(json, p);
 }
 
-int bench_perf_main(const bench_options_t *o)
+int perf_main(const perf_options_t *o)
 {
-    bench_perf_t *cur = calloc(1, sizeof *cur), *base = NULL;
+    perf_t *cur = calloc(1, sizeof *cur), *base = NULL;
     if (!cur) return 1;
     char json[1100];
-    int rc = o->perf_from ? bench_perf_read(o->perf_from, cur) : measure_and_write(o, cur, json, sizeof json);
+    int rc = o->perf_from ? perf_read(o->perf_from, cur) : measure_and_write(o, cur, json, sizeof json);
     const char *doc = o->doc ? o->doc : o->perf && !o->quick ? PERF_DOC : NULL;
     /* The committed doc describes the H100: a run elsewhere (a laptop,
      * llvmpipe) leaves it alone unless --doc names a file. */
@@ -593,8 +596,8 @@ int bench_perf_main(const bench_options_t *o)
     if (rc == 0 && doc && !o->doc) rc = update_doc(cur, SUMMARY_DOC);
     if (rc == 0 && o->baseline) {
         base = calloc(1, sizeof *base);
-        rc = !base ? 1 : bench_perf_read(o->baseline, base);
-        if (rc == 0) rc = bench_baseline_check(cur, base, o->baseline, o->force);
+        rc = !base ? 1 : perf_read(o->baseline, base);
+        if (rc == 0) rc = perf_baseline_check(cur, base, o->baseline, o->force);
     }
     free(cur);
     free(base);

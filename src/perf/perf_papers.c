@@ -24,7 +24,12 @@
  * section (bench --report with --papers). Timings: the median of each pass
  * over the frames after warm-up (frames/4), as bench --perf; every figure
  * is the median over PAPERS_RUNS (3) sessions. */
-#include "bench/bench_local.h"
+#include "perf/perf.h"
+
+#include "eval/eval.h"
+
+#include "measure/measure.h"
+#include "measure/measure_session.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -60,7 +65,7 @@ static const paper_fact_t paper_facts[] = {
 #define PAPER_COUNT ((int)(sizeof paper_facts / sizeof paper_facts[0]))
 
 #define CULL_ALL (BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE | BLADE_CULL_OCCLUSION)
-const bench_ablation_t bench_ablations[BENCH_ABLATION_COUNT] = {
+const perf_ablation_t perf_ablations[PERF_ABLATION_COUNT] = {
     {"all", false, 0},
     {"collision_off", true, 0},
     {"culling_off", false, CULL_ALL},
@@ -103,7 +108,7 @@ static const size_t papers_timed[] = {
     offsetof(papers_run_t, recover_ms),  offsetof(papers_run_t, render_ms),   offsetof(papers_run_t, leaves),
     offsetof(papers_run_t, recovering)};
 
-#define MAX_RUNS (MAX_SCENES * (BENCH_ABLATION_COUNT + 1) * 2 + MAX_LEAF_RUNS * 2)
+#define MAX_RUNS (MAX_SCENES * (PERF_ABLATION_COUNT + 1) * 2 + MAX_LEAF_RUNS * 2)
 typedef struct papers_t {
     char renderer[256];
     int frames, scene_count, run_count;
@@ -121,7 +126,7 @@ typedef struct papers_probe_t {
     papers_run_t *run;
     int warmup, last, samples;
     int colliders_wanted; /* leaves runs: balls spread over the field; 0 = the scene's */
-    const bench_ablation_t *ablation;
+    const perf_ablation_t *ablation;
 } papers_probe_t;
 
 /* Leaves runs: n balls like the scene's first, each crossing the field
@@ -186,14 +191,14 @@ static void papers_frame(world_t *w, int frame, float t, void *user)
 
 /* The median of pass `name` in m; 0 when it did not run in this session
  * (the timers outlive the worlds: a stale pass has no sample after warm-up). */
-static double pass_of(const bench_metrics_t *m, const char *name)
+static double pass_of(const measure_metrics_t *m, const char *name)
 {
     for (int i = 0; i < m->pass_count; i++)
         if (strcmp(m->pass_name[i], name) == 0) return m->pass_ms[i] > 0.0 ? m->pass_ms[i] : 0.0;
     return 0.0;
 }
 
-static void fill_passes(papers_run_t *r, const bench_metrics_t *m)
+static void fill_passes(papers_run_t *r, const measure_metrics_t *m)
 {
     for (int i = 0; i < m->pass_count; i++)
         if (m->pass_ms[i] > 0.0 && strcmp(m->pass_name[i], "bb.generate") != 0) r->frame_ms += m->pass_ms[i];
@@ -212,15 +217,15 @@ static int papers_session(const app_options_t *o, const char *file, papers_run_t
     app_options_t oc = *o;
     oc.scene = file;
     oc.raster = 1 + (r->compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW);
-    bench_session_desc_t d = {.opts = &oc, .mode = r->mode, .mode_set = true, .frames = frames,
+    measure_session_desc_t d = {.world = app_world_options(&oc), .mode = r->mode, .mode_set = true, .frames = frames,
                               .tweak = papers_tweak, .user = p};
     if (p->ablation) d.tuning.cull_disable = p->ablation->cull_disable;
     p->run = r;
     p->warmup = frames / 4;
     p->last = frames - 1;
-    bench_session_hooks_t h = {.frame = papers_frame, .user = p};
-    bench_metrics_t m;
-    int rc = bench_session_run_hooks(&d, &h, NULL, &m);
+    measure_session_hooks_t h = {.frame = papers_frame, .user = p};
+    measure_metrics_t m;
+    int rc = measure_session_run_hooks(&d, &h, NULL, &m);
     if (rc) return rc;
     r->fell_back = r->compute && !m.raster_compute;
     fill_passes(r, &m);
@@ -258,7 +263,7 @@ static const char *plan_run(const papers_t *P, int s, int v, int k, papers_run_t
     r->scene = s;
     r->variant = v;
     r->mode = v < 0 ? P->desc[s].mode : SCENE_MODE_BLADE;
-    probe->ablation = v < 0 ? NULL : &bench_ablations[v];
+    probe->ablation = v < 0 ? NULL : &perf_ablations[v];
     return P->scene[s];
 }
 
@@ -281,7 +286,7 @@ static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v
     for (size_t f = 0; f < sizeof papers_timed / sizeof papers_timed[0]; f++) {
         double v3[PAPERS_RUNS];
         for (int n = 0; n < PAPERS_RUNS; n++) v3[n] = *(const double *)((const char *)&runs[n] + papers_timed[f]);
-        *(double *)((char *)r + papers_timed[f]) = bench_percentile(v3, PAPERS_RUNS, 0.5);
+        *(double *)((char *)r + papers_timed[f]) = measure_percentile(v3, PAPERS_RUNS, 0.5);
     }
     double lo = runs[0].frame_ms, hi = lo;
     for (int n = 1; n < PAPERS_RUNS; n++) {
@@ -301,12 +306,12 @@ static int papers_measure(const app_options_t *o, papers_t *P)
     int leaf_n = P->quick ? 2 : MAX_LEAF_RUNS;
     P->planned = 2 * leaf_n;
     for (int s = 0; s < P->scene_count; s++)
-        P->planned += 2 * (BENCH_ABLATION_COUNT + (P->desc[s].mode != SCENE_MODE_BLADE));
+        P->planned += 2 * (PERF_ABLATION_COUNT + (P->desc[s].mode != SCENE_MODE_BLADE));
     double t0 = plat_time();
     for (int s = 0; s <= P->scene_count; s++) {
         bool leaves = s == P->scene_count;
         int v0 = !leaves && P->desc[s].mode != SCENE_MODE_BLADE ? -1 : 0;
-        for (int v = v0; v < (leaves ? leaf_n : BENCH_ABLATION_COUNT); v++)
+        for (int v = v0; v < (leaves ? leaf_n : PERF_ABLATION_COUNT); v++)
             for (int k = 0; k < 2; k++) {
                 app_signal_reclaim();
                 if (app_interrupted()) {
@@ -320,7 +325,7 @@ static int papers_measure(const app_options_t *o, papers_t *P)
                 P->run_count++;
                 fprintf(stderr, "papers: %2d/%d %-12s %-16s %-7s frame %8.3f +- %.3f ms  (%.0f s)\n", P->run_count,
                         P->planned, leaves ? "orthmann" : P->name[s],
-                        leaves ? "leaves" : v < 0 ? scene_mode_name(r->mode) : bench_ablations[v].name,
+                        leaves ? "leaves" : v < 0 ? scene_mode_name(r->mode) : perf_ablations[v].name,
                         r->compute ? "compute" : "hw", r->frame_ms, r->frame_spread, plat_time() - t0);
             }
     }
@@ -336,7 +341,7 @@ static const char *path_name(const papers_run_t *r)
 
 static const char *variant_name(const papers_run_t *r)
 {
-    return r->variant >= 0 ? bench_ablations[r->variant].name : r->variant == -1 ? "own_mode" : "leaves";
+    return r->variant >= 0 ? perf_ablations[r->variant].name : r->variant == -1 ? "own_mode" : "leaves";
 }
 
 static bool write_json(const papers_t *P, const char *dir)
@@ -583,9 +588,8 @@ static int papers_scenes(const char *one, papers_t *P)
     return 0;
 }
 
-int bench_papers_run(const bench_options_t *bo, const char *dir, core_buf_t *md)
+int perf_papers_run(const app_options_t *o, bool quick, const char *dir, core_buf_t *md)
 {
-    const app_options_t *o = &bo->app;
     char err[1024];
     if (!core_fs_mkdirs(dir) || !core_fs_check_writable_dir(dir, err, sizeof err)) {
         core_log_error("--papers: %s", err);
@@ -598,8 +602,8 @@ int bench_papers_run(const bench_options_t *bo, const char *dir, core_buf_t *md)
         return 1;
     }
     P->desc = desc;
-    P->quick = bo->quick;
-    P->frames = o->frames_set ? o->frames : (bo->quick ? 6 : 120);
+    P->quick = quick;
+    P->frames = o->frames_set ? o->frames : (quick ? 6 : 120);
     snprintf(P->renderer, sizeof P->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     /* With the report, --scene names the sweep's scene: the set runs the papers'. */
     int rc = papers_scenes(md ? NULL : o->scene, P);

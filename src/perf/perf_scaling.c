@@ -15,7 +15,12 @@
  * frames after warm-up, next to the slots and blades dispatched by the
  * latest update (blade_tiles_stats). Writes scaling.csv, scaling_field.dat,
  * scaling_active.dat and their gnuplot charts (PNG and SVG) into out. */
-#include "bench/bench_local.h"
+#include "perf/perf.h"
+
+#include "eval/eval.h"
+
+#include "measure/measure.h"
+#include "measure/measure_session.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,7 +34,7 @@ typedef struct scaling_run_t {
     float density;     /* blades per m^2 */
     float tile;        /* tile side, m */
     bool full;         /* the full-field blade mode instead of the tiles */
-    bench_scaling_point_t *point;
+    perf_scaling_point_t *point;
 } scaling_run_t;
 
 /* Tile centres in rings around the centre: the 4 tiles at (+-2, +-2) first,
@@ -86,7 +91,7 @@ static void last_frame(world_t *w, int frame, float t, void *user)
     }
 }
 
-static double pass_median(const bench_metrics_t *m, const char *name)
+static double pass_median(const measure_metrics_t *m, const char *name)
 {
     for (int p = 0; p < m->pass_count; p++)
         if (strcmp(m->pass_name[p], name) == 0) return m->pass_ms[p];
@@ -96,12 +101,13 @@ static double pass_median(const bench_metrics_t *m, const char *name)
 /* One session: hybrid (tiles) or, with r->full, the full-field blade mode. */
 static int measure(const app_options_t *o, scaling_run_t *r)
 {
-    bench_scaling_point_t *p = r->point;
-    bench_session_desc_t d = {.opts = o, .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
+    perf_scaling_point_t *p = r->point;
+    measure_session_desc_t d = {.world = app_world_options(o),
+                                .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
                               .frames = p->frames, .tweak = tweak, .user = r};
-    bench_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
-    bench_metrics_t m;
-    int rc = bench_session_run_hooks(&d, &h, NULL, &m);
+    measure_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
+    measure_metrics_t m;
+    int rc = measure_session_run_hooks(&d, &h, NULL, &m);
     if (rc) return rc;
     if (r->full)
         p->full_ms = pass_median(&m, "blade.physics");
@@ -120,7 +126,7 @@ static void write_chart(const char *out, const char *name, const char *title, co
     eval_gnuplot_chart(out, name, body);
 }
 
-int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench_scaling_t *res, core_buf_t *md)
+int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_scaling_t *res, core_buf_t *md)
 {
     memset(res, 0, sizeof *res);
     snprintf(res->renderer, sizeof res->renderer, "%s", (const char *)glGetString(GL_RENDERER));
@@ -137,8 +143,8 @@ int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench
     int total = res->field_count * (quick ? 1 : 2) + res->active_count, done = 0;
     int rc = 0;
     for (int i = 0; i < res->field_count && rc == 0; i++) {
-        bench_scaling_point_t *p = &res->field[i];
-        *p = (bench_scaling_point_t){.side = base * (float)(1 << i), .balls = 4, .frames = frames, .full_ms = -1};
+        perf_scaling_point_t *p = &res->field[i];
+        *p = (perf_scaling_point_t){.side = base * (float)(1 << i), .balls = 4, .frames = frames, .full_ms = -1};
         scaling_run_t r = {.side = p->side, .balls = 4, .density = density, .tile = tile, .point = p};
         rc = measure(o, &r);
         fprintf(stderr, "\rscaling: %d/%d field %g m tiles %.4f ms   ", ++done, total, p->side, p->physics_ms);
@@ -150,8 +156,8 @@ int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench
         if (app_interrupted()) rc = 1;
     }
     for (int i = 0; i < res->active_count && rc == 0; i++) {
-        bench_scaling_point_t *p = &res->active[i];
-        *p = (bench_scaling_point_t){.side = base * 2.0f, .balls = balls[i], .frames = frames, .full_ms = -1};
+        perf_scaling_point_t *p = &res->active[i];
+        *p = (perf_scaling_point_t){.side = base * 2.0f, .balls = balls[i], .frames = frames, .full_ms = -1};
         scaling_run_t r = {.side = p->side, .balls = balls[i], .density = active_density, .tile = active_tile,
                            .point = p};
         rc = measure(o, &r);
@@ -162,7 +168,7 @@ int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench
     if (rc) return rc;
 
     /* Least squares physics_ms = intercept + slope * active tiles (slots). */
-    double xs[BENCH_SCALING_MAX], ys[BENCH_SCALING_MAX];
+    double xs[PERF_SCALING_MAX], ys[PERF_SCALING_MAX];
     for (int i = 0; i < res->active_count; i++) {
         xs[i] = res->active[i].slots;
         ys[i] = res->active[i].physics_ms;
@@ -186,7 +192,7 @@ int bench_scaling_run(const app_options_t *o, const char *out, bool quick, bench
     for (int s = 0; s < 2; s++) {
         int cnt = s ? res->active_count : res->field_count;
         for (int i = 0; i < cnt; i++) {
-            const bench_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
+            const perf_scaling_point_t *p = s ? &res->active[i] : &res->field[i];
             double area = (double)(p->side * p->side) / (double)(res->field[0].side * res->field[0].side);
             core_buf_printf(&csv, "%s,%g,%g,%d,%d,%ld,%.5f,%ld,%.5f\n", s ? "active" : "field", p->side, area,
                             p->balls, p->slots, p->blades, p->physics_ms, p->full_blades, p->full_ms);

@@ -5,14 +5,16 @@
  * them afterwards), applies the case's failure
  * criterion and reports the first value where the method breaks, with a
  * screenshot of that run (or of the last value when none broke). The
- * measures come from bench_metrics.c (docs/METRICS.md): penetration against
+ * measures come from measure_metrics.c (docs/METRICS.md): penetration against
  * the exact collider shapes, blade length error, recovery time after a
  * collider leaves (offset from an undisturbed twin world for blades, from
  * the wind pose of eq. 8 for billboards), jitter of a resting collider,
  * trail coverage of a fast collider (tunnelling), texture distortion of
  * deformed billboard meshes (worst frame; its rendering is the screenshot)
  * and root density on a mesh face relative to the floor. */
-#include "bench/bench_local.h"
+#include "stability/stability.h"
+
+#include "measure/measure_session.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -46,12 +48,12 @@ enum { VAR_PAPER, VAR_DEFAULT, VAR_TUNED, VAR_COUNT };
 static const char *const variant_names[VAR_COUNT] = {"paper", "default", "tuned"};
 
 typedef struct stab_result_t {
-    bench_metrics_t m;
-    bench_metrics_ext_t x;
+    measure_metrics_t m;
+    measure_metrics_ext_t x;
     double recovery;  /* s after the collider left; INFINITY: not recovered */
     double coverage;  /* trail coverage: blades ever deflected during the pass */
     double jitter;    /* m per frame over the last 0.5 s */
-    bench_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
+    measure_bb_distortion_t distortion; /* worst stretch and fold count over the frames */
     double depth95;   /* 95th percentile over frames (and seeds) of the frame's deepest sample, m */
     double crossing;  /* billboards across the wall's mid-plane (thin_bb) */
     double jump;      /* largest pose change in one step (offset from the twin or the wind pose), m */
@@ -527,8 +529,8 @@ typedef struct stab_run_t {
     double *depths;  /* the deepest sample of every measured frame (shared by a value's seeds) */
     long *ndepth, cap;
     int depth_every; /* frames between depth measures (1; 3 with --quick) */
-    bench_bb_distortion_t distortion;
-    bench_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
+    measure_bb_distortion_t distortion;
+    measure_bb_distortion_t worst_frame; /* the most distorted frame so far: most folded cells, then stretch */
     bool worst_now;                  /* this frame is it */
     core_image_t worst;              /* its rendering */
 } stab_run_t;
@@ -544,9 +546,10 @@ static void tweak(scene_desc_t *s, void *user)
     if (r->no_colliders) s->collider_count = 0;
 }
 
-static bench_session_desc_t session_desc(const stab_run_t *r, int frames)
+static measure_session_desc_t session_desc(const stab_run_t *r, int frames)
 {
-    return (bench_session_desc_t){.opts = r->o, .mode = r->c->mode, .mode_set = true, .frames = frames,
+    return (measure_session_desc_t){.world = app_world_options(r->o),
+                                    .mode = r->c->mode, .mode_set = true, .frames = frames,
                                   .tweak = tweak, .user = (void *)r,
                                   .tuning = {.paper = r->variant == VAR_PAPER, .placement_seed = r->seed}};
 }
@@ -556,8 +559,8 @@ static void make_twin(world_t *w, stab_run_t *r)
 {
     stab_run_t tw = *r;
     tw.no_colliders = true;
-    bench_session_desc_t d = session_desc(&tw, 0);
-    bench_session_world(&d, &r->twin); /* NULL when it cannot be made */
+    measure_session_desc_t d = session_desc(&tw, 0);
+    measure_session_world(&d, &r->twin); /* NULL when it cannot be made */
     uint32_t padded = blade_gpu_info(world_info(w).blades).padded_count;
     r->prev = calloc((size_t)padded * 3, sizeof(float));
     r->ever = calloc(padded, 1);
@@ -567,7 +570,7 @@ static void make_twin(world_t *w, stab_run_t *r)
 static void frame_pass(world_t *w, float t, stab_run_t *r)
 {
     if (t > r->t_exit) {
-        double off = r->twin ? bench_metrics_blade_offset(w, r->twin, NULL, NULL, NULL) : bench_metrics_bb_offset(w);
+        double off = r->twin ? measure_blade_offset(w, r->twin, NULL, NULL, NULL) : measure_bb_offset(w);
         if (!(off <= RECOVERY_EPS)) {
             r->last_over = t, r->last_off = off, r->next_t = 0;
         } else if (r->next_t == 0) {
@@ -586,19 +589,19 @@ static void frame_pass(world_t *w, float t, stab_run_t *r)
             bb_field_info(bf, &fi);
             r->ever = calloc((size_t)fi.billboards, 1);
         }
-        if (r->ever) r->coverage = bench_metrics_bb_coverage(w, a, b, 0.15f, 0.2f, r->ever, &corridor);
+        if (r->ever) r->coverage = measure_bb_coverage(w, a, b, 0.15f, 0.2f, r->ever, &corridor);
     } else if (r->twin && r->ever) {
-        r->coverage = bench_metrics_blade_coverage(w, r->twin, a, b, 0.15f, 0.2f, r->ever, &corridor);
+        r->coverage = measure_blade_coverage(w, r->twin, a, b, 0.15f, 0.2f, r->ever, &corridor);
     }
     r->covered = t > r->t_exit;
 }
 
 static void frame_distortion(int f, stab_run_t *r, world_t *w)
 {
-    bench_bb_distortion_t d;
-    bench_metrics_bb_distortion(w, &d);
-    bench_bb_distortion_t *m = &r->distortion;
-    const bench_bb_distortion_t *b = &r->worst_frame;
+    measure_bb_distortion_t d;
+    measure_bb_distortion(w, &d);
+    measure_bb_distortion_t *m = &r->distortion;
+    const measure_bb_distortion_t *b = &r->worst_frame;
     r->worst_now = f == 0 || d.folded > b->folded || (d.folded == b->folded && d.max_stretch > b->max_stretch);
     if (r->worst_now) r->worst_frame = d;
     m->max_stretch = fmax(m->max_stretch, d.max_stretch);
@@ -613,9 +616,9 @@ static void frame_distortion(int f, stab_run_t *r, world_t *w)
 static void frame_wall(world_t *w, stab_run_t *r)
 {
     float xf = wall_run(r->v), zr = 0.9f * WALL_Z;
-    long face = bench_metrics_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
+    long face = measure_roots_in(w, (float[3]){-0.02f, 0.1f * WALL_H, -zr},
                                        (float[3]){xf + 0.02f, 0.9f * WALL_H, zr});
-    long floor = bench_metrics_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
+    long floor = measure_roots_in(w, (float[3]){-2.9f, -0.05f, -zr}, (float[3]){-0.2f, 0.05f, zr});
     double face_area = 0.8 * WALL_H / sin(glm_rad(r->v)) * 2.0 * zr, floor_area = 2.7 * 2.0 * zr;
     r->coverage = floor ? ((double)face / face_area) / ((double)floor / floor_area) : 0.0;
 }
@@ -626,7 +629,7 @@ static void frame_jump(world_t *w, stab_run_t *r)
 {
     double j = 0;
     if (r->twin && r->prev) {
-        bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
+        measure_blade_offset(w, r->twin, r->prev, &r->primed, &j);
     } else if (r->c->mode == SCENE_MODE_BILLBOARD) {
         bb_field_t *bf = world_info(w).billboards;
         if (!r->prev && bf) {
@@ -634,7 +637,7 @@ static void frame_jump(world_t *w, stab_run_t *r)
             bb_field_info(bf, &fi);
             r->prev = calloc((size_t)fi.billboards * (size_t)fi.mesh_vertices * 3, sizeof(float));
         }
-        if (r->prev) j = bench_metrics_bb_jump(w, r->prev, &r->primed);
+        if (r->prev) j = measure_bb_jump(w, r->prev, &r->primed);
     }
     if (!(j <= r->jump)) r->jump = j;
 }
@@ -651,19 +654,19 @@ static void frame(world_t *w, int f, float t, void *user)
     if (r->c->setup == setup_wall && f == 0) frame_wall(w, r);
     if (r->c->measure == MEASURE_JITTER && r->twin && r->prev && t > r->t_end - 0.5f) {
         double j = 0;
-        bench_metrics_blade_offset(w, r->twin, r->prev, &r->primed, &j);
+        measure_blade_offset(w, r->twin, r->prev, &r->primed, &j);
         if (j > r->jitter) r->jitter = j;
     }
     /* The deepest sample of every frame after the first (depth p95). */
     bool depth = r->c->measure == MEASURE_STATIC || (r->c->measure == MEASURE_SPIKES && t <= r->t_exit);
     if (depth && f > 0 && f % r->depth_every == 0 && world_collider_count(w) > 0 && *r->ndepth < r->cap) {
-        bench_metrics_t m;
-        bench_metrics_measure(w, &m, NULL);
+        measure_metrics_t m;
+        measure_metrics(w, &m, NULL);
         r->depths[(*r->ndepth)++] = m.penetration_max;
     }
     if (r->c->judge == judge_thin && f + 1 == r->frames) {
         long near;
-        r->crossing = bench_metrics_bb_crossing(w, 0, &near);
+        r->crossing = measure_bb_crossing(w, 0, &near);
     }
 }
 
@@ -726,12 +729,12 @@ static int run_one(const app_options_t *o, stab_run_t *r, bool quick, const char
     int frames = (int)ceilf(r->t_end / dt);
     if (c->setup == setup_spikes) frames = (frames + 9) / 10 * 10; /* the last step is a spike */
     r->frames = frames;
-    bench_session_desc_t d = session_desc(r, frames);
+    measure_session_desc_t d = session_desc(r, frames);
     bool distortion = c->measure == MEASURE_DISTORTION;
-    bench_session_hooks_t h = {.frame = frame, .user = r, .draw_last_only = !distortion, .ext = &res->x,
+    measure_session_hooks_t h = {.frame = frame, .user = r, .draw_last_only = !distortion, .ext = &res->x,
                                .step_dt = c->setup == setup_spikes ? spike_dt : NULL,
                                .drawn = distortion ? drawn : NULL};
-    int rc = bench_session_run_hooks(&d, &h, img, &res->m);
+    int rc = measure_session_run_hooks(&d, &h, img, &res->m);
     if (r->worst.px) {
         core_image_free(img);
         *img = r->worst;
@@ -776,7 +779,7 @@ static double p95(const double *v, long n)
     double *copy = malloc(sizeof *copy * (size_t)(n > 0 ? n : 1));
     if (!copy) return INFINITY;
     memcpy(copy, v, sizeof *copy * (size_t)n);
-    double q = bench_percentile(copy, n, 0.95);
+    double q = measure_percentile(copy, n, 0.95);
     free(copy);
     return q;
 }
@@ -825,9 +828,9 @@ static int run_value(const app_options_t *o, const stab_case_t *c, int variant, 
 /* ---- the suite ---------------------------------------------------------------------------- */
 
 /* Every case, or only the one named by --case. */
-static bool case_selected(const bench_options_t *o, const stab_case_t *c)
+static bool case_selected(const stability_desc_t *o, const stab_case_t *c)
 {
-    return !o->stability_case || strcmp(o->stability_case, c->name) == 0;
+    return !o->only_case || strcmp(o->only_case, c->name) == 0;
 }
 
 static void fmt_value(char *buf, size_t n, double v)
@@ -847,8 +850,8 @@ static void shot_name(char *buf, size_t n, const stab_case_t *c, int variant)
 
 static void csv_row(core_buf_t *csv, const stab_case_t *c, int variant, float v, const stab_result_t *r)
 {
-    const bench_metrics_t *m = &r->m;
-    const bench_bb_distortion_t *dd = &r->distortion;
+    const measure_metrics_t *m = &r->m;
+    const measure_bb_distortion_t *dd = &r->distortion;
     bool distortion = c->measure == MEASURE_DISTORTION;
     core_buf_printf(csv,
                     "%s,%s,%s,\"%s\",%g,%.6g,%d,%.6f,%.6f,%.6f,%.6f,%.6f,%.4f,%.6f,%.4f,%.4f,%.6f,%ld,%.4f,%.6g,%ld\n",
@@ -926,7 +929,7 @@ static void md_row(core_buf_t *md, const stab_case_t *c, int variant, const stab
                     row->constant ? " (constant)" : "", c->criterion, brk, images ? "images/" : "", name);
 }
 
-int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *md_out, const char *report)
+int stability_run(const stability_desc_t *o, const char *out, core_buf_t *md_out, const char *report)
 {
     bool quick = o->quick;
     char path[1200];
@@ -947,7 +950,7 @@ int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *m
     if (selected == 0) {
         core_buf_t names = {0};
         for (int ci = 0; ci < CASE_COUNT; ci++) core_buf_printf(&names, "%s%s", ci ? ", " : "", cases[ci].name);
-        core_log_error("--case '%s': no such stability case (%s)", o->stability_case, names.data);
+        core_log_error("--case '%s': no such stability case (%s)", o->only_case, names.data);
         core_buf_free(&names);
         rc = 1;
     }
@@ -960,7 +963,7 @@ int bench_stability_run(const bench_options_t *o, const char *out, core_buf_t *m
         for (int var = 0; var < VAR_COUNT && rc == 0; var++) {
             if (var == VAR_TUNED && (!c->tuned || quick)) continue;
             stab_row_t row;
-            rc = run_variant(&o->app, c, var, quick, out, report, &csv, &row, &done, total, t0);
+            rc = run_variant(o->app, c, var, quick, out, report, &csv, &row, &done, total, t0);
             if (rc) break;
             broke = broke || row.broke >= 0;
             if (row.constant)

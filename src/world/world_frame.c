@@ -1,5 +1,5 @@
 /* world_frame: one frame of the world, the sequence the program (app_run.c)
- * and every offscreen bench session (src/bench/bench_session.c) run: the
+ * and every offscreen bench session (src/measure/measure_session.c) run: the
  * simulation steps, the camera on its path, the view, the target fitted,
  * cleared and drawn into, then the frame paced at the GPU. Also the scene's
  * `raster: auto` measure at start-up, for both. */
