@@ -25,11 +25,13 @@ static void view_at(world_view_t *v, const float eye[3], const float target[3], 
     memset(v, 0, sizeof *v);
     glm_lookat((float *)eye, (float *)target, (float *)up, v->view);
     glm_perspective(glm_rad(90.0f), (float)W / (float)H, 1.0f, 6000.0f, v->proj);
-    glm_mat4_mul(v->proj, v->view, v->viewproj);
-    glm_mat4_inv(v->viewproj, v->inv_viewproj);
-    glm_vec3_copy((float *)eye, v->camera);
-    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->sun_dir);
-    glm_vec3_normalize(v->sun_dir);
+    mat4 vp;
+    glm_mat4_mul(v->proj, v->view, vp);
+    glm_mat4_inv(vp, v->inv_viewproj);
+    memcpy(v->frame.viewproj, vp, sizeof v->frame.viewproj);
+    glm_vec3_copy((float *)eye, v->frame.camera);
+    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->frame.sun_dir);
+    glm_vec3_normalize(v->frame.sun_dir);
     v->far = 6000.0f;
     v->width = W;
     v->height = H;

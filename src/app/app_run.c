@@ -467,7 +467,7 @@ static void frame_drawn(world_t *w, const world_view_t *v, gfx_target_t *target,
     (void)w;
     (void)target;
     app_t *app = user;
-    if (app->hud) draw_hud(app, v->time);
+    if (app->hud) draw_hud(app, v->frame.time);
     app->last_view = *v;
     app->last_hud = app->hud || app->wireframe || app->overlay;
     int frame = app->done + 1;

@@ -63,7 +63,7 @@ bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target
             vec4 p;
             glm_mat4_mulv((vec4 *)v->inv_viewproj, ndc, p);
             glm_vec3_scale(p, 1.0f / p[3], p);
-            f->dist[i] = glm_vec3_distance(p, (float *)v->camera);
+            f->dist[i] = glm_vec3_distance(p, (float *)v->frame.camera);
             if (p[1] - terrain_height_at(world_info(w).terrain, p[0], p[2], NULL) < MEASURE_SEAM_GROUND_EPS)
                 f->cls[i] = EVAL_SEAM_GROUND;
         }

@@ -741,10 +741,7 @@ typedef struct frame_draw_t {
 static void draw_tiles(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    blade_draw_desc_t dd = {.time = v->time, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->terrain.gi};
-    memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
-    memcpy(dd.camera, v->camera, sizeof dd.camera);
-    memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+    blade_draw_desc_t dd = {.view = v->frame, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->terrain.gi};
     blade_tiles_set_overlay(w->tiles, v->overlay);
     /* Occlusion culling reads the opaque depth, as blade mode's below. */
     if (f->raster) {
@@ -766,23 +763,19 @@ static void draw_blades(world_t *w, frame_draw_t *f)
      * field's edge or the far plane) with the levels of the 60 m cut
      * (blade_cull_desc_t.level_distance, docs/BLADES.md). */
     bool hybrid = w->mode == SCENE_MODE_HYBRID;
-    blade_cull_desc_t cd = {.max_distance = hybrid ? f->fade_hi
-                                                   : scene_blade_distance(&w->scene.grass, v->camera, v->far,
+    blade_cull_desc_t cd = {.view = v->frame,
+                            .max_distance = hybrid ? f->fade_hi
+                                                   : scene_blade_distance(&w->scene.grass, v->frame.camera, v->far,
                                                                           w->terrain_mesh.aabb_min,
                                                                           w->terrain_mesh.aabb_max),
                             .level_distance = hybrid ? 0.0f : BLADE_CULL_MAX_DISTANCE_DEFAULT,
                             .distance_levels = w->tuning.distance_levels,
                             .disable = w->reference ? 0xffu : w->tuning.cull_disable};
-    memcpy(cd.cam_pos, v->camera, sizeof cd.cam_pos);
-    memcpy(cd.view_proj, v->viewproj, sizeof cd.view_proj);
     GLuint depth = f->raster ? f->raster->opaque_depth.id : target->resolve_depth.id;
     blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
     glViewport(0, 0, target->w, target->h);
-    blade_draw_desc_t dd = {.time = v->time, .gi = w->terrain.gi};
-    memcpy(dd.view_proj, v->viewproj, sizeof dd.view_proj);
-    memcpy(dd.camera, v->camera, sizeof dd.camera);
-    memcpy(dd.sun, v->sun_dir, sizeof dd.sun);
+    blade_draw_desc_t dd = {.view = v->frame, .gi = w->terrain.gi};
     if (hybrid && !w->reference) {
         dd.fade_start = f->fade_lo;
         dd.fade_end = f->fade_hi;
@@ -794,11 +787,7 @@ static void draw_blades(world_t *w, frame_draw_t *f)
 static void draw_billboards(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    bb_draw_desc_t d = {.time = v->time, .overlay = v->overlay == 1, .gi = w->terrain.gi};
-    memcpy(d.viewproj, v->viewproj, sizeof d.viewproj);
-    memcpy(d.camera, v->camera, sizeof d.camera);
-    memcpy(d.sun_dir, v->sun_dir, sizeof d.sun_dir);
-    memcpy(d.planes, v->planes, sizeof d.planes);
+    bb_draw_desc_t d = {.view = v->frame, .overlay = v->overlay == 1, .gi = w->terrain.gi};
     if (w->mode == SCENE_MODE_HYBRID) {
         d.fade_start = f->fade_lo;
         d.fade_end = f->fade_hi;
@@ -822,7 +811,7 @@ static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
         gfx_timer_end();
         break;
     case WORLD_PASS_CHARACTERS:
-        character_set_draw(&w->chars, (const float *)f->v->viewproj, f->v->camera, f->v->sun_dir);
+        character_set_draw(&w->chars, f->v->frame.viewproj, f->v->frame.camera, f->v->frame.sun_dir);
         break;
     /* raster_begin takes the opaque depth (also read by occlusion culling). */
     case WORLD_PASS_RASTER_BEGIN: raster_begin(f->raster, f->target); break;
@@ -838,7 +827,7 @@ static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
 void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe)
 {
     glPolygonMode(GL_FRONT_AND_BACK, wireframe ? GL_LINE : GL_FILL);
-    glm_vec3_copy((float *)v->camera, w->camera);
+    glm_vec3_copy((float *)v->frame.camera, w->camera);
     w->drawn = true;
     frame_draw_t f = {.v = v, .target = target, .raster_ok = true};
     f.raster = w->raster_compute && !wireframe && v->overlay == 0 ? frame_raster(w, target) : NULL;
@@ -917,16 +906,20 @@ void world_view_make(world_view_t *v, const cam_t *cam_in, int width, int height
     cam_t cam = *cam_in;
     cam.aspect = (float)width / (float)height;
     *v = (world_view_t){0};
+    mat4 vp;
+    vec4 planes[6]; /* cglm's aligned vectors; core_view_t holds plain floats */
     cam_view(&cam, v->view);
     cam_proj(&cam, v->proj);
-    glm_mat4_mul(v->proj, v->view, v->viewproj);
-    glm_mat4_inv(v->viewproj, v->inv_viewproj);
-    cam_frustum_planes(v->viewproj, v->planes);
-    glm_vec3_copy(cam.position, v->camera);
+    glm_mat4_mul(v->proj, v->view, vp);
+    glm_mat4_inv(vp, v->inv_viewproj);
+    cam_frustum_planes(vp, planes);
+    memcpy(v->frame.viewproj, vp, sizeof v->frame.viewproj);
+    memcpy(v->frame.planes, planes, sizeof v->frame.planes);
+    glm_vec3_copy(cam.position, v->frame.camera);
     v->far = cam.far;
-    glm_vec3_normalize_to((vec3)WORLD_SUN_DIR, v->sun_dir); /* the clump bakes and the canopy light with it */
+    glm_vec3_normalize_to((vec3)WORLD_SUN_DIR, v->frame.sun_dir); /* the clump bakes and the canopy light with it */
     v->width = width;
     v->height = height;
-    v->time = time;
+    v->frame.time = time;
     v->dt = dt;
 }

@@ -45,15 +45,14 @@ typedef struct world_options_t {
     float character_height; /* every character's height (m); 0: the scene's */
 } world_options_t;
 
-/* Per-frame view, shared by every draw. */
+/* Per-frame view, shared by every draw: `frame` is what the grass drivers
+ * take as it is (core_view_t), the rest what the world's own draws need. */
 typedef struct world_view_t {
-    mat4 view, proj, viewproj, inv_viewproj;
-    vec4 planes[6];
-    vec3 camera;
-    vec3 sun_dir;
+    core_view_t frame; /* view-projection, camera, sun, frustum planes, time */
+    mat4 view, proj, inv_viewproj;
     float far; /* the camera's far plane (m) */
     int width, height;
-    float time, dt;
+    float dt;
     int overlay; /* debug overlay, key O: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength */
 } world_view_t;
 

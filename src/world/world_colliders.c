@@ -65,9 +65,9 @@ void world_colliders_draw(const world_colliders_t *c, const world_view_t *v)
 {
     if (!c->count) return;
     glUseProgram(c->prog.id);
-    glUniformMatrix4fv(gfx_uniform(c->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
-    glUniform3fv(gfx_uniform(c->prog, "u_sun"), 1, v->sun_dir);
-    glUniform3fv(gfx_uniform(c->prog, "u_camera"), 1, v->camera);
+    glUniformMatrix4fv(gfx_uniform(c->prog, "u_viewproj"), 1, GL_FALSE, v->frame.viewproj);
+    glUniform3fv(gfx_uniform(c->prog, "u_sun"), 1, v->frame.sun_dir);
+    glUniform3fv(gfx_uniform(c->prog, "u_camera"), 1, v->frame.camera);
     glUniform3f(gfx_uniform(c->prog, "u_albedo"), 0.75f, 0.22f, 0.15f);
     for (int i = 0; i < c->count; i++) {
         const world_collider_t *a = &c->items[i];

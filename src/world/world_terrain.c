@@ -105,7 +105,7 @@ static void draw_world(const world_terrain_t *t, const world_view_t *v)
           morph = gfx_uniform(t->prog, "u_morph");
     double tris = 0.0;
     for (int l = 0; l < c->desc.levels; l++) {
-        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->camera[0], v->camera[2]);
+        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->frame.camera[0], v->frame.camera[2]);
         glUniform2fv(origin, 1, lv.origin);
         glUniform1f(cell, lv.cell);
         glUniform2fv(morph, 1, lv.morph);
@@ -119,9 +119,9 @@ static void draw_world(const world_terrain_t *t, const world_view_t *v)
 void world_terrain_draw(const world_terrain_t *t, const world_view_t *v)
 {
     glUseProgram(t->prog.id);
-    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, (const float *)v->viewproj);
-    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
-    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->frame.viewproj);
+    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->frame.camera);
+    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->frame.sun_dir);
     gi_set_uniforms(t->prog.id, &t->gi);
     bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
