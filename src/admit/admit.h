@@ -13,7 +13,7 @@
  * memory from admit_host_bytes (/proc/meminfo, RLIMIT_AS). The estimate
  * follows the allocations of bb_field_make, blade_gpu_make,
  * blade_tiles_make (blade_tiles_estimate_bytes), raster_make,
- * gfx_target_make and world_terrain_make; test_admit compares it with
+ * gfx_target_make and ground_make; test_admit compares it with
  * gfx_memory_bytes after start-up. */
 #ifndef MEADOW_ADMIT_H
 #define MEADOW_ADMIT_H

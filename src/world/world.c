@@ -420,7 +420,7 @@ static bool make_tiles(world_t *w)
     if (threaded) pthread_join(thread, NULL);
     else canopy_thread(&job);
     if (w->have_tiles && job.ok)
-        world_terrain_set_canopy(&w->terrain, &job.canopy, blade_tiles_info(w->tiles).extent_texture,
+        ground_set_canopy(w->ground, &job.canopy, blade_tiles_info(w->tiles).extent_texture,
                                td.extent_origin, td.extent_spacing);
     if (have_layout) bb_layout_free(&lay);
     return w->have_tiles;
@@ -545,7 +545,7 @@ bool world_make_gpu(world_t *w)
 {
     double mark = plat_time();
     apply_lod_table(w);
-    w->gpu_ready = admit(w) && world_terrain_make(&w->terrain, &w->terrain_mesh) &&
+    w->gpu_ready = admit(w) && (w->ground = ground_make(&w->terrain_mesh)) != NULL &&
                    world_colliders_make(&w->colliders, &w->scene);
     if (w->gpu_ready && w->scene.grass.gi) w->gpu_ready = world_gi_make(w);
     stage_done(w, WORLD_STAGE_TERRAIN_GPU, &mark);
@@ -741,7 +741,7 @@ typedef struct frame_draw_t {
 static void draw_tiles(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    blade_draw_desc_t dd = {.view = v->frame, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->terrain.gi};
+    blade_draw_desc_t dd = {.view = v->frame, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->gi_bind};
     blade_tiles_set_overlay(w->tiles, v->overlay);
     /* Occlusion culling reads the opaque depth, as blade mode's below. */
     if (f->raster) {
@@ -775,7 +775,7 @@ static void draw_blades(world_t *w, frame_draw_t *f)
     blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
     glViewport(0, 0, target->w, target->h);
-    blade_draw_desc_t dd = {.view = v->frame, .gi = w->terrain.gi};
+    blade_draw_desc_t dd = {.view = v->frame, .gi = w->gi_bind};
     if (hybrid && !w->reference) {
         dd.fade_start = f->fade_lo;
         dd.fade_end = f->fade_hi;
@@ -787,7 +787,7 @@ static void draw_blades(world_t *w, frame_draw_t *f)
 static void draw_billboards(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    bb_draw_desc_t d = {.view = v->frame, .overlay = v->overlay == 1, .gi = w->terrain.gi};
+    bb_draw_desc_t d = {.view = v->frame, .overlay = v->overlay == 1, .gi = w->gi_bind};
     if (w->mode == SCENE_MODE_HYBRID) {
         d.fade_start = f->fade_lo;
         d.fade_end = f->fade_hi;
@@ -806,7 +806,7 @@ static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
     switch (kind) {
     case WORLD_PASS_TERRAIN:
         gfx_timer_begin("terrain");
-        world_terrain_draw(&w->terrain, f->v);
+        ground_draw(w->ground, &f->v->frame, (const float *)f->v->inv_viewproj);
         world_colliders_draw(&w->colliders, f->v);
         gfx_timer_end();
         break;
@@ -844,8 +844,7 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
      * billboards yet) where the blades fade out. */
     f.far_lo = on_world(w) ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
     f.far_hi = on_world(w) ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
-    w->terrain.canopy_fade[0] = f.tiles ? f.far_lo : 0.0f;
-    w->terrain.canopy_fade[1] = f.tiles ? f.far_hi : 0.0f;
+    ground_set_canopy_fade(w->ground, f.tiles ? f.far_lo : 0.0f, f.tiles ? f.far_hi : 0.0f);
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
@@ -895,7 +894,7 @@ void world_destroy(world_t *w)
     raster_destroy(&w->raster);
     world_colliders_destroy(&w->colliders);
     gi_gpu_destroy(&w->gi);
-    world_terrain_destroy(&w->terrain);
+    ground_destroy(w->ground);
     terrain_free(&w->terrain_mesh);
     core_image_free(&w->clearings_image);
     free(w);

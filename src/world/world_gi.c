@@ -96,6 +96,7 @@ bool world_gi_make(world_t *w)
                       v.res[0], v.res[1], v.res[2], (double)(v.hi[0] - v.lo[0]), (double)(v.hi[1] - v.lo[1]),
                       (double)(v.hi[2] - v.lo[2]), v.build_ms);
     gi_volume_free(&v);
-    w->terrain.gi = gi_gpu_bind(ok ? &w->gi : NULL);
+    w->gi_bind = gi_gpu_bind(ok ? &w->gi : NULL);
+    ground_set_gi(w->ground, w->gi_bind);
     return ok;
 }

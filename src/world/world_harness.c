@@ -16,7 +16,7 @@ world_info_t world_info(world_t *w)
                           .reference = w->reference,
                           .raster_compute = w->raster_compute,
                           .raster_samples = w->raster_samples,
-                          .canopy = w->terrain.canopy.rows > 1,
+                          .canopy = w->ground && ground_has_canopy(w->ground),
                           .input_error = w->input_error,
                           .stage_ms = w->stage_ms,
                           .admitted = &w->admitted,

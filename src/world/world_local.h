@@ -1,7 +1,7 @@
 /* world_local: the world's struct and what its files share (world.c,
- * world_frame.c, world_terrain.c, world_colliders.c, world_gi.c,
- * world_harness.c): the terrain and sky, the analytic colliders. Not
- * included outside src/world; world.h is the module's interface. */
+ * world_frame.c, world_colliders.c, world_gi.c, world_harness.c): the
+ * analytic colliders. Not included outside src/world; world.h is the
+ * module's interface. */
 #ifndef MEADOW_WORLD_LOCAL_H
 #define MEADOW_WORLD_LOCAL_H
 
@@ -12,37 +12,8 @@
 #include "collide/collide_shape.h"
 #include "core/core.h"
 #include "gi/gi.h"
+#include "ground/ground.h"
 #include "scene/terrain_clipmap.h"
-
-/* The terrain, and in the hybrid the ground canopy it is shaded as beyond
- * the billboards (blade_canopy.h, shaders/common/canopy.glsl). */
-typedef struct world_terrain_t {
-    gfx_buffer_t vbo, ibo;
-    GLuint vao, empty_vao;
-    int index_count;
-    /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
-     * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
-     * prog is terrain_world.vert made with terrain_world_defines. */
-    bool world;
-    terrain_clipmap_t clipmap;
-    gfx_program_t prog, sky;
-    /* Ground canopy: its table, the extent map that thins it (the tiles'
-     * texture, borrowed), and this frame's fade (start, end of the switch
-     * distance; end 0: none). */
-    blade_canopy_uniforms_t canopy;
-    GLuint extent;
-    float extent_origin[2], extent_spacing;
-    float canopy_fade[2];
-    gi_bind_t gi; /* global illumination of the ground and its canopy; zero: off */
-} world_terrain_t;
-
-bool world_terrain_make(world_terrain_t *t, const terrain_mesh_t *mesh);
-void world_terrain_destroy(world_terrain_t *t);
-/* The canopy's table and the extent map that thins it (an R8 texture the
- * caller owns, 0: none; common/extent.glsl says which texel). */
-void world_terrain_set_canopy(world_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
-                            float spacing);
-void world_terrain_draw(const world_terrain_t *t, const world_view_t *v);
 
 /* ---- analytic colliders (scene "colliders") ---------------------------------- */
 typedef struct world_collider_t {
@@ -74,7 +45,7 @@ struct world_t {
     char scene_path[1024];
     terrain_mesh_t terrain_mesh;
     core_image_t clearings_image; /* grass.clearings.image (type image), 1 channel */
-    world_terrain_t terrain;
+    ground_t *ground; /* the terrain as drawn, the sky, the ground canopy */
     world_colliders_t colliders;
     scene_mode_t mode;
     bool reference; /* blades everywhere, maximum tessellation, no culling */
@@ -115,6 +86,7 @@ struct world_t {
     /* Global illumination (scene grass.gi, world_gi.c): the volumes, made at
      * start-up; gi.ao.id 0 when off. */
     gi_gpu_t gi;
+    gi_bind_t gi_bind; /* gi's bind for every draw (the ground's, the grass's) */
     char lod_note[512]; /* grass.lod_table: what was chosen and why (summary.txt); "" without one */
     admit_t admitted; /* the memory and work estimate the run was admitted with (admit.h) */
     bool stepped;          /* world_update ran (its first step seeds the collide set at t - dt) */

@@ -1,15 +1,38 @@
-/* world_terrain: uploads a terrain mesh and draws it (lit soil-and-grass
- * ground), and draws the sky gradient behind everything. A world terrain
+/* ground: uploads a terrain mesh and draws it (lit soil-and-grass ground),
+ * and draws the sky gradient behind everything (ground.h). A world terrain
  * (no vertices) is drawn as a clipmap (scene/terrain_clipmap.h): one vertex
  * grid of integer coordinates, five index ranges, a draw per level of
  * terrain_world.vert, displaced by world_height; the same terrain.frag. */
-#include "world/world_local.h"
+#include "ground/ground.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "common/bindings_app.glsl"
+#include "scene/terrain_clipmap.h"
 
-static bool make_sky(world_terrain_t *t)
+/* The terrain, and in the hybrid the ground canopy it is shaded as beyond
+ * the billboards. */
+struct ground_t {
+    gfx_buffer_t vbo, ibo;
+    GLuint vao, empty_vao;
+    int index_count;
+    /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
+     * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
+     * prog is terrain_world.vert made with terrain_world_defines. */
+    bool world;
+    terrain_clipmap_t clipmap;
+    gfx_program_t prog, sky;
+    /* Ground canopy: its table, the extent map that thins it (borrowed),
+     * and this frame's fade (start, end; end 0: none). */
+    blade_canopy_uniforms_t canopy;
+    GLuint extent;
+    float extent_origin[2], extent_spacing;
+    float canopy_fade[2];
+    gi_bind_t gi;
+};
+
+static bool make_sky(ground_t *t)
 {
     t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
                                                     .label = "sky.program"});
@@ -18,7 +41,7 @@ static bool make_sky(world_terrain_t *t)
 }
 
 /* The clipmap's grid and index ranges on the GPU and the world program. */
-static bool make_world(world_terrain_t *t, const terrain_mesh_t *mesh)
+static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
 {
     t->world = true;
     terrain_clipmap_t *c = &t->clipmap;
@@ -44,10 +67,9 @@ static bool make_world(world_terrain_t *t, const terrain_mesh_t *mesh)
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
-bool world_terrain_make(world_terrain_t *t, const terrain_mesh_t *mesh)
+/* A terrain mesh's interleaved vertices, indices and program. */
+static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
 {
-    memset(t, 0, sizeof *t);
-    if (mesh->type == TERRAIN_WORLD) return make_world(t, mesh);
     size_t nv = mesh->vertex_count;
     float *interleaved = malloc(nv * 8 * sizeof(float));
     if (!interleaved) return false;
@@ -77,8 +99,16 @@ bool world_terrain_make(world_terrain_t *t, const terrain_mesh_t *mesh)
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
-void world_terrain_set_canopy(world_terrain_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2],
-                            float spacing)
+ground_t *ground_make(const terrain_mesh_t *mesh)
+{
+    ground_t *t = calloc(1, sizeof *t);
+    if (!t) return NULL;
+    if (mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) return t;
+    ground_destroy(t);
+    return NULL;
+}
+
+void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing)
 {
     blade_canopy_pack(c, &t->canopy);
     t->extent = extent;
@@ -86,8 +116,19 @@ void world_terrain_set_canopy(world_terrain_t *t, const blade_canopy_t *c, GLuin
     t->extent_spacing = spacing;
 }
 
-void world_terrain_destroy(world_terrain_t *t)
+bool ground_has_canopy(const ground_t *t) { return t->canopy.rows > 1; }
+
+void ground_set_canopy_fade(ground_t *t, float start, float end)
 {
+    t->canopy_fade[0] = start;
+    t->canopy_fade[1] = end;
+}
+
+void ground_set_gi(ground_t *t, gi_bind_t gi) { t->gi = gi; }
+
+void ground_destroy(ground_t *t)
+{
+    if (!t) return;
     gfx_buffer_destroy(&t->vbo);
     gfx_buffer_destroy(&t->ibo);
     gfx_vertex_array_destroy(&t->vao);
@@ -95,17 +136,18 @@ void world_terrain_destroy(world_terrain_t *t)
     gfx_program_destroy(&t->prog);
     gfx_program_destroy(&t->sky);
     terrain_clipmap_free(&t->clipmap);
+    free(t);
 }
 
 /* One draw per clipmap level around the camera. */
-static void draw_world(const world_terrain_t *t, const world_view_t *v)
+static void draw_world(const ground_t *t, const core_view_t *v)
 {
     const terrain_clipmap_t *c = &t->clipmap;
     GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
           morph = gfx_uniform(t->prog, "u_morph");
     double tris = 0.0;
     for (int l = 0; l < c->desc.levels; l++) {
-        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->frame.camera[0], v->frame.camera[2]);
+        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->camera[0], v->camera[2]);
         glUniform2fv(origin, 1, lv.origin);
         glUniform1f(cell, lv.cell);
         glUniform2fv(morph, 1, lv.morph);
@@ -116,12 +158,12 @@ static void draw_world(const world_terrain_t *t, const world_view_t *v)
     gfx_count_add("terrain.clipmap.triangles", tris);
 }
 
-void world_terrain_draw(const world_terrain_t *t, const world_view_t *v)
+void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewproj[16])
 {
     glUseProgram(t->prog.id);
-    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->frame.viewproj);
-    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->frame.camera);
-    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->frame.sun_dir);
+    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
+    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
+    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
     gi_set_uniforms(t->prog.id, &t->gi);
     bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
@@ -149,7 +191,7 @@ void world_terrain_draw(const world_terrain_t *t, const world_view_t *v)
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);
     glUseProgram(t->sky.id);
-    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, (const float *)v->inv_viewproj);
+    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, inv_viewproj);
     glBindVertexArray(t->empty_vao);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthMask(GL_TRUE);
