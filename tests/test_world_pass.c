@@ -48,8 +48,8 @@ static void check_modes(void)
     CHECK_LIST("terrain raster_begin blades* raster_end", .mode = SCENE_MODE_BLADE, ALL, .compute = true);
     /* Hybrid on a mesh: the whole field near, billboards far. */
     CHECK_LIST("terrain blades billboards", .mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_MESH, ALL);
-    /* A world: streamed tiles in blade and hybrid modes, no billboards in the hybrid. */
-    CHECK_LIST("terrain tiles", .mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_WORLD, ALL);
+    /* A world: streamed tiles in blade and hybrid modes, the billboard ring in the hybrid and billboard mode. */
+    CHECK_LIST("terrain tiles billboards", .mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_WORLD, ALL);
     CHECK_LIST("terrain tiles", .mode = SCENE_MODE_BLADE, .ground = WORLD_GROUND_WORLD, ALL);
     CHECK_LIST("terrain billboards", .mode = SCENE_MODE_BILLBOARD, .ground = WORLD_GROUND_WORLD, ALL);
 }
@@ -74,7 +74,7 @@ static void check_rules(void)
 {
     CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD));
     CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_MESH));
-    CHECK(!world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD));
     CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD));
     CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD));
     CHECK(!world_pass_wants_blades(SCENE_MODE_BILLBOARD));

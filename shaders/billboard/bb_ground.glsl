@@ -1,13 +1,20 @@
 /* bb_ground.glsl: the terrain under the billboards, from the field's height
  * texture (bb.c upload_heights: a heightfield's own vertices, or a mesh
- * terrain resampled at the candidate spacing). Included before
- * common/bb.glsl, it defines BB_GROUND, and bb_push_mesh then keeps every
- * vertex on or above the terrain (twin: bb_collide_desc_t.ground). */
+ * terrain resampled at the candidate spacing), or with BB_GROUND_WORLD the
+ * world's height function (the billboard ring, bb_ring.c; the defines of
+ * terrain_world_defines). Included before common/bb.glsl, it defines
+ * BB_GROUND, and bb_push_mesh then keeps every vertex on or above the
+ * terrain (twin: bb_collide_desc_t.ground). */
 #ifndef BB_GROUND_GLSL
 #define BB_GROUND_GLSL
 #define BB_GROUND
 
 #include "common/bindings_billboard.glsl"
+
+#ifdef BB_GROUND_WORLD
+#include "common/world_height.glsl"
+float terrain_height(float x, float z) { return world_height(vec2(x, z)); }
+#else
 
 /* R32F grid vertex heights */
 layout(binding = BB_TEX_HEIGHTS) uniform sampler2D u_heights;
@@ -32,5 +39,6 @@ float terrain_height(float x, float z)
     if (v >= u) return p00 + u * (p11 - p01) + v * (p01 - p00);
     return p00 + u * (p10 - p00) + v * (p11 - p10);
 }
+#endif
 
 #endif

@@ -13,6 +13,7 @@
 
 #include <cglm/cglm.h>
 
+#include "billboard/bb_ring.h"
 #include "blade/blade_tiles.h"
 #include "hybrid/hybrid.h"
 #include "scene/scene_fields.h"
@@ -82,6 +83,18 @@ static double tiles_bytes(const scene_desc_t *s, const admit_world_t *w)
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
 
+/* A world's billboard ring (bb_ring.h) out to the canopy's band (its
+ * reach in world.c make_bb: canopy_distance + WORLD_CANOPY_FADE, 4 m),
+ * generation tiles of 2 x 2: W^2 K^2 points, whatever the world's size;
+ * *scratch: its collide scratch, 32 slots of K^2 (bb_ring.c). */
+static double ring_candidates(const scene_desc_t *s, double spacing, double *scratch)
+{
+    int cand = bb_ring_cand(BB_RING_CELL_DEFAULT, (float)spacing, 2);
+    double side = bb_ring_side(s->grass.canopy_distance + 4.0f, (float)(cand * spacing));
+    *scratch = fmin(side * side, 32.0) * cand * cand;
+    return side * side * cand * cand;
+}
+
 void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *e)
 {
     memset(e, 0, sizeof *e);
@@ -123,12 +136,14 @@ void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *e)
         e->blades = (double)g->tile_pool * g->population.density * g->tile_size * g->tile_size;
     }
     if (w->billboards) {
-        double spacing = 1.0 / sqrt(g->billboard_density);
-        e->bb_candidates = s->terrain.type == TERRAIN_HEIGHTFIELD
-                               ? ceil(ext[0] / spacing) * ceil(ext[1] / spacing)
-                               : 1.3 * area * g->billboard_density;
+        double spacing = 1.0 / sqrt(g->billboard_density), scratch = 0.0;
+        e->bb_candidates = s->terrain.type == TERRAIN_HEIGHTFIELD ? ceil(ext[0] / spacing) * ceil(ext[1] / spacing)
+                           : s->terrain.type == TERRAIN_WORLD     ? ring_candidates(s, spacing, &scratch)
+                                                                  : 1.3 * area * g->billboard_density;
         double layout = fmin(fmax(ceil(fmax(ext[0], ext[1]) / spacing), 32.0), 1024.0);
-        e->gpu[ADMIT_BILLBOARDS] = e->bb_candidates * (2.0 * BB_POINT_BYTES + 8.0) +
+        /* points and the collide passes' scratch copy (a ring's holds 32 cells) */
+        if (s->terrain.type != TERRAIN_WORLD) scratch = e->bb_candidates;
+        e->gpu[ADMIT_BILLBOARDS] = (e->bb_candidates + scratch) * BB_POINT_BYTES + e->bb_candidates * 8.0 +
                                        (double)g->deformed_pool * g->subdiv[0] * g->subdiv[1] * 16.0 +
                                        layout * layout * 5.0 + 0.5 * MIB;
         double res = cube_res(s, w);
@@ -354,8 +369,7 @@ static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *er
 bool admit_world_supported(const scene_desc_t *s, const admit_world_t *w, char *err, size_t err_size)
 {
     if (s->terrain.type != TERRAIN_WORLD) return true;
-    const char *what = w->billboards   ? "billboards (billboard mode) are not streamed yet: use mode blade or hybrid"
-                       : w->full_field ? "the full blade field (the bench's reference) needs the terrain's vertices"
+    const char *what = w->full_field ? "the full blade field (the bench's reference) needs the terrain's vertices"
                        : s->grass.gi   ? "grass.gi needs the terrain's vertices: set it false"
                                        : NULL;
     if (!what) return true;

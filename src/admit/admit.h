@@ -94,9 +94,9 @@ typedef struct admit_t {
 const char *admit_part_name(int part);
 /* False with one line in err when s has a world terrain (terrain.type
  * "world", no vertices) and w asks for grass that still needs the
- * terrain's vertices: billboards (not streamed yet), the full blade field
- * (the bench's reference) or the GI volumes. Blade and hybrid modes draw
- * streamed tiles there (docs/WORLD.md). */
+ * terrain's vertices: the full blade field (the bench's reference) or the
+ * GI volumes. Every mode draws streamed grass there: tiles of blades, a
+ * ring of billboard cells (docs/WORLD.md). */
 bool admit_world_supported(const scene_desc_t *s, const admit_world_t *w, char *err, size_t err_size);
 void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *out);
 /* Checks s against the limits; false with one line in err (naming the key

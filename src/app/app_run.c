@@ -332,6 +332,21 @@ static int summary_work(char *buf, size_t size)
     return n < (int)size ? n : (int)size - 1;
 }
 
+/* A world's billboard ring (bb_ring.h): its cells, reach and memory. */
+static int summary_ring(bb_field_t *bb, char *buf, size_t size)
+{
+    bb_field_info_t fi;
+    bb_field_info(bb, &fi);
+    float cell = (float)fi.ring_cand * fi.gen.spacing;
+    int n = snprintf(buf, size,
+                     "billboard ring: %d x %d cells of %.2f m (%d x %d candidates) around the camera, to %.1f m; "
+                     "%d billboards, %.1f MiB; cells generated %ld\n",
+                     fi.ring_side, fi.ring_side, (double)cell, fi.ring_cand, fi.ring_cand,
+                     (double)fi.desc.ring_reach, fi.capacity,
+                     (double)fi.capacity * (double)sizeof(bb_point_t) / 1048576.0, fi.ring_generated);
+    return n < 0 ? 0 : (n < (int)size ? n : (int)size - 1);
+}
+
 /* What the world holds: the admission estimate, the hybrid's distances, a
  * world's tile window, the compute rasterizer's buffers, the characters. */
 static int summary_world(world_info_t wi, char *buf, size_t size)
@@ -345,11 +360,8 @@ static int summary_world(world_info_t wi, char *buf, size_t size)
                           ad->gpu[k] / (1024.0 * 1024.0));
     n += snprintf(buf + n, size - (size_t)n, ")\n");
     bool world = wi.terrain->type == TERRAIN_WORLD;
-    if (wi.scene->mode == SCENE_MODE_HYBRID && world)
-        n += snprintf(buf + n, size - (size_t)n,
-                      "hybrid distances: switch %.1f m, the canopy from there (a world: no billboards)\n",
-                      wi.scene->grass.switch_distance);
-    else if (wi.scene->mode == SCENE_MODE_HYBRID)
+    if (world && wi.billboards) n += summary_ring(wi.billboards, buf + n, size - (size_t)n);
+    if (wi.scene->mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, size - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       wi.scene->grass.switch_distance, wi.scene->grass.canopy_distance,
                       wi.lod_note[0] ? wi.lod_note : "the scene's; no grass.lod_table");

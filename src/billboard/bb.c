@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-static const char *const bb_tf_varyings[] = {"o_pos_angle", "o_growth_mess", "o_size", "o_layer_state",
+const char *const bb_tf_varyings[] = {"o_pos_angle", "o_growth_mess", "o_size", "o_layer_state",
                                              "o_recover",   "o_seed",        "o_pad",  NULL};
 
 int bb_pass_objects(const bb_field_t *f)
@@ -36,6 +36,8 @@ bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
     if (d.max_objects <= 0) d.max_objects = 8;
     if (d.max_deformed <= 0) d.max_deformed = 4096;
     if (d.octree_depth <= 0) d.octree_depth = 4;
+    if (d.ring_reach <= 0) d.ring_reach = BB_RING_REACH_DEFAULT;
+    if (d.ring_cell <= 0) d.ring_cell = BB_RING_CELL_DEFAULT;
     d.wind = bb_wind_desc_defaults(&d.wind);
     d.layout.seed = d.seed;
     if (d.layout.clump.size[0] <= 0.0f) d.layout.clump.size[0] = d.size[0];
@@ -203,11 +205,18 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
              f->views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
     char gen_defines[sizeof f->defines + 32];
     snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, triangles ? "#define BB_GEN_TRIANGLES\n" : "");
-    f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
-                                                         .gs = "billboard/bb_generate.geom", .defines = gen_defines,
-                                                         .tf_varyings = bb_tf_varyings, .label = "bb.generate"});
+    if (!f->ring_on) /* the ring's generation program: bb_ring_make */
+        f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
+                                                             .gs = "billboard/bb_generate.geom",
+                                                             .defines = gen_defines, .tf_varyings = bb_tf_varyings,
+                                                             .label = "bb.generate"});
+    /* the ring's collide pass stands billboards on the world's function */
+    char collide_defines[sizeof f->defines + 320];
+    if (!f->ring_on) snprintf(collide_defines, sizeof collide_defines, "%s", defines);
+    else if (!bb_ring_defines(f, collide_defines, sizeof collide_defines)) return false;
     f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                             .gs = "billboard/bb_collide.geom", .defines = defines,
+                                                             .gs = "billboard/bb_collide.geom",
+                                                             .defines = collide_defines,
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
     f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
                                                              .label = "bb.recover"});
@@ -223,7 +232,7 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
                                                           .label = "bb.cube"});
     f->slope_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_slope.comp", .defines = defines,
                                                            .label = "bb.slope"});
-    if (!f->gen_prog.id || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
+    if ((!f->gen_prog.id && !f->ring_on) || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
         !f->quad_prog.id || !f->slope_prog.id)
         return false;
     return !d->occlusion || bb_occlusion_make(f);
@@ -241,14 +250,18 @@ static bool make_buffers(bb_field_t *f)
     pool[0] = (uint32_t)d->max_deformed;
     for (int s = 0; s < d->max_deformed; s++) pool[4 + s] = (uint32_t)(d->max_deformed - 1 - s);
     f->pool = gfx_buffer_make(&(gfx_buffer_desc_t){.size = pool_words * 4, .data = pool, .label = "bb.pool"});
-    f->recover_range_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->tree.leaf_count * 16, .dynamic = true,
+    size_t ranges = f->ring_on ? (size_t)f->ring.side * (size_t)f->ring.side : (size_t)f->tree.leaf_count;
+    f->recover_range_buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = ranges * 16, .dynamic = true,
                                                                 .label = "bb.recover_ranges"});
     free(pool);
     f->meshes = gfx_buffer_make(&(gfx_buffer_desc_t){
         .size = (size_t)d->max_deformed * (size_t)(d->subdiv[0] * d->subdiv[1]) * 16, .label = "bb.meshes"});
     f->points = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
                                                      .label = "bb.points"});
-    f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)f->capacity * sizeof(bb_point_t),
+    /* The ring's collide pass takes at most ring_collide_slots slots (bb_ring.c). */
+    size_t scratch = f->ring_on ? (size_t)f->ring_collide_slots * (size_t)(f->ring.cand * f->ring.cand)
+                                : (size_t)f->capacity;
+    f->scratch = gfx_buffer_make(&(gfx_buffer_desc_t){.size = scratch * sizeof(bb_point_t),
                                                       .label = "bb.points_scratch"});
     GLint align = 256;
     glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &align);
@@ -287,7 +300,9 @@ bb_field_t *bb_field_make(const bb_field_desc_t *desc)
     f->desc = bb_field_desc_defaults(desc);
     const bb_field_desc_t *d = &f->desc;
     const terrain_mesh_t *t = d->terrain;
-    assert(t && t->positions && t->index_count >= 3);
+    f->ring_on = t && t->type == TERRAIN_WORLD;
+    assert(t && (f->ring_on || (t->positions && t->index_count >= 3)));
+    f->desc.occlusion = f->desc.occlusion && !f->ring_on; /* the ring's cells are culled as boxes */
     int tile = 0, render_verts = 0;
     if (!check_limits(d, &tile, &render_verts)) goto fail;
     f->gen = bb_gen_desc_defaults(&(bb_gen_desc_t){
@@ -295,6 +310,13 @@ bb_field_t *bb_field_make(const bb_field_desc_t *desc)
         .height = d->size[1], .seed = d->placement_seed ? d->placement_seed : d->seed});
     if (!bb_upload_layout(f)) goto fail;
     stage_done(f, BB_MAKE_LAYOUT, &mark);
+    if (f->ring_on) { /* world terrains: cells are generated as the camera follows (bb_ring.c) */
+        if (!make_programs(f, false, tile, render_verts) || !bb_ring_make(f, tile) || !make_buffers(f)) goto fail;
+        f->billboards = f->capacity;
+        stage_done(f, BB_MAKE_PROGRAMS, &mark);
+        f->make_ms = (float)(wall_ms() - t_start);
+        return f;
+    }
     if (!count_candidates(f, t, &tris) || !make_tree(f, t) || !bb_upload_heights(f, t) ||
         !make_programs(f, tris != NULL, tile, render_verts))
         goto fail;
@@ -342,6 +364,7 @@ void bb_field_destroy(bb_field_t *f)
     gfx_program_destroy(&f->cube_prog);
     gfx_program_destroy(&f->slope_prog);
     bb_occlusion_destroy(f);
+    bb_ring_destroy(f);
     bb_octree_free(&f->tree);
     free(f->ranges);
     free(f->sort_keys);
@@ -379,6 +402,16 @@ int bb_merge_ranges(bb_field_t *f, int count)
 }
 
 
+void bb_field_follow(bb_field_t *f, const float camera[3])
+{
+    if (f->ring_on) bb_ring_follow(f, camera);
+}
+
+int bb_field_ring_slot(const bb_field_t *f, const int32_t cell[2])
+{
+    return f->ring_on ? bb_ring_window_find(&f->ring, cell) : -1;
+}
+
 void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
 {
     memset(out, 0, sizeof *out);
@@ -389,6 +422,8 @@ void bb_field_stats(const bb_field_t *f, bool wait, bb_stats_t *out)
         int node = bb_octree_leaf_node(t, (uint32_t)k);
         if (t->count[node]) out->leaves[t->state[node]]++;
     }
+    for (int s = 0; f->ring_on && s < f->ring.side * f->ring.side; s++)
+        if (f->ring.held[s][0] != BB_RING_NONE) out->leaves[f->ring.state[s]]++;
     out->pool_capacity = f->desc.max_deformed;
     out->generate_ms = f->generate_ms;
     out->make_ms = f->make_ms;
@@ -421,6 +456,10 @@ void bb_field_info(const bb_field_t *f, bb_field_info_t *out)
                              .triangles = f->triangles,
                              .mesh_vertices = f->desc.subdiv[0] * f->desc.subdiv[1],
                              .sphere_max = f->sphere_max,
+                             .ring_side = f->ring.side,
+                             .ring_cand = f->ring.cand,
+                             .ring_generated = f->ring_generated,
+                             .extent_texture = f->extent.id,
                              .time = f->time,
                              .tree = &f->tree};
 }

@@ -59,7 +59,9 @@
 typedef struct bb_field_t bb_field_t;
 
 typedef struct bb_field_desc_t {
-    const terrain_mesh_t *terrain; /* required; only read during make */
+    const terrain_mesh_t *terrain; /* required; only read during make. A world terrain
+                                      (TERRAIN_WORLD) makes the ring instead of the
+                                      octree's field (bb_ring.h, docs/WORLD.md) */
     uint32_t seed;                 /* any value (0 included) */
     uint32_t placement_seed;       /* seeds the generation rule (where billboards stand)
                                       instead of `seed` when non-zero; the layout
@@ -97,6 +99,11 @@ typedef struct bb_field_desc_t {
                                       BB_MAX_OBJECTS */
     int max_deformed;              /* deformed-mesh pool slots, default 4096 */
     int octree_depth;              /* default 4, at most BB_OCTREE_MAX_DEPTH */
+    float ring_reach;              /* world terrains: billboards held out to this distance
+                                      from the camera (m), default BB_RING_REACH_DEFAULT 64 */
+    float ring_cell;               /* world terrains: ring cell side (m), rounded to whole
+                                      generation tiles of candidates, default
+                                      BB_RING_CELL_DEFAULT 8 */
     bb_wind_desc_t wind;           /* see bb_wind_desc_defaults */
     bb_layout_desc_t layout;       /* layout textures; its seed is replaced by `seed`, its
                                       clump.size defaults to `size` (the clump blades:
@@ -168,6 +175,11 @@ typedef struct bb_field_info_t {
     int mesh_vertices;         /* desc.subdiv[0] * desc.subdiv[1]: vec4 per deformed mesh */
     float sphere_max;          /* the largest billboard bounding-sphere radius */
     float time;                /* of the latest bb_field_update (wind pose) */
+    int ring_side, ring_cand;  /* world terrains: W cells per side of the ring, K candidates
+                                  per cell side (slot s holds points [s K^2, (s+1) K^2),
+                                  all valid, dead candidates of size 0); 0 otherwise */
+    long ring_generated;       /* world terrains: cells generated so far */
+    uint32_t extent_texture;   /* the layout's extent map (GL texture, the field's) */
     const bb_octree_t *tree;
 } bb_field_info_t;
 
@@ -185,7 +197,11 @@ typedef enum bb_data_t {
 } bb_data_t;
 
 /* NULL when the field cannot be made (logged: desc out of range, the GPU's
- * limits, out of memory, generation overflow). */
+ * limits, out of memory, generation overflow). On a world terrain the
+ * field is the ring of cells around the camera (bb_ring.h): no octree, no
+ * cells until the first follow; its update collides with the held
+ * cells (the slots stand in for the octree's leaves), its draws follow
+ * their camera first. */
 bb_field_t *bb_field_make(const bb_field_desc_t *desc);
 /* Frees the field and its GL objects; NULL is ignored. */
 void bb_field_destroy(bb_field_t *f);
@@ -235,6 +251,14 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
  * of alpha-to-coverage. Between raster_begin and raster_end. False when
  * the raster program cannot be made (logged). */
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
+/* World terrains: centres the ring on `camera`, generating the cells that
+ * enter it into the slots of those that left (timer "bb.ring", counter
+ * "bb.ring_cells"); bb_field_draw and bb_field_raster call it with their
+ * camera. Nothing on other terrains. */
+void bb_field_follow(bb_field_t *f, const float camera[3]);
+/* World terrains: the slot holding ring cell `cell` (bb_ring.h), -1 when
+ * the ring does not hold it (or the field is not a ring). */
+int bb_field_ring_slot(const bb_field_t *f, const int32_t cell[2]);
 /* wait: reads the pool header now (blocks until the last update finished;
  * exact, for tests). !wait: pool numbers from the newest readback that
  * already reached the CPU (no stall, a few updates late; HUDs). */

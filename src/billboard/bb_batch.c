@@ -128,6 +128,19 @@ static bool plan_split_leaf(bb_field_t *f, int limit, const bb_range_t *r, const
     return true;
 }
 
+/* The box of range r's leaf (the ring's: its slot's cell) in lo, hi;
+ * returns its broad-phase margin. */
+static float range_box(const bb_field_t *f, const bb_range_t *r, float lo[3], float hi[3])
+{
+    if (f->ring_on) {
+        bb_ring_slot_box(&f->ring, (int)r->leaf, lo, hi);
+        return f->ring.margin;
+    }
+    int node = bb_octree_leaf_node(&f->tree, r->leaf);
+    for (int a = 0; a < 3; a++) lo[a] = f->tree.lo[node][a], hi[a] = f->tree.hi[node][a];
+    return f->tree.desc.margin;
+}
+
 /* Groups the colliding leaf ranges f->ranges[0..ncol) into batches of at
  * most bb_pass_objects(f) objects; need[k] is set for every object in a batch. */
 bool bb_plan_batches(bb_field_t *f, int ncol, const bb_bound_t *bounds, int count, bool *need)
@@ -138,10 +151,14 @@ bool bb_plan_batches(bb_field_t *f, int ncol, const bb_bound_t *bounds, int coun
     int dropped_before = f->dropped;
     for (int i = 0; i < ncol; i++) {
         const bb_range_t *r = &f->ranges[i];
-        int node = bb_octree_leaf_node(&f->tree, r->leaf), objs[BB_MAX_OBJECTS], n = 0;
+        float lo[3], hi[3], margin = range_box(f, r, lo, hi);
+        int objs[BB_MAX_OBJECTS], n = 0;
         for (int k = 0; k < count; k++)
-            if (bb_bound_overlaps_box(&bounds[k], f->tree.lo[node], f->tree.hi[node], f->tree.desc.margin))
-                objs[n++] = k;
+            if (bb_bound_overlaps_box(&bounds[k], lo, hi, margin)) objs[n++] = k;
+        if (n > limit && f->ring_on) { /* no per-billboard spheres: the first objects */
+            f->dropped += n - limit;
+            n = limit;
+        }
         bool ok = n <= limit ? n == 0 || plan_add(pl, limit, (GLint)r->first, (GLsizei)r->count, objs, n)
                              : plan_split_leaf(f, limit, r, bounds, objs, n);
         if (!ok) {

@@ -15,7 +15,7 @@ static void set_views(const bb_field_t *f, GLuint prog)
     glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_lit"), f->views.on);
 }
 
-static void render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd)
+void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd)
 {
     glUseProgram(p.id);
     glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->view.viewproj);
@@ -81,6 +81,7 @@ static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t
  * already cover (docs/PERFORMANCE.md). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
 {
+    bb_field_follow(f, dd->view.camera);
     glBindTextureUnit(BB_TEX_CLUMPS, f->clumps.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
@@ -91,20 +92,22 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     gfx_timer_begin("bb.render");
-    int nr = drawn_ranges(f, BB_NODE_MASK(BB_NODE_IDLE), dd);
+    int nr = f->ring_on ? bb_ring_ranges(f, dd, BB_NODE_MASK(BB_NODE_IDLE))
+                        : drawn_ranges(f, BB_NODE_MASK(BB_NODE_IDLE), dd);
     if (nr > 0) {
         gfx_count_add("bb.drawn_quads", bb_range_total(f->counts_gl, nr));
         for (int i = 0; i < nr; i++) {
             f->firsts[i] *= 6;
             f->counts_gl[i] *= 6;
         }
-        render_uniforms(f, f->quad_prog, dd);
+        bb_render_uniforms(f, f->quad_prog, dd);
         glMultiDrawArrays(GL_TRIANGLES, f->firsts, f->counts_gl, nr);
     }
-    nr = drawn_ranges(f, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), dd);
+    uint32_t deformed = BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING);
+    nr = f->ring_on ? bb_ring_ranges(f, dd, deformed) : drawn_ranges(f, deformed, dd);
     if (nr > 0) {
         gfx_count_add("bb.drawn_meshes", bb_range_total(f->counts_gl, nr));
-        render_uniforms(f, f->render_prog, dd);
+        bb_render_uniforms(f, f->render_prog, dd);
         glMultiDrawArrays(GL_POINTS, f->firsts, f->counts_gl, nr);
     }
     gfx_timer_end();
@@ -124,7 +127,7 @@ typedef struct raster_bind_t {
 static void bind_raster(gfx_program_t p, void *user)
 {
     const raster_bind_t *b = user;
-    render_uniforms(b->f, p, b->dd);
+    bb_render_uniforms(b->f, p, b->dd);
     glUniform4fv(gfx_uniform(p, "u_planes"), 6, &b->dd->view.planes[0][0]);
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)b->f->billboards);
     glBindTextureUnit(BB_TEX_CLUMPS, b->f->clumps.id);
@@ -135,6 +138,7 @@ static void bind_raster(gfx_program_t p, void *user)
 
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
+    bb_field_follow(f, dd->view.camera);
     gfx_timer_begin("bb.raster");
     raster_program_t *prog = &f->raster_prog;
     bool ok = raster_program_ensure(r, prog, "billboard/bb_raster.comp", f->defines, "bb.raster");

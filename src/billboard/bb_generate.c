@@ -322,17 +322,13 @@ static bb_gen_entry_t *grid_entries(const bb_field_t *f, const terrain_mesh_t *t
     return entries;
 }
 
-/* The generation program's uniforms and textures (the layout maps and the
- * heights, on their bindings_billboard.glsl units). */
-static void gen_uniforms(const bb_field_t *f, int nentries)
+void bb_set_gen(const bb_field_t *f)
 {
-    const bb_octree_t *tr = &f->tree;
     gfx_program_t p = f->gen_prog;
     glUseProgram(p.id);
     glBindTextureUnit(BB_TEX_EXTENT, f->extent.id);
     glBindTextureUnit(BB_TEX_DIRECTION, f->direction.id);
     glBindTextureUnit(BB_TEX_MESSINESS, f->messiness.id);
-    bb_set_heights(f, p);
     const bb_gen_desc_t *g = &f->gen;
     glUniform1f(gfx_uniform(p, "u_gen.spacing"), g->spacing);
     glUniform2f(gfx_uniform(p, "u_gen.origin"), g->origin[0], g->origin[1]);
@@ -341,6 +337,16 @@ static void gen_uniforms(const bb_field_t *f, int nentries)
     glUniform1f(gfx_uniform(p, "u_gen.height"), g->height);
     glUniform1ui(gfx_uniform(p, "u_gen.seed"), g->seed);
     glUniform1ui(gfx_uniform(p, "u_gen.layers"), g->layers);
+}
+
+/* The generation program's uniforms and textures (the layout maps and the
+ * heights, on their bindings_billboard.glsl units). */
+static void gen_uniforms(const bb_field_t *f, int nentries)
+{
+    const bb_octree_t *tr = &f->tree;
+    gfx_program_t p = f->gen_prog;
+    bb_set_gen(f);
+    bb_set_heights(f, p);
     glUniform3fv(gfx_uniform(p, "u_tree_min"), 1, tr->desc.min);
     glUniform3fv(gfx_uniform(p, "u_tree_max"), 1, tr->desc.max);
     glUniform1i(gfx_uniform(p, "u_side"), tr->side);

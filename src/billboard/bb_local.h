@@ -9,11 +9,14 @@
  *   bb_batch.c     the collide batches (BB_PASS_OBJECTS) and their pass
  *   bb_draw.c      bb_field_draw, bb_field_raster, bb_field_add_slopes
  *   bb_occlude.c   occlusion culling of leaf batches
+ *   bb_ring.c      world terrains: the ring of cells streamed around the
+ *                  camera (bb_ring.h) instead of the octree's field
  * Callers see only bb.h. */
 #ifndef MEADOW_BB_LOCAL_H
 #define MEADOW_BB_LOCAL_H
 
 #include "billboard/bb.h"
+#include "billboard/bb_ring.h"
 #include "common/bindings_billboard.glsl"
 #include "common/bindings_hybrid.glsl"
 
@@ -107,12 +110,36 @@ struct bb_field_t {
     int occ_tested_count, occ_skipped, occluded_last;
     uint32_t occ_draws;
     gfx_program_t occlude_prog;
+    /* World terrains (bb_ring.c): the window of cells, each slot's K^2
+     * points at slot * K^2 of `points` (capacity W^2 K^2, every one valid:
+     * dead candidates are points of size 0); the generation tile, the
+     * world square's candidate cells and far corner, the height range of
+     * the billboards (for the per-cell culling), cells generated so far,
+     * and follow's scratch (W^2 slots, cells and dropped flags). */
+    bool ring_on;
+    bb_ring_window_t ring;
+    int ring_tile, ring_cells[2];
+    float ring_max[2], ring_y[2];
+    long ring_generated;
+    int *ring_slots;
+    int32_t (*ring_coords)[2];
+    bool *ring_dropped;
+    /* The ring's collision: slots one collide pass takes at most (the
+     * scratch's size), slots left out of a pass so far (warned once), and
+     * the pass that frees a leaving cell's deformed meshes. */
+    int ring_collide_slots;
+    long ring_skipped;
+    int ring_released;
+    gfx_program_t release_prog;
 };
 
 /* Occlusion query state of a leaf: a query is in flight; its latest result
  * passed no sample. */
 enum { BB_OCC_PENDING = 1, BB_OCC_HIDDEN = 2 };
 
+/* bb.c: the transform-feedback varyings of every pass that writes points
+ * (bb_point_t's layout). */
+extern const char *const bb_tf_varyings[];
 /* bb.c: the wind's uniforms, objects per collide pass (the shaders'
  * BB_MAX_CUBES), billboards in draw ranges (work counters), and the merge
  * of f->ranges[0..count) adjacent in the buffer into f->firsts /
@@ -122,6 +149,26 @@ int bb_pass_objects(const bb_field_t *f);
 double bb_range_total(const GLsizei *size, int n);
 int bb_merge_ranges(bb_field_t *f, int count);
 
+/* bb_draw.c: a render program's uniforms (view, fade bands, wind, cards,
+ * slope map, GI) for draw desc dd. */
+void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd);
+
+/* bb_ring.c: make's ring (window, capacity, program; false when it
+ * fails, logged), the follow of a camera (generation of the slots whose
+ * cell changed), the draw ranges of the ring's cells dd shows (merged into
+ * f->firsts / f->counts_gl, in billboards; returns how many), and the
+ * ring's share of bb_field_destroy. */
+bool bb_ring_make(bb_field_t *f, int tile);
+void bb_ring_follow(bb_field_t *f, const float camera[3]);
+int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd, uint32_t state_mask);
+/* bb_ring.c: the programs' defines with the world's height function
+ * (terrain_world_defines, BB_GROUND_WORLD) into buf; the held slots in
+ * state_mask (BB_NODE_MASK bits) as ranges in f->ranges (COLLIDING alone:
+ * at most f->ring_collide_slots), returns how many. */
+bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size);
+int bb_ring_collect(bb_field_t *f, uint32_t state_mask);
+void bb_ring_destroy(bb_field_t *f);
+
 /* bb_generate.c: the height grid's uniforms and texture (BB_TEX_HEIGHTS); and
  * make's stages (each false when it fails, logged): the layout textures
  * and clump array; the height grid; mesh terrains' triangle
@@ -129,6 +176,9 @@ int bb_merge_ranges(bb_field_t *f, int count);
  * candidates); the generation pass in tiles of tile x tile cells (tris NULL
  * on heightfields); each billboard's bounding sphere read back. */
 void bb_set_heights(const bb_field_t *f, gfx_program_t p);
+/* bb_generate.c: binds the generation program (f->gen_prog) with the rule's
+ * uniforms (u_gen) and the layout maps. */
+void bb_set_gen(const bb_field_t *f);
 bool bb_upload_layout(bb_field_t *f);
 bool bb_upload_heights(bb_field_t *f, const terrain_mesh_t *t);
 bb_gen_tri_t *bb_mesh_tris(const terrain_mesh_t *t, float spacing, int *seeding, double *cells);

@@ -206,6 +206,23 @@ bool bb_bound_overlaps_box(const bb_bound_t *b, const float lo[3], const float h
 
 /* Leaf state rule shared in spirit with bb_octree_state_brute (written
  * twice on purpose so the test compares two implementations). */
+void bb_leaf_step(uint8_t *state, float *timer, bool touched, float dt, float recover_time)
+{
+    if (touched) {
+        *state = BB_NODE_COLLIDING;
+        *timer = recover_time;
+    } else if (*state == BB_NODE_COLLIDING) {
+        *state = BB_NODE_RECOVERING;
+        *timer = recover_time;
+    } else if (*state == BB_NODE_RECOVERING) {
+        *timer -= dt;
+        if (*timer <= 0.0f) {
+            *state = BB_NODE_IDLE;
+            *timer = 0.0f;
+        }
+    }
+}
+
 static uint8_t bb_update_node(bb_octree_t *tree, int level, uint32_t k, const bb_bound_t *objects,
                               const int *list, int nlist, float dt, float recover_time)
 {
@@ -217,19 +234,7 @@ static uint8_t bb_update_node(bb_octree_t *tree, int level, uint32_t k, const bb
             sub[nsub++] = list[q];
     if (nsub == 0 && tree->mask[node] == BB_NODE_MASK(BB_NODE_IDLE)) return tree->mask[node];
     if (level == tree->depth) {
-        if (nsub > 0) {
-            tree->state[node] = BB_NODE_COLLIDING;
-            tree->timer[node] = recover_time;
-        } else if (tree->state[node] == BB_NODE_COLLIDING) {
-            tree->state[node] = BB_NODE_RECOVERING;
-            tree->timer[node] = recover_time;
-        } else if (tree->state[node] == BB_NODE_RECOVERING) {
-            tree->timer[node] -= dt;
-            if (tree->timer[node] <= 0.0f) {
-                tree->state[node] = BB_NODE_IDLE;
-                tree->timer[node] = 0.0f;
-            }
-        }
+        bb_leaf_step(&tree->state[node], &tree->timer[node], nsub > 0, dt, recover_time);
         tree->mask[node] = (uint8_t)BB_NODE_MASK(tree->state[node]);
         return tree->mask[node];
     }

@@ -129,6 +129,10 @@ int bb_octree_keep_near(const bb_octree_t *tree, const float eye[3], float dist,
 void bb_octree_state_brute(const bb_octree_t *tree, const bb_bound_t *objects, int n, float dt,
                            float recover_time, uint8_t *states, float *timers);
 
+/* One update of a leaf's state (BB_NODE_*) and recovery timer: COLLIDING
+ * while touched, then RECOVERING for recover_time (counted down by dt),
+ * then IDLE. bb_octree_update's leaves and the billboard ring's slots. */
+void bb_leaf_step(uint8_t *state, float *timer, bool touched, float dt, float recover_time);
 /* True when the box [lo-margin, hi+margin] overlaps the bound. */
 bool bb_bound_overlaps_box(const bb_bound_t *b, const float lo[3], const float hi[3], float margin);
 

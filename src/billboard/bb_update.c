@@ -257,6 +257,13 @@ static void recover(bb_field_t *f, int nrec, float time, float dt)
     gfx_count_add("bb.recovered", bb_range_total(f->counts_gl, nr));
 }
 
+/* The leaves (the ring's slots) in state_mask as ranges in f->ranges. */
+static int collect(bb_field_t *f, uint32_t state_mask)
+{
+    if (f->ring_on) return bb_ring_collect(f, state_mask);
+    return bb_octree_collect(&f->tree, state_mask, NULL, f->ranges, f->tree.leaf_count);
+}
+
 void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt)
 {
     const collide_object_t *objs = colliders ? colliders->objects : NULL;
@@ -269,11 +276,12 @@ void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, 
     bb_bound_t bounds[BB_MAX_OBJECTS];
     bb_object_gpu_t gpu[BB_MAX_OBJECTS];
     f->hidden_last = object_bounds(f, objs, count, bounds, gpu);
-    bb_octree_update(&f->tree, bounds, count, dt, f->desc.recover_time + BB_LEAF_RECOVER_SLACK);
-    int ncol = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING), NULL, f->ranges, f->tree.leaf_count);
+    float recover_time = f->desc.recover_time + BB_LEAF_RECOVER_SLACK;
+    if (f->ring_on) bb_ring_window_touch(&f->ring, bounds, count, dt, recover_time);
+    else bb_octree_update(&f->tree, bounds, count, dt, recover_time);
+    int ncol = collect(f, BB_NODE_MASK(BB_NODE_COLLIDING));
     if (ncol > 0) gpu_work = collide(f, ncol, objs, count, bounds, gpu, time);
-    int nrec = bb_octree_collect(&f->tree, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING), NULL,
-                                 f->ranges, f->tree.leaf_count);
+    int nrec = collect(f, BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING));
     if (nrec > 0) {
         recover(f, nrec, time, dt);
         gpu_work = true;

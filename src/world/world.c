@@ -256,6 +256,8 @@ bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
         .cube_res = w->cube_res,
         .recover_time = g->recover_time,
         .max_objects = objects > 0 ? objects : 1,
+        /* a world's ring (bb_ring.h) holds billboards out to the canopy's band */
+        .ring_reach = g->canopy_distance + WORLD_CANOPY_FADE,
         .wind = wind,
         .layout = {.size = layout_size,
                    .blades = bb_clump_blades(g->population.density, g->billboard_density),
@@ -280,8 +282,8 @@ static world_ground_t ground_of(const world_t *w)
     return w->terrain_mesh.grid_res > 0 ? WORLD_GROUND_HEIGHTFIELD : WORLD_GROUND_MESH;
 }
 /* What the world makes and draws: the rules of world_pass.h for its ground
- * (billboards are refused in billboard mode on a world; the hybrid there
- * draws tiles and the canopy; blade mode off a world and the reference
+ * (a world streams tiles and the billboard ring, the canopy beyond; blade
+ * mode off a world and the reference
  * simulate every blade of the field, as the paper). */
 static bool wants_bb(const world_t *w, scene_mode_t m) { return world_pass_wants_billboards(m, ground_of(w)); }
 static bool wants_blades(scene_mode_t m) { return world_pass_wants_blades(m); }
@@ -574,7 +576,7 @@ bool world_make_gpu(world_t *w)
      * cube maps by it) and their sphere proxies in the blade physics. */
     if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
     if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
-    if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) w->gpu_ready = make_bb(w);
+    if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) w->gpu_ready = make_bb(w) && world_ring_make_canopy(w);
     stage_done(w, WORLD_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
@@ -614,7 +616,11 @@ static void add_objects(world_t *w, collide_set_t *set, float dt)
             collide_object_t o = {.radius = co[i].radius, .vao = co[i].vao, .index_count = co[i].index_count,
                                   .index_type = co[i].index_type};
             memcpy(o.model, co[i].model, sizeof o.model);
-            memcpy(o.centre, co[i].centre, sizeof o.centre);
+            /* the set's centre is in object space, the character's in the world */
+            mat4 model, inv;
+            memcpy(model, co[i].model, sizeof model);
+            glm_mat4_inv(model, inv);
+            glm_mat4_mulv3(inv, co[i].centre, 1.0f, o.centre);
             collide_add_object(set, &o, dt);
         }
     }
@@ -792,11 +798,11 @@ static void draw_billboards(world_t *w, frame_draw_t *f)
         d.fade_start = f->fade_lo;
         d.fade_end = f->fade_hi;
     }
-    if (f->tiles) {
+    if (f->tiles || on_world(w)) { /* a world's ring ends at the canopy in every mode */
         d.far_start = f->far_lo;
         d.far_end = f->far_hi;
-        blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
     }
+    if (f->tiles) blade_tiles_slope(w->tiles, &d.slope_map, &d.slope_grid, &d.slope_recover);
     if (f->raster) f->raster_ok = bb_field_raster(w->bb, f->raster, &d) && f->raster_ok;
     else bb_field_draw(w->bb, &d);
 }
@@ -840,11 +846,12 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
     f.tiles = world_pass_has(passes, n, WORLD_PASS_TILES); /* the hybrid's near blades, and its canopy */
     f.fade_lo = tiles_distance(w) - WORLD_SWITCH_FADE;
     f.fade_hi = tiles_distance(w) + WORLD_SWITCH_FADE;
-    /* The canopy fades in beyond the billboards, or on a world (no
-     * billboards yet) where the blades fade out. */
-    f.far_lo = on_world(w) ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
-    f.far_hi = on_world(w) ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
-    ground_set_canopy_fade(w->ground, f.tiles ? f.far_lo : 0.0f, f.tiles ? f.far_hi : 0.0f);
+    /* The canopy fades in beyond the billboards, or on a world without
+     * them (blade mode) where the blades fade out. */
+    bool ring = on_world(w) && world_pass_has(passes, n, WORLD_PASS_BILLBOARDS);
+    f.far_lo = on_world(w) && !ring ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
+    f.far_hi = on_world(w) && !ring ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
+    ground_set_canopy_fade(w->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f);
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
@@ -879,7 +886,7 @@ void world_set_mode(world_t *w, scene_mode_t mode)
 {
     w->mode = mode;
     w->scene.mode = mode;
-    if (w->gpu_ready && wants_bb(w, mode) && !w->bb && !w->reference) make_bb(w);
+    if (w->gpu_ready && wants_bb(w, mode) && !w->bb && !w->reference && make_bb(w)) world_ring_make_canopy(w);
     if (w->gpu_ready && uses_tiles(w) && !w->have_tiles) make_tiles(w);
     else if (w->gpu_ready && wants_blades(mode) && !uses_tiles(w) && !w->have_blades) make_blades(w);
 }

@@ -97,6 +97,9 @@ struct world_t {
 /* Module-internal (world.c, world_gi.c): the extent map of the layout both
  * grass models share (bb_layout_free it). */
 bool world_extent_layout(const world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen);
+/* World terrains (world_ring.c): in billboard mode the ground canopy
+ * beyond the billboard ring (true when there is nothing to make). */
+bool world_ring_make_canopy(world_t *w);
 /* The global illumination volumes of w's scene into w->gi and the
  * terrain's bind; false (logged) when they cannot be made. */
 bool world_gi_make(world_t *w);

@@ -4,8 +4,8 @@
 
 bool world_pass_wants_billboards(scene_mode_t mode, world_ground_t ground)
 {
-    if (mode == SCENE_MODE_BILLBOARD) return true;
-    return mode == SCENE_MODE_HYBRID && ground != WORLD_GROUND_WORLD;
+    (void)ground; /* a world streams its billboards too (bb_ring.h) */
+    return mode == SCENE_MODE_BILLBOARD || mode == SCENE_MODE_HYBRID;
 }
 
 bool world_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLADE || mode == SCENE_MODE_HYBRID; }

@@ -58,8 +58,8 @@ bool world_pass_has(const world_pass_t *passes, int n, world_pass_kind_t k);
 const char *world_pass_name(world_pass_kind_t k);
 
 /* The rules behind the list, also what the world makes: billboards in
- * billboard and hybrid modes, except the hybrid on a world (not streamed
- * yet); blades in blade and hybrid modes; the blades from tiles for the
+ * billboard and hybrid modes (a world's streamed around the camera:
+ * bb_ring.h); blades in blade and hybrid modes; the blades from tiles for the
  * hybrid on a heightfield and for blade and hybrid modes on a world, never
  * for the reference. */
 bool world_pass_wants_billboards(scene_mode_t mode, world_ground_t ground);

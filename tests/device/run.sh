@@ -85,7 +85,7 @@ tests() {
            test_bb_gpu_dynamics test_bb_gpu_many test_character_gpu test_app_modes test_hybrid_trail \
            test_hybrid_switch test_tiles_scaling test_raster test_raster_modes test_blade_surface test_hybrid_seam \
            test_bb_gpu_generate test_gi_gpu test_bb_gpu_gi test_bb_gpu_occlusion test_blade_render \
-           test_tiles_stream test_terrain_world_gpu test_terrain_world_render; do
+           test_tiles_stream test_terrain_world_gpu test_terrain_world_render test_bb_ring; do
     echo "== $t"; MEADOW_TEST_OUT=/tmp/t-$t timeout -k 10 120 .bundle/bin/$t > /tmp/$t.log 2>&1; echo "rc=$?"
     grep -E "CHECK|max|worst|differ|coverage|colour|mode sw|ok$|FAIL|test_image|^[a-d]\)|variant|queued|mismatch|grass share" /tmp/$t.log | head -14
   done
@@ -339,15 +339,17 @@ admission() {
 }
 
 # The open world (docs/WORLD.md): the 1, 2 and 4 km worlds over their whole
-# camera path on the compute path (hybrid), and the 2 km world in blade
-# mode; memory, frame percentiles, submit and start-up from summary.txt.
+# camera path on the compute path (hybrid, with the billboard ring), the
+# 2 km world in blade mode, the 2 and 4 km worlds in billboard mode (the
+# ring alone); memory, frame percentiles, submit, start-up and the ring's
+# passes (bb.ring: cells generated, bb.raster) from summary.txt.
 world() {
-  for sm in world_1km:hybrid world:hybrid world_4km:hybrid world:blade; do
+  for sm in world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard; do
     s=${sm%%:*}; mode=${sm#*:}; o=/tmp/world-$s-$mode
     ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
       --screenshot-every 0 --out $o ) > $o.log 2>&1
     echo "== $s $mode rc=$?"
-    grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|character[a-z.]*) " \
+    grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^billboard ring|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|bb\.[a-z_]*|character[a-z.]*) " \
       $o/summary.txt 2>/dev/null || tail -5 $o.log
     grep -E "real|error|warn" $o.log | head -4
   done
