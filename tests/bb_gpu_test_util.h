@@ -179,13 +179,13 @@ static inline void test_view(const vec3 eye, mat4 vp)
  * sun, with vp's frustum planes. */
 static inline bb_draw_desc_t test_draw_desc(const mat4 vp, const vec3 eye, float time)
 {
-    bb_draw_desc_t d = {.time = time, .sun_dir = {0.4f, 0.8f, 0.3f}};
-    memcpy(d.viewproj, vp, sizeof d.viewproj);
-    memcpy(d.camera, eye, sizeof d.camera);
-    glm_vec3_normalize(d.sun_dir);
+    bb_draw_desc_t d = {.view = {.time = time, .sun_dir = {0.4f, 0.8f, 0.3f}}};
+    memcpy(d.view.viewproj, vp, sizeof d.view.viewproj);
+    memcpy(d.view.camera, eye, sizeof d.view.camera);
+    glm_vec3_normalize(d.view.sun_dir);
     vec4 planes[6];
     glm_frustum_planes((vec4 *)vp, planes);
-    memcpy(d.planes, planes, sizeof d.planes);
+    memcpy(d.view.planes, planes, sizeof d.view.planes);
     return d;
 }
 

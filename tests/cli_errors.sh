@@ -101,7 +101,7 @@ expect2 '/dev/zero: cannot load image: not a regular file' --headless --scene "$
 printf '{ "grass": { "tile_size": 0.001 } }\n' >"$tmp/tiny_tiles.json"
 expect2 'the smallest tile_size that fits is' --headless --scene "$tmp/tiny_tiles.json"
 # Values in range that cannot run are refused by resource admission
-# (app_admit.h) with the key and the value that fits; the command line
+# (admit.h) with the key and the value that fits; the command line
 # takes the scene key's range (one table); a NUL is not an end of file;
 # a key of the other terrain type is refused.
 printf '{ "grass": { "tile_size": 1000 } }\n' >"$tmp/tile1000.json"

@@ -7,7 +7,7 @@
 # as bad input (exit 2, exactly one error line, no source path), within
 # MEADOW_SWEEP_SECONDS (default 30) and under a MEADOW_SWEEP_VMEM_KB
 # (default 2500000, 2.4 GiB) address-space cap: what exhausted the machine
-# before resource admission (app_admit.h) must now be refused. Runs for
+# before resource admission (admit.h) must now be refused. Runs for
 # numeric keys only; strings, enums and arrays are the fuzzer's.
 # Usage: scene_sweep.sh MEADOW_BINARY [JOBS]
 set -u

@@ -4,7 +4,7 @@
  *    billboard mode and of blade mode (grass vs ground per 8x8 block)
  *    agree in most blocks, and both have clearings where the other has;
  *    the mean colour of their grass pixels agrees too (the session draws
- *    with no debug overlay: app_view_make fills every view field). Top
+ *    with no debug overlay: world_view_make fills every view field). Top
  *    down, "grass" is green above red, the terrain's turf included.
  * 2. Seen from the side as hybrid mode shows billboards
  *    (tests/data/scenes/metric.json: 5 m up, looking 11 m ahead), grass
@@ -14,8 +14,9 @@
  *    (the three views go to test_out_dir() as side_*.png).
  * 3. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
-#include "app/app_world.h"
-#include "bench/bench.h"
+#include "world/world_harness.h"
+#include "app/app.h"
+#include "measure/measure_session.h"
 #include "eval/eval_image.h"
 #include "test.h"
 #include "test_gl.h"
@@ -72,12 +73,13 @@ static void side_view(void)
 {
     app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
     core_image_t bg, bb, bl;
-    bench_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = 4, .tweak = no_grass};
-    CHECK(bench_session_run(&d, &bg, NULL) == 0);
+    measure_session_desc_t d = {.world = app_world_options(&o),
+                                .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = 4, .tweak = no_grass};
+    CHECK(measure_session_run(&d, &bg, NULL) == 0);
     d.tweak = NULL;
-    CHECK(bench_session_run(&d, &bl, NULL) == 0);
+    CHECK(measure_session_run(&d, &bl, NULL) == 0);
     d.mode = SCENE_MODE_BILLBOARD;
-    CHECK(bench_session_run(&d, &bb, NULL) == 0);
+    CHECK(measure_session_run(&d, &bb, NULL) == 0);
     double lb[3], ll[3];
     double cb = side_grass(&bb, &bg, lb), cl = side_grass(&bl, &bg, ll);
     double de = sqrt((lb[0] - ll[0]) * (lb[0] - ll[0]) + (lb[1] - ll[1]) * (lb[1] - ll[1]) +
@@ -114,20 +116,21 @@ static void coverage(const core_image_t *img, float *blocks, int nb)
 int main(void)
 {
     /* A view made over garbage has every field defined (overlay off). */
-    app_view_t view;
+    world_view_t view;
     memset(&view, 0xA5, sizeof view);
-    app_view_make(&view, &(cam_t){.position = {0, 1, 5}, .fov = 60.0f, .near = 0.1f, .far = 100.0f}, 64, 32, 1.0f, 0.5f);
-    CHECK(view.overlay == 0 && view.width == 64 && view.time == 1.0f);
+    world_view_make(&view, &(cam_t){.position = {0, 1, 5}, .fov = 60.0f, .near = 0.1f, .far = 100.0f}, 64, 32, 1.0f, 0.5f);
+    CHECK(view.overlay == 0 && view.width == 64 && view.frame.time == 1.0f);
 
     test_gl_init();
     core_log_set_quiet(true);
     app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
     core_image_t bb, bl;
-    bench_session_desc_t d = {.opts = &o, .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
+    measure_session_desc_t d = {.world = app_world_options(&o),
+                                .mode = SCENE_MODE_BILLBOARD, .mode_set = true, .frames = 2,
                               .tweak = top_down};
-    CHECK(bench_session_run(&d, &bb, NULL) == 0);
+    CHECK(measure_session_run(&d, &bb, NULL) == 0);
     d.mode = SCENE_MODE_BLADE;
-    CHECK(bench_session_run(&d, &bl, NULL) == 0);
+    CHECK(measure_session_run(&d, &bl, NULL) == 0);
     enum { NB = 12 };
     float cb[NB * NB], cl[NB * NB];
     coverage(&bb, cb, NB);
@@ -168,24 +171,25 @@ int main(void)
 
     /* Live switches: blade mode builds the full field; billboard and
      * hybrid (tiles) come and go around it without resetting it. */
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    CHECK(app_world_make_gpu(w));
-    CHECK(w->have_tiles && w->bb && !w->have_blades);
-    app_world_set_mode(w, SCENE_MODE_BLADE);
-    CHECK(w->have_blades);
+    world_t *w;
+    world_options_t wo = app_world_options(&o);
+    CHECK(world_load(&wo, &w) == 0);
+    CHECK(world_make_gpu(w));
+    CHECK(world_info(w).tiles && world_info(w).billboards && !world_info(w).blades);
+    world_set_mode(w, SCENE_MODE_BLADE);
+    CHECK(world_info(w).blades);
     int f = 0;
-    for (int i = 0; i < 10; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
-    size_t n = blade_gpu_info(app_world_blades(w)).padded_count;
+    for (int i = 0; i < 10; i++, f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+    size_t n = blade_gpu_info(world_info(w).blades).padded_count;
     blade_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
-    blade_gpu_read_blades(app_world_blades(w), a, NULL);
+    blade_gpu_read_blades(world_info(w).blades, a, NULL);
     static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_HYBRID, SCENE_MODE_BLADE,
                                         SCENE_MODE_BILLBOARD};
     for (int k = 0; k < 4; k++) {
-        app_world_set_mode(w, seq[k]);
-        for (int i = 0; i < 20; i++, f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+        world_set_mode(w, seq[k]);
+        for (int i = 0; i < 20; i++, f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     }
-    blade_gpu_read_blades(app_world_blades(w), b, NULL);
+    blade_gpu_read_blades(world_info(w).blades, b, NULL);
     int moved = 0, bad = 0;
     for (size_t i = 0; i < n; i++) {
         if (a[i].v1[3] <= 0.0f) continue;
@@ -195,11 +199,11 @@ int main(void)
     }
     printf("mode switches: %d blades moved (wind, ball), %d bad\n", moved, bad);
     CHECK(bad == 0 && moved > 0);
-    CHECK(w->bb && w->have_blades && w->have_tiles && w->mode == SCENE_MODE_BILLBOARD);
+    world_info_t wi = world_info(w);
+    CHECK(wi.billboards && wi.blades && wi.tiles && wi.mode == SCENE_MODE_BILLBOARD);
     free(a);
     free(b);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

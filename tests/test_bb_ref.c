@@ -141,7 +141,7 @@ static void test_ground_escape(void)
     collide_free_cubemap(&cube);
 }
 
-/* Texture distortion of a 4 x 4 mesh as bench_metrics_bb_distortion
+/* Texture distortion of a 4 x 4 mesh as measure_bb_distortion
  * measures it: the largest structural stretch |l / l0 - 1| and the folded
  * cells (signed area <= 0 against the rest normal for the root row, against
  * the cell below and the cell to the left above it). */

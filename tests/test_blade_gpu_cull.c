@@ -39,8 +39,8 @@ static void camera(blade_cull_desc_t *c)
     glm_lookat(eye, at, up, view);
     glm_perspective(glm_rad(60.0f), (float)DW / DH, 0.1f, 200.0f, proj);
     glm_mat4_mul(proj, view, vp);
-    memcpy(c->view_proj, vp, sizeof vp);
-    memcpy(c->cam_pos, eye, sizeof eye);
+    memcpy(c->view.viewproj, vp, sizeof vp);
+    memcpy(c->view.camera, eye, sizeof eye);
     c->max_distance = 20.0f;
 }
 
@@ -104,8 +104,8 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
         for (uint32_t k = 1; k < st.patches_drawn; k++) {
             const blade_aabb_t *here = &f->patch_aabbs[listed[k]];
             const blade_aabb_t *prev = &f->patch_aabbs[listed[k - 1]];
-            unordered += core_box_dist2(cd.cam_pos, here->min, here->max) <
-                         core_box_dist2(cd.cam_pos, prev->min, prev->max);
+            unordered += core_box_dist2(cd.view.camera, here->min, here->max) <
+                         core_box_dist2(cd.view.camera, prev->min, prev->max);
         }
         free(listed);
         printf("%-34s %u visible patches, %d out of distance order\n", name, st.patches_drawn, unordered);

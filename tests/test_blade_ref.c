@@ -509,8 +509,8 @@ static void test_cull(void)
     float *depth = malloc(W * H * sizeof *depth);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) depth[y * W + x] = x < W / 3 ? 0.9f : 1.0f;
-    blade_cull_desc_t desc = {.cam_pos = {0, 1.7f, 0}, .depth = depth, .depth_w = W, .depth_h = H};
-    memcpy(desc.view_proj, vp, sizeof desc.view_proj);
+    blade_cull_desc_t desc = {.view.camera = {0, 1.7f, 0}, .depth = depth, .depth_w = W, .depth_h = H};
+    memcpy(desc.view.viewproj, vp, sizeof desc.view.viewproj);
     uint32_t *surv = malloc(N * sizeof *surv);
     blade_cull_stats_t st;
     size_t count = blade_ref_cull(b, N, &desc, surv, &st);
@@ -519,7 +519,7 @@ static void test_cull(void)
     size_t k = 0;
     bool order_ok = true;
     for (uint32_t i = 0; i < N; i++) {
-        int r = brute_cull(&b[i], i, desc.cam_pos, desc.view_proj, depth, W, H);
+        int r = brute_cull(&b[i], i, desc.view.camera, desc.view.viewproj, depth, W, H);
         if (r < 0) continue;
         want[r]++;
         if (r == 4) order_ok &= k < count && surv[k++] == i;
@@ -537,7 +537,7 @@ static void test_cull(void)
 
     /* hand cases: edge-on blade, blade behind the camera, far blade */
     blade_t one = upright(0, 0, 5, 0.0f, 1.0f); /* width along x, camera looks along x */
-    blade_cull_desc_t d1 = {.cam_pos = {-5, 1, 0}, .disable = BLADE_CULL_FRUSTUM};
+    blade_cull_desc_t d1 = {.view.camera = {-5, 1, 0}, .disable = BLADE_CULL_FRUSTUM};
     d1 = blade_cull_desc_defaults(&d1);
     CHECK(blade_ref_cull_one(&one, 0, &d1) == BLADE_CULL_ORIENTATION);
     one.v0[3] = GLM_PI_2f; /* width along z: seen face-on */

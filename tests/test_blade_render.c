@@ -43,11 +43,11 @@ static core_image_t render_lit(blade_gpu_t **gs, int count, const view_t *v, uin
     glm_perspective(glm_rad(50.0f), (float)v->w / (float)v->h, 0.05f, 100.0f, proj);
     glm_mat4_mul(proj, view, vp);
     blade_cull_desc_t cd = {.disable = disable};
-    memcpy(cd.view_proj, vp, sizeof vp);
-    memcpy(cd.cam_pos, v->eye, sizeof cd.cam_pos);
+    memcpy(cd.view.viewproj, vp, sizeof vp);
+    memcpy(cd.view.camera, v->eye, sizeof cd.view.camera);
     blade_draw_desc_t dd = {.gi = gi ? *gi : (gi_bind_t){0}};
-    memcpy(dd.view_proj, vp, sizeof vp);
-    memcpy(dd.camera, v->eye, sizeof dd.camera);
+    memcpy(dd.view.viewproj, vp, sizeof vp);
+    memcpy(dd.view.camera, v->eye, sizeof dd.view.camera);
     gfx_timer_frame_begin();
     gfx_target_bind(&t);
     glClearColor(0.30f, 0.24f, 0.16f, 1.0f);

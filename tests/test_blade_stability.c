@@ -19,7 +19,7 @@
  *             2; without the continuous second validation alone the
  *             1.59 mm cycle stays, without friction alone 1.10 mm at
  *             stiffness 2.
- * Scene values as `meadow bench --stability` (app_world.c's env: gravity
+ * Scene values as `meadow bench --stability` (world.c's env: gravity
  * 1 m/s^2, eta gain 1 / (0.1 h)^2, recover time 1 s, one wind wave, none
  * in resting). */
 #include "blade/blade_ref.h"

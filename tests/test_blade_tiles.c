@@ -103,8 +103,8 @@ static void draw_occluded(blade_tiles_t *t, const float cam[3], float fade_start
     blade_draw_desc_t dd = {.fade_start = fade_start, .fade_end = fade_end};
     mat4 vp;
     view_proj(cam, vp);
-    memcpy(dd.view_proj, vp, sizeof vp);
-    memcpy(dd.camera, cam, sizeof dd.camera);
+    memcpy(dd.view.viewproj, vp, sizeof vp);
+    memcpy(dd.view.camera, cam, sizeof dd.view.camera);
     blade_tiles_draw(t, &dd, depth);
 }
 
@@ -500,7 +500,7 @@ static void test_lod_width(void)
     blade_tiles_info_t ti = blade_tiles_info(t);
     uint32_t B = ti.template_blades;
     blade_cull_desc_t cull = ti.desc.cull;
-    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
+    memcpy(cull.view.camera, cam, sizeof cull.view.camera);
     enum { RINGS = 4 }; /* 2-4 .. 8-10 m: the camera is 2 m up */
     double all[RINGS] = {0}, kept[RINGS] = {0}, thin[RINGS] = {0};
     float worst = 0.0f;
@@ -561,7 +561,7 @@ static void test_lod_orientation(void)
     for (uint32_t i = 0; i < n; i++) gpu[ids[i] / B]++;
     blade_cull_desc_t cull = ti.desc.cull;
     cull.disable = BLADE_CULL_FRUSTUM | BLADE_CULL_ORIENTATION;
-    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
+    memcpy(cull.view.camera, cam, sizeof cull.view.camera);
     int mismatched_tiles = 0, rescued = 0, expected = 0;
     for (int tile = 0; tile < tiles; tile++) {
         if (!gpu[tile]) continue;
@@ -705,8 +705,8 @@ static void test_occlusion(void)
 
     /* the CPU twin over the listed tiles, with the same depth */
     blade_cull_desc_t cull = ti.desc.cull;
-    memcpy(cull.cam_pos, cam, sizeof cull.cam_pos);
-    memcpy(cull.view_proj, vp, sizeof cull.view_proj);
+    memcpy(cull.view.camera, cam, sizeof cull.view.camera);
+    memcpy(cull.view.viewproj, vp, sizeof cull.view.viewproj);
     cull.depth = ndc;
     cull.depth_w = cull.depth_h = DEPTH_SIDE;
     unsigned char *want = calloc((size_t)ntiles * B, 1), *got = calloc((size_t)ntiles * B, 1);

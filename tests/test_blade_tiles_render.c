@@ -79,9 +79,9 @@ static void render(blade_tiles_t *t, const gfx_target_t *target, const float eye
     glm_lookat((float *)eye, (float *)at, (vec3){0, 1, 0}, view);
     glm_perspective(glm_rad(55.0f), (float)target->w / (float)target->h, 0.05f, 100.0f, proj);
     glm_mat4_mul(proj, view, vp);
-    blade_draw_desc_t dd = {.time = time, .fade_start = fade_start, .fade_end = fade_end};
-    memcpy(dd.view_proj, vp, sizeof vp);
-    memcpy(dd.camera, eye, sizeof dd.camera);
+    blade_draw_desc_t dd = {.view.time = time, .fade_start = fade_start, .fade_end = fade_end};
+    memcpy(dd.view.viewproj, vp, sizeof vp);
+    memcpy(dd.view.camera, eye, sizeof dd.view.camera);
     gfx_timer_frame_begin();
     gfx_target_bind(target);
     glClearColor(0.30f, 0.24f, 0.16f, 1.0f);

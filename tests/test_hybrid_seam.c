@@ -1,11 +1,11 @@
-/* test_hybrid_seam: the hybrid seam measure (app_world_seam, docs/METRICS.md
+/* test_hybrid_seam: the hybrid seam measure (measure_seam, docs/METRICS.md
  * "Hybrid seam") on llvmpipe, tests/data/scenes/metric.json in hybrid mode
  * with the switch at 10 m (the band in the middle of the view), 320x180,
  * 4 frames:
  * 1. The seam of the hybrid frame against its billboard-only reference:
  *    its coverage step stays within SEAM_COVERAGE (the tiles widen the
  *    blades their distance levels thin, blade_ref_lod_width).
- * 2. Its floor (app_world_seam_floor): billboard-only frames of the same
+ * 2. Its floor (measure_seam_floor): billboard-only frames of the same
  *    view with other placement seeds against the reference (no switch in
  *    either; only where the billboards stand differs), their mean below 1,
  *    and so is the hybrid seam (not clearly visible). Issue 16 asks for
@@ -17,7 +17,7 @@
  * 3. The measure follows a seam: the hybrid frame with its far side (the
  *    billboards beyond the band) 10 % darker in linear light moves Delta L*
  *    down by more than 1. */
-#include "app/app_world.h"
+#include "measure/measure.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -27,38 +27,42 @@
 /* The hybrid frame's coverage step may not exceed this (score 1). */
 #define SEAM_COVERAGE 0.05
 
-static app_world_t *make_world(void)
+static void switch_at_10(scene_desc_t *s, void *user)
 {
-    app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    app_world_set_mode(w, SCENE_MODE_HYBRID);
-    w->scene.grass.switch_distance = 10.0f;
-    CHECK(app_world_make_gpu(w));
-    for (int f = 0; f < 4; f++) app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+    (void)user;
+    s->grass.switch_distance = 10.0f;
+}
+
+static world_t *make_world(void)
+{
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "tests/data/scenes/metric.json"}, &w) == 0);
+    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = switch_at_10}));
+    CHECK(world_make_gpu(w));
+    for (int f = 0; f < 4; f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     return w;
 }
 
-static eval_seam_frame_t view_of(const app_seam_frame_t *f) { return (eval_seam_frame_t){&f->img, f->dist, f->cls}; }
+static eval_seam_frame_t view_of(const measure_seam_frame_t *f) { return (eval_seam_frame_t){&f->img, f->dist, f->cls}; }
 
 int main(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    app_world_t *w = make_world();
-    const scene_desc_t *s = &w->scene;
+    world_t *w = make_world();
+    const scene_desc_t *s = world_info(w).scene;
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
     cam_t cam;
     scene_camera_init(s, &cam);
-    app_view_t v;
-    app_view_make(&v, &cam, t.w, t.h, 4.0f / 60.0f, 1.0f / 60.0f);
-    eval_seam_desc_t d = app_seam_desc(w);
+    world_view_t v;
+    world_view_make(&v, &cam, t.w, t.h, 4.0f / 60.0f, 1.0f / 60.0f);
+    eval_seam_desc_t d = measure_seam_desc(w);
 
     /* 1. The hybrid frame against its billboard-only reference. */
-    app_seam_frame_t hybrid, ref, bg;
-    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &hybrid));
+    measure_seam_frame_t hybrid, ref, bg;
+    CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &hybrid));
     eval_seam_t e;
-    CHECK(app_world_seam(w, &v, &t, &e));
+    CHECK(measure_seam(w, &v, &t, &e));
     printf("hybrid seam: score %.3f, Delta E %.3f, Delta L* %+.3f, coverage %.4f (grass near | far %.3f | %.3f, "
            "reference %.3f | %.3f; pixels %ld | %ld)\n",
            e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1], e.grass[1][0], e.grass[1][1],
@@ -67,18 +71,18 @@ int main(void)
     CHECK(e.coverage <= SEAM_COVERAGE);
 
     /* 2. Floor: billboards only, other placements, against the reference. */
-    app_seam_floor_t fl;
-    CHECK(app_world_seam_floor(w, &v, &t, &fl));
+    measure_seam_floor_t fl;
+    CHECK(measure_seam_floor(w, &v, &t, &fl));
     printf("floor (billboards, %d other placements, means): score %.3f (%.3f %.3f %.3f), Delta E %.3f, coverage "
            "%.4f\n",
-           APP_SEAM_FLOOR_PLACEMENTS, fl.mean.score, fl.score[0], fl.score[1], fl.score[2], fl.mean.delta_e,
+           MEASURE_SEAM_FLOOR_PLACEMENTS, fl.mean.score, fl.score[0], fl.score[1], fl.score[2], fl.mean.delta_e,
            fl.mean.coverage);
     CHECK(fl.mean.score > 0.0 && fl.mean.score < 1.0);
     CHECK_MSG(e.score < 1.0, "the seam (%.3f) is clearly visible (floor %.3f)", e.score, fl.mean.score);
-    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_BILLBOARD, true, &ref));
-    CHECK(app_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, false, &bg));
-    app_seam_frame_classify(&hybrid, &bg);
-    app_seam_frame_classify(&ref, &bg);
+    CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_BILLBOARD, true, &ref));
+    CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, false, &bg));
+    measure_seam_frame_classify(&hybrid, &bg);
+    measure_seam_frame_classify(&ref, &bg);
     eval_seam_frame_t fh = view_of(&hybrid), fr = view_of(&ref);
     /* Why a reference: the billboard-only frame's own step across the band
      * (no switch in it) is the view's change with distance. */
@@ -104,12 +108,11 @@ int main(void)
            base.delta_l, dark.delta_l);
     CHECK(dark.delta_l < base.delta_l - 1.0);
 
-    app_seam_frame_free(&hybrid);
-    app_seam_frame_free(&ref);
-    app_seam_frame_free(&bg);
+    measure_seam_frame_free(&hybrid);
+    measure_seam_frame_free(&ref);
+    measure_seam_frame_free(&bg);
     gfx_target_destroy(&t);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

@@ -5,22 +5,27 @@
  * absolute difference between consecutive frames in hybrid mode is compared
  * with the same dolly in blade-only mode (no switch). Both maxima are
  * printed (the per-frame series too). */
-#include "app/app_world.h"
+#include "world/world_harness.h"
 #include "eval/eval.h"
 #include "test.h"
 #include "test_gl.h"
 
 #include <string.h>
 
+/* The ball parked off the field. */
+static void park_ball(scene_desc_t *s, void *user)
+{
+    (void)user;
+    s->colliders[0].path.count = 1;
+    glm_vec3_copy((vec3){40.0f, 0.4f, 40.0f}, s->colliders[0].path.keys[0].position);
+}
+
 static double max_jump(scene_mode_t mode, double *series)
 {
-    app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    app_world_set_mode(w, mode);
-    w->scene.colliders[0].path.count = 1; /* ball parked off the field */
-    glm_vec3_copy((vec3){40.0f, 0.4f, 40.0f}, w->scene.colliders[0].path.keys[0].position);
-    CHECK(app_world_make_gpu(w));
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "scenes/tiny.json"}, &w) == 0);
+    CHECK(world_setup(w, &(world_setup_t){.mode = mode, .mode_set = true, .tweak = park_ball}));
+    CHECK(world_make_gpu(w));
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 128, .h = 96, .samples = 4, .label = "switch"});
     core_image_t prev = {0}, cur = {0};
     double worst = 0;
@@ -28,13 +33,13 @@ static double max_jump(scene_mode_t mode, double *series)
         float d = 1.5f + 5.0f * (float)f / 47.0f; /* horizontal distance to the origin: 1.5 .. 6.5 m */
         cam_t cam = {.position = {0.0f, 1.6f, d}, .target = {0.0f, 0.2f, d - 4.0f}, .fov = 60.0f};
         cam_defaults(&cam);
-        app_world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
-        app_view_t v;
-        app_view_make(&v, &cam, t.w, t.h, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+        world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
+        world_view_t v;
+        world_view_make(&v, &cam, t.w, t.h, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
         gfx_target_bind(&t);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &v, &t, false);
+        world_draw(w, &v, &t, false);
         CHECK(gfx_target_read(&t, &cur));
         if (prev.px) {
             double m = eval_image_mad(&prev, &cur);
@@ -47,8 +52,7 @@ static double max_jump(scene_mode_t mode, double *series)
     }
     core_image_free(&prev);
     gfx_target_destroy(&t);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     return worst;
 }
 
@@ -58,24 +62,27 @@ static double max_jump(scene_mode_t mode, double *series)
  * tile is a billboard tile seen from the origin). It was a billboard tile when the tiles took the
  * origin for the camera until the first draw, and the first frame of
  * meadow_large showed bare ground near the camera. */
+static void camera_over_corner(scene_desc_t *s, void *user)
+{
+    (void)user;
+    s->grass.switch_distance = 1.5f;
+    glm_vec3_copy((vec3){3.0f, 0.5f, 3.0f}, s->camera.position);
+}
+
 static void first_update_near_tiles(void)
 {
-    app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    app_world_set_mode(w, SCENE_MODE_HYBRID);
-    w->scene.grass.switch_distance = 1.5f;
-    glm_vec3_copy((vec3){3.0f, 0.5f, 3.0f}, w->scene.camera.position);
-    CHECK(app_world_make_gpu(w));
-    app_world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
-    const hybrid_grid_t *g = blade_tiles_info(app_world_tiles(w)).grid;
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "scenes/tiny.json"}, &w) == 0);
+    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = camera_over_corner}));
+    CHECK(world_make_gpu(w));
+    world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
+    const hybrid_grid_t *g = blade_tiles_info(world_info(w).tiles).grid;
     int under = hybrid_tile_at(g, 3.0f, 3.0f);
     CHECK(under >= 0);
     printf("first update: tile under the camera drawn as %s\n",
            g->tiles[under].rep == HYBRID_REP_BLADE ? "blades" : "billboards");
     CHECK(g->tiles[under].rep == HYBRID_REP_BLADE);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
 }
 
 int main(void)

@@ -15,7 +15,7 @@
  *   d) the blades of the trail's cells are still pressed down after coming
  *      back, against their undisturbed pose.
  * With keep_state (no hand-over) the tile would keep its slot instead. */
-#include "app/app_world.h"
+#include "world/world_harness.h"
 #include "eval/eval.h"
 #include "test.h"
 #include "test_gl.h"
@@ -30,8 +30,8 @@ static int g_source_calls;
  * sums for the CPU twin of the seeding. */
 static void capture_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
 {
-    app_world_t *w = user;
-    bb_field_add_slopes(w->bb, grid, sums);
+    world_t *w = user;
+    bb_field_add_slopes(world_info(w).billboards, grid, sums);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_buffer_read(sums, 0, (size_t)grid->nx * grid->nz * sizeof(hybrid_slope_sum_t), g_bb_sums);
     g_source_calls++;
@@ -45,9 +45,9 @@ static double up_height(const blade_t *b)
 }
 
 /* Mean tip height over blade height of a slot's real blades. */
-static double mean_height(app_world_t *w, int slot)
+static double mean_height(world_t *w, int slot)
 {
-    blade_tiles_t *bt = app_world_tiles(w);
+    blade_tiles_t *bt = world_info(w).tiles;
     uint32_t B = blade_tiles_info(bt).template_blades;
     blade_t *b = malloc(B * sizeof *b);
     blade_tiles_read_slot(bt, slot, b, NULL);
@@ -63,12 +63,24 @@ static double mean_height(app_world_t *w, int slot)
     return n ? sum / n : 1.0;
 }
 
-static void run(app_world_t *w, int *frame, int count, const float cam[3])
+static void run(world_t *w, int *frame, int count, const float cam[3])
 {
     for (int i = 0; i < count; i++, (*frame)++) {
-        memcpy(w->camera, cam, sizeof w->camera);
-        app_world_update(w, (float)(*frame + 1) / 60.0f, 1.0f / 60.0f);
+        world_set_camera(w, cam);
+        world_update(w, (float)(*frame + 1) / 60.0f, 1.0f / 60.0f);
     }
+}
+
+/* A heavy ball rolls once along z = 0.5 through the tile at (1, 0.5),
+ * then leaves the field. */
+static void ball_once(scene_desc_t *s, void *user)
+{
+    (void)user;
+    scene_path_t *p = &s->colliders[0].path;
+    p->count = 3;
+    p->keys[0] = (scene_path_key_t){0.0f, {-3.5f, 0.3f, 0.5f}};
+    p->keys[1] = (scene_path_key_t){1.5f, {3.5f, 0.3f, 0.5f}};
+    p->keys[2] = (scene_path_key_t){1.6f, {30.0f, 0.3f, 30.0f}};
 }
 
 static void unit(const float a[3], const float b[3], float out[3])
@@ -95,16 +107,16 @@ static int changed_pixels(const core_image_t *a, const core_image_t *b)
     return n;
 }
 
-static core_image_t render(app_world_t *w, gfx_target_t *t, float time)
+static core_image_t render(world_t *w, gfx_target_t *t, float time)
 {
     cam_t cam = {.position = {1.0f, 2.5f, 7.5f}, .target = {1.0f, 0.0f, 0.5f}, .fov = 50.0f};
     cam_defaults(&cam);
-    app_view_t v;
-    app_view_make(&v, &cam, t->w, t->h, time, 1.0f / 60.0f);
+    world_view_t v;
+    world_view_make(&v, &cam, t->w, t->h, time, 1.0f / 60.0f);
     gfx_target_bind(t);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    app_world_draw(w, &v, t, false);
+    world_draw(w, &v, t, false);
     core_image_t img = {0};
     CHECK(gfx_target_read(t, &img));
     return img;
@@ -114,19 +126,13 @@ int main(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    app_options_t o = {.scene = "scenes/tiny.json", .headless = true, .mode = APP_MODE_HYBRID};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    /* A heavy ball rolls once along z = 0.5 through the tile at (1, 0.5),
-     * then leaves the field. */
-    scene_path_t *p = &w->scene.colliders[0].path;
-    p->count = 3;
-    p->keys[0] = (scene_path_key_t){0.0f, {-3.5f, 0.3f, 0.5f}};
-    p->keys[1] = (scene_path_key_t){1.5f, {3.5f, 0.3f, 0.5f}};
-    p->keys[2] = (scene_path_key_t){1.6f, {30.0f, 0.3f, 30.0f}};
-    CHECK(app_world_make_gpu(w));
-    CHECK(w->have_tiles);
-    blade_tiles_t *bt = app_world_tiles(w);
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "scenes/tiny.json", .mode = SCENE_MODE_HYBRID, .mode_set = true},
+                     &w) == 0);
+    CHECK(world_setup(w, &(world_setup_t){.tweak = ball_once}));
+    CHECK(world_make_gpu(w));
+    CHECK(world_info(w).tiles);
+    blade_tiles_t *bt = world_info(w).tiles;
     blade_tiles_info_t bi = blade_tiles_info(bt);
     const hybrid_slope_grid_t *sg = &bi.slope_grid;
     size_t ncells = (size_t)sg->nx * sg->nz;
@@ -257,7 +263,7 @@ int main(void)
                         (ref.v2[2] - ref.v0[2]) * (ref.v2[2] - ref.v0[2]));
             hybrid_slope_apply(dir, f, &use, wgt, nd);
             for (int q = 0; q < 3; q++) ref.v2[q] = ref.v0[q] + len * nd[q];
-            blade_ref_validate(&ref, w->blade_env.length_mode);
+            blade_ref_validate(&ref, world_info(w).blade_env->length_mode);
             eta_ref = wgt * eta0;
             moved += wgt * use.m > 0.05f;
         }
@@ -306,8 +312,7 @@ int main(void)
     free(sums);
     free(cells);
     free(g_bb_sums);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

@@ -11,9 +11,9 @@
  * is 0.11, at 640x360 0.065): 1 - SSIM at most 0.05
  * and a mean absolute channel difference of at most 3 (of 255). Writes
  * every image to the test output folder. Also: the frame target fits the
- * rasterizer (app_world_fit_target). */
-#include "app/app_world.h"
-#include "bench/bench.h"
+ * rasterizer (world_fit_target). */
+#include "app/app.h"
+#include "measure/measure_session.h"
 #include "eval/eval.h"
 #include "test.h"
 #include "test_gl.h"
@@ -44,8 +44,9 @@ static void render_pair(const char *scene, scene_mode_t mode, bool mode_set, int
 {
     for (int r = 0; r < 2; r++) {
         app_options_t o = {.scene = scene, .headless = true, .raster = 1 + r};
-        bench_session_desc_t d = {.opts = &o, .mode = mode, .mode_set = mode_set, .frames = frames, .tweak = tweak};
-        CHECK(bench_session_run(&d, &img[r], NULL) == 0);
+        measure_session_desc_t d = {.world = app_world_options(&o),
+                                    .mode = mode, .mode_set = mode_set, .frames = frames, .tweak = tweak};
+        CHECK(measure_session_run(&d, &img[r], NULL) == 0);
         char path[1200];
         const char *base = strrchr(scene, '/') ? strrchr(scene, '/') + 1 : scene;
         snprintf(path, sizeof path, "%s/%.*s_%s_%s.png", test_out_dir(), (int)strcspn(base, "."), base,
@@ -64,30 +65,28 @@ static void msaa4(scene_desc_t *s, void *user)
 }
 
 
-/* app_world_fit_target: single-sampled with the compute rasterizer, the
+/* world_fit_target: single-sampled with the compute rasterizer, the
  * scene's msaa (16 here: clamped to the GL's maximum) with the hardware
  * path, and a target that fits is kept, not remade each frame. */
 static void check_fit_target(void)
 {
-    app_options_t o = {.scene = "scenes/tiny.json", .headless = true};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    w->scene.msaa = 16;
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "scenes/tiny.json"}, &w) == 0);
+    CHECK(world_setup(w, &(world_setup_t){.msaa = 16}));
     for (int r = 0; r < 2; r++) {
-        app_world_set_raster(w, r == 1);
+        world_set_raster(w, r == 1);
         gfx_target_t t = {.w = 64, .h = 32};
-        CHECK(app_world_fit_target(w, &t, "fit"));
+        CHECK(world_fit_target(w, &t, "fit"));
         CHECK_MSG(t.samples == (r ? 1 : gfx_target_samples(16)), "%s path: %d samples", r ? "compute" : "hw",
                   t.samples);
         long made = gfx_objects_made();
-        CHECK(app_world_fit_target(w, &t, "fit") && app_world_fit_target(w, &t, "fit"));
+        CHECK(world_fit_target(w, &t, "fit") && world_fit_target(w, &t, "fit"));
         CHECK_MSG(gfx_objects_made() == made, "%s path: a fitting target was remade", r ? "compute" : "hw");
-        app_world_set_raster(w, r == 0);
-        CHECK(app_world_fit_target(w, &t, "fit") && gfx_objects_made() > made);
+        world_set_raster(w, r == 0);
+        CHECK(world_fit_target(w, &t, "fit") && gfx_objects_made() > made);
         gfx_target_destroy(&t);
     }
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     printf("fit target: hardware %d samples, compute 1; kept while it fits\n", gfx_target_samples(16));
 }
 

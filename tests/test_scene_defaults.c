@@ -8,6 +8,7 @@
 
 #include "billboard/bb.h"
 #include "blade/blade_canopy.h"
+#include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "blade/blade_tiles.h"
 #include "core/core.h"
@@ -60,6 +61,10 @@ static void test_billboards(const scene_grass_desc_t *g)
     CHECK_MSG(same_population(&c->population, g), "bb clump population");
     CHECK_MSG(bb.layout.blades == bb_clump_blades(g->population.density, g->billboard_density), "bb clump blades %d",
               bb.layout.blades);
+    /* The clump baker's own defaults (a zero desc) are the scene's too. */
+    blade_clump_desc_t z = blade_clump_desc_defaults(NULL);
+    CHECK(z.size[0] == g->billboard_size[0] && z.size[1] == g->billboard_size[1]);
+    CHECK_MSG(z.depth == 1.5707963f / (g->billboard_size[0] * g->billboard_density), "clump depth %g", z.depth);
     /* The scene accepts exactly the subdivisions bb_field_make accepts. */
     const scene_field_t *subdiv = scene_field_find(SCENE_SEC_GRASS, "subdiv");
     CHECK(subdiv && subdiv->lo == SCENE_SUBDIV_MIN && subdiv->hi == SCENE_SUBDIV_MAX);
@@ -120,5 +125,7 @@ int main(void)
     test_blades(&scene.grass);
     test_hybrid(&scene.grass);
     test_terrain_camera();
+    /* The CPU bakes (clump layers, canopy) settle blades with the scene's step. */
+    CHECK(BLADE_SETTLE_DT == scene.dt);
     TEST_END();
 }

@@ -5,7 +5,7 @@
  * GPU buffer holds NaN/Inf and the driver reported no GL error.
  * MEADOW_SOAK_FRAMES sets the length (default 2000, the CI version; the long
  * version is MEADOW_SOAK_FRAMES=100000). */
-#include "app/app_world.h"
+#include "world/world_harness.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -37,13 +37,12 @@ int main(void)
     int frames = env && atoi(env) > 0 ? atoi(env) : 2000;
     test_gl_init();
     core_log_set_quiet(true);
-    app_options_t o = {.scene = "scenes/tiny.json", .headless = true, .character = "models/humanoid.gltf"};
-    app_world_t *w = calloc(1, sizeof *w);
-    CHECK(app_world_load(w, &o) == 0);
-    CHECK(app_world_make_gpu(w));
+    world_t *w;
+    CHECK(world_load(&(world_options_t){.scene = "scenes/tiny.json", .character = "models/humanoid.gltf"}, &w) == 0);
+    CHECK(world_make_gpu(w));
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = 96, .h = 64, .samples = 4, .label = "soak"});
     cam_t cam;
-    scene_camera_init(&w->scene, &cam);
+    scene_camera_init(world_info(w).scene, &cam);
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     int objects_after_warmup = -1;
     size_t memory_after_warmup = 0;
@@ -51,15 +50,15 @@ int main(void)
     const int period = 150, warmup = 3 * period + 50;
     double t0 = plat_time();
     for (int f = 0; f < frames; f++) {
-        if (f % period == 0) app_world_set_mode(w, modes[(f / period) % 3]);
+        if (f % period == 0) world_set_mode(w, modes[(f / period) % 3]);
         float t = (float)(f + 1) / 60.0f;
-        app_world_update(w, t, 1.0f / 60.0f);
-        app_view_t view;
-        app_view_make(&view, &cam, target.w, target.h, t, 1.0f / 60.0f);
+        world_update(w, t, 1.0f / 60.0f);
+        world_view_t view;
+        world_view_make(&view, &cam, target.w, target.h, t, 1.0f / 60.0f);
         gfx_target_bind(&target);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        app_world_draw(w, &view, &target, false);
+        world_draw(w, &view, &target, false);
         if (f == warmup) {
             glFinish();
             objects_after_warmup = gfx_live_objects();
@@ -78,7 +77,7 @@ int main(void)
     glFinish();
     /* No NaN anywhere the simulation writes. */
     int bad = 0;
-    blade_gpu_t *blades = app_world_blades(w);
+    blade_gpu_t *blades = world_info(w).blades;
     size_t n = blades ? blade_gpu_info(blades).padded_count : 0;
     if (n) {
         blade_t *b = malloc(n * sizeof *b);
@@ -88,7 +87,7 @@ int main(void)
         free(b);
         free(eta);
     }
-    blade_tiles_t *tiles = app_world_tiles(w);
+    blade_tiles_t *tiles = world_info(w).tiles;
     if (tiles) {
         blade_tiles_info_t ti = blade_tiles_info(tiles);
         size_t pool = (size_t)ti.desc.pool_slots * ti.template_blades;
@@ -97,12 +96,13 @@ int main(void)
         bad += non_finite((const float *)b, pool * 16);
         free(b);
     }
-    if (w->bb) {
+    bb_field_t *bb = world_info(w).billboards;
+    if (bb) {
         bb_field_info_t fi;
-        bb_field_info(w->bb, &fi);
+        bb_field_info(bb, &fi);
         size_t floats = (size_t)fi.desc.max_deformed * (size_t)fi.mesh_vertices * 4;
         float *m = malloc(floats * sizeof *m);
-        bool read = m && bb_field_read(w->bb, BB_DATA_MESHES, 0, (size_t)fi.desc.max_deformed, m);
+        bool read = m && bb_field_read(bb, BB_DATA_MESHES, 0, (size_t)fi.desc.max_deformed, m);
         CHECK(read);
         if (read) bad += non_finite(m, floats);
         free(m);
@@ -112,7 +112,8 @@ int main(void)
            frames, plat_time() - t0, objects_after_warmup, (double)memory_after_warmup / 1048576.0, rss_warm, rss_min,
            rss_max, bad);
     CHECK(bad == 0);
-    CHECK(w->bb && w->have_blades && w->have_tiles && w->have_chars);
+    world_info_t wi = world_info(w);
+    CHECK(wi.billboards && wi.blades && wi.tiles && wi.characters);
     /* Under ASan (.ci/sanitize sets MEADOW_SANITIZED=1) freed memory sits in
      * the allocator's quarantine and RSS creeps by design; LeakSanitizer
      * checks leaks there instead. */
@@ -122,8 +123,7 @@ int main(void)
     else if (frames > warmup + 100)
         CHECK(rss_max <= rss_warm * 105 / 100 && rss_min >= rss_warm * 95 / 100);
     gfx_target_destroy(&target);
-    app_world_destroy(w);
-    free(w);
+    world_destroy(w);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

@@ -1,4 +1,4 @@
-/* test_terrain_world_render: a 4 km world terrain drawn by app_terrain as a
+/* test_terrain_world_render: a 4 km world terrain drawn by ground_draw as a
  * clipmap (terrain_world.vert + terrain.frag) on llvmpipe, read back. The
  * vertex shader's positions and normals (transform feedback, every vertex
  * of every level) against terrain_clipmap_vertex + terrain_world_height
@@ -9,34 +9,41 @@
  * terrain_world_height there within 5 cm; a walker's view 1.7 m above the
  * ground covers the lower half of the image. The walker's view is written
  * to $MEADOW_TEST_OUT/world_walk.png. */
-#include "app/app_world.h"
+#include "ground/ground.h"
 #include "platform/plat.h"
 #include "scene/terrain.h"
+#include "scene/terrain_clipmap.h"
 #include "test.h"
 #include "test_gl.h"
 
+#include <cglm/cglm.h>
 #include <stdlib.h>
 #include <string.h>
 
 enum { W = 160, H = 120 };
 
-static void view_at(app_view_t *v, const float eye[3], const float target[3], const float up[3])
+/* The frame's view and the inverse view-projection the sky needs. */
+typedef struct view_t {
+    core_view_t frame;
+    mat4 inv_viewproj;
+} view_t;
+
+static void view_at(view_t *v, const float eye[3], const float target[3], const float up[3])
 {
     memset(v, 0, sizeof *v);
-    glm_lookat((float *)eye, (float *)target, (float *)up, v->view);
-    glm_perspective(glm_rad(90.0f), (float)W / (float)H, 1.0f, 6000.0f, v->proj);
-    glm_mat4_mul(v->proj, v->view, v->viewproj);
-    glm_mat4_inv(v->viewproj, v->inv_viewproj);
-    glm_vec3_copy((float *)eye, v->camera);
-    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->sun_dir);
-    glm_vec3_normalize(v->sun_dir);
-    v->far = 6000.0f;
-    v->width = W;
-    v->height = H;
+    mat4 view, proj, vp;
+    glm_lookat((float *)eye, (float *)target, (float *)up, view);
+    glm_perspective(glm_rad(90.0f), (float)W / (float)H, 1.0f, 6000.0f, proj);
+    glm_mat4_mul(proj, view, vp);
+    glm_mat4_inv(vp, v->inv_viewproj);
+    memcpy(v->frame.viewproj, vp, sizeof v->frame.viewproj);
+    glm_vec3_copy((float *)eye, v->frame.camera);
+    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->frame.sun_dir);
+    glm_vec3_normalize(v->frame.sun_dir);
 }
 
 /* Draws and reads depth; returns the pixels without terrain in rows [row0, H). */
-static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_view_t *v, int row0, float *depth)
+static int draw_holes(const ground_t *t, const gfx_target_t *tg, const view_t *v, int row0, float *depth)
 {
     gfx_target_bind(tg);
     glClearColor(1.0f, 0.0f, 1.0f, 1.0f);
@@ -44,7 +51,7 @@ static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
-    app_terrain_draw(t, v);
+    ground_draw(t, &v->frame, (const float *)v->inv_viewproj);
     gfx_target_resolve(tg);
     CHECK(gfx_target_read_depth(tg, depth));
     int holes = 0;
@@ -53,8 +60,9 @@ static int draw_holes(const app_terrain_t *t, const gfx_target_t *tg, const app_
     return holes;
 }
 
-/* Every vertex of every level through terrain_world.vert, captured, against the CPU twin. */
-static void check_vertex_twin(const app_terrain_t *t, const terrain_world_t *w, const float eye[3])
+/* Every vertex of every level through terrain_world.vert (the clipmap's
+ * grid as ground.c uploads it), captured, against the CPU twin. */
+static void check_vertex_twin(const terrain_world_t *w, const float eye[3])
 {
     static const char *const varyings[] = {"v_pos", "v_normal", NULL};
     char defines[256];
@@ -71,7 +79,14 @@ static void check_vertex_twin(const app_terrain_t *t, const terrain_world_t *w, 
     glUseProgram(prog.id);
     glUniform3fv(gfx_uniform(prog, "u_camera"), 1, eye);
     glUniformMatrix4fv(gfx_uniform(prog, "u_viewproj"), 1, GL_FALSE, (const float *)GLM_MAT4_IDENTITY);
-    glBindVertexArray(t->vao);
+    gfx_buffer_t grid = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint16_t) * 2 * c.vertex_count,
+                                                             .data = c.grid, .label = "world.vertex_twin.grid"});
+    GLuint vao = gfx_vertex_array_make("world.vertex_twin.vao");
+    glVertexArrayVertexBuffer(vao, 0, grid.id, 0, 2 * sizeof(uint16_t));
+    glEnableVertexArrayAttrib(vao, 0);
+    glVertexArrayAttribIFormat(vao, 0, 2, GL_UNSIGNED_SHORT, 0);
+    glVertexArrayAttribBinding(vao, 0, 0);
+    glBindVertexArray(vao);
     glEnable(GL_RASTERIZER_DISCARD);
     for (int l = 0; l < c.desc.levels; l++) {
         terrain_clipmap_level_t lv = terrain_clipmap_place(&c, l, eye[0], eye[2]);
@@ -100,6 +115,8 @@ static void check_vertex_twin(const app_terrain_t *t, const terrain_world_t *w, 
     CHECK(dp < 1e-3);
     CHECK(dn < 1e-3);
     free(got);
+    gfx_vertex_array_destroy(&vao);
+    gfx_buffer_destroy(&grid);
     gfx_buffer_destroy(&out);
     gfx_program_destroy(&prog);
     terrain_clipmap_free(&c);
@@ -110,18 +127,18 @@ int main(void)
     test_gl_init();
     terrain_mesh_t mesh;
     CHECK(terrain_make_world(&mesh, &(terrain_desc_t){.type = TERRAIN_WORLD, .size = 4096, .height = 30}, 3));
-    app_terrain_t t;
-    CHECK(app_terrain_make(&t, &mesh));
+    ground_t *t = ground_make(&mesh);
+    CHECK(t != NULL);
     gfx_target_t tg = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "world.target"});
     float *depth = malloc(sizeof(float) * W * H);
     gfx_target_bind(&tg); /* draws need a complete framebuffer */
-    check_vertex_twin(&t, &mesh.world, (float[3]){-1000.3f, 12.0f, 733.7f});
-    app_view_t v;
+    check_vertex_twin(&mesh.world, (float[3]){-1000.3f, 12.0f, 733.7f});
+    view_t v;
     static const float north[3] = {0.0f, 0.0f, -1.0f}, up[3] = {0.0f, 1.0f, 0.0f};
 
     float x = 1024.0f, z = -512.0f, g = terrain_world_height(&mesh.world, x, z, NULL);
     view_at(&v, (float[3]){x, g + 250.0f, z}, (float[3]){x, g, z}, north);
-    int holes = draw_holes(&t, &tg, &v, 0, depth);
+    int holes = draw_holes(t, &tg, &v, 0, depth);
     /* depth of the centre (between the 4 middle pixels: read one, W/2, H/2) */
     float d = depth[(H / 2) * W + W / 2];
     vec4 ndc = {((float)(W / 2) + 0.5f) / W * 2.0f - 1.0f, 1.0f - ((float)(H / 2) + 0.5f) / H * 2.0f, d * 2.0f - 1.0f,
@@ -136,18 +153,18 @@ int main(void)
     CHECK_NEAR(py, want, 0.05);
 
     view_at(&v, (float[3]){-700.0f, 1500.0f, 300.0f}, (float[3]){-700.0f, 0.0f, 300.0f}, north);
-    holes = draw_holes(&t, &tg, &v, 0, depth);
+    holes = draw_holes(t, &tg, &v, 0, depth);
     printf("top-down from 1500 m: %d pixels without terrain\n", holes);
     CHECK(holes == 0);
 
     g = terrain_world_height(&mesh.world, -300.0f, 200.0f, NULL);
     view_at(&v, (float[3]){-300.0f, g + 1.7f, 200.0f}, (float[3]){-280.0f, g - 3.0f, 180.0f}, up);
-    holes = draw_holes(&t, &tg, &v, H / 2, depth);
+    holes = draw_holes(t, &tg, &v, H / 2, depth);
     printf("walker's view: %d pixels of the lower half without terrain\n", holes);
     CHECK(holes == 0);
     glFinish();
     double t0 = plat_time();
-    for (int k = 0; k < 10; k++) draw_holes(&t, &tg, &v, H, depth);
+    for (int k = 0; k < 10; k++) draw_holes(t, &tg, &v, H, depth);
     printf("walker's view, %dx%d, 7 levels: %.1f ms per draw and readback (timing only)\n", W, H,
            (plat_time() - t0) * 100.0);
     const char *out = getenv("MEADOW_TEST_OUT");
@@ -159,7 +176,7 @@ int main(void)
     }
     free(depth);
     gfx_target_destroy(&tg);
-    app_terrain_destroy(&t);
+    ground_destroy(t);
     terrain_free(&mesh);
     CHECK(test_gl_shutdown() == 0);
     TEST_END();

@@ -57,11 +57,11 @@ static blade_t *drawn_at(blade_tiles_t *t, const float cam[3], float time, float
 {
     blade_env_t env = {.dt = dt, .time = time, .gravity = 1.0f};
     blade_tiles_update(t, cam, set, &env);
-    blade_draw_desc_t dd = {.time = time};
+    blade_draw_desc_t dd = {.view.time = time};
     mat4 vp;
     glm_mat4_identity(vp);
-    memcpy(dd.view_proj, vp, sizeof vp);
-    memcpy(dd.camera, cam, sizeof dd.camera);
+    memcpy(dd.view.viewproj, vp, sizeof vp);
+    memcpy(dd.view.camera, cam, sizeof dd.view.camera);
     blade_tiles_draw(t, &dd, 0);
     blade_tiles_info_t ti = blade_tiles_info(t);
     blade_t *b = malloc(ti.draw_capacity * sizeof *b);

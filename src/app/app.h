@@ -8,6 +8,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "world/world.h"
+
 typedef enum app_mode_t {
     APP_MODE_SCENE = 0, /* whatever the scene file says */
     APP_MODE_BILLBOARD,
@@ -47,6 +49,9 @@ typedef struct app_options_t {
     bool frame_log;           /* --frame-log: OUT/frames.csv, a row per frame (app_trace.h) */
 } app_options_t;
 
+
+/* What the world takes of the options (world_load). */
+world_options_t app_world_options(const app_options_t *o);
 
 /* What app_parse_option made of argv[*i]. */
 typedef enum app_option_status_t {
@@ -90,6 +95,9 @@ typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int fr
  * mode switch) are left out. Writes at most size bytes to buf (NUL
  * terminated when size > 0) and returns the length written. */
 #define APP_HUD_STALE_FRAMES 30
+/* Frames summary.txt's frame times and the frame log (app_trace.h) keep:
+ * the latest this many. */
+#define APP_FRAME_HISTORY 16384
 typedef struct app_hud_pass_t {
     const char *name;
     double ms;        /* latest timing */

@@ -265,3 +265,25 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
     }
     return 0;
 }
+
+world_options_t app_world_options(const app_options_t *o)
+{
+    static const scene_mode_t modes[] = {[APP_MODE_SCENE] = SCENE_MODE_HYBRID,
+                                         [APP_MODE_BILLBOARD] = SCENE_MODE_BILLBOARD,
+                                         [APP_MODE_BLADE] = SCENE_MODE_BLADE,
+                                         [APP_MODE_HYBRID] = SCENE_MODE_HYBRID};
+    return (world_options_t){.scene = o->scene,
+                             .seed = o->seed,
+                             .seed_set = o->seed_set,
+                             .width = o->width,
+                             .height = o->height,
+                             .mode = modes[o->mode],
+                             .mode_set = o->mode != APP_MODE_SCENE,
+                             .blade_render = o->blade_render,
+                             .raster = o->raster,
+                             .raster_samples = o->raster_samples,
+                             .view_cards = o->view_cards,
+                             .character = o->character,
+                             .clip = o->clip,
+                             .character_height = o->character_height};
+}

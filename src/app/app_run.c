@@ -1,7 +1,7 @@
 /* app_run: the meadow main loop. Loads the scene, creates the context (a
  * window, or headless EGL), simulates with a fixed timestep, renders into an
  * MSAA target, writes screenshots and the run summary. */
-#include "app/app_world.h"
+#include "app/app.h"
 #include "app/app_trace.h"
 
 #include <assert.h>
@@ -11,12 +11,26 @@
 #include <string.h>
 
 #include "core/core.h"
+#include "measure/measure.h"
 #include "platform/plat.h"
 #include "scene/scene.h"
 
+/* ---- frame times ---------------------------------------------------------- */
+#define APP_WARMUP_FRAMES 60
+typedef struct app_frame_times_t {
+    int warmup;                     /* frames left out at the start */
+    double wall[APP_FRAME_HISTORY]; /* ms, frame end to frame end */
+    double cpu[APP_FRAME_HISTORY];  /* ms, frame start to the last command submitted */
+    double thread[APP_FRAME_HISTORY]; /* ms of the main thread's CPU time over the same span */
+    int frame[APP_FRAME_HISTORY];   /* the frame's number in the run */
+    int count, next;
+    int shots;                      /* frames left out for writing a screenshot */
+} app_frame_times_t;
+
 typedef struct app_t {
     const app_options_t *opts;
-    app_world_t world;
+    world_t *world;
+    double stage_ms[WORLD_STAGES]; /* the world's, with the context and the first frame */
     gfx_target_t target;
     cam_t cam;
     bool follow_path;
@@ -37,7 +51,7 @@ typedef struct app_t {
     double raster_calib_ms[2]; /* --raster auto: GPU ms of a frame, hardware and compute */
     double raster_calib_wall_ms; /* --raster auto: wall ms the measure took at start-up */
     app_frame_times_t times;
-    app_view_t last_view; /* of the frame in the target */
+    world_view_t last_view; /* of the frame in the target */
     bool last_hud;        /* the HUD, wireframe or an overlay is in it */
     double startup_draws, startup_ranges, startup_dispatches;
     app_trace_t *trace; /* --frame-log, else NULL */
@@ -45,7 +59,7 @@ typedef struct app_t {
 
 /* ---- frame times -------------------------------------------------------------
  * What a user feels: wall-clock time from the end of one frame to the end of
- * the next, where a frame ends once at most APP_FRAMES_IN_FLIGHT frames are
+ * the next, where a frame ends once at most WORLD_FRAMES_IN_FLIGHT frames are
  * unfinished on the GPU (gfx_frame_end, a fence wait as a swap chain would
  * block; no glFinish). In steady state that is the larger of the CPU and the
  * GPU time of a frame, and a stall in either shows. Beside it the CPU part:
@@ -94,14 +108,14 @@ static void handle_keys(app_t *app, float real_dt)
     if (plat_key_pressed(PLAT_KEY_H)) app->hud = !app->hud;
     if (plat_key_pressed(PLAT_KEY_O)) app->overlay = (app->overlay + 1) % 4;
     if (plat_key_pressed(PLAT_KEY_R)) {
-        app_world_set_raster(&app->world, !app->world.raster_compute);
-        core_log_info("raster: %s", scene_raster_name(app->world.scene.raster));
+        world_set_raster(app->world, !world_info(app->world).raster_compute);
+        core_log_info("raster: %s", scene_raster_name(world_info(app->world).scene->raster));
     }
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     static const plat_key_t mode_keys[3] = {PLAT_KEY_1, PLAT_KEY_2, PLAT_KEY_3};
     for (int i = 0; i < 3; i++)
-        if (plat_key_pressed(mode_keys[i]) && app->world.mode != modes[i]) {
-            app_world_set_mode(&app->world, modes[i]);
+        if (plat_key_pressed(mode_keys[i]) && world_info(app->world).mode != modes[i]) {
+            world_set_mode(app->world, modes[i]);
             core_log_info("mode: %s", scene_mode_name(modes[i]));
         }
     float speed = (plat_key_down(PLAT_KEY_SHIFT) ? 15.0f : 4.0f) * real_dt;
@@ -119,11 +133,12 @@ static void handle_keys(app_t *app, float real_dt)
 
 static void draw_hud(const app_t *app, double sim_time)
 {
+    world_info_t wi = world_info(app->world);
     char text[2048];
     static const char *overlays[4] = {"", "  [overlay: tile/leaf state]", "  [overlay: LOD]",
                                       "  [overlay: collision strength]"};
     int n = snprintf(text, sizeof text, "meadow  %s  %s raster  %.2f ms/frame  t=%.2fs%s%s\n",
-                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw",
+                     scene_mode_name(wi.scene->mode), wi.raster_compute ? "compute" : "hw",
                      app->frame_ms_avg, sim_time, app->paused ? "  [paused]" : "", overlays[app->overlay]);
     app_hud_pass_t passes[GFX_TIMER_MAX_PASSES];
     int count = gfx_timer_count();
@@ -206,7 +221,7 @@ static int summary_frame_times(const app_t *app, char *buf, size_t size)
                     "  cpu (submit)        p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  cpu (thread time)   p50 %8.3f  p95 %8.3f  p99 %8.3f  worst %8.3f\n"
                     "  p99/p50: %.2f (target <= 1.5: %s)\n",
-                    ft->warmup, ft->shots, ft->count, APP_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3], th[0], th[1], th[2], th[3],
+                    ft->warmup, ft->shots, ft->count, WORLD_FRAMES_IN_FLIGHT, w[0], w[1], w[2], w[3], c[0], c[1], c[2], c[3], th[0], th[1], th[2], th[3],
                     w[2] / w[0], w[2] <= 1.5 * w[0] ? "met" : "missed");
     return n + snprintf(buf + n, size - (size_t)n,
                         "  spikes: worst frame %.2f x the median of the %d around it (frame %d); %d frames over "
@@ -214,15 +229,15 @@ static int summary_frame_times(const app_t *app, char *buf, size_t size)
                         spike, SPIKE_WINDOW, spike_frame, spike_over);
 }
 
-static int summary_startup(const app_t *app, const app_world_stats_t *st, char *buf, size_t size)
+static int summary_startup(const app_t *app, const measure_stats_t *st, char *buf, size_t size)
 {
-    const double *s = app->world.stage_ms;
-    double total = 0.0;
-    for (int k = 0; k < APP_STAGES; k++) total += s[k];
+    /* The world times its own stages; the run the context and first frame. */
+    double s[WORLD_STAGES], total = 0.0;
+    for (int k = 0; k < WORLD_STAGES; k++) total += s[k] = app->stage_ms[k] + world_info(app->world).stage_ms[k];
     int n = snprintf(buf, size, "startup_ms (start of the run to the first frame done on the GPU): %.1f\n", total);
-    for (int k = 0; k < APP_STAGES && n < (int)size - 160; k++) {
-        n += snprintf(buf + n, size - (size_t)n, "  %-12s %9.1f", app_stage_name(k), s[k]);
-        if (k == APP_STAGE_BILLBOARDS && st->billboards > 0) {
+    for (int k = 0; k < WORLD_STAGES && n < (int)size - 160; k++) {
+        n += snprintf(buf + n, size - (size_t)n, "  %-12s %9.1f", world_stage_name(k), s[k]);
+        if (k == WORLD_STAGE_BILLBOARDS && st->billboards > 0) {
             n += snprintf(buf + n, size - (size_t)n, "  (");
             for (int b = 0; b < BB_MAKE_STAGES; b++)
                 n += snprintf(buf + n, size - (size_t)n, "%s%s %.1f", b ? ", " : "", bb_make_stage_name(b),
@@ -237,24 +252,25 @@ static int summary_startup(const app_t *app, const app_world_stats_t *st, char *
 }
 
 /* Hybrid runs: the seam at the switch band of the last frame
- * (app_world_seam; it draws the billboard-only reference into the target). */
+ * (measure_seam; it draws the billboard-only reference into the target). */
 static int summary_seam(app_t *app, char *buf, size_t size)
 {
-    app_world_t *w = &app->world;
-    if (w->mode != SCENE_MODE_HYBRID || app->frames == 0) return 0;
-    float sd = w->scene.grass.switch_distance;
+    world_t *w = app->world;
+    world_info_t wi = world_info(w);
+    if (wi.mode != SCENE_MODE_HYBRID || app->frames == 0) return 0;
+    float sd = wi.scene->grass.switch_distance;
     eval_seam_t e;
     if (app->last_hud)
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",
                         sd);
-    if (!app_world_seam(w, &app->last_view, &app->target, &e))
+    if (!measure_seam(w, &app->last_view, &app->target, &e))
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (a side of the band shows no grass or too few pixels)\n", sd);
     int n = snprintf(buf, size,
                      "hybrid seam at %.1f m (last frame against it drawn with billboards only; band +-%.0f m, "
                      "windows of 3 m; eval_image units, 1 = clearly visible): score %.3f\n"
                      "  Delta E %.3f, Delta L* %+.3f, coverage %.4f; windows near | far: grass %.3f | %.3f "
                      "(reference %.3f | %.3f), pixels %ld | %ld\n",
-                     sd, APP_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
+                     sd, WORLD_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
                      e.grass[1][0], e.grass[1][1], e.pixels[0][0], e.pixels[0][1]);
     if (n < (int)size)
         n += snprintf(buf + n, size - (size_t)n,
@@ -262,17 +278,17 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                       "%.1f) | (%.1f %.1f %.1f)\n",
                       e.lab[0][0][0], e.lab[0][0][1], e.lab[0][0][2], e.lab[0][1][0], e.lab[0][1][1], e.lab[0][1][2],
                       e.lab[1][0][0], e.lab[1][0][1], e.lab[1][0][2], e.lab[1][1][0], e.lab[1][1][1], e.lab[1][1][2]);
-    app_seam_floor_t f;
-    _Static_assert(APP_SEAM_FLOOR_PLACEMENTS == 3, "the floor line prints three placements");
-    if (n < (int)size && app_world_seam_floor(w, &app->last_view, &app->target, &f))
+    measure_seam_floor_t f;
+    _Static_assert(MEASURE_SEAM_FLOOR_PLACEMENTS == 3, "the floor line prints three placements");
+    if (n < (int)size && measure_seam_floor(w, &app->last_view, &app->target, &f))
         n += snprintf(buf + n, size - (size_t)n,
                       "  floor (billboards placed with %d other seeds, each against the reference; means): score "
                       "%.3f (%.3f %.3f %.3f), Delta E %.3f, coverage %.4f; the seam is %s the floor\n",
-                      APP_SEAM_FLOOR_PLACEMENTS, f.mean.score, f.score[0], f.score[1], f.score[2], f.mean.delta_e,
+                      MEASURE_SEAM_FLOOR_PLACEMENTS, f.mean.score, f.score[0], f.score[1], f.score[2], f.mean.delta_e,
                       f.mean.coverage, e.score <= f.mean.score ? "within" : "above");
-    if (n < (int)size && w->terrain.canopy.rows > 1) {
-        float cd = w->scene.grass.canopy_distance;
-        if (!app_world_canopy_seam(w, &app->last_view, &app->target, &e))
+    if (n < (int)size && wi.canopy) {
+        float cd = wi.scene->grass.canopy_distance;
+        if (!measure_canopy_seam(w, &app->last_view, &app->target, &e))
             n += snprintf(buf + n, size - (size_t)n,
                           "canopy seam at %.1f m: not measured (a side of the band shows no grass or too few "
                           "pixels)\n",
@@ -281,7 +297,7 @@ static int summary_seam(app_t *app, char *buf, size_t size)
             n += snprintf(buf + n, size - (size_t)n,
                           "canopy seam at %.1f m (billboards to the ground canopy, against billboards to the "
                           "horizon; band +-%.0f m): score %.3f, Delta E %.3f, Delta L* %+.3f, coverage %.4f\n",
-                          cd, APP_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
+                          cd, WORLD_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
     }
     return n < (int)size ? n : (int)size - 1;
 }
@@ -317,10 +333,71 @@ static int summary_work(char *buf, size_t size)
     return n < (int)size ? n : (int)size - 1;
 }
 
+/* A world's billboard ring (bb_ring.h): its cells, reach and memory. */
+static int summary_ring(bb_field_t *bb, char *buf, size_t size)
+{
+    bb_field_info_t fi;
+    bb_field_info(bb, &fi);
+    float cell = (float)fi.ring_cand * fi.gen.spacing;
+    int n = snprintf(buf, size,
+                     "billboard ring: %d x %d cells of %.2f m (%d x %d candidates) around the camera, to %.1f m; "
+                     "%d billboards, %.1f MiB; cells generated %ld\n",
+                     fi.ring_side, fi.ring_side, (double)cell, fi.ring_cand, fi.ring_cand,
+                     (double)fi.desc.ring_reach, fi.capacity,
+                     (double)fi.capacity * (double)sizeof(bb_point_t) / 1048576.0, fi.ring_generated);
+    return n < 0 ? 0 : (n < (int)size ? n : (int)size - 1);
+}
+
+/* What the world holds: the admission estimate, the hybrid's distances, a
+ * world's tile window, the compute rasterizer's buffers, the characters. */
+static int summary_world(world_info_t wi, char *buf, size_t size)
+{
+    const admit_t *ad = wi.admitted;
+    int n = snprintf(buf, size, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
+                     ad->gpu_total / (1024.0 * 1024.0));
+    for (int k = 0; k < ADMIT_PARTS; k++)
+        if (ad->gpu[k] > 0.0)
+            n += snprintf(buf + n, size - (size_t)n, " %s %.1f", admit_part_name(k),
+                          ad->gpu[k] / (1024.0 * 1024.0));
+    n += snprintf(buf + n, size - (size_t)n, ")\n");
+    bool world = wi.terrain->type == TERRAIN_WORLD;
+    if (world && wi.billboards) n += summary_ring(wi.billboards, buf + n, size - (size_t)n);
+    if (wi.scene->mode == SCENE_MODE_HYBRID)
+        n += snprintf(buf + n, size - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
+                      wi.scene->grass.switch_distance, wi.scene->grass.canopy_distance,
+                      wi.lod_note[0] ? wi.lod_note : "the scene's; no grass.lod_table");
+    if (world && wi.tiles) {
+        blade_tiles_info_t ti = blade_tiles_info(wi.tiles);
+        blade_tiles_stats_t ts = blade_tiles_stats(wi.tiles, false);
+        n += snprintf(buf + n, size - (size_t)n,
+                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
+                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
+                      wi.terrain->world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
+                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
+    }
+    raster_t *r = wi.raster;
+    if (r->vis.id) {
+        raster_stats_t rs;
+        raster_read_stats(r, &rs);
+        n += snprintf(buf + n, size - (size_t)n,
+                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
+                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
+                      (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
+                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
+                      rs.overflow);
+    }
+    if (wi.characters && n < (int)size) {
+        character_set_describe(wi.characters, buf + n, size - (size_t)n);
+        n += (int)strlen(buf + n);
+    }
+    return n < (int)size ? n : (int)size - 1;
+}
+
 static bool write_summary(app_t *app, double wall_s)
 {
-    app_world_stats_t st;
-    app_world_stats(&app->world, &st);
+    measure_stats_t st;
+    measure_stats(app->world, &st);
+    world_info_t wi = world_info(app->world);
     char interrupted[96] = "";
     if (app_interrupted())
         snprintf(interrupted, sizeof interrupted, " (interrupted: %d of %d asked)", app->frames, app->frames_asked);
@@ -341,8 +418,8 @@ static bool write_summary(app_t *app, double wall_s)
                      "gpu passes after warm-up (median ms over the last <=256 frames, mean ms, max ms)%s:\n",
                      (const char *)glGetString(GL_RENDERER), (const char *)glGetString(GL_VERSION),
                      plat_backend_name(), app->opts->scene ? app->opts->scene : "scenes/meadow.json",
-                     scene_mode_name(app->world.scene.mode), app->world.raster_compute ? "compute" : "hw", calib,
-                     app->world.scene.seed, app->frames, interrupted, app->target.w, app->target.h,
+                     scene_mode_name(wi.scene->mode), wi.raster_compute ? "compute" : "hw", calib,
+                     wi.scene->seed, app->frames, interrupted, app->target.w, app->target.h,
                      app->target.samples, wall_s, wall_s * 1000.0 / (app->frames ? app->frames : 1),
                      app->shots_written, gfx_timer_sync() ? ", each after glFinish (MEADOW_TIMER_SYNC)" : "");
     double frame_gpu = 0;
@@ -370,51 +447,15 @@ static bool write_summary(app_t *app, double wall_s)
                   st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
-    const app_admit_t *ad = &app->world.admitted;
-    n += snprintf(buf + n, sizeof buf - (size_t)n, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
-                  ad->gpu_total / (1024.0 * 1024.0));
-    for (int k = 0; k < APP_ADMIT_PARTS; k++)
-        if (ad->gpu[k] > 0.0)
-            n += snprintf(buf + n, sizeof buf - (size_t)n, " %s %.1f", app_admit_part_name(k),
-                          ad->gpu[k] / (1024.0 * 1024.0));
-    n += snprintf(buf + n, sizeof buf - (size_t)n, ")\n");
-    bool world = app->world.terrain_mesh.type == TERRAIN_WORLD;
-    n += app_ring_summary(&app->world, buf + n, sizeof buf - (size_t)n);
-    if (app->world.scene.mode == SCENE_MODE_HYBRID)
-        n += snprintf(buf + n, sizeof buf - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
-                      app->world.scene.grass.switch_distance, app->world.scene.grass.canopy_distance,
-                      app->world.lod_note[0] ? app->world.lod_note : "the scene's; no grass.lod_table");
-    if (world && app->world.tiles) {
-        blade_tiles_info_t ti = blade_tiles_info(app->world.tiles);
-        blade_tiles_stats_t ts = blade_tiles_stats(app->world.tiles, false);
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
-                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
-                      app->world.terrain_mesh.world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
-                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
-    }
-    raster_t *r = &app->world.raster;
-    if (r->vis.id) {
-        raster_stats_t rs;
-        raster_read_stats(r, &rs);
-        n += snprintf(buf + n, sizeof buf - (size_t)n,
-                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
-                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
-                      (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
-                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
-                      rs.overflow);
-    }
-    if (app->world.have_chars && n < (int)sizeof buf) {
-        character_set_describe(&app->world.chars, buf + n, sizeof buf - (size_t)n);
-        n += (int)strlen(buf + n);
-    }
+    n += summary_world(wi, buf + n, sizeof buf - (size_t)n);
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
     n += summary_work(buf + n, sizeof buf - (size_t)n);
     if (app->opts->floor) {
-        double floor_ms = app_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
-        int rs = app->world.raster_samples ? app->world.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
-        double cfloor_ms = app_floor_compute_ms(st.triangles, app->target.w, app->target.h, app->target.samples, rs);
+        double floor_ms = measure_floor_ms(st.triangles, app->target.w, app->target.h, app->target.samples);
+        int rs = wi.raster_samples ? wi.raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
+        double cfloor_ms =
+            measure_floor_compute_ms(st.triangles, app->target.w, app->target.h, app->target.samples, rs);
         n += snprintf(buf + n, sizeof buf - (size_t)n, "floor_ms (%ld trivial triangles): %.4f\nframe_over_floor: %.2f\n",
                       st.triangles, floor_ms, floor_ms > 0 ? frame_gpu / floor_ms : 0.0);
         n += snprintf(buf + n, sizeof buf - (size_t)n,
@@ -432,14 +473,14 @@ static bool write_summary(app_t *app, double wall_s)
     return written;
 }
 
-/* After the world's draw of a frame, before pacing (app_frame_desc_t.drawn):
+/* After the world's draw of a frame, before pacing (world_frame_desc_t.drawn):
  * the HUD, the screenshot, the window. */
-static void frame_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *target, void *user)
+static void frame_drawn(world_t *w, const world_view_t *v, gfx_target_t *target, void *user)
 {
     (void)w;
     (void)target;
     app_t *app = user;
-    if (app->hud) draw_hud(app, v->time);
+    if (app->hud) draw_hud(app, v->frame.time);
     app->last_view = *v;
     app->last_hud = app->hud || app->wireframe || app->overlay;
     int frame = app->done + 1;
@@ -456,13 +497,13 @@ static void frame_drawn(app_world_t *w, const app_view_t *v, gfx_target_t *targe
     app->submitted_cpu = plat_thread_time();
 }
 
-/* The frames (app_world_frame) until the run's count, a close or an
+/* The frames (world_frame) until the run's count, a close or an
  * interrupt; app->done counts them. Returns 0, or 1 when the target or the
  * GPU failed (logged). */
 static int run_frames(app_t *app)
 {
-    app_world_t *w = &app->world;
-    const scene_desc_t *s = &w->scene;
+    world_t *w = app->world;
+    const scene_desc_t *s = world_info(w).scene;
     scene_clock_t clock;
     scene_clock_init(&clock, s->dt, app->headless);
     app->t_frames = plat_time();
@@ -482,23 +523,23 @@ static int run_frames(app_t *app)
             clock.steps += (uint64_t)steps;
         }
         app->step_once = false;
-        double marks[APP_FRAME_MARKS];
+        double marks[WORLD_FRAME_MARKS];
         /* The first frame is waited for: the end of start-up. */
-        app_frame_desc_t fd = {.target = &app->target, .label = "main", .cam = &app->cam,
+        world_frame_desc_t fd = {.target = &app->target, .label = "main", .cam = &app->cam,
                                .follow_path = app->follow_path, .t = scene_clock_time(&clock), .dt = s->dt,
                                .steps = steps, .overlay = app->overlay, .wireframe = app->wireframe,
                                .drawn = frame_drawn, .user = app,
-                               .in_flight = app->done == 0 ? 1 : APP_FRAMES_IN_FLIGHT, .marks = marks};
-        app_frame_result_t r = app_world_frame(w, &fd);
-        if (r == APP_FRAME_NO_TARGET) return 1;
+                               .in_flight = app->done == 0 ? 1 : WORLD_FRAMES_IN_FLIGHT, .marks = marks};
+        world_frame_result_t r = world_frame(w, &fd);
+        if (r == WORLD_FRAME_NO_TARGET) return 1;
         app->done++;
         app->frame_ms_avg = app->frame_ms_avg * 0.9 + real_dt * 1000.0 * 0.1;
-        if (r == APP_FRAME_GPU_LOST) {
+        if (r == WORLD_FRAME_GPU_LOST) {
             core_log_error("giving up at frame %d: the GPU did not finish it", app->done);
             return 1;
         }
         double end = plat_time();
-        if (app->done == 1) w->stage_ms[APP_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
+        if (app->done == 1) app->stage_ms[WORLD_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
         app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
         app_trace_frame_t tf = {.frame = app->done, .wall_ms = (end - frame_end) * 1e3,
                                 .submit_ms = (app->submitted - frame_end) * 1e3,
@@ -518,11 +559,11 @@ static int run_frames(app_t *app)
  * start-up work counters; false when the renderer cannot be made. */
 static bool start_world(app_t *app)
 {
-    app_world_t *w = &app->world;
-    /* The world first: its admission (app_admit) counts the target too. */
-    bool ok = app_world_make_gpu(w) && app_world_fit_target(w, &app->target, "main");
-    if (ok && w->scene.raster == SCENE_RASTER_AUTO)
-        app_world_raster_auto(w, &app->cam, &app->target, app->raster_calib_ms, &app->raster_calib_wall_ms);
+    world_t *w = app->world;
+    /* The world first: its admission (admit) counts the target too. */
+    bool ok = world_make_gpu(w) && world_fit_target(w, &app->target, "main");
+    if (ok && world_info(w).scene->raster == SCENE_RASTER_AUTO)
+        world_raster_auto(w, &app->cam, &app->target, app->raster_calib_ms, &app->raster_calib_wall_ms);
     gfx_count_flush();
     for (int i = 0; i < gfx_count_pass_count(); i++) {
         app->startup_draws += gfx_count_pass_total(i, GFX_COUNT_DRAWS);
@@ -546,19 +587,17 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         core_log_error("--out: %s", err);
         return 2;
     }
-    app_world_t *w = &app.world;
     double t_run = plat_time();
-    int rc = app_world_load(w, o);
-    if (rc) {
-        app_world_destroy(w);
-        return rc;
-    }
-    scene_desc_t *s = &w->scene;
+    world_options_t wo = app_world_options(o);
+    int rc = world_load(&wo, &app.world);
+    if (rc) return rc;
+    world_t *w = app.world;
+    const scene_desc_t *s = world_info(w).scene;
     plat_desc_t pd = {.backend = o->headless ? PLAT_BACKEND_EGL : PLAT_BACKEND_AUTO,
                       .width = s->size[0], .height = s->size[1]};
     if (!plat_init(&pd, err, sizeof err)) {
         core_log_error("no OpenGL 4.5 context: %s", err);
-        app_world_destroy(w);
+        world_destroy(w);
         return 1;
     }
     app.headless = plat_is_headless();
@@ -570,12 +609,14 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     gfx_init();
     app.target = (gfx_target_t){.w = s->size[0], .h = s->size[1]};
     scene_camera_init(s, &app.cam);
-    w->stage_ms[APP_STAGE_CONTEXT] = (plat_time() - t_run) * 1e3 - w->stage_ms[APP_STAGE_SCENE] -
-                                     w->stage_ms[APP_STAGE_TERRAIN];
+    const double *stage = world_info(w).stage_ms;
+    app.stage_ms[WORLD_STAGE_CONTEXT] =
+        (plat_time() - t_run) * 1e3 - stage[WORLD_STAGE_SCENE] - stage[WORLD_STAGE_TERRAIN];
     bool ok = start_world(&app);
     if (!ok) {
-        if (!w->input_error) core_log_error("cannot create the renderer (see messages above)");
-        rc = w->input_error ? 2 : 1;
+        bool input_error = world_info(w).input_error;
+        if (!input_error) core_log_error("cannot create the renderer (see messages above)");
+        rc = input_error ? 2 : 1;
     }
     if (ok && o->frame_log) app.trace = app_trace_open(app.out);
     if (ok && run_frames(&app) != 0) {
@@ -597,7 +638,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
         core_log_info("montage: rendering frame %d in every mode", mframes);
         if (montage(o, app.out, mframes) != 0) rc = 1;
     }
-    app_world_destroy(w);
+    world_destroy(w);
     gfx_target_destroy(&app.target);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();

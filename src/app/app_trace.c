@@ -4,9 +4,9 @@
  * active and recovering, slots and blades simulated, tiles streamed into
  * the window), the CPU wall ms of the frame's steps (timer frame,
  * simulation steps, target fit and clear, draw, the drawn callback:
- * app_frame_desc_t.marks; the simulation steps split into colliders and
+ * world_frame_desc_t.marks; the simulation steps split into colliders and
  * characters, billboards, blade spheres, blades and tiles:
- * app_world_t.update_ms), the latest GPU time of every timed pass (`<pass>_ms`) and
+ * world_info_t.update_ms), the latest GPU time of every timed pass (`<pass>_ms`) and
  * the CPU wall time spent in its calls this frame (`<pass>_cpu_ms`: where a
  * blocking driver call sits). GPU timer results arrive one to three frames
  * late (gfx_timer_last_ms), so a GPU column trails the frame it is written
@@ -16,20 +16,24 @@
  * (docs/METRICS.md, "Frame log"). */
 #include "app/app_trace.h"
 
-#include "app/app_world.h"
+#include "app/app.h"
+#include "world/world.h"
+
+#include "core/core.h"
+#include "gfx/gfx.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 
 #define TRACE_PASSES GFX_TIMER_MAX_PASSES
 #define TRACE_STATS 5
-#define TRACE_STEPS (5 + APP_UPDATE_PARTS) /* the differences of APP_FRAME_MARKS marks, the update's parts */
+#define TRACE_STEPS (5 + WORLD_UPDATE_PARTS) /* the differences of WORLD_FRAME_MARKS marks, the update's parts */
 
 typedef struct trace_row_t {
     int frame;
     bool screenshot;
     double ms[3];         /* wall, submit, thread */
-    float step_ms[TRACE_STEPS]; /* CPU wall ms of the frame's steps (app_frame_desc_t.marks) */
+    float step_ms[TRACE_STEPS]; /* CPU wall ms of the frame's steps (world_frame_desc_t.marks) */
     long stats[TRACE_STATS];
     float pass_ms[TRACE_PASSES]; /* GPU, latest result; -1: not run yet */
     float cpu_ms[TRACE_PASSES];  /* CPU wall time in the pass's calls this frame */
@@ -55,12 +59,13 @@ app_trace_t *app_trace_open(const char *out)
     return tr;
 }
 
-void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
+void app_trace_row(app_trace_t *tr, world_t *w, const app_trace_frame_t *fr)
 {
     if (!tr) return;
     trace_row_t *r = &tr->rows[tr->count % APP_FRAME_HISTORY];
     tr->count++;
-    blade_tiles_t *tiles = app_world_tiles(w);
+    world_info_t info = world_info(w);
+    blade_tiles_t *tiles = info.tiles;
     blade_tiles_stats_t ts = {0};
     if (tiles) ts = blade_tiles_stats(tiles, false);
     *r = (trace_row_t){.frame = fr->frame, .screenshot = fr->screenshot,
@@ -68,9 +73,9 @@ void app_trace_row(app_trace_t *tr, app_world_t *w, const app_trace_frame_t *fr)
                        .stats = {ts.active, ts.recovering, ts.slots_dispatched, (long)ts.blades_dispatched,
                                  ts.streamed_total - tr->streamed_last}};
     tr->streamed_last = ts.streamed_total;
-    for (int k = 0; k < APP_FRAME_MARKS - 1; k++)
+    for (int k = 0; k < WORLD_FRAME_MARKS - 1; k++)
         r->step_ms[k] = fr->marks ? (float)((fr->marks[k + 1] - fr->marks[k]) * 1e3) : 0.0f;
-    for (int k = 0; k < APP_UPDATE_PARTS; k++) r->step_ms[APP_FRAME_MARKS - 1 + k] = (float)w->update_ms[k];
+    for (int k = 0; k < WORLD_UPDATE_PARTS; k++) r->step_ms[WORLD_FRAME_MARKS - 1 + k] = (float)info.update_ms[k];
     int passes = gfx_timer_count();
     for (int i = 0; i < TRACE_PASSES; i++) {
         r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;

@@ -1,6 +1,6 @@
 /* bench_run: `meadow bench` sweeps configurations of deterministic scenes
  * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
- * times, CPU time, accuracy metrics (bench_metrics.c, docs/METRICS.md) and
+ * times, CPU time, accuracy metrics (measure_metrics.c, docs/METRICS.md) and
  * image error against the reference rendering (eval_image.h, with 1 - SSIM
  * beside it) to bench.csv and bench.json, plus speed-vs-accuracy charts
  * (x GPU ms, y the chart's accuracy measure; PNG and SVG through gnuplot)
@@ -24,12 +24,12 @@
  *   modes (mode x density x render path, hardware
  *   and compute rasterizer at 4 and 1 samples per pixel) (image error).
  * --quick runs two to five configurations per sweep for CI. The stability suite
- * (bench_stability.c) runs with --stability (--case NAME: one case), the
- * tile scaling sweeps (bench_scaling.c) with --scaling; --report DIR runs
+ * (stability.c) runs with --stability (--case NAME: one case), the
+ * tile scaling sweeps (perf_scaling.c) with --scaling; --report DIR runs
  * the sweep, both of those and `meadow compare`, and writes
  * DIR/RESULTS.md with its charts and screenshots in DIR/images. --perf and
- * --baseline (bench_perf.c, bench_baseline.c) time the bench scenes;
- * --papers DIR (bench_papers.c, with --report also in RESULTS.md) runs the
+ * --baseline (perf.c, perf_baseline.c) time the bench scenes;
+ * --papers DIR (perf_papers.c, with --report also in RESULTS.md) runs the
  * papers' ablations, leaves figure and table. */
 #include "bench/bench_local.h"
 
@@ -67,7 +67,7 @@ typedef struct bench_config_t {
     bool ball;                            /* the ball (BALL_RADIUS) is the only collider */
     bool no_colliders;                    /* ablation: no collider, no character */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
-    app_tuning_t tuning;
+    world_tuning_t tuning;
 } bench_config_t;
 
 /* The box that blade_proxies runs on the first collider's path: 1 x 0.32
@@ -99,7 +99,7 @@ static const float proxy_box[3] = {0.5f, 0.16f, 0.16f};
 #define BALL_RADIUS 0.3f
 
 /* The least canopy distance beyond a switch distance: the two fade bands apart. */
-#define CANOPY_GAP (APP_SWITCH_FADE + APP_CANOPY_FADE)
+#define CANOPY_GAP (WORLD_SWITCH_FADE + WORLD_CANOPY_FADE)
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -109,7 +109,7 @@ static void tweak(scene_desc_t *s, void *user)
     if (c->springs) s->grass.spring_iterations = c->springs;
     if (c->switch_distance > 0) s->grass.switch_distance = c->switch_distance;
     if (c->canopy_distance > 0) s->grass.canopy_distance = c->canopy_distance;
-    /* A switch sweep keeps the canopy's band beyond the blades' (app_world_load's rule). */
+    /* A switch sweep keeps the canopy's band beyond the blades' (world_load's rule). */
     s->grass.canopy_distance = fmaxf(s->grass.canopy_distance, s->grass.switch_distance + CANOPY_GAP);
     if (c->density_scale > 0) {
         s->grass.population.density *= c->density_scale;
@@ -148,30 +148,29 @@ typedef struct sweep_run_t {
     const bench_config_t *c;
     int warmup, frames;
     bool depth, overpush, pose; /* what this configuration measures */
-    bool tested;                /* depth: of the blades' tested points alone (bench_metrics_ext_t.tested_max) */
+    bool tested;                /* depth: of the blades' tested points alone (measure_metrics_ext_t.tested_max) */
     double *depths;             /* the deepest sample of every measured frame */
     long nd;
     float *eta_prev;            /* over-push: eta of the frame before */
     double *push;               /* over-push distances of every measured frame */
     long np, push_cap;
-    bench_bb_pose_t *pose_out;  /* the last frame's billboard shape */
+    measure_bb_pose_t *pose_out;  /* the last frame's billboard shape */
 } sweep_run_t;
 
 /* Sphere proxies of the blade_proxies sweep for box colliders (other
  * colliders get their bounding sphere). */
-static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *user)
+static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
 {
     const bench_config_t *c = ((const sweep_run_t *)user)->c;
     int n = 0;
-    const app_colliders_t *colliders = app_world_colliders(w);
-    for (int i = 0; i < colliders->count && n < max; i++) {
-        const app_collider_t *k = &colliders->items[i];
-        const float *p = k->position;
-        if (k->desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
-            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k->bound_radius}};
+    for (int i = 0; i < world_collider_count(w) && n < max; i++) {
+        const world_collider_info_t k = world_collider(w, i);
+        const float *p = k.position;
+        if (k.desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
+            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k.bound_radius}};
             continue;
         }
-        const float *h = k->desc.half_extents;
+        const float *h = k.desc.half_extents;
         if (c->proxy == PROXY_INSCRIBED) {
             out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
             continue;
@@ -191,7 +190,7 @@ static int proxy_spheres(app_world_t *w, blade_sphere_t *out, int max, void *use
 
 #define MAX_CONFIGS 96
 
-/* Placement seed of the noise-floor reference (app_tuning_t.placement_seed). */
+/* Placement seed of the noise-floor reference (world_tuning_t.placement_seed). */
 #define FLOOR_PLACEMENT_SEED 0x9e3779b9u
 
 /* The reference's grass-free view (the image error's background): a blade
@@ -211,7 +210,7 @@ static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_m
 }
 
 /* The timings of `from` (frame, passes, CPU) into `to`, its accuracy kept. */
-static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
+static void keep_timing(measure_metrics_t *to, const measure_metrics_t *from)
 {
     to->frame_ms = from->frame_ms;
     to->cpu_ms = from->cpu_ms;
@@ -220,16 +219,16 @@ static void keep_timing(bench_metrics_t *to, const bench_metrics_t *from)
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
 }
 
-/* Jahrmann & Wimmer's ablation (bench_ablations) on the sweep's scene, for
+/* Jahrmann & Wimmer's ablation (perf_ablations) on the sweep's scene, for
  * its image error (costs and culled counts on the papers' own scenes:
  * bench --papers). Returns the new count. */
 static int add_paper_configs(bench_config_t *c, int n, bool quick)
 {
-    for (int i = 0; i < (quick ? 2 : BENCH_ABLATION_COUNT); i++) {
+    for (int i = 0; i < (quick ? 2 : PERF_ABLATION_COUNT); i++) {
         bench_config_t *x = add(c, &n, "blade_ablation", SCENE_MODE_BLADE);
-        x->no_colliders = bench_ablations[i].no_collision;
-        x->tuning.cull_disable = bench_ablations[i].cull_disable;
-        snprintf(x->label, sizeof x->label, "%s", bench_ablations[i].name);
+        x->no_colliders = perf_ablations[i].no_collision;
+        x->tuning.cull_disable = perf_ablations[i].cull_disable;
+        snprintf(x->label, sizeof x->label, "%s", perf_ablations[i].name);
     }
     return n;
 }
@@ -417,7 +416,7 @@ static const bench_chart_t charts[] = {
 
 /* The GPU ms of a chart's knob passes in a run (the frame when the chart
  * names none). */
-static double knob_ms(const bench_chart_t *ch, const bench_metrics_t *m)
+static double knob_ms(const bench_chart_t *ch, const measure_metrics_t *m)
 {
     if (!ch->passes[0]) return m->frame_ms;
     double sum = 0.0;
@@ -470,11 +469,11 @@ static void write_chart(const char *out, const bench_chart_t *ch, double floor)
 /* Per configuration: each run's timings and measures, and what the charts
  * take from them (-1: not measured). */
 typedef struct bench_acc_t {
-    bench_metrics_t runs[SWEEP_RUNS];
+    measure_metrics_t runs[SWEEP_RUNS];
     double y_runs[Y_COUNT][SWEEP_RUNS]; /* each run's value of every chart measure */
     double y[Y_COUNT];                  /* the chart value: image error and deviation the mean,
                                            depth and over-push the p95 over every run's frames */
-    bench_bb_pose_t pose[SWEEP_RUNS];   /* billboard configurations: the last frame's shape */
+    measure_bb_pose_t pose[SWEEP_RUNS];   /* billboard configurations: the last frame's shape */
 } bench_acc_t;
 
 /* The references of one scene: one per placement seed, its grass-free
@@ -495,7 +494,7 @@ typedef struct bench_refs_t {
 typedef struct bench_run_t {
     int n;
     bench_config_t *cfg;
-    bench_metrics_t *met;  /* the first run's accuracy with the fastest run's timings */
+    measure_metrics_t *met;  /* the first run's accuracy with the fastest run's timings */
     double *err;       /* eval_image score against the reference (mean over the runs) */
     double *ssim_err;  /* 1 - SSIM against the reference (first run) */
     eval_image_error_t *terms; /* the image error's terms (first run) */
@@ -687,26 +686,26 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     return ok;
 }
 
-/* Placement seeds of a configuration's runs (app_tuning_t.placement_seed;
+/* Placement seeds of a configuration's runs (world_tuning_t.placement_seed;
  * 0: the scene's), each run compared with the reference of its own. */
 static const uint32_t placements[SWEEP_RUNS] = {0, FLOOR_PLACEMENT_SEED, 0x85ebca6bu};
 #define MEASURE_EVERY 4 /* frames between per-frame measures after warm-up */
 
-static void sweep_frame(app_world_t *w, int f, float t, void *user)
+static void sweep_frame(world_t *w, int f, float t, void *user)
 {
     (void)t;
     sweep_run_t *r = user;
-    if (r->pose && f + 1 == r->frames && !bench_metrics_bb_pose(w, r->pose_out))
+    if (r->pose && f + 1 == r->frames && !measure_bb_pose(w, r->pose_out))
         core_log_warn("bench: no memory for the billboard shape of %s", r->c->label);
     if (f < r->warmup) return;
     int phase = f % MEASURE_EVERY;
     if (r->depth && phase == 0 && r->nd < r->frames) {
-        bench_metrics_t m;
-        bench_metrics_ext_t x;
-        bench_metrics_measure(w, &m, &x);
+        measure_metrics_t m;
+        measure_metrics_ext_t x;
+        measure_metrics(w, &m, &x);
         if (m.penetration_max >= 0.0) r->depths[r->nd++] = r->tested ? x.tested_max : m.penetration_max;
     }
-    blade_gpu_t *g = app_world_blades(w);
+    blade_gpu_t *g = world_info(w).blades;
     if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
     uint32_t padded = blade_gpu_info(g).padded_count;
     if (!r->eta_prev) r->eta_prev = calloc(padded, sizeof(float));
@@ -716,7 +715,7 @@ static void sweep_frame(app_world_t *w, int f, float t, void *user)
         if (!p) return;
         r->push = p, r->push_cap = cap;
     }
-    if (r->eta_prev) r->np += bench_metrics_blade_overpush(w, r->eta_prev, phase == 0, r->push + r->np);
+    if (r->eta_prev) r->np += measure_blade_overpush(w, r->eta_prev, phase == 0, r->push + r->np);
 }
 
 /* The q95 of v[0..n) on a copy (-1 when n is 0: not measured). */
@@ -726,7 +725,7 @@ static double p95_copy(const double *v, long n)
     double *c = malloc(sizeof *c * (size_t)n);
     if (!c) return -1.0;
     memcpy(c, v, sizeof *c * (size_t)n);
-    double q = bench_percentile(c, n, 0.95);
+    double q = measure_percentile(c, n, 0.95);
     free(c);
     return q;
 }
@@ -739,19 +738,20 @@ static int make_references(const app_options_t *oh, int frames, const char *out,
     char path[1200];
     app_options_t os = *oh;
     if (R->scene) os.scene = R->scene;
-    bench_session_desc_t rd = {.opts = &os, .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
+    measure_session_desc_t rd = {.world = app_world_options(&os),
+                                 .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
     core_log_info("bench: %d reference renderings of %s (%d frames, one per placement seed) and the grass-free view",
                   SWEEP_RUNS, os.scene ? os.scene : "the default scene", frames);
     int rc = 0;
     for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
-        bench_session_desc_t d = rd;
+        measure_session_desc_t d = rd;
         d.tuning.placement_seed = placements[k];
-        rc = bench_session_run(&d, &R->img[k], NULL);
+        rc = measure_session_run(&d, &R->img[k], NULL);
     }
-    bench_session_desc_t bd = rd;
+    measure_session_desc_t bd = rd;
     bd.tweak = no_grass;
-    if (rc == 0) rc = bench_session_run(&bd, &R->bg, NULL);
+    if (rc == 0) rc = measure_session_run(&bd, &R->bg, NULL);
     if (rc) return rc;
     snprintf(path, sizeof path, "%s/frames", out);
     if (!core_fs_mkdirs(path)) core_log_warn("bench: cannot create %s", path);
@@ -803,7 +803,8 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const char
     for (int y = 0; y < Y_COUNT; y++)
         for (int k = 0; k < SWEEP_RUNS; k++) acc->y_runs[y][k] = -1.0;
     for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
-        bench_session_desc_t d = {.opts = &oc, .mode = c->mode, .mode_set = true, .frames = b->frames,
+        measure_session_desc_t d = {.world = app_world_options(&oc),
+                                    .mode = c->mode, .mode_set = true, .frames = b->frames,
                                   .tweak = tweak, .user = c, .tuning = c->tuning};
         d.tuning.placement_seed = placements[k];
         bool spheres = c->proxy != PROXY_WORLD && c->proxy != PROXY_CUBE;
@@ -812,9 +813,9 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const char
         r.pose_out = &acc->pose[k];
         free(r.eta_prev);
         r.eta_prev = NULL;
-        bench_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .frame = sweep_frame, .user = &r};
+        measure_session_hooks_t h = {.blade_spheres = spheres ? proxy_spheres : NULL, .frame = sweep_frame, .user = &r};
         core_image_t img = {0};
-        rc = bench_session_run_hooks(&d, &h, &img, &acc->runs[k]);
+        rc = measure_session_run_hooks(&d, &h, &img, &acc->runs[k]);
         if (rc) break;
         eval_image_error_t e = {0};
         acc->y_runs[Y_IMAGE][k] = eval_image_error(&img, &refs[k], &ed, &e) ? e.score : -1.0;
@@ -854,7 +855,7 @@ static void shape_deviations(bench_run_t *b)
         if (!(b->cfg[i].mode == SCENE_MODE_BILLBOARD && b->cfg[i].ball)) continue;
         double sum = 0.0;
         for (int k = 0; k < SWEEP_RUNS; k++) {
-            b->acc[i].y_runs[Y_SPRING][k] = bench_bb_pose_deviation(&b->acc[i].pose[k], &b->acc[ref].pose[k]);
+            b->acc[i].y_runs[Y_SPRING][k] = measure_bb_pose_deviation(&b->acc[i].pose[k], &b->acc[ref].pose[k]);
             sum += b->acc[i].y_runs[Y_SPRING][k];
         }
         b->acc[i].y[Y_SPRING] = sum / SWEEP_RUNS;
@@ -907,7 +908,7 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
                         cr->scene, cr->floor, cr->floor_spread);
     core_buf_printf(&json, "  \"configs\": [\n");
     for (int i = 0; i < n; i++) {
-        const bench_metrics_t *m = &b->met[i];
+        const measure_metrics_t *m = &b->met[i];
         const bench_config_t *c = &b->cfg[i];
         const bench_acc_t *a = &b->acc[i];
         double espread = half_range(a->y_runs[Y_IMAGE], SWEEP_RUNS);
@@ -1108,7 +1109,7 @@ static void report_charts(core_buf_t *r, const char *dir, const char *out, const
         int k = chart_points(b, ch, idx, xs, ys, exs, eys, front);
         for (int j = 0; j < k; j++) {
             int i = idx[j];
-            const bench_metrics_t *m = &b->met[i];
+            const measure_metrics_t *m = &b->met[i];
             char v[5][32];
             cell(v[0], ys[j], 5);
             cell(v[1], b->err[i], 4);
@@ -1188,14 +1189,14 @@ static int write_report(const char *dir, const char *out, const bench_options_t 
                         "cube map, the 6 x 6 mesh, 8 spring sweeps; not charted); blade_proxies_overpush the distance "
                         "from the exact box of the blades each step pushes (95th percentile).\n\n");
     core_buf_printf(&r, "## Stability: where each method breaks\n\nSmall scenes built in code "
-                        "(src/bench/bench_stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
+                        "(src/stability/stability.c): 6 m heightfield, 60 blades/m^2, 6 billboards/m^2, cube maps "
                         "16^2, recover time 1 s. Screenshots show the first failing value (or the last value).\n\n%s\n",
                     stability_md ? stability_md : "(not run)\n");
     if (scaling_md) {
         copy_chart(dir, out, "scaling_field");
         copy_chart(dir, out, "scaling_active");
         core_buf_printf(&r, "## Simulation vs field size and active tiles\n\n`meadow bench --scaling` "
-                            "(src/bench/bench_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
+                            "(src/perf/perf_scaling.c): tiled blade physics (Fan et al. 2015 activation) at a fixed "
                             "active area over 1x-%dx the field area, and at a fixed field over 1-%d active tiles.\n\n"
                             "![scaling_field](images/scaling_field.png)\n\n![scaling_active](images/"
                             "scaling_active.png)\n\n%s\n",
@@ -1204,7 +1205,7 @@ static int write_report(const char *dir, const char *out, const bench_options_t 
     if (papers_md) {
         copy_chart(dir, bo->papers, "papers_leaves");
         core_buf_printf(&r, "## The papers' scenes, ablations and colliding leaves\n\n`meadow bench --papers DIR` "
-                            "(src/bench/bench_papers.c).\n\n%s", papers_md);
+                            "(src/perf/perf_papers.c).\n\n%s", papers_md);
     }
     snprintf(path, sizeof path, "%s/compare/compare.png", out);
     snprintf(to, sizeof to, "%s/images/bench_compare.jpg", dir);
@@ -1223,7 +1224,9 @@ static int write_report(const char *dir, const char *out, const bench_options_t 
 
 int bench_run(const bench_options_t *o)
 {
-    if (o->perf || o->baseline) return bench_perf_main(o);
+    if (o->perf || o->baseline)
+        return perf_main(&(perf_options_t){.app = &o->app, .quick = o->quick, .perf = o->perf, .baseline = o->baseline,
+                                           .perf_from = o->perf_from, .doc = o->doc, .force = o->force});
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->app.out ? o->app.out : "out/bench");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
@@ -1245,15 +1248,16 @@ int bench_run(const bench_options_t *o)
     gfx_init();
     bench_run_t b = {0};
     core_buf_t md = {0}, scaling_md = {0}, papers_md = {0};
-    bench_scaling_t sc;
+    perf_scaling_t sc;
     if (full) {
         snprintf(path, sizeof path, "%s/images", report);
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
     int rc = sweep ? run_sweep(&o->app, o->chart, o->quick, out, &b) : 0;
-    if (rc == 0 && stability) rc = bench_stability_run(o, out, &md, full ? report : NULL);
-    if (rc == 0 && scaling) rc = bench_scaling_run(&o->app, out, o->quick, &sc, &scaling_md);
-    if (rc == 0 && o->papers) rc = bench_papers_run(o, o->papers, full ? &papers_md : NULL);
+    stability_desc_t sd = {.app = &o->app, .only_case = o->stability_case, .quick = o->quick};
+    if (rc == 0 && stability) rc = stability_run(&sd, out, &md, full ? report : NULL);
+    if (rc == 0 && scaling) rc = perf_scaling_run(&o->app, out, o->quick, &sc, &scaling_md);
+    if (rc == 0 && o->papers) rc = perf_papers_run(&o->app, o->quick, o->papers, full ? &papers_md : NULL);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -1278,7 +1282,7 @@ int bench_run(const bench_options_t *o)
     free(b.ssim_err);
     free(b.terms);
     for (int i = 0; b.acc && i < b.n; i++)
-        for (int k = 0; k < SWEEP_RUNS; k++) bench_bb_pose_free(&b.acc[i].pose[k]);
+        for (int k = 0; k < SWEEP_RUNS; k++) measure_bb_pose_free(&b.acc[i].pose[k]);
     free(b.acc);
     return rc;
 }

@@ -65,15 +65,17 @@ int bench_compare_write(const app_options_t *o, const char *out, int frames)
                         {"hybrid", SCENE_MODE_HYBRID, false},
                         {"reference", SCENE_MODE_BLADE, true}};
     core_image_t img[PANELS] = {0}, empty = {0};
-    bench_metrics_t met[PANELS];
-    int rc = bench_session_run(&(bench_session_desc_t){.opts = o, .mode = SCENE_MODE_BLADE, .mode_set = true,
+    measure_metrics_t met[PANELS];
+    int rc = measure_session_run(&(measure_session_desc_t){.world = app_world_options(o),
+                                                           .mode = SCENE_MODE_BLADE, .mode_set = true,
                                                        .frames = frames, .reference = true, .msaa = 8, .tweak = no_grass},
                                &empty, NULL);
     for (int i = 0; i < PANELS && rc == 0; i++) {
         core_log_info("compare: %d/%d %s (%d frames)", i + 1, PANELS, panels[i].name, frames);
-        bench_session_desc_t d = {.opts = o, .mode = panels[i].mode, .mode_set = true, .frames = frames,
+        measure_session_desc_t d = {.world = app_world_options(o),
+                                    .mode = panels[i].mode, .mode_set = true, .frames = frames,
                                   .reference = panels[i].reference, .msaa = panels[i].reference ? 8 : 0};
-        rc = bench_session_run(&d, &img[i], &met[i]);
+        rc = measure_session_run(&d, &img[i], &met[i]);
         if (rc == 0) {
             snprintf(path, sizeof path, "%s/compare-%s.png", out, panels[i].name);
             if (!core_image_write_png(&img[i], path)) rc = 1; /* logged with the path and why */
@@ -161,9 +163,10 @@ static int write_clips(const app_options_t *o, const char *out, int frames)
         snprintf(c.dir, sizeof c.dir, "%s/clip-%s", out, modes[i].name);
         if (!core_fs_mkdirs(c.dir)) return 1;
         core_log_info("clip %d/3: %s, %d frames", i + 1, modes[i].name, frames);
-        bench_session_desc_t d = {.opts = o, .mode = modes[i].mode, .mode_set = true, .frames = frames};
-        bench_session_hooks_t h = {.drawn = clip_frame, .user = &c};
-        int rc = bench_session_run_hooks(&d, &h, NULL, NULL);
+        measure_session_desc_t d = {.world = app_world_options(o),
+                                    .mode = modes[i].mode, .mode_set = true, .frames = frames};
+        measure_session_hooks_t h = {.drawn = clip_frame, .user = &c};
+        int rc = measure_session_run_hooks(&d, &h, NULL, NULL);
         if (rc) return rc;
         if (c.failed || c.written != frames) {
             core_log_error("clip %s: wrote %d of %d frames", modes[i].name, c.written, frames);

@@ -33,6 +33,7 @@
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
 #include "collide/collide_set.h"
+#include "core/core.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
 #include "raster/raster.h"
@@ -111,11 +112,7 @@ typedef struct bb_field_desc_t {
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc);
 
 typedef struct bb_draw_desc_t {
-    float viewproj[16];
-    float camera[3];
-    float sun_dir[3];    /* unit, towards the sun */
-    float planes[6][4];  /* frustum planes, inside when a*x+b*y+c*z+d >= 0 */
-    float time;
+    core_view_t view;    /* the frame's view (planes: the frustum the octree culls by) */
     float fade_start;    /* invisible nearer than this (0 = fade off) */
     float fade_end;      /* fully visible beyond this */
     float far_start;     /* the canopy's fade: fully visible nearer than this, */

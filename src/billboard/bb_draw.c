@@ -18,10 +18,10 @@ static void set_views(const bb_field_t *f, GLuint prog)
 void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd)
 {
     glUseProgram(p.id);
-    glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->viewproj);
-    glUniform3fv(gfx_uniform(p, "u_camera"), 1, dd->camera);
-    glUniform3fv(gfx_uniform(p, "u_sun"), 1, dd->sun_dir);
-    glUniform1f(gfx_uniform(p, "u_time"), dd->time);
+    glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->view.viewproj);
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, dd->view.camera);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, dd->view.sun_dir);
+    glUniform1f(gfx_uniform(p, "u_time"), dd->view.time);
     glUniform1f(gfx_uniform(p, "u_fade_start"), dd->fade_start);
     glUniform1f(gfx_uniform(p, "u_fade_end"), dd->fade_end);
     glUniform1f(gfx_uniform(p, "u_far_start"), dd->far_start);
@@ -31,7 +31,7 @@ void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc
     set_views(f, p.id);
     const hybrid_slope_grid_t *g = &dd->slope_grid;
     glUniform1i(gfx_uniform(p, "u_slope_on"), dd->slope_map.id != 0);
-    glUniform1f(gfx_uniform(p, "u_slope_time"), dd->time);
+    glUniform1f(gfx_uniform(p, "u_slope_time"), dd->view.time);
     glUniform1f(gfx_uniform(p, "u_slope_recover"), dd->slope_recover > 0.0f ? dd->slope_recover : f->desc.recover_time);
     glUniform2fv(gfx_uniform(p, "u_slope_origin"), 1, g->origin);
     glUniform1f(gfx_uniform(p, "u_slope_cell"), g->cell);
@@ -64,12 +64,12 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
  * ranges f->firsts / f->counts_gl; returns how many. */
 static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t *dd)
 {
-    const float(*planes)[4] = (const float (*)[4])dd->planes;
+    const float(*planes)[4] = (const float (*)[4])dd->view.planes;
     int n = bb_octree_collect(&f->tree, state_mask, planes, f->ranges, f->tree.leaf_count);
-    if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->camera, dd->far_end, f->ranges, n);
-    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->camera);
+    if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->view.camera, dd->far_end, f->ranges, n);
+    if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->view.camera);
     if (n <= 0) return 0;
-    bb_octree_sort_near_first(&f->tree, dd->camera, f->ranges, n, f->sort_keys);
+    bb_octree_sort_near_first(&f->tree, dd->view.camera, f->ranges, n, f->sort_keys);
     return bb_merge_ranges(f, n);
 }
 
@@ -81,7 +81,7 @@ static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t
  * already cover (docs/PERFORMANCE.md). */
 void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
 {
-    bb_field_follow(f, dd->camera);
+    bb_field_follow(f, dd->view.camera);
     glBindTextureUnit(BB_TEX_CLUMPS, f->clumps.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);
@@ -128,7 +128,7 @@ static void bind_raster(gfx_program_t p, void *user)
 {
     const raster_bind_t *b = user;
     bb_render_uniforms(b->f, p, b->dd);
-    glUniform4fv(gfx_uniform(p, "u_planes"), 6, &b->dd->planes[0][0]);
+    glUniform4fv(gfx_uniform(p, "u_planes"), 6, &b->dd->view.planes[0][0]);
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)b->f->billboards);
     glBindTextureUnit(BB_TEX_CLUMPS, b->f->clumps.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, b->f->pool.id);
@@ -138,7 +138,7 @@ static void bind_raster(gfx_program_t p, void *user)
 
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
-    bb_field_follow(f, dd->camera);
+    bb_field_follow(f, dd->view.camera);
     gfx_timer_begin("bb.raster");
     raster_program_t *prog = &f->raster_prog;
     bool ok = raster_program_ensure(r, prog, "billboard/bb_raster.comp", f->defines, "bb.raster");

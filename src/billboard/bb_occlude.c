@@ -103,7 +103,7 @@ void bb_occlusion_query(bb_field_t *f, const bb_draw_desc_t *dd)
     if (f->occ_tested_count == 0) return;
     gfx_program_t p = f->occlude_prog;
     glUseProgram(p.id);
-    glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->viewproj);
+    glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->view.viewproj);
     glBindVertexArray(f->empty_vao);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     glDepthMask(GL_FALSE);

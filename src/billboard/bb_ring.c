@@ -186,14 +186,14 @@ static bool cell_drawn(const bb_field_t *f, int s, const bb_draw_desc_t *dd)
     if (hi[0] <= f->ring.origin[0] || hi[2] <= f->ring.origin[1] || lo[0] >= f->ring_max[0] || lo[2] >= f->ring_max[1])
         return false;
     for (int p = 0; p < 6; p++) {
-        const float *pl = dd->planes[p];
+        const float *pl = dd->view.planes[p];
         float far = pl[3];
         for (int a = 0; a < 3; a++) far += pl[a] * (pl[a] >= 0.0f ? hi[a] : lo[a]);
         if (far < 0.0f) return false;
     }
     float near2 = 0.0f, far2 = 0.0f;
     for (int a = 0; a < 3; a++) {
-        float e = dd->camera[a], dn = e < lo[a] ? lo[a] - e : (e > hi[a] ? e - hi[a] : 0.0f);
+        float e = dd->view.camera[a], dn = e < lo[a] ? lo[a] - e : (e > hi[a] ? e - hi[a] : 0.0f);
         float df = fmaxf(fabsf(e - lo[a]), fabsf(e - hi[a]));
         near2 += dn * dn, far2 += df * df;
     }

@@ -275,11 +275,11 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     if (use_patches) {
         for (uint32_t p = 0; p < g->patch_count; p++) {
             if ((d.disable & BLADE_CULL_FRUSTUM) == 0 &&
-                aabb_outside(&g->patch_aabbs[p], d.view_proj, d.frustum_tolerance))
+                aabb_outside(&g->patch_aabbs[p], d.view.viewproj, d.frustum_tolerance))
                 patch_culled += g->patch_real[p];
             else
                 g->patch_order[visible++] =
-                    (blade_order_key_t){.dist2 = core_box_dist2(d.cam_pos, g->patch_aabbs[p].min, g->patch_aabbs[p].max), .id = p};
+                    (blade_order_key_t){.dist2 = core_box_dist2(d.view.camera, g->patch_aabbs[p].min, g->patch_aabbs[p].max), .id = p};
         }
         blade_order_sort(g->patch_order, visible);
         for (uint32_t k = 0; k < visible; k++) g->visible_patches[k] = g->patch_order[k].id;
@@ -300,8 +300,8 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     uint32_t invocations = use_patches ? visible * g->patch_size : g->padded_count;
     glUseProgram(p.id);
     glUniform1ui(gfx_uniform(p, "u_blade_count"), invocations);
-    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.cam_pos);
-    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view_proj);
+    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.view.camera);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
     glUniform1f(gfx_uniform(p, "u_level_distance"), d.level_distance > 0.0f ? d.level_distance : d.max_distance);
     glUniform1i(gfx_uniform(p, "u_distance_levels"), d.distance_levels);
@@ -354,7 +354,7 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
 
 void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc)
 {
-    float sun[3] = {desc->sun[0], desc->sun[1], desc->sun[2]};
+    float sun[3] = {desc->view.sun_dir[0], desc->view.sun_dir[1], desc->view.sun_dir[2]};
     float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
     if (sl < 1e-6f) {
         sun[0] = 0.4f, sun[1] = 0.8f, sun[2] = 0.3f;
@@ -365,8 +365,8 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
     static const float root_def[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip_def[3] = BLADE_DEFAULT_ALBEDO_TIP;
     if (root[0] == 0.0f && root[1] == 0.0f && root[2] == 0.0f) root = root_def;
     if (tip[0] == 0.0f && tip[1] == 0.0f && tip[2] == 0.0f) tip = tip_def;
-    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
-    glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->camera);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view.viewproj);
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, desc->view.camera);
     glUniform3fv(gfx_uniform(p, "u_sun"), 1, sun);
     glUniform2f(gfx_uniform(p, "u_fade"), desc->fade_start, desc->fade_end);
     glUniform3fv(gfx_uniform(p, "u_albedo_root"), 1, root);

@@ -94,7 +94,8 @@ typedef struct blade_gpu_info_t {
 } blade_gpu_info_t;
 
 /* Per-frame drawing parameters. Zero means default:
- *   view_proj, camera required; sun (0,0,0) -> normalize(0.4, 0.8, 0.3);
+ *   view.viewproj, view.camera required; view.sun_dir (0,0,0) ->
+ *   normalize(0.4, 0.8, 0.3);
  *   fade_start = fade_end = 0: no fade; otherwise blades are fully drawn
  *   nearer than fade_start (distance from the camera to the root), absent
  *   beyond fade_end, and cross-faded in between by a dithered alpha that
@@ -103,10 +104,7 @@ typedef struct blade_gpu_info_t {
  *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20)
  *   (BLADE_DEFAULT_ALBEDO_ROOT / _TIP of blade/blade_population.h). */
 typedef struct blade_draw_desc_t {
-    float view_proj[16];
-    float camera[3];
-    float sun[3];
-    float time;
+    core_view_t view; /* the frame's view (sun_dir, planes and time not read) */
     float fade_start, fade_end;
     float albedo_root[3], albedo_tip[3];
     gi_bind_t gi; /* global illumination (common/gi.glsl); zero: off */

@@ -11,7 +11,6 @@
 
 #include "blade/blade_ref.h"
 #include "core/core.h"
-#include "scene/scene_fields.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -122,7 +121,7 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_ou
     if (!tris) return NULL;
     core_rng_t rng;
     core_rng_seed(&rng, d->seed, 0xca90u);
-    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = SCENE_DEFAULT_DT, .gravity = d->population.gravity});
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = BLADE_SETTLE_DT, .gravity = d->population.gravity});
     *top = 0.0f;
     for (int n = 0; n < blades; n++) {
         float h = core_rng_range(&rng, d->population.height[0], d->population.height[1]);

@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "blade/blade_ref.h"
-#include "scene/scene_fields.h"
 
 static float clump_clamp01(float x) { return x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x); }
 
@@ -22,12 +21,12 @@ blade_clump_desc_t blade_clump_desc_defaults(const blade_clump_desc_t *desc)
 {
     blade_clump_desc_t c = desc ? *desc : (blade_clump_desc_t){0};
     c.population = blade_population_defaults(&c.population);
-    if (c.size[0] <= 0.0f) c.size[0] = SCENE_DEFAULT_BILLBOARD_WIDTH;
-    if (c.size[1] <= 0.0f) c.size[1] = SCENE_DEFAULT_BILLBOARD_HEIGHT;
+    if (c.size[0] <= 0.0f) c.size[0] = BLADE_CLUMP_DEFAULT_WIDTH;
+    if (c.size[1] <= 0.0f) c.size[1] = BLADE_CLUMP_DEFAULT_HEIGHT;
     static const float sun[3] = BLADE_CLUMP_SUN;
     if (clump_zero3(c.sun)) memcpy(c.sun, sun, sizeof sun);
     if (c.wind_dir[0] == 0.0f && c.wind_dir[1] == 0.0f) c.wind_dir[0] = 1.0f;
-    if (c.depth <= 0.0f) c.depth = 1.5707963f / (c.size[0] * SCENE_DEFAULT_BILLBOARD_DENSITY);
+    if (c.depth <= 0.0f) c.depth = 1.5707963f / (c.size[0] * BLADE_CLUMP_DEFAULT_CARD_DENSITY);
     assert(c.population.shape >= BLADE_SHAPE_QUADRATIC && c.population.shape <= BLADE_SHAPE_DANDELION);
     assert(c.population.height[0] <= c.population.height[1] && c.population.width[0] <= c.population.width[1] &&
            c.population.stiffness[0] <= c.population.stiffness[1]);
@@ -351,7 +350,7 @@ bool blade_clump_bake(const blade_clump_desc_t *desc, const blade_clump_bake_t *
     bool ok = sb.z && sb.v && sb.n && sb.hits && b && turned && place;
     core_rng_t rng;
     core_rng_seed(&rng, bake->seed, 100u + (uint64_t)layer);
-    blade_env_t env = {.dt = SCENE_DEFAULT_DT, .gravity = c->population.gravity};
+    blade_env_t env = {.dt = BLADE_SETTLE_DT, .gravity = c->population.gravity};
     if (c->wind > 0.0f && bake->views_on)
         env.winds[env.wind_count++] = blade_wind_wave(0.0f, -1.0f, c->wind, 1.0f, 0.0f);
     env = blade_env_defaults(&env);

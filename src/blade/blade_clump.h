@@ -23,7 +23,7 @@
 #include "core/core.h"
 
 /* Clump rasteriser (blade_clump.c): samples per texel side, quads along a
- * blade, physics steps of SCENE_DEFAULT_DT that settle a blade under
+ * blade, physics steps of BLADE_SETTLE_DT that settle a blade under
  * gravity (1.5 s: the slowest stiffness, 8, leaves e^-12 of the start),
  * texels kept clear at the layer's sides, the most blades a layer takes
  * (it logs a warning when it caps) and the program's sun. */
@@ -33,10 +33,16 @@
 #define BLADE_CLUMP_MARGIN 1.5f
 #define BLADE_CLUMP_MAX_BLADES 4096
 #define BLADE_CLUMP_SUN {0.45f, 0.8f, 0.35f}
+/* Defaults the scene shares (SCENE_DEFAULT_BILLBOARD_* of
+ * scene/scene_fields.h equal these; test_scene_defaults checks): a layer's
+ * size (m, grass.billboard_size) and the cards per m^2 its depth assumes
+ * (grass.billboard_density). */
+#define BLADE_CLUMP_DEFAULT_WIDTH 1.0f
+#define BLADE_CLUMP_DEFAULT_HEIGHT 0.6f
+#define BLADE_CLUMP_DEFAULT_CARD_DENSITY 6.0f
 
 /* The blades of the clump layers. Zero means default; defaults marked
- * (scene) are SCENE_DEFAULT_* of scene/scene_fields.h (scene key in
- * brackets). */
+ * (scene) are BLADE_CLUMP_DEFAULT_* above (scene key in brackets). */
 typedef struct blade_clump_desc_t {
     float size[2];         /* metres a layer spans across and up: the billboard's base
                               size, default 1.0 x 0.6 (scene, grass.billboard_size).
@@ -52,10 +58,10 @@ typedef struct blade_clump_desc_t {
                               azimuth views differ only by the blades' turn) */
     float wind_dir[2];     /* the wind's xz direction in the world, default (1, 0) */
     float sun[3];          /* direction to the sun in the world (any length), default
-                              BLADE_CLUMP_SUN, the program's sun (app_world.c) */
+                              BLADE_CLUMP_SUN, the program's sun (world.c) */
     float depth;           /* metres of field behind a card that its elevated views show (the
                               mean free path between cards, pi / (2 size[0] billboard
-                              density)), default pi / (2 size[0] SCENE_DEFAULT_BILLBOARD_DENSITY) */
+                              density)), default pi / (2 size[0] BLADE_CLUMP_DEFAULT_CARD_DENSITY) */
 } blade_clump_desc_t;
 blade_clump_desc_t blade_clump_desc_defaults(const blade_clump_desc_t *desc);
 

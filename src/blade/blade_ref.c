@@ -819,7 +819,7 @@ static void to_clip(const blade_cull_desc_t *desc, v3 p, float clip[4])
 {
     vec4 in = {p.x, p.y, p.z, 1.0f};
     mat4 m;
-    memcpy(m, desc->view_proj, sizeof m);
+    memcpy(m, desc->view.viewproj, sizeof m);
     glm_mat4_mulv(m, in, clip);
 }
 
@@ -847,7 +847,7 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
     if (h <= 0.0f) return BLADE_CULL_PADDING;
     v3 v0 = v3_load(b->v0);
     v3 up = v3_load(b->up);
-    v3 view = v3_sub(v0, v3_load(desc->cam_pos));
+    v3 view = v3_sub(v0, v3_load(desc->view.camera));
     v3 view_ground = v3_sub(view, v3_scale(up, v3_dot(view, up)));
 
     if (!(desc->disable & BLADE_CULL_ORIENTATION)) {
@@ -892,7 +892,7 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
 float blade_ref_cull_distance(const blade_t *b, const blade_cull_desc_t *desc)
 {
     v3 up = v3_load(b->up);
-    v3 view = v3_sub(v3_load(b->v0), v3_load(desc->cam_pos));
+    v3 view = v3_sub(v3_load(b->v0), v3_load(desc->view.camera));
     return desc->eye_distance ? v3_len(view) : v3_len(v3_sub(view, v3_scale(up, v3_dot(view, up))));
 }
 

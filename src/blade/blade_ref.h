@@ -29,6 +29,7 @@
 
 #include "blade/blade_population.h"
 #include "collide/collide_set.h"
+#include "core/core.h"
 
 /* One blade, 64 bytes (4 vec4), std430; mirrors `struct Blade` in
  * shaders/common/blade.glsl. */
@@ -93,6 +94,9 @@ typedef collide_sphere_t blade_sphere_t;
  *                      collision exit (the validation after a contact stays:
  *                      the paper validates its total translation once)
  * dt and time are used as given (seconds). */
+/* The step the CPU bakes settle blades with (the clump layers, the ground
+ * canopy): the scene's default dt (SCENE_DEFAULT_DT; test_scene_defaults). */
+#define BLADE_SETTLE_DT (1.0f / 60.0f)
 typedef struct blade_env_t {
     float dt;
     float time;
@@ -315,8 +319,7 @@ enum {
 #define BLADE_CULL_MAX_DISTANCE_DEFAULT 60.0f
 
 typedef struct blade_cull_desc_t {
-    float cam_pos[3];
-    float view_proj[16]; /* column-major, GL clip space (z in [-w, w]) */
+    core_view_t view; /* the frame's view: camera and viewproj are read */
     float max_distance;
     float level_distance;
     int distance_levels;

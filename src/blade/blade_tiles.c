@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/scene_fields.h"
 
 #define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
 #define NO_SLOT 0xffffffffu
@@ -37,13 +36,13 @@ enum { RING_TOTAL = 0, RING_OVERFLOW = 1, RING_CULLED = 2, RING_WORDS = 6 };
 blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
 {
     blade_tiles_desc_t d = *desc;
-    if (d.tile_size <= 0.0f) d.tile_size = SCENE_DEFAULT_TILE_SIZE;
+    if (d.tile_size <= 0.0f) d.tile_size = BLADE_TILES_DEFAULT_TILE_SIZE;
     if (d.template_count <= 0) d.template_count = 4;
     d.population = blade_population_defaults(&d.population);
     if (d.pool_slots <= 0) d.pool_slots = 64;
-    if (d.switch_distance <= 0.0f) d.switch_distance = SCENE_DEFAULT_SWITCH_DISTANCE;
+    if (d.switch_distance <= 0.0f) d.switch_distance = BLADE_TILES_DEFAULT_SWITCH_DISTANCE;
     if (d.recover_timeout <= 0.0f) d.recover_timeout = 5.0f;
-    if (d.motion_epsilon <= 0.0f) d.motion_epsilon = SCENE_DEFAULT_MOTION_EPSILON;
+    if (d.motion_epsilon <= 0.0f) d.motion_epsilon = BLADE_TILES_DEFAULT_MOTION_EPSILON;
     if (d.max_level == 0) d.max_level = 8;
     if (d.lod_distance <= 0.0f) d.lod_distance = 30.0f;
     d.cull = blade_cull_desc_defaults(&d.cull);
@@ -54,7 +53,7 @@ blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc)
         d.slope_cells_per_tile =
             (int)fmaxf(fmaxf(1.0f, roundf(d.tile_size / 0.5f)),
                        ceilf(d.tile_size * sqrtf(d.population.density / (float)HYBRID_SLOPE_MAX_PER_CELL)));
-    if (d.slope_recover <= 0.0f) d.slope_recover = SCENE_DEFAULT_RECOVER_TIME;
+    if (d.slope_recover <= 0.0f) d.slope_recover = BLADE_TILES_DEFAULT_RECOVER_TIME;
     if (!d.label) d.label = "tiles";
     assert(d.template_count <= BLADE_TILES_MAX_TEMPLATES);
     assert(d.wind_count >= 0 && d.wind_count <= BLADE_MAX_WINDS);
@@ -865,7 +864,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
         if (tile->rep != HYBRID_REP_BLADE) continue;
         float mn[3] = {tile->min[0] - t->reach, tile->min[1], tile->min[2] - t->reach};
         float mx[3] = {tile->max[0] + t->reach, tile->max[1], tile->max[2] + t->reach};
-        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view_proj, c->frustum_tolerance)) {
+        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view.viewproj, c->frustum_tolerance)) {
             int tmpl, sym;
             blade_tiles_instance(t, i, &tmpl, &sym);
             tile_culled += t->template_real[tmpl];
@@ -875,7 +874,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
             core_log_warn("blade_tiles: more than %d blade tiles in view; the rest are not drawn", n);
             break;
         }
-        t->order[n++] = (blade_order_key_t){.dist2 = core_box_dist2(desc->camera, tile->min, tile->max),
+        t->order[n++] = (blade_order_key_t){.dist2 = core_box_dist2(desc->view.camera, tile->min, tile->max),
                                             .id = (uint32_t)i};
     }
     blade_order_sort(t->order, (size_t)n);
@@ -897,8 +896,8 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     set_common(t, p);
     glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)n * B);
     glUniform1ui(gfx_uniform(p, "u_capacity"), t->draw_capacity);
-    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, desc->camera);
-    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view_proj);
+    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, desc->view.camera);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), c->max_distance);
     glUniform1i(gfx_uniform(p, "u_distance_levels"), c->distance_levels);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);

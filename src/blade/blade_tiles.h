@@ -39,9 +39,18 @@
 #include "scene/terrain.h"
 
 #define BLADE_TILES_MAX_TEMPLATES 8
+/* Defaults the scene shares (its SCENE_DEFAULT_* of scene/scene_fields.h
+ * equal these; test_scene_defaults checks): grass.tile_size (m),
+ * grass.switch_distance (m), grass.recover_time (s, the hand-over's R),
+ * and the motion below which a tile counts as at rest (m, not a key;
+ * docs/BLADES.md). */
+#define BLADE_TILES_DEFAULT_TILE_SIZE 4.0f
+#define BLADE_TILES_DEFAULT_SWITCH_DISTANCE 12.0f
+#define BLADE_TILES_DEFAULT_RECOVER_TIME 3.0f
+#define BLADE_TILES_DEFAULT_MOTION_EPSILON 2e-3f
 
-/* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
- * scene/scene_fields.h:
+/* Zero means default; (scene) marks a default the scene shares
+ * (BLADE_TILES_DEFAULT_* above):
  *   terrain          required, a heightfield (grid_res > 0) or a world
  *                    terrain (TERRAIN_WORLD); borrowed during make only
  *   window           tiles per side of the window that follows the camera
@@ -78,7 +87,7 @@
  *                    (blade_tiles_raster) is the same either way
  *   cull             max_distance, distance_levels, orientation_threshold,
  *                    frustum_tolerance, depth_bias, disable
- *                    (blade_cull_desc_defaults); view_proj and cam_pos come
+ *                    (blade_cull_desc_defaults); the view comes
  *                    from the draw desc, the depth texture from the draw
  *                    call
  *   draw_capacity    blades the per-frame draw buffer holds; 0: every
@@ -238,7 +247,7 @@ blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);
 
 /* Replaces the cull settings (tests; the resolved desc.cull of
  * blade_tiles_info with changes): used from the next draw on, taken as
- * they are (no defaults); view_proj, cam_pos and depth are not read. */
+ * they are (no defaults); its view and depth are not read. */
 void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull);
 
 /* ---- test helpers (blocking) ---------------------------------------------- */

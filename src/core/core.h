@@ -1,6 +1,7 @@
 /* core: logging, seeded RNG, stateless hashes, file I/O with atomic writes,
- * growable buffers, 8-bit RGBA images and small geometry helpers. GL-free;
- * every other module may use it. */
+ * growable buffers, 8-bit RGBA images, small geometry helpers and the one
+ * per-frame view every grass driver draws with. GL-free; every other module
+ * may use it. */
 #ifndef MEADOW_CORE_H
 #define MEADOW_CORE_H
 
@@ -129,5 +130,16 @@ void core_image_fill(core_image_t *img, int x, int y, int w, int h, const uint8_
 /* Draws text (stb_easy_font glyphs, `scale` pixels per font unit) into an
  * RGBA image with its top-left at (x, y). */
 void core_image_text(core_image_t *img, int x, int y, int scale, const char *text, const uint8_t rgba[4]);
+
+/* One frame's view as the grass drivers take it (bb_draw_desc_t,
+ * blade_draw_desc_t, blade_cull_desc_t; the CPU references too): filled
+ * once a frame by the world (world_view_make) and handed to each. */
+typedef struct core_view_t {
+    float viewproj[16]; /* column-major, GL clip space (z in [-w, w]) */
+    float camera[3];
+    float sun_dir[3];   /* unit, towards the sun */
+    float planes[6][4]; /* frustum planes, inside when a*x+b*y+c*z+d >= 0 */
+    float time;         /* simulated seconds (wind, fades of recovery) */
+} core_view_t;
 
 #endif

@@ -27,7 +27,7 @@ long gfx_objects_made(void);
 /* Bytes of buffer and texture storage those objects hold (textures:
  * texels x format size x samples, +1/3 with mipmaps). */
 size_t gfx_memory_bytes(void);
-/* The GL's limits that decide what a scene may ask (app_admit), and the
+/* The GL's limits that decide what a scene may ask (admit), and the
  * GPU memory free now (GL_NVX_gpu_memory_info or GL_ATI_meminfo; 0 when the
  * GL tells neither, as llvmpipe, whose storage is host memory). */
 typedef struct gfx_limits_t {

@@ -30,7 +30,7 @@
 #include "scene/path.h"
 #include "scene/terrain.h"
 
-/* The blade physics's wind fields (BLADE_MAX_WINDS; app_world.c asserts it). */
+/* The blade physics's wind fields (BLADE_MAX_WINDS; world.c asserts it). */
 #define SCENE_MAX_WIND 8
 #define SCENE_MAX_COLLIDERS 128
 #define SCENE_MAX_CHARACTERS 16

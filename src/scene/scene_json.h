@@ -1,7 +1,7 @@
 /* scene_json: a small strict JSON parser (RFC 8259) that records the line of
  * every value and object key, so scene-file errors can name file:line.
  * cJSON keeps no positions, hence this parser. Used by the scene module and
- * by the perf.json reader of `meadow bench --perf` (src/bench/bench_perf.c).
+ * by the perf.json reader of `meadow bench --perf` (src/perf/perf.c).
  * Rejects: trailing garbage, trailing commas, comments, duplicate keys,
  * control characters in strings, \u0000, lone surrogates, non-finite numbers,
  * nesting deeper than SCENE_JSON_MAX_DEPTH. */

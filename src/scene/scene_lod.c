@@ -85,3 +85,35 @@ const scene_lod_pick_t *scene_lod_choose(const scene_lod_t *t, const char *rende
     *compute = path == 1;
     return t->path[path].present ? &t->path[path] : NULL;
 }
+
+bool scene_lod_apply(scene_desc_t *s, const char *renderer, bool *compute, char *note, size_t note_size)
+{
+    scene_grass_desc_t *g = &s->grass;
+    char path[1024], err[1024];
+    if (!core_fs_resolve(g->lod_table, path, sizeof path)) snprintf(path, sizeof path, "%s", g->lod_table);
+    scene_lod_t t;
+    if (!scene_lod_read(&t, path, err, sizeof err)) {
+        core_log_warn("grass.lod_table: %s; keeping the scene's distances", err);
+        snprintf(note, note_size, "not read (%.400s): the scene's distances", err);
+        return false;
+    }
+    bool auto_path = s->raster == SCENE_RASTER_AUTO;
+    const scene_lod_pick_t *p = scene_lod_choose(&t, renderer, auto_path ? -1 : (*compute ? 1 : 0), compute);
+    if (!p) {
+        core_log_warn("grass.lod_table %s: measured on '%s' (or without the %s path), this GL is '%s': keeping the "
+                      "scene's distances", g->lod_table, t.renderer, *compute ? "compute" : "hw", renderer);
+        snprintf(note, note_size, "%.200s measured on '%.200s', not this GL: the scene's distances", g->lod_table,
+                 t.renderer);
+        return false;
+    }
+    g->switch_distance = p->switch_distance;
+    g->canopy_distance = p->canopy_distance;
+    snprintf(note, note_size,
+             "%s path%s, from %.200s: %.3f ms at image error %.3f, %s budget %.3f (blade mode's error + noise "
+             "floor); the cheapest within it of %d hybrid configurations",
+             *compute ? "compute" : "hw", auto_path ? " (the table's cheaper)" : "", g->lod_table, p->gpu_ms,
+             p->image_error, p->met ? "within its" : "NOT within its (the least error measured)", p->budget,
+             p->candidates);
+    core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, note);
+    return true;
+}

@@ -19,6 +19,8 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "scene/scene.h"
+
 typedef struct scene_lod_pick_t {
     bool present;                 /* the table has this path */
     float switch_distance;        /* m */
@@ -42,5 +44,13 @@ bool scene_lod_read(scene_lod_t *t, const char *path, char *err, size_t err_size
  * cheaper present path): NULL when the table was measured on another
  * renderer or lacks the path. *compute: the path taken. */
 const scene_lod_pick_t *scene_lod_choose(const scene_lod_t *t, const char *renderer, int path, bool *compute);
+
+/* grass.lod_table of s for GL renderer `renderer`: the switch and canopy
+ * distances the bench measured for it and the path (*compute; with raster
+ * auto the table's cheaper path, written back) replace the scene's before
+ * anything is built. A table of another renderer, or one that cannot be
+ * read, leaves the scene's with a warning. note gets what was chosen and
+ * why (summary.txt). True when the table's distances were taken. */
+bool scene_lod_apply(scene_desc_t *s, const char *renderer, bool *compute, char *note, size_t note_size);
 
 #endif

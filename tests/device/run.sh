@@ -29,7 +29,7 @@
 #   perf         `meadow bench --perf` (bench scenes x {hw, compute}, 400 frames): $OUT/perf.json and the
 #                regenerated $OUT/PERFORMANCE.md; then `meadow bench --baseline docs/perf/h100.json`
 #                on that perf.json (a note instead when the baseline does not exist yet)
-#   admission    test_app_admit, the bench scenes' gpu_memory_mb against
+#   admission    test_admit, the bench scenes' gpu_memory_mb against
 #                gpu_memory_estimate_mb, and a scene past the GPU's memory
 #                (exit 2 naming grass.cube_resolution)
 #   naturesweep  the bench sweep on scenes/bench/nature.json with the GL
@@ -320,11 +320,11 @@ gi() {
 }
 
 # Resource admission on the NVIDIA GL (GL_NVX_gpu_memory_info): the
-# estimate against gfx's count after start-up (test_app_admit and the bench
+# estimate against gfx's count after start-up (test_admit and the bench
 # scenes' summaries), and a scene past the GPU's memory refused naming it.
 admission() {
-  echo "== test_app_admit"
-  MEADOW_TEST_OUT=/tmp/t-admit timeout -k 10 120 .bundle/bin/test_app_admit > /tmp/admit.log 2>&1; echo "rc=$?"
+  echo "== test_admit"
+  MEADOW_TEST_OUT=/tmp/t-admit timeout -k 10 120 .bundle/bin/test_admit > /tmp/admit.log 2>&1; echo "rc=$?"
   grep -E "counted|CHECK|refused" /tmp/admit.log
   for s in orthmann nature meadow_large; do
     echo "== $s"

@@ -1,0 +1,200 @@
+/* ground: uploads a terrain mesh and draws it (lit soil-and-grass ground),
+ * and draws the sky gradient behind everything (ground.h). A world terrain
+ * (no vertices) is drawn as a clipmap (scene/terrain_clipmap.h): one vertex
+ * grid of integer coordinates, five index ranges, a draw per level of
+ * terrain_world.vert, displaced by world_height; the same terrain.frag. */
+#include "ground/ground.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "common/bindings_app.glsl"
+#include "scene/terrain_clipmap.h"
+
+/* The terrain, and in the hybrid the ground canopy it is shaded as beyond
+ * the billboards. */
+struct ground_t {
+    gfx_buffer_t vbo, ibo;
+    GLuint vao, empty_vao;
+    int index_count;
+    /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
+     * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
+     * prog is terrain_world.vert made with terrain_world_defines. */
+    bool world;
+    terrain_clipmap_t clipmap;
+    gfx_program_t prog, sky;
+    /* Ground canopy: its table, the extent map that thins it (borrowed),
+     * and this frame's fade (start, end; end 0: none). */
+    blade_canopy_uniforms_t canopy;
+    GLuint extent;
+    float extent_origin[2], extent_spacing;
+    float canopy_fade[2];
+    gi_bind_t gi;
+};
+
+static bool make_sky(ground_t *t)
+{
+    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
+                                                    .label = "sky.program"});
+    t->empty_vao = gfx_vertex_array_make("sky.vao");
+    return t->sky.id != 0;
+}
+
+/* The clipmap's grid and index ranges on the GPU and the world program. */
+static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
+{
+    t->world = true;
+    terrain_clipmap_t *c = &t->clipmap;
+    if (!terrain_clipmap_make(c, &(terrain_clipmap_desc_t){0})) return false;
+    t->vbo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint16_t) * 2 * c->vertex_count, .data = c->grid,
+                                                  .label = "terrain.clipmap.grid"});
+    t->ibo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint32_t) * c->index_count, .data = c->indices,
+                                                  .label = "terrain.clipmap.indices"});
+    free(c->grid);
+    free(c->indices);
+    c->grid = NULL;
+    c->indices = NULL;
+    t->vao = gfx_vertex_array_make("terrain.clipmap.vao");
+    glVertexArrayVertexBuffer(t->vao, 0, t->vbo.id, 0, 2 * sizeof(uint16_t));
+    glVertexArrayElementBuffer(t->vao, t->ibo.id);
+    glEnableVertexArrayAttrib(t->vao, 0);
+    glVertexArrayAttribIFormat(t->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
+    glVertexArrayAttribBinding(t->vao, 0, 0);
+    char defines[256];
+    if (terrain_world_defines(&mesh->world, defines, sizeof defines) < 0) return false;
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain_world.vert", .fs = "app/terrain.frag",
+                                                     .defines = defines, .label = "terrain.world.program"});
+    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
+}
+
+/* A terrain mesh's interleaved vertices, indices and program. */
+static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
+{
+    size_t nv = mesh->vertex_count;
+    float *interleaved = malloc(nv * 8 * sizeof(float));
+    if (!interleaved) return false;
+    for (size_t i = 0; i < nv; i++) {
+        memcpy(interleaved + i * 8, mesh->positions + i * 3, 3 * sizeof(float));
+        memcpy(interleaved + i * 8 + 3, mesh->normals + i * 3, 3 * sizeof(float));
+        memcpy(interleaved + i * 8 + 6, mesh->uvs + i * 2, 2 * sizeof(float));
+    }
+    t->vbo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = nv * 8 * sizeof(float), .data = interleaved,
+                                                  .label = "terrain.vertices"});
+    free(interleaved);
+    t->ibo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = mesh->index_count * sizeof(uint32_t),
+                                                  .data = mesh->indices, .label = "terrain.indices"});
+    t->index_count = (int)mesh->index_count;
+    t->vao = gfx_vertex_array_make("terrain.vao");
+    glVertexArrayVertexBuffer(t->vao, 0, t->vbo.id, 0, 8 * sizeof(float));
+    glVertexArrayElementBuffer(t->vao, t->ibo.id);
+    for (int a = 0; a < 3; a++) {
+        static const int sizes[3] = {3, 3, 2}, offsets[3] = {0, 3, 6};
+        glEnableVertexArrayAttrib(t->vao, (GLuint)a);
+        glVertexArrayAttribFormat(t->vao, (GLuint)a, sizes[a], GL_FLOAT, GL_FALSE,
+                                  (GLuint)(offsets[a] * sizeof(float)));
+        glVertexArrayAttribBinding(t->vao, (GLuint)a, 0);
+    }
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain.vert", .fs = "app/terrain.frag",
+                                                     .label = "terrain.program"});
+    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
+}
+
+ground_t *ground_make(const terrain_mesh_t *mesh)
+{
+    ground_t *t = calloc(1, sizeof *t);
+    if (!t) return NULL;
+    if (mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) return t;
+    ground_destroy(t);
+    return NULL;
+}
+
+void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing)
+{
+    blade_canopy_pack(c, &t->canopy);
+    t->extent = extent;
+    memcpy(t->extent_origin, origin, sizeof t->extent_origin);
+    t->extent_spacing = spacing;
+}
+
+bool ground_has_canopy(const ground_t *t) { return t->canopy.rows > 1; }
+
+void ground_set_canopy_fade(ground_t *t, float start, float end)
+{
+    t->canopy_fade[0] = start;
+    t->canopy_fade[1] = end;
+}
+
+void ground_set_gi(ground_t *t, gi_bind_t gi) { t->gi = gi; }
+
+void ground_destroy(ground_t *t)
+{
+    if (!t) return;
+    gfx_buffer_destroy(&t->vbo);
+    gfx_buffer_destroy(&t->ibo);
+    gfx_vertex_array_destroy(&t->vao);
+    gfx_vertex_array_destroy(&t->empty_vao);
+    gfx_program_destroy(&t->prog);
+    gfx_program_destroy(&t->sky);
+    terrain_clipmap_free(&t->clipmap);
+    free(t);
+}
+
+/* One draw per clipmap level around the camera. */
+static void draw_world(const ground_t *t, const core_view_t *v)
+{
+    const terrain_clipmap_t *c = &t->clipmap;
+    GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
+          morph = gfx_uniform(t->prog, "u_morph");
+    double tris = 0.0;
+    for (int l = 0; l < c->desc.levels; l++) {
+        terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->camera[0], v->camera[2]);
+        glUniform2fv(origin, 1, lv.origin);
+        glUniform1f(cell, lv.cell);
+        glUniform2fv(morph, 1, lv.morph);
+        glDrawElements(GL_TRIANGLES, (GLsizei)c->count[lv.range], GL_UNSIGNED_INT,
+                       (const void *)(sizeof(uint32_t) * c->first[lv.range]));
+        tris += c->count[lv.range] / 3.0;
+    }
+    gfx_count_add("terrain.clipmap.triangles", tris);
+}
+
+void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewproj[16])
+{
+    glUseProgram(t->prog.id);
+    glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
+    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
+    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    gi_set_uniforms(t->prog.id, &t->gi);
+    bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
+    glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
+                canopy ? t->canopy_fade[1] : 0.0f);
+    if (canopy) {
+        static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
+        const blade_canopy_uniforms_t *u = &t->canopy;
+        glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), u->rows);
+        glUniform1fv(gfx_uniform(t->prog, "u_canopy_cover"), u->rows, u->cover);
+        glUniform4fv(gfx_uniform(t->prog, "u_canopy_amb"), u->rows, &u->amb[0][0]);
+        glUniform2fv(gfx_uniform(t->prog, "u_canopy_sun"), u->rows * BLADE_CANOPY_AZIMUTHS, &u->sun[0][0]);
+        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
+        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
+        glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);
+        glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
+        glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
+        glBindTextureUnit(APP_TEX_EXTENT, t->extent);
+    }
+    glBindVertexArray(t->vao);
+    if (t->world) draw_world(t, v);
+    else glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
+
+    /* Sky after the ground, at the far plane with LEQUAL and no depth write:
+     * only pixels the terrain left empty run the sky shader. */
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glUseProgram(t->sky.id);
+    glUniformMatrix4fv(gfx_uniform(t->sky, "u_inv_viewproj"), 1, GL_FALSE, inv_viewproj);
+    glBindVertexArray(t->empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(0);
+}

@@ -1,0 +1,43 @@
+/* ground: the terrain as drawn and the sky behind it (ground.c). A terrain
+ * mesh is uploaded and lit as soil and grass (app/terrain.vert,
+ * app/terrain.frag); a world terrain (no vertices) is drawn as a clipmap
+ * (scene/terrain_clipmap.h): one grid of integer coordinates, five index
+ * ranges, a draw per level of app/terrain_world.vert displaced by the
+ * world's height, the same fragment shader. Beyond the billboards the
+ * ground is shaded as the ground canopy (blade_canopy.h,
+ * shaders/common/canopy.glsl), thinned by an extent map; the sky gradient
+ * fills what the ground leaves empty. The world (src/world) owns one. */
+#ifndef MEADOW_GROUND_H
+#define MEADOW_GROUND_H
+
+#include <stdbool.h>
+
+#include "blade/blade_canopy.h"
+#include "core/core.h"
+#include "gfx/gfx.h"
+#include "gi/gi.h"
+#include "scene/terrain.h"
+
+typedef struct ground_t ground_t;
+
+/* The mesh's (or the world's clipmap's) buffers and programs; NULL when
+ * they cannot be made (a GL object or a program failed, logged). The mesh
+ * is read during the call only. */
+ground_t *ground_make(const terrain_mesh_t *mesh);
+/* Releases every object and g itself (NULL: nothing). */
+void ground_destroy(ground_t *g);
+/* The canopy's table and the extent map that thins it (an R8 texture the
+ * caller owns, 0: none; common/extent.glsl says which texel). */
+void ground_set_canopy(ground_t *g, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing);
+/* A canopy table was set (more than one row). */
+bool ground_has_canopy(const ground_t *g);
+/* This frame's canopy band: none nearer than start, fully shaded beyond
+ * end (m from the camera); end 0: no canopy drawn. */
+void ground_set_canopy_fade(ground_t *g, float start, float end);
+/* Global illumination of the ground and its canopy; zero: off. */
+void ground_set_gi(ground_t *g, gi_bind_t gi);
+/* Draws the ground, then the sky where it left the far plane (inv_viewproj:
+ * the inverse of view->viewproj, column-major). */
+void ground_draw(const ground_t *g, const core_view_t *view, const float inv_viewproj[16]);
+
+#endif

@@ -1,0 +1,92 @@
+/* measure: measures of drawn frames shared by the program's summary
+ * (src/app) and the evaluation harness (src/bench): the hybrid seam at the
+ * switch and canopy bands and its noise floor (measure_seam.c,
+ * docs/METRICS.md "Hybrid seam"), and the hardware and compute floors of
+ * trivial triangles (measure_floor.c), the counts of a frame (measure_stats.c).
+ * Through world.h and world_harness.h only. */
+#ifndef MEADOW_MEASURE_H
+#define MEADOW_MEASURE_H
+
+#include "eval/eval_image.h"
+#include "world/world_harness.h"
+
+/* ---- hybrid seam (measure_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
+/* A frame for eval_image_seam: colour, distance to the visible surface and
+ * class per pixel (row 0 at the top). */
+typedef struct measure_seam_frame_t {
+    core_image_t img;
+    float *dist;
+    uint8_t *cls;
+} measure_seam_frame_t;
+/* Reads the frame drawn into t with view v (blocking): colour and distance;
+ * cls EVAL_SEAM_GROUND where the visible surface is the terrain, else
+ * EVAL_SEAM_SKIP (what a background frame needs). */
+bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f);
+/* Classes of a frame against the background (the same view with no grass):
+ * skipped where the background does not show the terrain, grass where the
+ * colour differs from it by more than 8 levels in a channel, else ground. */
+void measure_seam_frame_classify(measure_seam_frame_t *f, const measure_seam_frame_t *background);
+/* Draws the view into t in `mode`, with no grass at all when !grass (the
+ * background), and reads it (measure_seam_frame_read). The world's systems are
+ * used as they are (nothing is built or simulated) and keep their state. */
+bool measure_seam_frame_draw(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
+                         measure_seam_frame_t *f);
+void measure_seam_frame_free(measure_seam_frame_t *f);
+/* The scene's switch distance and the fade band of world_draw. */
+eval_seam_desc_t measure_seam_desc(world_t *w);
+/* The seam of the hybrid frame drawn into t with view v, against the same
+ * view drawn again with billboards only, both classified against it drawn
+ * with no grass (which is what t holds afterwards). False when the world is
+ * not in hybrid mode or a window of the band shows no grass or fewer than
+ * 100 counted pixels (in either frame). */
+bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+/* The same at the canopy's band (grass.canopy_distance +- WORLD_CANOPY_FADE):
+ * billboards to the ground canopy, against billboards to the horizon.
+ * False as measure_seam, and without a canopy. */
+bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+/* The seam's noise floor for this view: the billboards built again with
+ * MEASURE_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn
+ * billboard-only (undeformed) against the world's own billboard-only frame:
+ * what the measure reads where only where billboards stand differs
+ * (docs/METRICS.md). One placement's score varies by 2-7x from seed to
+ * seed (meadow_large at frame 120 on the H100: 0.039, 0.208, 0.049), so
+ * the floor is their mean (score and terms), each placement's score kept
+ * beside it. The world's billboards are kept and restored. False as
+ * measure_seam, or when a field cannot be built. */
+#define MEASURE_SEAM_FLOOR_PLACEMENTS 3
+typedef struct measure_seam_floor_t {
+    eval_seam_t mean; /* score, delta_e, delta_l, coverage: means over the placements */
+    double score[MEASURE_SEAM_FLOOR_PLACEMENTS];
+} measure_seam_floor_t;
+bool measure_seam_floor(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out);
+/* GPU ms to draw `triangles` trivial triangles from a prebuilt buffer into a
+ * w x h target with `samples` MSAA (median of 12 draws); -1 on failure. */
+double measure_floor_ms(long triangles, int w, int h, int samples);
+/* The same triangles through the compute rasterizer (raster_samples per
+ * pixel: 1 or 4) into a w x h target of `samples`: raster_begin, the draw
+ * with trivial shading and raster_end, median GPU ms of 12; -1 when it
+ * cannot be measured, 0 for no triangles. */
+double measure_floor_compute_ms(long triangles, int w, int h, int samples, int raster_samples);
+
+typedef struct measure_stats_t {
+    long blades;            /* real blades on the GPU */
+    long blade_survivors;   /* in the last draw command */
+    unsigned blade_culled[4]; /* orientation, frustum, distance, occlusion */
+    long blade_patch_culled;
+    unsigned tiles_culled[4]; /* the hybrid's tiles: orientation, frustum, distance, occlusion */
+    long tiles_tile_culled;   /* blades of blade tiles culled by the CPU frustum test */
+    long billboards;
+    int bb_deformed;
+    double bb_generate_ms, bb_make_ms; /* GPU generation pass, CPU make (once) */
+    double bb_make_stage_ms[BB_MAKE_STAGES];
+    int characters;
+    int tiles_active, tiles_recovering, tiles_blade, tile_slots_used, tile_slots_total;
+    long tile_blades_simulated;
+    long tile_handovers, tile_seeded; /* blades -> billboards, billboards -> blades, run totals */
+    long triangles;         /* estimated triangles drawn by the grass */
+} measure_stats_t;
+
+/* Counts of the last frame (blocking reads: for summaries, not the frame). */
+void measure_stats(world_t *w, measure_stats_t *st);
+
+#endif

@@ -1,0 +1,85 @@
+/* world_harness: the world as the evaluation harness (src/bench, src/measure)
+ * and the tests drive it, beside world_frame: knobs that are not scene
+ * keys, the set-up of an offscreen session's world, one step or one draw
+ * alone, a step with the harness's own blade sphere proxies, the colliders
+ * as they stand, and the billboard field swapped for another placement
+ * (the seam's noise floor). The program (src/app) does not use these. */
+#ifndef MEADOW_WORLD_HARNESS_H
+#define MEADOW_WORLD_HARNESS_H
+
+#include "world/world.h"
+
+/* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
+typedef struct world_tuning_t {
+    int tess_max;           /* blade tessellation level cap; default the blade module's */
+    int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
+    unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
+    bool blade_cube_proxies; /* blades collide against depth cube maps instead of
+                                sphere proxies (the set's cube proxies; not the tiles) */
+    uint32_t placement_seed; /* seeds where grass stands instead of the scene seed: full-field
+                                blades (blade_seed and the clearing thinning's draw) and
+                                billboards (bb_field_desc_t.placement_seed); terrain,
+                                clearings and clump textures keep the scene seed (not the
+                                hybrid tiles). The image error's noise floor (docs/METRICS.md) */
+    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
+    bool paper;              /* both papers' methods as printed (the stability suite's paper
+                                variant): blade_env_t.paper with eq. 12's length and the
+                                paper's eta gain k = 1, bb_field_desc_t.paper, and no swept
+                                colliders (the collide set's objects do not sweep) */
+} world_tuning_t;
+
+/* What an offscreen session changes between world_load and world_make_gpu.
+ * Zero = keep what the scene and options say. */
+typedef struct world_setup_t {
+    scene_mode_t mode;
+    bool mode_set;
+    int msaa;       /* 0 = the scene's */
+    bool reference; /* the reference rendering (world_info_t.reference) */
+    world_tuning_t tuning;
+    void (*tweak)(scene_desc_t *s, void *user); /* scene parameter overrides */
+    void *user;
+} world_setup_t;
+/* Applies `setup`; a tweak that changes a heightfield terrain rebuilds it.
+ * Returns false after one error line when that fails. */
+bool world_setup(world_t *w, const world_setup_t *setup);
+/* The seed of where grass stands: tuning.placement_seed, else the scene's. */
+uint32_t world_placement_seed(const world_t *w);
+
+/* Simulates one fixed step at simulated time t (what world_frame's steps do). */
+void world_update(world_t *w, float t, float dt);
+/* Draws into `target` (bound by the caller): opaque objects first, then
+ * their depth is resolved for the blades' occlusion culling, then grass. */
+void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe);
+/* Binds and clears t, then draws the view in `mode`, with no grass at all
+ * when !grass; the world's systems are used as they are (nothing is built
+ * or simulated) and keep their state. */
+void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass);
+/* The camera the tiles stream and activate around until the next draw
+ * sets it (a step without drawing). */
+void world_set_camera(world_t *w, const float camera[3]);
+
+/* Blade sphere proxies that replace the world's: writes at most max, returns
+ * the count. */
+typedef int (*world_spheres_fn)(world_t *w, blade_sphere_t *out, int max, void *user);
+/* world_update of a world with blades only (no billboards, characters or
+ * tiles) with the spheres of `spheres` in place of the world's (same order:
+ * colliders, then one blade step). */
+void world_update_spheres(world_t *w, float t, float dt, world_spheres_fn spheres, void *user);
+
+/* One analytic collider (scene "colliders") as it stands this step. */
+typedef struct world_collider_info_t {
+    scene_collider_t desc;
+    float position[3];
+    float bound_radius;
+} world_collider_info_t;
+int world_collider_count(const world_t *w);
+world_collider_info_t world_collider(const world_t *w, int i);
+
+/* A billboard field as the world builds its own, for placement seed
+ * `placement_seed` (0: the scene seed); NULL when it cannot be made. */
+bb_field_t *world_build_billboards(const world_t *w, uint32_t placement_seed);
+/* Puts `field` in the world's place (NULL: none) and returns the field it
+ * held; the caller owns what it gets back. */
+bb_field_t *world_swap_billboards(world_t *w, bb_field_t *field);
+
+#endif
