@@ -72,11 +72,17 @@ static void check_reference_and_fallbacks(void)
 
 static void check_rules(void)
 {
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_MESH));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD));
-    CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD));
+    const scene_world_billboards_t ring = SCENE_WORLD_BILLBOARDS_RING, none = SCENE_WORLD_BILLBOARDS_NONE;
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, ring));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_MESH, ring));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD, ring));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD, ring));
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD, ring));
+    /* grass.world_billboards none: the hybrid on a world only; billboard
+     * mode and heightfields keep theirs. */
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD, none));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD, none));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, none));
     CHECK(!world_pass_wants_blades(SCENE_MODE_BILLBOARD));
     CHECK(world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, false));
     CHECK(!world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_MESH, false));
@@ -89,6 +95,11 @@ static void check_rules(void)
                           p);
     CHECK(n == WORLD_PASS_KINDS - 1); /* everything but the whole field: the most a frame holds */
     CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BLADES));
+    /* The hybrid on a world without its ring: tiles, no billboards. */
+    n = world_pass_list(&(world_pass_desc_t){.mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_WORLD, ALL,
+                                             .world_billboards = SCENE_WORLD_BILLBOARDS_NONE},
+                        p);
+    CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BILLBOARDS));
 }
 
 int main(void)

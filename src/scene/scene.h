@@ -61,6 +61,13 @@ typedef enum scene_blade_render_t {
     SCENE_BLADE_RENDER_TESS,     /* "tess": one patch per blade through blade.tesc / blade.tese */
 } scene_blade_render_t;
 
+/* What the hybrid draws between the blades and the ground canopy on a
+ * world terrain (docs/WORLD.md). */
+typedef enum scene_world_billboards_t {
+    SCENE_WORLD_BILLBOARDS_RING = 0, /* "ring" (default): the streamed billboard ring */
+    SCENE_WORLD_BILLBOARDS_NONE,     /* "none": the canopy from the switch distance */
+} scene_world_billboards_t;
+
 /* Clearings of the extent map (bb_layout.h, bb_extent_desc_t): where both
  * grass models leave the ground bare. */
 typedef enum scene_clearings_type_t {
@@ -109,6 +116,7 @@ typedef struct scene_grass_desc_t {
     bool gi;                 /* Orthmann sec. 6.1 global illumination volumes; default false */
     bool bb_occlusion;       /* occlusion queries per billboard leaf batch (Orthmann sec. 6);
                                 default false */
+    scene_world_billboards_t world_billboards; /* hybrid on a world terrain; default ring */
     char lod_table[SCENE_PATH_MAX]; /* hybrid: switch distances measured by the bench for a GL
                                        renderer (scene_lod.h), repository-relative; default "": the
                                        scene's switch_distance and canopy_distance */

@@ -285,7 +285,10 @@ static world_ground_t ground_of(const world_t *w)
  * (a world streams tiles and the billboard ring, the canopy beyond; blade
  * mode off a world and the reference
  * simulate every blade of the field, as the paper). */
-static bool wants_bb(const world_t *w, scene_mode_t m) { return world_pass_wants_billboards(m, ground_of(w)); }
+static bool wants_bb(const world_t *w, scene_mode_t m)
+{
+    return world_pass_wants_billboards(m, ground_of(w), w->scene.grass.world_billboards);
+}
 static bool wants_blades(scene_mode_t m) { return world_pass_wants_blades(m); }
 static bool uses_tiles(const world_t *w) { return world_pass_uses_tiles(w->mode, ground_of(w), w->reference); }
 
@@ -854,7 +857,8 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
     int n = world_pass_list(&(world_pass_desc_t){.mode = w->mode, .ground = ground_of(w), .compute = f.raster != NULL,
                                              .reference = w->reference, .have_tiles = w->have_tiles,
                                              .have_blades = w->have_blades, .have_billboards = w->bb != NULL,
-                                             .have_characters = w->have_chars},
+                                             .have_characters = w->have_chars,
+                                             .world_billboards = w->scene.grass.world_billboards},
                           passes);
     f.tiles = world_pass_has(passes, n, WORLD_PASS_TILES); /* the hybrid's near blades, and its canopy */
     f.fade_lo = tiles_distance(w) - WORLD_SWITCH_FADE;
