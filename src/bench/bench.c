@@ -1,36 +1,17 @@
 /* bench_run: `meadow bench` sweeps configurations of deterministic scenes
- * headless (fixed seed, dt, camera and colliders), and writes per-pass GPU
- * times, CPU time, accuracy metrics (measure_metrics.c, docs/METRICS.md) and
- * image error against the reference rendering (eval_image.h, with 1 - SSIM
- * beside it) to bench.csv and bench.json, plus speed-vs-accuracy charts
- * (x GPU ms, y the chart's accuracy measure; PNG and SVG through gnuplot)
- * with the Pareto front; image charts draw the noise floor (the reference
- * with another placement seed).
- *
- * Sweeps (one chart each, y in parentheses):
- *   billboard_collision  cube-map res x subdivision x spring iterations K
- *                        (Orthmann et al. 2009 eq. 1-7; penetration depth),
- *   billboard_springs    the same runs (spring error, eq. 6-7),
- *   blade_proxies        sphere sets standing in for a box collider
- *                        (Jahrmann & Wimmer 2017 sec. 5.3) and, beyond both
- *                        papers, the box's depth cube map at 16/32/64 texels
- *                        (depth of the tested points in the exact box; and
- *                        over-push beyond it),
- *   blade_tessellation (blade mode drawn through the tessellation
- *                        shaders, tess_max 1..10 segments), blade_distance_levels
- *                        (eq. 19-20),
- *   hybrid_switch_distance, hybrid_canopy_distance (both rasterizer paths,
- *   billboard and blade mode beside it; on CANOPY_SCENE),
- *   modes (mode x density x render path, hardware
- *   and compute rasterizer at 4 and 1 samples per pixel) (image error).
- * --quick runs two to five configurations per sweep for CI. The stability suite
- * (stability.c) runs with --stability (--case NAME: one case), the
- * tile scaling sweeps (perf_scaling.c) with --scaling; --report DIR runs
- * the sweep, both of those and `meadow compare`, and writes
- * DIR/RESULTS.md with its charts and screenshots in DIR/images. --perf and
- * --baseline (perf.c, perf_baseline.c) time the bench scenes;
- * --papers DIR (perf_papers.c, with --report also in RESULTS.md) runs the
- * papers' ablations, leaves figure and table. */
+ * headless (fixed seed, dt, camera and colliders) and writes per-pass GPU
+ * times, CPU time, accuracy metrics (docs/METRICS.md) and image error
+ * against the reference rendering to bench.csv and bench.json, with a
+ * speed-vs-accuracy chart per sweep (x the GPU ms of the passes its knob
+ * changes, y its accuracy measure; PNG and SVG through gnuplot) and the
+ * Pareto front. The sweeps are `charts[]` below: billboard collision and
+ * springs (Orthmann et al. 2009), blade proxies and levels of detail
+ * (Jahrmann & Wimmer 2017), the hybrid's switch and canopy distances, and
+ * the modes x density x render path. --quick runs two to five
+ * configurations per sweep for CI. --stability (stability.c), --scaling
+ * (perf_scaling.c), --report DIR (all of them and `meadow compare`, into
+ * DIR/RESULTS.md), --perf and --baseline (perf.c, perf_baseline.c) and
+ * --papers DIR (perf_papers.c) run the other parts of the harness. */
 #include "bench/bench_local.h"
 
 #include <assert.h>

@@ -1,37 +1,23 @@
-/* bench_metrics: accuracy metrics of a world's state for `meadow bench` and
- * the stability suite (definitions and formulas in docs/METRICS.md).
+/* measure_metrics: accuracy metrics of a world's state for `meadow bench`
+ * and the stability suite; the definitions, formulas and sample points are
+ * docs/METRICS.md's ("Penetration", "Shape error", "Texture distortion").
  *
- * Penetration is measured against the EXACT analytic collider
- * (collide_signed_distance at the collider's current position), never against
- * the proxy a method collides with (blade spheres, billboard cube maps):
- *   - blades (Jahrmann & Wimmer 2017): 8 points per Bézier curve,
- *     p(t) = (1-t)^2 v0 + 2(1-t)t v1 + t^2 v2 at t = k/8, k = 1..8 (eq. 21's
- *     curve; the root t = 0 is fixed and excluded);
- *   - billboards (Orthmann et al. 2009): every non-root vertex, three points
- *     inside every mesh edge above the root row (EDGE_SAMPLES) and every
- *     cell centre of each deformed N x M mesh (the meshes pool); a billboard
- *     without a mesh is sampled on its wind pose (bb_ref_wind_vertex) at
- *     the same points, so a collision the method missed counts.
- * Characters have no exact signed distance here: their blade proxy spheres
- * (character_set_spheres) stand in for the exact shape.
- * Only samples whose root lies within reach of a collider (horizontal
- * distance < bounding radius + grass height) count towards the fraction,
- * and a collider is ignored for samples anchored inside it (blade root v0;
- * for a billboard sample, the row-0 vertex of each column it lies on or
- * between: a cell centre or a row edge beside a column rooted inside is
- * held there by that fixed root), since no method can move grass rooted
- * inside a collider.
+ * Penetration is measured against the exact analytic collider
+ * (collide_signed_distance at its current position), never against the
+ * proxy a method collides with (blade spheres, billboard cube maps):
+ *   - blades: 8 points per Bezier curve at t = k/8, k = 1..8 (the root is
+ *     fixed and left out);
+ *   - billboards: every non-root vertex, three points inside every mesh
+ *     edge above the root row and every cell centre of each deformed mesh;
+ *     a billboard without a mesh is sampled on its wind pose, so a
+ *     collision the method missed counts.
+ * Characters stand in as their blade proxy spheres. Only samples rooted
+ * within reach of a collider count, and a collider is ignored for samples
+ * anchored inside it (no method can move grass rooted there).
  *
- * Shape errors: blade length |L - h| / h with L = blade_ref_curve_length
- * (32 samples), mean over real blades; billboard spring error |l - l0| / l0
- * over the structural springs (eq. 6-7) of the deformed meshes, l0 from the
- * rest quad (bb_mesh_init_quad: width / (N-1), height / (M-1)).
- *
- * Texture distortion of deformed billboards (measure_bb_distortion):
- * the largest structural-spring stretch |l / l0 - 1| and the folded cells,
- * a cell being folded when its signed area ratio against a reference
- * normal is <= 0: the rest normal right x up for the root row, the normals
- * of the neighbouring cells below and to the left above it. */
+ * Shape errors: blade length |L - h| / h; billboard spring error
+ * |l - l0| / l0 over the structural springs. Texture distortion: the largest
+ * structural stretch and the folded cells of each deformed billboard. */
 #include "measure/measure_metrics.h"
 
 #include "collide/collide_shape.h"
