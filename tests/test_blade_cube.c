@@ -95,7 +95,7 @@ static void test_gpu_vs_cpu(blade_gpu_t *g, const blade_field_t *f, const collid
         static collide_set_t set;
         set = (collide_set_t){.cubes[0] = object_at(s), .cube_count = 1, .cube_texture = tex, .cube_res = RES,
                               .cube_maps = cube};
-        blade_gpu_simulate(g, &env, &set);
+        blade_gpu_update(g, &env, &set);
         blade_ref_step(cpu, ecpu, n, &env, &set);
         blade_gpu_read_blades(g, gpu, egpu);
         for (size_t i = 0; i < n; i++) {
@@ -162,7 +162,7 @@ static sweep_t sweep(blade_gpu_t *g, const blade_field_t *f, const collide_cubem
             set = (collide_set_t){.sphere_count = kind == 2};
             set.spheres[0] = (blade_sphere_t){.centre_radius = {c[0], c[1], c[2], RADIUS}};
         }
-        blade_gpu_simulate(g, &env, &set);
+        blade_gpu_update(g, &env, &set);
         blade_gpu_read_blades(g, b, NULL);
         blade_t *fr = &free_run[(size_t)s * n];
         if (kind == 0) memcpy(fr, b, n * sizeof *b);

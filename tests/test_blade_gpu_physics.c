@@ -103,7 +103,7 @@ static void test_against_reference(void)
             blade_env_t env;
             static collide_set_t set;
             random_env(&rng, &env, &set, variant);
-            blade_gpu_simulate(g, &env, &set);
+            blade_gpu_update(g, &env, &set);
             blade_ref_step(cpu, ecpu, n, &env, &set);
             blade_gpu_read_blades(g, gpu, egpu);
             for (size_t i = 0; i < n; i++) {
@@ -164,7 +164,7 @@ static void test_invariants(double budget_s)
         set.spheres[0] = (blade_sphere_t){.centre_radius = {1.2f * cosf(a), 0.45f, 1.2f * sinf(a), 0.4f}};
         float sx = -2.0f + fmodf(0.5f * (float)t, 4.0f);
         set.spheres[1] = (blade_sphere_t){.centre_radius = {sx, 0.57735f * sx + 0.3f, 5.0f + sinf(a), 0.5f}};
-        blade_gpu_simulate(g, &env, &set);
+        blade_gpu_update(g, &env, &set);
         blade_gpu_read_blades(g, b, NULL);
         frames++;
         for (size_t i = 0; i < f.blade_count; i++) {

@@ -98,7 +98,7 @@ static void simulate_trail(blade_gpu_t *g)
         float x = -2.5f + 3.2f * (float)s / 119.0f;
         set.spheres[0] = (blade_sphere_t){.centre_radius = {x, 0.3f, 0.0f, 0.45f}};
         env.time = (float)s * env.dt;
-        blade_gpu_simulate(g, &env, &set);
+        blade_gpu_update(g, &env, &set);
     }
 }
 
@@ -298,7 +298,7 @@ static void test_torus(void)
     env.winds[0] = blade_wind_wave(1.0f, 0.0f, 2.0f, 1.0f, 1.0f);
     for (int s = 0; s < 10; s++) {
         env.time = (float)s * env.dt;
-        blade_gpu_simulate(g, &env, NULL);
+        blade_gpu_update(g, &env, NULL);
     }
     blade_t *b = malloc(f.padded_count * sizeof *b);
     blade_gpu_read_blades(g, b, NULL);

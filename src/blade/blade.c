@@ -177,7 +177,7 @@ blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g)
                               .patch_size = g->patch_size};
 }
 
-void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders)
+void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders)
 {
     blade_env_t e = blade_env_defaults(env);
     static const collide_set_t none;

@@ -124,7 +124,7 @@ blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g);
  * holds cubes[k]'s faces in layers 6k .. 6k+5 as collide_cube.h describes,
  * e.g. bb_field_t's cube array or blade_gpu_upload_cubes'; its cube_maps
  * are not read). env is resolved with blade_env_defaults. */
-void blade_gpu_simulate(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders);
+void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders);
 
 /* Uploads CPU cube maps (all of one res) into a texture that g owns
  * (remade when the count or res changes; freed by blade_gpu_destroy), object

@@ -2,7 +2,7 @@
  * per step from the scene's colliders and the characters (collide_begin_set,
  * collide_add_object, then the sphere and cube proxies) and every grass
  * system takes it: the billboard field its objects (bb_field_update), the
- * blades its spheres and cube proxies (blade_gpu_simulate, blade_ref_step),
+ * blades its spheres and cube proxies (blade_gpu_update, blade_ref_step),
  * the tiles its spheres (blade_tiles_update). GL-free: GL object names are
  * carried as plain integers for the GL systems, never used here. A zeroed
  * set is empty. */

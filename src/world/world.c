@@ -729,7 +729,7 @@ void world_update(world_t *w, float t, float dt)
         if (w->tuning.blade_cube_proxies && w->have_blades) blade_cube_proxies(w, set);
         else set->sphere_count = blade_spheres(w, set->spheres, BLADE_MAX_SPHERES);
         update_part(w, 2, &mark);
-        if (w->have_blades) blade_gpu_simulate(w->blades, env, set);
+        if (w->have_blades) blade_gpu_update(w->blades, env, set);
         if (w->have_tiles) blade_tiles_update(w->tiles, w->camera, set, env);
     }
     update_part(w, 3, &mark);

@@ -104,5 +104,5 @@ void world_update_spheres(world_t *w, float t, float dt, world_spheres_fn sphere
     env->time = t;
     collide_begin_set(&w->collide);
     w->collide.sphere_count = spheres(w, w->collide.spheres, BLADE_MAX_SPHERES, user);
-    blade_gpu_simulate(w->blades, env, &w->collide);
+    blade_gpu_update(w->blades, env, &w->collide);
 }
