@@ -68,7 +68,7 @@ static void check_vertex_twin(const terrain_world_t *w, const float eye[3])
     char defines[256];
     CHECK(terrain_world_defines(w, defines, sizeof defines) > 0);
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){
-        .vs = "app/terrain_world.vert", .defines = defines, .tf_varyings = varyings, .label = "world.vertex_twin"});
+        .vs = "ground/terrain_world.vert", .defines = defines, .tf_varyings = varyings, .label = "world.vertex_twin"});
     CHECK(prog.id != 0);
     terrain_clipmap_t c;
     CHECK(terrain_clipmap_make(&c, &(terrain_clipmap_desc_t){0}));

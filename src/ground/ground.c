@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "common/bindings_app.glsl"
+#include "common/bindings_ground.glsl"
 #include "scene/terrain_clipmap.h"
 
 /* The terrain, and in the hybrid the ground canopy it is shaded as beyond
@@ -34,7 +34,7 @@ struct ground_t {
 
 static bool make_sky(ground_t *t)
 {
-    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "app/sky.vert", .fs = "app/sky.frag",
+    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/sky.vert", .fs = "ground/sky.frag",
                                                     .label = "sky.program"});
     t->empty_vao = gfx_vertex_array_make("sky.vao");
     return t->sky.id != 0;
@@ -62,7 +62,7 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glVertexArrayAttribBinding(t->vao, 0, 0);
     char defines[256];
     if (terrain_world_defines(&mesh->world, defines, sizeof defines) < 0) return false;
-    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain_world.vert", .fs = "app/terrain.frag",
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
                                                      .defines = defines, .label = "terrain.world.program"});
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
@@ -94,7 +94,7 @@ static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
                                   (GLuint)(offsets[a] * sizeof(float)));
         glVertexArrayAttribBinding(t->vao, (GLuint)a, 0);
     }
-    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/terrain.vert", .fs = "app/terrain.frag",
+    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain.vert", .fs = "ground/terrain.frag",
                                                      .label = "terrain.program"});
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
@@ -180,7 +180,7 @@ void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewpr
         glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);
         glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
         glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
-        glBindTextureUnit(APP_TEX_EXTENT, t->extent);
+        glBindTextureUnit(GROUND_TEX_EXTENT, t->extent);
     }
     glBindVertexArray(t->vao);
     if (t->world) draw_world(t, v);

@@ -52,7 +52,7 @@ double measure_floor_ms(long triangles, int w, int h, int samples)
     gfx_buffer_t buf = floor_triangles(triangles, w, h);
     if (!buf.id) return -1.0;
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = w, .h = h, .samples = samples, .label = "floor"});
-    gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){.vs = "app/floor.vert", .fs = "app/floor.frag",
+    gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){.vs = "measure/floor.vert", .fs = "measure/floor.frag",
                                                              .label = "floor.program"});
     GLuint vao = gfx_vertex_array_make("floor.vao");
     glVertexArrayVertexBuffer(vao, 0, buf.id, 0, 4 * sizeof(float));

@@ -15,7 +15,7 @@
  * share their vertices exactly (no cracks, no T-junctions) and the morph is
  * continuous in the camera position (no popping). The height is sampled at
  * the morphed position. terrain_clipmap_vertex is the CPU twin of
- * shaders/app/terrain_world.vert. GL-free. */
+ * shaders/ground/terrain_world.vert. GL-free. */
 #ifndef MEADOW_SCENE_TERRAIN_CLIPMAP_H
 #define MEADOW_SCENE_TERRAIN_CLIPMAP_H
 

@@ -34,7 +34,7 @@ bool world_colliders_make(world_colliders_t *c, const scene_desc_t *s)
         }
         a->bound_radius = collide_bounding_radius(&a->desc);
     }
-    c->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "app/object.vert", .fs = "app/object.frag",
+    c->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "world/object.vert", .fs = "world/object.frag",
                                                      .label = "collider.program"});
     return c->prog.id != 0;
 }

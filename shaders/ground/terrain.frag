@@ -7,7 +7,7 @@
 // fragment when it is on (common/gi.glsl; the canopy's table is linear in
 // the blade normals' height, so it takes the ambient facing down and up).
 #version 450 core
-#include "common/bindings_app.glsl"
+#include "common/bindings_ground.glsl"
 #include "common/lighting.glsl"
 #include "common/hash.glsl"
 #include "common/canopy.glsl"
@@ -20,7 +20,7 @@ uniform vec3 u_camera;
 uniform vec3 u_sun;
 uniform vec2 u_canopy_fade;
 uniform bool u_extent_on;
-layout(binding = APP_TEX_EXTENT) uniform sampler2D u_extent;
+layout(binding = GROUND_TEX_EXTENT) uniform sampler2D u_extent;
 uniform vec2 u_extent_origin;
 uniform float u_extent_spacing;
 out vec4 o_color;

@@ -1,0 +1,11 @@
+/* bindings_ground.glsl: the binding numbers of the ground's shaders
+ * (shaders/ground), included as they are by ground.c and terrain.frag;
+ * only #define lines and comments, so valid C and GLSL
+ * (docs/DESIGN.md "Layout"). */
+#ifndef BINDINGS_GROUND_GLSL
+#define BINDINGS_GROUND_GLSL
+
+/* terrain.frag: the grass extent map that thins the ground canopy */
+#define GROUND_TEX_EXTENT 0
+
+#endif
