@@ -342,13 +342,15 @@ admission() {
 # camera path on the compute path (hybrid, with the billboard ring), the
 # 2 km world in blade mode, the 2 and 4 km worlds in billboard mode (the
 # ring alone); memory, frame percentiles, submit, start-up and the ring's
-# passes (bb.ring: cells generated, bb.raster) from summary.txt.
+# passes (bb.ring: cells generated, bb.raster) from summary.txt; each
+# run's frame log (--frame-log) to $OUT/frames-SCENE-MODE.csv.gz.
 world() {
   for sm in world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard; do
     s=${sm%%:*}; mode=${sm#*:}; o=/tmp/world-$s-$mode
     ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
-      --screenshot-every 0 --out $o ) > $o.log 2>&1
+      --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
     echo "== $s $mode rc=$?"
+    gzip -c $o/frames.csv > $OUT/frames-$s-$mode.csv.gz 2>/dev/null # per frame: where a spike sits
     grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^billboard ring|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|bb\.[a-z_]*|character[a-z.]*) " \
       $o/summary.txt 2>/dev/null || tail -5 $o.log
     grep -E "real|error|warn" $o.log | head -4
