@@ -10,28 +10,19 @@
 #include "character/character_load.h"
 #include "core/core.h"
 
-/* The program's command line; an option of the harness's given without its
- * command is named as such. Returns 0, 1 (help printed) or 2 (err). */
+/* The program's command line (app_parse_args); an unknown option that is
+ * one of the harness's, or a first word that is no command, is named as
+ * such. Returns 0, 1 (help printed) or 2 (err). */
 static int parse_program(int argc, char **argv, app_options_t *o, char *err, size_t err_size)
 {
-    memset(o, 0, sizeof *o);
-    for (int i = 1; i < argc; i++) {
-        switch (app_parse_option(argc, argv, &i, o, err, err_size)) {
-        case APP_OPTION_TAKEN: continue;
-        case APP_OPTION_EXIT: return 1;
-        case APP_OPTION_BAD: return 2;
-        case APP_OPTION_UNKNOWN: break;
-        }
-        if (bench_is_option(argv[i]))
-            snprintf(err, err_size, "'%s' is one of the options of `meadow bench` or `meadow compare` (see meadow "
-                     "bench --help)", argv[i]);
-        else if (i == 1 && argv[i][0] != '-')
-            snprintf(err, err_size, "unknown command '%s' (expected bench or compare; see --help)", argv[i]);
-        else
-            snprintf(err, err_size, "unknown option '%s' (see --help)", argv[i]);
-        return 2;
-    }
-    return 0;
+    int rc = app_parse_args(argc, argv, o, err, err_size);
+    const char *a = o->unknown_arg ? argv[o->unknown_arg] : NULL;
+    if (rc == 2 && a && bench_is_option(a))
+        snprintf(err, err_size, "'%s' is one of the options of `meadow bench` or `meadow compare` (see meadow "
+                 "bench --help)", a);
+    else if (rc == 2 && a && o->unknown_arg == 1 && a[0] != '-')
+        snprintf(err, err_size, "unknown command '%s' (expected bench or compare; see --help)", a);
+    return rc;
 }
 
 int main(int argc, char **argv)

@@ -47,6 +47,8 @@ typedef struct app_options_t {
     int overlay;              /* --overlay 0..3: debug overlay at start (key O cycles) */
     bool quiet;
     bool frame_log;           /* --frame-log: OUT/frames.csv, a row per frame (app_trace.h) */
+    int unknown_arg;          /* set by app_parse_args: argv index of the unknown option it
+                                 refused, 0 when none */
 } app_options_t;
 
 
@@ -67,7 +69,8 @@ typedef enum app_option_status_t {
 app_option_status_t app_parse_option(int argc, char **argv, int *i, app_options_t *opts, char *err, size_t err_size);
 /* The whole command line argv[1..] as options of the program. Returns 0 to
  * run, 1 when --help or --scene-keys printed, 2 on a bad argument (err
- * holds one line: an unknown option is "unknown option 'X' (see --help)"). */
+ * holds one line: an unknown option is "unknown option 'X' (see --help)",
+ * its index in opts->unknown_arg). */
 int app_parse_args(int argc, char **argv, app_options_t *opts, char *err, size_t err_size);
 /* `meadow --help`: the usage line, the program's options and its keys. */
 void app_print_usage(void);

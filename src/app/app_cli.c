@@ -260,6 +260,7 @@ int app_parse_args(int argc, char **argv, app_options_t *o, char *err, size_t er
         case APP_OPTION_BAD: return 2;
         case APP_OPTION_UNKNOWN:
             snprintf(err, err_size, "unknown option '%s' (see --help)", argv[i]);
+            o->unknown_arg = i;
             return 2;
         }
     }
