@@ -1,19 +1,16 @@
 /* app_trace: `meadow --frame-log` writes OUT/frames.csv, one row per frame:
  * the frame's wall, submit and thread times (as summary.txt measures them),
- * whether it wrote a screenshot, the blade tiles' work of its update (tiles
- * active and recovering, slots and blades simulated, tiles streamed into
- * the window), the CPU wall ms of the frame's steps (timer frame,
- * simulation steps, target fit and clear, draw, the drawn callback:
- * world_frame_desc_t.marks; the simulation steps split into colliders and
- * characters, billboards, blade spheres, blades and tiles:
- * world_info_t.update_ms), the latest GPU time of every timed pass (`<pass>_ms`) and
- * the CPU wall time spent in its calls this frame (`<pass>_cpu_ms`: where a
- * blocking driver call sits). GPU timer results arrive one to three frames
- * late (gfx_timer_last_ms), so a GPU column trails the frame it is written
- * on; a pass that has not run yet reads empty. Rows are kept in memory and written at the end, when every pass
- * is known: the last APP_FRAME_HISTORY frames, as summary.txt's times (a
- * longer run says how many it left out). A tool for finding hitches
- * (docs/METRICS.md, "Frame log"). */
+ * whether it wrote a screenshot, the blade tiles' work of its update, the
+ * CPU wall ms of the frame's steps (world_frame_desc_t.marks) and of the
+ * simulation's parts (world_info_t.update_ms), then per timed pass its
+ * latest GPU ms (`<pass>_ms`) and the CPU wall ms spent in its calls this
+ * frame (`<pass>_cpu_ms`: where a blocking driver call sits). GPU timer
+ * results arrive one to three frames late (gfx_timer_last_ms), so a GPU
+ * column trails the frame it is written on; a pass that has not run yet
+ * reads empty. Rows are kept in memory and written at the end, when every
+ * pass is known: the last APP_FRAME_HISTORY frames, as summary.txt's times
+ * (a longer run says how many it left out). A tool for finding hitches
+ * (docs/METRICS.md, "Timing"). */
 #include "app/app_trace.h"
 
 #include "app/app.h"
@@ -26,8 +23,18 @@
 #include <stdlib.h>
 
 #define TRACE_PASSES GFX_TIMER_MAX_PASSES
-#define TRACE_STATS 5
-#define TRACE_STEPS (5 + WORLD_UPDATE_PARTS) /* the differences of WORLD_FRAME_MARKS marks, the update's parts */
+
+/* The blade tiles' work of the frame's update (blade_tiles_stats_t). */
+static const char *const stat_names[] = {"tiles_active", "tiles_recovering", "slots_simulated", "blades_simulated",
+                                         "tiles_streamed"};
+#define TRACE_STATS (int)(sizeof stat_names / sizeof stat_names[0])
+/* The differences of the frame's WORLD_FRAME_MARKS marks, then the
+ * WORLD_UPDATE_PARTS parts of its simulation steps. */
+static const char *const step_names[] = {"timers", "steps", "target", "draw", "drawn", "update_objects",
+                                         "update_billboards", "update_spheres", "update_blades"};
+#define TRACE_STEPS (int)(sizeof step_names / sizeof step_names[0])
+_Static_assert(sizeof step_names / sizeof step_names[0] == WORLD_FRAME_MARKS - 1 + WORLD_UPDATE_PARTS,
+               "a name per frame step and update part");
 
 typedef struct trace_row_t {
     int frame;
@@ -86,10 +93,9 @@ void app_trace_row(app_trace_t *tr, world_t *w, const app_trace_frame_t *fr)
 static bool trace_write(const app_trace_t *tr, FILE *f)
 {
     int passes = gfx_timer_count();
-    fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot,tiles_active,tiles_recovering,slots_simulated,"
-               "blades_simulated,tiles_streamed,timers_cpu_ms,steps_cpu_ms,target_cpu_ms,draw_cpu_ms,"
-               "drawn_cpu_ms,update_objects_cpu_ms,update_billboards_cpu_ms,update_spheres_cpu_ms,"
-               "update_blades_cpu_ms");
+    fprintf(f, "frame,wall_ms,submit_ms,thread_ms,screenshot");
+    for (int k = 0; k < TRACE_STATS; k++) fprintf(f, ",%s", stat_names[k]);
+    for (int k = 0; k < TRACE_STEPS; k++) fprintf(f, ",%s_cpu_ms", step_names[k]);
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_ms", gfx_timer_name(i));
     for (int i = 0; i < passes; i++) fprintf(f, ",%s_cpu_ms", gfx_timer_name(i));
     fprintf(f, "\n");

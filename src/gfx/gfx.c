@@ -143,9 +143,9 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
     gfx_buffer_t b = {0};
     while (glGetError() != GL_NO_ERROR) {}
     /* Persistent: mapped for writing, or for reading when readable. */
-    GLbitfield map = desc->persistent ? (desc->readable ? GL_MAP_READ_BIT : GL_MAP_WRITE_BIT) | GL_MAP_PERSISTENT_BIT |
-                                            GL_MAP_COHERENT_BIT
-                                      : 0;
+    GLbitfield map = 0;
+    if (desc->persistent)
+        map = (desc->readable ? GL_MAP_READ_BIT : GL_MAP_WRITE_BIT) | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
     GLbitfield flags = map;
     if (desc->dynamic) flags |= GL_DYNAMIC_STORAGE_BIT;
     if (desc->readable) flags |= GL_MAP_READ_BIT;
