@@ -21,14 +21,14 @@ secs=120
 
 # The rasterizer is named: `raster: auto` picks by a timing, so a loaded
 # machine could pick another path (and its buffers) for one of the worlds.
-run() { # name scene mode
-  timeout $secs "$bin" --headless --quiet --scene "$root/scenes/bench/$2.json" --mode "$3" --raster hw --size 96x54 \
+run() { # name scene-file mode
+  timeout $secs "$bin" --headless --quiet --scene "$2" --mode "$3" --raster hw --size 96x54 \
     --frames 6 --screenshot-every 0 --out "$tmp/$1" >"$tmp/$1.log" 2>&1
 }
 for r in "w1:world_1km:hybrid" "w4:world_4km:hybrid" "w1b:world_1km:blade" "w1r:world_1km:billboard" \
          "w4r:world_4km:billboard"; do
   IFS=: read -r name scene mode <<<"$r"
-  run "$name" "$scene" "$mode"
+  run "$name" "$root/scenes/bench/$scene.json" "$mode"
   rc=$?
   if [ $rc -ne 0 ] || [ ! -f "$tmp/$name/summary.txt" ]; then
     echo "FAIL: $scene in $mode mode: exit $rc"; tail -3 "$tmp/$name.log"; fail=1; continue
@@ -57,8 +57,7 @@ done
 # (tiles, then the canopy), in less GPU memory than with it.
 sed -e 's/"grass": {/"grass": {"world_billboards": "none",/' -e "s|\"models/|\"$root/models/|g" \
   "$root/scenes/bench/world_1km.json" >"$tmp/noring.json"
-timeout $secs "$bin" --headless --quiet --scene "$tmp/noring.json" --raster hw --size 96x54 --frames 6 \
-  --screenshot-every 0 --out "$tmp/noring" >"$tmp/noring.log" 2>&1
+run noring "$tmp/noring.json" hybrid
 rc=$?
 m0=$(sed -n 's/^gpu_memory_mb: //p' "$tmp/noring/summary.txt" 2>/dev/null)
 m1=$(sed -n 's/^gpu_memory_mb: //p' "$tmp/w1/summary.txt" 2>/dev/null)
