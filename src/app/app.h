@@ -81,11 +81,6 @@ void app_print_options(void);
 /* Ctrl-C / SIGTERM: the first one asks long runs to stop after the current
  * frame or configuration and write what they have (app_signal.c). */
 void app_signal_install(void);
-/* Installs the handlers again, the flag kept: Mesa's llvmpipe (LLVM)
- * installs its own SIGINT handler when it compiles, which kills the
- * process; app_run calls this every frame, `meadow bench` every
- * configuration. */
-void app_signal_reclaim(void);
 bool app_interrupted(void);
 
 /* What --montage ends a headless run with, in the run's GL context: the

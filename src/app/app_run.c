@@ -540,7 +540,6 @@ static int run_frames(app_t *app)
         }
         double end = plat_time();
         if (app->done == 1) app->stage_ms[WORLD_STAGE_FIRST_FRAME] = (end - app->t_frames) * 1e3;
-        app_signal_reclaim(); /* two syscalls a frame: llvmpipe compiles (and takes SIGINT) at any draw */
         app_trace_frame_t tf = {.frame = app->done, .wall_ms = (end - frame_end) * 1e3,
                                 .submit_ms = (app->submitted - frame_end) * 1e3,
                                 .thread_ms = (app->submitted_cpu - frame_end_cpu) * 1e3,

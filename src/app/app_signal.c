@@ -6,7 +6,9 @@
  * as the first: GNU `timeout` signals the program, its process group and,
  * receiving its own, the program again, so one timeout delivers three or
  * four, and a count of signals had killed runs before they wrote what they
- * had. */
+ * had. The handler is installed with sigaction and stays: signal() under
+ * _POSIX_C_SOURCE has System V semantics, a handler reset to the default on
+ * entry, so a second signal sent right after the first killed the run. */
 #include "app/app.h"
 
 #include <signal.h>
@@ -31,16 +33,16 @@ static void on_signal(int sig)
     raise(sig);
 }
 
-void app_signal_reclaim(void)
-{
-    signal(SIGINT, on_signal);
-    signal(SIGTERM, on_signal);
-}
-
 void app_signal_install(void)
 {
     g_interrupted = 0;
-    app_signal_reclaim();
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
 }
 
 bool app_interrupted(void) { return g_interrupted != 0; }

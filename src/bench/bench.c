@@ -986,7 +986,6 @@ static int run_sweep(const app_options_t *o, const char *chart, bool quick, cons
     }
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
-        app_signal_reclaim(); /* llvmpipe's LLVM takes SIGINT when it first compiles */
         if (app_interrupted()) {
             core_log_warn("bench: interrupted after %d of %d configurations; writing those", i, n);
             b->n = n = i;

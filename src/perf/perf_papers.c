@@ -313,7 +313,6 @@ static int papers_measure(const app_options_t *o, papers_t *P)
         int v0 = !leaves && P->desc[s].mode != SCENE_MODE_BLADE ? -1 : 0;
         for (int v = v0; v < (leaves ? leaf_n : PERF_ABLATION_COUNT); v++)
             for (int k = 0; k < 2; k++) {
-                app_signal_reclaim();
                 if (app_interrupted()) {
                     core_log_warn("papers: interrupted after %d of %d figures; writing those", P->run_count,
                                   P->planned);
