@@ -1,12 +1,14 @@
 /* test_soak: a long run of a small scene with a walking character and a
  * rolling ball, switching billboard/blade/hybrid every 150 frames. After
  * every mode has been built once (warm-up), the GL object count and GPU
- * memory must stay constant; resident memory may grow in steps as the
- * driver meets new cases (llvmpipe: +1.6% at frame 1100 and +1.7% at
- * 2800-2850 of a 3000-frame run, flat between; +5.3% in 2000 frames on a
- * CI machine), so it is bounded by 10% over the run and 3% over its second
- * half, where a leak keeps growing (LeakSanitizer checks leaks too, in
- * .ci/sanitize); at the end no GPU buffer holds NaN/Inf and the driver
+ * memory must stay constant, and resident memory within 10% of its
+ * warm-up size: a guard against gross leaks only. The driver grows it in
+ * steps at times that vary between machines (llvmpipe here: +0.6 to +3.6
+ * MB at frames 650-1350, flat after; a CI machine: +5.3% in all, most of it
+ * after frame 1000), and malloc reuses freed memory: a leak injected at 4
+ * KB a frame grew it by 4.5% and rose in 10 of 28 samples, so no RSS bound
+ * tells it from the driver. Leaks are LeakSanitizer's (.ci/sanitize runs
+ * this test too). At the end no GPU buffer holds NaN/Inf and the driver
  * reported no GL error. MEADOW_SOAK_TRACE=1 prints the resident memory
  * every 50 frames.
  * MEADOW_SOAK_FRAMES sets the length (default 2000, the CI version; the long
@@ -52,7 +54,7 @@ int main(void)
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     int objects_after_warmup = -1;
     size_t memory_after_warmup = 0;
-    long rss_warm = 0, rss_max = 0, rss_min = 0, rss_half = 0, rss_max_late = 0; /* late: the second half */
+    long rss_warm = 0, rss_max = 0, rss_min = 0;
     const int period = 150, warmup = 3 * period + 50;
     double t0 = plat_time();
     for (int f = 0; f < frames; f++) {
@@ -74,8 +76,6 @@ int main(void)
             long r = rss_kb();
             rss_min = r < rss_min ? r : rss_min;
             rss_max = r > rss_max ? r : rss_max;
-            if (f <= frames / 2) rss_half = r;
-            else rss_max_late = r > rss_max_late ? r : rss_max_late;
             if (getenv("MEADOW_SOAK_TRACE")) fprintf(stderr, "soak: frame %d rss %ld kB\n", f, r);
             CHECK_MSG(gfx_live_objects() == objects_after_warmup, "frame %d: %d GL objects, %d after warm-up", f,
                       gfx_live_objects(), objects_after_warmup);
@@ -130,9 +130,8 @@ int main(void)
     if (san && san[0] == '1')
         printf("soak: RSS bound not checked under ASan\n");
     else if (frames > warmup + 100)
-        CHECK_MSG(rss_max <= rss_warm * 110 / 100 && rss_min >= rss_warm * 95 / 100 &&
-                      rss_max_late - rss_half <= rss_warm * 3 / 100,
-                  "RSS %ld kB at warm-up, %ld at half time, %ld..%ld after", rss_warm, rss_half, rss_min, rss_max);
+        CHECK_MSG(rss_max <= rss_warm * 110 / 100 && rss_min >= rss_warm * 95 / 100,
+                  "RSS %ld kB at warm-up, %ld..%ld after", rss_warm, rss_min, rss_max);
     gfx_target_destroy(&target);
     world_destroy(w);
     CHECK(test_gl_shutdown() == 0);
