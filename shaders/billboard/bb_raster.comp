@@ -219,10 +219,14 @@ void main()
     uint prim = gl_GlobalInvocationID.x;
     if (prim >= u_count || !bb_setup(prim)) return;
     int n = bb_triangles();
+    /* A deformed mesh's triangles share the quad's budget: scanned here
+     * one after the other they would hold the warp for (N-1)(M-1) quads. */
+    float small = float(u_raster_small_samples) * 2.0 / float(n);
     for (int t = 0; t < n; t++) {
         vec4 a, b, c;
         bb_triangle(t, a, b, c);
-        raster_triangle_or_queue(a, b, c, prim, uint(t) | uint(g_lod * BB_LOD_SCALE + 0.5) << BB_LOD_SHIFT);
+        raster_triangle_or_queue_within(a, b, c, prim, uint(t) | uint(g_lod * BB_LOD_SCALE + 0.5) << BB_LOD_SHIFT,
+                                        small);
     }
 #endif
 }

@@ -377,10 +377,13 @@ void raster_triangle(vec4 c0, vec4 c1, vec4 c2, bool group)
 
 #endif
 
-/* In the per-primitive pass: scans a small triangle now, or queues it
- * (prim, tri) on the medium or the large list (large also when it crosses
- * the near plane). Triangles wholly behind the near plane vanish. */
-void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
+/* In the per-primitive pass: scans a triangle whose box covers at most
+ * `small` samples now, or queues it (prim, tri) on the medium or the large
+ * list (large also when it crosses the near plane). Triangles wholly
+ * behind the near plane vanish. A primitive of many triangles passes its
+ * share of u_raster_small_samples, so that its thread does not scan them
+ * all one after the other while its warp waits. */
+void raster_triangle_or_queue_within(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri, float small)
 {
     vec3 d = vec3(raster_near(c0), raster_near(c1), raster_near(c2));
     if (all(lessThan(d, vec3(0.0)))) return;
@@ -392,7 +395,7 @@ void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
         raster_project(c2, c);
         vec2 lo = min(a.p.xy, min(b.p.xy, c.p.xy)), hi = max(a.p.xy, max(b.p.xy, c.p.xy));
         float area = raster_box_samples(lo, hi);
-        if (area <= float(u_raster_small_samples)) {
+        if (area <= small) {
             raster_scan(a, b, c, mat3(1.0), 0, 1);
             return;
         }
@@ -409,6 +412,12 @@ void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
         if (slot < u_raster_queue_capacity) raster_queue[slot] = uvec2(prim, tri);
         else atomicAdd(raster_large_overflow, 1u);
     }
+}
+
+/* raster_triangle_or_queue_within with the whole u_raster_small_samples. */
+void raster_triangle_or_queue(vec4 c0, vec4 c1, vec4 c2, uint prim, uint tri)
+{
+    raster_triangle_or_queue_within(c0, c1, c2, prim, tri, float(u_raster_small_samples));
 }
 
 /* In the RASTER_BIG pass: this invocation's queued triangle, and whether
