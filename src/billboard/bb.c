@@ -220,20 +220,13 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
     f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
                                                              .label = "bb.recover"});
-    f->render_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                            .gs = "billboard/bb_render.geom",
-                                                            .fs = "billboard/bb_render.frag", .defines = defines,
-                                                            .label = "bb.render"});
-    f->quad_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_quad.vert",
-                                                          .fs = "billboard/bb_render.frag", .defines = defines,
-                                                          .label = "bb.quad"});
     f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",
                                                           .fs = "billboard/bb_cube.frag", .defines = defines,
                                                           .label = "bb.cube"});
     f->slope_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_slope.comp", .defines = defines,
                                                            .label = "bb.slope"});
-    if ((!f->gen_prog.id && !f->ring_on) || !f->collide_prog.id || !f->recover_prog.id || !f->render_prog.id || !f->cube_prog.id ||
-        !f->quad_prog.id || !f->slope_prog.id)
+    if ((!f->gen_prog.id && !f->ring_on) || !f->collide_prog.id || !f->recover_prog.id || !f->cube_prog.id ||
+        !f->slope_prog.id)
         return false;
     return !d->occlusion || bb_occlusion_make(f);
 }

@@ -72,6 +72,7 @@ struct bb_field_t {
     gfx_program_t gen_prog, collide_prog, recover_prog, render_prog, quad_prog, cube_prog, slope_prog;
     char defines[256];          /* the programs' mesh size and limits */
     raster_program_t raster_prog; /* made on the first bb_field_raster */
+    bool programs_failed;         /* render_prog and quad_prog, made on the first bb_field_draw, did not build */
     bb_range_t *ranges;    /* leaf_count scratch */
     bb_range_key_t *sort_keys; /* leaf_count scratch of bb_octree_sort_near_first */
     GLint *firsts;

@@ -73,6 +73,7 @@ struct blade_tiles_t {
     int overlay;            /* BLADE_TILES_OVERLAY_* */
     gfx_program_t init, physics, cull, draw, draw_fade, handover, resolve;
     raster_program_t raster; /* made on the first blade_tiles_raster */
+    bool programs_failed;    /* draw and draw_fade, made on the first blade_tiles_draw, did not build */
     hybrid_slope_grid_t slope_grid;
     gfx_buffer_t slope_map, slope_sums, bb_sums; /* hybrid_slope_cell_t / _sum_t per cell */
     blade_tiles_slope_source_fn source;

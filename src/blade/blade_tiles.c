@@ -364,26 +364,11 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp", .defines = t->defines});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp", .defines = t->defines});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = t->defines});
-    for (int fade = 0; fade < 2; fade++) {
-        /* the pulled strips carry the debug overlays; the tessellation
-         * stages are blade mode's (blade.tesc, blade.tese) */
-        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
-                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
-                                                 : "#define BLADE_OVERLAY 1\n"};
-        if (d->tessellate) {
-            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
-                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
-                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
-        }
-        char what[32];
-        snprintf(what, sizeof what, "draw_%s%s", d->tessellate ? "tess" : "pull", fade ? "_fade" : "");
-        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
-    }
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
     t->vao = gfx_vertex_array_make(label);
-    ok = ok && (t->world || t->ground.id) && t->init.id && t->physics.id && t->cull.id && t->draw.id && t->draw_fade.id && t->vao;
+    ok = ok && (t->world || t->ground.id) && t->init.id && t->physics.id && t->cull.id && t->vao;
     if (!ok) {
         core_log_error("blade_tiles_make: could not create the GL objects of '%s'", d->label);
         return false;
@@ -945,8 +930,38 @@ static blade_surface_t tiles_surface(const blade_tiles_t *t)
 /* Blades nearer than the fade start are opaque: drawn without the fade's
  * discard and sample mask, so the depth test runs before the fragment
  * shader (blade.frag); the fading ones after them with both. */
+/* The hardware path's draw programs, made by the first blade_tiles_draw:
+ * tiles drawn by the compute rasterizer alone never compile them. False
+ * (logged) when they do not build; the draw then shows nothing. */
+static bool draw_programs(blade_tiles_t *t)
+{
+    if (t->draw.id) return true;
+    if (t->programs_failed) return false;
+    for (int fade = 0; fade < 2; fade++) {
+        /* the pulled strips carry the debug overlays; the tessellation
+         * stages are blade mode's (blade.tesc, blade.tese) */
+        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
+                                                 : "#define BLADE_OVERLAY 1\n"};
+        if (t->desc.tessellate) {
+            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
+                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
+                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        }
+        char what[32];
+        snprintf(what, sizeof what, "draw_%s%s", t->desc.tessellate ? "tess" : "pull", fade ? "_fade" : "");
+        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
+    }
+    if (t->draw.id && t->draw_fade.id) return true;
+    gfx_program_destroy(&t->draw);
+    gfx_program_destroy(&t->draw_fade);
+    t->programs_failed = true;
+    return false;
+}
+
 void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint depth_texture)
 {
+    if (!draw_programs(t)) return;
     bool fade = desc->fade_end > desc->fade_start, tess = t->desc.tessellate;
     cull_tiles(t, desc, fade, depth_texture);
     uint32_t B = t->template_blades;
