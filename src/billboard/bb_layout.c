@@ -274,6 +274,30 @@ static bool bb_extent_noise(core_image_t *ext, uint32_t seed, const bb_extent_de
     return ok;
 }
 
+/* Rows [begin, end) of the direction and messiness maps (core_parallel_for). */
+typedef struct view_rows_t {
+    bb_layout_t *l;
+    const bb_fbm_t *fields; /* direction x, direction z, messiness */
+} view_rows_t;
+
+static void direction_rows(void *user, int begin, int end)
+{
+    const view_rows_t *r = user;
+    bb_layout_t *l = r->l;
+    int n = l->extent.w;
+    for (int y = begin; y < end; y++) {
+        for (int x = 0; x < n; x++) {
+            float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
+            size_t i = (size_t)y * n + x;
+            float dir[3] = {(bb_fbm(u, v, &r->fields[0]) - 0.5f) * 0.8f, 1.0f,
+                            (bb_fbm(u, v, &r->fields[1]) - 0.5f) * 0.8f};
+            float len = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
+            for (int k = 0; k < 3; k++) l->direction.px[i * 3 + k] = bb_byte(0.5f + 0.5f * dir[k] / len);
+            l->messiness.px[i] = bb_byte((bb_fbm(u, v, &r->fields[2]) - 0.5f) * 2.5f + 0.5f);
+        }
+    }
+}
+
 static bool bb_layout_maps(bb_layout_t *l, uint32_t seed, const bb_extent_desc_t *e, bool extent_only)
 {
     int n = l->extent.w;
@@ -286,17 +310,7 @@ static bool bb_layout_maps(bb_layout_t *l, uint32_t seed, const bb_extent_desc_t
     bb_fbm_t fields[3];
     for (int k = 0; k < 3; k++)
         ok = bb_fbm_init(&fields[k], core_hash_u32(seed ^ salts[k]), BB_BASE_PERIOD, BB_OCTAVES) && ok;
-    const bb_fbm_t *s_dx = &fields[0], *s_dz = &fields[1], *s_mes = &fields[2];
-    for (int y = 0; ok && y < n; y++) {
-        for (int x = 0; x < n; x++) {
-            float u = ((float)x + 0.5f) / (float)n, v = ((float)y + 0.5f) / (float)n;
-            size_t i = (size_t)y * n + x;
-            float dir[3] = {(bb_fbm(u, v, s_dx) - 0.5f) * 0.8f, 1.0f, (bb_fbm(u, v, s_dz) - 0.5f) * 0.8f};
-            float len = sqrtf(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-            for (int k = 0; k < 3; k++) l->direction.px[i * 3 + k] = bb_byte(0.5f + 0.5f * dir[k] / len);
-            l->messiness.px[i] = bb_byte((bb_fbm(u, v, s_mes) - 0.5f) * 2.5f + 0.5f);
-        }
-    }
+    if (ok) core_parallel_for(n, direction_rows, &(view_rows_t){.l = l, .fields = fields});
     for (int k = 0; k < 3; k++) free(fields[k].lattice);
     return ok;
 }
