@@ -1,5 +1,5 @@
 /* test_bb_ring: the billboard ring of world terrains (bb_ring.h,
- * bb_ring.c, shaders/billboard/bb_ring.geom; docs/WORLD.md).
+ * bb_ring.c, shaders/billboard/bb_ring_gen.comp; docs/WORLD.md).
  *   a) the window (GL-free): its size, a follow generates exactly the
  *      cells that entered, every held cell is in its slot;
  *   b) the generation kernel against the CPU rule: every slot's K^2

@@ -113,13 +113,13 @@ struct bb_field_t {
     gfx_program_t occlude_prog;
     /* World terrains (bb_ring.c): the window of cells, each slot's K^2
      * points at slot * K^2 of `points` (capacity W^2 K^2, every one valid:
-     * dead candidates are points of size 0); the generation tile, the
-     * world square's candidate cells and far corner, the height range of
+     * dead candidates are points of size 0); the world square's
+     * candidate cells and far corner, the height range of
      * the billboards (for the per-cell culling), cells generated so far,
      * and follow's scratch (W^2 slots, cells and dropped flags). */
     bool ring_on;
     bb_ring_window_t ring;
-    int ring_tile, ring_cells[2];
+    int ring_cells[2];
     float ring_max[2], ring_y[2];
     long ring_generated;
     int *ring_slots;

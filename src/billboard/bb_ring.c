@@ -3,10 +3,9 @@
  * once over a heightfield, a window of W x W ring cells (bb_ring.h) that
  * follows the camera. Slot s of the window owns points [s K^2, (s+1) K^2)
  * of the field's one points buffer; a cell that enters the window is
- * generated on the GPU into its slot by bb_ring.geom with transform
- * feedback (one draw of (K / tile)^2 tiles per cell, the root on the
- * world's height function, the extent map of the field's layout), over
- * the cell that left. Every candidate writes one point (dead ones have
+ * generated on the GPU into its slot by bb_ring_gen.comp (one dispatch of
+ * K^2 threads per cell, the root on the world's height function, the
+ * extent map of the field's layout), over the cell that left. Every candidate writes one point (dead ones have
  * size 0), so no count comes back and the slot's range is always whole.
  * Drawn by the hardware path per cell in view (a CPU loop over the W^2
  * slots) or by the compute rasterizer over the whole buffer (bb_draw.c).
@@ -48,7 +47,6 @@ bool bb_ring_make(bb_field_t *f, int tile)
         return false;
     }
     f->capacity = (int)cap;
-    f->ring_tile = tile;
     for (int a = 0; a < 2; a++) {
         f->ring_cells[a] = (int)ceilf((t->aabb_max[2 * a] - t->aabb_min[2 * a]) / f->gen.spacing);
         f->ring_max[a] = t->aabb_max[2 * a];
@@ -78,8 +76,7 @@ bool bb_ring_make(bb_field_t *f, int tile)
     f->ring.y[0] = f->ring_y[0], f->ring.y[1] = f->ring_y[1];
     char defines[sizeof f->defines + 320];
     if (!bb_ring_defines(f, defines, sizeof defines)) return false;
-    f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_ring.vert", .gs = "billboard/bb_ring.geom",
-                                                         .defines = defines, .tf_varyings = bb_tf_varyings,
+    f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_gen.comp", .defines = defines,
                                                          .label = "bb.ring.generate"});
     f->release_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp",
                                                              .defines = f->defines, .label = "bb.ring.release"});
@@ -151,26 +148,20 @@ void bb_ring_follow(bb_field_t *f, const float camera[3])
     for (int q = 0; q < n; q++)
         if (f->ring_dropped[q]) release_slot(f, f->ring_slots[q]);
     ring_uniforms(f);
-    GLint cell0 = gfx_uniform(f->gen_prog, "u_cell0");
-    int k = f->ring.cand, tiles = (k / f->ring_tile) * (k / f->ring_tile);
-    GLsizeiptr bytes = (GLsizeiptr)k * k * (GLsizeiptr)sizeof(bb_point_t);
-    GLint fbo = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo); /* draws need a complete framebuffer */
-    glBindVertexArray(f->empty_vao);
-    glEnable(GL_RASTERIZER_DISCARD);
-    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, f->tf);
+    gfx_program_t p = f->gen_prog;
+    GLint cell0 = gfx_uniform(p, "u_cell0"), first = gfx_uniform(p, "u_first");
+    GLuint per = (GLuint)(f->ring.cand * f->ring.cand);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, f->points.id);
     for (int q = 0; q < n; q++) {
-        glUniform2i(cell0, f->ring_coords[q][0] * k, f->ring_coords[q][1] * k);
-        glBindBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0, f->points.id, (GLintptr)f->ring_slots[q] * bytes, bytes);
-        glBeginTransformFeedback(GL_POINTS);
-        glDrawArrays(GL_POINTS, 0, tiles);
-        glEndTransformFeedback();
+        glUniform2i(cell0, f->ring_coords[q][0] * f->ring.cand, f->ring_coords[q][1] * f->ring.cand);
+        glUniform1ui(first, (GLuint)f->ring_slots[q] * per);
+        glDispatchCompute((per + 63u) / 64u, 1, 1);
     }
-    glBindTransformFeedback(GL_TRANSFORM_FEEDBACK, 0);
-    glDisable(GL_RASTERIZER_DISCARD);
-    glBindVertexArray(0);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)fbo);
+    /* read next as storage (collide, raster), vertices (the hardware
+     * path's pulled quads and bb_point.vert) and by transform feedback's
+     * copies (bb_update) */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT |
+                    GL_TRANSFORM_FEEDBACK_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     f->ring_generated += n;
     gfx_count_add("bb.ring_cells", n);
     gfx_timer_end();
