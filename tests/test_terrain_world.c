@@ -112,18 +112,21 @@ static void test_character(void)
     CHECK(steep < n / 100);
 }
 
-static void test_defines(void)
+/* The uniforms of world_height.glsl: one key per layer, as the CPU side
+ * hashes the seed words (the GPU test checks the heights they give). */
+static void test_gpu_params(void)
 {
     terrain_world_t w = world(2048, 30, 0x123456789abcdefULL);
-    char buf[256];
-    int len = terrain_world_defines(&w, buf, sizeof buf);
-    printf("%s", buf);
-    CHECK(len > 0 && (size_t)len == strlen(buf));
-    CHECK(strstr(buf, "#define WORLD_SEED0 0x89abcdefu\n"));
-    CHECK(strstr(buf, "#define WORLD_SEED1 0x01234567u\n"));
-    CHECK(strstr(buf, "#define WORLD_SIZE 2.048000000e+03\n"));
-    CHECK(strstr(buf, "#define WORLD_HEIGHT 3.000000000e+01\n"));
-    CHECK(terrain_world_defines(&w, buf, 20) == -1);
+    terrain_world_gpu_t g = terrain_world_gpu(&w);
+    CHECK(g.height == 30.0f);
+    for (uint32_t k = 0; k < TERRAIN_WORLD_LAYERS; k++)
+        CHECK(g.keys[k] == core_hash_u32(0x89abcdefu ^ core_hash_u32(0x01234567u ^ k)));
+    terrain_world_t other = w;
+    other.seed[1] ^= 1u;
+    terrain_world_gpu_t h = terrain_world_gpu(&other);
+    int same = 0;
+    for (int k = 0; k < TERRAIN_WORLD_LAYERS; k++) same += h.keys[k] == g.keys[k];
+    CHECK(same == 0);
 }
 
 /* A world terrain through terrain.h: no vertices, its square as the box,
@@ -174,7 +177,7 @@ int main(void)
     test_normals();
     test_continuity();
     test_character();
-    test_defines();
+    test_gpu_params();
     test_dispatch();
     test_scene();
     TEST_END();

@@ -1,8 +1,8 @@
 /* bb_ground.glsl: the terrain under the billboards, from the field's height
  * texture (bb.c upload_heights: a heightfield's own vertices, or a mesh
  * terrain resampled at the candidate spacing), or with BB_GROUND_WORLD the
- * world's height function (the billboard ring, bb_ring.c; the defines of
- * terrain_world_defines). Included before common/bb.glsl, it defines
+ * world's height function (the billboard ring, bb_ring.c, which sets its
+ * uniforms). Included before common/bb.glsl, it defines
  * BB_GROUND, and bb_push_mesh then keeps every vertex on or above the
  * terrain (twin: bb_collide_desc_t.ground). */
 #ifndef BB_GROUND_GLSL

@@ -15,7 +15,7 @@
  * Twins on the CPU: blade_tiles_root / blade_tiles_instance. Bindings:
  * SSBO 0 templates, 3 winds; texture unit 0 the ground (xyz normal, w
  * height per grid vertex), or with TILES_WORLD the world's height function
- * (world_height.glsl, its #defines from terrain_world_defines).
+ * (world_height.glsl, its uniforms set by blade_tiles.c).
  * Tile index -> field tile coordinates: row-major over the field, or in a
  * window (u_window > 0, hybrid.h) the one in [base, base + W) congruent to
  * the index, base + (i + shift) mod W with shift = -base mod W. */

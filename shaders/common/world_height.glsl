@@ -1,9 +1,10 @@
 /* world_height.glsl: the open world's height function, GLSL twin of
  * terrain_world_height (src/scene/terrain_world.c; the same expressions in
  * the same order, so heights agree to float rounding; test_terrain_world_gpu
- * checks it). Configured only by the #define lines terrain_world_defines
- * writes: WORLD_SEED0, WORLD_SEED1 (uint seed words), WORLD_SIZE (m, the
- * world square's side, for users) and WORLD_HEIGHT (amplitude, m).
+ * checks it). Configured only by two uniforms (terrain_world_gpu; the
+ * owner of the program sets them once, a program keeps them):
+ * u_world_keys, the hash key of each noise layer, and u_world_height, the
+ * amplitude (m). Not defines: one compiled program for every world.
  *   float world_height(vec2 xz)  height (m) in [-WORLD_HEIGHT, WORLD_HEIGHT]
  *   vec3  world_normal(vec2 xz)  unit analytic normal
  *   vec3  world_eval(vec2 xz)    (height, dh/dx, dh/dz) */
@@ -12,9 +13,9 @@
 
 #include "common/hash.glsl"
 
-#if !defined(WORLD_SEED0) || !defined(WORLD_SEED1) || !defined(WORLD_SIZE) || !defined(WORLD_HEIGHT)
-#error world_height.glsl needs the defines of terrain_world_defines
-#endif
+#define WORLD_LAYERS 9 /* TERRAIN_WORLD_LAYERS */
+uniform uint u_world_keys[WORLD_LAYERS];
+uniform float u_world_height;
 
 #define WORLD_LAYER_MACRO 0u
 #define WORLD_LAYER_VALLEY 3u
@@ -24,10 +25,7 @@
 #define WORLD_VALLEY_K2 0.015625
 #define WORLD_VALLEY_MAX 0.88278222
 
-uint world_layer_key(uint layer)
-{
-    return hash_u32(uint(WORLD_SEED0) ^ hash_u32(uint(WORLD_SEED1) ^ layer));
-}
+uint world_layer_key(uint layer) { return u_world_keys[layer]; }
 
 float world_lattice(uint key, int ix, int iz)
 {
@@ -80,7 +78,7 @@ vec3 world_eval(vec2 p)
     vec2 rd = 0.35 * (dva * vn.yz) + 0.12 * d.yz;
     float h = (0.5 * m.x + g * r) + 0.03 * d.x;
     vec2 dh = ((0.5 * m.yz + g * rd) - (dflat * f.yz) * r) + 0.03 * d.yz;
-    return float(WORLD_HEIGHT) * vec3(h, dh);
+    return u_world_height * vec3(h, dh);
 }
 
 float world_height(vec2 xz) { return world_eval(xz).x; }

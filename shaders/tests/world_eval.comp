@@ -2,7 +2,7 @@
 /* world_eval.comp: world_height and world_normal of common/world_height.glsl
  * for test_terrain_world_gpu (CPU twin: terrain_world_height): item i is the
  * point pts[i].xy (world x, z); out[i] = (normal, height). Configured only
- * by the defines of terrain_world_defines. */
+ * by world_height.glsl's uniforms (terrain_world_gpu). */
 #include "common/world_height.glsl"
 
 layout(local_size_x = 64) in;

@@ -211,13 +211,14 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
                                                              .defines = gen_defines, .tf_varyings = bb_tf_varyings,
                                                              .label = "bb.generate"});
     /* the ring's collide pass stands billboards on the world's function */
-    char collide_defines[sizeof f->defines + 320];
+    char collide_defines[sizeof f->defines + 32];
     if (!f->ring_on) snprintf(collide_defines, sizeof collide_defines, "%s", defines);
     else if (!bb_ring_defines(f, collide_defines, sizeof collide_defines)) return false;
     f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
                                                              .gs = "billboard/bb_collide.geom",
                                                              .defines = collide_defines,
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
+    if (f->ring_on) bb_ring_world_uniforms(f, f->collide_prog);
     f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
                                                              .label = "bb.recover"});
     f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",

@@ -28,10 +28,15 @@
 
 bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size)
 {
-    char world[256];
-    if (terrain_world_defines(&f->desc.terrain->world, world, sizeof world) < 0) return false;
-    int n = snprintf(buf, size, "%s%s#define BB_GROUND_WORLD 1\n", f->defines, world);
+    int n = snprintf(buf, size, "%s#define BB_GROUND_WORLD 1\n", f->defines);
     return n > 0 && (size_t)n < size;
+}
+
+void bb_ring_world_uniforms(const bb_field_t *f, gfx_program_t p)
+{
+    terrain_world_gpu_t g = terrain_world_gpu(&f->desc.terrain->world);
+    gfx_program_uints(p, "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
+    gfx_program_float(p, "u_world_height", g.height);
 }
 
 bool bb_ring_make(bb_field_t *f, int tile)
@@ -74,10 +79,11 @@ bool bb_ring_make(bb_field_t *f, int tile)
     float margin = 1.4f * d->size[1] + 0.6f * d->size[0] + d->wind.strength + 0.05f; /* the octree's (bb.c) */
     f->ring.margin = margin > 1.0f ? margin : 1.0f;
     f->ring.y[0] = f->ring_y[0], f->ring.y[1] = f->ring_y[1];
-    char defines[sizeof f->defines + 320];
+    char defines[sizeof f->defines + 32];
     if (!bb_ring_defines(f, defines, sizeof defines)) return false;
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_gen.comp", .defines = defines,
                                                          .label = "bb.ring.generate"});
+    bb_ring_world_uniforms(f, f->gen_prog);
     f->release_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp",
                                                              .defines = f->defines, .label = "bb.ring.release"});
     core_log_info("bb: ring of %d x %d cells of %d x %d candidates (%.2f m), %d billboards, %.1f MiB", side, side,

@@ -42,7 +42,7 @@ struct blade_tiles_t {
     int tile_offset[2];             /* world tile coordinates of field tile (0, 0) (template hash) */
     bool world;                     /* the ground is a world terrain's function (no ground texture) */
     terrain_world_t world_fn;       /* its parameters (CPU twin of the ground) */
-    char defines[512];              /* the programs' #defines: the world's, and TILES_WORLD */
+    char defines[64];               /* the programs' #defines: TILES_WORLD on a world */
     uint32_t *slot_epoch;           /* per slot: the owner's epoch when the slot was initialised */
     uint8_t *away_mark;             /* per slot: kept by a tile away from the window (this update) */
     uint32_t *motion_epoch[BLADE_TILES_READBACK_SLOTS]; /* the owners' epochs at copy time */

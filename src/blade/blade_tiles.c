@@ -364,6 +364,15 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp", .defines = t->defines});
     t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp", .defines = t->defines});
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = t->defines});
+    if (t->world) {
+        /* tiles_common.glsl's ground: the world's height function */
+        terrain_world_gpu_t g = terrain_world_gpu(&t->world_fn);
+        gfx_program_t world_progs[] = {t->handover, t->init, t->physics, t->cull};
+        for (int k = 0; k < 4; k++) {
+            gfx_program_uints(world_progs[k], "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
+            gfx_program_float(world_progs[k], "u_world_height", g.height);
+        }
+    }
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;
     snprintf(label, sizeof label, "%s.vao", d->label);
@@ -430,9 +439,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->grid_res = t->world ? 0 : m->grid_res;
     if (t->world) {
         t->world_fn = m->world;
-        int n = terrain_world_defines(&m->world, t->defines, sizeof t->defines - 32);
-        if (n < 0) return false;
-        snprintf(t->defines + n, sizeof t->defines - (size_t)n, "#define TILES_WORLD 1\n");
+        snprintf(t->defines, sizeof t->defines, "#define TILES_WORLD 1\n");
     }
     t->reach = d->population.height[1] + 0.5f * d->population.width[1];
     t->tile_offset[0] = t->tile_offset[1] = (int)lroundf(t->field_min[0] / d->tile_size);

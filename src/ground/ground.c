@@ -19,7 +19,7 @@ struct ground_t {
     int index_count;
     /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
      * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
-     * prog is terrain_world.vert made with terrain_world_defines. */
+     * prog is terrain_world.vert with the world's uniforms (terrain_world_gpu). */
     bool world;
     terrain_clipmap_t clipmap;
     gfx_program_t prog, sky;
@@ -60,10 +60,11 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glEnableVertexArrayAttrib(t->vao, 0);
     glVertexArrayAttribIFormat(t->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
     glVertexArrayAttribBinding(t->vao, 0, 0);
-    char defines[256];
-    if (terrain_world_defines(&mesh->world, defines, sizeof defines) < 0) return false;
     t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
-                                                     .defines = defines, .label = "terrain.world.program"});
+                                                     .label = "terrain.world.program"});
+    terrain_world_gpu_t g = terrain_world_gpu(&mesh->world);
+    gfx_program_uints(t->prog, "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
+    gfx_program_float(t->prog, "u_world_height", g.height);
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 

@@ -117,11 +117,9 @@ float terrain_world_height(const terrain_world_t *w, float x, float z, vec3 norm
     return h.v;
 }
 
-int terrain_world_defines(const terrain_world_t *w, char *buf, size_t n)
+terrain_world_gpu_t terrain_world_gpu(const terrain_world_t *w)
 {
-    int len = snprintf(buf, n,
-                       "#define WORLD_SEED0 0x%08xu\n#define WORLD_SEED1 0x%08xu\n"
-                       "#define WORLD_SIZE %.9e\n#define WORLD_HEIGHT %.9e\n",
-                       w->seed[0], w->seed[1], (double)w->size, (double)w->height);
-    return len >= 0 && (size_t)len < n ? len : -1;
+    terrain_world_gpu_t g = {.height = w->height};
+    for (uint32_t k = 0; k < TERRAIN_WORLD_LAYERS; k++) g.keys[k] = layer_key(w, k);
+    return g;
 }

@@ -13,8 +13,9 @@
  * All wavelengths are powers of two (exact reciprocals), so C and GLSL see
  * the same lattice cells; the normal is analytic (derivatives of the same
  * expressions). shaders/common/world_height.glsl is the GLSL twin
- * (world_height, world_normal), configured only by the #define lines of
- * terrain_world_defines. The world is centred on the origin, the square
+ * (world_height, world_normal), configured only by its uniforms
+ * (terrain_world_gpu), so one compiled program serves every world size
+ * and seed. The world is centred on the origin, the square
  * [-size/2, size/2]^2; the function is defined (and continuous) beyond it.
  * GL-free. */
 #ifndef MEADOW_SCENE_TERRAIN_WORLD_H
@@ -43,9 +44,18 @@ terrain_world_t terrain_world_make(const struct terrain_desc_t *desc, uint64_t s
  * (normal_out may be NULL). */
 float terrain_world_height(const terrain_world_t *w, float x, float z, vec3 normal_out);
 
-/* Writes the #define lines world_height.glsl needs (WORLD_SEED0,
- * WORLD_SEED1, WORLD_SIZE, WORLD_HEIGHT; floats exact) into buf. Returns
- * the length written, or -1 when n is too small. */
-int terrain_world_defines(const terrain_world_t *w, char *buf, size_t n);
+/* Noise layers of the height function (macro 0-2, valleys 3-4, detail
+ * 5-7, flat 8): world_height.glsl's WORLD_LAYERS. */
+#define TERRAIN_WORLD_LAYERS 9
+
+/* What world_height.glsl's uniforms hold: u_world_keys, the hash key of
+ * each noise layer (from the seed words), and u_world_height, the
+ * amplitude (m). */
+typedef struct terrain_world_gpu_t {
+    uint32_t keys[TERRAIN_WORLD_LAYERS];
+    float height;
+} terrain_world_gpu_t;
+
+terrain_world_gpu_t terrain_world_gpu(const terrain_world_t *w);
 
 #endif
