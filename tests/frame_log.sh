@@ -3,10 +3,10 @@
 # a header and one row per frame, screenshot frames flagged, and the wall
 # and submit times of the frames summary.txt times give its p50 and worst
 # (the same numbers, so the log cannot drift from the summary); the tile
-# and GPU pass columns are there and hold numbers; the CPU time inside the
-# passes is positive and within the frame's submit time, the frame's steps
-# within its wall time; a run without the
-# option writes no frames.csv.
+# and GPU pass columns are there and hold numbers, and a pass that stopped
+# running reads empty; the CPU time inside the passes is positive and within
+# the frame's submit time, the frame's steps within its wall time; a run
+# without the option writes no frames.csv.
 # Usage: frame_log.sh MEADOW_BINARY
 set -u
 bin=$1
@@ -56,6 +56,19 @@ for r in rows[1:]:
     if not 0.0 < inside <= float(r["submit_ms"]) + 0.01:
         fail.append(f"frame {r['frame']}: CPU ms inside passes {inside:.3f} not in (0, submit {r['submit_ms']}]")
         break
+# A GPU column reads empty where its pass ran in none of the frame and the 3
+# before it (TRACE_GPU_LAG), not the pass's last result repeated; raster auto
+# (tiny.json's default) runs the compute passes only while it calibrates.
+stopped = 0
+for c in [c[:-7] for c in cpu_cols]:
+    ran = [float(r[c + "_cpu_ms"] or 0) > 0.0 for r in rows]
+    for k in range(3, len(rows)):
+        if not any(ran[k - 3:k + 1]):
+            stopped += 1
+            if rows[k][c + "_ms"] != "":
+                fail.append(f"frame {rows[k]['frame']}: {c}_ms reads {rows[k][c + '_ms']}, its pass ran in none of frames {rows[k - 3]['frame']}-{rows[k]['frame']}")
+                break
+if stopped == 0: fail.append("no pass stopped running (raster auto's calibration): the empty-cell rule was not tested")
 if os.path.exists(os.path.join(sys.argv[3], "frames.csv")): fail.append("a run without --frame-log wrote frames.csv")
 for f in fail: print("FAIL:", f)
 if not fail: print(f"ok: frames.csv has 40 rows, {len(rows[0])} columns, p50 and worst equal to summary.txt's")

@@ -6,8 +6,10 @@
  * latest GPU ms (`<pass>_ms`) and the CPU wall ms spent in its calls this
  * frame (`<pass>_cpu_ms`: where a blocking driver call sits). GPU timer
  * results arrive one to three frames late (gfx_timer_last_ms), so a GPU
- * column trails the frame it is written on; a pass that has not run yet
- * reads empty. Rows are kept in memory and written at the end, when every
+ * column trails the frame it is written on; it reads empty where the pass
+ * has not run in the frame or the TRACE_GPU_LAG before it (a timer keeps
+ * its last result, which would otherwise repeat through every frame the
+ * pass skips). Rows are kept in memory and written at the end, when every
  * pass is known: the last APP_FRAME_HISTORY frames, as summary.txt's times
  * (a longer run says how many it left out). A tool for finding hitches
  * (docs/METRICS.md, "Timing"). */
@@ -23,6 +25,8 @@
 #include <stdlib.h>
 
 #define TRACE_PASSES GFX_TIMER_MAX_PASSES
+/* Frames a GPU timer result may trail its pass (gfx_timer_last_ms). */
+#define TRACE_GPU_LAG 3
 
 /* The blade tiles' work of the frame's update (blade_tiles_stats_t). */
 static const char *const stat_names[] = {"tiles_active", "tiles_recovering", "slots_simulated", "blades_simulated",
@@ -42,7 +46,7 @@ typedef struct trace_row_t {
     double ms[3];         /* wall, submit, thread */
     float step_ms[TRACE_STEPS]; /* CPU wall ms of the frame's steps (world_frame_desc_t.marks) */
     long stats[TRACE_STATS];
-    float pass_ms[TRACE_PASSES]; /* GPU, latest result; -1: not run yet */
+    float pass_ms[TRACE_PASSES]; /* GPU, latest result; -1: not run in the last TRACE_GPU_LAG + 1 frames */
     float cpu_ms[TRACE_PASSES];  /* CPU wall time in the pass's calls this frame */
 } trace_row_t;
 
@@ -85,7 +89,8 @@ void app_trace_row(app_trace_t *tr, world_t *w, const app_trace_frame_t *fr)
     for (int k = 0; k < WORLD_UPDATE_PARTS; k++) r->step_ms[WORLD_FRAME_MARKS - 1 + k] = (float)info.update_ms[k];
     int passes = gfx_timer_count();
     for (int i = 0; i < TRACE_PASSES; i++) {
-        r->pass_ms[i] = i < passes ? (float)gfx_timer_last_ms(i) : -1.0f;
+        bool recent = i < passes && gfx_timer_frames_since(i) <= TRACE_GPU_LAG;
+        r->pass_ms[i] = recent ? (float)gfx_timer_last_ms(i) : -1.0f;
         r->cpu_ms[i] = i < passes ? (float)gfx_timer_cpu_ms(i) : -1.0f;
     }
 }
