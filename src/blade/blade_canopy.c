@@ -218,6 +218,56 @@ static bool cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch,
     return true;
 }
 
+/* Rows [begin, end) of the table (core_parallel_for): each row casts its
+ * rays from a random stream of its own (seed, row), so the table does not
+ * depend on how the rows are shared out. */
+typedef struct canopy_rows_t {
+    const blade_canopy_desc_t *d;
+    blade_canopy_t *out;
+    const canopy_strip_t *strips;
+    const canopy_tri_t *tris;
+    float top;
+    const float (*suns)[3];
+    int side;
+} canopy_rows_t;
+
+static void canopy_rows(void *user, int begin, int end)
+{
+    const canopy_rows_t *job = user;
+    const blade_canopy_desc_t *d = job->d;
+    int side = job->side;
+    for (int r = begin; r < end; r++) {
+        core_rng_t rng;
+        core_rng_seed(&rng, d->seed, 0xca91u + (uint64_t)r);
+        float e = fmaxf((float)r / (float)(d->rows - 1) * 1.5707963f, 0.0174533f);
+        float dir[3] = {cosf(e), -sinf(e), 0.0f}, h = job->top + 0.01f, along = h / sinf(e);
+        canopy_acc_t acc = {0};
+        int hits = 0, rays = 0;
+        for (int j = 0; j < side; j++)
+            for (int i = 0; i < side && rays < d->rays; i++, rays++) {
+                /* stratified ground points of the patch */
+                float gx = ((float)i + core_rng_float(&rng)) / (float)side * d->patch;
+                float gz = ((float)j + core_rng_float(&rng)) / (float)side * d->patch;
+                float o[3] = {gx - dir[0] * along, h, gz};
+                int s = (int)(gz / d->patch * CANOPY_STRIPS);
+                s = s < CANOPY_STRIPS ? s : CANOPY_STRIPS - 1;
+                hits += cast(&job->strips[s], job->tris, d->patch, o, dir, o[0], gx, job->suns, &acc);
+            }
+        double inv = hits ? 1.0 / hits : 0.0;
+        blade_canopy_row_t *row = &job->out->row[r];
+        job->out->elevation[r] = e;
+        *row = (blade_canopy_row_t){.cover = (float)hits / (float)rays,
+                                    .ao = (float)(acc.ao * inv),
+                                    .u_ao = (float)(acc.u_ao * inv),
+                                    .v_ao = (float)(acc.v_ao * inv),
+                                    .vu_ao = (float)(acc.vu_ao * inv)};
+        for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
+            row->sun[k][0] = (float)(acc.sun[k][0] * inv);
+            row->sun[k][1] = (float)(acc.sun[k][1] * inv);
+        }
+    }
+}
+
 bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
 {
     blade_canopy_desc_t d = blade_canopy_desc_defaults(desc);
@@ -250,36 +300,10 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
         suns[k][1] = sy;
         suns[k][2] = sh * sinf(phi);
     }
-    int side = (int)ceilf(sqrtf((float)d.rays));
-    core_rng_t rng;
-    core_rng_seed(&rng, d.seed, 0xca91u);
-    for (int r = 0; ok && r < d.rows; r++) {
-        float e = fmaxf((float)r / (float)(d.rows - 1) * 1.5707963f, 0.0174533f);
-        float dir[3] = {cosf(e), -sinf(e), 0.0f}, h = top + 0.01f, along = h / sinf(e);
-        canopy_acc_t acc = {0};
-        int hits = 0, rays = 0;
-        for (int j = 0; j < side; j++)
-            for (int i = 0; i < side && rays < d.rays; i++, rays++) {
-                /* stratified ground points of the patch */
-                float gx = ((float)i + core_rng_float(&rng)) / (float)side * d.patch;
-                float gz = ((float)j + core_rng_float(&rng)) / (float)side * d.patch;
-                float o[3] = {gx - dir[0] * along, h, gz};
-                int s = (int)(gz / d.patch * CANOPY_STRIPS);
-                s = s < CANOPY_STRIPS ? s : CANOPY_STRIPS - 1;
-                hits += cast(&strips[s], tris, d.patch, o, dir, o[0], gx, suns, &acc);
-            }
-        double inv = hits ? 1.0 / hits : 0.0;
-        blade_canopy_row_t *row = &out->row[r];
-        out->elevation[r] = e;
-        *row = (blade_canopy_row_t){.cover = (float)hits / (float)rays,
-                                    .ao = (float)(acc.ao * inv),
-                                    .u_ao = (float)(acc.u_ao * inv),
-                                    .v_ao = (float)(acc.v_ao * inv),
-                                    .vu_ao = (float)(acc.vu_ao * inv)};
-        for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
-            row->sun[k][0] = (float)(acc.sun[k][0] * inv);
-            row->sun[k][1] = (float)(acc.sun[k][1] * inv);
-        }
+    if (ok) {
+        canopy_rows_t job = {.d = &d, .out = out, .strips = strips, .tris = tris, .top = top,
+                             .suns = (const float(*)[3])suns, .side = (int)ceilf(sqrtf((float)d.rays))};
+        core_parallel_for(d.rows, canopy_rows, &job);
     }
     for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
     free(tris);
