@@ -345,8 +345,8 @@ bool bb_layout_generate(bb_layout_t *layout, const bb_layout_desc_t *desc)
     layout->clump_stats = calloc((size_t)images, sizeof *layout->clump_stats);
     bool ok = layout->clumps && layout->clump_light && layout->clump_stats &&
               core_image_alloc(&layout->extent, d.size, d.size, 1) &&
-              core_image_alloc(&layout->direction, d.size, d.size, 3) &&
-              core_image_alloc(&layout->messiness, d.size, d.size, 1);
+              (d.extent_only || (core_image_alloc(&layout->direction, d.size, d.size, 3) &&
+                                 core_image_alloc(&layout->messiness, d.size, d.size, 1)));
     if (ok) {
         layout->clump_layers = d.clump_layers;
         layout->views = d.views;
@@ -423,6 +423,7 @@ static int bb_mod(int a, int b) { return a - b * bb_floor_div(a, b); }
 static bool bb_accept_point(const bb_layout_t *layout, const bb_gen_desc_t *d, uint32_t h, int tx, int tz,
                             bb_point_t *out)
 {
+    assert(layout->direction.px && "bb_layout_sample needs a layout made without extent_only");
     size_t ti = (size_t)tz * layout->extent.w + tx;
     uint32_t e = layout->extent.px[ti];
     if (!(core_hash_u32(h ^ 0x5bd1e995u) % 255u < e)) return false;

@@ -59,7 +59,8 @@ typedef struct bb_layout_desc_t {
     bb_extent_desc_t extent;
     bb_view_desc_t views; /* the views each clump layer is baked for (bb_view.h) */
     bool extent_only;     /* only the extent map (the blade tiles' clearings): direction and
-                             messiness are left zero; default false */
+                             messiness are not made (empty images; no bb_layout_sample on
+                             it); default false */
 } bb_layout_desc_t;
 bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc);
 
