@@ -98,6 +98,22 @@ static float depth_at(const exact_t *ex, int n, const float root[3], float reach
     return depth;
 }
 
+/* The colliders of ex[0..n) within reach of root (depth_at's reach test,
+ * once per blade or billboard instead of once per sample: with 16 walkers'
+ * 608 spheres over the worlds' 571,536 billboards a bench --perf run of
+ * world_1km took 110 s on llvmpipe, 67 s now) into out, in order; returns
+ * how many. */
+static int near_exact(const exact_t *ex, int n, const float root[3], float reach_extra, exact_t *out)
+{
+    int k = 0;
+    for (int i = 0; i < n; i++) {
+        float dx = root[0] - ex[i].pos[0], dz = root[2] - ex[i].pos[2];
+        float r = ex[i].reach + reach_extra;
+        if (dx * dx + dz * dz < r * r) out[k++] = ex[i];
+    }
+    return k;
+}
+
 static void sample(pen_acc_t *acc, const exact_t *ex, int n, const float root[3], float reach_extra, anchors_t an,
                    const float p[3])
 {
@@ -145,7 +161,12 @@ static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, 
     bool heightfield = world_info(w).scene->terrain.type == TERRAIN_HEIGHTFIELD;
     uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);
-    if (!b) return;
+    exact_t *near = malloc(sizeof *near * (size_t)(n > 0 ? n : 1));
+    if (!b || !near) {
+        free(b);
+        free(near);
+        return;
+    }
     blade_gpu_read_blades(g, b, NULL);
     double len_sum = 0;
     long real = 0, below = 0;
@@ -161,16 +182,18 @@ static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, 
         float ground = terrain_height_at(terrain, b[i].v2[0], b[i].v2[2], NULL);
         if (isfinite(ground) && b[i].v2[1] < ground - 0.01f && heightfield)
             below++;
+        int nn = near_exact(ex, n, b[i].v0, h, near);
+        if (nn == 0) continue; /* no collider in reach: no sample counts */
         for (int k = 1; k <= SAMPLES_PER_BLADE; k++) {
             float p[3];
             bezier(&b[i], (float)k / SAMPLES_PER_BLADE, p);
-            sample(acc, ex, n, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p);
+            sample(acc, near, nn, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p);
         }
         for (int k = 0; k < 2; k++) {
             float p[3];
-            bool near;
+            bool in_reach;
             bezier(&b[i], k ? 1.0f : 0.5f, p);
-            double d = depth_at(ex, n, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p, &near);
+            double d = depth_at(near, nn, b[i].v0, h, (anchors_t){b[i].v0, b[i].v0}, p, &in_reach);
             if (d > x->tested_max) x->tested_max = d;
         }
     }
@@ -179,6 +202,7 @@ static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, 
         x->below_ground = (double)below / (double)real;
     }
     free(b);
+    free(near);
 }
 
 /* The world's billboard field and what it holds (NULL without one). */
@@ -247,13 +271,17 @@ static void bb_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, mea
     float (*mesh)[4];
     bool have = read_bb(f, &fi, &pts, &mesh);
     vec3 *grid = malloc(sizeof(vec3) * (size_t)nv);
-    if (!have || !grid) goto done;
+    exact_t *near = malloc(sizeof *near * (size_t)(n > 0 ? n : 1));
+    if (!have || !grid || !near) goto done;
     double spring_sum = 0;
     long springs = 0;
     for (int i = 0; i < fi.billboards; i++) {
         const bb_point_t *p = &pts[i];
         uint32_t slot = p->pad[0];
         bool deformed = slot != BB_NO_SLOT && slot < (uint32_t)fi.desc.max_deformed;
+        float reach = fmaxf(p->size[0], p->size[1]);
+        int nk = near_exact(ex, n, p->position, reach, near);
+        if (!deformed && nk == 0) continue; /* no spring to measure, no sample counts */
         bb_grid(&fi, p, (const float (*)[4])mesh, grid);
         if (deformed) {
             x->deformed++;
@@ -273,19 +301,18 @@ static void bb_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, mea
                     }
                 }
         }
-        float reach = fmaxf(p->size[0], p->size[1]);
-        for (int j = 1; j < mm; j++)
+        for (int j = 1; j < mm && nk > 0; j++)
             for (int c = 0; c < nn; c++) {
                 anchors_t col = {grid[c], grid[c]}, row = {grid[c], grid[c + 1 < nn ? c + 1 : c]};
-                sample(acc, ex, n, p->position, reach, col, grid[j * nn + c]);
-                sample_edge(acc, ex, n, p->position, reach, col, grid[(j - 1) * nn + c], grid[j * nn + c]);
+                sample(acc, near, nk, p->position, reach, col, grid[j * nn + c]);
+                sample_edge(acc, near, nk, p->position, reach, col, grid[(j - 1) * nn + c], grid[j * nn + c]);
                 if (c + 1 < nn) {
-                    sample_edge(acc, ex, n, p->position, reach, row, grid[j * nn + c], grid[j * nn + c + 1]);
+                    sample_edge(acc, near, nk, p->position, reach, row, grid[j * nn + c], grid[j * nn + c + 1]);
                     vec3 q;
                     for (int k = 0; k < 3; k++)
                         q[k] = 0.25f * (grid[j * nn + c][k] + grid[j * nn + c + 1][k] + grid[(j - 1) * nn + c][k] +
                                         grid[(j - 1) * nn + c + 1][k]);
-                    sample(acc, ex, n, p->position, reach, row, q);
+                    sample(acc, near, nk, p->position, reach, row, q);
                 }
             }
     }
@@ -294,6 +321,7 @@ done:
     free(pts);
     free(mesh);
     free(grid);
+    free(near);
 }
 
 void measure_metrics(world_t *w, measure_metrics_t *m, measure_metrics_ext_t *x)
