@@ -5,6 +5,7 @@
  * bb_update.c and bb_batch.c, drawing in bb_draw.c (bb_local.h lists the
  * files); bb.h has the overview. */
 #include "billboard/bb_local.h"
+#include "ground/ground.h"
 
 #include <assert.h>
 #include <math.h>
@@ -218,7 +219,7 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
                                                              .gs = "billboard/bb_collide.geom",
                                                              .defines = collide_defines,
                                                              .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
-    if (f->ring_on) bb_ring_world_uniforms(f, f->collide_prog);
+    if (f->ring_on) ground_world_uniforms(f->collide_prog, &d->terrain->world);
     f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
                                                              .label = "bb.recover"});
     f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",

@@ -5,8 +5,9 @@
  * of the field's one points buffer; a cell that enters the window is
  * generated on the GPU into its slot by bb_ring_gen.comp (one dispatch of
  * K^2 threads per cell, the root on the world's height function, the
- * extent map of the field's layout), over the cell that left. Every candidate writes one point (dead ones have
- * size 0), so no count comes back and the slot's range is always whole.
+ * extent map of the field's layout), over the cell that left. Every
+ * candidate writes one point (dead ones have size 0), so no count comes
+ * back and the slot's range is always whole.
  * Drawn by the hardware path per cell in view (a CPU loop over the W^2
  * slots) or by the compute rasterizer over the whole buffer (bb_draw.c).
  * Collision (bb_update.c) takes the slots as the octree's leaves: a slot's
@@ -20,6 +21,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "ground/ground.h"
 #include "scene/terrain_world.h"
 
 /* Slots one collide pass takes at most (the collide scratch holds their
@@ -30,13 +32,6 @@ bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size)
 {
     int n = snprintf(buf, size, "%s#define BB_GROUND_WORLD 1\n", f->defines);
     return n > 0 && (size_t)n < size;
-}
-
-void bb_ring_world_uniforms(const bb_field_t *f, gfx_program_t p)
-{
-    terrain_world_gpu_t g = terrain_world_gpu(&f->desc.terrain->world);
-    gfx_program_uints(p, "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
-    gfx_program_float(p, "u_world_height", g.height);
 }
 
 bool bb_ring_make(bb_field_t *f, int tile)
@@ -83,7 +78,7 @@ bool bb_ring_make(bb_field_t *f, int tile)
     if (!bb_ring_defines(f, defines, sizeof defines)) return false;
     f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_gen.comp", .defines = defines,
                                                          .label = "bb.ring.generate"});
-    bb_ring_world_uniforms(f, f->gen_prog);
+    ground_world_uniforms(f->gen_prog, &f->desc.terrain->world);
     f->release_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp",
                                                              .defines = f->defines, .label = "bb.ring.release"});
     core_log_info("bb: ring of %d x %d cells of %d x %d candidates (%.2f m), %d billboards, %.1f MiB", side, side,

@@ -6,6 +6,7 @@
  * See blade_tiles.h. GL objects come from
  * gfx only. */
 #include "blade/blade_local.h"
+#include "ground/ground.h"
 
 #include <assert.h>
 #include <float.h>
@@ -366,12 +367,9 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = t->defines});
     if (t->world) {
         /* tiles_common.glsl's ground: the world's height function */
-        terrain_world_gpu_t g = terrain_world_gpu(&t->world_fn);
         gfx_program_t world_progs[] = {t->handover, t->init, t->physics, t->cull};
-        for (int k = 0; k < 4; k++) {
-            gfx_program_uints(world_progs[k], "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
-            gfx_program_float(world_progs[k], "u_world_height", g.height);
-        }
+        for (size_t k = 0; k < sizeof world_progs / sizeof world_progs[0]; k++)
+            ground_world_uniforms(world_progs[k], &t->world_fn);
     }
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;

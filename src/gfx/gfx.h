@@ -183,11 +183,6 @@ gfx_program_t gfx_program_make(const gfx_program_desc_t *desc);
 void gfx_program_destroy(gfx_program_t *p);
 /* Uniform location helper (-1 logged once per name when missing is fine). */
 GLint gfx_uniform(gfx_program_t p, const char *name);
-/* Sets uniform `name` of p, an array of n uints or one float, without
- * binding p (glProgramUniform*: p keeps the values until they are set
- * again). */
-void gfx_program_uints(gfx_program_t p, const char *name, const uint32_t *v, int n);
-void gfx_program_float(gfx_program_t p, const char *name, float v);
 /* The preprocessed source of a file (tests): #include expanded with #line. */
 char *gfx_shader_preprocess(const char *rel_path, const char *defines, char *err, size_t err_size);
 

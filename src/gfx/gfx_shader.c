@@ -209,10 +209,3 @@ void gfx_program_destroy(gfx_program_t *p)
 }
 
 GLint gfx_uniform(gfx_program_t p, const char *name) { return glGetUniformLocation(p.id, name); }
-
-void gfx_program_uints(gfx_program_t p, const char *name, const uint32_t *v, int n)
-{
-    glProgramUniform1uiv(p.id, gfx_uniform(p, name), n, v);
-}
-
-void gfx_program_float(gfx_program_t p, const char *name, float v) { glProgramUniform1f(p.id, gfx_uniform(p, name), v); }

@@ -62,9 +62,7 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glVertexArrayAttribBinding(t->vao, 0, 0);
     t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
                                                      .label = "terrain.world.program"});
-    terrain_world_gpu_t g = terrain_world_gpu(&mesh->world);
-    gfx_program_uints(t->prog, "u_world_keys", g.keys, TERRAIN_WORLD_LAYERS);
-    gfx_program_float(t->prog, "u_world_height", g.height);
+    ground_world_uniforms(t->prog, &mesh->world);
     return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
 }
 
@@ -198,4 +196,11 @@ void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewpr
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glBindVertexArray(0);
+}
+
+void ground_world_uniforms(gfx_program_t p, const terrain_world_t *w)
+{
+    terrain_world_gpu_t g = terrain_world_gpu(w);
+    glProgramUniform1uiv(p.id, gfx_uniform(p, "u_world_keys"), TERRAIN_WORLD_LAYERS, g.keys);
+    glProgramUniform1f(p.id, gfx_uniform(p, "u_world_height"), g.height);
 }

@@ -1,8 +1,8 @@
 /* ground: the terrain as drawn and the sky behind it (ground.c). A terrain
- * mesh is uploaded and lit as soil and grass (app/terrain.vert,
- * app/terrain.frag); a world terrain (no vertices) is drawn as a clipmap
+ * mesh is uploaded and lit as soil and grass (ground/terrain.vert,
+ * ground/terrain.frag); a world terrain (no vertices) is drawn as a clipmap
  * (scene/terrain_clipmap.h): one grid of integer coordinates, five index
- * ranges, a draw per level of app/terrain_world.vert displaced by the
+ * ranges, a draw per level of ground/terrain_world.vert displaced by the
  * world's height, the same fragment shader. Beyond the billboards the
  * ground is shaded as the ground canopy (blade_canopy.h,
  * shaders/common/canopy.glsl), thinned by an extent map; the sky gradient
@@ -39,5 +39,10 @@ void ground_set_gi(ground_t *g, gi_bind_t gi);
 /* Draws the ground, then the sky where it left the far plane (inv_viewproj:
  * the inverse of view->viewproj, column-major). */
 void ground_draw(const ground_t *g, const core_view_t *view, const float inv_viewproj[16]);
+/* Sets the uniforms of common/world_height.glsl (terrain_world_gpu: the
+ * noise layers' keys and the amplitude) on p, for world w; p keeps them,
+ * so once after making p. Every program that includes world_height.glsl
+ * (the ground's, the billboard ring's, the tiles' on a world) takes it. */
+void ground_world_uniforms(gfx_program_t p, const terrain_world_t *w);
 
 #endif
