@@ -7,5 +7,9 @@
 
 /* terrain.frag: the grass extent map that thins the ground canopy */
 #define GROUND_TEX_EXTENT 0
+/* terrain.frag: the soil-and-turf noise's lattice (GROUND_NOISE_SIZE^2
+ * hashes, repeating) */
+#define GROUND_TEX_NOISE 1
+#define GROUND_NOISE_SIZE 256
 
 #endif

@@ -23,6 +23,7 @@ struct ground_t {
     bool world;
     terrain_clipmap_t clipmap;
     gfx_program_t prog, sky;
+    gfx_texture_t noise; /* terrain.frag's value noise lattice (make_noise) */
     /* Ground canopy: its table, the extent map that thins it (borrowed),
      * and this frame's fade (start, end; end 0: none). */
     blade_canopy_uniforms_t canopy;
@@ -31,6 +32,23 @@ struct ground_t {
     float canopy_fade[2];
     gi_bind_t gi;
 };
+
+/* The lattice of terrain.frag's value noise: at integer point (i, j) the
+ * hash it hashed there per fragment before (core_hash_float of i 73856093
+ * xor j 19349663), for i, j in [0, GROUND_NOISE_SIZE), repeating. */
+static bool make_noise(ground_t *t)
+{
+    enum { N = GROUND_NOISE_SIZE };
+    float *lattice = malloc(sizeof(float) * N * N);
+    if (!lattice) return false;
+    for (uint32_t j = 0; j < N; j++)
+        for (uint32_t i = 0; i < N; i++) lattice[j * N + i] = core_hash_float(i * 73856093u ^ j * 19349663u);
+    t->noise = gfx_texture_make(&(gfx_texture_desc_t){.w = N, .h = N, .format = GL_R32F, .wrap = GL_REPEAT,
+                                                      .data = lattice, .upload_format = GL_RED,
+                                                      .upload_type = GL_FLOAT, .label = "terrain.noise"});
+    free(lattice);
+    return t->noise.id != 0;
+}
 
 static bool make_sky(ground_t *t)
 {
@@ -102,7 +120,7 @@ ground_t *ground_make(const terrain_mesh_t *mesh)
 {
     ground_t *t = calloc(1, sizeof *t);
     if (!t) return NULL;
-    if (mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) return t;
+    if ((mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) && make_noise(t)) return t;
     ground_destroy(t);
     return NULL;
 }
@@ -134,6 +152,7 @@ void ground_destroy(ground_t *t)
     gfx_vertex_array_destroy(&t->empty_vao);
     gfx_program_destroy(&t->prog);
     gfx_program_destroy(&t->sky);
+    gfx_texture_destroy(&t->noise);
     terrain_clipmap_free(&t->clipmap);
     free(t);
 }
@@ -181,6 +200,7 @@ void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewpr
         glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
         glBindTextureUnit(GROUND_TEX_EXTENT, t->extent);
     }
+    glBindTextureUnit(GROUND_TEX_NOISE, t->noise.id);
     glBindVertexArray(t->vao);
     if (t->world) draw_world(t, v);
     else glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
