@@ -171,8 +171,8 @@ const scene_field_t scene_fields[] = {
              "leaf's box; a leaf whose box was hidden last frame is not drawn (hardware path, docs/BILLBOARDS.md)"},
     {GRASS(world_billboards), .key = "world_billboards", .type = SCENE_FIELD_ENUM, .names = world_billboards_names,
       .doc = "hybrid on a world terrain: `ring` draws the streamed billboard ring between the blades and the ground "
-             "canopy; `none` shades the ground as canopy from the switch distance (faster: on the H100 p99 5.6 "
-             "against 8.1 ms on world.json, docs/WORLD.md)"},
+             "canopy; `none` shades the ground as canopy from the switch distance (faster: on the H100 p99 4.2 "
+             "against 6.0 ms on world.json, docs/WORLD.md)"},
     {GRASS(clearings), .key = "clearings", .type = SCENE_FIELD_OBJECT,
       .doc = "bare ground of both models, the extent map (keys `grass.clearings.*`)", .def_doc = "noise"},
 
