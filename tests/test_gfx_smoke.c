@@ -27,6 +27,34 @@ int main(void)
 
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/tri.frag"});
     CHECK(prog.id != 0);
+
+    /* A batch: the good program is made, the broken one is not, and the
+     * batch says so. */
+    const gfx_program_desc_t good = {.vs = "tests/tri.vert", .fs = "tests/tri.frag", .defines = "#define B 1\n"};
+    const gfx_program_desc_t broken = {.vs = "tests/tri.vert", .fs = "tests/broken.frag"};
+    gfx_program_t two[2];
+    errs_before = core_log_error_count();
+    CHECK(!gfx_programs_make(2, (gfx_program_desc_t[2]){good, broken}, two));
+    CHECK(two[0].id != 0 && two[1].id == 0 && core_log_error_count() > errs_before);
+    gfx_program_destroy(&two[0]);
+    /* Prefetched programs are taken by a make with an equal desc (another
+     * label), no other; one never made is dropped and counted. */
+    int made_before = gfx_program_stats().count;
+    gfx_programs_prefetch(2, (gfx_program_desc_t[2]){good, broken});
+    gfx_programs_prefetch(1, &good); /* already waiting: not issued twice */
+    CHECK(gfx_program_stats().count == made_before);
+    gfx_program_desc_t relabelled = good;
+    relabelled.label = "smoke.prefetched";
+    gfx_program_t taken = gfx_program_make(&relabelled);
+    CHECK(taken.id != 0);
+    CHECK(gfx_program_stats().count == made_before + 1);
+    errs_before = core_log_error_count();
+    CHECK(gfx_program_make(&broken).id == 0 && core_log_error_count() > errs_before);
+    CHECK(gfx_programs_prefetch_drop() == 0);
+    gfx_programs_prefetch(1, &(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/tri.frag",
+                                                   .defines = "#define UNUSED 1\n"});
+    CHECK(gfx_programs_prefetch_drop() == 1);
+    gfx_program_destroy(&taken);
     gfx_target_t tgt = gfx_target_make(&(gfx_target_desc_t){.w = 64, .h = 32, .samples = 4, .label = "smoke"});
     CHECK(tgt.fbo != 0 && tgt.resolve_fbo != 0 && tgt.resolve_fbo != tgt.fbo);
     GLuint vao = gfx_vertex_array_make("smoke.vao");

@@ -206,30 +206,30 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
              f->views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
     char gen_defines[sizeof f->defines + 32];
     snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, triangles ? "#define BB_GEN_TRIANGLES\n" : "");
-    if (!f->ring_on) /* the ring's generation program: bb_ring_make */
-        f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_tile.vert",
-                                                             .gs = "billboard/bb_generate.geom",
-                                                             .defines = gen_defines, .tf_varyings = bb_tf_varyings,
-                                                             .label = "bb.generate"});
     /* the ring's collide pass stands billboards on the world's function */
     char collide_defines[sizeof f->defines + 32];
     if (!f->ring_on) snprintf(collide_defines, sizeof collide_defines, "%s", defines);
     else if (!bb_ring_defines(f, collide_defines, sizeof collide_defines)) return false;
-    f->collide_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                             .gs = "billboard/bb_collide.geom",
-                                                             .defines = collide_defines,
-                                                             .tf_varyings = bb_tf_varyings, .label = "bb.collide"});
-    if (f->ring_on) ground_world_uniforms(f->collide_prog, &d->terrain->world);
-    f->recover_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_recover.comp", .defines = defines,
-                                                             .label = "bb.recover"});
-    f->cube_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_cube.vert",
-                                                          .fs = "billboard/bb_cube.frag", .defines = defines,
-                                                          .label = "bb.cube"});
-    f->slope_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_slope.comp", .defines = defines,
-                                                           .label = "bb.slope"});
-    if ((!f->gen_prog.id && !f->ring_on) || !f->collide_prog.id || !f->recover_prog.id || !f->cube_prog.id ||
-        !f->slope_prog.id)
+    /* built side by side; the ring's generation program is bb_ring_make's */
+    gfx_program_desc_t pds[5] = {
+        {.vs = "billboard/bb_point.vert", .gs = "billboard/bb_collide.geom", .defines = collide_defines,
+         .tf_varyings = bb_tf_varyings, .label = "bb.collide"},
+        {.cs = "billboard/bb_recover.comp", .defines = defines, .label = "bb.recover"},
+        {.vs = "billboard/bb_cube.vert", .fs = "billboard/bb_cube.frag", .defines = defines, .label = "bb.cube"},
+        {.cs = "billboard/bb_slope.comp", .defines = defines, .label = "bb.slope"},
+        {.vs = "billboard/bb_tile.vert", .gs = "billboard/bb_generate.geom", .defines = gen_defines,
+         .tf_varyings = bb_tf_varyings, .label = "bb.generate"}};
+    gfx_program_t progs[5] = {{0}};
+    if (!gfx_programs_make(f->ring_on ? 4 : 5, pds, progs)) {
+        for (int k = 0; k < 5; k++) gfx_program_destroy(&progs[k]);
         return false;
+    }
+    f->collide_prog = progs[0];
+    f->recover_prog = progs[1];
+    f->cube_prog = progs[2];
+    f->slope_prog = progs[3];
+    if (!f->ring_on) f->gen_prog = progs[4];
+    if (f->ring_on) ground_world_uniforms(f->collide_prog, &d->terrain->world);
     return !d->occlusion || bb_occlusion_make(f);
 }
 

@@ -251,6 +251,9 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *d);
  * of alpha-to-coverage. Between raster_begin and raster_end. False when
  * the raster program cannot be made (logged). */
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *d);
+/* Starts compiling the raster program that bb_field_raster will make for
+ * a raster_t from rd (raster_program_prefetch). */
+void bb_field_raster_prefetch(const bb_field_t *f, const raster_desc_t *rd);
 /* World terrains: centres the ring on `camera`, generating the cells that
  * enter it into the slots of those that left (timer "bb.ring", counter
  * "bb.ring_cells"); bb_field_draw and bb_field_raster call it with their

@@ -76,11 +76,16 @@ bool bb_ring_make(bb_field_t *f, int tile)
     f->ring.y[0] = f->ring_y[0], f->ring.y[1] = f->ring_y[1];
     char defines[sizeof f->defines + 32];
     if (!bb_ring_defines(f, defines, sizeof defines)) return false;
-    f->gen_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_gen.comp", .defines = defines,
-                                                         .label = "bb.ring.generate"});
-    ground_world_uniforms(f->gen_prog, &f->desc.terrain->world);
-    f->release_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp",
-                                                             .defines = f->defines, .label = "bb.ring.release"});
+    gfx_program_t progs[2];
+    gfx_programs_make(2,
+                      (gfx_program_desc_t[2]){{.cs = "billboard/bb_ring_gen.comp", .defines = defines,
+                                               .label = "bb.ring.generate"},
+                                              {.cs = "billboard/bb_ring_release.comp", .defines = f->defines,
+                                               .label = "bb.ring.release"}},
+                      progs);
+    f->gen_prog = progs[0];
+    f->release_prog = progs[1];
+    if (f->gen_prog.id) ground_world_uniforms(f->gen_prog, &f->desc.terrain->world);
     core_log_info("bb: ring of %d x %d cells of %d x %d candidates (%.2f m), %d billboards, %.1f MiB", side, side,
                   cand, cand, (double)((float)cand * f->gen.spacing), f->capacity,
                   cap * (double)sizeof(bb_point_t) / 1048576.0);

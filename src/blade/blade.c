@@ -437,14 +437,21 @@ static void bind_raster(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_RASTER_COUNT, b->count.id);
 }
 
+/* Without GI its code is compiled out: compiled in and unused it cost
+ * blade.raster 10-22 % on the H100 (nature, helicopter, meadow_large). */
+static const char *raster_defines(bool gi) { return gi ? NULL : "#define GRASS_GI_OFF 1\n"; }
+
+void blade_raster_prefetch(const raster_desc_t *rd, bool gi)
+{
+    raster_program_prefetch(rd, "blade/blade_raster.comp", raster_defines(gi));
+}
+
 bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_t *surf,
                        const blade_draw_desc_t *desc, gfx_buffer_t blades, gfx_buffer_t ids, gfx_buffer_t count,
                        uint32_t count_index, uint32_t count_max)
 {
-    /* Without GI its code is compiled out: compiled in and unused it cost
-     * blade.raster 10-22 % on the H100 (nature, helicopter, meadow_large). */
-    const char *defines = desc->gi.ao ? NULL : "#define GRASS_GI_OFF 1\n";
-    if (!raster_program_ensure(r, prog, "blade/blade_raster.comp", defines, "blade.raster")) return false;
+    if (!raster_program_ensure(r, prog, "blade/blade_raster.comp", raster_defines(desc->gi.ao != 0), "blade.raster"))
+        return false;
     raster_bind_t b = {.surf = surf, .draw = desc, .blades = blades, .ids = ids, .count = count,
                        .count_index = count_index};
     raster_items_t items = {.count_buffer = count, .count_index = count_index, .count_max = count_max};

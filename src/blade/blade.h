@@ -155,6 +155,10 @@ void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc);
  * coverage from r's samples. Between raster_begin and raster_end. False
  * when the raster program cannot be made (logged). */
 bool blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc);
+/* Starts compiling the raster program that blade_gpu_raster and
+ * blade_tiles_raster make for a raster_t from rd, drawing with GI (gi) or
+ * without (raster_program_prefetch): it builds while the caller goes on. */
+void blade_raster_prefetch(const raster_desc_t *rd, bool gi);
 /* Latest culling statistics without stalling (a result is read once its
  * GPU copy has completed, typically a frame or two late); with wait, the
  * latest cull is waited for and read (tests). */

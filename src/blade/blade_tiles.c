@@ -359,12 +359,25 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->slope_sums = make_buffer(t, "slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
     t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
     ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
-    t->handover = make_program(t, "handover", &(gfx_program_desc_t){.cs = "blade/tiles_handover.comp", .defines = t->defines});
-    t->resolve = make_program(t, "slope_resolve", &(gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp"});
-    ok = ok && t->handover.id && t->resolve.id;
-    t->init = make_program(t, "init", &(gfx_program_desc_t){.cs = "blade/tiles_init.comp", .defines = t->defines});
-    t->physics = make_program(t, "physics", &(gfx_program_desc_t){.cs = "blade/tiles_physics.comp", .defines = t->defines});
-    t->cull = make_program(t, "cull", &(gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = t->defines});
+    /* the compute programs, built side by side */
+    static const char *const what[] = {"handover", "slope_resolve", "init", "physics", "cull"};
+    char labels[5][128];
+    gfx_program_desc_t pds[5] = {{.cs = "blade/tiles_handover.comp", .defines = t->defines},
+                                 {.cs = "blade/tiles_slope_resolve.comp"},
+                                 {.cs = "blade/tiles_init.comp", .defines = t->defines},
+                                 {.cs = "blade/tiles_physics.comp", .defines = t->defines},
+                                 {.cs = "blade/tiles_cull.comp", .defines = t->defines}};
+    for (int k = 0; k < 5; k++) {
+        snprintf(labels[k], sizeof labels[k], "%s.%s", d->label, what[k]);
+        pds[k].label = labels[k];
+    }
+    gfx_program_t progs[5];
+    ok = gfx_programs_make(5, pds, progs) && ok;
+    t->handover = progs[0];
+    t->resolve = progs[1];
+    t->init = progs[2];
+    t->physics = progs[3];
+    t->cull = progs[4];
     if (t->world) {
         /* tiles_common.glsl's ground: the world's height function */
         gfx_program_t world_progs[] = {t->handover, t->init, t->physics, t->cull};

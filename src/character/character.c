@@ -275,9 +275,14 @@ bool character_set_make(character_set_t *set, const character_set_desc_t *desc_i
         character_set_destroy(set);
         return false;
     }
-    set->skin_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "character/skin.comp", .label = "character.skin"});
-    set->draw_prog = gfx_program_make(&(gfx_program_desc_t){
-        .vs = "character/character.vert", .fs = "character/character.frag", .label = "character.draw"});
+    gfx_program_t progs[2];
+    gfx_programs_make(2,
+                      (gfx_program_desc_t[2]){{.cs = "character/skin.comp", .label = "character.skin"},
+                                              {.vs = "character/character.vert", .fs = "character/character.frag",
+                                               .label = "character.draw"}},
+                      progs);
+    set->skin_prog = progs[0];
+    set->draw_prog = progs[1];
     if (!set->skin_prog.id || !set->draw_prog.id) {
         character_set_destroy(set);
         return false;

@@ -118,6 +118,8 @@ void gfx_shutdown(bool report_leaks)
     gfx_depth_shutdown();
     gfx_timer_shutdown();
     gfx_count_shutdown();
+    int unused = gfx_programs_prefetch_drop();
+    if (report_leaks && unused) core_log_warn("gfx: %d prefetched programs never made", unused);
     if (report_leaks && g.count)
         for (int i = 0; i < g.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", g.objs[i].label);
     while (g.count) {

@@ -1,13 +1,17 @@
 /* gfx_shader: GLSL programs from files under shaders/. Sources may
  * `#include "path"` (relative to shaders/); the preprocessor emits
  * `#line <line> <file-index>` so compiler messages (Mesa "0:12(3)" and NVIDIA
- * "0(12)" forms) are rewritten to "shaders/<file>:<line>: ...". */
+ * "0(12)" forms) are rewritten to "shaders/<file>:<line>: ...".
+ * gfx_programs_make issues every program's compiles and link before it
+ * waits for any, so a driver with GL_KHR_parallel_shader_compile builds
+ * them side by side. */
 #include "gfx/gfx_local.h"
 
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #define MAX_FILES 32
 #define MAX_DEPTH 8
@@ -117,87 +121,238 @@ static void log_shader_errors(const pp_t *pp, const char *log, const char *what)
     }
 }
 
-static GLuint compile(GLenum stage, const char *rel, const char *defines)
+static gfx_program_stats_t stats;
+
+static double now_ms(void)
 {
-    pp_t pp;
-    char err[512];
-    char *src = preprocess(&pp, rel, defines, err, sizeof err);
-    if (!src) {
-        core_log_error("%s", err);
-        return 0;
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+/* One make (a batch counts its programs, under its first label +N). */
+static void stats_add(const char *label, int programs, double ms)
+{
+    stats.count += programs;
+    stats.ms += ms;
+    int at = GFX_PROGRAM_SLOWEST;
+    while (at > 0 && stats.slowest[at - 1].ms < ms) at--;
+    if (at == GFX_PROGRAM_SLOWEST) return;
+    memmove(&stats.slowest[at + 1], &stats.slowest[at], (GFX_PROGRAM_SLOWEST - 1 - at) * sizeof stats.slowest[0]);
+    snprintf(stats.slowest[at].label, sizeof stats.slowest[at].label, "%s", label);
+    stats.slowest[at].ms = ms;
+}
+
+gfx_program_stats_t gfx_program_stats(void) { return stats; }
+
+/* A program being built: its stages' shaders and their files (for
+ * mapping the compiler's messages). */
+typedef struct pending_t {
+    GLuint prog;
+    GLuint shaders[6];
+    pp_t pp[6];
+    const char *paths[6];
+    bool ok; /* every stage preprocessed */
+} pending_t;
+
+/* Issues stage compiles and the link without waiting for either (a driver
+ * with GL_KHR_parallel_shader_compile builds on its own threads). */
+static void program_issue(pending_t *pd, const gfx_program_desc_t *d)
+{
+    static const GLenum stage[6] = {GL_VERTEX_SHADER,   GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
+                                    GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER,     GL_COMPUTE_SHADER};
+    const char *paths[6] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs};
+    pd->prog = glCreateProgram();
+    pd->ok = true;
+    for (int i = 0; i < 6; i++) {
+        pd->paths[i] = paths[i];
+        if (!paths[i]) continue;
+        char err[512];
+        char *src = preprocess(&pd->pp[i], paths[i], d->defines, err, sizeof err);
+        if (!src) {
+            core_log_error("%s", err);
+            pd->ok = false;
+            continue;
+        }
+        pd->shaders[i] = glCreateShader(stage[i]);
+        const char *srcs[1] = {src};
+        glShaderSource(pd->shaders[i], 1, srcs, NULL);
+        glCompileShader(pd->shaders[i]);
+        free(src);
+        glAttachShader(pd->prog, pd->shaders[i]);
     }
-    GLuint sh = glCreateShader(stage);
-    const char *srcs[1] = {src};
-    glShaderSource(sh, 1, srcs, NULL);
-    glCompileShader(sh);
-    free(src);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        GLint n = 0;
-        glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &n);
-        char *log = calloc(1, (size_t)n + 1);
-        glGetShaderInfoLog(sh, n, NULL, log);
-        char what[300];
-        snprintf(what, sizeof what, "shaders/%s", rel);
-        log_shader_errors(&pp, log, what);
+    if (!pd->ok) return;
+    if (d->tf_varyings) {
+        int n = 0;
+        while (d->tf_varyings[n]) n++;
+        glTransformFeedbackVaryings(pd->prog, n, (const GLchar *const *)d->tf_varyings,
+                                    d->tf_separate ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS);
+    }
+    glLinkProgram(pd->prog);
+}
+
+static char *info_log(GLuint obj, bool program)
+{
+    GLint n = 0;
+    if (program) glGetProgramiv(obj, GL_INFO_LOG_LENGTH, &n);
+    else glGetShaderiv(obj, GL_INFO_LOG_LENGTH, &n);
+    char *log = calloc(1, (size_t)n + 1);
+    if (log && program) glGetProgramInfoLog(obj, n, NULL, log);
+    else if (log) glGetShaderInfoLog(obj, n, NULL, log);
+    return log;
+}
+
+/* Waits for the link; on failure logs each stage that did not compile
+ * (shaders/<file>:<line>: ...) or the link's message. */
+static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
+{
+    const char *first = NULL;
+    for (int i = 0; i < 6 && !first; i++) first = pd->paths[i];
+    GLint linked = 0;
+    if (pd->ok) glGetProgramiv(pd->prog, GL_LINK_STATUS, &linked);
+    bool compiled = true;
+    for (int i = 0; i < 6; i++) {
+        if (!pd->shaders[i]) continue;
+        GLint ok = 1;
+        if (!linked) glGetShaderiv(pd->shaders[i], GL_COMPILE_STATUS, &ok);
+        if (!ok) {
+            char *log = info_log(pd->shaders[i], false);
+            char what[300];
+            snprintf(what, sizeof what, "shaders/%s", pd->paths[i]);
+            log_shader_errors(&pd->pp[i], log ? log : "", what);
+            free(log);
+            compiled = false;
+        }
+        glDetachShader(pd->prog, pd->shaders[i]);
+        glDeleteShader(pd->shaders[i]);
+    }
+    if (pd->ok && compiled && !linked) {
+        char *log = info_log(pd->prog, true);
+        core_log_error("shaders/%s: link failed: %s", first ? first : "?", log ? log : "");
         free(log);
-        glDeleteShader(sh);
-        return 0;
     }
-    return sh;
+    if (!linked) {
+        glDeleteProgram(pd->prog);
+        return (gfx_program_t){0};
+    }
+    gfx_track(GL_PROGRAM, pd->prog, d->label ? d->label : first);
+    return (gfx_program_t){pd->prog};
+}
+
+static void threads_on(void)
+{
+    static bool set;
+    if (set) return;
+    set = true;
+    if (epoxy_has_gl_extension("GL_KHR_parallel_shader_compile")) glMaxShaderCompilerThreadsKHR(0xffffffffu);
+    else if (epoxy_has_gl_extension("GL_ARB_parallel_shader_compile")) glMaxShaderCompilerThreadsARB(0xffffffffu);
+}
+
+/* Programs issued by gfx_programs_prefetch, by their desc's key (every
+ * field but the label). */
+#define PREFETCH_MAX 32
+static struct {
+    int count;
+    char *key[PREFETCH_MAX];
+    pending_t *pd[PREFETCH_MAX];
+} prefetched;
+
+static char *desc_key(const gfx_program_desc_t *d)
+{
+    core_buf_t b = {0};
+    const char *parts[7] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs, d->defines};
+    for (int i = 0; i < 7; i++) core_buf_printf(&b, "%s\x1f", parts[i] ? parts[i] : "");
+    for (int i = 0; d->tf_varyings && d->tf_varyings[i]; i++) core_buf_printf(&b, "%s\x1e", d->tf_varyings[i]);
+    core_buf_printf(&b, "%s", d->tf_separate ? "s" : "i");
+    return b.data;
+}
+
+void gfx_programs_prefetch(int n, const gfx_program_desc_t *descs)
+{
+    threads_on();
+    for (int i = 0; i < n; i++) {
+        char *key = desc_key(&descs[i]);
+        bool have = false;
+        for (int k = 0; k < prefetched.count && !have; k++) have = key && strcmp(prefetched.key[k], key) == 0;
+        pending_t *pd = have || !key || prefetched.count == PREFETCH_MAX ? NULL : calloc(1, sizeof *pd);
+        if (!pd) { /* already issued, or no room: the make builds it then */
+            free(key);
+            continue;
+        }
+        program_issue(pd, &descs[i]);
+        prefetched.key[prefetched.count] = key;
+        prefetched.pd[prefetched.count++] = pd;
+    }
+}
+
+/* The prefetched program with d's key, taken out of the table (NULL: none). */
+static pending_t *prefetch_take(const gfx_program_desc_t *d)
+{
+    if (!prefetched.count) return NULL;
+    char *key = desc_key(d);
+    pending_t *pd = NULL;
+    for (int k = 0; k < prefetched.count && key && !pd; k++) {
+        if (strcmp(prefetched.key[k], key) != 0) continue;
+        pd = prefetched.pd[k];
+        free(prefetched.key[k]);
+        prefetched.count--;
+        prefetched.key[k] = prefetched.key[prefetched.count];
+        prefetched.pd[k] = prefetched.pd[prefetched.count];
+    }
+    free(key);
+    return pd;
+}
+
+int gfx_programs_prefetch_drop(void)
+{
+    int n = prefetched.count;
+    for (int k = 0; k < n; k++) {
+        pending_t *pd = prefetched.pd[k];
+        for (int i = 0; i < 6; i++)
+            if (pd->shaders[i]) glDeleteShader(pd->shaders[i]);
+        glDeleteProgram(pd->prog);
+        free(pd);
+        free(prefetched.key[k]);
+    }
+    prefetched.count = 0;
+    return n;
+}
+
+bool gfx_programs_make(int n, const gfx_program_desc_t *descs, gfx_program_t *out)
+{
+    threads_on();
+    pending_t *pd = calloc((size_t)n, sizeof *pd);
+    if (!pd) {
+        core_log_error("gfx_programs_make: out of memory for %d programs", n);
+        for (int i = 0; i < n; i++) out[i] = (gfx_program_t){0};
+        return false;
+    }
+    double t0 = now_ms();
+    for (int i = 0; i < n; i++) {
+        pending_t *taken = prefetch_take(&descs[i]);
+        if (taken) {
+            pd[i] = *taken;
+            free(taken);
+        } else {
+            program_issue(&pd[i], &descs[i]);
+        }
+    }
+    bool ok = true;
+    for (int i = 0; i < n; i++) ok = (out[i] = program_check(&pd[i], &descs[i])).id != 0 && ok;
+    free(pd);
+    const gfx_program_desc_t *d = &descs[0];
+    const char *label = d->label ? d->label : d->vs ? d->vs : d->cs ? d->cs : "?";
+    char batch[64];
+    if (n > 1) snprintf(batch, sizeof batch, "%s+%d", label, n - 1);
+    stats_add(n > 1 ? batch : label, n, now_ms() - t0);
+    return ok;
 }
 
 gfx_program_t gfx_program_make(const gfx_program_desc_t *d)
 {
-    struct {
-        GLenum stage;
-        const char *path;
-    } stages[6] = {{GL_VERTEX_SHADER, d->vs},          {GL_TESS_CONTROL_SHADER, d->tcs},
-                   {GL_TESS_EVALUATION_SHADER, d->tes}, {GL_GEOMETRY_SHADER, d->gs},
-                   {GL_FRAGMENT_SHADER, d->fs},         {GL_COMPUTE_SHADER, d->cs}};
-    GLuint prog = glCreateProgram();
-    GLuint shaders[6] = {0};
-    const char *first = NULL;
-    bool ok = true;
-    for (int i = 0; i < 6; i++) {
-        if (!stages[i].path) continue;
-        if (!first) first = stages[i].path;
-        shaders[i] = compile(stages[i].stage, stages[i].path, d->defines);
-        if (!shaders[i]) ok = false;
-        else glAttachShader(prog, shaders[i]);
-    }
-    if (ok && d->tf_varyings) {
-        int n = 0;
-        while (d->tf_varyings[n]) n++;
-        glTransformFeedbackVaryings(prog, n, (const GLchar *const *)d->tf_varyings,
-                                    d->tf_separate ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS);
-    }
-    if (ok) {
-        glLinkProgram(prog);
-        GLint linked = 0;
-        glGetProgramiv(prog, GL_LINK_STATUS, &linked);
-        if (!linked) {
-            GLint n = 0;
-            glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &n);
-            char *log = calloc(1, (size_t)n + 1);
-            glGetProgramInfoLog(prog, n, NULL, log);
-            core_log_error("shaders/%s: link failed: %s", first ? first : "?", log);
-            free(log);
-            ok = false;
-        }
-    }
-    for (int i = 0; i < 6; i++) {
-        if (!shaders[i]) continue;
-        glDetachShader(prog, shaders[i]);
-        glDeleteShader(shaders[i]);
-    }
-    if (!ok) {
-        glDeleteProgram(prog);
-        return (gfx_program_t){0};
-    }
-    gfx_track(GL_PROGRAM, prog, d->label ? d->label : first);
-    return (gfx_program_t){prog};
+    gfx_program_t p;
+    gfx_programs_make(1, d, &p);
+    return p;
 }
 
 void gfx_program_destroy(gfx_program_t *p)

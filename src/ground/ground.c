@@ -50,12 +50,17 @@ static bool make_noise(ground_t *t)
     return t->noise.id != 0;
 }
 
-static bool make_sky(ground_t *t)
+/* The terrain's program (desc) and the sky's, built side by side. */
+static bool make_programs(ground_t *t, const gfx_program_desc_t *terrain)
 {
-    t->sky = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/sky.vert", .fs = "ground/sky.frag",
-                                                    .label = "sky.program"});
+    gfx_program_t progs[2];
+    bool ok = gfx_programs_make(
+        2, (gfx_program_desc_t[2]){*terrain, {.vs = "ground/sky.vert", .fs = "ground/sky.frag", .label = "sky.program"}},
+        progs);
+    t->prog = progs[0];
+    t->sky = progs[1];
     t->empty_vao = gfx_vertex_array_make("sky.vao");
-    return t->sky.id != 0;
+    return ok;
 }
 
 /* The clipmap's grid and index ranges on the GPU and the world program. */
@@ -78,10 +83,10 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glEnableVertexArrayAttrib(t->vao, 0);
     glVertexArrayAttribIFormat(t->vao, 0, 2, GL_UNSIGNED_SHORT, 0);
     glVertexArrayAttribBinding(t->vao, 0, 0);
-    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
-                                                     .label = "terrain.world.program"});
-    ground_world_uniforms(t->prog, &mesh->world);
-    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
+    bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
+                                                      .label = "terrain.world.program"});
+    if (t->prog.id) ground_world_uniforms(t->prog, &mesh->world);
+    return ok && t->vbo.id && t->ibo.id;
 }
 
 /* A terrain mesh's interleaved vertices, indices and program. */
@@ -111,9 +116,9 @@ static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
                                   (GLuint)(offsets[a] * sizeof(float)));
         glVertexArrayAttribBinding(t->vao, (GLuint)a, 0);
     }
-    t->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "ground/terrain.vert", .fs = "ground/terrain.frag",
-                                                     .label = "terrain.program"});
-    return make_sky(t) && t->vbo.id && t->ibo.id && t->prog.id;
+    bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain.vert", .fs = "ground/terrain.frag",
+                                                      .label = "terrain.program"});
+    return ok && t->vbo.id && t->ibo.id;
 }
 
 ground_t *ground_make(const terrain_mesh_t *mesh)

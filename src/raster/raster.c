@@ -62,12 +62,20 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
     snprintf(label, sizeof label, "%s.opaque_depth", d->label);
     r->opaque_depth = gfx_texture_make(&(gfx_texture_desc_t){
         .w = d->w, .h = d->h, .format = GL_R32F, .filter = GL_NEAREST, .label = label});
-    r->init = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_init.comp", .label = "raster.init"});
-    r->init_ms = gfx_program_make(&(gfx_program_desc_t){
-        .cs = "raster/raster_init.comp", .defines = "#define RASTER_DEPTH_MS 1\n", .label = "raster.init_ms"});
-    r->args_prog = gfx_program_make(&(gfx_program_desc_t){.cs = "raster/raster_args.comp", .label = "raster.args"});
-    r->composite = gfx_program_make(&(gfx_program_desc_t){
-        .vs = "raster/raster_composite.vert", .fs = "raster/raster_composite.frag", .label = "raster.composite"});
+    gfx_program_t progs[4];
+    gfx_programs_make(4,
+                      (gfx_program_desc_t[4]){
+                          {.cs = "raster/raster_init.comp", .label = "raster.init"},
+                          {.cs = "raster/raster_init.comp", .defines = "#define RASTER_DEPTH_MS 1\n",
+                           .label = "raster.init_ms"},
+                          {.cs = "raster/raster_args.comp", .label = "raster.args"},
+                          {.vs = "raster/raster_composite.vert", .fs = "raster/raster_composite.frag",
+                           .label = "raster.composite"}},
+                      progs);
+    r->init = progs[0];
+    r->init_ms = progs[1];
+    r->args_prog = progs[2];
+    r->composite = progs[3];
     r->empty_vao = gfx_vertex_array_make("raster.empty");
     if (!r->vis.id || !r->queue.id || !r->args.id || !r->opaque_depth.id || !r->init.id || !r->init_ms.id ||
         !r->args_prog.id || !r->composite.id) {
@@ -93,24 +101,49 @@ void raster_destroy(raster_t *r)
     gfx_vertex_array_destroy(&r->empty_vao);
 }
 
-raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label)
+/* A raster program's two descs (the primitive's pass and the big list's)
+ * for the atomic64 variant or the two-pass one; false when the defines do
+ * not fit (logged). */
+typedef struct program_descs_t {
+    char defs[2048], big_defs[2048 + 32], big_label[160];
+    gfx_program_desc_t d[2];
+} program_descs_t;
+
+static bool program_descs(program_descs_t *pd, bool atomic64, const char *cs, const char *defines, const char *label)
 {
     static const char ext64[] = "#extension GL_ARB_gpu_shader_int64 : require\n"
                                 "#extension GL_NV_shader_atomic_int64 : require\n"
                                 "#define RASTER_ATOMIC64 1\n";
-    char defs[2048], big_label[160];
-    raster_program_t p = {.atomic64 = r->atomic64};
-    int n = snprintf(defs, sizeof defs, "%s%s", r->atomic64 ? ext64 : "", defines ? defines : "");
-    if (n < 0 || (size_t)n + 32 >= sizeof defs) {
+    int n = snprintf(pd->defs, sizeof pd->defs, "%s%s", atomic64 ? ext64 : "", defines ? defines : "");
+    if (n < 0 || (size_t)n >= sizeof pd->defs) {
         core_log_error("raster: defines of %s too long", cs);
-        return p;
+        return false;
     }
-    p.prim = gfx_program_make(&(gfx_program_desc_t){.cs = cs, .defines = defs, .label = label});
-    snprintf(defs + n, sizeof defs - (size_t)n, "#define RASTER_BIG 1\n");
-    snprintf(big_label, sizeof big_label, "%s.big", label);
-    p.big = gfx_program_make(&(gfx_program_desc_t){.cs = cs, .defines = defs, .label = big_label});
-    if (!p.prim.id || !p.big.id) raster_program_destroy(&p);
+    snprintf(pd->big_defs, sizeof pd->big_defs, "%s#define RASTER_BIG 1\n", pd->defs);
+    snprintf(pd->big_label, sizeof pd->big_label, "%s.big", label);
+    pd->d[0] = (gfx_program_desc_t){.cs = cs, .defines = pd->defs, .label = label};
+    pd->d[1] = (gfx_program_desc_t){.cs = cs, .defines = pd->big_defs, .label = pd->big_label};
+    return true;
+}
+
+raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label)
+{
+    raster_program_t p = {.atomic64 = r->atomic64};
+    program_descs_t pd;
+    if (!program_descs(&pd, r->atomic64, cs, defines, label)) return p;
+    gfx_program_t progs[2];
+    bool ok = gfx_programs_make(2, pd.d, progs);
+    p.prim = progs[0];
+    p.big = progs[1];
+    if (!ok) raster_program_destroy(&p);
     return p;
+}
+
+void raster_program_prefetch(const raster_desc_t *desc, const char *cs, const char *defines)
+{
+    program_descs_t pd;
+    if (program_descs(&pd, !desc->no_atomic64 && raster_has_atomic64(), cs, defines, cs))
+        gfx_programs_prefetch(2, pd.d);
 }
 
 void raster_program_destroy(raster_program_t *p)

@@ -84,6 +84,10 @@ void raster_destroy(raster_t *r);
  * variant of `r` (atomic64 or not). id 0 on failure (logged). */
 raster_program_t raster_program_make(const raster_t *r, const char *cs, const char *defines, const char *label);
 void raster_program_destroy(raster_program_t *p);
+/* Starts compiling what raster_program_make(r, cs, defines, ...) will
+ * build for a raster_t made from desc (gfx_programs_prefetch), so it
+ * compiles while the caller makes other things. */
+void raster_program_prefetch(const raster_desc_t *desc, const char *cs, const char *defines);
 /* *p made for r's variant: (re)made from cs/defines when it is missing or
  * was made for the other variant. False when it cannot be made (logged). */
 bool raster_program_ensure(const raster_t *r, raster_program_t *p, const char *cs, const char *defines,

@@ -74,6 +74,11 @@
 #                percentiles (p50/p95/p99/worst after warm-up), GPU pass
 #                medians/means/max and the work counters; meadow_large also
 #                with --frames 1 twice (cold and warm shader cache)
+#   coldstart    the 2 km world in each mode (compute path), 30 frames, with
+#                the driver's shader disk cache off (__GL_SHADER_DISK_CACHE=0:
+#                every program compiled, as on a fresh machine) and then on,
+#                twice (the second run warm): start-up stages and the
+#                programs' compile and link time (summary.txt)
 for f in .bundle/debs/*.deb; do dpkg -x $f / ; done; ldconfig
 export LD_LIBRARY_PATH=$PWD/.bundle/lib
 M=.bundle/bin/meadow
@@ -180,6 +185,17 @@ startup() {
     ( time timeout -k 10 60 $M --headless --quiet --scene scenes/bench/meadow_large.json --frames 1 --screenshot-every 0 \
         --out /tmp/st1-$run > /dev/null 2>&1 ) 2>&1 | grep real
     echo "-- meadow_large --frames 1, run $run"; sed -n '/^startup_ms/,/^startup work/p' /tmp/st1-$run/summary.txt
+  done
+}
+
+coldstart() {
+  echo "== cold start"
+  for mode in hybrid blade billboard; do
+    for c in 0 1 1; do
+      ( time __GL_SHADER_DISK_CACHE=$c timeout -k 10 120 $M --headless --quiet --scene scenes/bench/world.json \
+          --mode $mode --raster compute --frames 30 --screenshot-every 0 --out /tmp/cs-$mode > /dev/null 2>&1 ) 2>&1 | grep real
+      echo "-- world $mode, disk cache $c"; sed -n '/^startup_ms/,/^startup programs/p' /tmp/cs-$mode/summary.txt
+    done
   done
 }
 
@@ -344,8 +360,9 @@ admission() {
 # ring alone); memory, frame percentiles, submit, start-up and the ring's
 # passes (bb.ring: cells generated, bb.raster) from summary.txt; each
 # run's frame log (--frame-log) to $OUT/frames-SCENE-MODE.csv.gz.
+# WORLD_RUNS="SCENE:MODE ..." runs those instead.
 world() {
-  for sm in world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard; do
+  for sm in ${WORLD_RUNS:-world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard}; do
     s=${sm%%:*}; mode=${sm#*:}; o=/tmp/world-$s-$mode
     ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
       --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
