@@ -9,7 +9,9 @@
  * pixel by pixel with RASTER_GROUP_SCAN). Checks per sample: coverage and colour equal,
  * depth equal to 1e-5 (window depth; fused multiply-adds on GPUs), except for a small budget of samples on edges
  * (float rounding); the queue was used; the composite writes the mean
- * colour of a pixel's samples and coverage over the background. */
+ * colour of a pixel's samples and coverage over the background, and the
+ * colour-only compute composite the same colour into 1- and 4-sample
+ * targets, leaving their depth. */
 #include "common/bindings_tests.glsl"
 #include "raster/raster.h"
 #include "raster/raster_ref.h"
@@ -67,6 +69,37 @@ static void bind(gfx_program_t p, void *user)
     const bind_t *b = user;
     glUniform1ui(gfx_uniform(p, "u_count"), NTRI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, b->tris.id);
+}
+
+/* raster_end_color into a new target of `samples` per pixel, cleared as
+ * run_variant's: the colour raster_end gave (want) to 1 level per channel
+ * (each blend rounds once), the depth still the clear's 0.9. */
+static void check_color_composite(raster_t *r, const core_image_t *want, int samples)
+{
+    gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = samples, .label = "t2"});
+    gfx_target_bind(&t);
+    glClearColor(0.0f, 0.0f, 1.0f, 1.0f);
+    glClearDepth(0.9);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClearDepth(1.0);
+    raster_end_color(r, &t);
+    gfx_target_resolve(&t);
+    core_image_t img = {0};
+    float *depth = malloc(sizeof(float) * W * H);
+    CHECK(depth && gfx_target_read(&t, &img) && gfx_target_read_depth(&t, depth));
+    int worst = 0, depth_moved = 0;
+    for (size_t i = 0; i < (size_t)W * H * 4; i++) {
+        int d = abs((int)img.px[i] - (int)want->px[i]);
+        worst = d > worst ? d : worst;
+    }
+    for (size_t i = 0; i < (size_t)W * H; i++) depth_moved += fabsf(depth[i] - 0.9f) > 1e-6f;
+    printf("colour-only composite, %d sample%s: largest difference from raster_end %d levels, %d depths moved\n",
+           samples, samples > 1 ? "s" : "", worst, depth_moved);
+    CHECK(worst <= 1);
+    CHECK(depth_moved == 0);
+    free(depth);
+    core_image_free(&img);
+    gfx_target_destroy(&t);
 }
 
 static void run_variant(bool no_atomic64, bool group_scan, const float *tris, const raster_ref_t *ref)
@@ -144,6 +177,8 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
         }
     printf("composite: %d of %d pixels differ by more than 0.02\n", bad_px, W * H);
     CHECK(bad_px < W * H / 100);
+    check_color_composite(&r, &img, 1);
+    check_color_composite(&r, &img, 4);
     core_image_free(&img);
     free(words);
     raster_program_destroy(&prog);

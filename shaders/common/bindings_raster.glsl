@@ -7,12 +7,14 @@
 #ifndef BINDINGS_RASTER_GLSL
 #define BINDINGS_RASTER_GLSL
 
-/* raster.glsl, raster_init.comp, raster_composite.frag */
+/* raster.glsl, raster_init.comp, raster_resolve.glsl */
 #define RASTER_BIND_VIS 20
 #define RASTER_BIND_QUEUE 21
 /* raster_init.comp: the target's depth in, the farthest opaque depth out */
 #define RASTER_TEX_DEPTH 0
 #define RASTER_IMG_OPAQUE 0
+/* raster_composite.comp: the target's colour, read and written */
+#define RASTER_IMG_TARGET 0
 /* raster_args.comp: a GPU count in, dispatch arguments out */
 #define RASTER_BIND_ARGS_SRC 0
 #define RASTER_BIND_ARGS 1

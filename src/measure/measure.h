@@ -18,7 +18,8 @@ typedef struct measure_seam_frame_t {
     float *dist;
     uint8_t *cls;
 } measure_seam_frame_t;
-/* Reads the frame drawn into t with view v (blocking): colour and distance;
+/* Reads the frame drawn into t with view v (blocking) by world_draw_as
+ * (whose depth holds the grass's on either path): colour and distance;
  * cls EVAL_SEAM_GROUND where the visible surface is the terrain, else
  * EVAL_SEAM_SKIP (what a background frame needs). */
 bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f);
@@ -34,7 +35,8 @@ bool measure_seam_frame_draw(world_t *w, const world_view_t *v, const gfx_target
 void measure_seam_frame_free(measure_seam_frame_t *f);
 /* The scene's switch distance and the fade band of world_draw. */
 eval_seam_desc_t measure_seam_desc(world_t *w);
-/* The seam of the hybrid frame drawn into t with view v, against the same
+/* The seam of the hybrid frame of view v (drawn into t again, for its
+ * depth), against the same
  * view drawn again with billboards only, both classified against it drawn
  * with no grass (which is what t holds afterwards). False when the world is
  * not in hybrid mode or a window of the band shows no grass or fewer than

@@ -120,7 +120,8 @@ static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t,
     world_info_t wi = world_info(w);
     if (wi.mode != SCENE_MODE_HYBRID || !wi.billboards) return false;
     measure_seam_frame_t frame = {0}, ref = {0}, bg = {0};
-    bool ok = measure_seam_frame_read(w, v, t, &frame) &&
+    /* drawn again: the frame's own target may lack the grass's depth */
+    bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame) &&
               measure_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
     if (ok) {

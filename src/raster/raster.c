@@ -62,23 +62,29 @@ bool raster_make(raster_t *r, const raster_desc_t *desc)
     snprintf(label, sizeof label, "%s.opaque_depth", d->label);
     r->opaque_depth = gfx_texture_make(&(gfx_texture_desc_t){
         .w = d->w, .h = d->h, .format = GL_R32F, .filter = GL_NEAREST, .label = label});
-    gfx_program_t progs[4];
-    gfx_programs_make(4,
-                      (gfx_program_desc_t[4]){
+    gfx_program_t progs[6];
+    gfx_programs_make(6,
+                      (gfx_program_desc_t[6]){
                           {.cs = "raster/raster_init.comp", .label = "raster.init"},
                           {.cs = "raster/raster_init.comp", .defines = "#define RASTER_DEPTH_MS 1\n",
                            .label = "raster.init_ms"},
                           {.cs = "raster/raster_args.comp", .label = "raster.args"},
                           {.vs = "raster/raster_composite.vert", .fs = "raster/raster_composite.frag",
-                           .label = "raster.composite"}},
+                           .label = "raster.composite"},
+                          {.cs = "raster/raster_composite.comp", .label = "raster.composite_cs"},
+                          {.cs = "raster/raster_composite.comp", .defines = "#define RASTER_TARGET_MS 1\n",
+                           .label = "raster.composite_cs_ms"}},
                       progs);
     r->init = progs[0];
     r->init_ms = progs[1];
     r->args_prog = progs[2];
     r->composite = progs[3];
+    r->composite_cs = progs[4];
+    r->composite_cs_ms = progs[5];
+    glGetIntegerv(GL_MAX_IMAGE_SAMPLES, &r->image_samples);
     r->empty_vao = gfx_vertex_array_make("raster.empty");
     if (!r->vis.id || !r->queue.id || !r->args.id || !r->opaque_depth.id || !r->init.id || !r->init_ms.id ||
-        !r->args_prog.id || !r->composite.id) {
+        !r->args_prog.id || !r->composite.id || !r->composite_cs.id || !r->composite_cs_ms.id) {
         raster_destroy(r);
         return false;
     }
@@ -98,6 +104,8 @@ void raster_destroy(raster_t *r)
     gfx_program_destroy(&r->init_ms);
     gfx_program_destroy(&r->args_prog);
     gfx_program_destroy(&r->composite);
+    gfx_program_destroy(&r->composite_cs);
+    gfx_program_destroy(&r->composite_cs_ms);
     gfx_vertex_array_destroy(&r->empty_vao);
 }
 
@@ -268,6 +276,29 @@ void raster_end(raster_t *r, const gfx_target_t *target)
     glBindVertexArray(0);
     glDisable(GL_BLEND);
     glDepthFunc(GL_LESS);
+    gfx_timer_end();
+}
+
+void raster_end_color(raster_t *r, const gfx_target_t *target)
+{
+    bool ms = target->color.samples > 1;
+    gfx_program_t p = ms ? r->composite_cs_ms : r->composite_cs;
+    if (target->color.format != GL_RGBA8 || !p.id || (ms && target->color.samples > r->image_samples)) {
+        raster_end(r, target);
+        return;
+    }
+    gfx_timer_begin("raster.composite");
+    glUseProgram(p.id);
+    set_frame_uniforms(r, p);
+    if (ms) glUniform1i(gfx_uniform(p, "u_target_samples"), target->color.samples);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, RASTER_BIND_VIS, r->vis.id);
+    glBindImageTexture(RASTER_IMG_TARGET, target->color.id, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glDispatchCompute((GLuint)(r->desc.w + 7) / 8, (GLuint)(r->desc.h + 7) / 8, 1);
+    /* what comes after reads the colour as a framebuffer or a texture */
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindImageTexture(RASTER_IMG_TARGET, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
     gfx_timer_end();
 }
 

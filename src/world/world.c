@@ -849,7 +849,10 @@ static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
     case WORLD_PASS_TILES: draw_tiles(w, f); break;
     case WORLD_PASS_BLADES: draw_blades(w, f); break;
     case WORLD_PASS_BILLBOARDS: draw_billboards(w, f); break;
-    case WORLD_PASS_RASTER_END: raster_end(f->raster, f->target); break;
+    case WORLD_PASS_RASTER_END:
+        if (w->grass_depth) raster_end(f->raster, f->target);
+        else raster_end_color(f->raster, f->target);
+        break;
     case WORLD_PASS_KINDS: break;
     }
 }

@@ -68,7 +68,9 @@ void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, sce
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
+    w->grass_depth = true; /* measures read the depth back */
     world_draw(w, v, t, false);
+    w->grass_depth = false;
     w->mode = keep;
     w->bb = bb;
     w->have_blades = blades;

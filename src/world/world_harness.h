@@ -52,7 +52,9 @@ void world_update(world_t *w, float t, float dt);
 void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe);
 /* Binds and clears t, then draws the view in `mode`, with no grass at all
  * when !grass; the world's systems are used as they are (nothing is built
- * or simulated) and keep their state. */
+ * or simulated) and keep their state. The grass's depth is in t's depth on
+ * either path (a frame of world_frame on the compute path has the opaque
+ * scene's alone). */
 void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass);
 /* The camera the tiles stream and activate around until the next draw
  * sets it (a step without drawing). */

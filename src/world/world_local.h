@@ -66,6 +66,10 @@ struct world_t {
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
     bool raster_compute;
+    bool grass_depth; /* the compute path's composite writes the grass's depth
+                         too (raster_end; world_draw_as): else colour alone
+                         (raster_end_color), the target's depth keeping the
+                         opaque scene */
     int raster_samples; /* --raster-samples, else the scene key raster_samples (1 or 4) */
     raster_t raster;
     /* Hybrid mode on heightfields: tiled blades (Fan et al. 2015) with
