@@ -16,10 +16,12 @@
 const char *const bb_tf_varyings[] = {"o_pos_angle", "o_growth_mess", "o_size", "o_layer_state",
                                              "o_recover",   "o_seed",        "o_pad",  NULL};
 
-int bb_pass_objects(const bb_field_t *f)
+static int pass_objects(const bb_field_desc_t *d)
 {
-    return f->desc.max_objects < BB_PASS_OBJECTS ? f->desc.max_objects : BB_PASS_OBJECTS;
+    return d->max_objects < BB_PASS_OBJECTS ? d->max_objects : BB_PASS_OBJECTS;
 }
+
+int bb_pass_objects(const bb_field_t *f) { return pass_objects(&f->desc); }
 
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
 {
@@ -109,13 +111,14 @@ static void stage_done(bb_field_t *f, int stage, double *mark)
 /* The desc's ranges and the GPU's geometry-shader limits (false, logged,
  * when the field cannot be made). *tile: generation tiles of tile x tile
  * candidate cells; *render_verts: bb_render.geom's output vertices. */
-static bool check_limits(const bb_field_desc_t *d, int *tile, int *render_verts)
+static bool check_limits(const bb_field_desc_t *d, int *tile, int *render_verts, bool quiet)
 {
     if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < SCENE_SUBDIV_MIN || d->subdiv[0] > SCENE_SUBDIV_MAX ||
         d->subdiv[1] < SCENE_SUBDIV_MIN || d->subdiv[1] > SCENE_SUBDIV_MAX || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
-        core_log_error("bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
-                       "(at most %d) out of range", d->max_objects, BB_MAX_OBJECTS,
-                       d->subdiv[0], d->subdiv[1], SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
+        if (!quiet)
+            core_log_error("bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
+                           "(at most %d) out of range", d->max_objects, BB_MAX_OBJECTS, d->subdiv[0], d->subdiv[1],
+                           SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
         return false;
     }
     int n = d->subdiv[0], m = d->subdiv[1];
@@ -128,9 +131,10 @@ static bool check_limits(const bb_field_desc_t *d, int *tile, int *render_verts)
      * BB_GI g_amb_front and g_amb_back (3 each) too. */
     int comps = *render_verts * (d->gi ? 22 : 16);
     if (*render_verts > max_verts || comps > max_comps) {
-        core_log_error("bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
-                       "this GPU allows %d (%d)", n, m, *render_verts, comps,
-                       d->gi ? " with grass.gi" : "", max_verts, max_comps);
+        if (!quiet)
+            core_log_error("bb_field_make: a %dx%d mesh needs %d geometry-shader vertices (%d components%s); "
+                           "this GPU allows %d (%d)", n, m, *render_verts, comps, d->gi ? " with grass.gi" : "",
+                           max_verts, max_comps);
         return false;
     }
     /* Generation tiles of 2 x 2 candidate cells: at most 4 points (64
@@ -191,36 +195,62 @@ static bool make_tree(bb_field_t *f, const terrain_mesh_t *t)
     return true;
 }
 
-/* The programs (and occlusion culling's), compiled with the mesh size and
- * limits in f->defines; generation per triangle on mesh terrains. */
-static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_verts)
+/* The programs of a field of desc d (resolved): the defines of its mesh
+ * size and limits, and the descs of what make_programs builds (the ring's
+ * generation program is bb_ring_make's: n is 4 on world terrains, 5 with
+ * the generation program; triangles: generation per triangle, on mesh
+ * terrains). */
+typedef struct field_programs_t {
+    char defines[sizeof((bb_field_t *)0)->defines];
+    char gen_defines[sizeof((bb_field_t *)0)->defines + 32];
+    char collide_defines[sizeof((bb_field_t *)0)->defines + 32];
+    gfx_program_desc_t d[5];
+    int n;
+} field_programs_t;
+
+static bool field_programs(const bb_field_desc_t *d, int tile, int render_verts, field_programs_t *p)
 {
-    const bb_field_desc_t *d = &f->desc;
-    const char *defines = f->defines;
-    snprintf(f->defines, sizeof f->defines,
+    bool ring_on = d->terrain->type == TERRAIN_WORLD, triangles = !ring_on && d->terrain->grid_res <= 0;
+    snprintf(p->defines, sizeof p->defines,
              "#define BB_N %d\n#define BB_M %d\n#define BB_MAX_CUBES %d\n#define BB_TILE %d\n"
              "#define BB_TILE_POINTS %d\n#define BB_RENDER_VERTS %d\n%s%s",
-             d->subdiv[0], d->subdiv[1], bb_pass_objects(f), tile, tile * tile, render_verts,
+             d->subdiv[0], d->subdiv[1], pass_objects(d), tile, tile * tile, render_verts,
              /* the view cards' code only where they are on: compiled in, unused, it
               * cost bb.raster 22 % on the H100 (meadow_large billboard mode) */
-             f->views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
-    char gen_defines[sizeof f->defines + 32];
-    snprintf(gen_defines, sizeof gen_defines, "%s%s", defines, triangles ? "#define BB_GEN_TRIANGLES\n" : "");
+             d->layout.views.on ? "#define BB_VIEW_CARDS 1\n" : "", d->gi ? "#define BB_GI 1\n" : "");
+    snprintf(p->gen_defines, sizeof p->gen_defines, "%s%s", p->defines, triangles ? "#define BB_GEN_TRIANGLES\n" : "");
     /* the ring's collide pass stands billboards on the world's function */
-    char collide_defines[sizeof f->defines + 32];
-    if (!f->ring_on) snprintf(collide_defines, sizeof collide_defines, "%s", defines);
-    else if (!bb_ring_defines(f, collide_defines, sizeof collide_defines)) return false;
-    /* built side by side; the ring's generation program is bb_ring_make's */
+    if (!ring_on) snprintf(p->collide_defines, sizeof p->collide_defines, "%s", p->defines);
+    else if (!bb_ring_defines(p->defines, p->collide_defines, sizeof p->collide_defines)) return false;
+    const char *defines = p->defines;
     gfx_program_desc_t pds[5] = {
-        {.vs = "billboard/bb_point.vert", .gs = "billboard/bb_collide.geom", .defines = collide_defines,
+        {.vs = "billboard/bb_point.vert", .gs = "billboard/bb_collide.geom", .defines = p->collide_defines,
          .tf_varyings = bb_tf_varyings, .label = "bb.collide"},
         {.cs = "billboard/bb_recover.comp", .defines = defines, .label = "bb.recover"},
         {.vs = "billboard/bb_cube.vert", .fs = "billboard/bb_cube.frag", .defines = defines, .label = "bb.cube"},
         {.cs = "billboard/bb_slope.comp", .defines = defines, .label = "bb.slope"},
-        {.vs = "billboard/bb_tile.vert", .gs = "billboard/bb_generate.geom", .defines = gen_defines,
+        {.vs = "billboard/bb_tile.vert", .gs = "billboard/bb_generate.geom", .defines = p->gen_defines,
          .tf_varyings = bb_tf_varyings, .label = "bb.generate"}};
+    memcpy(p->d, pds, sizeof pds);
+    p->n = ring_on ? 4 : 5;
+    return true;
+}
+
+/* The programs (and occlusion culling's), built side by side, with the
+ * defines of field_programs in f->defines. */
+static bool make_programs(bb_field_t *f, int tile, int render_verts)
+{
+    const bb_field_desc_t *d = &f->desc;
+    field_programs_t *p = malloc(sizeof *p);
+    if (!p || !field_programs(d, tile, render_verts, p)) {
+        free(p);
+        return false;
+    }
+    snprintf(f->defines, sizeof f->defines, "%s", p->defines);
     gfx_program_t progs[5] = {{0}};
-    if (!gfx_programs_make(f->ring_on ? 4 : 5, pds, progs)) {
+    bool ok = gfx_programs_make(p->n, p->d, progs);
+    free(p);
+    if (!ok) {
         for (int k = 0; k < 5; k++) gfx_program_destroy(&progs[k]);
         return false;
     }
@@ -231,6 +261,19 @@ static bool make_programs(bb_field_t *f, bool triangles, int tile, int render_ve
     if (!f->ring_on) f->gen_prog = progs[4];
     if (f->ring_on) ground_world_uniforms(f->collide_prog, &d->terrain->world);
     return !d->occlusion || bb_occlusion_make(f);
+}
+
+void bb_field_prefetch(const bb_field_desc_t *desc, const raster_desc_t *raster)
+{
+    bb_field_desc_t d = bb_field_desc_defaults(desc);
+    int tile = 0, render_verts = 0;
+    field_programs_t *p = malloc(sizeof *p);
+    if (p && d.terrain && check_limits(&d, &tile, &render_verts, true) && field_programs(&d, tile, render_verts, p)) {
+        gfx_programs_prefetch(p->n, p->d);
+        if (d.terrain->type == TERRAIN_WORLD) bb_ring_prefetch(p->defines);
+        if (raster) raster_program_prefetch(raster, "billboard/bb_raster.comp", p->defines);
+    }
+    free(p);
 }
 
 /* The pool with every slot free, the points buffers, the objects uniform
@@ -299,21 +342,21 @@ bb_field_t *bb_field_make(const bb_field_desc_t *desc)
     assert(t && (f->ring_on || (t->positions && t->index_count >= 3)));
     f->desc.occlusion = f->desc.occlusion && !f->ring_on; /* the ring's cells are culled as boxes */
     int tile = 0, render_verts = 0;
-    if (!check_limits(d, &tile, &render_verts)) goto fail;
+    if (!check_limits(d, &tile, &render_verts, false)) goto fail;
     f->gen = bb_gen_desc_defaults(&(bb_gen_desc_t){
         .spacing = 1.0f / sqrtf(d->density), .origin = {t->aabb_min[0], t->aabb_min[2]}, .width = d->size[0],
         .height = d->size[1], .seed = d->placement_seed ? d->placement_seed : d->seed});
     if (!bb_upload_layout(f)) goto fail;
     stage_done(f, BB_MAKE_LAYOUT, &mark);
     if (f->ring_on) { /* world terrains: cells are generated as the camera follows (bb_ring.c) */
-        if (!make_programs(f, false, tile, render_verts) || !bb_ring_make(f, tile) || !make_buffers(f)) goto fail;
+        if (!make_programs(f, tile, render_verts) || !bb_ring_make(f, tile) || !make_buffers(f)) goto fail;
         f->billboards = f->capacity;
         stage_done(f, BB_MAKE_PROGRAMS, &mark);
         f->make_ms = (float)(wall_ms() - t_start);
         return f;
     }
     if (!count_candidates(f, t, &tris) || !make_tree(f, t) || !bb_upload_heights(f, t) ||
-        !make_programs(f, tris != NULL, tile, render_verts))
+        !make_programs(f, tile, render_verts))
         goto fail;
     stage_done(f, BB_MAKE_PROGRAMS, &mark);
     if (!make_buffers(f) || !bb_generate(f, t, tris, tile)) goto fail;

@@ -160,11 +160,6 @@ static void bind_raster(gfx_program_t p, void *user)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POINTS, b->f->points.id);
 }
 
-void bb_field_raster_prefetch(const bb_field_t *f, const raster_desc_t *rd)
-{
-    raster_program_prefetch(rd, "billboard/bb_raster.comp", f->defines);
-}
-
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
     bb_field_follow(f, dd->view.camera);

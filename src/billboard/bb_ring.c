@@ -28,10 +28,28 @@
  * points): 32 cells of 8 m, 16 walkers touching two cells each. */
 #define BB_RING_COLLIDE_SLOTS 32
 
-bool bb_ring_defines(const bb_field_t *f, char *buf, size_t size)
+bool bb_ring_defines(const char *field_defines, char *buf, size_t size)
 {
-    int n = snprintf(buf, size, "%s#define BB_GROUND_WORLD 1\n", f->defines);
+    int n = snprintf(buf, size, "%s#define BB_GROUND_WORLD 1\n", field_defines);
     return n > 0 && (size_t)n < size;
+}
+
+/* The ring's generation and release programs for a field's defines;
+ * defines gets the generation's (bb_ring_defines). */
+static bool ring_programs(const char *field_defines, char *defines, size_t size, gfx_program_desc_t out[2])
+{
+    if (!bb_ring_defines(field_defines, defines, size)) return false;
+    out[0] = (gfx_program_desc_t){.cs = "billboard/bb_ring_gen.comp", .defines = defines, .label = "bb.ring.generate"};
+    out[1] = (gfx_program_desc_t){.cs = "billboard/bb_ring_release.comp", .defines = field_defines,
+                                  .label = "bb.ring.release"};
+    return true;
+}
+
+void bb_ring_prefetch(const char *field_defines)
+{
+    char defines[sizeof((bb_field_t *)0)->defines + 32];
+    gfx_program_desc_t pds[2];
+    if (ring_programs(field_defines, defines, sizeof defines, pds)) gfx_programs_prefetch(2, pds);
 }
 
 bool bb_ring_make(bb_field_t *f, int tile)
@@ -75,14 +93,10 @@ bool bb_ring_make(bb_field_t *f, int tile)
     f->ring.margin = margin > 1.0f ? margin : 1.0f;
     f->ring.y[0] = f->ring_y[0], f->ring.y[1] = f->ring_y[1];
     char defines[sizeof f->defines + 32];
-    if (!bb_ring_defines(f, defines, sizeof defines)) return false;
+    gfx_program_desc_t pds[2];
+    if (!ring_programs(f->defines, defines, sizeof defines, pds)) return false;
     gfx_program_t progs[2];
-    gfx_programs_make(2,
-                      (gfx_program_desc_t[2]){{.cs = "billboard/bb_ring_gen.comp", .defines = defines,
-                                               .label = "bb.ring.generate"},
-                                              {.cs = "billboard/bb_ring_release.comp", .defines = f->defines,
-                                               .label = "bb.ring.release"}},
-                      progs);
+    gfx_programs_make(2, pds, progs);
     f->gen_prog = progs[0];
     f->release_prog = progs[1];
     if (f->gen_prog.id) ground_world_uniforms(f->gen_prog, &f->desc.terrain->world);

@@ -258,6 +258,27 @@ static gfx_buffer_t make_buffer(const blade_tiles_t *t, const char *what, size_t
         .size = size ? size : 16, .data = data, .dynamic = true, .label = label});
 }
 
+/* The compute programs with the tiles' defines (TILES_WORLD on world
+ * terrains), labelled by what they do. */
+#define TILE_PROGRAMS 5
+static void tile_programs(const char *defines, gfx_program_desc_t out[TILE_PROGRAMS])
+{
+    out[0] = (gfx_program_desc_t){.cs = "blade/tiles_handover.comp", .defines = defines, .label = "handover"};
+    out[1] = (gfx_program_desc_t){.cs = "blade/tiles_slope_resolve.comp", .label = "slope_resolve"};
+    out[2] = (gfx_program_desc_t){.cs = "blade/tiles_init.comp", .defines = defines, .label = "init"};
+    out[3] = (gfx_program_desc_t){.cs = "blade/tiles_physics.comp", .defines = defines, .label = "physics"};
+    out[4] = (gfx_program_desc_t){.cs = "blade/tiles_cull.comp", .defines = defines, .label = "cull"};
+}
+
+static const char *tile_defines(bool world) { return world ? "#define TILES_WORLD 1\n" : ""; }
+
+void blade_tiles_prefetch(const terrain_mesh_t *terrain)
+{
+    gfx_program_desc_t pds[TILE_PROGRAMS];
+    tile_programs(tile_defines(terrain->type == TERRAIN_WORLD), pds);
+    gfx_programs_prefetch(TILE_PROGRAMS, pds);
+}
+
 static gfx_program_t make_program(const blade_tiles_t *t, const char *what, const gfx_program_desc_t *pd)
 {
     char label[128];
@@ -360,19 +381,15 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->bb_sums = make_buffer(t, "bb_slope_sums", cells * sizeof(hybrid_slope_sum_t), NULL);
     ok = ok && t->slope_map.id && t->slope_sums.id && t->bb_sums.id;
     /* the compute programs, built side by side */
-    static const char *const what[] = {"handover", "slope_resolve", "init", "physics", "cull"};
-    char labels[5][128];
-    gfx_program_desc_t pds[5] = {{.cs = "blade/tiles_handover.comp", .defines = t->defines},
-                                 {.cs = "blade/tiles_slope_resolve.comp"},
-                                 {.cs = "blade/tiles_init.comp", .defines = t->defines},
-                                 {.cs = "blade/tiles_physics.comp", .defines = t->defines},
-                                 {.cs = "blade/tiles_cull.comp", .defines = t->defines}};
-    for (int k = 0; k < 5; k++) {
-        snprintf(labels[k], sizeof labels[k], "%s.%s", d->label, what[k]);
+    char labels[TILE_PROGRAMS][128];
+    gfx_program_desc_t pds[TILE_PROGRAMS];
+    tile_programs(t->defines, pds);
+    for (int k = 0; k < TILE_PROGRAMS; k++) {
+        snprintf(labels[k], sizeof labels[k], "%s.%s", d->label, pds[k].label);
         pds[k].label = labels[k];
     }
-    gfx_program_t progs[5];
-    ok = gfx_programs_make(5, pds, progs) && ok;
+    gfx_program_t progs[TILE_PROGRAMS];
+    ok = gfx_programs_make(TILE_PROGRAMS, pds, progs) && ok;
     t->handover = progs[0];
     t->resolve = progs[1];
     t->init = progs[2];
@@ -448,10 +465,8 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->field_size = field_side(d, m, &t->desc.window);
     t->field_min[0] = t->field_min[1] = -0.5f * t->field_size;
     t->grid_res = t->world ? 0 : m->grid_res;
-    if (t->world) {
-        t->world_fn = m->world;
-        snprintf(t->defines, sizeof t->defines, "#define TILES_WORLD 1\n");
-    }
+    if (t->world) t->world_fn = m->world;
+    snprintf(t->defines, sizeof t->defines, "%s", tile_defines(t->world));
     t->reach = d->population.height[1] + 0.5f * d->population.width[1];
     t->tile_offset[0] = t->tile_offset[1] = (int)lroundf(t->field_min[0] / d->tile_size);
     layout_t l = layout_of(d, t->field_size, t->grid_res);

@@ -226,7 +226,9 @@ static int cube_resolution_for(world_t *w)
     return res;
 }
 
-bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
+/* The billboard field's desc (world_build_billboards; placement: its
+ * placement seed). */
+static bb_field_desc_t billboard_desc(const world_t *w, uint32_t placement)
 {
     const scene_desc_t *s = &w->scene;
     const scene_grass_desc_t *g = &s->grass;
@@ -241,7 +243,7 @@ bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
     int layout_size = layout_for(w, &gen);
     int objects = w->colliders.count + (w->have_chars ? character_set_count(&w->chars) : 0);
     if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
-    return bb_field_make(&(bb_field_desc_t){
+    return (bb_field_desc_t){
         .terrain = &w->terrain_mesh,
         .seed = s->seed,
         .placement_seed = placement,
@@ -266,7 +268,13 @@ bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
                              .wind_dir = {wind.dir[0], wind.dir[1]}},
                    .extent = extent_desc(w, &gen),
                    .views = {.on = w->tuning.view_cards}},
-    });
+    };
+}
+
+bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
+{
+    bb_field_desc_t d = billboard_desc(w, placement);
+    return bb_field_make(&d);
 }
 
 static bool make_bb(world_t *w)
@@ -559,9 +567,12 @@ bool world_make_gpu(world_t *w)
      * the rest is made, and the first frame takes them: made there, on a
      * fresh H100 they were 2.5 s of the world's first frame. */
     raster_desc_t rd = {.samples = w->raster_samples};
-    bool prefetch = w->gpu_ready && w->scene.raster != SCENE_RASTER_HW;
-    if (prefetch && (uses_tiles(w) || wants_blades(w->mode) || w->reference))
+    bool raster = w->scene.raster != SCENE_RASTER_HW;
+    if (w->gpu_ready && raster && (uses_tiles(w) || wants_blades(w->mode) || w->reference))
         blade_raster_prefetch(&rd, w->gi_bind.ao != 0);
+    /* The tiles' programs build while the characters and the billboards
+     * are made. */
+    if (w->gpu_ready && uses_tiles(w)) blade_tiles_prefetch(&w->terrain_mesh);
     if (w->gpu_ready && !w->scene.character_count && !w->character_override &&
         (w->clip_override || w->character_height > 0.0f)) {
         core_log_error("%s: the scene has no characters and there is no --character",
@@ -587,8 +598,13 @@ bool world_make_gpu(world_t *w)
      * cube maps by it) and their sphere proxies in the blade physics. */
     if (w->gpu_ready && w->have_chars) w->gpu_ready = admit(w);
     if (w->gpu_ready) w->cube_res = cube_resolution_for(w);
-    if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) w->gpu_ready = make_bb(w) && world_ring_make_canopy(w);
-    if (prefetch && w->gpu_ready && w->bb) bb_field_raster_prefetch(w->bb, &rd);
+    if (w->gpu_ready && wants_bb(w, w->mode) && !w->reference) {
+        /* its programs build during its layout (and the raster's during the
+         * rest) */
+        bb_field_desc_t bd = billboard_desc(w, w->tuning.placement_seed);
+        bb_field_prefetch(&bd, raster ? &rd : NULL);
+        w->gpu_ready = make_bb(w) && world_ring_make_canopy(w);
+    }
     stage_done(w, WORLD_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
     if (w->gpu_ready && uses_tiles(w)) w->gpu_ready = make_tiles(w);
