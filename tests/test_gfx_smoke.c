@@ -39,10 +39,12 @@ int main(void)
     gfx_program_destroy(&two[0]);
     /* Prefetched programs are taken by a make with an equal desc (another
      * label), no other; one never made is dropped and counted. */
-    int made_before = gfx_program_stats().count;
+    gfx_program_stats_t st0 = gfx_program_stats();
+    int made_before = st0.count;
     gfx_programs_prefetch(2, (gfx_program_desc_t[2]){good, broken});
     gfx_programs_prefetch(1, &good); /* already waiting: not issued twice */
     CHECK(gfx_program_stats().count == made_before);
+    CHECK(gfx_program_stats().prefetched == st0.prefetched + 2);
     gfx_program_desc_t relabelled = good;
     relabelled.label = "smoke.prefetched";
     gfx_program_t taken = gfx_program_make(&relabelled);
@@ -50,6 +52,7 @@ int main(void)
     CHECK(gfx_program_stats().count == made_before + 1);
     errs_before = core_log_error_count();
     CHECK(gfx_program_make(&broken).id == 0 && core_log_error_count() > errs_before);
+    CHECK(gfx_program_stats().taken == st0.taken + 2);
     CHECK(gfx_programs_prefetch_drop() == 0);
     gfx_programs_prefetch(1, &(gfx_program_desc_t){.vs = "tests/tri.vert", .fs = "tests/tri.frag",
                                                    .defines = "#define UNUSED 1\n"});

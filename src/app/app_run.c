@@ -249,8 +249,9 @@ static int summary_startup(const app_t *app, const measure_stats_t *st, char *bu
     n += snprintf(buf + n, size - (size_t)n, "startup work: draw calls %.0f (ranges %.0f), dispatches %.0f\n",
                   app->startup_draws, app->startup_ranges, app->startup_dispatches);
     gfx_program_stats_t ps = gfx_program_stats();
-    n += snprintf(buf + n, size - (size_t)n, "startup programs: %d compiled and linked in %.1f ms (slowest:", ps.count,
-                  ps.ms);
+    n += snprintf(buf + n, size - (size_t)n,
+                  "startup programs: %d compiled and linked (%d prefetched, %d of those taken) in %.1f ms (slowest:",
+                  ps.count, ps.prefetched, ps.taken, ps.ms);
     for (int i = 0; i < GFX_PROGRAM_SLOWEST && ps.slowest[i].ms > 0.0 && n < (int)size - 80; i++)
         n += snprintf(buf + n, size - (size_t)n, " %s %.1f", ps.slowest[i].label, ps.slowest[i].ms);
     n += snprintf(buf + n, size - (size_t)n, ")\n");

@@ -205,6 +205,7 @@ void gfx_program_destroy(gfx_program_t *p);
 typedef struct gfx_program_stats_t {
     int count;
     double ms;
+    int prefetched, taken; /* issued by gfx_programs_prefetch; of those, taken by a make */
     struct {
         char label[64];
         double ms;

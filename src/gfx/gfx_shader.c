@@ -280,6 +280,7 @@ void gfx_programs_prefetch(int n, const gfx_program_desc_t *descs)
             continue;
         }
         program_issue(pd, &descs[i]);
+        stats.prefetched++;
         prefetched.key[prefetched.count] = key;
         prefetched.pd[prefetched.count++] = pd;
     }
@@ -333,6 +334,7 @@ bool gfx_programs_make(int n, const gfx_program_desc_t *descs, gfx_program_t *ou
         if (taken) {
             pd[i] = *taken;
             free(taken);
+            stats.taken++;
         } else {
             program_issue(&pd[i], &descs[i]);
         }
