@@ -82,14 +82,17 @@ static bool draw_programs(bb_field_t *f)
 {
     if (f->quad_prog.id) return true;
     if (f->programs_failed) return false;
-    f->render_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_point.vert",
-                                                            .gs = "billboard/bb_render.geom",
-                                                            .fs = "billboard/bb_render.frag", .defines = f->defines,
-                                                            .label = "bb.render"});
-    f->quad_prog = gfx_program_make(&(gfx_program_desc_t){.vs = "billboard/bb_quad.vert",
-                                                          .fs = "billboard/bb_render.frag", .defines = f->defines,
-                                                          .label = "bb.quad"});
-    if (f->render_prog.id && f->quad_prog.id) return true;
+    gfx_program_t progs[2];
+    bool ok = gfx_programs_make(
+        2,
+        (gfx_program_desc_t[2]){{.vs = "billboard/bb_point.vert", .gs = "billboard/bb_render.geom",
+                                 .fs = "billboard/bb_render.frag", .defines = f->defines, .label = "bb.render"},
+                                {.vs = "billboard/bb_quad.vert", .fs = "billboard/bb_render.frag",
+                                 .defines = f->defines, .label = "bb.quad"}},
+        progs);
+    f->render_prog = progs[0];
+    f->quad_prog = progs[1];
+    if (ok) return true;
     gfx_program_destroy(&f->render_prog);
     gfx_program_destroy(&f->quad_prog);
     f->programs_failed = true;

@@ -95,26 +95,34 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     snprintf(label, sizeof label, "%s.readback", g->desc.label);
     g->readback = gfx_readback_make(8 * sizeof(uint32_t), BLADE_GPU_READBACK_SLOTS, label);
     ok = ok && g->readback.depth;
-    snprintf(label, sizeof label, "%s.physics", g->desc.label);
-    g->physics = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .label = label});
-    snprintf(label, sizeof label, "%s.physics_cubes", g->desc.label);
-    g->physics_cubes = gfx_program_make(
-        &(gfx_program_desc_t){.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n", .label = label});
-    snprintf(label, sizeof label, "%s.cull", g->desc.label);
-    g->cull = gfx_program_make(&(gfx_program_desc_t){.cs = "blade/blade_cull.comp", .label = label});
+    /* built side by side */
     bool tess = g->desc.path == BLADE_PATH_TESSELLATION;
-    for (int fade = 0; fade < 2; fade++) {
-        snprintf(label, sizeof label, "%s.draw_%s%s", g->desc.label, tess ? "tess" : "pull", fade ? "_fade" : "");
-        gfx_program_desc_t pd = {.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
-                                 .tcs = tess ? "blade/blade.tesc" : NULL,
-                                 .tes = tess ? "blade/blade.tese" : NULL,
-                                 .fs = "blade/blade.frag",
-                                 .defines = fade ? "#define BLADE_FADE 1\n" : NULL,
-                                 .label = label};
-        gfx_program_t *out = fade ? &g->draw_fade : &g->draw;
-        *out = gfx_program_make(&pd);
-        ok = ok && out->id;
+    static const char *const what[5] = {"physics", "physics_cubes", "cull", "draw", "draw"};
+    char labels[5][128];
+    gfx_program_desc_t pds[5] = {
+        {.cs = "blade/blade_physics.comp"},
+        {.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n"},
+        {.cs = "blade/blade_cull.comp"},
+    };
+    for (int k = 0; k < 5; k++) {
+        bool fade = k == 4;
+        if (k >= 3)
+            pds[k] = (gfx_program_desc_t){.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
+                                          .tcs = tess ? "blade/blade.tesc" : NULL,
+                                          .tes = tess ? "blade/blade.tese" : NULL,
+                                          .fs = "blade/blade.frag",
+                                          .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        snprintf(labels[k], sizeof labels[k], "%s.%s%s%s", g->desc.label, what[k],
+                 k < 3 ? "" : tess ? "_tess" : "_pull", fade ? "_fade" : "");
+        pds[k].label = labels[k];
     }
+    gfx_program_t progs[5];
+    ok = gfx_programs_make(5, pds, progs) && ok;
+    g->physics = progs[0];
+    g->physics_cubes = progs[1];
+    g->cull = progs[2];
+    g->draw = progs[3];
+    g->draw_fade = progs[4];
     snprintf(label, sizeof label, "%s.vao", g->desc.label);
     g->vao = gfx_vertex_array_make(label);
     ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->vao;

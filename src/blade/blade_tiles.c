@@ -279,15 +279,6 @@ void blade_tiles_prefetch(const terrain_mesh_t *terrain)
     gfx_programs_prefetch(TILE_PROGRAMS, pds);
 }
 
-static gfx_program_t make_program(const blade_tiles_t *t, const char *what, const gfx_program_desc_t *pd)
-{
-    char label[128];
-    snprintf(label, sizeof label, "%s.%s", t->desc.label, what);
-    gfx_program_desc_t d = *pd;
-    d.label = label;
-    return gfx_program_make(&d);
-}
-
 static bool seed_templates(blade_tiles_t *t)
 {
     const blade_tiles_desc_t *d = &t->desc;
@@ -970,21 +961,27 @@ static bool draw_programs(blade_tiles_t *t)
 {
     if (t->draw.id) return true;
     if (t->programs_failed) return false;
+    gfx_program_desc_t pds[2];
+    char labels[2][128];
     for (int fade = 0; fade < 2; fade++) {
         /* the pulled strips carry the debug overlays; the tessellation
          * stages are blade mode's (blade.tesc, blade.tese) */
-        gfx_program_desc_t pd = {.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
-                                 .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
-                                                 : "#define BLADE_OVERLAY 1\n"};
+        pds[fade] = (gfx_program_desc_t){.vs = "blade/tiles_draw.vert", .fs = "blade/blade.frag",
+                                         .defines = fade ? "#define BLADE_OVERLAY 1\n#define BLADE_FADE 1\n"
+                                                         : "#define BLADE_OVERLAY 1\n"};
         if (t->desc.tessellate) {
-            pd = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
-                                      .tes = "blade/blade.tese", .fs = "blade/blade.frag",
-                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+            pds[fade] = (gfx_program_desc_t){.vs = "blade/tiles_tess.vert", .tcs = "blade/blade.tesc",
+                                             .tes = "blade/blade.tese", .fs = "blade/blade.frag",
+                                             .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
         }
-        char what[32];
-        snprintf(what, sizeof what, "draw_%s%s", t->desc.tessellate ? "tess" : "pull", fade ? "_fade" : "");
-        *(fade ? &t->draw_fade : &t->draw) = make_program(t, what, &pd);
+        snprintf(labels[fade], sizeof labels[fade], "%s.draw_%s%s", t->desc.label,
+                 t->desc.tessellate ? "tess" : "pull", fade ? "_fade" : "");
+        pds[fade].label = labels[fade];
     }
+    gfx_program_t progs[2];
+    gfx_programs_make(2, pds, progs);
+    t->draw = progs[0];
+    t->draw_fade = progs[1];
     if (t->draw.id && t->draw_fade.id) return true;
     gfx_program_destroy(&t->draw);
     gfx_program_destroy(&t->draw_fade);
