@@ -241,16 +241,11 @@ static bool field_programs(const bb_field_desc_t *d, int tile, int render_verts,
 static bool make_programs(bb_field_t *f, int tile, int render_verts)
 {
     const bb_field_desc_t *d = &f->desc;
-    field_programs_t *p = malloc(sizeof *p);
-    if (!p || !field_programs(d, tile, render_verts, p)) {
-        free(p);
-        return false;
-    }
-    snprintf(f->defines, sizeof f->defines, "%s", p->defines);
+    field_programs_t p;
+    if (!field_programs(d, tile, render_verts, &p)) return false;
+    snprintf(f->defines, sizeof f->defines, "%s", p.defines);
     gfx_program_t progs[5] = {{0}};
-    bool ok = gfx_programs_make(p->n, p->d, progs);
-    free(p);
-    if (!ok) {
+    if (!gfx_programs_make(p.n, p.d, progs)) {
         for (int k = 0; k < 5; k++) gfx_program_destroy(&progs[k]);
         return false;
     }
@@ -267,13 +262,12 @@ void bb_field_prefetch(const bb_field_desc_t *desc, const raster_desc_t *raster)
 {
     bb_field_desc_t d = bb_field_desc_defaults(desc);
     int tile = 0, render_verts = 0;
-    field_programs_t *p = malloc(sizeof *p);
-    if (p && d.terrain && check_limits(&d, &tile, &render_verts, true) && field_programs(&d, tile, render_verts, p)) {
-        gfx_programs_prefetch(p->n, p->d);
-        if (d.terrain->type == TERRAIN_WORLD) bb_ring_prefetch(p->defines);
-        if (raster) raster_program_prefetch(raster, "billboard/bb_raster.comp", p->defines);
-    }
-    free(p);
+    field_programs_t p;
+    if (!d.terrain || !check_limits(&d, &tile, &render_verts, true) || !field_programs(&d, tile, render_verts, &p))
+        return;
+    gfx_programs_prefetch(p.n, p.d);
+    if (d.terrain->type == TERRAIN_WORLD) bb_ring_prefetch(p.defines);
+    if (raster) raster_program_prefetch(raster, "billboard/bb_raster.comp", p.defines);
 }
 
 /* The pool with every slot free, the points buffers, the objects uniform

@@ -97,25 +97,24 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     ok = ok && g->readback.depth;
     /* built side by side */
     bool tess = g->desc.path == BLADE_PATH_TESSELLATION;
-    static const char *const what[5] = {"physics", "physics_cubes", "cull", "draw", "draw"};
+    static const char *const what[3] = {"physics", "physics_cubes", "cull"};
     char labels[5][128];
     gfx_program_desc_t pds[5] = {
         {.cs = "blade/blade_physics.comp"},
         {.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n"},
         {.cs = "blade/blade_cull.comp"},
     };
-    for (int k = 0; k < 5; k++) {
-        bool fade = k == 4;
-        if (k >= 3)
-            pds[k] = (gfx_program_desc_t){.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
-                                          .tcs = tess ? "blade/blade.tesc" : NULL,
-                                          .tes = tess ? "blade/blade.tese" : NULL,
-                                          .fs = "blade/blade.frag",
-                                          .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
-        snprintf(labels[k], sizeof labels[k], "%s.%s%s%s", g->desc.label, what[k],
-                 k < 3 ? "" : tess ? "_tess" : "_pull", fade ? "_fade" : "");
-        pds[k].label = labels[k];
+    for (int k = 0; k < 3; k++) snprintf(labels[k], sizeof labels[k], "%s.%s", g->desc.label, what[k]);
+    for (int fade = 0; fade < 2; fade++) {
+        pds[3 + fade] = (gfx_program_desc_t){.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
+                                             .tcs = tess ? "blade/blade.tesc" : NULL,
+                                             .tes = tess ? "blade/blade.tese" : NULL,
+                                             .fs = "blade/blade.frag",
+                                             .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        snprintf(labels[3 + fade], sizeof labels[3 + fade], "%s.draw_%s%s", g->desc.label, tess ? "tess" : "pull",
+                 fade ? "_fade" : "");
     }
+    for (int k = 0; k < 5; k++) pds[k].label = labels[k];
     gfx_program_t progs[5];
     ok = gfx_programs_make(5, pds, progs) && ok;
     g->physics = progs[0];

@@ -145,15 +145,35 @@ static void stats_add(const char *label, int programs, double ms)
 
 gfx_program_stats_t gfx_program_stats(void) { return stats; }
 
-/* A program being built: its stages' shaders and their files (for
- * mapping the compiler's messages). */
+/* A program being built: its stages' shaders and their files' #line
+ * tables (for mapping the compiler's messages). */
 typedef struct pending_t {
     GLuint prog;
     GLuint shaders[6];
     pp_t pp[6];
-    const char *paths[6];
     bool ok; /* every stage preprocessed */
 } pending_t;
+
+/* d's stage files in pipeline order (NULL: no such stage); returns the
+ * first, NULL when there is none. */
+static const char *stage_paths(const gfx_program_desc_t *d, const char *paths[6])
+{
+    const char *all[6] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs};
+    const char *first = NULL;
+    for (int i = 0; i < 6; i++) {
+        paths[i] = all[i];
+        if (!first) first = all[i];
+    }
+    return first;
+}
+
+/* What d's program is called in messages and statistics. */
+static const char *desc_label(const gfx_program_desc_t *d)
+{
+    const char *paths[6];
+    const char *first = stage_paths(d, paths);
+    return d->label ? d->label : first ? first : "?";
+}
 
 /* Issues stage compiles and the link without waiting for either (a driver
  * with GL_KHR_parallel_shader_compile builds on its own threads). */
@@ -161,11 +181,11 @@ static void program_issue(pending_t *pd, const gfx_program_desc_t *d)
 {
     static const GLenum stage[6] = {GL_VERTEX_SHADER,   GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
                                     GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER,     GL_COMPUTE_SHADER};
-    const char *paths[6] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs};
+    const char *paths[6];
+    stage_paths(d, paths);
     pd->prog = glCreateProgram();
     pd->ok = true;
     for (int i = 0; i < 6; i++) {
-        pd->paths[i] = paths[i];
         if (!paths[i]) continue;
         char err[512];
         char *src = preprocess(&pd->pp[i], paths[i], d->defines, err, sizeof err);
@@ -203,11 +223,12 @@ static char *info_log(GLuint obj, bool program)
 }
 
 /* Waits for the link; on failure logs each stage that did not compile
- * (shaders/<file>:<line>: ...) or the link's message. */
+ * (shaders/<file>:<line>: ...) or the link's message. d: the desc it was
+ * issued from, or one with an equal key (a prefetched program). */
 static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
 {
-    const char *first = NULL;
-    for (int i = 0; i < 6 && !first; i++) first = pd->paths[i];
+    const char *paths[6];
+    const char *first = stage_paths(d, paths);
     GLint linked = 0;
     if (pd->ok) glGetProgramiv(pd->prog, GL_LINK_STATUS, &linked);
     bool compiled = true;
@@ -218,7 +239,7 @@ static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
         if (!ok) {
             char *log = info_log(pd->shaders[i], false);
             char what[300];
-            snprintf(what, sizeof what, "shaders/%s", pd->paths[i]);
+            snprintf(what, sizeof what, "shaders/%s", paths[i]);
             log_shader_errors(&pd->pp[i], log ? log : "", what);
             free(log);
             compiled = false;
@@ -235,7 +256,7 @@ static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
         glDeleteProgram(pd->prog);
         return (gfx_program_t){0};
     }
-    gfx_track(GL_PROGRAM, pd->prog, d->label ? d->label : first);
+    gfx_track(GL_PROGRAM, pd->prog, desc_label(d));
     return (gfx_program_t){pd->prog};
 }
 
@@ -342,8 +363,7 @@ bool gfx_programs_make(int n, const gfx_program_desc_t *descs, gfx_program_t *ou
     bool ok = true;
     for (int i = 0; i < n; i++) ok = (out[i] = program_check(&pd[i], &descs[i])).id != 0 && ok;
     free(pd);
-    const gfx_program_desc_t *d = &descs[0];
-    const char *label = d->label ? d->label : d->vs ? d->vs : d->cs ? d->cs : "?";
+    const char *label = desc_label(&descs[0]);
     char batch[64];
     if (n > 1) snprintf(batch, sizeof batch, "%s+%d", label, n - 1);
     stats_add(n > 1 ? batch : label, n, now_ms() - t0);

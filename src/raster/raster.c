@@ -44,12 +44,16 @@ bool raster_desc_resolve(const raster_desc_t *in, raster_desc_t *out)
     return true;
 }
 
+/* The one-pass 64-bit buffer, unless desc asks for the 32-bit one or the
+ * GL lacks its atomics. */
+static bool wants_atomic64(const raster_desc_t *desc) { return !desc->no_atomic64 && raster_has_atomic64(); }
+
 bool raster_make(raster_t *r, const raster_desc_t *desc)
 {
     memset(r, 0, sizeof *r);
     if (!raster_desc_resolve(desc, &r->desc)) return false;
     const raster_desc_t *d = &r->desc;
-    r->atomic64 = !d->no_atomic64 && raster_has_atomic64();
+    r->atomic64 = wants_atomic64(d);
     size_t samples = (size_t)d->w * (size_t)d->h * (size_t)d->samples;
     char label[128];
     snprintf(label, sizeof label, "%s.visibility", d->label);
@@ -150,7 +154,7 @@ raster_program_t raster_program_make(const raster_t *r, const char *cs, const ch
 void raster_program_prefetch(const raster_desc_t *desc, const char *cs, const char *defines)
 {
     program_descs_t pd;
-    if (program_descs(&pd, !desc->no_atomic64 && raster_has_atomic64(), cs, defines, cs))
+    if (program_descs(&pd, wants_atomic64(desc), cs, defines, cs))
         gfx_programs_prefetch(2, pd.d);
 }
 

@@ -603,7 +603,7 @@ bool world_make_gpu(world_t *w)
          * rest) */
         bb_field_desc_t bd = billboard_desc(w, w->tuning.placement_seed);
         bb_field_prefetch(&bd, raster ? &rd : NULL);
-        w->gpu_ready = make_bb(w) && world_ring_make_canopy(w);
+        w->gpu_ready = (w->bb = bb_field_make(&bd)) != NULL && world_ring_make_canopy(w);
     }
     stage_done(w, WORLD_STAGE_BILLBOARDS, &mark);
     make_blade_env(w);
