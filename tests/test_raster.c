@@ -110,7 +110,7 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
                                             .small_samples = 16, .medium_samples = 256}));
     printf("variant: %s, %d sample%s per pixel, large triangles %s\n",
            r.atomic64 ? "64-bit atomic, one pass" : "32-bit, two passes", ns, ns > 1 ? "s" : "",
-           group_scan ? "shared out pixel by pixel (RASTER_GROUP_SCAN)" : "one row per invocation");
+           group_scan ? "in row bands, shared out pixel by pixel (RASTER_GROUP_SCAN)" : "one row per invocation");
     gfx_target_t target = gfx_target_make(&(gfx_target_desc_t){.w = W, .h = H, .samples = 1, .label = "t"});
     gfx_target_bind(&target);
     glClearColor(0.0f, 0.0f, 1.0f, 1.0f);
@@ -118,7 +118,11 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glClearDepth(1.0);
     gfx_buffer_t buf = gfx_buffer_make(&(gfx_buffer_desc_t){.size = NTRI * 64, .data = tris, .label = "tris"});
-    const char *defines = group_scan ? "#define RASTER_GROUP_SCAN 1\n" : NULL;
+    /* The shared scan with large triangles in bands (RASTER_BANDS) of 16
+     * rows from 1024 samples: up to 10 bands here. */
+    const char *defines = group_scan ? "#define RASTER_GROUP_SCAN 1\n#define RASTER_BANDS 1\n#define RASTER_BAND_ROWS 16\n"
+                                       "#define RASTER_BAND_SPLIT_SAMPLES 1024\n"
+                                     : NULL;
     raster_program_t prog = raster_program_make(&r, "tests/raster_tris.comp", defines, "raster_tris");
     CHECK(prog.prim.id && prog.big.id);
     raster_begin(&r, &target);
@@ -126,7 +130,8 @@ static void run_variant(bool no_atomic64, bool group_scan, const float *tris, co
     raster_draw(&r, &prog, &(raster_items_t){.count = NTRI}, bind, &b);
     raster_stats_t st;
     raster_read_stats(&r, &st);
-    printf("queued triangles: %u medium, %u large or clipped (overflow %u)\n", st.medium, st.large, st.overflow);
+    printf("queued: %u medium triangles, %u bands of large or clipped ones (overflow %u)\n", st.medium, st.large,
+           st.overflow);
     CHECK(st.medium >= 8 && st.large >= 8 && st.overflow == 0);
 
     size_t n = (size_t)W * H * (size_t)ns;

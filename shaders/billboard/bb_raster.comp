@@ -31,6 +31,7 @@
 #define RASTER_NO_MEDIUM 1
 #define RASTER_GROUP_SCAN 1
 #define RASTER_BIG_THREADS 32
+#define RASTER_BANDS 1 /* the billboards at the camera fill the screen */
 #include "raster/raster.glsl"
 
 #ifdef RASTER_BIG

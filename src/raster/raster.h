@@ -45,7 +45,7 @@ typedef struct raster_desc_t {
 } raster_desc_t;
 
 typedef struct raster_stats_t {
-    uint32_t medium, large; /* triangles queued by the last draw */
+    uint32_t medium, large; /* queued by the last draw: medium triangles, bands of large ones */
     uint32_t overflow;      /* of those, beyond queue_capacity (not drawn; logged) */
 } raster_stats_t;
 

@@ -359,18 +359,22 @@ admission() {
 # 2 km world in blade mode, the 2 and 4 km worlds in billboard mode (the
 # ring alone); memory, frame percentiles, submit, start-up and the ring's
 # passes (bb.ring: cells generated, bb.raster) from summary.txt; each
-# run's frame log (--frame-log) to $OUT/frames-SCENE-MODE.csv.gz.
-# WORLD_RUNS="SCENE:MODE ..." runs those instead.
+# run's frame log (--frame-log) to $OUT/frames-SCENE-MODE-build.csv.gz.
+# WORLD_RUNS="SCENE:MODE ..." runs those instead; WORLD_AB_ROOT (folders
+# holding a shaders/ tree, as the ab section's AB_ROOT) runs each again
+# with those shaders, the tag in place of "build".
 world() {
   for sm in ${WORLD_RUNS:-world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard}; do
-    s=${sm%%:*}; mode=${sm#*:}; o=/tmp/world-$s-$mode
-    ( time timeout -k 10 300 $M --headless --scene scenes/bench/$s.json --mode $mode --raster compute \
-      --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
-    echo "== $s $mode rc=$?"
-    gzip -c $o/frames.csv > $OUT/frames-$s-$mode.csv.gz 2>/dev/null # per frame: where a spike sits
+  for root in build $WORLD_AB_ROOT; do
+    s=${sm%%:*}; mode=${sm#*:}; tag=$(basename $root); o=/tmp/world-$s-$mode-$tag
+    ( time env $([ $root != build ] && echo MEADOW_ROOT=$root) timeout -k 10 300 $M --headless \
+      --scene scenes/bench/$s.json --mode $mode --raster compute --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
+    echo "== $s $mode $tag rc=$?"
+    gzip -c $o/frames.csv > $OUT/frames-$s-$mode-$tag.csv.gz 2>/dev/null # per frame: where a spike sits
     grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^billboard ring|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|bb\.[a-z_]*|character[a-z.]*) " \
       $o/summary.txt 2>/dev/null || tail -5 $o.log
     grep -E "real|error|warn" $o.log | head -4
+  done
   done
 }
 
