@@ -3,7 +3,11 @@
  * animation times; the billboard object's bounding sphere holds every
  * skinned vertex; 8 characters share 2 models and update without GL errors;
  * bad model files and unknown clips fail with exactly one error line; a
- * 128x128 golden image of the humanoid mid-stride (character_walk.png). */
+ * 128x128 golden image of the humanoid mid-stride (character_walk.png);
+ * the animation level of detail (character_set_view): a character is
+ * posed every character_pose_step-th update, its skinned vertices then
+ * equal those of a set without it, between poses they stay, and its
+ * bounding sphere follows the walk and holds them as drawn. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -167,10 +171,83 @@ static void check_golden(void)
     character_set_destroy(&set);
 }
 
+static void read_skinned(const character_instance_t *inst, int n, character_skinned_vertex_t *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gfx_buffer_read(inst->skinned, 0, (size_t)n * sizeof *out, out);
+}
+
+/* Walkers 0, 15, 25 ... 95 m from a camera at the origin with lod_distance
+ * 10 m (steps 1, 2, 3 ... 8) against the same set without it. */
+static void check_lod(void)
+{
+    enum { N = 9, UPDATES = 48 };
+    scene_character_t cs[N];
+    for (int i = 0; i < N; i++) {
+        float x = i ? 5.0f + 10.0f * (float)i : 0.0f;
+        cs[i] = walker("models/humanoid.gltf", x, -2, x, 2);
+    }
+    character_set_t full, lod;
+    CHECK(character_set_make(&full, &(character_set_desc_t){.characters = cs, .count = N}));
+    CHECK(character_set_make(&lod, &(character_set_desc_t){.characters = cs, .count = N}));
+    const float camera[3] = {0.0f, 0.0f, 0.0f};
+    character_set_view(&lod, camera, 10.0f);
+    int nv = full.assets[0].model.vertex_count;
+    character_skinned_vertex_t *a = malloc((size_t)nv * sizeof *a), *b = malloc((size_t)nv * sizeof *b);
+    character_skinned_vertex_t *last = malloc((size_t)N * (size_t)nv * sizeof *last);
+    for (int i = 0; i < N; i++) read_skinned(&lod.items[i], nv, last + (size_t)i * (size_t)nv); /* make's pose */
+    int poses[N] = {0}, differ = 0, moved = 0, posed_sum = 0;
+    double outside = -1e9;
+    for (int u = 0; u < UPDATES; u++) {
+        float t = (float)u / 60.0f;
+        character_set_update(&full, t, 1.0f / 60.0f);
+        character_set_update(&lod, t, 1.0f / 60.0f);
+        CHECK(full.posed == N);
+        posed_sum += lod.posed;
+        for (int i = 0; i < N; i++) {
+            const character_instance_t *fi = &full.items[i], *li = &lod.items[i];
+            CHECK(memcmp(fi->model, li->model, sizeof fi->model) == 0); /* the walk at every update */
+            read_skinned(li, nv, b);
+            if (li->posed) {
+                poses[i]++;
+                read_skinned(fi, nv, a);
+                differ += memcmp(a, b, (size_t)nv * sizeof *a) != 0;
+                memcpy(last + (size_t)i * (size_t)nv, b, (size_t)nv * sizeof *b);
+            } else {
+                moved += memcmp(last + (size_t)i * (size_t)nv, b, (size_t)nv * sizeof *b) != 0;
+            }
+            for (int v = 0; v < nv; v++) { /* drawn: this skin, this model matrix */
+                float w[3];
+                character_mat4_point(li->model, &b[v].pos[0], w);
+                double d = sqrt((w[0] - li->centre[0]) * (w[0] - li->centre[0]) +
+                                (w[1] - li->centre[1]) * (w[1] - li->centre[1]) +
+                                (w[2] - li->centre[2]) * (w[2] - li->centre[2]));
+                outside = fmax(outside, d - li->radius);
+            }
+        }
+    }
+    int bad_count = 0;
+    for (int i = 0; i < N; i++) {
+        int step = i ? i + 1 : 1;
+        bad_count += poses[i] < UPDATES / step || poses[i] > UPDATES / step + 1;
+    }
+    printf("animation LOD: %d poses over %d updates of %d characters (%d without it); posed skins differing "
+           "%d, skipped skins changed %d, drawn vertices outside the bounding sphere by %.3g m\n",
+           posed_sum, UPDATES, N, UPDATES * N, differ, moved, outside);
+    CHECK(bad_count == 0);
+    CHECK(differ == 0 && moved == 0);
+    CHECK(outside <= 1e-4);
+    CHECK(posed_sum < UPDATES * N / 3);
+    free(a), free(b), free(last);
+    character_set_destroy(&full);
+    character_set_destroy(&lod);
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
     test_gl_init();
+    check_lod();
     check_skinning("models/humanoid.gltf");
     check_skinning("models/quadruped.gltf");
     check_errors();

@@ -12,7 +12,11 @@
  * - facing from the walk: the generated models face +Z; turned by 90, -90
  *   and 180 degrees they face +X, -X, -Z; a humanoid.gltf whose root node
  *   turns it to face +X is turned back by character_set_make (summary:
- *   forward from "walk") and walks with its +Z along the path. */
+ *   forward from "walk") and walks with its +Z along the path;
+ * - the animation level of detail's rule: the step between poses by
+ *   distance (1 within, +1 per lod_distance beyond, at most 8, off at 0),
+ *   and each character due exactly once in any `step` consecutive updates,
+ *   the characters of one step spread over them. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -315,10 +319,34 @@ static void check_facing(void)
     character_set_destroy(&set);
 }
 
+static void check_pose_lod(void)
+{
+    CHECK(character_pose_step(500.0f, 0.0f) == 1);
+    CHECK(character_pose_step(80.0f, 80.0f) == 1);
+    CHECK(character_pose_step(80.5f, 80.0f) == 2);
+    CHECK(character_pose_step(159.0f, 80.0f) == 2);
+    CHECK(character_pose_step(160.0f, 80.0f) == 3);
+    CHECK(character_pose_step(1e6f, 80.0f) == CHARACTER_POSE_STEP_MAX);
+    for (int step = 1; step <= CHARACTER_POSE_STEP_MAX; step++) {
+        for (int i = 0; i < 20; i++) {
+            int due = 0;
+            for (uint64_t u = 1000; u < 1000 + (uint64_t)step; u++) due += character_pose_due(u, i, step);
+            CHECK(due == 1);
+        }
+        for (uint64_t u = 0; u < 40; u++) {
+            int due = 0;
+            for (int i = 0; i < step; i++) due += character_pose_due(u, i, step);
+            CHECK(due == 1);
+        }
+    }
+    printf("pose level of detail: steps and stagger hold\n");
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
     check_stride_synthetic();
+    check_pose_lod();
     test_gl_init();
     check_on_terrain();
     check_slip("models/humanoid.gltf", 0.6, 2.0);   /* 1.74 m figure, 1 s cycle */

@@ -364,6 +364,12 @@ static void instance_bounds(const character_set_t *set, character_instance_t *in
     }
     float r = 0.0f;
     for (int k = 0; k < 3; k++) inst->centre[k] = 0.5f * (lo[k] + hi[k]);
+    /* model = T(position) R s: its inverse is R^T (p - position) / s^2 */
+    const float *m = inst->model;
+    float d[3] = {inst->centre[0] - m[12], inst->centre[1] - m[13], inst->centre[2] - m[14]};
+    float s2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+    for (int k = 0; k < 3; k++)
+        inst->centre_model[k] = (m[4 * k] * d[0] + m[4 * k + 1] * d[1] + m[4 * k + 2] * d[2]) / s2;
     for (int i = 0; i < used; i++) {
         float dx = ws[i][0] - inst->centre[0], dy = ws[i][1] - inst->centre[1], dz = ws[i][2] - inst->centre[2];
         r = fmaxf(r, sqrtf(dx * dx + dy * dy + dz * dz) + ws[i][3]);
@@ -403,14 +409,35 @@ static void instance_spheres(character_instance_t *inst, bool sweep)
     }
 }
 
+void character_set_view(character_set_t *set, const float camera[3], float lod_distance)
+{
+    memcpy(set->view_camera, camera, sizeof set->view_camera);
+    set->lod_distance = lod_distance;
+}
+
 void character_set_update(character_set_t *set, float time, float dt)
 {
     if (!set->count) return;
+    set->posed = 0;
     for (int i = 0; i < set->count; i++) {
         character_instance_t *inst = &set->items[i];
         const character_model_t *m = &set->assets[inst->asset].model;
         character_walk_place(&inst->desc, set->terrain, inst->rate, time, &inst->clip_time, inst->position,
                              inst->dir, inst->model);
+        int step = 1;
+        if (set->lod_distance > 0.0f) {
+            float dx = inst->position[0] - set->view_camera[0], dy = inst->position[1] - set->view_camera[1],
+                  dz = inst->position[2] - set->view_camera[2];
+            step = character_pose_step(sqrtf(dx * dx + dy * dy + dz * dz), set->lod_distance);
+        }
+        inst->posed = character_pose_due(set->updates, i, step);
+        if (!inst->posed) {
+            /* the last pose carried along its walk */
+            mat4_point(inst->model, inst->centre_model, inst->centre);
+            inst->have_previous = false;
+            continue;
+        }
+        set->posed++;
         if (inst->clip >= 0) character_sample_clip(m, inst->clip, inst->clip_time, true, &inst->pose);
         else character_pose_bind(m, &inst->pose);
         character_pose_globals(m, &inst->pose);
@@ -419,12 +446,15 @@ void character_set_update(character_set_t *set, float time, float dt)
         inst->have_previous = true;
         instance_bounds(set, inst);
     }
+    set->updates++;
+    gfx_count_add("character.posed", (double)set->posed);
     gfx_timer_begin("character.skin");
     glUseProgram(set->skin_prog.id);
     GLint loc = gfx_uniform(set->skin_prog, "u_vertex_count");
     for (int i = 0; i < set->count; i++) {
         const character_instance_t *inst = &set->items[i];
         const character_asset_t *a = &set->assets[inst->asset];
+        if (!inst->posed) continue;
         glUniform1ui(loc, (GLuint)a->model.vertex_count);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_VERTICES, a->vertices.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_BONES, inst->bones.id);

@@ -14,6 +14,7 @@
 #define MEADOW_CHARACTER_H
 
 #include <stdbool.h>
+#include <stdint.h>
 
 #include "character/character_import.h"
 #include "character/character_load.h"
@@ -107,6 +108,8 @@ typedef struct character_instance_t {
     float (*sphere_now)[4];        /* unswept spheres at this frame's pose */
     bool have_previous;
     float centre[3], radius;       /* bounding sphere */
+    float centre_model[3];         /* its centre in model space at the last pose */
+    bool posed;                    /* posed (and skinned) by the last update */
 } character_instance_t;
 
 /* Zero means default. */
@@ -130,6 +133,10 @@ typedef struct character_set_t {
     const terrain_mesh_t *terrain;
     int capsules;
     gfx_program_t skin_prog, draw_prog;
+    float view_camera[3]; /* character_set_view */
+    float lod_distance;   /* 0: every character posed at every update */
+    uint64_t updates;     /* character_set_update calls so far */
+    int posed;            /* characters posed by the last update */
 } character_set_t;
 
 /* Loads every distinct model once, creates GPU buffers, fits capsules and
@@ -140,6 +147,17 @@ bool character_set_make(character_set_t *set, const character_set_desc_t *desc);
  * the proxies. dt is the step since the previous update (for the swept
  * spheres); dt <= 0 resets the sweep. */
 void character_set_update(character_set_t *set, float time, float dt);
+/* Animation level of detail for the updates after this call: a character
+ * whose root is more than lod_distance m from `camera` is posed and
+ * skinned only every character_pose_step-th update (2 up to twice the
+ * distance, one more per lod_distance, at most 8), staggered over the
+ * characters; its place, model matrix and bounding sphere follow its walk
+ * at every update, drawn in its last pose (character_set_make's first
+ * update poses all; counter character.posed). Its proxy spheres stay at that
+ * pose and the next pose does not sweep from them, so lod_distance must
+ * exceed every reach in which the proxies or the cube maps are used.
+ * lod_distance <= 0 (the default): every character at every update. */
+void character_set_view(character_set_t *set, const float camera[3], float lod_distance);
 /* Lit draw into the bound framebuffer (timer "character.draw"). */
 void character_set_draw(const character_set_t *set, const float viewproj[16], const float camera[3],
                         const float sun[3]);

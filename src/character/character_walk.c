@@ -159,3 +159,15 @@ void character_capsule_spheres(const float a[3], const float b[3], float radius,
         out[i][3] = r;
     }
 }
+
+int character_pose_step(float distance, float lod_distance)
+{
+    if (!(lod_distance > 0.0f) || !(distance > lod_distance)) return 1;
+    float step = floorf(distance / lod_distance) + 1.0f;
+    return step < (float)CHARACTER_POSE_STEP_MAX ? (int)step : CHARACTER_POSE_STEP_MAX;
+}
+
+bool character_pose_due(uint64_t update, int index, int step)
+{
+    return step <= 1 || (update + (uint64_t)index) % (uint64_t)step == 0;
+}

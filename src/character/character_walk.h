@@ -4,6 +4,9 @@
 #ifndef MEADOW_CHARACTER_WALK_H
 #define MEADOW_CHARACTER_WALK_H
 
+#include <stdbool.h>
+#include <stdint.h>
+
 #include "character/character.h"
 
 /* Strides slower than this (m/s) are "no stride": the clip plays at rate 1. */
@@ -40,5 +43,16 @@ int character_capsule_sphere_count(const character_capsule_t *c);
 /* n spheres from a to b whose union contains the capsule (a, b, radius):
  * radii are inflated to sqrt(radius^2 + (spacing/2)^2). */
 void character_capsule_spheres(const float a[3], const float b[3], float radius, int n, float (*out)[4]);
+
+/* Animation level of detail (character_set_view): the updates between
+ * two poses of a character `distance` m from the camera, 1 within
+ * lod_distance and one more per lod_distance beyond it, at most
+ * CHARACTER_POSE_STEP_MAX; 1 when lod_distance <= 0 (off). */
+#define CHARACTER_POSE_STEP_MAX 8
+int character_pose_step(float distance, float lod_distance);
+/* Whether character `index` is posed at update number `update` with step
+ * `step`: every step-th update, the characters staggered by index so that
+ * the far ones' poses spread evenly over the updates. */
+bool character_pose_due(uint64_t update, int index, int step);
 
 #endif

@@ -454,18 +454,38 @@ static void collider_sweep(const world_t *w, int i, float out[4])
  * each holds its previous and current pose) appended to out[n..max). On a
  * world only those of characters that can touch the tile window: the
  * window's half diagonal around the camera (docs/WORLD.md). */
+static float tiles_sphere_reach(const world_t *w)
+{
+    if (!on_world(w) || !w->tiles) return 0.0f;
+    blade_tiles_info_t ti = blade_tiles_info(w->tiles);
+    return (0.5f * (float)ti.desc.window + 1.0f) * ti.desc.tile_size * 1.4142136f + ti.reach;
+}
+
 static int character_spheres(world_t *w, blade_sphere_t *out, int n, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
-    float reach = 0.0f;
-    if (on_world(w) && w->tiles) {
-        blade_tiles_info_t ti = blade_tiles_info(w->tiles);
-        reach = (0.5f * (float)ti.desc.window + 1.0f) * ti.desc.tile_size * 1.4142136f + ti.reach;
-    }
+    float reach = tiles_sphere_reach(w);
     int room = max - n, want = character_set_spheres_near(&w->chars, w->camera, reach, packed, room);
     for (int k = 0; k < room && k < want; k++)
         out[n + k] = (blade_sphere_t){.centre_radius = {packed[k][0], packed[k][1], packed[k][2], packed[k][3]}};
     return want;
+}
+
+/* Metres beyond every reach of the grass at which a world's characters
+ * start to be posed less often: twice a tall character's bounding radius
+ * and a step of a running one at 30 fps, many times over. */
+#define WORLD_CHARACTER_LOD_MARGIN 16.0f
+
+/* On a world, the characters beyond the reach of the tile window's
+ * spheres and of the billboard ring, with WORLD_CHARACTER_LOD_MARGIN to
+ * spare, are posed less often (character_set_view); elsewhere every
+ * character at every step. */
+static float character_lod_distance(const world_t *w)
+{
+    if (!on_world(w)) return 0.0f;
+    float reach = tiles_sphere_reach(w);
+    if (w->bb) reach = fmaxf(reach, w->scene.grass.canopy_distance + WORLD_CANOPY_FADE);
+    return reach + WORLD_CHARACTER_LOD_MARGIN;
 }
 
 /* Sphere proxies for the blade physics (collide_pack_spheres per collider,
@@ -720,7 +740,10 @@ void world_update(world_t *w, float t, float dt)
     w->time = t;
     double mark = plat_time();
     world_colliders_update(&w->colliders, &w->terrain_mesh, t);
-    if (w->have_chars) character_set_update(&w->chars, t, dt);
+    if (w->have_chars) {
+        character_set_view(&w->chars, w->camera, character_lod_distance(w));
+        character_set_update(&w->chars, t, dt);
+    }
     collide_set_t *set = &w->collide;
     if (!w->stepped && dt > 0.0f) {
         /* The first step sweeps too: the colliders on paths stood at t - dt
