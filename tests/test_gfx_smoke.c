@@ -1,17 +1,52 @@
 /* test_gfx_smoke: a GL 4.5 context exists, shader errors name file:line,
  * #include works, an MSAA FBO resolves and reads back (colour, depth, the
  * nearest depth sample per pixel), timers report, a
- * readback ring returns its copies in order, and nothing leaks. */
+ * readback ring returns its copies in order, gfx_uniform's cached
+ * locations follow a program deleted and its name reused, and nothing
+ * leaks. */
 #include "test.h"
 #include "test_gl.h"
 
+#include "gfx/gfx_local.h"
+
 #include <math.h>
 #include <string.h>
+
+/* gfx_uniform against glGetUniformLocation: asked twice, after the
+ * program's name is reused by one with other locations, after enough
+ * names to start the table afresh, and for a name too long to cache. */
+static void check_uniform_cache(void)
+{
+    const gfx_program_desc_t ab = {.cs = "tests/uniforms.comp", .defines = "#define UNIFORMS_AB 1\n"};
+    gfx_program_t p = gfx_program_make(&ab);
+    CHECK(p.id != 0);
+    for (int k = 0; k < 2; k++) {
+        CHECK(gfx_uniform(p, "u_a") == 2 && gfx_uniform(p, "u_b") == 3);
+        CHECK(gfx_uniform(p, "u_missing") == -1);
+    }
+    GLuint old_id = p.id;
+    CHECK(gfx_uniforms_cached(old_id) == 3);
+    gfx_program_destroy(&p);
+    CHECK(gfx_uniforms_cached(old_id) == 0); /* a reused name finds nothing stale */
+    gfx_program_t q = gfx_program_make(&(gfx_program_desc_t){.cs = "tests/uniforms.comp"});
+    CHECK(q.id != 0);
+    printf("uniform cache: program name %s after the delete\n", q.id == old_id ? "reused" : "not reused");
+    CHECK(gfx_uniform(q, "u_b") == 7 && gfx_uniform(q, "u_a") == -1);
+    char name[32];
+    for (int i = 0; i < 5000; i++) {
+        snprintf(name, sizeof name, "u_x%d", i);
+        CHECK(gfx_uniform(q, name) == -1);
+    }
+    CHECK(gfx_uniform(q, "u_b") == 7 && gfx_uniform(q, "u_b") == glGetUniformLocation(q.id, "u_b"));
+    CHECK(gfx_uniform(q, "u_name_longer_than_the_forty_seven_characters_cached") == -1);
+    gfx_program_destroy(&q);
+}
 
 int main(void)
 {
     test_gl_init();
     CHECK(epoxy_gl_version() >= 45);
+    check_uniform_cache();
 
     /* Compile error: logged with file and line, program id 0. */
     int errs_before = core_log_error_count();

@@ -24,6 +24,7 @@ static struct {
 bool gfx_init(void)
 {
     memset(&g, 0, sizeof g);
+    gfx_uniforms_forget(0);
     return true;
 }
 
@@ -61,7 +62,10 @@ void gfx_delete_object(GLenum kind, GLuint id)
     switch (kind) {
     case GL_BUFFER: glDeleteBuffers(1, &id); break;
     case GL_TEXTURE: glDeleteTextures(1, &id); break;
-    case GL_PROGRAM: glDeleteProgram(id); break;
+    case GL_PROGRAM:
+        gfx_uniforms_forget(id);
+        glDeleteProgram(id);
+        break;
     case GL_FRAMEBUFFER: glDeleteFramebuffers(1, &id); break;
     case GL_VERTEX_ARRAY: glDeleteVertexArrays(1, &id); break;
     case GL_QUERY: glDeleteQueries(1, &id); break;
@@ -128,6 +132,7 @@ void gfx_shutdown(bool report_leaks)
     }
     free(g.objs);
     memset(&g, 0, sizeof g);
+    gfx_uniforms_forget(0);
 }
 
 int gfx_check_errors(const char *where)

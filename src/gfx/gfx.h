@@ -212,7 +212,8 @@ typedef struct gfx_program_stats_t {
     } slowest[GFX_PROGRAM_SLOWEST]; /* slowest first; ms 0 where fewer */
 } gfx_program_stats_t;
 gfx_program_stats_t gfx_program_stats(void);
-/* Uniform location helper (-1 logged once per name when missing is fine). */
+/* glGetUniformLocation, cached per (program, name) after the first ask
+ * (names of up to 47 characters; -1 for a name the program lacks). */
 GLint gfx_uniform(gfx_program_t p, const char *name);
 /* The preprocessed source of a file (tests): #include expanded with #line. */
 char *gfx_shader_preprocess(const char *rel_path, const char *defines, char *err, size_t err_size);

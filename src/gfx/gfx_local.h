@@ -9,6 +9,10 @@
 void gfx_track(GLenum kind, GLuint id, const char *label);
 void gfx_untrack(GLenum kind, GLuint id);
 void gfx_delete_object(GLenum kind, GLuint id);
+/* Drops gfx_uniform's cached locations of program `prog` (0: of all). */
+void gfx_uniforms_forget(GLuint prog);
+/* Locations gfx_uniform holds for program `prog` (tests). */
+int gfx_uniforms_cached(GLuint prog);
 void gfx_timer_shutdown(void);
 /* gfx_count: the timer pass queries, the frame count, shutdown. */
 void gfx_count_pass_begin(const char *pass);

@@ -385,4 +385,76 @@ void gfx_program_destroy(gfx_program_t *p)
     p->id = 0;
 }
 
-GLint gfx_uniform(gfx_program_t p, const char *name) { return glGetUniformLocation(p.id, name); }
+/* ---- uniform locations --------------------------------------------------
+ * glGetUniformLocation is a string search in the driver, and the modules
+ * ask for about 350 locations a frame (the world hybrid). An open-addressed
+ * table of (program, name) -> location answers every ask after the first;
+ * deleting a program drops its entries (program names are reused), and a
+ * table three-quarters full or a shutdown starts it afresh. */
+#define UNIFORM_SLOTS 4096 /* a power of 2 */
+#define UNIFORM_NAME_MAX 48
+
+typedef struct uniform_slot_t {
+    GLuint prog; /* 0: never used */
+    bool dead;   /* its program was deleted: skipped by searches, reused by inserts */
+    GLint loc;
+    char name[UNIFORM_NAME_MAX];
+} uniform_slot_t;
+
+static struct {
+    uniform_slot_t slot[UNIFORM_SLOTS];
+    int taken; /* slots with prog != 0 or dead */
+} uni;
+
+static uint32_t uniform_hash(GLuint prog, const char *name)
+{
+    uint32_t h = 2166136261u ^ prog * 0x9e3779b9u;
+    for (const unsigned char *c = (const unsigned char *)name; *c; c++) h = (h ^ *c) * 16777619u;
+    return h;
+}
+
+GLint gfx_uniform(gfx_program_t p, const char *name)
+{
+    if (!p.id || strlen(name) >= UNIFORM_NAME_MAX) return glGetUniformLocation(p.id, name);
+    uint32_t h = uniform_hash(p.id, name);
+    int insert = -1;
+    for (uint32_t i = 0; i < UNIFORM_SLOTS; i++) {
+        int k = (int)((h + i) & (UNIFORM_SLOTS - 1));
+        uniform_slot_t *s = &uni.slot[k];
+        if (s->dead) {
+            if (insert < 0) insert = k;
+        } else if (!s->prog) {
+            if (insert < 0) insert = k;
+            break;
+        } else if (s->prog == p.id && strcmp(s->name, name) == 0) {
+            return s->loc;
+        }
+    }
+    GLint loc = glGetUniformLocation(p.id, name);
+    if (insert < 0 || (!uni.slot[insert].dead && uni.taken >= UNIFORM_SLOTS / 4 * 3)) {
+        memset(&uni, 0, sizeof uni);
+        insert = (int)(h & (UNIFORM_SLOTS - 1));
+    }
+    uniform_slot_t *s = &uni.slot[insert];
+    if (!s->dead) uni.taken++;
+    *s = (uniform_slot_t){.prog = p.id, .loc = loc};
+    snprintf(s->name, sizeof s->name, "%s", name);
+    return loc;
+}
+
+void gfx_uniforms_forget(GLuint prog)
+{
+    if (!prog) {
+        memset(&uni, 0, sizeof uni);
+        return;
+    }
+    for (int k = 0; k < UNIFORM_SLOTS; k++)
+        if (uni.slot[k].prog == prog) uni.slot[k] = (uniform_slot_t){.dead = true};
+}
+
+int gfx_uniforms_cached(GLuint prog)
+{
+    int n = 0;
+    for (int k = 0; k < UNIFORM_SLOTS; k++) n += prog && uni.slot[k].prog == prog;
+    return n;
+}
