@@ -364,9 +364,13 @@ admission() {
 # holding a shaders/ tree, as the ab section's AB_ROOT) runs each again
 # with those shaders, the tag in place of "build".
 world() {
+  local runs=() sm root
   for sm in ${WORLD_RUNS:-world_1km:hybrid world:hybrid world_4km:hybrid world:blade world:billboard world_4km:billboard}; do
-  for root in build $WORLD_AB_ROOT; do
-    s=${sm%%:*}; mode=${sm#*:}; tag=$(basename $root); o=/tmp/world-$s-$mode-$tag
+    for root in build $WORLD_AB_ROOT; do runs+=("$sm:$root"); done
+  done
+  for run in "${runs[@]}"; do
+    s=${run%%:*}; rest=${run#*:}; mode=${rest%%:*}; root=${rest#*:}
+    tag=$(basename $root); o=/tmp/world-$s-$mode-$tag
     ( time env $([ $root != build ] && echo MEADOW_ROOT=$root) timeout -k 10 300 $M --headless \
       --scene scenes/bench/$s.json --mode $mode --raster compute --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
     echo "== $s $mode $tag rc=$?"
@@ -374,7 +378,6 @@ world() {
     grep -E "^frames|^gpu_frame|^gpu_memory|^host_memory|wall \(CPU|cpu \(|p99/p50|spikes|^startup_ms|^  [a-z_]+ +[0-9.]+$|^billboard ring|^  (terrain|tiles\.[a-z]*|raster\.[a-z]*|bb\.[a-z_]*|character[a-z.]*) " \
       $o/summary.txt 2>/dev/null || tail -5 $o.log
     grep -E "real|error|warn" $o.log | head -4
-  done
   done
 }
 
