@@ -7,7 +7,8 @@
  * the animation level of detail (character_set_view): a character is
  * posed every character_pose_step-th update, its skinned vertices then
  * equal those of a set without it, between poses they stay, and its
- * bounding sphere follows the walk and holds them as drawn. */
+ * bounding sphere follows the walk and holds them as drawn; the distance
+ * is horizontal. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -238,6 +239,16 @@ static void check_lod(void)
     CHECK(differ == 0 && moved == 0);
     CHECK(outside <= 1e-4);
     CHECK(posed_sum < UPDATES * N / 3);
+    /* The distance is horizontal: the walker under a camera 500 m up is
+     * posed at every update. */
+    const float high[3] = {0.0f, 500.0f, 0.0f};
+    character_set_view(&lod, high, 10.0f);
+    int under = 0;
+    for (int u = 0; u < 8; u++) {
+        character_set_update(&lod, (float)(UPDATES + u) / 60.0f, 1.0f / 60.0f);
+        under += lod.items[0].posed;
+    }
+    CHECK(under == 8);
     free(a), free(b), free(last);
     character_set_destroy(&full);
     character_set_destroy(&lod);

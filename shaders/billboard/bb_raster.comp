@@ -56,7 +56,8 @@ uniform bb_wind u_wind;
 uniform uint u_count;
 
 /* A queued triangle is (billboard, triangle | level of detail << 8): at
- * most 2 (8-1)^2 = 98 triangles, the level in 1/256 steps. */
+ * most 2 (8-1)^2 = 98 triangles, the level in 1/256 steps (below level
+ * 256, so the word stays under raster.glsl's band bits, 1 << 24). */
 #define BB_LOD_SHIFT 8u
 #define BB_LOD_SCALE 256.0
 

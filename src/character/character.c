@@ -426,9 +426,10 @@ void character_set_update(character_set_t *set, float time, float dt)
                              inst->dir, inst->model);
         int step = 1;
         if (set->lod_distance > 0.0f) {
-            float dx = inst->position[0] - set->view_camera[0], dy = inst->position[1] - set->view_camera[1],
-                  dz = inst->position[2] - set->view_camera[2];
-            step = character_pose_step(sqrtf(dx * dx + dy * dy + dz * dz), set->lod_distance);
+            /* horizontal, as the reaches it stands for (a walker under a
+             * high camera is in the tile window) */
+            float dx = inst->position[0] - set->view_camera[0], dz = inst->position[2] - set->view_camera[2];
+            step = character_pose_step(sqrtf(dx * dx + dz * dz), set->lod_distance);
         }
         inst->posed = character_pose_due(set->updates, i, step);
         if (!inst->posed) {

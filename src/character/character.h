@@ -148,7 +148,8 @@ bool character_set_make(character_set_t *set, const character_set_desc_t *desc);
  * spheres); dt <= 0 resets the sweep. */
 void character_set_update(character_set_t *set, float time, float dt);
 /* Animation level of detail for the updates after this call: a character
- * whose root is more than lod_distance m from `camera` is posed and
+ * whose root is more than lod_distance m from `camera` horizontally (in
+ * x and z, as the grass's reaches are) is posed and
  * skinned only every character_pose_step-th update (2 up to twice the
  * distance, one more per lod_distance, at most 8), staggered over the
  * characters; its place, model matrix and bounding sphere follow its walk

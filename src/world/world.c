@@ -450,10 +450,9 @@ static void collider_sweep(const world_t *w, int i, float out[4])
     out[3] = 0.0f;
 }
 
-/* The characters' proxy spheres (already swept by character_set_update:
- * each holds its previous and current pose) appended to out[n..max). On a
- * world only those of characters that can touch the tile window: the
- * window's half diagonal around the camera (docs/WORLD.md). */
+/* On a world, the horizontal distance from the camera within which a
+ * character's proxy spheres can touch the tile window: the window's half
+ * diagonal and the blades' reach (docs/WORLD.md); 0 elsewhere (all). */
 static float tiles_sphere_reach(const world_t *w)
 {
     if (!on_world(w) || !w->tiles) return 0.0f;
@@ -461,6 +460,9 @@ static float tiles_sphere_reach(const world_t *w)
     return (0.5f * (float)ti.desc.window + 1.0f) * ti.desc.tile_size * 1.4142136f + ti.reach;
 }
 
+/* The characters' proxy spheres (already swept by character_set_update:
+ * each holds its previous and current pose) appended to out[n..max); on a
+ * world only those within tiles_sphere_reach. */
 static int character_spheres(world_t *w, blade_sphere_t *out, int n, int max)
 {
     static float packed[BLADE_MAX_SPHERES][4];
