@@ -418,7 +418,7 @@ void character_set_view(character_set_t *set, const float camera[3], float lod_d
 void character_set_update(character_set_t *set, float time, float dt)
 {
     if (!set->count) return;
-    set->posed = 0;
+    int posed = 0;
     for (int i = 0; i < set->count; i++) {
         character_instance_t *inst = &set->items[i];
         const character_model_t *m = &set->assets[inst->asset].model;
@@ -438,7 +438,7 @@ void character_set_update(character_set_t *set, float time, float dt)
             inst->have_previous = false;
             continue;
         }
-        set->posed++;
+        posed++;
         if (inst->clip >= 0) character_sample_clip(m, inst->clip, inst->clip_time, true, &inst->pose);
         else character_pose_bind(m, &inst->pose);
         character_pose_globals(m, &inst->pose);
@@ -448,7 +448,7 @@ void character_set_update(character_set_t *set, float time, float dt)
         instance_bounds(set, inst);
     }
     set->updates++;
-    gfx_count_add("character.posed", (double)set->posed);
+    gfx_count_add("character.posed", (double)posed);
     gfx_timer_begin("character.skin");
     glUseProgram(set->skin_prog.id);
     GLint loc = gfx_uniform(set->skin_prog, "u_vertex_count");

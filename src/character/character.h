@@ -136,7 +136,6 @@ typedef struct character_set_t {
     float view_camera[3]; /* character_set_view */
     float lod_distance;   /* 0: every character posed at every update */
     uint64_t updates;     /* character_set_update calls so far */
-    int posed;            /* characters posed by the last update */
 } character_set_t;
 
 /* Loads every distinct model once, creates GPU buffers, fits capsules and

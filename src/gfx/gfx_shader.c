@@ -406,17 +406,12 @@ static struct {
     int taken; /* slots with prog != 0 or dead */
 } uni;
 
-static uint32_t uniform_hash(GLuint prog, const char *name)
-{
-    uint32_t h = 2166136261u ^ prog * 0x9e3779b9u;
-    for (const unsigned char *c = (const unsigned char *)name; *c; c++) h = (h ^ *c) * 16777619u;
-    return h;
-}
-
 GLint gfx_uniform(gfx_program_t p, const char *name)
 {
-    if (!p.id || strlen(name) >= UNIFORM_NAME_MAX) return glGetUniformLocation(p.id, name);
-    uint32_t h = uniform_hash(p.id, name);
+    size_t len = strlen(name);
+    if (!p.id || len >= UNIFORM_NAME_MAX) return glGetUniformLocation(p.id, name);
+    uint64_t h64 = core_hash_bytes(name, len, core_hash_bytes(&p.id, sizeof p.id, 0));
+    uint32_t h = (uint32_t)(h64 ^ h64 >> 32);
     int insert = -1;
     for (uint32_t i = 0; i < UNIFORM_SLOTS; i++) {
         int k = (int)((h + i) & (UNIFORM_SLOTS - 1));

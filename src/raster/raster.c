@@ -167,8 +167,8 @@ void raster_program_destroy(raster_program_t *p)
 bool raster_program_ensure(const raster_t *r, raster_program_t *p, const char *cs, const char *defines,
                            const char *label)
 {
-    uint32_t h = 2166136261u; /* FNV-1a: remade when the defines change */
-    for (const char *c = defines ? defines : ""; *c; c++) h = (h ^ (uint8_t)*c) * 16777619u;
+    /* remade when the defines change */
+    uint32_t h = (uint32_t)core_hash_bytes(defines ? defines : "", defines ? strlen(defines) : 0, 0);
     if (p->prim.id && (p->atomic64 != r->atomic64 || p->defines != h)) raster_program_destroy(p);
     if (!p->prim.id) {
         *p = raster_program_make(r, cs, defines, label);
