@@ -810,6 +810,8 @@ blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc)
     if (d.orientation_threshold == 0.0f) d.orientation_threshold = 0.9f;
     if (d.frustum_tolerance == 0.0f) d.frustum_tolerance = 0.1f;
     if (d.depth_bias == 0.0f) d.depth_bias = 1e-3f;
+    if (d.focal_px <= 0.0f) d.focal_px = 1000.0f;
+    d.lod = blade_lod_defaults(&d.lod);
     assert(d.distance_levels > 0);
     assert(!d.depth || (d.depth_w > 0 && d.depth_h > 0));
     return d;

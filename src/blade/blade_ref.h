@@ -27,6 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "blade/blade_lod.h"
 #include "blade/blade_population.h"
 #include "collide/collide_set.h"
 #include "core/core.h"
@@ -332,6 +333,9 @@ typedef struct blade_cull_desc_t {
     bool eye_distance; /* distance test on |v0 - cam| instead of eq. 19's d_proj: the
                           hybrid's tiles, whose representation, thinning and fades
                           share one distance (docs/HYBRID.md); default false */
+    blade_lod_t lod;   /* thinning with distance (blade_lod.h; resolved by the defaults) */
+    float focal_px;    /* the frame's blade_lod_focal: pixels per unit tangent (BLADE_LOD_WIDTH);
+                          0: 1000 */
 } blade_cull_desc_t;
 
 /* Culled counts per test, indexed 0 orientation, 1 frustum, 2 distance,
