@@ -472,9 +472,11 @@ static void test_zero_rule(void)
     static const char *const open[] = {[SCENE_SEC_ROOT] = "", [SCENE_SEC_TERRAIN] = "\"terrain\": {",
                                        [SCENE_SEC_GRASS] = "\"grass\": {",
                                        [SCENE_SEC_CLEARINGS] = "\"grass\": {\"clearings\": {",
+                                       [SCENE_SEC_LOD] = "\"grass\": {\"lod\": {",
                                        [SCENE_SEC_CAMERA] = "\"camera\": {"};
     static const char *const close[] = {[SCENE_SEC_ROOT] = "", [SCENE_SEC_TERRAIN] = "}", [SCENE_SEC_GRASS] = "}",
-                                        [SCENE_SEC_CLEARINGS] = "}}", [SCENE_SEC_CAMERA] = "}"};
+                                        [SCENE_SEC_CLEARINGS] = "}}", [SCENE_SEC_LOD] = "}}",
+                                        [SCENE_SEC_CAMERA] = "}"};
     int checked = 0;
     for (int i = 0; i < scene_field_count; i++) {
         const scene_field_t *f = &scene_fields[i];
@@ -503,6 +505,7 @@ static void test_zero_rule(void)
         char *base = f->section == SCENE_SEC_TERRAIN ? (char *)&d.terrain
                      : f->section == SCENE_SEC_GRASS ? (char *)&d.grass
                      : f->section == SCENE_SEC_CLEARINGS ? (char *)&d.grass.clearings
+                     : f->section == SCENE_SEC_LOD       ? (char *)&d.grass.lod
                      : f->section == SCENE_SEC_CAMERA ? (char *)&d.camera
                                                       : (char *)&d;
         for (int k = 0; k < n; k++) {

@@ -72,17 +72,13 @@ static void check_reference_and_fallbacks(void)
 
 static void check_rules(void)
 {
-    const scene_world_billboards_t ring = SCENE_WORLD_BILLBOARDS_RING, none = SCENE_WORLD_BILLBOARDS_NONE;
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, ring));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_MESH, ring));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD, ring));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD, ring));
-    CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, WORLD_GROUND_HEIGHTFIELD, ring));
-    /* grass.world_billboards none: the hybrid on a world only; billboard
-     * mode and heightfields keep theirs. */
-    CHECK(!world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_WORLD, none));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, WORLD_GROUND_WORLD, none));
-    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, none));
+    const scene_hybrid_billboards_t ring = SCENE_HYBRID_BILLBOARDS_RING, none = SCENE_HYBRID_BILLBOARDS_NONE;
+    CHECK(world_pass_wants_billboards(SCENE_MODE_HYBRID, ring));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, ring));
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_BLADE, ring));
+    /* grass.billboards none: the hybrid only; billboard mode keeps its own. */
+    CHECK(!world_pass_wants_billboards(SCENE_MODE_HYBRID, none));
+    CHECK(world_pass_wants_billboards(SCENE_MODE_BILLBOARD, none));
     CHECK(!world_pass_wants_blades(SCENE_MODE_BILLBOARD));
     CHECK(world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_HEIGHTFIELD, false));
     CHECK(!world_pass_uses_tiles(SCENE_MODE_HYBRID, WORLD_GROUND_MESH, false));
@@ -95,9 +91,13 @@ static void check_rules(void)
                           p);
     CHECK(n == WORLD_PASS_KINDS - 1); /* everything but the whole field: the most a frame holds */
     CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BLADES));
-    /* The hybrid on a world without its ring: tiles, no billboards. */
+    /* The hybrid without its ring: tiles, no billboards, on a world and on a heightfield. */
     n = world_pass_list(&(world_pass_desc_t){.mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_WORLD, ALL,
-                                             .world_billboards = SCENE_WORLD_BILLBOARDS_NONE},
+                                             .billboards = SCENE_HYBRID_BILLBOARDS_NONE},
+                        p);
+    CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BILLBOARDS));
+    n = world_pass_list(&(world_pass_desc_t){.mode = SCENE_MODE_HYBRID, .ground = WORLD_GROUND_HEIGHTFIELD, ALL,
+                                             .billboards = SCENE_HYBRID_BILLBOARDS_NONE},
                         p);
     CHECK(world_pass_has(p, n, WORLD_PASS_TILES) && !world_pass_has(p, n, WORLD_PASS_BILLBOARDS));
 }

@@ -6,7 +6,7 @@
 # (exit 0) with tiles streamed in (hybrid, blade) and billboard ring cells
 # generated (hybrid, billboard); the GPU memory of the 1 and 4 km runs of
 # each mode must be equal (nothing grows with the world); the 1 km hybrid
-# with grass.world_billboards none streams tiles, has no ring and holds
+# with grass.billboards none streams tiles, has no ring and holds
 # less GPU memory; the GI volumes are refused on a world with exit 2 and
 # one error line.
 # Usage: world_run.sh MEADOW_BINARY
@@ -53,9 +53,9 @@ for pair in "w1:w4:hybrid" "w1r:w4r:billboard"; do
   fi
 done
 
-# grass.world_billboards none: the hybrid on a world without the ring
+# grass.billboards none: the hybrid on a world without the ring
 # (tiles, then the canopy), in less GPU memory than with it.
-sed -e 's/"grass": {/"grass": {"world_billboards": "none",/' -e "s|\"models/|\"$root/models/|g" \
+sed -e 's/"grass": {/"grass": {"billboards": "none",/' -e "s|\"models/|\"$root/models/|g" \
   "$root/scenes/bench/world_1km.json" >"$tmp/noring.json"
 run noring "$tmp/noring.json" hybrid
 rc=$?
@@ -63,10 +63,10 @@ m0=$(sed -n 's/^gpu_memory_mb: //p' "$tmp/noring/summary.txt" 2>/dev/null)
 m1=$(sed -n 's/^gpu_memory_mb: //p' "$tmp/w1/summary.txt" 2>/dev/null)
 if [ $rc -ne 0 ] || grep -q "^billboard ring" "$tmp/noring/summary.txt" || ! grep -q "tiles streamed in [1-9]" \
   "$tmp/noring/summary.txt" || ! python3 -c "import sys; sys.exit(0 if float('$m0') < float('$m1') else 1)"; then
-  echo "FAIL: world_billboards none: exit $rc, GPU $m0 MB against $m1 MB with the ring"; tail -3 "$tmp/noring.log"
+  echo "FAIL: billboards none: exit $rc, GPU $m0 MB against $m1 MB with the ring"; tail -3 "$tmp/noring.log"
   fail=1
 else
-  echo "world_1km hybrid, world_billboards none: gpu_memory_mb: $m0 (ring: $m1), no ring"
+  echo "world_1km hybrid, billboards none: gpu_memory_mb: $m0 (ring: $m1), no ring"
 fi
 
 sed 's/"grass": {/"grass": {"gi": true,/' "$root/scenes/bench/world_1km.json" >"$tmp/gi.json"

@@ -28,6 +28,14 @@ float canopy_thinned(float cover, float e)
     return 1.0 - pow(max(1.0 - cover, 1e-6), clamp(e, 0.0, 1.0));
 }
 
+/* blade_canopy_under: the share of a thinned field's visible ground that
+ * the removed blades covered (kept: blade_lod_coverage). */
+float canopy_under(float cover, float e, float kept)
+{
+    float full = canopy_thinned(cover, e), left = canopy_thinned(cover, e * kept);
+    return max(full - left, 0.0) / max(1.0 - left, 1e-4);
+}
+
 /* blade_canopy_color at elevation e and sun azimuth phi (radians), under
  * an ambient light linear in the normal's height, amb_down facing down and
  * amb_up facing up (the hemisphere of common/lighting.glsl: AMBIENT_DOWN,

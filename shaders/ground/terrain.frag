@@ -2,7 +2,10 @@
 // in the hybrid, beyond the billboards, the ground canopy (common/canopy.glsl):
 // the ground's colour mixed with the canopy's by its cover, thinned by the
 // extent map as the blades and billboards are, faded in over
-// u_canopy_fade (start, end of the switch distance; end <= 0: no canopy).
+// u_canopy_fade (start, end of the switch distance; end <= 0: no band); and
+// nearer, under blades thinned with distance (common/lod.glsl), the ground
+// mixed towards the canopy by the share of it the removed blades covered
+// (canopy_under), so blades and ground keep the full field's mean colour.
 // Ground and canopy take the global illumination's ambient light per
 // fragment when it is on (common/gi.glsl; the canopy's table is linear in
 // the blade normals' height, so it takes the ambient facing down and up).
@@ -13,11 +16,15 @@
 #include "common/switch.glsl"
 #include "common/extent.glsl"
 #include "common/gi.glsl"
+#include "common/lod.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
 uniform vec2 u_canopy_fade;
+uniform bool u_canopy_on;
+uniform bool u_lod_on;
+uniform vec2 u_lod_ground; /* blades' mean width (m), the distance where the thinned blades end (m) */
 uniform bool u_extent_on;
 layout(binding = GROUND_TEX_EXTENT) uniform sampler2D u_extent;
 layout(binding = GROUND_TEX_NOISE) uniform sampler2D u_noise;
@@ -52,14 +59,18 @@ void main()
     vec3 albedo = mix(soil, turf, smoothstep(0.3, 0.7, noise));
     vec3 c = shade_lit(albedo, n, u_sun, 1.0, grass_ambient(v_pos, n));
     vec3 to_frag = v_pos - u_camera;
-    if (u_canopy_fade.y > 0.0) {
+    if (u_canopy_on) {
         float d = grass_distance(v_pos, u_camera);
-        float ramp = clamp((d - u_canopy_fade.x) / max(u_canopy_fade.y - u_canopy_fade.x, 1e-6), 0.0, 1.0);
-        if (ramp > 0.0) {
+        float ramp = u_canopy_fade.y > 0.0
+                         ? clamp((d - u_canopy_fade.x) / max(u_canopy_fade.y - u_canopy_fade.x, 1e-6), 0.0, 1.0)
+                         : 0.0;
+        float kept = u_lod_on && d < u_lod_ground.y ? lod_coverage(d, u_lod_ground.x) : 1.0;
+        if (ramp > 0.0 || kept < 1.0) {
             float cover;
             vec3 down = grass_ambient(v_pos, vec3(0.0, -1.0, 0.0)), up = grass_ambient(v_pos, vec3(0.0, 1.0, 0.0));
             vec3 grass = canopy_color_lit(v_pos, n, u_camera, u_sun, down, up, cover);
-            c = mix(c, grass, ramp * canopy_thinned(cover, extent_at(v_pos.xz)));
+            float e = extent_at(v_pos.xz);
+            c = mix(c, grass, max(ramp * canopy_thinned(cover, e), canopy_under(cover, e, kept)));
         }
     }
     o_color = vec4(apply_fog(c, length(to_frag), normalize(to_frag)), 1.0);

@@ -40,6 +40,8 @@ typedef struct bench_config_t {
     float switch_distance;                /* hybrid knob, 0 = scene */
     float canopy_distance;                /* hybrid knob, 0 = scene */
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
+    float bb_density_scale;               /* billboard density factor alone, 0 = 1 */
+    int billboards;                       /* hybrid: 0 = scene, else 1 + scene_hybrid_billboards_t */
     int blade_render;                     /* 0 = the options', else 1 + scene_blade_render_t (1 pull, 2 tess) */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
@@ -96,6 +98,8 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.population.density *= c->density_scale;
         s->grass.billboard_density *= c->density_scale;
     }
+    if (c->bb_density_scale > 0) s->grass.billboard_density *= c->bb_density_scale;
+    if (c->billboards) s->grass.billboards = (scene_hybrid_billboards_t)(c->billboards - 1);
     if (c->no_colliders) s->collider_count = s->character_count = 0;
     if (c->proxy != PROXY_WORLD || c->ball) {
         /* Characters would keep their own proxy spheres (the variants could
@@ -214,29 +218,45 @@ static int add_paper_configs(bench_config_t *c, int n, bool quick)
     return n;
 }
 
-/* The ground canopy's distance (100 km: no canopy) on both rasterizer
- * paths, after blade mode drawn as far (blade mode to the field's edge,
- * grass.blade_distance's default: the budget) and before billboard mode,
- * on canopy_scene (NULL: the sweep's). Returns the new count. */
+/* The tiers of the field on both rasterizer paths, on canopy_scene (NULL:
+ * the sweep's): blade mode with its thinning drawn to the field's edge
+ * (grass.blade_distance's default: the budget), the tiles thinned to D
+ * and then the canopy without billboards (D = 40, 60, 80 m), the hybrid
+ * with billboards to a canopy at 60 m (at the scene's billboard density and
+ * at half of it) and at 90 m, then billboard mode. Returns the new count. */
 static int add_canopy_configs(bench_config_t *c, int n, bool quick, const char *canopy_scene)
 {
-    static const float canopy[] = {45, 60, 35, 90, 100000};
-    int ncan = quick ? 2 : (int)(sizeof canopy / sizeof canopy[0]);
+    static const float tiles_to[] = {40, 60, 80};
+    static const struct {
+        float canopy, bb_scale;
+    } ring[] = {{60, 1}, {60, 0.5f}, {90, 1}};
+    int ntiles = quick ? 1 : 3, nring = quick ? 1 : 3;
     for (int r = 0; r < (quick ? 1 : 2); r++) {
         const char *path = r ? "_compute" : "";
+        int raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
         if (!quick) {
             bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_BLADE);
-            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
+            x->raster = raster;
             x->scene = canopy_scene;
             snprintf(x->label, sizeof x->label, "blade%s", path);
         }
-        for (int i = 0; i < ncan; i++) {
+        for (int i = 0; i < ntiles; i++) {
             bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
-            x->canopy_distance = canopy[i];
+            x->switch_distance = quick ? 8.0f : tiles_to[i];
+            x->billboards = 1 + SCENE_HYBRID_BILLBOARDS_NONE;
             x->scene = canopy_scene;
-            x->raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
-            if (x->canopy_distance >= 100000) snprintf(x->label, sizeof x->label, "no_canopy%s", path);
-            else snprintf(x->label, sizeof x->label, "canopy%gm%s", (double)x->canopy_distance, path);
+            x->raster = raster;
+            snprintf(x->label, sizeof x->label, "tiles%gm%s", (double)x->switch_distance, path);
+        }
+        for (int i = 0; i < nring; i++) {
+            bench_config_t *x = add(c, &n, "hybrid_canopy_distance", SCENE_MODE_HYBRID);
+            x->canopy_distance = ring[i].canopy;
+            x->bb_density_scale = ring[i].bb_scale;
+            x->billboards = 1 + SCENE_HYBRID_BILLBOARDS_RING;
+            x->scene = canopy_scene;
+            x->raster = raster;
+            snprintf(x->label, sizeof x->label, "ring%gm%s%s", (double)x->canopy_distance,
+                     ring[i].bb_scale < 1 ? "_sparse" : "", path);
         }
     }
     for (int r = 0; r < 2 && !quick; r++) {
@@ -601,9 +621,14 @@ static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *o
 static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
 
 /* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
- * the cheapest hybrid row whose image error is within the blade row's plus
- * the noise floor (else the least error, "met": false). Rows that leave a
- * distance at 0 take the scene's. Nothing when the run holds no such rows. */
+ * the hybrid row of least wall time (row_wall) whose image error is within
+ * the blade row's plus the noise floor (else the least error, "met":
+ * false), with or without billboards. Rows that leave a distance at 0 take
+ * the scene's. Nothing when the run holds no such rows. */
+/* A row's wall time per frame: the larger of its GPU pass sum and its
+ * CPU's wall clock, so a CPU-bound configuration counts as slow. */
+static double row_wall(const measure_metrics_t *m) { return fmax(m->frame_ms, m->cpu_ms); }
+
 /* Row i is a measured row of the hybrid_canopy_distance chart on path
  * path_k (0 hw, 1 compute). */
 static bool lod_row(const bench_run_t *b, int i, int path_k)
@@ -643,20 +668,23 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
         double budget = b->err[blade] + R->floor;
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget) continue;
-            if (best < 0 || b->met[i].frame_ms < b->met[best].frame_ms) best = i;
+            if (best < 0 || row_wall(&b->met[i]) < row_wall(&b->met[best])) best = i;
         }
         int pick = best >= 0 ? best : least;
         const bench_config_t *c = &b->cfg[pick];
         float sw = c->switch_distance > 0 ? c->switch_distance : s.grass.switch_distance;
         float cd = c->canopy_distance > 0 ? c->canopy_distance : s.grass.canopy_distance;
         cd = fmaxf(cd, sw + CANOPY_GAP);
+        scene_hybrid_billboards_t bb = c->billboards ? (scene_hybrid_billboards_t)(c->billboards - 1) : s.grass.billboards;
         core_buf_printf(&json,
-                        "%s\n    \"%s\": {\"switch_distance\": %g, \"canopy_distance\": %g, \"gpu_ms\": %.4f, "
-                        "\"image_error\": %.6f, \"budget\": %.6f, \"met\": %s, \"label\": \"%s\", "
-                        "\"candidates\": %d, \"blade_ms\": %.4f, \"blade_error\": %.6f}",
-                        written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd, b->met[pick].frame_ms,
-                        b->err[pick], budget, best >= 0 ? "true" : "false", c->label, candidates,
-                        b->met[blade].frame_ms, b->err[blade]);
+                        "%s\n    \"%s\": {\"switch_distance\": %g, \"canopy_distance\": %g, \"billboards\": \"%s\", "
+                        "\"wall_ms\": %.4f, \"gpu_ms\": %.4f, \"image_error\": %.6f, \"budget\": %.6f, \"met\": %s, "
+                        "\"label\": \"%s\", \"candidates\": %d, \"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, "
+                        "\"blade_error\": %.6f}",
+                        written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd,
+                        bb == SCENE_HYBRID_BILLBOARDS_NONE ? "none" : "ring", row_wall(&b->met[pick]),
+                        b->met[pick].frame_ms, b->err[pick], budget, best >= 0 ? "true" : "false", c->label,
+                        candidates, row_wall(&b->met[blade]), b->met[blade].frame_ms, b->err[blade]);
         written++;
     }
     core_buf_printf(&json, "\n  }\n}\n");

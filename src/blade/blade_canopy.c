@@ -373,3 +373,9 @@ float blade_canopy_thinned(float cover, float e)
 {
     return 1.0f - powf(fmaxf(1.0f - cover, 1e-6f), fminf(fmaxf(e, 0.0f), 1.0f));
 }
+
+float blade_canopy_under(float cover, float e, float kept)
+{
+    float full = blade_canopy_thinned(cover, e), left = blade_canopy_thinned(cover, e * kept);
+    return fmaxf(full - left, 0.0f) / fmaxf(1.0f - left, 1e-4f);
+}

@@ -90,4 +90,13 @@ void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float
  * GLSL's pow). */
 float blade_canopy_thinned(float cover, float e);
 
+/* Grass-shaded ground under thinned blades: of the ground a thinned field
+ * shows (1 - the cover of `kept` of it, kept = blade_lod_coverage), the
+ * share the removed blades covered, (C - C_kept) / (1 - C_kept) with C =
+ * blade_canopy_thinned(cover, e) over the extent map's fraction e and
+ * C_kept the same at e * kept: the ground mixed towards the canopy's colour
+ * by this keeps the full field's mean colour. kept 1: 0 (the ground as it
+ * is); kept 0: C (the canopy beyond the grass). */
+float blade_canopy_under(float cover, float e, float kept);
+
 #endif

@@ -103,5 +103,5 @@ float blade_lod_coverage(const blade_lod_t *l, float d, float width, float focal
 
 float blade_lod_ground(const blade_lod_t *l, float d, float width, float focal_px, float cull)
 {
-    return 1.0f - blade_lod_coverage(l, d, width, focal_px, cull);
+    return l->no_ground ? 0.0f : 1.0f - blade_lod_coverage(l, d, width, focal_px, cull);
 }

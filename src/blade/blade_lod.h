@@ -58,7 +58,9 @@ typedef enum blade_lod_rule_t {
  *   max_scale       8: the widest a kept blade is drawn (>= 1)
  *   shrink          0.1 rank units (WIDTH); no_shrink: 0 (blades pop)
  *   fade            4 m before the cull distance; no_fade: 0 (hard cut)
- *   no_compensation false: kept blades are widened by 1 / A */
+ *   no_compensation false: kept blades are widened by 1 / A
+ *   no_ground       false: blade_lod_ground gives the coverage thinning
+ *                   removed (true: 0, the ground keeps its soil colour) */
 typedef struct blade_lod_t {
     blade_lod_rule_t rule;
     float start;
@@ -68,7 +70,7 @@ typedef struct blade_lod_t {
     float max_scale;
     float shrink;
     float fade;
-    bool no_shrink, no_fade, no_compensation;
+    bool no_shrink, no_fade, no_compensation, no_ground;
 } blade_lod_t;
 
 #define BLADE_LOD_START_DEFAULT 10.0f
@@ -106,7 +108,8 @@ blade_lod_draw_t blade_lod_blade(const blade_lod_t *lod, uint32_t index, float d
  * A(u) * scale times the end fade, in [0, 1]. */
 float blade_lod_coverage(const blade_lod_t *lod, float d, float width, float focal_px, float cull);
 
-/* How much of the grass-shaded ground shows through at d: 1 - coverage. */
+/* How much of the grass-shaded ground shows through at d: 1 - coverage
+ * (0 with no_ground). */
 float blade_lod_ground(const blade_lod_t *lod, float d, float width, float focal_px, float cull);
 
 #endif

@@ -30,6 +30,11 @@ struct ground_t {
     GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
+    /* Grass-shaded ground under thinned blades (ground_set_lod): on, the
+     * rule, its frame values and where it ends. */
+    bool lod_on;
+    blade_lod_t lod;
+    float lod_width, lod_focal, lod_cull, lod_far;
     gi_bind_t gi;
 };
 
@@ -148,6 +153,27 @@ void ground_set_canopy_fade(ground_t *t, float start, float end)
 
 void ground_set_gi(ground_t *t, gi_bind_t gi) { t->gi = gi; }
 
+void ground_set_lod(ground_t *t, const blade_lod_t *lod, float width, float focal_px, float cull, float far)
+{
+    t->lod_on = lod && !lod->no_ground;
+    if (!t->lod_on) return;
+    t->lod = blade_lod_defaults(lod);
+    t->lod_width = width;
+    t->lod_focal = focal_px;
+    t->lod_cull = cull;
+    t->lod_far = far;
+}
+
+void ground_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull)
+{
+    blade_lod_t l = blade_lod_defaults(lod);
+    glUniform1i(gfx_uniform(p, "u_lod_rule"), (int)l.rule);
+    glUniform1i(gfx_uniform(p, "u_lod_levels"), l.levels);
+    glUniform4f(gfx_uniform(p, "u_lod_a"), l.start, l.width_px, l.level_distance, l.max_scale);
+    glUniform4f(gfx_uniform(p, "u_lod_b"), l.shrink, l.fade, l.no_compensation ? 0.0f : 1.0f, focal_px);
+    glUniform1f(gfx_uniform(p, "u_lod_cull"), cull);
+}
+
 void ground_destroy(ground_t *t)
 {
     if (!t) return;
@@ -188,9 +214,16 @@ void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewpr
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
     glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
     gi_set_uniforms(t->prog.id, &t->gi);
-    bool canopy = t->canopy.rows > 1 && t->canopy_fade[1] > 0.0f;
+    bool lod = t->canopy.rows > 1 && t->lod_on;
+    bool canopy = t->canopy.rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
+    glUniform1i(gfx_uniform(t->prog, "u_lod_on"), lod);
+    if (lod) {
+        ground_lod_uniforms(t->prog, &t->lod, t->lod_focal, t->lod_cull);
+        glUniform2f(gfx_uniform(t->prog, "u_lod_ground"), t->lod_width, t->lod_far);
+    }
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
                 canopy ? t->canopy_fade[1] : 0.0f);
+    glUniform1i(gfx_uniform(t->prog, "u_canopy_on"), canopy);
     if (canopy) {
         static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
         const blade_canopy_uniforms_t *u = &t->canopy;

@@ -13,6 +13,7 @@
 #include <stdbool.h>
 
 #include "blade/blade_canopy.h"
+#include "blade/blade_lod.h"
 #include "core/core.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
@@ -34,6 +35,15 @@ bool ground_has_canopy(const ground_t *g);
 /* This frame's canopy band: none nearer than start, fully shaded beyond
  * end (m from the camera); end 0: no canopy drawn. */
 void ground_set_canopy_fade(ground_t *g, float start, float end);
+/* Grass-shaded ground under thinned blades (blade_canopy_under with the
+ * coverage blade_lod_coverage keeps): from this frame on, nearer than far
+ * (m; beyond, only the canopy band of ground_set_canopy_fade), blades of
+ * mean width `width` thinned by lod (NULL or lod->no_ground: off) with the
+ * frame's focal length and cull distance. Needs a canopy table. */
+void ground_set_lod(ground_t *g, const blade_lod_t *lod, float width, float focal_px, float cull, float far);
+/* Sets the u_lod_* uniforms of common/lod.glsl on the bound program p:
+ * lod resolved here, the frame's focal length, the cull distance. */
+void ground_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull);
 /* Global illumination of the ground and its canopy; zero: off. */
 void ground_set_gi(ground_t *g, gi_bind_t gi);
 /* Draws the ground, then the sky where it left the far plane (inv_viewproj:

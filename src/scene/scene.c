@@ -71,6 +71,7 @@ void scene_desc_defaults(scene_desc_t *d)
     fill_defaults(SCENE_SEC_TERRAIN, &d->terrain);
     fill_defaults(SCENE_SEC_GRASS, &d->grass);
     fill_defaults(SCENE_SEC_CLEARINGS, &d->grass.clearings);
+    fill_defaults(SCENE_SEC_LOD, &d->grass.lod);
     scene_camera_desc_t *c = &d->camera;
     fill_defaults(SCENE_SEC_CAMERA, c);
     if (glm_vec3_eq(c->position, 0.0f) && glm_vec3_eq(c->target, 0.0f)) {
@@ -409,7 +410,11 @@ static bool parse_grass(sp_t *sp, const json_t *o, scene_grass_desc_t *g)
 {
     if (!check_members(sp, o, "grass", SCENE_SEC_GRASS, 0, "")) return false;
     if (!get_members(sp, o, "grass", SCENE_SEC_GRASS, 0, g)) return false;
-    const json_t *v = scene_json_get(o, "clearings");
+    const json_t *v = scene_json_get(o, "lod");
+    if (v && !(check_members(sp, v, "grass.lod", SCENE_SEC_LOD, 0, "") &&
+               get_members(sp, v, "grass.lod", SCENE_SEC_LOD, 0, &g->lod)))
+        return false;
+    v = scene_json_get(o, "clearings");
     if (!v) return true;
     int type = 0;
     if (!get_typed_entry(sp, v, "grass.clearings", SCENE_SEC_CLEARINGS, "clearings", &type, &g->clearings))

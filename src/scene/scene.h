@@ -25,6 +25,7 @@
 
 #include <cglm/cglm.h>
 
+#include "blade/blade_lod.h"
 #include "blade/blade_population.h"
 #include "scene/camera.h"
 #include "scene/path.h"
@@ -63,10 +64,10 @@ typedef enum scene_blade_render_t {
 
 /* What the hybrid draws between the blades and the ground canopy on a
  * world terrain (docs/WORLD.md). */
-typedef enum scene_world_billboards_t {
-    SCENE_WORLD_BILLBOARDS_RING = 0, /* "ring" (default): the streamed billboard ring */
-    SCENE_WORLD_BILLBOARDS_NONE,     /* "none": the canopy from the switch distance */
-} scene_world_billboards_t;
+typedef enum scene_hybrid_billboards_t {
+    SCENE_HYBRID_BILLBOARDS_RING = 0, /* "ring" (default): the streamed billboard ring */
+    SCENE_HYBRID_BILLBOARDS_NONE,     /* "none": the canopy from the switch distance */
+} scene_hybrid_billboards_t;
 
 /* Clearings of the extent map (bb_layout.h, bb_extent_desc_t): where both
  * grass models leave the ground bare. */
@@ -112,11 +113,12 @@ typedef struct scene_grass_desc_t {
     float recover_time;      /* seconds to stand up after a push [0, 3600]; default 3 */
     float blade_distance;    /* blade mode: blades drawn up to this distance m [0, 1e6]; default 0:
                                 as far as grass is visible (scene_blade_distance) */
+    blade_lod_t lod;         /* "lod": thinning with distance (blade_lod.h); defaults there */
     scene_clearings_desc_t clearings; /* default noise */
     bool gi;                 /* Orthmann sec. 6.1 global illumination volumes; default false */
     bool bb_occlusion;       /* occlusion queries per billboard leaf batch (Orthmann sec. 6);
                                 default false */
-    scene_world_billboards_t world_billboards; /* hybrid on a world terrain; default ring */
+    scene_hybrid_billboards_t billboards; /* hybrid on a world terrain; default ring */
     char lod_table[SCENE_PATH_MAX]; /* hybrid: switch distances measured by the bench for a GL
                                        renderer (scene_lod.h), repository-relative; default "": the
                                        scene's switch_distance and canopy_distance */

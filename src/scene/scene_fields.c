@@ -14,11 +14,12 @@ static const char *const mode_names[] = {"hybrid", "billboard", "blade", NULL};
 static const char *const raster_names[] = {"auto", "hw", "compute", NULL};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
 static const char *const blade_render_names[] = {"pull", "tess", NULL};
-static const char *const world_billboards_names[] = {"ring", "none", NULL};
+static const char *const hybrid_billboards_names[] = {"ring", "none", NULL};
 static const char *const terrain_names[] = {"heightfield", "mesh", "world", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
 static const char *const clearings_names[] = {"noise", "none", "image", NULL};
+static const char *const lod_rule_names[] = {"width", "levels", "printed", "off", NULL};
 static const char *const axis_names[] = {"auto", "+x", "-x", "+y", "-y", "+z", "-z", NULL};
 
 /* Entry-type bits of scene_field_t.variants. */
@@ -38,6 +39,7 @@ static const char *const axis_names[] = {"auto", "+x", "-x", "+y", "-y", "+z", "
 #define TERRAIN(m) .section = SCENE_SEC_TERRAIN, AT(terrain_desc_t, m)
 #define GRASS(m) .section = SCENE_SEC_GRASS, AT(scene_grass_desc_t, m)
 #define CLEARINGS(m) .section = SCENE_SEC_CLEARINGS, AT(scene_clearings_desc_t, m)
+#define LOD(m) .section = SCENE_SEC_LOD, AT(blade_lod_t, m)
 #define CAMERA(m) .section = SCENE_SEC_CAMERA, AT(scene_camera_desc_t, m)
 #define CAMERA_KEY(m) .section = SCENE_SEC_CAMERA_KEY, AT(cam_path_key_t, m)
 #define WIND(m) .section = SCENE_SEC_WIND, AT(scene_wind_t, m)
@@ -169,10 +171,12 @@ const scene_field_t scene_fields[] = {
     {GRASS(bb_occlusion), .key = "bb_occlusion", .type = SCENE_FIELD_BOOL,
       .doc = "occlusion culling of billboard batches (Orthmann et al. 2009 sec. 6): an occlusion query per octree "
              "leaf's box; a leaf whose box was hidden last frame is not drawn (hardware path, docs/BILLBOARDS.md)"},
-    {GRASS(world_billboards), .key = "world_billboards", .type = SCENE_FIELD_ENUM, .names = world_billboards_names,
-      .doc = "hybrid on a world terrain: `ring` draws the streamed billboard ring between the blades and the ground "
-             "canopy; `none` shades the ground as canopy from the switch distance (faster: on the H100 p99 4.2 "
-             "against 6.0 ms on world.json, docs/WORLD.md)"},
+    {GRASS(billboards), .key = "billboards", .type = SCENE_FIELD_ENUM, .names = hybrid_billboards_names,
+      .doc = "hybrid: `ring` draws billboards between the blades and the ground canopy (a world streams them "
+             "around the camera); `none` shades the ground as canopy from the switch distance, where the thinned "
+             "blades end (docs/HYBRID.md)"},
+    {GRASS(lod), .key = "lod", .type = SCENE_FIELD_OBJECT,
+      .doc = "how blades thin with distance (keys `grass.lod.*`)", .def_doc = "width"},
     {GRASS(clearings), .key = "clearings", .type = SCENE_FIELD_OBJECT,
       .doc = "bare ground of both models, the extent map (keys `grass.clearings.*`)", .def_doc = "noise"},
 
@@ -188,6 +192,34 @@ const scene_field_t scene_fields[] = {
       .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT,
       .doc = "grey image file (PNG), repository-relative, stretched over the terrain seen from above (row 0 at "
              "-z, column 0 at -x): white grass, black bare"},
+
+    /* ---- grass.lod ---- */
+    {LOD(rule), .key = "rule", .type = SCENE_FIELD_ENUM, .names = lod_rule_names,
+      .doc = "how blades thin with distance (blade mode and the hybrid's tiles; src/blade/blade_lod.h): by projected "
+             "width, kept blades widened so the coverage stays; eq. 19-20 levels as the paper's text states them; "
+             "eq. 20 as printed; or not at all"},
+    {LOD(start), .key = "start", .type = SCENE_FIELD_FLOAT, .hi = 1e5, .def = {BLADE_LOD_START_DEFAULT},
+      .doc = "width rule: nothing thinned nearer than this (m)"},
+    {LOD(width_px), .key = "width_px", .type = SCENE_FIELD_FLOAT, .hi = 100, .def = {BLADE_LOD_WIDTH_PX_DEFAULT},
+      .doc = "width rule: thinning starts where a blade is this narrow on screen (px); beyond, one blade is kept "
+             "per this much drawn width"},
+    {LOD(levels), .key = "levels", .type = SCENE_FIELD_INT, .hi = 256, .def = {8},
+      .doc = "levels and printed rules: n of eq. 19-20"},
+    {LOD(level_distance), .key = "level_distance", .type = SCENE_FIELD_FLOAT, .hi = 1e6,
+      .doc = "levels and printed rules: where one blade in n remains (m)", .def_doc = "0: the cull distance"},
+    {LOD(max_scale), .key = "max_scale", .type = SCENE_FIELD_FLOAT, .lo = 1, .hi = 64, .def = {8}, .flags = SCENE_FIELD_ZERO_OK,
+      .doc = "the widest a kept blade is drawn (times its width); farther, the grass-shaded ground makes up the rest"},
+    {LOD(shrink), .key = "shrink", .type = SCENE_FIELD_FLOAT, .hi = 1, .def = {0.1f},
+      .doc = "width rule: rank window over which a blade narrows to nothing before it is culled (no pops)"},
+    {LOD(fade), .key = "fade", .type = SCENE_FIELD_FLOAT, .hi = 1000, .def = {4},
+      .doc = "blades narrow to nothing over this many metres before the cull distance (m)"},
+    {LOD(no_shrink), .key = "no_shrink", .type = SCENE_FIELD_BOOL, .doc = "drop the shrink window: thinned blades pop"},
+    {LOD(no_fade), .key = "no_fade", .type = SCENE_FIELD_BOOL, .doc = "drop the end fade: the grass ends in a hard cut"},
+    {LOD(no_compensation), .key = "no_compensation", .type = SCENE_FIELD_BOOL,
+      .doc = "kept blades keep their width (the field thins out; the ground shows through, grass-shaded)"},
+    {LOD(no_ground), .key = "no_ground", .type = SCENE_FIELD_BOOL,
+      .doc = "the ground under thinned blades keeps its soil colour instead of making up the coverage thinning "
+             "removed as grass canopy"},
 
     /* ---- camera ---- */
     {CAMERA(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
@@ -279,7 +311,7 @@ const int scene_field_count = (int)(sizeof scene_fields / sizeof scene_fields[0]
 /* ---- lookups ------------------------------------------------------------- */
 
 static const char *const section_names[SCENE_SEC_COUNT] = {
-    "", "terrain", "grass", "grass.clearings", "camera", "camera.path[]", "wind[]", "colliders[]", "colliders[].path[]", "characters[]",
+    "", "terrain", "grass", "grass.clearings", "grass.lod", "camera", "camera.path[]", "wind[]", "colliders[]", "colliders[].path[]", "characters[]",
 };
 
 const char *scene_section_name(scene_section_t section) { return section_names[section]; }

@@ -94,6 +94,7 @@ typedef enum scene_section_t {
     SCENE_SEC_TERRAIN,       /* terrain_desc_t */
     SCENE_SEC_GRASS,         /* scene_grass_desc_t */
     SCENE_SEC_CLEARINGS,     /* scene_clearings_desc_t */
+    SCENE_SEC_LOD,           /* blade_lod_t (grass.lod) */
     SCENE_SEC_CAMERA,        /* scene_camera_desc_t */
     SCENE_SEC_CAMERA_KEY,    /* cam_path_key_t */
     SCENE_SEC_WIND,          /* scene_wind_t */

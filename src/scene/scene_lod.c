@@ -30,6 +30,12 @@ static bool read_path(const scene_json_t *p, scene_lod_pick_t *out, const char *
     }
     const scene_json_t *met = member(p, "met", SCENE_JSON_BOOL), *cand = member(p, "candidates", SCENE_JSON_NUMBER);
     const scene_json_t *label = member(p, "label", SCENE_JSON_STRING);
+    const scene_json_t *bb = member(p, "billboards", SCENE_JSON_STRING), *wall = member(p, "wall_ms", SCENE_JSON_NUMBER);
+    if (bb && strcmp(bb->string, "ring") != 0 && strcmp(bb->string, "none") != 0) {
+        snprintf(err, err_size, "%s:%d: paths.%s.billboards: \"%s\" is not \"ring\" or \"none\"", file, bb->line, name,
+                 bb->string);
+        return false;
+    }
     if (v[0] < 0.0 || v[1] < v[0] || !met) {
         snprintf(err, err_size, "%s:%d: paths.%s: switch_distance >= 0, canopy_distance >= switch_distance and a "
                  "boolean \"met\" are required", file, p->line, name);
@@ -37,7 +43,10 @@ static bool read_path(const scene_json_t *p, scene_lod_pick_t *out, const char *
     }
     *out = (scene_lod_pick_t){.present = true, .switch_distance = (float)v[0], .canopy_distance = (float)v[1],
                               .gpu_ms = v[2], .image_error = v[3], .budget = v[4], .met = met->boolean,
-                              .candidates = cand ? (int)cand->number : 0};
+                              .candidates = cand ? (int)cand->number : 0,
+                              .billboards = bb && strcmp(bb->string, "none") == 0 ? SCENE_HYBRID_BILLBOARDS_NONE
+                                                                                 : SCENE_HYBRID_BILLBOARDS_RING,
+                              .wall_ms = wall ? wall->number : v[2]};
     if (label) snprintf(out->label, sizeof out->label, "%s", label->string);
     return true;
 }
@@ -80,7 +89,7 @@ const scene_lod_pick_t *scene_lod_choose(const scene_lod_t *t, const char *rende
     if (!renderer || strcmp(renderer, t->renderer) != 0) return NULL;
     if (path < 0) {
         const scene_lod_pick_t *hw = &t->path[0], *cs = &t->path[1];
-        path = !hw->present || (cs->present && cs->gpu_ms < hw->gpu_ms) ? 1 : 0;
+        path = !hw->present || (cs->present && cs->wall_ms < hw->wall_ms) ? 1 : 0;
     }
     *compute = path == 1;
     return t->path[path].present ? &t->path[path] : NULL;
@@ -108,12 +117,16 @@ bool scene_lod_apply(scene_desc_t *s, const char *renderer, bool *compute, char 
     }
     g->switch_distance = p->switch_distance;
     g->canopy_distance = p->canopy_distance;
+    g->billboards = p->billboards;
+    bool ring = p->billboards == SCENE_HYBRID_BILLBOARDS_RING;
     snprintf(note, note_size,
-             "%s path%s, from %.200s: %.3f ms at image error %.3f, %s budget %.3f (blade mode's error + noise "
-             "floor); the cheapest within it of %d hybrid configurations",
-             *compute ? "compute" : "hw", auto_path ? " (the table's cheaper)" : "", g->lod_table, p->gpu_ms,
+             "%s path%s, from %.200s: %s; %.3f ms wall (%.3f ms GPU) at image error %.3f, %s budget %.3f (blade "
+             "mode's error + noise floor); the cheapest within it of %d hybrid configurations",
+             *compute ? "compute" : "hw", auto_path ? " (the table's cheaper)" : "", g->lod_table,
+             ring ? "blades, billboards, canopy" : "blades, canopy (no billboards)", p->wall_ms, p->gpu_ms,
              p->image_error, p->met ? "within its" : "NOT within its (the least error measured)", p->budget,
              p->candidates);
-    core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance, g->canopy_distance, note);
+    core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance,
+                  ring ? g->canopy_distance : g->switch_distance, note);
     return true;
 }

@@ -12,7 +12,9 @@
  * lod.json: {"renderer": S, "scene": S, "budget": "...", "paths": {"hw": P,
  * "compute": P}} with P = {"switch_distance": m, "canopy_distance": m,
  * "gpu_ms": ms, "image_error": e, "budget": e, "met": bool, "label": S,
- * "candidates": n}. */
+ * "candidates": n, "billboards": "ring" | "none", "wall_ms": ms}: the
+ * chain of that path (blades to switch_distance, then billboards to
+ * canopy_distance or, with "none", the canopy from the switch). */
 #ifndef MEADOW_SCENE_LOD_H
 #define MEADOW_SCENE_LOD_H
 
@@ -25,6 +27,8 @@ typedef struct scene_lod_pick_t {
     bool present;                 /* the table has this path */
     float switch_distance;        /* m */
     float canopy_distance;        /* m */
+    scene_hybrid_billboards_t billboards; /* "billboards": "ring" or "none" (absent: ring) */
+    double wall_ms;               /* measured wall time per frame (absent: gpu_ms) */
     double gpu_ms, image_error;   /* measured at these distances */
     double budget;                /* blade mode's image error + the noise floor */
     bool met;                     /* image_error <= budget (else: the least error measured) */

@@ -160,27 +160,48 @@ bool world_extent_layout(const world_t *w, bb_layout_t *lay, bb_gen_desc_t *gen)
  * representations share clearings and density ratio. A rejected blade gets
  * height and width 0: the physics and culling skip it like patch padding,
  * and the patch layout stays intact. */
-static size_t thin_blades_by_extent(const world_t *w, blade_field_t *field)
+static size_t thin_blades_by_extent(const world_t *w, const bb_layout_t *lay, const bb_gen_desc_t *g,
+                                    blade_field_t *field)
 {
-    bb_gen_desc_t gen;
-    bb_layout_t lay;
-    if (!world_extent_layout(w, &lay, &gen)) return 0;
+    bb_gen_desc_t gen = *g;
+    const core_image_t *ex = &lay->extent;
     size_t dropped = 0;
     for (size_t i = 0; i < field->blade_count; i++) {
         blade_t *b = &field->blades[i];
         int ix = (int)floorf((b->v0[0] - gen.origin[0]) / gen.spacing);
         int iz = (int)floorf((b->v0[2] - gen.origin[1]) / gen.spacing);
-        int tx = ((ix / gen.cells_per_texel) % lay.extent.w + lay.extent.w) % lay.extent.w;
-        int tz = ((iz / gen.cells_per_texel) % lay.extent.h + lay.extent.h) % lay.extent.h;
-        uint32_t e = lay.extent.px[(size_t)tz * (size_t)lay.extent.w + (size_t)tx];
+        int tx = ((ix / gen.cells_per_texel) % ex->w + ex->w) % ex->w;
+        int tz = ((iz / gen.cells_per_texel) % ex->h + ex->h) % ex->h;
+        uint32_t e = ex->px[(size_t)tz * (size_t)ex->w + (size_t)tx];
         if (core_hash_u32((uint32_t)i ^ core_hash_u32(world_placement_seed(w) ^ 0x5bd1e995u)) % 255u >= e) {
             b->v1[3] = 0.0f;
             b->v2[3] = 0.0f;
             dropped++;
         }
     }
-    bb_layout_free(&lay);
     return dropped;
+}
+
+/* Blade mode's grass-shaded ground (ground_set_lod): the canopy table and
+ * the extent map that thinned the blades (NULL: none, the ground canopy
+ * unthinned). */
+static void blade_mode_canopy(world_t *w, const bb_layout_t *lay, const bb_gen_desc_t *gen)
+{
+    blade_canopy_t canopy;
+    if (!blade_canopy_make(&canopy, &(blade_canopy_desc_t){.population = w->scene.grass.population,
+                                                           .seed = w->scene.seed,
+                                                           .sun = WORLD_SUN_DIR}))
+        return;
+    float origin[2] = {0.0f, 0.0f}, spacing = 1.0f;
+    if (lay) {
+        w->blade_extent = gfx_texture_make(&(gfx_texture_desc_t){.w = lay->extent.w, .h = lay->extent.h,
+                                                                 .format = GL_R8, .filter = GL_NEAREST,
+                                                                 .data = lay->extent.px, .upload_format = GL_RED,
+                                                                 .label = "blades.extent"});
+        memcpy(origin, gen->origin, sizeof origin);
+        spacing = gen->spacing * (float)gen->cells_per_texel;
+    }
+    ground_set_canopy(w->ground, &canopy, w->blade_extent.id, origin, spacing);
 }
 
 /* Largest bounding radius of a collider or character (grass.cube_texel). */
@@ -295,7 +316,7 @@ static world_ground_t ground_of(const world_t *w)
  * simulate every blade of the field, as the paper). */
 static bool wants_bb(const world_t *w, scene_mode_t m)
 {
-    return world_pass_wants_billboards(m, ground_of(w), w->scene.grass.world_billboards);
+    return world_pass_wants_billboards(m, w->scene.grass.billboards);
 }
 static bool wants_blades(scene_mode_t m) { return world_pass_wants_blades(m); }
 static bool uses_tiles(const world_t *w) { return world_pass_uses_tiles(w->mode, ground_of(w), w->reference); }
@@ -321,7 +342,12 @@ static bool make_blades(world_t *w)
                             .population = g->population,
                             .max_blades = ADMIT_MAX_FIELD_BLADES};
     if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
-    size_t dropped = w->scene.terrain.type == TERRAIN_HEIGHTFIELD ? thin_blades_by_extent(w, &field) : 0;
+    bb_gen_desc_t gen;
+    bb_layout_t lay;
+    bool have_layout = w->scene.terrain.type == TERRAIN_HEIGHTFIELD && world_extent_layout(w, &lay, &gen);
+    size_t dropped = have_layout ? thin_blades_by_extent(w, &lay, &gen, &field) : 0;
+    if (!w->reference && !ground_has_canopy(w->ground)) blade_mode_canopy(w, have_layout ? &lay : NULL, &gen);
+    if (have_layout) bb_layout_free(&lay);
     blade_gpu_desc_t gd = {.field = &field, .shape = g->population.shape, .label = "blades",
                            .displacement = g->displacement, .width_correction = g->width_correction,
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
@@ -898,6 +924,27 @@ static void run_pass(world_t *w, frame_draw_t *f, world_pass_kind_t kind)
     }
 }
 
+/* The grass-shaded ground under the frame's thinned blades: the tiles' (to
+ * their switch; with billboards beyond, nearer than them) or blade mode's
+ * whole field (to its cull distance); none under billboards alone. */
+static void set_ground_lod(world_t *w, const frame_draw_t *f, bool ring, bool field)
+{
+    if (!f->tiles && !field) {
+        ground_set_lod(w->ground, NULL, 0.0f, 0.0f, 0.0f, 0.0f);
+        return;
+    }
+    blade_population_t pop = blade_population_defaults(&w->scene.grass.population);
+    float width = 0.5f * (pop.width[0] + pop.width[1]);
+    float focal = blade_lod_focal(f->v->frame.viewproj, f->target->h);
+    float cull = f->tiles || w->mode == SCENE_MODE_HYBRID
+                     ? f->fade_hi
+                     : scene_blade_distance(&w->scene.grass, f->v->frame.camera, f->v->far, w->terrain_mesh.aabb_min,
+                                            w->terrain_mesh.aabb_max);
+    blade_lod_t lod = w->scene.grass.lod;
+    if (f->tiles || w->mode == SCENE_MODE_HYBRID) lod.no_fade = true; /* the switch's dithered fade ends them */
+    ground_set_lod(w->ground, &lod, width, focal, cull, ring ? f->fade_lo : INFINITY);
+}
+
 /* The passes of world_pass_list, in order. */
 void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe)
 {
@@ -911,17 +958,19 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
                                              .reference = w->reference, .have_tiles = w->have_tiles,
                                              .have_blades = w->have_blades, .have_billboards = w->bb != NULL,
                                              .have_characters = w->have_chars,
-                                             .world_billboards = w->scene.grass.world_billboards},
+                                             .billboards = w->scene.grass.billboards},
                           passes);
     f.tiles = world_pass_has(passes, n, WORLD_PASS_TILES); /* the hybrid's near blades, and its canopy */
     f.fade_lo = tiles_distance(w) - WORLD_SWITCH_FADE;
     f.fade_hi = tiles_distance(w) + WORLD_SWITCH_FADE;
-    /* The canopy fades in beyond the billboards, or on a world without
-     * them (blade mode) where the blades fade out. */
-    bool ring = on_world(w) && world_pass_has(passes, n, WORLD_PASS_BILLBOARDS);
-    f.far_lo = on_world(w) && !ring ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
-    f.far_hi = on_world(w) && !ring ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
+    /* The canopy fades in beyond the billboards of the hybrid (or of a
+     * world), or, without them (grass.billboards none, blade mode on a
+     * world), where the blades fade out. */
+    bool ring = (f.tiles || on_world(w)) && world_pass_has(passes, n, WORLD_PASS_BILLBOARDS);
+    f.far_lo = !ring ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
+    f.far_hi = !ring ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
     ground_set_canopy_fade(w->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f);
+    set_ground_lod(w, &f, ring, world_pass_has(passes, n, WORLD_PASS_BLADES) && !w->reference);
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
@@ -966,6 +1015,7 @@ void world_destroy(world_t *w)
     if (!w) return;
     bb_field_destroy(w->bb);
     blade_gpu_destroy(w->blades);
+    gfx_texture_destroy(&w->blade_extent);
     blade_tiles_destroy(w->tiles);
     if (w->have_chars) character_set_destroy(&w->chars);
     raster_destroy(&w->raster);

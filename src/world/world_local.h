@@ -62,6 +62,8 @@ struct world_t {
                               (cube_resolution_for) */
     GLuint blade_cubes;    /* blade mode's CPU cube maps of the colliders
                               (blade_gpu_upload_cubes; owned by blades) */
+    gfx_texture_t blade_extent; /* blade mode on a heightfield: the extent map that thinned
+                                   its blades, for the grass-shaded ground (R8; 0: none) */
     /* Grass through the compute rasterizer (scene "raster" compute, or auto
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */

@@ -2,11 +2,11 @@
  * and the reference flag (world_pass.h). GL-free. */
 #include "world/world_pass.h"
 
-bool world_pass_wants_billboards(scene_mode_t mode, world_ground_t ground, scene_world_billboards_t world_bb)
+bool world_pass_wants_billboards(scene_mode_t mode, scene_hybrid_billboards_t hybrid_bb)
 {
     /* a world streams its billboards too (bb_ring.h) */
-    if (mode == SCENE_MODE_HYBRID && ground == WORLD_GROUND_WORLD) return world_bb == SCENE_WORLD_BILLBOARDS_RING;
-    return mode == SCENE_MODE_BILLBOARD || mode == SCENE_MODE_HYBRID;
+    if (mode == SCENE_MODE_HYBRID) return hybrid_bb == SCENE_HYBRID_BILLBOARDS_RING;
+    return mode == SCENE_MODE_BILLBOARD;
 }
 
 bool world_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLADE || mode == SCENE_MODE_HYBRID; }
@@ -28,7 +28,7 @@ int world_pass_list(const world_pass_desc_t *d, world_pass_t out[WORLD_PASS_KIND
         out[n++] = (world_pass_t){.kind = WORLD_PASS_TILES, .compute = d->compute};
     else if (d->have_blades && (world_pass_wants_blades(d->mode) || d->reference))
         out[n++] = (world_pass_t){.kind = WORLD_PASS_BLADES, .compute = d->compute};
-    if (d->have_billboards && world_pass_wants_billboards(d->mode, d->ground, d->world_billboards) && !d->reference)
+    if (d->have_billboards && world_pass_wants_billboards(d->mode, d->billboards) && !d->reference)
         out[n++] = (world_pass_t){.kind = WORLD_PASS_BILLBOARDS, .compute = d->compute};
     if (d->compute) out[n++] = (world_pass_t){.kind = WORLD_PASS_RASTER_END};
     return n;

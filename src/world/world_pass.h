@@ -47,7 +47,7 @@ typedef struct world_pass_desc_t {
     bool compute;   /* the compute rasterizer draws the grass this frame */
     bool reference; /* every blade of the field, no culling, no billboards */
     bool have_tiles, have_blades, have_billboards, have_characters;
-    scene_world_billboards_t world_billboards; /* the hybrid's on a world (grass.world_billboards) */
+    scene_hybrid_billboards_t billboards; /* the hybrid's (grass.billboards) */
 } world_pass_desc_t;
 
 /* The passes in order into out (room for WORLD_PASS_KINDS); their count. */
@@ -62,9 +62,9 @@ const char *world_pass_name(world_pass_kind_t k);
  * billboard and hybrid modes (a world's streamed around the camera:
  * bb_ring.h); blades in blade and hybrid modes; the blades from tiles for the
  * hybrid on a heightfield and for blade and hybrid modes on a world, never
- * for the reference. The hybrid on a world has no billboards with
- * grass.world_billboards none. */
-bool world_pass_wants_billboards(scene_mode_t mode, world_ground_t ground, scene_world_billboards_t world_bb);
+ * for the reference. The hybrid has no billboards with grass.billboards
+ * none: its blades end in the ground canopy. */
+bool world_pass_wants_billboards(scene_mode_t mode, scene_hybrid_billboards_t hybrid_bb);
 bool world_pass_wants_blades(scene_mode_t mode);
 bool world_pass_uses_tiles(scene_mode_t mode, world_ground_t ground, bool reference);
 
