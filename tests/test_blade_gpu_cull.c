@@ -3,8 +3,9 @@
  * fixed camera: per-test culled counts equal (patch culling off), survivor
  * sets equal (patch culling on and off), with and without a depth texture,
  * and the draw count in the indirect command equals the survivors for both
- * render paths. With patch culling the visible patches go nearest first
- * (the order the draw appends them in). Also: the non-blocking statistics
+ * render paths. With patch culling (on the GPU) every patch the CPU rule
+ * (blade_ref_box_outside) keeps is listed, once, in nondecreasing distance
+ * bucket (blade_ref_patch_bucket: the order the draw appends them in). Also: the non-blocking statistics
  * become valid a few frames late without a wait. A cut beyond or before the
  * levels' end (level_distance != max_distance) matches the reference too. */
 #include "blade/blade.h"
@@ -98,18 +99,31 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
         /* a blade of a culled patch fails the frustum test, so the reference
          * counts it as orientation or frustum; the later tests agree exactly */
         CHECK(st.patch_culled > 0);
-        int unordered = 0;
+        int unordered = 0, missing = 0, twice = 0, extra = 0;
         uint32_t *listed = malloc(f->patch_count * sizeof *listed);
+        char *seen = calloc(f->patch_count, 1);
         CHECK(blade_gpu_read_patches(g, listed) == st.patches_drawn);
-        for (uint32_t k = 1; k < st.patches_drawn; k++) {
-            const blade_aabb_t *here = &f->patch_aabbs[listed[k]];
-            const blade_aabb_t *prev = &f->patch_aabbs[listed[k - 1]];
-            unordered += core_box_dist2(cd.view.camera, here->min, here->max) <
-                         core_box_dist2(cd.view.camera, prev->min, prev->max);
+        uint32_t prev_bucket = 0;
+        for (uint32_t k = 0; k < st.patches_drawn; k++) {
+            const blade_aabb_t *box = &f->patch_aabbs[listed[k]];
+            uint32_t bucket =
+                blade_ref_patch_bucket(cd.view.camera, box->min, box->max, cd.max_distance, BLADE_PATCH_BUCKETS);
+            unordered += k > 0 && bucket < prev_bucket;
+            prev_bucket = bucket;
+            twice += seen[listed[k]]++ > 0;
+        }
+        for (size_t p = 0; p < f->patch_count; p++) {
+            const blade_aabb_t *box = &f->patch_aabbs[p];
+            bool kept = !blade_ref_box_outside(box->min, box->max, cd.view.viewproj, 0.1f);
+            missing += kept && !seen[p];
+            extra += !kept && seen[p];
         }
         free(listed);
-        printf("%-34s %u visible patches, %d out of distance order\n", name, st.patches_drawn, unordered);
-        CHECK(st.patches_drawn > 2 && unordered == 0);
+        free(seen);
+        printf("%-34s %u visible patches: %d out of bucket order, %d kept by the CPU rule not listed, %d listed twice, "
+               "%d listed the CPU rule culls\n",
+               name, st.patches_drawn, unordered, missing, twice, extra);
+        CHECK(st.patches_drawn > 2 && unordered == 0 && missing == 0 && twice == 0);
         CHECK(st.culled[0] + st.culled[1] + st.patch_culled == rs.culled[0] + rs.culled[1]);
         CHECK(st.culled[2] == rs.culled[2] && st.culled[3] == rs.culled[3]);
     }

@@ -2,20 +2,24 @@
 /* blade_cull.comp: per-blade culling (Jahrmann & Wimmer 2017 sec. 6,
  * eq. 17-20), the twin of blade_ref_cull_one in src/blade/blade_ref.c.
  * Tests in order: orientation, frustum, distance, occlusion; the first that
- * fails culls the blade and increments its counter (counters[0..3] in that
- * order). A survivor appends its index to `survivors` and increments the
- * draw command: instanceCount when u_count_instances != 0 (one instance per
- * blade, count = vertices per blade set by the host), else count (one
- * vertex / patch per blade, instanceCount = 1). Padding blades (height <= 0)
- * are dropped without counting. The host resets instanceCount (or count)
- * and the four counters with glClearBufferSubData before the dispatch;
+ * fails culls the blade and increments its counter (counts.culled[0..3]
+ * in that order, blade_patch.glsl). A survivor appends its index to
+ * `survivors` and increments the draw command: instanceCount when
+ * u_count_instances != 0 (one instance per blade, count = vertices per
+ * blade set by the host), else count (one vertex / patch per blade,
+ * instanceCount = 1). Padding blades (height <= 0) are dropped without
+ * counting. The host resets instanceCount (or count) and the counters
+ * with glClearBufferSubData before the patch test;
  * nothing here synchronizes across work groups. Survivor order is
  * arbitrary: compare with the CPU list as a set. With u_use_patches the
- * invocations cover only the patches listed in `patches` (the CPU patch
- * frustum test): invocation i handles blade patches[i / P] * P + i % P,
- * P = u_patch_size; the distance test still uses the global blade index. */
+ * dispatch is indirect and its invocations cover only the patches listed
+ * in `patches` by the GPU patch test (blade_patch_cull.comp,
+ * blade_patch_list.comp; their count is counts.dispatch[3]): invocation i
+ * handles blade patches[i / P] * P + i % P, P = u_patch_size; the distance
+ * test still uses the global blade index. */
 #include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
+#include "blade/blade_patch.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -27,13 +31,12 @@ layout(std430, binding = BLADE_BIND_COMMAND) buffer Command {
     uint first;
     uint baseInstance;
 } cmd;
-layout(std430, binding = BLADE_BIND_COUNTERS) buffer Counters { uint counters[4]; };
 layout(std430, binding = BLADE_BIND_PATCHES) readonly buffer Patches { uint patches[]; };
 
 /* Window depth of the previous frame (or a depth pre-pass); NDC = 2 d - 1. */
 layout(binding = BLADE_TEX_DEPTH) uniform sampler2D u_depth;
 
-uniform uint u_blade_count;    /* invocations: blades, or listed patches * P */
+uniform uint u_blade_count;    /* invocations without u_use_patches: the blades */
 uniform vec3 u_cam_pos;
 uniform mat4 u_view_proj;
 uniform float u_max_distance;
@@ -95,19 +98,19 @@ uint cull(Blade b, uint index)
 void main()
 {
     uint i = gl_GlobalInvocationID.x;
-    if (i >= u_blade_count) return;
+    if (i >= (u_use_patches != 0 ? counts.dispatch[3] : u_blade_count)) return;
     if (u_use_patches != 0) i = patches[i / u_patch_size] * u_patch_size + i % u_patch_size;
     uint why = cull(blades[i], i);
     if (why == BLADE_CULL_VISIBLE) {
         uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);
         survivors[slot] = i;
     } else if (why == BLADE_CULL_ORIENTATION) {
-        atomicAdd(counters[0], 1u);
+        atomicAdd(counts.culled[0], 1u);
     } else if (why == BLADE_CULL_FRUSTUM) {
-        atomicAdd(counters[1], 1u);
+        atomicAdd(counts.culled[1], 1u);
     } else if (why == BLADE_CULL_DISTANCE) {
-        atomicAdd(counters[2], 1u);
+        atomicAdd(counts.culled[2], 1u);
     } else if (why == BLADE_CULL_OCCLUSION) {
-        atomicAdd(counters[3], 1u);
+        atomicAdd(counts.culled[3], 1u);
     }
 }

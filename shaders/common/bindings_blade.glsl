@@ -9,7 +9,7 @@
 #ifndef BINDINGS_BLADE_GLSL
 #define BINDINGS_BLADE_GLSL
 
-/* The full field: physics, cull, draw (tess, pull), raster */
+/* The full field: physics, patch test, cull, draw (tess, pull), raster */
 #define BLADE_BIND_BLADES 0
 #define BLADE_BIND_ETA 1       /* physics */
 #define BLADE_BIND_WINDS 2     /* physics */
@@ -17,8 +17,10 @@
 #define BLADE_BIND_CUBES 4     /* physics: the colliders' cube-map records */
 #define BLADE_BIND_SURVIVORS 1 /* cull out; tess / pull draws in */
 #define BLADE_BIND_COMMAND 2   /* cull: the indirect draw */
-#define BLADE_BIND_COUNTERS 3  /* cull */
-#define BLADE_BIND_PATCHES 4   /* cull */
+#define BLADE_BIND_COUNTERS 3  /* cull and patch test (blade_patch.glsl) */
+#define BLADE_BIND_PATCHES 4   /* patch test out; cull in */
+#define BLADE_BIND_PATCH_BOXES 5 /* patch test: the patch boxes */
+#define BLADE_BIND_PATCH_KEYS 6  /* patch test: each patch's bucket and place in it */
 #define BLADE_BIND_RASTER_IDS 1
 #define BLADE_BIND_RASTER_COUNT 2
 #define BLADE_TEX_CUBES 0 /* physics: the colliders' depth cube maps */

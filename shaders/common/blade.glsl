@@ -528,6 +528,34 @@ float blade_lod_orientation(float threshold, float width_scale)
     return sqrt(max(1.0 - (1.0 - threshold * threshold) / (k * k), 0.0));
 }
 
+/* Twin of blade_ref_box_outside: the box [lo, hi] lies outside one clip
+ * plane of vp grown by tol (blade mode's patch test). */
+bool blade_patch_outside(vec3 lo, vec3 hi, mat4 vp, float tol)
+{
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        float sign = (plane & 1) != 0 ? -1.0 : 1.0;
+        bool all_out = true;
+        for (int c = 0; c < 8 && all_out; c++) {
+            vec3 p = vec3((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y, (c & 4) != 0 ? hi.z : lo.z);
+            vec4 clip = vp * vec4(p, 1.0);
+            if (clip.w + sign * clip[axis] + tol >= 0.0) all_out = false;
+        }
+        if (all_out) return true;
+    }
+    return false;
+}
+
+/* Twin of blade_ref_patch_bucket: floor(n sqrt(d / range)), at most n - 1,
+ * d the distance from the camera to the box. */
+uint blade_patch_bucket(vec3 camera, vec3 lo, vec3 hi, float range, uint n)
+{
+    vec3 q = max(max(lo - camera, camera - hi), vec3(0.0));
+    float d = sqrt(q.x * q.x + q.y * q.y + q.z * q.z);
+    float k = floor(float(n) * sqrt(d / range));
+    return uint(min(k, float(n - 1u)));
+}
+
 bool blade_in_frustum(vec4 clip, float tolerance)
 {
     float h = clip.w + tolerance;

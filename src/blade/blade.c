@@ -1,6 +1,6 @@
 /* blade: GPU driver of the Jahrmann & Wimmer 2017 blades: upload, physics
- * dispatch (eq. 3-16), CPU patch culling and per-blade culling dispatch
- * (eq. 17-20) into an indirect command, tessellated or vertex-pulled
+ * dispatch (eq. 3-16), the patch test and per-blade culling (eq. 17-20)
+ * on the GPU into an indirect command, tessellated or vertex-pulled
  * drawing (eq. 21-24), statistics read back a frame late; beyond both
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
  * eq. 1-5). GL objects come from gfx only. */
@@ -13,6 +13,13 @@
 #include <string.h>
 
 _Static_assert(BLADE_MAX_SPHERES == 512, "blade_physics.comp lists near spheres in a 512-bit mask (SPHERE_WORDS)");
+
+/* g->counters, uint words (blade_patch.glsl's Counters): culled per test,
+ * the patch test's culled blades and listed patches, blade_cull.comp's
+ * indirect dispatch (x, y, z, invocations), the distance buckets. The
+ * readback takes the first CNT_READ words, then the command's 4. */
+enum { CNT_PATCH_CULLED = 4, CNT_LISTED = 5, CNT_READ = 6, CNT_DISPATCH = 6, CNT_BUCKETS = 10,
+       CNT_WORDS = CNT_BUCKETS + BLADE_PATCH_BUCKETS };
 
 blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
 {
@@ -64,18 +71,24 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->padded_count = (uint32_t)f->padded_count;
     g->patch_count = (uint32_t)f->patch_count;
     g->patch_size = (uint32_t)(f->patch_size > 0 ? f->patch_size : 1);
+    /* the patch boxes (blade_patch.glsl's PatchBox), lo.w their real blades */
     size_t np = g->patch_count ? g->patch_count : 1;
-    g->patch_aabbs = calloc(np, sizeof *g->patch_aabbs);
-    g->patch_real = calloc(np, sizeof *g->patch_real);
-    g->visible_patches = calloc(np, sizeof *g->visible_patches);
-    g->patch_order = calloc(np, sizeof *g->patch_order);
-    if (!g->patch_aabbs || !g->patch_real || !g->visible_patches || !g->patch_order) {
+    float(*boxes)[8] = calloc(np, sizeof *boxes);
+    if (!boxes) {
         core_log_error("blade_gpu_make: out of memory (%u patches)", g->patch_count);
         return false;
     }
-    if (g->patch_count) memcpy(g->patch_aabbs, f->patch_aabbs, g->patch_count * sizeof *g->patch_aabbs);
-    for (uint32_t i = 0; i < g->padded_count; i++)
-        if (f->blades[i].v1[3] > 0.0f) g->patch_real[i / g->patch_size]++;
+    for (uint32_t p = 0; p < g->patch_count; p++) {
+        memcpy(boxes[p], f->patch_aabbs[p].min, 3 * sizeof(float));
+        memcpy(boxes[p] + 4, f->patch_aabbs[p].max, 3 * sizeof(float));
+    }
+    for (uint32_t i = 0; i < g->padded_count; i++) {
+        if (f->blades[i].v1[3] <= 0.0f) continue;
+        uint32_t real;
+        memcpy(&real, &boxes[i / g->patch_size][3], sizeof real);
+        real++;
+        memcpy(&boxes[i / g->patch_size][3], &real, sizeof real);
+    }
 
     size_t nb = g->padded_count;
     g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades);
@@ -87,44 +100,55 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     uint32_t cmd[4];
     command_initial(g, cmd);
     g->command = make_buffer(g, "command", sizeof cmd, cmd);
-    g->counters = make_buffer(g, "counters", 4 * sizeof(uint32_t), NULL);
+    g->counters = make_buffer(g, "counters", CNT_WORDS * sizeof(uint32_t), NULL);
     g->patches = make_buffer(g, "patches", np * sizeof(uint32_t), NULL);
+    g->patch_boxes = make_buffer(g, "patch_boxes", np * sizeof *boxes, boxes);
+    g->patch_keys = make_buffer(g, "patch_keys", np * 2 * sizeof(uint32_t), NULL);
+    free(boxes);
     bool ok = g->blades.id && g->eta.id && g->winds.id && g->spheres.id && g->survivors.id && g->cube_objects.id &&
-              g->command.id && g->counters.id && g->patches.id;
+              g->command.id && g->counters.id && g->patches.id && g->patch_boxes.id && g->patch_keys.id;
     char label[128];
     snprintf(label, sizeof label, "%s.readback", g->desc.label);
-    g->readback = gfx_readback_make(8 * sizeof(uint32_t), BLADE_GPU_READBACK_SLOTS, label);
+    g->readback = gfx_readback_make((CNT_READ + 4) * sizeof(uint32_t), BLADE_GPU_READBACK_SLOTS, label);
     ok = ok && g->readback.depth;
     /* built side by side */
     bool tess = g->desc.path == BLADE_PATH_TESSELLATION;
-    static const char *const what[3] = {"physics", "physics_cubes", "cull"};
-    char labels[5][128];
-    gfx_program_desc_t pds[5] = {
+    char buckets[64];
+    snprintf(buckets, sizeof buckets, "#define BLADE_PATCH_BUCKETS %d\n", BLADE_PATCH_BUCKETS);
+    enum { PROGRAMS = 7 };
+    static const char *const what[PROGRAMS - 2] = {"physics", "physics_cubes", "cull", "patch_cull", "patch_list"};
+    char labels[PROGRAMS][128];
+    gfx_program_desc_t pds[PROGRAMS] = {
         {.cs = "blade/blade_physics.comp"},
         {.cs = "blade/blade_physics.comp", .defines = "#define BLADE_CUBES 1\n"},
-        {.cs = "blade/blade_cull.comp"},
+        {.cs = "blade/blade_cull.comp", .defines = buckets},
+        {.cs = "blade/blade_patch_cull.comp", .defines = buckets},
+        {.cs = "blade/blade_patch_list.comp", .defines = buckets},
     };
-    for (int k = 0; k < 3; k++) snprintf(labels[k], sizeof labels[k], "%s.%s", g->desc.label, what[k]);
+    for (int k = 0; k < PROGRAMS - 2; k++) snprintf(labels[k], sizeof labels[k], "%s.%s", g->desc.label, what[k]);
     for (int fade = 0; fade < 2; fade++) {
-        pds[3 + fade] = (gfx_program_desc_t){.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
-                                             .tcs = tess ? "blade/blade.tesc" : NULL,
-                                             .tes = tess ? "blade/blade.tese" : NULL,
-                                             .fs = "blade/blade.frag",
-                                             .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
-        snprintf(labels[3 + fade], sizeof labels[3 + fade], "%s.draw_%s%s", g->desc.label, tess ? "tess" : "pull",
+        int k = PROGRAMS - 2 + fade;
+        pds[k] = (gfx_program_desc_t){.vs = tess ? "blade/blade_tess.vert" : "blade/blade_pull.vert",
+                                      .tcs = tess ? "blade/blade.tesc" : NULL,
+                                      .tes = tess ? "blade/blade.tese" : NULL,
+                                      .fs = "blade/blade.frag",
+                                      .defines = fade ? "#define BLADE_FADE 1\n" : NULL};
+        snprintf(labels[k], sizeof labels[k], "%s.draw_%s%s", g->desc.label, tess ? "tess" : "pull",
                  fade ? "_fade" : "");
     }
-    for (int k = 0; k < 5; k++) pds[k].label = labels[k];
-    gfx_program_t progs[5];
-    ok = gfx_programs_make(5, pds, progs) && ok;
+    for (int k = 0; k < PROGRAMS; k++) pds[k].label = labels[k];
+    gfx_program_t progs[PROGRAMS];
+    ok = gfx_programs_make(PROGRAMS, pds, progs) && ok;
     g->physics = progs[0];
     g->physics_cubes = progs[1];
     g->cull = progs[2];
-    g->draw = progs[3];
-    g->draw_fade = progs[4];
+    g->patch_cull = progs[3];
+    g->patch_list = progs[4];
+    g->draw = progs[5];
+    g->draw_fade = progs[6];
     snprintf(label, sizeof label, "%s.vao", g->desc.label);
     g->vao = gfx_vertex_array_make(label);
-    ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->vao;
+    ok = ok && g->physics.id && g->physics_cubes.id && g->cull.id && g->patch_cull.id && g->patch_list.id && g->vao;
     if (!ok) {
         core_log_error("blade_gpu_make: could not create the GL objects of '%s'", g->desc.label);
         return false;
@@ -136,21 +160,19 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
 /* Every object and allocation of g (members without one are zero). */
 static void release(blade_gpu_t *g)
 {
-    gfx_buffer_t *bufs[] = {&g->blades,  &g->eta,     &g->winds,    &g->spheres,     &g->survivors,
-                            &g->command, &g->counters, &g->patches, &g->cube_objects};
+    gfx_buffer_t *bufs[] = {&g->blades,   &g->eta,      &g->winds,   &g->spheres,     &g->survivors,
+                            &g->command,  &g->counters, &g->patches, &g->patch_boxes, &g->patch_keys,
+                            &g->cube_objects};
     for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; i++)
         if (bufs[i]->id) gfx_buffer_destroy(bufs[i]);
     gfx_readback_destroy(&g->readback);
     raster_program_destroy(&g->raster);
-    gfx_program_t *progs[] = {&g->physics, &g->physics_cubes, &g->cull, &g->draw, &g->draw_fade};
+    gfx_program_t *progs[] = {&g->physics, &g->physics_cubes, &g->cull, &g->patch_cull, &g->patch_list,
+                              &g->draw,    &g->draw_fade};
     for (size_t i = 0; i < sizeof progs / sizeof progs[0]; i++)
         if (progs[i]->id) gfx_program_destroy(progs[i]);
     if (g->vao) gfx_vertex_array_destroy(&g->vao);
     if (g->own_cubes.id) gfx_texture_destroy(&g->own_cubes);
-    free(g->patch_aabbs);
-    free(g->patch_real);
-    free(g->visible_patches);
-    free(g->patch_order);
 }
 
 blade_gpu_t *blade_gpu_make(const blade_gpu_desc_t *desc)
@@ -253,60 +275,52 @@ GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, in
     return g->own_cubes.id;
 }
 
-/* Conservative AABB-vs-frustum: culled when all 8 corners are outside one
- * clip plane grown by the tolerance (w +- x + t < 0 for x, y, z). */
-static bool aabb_outside(const blade_aabb_t *b, const float *m, float tol)
+/* The patch test on the GPU (blade_patch_cull.comp, blade_patch_list.comp):
+ * the visible patches listed nearest bucket first and blade_cull.comp's
+ * indirect dispatch written into g->counters. No CPU work per patch. */
+static void list_patches(blade_gpu_t *g, const blade_cull_desc_t *d)
 {
-    for (int plane = 0; plane < 6; plane++) {
-        int axis = plane / 2;
-        float sign = (plane & 1) ? -1.0f : 1.0f;
-        bool all_out = true;
-        for (int c = 0; c < 8 && all_out; c++) {
-            float p[3] = {(c & 1) ? b->max[0] : b->min[0], (c & 2) ? b->max[1] : b->min[1],
-                          (c & 4) ? b->max[2] : b->min[2]};
-            float clip[4];
-            for (int r = 0; r < 4; r++) clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-            if (clip[3] + sign * clip[axis] + tol >= 0.0f) all_out = false;
-        }
-        if (all_out) return true;
-    }
-    return false;
+    uint32_t groups = (g->patch_count + 255u) / 256u;
+    gfx_program_t p = g->patch_cull;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_patch_count"), g->patch_count);
+    glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d->view.viewproj);
+    glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d->view.camera);
+    glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), d->frustum_tolerance);
+    glUniform1i(gfx_uniform(p, "u_frustum"), (d->disable & BLADE_CULL_FRUSTUM) == 0);
+    glUniform1f(gfx_uniform(p, "u_bucket_range"), d->max_distance);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_PATCH_BOXES, g->patch_boxes.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_PATCH_KEYS, g->patch_keys.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_COUNTERS, g->counters.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_PATCHES, g->patches.id);
+    if (groups) glDispatchCompute(groups, 1, 1);
+    gfx_count_add("blade.patches_tested", (double)g->patch_count);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    p = g->patch_list;
+    glUseProgram(p.id);
+    glUniform1ui(gfx_uniform(p, "u_patch_count"), g->patch_count);
+    glUniform1ui(gfx_uniform(p, "u_patch_size"), g->patch_size);
+    glDispatchCompute(groups ? groups : 1, 1, 1); /* group 0 writes the dispatch, even for no patch */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture)
 {
     blade_cull_desc_t d = desc ? blade_cull_desc_defaults(desc) : g->desc.cull;
     gfx_timer_begin("blade.cull");
-    uint32_t visible = 0, patch_culled = 0;
     bool use_patches = !g->desc.no_patch_cull;
-    if (use_patches) {
-        for (uint32_t p = 0; p < g->patch_count; p++) {
-            if ((d.disable & BLADE_CULL_FRUSTUM) == 0 &&
-                aabb_outside(&g->patch_aabbs[p], d.view.viewproj, d.frustum_tolerance))
-                patch_culled += g->patch_real[p];
-            else
-                g->patch_order[visible++] =
-                    (blade_order_key_t){.dist2 = core_box_dist2(d.view.camera, g->patch_aabbs[p].min, g->patch_aabbs[p].max), .id = p};
-        }
-        blade_order_sort(g->patch_order, visible);
-        for (uint32_t k = 0; k < visible; k++) g->visible_patches[k] = g->patch_order[k].id;
-        if (visible) gfx_buffer_update(g->patches, 0, visible * sizeof(uint32_t), g->visible_patches);
-        g->patches_listed = visible;
-    } else {
-        visible = g->patch_count;
-    }
-    /* reset: the command's counted field and the four counters, each its
-     * own command before the dispatch */
+    /* reset: the command's counted field and the counters (blade_patch.glsl),
+     * each its own command before the dispatches */
     bool pull = g->desc.path == BLADE_PATH_PULLING;
     uint32_t zero = 0;
     glClearNamedBufferSubData(g->command.id, GL_R32UI, pull ? 4 : 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    glClearNamedBufferSubData(g->counters.id, GL_R32UI, 0, 16, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glClearNamedBufferData(g->counters.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (use_patches) list_patches(g, &d);
 
     gfx_program_t p = g->cull;
-    uint32_t invocations = use_patches ? visible * g->patch_size : g->padded_count;
     glUseProgram(p.id);
-    glUniform1ui(gfx_uniform(p, "u_blade_count"), invocations);
+    glUniform1ui(gfx_uniform(p, "u_blade_count"), g->padded_count);
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.view.camera);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
@@ -326,18 +340,22 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_COMMAND, g->command.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_COUNTERS, g->counters.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_PATCHES, g->patches.id);
-    if (invocations) glDispatchCompute((invocations + 255u) / 256u, 1, 1);
-    gfx_count_add("blade.cull_tested", (double)invocations);
+    if (use_patches) {
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, g->counters.id);
+        glDispatchComputeIndirect(CNT_DISPATCH * sizeof(uint32_t));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    } else if (g->padded_count) {
+        glDispatchCompute((g->padded_count + 255u) / 256u, 1, 1);
+        gfx_count_add("blade.cull_tested", (double)g->padded_count);
+    }
     glBindTextureUnit(BLADE_TEX_DEPTH, 0);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 
     /* statistics: the counters and the command into a fenced ring slot,
      * read once the fence has passed */
-    gfx_readback_copy(&g->readback, g->counters, 0, 0, 16);
-    gfx_readback_copy(&g->readback, g->command, 0, 16, 16);
-    int slot = gfx_readback_fence(&g->readback);
-    g->readback_patch[slot][0] = patch_culled;
-    g->readback_patch[slot][1] = visible;
+    gfx_readback_copy(&g->readback, g->counters, 0, 0, CNT_READ * sizeof(uint32_t));
+    gfx_readback_copy(&g->readback, g->command, 0, CNT_READ * sizeof(uint32_t), 4 * sizeof(uint32_t));
+    gfx_readback_fence(&g->readback);
     g->culled_once = true;
     gfx_timer_end();
 }
@@ -346,13 +364,13 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
 {
     int slot = gfx_readback_latest(&g->readback, wait);
     if (slot < 0) return g->stats;
-    uint32_t v[8];
+    uint32_t v[CNT_READ + 4];
     gfx_readback_read(&g->readback, slot, 0, sizeof v, v);
     bool pull = g->desc.path == BLADE_PATH_PULLING;
     for (int i = 0; i < 4; i++) g->stats.culled[i] = v[i];
-    g->stats.survivors = pull ? v[5] : v[4];
-    g->stats.patch_culled = g->readback_patch[slot][0];
-    g->stats.patches_drawn = g->readback_patch[slot][1];
+    g->stats.survivors = pull ? v[CNT_READ + 1] : v[CNT_READ];
+    g->stats.patch_culled = v[CNT_PATCH_CULLED];
+    g->stats.patches_drawn = g->desc.no_patch_cull ? g->patch_count : v[CNT_LISTED];
     g->stats.total = g->blade_count;
     g->stats.valid = true;
     g->stats.triangles_max = (long)g->stats.survivors * 2 * g->desc.max_tess_level;
@@ -496,9 +514,13 @@ uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out)
 
 uint32_t blade_gpu_read_patches(const blade_gpu_t *g, uint32_t *out)
 {
+    if (g->desc.no_patch_cull || !g->culled_once) return 0;
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    if (g->patches_listed) gfx_buffer_read(g->patches, 0, g->patches_listed * sizeof(uint32_t), out);
-    return g->patches_listed;
+    uint32_t n;
+    gfx_buffer_read(g->counters, CNT_LISTED * sizeof(uint32_t), sizeof n, &n);
+    assert(n <= g->patch_count);
+    if (n) gfx_buffer_read(g->patches, 0, n * sizeof(uint32_t), out);
+    return n;
 }
 
 void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4])

@@ -1,8 +1,8 @@
 /* blade: the GPU half of Jahrmann & Wimmer 2017, "Responsive Real-Time Grass
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
  * simulates it in a compute shader (eq. 3-16 plus the collision exit of
- * blade_ref.h), culls it per patch on the CPU and per blade in a compute
- * shader (eq. 17-20) into an indirect draw command, and draws the
+ * blade_ref.h), culls it per patch and per blade in compute shaders
+ * (eq. 17-20) into an indirect draw command, and draws the
  * survivors either through tessellation (GL_PATCHES; the control shader
  * picks the level by distance, the evaluation shader builds the blade by
  * De Casteljau, eq. 21, with the shape functions of sec. 6.3 and the
@@ -13,9 +13,11 @@
  *
  * Beyond both papers: the cube proxies of the collide set add depth
  * cube-map colliders (the billboard model's, Orthmann et al. 2009 eq. 1-5)
- * to the physics. The patch test keeps the survivors blade_ref_cull keeps;
- * the blades of a culled patch are counted in blade_gpu_stats_t.patch_culled
- * only. Both, and every departure with its measurement: docs/BLADES.md.
+ * to the physics. The patch test (on the GPU: the patch boxes against the
+ * frustum, the visible patches listed nearest first in distance buckets,
+ * the blade cull dispatched indirectly over them) keeps the survivors
+ * blade_ref_cull keeps; the blades of a culled patch are counted in
+ * blade_gpu_stats_t.patch_culled only. Both, and every departure with its measurement: docs/BLADES.md.
  *
  * Timer passes: "blade.physics", "blade.cull", "blade.draw". */
 #ifndef MEADOW_BLADE_H
@@ -54,7 +56,7 @@ typedef enum blade_render_path_t {
  *                  (docs/BLADES.md): a blade seen edge-on is widened by
  *                  1 / max(|n.view|, width_correction), at most 4x (scene,
  *                  grass.width_correction)
- *   no_patch_cull  false: CPU patch frustum test on
+ *   no_patch_cull  false: the patch test on (blade_gpu_cull)
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
     const blade_field_t *field;
@@ -74,8 +76,8 @@ typedef struct blade_gpu_stats_t {
     uint32_t total;        /* real blades (padding excluded) */
     uint32_t survivors;    /* blades in the draw command */
     uint32_t culled[4];    /* orientation, frustum, distance, occlusion (per blade) */
-    uint32_t patch_culled; /* real blades of patches culled on the CPU */
-    uint32_t patches_drawn;
+    uint32_t patch_culled; /* real blades of the patches the patch test culled */
+    uint32_t patches_drawn; /* patches listed by the patch test (all without it) */
     bool valid;            /* false until a cull result has been read */
     long triangles_max;    /* survivors x 2 x max_tess_level: an upper bound of the
                               drawn triangles (level of detail lowers it with distance) */
@@ -132,10 +134,15 @@ void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_
  * cube_texture, 0 on failure (logged). count in 1..BLADE_MAX_CUBES. */
 GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, int count);
 
-/* Culls for one frame (timer "blade.cull"). desc NULL uses the make-time
- * cull desc; desc->depth is ignored: depth_texture is a GL_TEXTURE_2D of
- * window depth (single sample, e.g. the resolved depth of the previous
- * frame's opaque pass), 0 for no occlusion test. */
+/* Culls for one frame (timer "blade.cull"): the patch test
+ * (blade_patch_cull.comp, blade_patch_list.comp: boxes outside a clip
+ * plane grown by the frustum tolerance dropped, blade_ref_box_outside; the
+ * rest listed by distance bucket, blade_ref_patch_bucket over
+ * max_distance) and blade_cull.comp dispatched indirectly over the listed
+ * patches' blades; no work per patch or blade on the CPU, no wait. desc
+ * NULL uses the make-time cull desc; desc->depth is ignored: depth_texture
+ * is a GL_TEXTURE_2D of window depth (single sample, e.g. the resolved
+ * depth of the previous frame's opaque pass), 0 for no occlusion test. */
 void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture);
 
 /* Draws the survivors of the latest cull into the bound framebuffer (timer
@@ -168,9 +175,10 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait);
  * list of the latest cull (returns the count; out holds padded_count). */
 void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out);
 uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out);
-/* Blocking read of the patch list of the latest cull as the GPU read it
- * (nearest first; out holds patch_count); returns its length, 0 without
- * the patch test (no_patch_cull). */
+/* Blocking read of the patch list of the latest cull as the GPU wrote it
+ * (in nondecreasing blade_ref_patch_bucket, any order within a bucket; out
+ * holds patch_count); returns its length, 0 without the patch test
+ * (no_patch_cull) or before the first cull. */
 uint32_t blade_gpu_read_patches(const blade_gpu_t *g, uint32_t *out);
 /* Blocking read of the indirect command {count, instanceCount, first, base}. */
 void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4]);

@@ -16,19 +16,16 @@
 struct blade_gpu_t {
     blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
     uint32_t blade_count, padded_count, patch_count, patch_size;
-    blade_aabb_t *patch_aabbs;
-    uint32_t *patch_real;    /* real blades per patch */
-    uint32_t *visible_patches;
-    uint32_t patches_listed;        /* visible_patches of the latest cull (0: no patch cull) */
-    blade_order_key_t *patch_order; /* the visible patches, nearest first */
-    gfx_buffer_t blades, eta, winds, spheres, survivors, command, counters, patches;
+    gfx_buffer_t blades, eta, winds, spheres, survivors, command;
+    gfx_buffer_t counters; /* blade_patch.glsl's Counters: per-test counts, patch test, dispatch, buckets */
+    gfx_buffer_t patches, patch_boxes, patch_keys; /* the patch test's list, boxes (made once), keys */
     raster_program_t raster; /* made on the first blade_gpu_raster */
     gfx_buffer_t cube_objects; /* BLADE_MAX_CUBES collide_cube_proxy_t */
     gfx_texture_t own_cubes;   /* made by blade_gpu_upload_cubes */
-    gfx_readback_t readback;                              /* counters (16 bytes), then the command */
-    uint32_t readback_patch[BLADE_GPU_READBACK_SLOTS][2]; /* per slot: patch_culled, patches drawn */
+    gfx_readback_t readback;   /* the counters' first 6 words, then the command */
     blade_gpu_stats_t stats;
     gfx_program_t physics, physics_cubes, cull; /* physics_cubes: with cube proxies */
+    gfx_program_t patch_cull, patch_list;       /* the patch test (blade_patch_*.comp) */
     gfx_program_t draw, draw_fade;              /* the path's: opaque, and with the hybrid fade */
     GLuint vao;
     bool culled_once;

@@ -911,6 +911,31 @@ float blade_ref_lod_orientation(float threshold, float width_scale)
     return sqrtf(fmaxf(1.0f - (1.0f - threshold * threshold) / (k * k), 0.0f));
 }
 
+bool blade_ref_box_outside(const float lo[3], const float hi[3], const float viewproj[16], float tol)
+{
+    const float *m = viewproj;
+    for (int plane = 0; plane < 6; plane++) {
+        int axis = plane / 2;
+        float sign = (plane & 1) ? -1.0f : 1.0f;
+        bool all_out = true;
+        for (int c = 0; c < 8 && all_out; c++) {
+            float p[3] = {(c & 1) ? hi[0] : lo[0], (c & 2) ? hi[1] : lo[1], (c & 4) ? hi[2] : lo[2]};
+            float clip[4];
+            for (int r = 0; r < 4; r++) clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+            if (clip[3] + sign * clip[axis] + tol >= 0.0f) all_out = false;
+        }
+        if (all_out) return true;
+    }
+    return false;
+}
+
+uint32_t blade_ref_patch_bucket(const float camera[3], const float lo[3], const float hi[3], float range, uint32_t n)
+{
+    float d = sqrtf(core_box_dist2(camera, lo, hi));
+    float k = floorf((float)n * sqrtf(d / range));
+    return (uint32_t)fminf(k, (float)(n - 1));
+}
+
 size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
                       uint32_t *survivors, blade_cull_stats_t *stats)
 {

@@ -338,6 +338,26 @@ typedef struct blade_cull_desc_t {
                           0: 1000 */
 } blade_cull_desc_t;
 
+/* ---- the patch test of blade mode (beyond the paper; twins of
+ * blade_patch_outside and blade_patch_bucket in shaders/common/blade.glsl,
+ * run by blade_patch_cull.comp) ----------------------------------------------
+ * blade_ref_box_outside: conservative box-vs-frustum, true when all 8
+ * corners of [lo, hi] are outside one clip plane of viewproj grown by tol
+ * (w +- x + tol < 0 for x, y, z). A patch box outside holds only blades
+ * whose three sample points fail the frustum test (1) with the same
+ * tolerance, so culling it removes no survivor. The tiles test their
+ * boxes with it too. */
+bool blade_ref_box_outside(const float lo[3], const float hi[3], const float viewproj[16], float tol);
+
+/* Distance buckets the visible patches are listed in, nearest first. */
+#define BLADE_PATCH_BUCKETS 256
+
+/* The bucket of a patch box: floor(n sqrt(d / range)) clamped to [0, n - 1],
+ * d = sqrt(core_box_dist2(camera, lo, hi)): square-root spacing, finer near
+ * the camera where the order hides more (range 100 m, n 256: 1.5 mm wide
+ * at the camera, 0.78 m at 100 m). range > 0. */
+uint32_t blade_ref_patch_bucket(const float camera[3], const float lo[3], const float hi[3], float range, uint32_t n);
+
 /* Culled counts per test, indexed 0 orientation, 1 frustum, 2 distance,
  * 3 occlusion (the order of the GPU counter buffer), and the survivors. */
 typedef struct blade_cull_stats_t {

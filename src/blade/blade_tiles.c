@@ -834,25 +834,6 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     gfx_timer_end();
 }
 
-/* Conservative box-vs-frustum (blade.c's patch test): outside when all 8
- * corners are outside one clip plane grown by the tolerance. */
-static bool box_outside(const float mn[3], const float mx[3], const float *m, float tol)
-{
-    for (int plane = 0; plane < 6; plane++) {
-        int axis = plane / 2;
-        float sign = (plane & 1) ? -1.0f : 1.0f;
-        bool all_out = true;
-        for (int c = 0; c < 8 && all_out; c++) {
-            float p[3] = {(c & 1) ? mx[0] : mn[0], (c & 2) ? mx[1] : mn[1], (c & 4) ? mx[2] : mn[2]};
-            float clip[4];
-            for (int r = 0; r < 4; r++) clip[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-            if (clip[3] + sign * clip[axis] + tol >= 0.0f) all_out = false;
-        }
-        if (all_out) return true;
-    }
-    return false;
-}
-
 /* The CPU tile frustum test and tiles_cull.comp: appends the drawn blades
  * to t->drawn and their count to the draw commands (timer "tiles.cull").
  * With `split` (the hardware path's fade) blades whose roots lie beyond
@@ -873,7 +854,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
         if (tile->rep != HYBRID_REP_BLADE) continue;
         float mn[3] = {tile->min[0] - t->reach, tile->min[1], tile->min[2] - t->reach};
         float mx[3] = {tile->max[0] + t->reach, tile->max[1], tile->max[2] + t->reach};
-        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && box_outside(mn, mx, desc->view.viewproj, c->frustum_tolerance)) {
+        if ((c->disable & BLADE_CULL_FRUSTUM) == 0 && blade_ref_box_outside(mn, mx, desc->view.viewproj, c->frustum_tolerance)) {
             int tmpl, sym;
             blade_tiles_instance(t, i, &tmpl, &sym);
             tile_culled += t->template_real[tmpl];
