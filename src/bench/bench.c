@@ -622,8 +622,9 @@ static const char *front_name(int front) { return front == 1 ? "hardware" : fron
 
 /* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
  * the hybrid row of least wall time (row_wall) whose image error is within
- * the blade row's plus the noise floor (else the least error, "met":
- * false), with or without billboards. Rows that leave a distance at 0 take
+ * the noise floor of the least error any row of the path measured (blade
+ * mode's included; else the least error, "met": false), with or without
+ * billboards: a tier stays only where it is cheaper at equal error. Rows that leave a distance at 0 take
  * the scene's. Nothing when the run holds no such rows. */
 /* A row's wall time per frame: the larger of its GPU pass sum and its
  * CPU's wall clock, so a CPU-bound configuration counts as slow. */
@@ -650,7 +651,7 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     if (!scene_load(&s, scene_path, err, sizeof err)) return false;
     core_buf_t json = {0};
     core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"scene\": \"%s\",\n  \"size\": [%d, %d],\n"
-                           "  \"frames\": %d,\n  \"budget\": \"blade mode's image error + the noise floor\",\n"
+                           "  \"frames\": %d,\n  \"budget\": \"the least image error of the path's rows + the noise floor\",\n"
                            "  \"paths\": {",
                     b->renderer, scene_path, o->width ? o->width : s.size[0], o->width ? o->height : s.size[1],
                     b->frames);
@@ -665,7 +666,10 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
             if (least < 0 || b->err[i] < b->err[least]) least = i;
         }
         if (blade < 0 || least < 0) continue;
-        double budget = b->err[blade] + R->floor;
+        double budget = b->err[least];
+        for (int i = 0; i < b->n; i++)
+            if (lod_row(b, i, path_k)) budget = fmin(budget, b->err[i]);
+        budget += R->floor;
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget) continue;
             if (best < 0 || row_wall(&b->met[i]) < row_wall(&b->met[best])) best = i;

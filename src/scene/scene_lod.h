@@ -1,9 +1,10 @@
-/* scene_lod: the hybrid's switch distances chosen by measurement. `meadow
- * bench --chart hybrid_canopy_distance` writes lod.json: per rasterizer
- * path, of the hybrid configurations it measured (switch and canopy
- * distance), the cheapest whose image error against the all-blade
- * reference stays within blade mode's (drawn as far) plus the noise floor
- * (docs/HYBRID.md, "Switch distances by measurement"). A scene names such a
+/* scene_lod: the hybrid's chain chosen by measurement. `meadow bench
+ * --chart hybrid_canopy_distance` writes lod.json: per rasterizer path, of
+ * the hybrid configurations it measured (switch and canopy distance, with
+ * or without billboards), the one of least wall time whose image error
+ * against the all-blade reference stays within the least error measured on
+ * that path plus the noise floor (docs/HYBRID.md, "Switch distances by
+ * measurement"). A scene names such a
  * table (grass.lod_table); the program reads it here and takes its choice
  * for the path it draws with, or with raster auto the cheaper path's, when
  * the table was measured on the same GL renderer (GL-free: the caller
@@ -30,7 +31,7 @@ typedef struct scene_lod_pick_t {
     scene_hybrid_billboards_t billboards; /* "billboards": "ring" or "none" (absent: ring) */
     double wall_ms;               /* measured wall time per frame (absent: gpu_ms) */
     double gpu_ms, image_error;   /* measured at these distances */
-    double budget;                /* blade mode's image error + the noise floor */
+    double budget;                /* the least image error measured on the path + the noise floor */
     bool met;                     /* image_error <= budget (else: the least error measured) */
     int candidates;               /* hybrid configurations compared */
     char label[48];
