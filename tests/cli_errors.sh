@@ -97,7 +97,21 @@ mkdir -p "$tmp/ro" && touch "$tmp/ro/file"
 expect2 'not a directory' --headless --scene "$root/scenes/tiny.json" --out "$tmp/ro/file"
 # Inputs that exhaust the machine are refused before anything is allocated:
 # an endless file, and tiles too small for the hybrid's table.
-expect2 'more than 64 MiB, the most this program reads' --headless --scene /dev/zero
+expect2 '/dev/zero: cannot read: not a regular file' --headless --scene /dev/zero
+# A FIFO as the scene or grass.lod_table is refused without blocking in
+# open(2) (which waited for a writer forever, deaf to SIGINT, holding --out).
+mkfifo "$tmp/fifo.json"
+t0=$(date +%s%N)
+expect2 'fifo.json: cannot read: not a regular file' --headless --scene "$tmp/fifo.json"
+ms=$((($(date +%s%N) - t0) / 1000000))
+[ "$ms" -lt 2000 ] || { echo "FAIL: a FIFO as --scene took $ms ms to refuse (want < 2 s)"; fail=1; }
+python3 -c "import json,sys; s=json.load(open(sys.argv[1])); s['grass']['lod_table']=sys.argv[2]; \
+json.dump(s, open(sys.argv[3],'w'))" "$root/scenes/tiny.json" "$tmp/fifo.json" "$tmp/lod_fifo.json"
+timeout 60 "$bin" --headless --quiet --scene "$tmp/lod_fifo.json" --size 64x36 --frames 1 --screenshot-every 0 \
+  --out "$tmp/lod_fifo" >/dev/null 2>"$tmp/lod_fifo.log"
+rc=$?
+{ [ "$rc" = 0 ] && grep -q "warning: grass.lod_table: .*fifo.json: not a regular file" "$tmp/lod_fifo.log"; } \
+  || { echo "FAIL: a FIFO as grass.lod_table gave exit $rc:"; sed 's/^/    /' "$tmp/lod_fifo.log"; fail=1; }
 printf '{ "terrain": { "type": "mesh", "mesh": "/dev/zero" } }\n' >"$tmp/zeromesh.json"
 expect2 'terrain.mesh: /dev/zero: not a regular file' --headless --scene "$tmp/zeromesh.json"
 printf '{ "grass": { "clearings": { "type": "image", "image": "/dev/zero" } } }\n' >"$tmp/zeroimage.json"

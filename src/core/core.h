@@ -55,9 +55,10 @@ float core_box_dist2(const float p[3], const float lo[3], const float hi[3]);
 
 /* ---- files ---------------------------------------------------------------
  * core_fs_read reads a whole file into a malloc'd, NUL-terminated buffer,
- * at most CORE_FS_READ_MAX bytes (a larger file, or an endless device such
- * as /dev/zero, is refused, not read until memory runs out). On failure it
- * returns NULL and writes a reason into err (if non-NULL). */
+ * at most CORE_FS_READ_MAX bytes (a larger file is refused, not read until
+ * memory runs out). Only regular files are read: a FIFO, socket or device
+ * (/dev/zero) is refused without blocking in open(2). On failure it returns
+ * NULL and writes a reason into err (if non-NULL). */
 #define CORE_FS_READ_MAX ((size_t)64 << 20)
 char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size);
 /* Writes to "<path>.tmp.<pid>" then renames into place, so an interrupted

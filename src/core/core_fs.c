@@ -14,15 +14,22 @@
 
 char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
+    /* Opened without blocking: open(2) of a FIFO waits for a writer, forever
+     * and deaf to SIGINT (SA_RESTART); only regular files are read. */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
         if (err) snprintf(err, err_size, "%s", strerror(errno));
         return NULL;
     }
     struct stat st;
-    if (fstat(fileno(f), &st) != 0 || S_ISDIR(st.st_mode)) {
-        if (err) snprintf(err, err_size, "%s", S_ISDIR(st.st_mode) ? "is a directory" : strerror(errno));
-        fclose(f);
+    const char *why = NULL;
+    if (fstat(fd, &st) != 0) why = strerror(errno);
+    else if (S_ISDIR(st.st_mode)) why = "is a directory";
+    else if (!S_ISREG(st.st_mode)) why = "not a regular file";
+    FILE *f = why || fcntl(fd, F_SETFL, 0) != 0 ? NULL : fdopen(fd, "rb");
+    if (!f) {
+        if (err) snprintf(err, err_size, "%s", why ? why : strerror(errno));
+        close(fd);
         return NULL;
     }
     if ((uint64_t)st.st_size > CORE_FS_READ_MAX) {
