@@ -42,6 +42,8 @@ typedef struct bench_config_t {
     float density_scale;                  /* grass and billboard density factor, 0 = 1 */
     float bb_density_scale;               /* billboard density factor alone, 0 = 1 */
     int billboards;                       /* hybrid: 0 = scene, else 1 + scene_hybrid_billboards_t */
+    float lod_width_px;                   /* grass.lod.width_px, 0 = scene */
+    bool lod_thin, lod_soil;              /* grass.lod.no_compensation, grass.lod.no_ground */
     int blade_render;                     /* 0 = the options', else 1 + scene_blade_render_t (1 pull, 2 tess) */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
@@ -100,6 +102,9 @@ static void tweak(scene_desc_t *s, void *user)
     }
     if (c->bb_density_scale > 0) s->grass.billboard_density *= c->bb_density_scale;
     if (c->billboards) s->grass.billboards = (scene_hybrid_billboards_t)(c->billboards - 1);
+    if (c->lod_width_px > 0) s->grass.lod.width_px = c->lod_width_px;
+    if (c->lod_thin) s->grass.lod.no_compensation = true;
+    if (c->lod_soil) s->grass.lod.no_ground = true;
     if (c->no_colliders) s->collider_count = s->character_count = 0;
     if (c->proxy != PROXY_WORLD || c->ball) {
         /* Characters would keep their own proxy spheres (the variants could
@@ -173,7 +178,7 @@ static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
     return n;
 }
 
-#define MAX_CONFIGS 96
+#define MAX_CONFIGS 128
 
 /* Placement seed of the noise-floor reference (world_tuning_t.placement_seed). */
 #define FLOOR_PLACEMENT_SEED 0x9e3779b9u
@@ -268,6 +273,29 @@ static int add_canopy_configs(bench_config_t *c, int n, bool quick, const char *
     return n;
 }
 
+/* The grass-shaded ground against the thinning's strength (compute path):
+ * the tiles to 60 m then the canopy, no billboards, thinning from 1.5 and
+ * from 4 px of projected width, with the kept blades widened (the
+ * default), thinned without widening over grass-shaded ground, and thinned
+ * over soil. Returns the new count. */
+static int add_ground_configs(bench_config_t *c, int n)
+{
+    static const float widths[] = {1.5f, 4.0f};
+    static const char *const kinds[] = {"widened", "ground", "soil"};
+    for (int i = 0; i < 2; i++)
+        for (int k = 0; k < 3; k++) {
+            bench_config_t *x = add(c, &n, "lod_ground", SCENE_MODE_HYBRID);
+            x->switch_distance = 60.0f;
+            x->billboards = 1 + SCENE_HYBRID_BILLBOARDS_NONE;
+            x->raster = 1 + SCENE_RASTER_COMPUTE;
+            x->lod_width_px = widths[i];
+            x->lod_thin = k > 0;
+            x->lod_soil = k == 2;
+            snprintf(x->label, sizeof x->label, "w%gpx_%s", (double)widths[i], kinds[k]);
+        }
+    return n;
+}
+
 /* canopy_scene: the hybrid_canopy_distance rows' scene (NULL: the sweep's). */
 static int build_configs(bench_config_t *c, bool quick, const char *canopy_scene)
 {
@@ -351,6 +379,7 @@ static int build_configs(bench_config_t *c, bool quick, const char *canopy_scene
         snprintf(x->label, sizeof x->label, "switch%gm", sw[i]);
     }
     n = add_canopy_configs(c, n, quick, canopy_scene);
+    if (!quick) n = add_ground_configs(c, n);
     static const scene_mode_t modes[3] = {SCENE_MODE_BILLBOARD, SCENE_MODE_BLADE, SCENE_MODE_HYBRID};
     for (int d = 0; d < (quick ? 1 : 2); d++)
         for (int i = 0; i < 3; i++) {
@@ -411,6 +440,7 @@ static const bench_chart_t charts[] = {
      DRAW_PASSES},
     {"hybrid_switch_distance", "hybrid_switch_distance", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
     {"hybrid_canopy_distance", "hybrid_canopy_distance", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
+    {"lod_ground", "lod_ground", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
     {"modes", "modes", "image error (eval_image vs reference)", Y_IMAGE, {NULL}},
 };
 #define CHART_COUNT ((int)(sizeof charts / sizeof charts[0]))
