@@ -147,6 +147,45 @@ printf '{ "seed": 1\0 }' >"$tmp/nul.json"
 expect2 'nul.json:1: a NUL byte at offset 11' --headless --scene "$tmp/nul.json"
 printf '{ "terrain": { "mesh": "models/torus.obj" } }\n' >"$tmp/hfmesh.json"
 expect2 'unknown key "mesh" for terrain type "heightfield"' --headless --scene "$tmp/hfmesh.json"
+# A camera must look somewhere: position = target is refused (also a path
+# key's); one looking straight down renders the field (its view matrix had
+# +y as up, parallel to the view: a blank frame of sky colour).
+printf '{ "camera": {\n  "position": [1, 2, 3],\n  "target": [1, 2, 3] } }\n' >"$tmp/lookself.json"
+expect2 'lookself.json:3: field "camera.target": \[1, 2, 3\] is camera.position' --headless --scene "$tmp/lookself.json"
+printf '{ "camera": { "path": [ { "t": 0, "position": [0, 1, 0], "target": [0, 0, 0] },\n  { "t": 1, "position": [5, 1, 0], "target": [5, 1, 0] } ] } }\n' >"$tmp/lookself_path.json"
+expect2 'lookself_path.json:2: field "camera.path\[1\].target": .* is camera.path\[1\].position' \
+  --headless --scene "$tmp/lookself_path.json"
+png_colours() { # png_colours FILE: distinct colours of an 8-bit RGB(A) PNG
+  python3 - "$1" <<'PY'
+import struct, sys, zlib
+d = open(sys.argv[1], 'rb').read()
+i, idat = 8, b''
+while i < len(d):
+    n, t = struct.unpack('>I4s', d[i:i + 8])
+    if t == b'IHDR': w, h, depth, ctype = struct.unpack('>IIBB', d[i + 8:i + 18])
+    if t == b'IDAT': idat += d[i + 8:i + 8 + n]
+    i += 12 + n
+bpp = {2: 3, 6: 4}[ctype]
+raw, stride, prev, colours = zlib.decompress(idat), w * bpp, bytearray(w * bpp), set()
+for y in range(h):
+    f, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for x in range(stride):
+        a, b, c = row[x - bpp] if x >= bpp else 0, prev[x], prev[x - bpp] if x >= bpp else 0
+        p = a + b - c
+        pr = a if abs(p - a) <= abs(p - b) and abs(p - a) <= abs(p - c) else b if abs(p - b) <= abs(p - c) else c
+        row[x] = (row[x] + (0, a, b, (a + b) // 2, pr)[f]) & 255
+    colours.update(bytes(row[x:x + bpp]) for x in range(0, stride, bpp))
+    prev = row
+print(len(colours))
+PY
+}
+python3 -c "import json,sys; s=json.load(open(sys.argv[1])); s['camera']={'position': [0, 10, 0], 'target': [0, 0, 0]}; \
+json.dump(s, open(sys.argv[2],'w'))" "$root/scenes/tiny.json" "$tmp/down.json"
+"$bin" --headless --quiet --scene "$tmp/down.json" --size 128x72 --frames 3 --screenshot-every 3 --out "$tmp/down" \
+  >/dev/null 2>&1
+colours=$(png_colours "$tmp/down/shot-000003.png" 2>/dev/null)
+[ "${colours:-0}" -gt 16 ] \
+  || { echo "FAIL: a camera looking straight down drew ${colours:-no} colour(s) (a blank frame: 1)"; fail=1; }
 # A UTF-8 byte order mark before the scene's JSON is accepted.
 { printf '\xef\xbb\xbf'; sed "s|\"models/|\"$root/models/|g" "$root/scenes/tiny.json"; } >"$tmp/bom.json"
 "$bin" --headless --quiet --scene "$tmp/bom.json" --size 64x36 --frames 1 --screenshot-every 0 --out "$tmp/bom" \

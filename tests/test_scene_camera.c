@@ -1,7 +1,8 @@
-/* test_scene_camera: view/projection against hand-computed values, frustum
- * planes (signed distances of known points, and agreement with a brute-force
- * clip-space test), AABB culling, camera/collider/walk path evaluation at keys
- * and midpoints, free-fly moves, and fixed-step clock counts. */
+/* test_scene_camera: view/projection against hand-computed values, a
+ * camera looking straight down, frustum planes (signed distances of known
+ * points, and agreement with a brute-force clip-space test), AABB culling,
+ * camera/collider/walk path evaluation at keys and midpoints, free-fly
+ * moves, and fixed-step clock counts. */
 #include <stdio.h>
 
 #include "core/core.h"
@@ -28,6 +29,18 @@ static void test_matrices(void)
     CHECK_NEAR(c[2] / c[3], 1, 1e-5);
     glm_mat4_mulv(proj, pe, c);
     CHECK_NEAR(c[0] / c[3], 1, 1e-5);
+
+    /* Straight down: the screen's up is -z, as for a camera pitched down
+     * from looking along -z (up = +y made every entry NaN or 0). */
+    cam_t down = {.position = {2, 10, 3}, .target = {2, 0, 3}, .fov = 90, .near = 1, .far = 100, .aspect = 1};
+    cam_view(&down, view);
+    vec4 below = {2, 0, 3, 1}, ahead = {2, 0, 2, 1};
+    glm_mat4_mulv(view, below, e);
+    CHECK_NEAR(e[0], 0, 1e-5);
+    CHECK_NEAR(e[1], 0, 1e-5);
+    CHECK_NEAR(e[2], -10, 1e-5);
+    glm_mat4_mulv(view, ahead, e);
+    CHECK_NEAR(e[1], 1, 1e-5);
 
     cam_t d = {0};
     cam_defaults(&d);

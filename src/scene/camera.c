@@ -21,10 +21,34 @@ void cam_defaults(cam_t *cam)
     }
 }
 
+/* Unit view direction and distance to the target (-z, 1 when degenerate). */
+static float view_dir(const cam_t *cam, vec3 f)
+{
+    glm_vec3_sub((float *)cam->target, (float *)cam->position, f);
+    float d = glm_vec3_norm(f);
+    if (d <= 1e-6f) {
+        f[0] = 0;
+        f[1] = 0;
+        f[2] = -1;
+        return 1.0f;
+    }
+    glm_vec3_scale(f, 1.0f / d, f);
+    return d;
+}
+
+/* Looking straight up or down, +y is the view direction itself and the
+ * basis degenerates (a blank frame): the screen's up is then the direction
+ * a camera pitched there from looking along -z has, -z looking down and +z
+ * looking up. */
 void cam_view(const cam_t *cam, mat4 out)
 {
-    vec3 up = {0, 1, 0};
-    glm_lookat((float *)cam->position, (float *)cam->target, up, out);
+    vec3 f, up = {0, 1, 0};
+    view_dir(cam, f);
+    if (hypotf(f[0], f[2]) <= 1e-4f) {
+        up[1] = 0;
+        up[2] = f[1] < 0 ? -1.0f : 1.0f;
+    }
+    glm_look((float *)cam->position, f, up, out);
 }
 
 void cam_proj(const cam_t *cam, mat4 out)
@@ -108,21 +132,6 @@ void cam_path_eval(const cam_path_t *path, float t, cam_t *cam)
         for (int c = 0; c < 3; c++)
             out[c] = h00 * p0[c] + h10 * h * m0[c] + h01 * p1[c] + h11 * h * m1[c];
     }
-}
-
-/* Unit view direction and distance to the target (-z, 1 when degenerate). */
-static float view_dir(const cam_t *cam, vec3 f)
-{
-    glm_vec3_sub((float *)cam->target, (float *)cam->position, f);
-    float d = glm_vec3_norm(f);
-    if (d <= 1e-6f) {
-        f[0] = 0;
-        f[1] = 0;
-        f[2] = -1;
-        return 1.0f;
-    }
-    glm_vec3_scale(f, 1.0f / d, f);
-    return d;
 }
 
 void cam_move(cam_t *cam, float forward, float right, float up)

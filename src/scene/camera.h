@@ -27,7 +27,8 @@ typedef struct cam_t {
  * origin. */
 void cam_defaults(cam_t *cam);
 
-/* View matrix (world -> eye), glm_lookat with up = +y. */
+/* View matrix (world -> eye), glm_lookat with up = +y; looking straight
+ * down (up), up = -z (+z); position = target looks along -z. */
 void cam_view(const cam_t *cam, mat4 out);
 /* Perspective projection, GL clip space (z in -1..1). */
 void cam_proj(const cam_t *cam, mat4 out);

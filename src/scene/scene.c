@@ -446,6 +446,18 @@ static bool parse_keys(sp_t *sp, const json_t *arr, const char *field, const sce
     return true;
 }
 
+/* A camera (or camera path key) object o looks from position at target:
+ * the two must differ, or the camera has no direction. */
+static bool look_ok(sp_t *sp, const json_t *o, const char *field, const float position[3], const float target[3])
+{
+    if (glm_vec3_distance((float *)position, (float *)target) > 1e-6f) return true;
+    const json_t *at = scene_json_get(o, "target") ? scene_json_get(o, "target") : scene_json_get(o, "position");
+    char f[F_SIZE];
+    return sp_fail(sp, at ? at->line : o->line, field_join(f, sizeof f, field, "target", 0),
+                   "[%g, %g, %g] is %s.position: a camera must look at a point other than where it stands",
+                   (double)target[0], (double)target[1], (double)target[2], field);
+}
+
 static bool parse_camera(sp_t *sp, const json_t *o, scene_camera_desc_t *c)
 {
     const char *p = "camera";
@@ -459,9 +471,20 @@ static bool parse_camera(sp_t *sp, const json_t *o, scene_camera_desc_t *c)
         return sp_fail(sp, at->line, "camera.far", "far %g must be greater than near %g", (double)far,
                        (double)near);
     }
+    bool given = !glm_vec3_eq(c->position, 0.0f) || !glm_vec3_eq(c->target, 0.0f); /* both 0: the default */
+    if (given && !look_ok(sp, o, "camera", c->position, c->target)) return false;
     if (!(v = MEMBER(o, p, "path"))) return true;
-    return parse_keys(sp, v, f, scene_field_find(SCENE_SEC_CAMERA, "path"), SCENE_SEC_CAMERA_KEY, c->path.keys,
-                      sizeof c->path.keys[0], &c->path.count);
+    if (!parse_keys(sp, v, f, scene_field_find(SCENE_SEC_CAMERA, "path"), SCENE_SEC_CAMERA_KEY, c->path.keys,
+                    sizeof c->path.keys[0], &c->path.count))
+        return false;
+    int i = 0;
+    for (const json_t *e = v->child; e; e = e->next, i++) {
+        char kf[F_SIZE];
+        if (!look_ok(sp, e, field_join(kf, sizeof kf, "camera.path", NULL, i), c->path.keys[i].position,
+                     c->path.keys[i].target))
+            return false;
+    }
+    return true;
 }
 
 static bool parse_wind(sp_t *sp, const json_t *arr, scene_desc_t *d)

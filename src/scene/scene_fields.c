@@ -225,7 +225,7 @@ const scene_field_t scene_fields[] = {
     {CAMERA(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
       .flags = SCENE_FIELD_NO_DEFAULT, .doc = "eye (m)", .def_doc = "[0, 8, 24] when target is also zero"},
     {CAMERA(target), .key = "target", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
-      .flags = SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m)", .def_doc = "[0, 0, 0]"},
+      .flags = SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m); must differ from position", .def_doc = "[0, 0, 0]"},
     {CAMERA(fov), .key = "fov", .type = SCENE_FIELD_FLOAT, .hi = 179, .def = {SCENE_DEFAULT_FOV},
       .doc = "vertical field of view (degrees)"},
     {CAMERA(near), .key = "near", .type = SCENE_FIELD_FLOAT, .hi = 1e4, .def = {SCENE_DEFAULT_NEAR},
@@ -239,7 +239,7 @@ const scene_field_t scene_fields[] = {
     {CAMERA_KEY(position), .key = "position", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
       .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "eye (m)"},
     {CAMERA_KEY(target), .key = "target", .type = SCENE_FIELD_FLOATS, .n = 3, .lo = -SCENE_COORD_MAX, .hi = SCENE_COORD_MAX,
-      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m)"},
+      .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT, .doc = "point looked at (m); must differ from position"},
 
     /* ---- wind ---- */
     {WIND(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = wind_names,
