@@ -142,6 +142,15 @@ expect2 'colliders\[0\].length 10 over radius 0.01 takes 1001 .* the largest col
 printf '{ "size": [8, 100] }\n' >"$tmp/size8.json"
 expect2 'field "size\[0\]": 8 is out of range \[16, 16384\]' --headless --scene "$tmp/size8.json"
 expect2 "--size '16385x100': expected WxH with each side in 16..16384 (scene key size)" --size 16385x100
+# The largest size the option takes is admitted only if the compute
+# rasterizer's visibility buffer fits (raster auto makes one): counted
+# before the GL starts, against memory and against the 4 GiB one GL buffer
+# holds (it was admitted and failed with GL_OUT_OF_MEMORY, for minutes).
+expect2 '--size 16384x16384 needs .*: the largest --size that fits is [0-9]*x[0-9]*$' \
+  --headless --scene "$root/scenes/tiny.json" --size 16384x16384
+MEADOW_MEMORY_LIMIT_MB=2400 expect2 \
+  '--size 16384x16384 needs 17.19 GB of memory .*(compute rasterizer 10.74 GB).*the largest --size that fits is' \
+  --headless --scene "$root/scenes/tiny.json" --size 16384x16384
 expect2 "--seed '4294967296': expected an integer in 0..4294967295 (scene key seed)" --seed 4294967296
 printf '{ "seed": 1\0 }' >"$tmp/nul.json"
 expect2 'nul.json:1: a NUL byte at offset 11' --headless --scene "$tmp/nul.json"

@@ -105,7 +105,8 @@ void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *e)
     if (w->raster) {
         double rs = s->raster_samples > 0 ? s->raster_samples : SCENE_DEFAULT_RASTER_SAMPLES;
         double queue = fmin(fmax(px * rs * ADMIT_RASTER_QUEUE_LAYERS / 64.0, (double)(1 << 20)), (double)(1 << 26));
-        e->gpu[ADMIT_RASTER] = px * (rs * 8.0 + 4.0) + 16.0 * queue; /* visibility, depth, triangle queues */
+        e->raster_vis = px * rs * 8.0;
+        e->gpu[ADMIT_RASTER] = e->raster_vis + px * 4.0 + 16.0 * queue; /* visibility, depth, triangle queues */
         if (s->raster == SCENE_RASTER_AUTO) e->transient = px * 8.0 * (ts > 1 ? ts + 2.0 : 2.0);
     }
     double verts, indices;
@@ -196,10 +197,17 @@ static double knob_ratio(const scene_desc_t *s, const knob_t *kn)
     return kn->sign > 0 ? v / d : d / fmax(v, 1e-12);
 }
 
-static int knob_format(char *buf, size_t size, const scene_desc_t *s, const knob_t *kn)
+/* size given as --size: named as the option, WxH (knob_format). */
+static bool size_option(const admit_world_t *w, const knob_t *kn)
+{
+    return w->size_option && kn->section == SCENE_SEC_ROOT && strcmp(kn->key, "size") == 0;
+}
+
+static int knob_format(char *buf, size_t size, const scene_desc_t *s, const admit_world_t *w, const knob_t *kn)
 {
     const scene_field_t *f = scene_field_find(kn->section, kn->key);
     const void *at = field_at((scene_desc_t *)s, f);
+    if (size_option(w, kn)) return snprintf(buf, size, "%dx%d", ((const int *)at)[0], ((const int *)at)[1]);
     if (f->type == SCENE_FIELD_INTS) return snprintf(buf, size, "[%d, %d]", ((const int *)at)[0], ((const int *)at)[1]);
     if (f->type == SCENE_FIELD_INT) return snprintf(buf, size, "%d", ((const int *)at)[0]);
     return snprintf(buf, size, "%.6g", (double)((const float *)at)[0]);
@@ -230,7 +238,13 @@ static int misfit(const scene_desc_t *s, const admit_world_t *w, const admit_lim
     double host = lim->host_bytes > 0.0 ? lim->host_bytes : INFINITY;
     bool shared = lim->gpu_bytes <= 0.0;
     double peak = e->gpu_total + e->transient;
-    if (peak <= gpu && (shared ? peak + e->host : e->host) <= host) return -1;
+    if (peak <= gpu && (shared ? peak + e->host : e->host) <= host) {
+        if (e->raster_vis <= ADMIT_MAX_BUFFER_BYTES) return -1;
+        *why = "bytes in the compute rasterizer's visibility buffer, more than the 4294967295 one GL buffer holds "
+               "(Mesa's limit)";
+        *count = e->raster_vis;
+        return ADMIT_RASTER;
+    }
     *why = shared ? "of memory (GPU storage and host, one pool here)" : "of memory";
     *count = 0.0;
     int worst = ADMIT_TERRAIN;
@@ -314,9 +328,11 @@ static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit
         side = lim->max_renderbuffer_size;
     if (side > 0 && (s->size[0] > side || s->size[1] > side)) {
         double k = (double)side / fmax(s->size[0], s->size[1]);
-        snprintf(err, size, "size [%d, %d]: this GL's render targets are at most %d px a side: the largest size of "
-                 "this shape that fits is [%d, %d]", s->size[0], s->size[1], side, (int)floor(s->size[0] * k),
-                 (int)floor(s->size[1] * k));
+        const char *fmt = w->size_option ? "--size %dx%d: this GL's render targets are at most %d px a side: the "
+                                           "largest --size of this shape that fits is %dx%d"
+                                         : "size [%d, %d]: this GL's render targets are at most %d px a side: the "
+                                           "largest size of this shape that fits is [%d, %d]";
+        snprintf(err, size, fmt, s->size[0], s->size[1], side, (int)floor(s->size[0] * k), (int)floor(s->size[1] * k));
         return false;
     }
     int n = s->grass.subdiv[0], m = s->grass.subdiv[1];
@@ -420,9 +436,9 @@ bool admit_check(const scene_desc_t *s, const admit_world_t *w, const admit_limi
         if (!bisect(s, w, lim, kn, &fit)) continue;
         char name[64], now[48], best[48];
         const char *sec = scene_section_name(kn->section);
-        snprintf(name, sizeof name, "%s%s%s", sec, sec[0] ? "." : "", kn->key);
-        knob_format(now, sizeof now, s, kn);
-        knob_format(best, sizeof best, &fit, kn);
+        snprintf(name, sizeof name, "%s%s%s", size_option(w, kn) ? "--" : sec, sec[0] ? "." : "", kn->key);
+        knob_format(now, sizeof now, s, w, kn);
+        knob_format(best, sizeof best, &fit, w, kn);
         snprintf(err, err_size, "%s %s needs %s: the %s %s that fits is %s", name, now, need,
                  kn->sign > 0 ? "largest" : "smallest", name, best);
         return false;

@@ -46,6 +46,7 @@ typedef struct admit_world_t {
     float tiles_distance;  /* the tiles' blade distance (0: grass.switch_distance) */
     bool full_field;       /* every blade of the field (blade mode, hybrid on a mesh) */
     bool raster;           /* the compute rasterizer's buffers (raster compute or auto) */
+    bool size_option;      /* size is --size's: messages name it as the option (--size WxH) */
     int target_samples;    /* samples of the main target (the GL's cap applied) */
     float collider_radius; /* largest collider's bounding radius (grass.cube_texel) */
     int max_texture_size;  /* GL_MAX_TEXTURE_SIZE: caps those cube maps (0: 16384) */
@@ -70,6 +71,7 @@ typedef struct admit_t {
     double gpu[ADMIT_PARTS]; /* bytes of GPU storage by part */
     double gpu_total;            /* held for the run (what gfx_memory_bytes then reports) */
     double transient;            /* held at start-up only: raster auto's calibration targets */
+    double raster_vis;           /* bytes of the visibility buffer, the largest single buffer (0: none) */
     double host;                 /* bytes of host memory beyond the GPU's (terrain, seeding) */
     double blades;               /* blades simulated per frame (full field: all; tiles: the pool) */
     double bb_candidates;        /* billboard candidate cells (work of a regeneration) */
@@ -88,6 +90,11 @@ typedef struct admit_t {
 /* Most sphere proxies of the blade physics (BLADE_MAX_SPHERES; asserted
  * in world.c). */
 #define ADMIT_MAX_SPHERES 512
+/* Most bytes of one GL buffer: Mesa refuses a larger one with
+ * GL_OUT_OF_MEMORY (its resource sizes are 32-bit); the compute
+ * rasterizer's visibility buffer is the one that reaches it (16384 x 16384
+ * at 4 samples: 8 GiB). */
+#define ADMIT_MAX_BUFFER_BYTES 4294967295.0
 /* Most blades of a full blade field: 50M x 68 B = 3.4 GB of GPU state. */
 #define ADMIT_MAX_FIELD_BLADES 50000000
 

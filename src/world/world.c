@@ -54,6 +54,7 @@ static int load(world_t *w, const world_options_t *o)
     w->character_override = o->character;
     w->clip_override = o->clip;
     w->character_height = o->character_height;
+    w->size_option = o->width != 0;
     float canopy_min = s->grass.switch_distance + WORLD_SWITCH_FADE + WORLD_CANOPY_FADE;
     if (s->grass.canopy_distance < canopy_min) {
         core_log_error("%s: grass.canopy_distance %g is less than grass.switch_distance + %g (%g): the blades' and "
@@ -65,7 +66,7 @@ static int load(world_t *w, const world_options_t *o)
     /* Before the heightfield is built: its host and GPU copies, the targets
      * (admit; the rest is checked once the GL is up, which takes some
      * memory of its own: ADMIT_GL_RESERVE). */
-    if (!admit_check(s, &(admit_world_t){0},
+    if (!admit_check(s, &(admit_world_t){.raster = s->raster != SCENE_RASTER_HW, .size_option = w->size_option},
                          &(admit_limits_t){.host_bytes = admit_host_bytes() - ADMIT_GL_RESERVE}, err,
                          sizeof err)) {
         core_log_error("%s: %s", w->scene_path, err);
@@ -581,6 +582,7 @@ static bool admit(world_t *w)
                             .full_field = (wants_blades(w->mode) && !uses_tiles(w)) || w->reference,
                             .raster = w->scene.raster != SCENE_RASTER_HW,
                             .target_samples = gfx_target_samples(world_target_samples(w)),
+                            .size_option = w->size_option,
                             .collider_radius = largest_object_radius(w),
                             .max_texture_size = gl.max_texture_size,
                             .objects = w->scene.collider_count +

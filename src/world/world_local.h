@@ -88,6 +88,7 @@ struct world_t {
     bool have_chars;
     const char *character_override, *clip_override;
     float character_height; /* --character-height; 0 = the scene's */
+    bool size_option;       /* the size is --size's (admission names the option) */
     bool input_error; /* a model file failed to load: exit code 2 */
     /* Global illumination (scene grass.gi, world_gi.c): the volumes, made at
      * start-up; gi.ao.id 0 when off. */
