@@ -47,6 +47,20 @@ expect2 "options of .meadow bench." --perf "$tmp/p"
 expect2 "--from needs --perf or --baseline" bench --from "$tmp/p.json"
 expect2 "--force needs --baseline" bench --perf "$tmp/p" --force
 expect2 "--baseline: empty path" bench --baseline ""
+# Empty values and paths longer than the program keeps (they were ignored,
+# or cut without a word: --out at 1023 bytes, --character at 255).
+expect2 "--character: empty model path" --character ""
+expect2 "--clip: empty clip name" --clip ""
+expect2 "--scene: empty path" --scene ""
+long=/tmp/$(printf 'a%.0s' $(seq 1100))
+expect2 "--out: 1105 bytes, more than the 1023 this program keeps" --out "$long"
+expect2 "--scene: 1105 bytes, more than the 1023" --scene "$long"
+expect2 "--character: 305 bytes, more than the 255" --character "${long:0:305}"
+expect2 "--clip: 100 bytes, more than the 63" --clip "$(printf 'c%.0s' $(seq 100))"
+expect2 "--perf: 1105 bytes, more than the 1023" bench --perf "$long"
+printf '{ "terrain": { "type": "mesh", "mesh": "%s" } }\n' "${long:0:300}" >"$tmp/longmesh.json"
+expect2 'longmesh.json:1: field "terrain.mesh": string of 300 bytes is longer than the maximum 255' \
+  --headless --scene "$tmp/longmesh.json"
 expect2 "cannot be combined" bench --perf "$tmp/p" --scaling
 expect2 "--case needs .meadow bench --stability." bench --case resting_blade
 expect2 "missing.json" --headless --scene "$tmp/missing.json"

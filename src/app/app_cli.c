@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "character/character_import.h"
+#include "core/core.h"
 #include "scene/scene.h"
 #include "scene/scene_fields.h"
 
@@ -120,14 +121,23 @@ static bool flag_option(const char *a, app_options_t *o)
 }
 
 /* The options with a value; `empty` names what an empty value would be
- * when one is refused ("OPTION: empty WHAT"). */
+ * when one is refused ("OPTION: empty WHAT"; NULL: the value's own check
+ * refuses it), `longest` the most bytes of a value the program keeps (0:
+ * no limit; a longer one was cut without a word): CORE_PATH_MAX's, or that
+ * of the scene key the option replaces. */
 static const struct {
     const char *name, *empty;
+    size_t longest;
 } value_options[] = {
-    {"--scene", NULL},  {"--out", "folder name"},   {"--character", NULL},      {"--clip", NULL},
-    {"--list-clips", "model path"}, {"--character-height", NULL}, {"--frames", NULL}, {"--screenshot-every", NULL},
-    {"--seed", NULL},   {"--size", NULL},           {"--blade-render", NULL},   {"--raster", NULL},
-    {"--raster-samples", NULL}, {"--mode", NULL},   {"--overlay", NULL},
+    {"--scene", "path", CORE_PATH_MAX - 1},
+    {"--out", "folder name", CORE_PATH_MAX - 1},
+    {"--character", "model path", SCENE_PATH_MAX - 1}, /* characters[].model */
+    {"--clip", "clip name, index or range", SCENE_NAME_MAX - 1}, /* characters[].clip */
+    {"--list-clips", "model path", CORE_PATH_MAX - 1},
+    {"--character-height", NULL, 0}, {"--frames", NULL, 0},         {"--screenshot-every", NULL, 0},
+    {"--seed", NULL, 0},             {"--size", NULL, 0},           {"--blade-render", NULL, 0},
+    {"--raster", NULL, 0},           {"--raster-samples", NULL, 0}, {"--mode", NULL, 0},
+    {"--overlay", NULL, 0},
 };
 
 /* The options that name one of a few choices: --mode, --blade-render,
@@ -245,6 +255,12 @@ app_option_status_t app_parse_option(int argc, char **argv, int *i, app_options_
     const char *v = argv[++*i];
     if (value_options[k].empty && !*v) {
         snprintf(err, err_size, "%s: empty %s", a, value_options[k].empty);
+        return APP_OPTION_BAD;
+    }
+    size_t len = strlen(v);
+    if (value_options[k].longest && len > value_options[k].longest) {
+        snprintf(err, err_size, "%s: %zu bytes, more than the %zu this program keeps", a, len,
+                 value_options[k].longest);
         return APP_OPTION_BAD;
     }
     return value_option(a, v, o, err, err_size) ? APP_OPTION_TAKEN : APP_OPTION_BAD;

@@ -9,9 +9,11 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "core/core.h"
+
 /* The harness's options: a flag (bool at `at`) when `empty` is NULL, else
- * a non-empty value (const char * at `at`; `empty` names what an empty one
- * would be: "OPTION: empty WHAT"). */
+ * a non-empty value of at most CORE_PATH_MAX - 1 bytes (const char * at
+ * `at`; `empty` names what an empty one would be: "OPTION: empty WHAT"). */
 static const struct {
     const char *name, *empty;
     size_t at;
@@ -128,6 +130,11 @@ int bench_parse_options(int argc, char **argv, bench_options_t *o, char *err, si
         const char *v = argv[++i];
         if (!*v) {
             snprintf(err, err_size, "%s: empty %s", a, bench_opts[k].empty);
+            return 2;
+        }
+        if (strlen(v) >= CORE_PATH_MAX) {
+            snprintf(err, err_size, "%s: %zu bytes, more than the %d this program keeps", a, strlen(v),
+                     CORE_PATH_MAX - 1);
             return 2;
         }
         *(const char **)slot = v;

@@ -60,6 +60,9 @@ float core_box_dist2(const float p[3], const float lo[3], const float hi[3]);
  * (/dev/zero) is refused without blocking in open(2). On failure it returns
  * NULL and writes a reason into err (if non-NULL). */
 #define CORE_FS_READ_MAX ((size_t)64 << 20)
+/* Bytes of a path the program keeps (--scene, --out, ...), the NUL
+ * included: the options refuse longer ones (app_cli.c). */
+#define CORE_PATH_MAX 1024
 char *core_fs_read(const char *path, size_t *size, char *err, size_t err_size);
 /* Writes to "<path>.tmp.<pid>" then renames into place, so an interrupted
  * run never leaves a truncated file. Returns false and logs on failure. */

@@ -201,8 +201,8 @@ bool core_fs_resolve(const char *rel, char *out, size_t out_size)
     const char *roots[3] = {getenv("MEADOW_ROOT"), ".", MEADOW_SOURCE_DIR};
     for (int i = 0; i < 3; i++) {
         if (!roots[i]) continue;
-        snprintf(out, out_size, "%s/%s", roots[i], rel);
-        if (access(out, R_OK) == 0) return true;
+        int n = snprintf(out, out_size, "%s/%s", roots[i], rel);
+        if (n >= 0 && (size_t)n < out_size && access(out, R_OK) == 0) return true; /* a cut path is not it */
     }
     snprintf(out, out_size, "%s", rel);
     return access(out, R_OK) == 0;
