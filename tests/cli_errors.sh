@@ -150,6 +150,18 @@ python3 -c "import json; print(json.dumps({'colliders': [{'type': 'sphere', 'pos
   'characters': [{'model': 'models/humanoid.gltf'}] * 9}))" >"$tmp/objects.json"
 expect2 'colliders: 120 colliders and 9 character(s) are 129 objects, more than the 128 .* is 119' \
   --headless --scene "$tmp/objects.json"
+# 16 humanoids (the most a scene holds) take 608 of the 512 sphere proxies:
+# the refusal names characters and how many fit (it named colliders, 0),
+# and that many run.
+for n in 16 13; do
+  python3 -c "import json,sys; s=json.load(open(sys.argv[1])); n=int(sys.argv[2]); \
+s['characters']=[{'model': 'models/humanoid.gltf', 'path': [[i - n / 2, -2], [i - n / 2, 2]]} for i in range(n)]; \
+json.dump(s, open(sys.argv[3],'w'))" "$root/scenes/tiny.json" $n "$tmp/chars$n.json"
+done
+expect2 'characters: 16 characters take 608 .* sphere proxies, 609 with the colliders.*the most characters that fit is 13' \
+  --headless --scene "$tmp/chars16.json"
+"$bin" --headless --quiet --scene "$tmp/chars13.json" --size 64x36 --frames 1 --screenshot-every 0 --out "$tmp/chars13" \
+  >/dev/null 2>"$tmp/chars13.log" || { echo "FAIL: the 13 characters said to fit were refused:"; cat "$tmp/chars13.log"; fail=1; }
 printf '{ "colliders": [ { "type": "capsule", "radius": 0.01, "length": 10 } ] }\n' >"$tmp/capsule.json"
 expect2 'colliders\[0\].length 10 over radius 0.01 takes 1001 .* the largest colliders\[0\].length that fits is 5.11' \
   --headless --scene "$tmp/capsule.json"

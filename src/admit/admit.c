@@ -350,19 +350,31 @@ static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit
 }
 
 /* The blade physics' sphere proxies: a capsule takes 1 + ceil(length /
- * radius) (collide_pack_spheres), so one thin capsule can take them all. */
+ * radius) (collide_pack_spheres), so one thin capsule can take them all;
+ * a humanoid takes 38, so 16 characters (the scene's most) do too. */
 static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *err, size_t size)
 {
     /* On a world only the characters near the tile window pack spheres
      * (world.c character_spheres); more than fit there is warned. */
     if (s->terrain.type == TERRAIN_WORLD) return true;
-    if (!w->collider_spheres || (!w->full_field && !w->tiles)) return true;
-    int total = w->character_spheres, worst = -1;
-    for (int i = 0; i < s->collider_count; i++) {
-        total += w->collider_spheres[i];
+    if (!w->full_field && !w->tiles) return true;
+    int colliders = 0, characters = 0, worst = -1;
+    for (int i = 0; w->collider_spheres && i < s->collider_count; i++) {
+        colliders += w->collider_spheres[i];
         if (worst < 0 || w->collider_spheres[i] > w->collider_spheres[worst]) worst = i;
     }
+    for (int i = 0; w->character_spheres && i < w->characters; i++) characters += w->character_spheres[i];
+    int total = colliders + characters;
     if (total <= ADMIT_MAX_SPHERES) return true;
+    if (characters > ADMIT_MAX_SPHERES || worst < 0) {
+        int fit = 0;
+        for (int n = colliders; fit < w->characters && n + w->character_spheres[fit] <= ADMIT_MAX_SPHERES; fit++)
+            n += w->character_spheres[fit];
+        snprintf(err, size, "characters: %d characters take %d of the blade physics' sphere proxies, %d with the "
+                 "colliders', more than its %d: the most characters that fit is %d", w->characters, characters, total,
+                 ADMIT_MAX_SPHERES, fit);
+        return false;
+    }
     const scene_collider_t *c = &s->colliders[worst];
     int room = ADMIT_MAX_SPHERES - (total - w->collider_spheres[worst]);
     if (c->type == SCENE_COLLIDER_CAPSULE && room >= 2) {
@@ -373,12 +385,11 @@ static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *er
         return false;
     }
     int fit = 0;
-    for (int n = w->character_spheres; fit < s->collider_count && n + w->collider_spheres[fit] <= ADMIT_MAX_SPHERES;
-         fit++)
+    for (int n = characters; fit < s->collider_count && n + w->collider_spheres[fit] <= ADMIT_MAX_SPHERES; fit++)
         n += w->collider_spheres[fit];
     snprintf(err, size, "colliders: %d colliders and the characters need %d sphere proxies in the blade physics "
              "(characters %d), more than its %d: the most colliders that fit is %d", s->collider_count, total,
-             w->character_spheres, ADMIT_MAX_SPHERES, fit);
+             characters, ADMIT_MAX_SPHERES, fit);
     return false;
 }
 

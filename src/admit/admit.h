@@ -52,7 +52,8 @@ typedef struct admit_world_t {
     int max_texture_size;  /* GL_MAX_TEXTURE_SIZE: caps those cube maps (0: 16384) */
     int objects;           /* colliders and characters that bend grass (--character adds one to none) */
     const int *collider_spheres; /* sphere proxies of each scene collider in the blade physics (NULL: none) */
-    int character_spheres;       /* the characters' (0 before they are loaded) */
+    const int *character_spheres; /* those of each loaded character (NULL before they are loaded) */
+    int characters;               /* entries of character_spheres */
 } admit_world_t;
 
 enum {

@@ -595,8 +595,10 @@ static bool admit(world_t *w)
     aw.collider_spheres = spheres;
     /* On a world only the characters near the camera pack spheres (see
      * character_spheres): the sphere limit is not a static one there. */
-    aw.character_spheres =
-        w->have_chars && !on_world(w) ? character_set_spheres(&w->chars, packed, BLADE_MAX_SPHERES) : 0;
+    static int char_spheres[SCENE_MAX_CHARACTERS];
+    for (int i = 0; w->have_chars && !on_world(w) && i < w->chars.count && i < SCENE_MAX_CHARACTERS; i++)
+        char_spheres[aw.characters++] = w->chars.items[i].sphere_count;
+    aw.character_spheres = char_spheres;
     char err[1024];
     admit_estimate(&w->scene, &aw, &w->admitted);
     if (admit_check(&w->scene, &aw, &lim, err, sizeof err)) return true;
