@@ -1,13 +1,15 @@
-/* test_blade_gpu_cull: blade_cull.comp (Jahrmann & Wimmer 2017 eq. 17-20)
- * through blade_gpu_cull against the CPU reference blade_ref_cull for a
- * fixed camera: per-test culled counts equal (patch culling off), survivor
- * sets equal (patch culling on and off), with and without a depth texture,
- * and the draw count in the indirect command equals the survivors for both
- * render paths. With patch culling (on the GPU) every patch the CPU rule
+/* test_blade_gpu_cull: blade_cull.comp (Jahrmann & Wimmer 2017 eq. 17-20,
+ * with the thinning of blade_lod.h) through blade_gpu_cull against the CPU
+ * reference blade_ref_cull for a fixed camera: per-test culled counts equal
+ * (patch culling off), survivor sets equal (patch culling on and off), with
+ * and without a depth texture, every survivor's width factor equal to the
+ * CPU's within 1e-4, and the draw count in the indirect command equals the
+ * survivors for both render paths. With patch culling (on the GPU) every patch the CPU rule
  * (blade_ref_box_outside) keeps is listed, once, in nondecreasing distance
  * bucket (blade_ref_patch_bucket: the order the draw appends them in). Also: the non-blocking statistics
- * become valid a few frames late without a wait. A cut beyond or before the
- * levels' end (level_distance != max_distance) matches the reference too. */
+ * become valid a few frames late without a wait. The LEVELS rule (eq. 19-20
+ * as the text states them) over 20 m cut beyond or before the levels' end
+ * (lod.level_distance != max_distance) matches the reference too. */
 #include "blade/blade.h"
 #include "test.h"
 #include "test_gl.h"
@@ -27,9 +29,9 @@ static bool seed_plane(blade_field_t *f)
                            f);
 }
 
-static int cmp_u32(const void *a, const void *b)
+static int cmp_u64(const void *a, const void *b)
 {
-    uint32_t x = *(const uint32_t *)a, y = *(const uint32_t *)b;
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
     return (x > y) - (x < y);
 }
 
@@ -43,18 +45,19 @@ static void camera(blade_cull_desc_t *c)
     memcpy(c->view.viewproj, vp, sizeof vp);
     memcpy(c->view.camera, eye, sizeof eye);
     c->max_distance = 20.0f;
+    c->focal_px = 300.0f; /* the WIDTH rule thins from its start, 10 m, on: the widest blade is 5 px there */
 }
 
 /* Runs one configuration and compares with the reference; cut > 0 culls
- * at cut metres with the levels of the 20 m cut (blade mode's
- * grass.blade_distance). */
+ * at cut metres with the LEVELS rule over 20 m, else the default thinning
+ * (WIDTH, from 10 m) to 20 m. */
 static void compare(const blade_field_t *f, blade_render_path_t path, bool patch_cull, const float *depth,
                     GLuint depth_tex, float cut, const char *name)
 {
     blade_cull_desc_t cd = {0};
     camera(&cd);
     if (cut > 0.0f) {
-        cd.level_distance = cd.max_distance;
+        cd.lod = (blade_lod_t){.rule = BLADE_LOD_LEVELS, .level_distance = cd.max_distance};
         cd.max_distance = cut;
     }
     blade_gpu_t *g = blade_gpu_make(&(blade_gpu_desc_t){.field = f, .path = path, .no_patch_cull = !patch_cull,
@@ -68,19 +71,41 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
     rd.depth_w = DW;
     rd.depth_h = DH;
     uint32_t *ref = malloc(f->padded_count * sizeof *ref), *got = malloc(f->padded_count * sizeof *got);
+    float *ref_factor = malloc(f->padded_count * sizeof *ref_factor);
+    float *got_factor = malloc(f->padded_count * sizeof *got_factor);
     blade_cull_stats_t rs;
-    size_t nref = blade_ref_cull(f->blades, f->padded_count, &rd, ref, &rs);
-    uint32_t ngot = blade_gpu_read_survivors(g, got);
+    size_t nref = blade_ref_cull(f->blades, f->padded_count, &rd, ref, ref_factor, &rs);
+    uint32_t ngot = blade_gpu_read_survivors(g, got, got_factor);
     uint32_t cmd[4];
     blade_gpu_read_command(g, cmd);
-    qsort(got, ngot, sizeof *got, cmp_u32);
+    /* the GPU's (id, factor) pairs in id order */
+    uint64_t *pairs = malloc((ngot ? ngot : 1) * sizeof *pairs);
+    for (uint32_t i = 0; i < ngot; i++) {
+        uint32_t bits;
+        memcpy(&bits, &got_factor[i], sizeof bits);
+        pairs[i] = (uint64_t)got[i] << 32 | bits;
+    }
+    qsort(pairs, ngot, sizeof *pairs, cmp_u64);
+    float worst = 0.0f, widest = 0.0f, least = 1.0f;
+    for (uint32_t i = 0; i < ngot; i++) {
+        uint32_t bits = (uint32_t)pairs[i];
+        got[i] = (uint32_t)(pairs[i] >> 32);
+        memcpy(&got_factor[i], &bits, sizeof bits);
+        if (i < nref && got[i] == ref[i]) worst = fmaxf(worst, fabsf(got_factor[i] - ref_factor[i]));
+        widest = fmaxf(widest, got_factor[i]);
+        least = fminf(least, got_factor[i]);
+    }
+    free(pairs);
     printf("%-34s ref: orient %u frustum %u dist %u occl %u visible %zu | gpu: %u %u %u %u visible %u "
            "patch-culled %u (%u patches drawn of %zu)\n",
            name, rs.culled[0], rs.culled[1], rs.culled[2], rs.culled[3], nref, st.culled[0], st.culled[1],
            st.culled[2], st.culled[3], st.survivors, st.patch_culled, st.patches_drawn, f->patch_count);
+    printf("%-34s width factors %.3f to %.3f, worst |gpu - cpu| %.2g\n", name, least, widest, worst);
     CHECK(st.valid);
     CHECK(ngot == nref);
     CHECK(ngot == nref && memcmp(got, ref, nref * sizeof *ref) == 0);
+    CHECK(worst <= 1e-4f);
+    if (cut <= 0.0f) CHECK(widest > 1.5f && least < 0.5f); /* the thinning widens and shrinks here */
     CHECK(st.survivors == nref);
     if (path == BLADE_PATH_PULLING) {
         CHECK(cmd[1] == nref);
@@ -130,6 +155,8 @@ static void compare(const blade_field_t *f, blade_render_path_t path, bool patch
     if (depth) CHECK(rs.culled[3] > 100);
     free(ref);
     free(got);
+    free(ref_factor);
+    free(got_factor);
     blade_gpu_destroy(g);
 }
 

@@ -509,11 +509,14 @@ static void test_cull(void)
     float *depth = malloc(W * H * sizeof *depth);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) depth[y * W + x] = x < W / 3 ? 0.9f : 1.0f;
-    blade_cull_desc_t desc = {.view.camera = {0, 1.7f, 0}, .depth = depth, .depth_w = W, .depth_h = H};
+    /* eq. 19-20 as the text states them (the LEVELS rule) without widening
+     * or end fade: what the brute force recounts */
+    blade_cull_desc_t desc = {.view.camera = {0, 1.7f, 0}, .depth = depth, .depth_w = W, .depth_h = H,
+                              .lod = {.rule = BLADE_LOD_LEVELS, .no_compensation = true, .no_fade = true}};
     memcpy(desc.view.viewproj, vp, sizeof desc.view.viewproj);
     uint32_t *surv = malloc(N * sizeof *surv);
     blade_cull_stats_t st;
-    size_t count = blade_ref_cull(b, N, &desc, surv, &st);
+    size_t count = blade_ref_cull(b, N, &desc, surv, NULL, &st);
 
     uint32_t want[5] = {0, 0, 0, 0, 0};
     size_t k = 0;
@@ -539,47 +542,81 @@ static void test_cull(void)
     blade_t one = upright(0, 0, 5, 0.0f, 1.0f); /* width along x, camera looks along x */
     blade_cull_desc_t d1 = {.view.camera = {-5, 1, 0}, .disable = BLADE_CULL_FRUSTUM};
     d1 = blade_cull_desc_defaults(&d1);
-    CHECK(blade_ref_cull_one(&one, 0, &d1) == BLADE_CULL_ORIENTATION);
+    CHECK(blade_ref_cull_one(&one, 0, &d1, NULL) == BLADE_CULL_ORIENTATION);
     one.v0[3] = GLM_PI_2f; /* width along z: seen face-on */
-    CHECK(blade_ref_cull_one(&one, 0, &d1) == BLADE_CULL_VISIBLE);
+    CHECK(blade_ref_cull_one(&one, 0, &d1, NULL) == BLADE_CULL_VISIBLE);
     desc = blade_cull_desc_defaults(&desc);
     one = upright(-5, -5, 1, FACE_ON(-5, -5), 1.0f); /* behind the camera */
-    CHECK(blade_ref_cull_one(&one, 0, &desc) == BLADE_CULL_FRUSTUM);
+    CHECK(blade_ref_cull_one(&one, 0, &desc, NULL) == BLADE_CULL_FRUSTUM);
     desc.disable = BLADE_CULL_FRUSTUM;
     one = upright(50, 60, 1, FACE_ON(50, 60), 1.0f); /* 78 m away */
-    CHECK(blade_ref_cull_one(&one, 0, &desc) == BLADE_CULL_DISTANCE);
+    CHECK(blade_ref_cull_one(&one, 0, &desc, NULL) == BLADE_CULL_DISTANCE);
     one = upright(3, 3, 1, FACE_ON(3, 3), 1.0f); /* near: every index survives the distance test */
     desc.disable = BLADE_CULL_FRUSTUM | BLADE_CULL_OCCLUSION;
-    for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &desc) == BLADE_CULL_VISIBLE);
+    for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &desc, NULL) == BLADE_CULL_VISIBLE);
 
-    /* Blade mode's cut (grass.blade_distance) beyond the levels' 60 m: a
-     * blade within the cut keeps one index in 8 past 60 m, a blade beyond
-     * it is culled whatever its index; near blades thin as with the 60 m
-     * cut (level_distance, not max_distance, sets the levels). */
+    /* The levels over 60 m cut at 100 m (lod.level_distance): a blade
+     * within the cut keeps one index in 8 past 60 m, a blade beyond it is
+     * culled whatever its index; near blades thin as with the 60 m cut. */
     blade_cull_desc_t cut = desc;
     cut.max_distance = 100.0f;
-    cut.level_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
+    cut.lod.level_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
     one = upright(50, 60, 1, FACE_ON(50, 60), 1.0f); /* 78 m */
     int kept = 0;
-    for (uint32_t i = 0; i < 8; i++) kept += blade_ref_cull_one(&one, i, &cut) == BLADE_CULL_VISIBLE;
-    CHECK(kept == 1 && blade_ref_cull_one(&one, 0, &cut) == BLADE_CULL_VISIBLE);
+    for (uint32_t i = 0; i < 8; i++) kept += blade_ref_cull_one(&one, i, &cut, NULL) == BLADE_CULL_VISIBLE;
+    CHECK(kept == 1 && blade_ref_cull_one(&one, 0, &cut, NULL) == BLADE_CULL_VISIBLE);
     one = upright(70, 80, 1, FACE_ON(70, 80), 1.0f); /* 106 m: beyond the cut */
-    for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &cut) == BLADE_CULL_DISTANCE);
+    for (uint32_t i = 0; i < 8; i++) CHECK(blade_ref_cull_one(&one, i, &cut, NULL) == BLADE_CULL_DISTANCE);
     cut.max_distance = 12.0f; /* a cap nearer than the levels' end */
     one = upright(10, 10, 1, FACE_ON(10, 10), 1.0f); /* 14 m */
-    CHECK(blade_ref_cull_one(&one, 0, &cut) == BLADE_CULL_DISTANCE);
+    CHECK(blade_ref_cull_one(&one, 0, &cut, NULL) == BLADE_CULL_DISTANCE);
     one = upright(20, 20, 1, FACE_ON(20, 20), 1.0f); /* 28 m: level floor(8 (1 - 28.3 / 60)) = 4 */
     cut.max_distance = 100.0f;
     blade_cull_desc_t paper = desc;
     paper.max_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
     for (uint32_t i = 0; i < 8; i++) {
         int want_level = i <= 4 ? BLADE_CULL_VISIBLE : BLADE_CULL_DISTANCE;
-        CHECK(blade_ref_cull_one(&one, i, &cut) == want_level);
-        CHECK(blade_ref_cull_one(&one, i, &paper) == want_level);
+        CHECK(blade_ref_cull_one(&one, i, &cut, NULL) == want_level);
+        CHECK(blade_ref_cull_one(&one, i, &paper, NULL) == want_level);
     }
     free(b);
     free(depth);
     free(surv);
+}
+
+/* The default thinning (BLADE_LOD_WIDTH) in the cull: a survivor's width
+ * factor is blade_lod_blade's weight * scale, weight 0 is a distance cull,
+ * and a widened blade passes the orientation test at the widened
+ * threshold (blade_ref_lod_orientation) that culls it unwidened. */
+static void test_cull_lod(void)
+{
+    blade_cull_desc_t d = blade_cull_desc_defaults(&(blade_cull_desc_t){.view.camera = {0, 1, 0},
+                                                                          .disable = BLADE_CULL_FRUSTUM});
+    blade_t one = upright(24, 32, 1, FACE_ON(24, 32), 1.0f); /* 40 m: u = 10 / 40 */
+    int visible = 0, distance = 0, wrong = 0;
+    for (uint32_t i = 0; i < 256; i++) {
+        float factor = -1.0f;
+        int why = blade_ref_cull_one(&one, i, &d, &factor);
+        blade_lod_draw_t l = blade_lod_blade(&d.lod, i, 40.0f, one.v2[3], d.focal_px, d.max_distance);
+        visible += why == BLADE_CULL_VISIBLE;
+        distance += why == BLADE_CULL_DISTANCE;
+        wrong += why == BLADE_CULL_VISIBLE ? fabsf(factor - l.weight * l.scale) > 1e-6f : l.weight > 0.0f;
+    }
+    printf("cull lod: 40 m, 256 indices: %d visible, %d thinned, %d differ from blade_lod_blade\n", visible, distance,
+           wrong);
+    CHECK(wrong == 0 && visible + distance == 256);
+    CHECK(visible > 256 / 4 && visible < 256 / 4 + 256 / 8); /* u = 0.25, window 0.1 */
+    /* edge-on at c = 0.95: culled unwidened (near), kept when widened 4x */
+    float a = atan2f(32.0f, 24.0f) + acosf(0.95f);
+    one = upright(24, 32, 1, a, 1.0f);
+    uint32_t kept_index = 0;
+    float factor = 0.0f;
+    while (blade_ref_cull_one(&one, kept_index, &d, &factor) != BLADE_CULL_VISIBLE && kept_index < 256) kept_index++;
+    printf("cull lod: edge-on at c = 0.95, 40 m: index %u kept with factor %.2f (threshold %.3f)\n", kept_index,
+           factor, blade_ref_lod_orientation(0.9f, factor));
+    CHECK(kept_index < 256 && factor > 3.0f);
+    one = upright(3, 4, 1, atan2f(4.0f, 3.0f) + acosf(0.95f), 1.0f); /* 5 m: factor 1 */
+    CHECK(blade_ref_cull_one(&one, kept_index, &d, NULL) == BLADE_CULL_ORIENTATION);
 }
 
 /* Swept collision: a ball r 0.3 m at (1, 0.3, 0) that came from (-1, 0.3, 0)
@@ -643,5 +680,6 @@ int main(void)
     run_invariants(BLADE_LENGTH_PAPER, 300, 0.55);
     test_determinism();
     test_cull();
+    test_cull_lod();
     TEST_END();
 }

@@ -20,16 +20,18 @@
  *   e) swept collision: a ball moving 1.5 m per step (5 diameters, 90 m/s
  *      at 60 Hz) bends at least 90 % of the blades along its path at some
  *      step;
- *   f) distance thinning keeps coverage: with the distance test on, every
- *      drawn blade is a survivor of blade_ref_cull_one and is drawn
- *      blade_ref_lod_width times its pose's width; per 2 m ring of the
- *      tiles' distance (the eye distance) the drawn blades' summed width is within 10 % of all the
- *      blades' (thinning alone leaves down to 1 / 8 of it);
+ *   f) distance thinning keeps coverage (blade_lod.h, the WIDTH rule from
+ *      2 m, no end fade, as the hybrid draws them): with the distance test
+ *      on, every drawn blade is a survivor of blade_ref_cull_one and is
+ *      drawn its width factor times its pose's width; per 2 m ring of the
+ *      tiles' distance (the eye distance) the drawn blades' summed width is
+ *      within 10 % of all the blades' (thinning alone leaves a quarter of
+ *      it in the last ring);
  *   g) the orientation test of widened blades: with it and the distance
  *      test on, the drawn blades of every listed tile are exactly those
  *      the CPU keeps (distance survivors of blade_ref_cull_one whose
  *      |dir_c . dir_b| is within blade_ref_lod_orientation of the
- *      threshold and their width scale), and some of them the plain
+ *      threshold and their width factor), and some of them the plain
  *      threshold would have culled;
  *   h) the hardware path's draw lists: the tile list goes nearest first
  *      (core_box_dist2 nondecreasing), and a cull split at the fade start
@@ -463,9 +465,12 @@ static void test_exhaustion(void)
     terrain_free(&m);
 }
 
-/* f) and g): a 16 m field of 2 m tiles, distance levels to 10 m (8), the
- * tests `disable` names off, drawn once from `cam`; the drawn blades and
- * their ids into *drawn and *ids (draw_capacity each), their count
+/* The thinning of f), g) and i): from 2 m on (WIDTH), no end fade. */
+static const blade_lod_t thin_lod = {.start = 2.0f, .width_px = 20.0f, .no_fade = true};
+
+/* f) and g): a 16 m field of 2 m tiles, cut and thinned to 10 m (thin_lod),
+ * the tests `disable` names off, drawn once from `cam`; the drawn blades
+ * and their ids into *drawn and *ids (draw_capacity each), their count
  * returned. */
 static uint32_t draw_thinned(blade_tiles_t **t, terrain_mesh_t *m, uint32_t disable, const float cam[3],
                              blade_t **drawn, uint32_t **ids)
@@ -477,9 +482,9 @@ static uint32_t draw_thinned(blade_tiles_t **t, terrain_mesh_t *m, uint32_t disa
     blade_cull_desc_t cull = ti.desc.cull;
     cull.disable = disable;
     cull.max_distance = 10.0f;
-    cull.distance_levels = 8;
     cull.orientation_threshold = 0.9f;
     blade_tiles_set_cull(*t, &cull);
+    blade_tiles_set_lod(*t, &thin_lod, 0.0f);
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
     blade_tiles_update(*t, cam, NULL, &env);
     draw_all(*t, cam);
@@ -510,9 +515,10 @@ static void test_lod_width(void)
         blade_t pose;
         blade_tiles_pose(t, (int)(ids[i] / B), ids[i] % B, &pose);
         listed[ids[i] / B] = true;
-        not_survivor += blade_ref_cull_one(&pose, ids[i] % B, &cull) != BLADE_CULL_VISIBLE;
+        float factor = 0.0f;
+        not_survivor += blade_ref_cull_one(&pose, ids[i] % B, &cull, &factor) != BLADE_CULL_VISIBLE;
         float d = blade_ref_cull_distance(&pose, &cull);
-        float want = pose.v2[3] * blade_ref_lod_width(d, 10.0f, 8);
+        float want = pose.v2[3] * factor;
         worst = fmaxf(worst, fabsf(drawn[i].v2[3] - want) / want);
         int r = (int)(d / 2.0f) - 1;
         if (r >= 0 && r < RINGS) kept[r] += drawn[i].v2[3], thin[r] += pose.v2[3];
@@ -569,7 +575,8 @@ static void test_lod_orientation(void)
         for (uint32_t k = 0; k < B; k++) {
             blade_t pose;
             blade_tiles_pose(t, tile, k, &pose);
-            if (pose.v1[3] <= 0.0f || blade_ref_cull_one(&pose, k, &cull) != BLADE_CULL_VISIBLE) continue;
+            float factor = 0.0f;
+            if (pose.v1[3] <= 0.0f || blade_ref_cull_one(&pose, k, &cull, &factor) != BLADE_CULL_VISIBLE) continue;
             float g[3] = {pose.v0[0] - cam[0], pose.v0[1] - cam[1], pose.v0[2] - cam[2]};
             float along = g[0] * pose.up[0] + g[1] * pose.up[1] + g[2] * pose.up[2];
             for (int c = 0; c < 3; c++) g[c] -= pose.up[c] * along;
@@ -577,8 +584,7 @@ static void test_lod_orientation(void)
             float width_dir[3], front[3];
             blade_ref_frame(&pose, width_dir, front);
             float c = fabsf(g[0] * width_dir[0] + g[1] * width_dir[1] + g[2] * width_dir[2]) / d;
-            float lod = blade_ref_lod_width(blade_ref_cull_distance(&pose, &cull), 10.0f, 8);
-            float tk = blade_ref_lod_orientation(0.9f, lod);
+            float tk = blade_ref_lod_orientation(0.9f, factor);
             if (c > tk) continue;
             want++;
             rescued += c > 0.9f;
@@ -667,8 +673,8 @@ static void test_occlusion(void)
     blade_cull_desc_t tiles_cull = ti.desc.cull;
     tiles_cull.disable = BLADE_CULL_ORIENTATION; /* the tiles' own rule for widened blades: test g */
     tiles_cull.max_distance = 10.0f;
-    tiles_cull.distance_levels = 8;
     blade_tiles_set_cull(t, &tiles_cull);
+    blade_tiles_set_lod(t, &thin_lod, 0.0f);
     ti = blade_tiles_info(t);
     const float cam[3] = {-7.5f, 2.0f, -7.5f};
     blade_env_t env = make_env(1.0f, 1.0f / 60.0f);
@@ -715,7 +721,7 @@ static void test_occlusion(void)
         for (uint32_t b = 0; b < B; b++) {
             blade_t pose;
             blade_tiles_pose(t, (int)list[2 * k], b, &pose);
-            int why = blade_ref_cull_one(&pose, b, &cull);
+            int why = blade_ref_cull_one(&pose, b, &cull, NULL);
             if (why == BLADE_CULL_VISIBLE) {
                 want[list[2 * k] * B + b] = 1;
                 cpu_visible++;

@@ -3,14 +3,15 @@
  * surviving blade, a triangle strip of S = 2 (u_max_level + 1) vertices per
  * column, 2 S + 2 with the eq. 23 displacement (blade_strip_uv; blade.c
  * command_initial). Same geometry as blade.tese
- * (Jahrmann & Wimmer 2017 eq. 21, 23, 24). */
+ * (Jahrmann & Wimmer 2017 eq. 21, 23, 24), the width times the survivor's
+ * width factor (the thinning's, blade_cull.comp). */
 #include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/switch.glsl"
 #include "blade/blade_geom.glsl"
 
 layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = BLADE_BIND_SURVIVORS) readonly buffer Survivors { uint survivors[]; };
+layout(std430, binding = BLADE_BIND_SURVIVORS) readonly buffer Survivors { uvec2 survivors[]; };
 
 uniform mat4 u_view_proj;
 
@@ -21,7 +22,9 @@ out flat float f_root_dist;
 
 void main()
 {
-    Blade b = blades[survivors[gl_InstanceID]];
+    uvec2 s = survivors[gl_InstanceID];
+    Blade b = blades[s.x];
+    b.v2.w *= uintBitsToFloat(s.y);
     int n = blade_lod(b);
     vec2 uv = blade_strip_uv(gl_VertexID, n);
     float v = uv.y;

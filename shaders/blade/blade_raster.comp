@@ -1,8 +1,10 @@
 #version 450
 /* blade_raster.comp: Bezier blades (Jahrmann & Wimmer 2017) drawn by the
  * compute rasterizer. One thread per listed blade (u_use_ids: blade
- * ids[i], else blades[i]; the count is the uint at u_count_index of
- * Count, written by the culling pass): the blade surface of blade_geom.glsl
+ * ids[i].x drawn ids[i].y (float bits) times as wide, blade mode's
+ * survivors with their width factors; else blades[i]; the count is the
+ * uint at u_count_index of Count, written by the culling pass): the blade
+ * surface of blade_geom.glsl
  * (eq. 21, 24) as a strip of n segments, n from the blade's projected
  * length (u_segment_pixels pixels per segment, 1 to u_max_level). A blade
  * narrower than the sample spacing is widened to it and covers each sample
@@ -28,7 +30,7 @@ layout(local_size_x = 64) in;
 #endif
 
 layout(std430, binding = BLADE_BIND_BLADES) readonly buffer Blades { Blade blades[]; };
-layout(std430, binding = BLADE_BIND_RASTER_IDS) readonly buffer Ids { uint ids[]; };
+layout(std430, binding = BLADE_BIND_RASTER_IDS) readonly buffer Ids { uvec2 ids[]; };
 layout(std430, binding = BLADE_BIND_RASTER_COUNT) readonly buffer Count { uint count_words[]; };
 
 uniform mat4 u_view_proj;
@@ -56,8 +58,10 @@ uint blade_count()
 /* Loads blade `prim` of the list and sets its width widening and fade. */
 int blade_setup(uint prim)
 {
-    uint index = u_use_ids != 0 ? ids[prim] : prim;
+    uvec2 id = u_use_ids != 0 ? ids[prim] : uvec2(prim, floatBitsToUint(1.0));
+    uint index = id.x;
     g_blade = blades[index];
+    g_blade.v2.w *= uintBitsToFloat(id.y);
     g_seed = hash_u32(index * 0x9e3779b9u);
     float root_dist = grass_distance(g_blade.v0.xyz, u_camera);
     g_alpha = blade_fade_ramp(root_dist, u_fade);

@@ -1,15 +1,16 @@
 #version 450
 /* tiles_cull.comp: per-blade culling of the tiled field (Jahrmann & Wimmer
- * 2017 eq. 17-20: orientation, frustum, distance levels, occlusion; the
- * tests, their order and the occlusion rule and bias of blade_cull.comp).
- * Invocation i: entry list[i / B] = (tile, slot), blade k = i % B: the
- * blade is the pool state of the slot, or, for an idle tile (slot
- * TILES_NO_SLOT), the procedural pose of the template blade. The distance
- * level uses k (templates are Morton ordered, so the thinning is
- * spatially even) and widens the survivors so the thinned field covers the
- * ground as the full one (blade_lod_width); the orientation test culls a
- * widened blade only when it is as thin on screen as the test means
- * (blade_lod_orientation). With u_use_depth the blade is culled when v0,
+ * 2017 eq. 17-20: orientation, frustum, distance, occlusion; the tests,
+ * their order, the thinning and the occlusion rule and bias of
+ * blade_cull.comp). Invocation i: entry list[i / B] = (tile, slot), blade
+ * k = i % B: the blade is the pool state of the slot, or, for an idle tile
+ * (slot TILES_NO_SLOT), the procedural pose of the template blade. The
+ * thinning (common/lod.glsl, lod_blade) ranks by k (templates are Morton
+ * ordered, so the thinning is spatially even), reads the eye distance and
+ * the pose's width, and a survivor is drawn weight * scale times as wide,
+ * so the thinned field covers the ground as the full one; the orientation
+ * test culls a widened blade only when it is as thin on screen as the
+ * test means (blade_lod_orientation). With u_use_depth the blade is culled when v0,
  * its midpoint and v2 all lie behind the opaque depth in u_depth
  * (blade_occluded). The first test that fails counts the blade in its
  * counter (cmd.culled[0..3]: orientation, frustum, distance, occlusion).
@@ -26,6 +27,7 @@
  * dispatch. */
 #include "blade/tiles_common.glsl"
 #include "common/extent.glsl"
+#include "common/lod.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -46,8 +48,7 @@ uniform uint u_count; /* entries * B */
 uniform uint u_capacity;
 uniform vec3 u_cam_pos;
 uniform mat4 u_view_proj;
-uniform float u_max_distance;
-uniform int u_distance_levels;
+uniform float u_max_distance; /* u_lod_cull too */
 uniform float u_orientation_threshold;
 uniform float u_frustum_tolerance;
 uniform uint u_disable;
@@ -74,24 +75,26 @@ bool extent_keep(vec3 v0, uint id)
 }
 
 /* The blade's ground vector from the camera (v0 - camera without its part
- * along up): the orientation test. The distance levels read the hybrid's
- * switch distance (grass_distance) instead of eq. 19's d_proj, so the
- * thinning ends where the fade and the tiles' representation switch. */
+ * along up): the orientation test. The distance test and the thinning read
+ * the hybrid's switch distance (grass_distance) instead of eq. 19's
+ * d_proj, so the thinning ends where the fade and the tiles'
+ * representation switch. */
 vec3 ground_view(Blade b)
 {
     vec3 view = b.v0.xyz - u_cam_pos;
     return view - b.up.xyz * dot(view, b.up.xyz);
 }
 
-/* Which test culls the blade (BLADE_CULL_*, VISIBLE when none);
- * width_scale: what the distance levels widen it by (1: none). */
-uint cull(Blade b, uint index, vec3 view_ground, float width_scale)
+/* Which test culls the blade (BLADE_CULL_*, VISIBLE when none); d: its
+ * eye distance, lod: the thinning's weight and scale ((1, 1) without the
+ * distance test). */
+uint cull(Blade b, vec3 view_ground, float d, vec2 lod)
 {
     vec3 v0 = b.v0.xyz;
     if ((u_disable & BLADE_CULL_ORIENTATION) == 0u) {
         vec3 width_dir, front;
         blade_frame(b, width_dir, front);
-        float t = blade_lod_orientation(u_orientation_threshold, width_scale);
+        float t = blade_lod_orientation(u_orientation_threshold, lod.x * lod.y);
         if (abs(dot(blade_safe_normalize(view_ground), width_dir)) > t) return BLADE_CULL_ORIENTATION;
     }
     vec4 c0 = u_view_proj * vec4(v0, 1.0);
@@ -102,15 +105,7 @@ uint cull(Blade b, uint index, vec3 view_ground, float width_scale)
         if (!blade_in_frustum(c0, t) && !blade_in_frustum(cm, t) && !blade_in_frustum(c2, t))
             return BLADE_CULL_FRUSTUM;
     }
-    if ((u_disable & BLADE_CULL_DISTANCE) == 0u) {
-        int n = u_distance_levels;
-        float d = grass_distance(v0, u_cam_pos);
-        if (d > u_max_distance) return BLADE_CULL_DISTANCE;
-        /* Eq. 20 as the paper's text states it, not as printed (the printed
-         * inequality is inverted; blade_ref_cull_one, docs/BLADES.md). */
-        int level = int(floor(float(n) * (1.0 - d / u_max_distance)));
-        if (int(index % uint(n)) > level) return BLADE_CULL_DISTANCE;
-    }
+    if ((u_disable & BLADE_CULL_DISTANCE) == 0u && (d > u_max_distance || lod.x <= 0.0)) return BLADE_CULL_DISTANCE;
     if (u_use_depth && (u_disable & BLADE_CULL_OCCLUSION) == 0u) {
         float bias = u_depth_bias;
         if (blade_occluded(u_depth, c0, bias) && blade_occluded(u_depth, cm, bias) &&
@@ -136,21 +131,21 @@ void main()
     }
     if (b.v1.w <= 0.0) return;
     vec3 view_ground = ground_view(b);
-    float width_scale = (u_disable & BLADE_CULL_DISTANCE) == 0u
-                            ? blade_lod_width(grass_distance(b.v0.xyz, u_cam_pos), u_max_distance, u_distance_levels)
-                            : 1.0;
-    uint why = cull(b, k, view_ground, width_scale);
+    float d = grass_distance(b.v0.xyz, u_cam_pos);
+    vec2 lod = vec2(1.0);
+    if ((u_disable & BLADE_CULL_DISTANCE) == 0u && d <= u_max_distance) lod = lod_blade(k, d, b.v2.w);
+    uint why = cull(b, view_ground, d, lod);
     if (why != BLADE_CULL_VISIBLE) {
         atomicAdd(cmd.culled[findLSB(why)], 1u);
         return;
     }
     if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
-    b.v2.w *= width_scale;
+    b.v2.w *= lod.x * lod.y;
     if (atomicAdd(cmd.total, 1u) >= u_capacity) {
         atomicAdd(cmd.overflow, 1u);
         return;
     }
-    uint slot = u_split && grass_distance(b.v0.xyz, u_cam_pos) > u_fade_start
+    uint slot = u_split && d > u_fade_start
                     ? u_capacity - 1u - atomicAdd(cmd.fade[u_count_word], 1u)
                     : atomicAdd(cmd.solid[u_count_word], 1u);
     drawn[slot] = b;

@@ -512,16 +512,9 @@ void blade_revalidate(inout Blade b, int length_mode, float rescale)
 
 /* ---- culling (blade_ref_cull_one) ---------------------------------------- */
 
-/* Twin of blade_ref_lod_width: a distance survivor's width scale. */
-float blade_lod_width(float d_proj, float max_distance, int levels)
-{
-    float n = float(levels);
-    float kept = (n * (1.0 - d_proj / max_distance) + 0.5) / n;
-    return 1.0 / clamp(kept, 1.0 / n, 1.0);
-}
-
 /* Twin of blade_ref_lod_orientation: the orientation threshold of a blade
- * drawn width_scale times as wide. */
+ * drawn width_scale times as wide (the thinning's width factor,
+ * common/lod.glsl). */
 float blade_lod_orientation(float threshold, float width_scale)
 {
     float k = max(width_scale, 1.0);

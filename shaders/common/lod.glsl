@@ -1,8 +1,9 @@
 /* lod.glsl: coverage-preserving thinning of blades with distance, the
  * twin of src/blade/blade_lod.c (blade_lod_ -> lod_; the rules, the rank,
  * the shrink window and the widening are documented in blade_lod.h).
- * Parameters travel as the LodParams the host fills from blade_lod_t
- * (lod_params_uniforms in C sets the u_lod_* uniforms below). */
+ * Parameters travel as the u_lod_* uniforms below, which the host sets
+ * from blade_lod_t with ground_lod_uniforms (src/ground: the terrain's
+ * program, blade_cull.comp and tiles_cull.comp). */
 #ifndef LOD_GLSL
 #define LOD_GLSL
 

@@ -129,7 +129,7 @@ void admit_estimate(const scene_desc_t *s, const admit_world_t *w, admit_t *e)
     ground_extent(s, w, ext);
     if (w->full_field) {
         e->blades = area * g->population.density;
-        e->gpu[ADMIT_BLADES] = e->blades * (BLADE_BYTES + 8.0) + MIB;
+        e->gpu[ADMIT_BLADES] = e->blades * (BLADE_BYTES + 12.0) + MIB; /* eta, survivor (id, width factor) */
         e->host += e->blades * (BLADE_BYTES + 4.0); /* seeded on the CPU, then uploaded */
     }
     if (w->tiles && w->terrain) {

@@ -47,6 +47,7 @@ typedef struct bench_config_t {
     int blade_render;                     /* 0 = the options', else 1 + scene_blade_render_t (1 pull, 2 tess) */
     int raster;                           /* 0 = the options', else 1 + scene_raster_t */
     int raster_samples;                   /* compute rasterizer samples per pixel, 0 = the options' */
+    int lod_levels;                       /* grass.lod: the LEVELS rule (eq. 19-20) with n levels, 0 = scene */
     bench_proxy_t proxy;
     const char *scene;                    /* NULL: the sweep's (--scene) */
     bool ball;                            /* the ball (BALL_RADIUS) is the only collider */
@@ -101,6 +102,10 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.billboard_density *= c->density_scale;
     }
     if (c->bb_density_scale > 0) s->grass.billboard_density *= c->bb_density_scale;
+    if (c->lod_levels) {
+        s->grass.lod.rule = BLADE_LOD_LEVELS;
+        s->grass.lod.levels = c->lod_levels;
+    }
     if (c->billboards) s->grass.billboards = (scene_hybrid_billboards_t)(c->billboards - 1);
     if (c->lod_width_px > 0) s->grass.lod.width_px = c->lod_width_px;
     if (c->lod_thin) s->grass.lod.no_compensation = true;
@@ -369,7 +374,7 @@ static int build_configs(bench_config_t *c, bool quick, const char *canopy_scene
     }
     for (int i = 0; i < nt; i++) {
         bench_config_t *x = add(c, &n, "blade_distance_levels", SCENE_MODE_BLADE);
-        x->tuning.distance_levels = levels[i];
+        x->lod_levels = levels[i];
         snprintf(x->label, sizeof x->label, "levels%d", levels[i]);
     }
     int nsw = quick ? 2 : (int)(sizeof sw / sizeof sw[0]);

@@ -5,6 +5,7 @@
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
  * eq. 1-5). GL objects come from gfx only. */
 #include "blade/blade_local.h"
+#include "ground/ground.h"
 
 #include <assert.h>
 #include <math.h>
@@ -95,7 +96,7 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta);
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
     g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
-    g->survivors = make_buffer(g, "survivors", nb * sizeof(uint32_t), NULL);
+    g->survivors = make_buffer(g, "survivors", nb * 2 * sizeof(uint32_t), NULL); /* index, width factor */
     g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL);
     uint32_t cmd[4];
     command_initial(g, cmd);
@@ -324,8 +325,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.view.camera);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
-    glUniform1f(gfx_uniform(p, "u_level_distance"), d.level_distance > 0.0f ? d.level_distance : d.max_distance);
-    glUniform1i(gfx_uniform(p, "u_distance_levels"), d.distance_levels);
+    ground_lod_uniforms(p, &d.lod, d.focal_px, d.max_distance);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), d.orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), d.frustum_tolerance);
     glUniform1f(gfx_uniform(p, "u_depth_bias"), d.depth_bias);
@@ -502,13 +502,23 @@ void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out)
     if (eta_out) gfx_buffer_read(g->eta, 0, g->padded_count * sizeof(float), eta_out);
 }
 
-uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out)
+uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *ids, float *factors)
 {
     uint32_t cmd[4];
     blade_gpu_read_command(g, cmd);
     uint32_t n = g->desc.path == BLADE_PATH_PULLING ? cmd[1] : cmd[0];
     assert(n <= g->padded_count);
-    if (n) gfx_buffer_read(g->survivors, 0, n * sizeof(uint32_t), out);
+    uint32_t *pairs = malloc((n ? n : 1) * 2 * sizeof *pairs);
+    if (!pairs) {
+        core_log_error("blade_gpu_read_survivors: out of memory (%u survivors)", n);
+        return 0;
+    }
+    if (n) gfx_buffer_read(g->survivors, 0, n * 2 * sizeof(uint32_t), pairs);
+    for (uint32_t i = 0; i < n; i++) {
+        ids[i] = pairs[2 * i];
+        if (factors) memcpy(&factors[i], &pairs[2 * i + 1], sizeof(float));
+    }
+    free(pairs);
     return n;
 }
 

@@ -2,8 +2,9 @@
  * Rendering for General 3D Scenes". Uploads a seeded field (blade_seed.h),
  * simulates it in a compute shader (eq. 3-16 plus the collision exit of
  * blade_ref.h), culls it per patch and per blade in compute shaders
- * (eq. 17-20) into an indirect draw command, and draws the
- * survivors either through tessellation (GL_PATCHES; the control shader
+ * (eq. 17-20, the thinning with distance of blade_lod.h in place of the
+ * distance levels) into an indirect draw command, and draws the
+ * survivors, each as wide as the thinning says, either through tessellation (GL_PATCHES; the control shader
  * picks the level by distance, the evaluation shader builds the blade by
  * De Casteljau, eq. 21, with the shape functions of sec. 6.3 and the
  * optional displacement and width correction, eq. 23-24) or by vertex
@@ -17,7 +18,8 @@
  * frustum, the visible patches listed nearest first in distance buckets,
  * the blade cull dispatched indirectly over them) keeps the survivors
  * blade_ref_cull keeps; the blades of a culled patch are counted in
- * blade_gpu_stats_t.patch_culled only. Both, and every departure with its measurement: docs/BLADES.md.
+ * blade_gpu_stats_t.patch_culled only. Both, and every departure with its
+ * measurement: docs/BLADES.md.
  *
  * Timer passes: "blade.physics", "blade.cull", "blade.draw". */
 #ifndef MEADOW_BLADE_H
@@ -172,9 +174,11 @@ void blade_raster_prefetch(const raster_desc_t *rd, bool gi);
 blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait);
 
 /* Blocking reads for tests: blades (padded_count), eta, and the survivor
- * list of the latest cull (returns the count; out holds padded_count). */
+ * list of the latest cull: ids and their width factors (the thinning's
+ * weight * scale; factors NULL: not read), each padded_count long; returns
+ * the count. */
 void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out);
-uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *out);
+uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *ids, float *factors);
 /* Blocking read of the patch list of the latest cull as the GPU wrote it
  * (in nondecreasing blade_ref_patch_bucket, any order within a bucket; out
  * holds patch_count); returns its length, 0 without the patch test

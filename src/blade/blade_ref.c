@@ -806,13 +806,11 @@ blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc)
 {
     blade_cull_desc_t d = *desc;
     if (d.max_distance == 0.0f) d.max_distance = BLADE_CULL_MAX_DISTANCE_DEFAULT;
-    if (d.distance_levels == 0) d.distance_levels = 8;
     if (d.orientation_threshold == 0.0f) d.orientation_threshold = 0.9f;
     if (d.frustum_tolerance == 0.0f) d.frustum_tolerance = 0.1f;
     if (d.depth_bias == 0.0f) d.depth_bias = 1e-3f;
     if (d.focal_px <= 0.0f) d.focal_px = 1000.0f;
     d.lod = blade_lod_defaults(&d.lod);
-    assert(d.distance_levels > 0);
     assert(!d.depth || (d.depth_w > 0 && d.depth_h > 0));
     return d;
 }
@@ -843,7 +841,7 @@ static bool occluded(const blade_cull_desc_t *desc, const float clip[4])
     return z > desc->depth[(size_t)py * (size_t)desc->depth_w + (size_t)px] + desc->depth_bias;
 }
 
-int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc)
+int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc, float *width_factor)
 {
     float h = b->v1[3];
     if (h <= 0.0f) return BLADE_CULL_PADDING;
@@ -851,12 +849,18 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
     v3 up = v3_load(b->up);
     v3 view = v3_sub(v0, v3_load(desc->view.camera));
     v3 view_ground = v3_sub(view, v3_scale(up, v3_dot(view, up)));
+    /* the thinning first: the orientation test widens its threshold by it */
+    float dist = desc->eye_distance ? v3_len(view) : v3_len(view_ground);
+    blade_lod_draw_t lod = {1.0f, 1.0f};
+    if (!(desc->disable & BLADE_CULL_DISTANCE) && dist <= desc->max_distance)
+        lod = blade_lod_blade(&desc->lod, index, dist, b->v2[3], desc->focal_px, desc->max_distance);
+    float factor = lod.weight * lod.scale;
 
     if (!(desc->disable & BLADE_CULL_ORIENTATION)) {
         v3 width_dir, front;
         frame(b, &width_dir, &front);
         v3 dir_c = v3_safe_normalize(view_ground);
-        if (fabsf(v3_dot(dir_c, width_dir)) > desc->orientation_threshold)
+        if (fabsf(v3_dot(dir_c, width_dir)) > blade_ref_lod_orientation(desc->orientation_threshold, factor))
             return BLADE_CULL_ORIENTATION;
     }
 
@@ -870,24 +874,14 @@ int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t
             return BLADE_CULL_FRUSTUM;
     }
 
-    if (!(desc->disable & BLADE_CULL_DISTANCE)) {
-        float dist = desc->eye_distance ? v3_len(view) : v3_len(view_ground);
-        int n = desc->distance_levels;
-        if (dist > desc->max_distance) return BLADE_CULL_DISTANCE;
-        float span = desc->level_distance > 0.0f ? desc->level_distance : desc->max_distance;
-        /* Eq. 20 as the paper's text states it (all blades near the camera,
-         * one in n at the cut), not as printed: the printed inequality is
-         * inverted and would keep 1 blade in 8 within 7.5 m and all of them
-         * from 52.5 to 60 m (n = 8, 60 m; docs/BLADES.md). */
-        int level = (int)floorf((float)n * (1.0f - dist / span));
-        if (level < 0) level = 0;
-        if ((int)(index % (uint32_t)n) > level) return BLADE_CULL_DISTANCE;
-    }
+    if (!(desc->disable & BLADE_CULL_DISTANCE) && (dist > desc->max_distance || lod.weight <= 0.0f))
+        return BLADE_CULL_DISTANCE;
 
     if (desc->depth && !(desc->disable & BLADE_CULL_OCCLUSION)) {
         if (occluded(desc, c0) && occluded(desc, cm) && occluded(desc, c2))
             return BLADE_CULL_OCCLUSION;
     }
+    if (width_factor) *width_factor = factor;
     return BLADE_CULL_VISIBLE;
 }
 
@@ -896,13 +890,6 @@ float blade_ref_cull_distance(const blade_t *b, const blade_cull_desc_t *desc)
     v3 up = v3_load(b->up);
     v3 view = v3_sub(v3_load(b->v0), v3_load(desc->view.camera));
     return desc->eye_distance ? v3_len(view) : v3_len(v3_sub(view, v3_scale(up, v3_dot(view, up))));
-}
-
-float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels)
-{
-    float n = (float)distance_levels;
-    float kept = (n * (1.0f - d_proj / max_distance) + 0.5f) / n;
-    return 1.0f / fminf(fmaxf(kept, 1.0f / n), 1.0f);
 }
 
 float blade_ref_lod_orientation(float threshold, float width_scale)
@@ -936,16 +923,20 @@ uint32_t blade_ref_patch_bucket(const float camera[3], const float lo[3], const 
     return (uint32_t)fminf(k, (float)(n - 1));
 }
 
-size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
-                      uint32_t *survivors, blade_cull_stats_t *stats)
+size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc, uint32_t *survivors,
+                      float *factors, blade_cull_stats_t *stats)
 {
     blade_cull_desc_t d = blade_cull_desc_defaults(desc);
     blade_cull_stats_t s = {{0, 0, 0, 0}, 0};
     size_t count = 0;
     for (size_t i = 0; i < n; i++) {
-        int why = blade_ref_cull_one(&b[i], (uint32_t)i, &d);
+        float factor;
+        int why = blade_ref_cull_one(&b[i], (uint32_t)i, &d, &factor);
         switch (why) {
-        case BLADE_CULL_VISIBLE: survivors[count++] = (uint32_t)i; break;
+        case BLADE_CULL_VISIBLE:
+            if (factors) factors[count] = factor;
+            survivors[count++] = (uint32_t)i;
+            break;
         case BLADE_CULL_ORIENTATION: s.culled[0]++; break;
         case BLADE_CULL_FRUSTUM: s.culled[1]++; break;
         case BLADE_CULL_DISTANCE: s.culled[2]++; break;

@@ -275,11 +275,18 @@ void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *desc
                           float normal[3]);
 
 /* ---- culling (sec. 6, eq. 17-20) ----------------------------------------
+ * First the thinning (blade_lod.h) of a blade within max_distance, unless
+ * the distance test is disabled: (weight, scale) = blade_lod_blade(lod,
+ * index, d, width, focal_px, max_distance), d the distance of test 2,
+ * width the blade's (v2.w); a survivor is drawn weight * scale times as
+ * wide (its width factor; 1 without the distance test).
  * Tests, in this order (the first that fails culls the blade and only that
  * test's counter counts it; same order as the paper, cheapest first):
  *   0 orientation: dir_c = (v0 - cam) projected onto the blade's ground
  *     plane (orthogonal to up) and normalized, dir_b = width direction;
- *     culled when |dir_c . dir_b| > orientation_threshold (seen edge-on).
+ *     culled when |dir_c . dir_b| > blade_ref_lod_orientation(
+ *     orientation_threshold, width factor) (seen edge-on; a widened blade
+ *     keeps the drawn width the plain threshold keeps).
  *     Skipped when the projection is shorter than 1e-6 (camera above).
  *   1 frustum: v0, m, v2 to clip space p = VP (x, 1); a point is inside when
  *     |p.x|, |p.y|, |p.z| <= p.w + frustum_tolerance; culled when none of the
@@ -287,13 +294,9 @@ void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *desc
  *   2 distance: d = blade_ref_cull_distance (eq. 19's ground distance
  *     d_proj = |(v0 - cam) - up ((v0 - cam).up)|, or with eye_distance the
  *     hybrid's switch distance |v0 - cam|); culled when d > max_distance or
- *     (index mod n) > max(floor(n (1 - d / level_distance)), 0) with n =
- *     distance_levels (eq. 19-20): near the camera all blades stay, from
- *     level_distance on one in n. The paper's levels span the cull distance
- *     (level_distance = max_distance, the default); a level_distance below
- *     max_distance keeps one in n from there to the cut (blade mode drawn to
- *     the field's edge keeps the near-field thinning of a 60 m cut,
- *     docs/BLADES.md).
+ *     the thinning's weight is 0 (eq. 19-20 are its rules LEVELS and
+ *     PRINTED; the default WIDTH keeps a share by projected width,
+ *     blade_lod.h, docs/BLADES.md).
  *   3 occlusion (only when depth != NULL): a point with p.w > 0 and NDC x,y
  *     inside [-1,1] maps to pixel (floor((x*0.5+0.5) W), floor((y*0.5+0.5) H))
  *     clamped to the image, row 0 at the bottom (glReadPixels order); it is
@@ -302,11 +305,9 @@ void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *desc
  *     reads window depth d and uses 2d-1).
  * Padding blades (height <= 0) are dropped before the tests and counted by
  * no counter. Zero means default:
- *   max_distance BLADE_CULL_MAX_DISTANCE_DEFAULT (60 m), level_distance
- *   max_distance (0 stays 0 in the resolved desc and means max_distance
- *   when culling, so a caller that changes max_distance later keeps the
- *   paper's levels), distance_levels 8, orientation_threshold 0.9,
- *   frustum_tolerance 0.1 (clip units), depth_bias 1e-3.
+ *   max_distance BLADE_CULL_MAX_DISTANCE_DEFAULT (60 m), orientation_threshold
+ *   0.9, frustum_tolerance 0.1 (clip units), depth_bias 1e-3, lod
+ *   blade_lod_defaults, focal_px 1000.
  * disable: bitmask of BLADE_CULL_* tests to skip (0: all enabled). */
 enum {
     BLADE_CULL_VISIBLE = 0,
@@ -322,8 +323,6 @@ enum {
 typedef struct blade_cull_desc_t {
     core_view_t view; /* the frame's view: camera and viewproj are read */
     float max_distance;
-    float level_distance;
-    int distance_levels;
     float orientation_threshold;
     float frustum_tolerance;
     const float *depth; /* NULL: no occlusion test */
@@ -368,33 +367,24 @@ typedef struct blade_cull_stats_t {
 blade_cull_desc_t blade_cull_desc_defaults(const blade_cull_desc_t *desc);
 
 /* Which test culls blade `index` (a BLADE_CULL_* value, BLADE_CULL_VISIBLE
- * when it survives). desc must be resolved. */
-int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc);
+ * when it survives); a survivor's width factor (weight * scale of the
+ * thinning) into *width_factor (NULL: not wanted). desc must be resolved. */
+int blade_ref_cull_one(const blade_t *b, uint32_t index, const blade_cull_desc_t *desc, float *width_factor);
 
 /* The distance the distance test (2) reads for blade b: eq. 19's d_proj, or
  * |v0 - cam| with desc->eye_distance. */
 float blade_ref_cull_distance(const blade_t *b, const blade_cull_desc_t *desc);
 
 /* Culls n blades; survivors (capacity n) receives the surviving indices in
- * increasing order (the GPU writes them in any order: compare as sets).
+ * increasing order (the GPU writes them in any order: compare as sets),
+ * factors (capacity n, or NULL) their width factors in the same order.
  * Returns the number of survivors; stats may be NULL. Resolves desc. */
-size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc,
-                      uint32_t *survivors, blade_cull_stats_t *stats);
+size_t blade_ref_cull(const blade_t *b, size_t n, const blade_cull_desc_t *desc, uint32_t *survivors,
+                      float *factors, blade_cull_stats_t *stats);
 
-/* Width scale of a survivor of the distance test in the tiled field
- * (tiles_cull.comp; coverage-preserving thinning as in Cook, Halstead,
- * Planck and Ryu 2007, "Stochastic simplification of aggregate detail").
- * At ground distance d_proj the test keeps about p = clamp((n (1 -
- * d_proj / max_distance) + 0.5) / n, 1 / n, 1) of the blades (its steps of
- * 1 / n smoothed by half a level, so no width jumps where a level ends)
- * and the survivors are drawn 1 / p as wide: the thinned field covers the
- * ground as the full one does, where the billboards take over at the
- * switch as well. n = distance_levels (>= 1), max_distance > 0. */
-float blade_ref_lod_width(float d_proj, float max_distance, int distance_levels);
-
-/* Orientation threshold for a blade drawn width_scale (>= 1, from
- * blade_ref_lod_width) times as wide: the tiled field culls a blade whose
- * drawn width seen from the camera, width_scale sqrt(1 - c^2) for c =
+/* Orientation threshold for a blade drawn width_scale times as wide (the
+ * thinning's width factor; at most 1 changes nothing): the culling drops a
+ * blade whose drawn width seen from the camera, width_scale sqrt(1 - c^2) for c =
  * |dir_c . dir_b|, is below what an unwidened blade keeps at the
  * threshold t, sqrt(1 - t^2): culled when c > sqrt(1 - (1 - t^2) /
  * width_scale^2). width_scale 1 gives t. Culling a blade widened 8 times

@@ -87,13 +87,21 @@ static int max_tiles_within(float r, float tile, int nx, int nz)
     return count < nx * nz ? count : nx * nz;
 }
 
-/* Blades the distance test (eq. 19-20 with the eye distance, tiles_cull.comp)
- * can keep of the tiles within r of one camera position: per tile offset,
- * the blades of one template times the share kept at its nearest point,
- * (floor(n (1 - d / R)) + 1) / n. A window's draw buffer default. */
-static double max_blades_within(float r, float tile, uint32_t blades, const blade_cull_desc_t *c)
+/* Blades the distance test and the thinning (tiles_cull.comp, the eye
+ * distance) can keep of the tiles within r of one camera position: per
+ * tile offset, the blades of one template times the share the thinning
+ * keeps at its nearest point, over blade widths drawn evenly from `width`
+ * (blade_seed): u (1 + shrink) for WIDTH (the blades of the shrink window
+ * too), u for the other rules, u of blade_lod_kept at a focal length of at
+ * least BLADE_TILES_CAPACITY_FOCAL. A window's draw buffer default. */
+static double max_blades_within(float r, float tile, uint32_t blades, const blade_cull_desc_t *c,
+                                const float width[2])
 {
-    int k = (int)ceilf(r / tile) + 1, n = c->distance_levels > 0 ? c->distance_levels : 1;
+    enum { WIDTHS = 8 };
+    int k = (int)ceilf(r / tile) + 1;
+    blade_lod_t lod = blade_lod_defaults(&c->lod);
+    float focal = fmaxf(c->focal_px, BLADE_TILES_CAPACITY_FOCAL);
+    float window = lod.rule == BLADE_LOD_WIDTH ? lod.shrink : 0.0f;
     double sum = 0.0;
     for (int dj = -k; dj <= k; dj++)
         for (int di = -k; di <= k; di++) {
@@ -101,8 +109,13 @@ static double max_blades_within(float r, float tile, uint32_t blades, const blad
             float d = sqrtf(gx * gx + gz * gz);
             if (d >= r) continue;
             double keep = 1.0;
-            if ((c->disable & BLADE_CULL_DISTANCE) == 0 && c->max_distance > 0.0f)
-                keep = fmin(1.0, (floor((double)n * (1.0 - (double)d / c->max_distance)) + 1.0) / n);
+            if ((c->disable & BLADE_CULL_DISTANCE) == 0 && c->max_distance > 0.0f) {
+                keep = 0.0;
+                for (int w = 0; w < WIDTHS; w++) {
+                    float wd = width[0] + (width[1] - width[0]) * ((float)w + 0.5f) / (float)WIDTHS;
+                    keep += fmin(1.0, blade_lod_kept(&lod, d, wd, focal, c->max_distance) * (1.0f + window)) / WIDTHS;
+                }
+            }
             sum += keep * blades;
         }
     return sum;
@@ -132,7 +145,7 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     l.draw_capacity = d->draw_capacity ? d->draw_capacity : (uint32_t)l.draw_tiles * l.blades;
     if (!d->draw_capacity && d->window > 0)
         l.draw_capacity = (uint32_t)ceil(max_blades_within(d->switch_distance + HYSTERESIS, d->tile_size, l.blades,
-                                                           &d->cull));
+                                                           &d->cull, d->population.width));
     size_t S = (size_t)d->pool_slots, B = l.blades, side = grid_res > 0 ? (size_t)grid_res + 1 : 0;
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */
@@ -889,7 +902,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, desc->view.camera);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), c->max_distance);
-    glUniform1i(gfx_uniform(p, "u_distance_levels"), c->distance_levels);
+    ground_lod_uniforms(p, &c->lod, c->focal_px, c->max_distance);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
@@ -1108,6 +1121,14 @@ void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull)
 {
     t->desc.cull = *cull;
     t->desc.cull.depth = NULL;
+}
+
+void blade_tiles_set_lod(blade_tiles_t *t, const blade_lod_t *lod, float focal_px)
+{
+    blade_cull_desc_t c = t->desc.cull;
+    c.lod = *lod;
+    c.focal_px = focal_px;
+    t->desc.cull = blade_cull_desc_defaults(&c);
 }
 
 float blade_tiles_slot_motion(const blade_tiles_t *t, int slot)

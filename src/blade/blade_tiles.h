@@ -48,6 +48,9 @@
 #define BLADE_TILES_DEFAULT_SWITCH_DISTANCE 12.0f
 #define BLADE_TILES_DEFAULT_RECOVER_TIME 3.0f
 #define BLADE_TILES_DEFAULT_MOTION_EPSILON 2e-3f
+/* The least focal length (px) a window's default draw buffer is sized
+ * for: 2160 p at a 60 degree field of view is 1871. */
+#define BLADE_TILES_CAPACITY_FOCAL 2000.0f
 
 /* Zero means default; (scene) marks a default the scene shares
  * (BLADE_TILES_DEFAULT_* above):
@@ -85,17 +88,21 @@
  *                    grass.blade_render). The debug overlays are drawn by
  *                    the pulled strips only; the compute rasterizer
  *                    (blade_tiles_raster) is the same either way
- *   cull             max_distance, distance_levels, orientation_threshold,
- *                    frustum_tolerance, depth_bias, disable
- *                    (blade_cull_desc_defaults); the view comes
+ *   cull             max_distance, orientation_threshold,
+ *                    frustum_tolerance, depth_bias, disable, lod, focal_px
+ *                    (blade_cull_desc_defaults; lod and focal_px change
+ *                    per frame with blade_tiles_set_lod); the view comes
  *                    from the draw desc, the depth texture from the draw
  *                    call
  *   draw_capacity    blades the per-frame draw buffer holds; 0: every
  *                    blade of every tile that can be within
  *                    switch_distance + 1 m of the camera (worst case); in a
- *                    window, the share of them the distance test keeps at
- *                    each tile's nearest point (eq. 19-20 levels; what is
- *                    dropped is counted in stats.draw_overflow and logged)
+ *                    window, the share of them the thinning can keep at
+ *                    each tile's nearest point (cull.lod's kept share, the
+ *                    shrink window included, over the population's widths
+ *                    at a focal length of max(cull.focal_px,
+ *                    BLADE_TILES_CAPACITY_FOCAL); what is dropped is
+ *                    counted in stats.draw_overflow and logged)
  *   slope_cells_per_tile  slope cells per tile side: default the nearest
  *                    count to 0.5 m cells (at least 1), more where a cell
  *                    would hold more than HYBRID_SLOPE_MAX_PER_CELL blades
@@ -253,6 +260,9 @@ blade_tiles_stats_t blade_tiles_stats(blade_tiles_t *t, bool wait);
  * blade_tiles_info with changes): used from the next draw on, taken as
  * they are (no defaults); its view and depth are not read. */
 void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull);
+/* The thinning of the next draws (cull.lod, resolved here; blade_lod.h)
+ * and the frame's focal length (blade_lod_focal; 0: 1000 px). */
+void blade_tiles_set_lod(blade_tiles_t *t, const blade_lod_t *lod, float focal_px);
 
 /* ---- test helpers (blocking) ---------------------------------------------- */
 /* The template_blades blades (and eta, may be NULL) of a pool slot. */

@@ -5,7 +5,10 @@
  *             --scene alone outside --report): all features, collision off
  *             (no colliders and no characters), culling off (every
  *             BLADE_CULL_* test skipped, world_tuning_t.cull_disable) and each
- *             test alone off, on the hardware and the compute rasterizer:
+ *             test alone off, the distance test as eq. 19-20 state it
+ *             (grass.lod rule LEVELS: the default WIDTH thins nothing on a
+ *             field within its 10 m start, the CI's tiny.json), on the
+ *             hardware and the compute rasterizer:
  *             GPU pass medians, blades drawn and culled by each test (the
  *             counters of summary.txt, measure_stats) at the last frame;
  *   leaves    Orthmann et al. 2009's cost against the number of colliding
@@ -155,6 +158,7 @@ static void spread_balls(scene_desc_t *s, int n)
 static void papers_tweak(scene_desc_t *s, void *user)
 {
     const papers_probe_t *p = user;
+    if (p->ablation) s->grass.lod.rule = BLADE_LOD_LEVELS;
     if (p->ablation && p->ablation->no_collision) {
         s->collider_count = 0;
         s->character_count = 0;

@@ -845,6 +845,11 @@ static void draw_tiles(world_t *w, frame_draw_t *f)
     const world_view_t *v = f->v;
     blade_draw_desc_t dd = {.view = v->frame, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->gi_bind};
     blade_tiles_set_overlay(w->tiles, v->overlay);
+    /* The scene's thinning; the switch's dithered fade ends the tiles (no
+     * end fade), as set_ground_lod has it for the ground under them. */
+    blade_lod_t lod = w->scene.grass.lod;
+    lod.no_fade = true;
+    blade_tiles_set_lod(w->tiles, &lod, blade_lod_focal(v->frame.viewproj, f->target->h));
     /* Occlusion culling reads the opaque depth, as blade mode's below. */
     if (f->raster) {
         f->raster_ok = blade_tiles_raster(w->tiles, f->raster, &dd, f->raster->opaque_depth.id) && f->raster_ok;
@@ -862,17 +867,19 @@ static void draw_blades(world_t *w, frame_draw_t *f)
      * compute path: the farthest opaque sample, from raster_begin). */
     if (!f->raster) gfx_target_resolve_depth(target);
     /* Blade mode draws as far as grass.blade_distance (default: the
-     * field's edge or the far plane) with the levels of the 60 m cut
-     * (blade_cull_desc_t.level_distance, docs/BLADES.md). */
+     * field's edge or the far plane), thinned by the scene's grass.lod
+     * (docs/BLADES.md); in hybrid mode to the switch band, whose dithered
+     * fade ends the blades (no end fade, as set_ground_lod). */
     bool hybrid = w->mode == SCENE_MODE_HYBRID;
     blade_cull_desc_t cd = {.view = v->frame,
                             .max_distance = hybrid ? f->fade_hi
                                                    : scene_blade_distance(&w->scene.grass, v->frame.camera, v->far,
                                                                           w->terrain_mesh.aabb_min,
                                                                           w->terrain_mesh.aabb_max),
-                            .level_distance = hybrid ? 0.0f : BLADE_CULL_MAX_DISTANCE_DEFAULT,
-                            .distance_levels = w->tuning.distance_levels,
-                            .disable = w->reference ? 0xffu : w->tuning.cull_disable};
+                            .disable = w->reference ? 0xffu : w->tuning.cull_disable,
+                            .lod = w->scene.grass.lod,
+                            .focal_px = blade_lod_focal(v->frame.viewproj, target->h)};
+    if (hybrid) cd.lod.no_fade = true;
     GLuint depth = f->raster ? f->raster->opaque_depth.id : target->resolve_depth.id;
     blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);

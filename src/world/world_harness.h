@@ -12,7 +12,6 @@
 /* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
 typedef struct world_tuning_t {
     int tess_max;           /* blade tessellation level cap; default the blade module's */
-    int distance_levels;    /* blade distance-cull levels n (eq. 19-20) */
     unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
     bool blade_cube_proxies; /* blades collide against depth cube maps instead of
                                 sphere proxies (the set's cube proxies; not the tiles) */
