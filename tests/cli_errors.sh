@@ -265,6 +265,17 @@ rc=$?
 grep -q "interrupted" "$tmp/intr/summary.txt" 2>/dev/null \
   || { echo "FAIL: a run interrupted by two SIGINTs wrote no summary saying so"; fail=1; }
 [ "$rc" = 130 ] || { echo "FAIL: an interrupted run exited $rc, not 130"; fail=1; }
+# A context that cannot be made under a small address-space limit says
+# the limit may be the cause (EGL says only "eglInitialize failed"); exit 1,
+# a runtime failure. ASan's shadow memory rules out the limit.
+if [ "${MEADOW_SANITIZED:-0}" != 1 ]; then
+  prlimit --as=157286400 "$bin" --headless --scene "$root/scenes/tiny.json" --frames 1 --out "$tmp/as150" \
+    >/dev/null 2>"$tmp/as150.log"
+  rc=$?
+  { [ "$rc" = 1 ] && [ "$(grep -c 'error' "$tmp/as150.log")" = 1 ] && grep -q \
+    "error: no OpenGL 4.5 context: .*the address space is limited to 150 MiB (ulimit -v): that limit may be the cause" \
+    "$tmp/as150.log"; } || { echo "FAIL: no context under prlimit --as=150M gave exit $rc:"; sed 's/^/    /' "$tmp/as150.log"; fail=1; }
+fi
 # Output a script can trust. A run that cannot write what it promised (here
 # summary.txt and the first screenshot, each blocked by a folder of its
 # name, as a full disk would) exits 1 naming what is missing.

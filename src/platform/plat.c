@@ -41,7 +41,17 @@ bool plat_init(const plat_desc_t *desc_in, char *err, size_t err_size)
     if (be == PLAT_BACKEND_AUTO) be = have_display() ? PLAT_BACKEND_WINDOW : PLAT_BACKEND_EGL;
     bool ok = be == PLAT_BACKEND_WINDOW ? plat_glfw_init(&desc, err, err_size)
                                         : plat_egl_init(&desc, err, err_size);
-    if (!ok) return false;
+    if (!ok) {
+        /* Under a small `ulimit -v` the driver cannot map itself, and EGL
+         * says only that it failed: name the limit. */
+        size_t n = strlen(err);
+        while (n > 0 && (err[n - 1] == ' ' || err[n - 1] == ';')) err[--n] = 0;
+        struct rlimit rl;
+        if (getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY && n < err_size)
+            snprintf(err + n, err_size - n, "; the address space is limited to %.0f MiB (ulimit -v): that limit may "
+                     "be the cause", (double)rl.rlim_cur / (1024.0 * 1024.0));
+        return false;
+    }
     if (epoxy_gl_version() < 45) {
         snprintf(err, err_size, "OpenGL 4.5 core is required, %s offers %d.%d (%s)", plat_state.backend_name,
                  epoxy_gl_version() / 10, epoxy_gl_version() % 10, (const char *)glGetString(GL_RENDERER));

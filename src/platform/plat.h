@@ -28,7 +28,8 @@ typedef struct plat_desc_t {
 plat_desc_t plat_desc_defaults(const plat_desc_t *desc);
 
 /* Creates the context and makes it current. On failure writes every platform
- * tried and why it failed into err and returns false. */
+ * tried and why it failed into err (and, under a finite RLIMIT_AS, that
+ * the limit may be the cause) and returns false. */
 bool plat_init(const plat_desc_t *desc, char *err, size_t err_size);
 void plat_shutdown(void);
 
