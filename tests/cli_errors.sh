@@ -49,6 +49,11 @@ expect2 "--force needs --baseline" bench --perf "$tmp/p" --force
 expect2 "--baseline: empty path" bench --baseline ""
 # Empty values and paths longer than the program keeps (they were ignored,
 # or cut without a word: --out at 1023 bytes, --character at 255).
+# characters[].height and --character-height take one range, the key's
+# (the key took 1e-9 where the option refused below 0.01).
+expect2 "--character-height '1e-9': expected metres in 0.01..1000 (scene key characters\[\].height)" --character-height 1e-9
+printf '{ "characters": [ { "model": "models/humanoid.gltf",\n  "height": 1e-9 } ] }\n' >"$tmp/height.json"
+expect2 'height.json:2: field "characters\[0\].height": 1e-09 is out of range \[0.01, 1000\]' --headless --scene "$tmp/height.json"
 expect2 "--character: empty model path" --character ""
 expect2 "--clip: empty clip name" --clip ""
 expect2 "--scene: empty path" --scene ""

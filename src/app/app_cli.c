@@ -3,7 +3,8 @@
  * Every bad value gets one line naming the option, the value and the
  * allowed range;
  * options that set a scene value (--frames, --seed, --size,
- * --raster-samples) take their range from the scene's key table. */
+ * --raster-samples, --character-height) take their range from the scene's
+ * key table. */
 #include "app/app.h"
 
 #include <errno.h>
@@ -12,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "character/character_import.h"
 #include "core/core.h"
 #include "scene/scene.h"
 #include "scene/scene_fields.h"
@@ -29,7 +29,7 @@ void app_print_options(void)
            "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
-           "  --character-height M  fit every character to M metres tall (0.01..1000; default: automatic)\n"
+           "  --character-height M  fit every character to M metres tall (%g..%g; default: automatic)\n"
            "  --list-clips MODEL    print MODEL's clips (name, duration, keys) and exit\n"
            "  --blade-render R      pull (vertex pulling) | tess (tessellation shaders), blade mode and the\n"
            "                        hybrid's tiles; default: the scene's (pull)\n"
@@ -44,7 +44,8 @@ void app_print_options(void)
            "  --quiet               only warnings and errors\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n",
-           (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi);
+           (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi,
+           scene_field_find(SCENE_SEC_CHARACTER, "height")->lo, scene_field_find(SCENE_SEC_CHARACTER, "height")->hi);
 }
 
 void app_print_usage(void)
@@ -192,11 +193,12 @@ static bool value_option(const char *a, const char *v, app_options_t *o, char *e
     } else if (strcmp(a, "--list-clips") == 0) {
         o->list_clips = v;
     } else if (strcmp(a, "--character-height") == 0) {
-        char *end;
+        const scene_field_t *f = scene_field_find(SCENE_SEC_CHARACTER, "height");
+        char *end, why[160];
         double h = strtod(v, &end);
-        if (end == v || *end || !(h >= 0.01 && h <= CHARACTER_IMPORT_MAX_FIT)) {
-            snprintf(err, err_size, "--character-height '%s': expected metres in 0.01..%g", v,
-                     (double)CHARACTER_IMPORT_MAX_FIT);
+        if (end == v || *end || !(h > 0.0) || !scene_field_accepts(f, h, why, sizeof why)) {
+            snprintf(err, err_size, "--character-height '%s': expected metres in %g..%g (scene key characters[].height)",
+                     v, f->lo, f->hi);
             return false;
         }
         o->character_height = (float)h;
