@@ -185,6 +185,11 @@ MEADOW_MEMORY_LIMIT_MB=2400 expect2 \
 expect2 "--seed '4294967296': expected an integer in 0..4294967295 (scene key seed)" --seed 4294967296
 printf '{ "seed": 1\0 }' >"$tmp/nul.json"
 expect2 'nul.json:1: a NUL byte at offset 11' --headless --scene "$tmp/nul.json"
+# Invalid UTF-8 in a string is refused by the parser with its line, and no
+# raw byte reaches the message (it was accepted, then echoed in an error).
+printf '{\n  "mode": "hy\377brid" }\n' >"$tmp/utf8.json"
+expect2 'utf8.json:2: invalid UTF-8 in a string (byte 0xff at offset 15)' --headless --scene "$tmp/utf8.json"
+[ "$(tr -d '\000-\177' <"$tmp/stderr" | wc -c)" = 0 ] || { echo "FAIL: the UTF-8 error printed raw bytes"; fail=1; }
 printf '{ "terrain": { "mesh": "models/torus.obj" } }\n' >"$tmp/hfmesh.json"
 expect2 'unknown key "mesh" for terrain type "heightfield"' --headless --scene "$tmp/hfmesh.json"
 # A camera must look somewhere: position = target is refused (also a path

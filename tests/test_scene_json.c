@@ -136,6 +136,16 @@ static void test_bad_inline(void)
     expect_parse_fail("{\"mode\": \"bla\nde\"}", "newline in string", "inline.json:1:",
                       "unterminated string");
     expect_parse_fail("{\"mode\": \"a\\qb\"}", "bad escape", "inline.json:1:", "invalid escape '\\q'");
+    /* Invalid UTF-8 in strings: stray continuation, overlong, surrogate,
+     * past U+10FFFF, cut short; well-formed text passes to the key check. */
+    expect_parse_fail("{\n\"mode\": \"a\x80\"}", "stray continuation", "inline.json:2:",
+                      "invalid UTF-8 in a string (byte 0x80 at offset 12)");
+    expect_parse_fail("{\"mode\": \"\xc0\xaf\"}", "overlong", "inline.json:1:", "invalid UTF-8 in a string (byte 0xc0");
+    expect_parse_fail("{\"mode\": \"\xed\xa0\x80\"}", "surrogate", "inline.json:1:", "invalid UTF-8");
+    expect_parse_fail("{\"mode\": \"\xf4\x90\x80\x80\"}", "past U+10FFFF", "inline.json:1:", "invalid UTF-8");
+    expect_parse_fail("{\"mode\": \"\xe2\x82\"}", "cut short", "inline.json:1:", "invalid UTF-8");
+    expect_parse_fail("{\"mode\": \"caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x8c\xbf\"}", "valid UTF-8", "inline.json:1:",
+                      "unknown value");
     expect_parse_fail("{\"mode\": \"\\ud800x\"}", "lone high surrogate", "inline.json:1:",
                       "not followed by a low surrogate");
     expect_parse_fail("{\"mode\": \"\\udc00\"}", "lone low surrogate", "inline.json:1:",

@@ -165,6 +165,22 @@ static char *put_utf8(char *o, uint32_t cp)
     return o;
 }
 
+/* Bytes of the well-formed UTF-8 sequence at s (before end), 0 when it is
+ * not one: a stray continuation byte, an overlong form, a surrogate, past
+ * U+10FFFF or cut short (RFC 3629). */
+static size_t utf8_len(const unsigned char *s, const unsigned char *end)
+{
+    unsigned char c = s[0];
+    size_t n = c < 0x80 ? 1 : c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+    if (n == 0 || (size_t)(end - s) < n) return 0;
+    for (size_t i = 1; i < n; i++)
+        if ((s[i] & 0xc0) != 0x80) return 0;
+    if ((c == 0xe0 && s[1] < 0xa0) || (c == 0xed && s[1] > 0x9f) || (c == 0xf0 && s[1] < 0x90) ||
+        (c == 0xf4 && s[1] > 0x8f))
+        return 0;
+    return n;
+}
+
 /* ps->p at the opening quote. Decoded text is never longer than the raw
  * span, so one allocation of the raw length suffices. */
 static bool parse_string(parser_t *ps, const char **out, size_t *out_len)
@@ -187,6 +203,17 @@ static bool parse_string(parser_t *ps, const char **out, size_t *out_len)
     if (!buf) return fail(ps, "out of memory");
     char *o = buf;
     while (s < q) {
+        if ((unsigned char)*s >= 0x80) {
+            /* Checked here so that no message echoes bytes that are not text. */
+            size_t n = utf8_len((const unsigned char *)s, (const unsigned char *)q);
+            if (n == 0)
+                return fail(ps, "invalid UTF-8 in a string (byte 0x%02x at offset %zu): a scene file is UTF-8 text",
+                            (unsigned char)*s, (size_t)(s - ps->start));
+            memcpy(o, s, n);
+            o += n;
+            s += n;
+            continue;
+        }
         if (*s != '\\') {
             *o++ = *s++;
             continue;
