@@ -3,9 +3,10 @@
  * twin blade_ref_surface, which draws the billboard clump layers
  * (bb_layout.c): 64 blades settled under gravity with random heights,
  * widths, angles and tilted up vectors, each shape, 9 x 17 points per
- * blade, with eq. 23 and eq. 24 off, each alone and both, positions and
- * normals within 1e-5 (relative to the blade height); eq. 23 and eq. 24 in
- * numbers on the C twin (test_terms).
+ * blade, with eq. 23 and eq. 24 off, each alone and both, and eq. 24 as
+ * printed (alone and with the other two), positions and normals within
+ * 1e-5 (relative to the blade height); eq. 23, eq. 24 and eq. 24 as
+ * printed in numbers on the C twin (test_terms).
  * The profile's documented values (blade_geom.glsl banner) are checked on
  * the CPU. */
 #include "common/bindings_tests.glsl"
@@ -66,6 +67,23 @@ static void test_terms(void)
     blade_ref_surface_at(&b, &face, 1.0f, 0.0f, e1, n);
     sub3(e1, e0, d);
     CHECK_NEAR(sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]), b.v2[3], 1e-6);
+    /* eq. 24 as printed, w_min 1 px, w_span 2 px, focal 1000 px, the
+     * quadratic blade (0.75 w wide at v = 0.5) seen face-on along z from
+     * 100 m (w_p 0.8 px: Phi 1, a quad, w wide), 40 m (2 px: Phi 0.5, t
+     * from 0.0625 to 0.6875, 0.625 w wide, off the midrib by 0.125 w) and
+     * 10 m (8 px: Phi 0, unchanged) */
+    static const float printed[3][3] = {{100.0f, 1.0f, 0.0f}, {40.0f, 0.625f, -0.125f}, {10.0f, 0.75f, 0.0f}};
+    for (int i = 0; i < 3; i++) {
+        blade_ref_surface_desc_t sd = {.shape = BLADE_SHAPE_QUADRATIC, .width_printed = {1.0f, 2.0f},
+                                       .focal_px = 1000.0f, .camera = {0.0f, 0.25f, printed[i][0]}};
+        blade_ref_surface_at(&b, &sd, 0.0f, 0.5f, e0, n);
+        blade_ref_surface_at(&b, &sd, 1.0f, 0.5f, e1, n);
+        sub3(e1, e0, d);
+        CHECK_NEAR(d[0], printed[i][1] * b.v2[3], 1e-6);
+        CHECK_NEAR(0.5f * (e0[0] + e1[0]), printed[i][2] * b.v2[3], 1e-6);
+        printf("eq. 24 as printed (w_min 1 px, w_span 2 px), %g m away: width at v = 0.5 %.3f w, centre %+.3f w\n",
+               (double)printed[i][0], (double)(d[0] / b.v2[3]), (double)(0.5f * (e0[0] + e1[0]) / b.v2[3]));
+    }
 }
 
 int main(void)
@@ -107,17 +125,23 @@ int main(void)
     gfx_buffer_t out = gfx_buffer_make(&(gfx_buffer_desc_t){.size = n * 32, .label = "surface.points"});
     float *gpu = malloc(n * 32);
     double worst_p = 0.0, worst_n = 0.0;
-    /* eq. 23 and eq. 24 off, each alone, both (the camera near the blades) */
-    static const float terms[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 0.3f}, {1.5f, 0.3f}};
-    for (int run = 0; run < 4 * 5 && prog.id; run++) {
+    /* eq. 23 and eq. 24 off, each alone, both, eq. 24 as printed alone and
+     * with both (w_min 1 px, w_span 2 px at a focal length of 50 px: the
+     * blades' 0.1-4 px span it; the camera near the blades) */
+    static const float terms[6][3] = {{0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 0.3f, 0.0f},
+                                      {1.5f, 0.3f, 0.0f}, {0.0f, 0.0f, 2.0f}, {1.5f, 0.3f, 2.0f}};
+    for (int run = 0; run < 6 * 5 && prog.id; run++) {
         blade_ref_surface_desc_t sd = {.shape = BLADE_SHAPE_QUADRATIC + run % 5,
                                        .displacement = terms[run / 5][0],
                                        .width_correction = terms[run / 5][1],
+                                       .width_printed = {1.0f, terms[run / 5][2]},
+                                       .focal_px = 50.0f,
                                        .camera = {0.7f, 0.4f, 2.5f}};
         glUseProgram(prog.id);
         glUniform1i(gfx_uniform(prog, "u_shape"), sd.shape);
         glUniform1f(gfx_uniform(prog, "u_displacement"), sd.displacement);
         glUniform1f(gfx_uniform(prog, "u_width_correction"), sd.width_correction);
+        glUniform3f(gfx_uniform(prog, "u_width_printed"), sd.width_printed[0], sd.width_printed[1], sd.focal_px);
         glUniform3fv(gfx_uniform(prog, "u_camera"), 1, sd.camera);
         glUniform1ui(gfx_uniform(prog, "u_count"), BLADES);
         glUniform1i(gfx_uniform(prog, "u_us"), US);
@@ -136,7 +160,8 @@ int main(void)
             worst_n = fmax(worst_n, test_dist3(nr, gpu + i * 8 + 4));
         }
     }
-    printf("blade surface, GLSL vs C twin (5 shapes x eq. 23/24 off, each, both; %d blades, %d points each): "
+    printf("blade surface, GLSL vs C twin (5 shapes x eq. 23/24 off, each, both, eq. 24 printed alone and with "
+           "both; %d blades, %d points each): "
            "position %.2g (of the height), normal %.2g\n",
            BLADES, US * VS, worst_p, worst_n);
     CHECK(worst_p < 1e-5 && worst_n < 1e-5);

@@ -19,10 +19,14 @@
  *     of depth (w / 4)(1 - v). It needs vertices at u = 0.5, so with
  *     displacement > 0 the tessellation and both pulled strips build 2
  *     columns across the width (blade_columns, blade_strip_uv).
- *   eq. 24 (optional, this project's reading: the printed form was not
- *     recovered, docs/BLADES.md): width w / max(|n . view|,
- *     width_correction), at most 4 w, so blades seen edge-on do not fall
- *     below a pixel and alias.
+ *   eq. 24 (optional, this project's reading, docs/BLADES.md): width
+ *     w / max(|n . view|, width_correction), at most 4 w, so blades seen
+ *     edge-on do not fall below a pixel and alias.
+ *   eq. 24 as printed (optional, u_width_printed = (w_min, w_span, focal
+ *     length), all px, w_span 0: off; after the reading above): w_p = w
+ *     focal / |camera - c|, Phi = 1 - clamp((w_p - w_min) / w_span, 0, 1),
+ *     t = t (1 - Phi) + u Phi^2: a blade thinner than w_min pixels is a
+ *     quad.
  * Level of detail: segments along the blade, from u_max_level at the
  * camera down to max(u_max_level / 4, 1) at u_lod_distance (root distance). */
 #ifndef BLADE_GEOM_GLSL
@@ -37,6 +41,7 @@
 uniform int u_shape;
 uniform float u_displacement;
 uniform float u_width_correction;
+uniform vec3 u_width_printed; /* eq. 24 as printed: w_min, w_span (0: off), focal length; px */
 uniform vec3 u_camera;
 uniform int u_max_level;
 uniform float u_lod_distance;
@@ -96,6 +101,11 @@ void blade_build(Blade b, float u, float v, out vec3 pos, out vec3 normal)
     vec3 c0 = c - t1 * (0.5 * w);
     vec3 c1 = c + t1 * (0.5 * w);
     float t = 0.5 + (u - 0.5) * blade_profile(v);
+    if (u_width_printed.y > 0.0) {
+        float wp = w * u_width_printed.z / max(length(u_camera - c), 1e-6);
+        float phi = 1.0 - min(max((wp - u_width_printed.x) / u_width_printed.y, 0.0), 1.0);
+        t = t * (1.0 - phi) + u * phi * phi;
+    }
     pos = mix(c0, c1, t);
     if (u_displacement > 0.0) pos += n * (u_displacement * (0.5 * w) * (0.5 - abs(u - 0.5) * (1.0 - v)));
     normal = n;

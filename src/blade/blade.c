@@ -399,6 +399,8 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
     glUniform1i(gfx_uniform(p, "u_shape"), (int)surf->shape);
     glUniform1f(gfx_uniform(p, "u_displacement"), surf->displacement);
     glUniform1f(gfx_uniform(p, "u_width_correction"), surf->width_correction);
+    glUniform3f(gfx_uniform(p, "u_width_printed"), surf->width_printed[0], surf->width_printed[1],
+                desc->focal_px > 0.0f ? desc->focal_px : 1000.0f);
     glUniform1i(gfx_uniform(p, "u_max_level"), surf->max_level);
     glUniform1f(gfx_uniform(p, "u_lod_distance"), surf->lod_distance);
     gi_set_uniforms(p.id, &desc->gi);
@@ -407,7 +409,9 @@ void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, co
 static blade_surface_t surface_of(const blade_gpu_desc_t *d)
 {
     return (blade_surface_t){.shape = d->shape, .displacement = d->displacement,
-                             .width_correction = d->width_correction, .max_level = d->max_tess_level,
+                             .width_correction = d->width_correction,
+                             .width_printed = {d->width_printed[0], d->width_printed[1]},
+                             .max_level = d->max_tess_level,
                              .lod_distance = d->lod_distance};
 }
 

@@ -58,6 +58,11 @@ typedef enum blade_render_path_t {
  *                  (docs/BLADES.md): a blade seen edge-on is widened by
  *                  1 / max(|n.view|, width_correction), at most 4x (scene,
  *                  grass.width_correction)
+ *   width_printed  {w_min, w_span} px; w_span 0: off; > 0: eq. 24 as
+ *                  printed, its variant (blade_ref_surface_desc_t): a blade
+ *                  thinner on screen than w_min pixels is drawn as a quad,
+ *                  its shape back over w_span more (the focal length from
+ *                  blade_draw_desc_t.focal_px)
  *   no_patch_cull  false: the patch test on (blade_gpu_cull)
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
@@ -69,6 +74,7 @@ typedef struct blade_gpu_desc_t {
     blade_render_path_t path;
     float displacement;
     float width_correction;
+    float width_printed[2];
     bool no_patch_cull;
     const char *label;
 } blade_gpu_desc_t;
@@ -106,9 +112,11 @@ typedef struct blade_gpu_info_t {
  *   the fragment shader turns into its sample mask (blade_fade_mask; enable
  *   MSAA on the target for a smooth fade).
  *   albedo_root / albedo_tip (0,0,0) -> (0.10, 0.25, 0.05) / (0.45, 0.65, 0.20)
- *   (BLADE_DEFAULT_ALBEDO_ROOT / _TIP of blade/blade_population.h). */
+ *   (BLADE_DEFAULT_ALBEDO_ROOT / _TIP of blade/blade_population.h).
+ *   focal_px: the frame's blade_lod_focal (eq. 24 as printed); 0: 1000. */
 typedef struct blade_draw_desc_t {
     core_view_t view; /* the frame's view (sun_dir, planes and time not read) */
+    float focal_px;
     float fade_start, fade_end;
     float albedo_root[3], albedo_tip[3];
     gi_bind_t gi; /* global illumination (common/gi.glsl); zero: off */

@@ -84,6 +84,7 @@ struct blade_tiles_t {
 typedef struct blade_surface_t {
     blade_shape_t shape;
     float displacement, width_correction;
+    float width_printed[2]; /* eq. 24 as printed: w_min, w_span px (0: off) */
     int max_level;
     float lod_distance;
 } blade_surface_t;

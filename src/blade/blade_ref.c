@@ -989,6 +989,11 @@ void blade_ref_surface_at(const blade_t *b, const blade_ref_surface_desc_t *d, f
     v3 c0 = v3_sub(c, v3_scale(t1, 0.5f * w));
     v3 c1 = v3_add(c, v3_scale(t1, 0.5f * w));
     float t = 0.5f + (u - 0.5f) * blade_ref_profile(d->shape, v);
+    if (d->width_printed[1] > 0.0f) {
+        float wp = w * d->focal_px / fmaxf(v3_len(v3_sub(v3_load(d->camera), c)), 1e-6f);
+        float phi = 1.0f - fminf(fmaxf((wp - d->width_printed[0]) / d->width_printed[1], 0.0f), 1.0f);
+        t = t * (1.0f - phi) + u * phi * phi;
+    }
     v3 p = v3_add(v3_scale(c0, 1.0f - t), v3_scale(c1, t));
     if (d->displacement > 0.0f)
         p = v3_add(p, v3_scale(n, d->displacement * (0.5f * w) * (0.5f - fabsf(u - 0.5f) * (1.0f - v))));

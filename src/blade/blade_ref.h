@@ -261,11 +261,21 @@ void blade_ref_surface(const blade_t *b, int shape, float u, float v, float pos[
  *   width_correction 0: off; > 0: the eq. 24 step (this project's reading,
  *                    docs/BLADES.md): w / max(|n . view|, width_correction),
  *                    at most 4 w, view towards camera from the curve point
- *   camera           world position (used by width_correction only) */
+ *   width_printed    {w_min, w_span} px; w_span 0: off; > 0: eq. 24 as
+ *                    printed (the issue's form, after width_correction):
+ *                    w_p = w focal_px / |camera - c| the blade's width in
+ *                    pixels at the curve point, Phi = 1 - clamp((w_p -
+ *                    w_min) / w_span, 0, 1), t = t (1 - Phi) + u Phi^2 (t
+ *                    the shape's, u across the width): a blade thinner
+ *                    than w_min pixels is drawn as a quad
+ *   focal_px         pixels per unit tangent (blade_lod_focal; width_printed)
+ *   camera           world position (width_correction, width_printed) */
 typedef struct blade_ref_surface_desc_t {
     int shape;
     float displacement;
     float width_correction;
+    float width_printed[2];
+    float focal_px;
     float camera[3];
 } blade_ref_surface_desc_t;
 

@@ -941,6 +941,7 @@ static blade_surface_t tiles_surface(const blade_tiles_t *t)
     return (blade_surface_t){.shape = t->desc.population.shape,
                              .displacement = t->desc.displacement,
                              .width_correction = t->desc.width_correction,
+                             .width_printed = {t->desc.width_printed[0], t->desc.width_printed[1]},
                              .max_level = t->desc.max_level,
                              .lod_distance = t->desc.lod_distance};
 }

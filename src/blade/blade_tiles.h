@@ -79,9 +79,9 @@
  *                    passed to blade_tiles_update with wind_count > 0
  *                    replaces them from then on
  *   max_level (8 segments at the camera), lod_distance (30 m),
- *   displacement, width_correction (0: off; eq. 23, eq. 24; scene,
- *                    grass.displacement, grass.width_correction): as
- *                    blade_gpu_desc_t
+ *   displacement, width_correction, width_printed (0: off; eq. 23, eq.
+ *                    24, eq. 24 as printed; scene, grass.displacement,
+ *                    grass.width_correction): as blade_gpu_desc_t
  *   tessellate       false (default): the hardware path draws instanced
  *                    triangle strips by vertex pulling; true: GL_PATCHES
  *                    through blade.tesc / blade.tese (scene,
@@ -131,6 +131,7 @@ typedef struct blade_tiles_desc_t {
     float lod_distance;
     float displacement;
     float width_correction;
+    float width_printed[2];
     bool tessellate;
     blade_cull_desc_t cull;
     uint32_t draw_capacity;

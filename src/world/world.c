@@ -843,13 +843,15 @@ typedef struct frame_draw_t {
 static void draw_tiles(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    blade_draw_desc_t dd = {.view = v->frame, .fade_start = f->fade_lo, .fade_end = f->fade_hi, .gi = w->gi_bind};
+    float focal = blade_lod_focal(v->frame.viewproj, f->target->h);
+    blade_draw_desc_t dd = {.view = v->frame, .focal_px = focal, .fade_start = f->fade_lo, .fade_end = f->fade_hi,
+                            .gi = w->gi_bind};
     blade_tiles_set_overlay(w->tiles, v->overlay);
     /* The scene's thinning; the switch's dithered fade ends the tiles (no
      * end fade), as set_ground_lod has it for the ground under them. */
     blade_lod_t lod = w->scene.grass.lod;
     lod.no_fade = true;
-    blade_tiles_set_lod(w->tiles, &lod, blade_lod_focal(v->frame.viewproj, f->target->h));
+    blade_tiles_set_lod(w->tiles, &lod, focal);
     /* Occlusion culling reads the opaque depth, as blade mode's below. */
     if (f->raster) {
         f->raster_ok = blade_tiles_raster(w->tiles, f->raster, &dd, f->raster->opaque_depth.id) && f->raster_ok;
@@ -884,7 +886,7 @@ static void draw_blades(world_t *w, frame_draw_t *f)
     blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
     glViewport(0, 0, target->w, target->h);
-    blade_draw_desc_t dd = {.view = v->frame, .gi = w->gi_bind};
+    blade_draw_desc_t dd = {.view = v->frame, .focal_px = cd.focal_px, .gi = w->gi_bind};
     if (hybrid && !w->reference) {
         dd.fade_start = f->fade_lo;
         dd.fade_end = f->fade_hi;
