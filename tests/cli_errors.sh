@@ -286,6 +286,26 @@ if [ "${MEADOW_SANITIZED:-0}" != 1 ]; then
     "error: no OpenGL 4.5 context: .*the address space is limited to 150 MiB (ulimit -v): that limit may be the cause" \
     "$tmp/as150.log"; } || { echo "FAIL: no context under prlimit --as=150M gave exit $rc:"; sed 's/^/    /' "$tmp/as150.log"; fail=1; }
 fi
+# SIGHUP (the terminal closed) ends a run as SIGINT does: the summary says
+# so, exit 130 (it was the default action: exit 129, no summary), within 2 s.
+rm -rf "$tmp/hup"
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1000000 --screenshot-every 0 \
+  --out "$tmp/hup" >/dev/null 2>&1 &
+runner=$!
+wait_for -s "$tmp/hup/.meadow.lock" && sleep 1
+t0=$(date +%s%N)
+kill -HUP "$runner"
+wait "$runner"
+rc=$?
+ms=$((($(date +%s%N) - t0) / 1000000))
+{ [ "$rc" = 130 ] && grep -q "interrupted" "$tmp/hup/summary.txt" 2>/dev/null && [ "$ms" -lt 2000 ]; } \
+  || { echo "FAIL: a run sent SIGHUP exited $rc after $ms ms (want 130 within 2 s, the summary written)"; fail=1; }
+# --quiet prints no summary (it printed the whole of summary.txt).
+"$bin" --headless --quiet --scene "$root/scenes/tiny.json" --size 64x36 --frames 1 --screenshot-every 0 \
+  --out "$tmp/quiet" >"$tmp/quiet.out" 2>"$tmp/quiet.err"
+rc=$?
+{ [ "$rc" = 0 ] && [ ! -s "$tmp/quiet.out" ] && ! grep -q '^meadow:' "$tmp/quiet.err" && [ -s "$tmp/quiet/summary.txt" ]; } \
+  || { echo "FAIL: --quiet gave exit $rc, $(wc -l <"$tmp/quiet.out") line(s) on stdout, $(grep -c '^meadow:' "$tmp/quiet.err") on stderr"; fail=1; }
 # Output a script can trust. A run that cannot write what it promised (here
 # summary.txt and the first screenshot, each blocked by a folder of its
 # name, as a full disk would) exits 1 naming what is missing.

@@ -78,8 +78,8 @@ void app_print_usage(void);
  * --help` lists them after its own). */
 void app_print_options(void);
 
-/* Ctrl-C / SIGTERM: the first one asks long runs to stop after the current
- * frame or configuration and write what they have (app_signal.c). */
+/* Ctrl-C / SIGTERM / SIGHUP: the first one asks long runs to stop after the
+ * current frame or configuration and write what they have (app_signal.c). */
 void app_signal_install(void);
 bool app_interrupted(void);
 
@@ -104,8 +104,8 @@ typedef struct app_hud_pass_t {
 int app_hud_timings(const app_hud_pass_t *passes, int count, char *buf, size_t size);
 
 /* Runs the program; returns the process exit code: 0, 1 (a failure), 2 (bad
- * input) or APP_EXIT_INTERRUPTED (SIGINT or SIGTERM ended the run early;
- * the summary was written and says frames done of asked). `montage` may be
+ * input) or APP_EXIT_INTERRUPTED (SIGINT, SIGTERM or SIGHUP ended the run
+ * early; the summary was written and says frames done of asked). `montage` may be
  * NULL when opts->montage is false. */
 #define APP_EXIT_INTERRUPTED 130
 int app_run(const app_options_t *opts, app_montage_fn montage);

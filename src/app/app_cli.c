@@ -41,7 +41,8 @@ void app_print_options(void)
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
            "  --overlay N           debug overlay: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength\n"
            "  --frame-log           also write frames.csv to --out: per frame its times, tile work and GPU passes\n"
-           "  --quiet               only warnings and errors\n"
+           "  --quiet               only warnings and errors on the terminal, no summary (summary.txt and the\n"
+           "                        other files are still written; bench --baseline still prints its comparison)\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n",
            (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi,

@@ -476,7 +476,7 @@ static bool write_summary(app_t *app, double wall_s)
     snprintf(path, sizeof path, "%s/summary.txt", app->out);
     bool written = core_fs_write_atomic(path, buf, (size_t)n);
     if (written) core_log_info("wrote %s", path);
-    fputs(buf, stdout);
+    if (!app->opts->quiet) fputs(buf, stdout);
     return written;
 }
 

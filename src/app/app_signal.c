@@ -1,5 +1,6 @@
-/* app_signal: Ctrl-C (SIGINT) and SIGTERM stop long runs cleanly. The first
- * signal sets a flag that the main loop and `meadow bench` check between
+/* app_signal: Ctrl-C (SIGINT), SIGTERM and SIGHUP (the terminal closed)
+ * stop long runs cleanly. The first signal sets a flag that the main loop
+ * and `meadow bench` check between
  * frames and configurations, so the results so far are still written; a
  * signal a second or more after it falls back to the default action (Ctrl-C
  * again kills a run that does not stop). Signals within that second count
@@ -43,6 +44,7 @@ void app_signal_install(void)
     sigemptyset(&sa.sa_mask);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
 }
 
 bool app_interrupted(void) { return g_interrupted != 0; }
