@@ -116,7 +116,7 @@ const scene_field_t scene_fields[] = {
     {GRASS(canopy_distance), .key = "canopy_distance", .type = SCENE_FIELD_FLOAT, .hi = 100000,
       .def = {SCENE_DEFAULT_CANOPY_DISTANCE},
       .doc = "hybrid: billboards nearer than this (m), the ground shaded as grass canopy beyond (docs/HYBRID.md); "
-             "at least switch_distance + 5 (the two fade bands apart)"},
+             "with billboards (grass.billboards ring) at least switch_distance + 5 (the two fade bands apart)"},
     {GRASS(tile_size), .key = "tile_size", .type = SCENE_FIELD_FLOAT, .hi = 1000,
       .def = {SCENE_DEFAULT_TILE_SIZE}, .doc = "side of the square grass tiles of the hybrid field (m)"},
     {GRASS(population.shape), .key = "shape", .type = SCENE_FIELD_ENUM, .names = shape_names,

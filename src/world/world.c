@@ -56,7 +56,8 @@ static int load(world_t *w, const world_options_t *o)
     w->character_height = o->character_height;
     w->size_option = o->width != 0;
     float canopy_min = s->grass.switch_distance + WORLD_SWITCH_FADE + WORLD_CANOPY_FADE;
-    if (s->grass.canopy_distance < canopy_min) {
+    /* Without billboards the canopy starts where the blades end (grass.billboards none). */
+    if (s->grass.billboards == SCENE_HYBRID_BILLBOARDS_RING && s->grass.canopy_distance < canopy_min) {
         core_log_error("%s: grass.canopy_distance %g is less than grass.switch_distance + %g (%g): the blades' and "
                        "the canopy's fade bands would overlap",
                        w->scene_path, s->grass.canopy_distance, WORLD_SWITCH_FADE + WORLD_CANOPY_FADE, canopy_min);
@@ -439,7 +440,7 @@ static bool make_tiles(world_t *w)
                              .width_correction = g->width_correction,
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = w->blade_env.wind_count,
-                             .cull = {.max_distance = tiles_distance(w) + 1.0f},
+                             .cull = {.max_distance = tiles_distance(w) + 1.0f, .lod = g->lod},
                              .slope_recover = g->recover_time,
                              .label = "tiles"};
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
