@@ -646,7 +646,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
     }
     world_destroy(w);
     gfx_target_destroy(&app.target);
-    gfx_shutdown(true);
+    gfx_shutdown(ok); /* unused prefetches and leaks: news only after a run that went through */
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
     if (gl_errors) {
