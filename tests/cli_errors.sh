@@ -50,6 +50,30 @@ expect2 "options of .meadow bench." --perf "$tmp/p"
 expect2 "--from needs --perf or --baseline" bench --from "$tmp/p.json"
 expect2 "--force needs --baseline" bench --perf "$tmp/p" --force
 expect2 "--baseline: empty path" bench --baseline ""
+# --help's default of every option that sets a scene key is the key's
+# default in the scene table (--raster said hw, the key's default is auto).
+"$bin" --help >"$tmp/help.txt"
+"$bin" --scene-keys >"$tmp/keys.md"
+python3 - "$tmp/help.txt" "$tmp/keys.md" <<'PY' || fail=1
+import re, sys
+help_text, keys = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+options = {'--frames': 'frames', '--seed': 'seed', '--size': 'size', '--mode': 'mode',
+           '--blade-render': 'grass.blade_render', '--raster': 'raster', '--raster-samples': 'raster_samples',
+           '--character-height': 'characters[].height'}
+first = lambda v: re.split(r'[ :;]', v.strip().strip('"'))[0]
+bad = 0
+for opt, key in options.items():
+    entry = re.search(r'^  ' + re.escape(opt) + r' .*(?:\n {20,}.*)*', help_text, re.M)
+    said = entry and re.search(r"default: the scene's \(([^)]*)\)", ' '.join(entry.group(0).split()))
+    row = re.search(r'^\| `' + re.escape(key) + r'` \|[^|]*\|[^|]*\| ([^|]*) \|', keys, re.M)
+    table = re.sub(r'\[(\d+), (\d+)\]', r'\1x\2', row.group(1)) if row else None
+    if not said or not table or first(said.group(1)) != first(table):
+        print(f"FAIL: --help's {opt} default ({said.group(1) if said else 'none'}) is not scene key {key}'s ({table})")
+        bad = 1
+    else:
+        print(f"ok: --help's {opt} default {first(said.group(1))} is scene key {key}'s")
+sys.exit(bad)
+PY
 # Empty values and paths longer than the program keeps (they were ignored,
 # or cut without a word: --out at 1023 bytes, --character at 255).
 # characters[].height and --character-height take one range, the key's

@@ -17,25 +17,39 @@
 #include "scene/scene.h"
 #include "scene/scene_fields.h"
 
+/* --help's defaults of the options that set a scene key are the key's
+ * (its table row), so the two cannot drift apart (--raster said hw while
+ * the key's default was auto); cli_errors.sh compares them with
+ * --scene-keys. */
 void app_print_options(void)
 {
+    const scene_field_t *frames = scene_field_find(SCENE_SEC_ROOT, "frames"),
+                        *seed = scene_field_find(SCENE_SEC_ROOT, "seed"),
+                        *size = scene_field_find(SCENE_SEC_ROOT, "size"),
+                        *mode = scene_field_find(SCENE_SEC_ROOT, "mode"),
+                        *height = scene_field_find(SCENE_SEC_CHARACTER, "height"),
+                        *render = scene_field_find(SCENE_SEC_GRASS, "blade_render"),
+                        *raster = scene_field_find(SCENE_SEC_ROOT, "raster"),
+                        *samples = scene_field_find(SCENE_SEC_ROOT, "raster_samples");
     printf("  --scene FILE          scene description (default scenes/meadow.json)\n"
            "  --headless            render offscreen through EGL (automatic without a display)\n"
-           "  --frames N            frames to run (default 300 headless, unlimited in a window)\n"
-           "  --seed N              random seed, 0..4294967295 (default: the scene's)\n"
-           "  --size WxH            framebuffer size, %d..%d per side (default: the scene's)\n"
+           "  --frames N            frames to run; default: the scene's (%g headless; unlimited in a window)\n"
+           "  --seed N              random seed, %.0f..%.0f; default: the scene's (%g)\n"
+           "  --size WxH            framebuffer size, %g..%g per side; default: the scene's (%gx%g)\n"
            "  --out DIR             output folder for screenshots and summary (default out)\n"
            "  --screenshot-every N  write a PNG every N frames (default: 3 per headless run)\n"
-           "  --mode M              billboard | blade | hybrid (default: the scene's)\n"
+           "  --mode M              billboard | blade | hybrid; default: the scene's (%s)\n"
            "  --character PATH      walk this assimp-loadable model through the field\n"
            "  --clip SPEC           clip by name, index or frame range START:END\n"
-           "  --character-height M  fit every character to M metres tall (%g..%g; default: automatic)\n"
+           "  --character-height M  fit every character to M metres tall, %g..%g; default: the scene's\n"
+           "                        (%g: automatic)\n"
            "  --list-clips MODEL    print MODEL's clips (name, duration, keys) and exit\n"
            "  --blade-render R      pull (vertex pulling) | tess (tessellation shaders), blade mode and the\n"
-           "                        hybrid's tiles; default: the scene's (pull)\n"
+           "                        hybrid's tiles; default: the scene's (%s)\n"
            "  --raster R            hw (hardware pipeline) | compute (compute rasterizer) | auto (faster\n"
-           "                        of the two, measured at start-up); default: the scene's (hw)\n"
-           "  --raster-samples N    compute rasterizer samples per pixel: 4 (default, the 4x MSAA pattern) or 1\n"
+           "                        of the two, measured at start-up); default: the scene's (%s)\n"
+           "  --raster-samples N    compute rasterizer samples per pixel: %g or %g (the 4x MSAA pattern);\n"
+           "                        default: the scene's (%g)\n"
            "  --floor               end the run by timing its triangle count with trivial shaders\n"
            "  --view-cards          billboards whose clump appearance follows the view and the wind\n"
            "  --montage             headless: end with compare.png, the last frame in every mode\n"
@@ -45,8 +59,10 @@ void app_print_options(void)
            "                        other files are still written; bench --baseline still prints its comparison)\n"
            "  --scene-keys          print the scene file keys (markdown, docs/SCENES.md)\n"
            "  --help                this text\n",
-           (int)scene_field_find(SCENE_SEC_ROOT, "size")->lo, (int)scene_field_find(SCENE_SEC_ROOT, "size")->hi,
-           scene_field_find(SCENE_SEC_CHARACTER, "height")->lo, scene_field_find(SCENE_SEC_CHARACTER, "height")->hi);
+           (double)frames->def[0], seed->lo, seed->hi, (double)seed->def[0], size->lo, size->hi,
+           (double)size->def[0], (double)size->def[1], mode->names[0], height->lo, height->hi,
+           (double)height->def[0], render->names[0], raster->names[0], samples->lo, samples->hi,
+           (double)samples->def[0]);
 }
 
 void app_print_usage(void)
