@@ -106,7 +106,11 @@ static void tweak(scene_desc_t *s, void *user)
         s->grass.lod.rule = BLADE_LOD_LEVELS;
         s->grass.lod.levels = c->lod_levels;
     }
-    if (c->billboards) s->grass.billboards = (scene_hybrid_billboards_t)(c->billboards - 1);
+    /* A row that names its chain measures it, not the scene's lod table's. */
+    if (c->billboards) {
+        s->grass.billboards = (scene_hybrid_billboards_t)(c->billboards - 1);
+        s->grass.lod_table[0] = '\0';
+    }
     if (c->lod_width_px > 0) s->grass.lod.width_px = c->lod_width_px;
     if (c->lod_thin) s->grass.lod.no_compensation = true;
     if (c->lod_soil) s->grass.lod.no_ground = true;
