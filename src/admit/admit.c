@@ -79,7 +79,7 @@ static double tiles_bytes(const scene_desc_t *s, const admit_world_t *w)
     float distance = w->tiles_distance > 0.0f ? w->tiles_distance : g->switch_distance;
     blade_tiles_desc_t d = {.terrain = &t, .tile_size = g->tile_size, .population = g->population,
                             .switch_distance = distance, .pool_slots = g->tile_pool,
-                            .cull = {.max_distance = distance + 1.0f}};
+                            .cull = {.max_distance = distance + 1.0f, .lod = g->lod, .focal_px = scene_focal(s)}};
     return (double)blade_tiles_estimate_bytes(&d, NULL);
 }
 

@@ -92,15 +92,16 @@ static int max_tiles_within(float r, float tile, int nx, int nz)
  * tile offset, the blades of one template times the share the thinning
  * keeps at its nearest point, over blade widths drawn evenly from `width`
  * (blade_seed): u (1 + shrink) for WIDTH (the blades of the shrink window
- * too), u for the other rules, u of blade_lod_kept at a focal length of at
- * least BLADE_TILES_CAPACITY_FOCAL. A window's draw buffer default. */
+ * too), u for the other rules, u of blade_lod_kept at the cull desc's
+ * focal length (0: BLADE_TILES_CAPACITY_FOCAL). The draw buffer's default
+ * where it is below every blade of the tiles in reach. */
 static double max_blades_within(float r, float tile, uint32_t blades, const blade_cull_desc_t *c,
                                 const float width[2])
 {
     enum { WIDTHS = 8 };
     int k = (int)ceilf(r / tile) + 1;
     blade_lod_t lod = blade_lod_defaults(&c->lod);
-    float focal = fmaxf(c->focal_px, BLADE_TILES_CAPACITY_FOCAL);
+    float focal = c->focal_px > 0.0f ? c->focal_px : BLADE_TILES_CAPACITY_FOCAL;
     float window = lod.rule == BLADE_LOD_WIDTH ? lod.shrink : 0.0f;
     double sum = 0.0;
     for (int dj = -k; dj <= k; dj++)
@@ -143,9 +144,11 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     l.tiles_x = l.tiles_z = d->window > 0 ? d->window : (int)ceilf(field_size / d->tile_size);
     l.draw_tiles = max_tiles_within(d->switch_distance + HYSTERESIS, d->tile_size, l.tiles_x, l.tiles_z);
     l.draw_capacity = d->draw_capacity ? d->draw_capacity : (uint32_t)l.draw_tiles * l.blades;
-    if (!d->draw_capacity && d->window > 0)
-        l.draw_capacity = (uint32_t)ceil(max_blades_within(d->switch_distance + HYSTERESIS, d->tile_size, l.blades,
-                                                           &d->cull, d->population.width));
+    if (!d->draw_capacity)
+        l.draw_capacity = (uint32_t)fmin(
+            (double)l.draw_capacity,
+            ceil(max_blades_within(d->switch_distance + HYSTERESIS, d->tile_size, l.blades, &d->cull,
+                                   d->population.width)));
     size_t S = (size_t)d->pool_slots, B = l.blades, side = grid_res > 0 ? (size_t)grid_res + 1 : 0;
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */

@@ -48,8 +48,8 @@
 #define BLADE_TILES_DEFAULT_SWITCH_DISTANCE 12.0f
 #define BLADE_TILES_DEFAULT_RECOVER_TIME 3.0f
 #define BLADE_TILES_DEFAULT_MOTION_EPSILON 2e-3f
-/* The least focal length (px) a window's default draw buffer is sized
- * for: 2160 p at a 60 degree field of view is 1871. */
+/* The focal length (px) the default draw buffer is sized for when the
+ * cull desc names none: 2160 p at a 60 degree field of view is 1871. */
 #define BLADE_TILES_CAPACITY_FOCAL 2000.0f
 
 /* Zero means default; (scene) marks a default the scene shares
@@ -94,15 +94,15 @@
  *                    per frame with blade_tiles_set_lod); the view comes
  *                    from the draw desc, the depth texture from the draw
  *                    call
- *   draw_capacity    blades the per-frame draw buffer holds; 0: every
+ *   draw_capacity    blades the per-frame draw buffer holds; 0: of every
  *                    blade of every tile that can be within
- *                    switch_distance + 1 m of the camera (worst case); in a
- *                    window, the share of them the thinning can keep at
- *                    each tile's nearest point (cull.lod's kept share, the
- *                    shrink window included, over the population's widths
- *                    at a focal length of max(cull.focal_px,
- *                    BLADE_TILES_CAPACITY_FOCAL); what is dropped is
- *                    counted in stats.draw_overflow and logged)
+ *                    switch_distance + 1 m of the camera, the share the
+ *                    thinning can keep at each tile's nearest point
+ *                    (cull.lod's kept share, the shrink window included,
+ *                    over the population's widths at the focal length
+ *                    cull.focal_px, 0: BLADE_TILES_CAPACITY_FOCAL); a
+ *                    larger view drops what does not fit, counted in
+ *                    stats.draw_overflow and logged)
  *   slope_cells_per_tile  slope cells per tile side: default the nearest
  *                    count to 0.5 m cells (at least 1), more where a cell
  *                    would hold more than HYBRID_SLOPE_MAX_PER_CELL blades

@@ -128,6 +128,13 @@ float scene_blade_distance(const scene_grass_desc_t *g, const float cam_pos[3], 
     return fminf(sqrtf(d2), far);
 }
 
+float scene_focal(const scene_desc_t *s)
+{
+    float fov = s->camera.fov > 0.0f ? s->camera.fov : SCENE_DEFAULT_FOV;
+    int h = s->size[1] > 0 ? s->size[1] : SCENE_DEFAULT_HEIGHT;
+    return 0.5f * (float)h / tanf(glm_rad(0.5f * fov));
+}
+
 const char *scene_mode_name(scene_mode_t mode) { return names_of(SCENE_SEC_ROOT, "mode")[mode]; }
 const char *scene_raster_name(scene_raster_t raster) { return names_of(SCENE_SEC_ROOT, "raster")[raster]; }
 

@@ -239,6 +239,12 @@ void scene_free(scene_desc_t *d);
  * from size, then the camera path (if any) evaluated at 0. */
 void scene_camera_init(const scene_desc_t *d, cam_t *cam);
 
+/* The focal length (px per unit tangent) of the scene's view: its target
+ * height and vertical field of view (blade_lod_focal's measure); what the
+ * tiles' draw buffer is sized for (a taller window drops far blades,
+ * counted and logged: blade_tiles_desc_t.draw_capacity). */
+float scene_focal(const scene_desc_t *s);
+
 /* Blade mode's cull distance (m) for a camera at cam_pos with far plane
  * `far` over grass in the box [field_min, field_max]: grass.blade_distance
  * when positive, else the distance from the camera to the box's farthest

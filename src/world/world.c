@@ -440,7 +440,8 @@ static bool make_tiles(world_t *w)
                              .width_correction = g->width_correction,
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = w->blade_env.wind_count,
-                             .cull = {.max_distance = tiles_distance(w) + 1.0f, .lod = g->lod},
+                             .cull = {.max_distance = tiles_distance(w) + 1.0f, .lod = g->lod,
+                                      .focal_px = scene_focal(s)},
                              .slope_recover = g->recover_time,
                              .label = "tiles"};
     memcpy(td.winds, w->blade_env.winds, sizeof td.winds);
