@@ -95,26 +95,29 @@ eval_seam_desc_t measure_seam_desc(world_t *w)
 }
 
 /* eval_image_seam of frame against ref, both classified against bg, at
- * the band of d. */
+ * the band of d. ground_windows: both frames' pixels fall in the windows by
+ * bg's distance (the terrain's along the pixel), not by their own nearest
+ * surface's: the canopy lies on the ground while cards stand up, so by
+ * their own distances the two windows would hold different pixels. */
 static bool seam_at(measure_seam_frame_t *frame, measure_seam_frame_t *ref, const measure_seam_frame_t *bg,
-                    const eval_seam_desc_t *d, eval_seam_t *out)
+                    const eval_seam_desc_t *d, bool ground_windows, eval_seam_t *out)
 {
     measure_seam_frame_classify(frame, bg);
     measure_seam_frame_classify(ref, bg);
-    return eval_image_seam(&(eval_seam_frame_t){&frame->img, frame->dist, frame->cls},
-                           &(eval_seam_frame_t){&ref->img, ref->dist, ref->cls}, d, out);
+    return eval_image_seam(&(eval_seam_frame_t){&frame->img, ground_windows ? bg->dist : frame->dist, frame->cls},
+                           &(eval_seam_frame_t){&ref->img, ground_windows ? bg->dist : ref->dist, ref->cls}, d, out);
 }
 
 static bool seam_of(world_t *w, measure_seam_frame_t *frame, measure_seam_frame_t *ref, const measure_seam_frame_t *bg,
                     eval_seam_t *out)
 {
     eval_seam_desc_t d = measure_seam_desc(w);
-    return seam_at(frame, ref, bg, &d, out);
+    return seam_at(frame, ref, bg, &d, false, out);
 }
 
 /* The last frame against it drawn with billboards only, at band d. */
 static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, const eval_seam_desc_t *d,
-                       eval_seam_t *out)
+                       bool ground_windows, eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
     world_info_t wi = world_info(w);
@@ -125,7 +128,7 @@ static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t,
               measure_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
     if (ok) {
-        ok = seam_at(&frame, &ref, &bg, d, out);
+        ok = seam_at(&frame, &ref, &bg, d, ground_windows, out);
         for (int i = 0; i < 2; i++)
             for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= MEASURE_SEAM_MIN_PIXELS;
     }
@@ -138,7 +141,7 @@ static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t,
 bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     eval_seam_desc_t d = measure_seam_desc(w);
-    return world_seam(w, v, t, &d, out);
+    return world_seam(w, v, t, &d, false, out);
 }
 
 bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
@@ -147,7 +150,7 @@ bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *
     world_info_t wi = world_info(w);
     if (!wi.tiles || !wi.canopy) return false;
     eval_seam_desc_t d = {.switch_distance = wi.scene->grass.canopy_distance, .fade = WORLD_CANOPY_FADE};
-    return world_seam(w, v, t, &d, out);
+    return world_seam(w, v, t, &d, true, out);
 }
 
 bool measure_seam_floor(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out)
