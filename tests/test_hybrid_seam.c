@@ -16,7 +16,11 @@
  *    why the measure needs a reference.
  * 3. The measure follows a seam: the hybrid frame with its far side (the
  *    billboards beyond the band) 10 % darker in linear light moves Delta L*
- *    down by more than 1. */
+ *    down by more than 1.
+ * 4. Without billboards (grass.billboards none) the canopy seam compares the
+ *    blades ending in the canopy with the canopy from the camera: both
+ *    windows are counted, the far windows (canopy in both) agree within a
+ *    Delta E of 1, and the near ones (blades against canopy) differ. */
 #include "measure/measure.h"
 #include "test.h"
 #include "test_gl.h"
@@ -29,15 +33,16 @@
 
 static void switch_at_10(scene_desc_t *s, void *user)
 {
-    (void)user;
     s->grass.switch_distance = 10.0f;
+    if (user) s->grass.billboards = SCENE_HYBRID_BILLBOARDS_NONE;
 }
 
-static world_t *make_world(void)
+static world_t *make_world(bool no_billboards)
 {
     world_t *w;
     CHECK(world_load(&(world_options_t){.scene = "tests/data/scenes/metric.json"}, &w) == 0);
-    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = switch_at_10}));
+    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = switch_at_10,
+                                          .user = no_billboards ? w : NULL}));
     CHECK(world_make_gpu(w));
     for (int f = 0; f < 4; f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     return w;
@@ -49,7 +54,7 @@ int main(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    world_t *w = make_world();
+    world_t *w = make_world(false);
     const scene_desc_t *s = world_info(w).scene;
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
     cam_t cam;
@@ -111,6 +116,24 @@ int main(void)
     measure_seam_frame_free(&hybrid);
     measure_seam_frame_free(&ref);
     measure_seam_frame_free(&bg);
+    world_destroy(w);
+
+    /* 4. No billboards: the blades end in the canopy at the switch. */
+    w = make_world(true);
+    eval_seam_t c;
+    CHECK(world_info(w).billboards == NULL && world_info(w).canopy);
+    CHECK(measure_canopy_seam(w, &v, &t, &c));
+    double far_de = 0.0, near_de = 0.0;
+    for (int k = 0; k < 3; k++) {
+        far_de += (c.lab[0][1][k] - c.lab[1][1][k]) * (c.lab[0][1][k] - c.lab[1][1][k]);
+        near_de += (c.lab[0][0][k] - c.lab[1][0][k]) * (c.lab[0][0][k] - c.lab[1][0][k]);
+    }
+    printf("blades to canopy: score %.3f, Delta E %.3f, coverage %.4f; frame vs canopy reference Delta E near %.3f, "
+           "far %.3f; pixels %ld | %ld\n",
+           c.score, c.delta_e, c.coverage, sqrt(near_de), sqrt(far_de), c.pixels[0][0], c.pixels[0][1]);
+    CHECK(c.pixels[0][0] > 100 && c.pixels[0][1] > 100);
+    CHECK_MSG(sqrt(far_de) < 1.0, "beyond the band both are canopy: Delta E %.3f", sqrt(far_de));
+    CHECK_MSG(sqrt(near_de) > sqrt(far_de), "the near windows (blades, canopy) should differ more than the far");
     gfx_target_destroy(&t);
     world_destroy(w);
     CHECK(test_gl_shutdown() == 0);

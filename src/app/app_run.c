@@ -267,6 +267,21 @@ static int summary_seam(app_t *app, char *buf, size_t size)
     if (wi.mode != SCENE_MODE_HYBRID || app->frames == 0) return 0;
     float sd = wi.scene->grass.switch_distance;
     eval_seam_t e;
+    if (!wi.billboards && !app->last_hud && wi.canopy) {
+        if (!measure_canopy_seam(w, &app->last_view, &app->target, &e))
+            return snprintf(buf, size, "canopy seam at %.1f m: not measured (a side of the band shows no grass or "
+                            "too few pixels)\n", sd);
+        /* The canopy blends its cover into its colour: every canopy pixel
+         * differs from the bare ground and counts as grass, the blades' gaps
+         * do not, so the coverage term compares unlike things; the colour
+         * term is the seam. */
+        double colour = e.delta_e / eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd}).colour_scale;
+        return snprintf(buf, size,
+                        "canopy seam at %.1f m (blades to the ground canopy, against the canopy from the camera; "
+                        "band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
+                        "L* %+.3f; coverage step %.4f (score with it %.3f: the canopy counts every pixel as grass)\n",
+                        sd, WORLD_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
+    }
     if (app->last_hud)
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",
                         sd);
@@ -303,7 +318,8 @@ static int summary_seam(app_t *app, char *buf, size_t size)
         else
             n += snprintf(buf + n, size - (size_t)n,
                           "canopy seam at %.1f m (billboards to the ground canopy, against billboards to the "
-                          "horizon; band +-%.0f m): score %.3f, Delta E %.3f, Delta L* %+.3f, coverage %.4f\n",
+                          "horizon; band +-%.0f m, windows by the terrain's distance): score %.3f, Delta E %.3f, "
+                          "Delta L* %+.3f, coverage %.4f\n",
                           cd, WORLD_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
     }
     return n < (int)size ? n : (int)size - 1;

@@ -42,9 +42,12 @@ eval_seam_desc_t measure_seam_desc(world_t *w);
  * not in hybrid mode or a window of the band shows no grass or fewer than
  * 100 counted pixels (in either frame). */
 bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
-/* The same at the canopy's band (grass.canopy_distance +- WORLD_CANOPY_FADE):
- * billboards to the ground canopy, against billboards to the horizon.
- * False as measure_seam, and without a canopy. */
+/* The same at the canopy's band, the pixels of both images in the band's
+ * windows by the terrain's distance: with billboards (grass.canopy_distance
+ * +- WORLD_CANOPY_FADE) billboards to the ground canopy against billboards
+ * to the horizon; without (grass.billboards none; the switch band) the
+ * blades to the canopy against the canopy from the camera
+ * (world_draw_canopy). False as measure_seam, and without a canopy. */
 bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The seam's noise floor for this view: the billboards built again with
  * MEASURE_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn

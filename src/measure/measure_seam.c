@@ -144,11 +144,33 @@ bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval
     return world_seam(w, v, t, &d, false, out);
 }
 
+/* Where the blades end in the canopy (the hybrid without billboards): the
+ * last frame against the canopy drawn from the camera, at the switch band. */
+static bool blades_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+{
+    world_info_t wi = world_info(w);
+    eval_seam_desc_t d = measure_seam_desc(w);
+    measure_seam_frame_t frame = {0}, ref = {0}, bg = {0};
+    bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame);
+    world_draw_canopy(w, v, t);
+    ok = ok && measure_seam_frame_read(w, v, t, &ref) && measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
+    if (ok) {
+        ok = seam_at(&frame, &ref, &bg, &d, true, out);
+        for (int i = 0; i < 2; i++)
+            for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= MEASURE_SEAM_MIN_PIXELS;
+    }
+    measure_seam_frame_free(&frame);
+    measure_seam_frame_free(&ref);
+    measure_seam_frame_free(&bg);
+    return ok;
+}
+
 bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
     world_info_t wi = world_info(w);
     if (!wi.tiles || !wi.canopy) return false;
+    if (!wi.billboards) return blades_canopy_seam(w, v, t, out);
     eval_seam_desc_t d = {.switch_distance = wi.scene->grass.canopy_distance, .fade = WORLD_CANOPY_FADE};
     return world_seam(w, v, t, &d, true, out);
 }

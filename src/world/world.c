@@ -986,6 +986,7 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
     f.far_hi = !ring ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
     ground_set_canopy_fade(w->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f);
     set_ground_lod(w, &f, ring, world_pass_has(passes, n, WORLD_PASS_BLADES) && !w->reference);
+    if (w->canopy_all) ground_set_canopy_fade(w->ground, 0.0f, 1e-3f);
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");

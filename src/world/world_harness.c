@@ -77,6 +77,13 @@ void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, sce
     w->have_tiles = tiles;
 }
 
+void world_draw_canopy(world_t *w, const world_view_t *v, const gfx_target_t *t)
+{
+    w->canopy_all = true;
+    world_draw_as(w, v, t, w->mode, false);
+    w->canopy_all = false;
+}
+
 bool world_setup(world_t *w, const world_setup_t *setup)
 {
     scene_desc_t *s = &w->scene;

@@ -55,6 +55,10 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
  * either path (a frame of world_frame on the compute path has the opaque
  * scene's alone). */
 void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass);
+/* As world_draw_as with no grass, the ground shaded as the canopy from the
+ * camera on (no canopy table: the plain ground): the reference of the seam
+ * where the blades end in the canopy. */
+void world_draw_canopy(world_t *w, const world_view_t *v, const gfx_target_t *t);
 /* The camera the tiles stream and activate around until the next draw
  * sets it (a step without drawing). */
 void world_set_camera(world_t *w, const float camera[3]);

@@ -68,6 +68,7 @@ struct world_t {
      * when it measured faster); the visibility buffer follows the target's
      * size. Wireframe and debug overlays always use the hardware path. */
     bool raster_compute;
+    bool canopy_all;  /* world_draw_canopy: the ground canopy from the camera on */
     bool grass_depth; /* the compute path's composite writes the grass's depth
                          too (raster_end; world_draw_as): else colour alone
                          (raster_end_color), the target's depth keeping the
