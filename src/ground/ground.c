@@ -157,7 +157,7 @@ void ground_set_lod(ground_t *t, const blade_lod_t *lod, float width, float foca
 {
     t->lod_on = lod && !lod->no_ground;
     if (!t->lod_on) return;
-    t->lod = blade_lod_defaults(lod);
+    t->lod = *lod; /* resolved by ground_lod_uniforms */
     t->lod_width = width;
     t->lod_focal = focal_px;
     t->lod_cull = cull;

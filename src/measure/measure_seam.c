@@ -115,6 +115,20 @@ static bool seam_of(world_t *w, measure_seam_frame_t *frame, measure_seam_frame_
     return seam_at(frame, ref, bg, &d, false, out);
 }
 
+/* seam_at of three frames read (drawn: all three were), false unless each
+ * window counts MEASURE_SEAM_MIN_PIXELS in both; the frames are freed. */
+static bool seam_counted(measure_seam_frame_t *frame, measure_seam_frame_t *ref, measure_seam_frame_t *bg, bool drawn,
+                         const eval_seam_desc_t *d, bool ground_windows, eval_seam_t *out)
+{
+    bool ok = drawn && seam_at(frame, ref, bg, d, ground_windows, out);
+    for (int i = 0; i < 2; i++)
+        for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= MEASURE_SEAM_MIN_PIXELS;
+    measure_seam_frame_free(frame);
+    measure_seam_frame_free(ref);
+    measure_seam_frame_free(bg);
+    return ok;
+}
+
 /* The last frame against it drawn with billboards only, at band d. */
 static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, const eval_seam_desc_t *d,
                        bool ground_windows, eval_seam_t *out)
@@ -127,15 +141,7 @@ static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t,
     bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame) &&
               measure_seam_frame_draw(w, v, t, SCENE_MODE_BILLBOARD, true, &ref) &&
               measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
-    if (ok) {
-        ok = seam_at(&frame, &ref, &bg, d, ground_windows, out);
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= MEASURE_SEAM_MIN_PIXELS;
-    }
-    measure_seam_frame_free(&frame);
-    measure_seam_frame_free(&ref);
-    measure_seam_frame_free(&bg);
-    return ok;
+    return seam_counted(&frame, &ref, &bg, ok, d, ground_windows, out);
 }
 
 bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
@@ -154,15 +160,7 @@ static bool blades_canopy_seam(world_t *w, const world_view_t *v, const gfx_targ
     bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame);
     world_draw_canopy(w, v, t);
     ok = ok && measure_seam_frame_read(w, v, t, &ref) && measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
-    if (ok) {
-        ok = seam_at(&frame, &ref, &bg, &d, true, out);
-        for (int i = 0; i < 2; i++)
-            for (int j = 0; j < 2; j++) ok = ok && out->pixels[i][j] >= MEASURE_SEAM_MIN_PIXELS;
-    }
-    measure_seam_frame_free(&frame);
-    measure_seam_frame_free(&ref);
-    measure_seam_frame_free(&bg);
-    return ok;
+    return seam_counted(&frame, &ref, &bg, ok, &d, true, out);
 }
 
 bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)

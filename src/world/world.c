@@ -839,21 +839,37 @@ typedef struct frame_draw_t {
     bool tiles;             /* the frame draws tiles (and the canopy beyond) */
     float fade_lo, fade_hi; /* the blades' fade band (hybrid) */
     float far_lo, far_hi;   /* the canopy's fade band */
+    /* The frame's thinning (frame_lod), shared by the blades, the tiles and
+     * the ground under them: grass.lod, the focal length of the target,
+     * and the distance where the blades end. */
+    blade_lod_t lod;
+    float focal, cull;
     bool raster_ok;
 } frame_draw_t;
+
+/* Where the switch band's dithered fade ends the blades (the tiles, the
+ * hybrid's whole field) they end at its far edge with no end fade of
+ * their own; blade mode's field ends at grass.blade_distance (default:
+ * the field's edge or the far plane). */
+static void frame_lod(const world_t *w, frame_draw_t *f)
+{
+    const world_view_t *v = f->v;
+    bool switch_ends = f->tiles || w->mode == SCENE_MODE_HYBRID;
+    f->lod = w->scene.grass.lod;
+    f->lod.no_fade = f->lod.no_fade || switch_ends;
+    f->focal = blade_lod_focal(v->frame.viewproj, f->target->h);
+    f->cull = switch_ends ? f->fade_hi
+                          : scene_blade_distance(&w->scene.grass, v->frame.camera, v->far, w->terrain_mesh.aabb_min,
+                                                 w->terrain_mesh.aabb_max);
+}
 
 static void draw_tiles(world_t *w, frame_draw_t *f)
 {
     const world_view_t *v = f->v;
-    float focal = blade_lod_focal(v->frame.viewproj, f->target->h);
-    blade_draw_desc_t dd = {.view = v->frame, .focal_px = focal, .fade_start = f->fade_lo, .fade_end = f->fade_hi,
+    blade_draw_desc_t dd = {.view = v->frame, .focal_px = f->focal, .fade_start = f->fade_lo, .fade_end = f->fade_hi,
                             .gi = w->gi_bind};
     blade_tiles_set_overlay(w->tiles, v->overlay);
-    /* The scene's thinning; the switch's dithered fade ends the tiles (no
-     * end fade), as set_ground_lod has it for the ground under them. */
-    blade_lod_t lod = w->scene.grass.lod;
-    lod.no_fade = true;
-    blade_tiles_set_lod(w->tiles, &lod, focal);
+    blade_tiles_set_lod(w->tiles, &f->lod, f->focal);
     /* Occlusion culling reads the opaque depth, as blade mode's below. */
     if (f->raster) {
         f->raster_ok = blade_tiles_raster(w->tiles, f->raster, &dd, f->raster->opaque_depth.id) && f->raster_ok;
@@ -870,20 +886,14 @@ static void draw_blades(world_t *w, frame_draw_t *f)
     /* Occlusion culling reads the resolved depth of the opaque pass (the
      * compute path: the farthest opaque sample, from raster_begin). */
     if (!f->raster) gfx_target_resolve_depth(target);
-    /* Blade mode draws as far as grass.blade_distance (default: the
-     * field's edge or the far plane), thinned by the scene's grass.lod
-     * (docs/BLADES.md); in hybrid mode to the switch band, whose dithered
-     * fade ends the blades (no end fade, as set_ground_lod). */
+    /* Thinned by the scene's grass.lod to the frame's cull distance
+     * (frame_lod, docs/BLADES.md). */
     bool hybrid = w->mode == SCENE_MODE_HYBRID;
     blade_cull_desc_t cd = {.view = v->frame,
-                            .max_distance = hybrid ? f->fade_hi
-                                                   : scene_blade_distance(&w->scene.grass, v->frame.camera, v->far,
-                                                                          w->terrain_mesh.aabb_min,
-                                                                          w->terrain_mesh.aabb_max),
+                            .max_distance = f->cull,
                             .disable = w->reference ? 0xffu : w->tuning.cull_disable,
-                            .lod = w->scene.grass.lod,
-                            .focal_px = blade_lod_focal(v->frame.viewproj, target->h)};
-    if (hybrid) cd.lod.no_fade = true;
+                            .lod = f->lod,
+                            .focal_px = f->focal};
     GLuint depth = f->raster ? f->raster->opaque_depth.id : target->resolve_depth.id;
     blade_gpu_cull(w->blades, &cd, w->reference ? 0 : depth);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
@@ -950,14 +960,7 @@ static void set_ground_lod(world_t *w, const frame_draw_t *f, bool ring, bool fi
     }
     blade_population_t pop = blade_population_defaults(&w->scene.grass.population);
     float width = 0.5f * (pop.width[0] + pop.width[1]);
-    float focal = blade_lod_focal(f->v->frame.viewproj, f->target->h);
-    float cull = f->tiles || w->mode == SCENE_MODE_HYBRID
-                     ? f->fade_hi
-                     : scene_blade_distance(&w->scene.grass, f->v->frame.camera, f->v->far, w->terrain_mesh.aabb_min,
-                                            w->terrain_mesh.aabb_max);
-    blade_lod_t lod = w->scene.grass.lod;
-    if (f->tiles || w->mode == SCENE_MODE_HYBRID) lod.no_fade = true; /* the switch's dithered fade ends them */
-    ground_set_lod(w->ground, &lod, width, focal, cull, ring ? f->fade_lo : INFINITY);
+    ground_set_lod(w->ground, &f->lod, width, f->focal, f->cull, ring ? f->fade_lo : INFINITY);
 }
 
 /* The passes of world_pass_list, in order. */
@@ -985,6 +988,7 @@ void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, b
     f.far_lo = !ring ? f.fade_lo : w->scene.grass.canopy_distance - WORLD_CANOPY_FADE;
     f.far_hi = !ring ? f.fade_hi : w->scene.grass.canopy_distance + WORLD_CANOPY_FADE;
     ground_set_canopy_fade(w->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f);
+    frame_lod(w, &f);
     set_ground_lod(w, &f, ring, world_pass_has(passes, n, WORLD_PASS_BLADES) && !w->reference);
     if (w->canopy_all) ground_set_canopy_fade(w->ground, 0.0f, 1e-3f);
     for (int i = 0; i < n; i++) run_pass(w, &f, passes[i].kind);
