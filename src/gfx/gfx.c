@@ -21,12 +21,31 @@ static struct {
     int max_samples; /* GL_MAX_SAMPLES, read once (0: not yet) */
 } g;
 
-bool gfx_init(void)
+/* A desc field's value: the field, else the environment variable when
+ * set and not empty, else NULL. */
+static const char *desc_or_env(const char *field, const char *var)
+{
+    const char *env = getenv(var);
+    return field && *field ? field : env && *env ? env : NULL;
+}
+
+gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc)
+{
+    gfx_desc_t d = desc ? *desc : (gfx_desc_t){0};
+    d.shader_dir = desc_or_env(d.shader_dir, "MEADOW_SHADER_DIR");
+    return d;
+}
+
+bool gfx_init_desc(const gfx_desc_t *desc)
 {
     memset(&g, 0, sizeof g);
     gfx_uniforms_forget(0);
+    gfx_desc_t d = gfx_desc_defaults(desc);
+    gfx_shader_setup(&d);
     return true;
 }
+
+bool gfx_init(void) { return gfx_init_desc(NULL); }
 
 void gfx_track(GLenum kind, GLuint id, const char *label)
 {

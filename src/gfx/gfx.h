@@ -1,7 +1,8 @@
 /* gfx: the only layer that creates and destroys GL objects. Every object
  * gets a debug label and is tracked, so shutdown can release everything and
- * tests can count what is still alive. Also: shader programs from files with
- * #include and file:line errors, FBOs with MSAA resolve, per-pass GPU timer
+ * tests can count what is still alive. Also: shader programs from the
+ * sources built into the library (or a folder) with #include and file:line
+ * errors, FBOs with MSAA resolve, per-pass GPU timer
  * queries read back without stalling, fenced readback rings, screenshots and
  * a text HUD. */
 #ifndef MEADOW_GFX_H
@@ -15,6 +16,18 @@
 #include "core/core.h"
 
 /* ---- lifetime ------------------------------------------------------------ */
+/* What gfx_init_desc takes; a zero field takes its default. The strings
+ * are copied. */
+typedef struct gfx_desc_t {
+    const char *shader_dir; /* read shader files from this folder (paths as under shaders/) instead
+                               of the table built into the library; default: $MEADOW_SHADER_DIR
+                               when set and not empty, else the built-in table */
+} gfx_desc_t;
+/* The desc with its defaults filled in (the environment read). */
+gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc);
+/* Starts gfx in the current GL context. desc may be NULL (all defaults). */
+bool gfx_init_desc(const gfx_desc_t *desc);
+/* gfx_init_desc(NULL). */
 bool gfx_init(void);
 /* Releases every object still alive (logging each label in debug builds when
  * `report_leaks`), then the gfx-internal objects. */
@@ -164,9 +177,12 @@ gfx_layered_target_t gfx_layered_target_make(gfx_texture_t color, const char *la
 void gfx_layered_target_destroy(gfx_layered_target_t *t);
 
 /* ---- programs ------------------------------------------------------------- */
-/* Paths are relative to shaders/ (resolved with core_fs_resolve). Sources may
- * `#include "common/x.glsl"` (relative to shaders/). Compile and link errors
- * are logged as "shaders/<file>:<line>: <message>" and give id 0. */
+/* Paths are relative to shaders/. The sources come from the table every
+ * file under shaders/ was built into (src/gfx/embed_shaders.cmake), or
+ * from gfx_desc_t.shader_dir when set: no file is read from the working
+ * directory. Sources may `#include "common/x.glsl"` (relative to
+ * shaders/). Compile and link errors are logged as
+ * "shaders/<file>:<line>: <message>" and give id 0. */
 typedef struct gfx_program_desc_t {
     const char *vs, *tcs, *tes, *gs, *fs, *cs;
     const char *defines;            /* inserted after #version, e.g. "#define N 4\n" */
@@ -215,7 +231,9 @@ gfx_program_stats_t gfx_program_stats(void);
 /* glGetUniformLocation, cached per (program, name) after the first ask
  * (names of up to 47 characters; -1 for a name the program lacks). */
 GLint gfx_uniform(gfx_program_t p, const char *name);
-/* The preprocessed source of a file (tests): #include expanded with #line. */
+/* The preprocessed source of a file (tests): #include expanded with #line.
+ * A file that is neither in the table nor in the shader folder gives NULL
+ * and err "shaders/<file>: cannot read: ...". */
 char *gfx_shader_preprocess(const char *rel_path, const char *defines, char *err, size_t err_size);
 
 /* ---- vertex arrays, queries ---------------------------------------------- */

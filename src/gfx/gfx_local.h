@@ -13,6 +13,18 @@ void gfx_delete_object(GLenum kind, GLuint id);
 void gfx_uniforms_forget(GLuint prog);
 /* Locations gfx_uniform holds for program `prog` (tests). */
 int gfx_uniforms_cached(GLuint prog);
+/* The shader table built into the library (gfx_shaders_embedded.c,
+ * written at build time by embed_shaders.cmake): every file under
+ * shaders/, by its path relative to shaders/, sorted by path. */
+typedef struct gfx_shader_file_t {
+    const char *path;
+    size_t size;
+    const char *text;
+} gfx_shader_file_t;
+extern const gfx_shader_file_t gfx_shader_files[];
+extern const int gfx_shader_file_count;
+/* gfx_shader: takes a resolved desc's shader folder. */
+void gfx_shader_setup(const gfx_desc_t *desc);
 void gfx_timer_shutdown(void);
 /* gfx_count: the timer pass queries, the frame count, shutdown. */
 void gfx_count_pass_begin(const char *pass);

@@ -1,7 +1,10 @@
-/* gfx_shader: GLSL programs from files under shaders/. Sources may
- * `#include "path"` (relative to shaders/); the preprocessor emits
- * `#line <line> <file-index>` so compiler messages (Mesa "0:12(3)" and NVIDIA
- * "0(12)" forms) are rewritten to "shaders/<file>:<line>: ...".
+/* gfx_shader: GLSL programs from the shader sources built into the
+ * library (gfx_shader_files, generated from shaders/ at build time by
+ * embed_shaders.cmake) or from a folder named at gfx_init
+ * (MEADOW_SHADER_DIR). Sources may `#include "path"` (relative to
+ * shaders/); the preprocessor emits `#line <line> <file-index>` so compiler
+ * messages (Mesa "0:12(3)" and NVIDIA "0(12)" forms) are rewritten to
+ * "shaders/<file>:<line>: ...".
  * gfx_programs_make issues every program's compiles and link before it
  * waits for any, so a driver with GL_KHR_parallel_shader_compile builds
  * them side by side. */
@@ -12,6 +15,36 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+
+/* gfx_shader_setup's settings. */
+static struct {
+    char dir[CORE_PATH_MAX]; /* the shader folder; "" = the built-in table */
+} sh;
+
+/* The text of shaders/<rel>: from the shader folder, else the built-in
+ * table. NULL with a reason in why. */
+static char *source_read(const char *rel, char *why, size_t why_size)
+{
+    if (sh.dir[0]) {
+        char path[CORE_PATH_MAX + 256];
+        snprintf(path, sizeof path, "%s/%s", sh.dir, rel);
+        return core_fs_read(path, NULL, why, why_size);
+    }
+    for (int i = 0; i < gfx_shader_file_count; i++) {
+        const gfx_shader_file_t *f = &gfx_shader_files[i];
+        if (strcmp(f->path, rel) != 0) continue;
+        char *text = malloc(f->size + 1);
+        if (!text) {
+            snprintf(why, why_size, "out of memory");
+            return NULL;
+        }
+        memcpy(text, f->text, f->size + 1);
+        return text;
+    }
+    snprintf(why, why_size, "not among the %d shaders built into the library (MEADOW_SHADER_DIR names a folder "
+             "to read instead)", gfx_shader_file_count);
+    return NULL;
+}
 
 #define MAX_FILES 32
 #define MAX_DEPTH 8
@@ -35,10 +68,8 @@ static bool pp_file(pp_t *pp, core_buf_t *out, const char *rel, const char *defi
     }
     int idx = pp->nfiles++;
     snprintf(pp->files[idx], sizeof pp->files[idx], "%s", rel);
-    char rel_path[256], path[1024], why[256];
-    snprintf(rel_path, sizeof rel_path, "shaders/%s", rel);
-    core_fs_resolve(rel_path, path, sizeof path);
-    char *src = core_fs_read(path, NULL, why, sizeof why);
+    char why[256];
+    char *src = source_read(rel, why, sizeof why);
     if (!src) {
         snprintf(pp->err, pp->err_size, "shaders/%s: cannot read: %s", rel, why);
         return false;
@@ -144,6 +175,12 @@ static void stats_add(const char *label, int programs, double ms)
 }
 
 gfx_program_stats_t gfx_program_stats(void) { return stats; }
+
+void gfx_shader_setup(const gfx_desc_t *desc)
+{
+    snprintf(sh.dir, sizeof sh.dir, "%s", desc->shader_dir ? desc->shader_dir : "");
+    if (sh.dir[0]) core_log_info("gfx: shaders read from %s instead of the built-in table", sh.dir);
+}
 
 /* A program being built: its stages' shaders and their files' #line
  * tables (for mapping the compiler's messages). */

@@ -221,7 +221,7 @@ ab() {
     s=${run%:*}; m=${run#*:}; scene=scenes/bench/$s.json; [ -f "$scene" ] || scene=scenes/$s.json
     for root in build $AB_ROOT; do
       tag=$(basename $root); o=/tmp/ab-$s-$m-$tag
-      env $([ $root != build ] && echo MEADOW_ROOT=$root) timeout -k 5 60 $M --headless --quiet --scene $scene --mode $m \
+      env $([ $root != build ] && echo MEADOW_ROOT=$root MEADOW_SHADER_DIR=$root/shaders) timeout -k 5 60 $M --headless --quiet --scene $scene --mode $m \
         --raster compute --frames 200 --screenshot-every 0 --out $o > $o.log 2>&1
       echo "-- $s $m $tag rc=$? $(grep -E '^gpu_frame_ms' $o/summary.txt)"
       sed -n '/gpu passes/,/gpu_frame_ms/p' $o/summary.txt | grep -E "^  (bb|tiles|blade|raster|terrain)"
@@ -235,7 +235,7 @@ seam() {
   for sc in scenes/meadow.json scenes/bench/meadow_large.json; do
     for r in hw compute; do
       for fr in ${SEAM_FRAMES:-3 60 120 240}; do
-        MEADOW_ROOT=$root $M --headless --quiet --scene $root/$sc --mode hybrid --raster $r --frames $fr \
+        MEADOW_ROOT=$root MEADOW_SHADER_DIR=$root/shaders $M --headless --quiet --scene $root/$sc --mode hybrid --raster $r --frames $fr \
           --screenshot-every 100000 --out /tmp/seam > /dev/null 2>&1
         echo "== seam $sc $r frame $fr: $(grep -A4 '^hybrid seam' /tmp/seam/summary.txt | sed 's/^hybrid seam.*score/score/' | tr '\n' ' ' | sed 's/  */ /g')"
       done
@@ -371,7 +371,7 @@ world() {
   for run in "${runs[@]}"; do
     s=${run%%:*}; rest=${run#*:}; mode=${rest%%:*}; root=${rest#*:}
     tag=$(basename $root); o=/tmp/world-$s-$mode-$tag
-    ( time env $([ $root != build ] && echo MEADOW_ROOT=$root) timeout -k 10 300 $M --headless \
+    ( time env $([ $root != build ] && echo MEADOW_ROOT=$root MEADOW_SHADER_DIR=$root/shaders) timeout -k 10 300 $M --headless \
       --scene scenes/bench/$s.json --mode $mode --raster compute --screenshot-every 0 --frame-log --out $o ) > $o.log 2>&1
     echo "== $s $mode $tag rc=$?"
     gzip -c $o/frames.csv > $OUT/frames-$s-$mode-$tag.csv.gz 2>/dev/null # per frame: where a spike sits
