@@ -33,6 +33,7 @@ gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc)
 {
     gfx_desc_t d = desc ? *desc : (gfx_desc_t){0};
     d.shader_dir = desc_or_env(d.shader_dir, "MEADOW_SHADER_DIR");
+    d.shader_cache = desc_or_env(d.shader_cache, "MEADOW_SHADER_CACHE");
     return d;
 }
 

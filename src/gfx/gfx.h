@@ -1,8 +1,8 @@
 /* gfx: the only layer that creates and destroys GL objects. Every object
  * gets a debug label and is tracked, so shutdown can release everything and
  * tests can count what is still alive. Also: shader programs from the
- * sources built into the library (or a folder) with #include and file:line
- * errors, FBOs with MSAA resolve, per-pass GPU timer
+ * sources built into the library (or a folder) with #include, file:line
+ * errors and a program-binary cache, FBOs with MSAA resolve, per-pass GPU timer
  * queries read back without stalling, fenced readback rings, screenshots and
  * a text HUD. */
 #ifndef MEADOW_GFX_H
@@ -19,13 +19,16 @@
 /* What gfx_init_desc takes; a zero field takes its default. The strings
  * are copied. */
 typedef struct gfx_desc_t {
-    const char *shader_dir; /* read shader files from this folder (paths as under shaders/) instead
-                               of the table built into the library; default: $MEADOW_SHADER_DIR
-                               when set and not empty, else the built-in table */
+    const char *shader_dir;   /* read shader files from this folder (paths as under shaders/) instead
+                                 of the table built into the library; default: $MEADOW_SHADER_DIR
+                                 when set and not empty, else the built-in table */
+    const char *shader_cache; /* program-binary cache folder (created when missing); default:
+                                 $MEADOW_SHADER_CACHE when set and not empty, else no cache */
 } gfx_desc_t;
 /* The desc with its defaults filled in (the environment read). */
 gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc);
-/* Starts gfx in the current GL context. desc may be NULL (all defaults). */
+/* Starts gfx in the current GL context. desc may be NULL (all defaults).
+ * A cache folder that cannot be written is one warning, then no cache. */
 bool gfx_init_desc(const gfx_desc_t *desc);
 /* gfx_init_desc(NULL). */
 bool gfx_init(void);
@@ -182,7 +185,14 @@ void gfx_layered_target_destroy(gfx_layered_target_t *t);
  * from gfx_desc_t.shader_dir when set: no file is read from the working
  * directory. Sources may `#include "common/x.glsl"` (relative to
  * shaders/). Compile and link errors are logged as
- * "shaders/<file>:<line>: <message>" and give id 0. */
+ * "shaders/<file>:<line>: <message>" and give id 0.
+ * With a cache folder (gfx_desc_t.shader_cache) and a driver that offers
+ * program binary formats, a linked program's binary is stored there under
+ * a hash of its preprocessed stage sources, defines, transform feedback
+ * outputs and the GL's vendor, renderer and version; a later make with
+ * the same key loads it with glProgramBinary instead of compiling. An
+ * entry that is truncated, corrupt or refused by the driver is compiled
+ * instead and rewritten. */
 typedef struct gfx_program_desc_t {
     const char *vs, *tcs, *tes, *gs, *fs, *cs;
     const char *defines;            /* inserted after #version, e.g. "#define N 4\n" */
@@ -215,13 +225,19 @@ int gfx_programs_prefetch_drop(void);
 void gfx_program_destroy(gfx_program_t *p);
 /* Programs made since the start (gfx_program_make and gfx_programs_make,
  * successful or not): their count, the wall clock spent compiling and
- * linking them (the status checks wait for the driver) and the slowest
- * five makes (a batch as "first label+N"). */
+ * linking them (the status checks wait for the driver), the binary
+ * cache's counts and the slowest five makes (a batch as "first
+ * label+N"). */
 #define GFX_PROGRAM_SLOWEST 5
 typedef struct gfx_program_stats_t {
     int count;
     double ms;
     int prefetched, taken; /* issued by gfx_programs_prefetch; of those, taken by a make */
+    bool cache_on;         /* a cache folder is in use (named, writable, the driver has binary formats) */
+    int cache_hits;        /* programs loaded from the cache */
+    int cache_misses;      /* programs compiled with the cache on (no entry, or one refused) */
+    int cache_refused;     /* of the misses: entries found but truncated, corrupt or refused by the driver */
+    int cache_stored;      /* entries written */
     struct {
         char label[64];
         double ms;

@@ -23,8 +23,21 @@ typedef struct gfx_shader_file_t {
 } gfx_shader_file_t;
 extern const gfx_shader_file_t gfx_shader_files[];
 extern const int gfx_shader_file_count;
-/* gfx_shader: takes a resolved desc's shader folder. */
+/* gfx_shader: takes a resolved desc's shader folder and cache folder (in
+ * the current context: reads its binary formats and driver strings). */
 void gfx_shader_setup(const gfx_desc_t *desc);
+/* The cache entry a make of d would read and write (tests). False when no
+ * cache folder was named or d's sources cannot be read. */
+bool gfx_shader_cache_path(const gfx_program_desc_t *d, char *out, size_t out_size);
+/* A cache entry's check (GL-free): the magic, the key, the length and the
+ * checksum of the binary. True with the driver's format and the binary's
+ * bytes inside data. */
+#define GFX_CACHE_HEADER 48
+bool gfx_shader_cache_entry_check(const void *data, size_t size, const uint64_t key[2], GLenum *format,
+                                  const void **binary, size_t *len);
+/* Writes an entry's header for a binary of len bytes into head
+ * (GFX_CACHE_HEADER bytes). */
+void gfx_shader_cache_entry_header(void *head, const uint64_t key[2], GLenum format, const void *binary, size_t len);
 void gfx_timer_shutdown(void);
 /* gfx_count: the timer pass queries, the frame count, shutdown. */
 void gfx_count_pass_begin(const char *pass);

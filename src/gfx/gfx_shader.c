@@ -7,7 +7,10 @@
  * "shaders/<file>:<line>: ...".
  * gfx_programs_make issues every program's compiles and link before it
  * waits for any, so a driver with GL_KHR_parallel_shader_compile builds
- * them side by side. */
+ * them side by side. With a cache folder (MEADOW_SHADER_CACHE), a program
+ * whose key (preprocessed sources, defines, transform feedback, driver
+ * strings) has an entry there is loaded with glProgramBinary instead; a
+ * refused entry is compiled and rewritten. */
 #include "gfx/gfx_local.h"
 
 #include <ctype.h>
@@ -16,9 +19,16 @@
 #include <string.h>
 #include <time.h>
 
+#define MAX_FORMATS 16
+
 /* gfx_shader_setup's settings. */
 static struct {
-    char dir[CORE_PATH_MAX]; /* the shader folder; "" = the built-in table */
+    char dir[CORE_PATH_MAX];   /* the shader folder; "" = the built-in table */
+    char cache[CORE_PATH_MAX]; /* the cache folder; "" = none named */
+    bool cache_on;             /* named, writable and the driver has binary formats */
+    GLint formats[MAX_FORMATS];
+    int nformats;
+    uint64_t driver[2]; /* hash of GL_VENDOR, GL_RENDERER, GL_VERSION */
 } sh;
 
 /* The text of shaders/<rel>: from the shader folder, else the built-in
@@ -176,21 +186,6 @@ static void stats_add(const char *label, int programs, double ms)
 
 gfx_program_stats_t gfx_program_stats(void) { return stats; }
 
-void gfx_shader_setup(const gfx_desc_t *desc)
-{
-    snprintf(sh.dir, sizeof sh.dir, "%s", desc->shader_dir ? desc->shader_dir : "");
-    if (sh.dir[0]) core_log_info("gfx: shaders read from %s instead of the built-in table", sh.dir);
-}
-
-/* A program being built: its stages' shaders and their files' #line
- * tables (for mapping the compiler's messages). */
-typedef struct pending_t {
-    GLuint prog;
-    GLuint shaders[6];
-    pp_t pp[6];
-    bool ok; /* every stage preprocessed */
-} pending_t;
-
 /* d's stage files in pipeline order (NULL: no such stage); returns the
  * first, NULL when there is none. */
 static const char *stage_paths(const gfx_program_desc_t *d, const char *paths[6])
@@ -212,39 +207,247 @@ static const char *desc_label(const gfx_program_desc_t *d)
     return d->label ? d->label : first ? first : "?";
 }
 
+/* A program being built: its stages' shaders and their files' #line
+ * tables (for mapping the compiler's messages). */
+typedef struct pending_t {
+    GLuint prog;
+    GLuint shaders[6];
+    pp_t pp[6];
+    bool ok;       /* every stage preprocessed */
+    bool keyed;    /* the cache is on: key holds the program's key */
+    bool cached;   /* loaded from the cache (no shaders) */
+    uint64_t key[2];
+} pending_t;
+
+/* What identifies d's program apart from its sources: every field but the
+ * label (the prefetch table's key). */
+static char *desc_key(const gfx_program_desc_t *d)
+{
+    core_buf_t b = {0};
+    const char *parts[7] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs, d->defines};
+    for (int i = 0; i < 7; i++) core_buf_printf(&b, "%s\x1f", parts[i] ? parts[i] : "");
+    for (int i = 0; d->tf_varyings && d->tf_varyings[i]; i++) core_buf_printf(&b, "%s\x1e", d->tf_varyings[i]);
+    core_buf_printf(&b, "%s", d->tf_separate ? "s" : "i");
+    return b.data;
+}
+
+/* ---- program-binary cache ------------------------------------------------
+ * An entry, <cache>/<key as 32 hex digits>.bin, is a GFX_CACHE_HEADER-byte
+ * header (magic, the driver's binary format, the key, the binary's length
+ * and FNV-1a checksum, in the machine's byte order) then the binary. The
+ * key is two FNV-1a hashes (from two bases) of the driver strings, the
+ * desc (stage paths, defines, transform feedback) and the preprocessed
+ * stage sources. Entries are written atomically and never evicted. */
+static const char cache_magic[8] = {'M', 'D', 'W', 'P', 'R', 'O', 'G', '1'};
+typedef struct cache_head_t {
+    char magic[8];
+    uint32_t format, unused;
+    uint64_t key[2];
+    uint64_t len, sum;
+} cache_head_t;
+_Static_assert(sizeof(cache_head_t) == GFX_CACHE_HEADER, "cache entry header size");
+
+void gfx_shader_cache_entry_header(void *head, const uint64_t key[2], GLenum format, const void *binary, size_t len)
+{
+    cache_head_t h = {.format = format, .key = {key[0], key[1]}, .len = len, .sum = core_hash_bytes(binary, len, 0)};
+    memcpy(h.magic, cache_magic, sizeof h.magic);
+    memcpy(head, &h, sizeof h);
+}
+
+bool gfx_shader_cache_entry_check(const void *data, size_t size, const uint64_t key[2], GLenum *format,
+                                  const void **binary, size_t *len)
+{
+    cache_head_t h;
+    if (size <= sizeof h) return false;
+    memcpy(&h, data, sizeof h);
+    const char *bin = (const char *)data + sizeof h;
+    if (memcmp(h.magic, cache_magic, sizeof h.magic) != 0 || h.key[0] != key[0] || h.key[1] != key[1] ||
+        h.len != size - sizeof h || h.sum != core_hash_bytes(bin, size - sizeof h, 0))
+        return false;
+    *format = h.format;
+    *binary = bin;
+    *len = size - sizeof h;
+    return true;
+}
+
+/* Adds a string (NULL differs from "") to both hashes of a key. */
+static void key_add(uint64_t key[2], const char *str)
+{
+    size_t n = str ? strlen(str) + 1 : 0;
+    key[0] = core_hash_bytes(str ? str : "", n, key[0]);
+    key[1] = core_hash_bytes(str ? str : "", n, key[1]);
+}
+
+void gfx_shader_setup(const gfx_desc_t *desc)
+{
+    memset(&sh, 0, sizeof sh);
+    stats.cache_on = false;
+    snprintf(sh.dir, sizeof sh.dir, "%s", desc->shader_dir ? desc->shader_dir : "");
+    if (sh.dir[0]) core_log_info("gfx: shaders read from %s instead of the built-in table", sh.dir);
+    if (!desc->shader_cache) return;
+    snprintf(sh.cache, sizeof sh.cache, "%s", desc->shader_cache);
+    sh.driver[1] = 0x9e3779b97f4a7c15ull;
+    key_add(sh.driver, "meadow program cache 1");
+    const GLenum strings[3] = {GL_VENDOR, GL_RENDERER, GL_VERSION};
+    for (int i = 0; i < 3; i++) key_add(sh.driver, (const char *)glGetString(strings[i]));
+    GLint n = 0;
+    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &n);
+    if (n <= 0) {
+        core_log_info("gfx: program cache %s unused: the driver offers no program binary formats", sh.cache);
+        return;
+    }
+    char err[512];
+    if (!core_fs_check_writable_dir(sh.cache, err, sizeof err)) {
+        core_log_warn("gfx: program cache: %s; running without it", err);
+        return;
+    }
+    GLint *all = calloc((size_t)n, sizeof *all);
+    if (!all) return;
+    glGetIntegerv(GL_PROGRAM_BINARY_FORMATS, all);
+    sh.nformats = n < MAX_FORMATS ? n : MAX_FORMATS;
+    memcpy(sh.formats, all, (size_t)sh.nformats * sizeof *all);
+    free(all);
+    sh.cache_on = stats.cache_on = true;
+}
+
+/* d's key from its preprocessed stage sources. */
+static void cache_key(const gfx_program_desc_t *d, char *const srcs[6], uint64_t key[2])
+{
+    key[0] = sh.driver[0];
+    key[1] = sh.driver[1];
+    char *dk = desc_key(d);
+    key_add(key, dk);
+    free(dk);
+    for (int i = 0; i < 6; i++) key_add(key, srcs[i]);
+}
+
+static void entry_path(const uint64_t key[2], char *out, size_t size)
+{
+    snprintf(out, size, "%s/%016llx%016llx.bin", sh.cache, (unsigned long long)key[0], (unsigned long long)key[1]);
+}
+
+static bool format_known(GLenum format)
+{
+    for (int i = 0; i < sh.nformats; i++)
+        if ((GLenum)sh.formats[i] == format) return true;
+    return false;
+}
+
+/* Loads pd's program from its entry (keying pd). False on no entry or a
+ * refused one: pd->prog is then a fresh program to compile into. */
+static bool cache_load(pending_t *pd, const gfx_program_desc_t *d, char *const srcs[6])
+{
+    cache_key(d, srcs, pd->key);
+    pd->keyed = true;
+    char path[CORE_PATH_MAX + 64], why[256];
+    entry_path(pd->key, path, sizeof path);
+    size_t size = 0;
+    char *data = core_fs_read(path, &size, why, sizeof why);
+    if (!data) {
+        stats.cache_misses++;
+        return false;
+    }
+    GLenum format = 0;
+    const void *bin = NULL;
+    size_t len = 0;
+    GLint linked = 0;
+    if (gfx_shader_cache_entry_check(data, size, pd->key, &format, &bin, &len) && format_known(format)) {
+        glProgramBinary(pd->prog, format, bin, (GLsizei)len);
+        glGetProgramiv(pd->prog, GL_LINK_STATUS, &linked);
+    }
+    free(data);
+    if (linked) {
+        stats.cache_hits++;
+        pd->cached = true;
+        return true;
+    }
+    stats.cache_misses++;
+    stats.cache_refused++;
+    core_log_info("gfx: program cache entry %s refused (truncated, corrupt or not this driver's); compiling %s",
+                  path, desc_label(d));
+    glDeleteProgram(pd->prog);
+    pd->prog = glCreateProgram();
+    return false;
+}
+
+/* Writes pd's linked program to its entry; a failed write turns the
+ * cache off (logged by core_fs_write_atomic). */
+static void cache_store(const pending_t *pd)
+{
+    GLint len = 0;
+    glGetProgramiv(pd->prog, GL_PROGRAM_BINARY_LENGTH, &len);
+    char *buf = len > 0 ? malloc(GFX_CACHE_HEADER + (size_t)len) : NULL;
+    if (!buf) return;
+    GLsizei got = 0;
+    GLenum format = 0;
+    glGetProgramBinary(pd->prog, len, &got, &format, buf + GFX_CACHE_HEADER);
+    char path[CORE_PATH_MAX + 64];
+    entry_path(pd->key, path, sizeof path);
+    gfx_shader_cache_entry_header(buf, pd->key, format, buf + GFX_CACHE_HEADER, (size_t)got);
+    if (got > 0 && core_fs_write_atomic(path, buf, GFX_CACHE_HEADER + (size_t)got)) stats.cache_stored++;
+    else if (got > 0) sh.cache_on = stats.cache_on = false;
+    free(buf);
+}
+
+/* Preprocesses d's stages into srcs (NULL where d has no stage); logs and
+ * returns false when one fails (the others are kept). */
+static bool stages_preprocess(const gfx_program_desc_t *d, pp_t pp[6], char *srcs[6])
+{
+    const char *paths[6];
+    stage_paths(d, paths);
+    bool ok = true;
+    for (int i = 0; i < 6; i++) {
+        srcs[i] = NULL;
+        if (!paths[i]) continue;
+        char err[512];
+        srcs[i] = preprocess(&pp[i], paths[i], d->defines, err, sizeof err);
+        if (!srcs[i]) core_log_error("%s", err);
+        ok = ok && srcs[i];
+    }
+    return ok;
+}
+
+bool gfx_shader_cache_path(const gfx_program_desc_t *d, char *out, size_t out_size)
+{
+    if (!sh.cache[0]) return false;
+    pp_t *pp = calloc(6, sizeof *pp);
+    char *srcs[6] = {0};
+    bool ok = pp && stages_preprocess(d, pp, srcs);
+    uint64_t key[2];
+    if (ok) cache_key(d, srcs, key);
+    if (ok) entry_path(key, out, out_size);
+    for (int i = 0; i < 6; i++) free(srcs[i]);
+    free(pp);
+    return ok;
+}
+
 /* Issues stage compiles and the link without waiting for either (a driver
- * with GL_KHR_parallel_shader_compile builds on its own threads). */
+ * with GL_KHR_parallel_shader_compile builds on its own threads), or loads
+ * the program from the cache. */
 static void program_issue(pending_t *pd, const gfx_program_desc_t *d)
 {
     static const GLenum stage[6] = {GL_VERTEX_SHADER,   GL_TESS_CONTROL_SHADER, GL_TESS_EVALUATION_SHADER,
                                     GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER,     GL_COMPUTE_SHADER};
-    const char *paths[6];
-    stage_paths(d, paths);
+    char *srcs[6];
     pd->prog = glCreateProgram();
-    pd->ok = true;
-    for (int i = 0; i < 6; i++) {
-        if (!paths[i]) continue;
-        char err[512];
-        char *src = preprocess(&pd->pp[i], paths[i], d->defines, err, sizeof err);
-        if (!src) {
-            core_log_error("%s", err);
-            pd->ok = false;
-            continue;
-        }
+    pd->ok = stages_preprocess(d, pd->pp, srcs);
+    bool loaded = pd->ok && sh.cache_on && cache_load(pd, d, srcs);
+    for (int i = 0; i < 6 && !loaded; i++) {
+        if (!srcs[i]) continue;
         pd->shaders[i] = glCreateShader(stage[i]);
-        const char *srcs[1] = {src};
-        glShaderSource(pd->shaders[i], 1, srcs, NULL);
+        glShaderSource(pd->shaders[i], 1, (const GLchar *const *)&srcs[i], NULL);
         glCompileShader(pd->shaders[i]);
-        free(src);
         glAttachShader(pd->prog, pd->shaders[i]);
     }
-    if (!pd->ok) return;
+    for (int i = 0; i < 6; i++) free(srcs[i]);
+    if (!pd->ok || loaded) return;
     if (d->tf_varyings) {
         int n = 0;
         while (d->tf_varyings[n]) n++;
         glTransformFeedbackVaryings(pd->prog, n, (const GLchar *const *)d->tf_varyings,
                                     d->tf_separate ? GL_SEPARATE_ATTRIBS : GL_INTERLEAVED_ATTRIBS);
     }
+    if (pd->keyed) glProgramParameteri(pd->prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
     glLinkProgram(pd->prog);
 }
 
@@ -293,6 +496,7 @@ static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
         glDeleteProgram(pd->prog);
         return (gfx_program_t){0};
     }
+    if (pd->keyed && !pd->cached && sh.cache_on) cache_store(pd);
     gfx_track(GL_PROGRAM, pd->prog, desc_label(d));
     return (gfx_program_t){pd->prog};
 }
@@ -314,16 +518,6 @@ static struct {
     char *key[PREFETCH_MAX];
     pending_t *pd[PREFETCH_MAX];
 } prefetched;
-
-static char *desc_key(const gfx_program_desc_t *d)
-{
-    core_buf_t b = {0};
-    const char *parts[7] = {d->vs, d->tcs, d->tes, d->gs, d->fs, d->cs, d->defines};
-    for (int i = 0; i < 7; i++) core_buf_printf(&b, "%s\x1f", parts[i] ? parts[i] : "");
-    for (int i = 0; d->tf_varyings && d->tf_varyings[i]; i++) core_buf_printf(&b, "%s\x1e", d->tf_varyings[i]);
-    core_buf_printf(&b, "%s", d->tf_separate ? "s" : "i");
-    return b.data;
-}
 
 void gfx_programs_prefetch(int n, const gfx_program_desc_t *descs)
 {
