@@ -5,6 +5,7 @@
  * texture search (Windows paths, textures/, embedded data-URI images),
  * quad/ngon triangulation, and clip lookup and listing. GL-free. */
 #include "character/character_import.h"
+#include "character/character_orient.h"
 #include "character/character_ref.h"
 #include "core/core.h"
 #include "test.h"
@@ -33,13 +34,6 @@ static bool load_humanoid(character_model_t *m)
     bool ok = character_load(m, path, err, sizeof err);
     CHECK_MSG(ok, "%s", err);
     return ok;
-}
-
-static void bind_extent(const character_model_t *m, float lo[3], float hi[3])
-{
-    for (int k = 0; k < 3; k++) lo[k] = FLT_MAX, hi[k] = -FLT_MAX;
-    for (int v = 0; v < m->vertex_count; v++)
-        for (int k = 0; k < 3; k++) lo[k] = fminf(lo[k], m->vertices[v].pos[k]), hi[k] = fmaxf(hi[k], m->vertices[v].pos[k]);
 }
 
 /* Skinned positions of clip 0 at time t (3 * vertex_count floats). */
@@ -74,7 +68,7 @@ static void test_identity(void)
     CHECK(do_import(&m, &(character_import_desc_t){0}, &o));
     CHECK(core_log_warn_count() == warns);
     CHECK(o.scale == 1.0f && o.up == 2 && o.forward == 3);
-    CHECK(!strcmp(o.scale_from, "file (metres)") && !strcmp(o.up_from, "default"));
+    CHECK(!strcmp(o.scale_from, "file (metres)") && !strcmp(o.up_from, "skeleton, geometry"));
     CHECK(o.height > 1.6f && o.height < 1.9f);
     float *after = skin_at(&m, 0.3f);
     CHECK(!memcmp(before, after, sizeof(float) * 3 * (size_t)m.vertex_count));
@@ -106,7 +100,7 @@ static void test_similarity(void)
     }
     CHECK_MSG(worst < 1e-4, "skinned after import vs C * before: %g m", worst);
     float lo[3], hi[3];
-    bind_extent(&m, lo, hi);
+    character_orient_box(&m, character_orient_pose_clip(&m), lo, hi);
     CHECK_NEAR(hi[1] - lo[1], 3.5, 1e-4);
     /* up -Z of the file: the model lay along -z; it stands on y = 0 now */
     CHECK(fabsf(lo[1]) < 0.01f * 3.5f);
@@ -122,7 +116,7 @@ static bool make_zup_cm(character_model_t *m)
     character_import_t o;
     float lo[3], hi[3];
     if (!do_import(m, &(character_import_desc_t){.height = 174.0f}, &o)) return false;
-    bind_extent(m, lo, hi);
+    character_orient_box(m, character_orient_pose_clip(m), lo, hi);
     /* the height along the source's up axis (-z) as it is: scale 1 */
     return do_import(m, &(character_import_desc_t){.height = hi[2] - lo[2], .up = -3, .forward = 2}, &o);
 }
@@ -136,15 +130,19 @@ static void test_metadata(void)
     int warns = core_log_warn_count();
     CHECK(do_import(&m, &(character_import_desc_t){0}, &o));
     CHECK(core_log_warn_count() == warns);
-    CHECK(!strcmp(o.scale_from, "metadata") && !strcmp(o.up_from, "metadata") && !strcmp(o.forward_from, "metadata"));
+    /* the skeleton (head over feet) agrees with the metadata and wins; the
+     * toes give the forward */
+    CHECK(!strcmp(o.scale_from, "metadata") && o.up == 3 && o.forward == -2);
     CHECK_NEAR(o.height, 1.74, 0.01);
     character_model_t ref;
     if (load_humanoid(&ref)) {
         float lo[3], hi[3], rlo[3], rhi[3];
-        bind_extent(&m, lo, hi);
-        bind_extent(&ref, rlo, rhi);
-        /* the same figure (a lift may have moved it along z) */
-        for (int k = 0; k < 3; k++) CHECK_NEAR(hi[k] - lo[k], rhi[k] - rlo[k], 2e-3);
+        character_orient_box(&m, character_orient_pose_clip(&m), lo, hi);
+        character_orient_box(&ref, character_orient_pose_clip(&ref), rlo, rhi);
+        /* the same figure up to the scale that fitted its drawn pose to
+         * 174 units (a lift may have moved it along z) */
+        float s = (hi[1] - lo[1]) / (rhi[1] - rlo[1]);
+        for (int k = 0; k < 3; k++) CHECK_NEAR(hi[k] - lo[k], s * (rhi[k] - rlo[k]), 2e-3);
         CHECK_NEAR(lo[1], rlo[1], 2e-3);
         character_model_free(&ref);
     }
@@ -191,9 +189,9 @@ static void test_heuristics(void)
     if (!make_zup_cm(&m)) return;
     snprintf(m.file.format, sizeof m.file.format, "3ds");
     CHECK(do_import(&m, &(character_import_desc_t){.height = 1.74f}, &o));
-    CHECK(o.up == 3 && o.forward == -2 && !strcmp(o.up_from, "format"));
+    CHECK(o.up == 3 && o.forward == -2 && !strcmp(o.up_from, "skeleton, geometry"));
     float lo[3], hi[3];
-    bind_extent(&m, lo, hi);
+    character_orient_box(&m, character_orient_pose_clip(&m), lo, hi);
     CHECK_NEAR(hi[1] - lo[1], 1.74, 1e-3);
     character_model_free(&m);
     /* inconsistent requests are errors, not guesses */

@@ -111,40 +111,17 @@ static void asset_texture(character_asset_t *a)
     core_image_free(&img);
 }
 
-/* With no forward axis from the scene, the file or its format, and no
- * rotation asked for, the walk decides (character_walk_facing): a model
- * whose stance feet slide along X or +Z is turned to face +Z. */
-static bool asset_face_walk(character_asset_t *a, char *err, size_t err_size)
-{
-    character_import_t *im = &a->import;
-    if (strcmp(im->forward_from, "default") != 0 || a->import_desc.yaw != 0.0f) return true;
-    int facing = character_walk_facing(&a->model, im->height);
-    if (facing == 0 || facing == 3) return true;
-    character_import_t turn;
-    if (!character_import(&a->model, a->path, &(character_import_desc_t){.height = im->height, .up = 2,
-                                                                         .forward = facing},
-                          &turn, err, err_size))
-        return false;
-    /* the file's axis that now faces +Z: row |facing| of the first import's rotation */
-    float r[16];
-    character_import_matrix(1.0f, im->up, im->forward, 0.0f, 0.0f, r);
-    int row = abs(facing) - 1;
-    for (int k = 0; k < 3; k++)
-        if (fabsf(r[4 * k + row]) > 0.5f) im->forward = (k + 1) * (r[4 * k + row] * (float)facing > 0.0f ? 1 : -1);
-    im->forward_from = "walk";
-    return true;
-}
-
 static bool asset_load(character_asset_t *a, const char *resolved, int index)
 {
     char err[512];
     snprintf(a->path, sizeof a->path, "%s", resolved);
     if (!character_load(&a->model, resolved, err, sizeof err)) return false; /* logged by the loader */
     if (!character_import(&a->model, resolved, &a->import_desc, &a->import, err, sizeof err) ||
-        !asset_face_walk(a, err, sizeof err)) {
+        !character_walk_face(&a->model, resolved, a->import_desc.yaw, &a->import, err, sizeof err)) {
         core_log_error("character %d: %s: %s", index, resolved, err);
         return false;
     }
+    character_import_report(resolved, &a->import);
     const character_model_t *m = &a->model;
     a->vertices = gfx_buffer_make(&(gfx_buffer_desc_t){.size = (size_t)m->vertex_count * sizeof(character_vertex_t),
                                                        .data = m->vertices, .label = "character.bind_vertices"});
@@ -569,11 +546,16 @@ int character_set_describe(const character_set_t *set, char *buf, size_t size)
         const character_instance_t *inst = &set->items[i];
         const character_asset_t *a = &set->assets[inst->asset];
         const character_import_t *im = &a->import;
+        float sc = inst->desc.scale;
         int w = snprintf(buf + n, size - n,
-                         "character %d: %s: height %.3f m, scale %.6g (units: %s; up %s: %s; forward %s: %s)\n", i,
-                         inst->desc.model, (double)(im->height * inst->desc.scale),
-                         (double)(im->scale * inst->desc.scale), im->scale_from, character_axis_name(im->up),
-                         im->up_from, character_axis_name(im->forward), im->forward_from);
+                         "character %d: %s: height %.3f m, scale %.6g (units: %s; up %s: %s; forward %s: %s); "
+                         "drawn box %.3f %.3f %.3f .. %.3f %.3f %.3f m; confidence %.2f%s\n",
+                         i, inst->desc.model, (double)(im->height * sc), (double)(im->scale * sc), im->scale_from,
+                         character_axis_name(im->up), im->up_from, character_axis_name(im->forward), im->forward_from,
+                         (double)(im->box_min[0] * sc), (double)(im->box_min[1] * sc), (double)(im->box_min[2] * sc),
+                         (double)(im->box_max[0] * sc), (double)(im->box_max[1] * sc), (double)(im->box_max[2] * sc),
+                         (double)character_import_confidence(im),
+                         character_import_confidence(im) < CHARACTER_IMPORT_LOW_CONFIDENCE ? " (low)" : "");
         if (w < 0) break;
         n += (size_t)w;
     }

@@ -6,6 +6,7 @@
  * C (old skinned position) for the converted vertex C p. */
 #include "character/character_import.h"
 
+#include "character/character_orient.h"
 #include "character/character_ref.h"
 #include "core/core.h"
 
@@ -124,15 +125,15 @@ static bool apply(character_model_t *m, const float c[16], float scale)
     return true;
 }
 
-/* Lowest and highest bind-pose vertex along an axis. */
-static void extent(const character_model_t *m, int axis, float *lo, float *hi)
+/* Lowest and highest drawn vertex along an axis. */
+static void extent(const character_model_t *m, const float *p, int axis, float *lo, float *hi)
 {
     float a[3];
     axis_vec(axis, a);
     *lo = FLT_MAX, *hi = -FLT_MAX;
     for (int v = 0; v < m->vertex_count; v++) {
-        const float *p = m->vertices[v].pos;
-        float d = a[0] * p[0] + a[1] * p[1] + a[2] * p[2];
+        const float *q = p + 3 * v;
+        float d = a[0] * q[0] + a[1] * q[1] + a[2] * q[2];
         *lo = fminf(*lo, d), *hi = fmaxf(*hi, d);
     }
 }
@@ -144,29 +145,78 @@ static bool format_is(const char *format, const char *const *list)
     return false;
 }
 
-/* up and forward (file axes) with where they came from. */
-static void choose_axes(const character_model_t *m, const character_import_desc_t *d, character_import_t *o)
+/* Confidence of each kind of evidence (summary.txt; below
+ * CHARACTER_IMPORT_LOW_CONFIDENCE the import warns). */
+float character_import_evidence(const char *from)
 {
-    static const char *const z_up[] = {"3ds", "ase", "blend", "mdl", "md2", "smd", NULL};
-    static const char *const face_x[] = {"mdl", "md2", "md3", "md5mesh", "smd", NULL};
+    static const struct {
+        const char *from;
+        float c;
+    } table[] = {{"scene", 1.0f},           {"skeleton, geometry", 0.95f}, {"metadata, geometry", 0.9f},
+                 {"walk", 0.9f},            {"skeleton", 0.8f},            {"geometry", 0.7f},
+                 {"metadata", 0.6f},        {"geometry (weak)", 0.5f},     {"format", 0.3f},
+                 {"default", 0.2f}};
+    for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
+        if (!strcmp(from, table[i].from)) return table[i].c;
+    return 0.0f;
+}
+
+/* A geometry margin this large decides the up axis (at twice it, with a
+ * high confidence). */
+#define GEOMETRY_MARGIN 1.5f
+
+/* up from the drawn pose P (file units) with where it came from. The
+ * per-format table (what assimp 5.2 leaves Z-up or turns Y-up) breaks a
+ * tie the geometry leaves: the sign along the axis the geometry found, or
+ * the axis when the geometry is weak. A flat axis is never up. */
+static void choose_up(const character_model_t *m, const character_import_desc_t *d, const character_pose_t *pose,
+                      const float *p, character_import_t *o)
+{
+    static const char *const z_up[] = {"3ds", "ase", "blend", "smd", "csm", NULL};
+    static const char *const y_up[] = {"mdl", "md2", "md3", "mdc", "iqm", NULL};
+    float cos_sk, margin, lo, hi, size = 0.0f;
+    int sk = character_orient_skeleton_up(m, pose, &cos_sk);
+    int geo = character_orient_geometry_up(m, p, &margin);
+    int meta = m->file.up;
+    int fmt = format_is(m->file.format, z_up) ? 3 : format_is(m->file.format, y_up) ? 2 : 0;
+    for (int a = 1; a <= 3; a++) extent(m, p, a, &lo, &hi), size = fmaxf(size, hi - lo);
+    if (d->up) o->up = d->up, o->up_from = "scene";
+    else if (sk) o->up = sk, o->up_from = geo == sk && margin >= GEOMETRY_MARGIN ? "skeleton, geometry" : "skeleton";
+    else if (meta) o->up = meta, o->up_from = geo == meta && margin >= GEOMETRY_MARGIN ? "metadata, geometry" : "metadata";
+    else if (margin >= 2.0f * GEOMETRY_MARGIN && fmt && abs(geo) == fmt) o->up = fmt, o->up_from = "geometry";
+    else if (margin >= 2.0f * GEOMETRY_MARGIN) o->up = geo, o->up_from = "geometry";
+    else if (fmt) o->up = fmt, o->up_from = "format";
+    else if (margin >= GEOMETRY_MARGIN) o->up = geo, o->up_from = "geometry (weak)";
+    else o->up = 2, o->up_from = "default";
+    extent(m, p, o->up, &lo, &hi);
+    if (!d->up && !(hi - lo > 1e-3f * size)) o->up = geo, o->up_from = "geometry (weak)";
+    o->up_confidence = character_import_evidence(o->up_from);
+}
+
+/* forward (file axis) perpendicular to up; the walk (character_walk_face)
+ * may still turn it. */
+static void choose_forward(const character_model_t *m, const character_import_desc_t *d,
+                           const character_pose_t *pose, character_import_t *o)
+{
+    static const char *const face_x[] = {"mdl", "md2", "md3", "md5mesh", "smd", "iqm", NULL};
+    static const char *const face_neg_z[] = {"b3d", "ms3d", NULL};
     static const char *const face_neg_y[] = {"3ds", "ase", "blend", NULL};
     const char *fmt = m->file.format;
-    if (d->up) o->up = d->up, o->up_from = "scene";
-    else if (m->file.up) o->up = m->file.up, o->up_from = "metadata";
-    else if (format_is(fmt, z_up)) o->up = 3, o->up_from = "format";
-    else o->up = 2, o->up_from = "default";
+    int sk = character_orient_skeleton_forward(m, pose, o->up);
     if (d->forward) o->forward = d->forward, o->forward_from = "scene";
-    else if (m->file.front) o->forward = m->file.front, o->forward_from = "metadata";
+    else if (sk) o->forward = sk, o->forward_from = "skeleton";
+    else if (m->file.front && abs(m->file.front) != abs(o->up)) o->forward = m->file.front, o->forward_from = "metadata";
     else if (format_is(fmt, face_x)) o->forward = 1, o->forward_from = "format";
-    else if (!strcmp(fmt, "b3d")) o->forward = -3, o->forward_from = "format";
+    else if (format_is(fmt, face_neg_z)) o->forward = -3, o->forward_from = "format";
     else if (format_is(fmt, face_neg_y)) o->forward = -2, o->forward_from = "format";
     else o->forward = 3, o->forward_from = "default";
     if (abs(o->forward) == abs(o->up) && !d->forward) {
-        /* a stated up with a conventional forward along it: the first
-         * axis perpendicular to up of +Z, -Y, +X */
+        /* a conventional forward along the up found: the first axis
+         * perpendicular to up of +Z, -Y, +X */
         o->forward = abs(o->up) != 3 ? 3 : -2;
         o->forward_from = "default";
     }
+    o->forward_confidence = character_import_evidence(o->forward_from);
 }
 
 static float choose_scale(const character_model_t *m, const char *path, const character_import_desc_t *d,
@@ -215,32 +265,68 @@ bool character_import(character_model_t *model, const char *path, const characte
                  character_axis_name(desc->up));
         return false;
     }
-    choose_axes(model, desc, &o);
+    o.pose_clip = character_orient_pose_clip(model);
+    character_pose_t pose;
+    float *p = malloc(sizeof(float) * 3 * (size_t)model->vertex_count);
+    if (!p || !character_pose_init(&pose, model)) {
+        free(p);
+        snprintf(err, err_size, "out of memory for the drawn pose");
+        return false;
+    }
+    character_orient_pose(model, o.pose_clip, &pose, p);
+    choose_up(model, desc, &pose, p, &o);
+    choose_forward(model, desc, &pose, &o);
+    character_pose_free(&pose);
+    bool ok = false;
+    float lo, hi, c[16];
     if (abs(o.up) == abs(o.forward)) {
         snprintf(err, err_size, "forward %s lies along the file's up axis %s; choose another forward",
                  character_axis_name(o.forward), character_axis_name(o.up));
-        return false;
+        goto done;
     }
-    float lo, hi;
-    extent(model, o.up, &lo, &hi);
+    extent(model, p, o.up, &lo, &hi);
     o.file_height = hi - lo;
     if (!(o.file_height > 0.0f) || !isfinite(o.file_height)) {
         snprintf(err, err_size, "the model has no height along its up axis %s", character_axis_name(o.up));
-        return false;
+        goto done;
     }
     o.scale = choose_scale(model, path, desc, &o);
     o.height = o.file_height * o.scale;
-    /* feet on the ground: the bind pose's lowest point goes to y = 0 unless
-     * it is already within 1% of the height */
-    float lift = fabsf(lo * o.scale) > 0.01f * o.height ? -lo * o.scale : 0.0f;
-    float c[16];
+    /* feet on the ground: the drawn pose's lowest point goes to y = 0
+     * unless it is there already (within 1% of the height and 1 cm) */
+    float lift = fabsf(lo * o.scale) > fminf(0.01f * o.height, 0.01f) ? -lo * o.scale : 0.0f;
     character_import_matrix(o.scale, o.up, o.forward, desc->yaw, lift, c);
     bool identity = true;
     for (int e = 0; e < 16; e++) identity &= c[e] == ((e % 5) == 0 ? 1.0f : 0.0f);
     if (!identity && !apply(model, c, o.scale)) {
         snprintf(err, err_size, "scale %g cannot be inverted", (double)o.scale);
-        return false;
+        goto done;
     }
+    for (int k = 0; k < 3; k++) o.box_min[k] = FLT_MAX, o.box_max[k] = -FLT_MAX;
+    for (int v = 0; v < model->vertex_count; v++) {
+        float q[3];
+        character_mat4_point(c, p + 3 * v, q);
+        for (int k = 0; k < 3; k++) o.box_min[k] = fminf(o.box_min[k], q[k]), o.box_max[k] = fmaxf(o.box_max[k], q[k]);
+    }
+    ok = true;
+done:
+    free(p);
+    if (!ok) return false;
     if (out) *out = o;
+    return true;
+}
+
+float character_import_confidence(const character_import_t *o)
+{
+    return fminf(o->up_confidence, o->forward_confidence);
+}
+
+bool character_import_report(const char *path, const character_import_t *o)
+{
+    if (character_import_confidence(o) >= CHARACTER_IMPORT_LOW_CONFIDENCE) return false;
+    core_log_warn("%s: up %s (%s) and forward %s (%s) are a guess (confidence %.2f); set characters[].up, "
+                  "characters[].forward or characters[].rotation to choose",
+                  path, character_axis_name(o->up), o->up_from, character_axis_name(o->forward), o->forward_from,
+                  (double)character_import_confidence(o));
     return true;
 }

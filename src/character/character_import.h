@@ -48,8 +48,16 @@ typedef struct character_import_t {
     float height;         /* bind-pose height after import (m) */
     float file_height;    /* bind-pose height in file units, along the up axis */
     int up, forward;      /* file axes used (codes above) */
-    const char *scale_from, *up_from, *forward_from; /* "scene", "metadata", "format", "default", ... */
+    const char *scale_from, *up_from, *forward_from; /* "scene", "skeleton", "geometry", "metadata",
+                                                        "walk", "format", "default", ... */
+    float up_confidence, forward_confidence; /* 0..1 per evidence (character_import_confidence) */
+    int pose_clip;        /* the clip whose first frame was measured (character_orient_pose_clip); -1: bind */
+    float box_min[3], box_max[3]; /* that drawn pose after the import (m, model space: +Y up, +Z forward) */
 } character_import_t;
+
+/* Below this, character_import_report warns and names the keys that
+ * override. */
+#define CHARACTER_IMPORT_LOW_CONFIDENCE 0.5f
 
 /* Axis code from "+x", "-y", "z" (= "+z"), ...; 0 for anything else. */
 int character_axis_parse(const char *s);
@@ -62,6 +70,16 @@ const char *character_axis_name(int code);
  * its up axis. */
 bool character_import(character_model_t *model, const char *path, const character_import_desc_t *desc,
                       character_import_t *out, char *err, size_t err_size);
+
+/* The confidence of one kind of evidence ("scene" 1, "skeleton, geometry"
+ * 0.95, "walk" 0.9, ..., "default" 0.2; 0 for an unknown name). */
+float character_import_evidence(const char *from);
+/* The smaller of the up and forward confidences. */
+float character_import_confidence(const character_import_t *import);
+/* One warning when the confidence is low, naming what was guessed and the
+ * scene keys (characters[].up, .forward, .rotation) that override it.
+ * Returns whether it warned. */
+bool character_import_report(const char *path, const character_import_t *import);
 
 /* The similarity transform of the last step as a column-major matrix: p' =
  * m p. Exposed for tests: build_matrix(scale, up, forward, yaw, lift). */

@@ -161,6 +161,7 @@ int character_clip_fixup(character_clip_t *clip, int bone_count, const char *con
         core_log_warn("%s: clip '%s' has no keys; it holds the bind pose", context, name);
         fixes++;
     }
+    clip->still = keys == 0 || (!(clip->duration > 0.0f) && !(fc.max_time > 0.0f));
     if (!(clip->duration > 0.0f) || !isfinite(clip->duration)) {
         float d = fc.max_time > 0.0f ? fc.max_time : 1.0f;
         core_log_warn("%s: clip '%s': duration %g is not positive; using %g s", context, name,
@@ -292,6 +293,7 @@ typedef struct load_ctx_t {
     int node_count;
     float (*global)[16];
     bool *has_offset;
+    bool hl1; /* a Half-Life 1 model (hl1_restore_parents) */
 } load_ctx_t;
 
 static int count_nodes(const struct aiNode *n)
@@ -461,6 +463,48 @@ static void load_material(character_model_t *m, const struct aiScene *scene, con
     load_texture(m, scene, tex.data, path);
 }
 
+/* ---- Half-Life 1 models ---------------------------------------------------------
+ * assimp 5.2's HL1 reader puts every bone directly under "<MDL_bones>" (the
+ * file's parent links are lost) while each local transform and offset
+ * matrix is relative to the real parent: posed as a flat list the model is
+ * a heap. The parents are read back from the file (studiohdr_t: numbones at
+ * byte 140, boneindex at 144; mstudiobone_t: 112 bytes, name[32] then the
+ * parent index), the bones being "<MDL_bones>"'s children in file order. */
+#define HL1_BONE_SIZE 112
+
+static int32_t read_i32(const unsigned char *p) { return (int32_t)((uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24); }
+
+/* Re-parents the HL1 bones and recomputes their bind globals; true when
+ * the file was an HL1 model whose links were restored. */
+static bool hl1_restore_parents(load_ctx_t *ctx, character_model_t *m)
+{
+    if (strcmp(m->bones[0].name, "<MDL_root>") != 0) return false;
+    int first = -1;
+    for (int i = 0; i < m->bone_count && first < 0; i++)
+        if (!strcmp(m->bones[i].name, "<MDL_bones>")) first = i + 1;
+    if (first < 0) return false;
+    int n = (int)ctx->nodes[first - 1]->mNumChildren;
+    size_t size = 0;
+    char why[256];
+    unsigned char *file = (unsigned char *)core_fs_read(ctx->path, &size, why, sizeof why);
+    bool ok = file && size >= 148 && !memcmp(file, "IDST", 4) && read_i32(file + 140) == n;
+    int32_t index = ok ? read_i32(file + 144) : 0;
+    ok = ok && index > 0 && (size_t)index + (size_t)n * HL1_BONE_SIZE <= size && first + n <= m->bone_count;
+    for (int i = 0; ok && i < n; i++) {
+        int32_t parent = read_i32(file + index + (size_t)i * HL1_BONE_SIZE + 32);
+        if (parent < -1 || parent >= i) ok = false;
+        else if (parent >= 0) m->bones[first + i].parent = first + parent;
+    }
+    free(file);
+    if (!ok) {
+        core_log_warn("%s: the HL1 bone links could not be read; the bones stay unlinked", ctx->path);
+        return false;
+    }
+    for (int i = first; i < first + n; i++)
+        character_mat4_mul(ctx->global[m->bones[i].parent], m->bones[i].bind_local, ctx->global[i]);
+    return true;
+}
+
 static bool load_clips(load_ctx_t *ctx, character_model_t *m)
 {
     const struct aiScene *sc = ctx->scene;
@@ -475,7 +519,9 @@ static bool load_clips(load_ctx_t *ctx, character_model_t *m)
         c->name = dup_str(an->mName.length ? an->mName.data : name);
         double tps = an->mTicksPerSecond > 0.0 ? an->mTicksPerSecond : 25.0;
         c->ticks_per_second = (float)tps;
-        c->duration = (float)(an->mDuration / tps);
+        /* assimp 5.2's HL1 reader states the duration as frames times the
+         * frame rate, in ticks of one frame: fps times too long */
+        c->duration = (float)(an->mDuration / tps / (ctx->hl1 ? tps : 1.0));
         c->channels = calloc((size_t)m->bone_count, sizeof *c->channels);
         if (!c->name || !c->channels) return false;
         if (an->mNumMeshChannels || an->mNumMorphMeshChannels)
@@ -757,6 +803,7 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
     if (ok) {
         model->bone_count = nn;
         flatten(&ctx, model, sc->mRootNode, -1);
+        ctx.hl1 = hl1_restore_parents(&ctx, model);
         for (int i = 0; i < nn; i++)
             if (!character_mat4_invert(ctx.global[i], model->bones[i].inverse_bind)) {
                 core_log_warn("%s: node '%s' has a singular transform", path, model->bones[i].name);
@@ -804,7 +851,15 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
         if (bad) core_log_warn("%s: dropped %d invalid vertex weights (NaN, negative or bad vertex id)", path, bad);
         load_file_info(model, sc, path);
         ok = ok && load_clips(&ctx, model);
-        if (ok && model->clip_count == 0) ok = collapse_to_rigid(model);
+        if (ok && model->clip_count == 0) {
+            /* formats whose vertex animation assimp 5.2 reads as one frame */
+            static const char *const vertex_anim[] = {"md2", "md3", "mdc", "iqm"};
+            for (size_t i = 0; i < sizeof vertex_anim / sizeof vertex_anim[0]; i++)
+                if (!strcmp(model->file.format, vertex_anim[i]))
+                    core_log_warn("%s: %s animation is not loaded by assimp 5.2 (one frame); the model walks rigidly",
+                                  path, vertex_anim[i]);
+            ok = collapse_to_rigid(model);
+        }
     }
     free(ctx.nodes), free(ctx.global), free(ctx.has_offset);
     aiReleaseImport(sc);

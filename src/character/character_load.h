@@ -61,6 +61,7 @@ typedef struct character_clip_t {
     char *name;
     float duration;          /* seconds, > 0 */
     float ticks_per_second;  /* the file's timeline rate (frame ranges) */
+    bool still;              /* a single frame: no keys, or all at time 0 with no duration stated */
     character_channel_t *channels; /* bone_count entries */
 } character_clip_t;
 

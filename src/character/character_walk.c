@@ -102,6 +102,31 @@ int character_walk_facing(const character_model_t *model, float height)
     return 0;
 }
 
+bool character_walk_face(character_model_t *m, const char *path, float yaw, character_import_t *im, char *err,
+                         size_t err_size)
+{
+    if (!strcmp(im->forward_from, "scene") || yaw != 0.0f) return true;
+    int facing = character_walk_facing(m, im->height);
+    if (facing == 0) return true;
+    if (facing != 3) {
+        character_import_t turn;
+        if (!character_import(m, path, &(character_import_desc_t){.height = im->height, .up = 2, .forward = facing},
+                              &turn, err, err_size))
+            return false;
+        /* the file's axis that now faces +Z: row |facing| of the first import's rotation */
+        float r[16];
+        character_import_matrix(1.0f, im->up, im->forward, 0.0f, 0.0f, r);
+        int row = abs(facing) - 1;
+        for (int k = 0; k < 3; k++)
+            if (fabsf(r[4 * k + row]) > 0.5f) im->forward = (k + 1) * (r[4 * k + row] * (float)facing > 0.0f ? 1 : -1);
+        memcpy(im->box_min, turn.box_min, sizeof im->box_min);
+        memcpy(im->box_max, turn.box_max, sizeof im->box_max);
+    }
+    im->forward_from = "walk";
+    im->forward_confidence = character_import_evidence("walk");
+    return true;
+}
+
 float character_walk_rate(const character_stride_t *stride, float speed, float scale)
 {
     float natural = stride->natural_speed * scale;

@@ -24,6 +24,15 @@
  * the direction is diagonal. */
 int character_walk_facing(const character_model_t *model, float height);
 
+/* The walk's say on where an imported model faces: unless the scene chose
+ * the forward axis or a rotation (yaw != 0), a model whose walk
+ * (character_walk_facing) runs along X or -Z is imported again turned to
+ * face +Z, and a walk along +Z confirms the forward found; both make the
+ * evidence "walk". im is updated (forward, its evidence and confidence,
+ * the drawn box). false with a reason in err when the import fails. */
+bool character_walk_face(character_model_t *model, const char *path, float yaw, character_import_t *im, char *err,
+                         size_t err_size);
+
 /* Clip seconds per second of walking: speed / (natural_speed * scale),
  * negative for clips that walk backwards in model space (played in
  * reverse); 1 when the clip has no stride. */
