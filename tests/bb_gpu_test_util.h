@@ -179,10 +179,10 @@ static inline void test_view(const vec3 eye, mat4 vp)
  * sun, with vp's frustum planes. */
 static inline bb_draw_desc_t test_draw_desc(const mat4 vp, const vec3 eye, float time)
 {
-    bb_draw_desc_t d = {.view = {.time = time, .sun_dir = {0.4f, 0.8f, 0.3f}}};
+    bb_draw_desc_t d = {.view = {.time = time, .sun = {0.4f, 0.8f, 0.3f}}};
     memcpy(d.view.viewproj, vp, sizeof d.view.viewproj);
     memcpy(d.view.camera, eye, sizeof d.view.camera);
-    glm_vec3_normalize(d.view.sun_dir);
+    glm_vec3_normalize(d.view.sun);
     vec4 planes[6];
     glm_frustum_planes((vec4 *)vp, planes);
     memcpy(d.view.planes, planes, sizeof d.view.planes);

@@ -116,10 +116,10 @@ static void coverage(const core_image_t *img, float *blocks, int nb)
 int main(void)
 {
     /* A view made over garbage has every field defined (overlay off). */
-    world_view_t view;
+    grass_view_t view;
     memset(&view, 0xA5, sizeof view);
     world_view_make(&view, &(cam_t){.position = {0, 1, 5}, .fov = 60.0f, .near = 0.1f, .far = 100.0f}, 64, 32, 1.0f, 0.5f);
-    CHECK(view.overlay == 0 && view.width == 64 && view.frame.time == 1.0f);
+    CHECK(view.overlay == 0 && view.width == 64 && view.time == 1.0f);
 
     test_gl_init();
     core_log_set_quiet(true);

@@ -5,7 +5,7 @@
  *    score 0; mismatched sizes are refused.
  * 2. Calibration on llvmpipe (tests/data/scenes/metric.json, 320x180):
  *    the reference (blades, maximum tessellation, no culling) against the
- *    reference with another placement seed (world_tuning_t.placement_seed)
+ *    reference with another placement seed (grass_tuning_t.placement_seed)
  *    gives the noise floor F, which is small; blade tessellation caps 1, 2,
  *    3, 5, 10 rank monotonically; billboards with their colour shifted by
  *    10 % (image space, see below) or a quarter fewer billboards
@@ -95,7 +95,7 @@ static void tweak(scene_desc_t *s, void *user)
     if (k->billboard_density > 0) s->grass.billboard_density *= k->billboard_density;
 }
 
-static core_image_t render(scene_mode_t mode, bool reference, world_tuning_t tuning, knob_t knob)
+static core_image_t render(scene_mode_t mode, bool reference, grass_tuning_t tuning, knob_t knob)
 {
     app_options_t o = {.scene = "tests/data/scenes/metric.json", .headless = true};
     measure_session_desc_t d = {.world = app_world_options(&o),
@@ -113,10 +113,10 @@ static void rendered(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    core_image_t ref = render(SCENE_MODE_BLADE, true, (world_tuning_t){0}, (knob_t){0});
+    core_image_t ref = render(SCENE_MODE_BLADE, true, (grass_tuning_t){0}, (knob_t){0});
     /* The grass-free view: a blade field too thin to hold a blade. */
-    core_image_t bg = render(SCENE_MODE_BLADE, true, (world_tuning_t){0}, (knob_t){.density = 1e-7f});
-    core_image_t other = render(SCENE_MODE_BLADE, true, (world_tuning_t){.placement_seed = 1234}, (knob_t){0});
+    core_image_t bg = render(SCENE_MODE_BLADE, true, (grass_tuning_t){0}, (knob_t){.density = 1e-7f});
+    core_image_t other = render(SCENE_MODE_BLADE, true, (grass_tuning_t){.placement_seed = 1234}, (knob_t){0});
     eval_image_error_t e;
     double floor = score(&other, &ref, &bg, &e), empty = score(&bg, &ref, &bg, NULL);
     printf("floor %.3f (dE %.3f, coverage %.4f, structure %.4f; 1 - SSIM %.3f), no grass %.3f\n", floor, e.colour,
@@ -127,7 +127,7 @@ static void rendered(void)
     static const int tess[] = {1, 2, 3, 5, 10};
     double prev = INFINITY;
     for (int i = 0; i < (int)(sizeof tess / sizeof tess[0]); i++) {
-        core_image_t t = render(SCENE_MODE_BLADE, false, (world_tuning_t){.tess_max = tess[i]}, (knob_t){0});
+        core_image_t t = render(SCENE_MODE_BLADE, false, (grass_tuning_t){.tess_max = tess[i]}, (knob_t){0});
         double s = score(&t, &ref, &bg, &e);
         printf("tess %2d: %.3f (dE %.3f, coverage %.4f, structure %.4f; 1 - SSIM %.3f)\n", tess[i], s, e.colour,
                e.coverage, e.structure, 1.0 - eval_image_ssim(&t, &ref));
@@ -136,18 +136,18 @@ static void rendered(void)
         core_image_free(&t);
     }
 
-    core_image_t bb = render(SCENE_MODE_BILLBOARD, false, (world_tuning_t){0}, (knob_t){0});
+    core_image_t bb = render(SCENE_MODE_BILLBOARD, false, (grass_tuning_t){0}, (knob_t){0});
     /* No knob tints billboards: their pixels (those the metric counts as
      * grass) are scaled by 0.9 in the rendered image. */
-    core_image_t tinted = render(SCENE_MODE_BILLBOARD, false, (world_tuning_t){0}, (knob_t){0});
+    core_image_t tinted = render(SCENE_MODE_BILLBOARD, false, (grass_tuning_t){0}, (knob_t){0});
     for (size_t i = 0; i < (size_t)tinted.w * (size_t)tinted.h; i++) {
         uint8_t *p = tinted.px + i * 4;
         const uint8_t *q = bg.px + i * 4;
         if (abs(p[0] - q[0]) > 8 || abs(p[1] - q[1]) > 8 || abs(p[2] - q[2]) > 8)
             for (int k = 0; k < 3; k++) p[k] = (uint8_t)(p[k] * 0.9f + 0.5f);
     }
-    core_image_t quarter = render(SCENE_MODE_BILLBOARD, false, (world_tuning_t){0}, (knob_t){.billboard_density = 0.75f});
-    core_image_t moved = render(SCENE_MODE_BILLBOARD, false, (world_tuning_t){.placement_seed = 1234}, (knob_t){0});
+    core_image_t quarter = render(SCENE_MODE_BILLBOARD, false, (grass_tuning_t){0}, (knob_t){.billboard_density = 0.75f});
+    core_image_t moved = render(SCENE_MODE_BILLBOARD, false, (grass_tuning_t){.placement_seed = 1234}, (knob_t){0});
     double s_tint = score(&tinted, &bb, &bg, &e);
     printf("billboard colour x 0.9: %.3f (dE %.3f)\n", s_tint, e.colour);
     double s_quarter = score(&quarter, &bb, &bg, &e);

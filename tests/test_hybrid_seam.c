@@ -59,7 +59,7 @@ int main(void)
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
     cam_t cam;
     scene_camera_init(s, &cam);
-    world_view_t v;
+    grass_view_t v;
     world_view_make(&v, &cam, t.w, t.h, 4.0f / 60.0f, 1.0f / 60.0f);
     eval_seam_desc_t d = measure_seam_desc(w);
 

@@ -34,12 +34,12 @@ static double max_jump(scene_mode_t mode, double *series)
         cam_t cam = {.position = {0.0f, 1.6f, d}, .target = {0.0f, 0.2f, d - 4.0f}, .fov = 60.0f};
         cam_defaults(&cam);
         world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
-        world_view_t v;
+        grass_view_t v;
         world_view_make(&v, &cam, t.w, t.h, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
         gfx_target_bind(&t);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        world_draw(w, &v, &t, false);
+        world_draw(w, &v, &t);
         CHECK(gfx_target_read(&t, &cur));
         if (prev.px) {
             double m = eval_image_mad(&prev, &cur);

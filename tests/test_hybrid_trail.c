@@ -111,12 +111,12 @@ static core_image_t render(world_t *w, gfx_target_t *t, float time)
 {
     cam_t cam = {.position = {1.0f, 2.5f, 7.5f}, .target = {1.0f, 0.0f, 0.5f}, .fov = 50.0f};
     cam_defaults(&cam);
-    world_view_t v;
+    grass_view_t v;
     world_view_make(&v, &cam, t->w, t->h, time, 1.0f / 60.0f);
     gfx_target_bind(t);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    world_draw(w, &v, t, false);
+    world_draw(w, &v, t);
     core_image_t img = {0};
     CHECK(gfx_target_read(t, &img));
     return img;

@@ -61,12 +61,12 @@ int main(void)
         if (f % period == 0) world_set_mode(w, modes[(f / period) % 3]);
         float t = (float)(f + 1) / 60.0f;
         world_update(w, t, 1.0f / 60.0f);
-        world_view_t view;
+        grass_view_t view;
         world_view_make(&view, &cam, target.w, target.h, t, 1.0f / 60.0f);
         gfx_target_bind(&target);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
-        world_draw(w, &view, &target, false);
+        world_draw(w, &view, &target);
         if (f == warmup) {
             glFinish();
             objects_after_warmup = gfx_live_objects();

@@ -24,7 +24,7 @@ enum { W = 160, H = 120 };
 
 /* The frame's view and the inverse view-projection the sky needs. */
 typedef struct view_t {
-    core_view_t frame;
+    grass_view_t frame;
     mat4 inv_viewproj;
 } view_t;
 
@@ -38,8 +38,8 @@ static void view_at(view_t *v, const float eye[3], const float target[3], const 
     glm_mat4_inv(vp, v->inv_viewproj);
     memcpy(v->frame.viewproj, vp, sizeof v->frame.viewproj);
     glm_vec3_copy((float *)eye, v->frame.camera);
-    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->frame.sun_dir);
-    glm_vec3_normalize(v->frame.sun_dir);
+    glm_vec3_copy((vec3){0.4f, 0.8f, 0.3f}, v->frame.sun);
+    glm_vec3_normalize(v->frame.sun);
 }
 
 /* Draws and reads depth; returns the pixels without terrain in rows [row0, H). */

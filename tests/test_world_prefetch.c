@@ -22,7 +22,7 @@ static void run(const char *scene, scene_mode_t mode)
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 160, .h = 90, .samples = s->msaa, .label = "prefetch"});
     cam_t cam;
     scene_camera_init(s, &cam);
-    world_view_t v;
+    grass_view_t v;
     world_view_make(&v, &cam, t.w, t.h, 0.0f, 1.0f / 60.0f);
     world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
     world_draw_as(w, &v, &t, mode, true);

@@ -84,7 +84,7 @@ static double tiles_bytes(const scene_desc_t *s, const admit_world_t *w)
 }
 
 /* A world's billboard ring (bb_ring.h) out to the canopy's band (its
- * reach in world.c make_bb: canopy_distance + WORLD_CANOPY_FADE, 4 m),
+ * reach in world.c make_bb: canopy_distance + GRASS_CANOPY_FADE, 4 m),
  * generation tiles of 2 x 2: W^2 K^2 points, whatever the world's size;
  * *scratch: its collide scratch, 32 slots of K^2 (bb_ring.c). */
 static double ring_candidates(const scene_desc_t *s, double spacing, double *scratch)

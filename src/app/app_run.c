@@ -51,7 +51,7 @@ typedef struct app_t {
     double raster_calib_ms[2]; /* --raster auto: GPU ms of a frame, hardware and compute */
     double raster_calib_wall_ms; /* --raster auto: wall ms the measure took at start-up */
     app_frame_times_t times;
-    world_view_t last_view; /* of the frame in the target */
+    grass_view_t last_view; /* of the frame in the target */
     bool last_hud;        /* the HUD, wireframe or an overlay is in it */
     double startup_draws, startup_ranges, startup_dispatches;
     app_trace_t *trace; /* --frame-log, else NULL */
@@ -280,7 +280,7 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                         "canopy seam at %.1f m (blades to the ground canopy, against the canopy from the camera; "
                         "band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
                         "L* %+.3f; coverage step %.4f (score with it %.3f: the canopy counts every pixel as grass)\n",
-                        sd, WORLD_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
+                        sd, GRASS_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
     }
     if (app->last_hud)
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",
@@ -292,7 +292,7 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                      "windows of 3 m; eval_image units, 1 = clearly visible): score %.3f\n"
                      "  Delta E %.3f, Delta L* %+.3f, coverage %.4f; windows near | far: grass %.3f | %.3f "
                      "(reference %.3f | %.3f), pixels %ld | %ld\n",
-                     sd, WORLD_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
+                     sd, GRASS_SWITCH_FADE, e.score, e.delta_e, e.delta_l, e.coverage, e.grass[0][0], e.grass[0][1],
                      e.grass[1][0], e.grass[1][1], e.pixels[0][0], e.pixels[0][1]);
     if (n < (int)size)
         n += snprintf(buf + n, size - (size_t)n,
@@ -320,7 +320,7 @@ static int summary_seam(app_t *app, char *buf, size_t size)
                           "canopy seam at %.1f m (billboards to the ground canopy, against billboards to the "
                           "horizon; band +-%.0f m, windows by the terrain's distance): score %.3f, Delta E %.3f, "
                           "Delta L* %+.3f, coverage %.4f\n",
-                          cd, WORLD_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
+                          cd, GRASS_CANOPY_FADE, e.score, e.delta_e, e.delta_l, e.coverage);
     }
     return n < (int)size ? n : (int)size - 1;
 }
@@ -498,12 +498,12 @@ static bool write_summary(app_t *app, double wall_s)
 
 /* After the world's draw of a frame, before pacing (world_frame_desc_t.drawn):
  * the HUD, the screenshot, the window. */
-static void frame_drawn(world_t *w, const world_view_t *v, gfx_target_t *target, void *user)
+static void frame_drawn(world_t *w, const grass_view_t *v, gfx_target_t *target, void *user)
 {
     (void)w;
     (void)target;
     app_t *app = user;
-    if (app->hud) draw_hud(app, v->frame.time);
+    if (app->hud) draw_hud(app, v->time);
     app->last_view = *v;
     app->last_hud = app->hud || app->wireframe || app->overlay;
     int frame = app->done + 1;

@@ -53,7 +53,7 @@ typedef struct bench_config_t {
     bool ball;                            /* the ball (BALL_RADIUS) is the only collider */
     bool no_colliders;                    /* ablation: no collider, no character */
     int grid[3];                          /* PROXY_COVER / PROXY_INNER spheres per axis */
-    world_tuning_t tuning;
+    grass_tuning_t tuning;
 } bench_config_t;
 
 /* The box that blade_proxies runs on the first collider's path: 1 x 0.32
@@ -85,7 +85,7 @@ static const float proxy_box[3] = {0.5f, 0.16f, 0.16f};
 #define BALL_RADIUS 0.3f
 
 /* The least canopy distance beyond a switch distance: the two fade bands apart. */
-#define CANOPY_GAP (WORLD_SWITCH_FADE + WORLD_CANOPY_FADE)
+#define CANOPY_GAP (GRASS_SWITCH_FADE + GRASS_CANOPY_FADE)
 
 static void tweak(scene_desc_t *s, void *user)
 {
@@ -189,7 +189,7 @@ static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
 
 #define MAX_CONFIGS 128
 
-/* Placement seed of the noise-floor reference (world_tuning_t.placement_seed). */
+/* Placement seed of the noise-floor reference (grass_tuning_t.placement_seed). */
 #define FLOOR_PLACEMENT_SEED 0x9e3779b9u
 
 /* The reference's grass-free view (the image error's background): a blade
@@ -738,7 +738,7 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
     return ok;
 }
 
-/* Placement seeds of a configuration's runs (world_tuning_t.placement_seed;
+/* Placement seeds of a configuration's runs (grass_tuning_t.placement_seed;
  * 0: the scene's), each run compared with the reference of its own. */
 static const uint32_t placements[SWEEP_RUNS] = {0, FLOOR_PLACEMENT_SEED, 0x85ebca6bu};
 #define MEASURE_EVERY 4 /* frames between per-frame measures after warm-up */

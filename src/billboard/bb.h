@@ -29,6 +29,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "grass/grass_view.h"
 #include "billboard/bb_layout.h"
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
@@ -112,7 +113,7 @@ typedef struct bb_field_desc_t {
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc);
 
 typedef struct bb_draw_desc_t {
-    core_view_t view;    /* the frame's view (planes: the frustum the octree culls by) */
+    grass_view_t view;    /* the frame's view (planes: the frustum the octree culls by) */
     float fade_start;    /* invisible nearer than this (0 = fade off) */
     float fade_end;      /* fully visible beyond this */
     float far_start;     /* the canopy's fade: fully visible nearer than this, */

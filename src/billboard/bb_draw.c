@@ -20,7 +20,7 @@ void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc
     glUseProgram(p.id);
     glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, dd->view.viewproj);
     glUniform3fv(gfx_uniform(p, "u_camera"), 1, dd->view.camera);
-    glUniform3fv(gfx_uniform(p, "u_sun"), 1, dd->view.sun_dir);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, dd->view.sun);
     glUniform1f(gfx_uniform(p, "u_time"), dd->view.time);
     glUniform1f(gfx_uniform(p, "u_fade_start"), dd->fade_start);
     glUniform1f(gfx_uniform(p, "u_fade_end"), dd->fade_end);

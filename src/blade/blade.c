@@ -379,7 +379,7 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait)
 
 void blade_set_surface_uniforms(gfx_program_t p, const blade_surface_t *surf, const blade_draw_desc_t *desc)
 {
-    float sun[3] = {desc->view.sun_dir[0], desc->view.sun_dir[1], desc->view.sun_dir[2]};
+    float sun[3] = {desc->view.sun[0], desc->view.sun[1], desc->view.sun[2]};
     float sl = sqrtf(sun[0] * sun[0] + sun[1] * sun[1] + sun[2] * sun[2]);
     if (sl < 1e-6f) {
         sun[0] = 0.4f, sun[1] = 0.8f, sun[2] = 0.3f;

@@ -28,6 +28,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "grass/grass_view.h"
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "gfx/gfx.h"
@@ -104,7 +105,7 @@ typedef struct blade_gpu_info_t {
 } blade_gpu_info_t;
 
 /* Per-frame drawing parameters. Zero means default:
- *   view.viewproj, view.camera required; view.sun_dir (0,0,0) ->
+ *   view.viewproj, view.camera required; view.sun (0,0,0) ->
  *   normalize(0.4, 0.8, 0.3);
  *   fade_start = fade_end = 0: no fade; otherwise blades are fully drawn
  *   nearer than fade_start (distance from the camera to the root), absent
@@ -115,7 +116,7 @@ typedef struct blade_gpu_info_t {
  *   (BLADE_DEFAULT_ALBEDO_ROOT / _TIP of blade/blade_population.h).
  *   focal_px: the frame's blade_lod_focal (eq. 24 as printed); 0: 1000. */
 typedef struct blade_draw_desc_t {
-    core_view_t view; /* the frame's view (sun_dir, planes and time not read) */
+    grass_view_t view; /* the frame's view (sun, planes and time not read) */
     float focal_px;
     float fade_start, fade_end;
     float albedo_root[3], albedo_tip[3];

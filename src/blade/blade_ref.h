@@ -27,6 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "grass/grass_view.h"
 #include "blade/blade_lod.h"
 #include "blade/blade_population.h"
 #include "collide/collide_set.h"
@@ -331,7 +332,7 @@ enum {
 #define BLADE_CULL_MAX_DISTANCE_DEFAULT 60.0f
 
 typedef struct blade_cull_desc_t {
-    core_view_t view; /* the frame's view: camera and viewproj are read */
+    grass_view_t view; /* the frame's view: camera and viewproj are read */
     float max_distance;
     float orientation_threshold;
     float frustum_tolerance;

@@ -16,6 +16,11 @@ void core_log_info(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void core_log_warn(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void core_log_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 void core_log_set_quiet(bool quiet);
+/* Every line to sink (severity 0 info, 1 warning, 2 error; the text
+ * without prefix or newline) instead of stderr; NULL: stderr again.
+ * Process-wide. */
+typedef void (*core_log_sink_fn)(int severity, const char *line, void *user);
+void core_log_set_sink(core_log_sink_fn sink, void *user);
 /* Number of warnings/errors logged so far (tests assert on these). */
 int core_log_warn_count(void);
 int core_log_error_count(void);
@@ -134,16 +139,5 @@ void core_image_fill(core_image_t *img, int x, int y, int w, int h, const uint8_
 /* Draws text (stb_easy_font glyphs, `scale` pixels per font unit) into an
  * RGBA image with its top-left at (x, y). */
 void core_image_text(core_image_t *img, int x, int y, int scale, const char *text, const uint8_t rgba[4]);
-
-/* One frame's view as the grass drivers take it (bb_draw_desc_t,
- * blade_draw_desc_t, blade_cull_desc_t; the CPU references too): filled
- * once a frame by the world (world_view_make) and handed to each. */
-typedef struct core_view_t {
-    float viewproj[16]; /* column-major, GL clip space (z in [-w, w]) */
-    float camera[3];
-    float sun_dir[3];   /* unit, towards the sun */
-    float planes[6][4]; /* frustum planes, inside when a*x+b*y+c*z+d >= 0 */
-    float time;         /* simulated seconds (wind, fades of recovery) */
-} core_view_t;
 
 #endif

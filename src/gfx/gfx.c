@@ -547,7 +547,8 @@ void gfx_target_bind(const gfx_target_t *t)
 
 void gfx_target_resolve_depth(const gfx_target_t *t)
 {
-    if (t->resolve_fbo == t->fbo || !t->depth.id) return;
+    /* (a target without depth: the GL ignores the depth bit) */
+    if (t->resolve_fbo == t->fbo) return;
     glBlitNamedFramebuffer(t->fbo, t->resolve_fbo, 0, 0, t->w, t->h, 0, 0, t->w, t->h, GL_DEPTH_BUFFER_BIT,
                            GL_NEAREST);
 }

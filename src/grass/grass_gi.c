@@ -1,11 +1,11 @@
-/* world_gi: the world's global illumination volumes (scene grass.gi, Orthmann
+/* grass_gi: the global illumination volumes (scene grass.gi, Orthmann
  * et al. 2009 sec. 6.1; gi_volume.h): the terrain's heights, the grass as a
  * layer of its mean blade height thinned by the extent map's cover, and the
  * static colliders as boxes (spheres and capsules by their bounding
  * boxes; moving colliders and characters are left out: the volumes are
  * computed once). The volume spans the terrain's box, from its lowest
  * point to APP_GI_TOP above the tallest blade over its highest. */
-#include "world/world_local.h"
+#include "grass/grass_local.h"
 
 #include <math.h>
 #include <string.h>
@@ -41,15 +41,15 @@ static float gi_cover(const void *user, float x, float z)
 }
 
 /* Static colliders (a one-key path) as boxes; returns how many. */
-static int static_boxes(const world_t *w, gi_object_t *out)
+static int static_boxes(const grass_t *gr, gi_object_t *out)
 {
     int n = 0;
-    for (int i = 0; i < w->scene.collider_count; i++) {
-        const scene_collider_t *c = &w->scene.colliders[i];
+    for (int i = 0; i < gr->scene->collider_count; i++) {
+        const scene_collider_t *c = &gr->scene->colliders[i];
         if (c->path.count != 1) continue;
         float centre[3], vel[3], half[3];
         scene_path_eval(&c->path, 0.0f, false, centre, vel);
-        if (w->terrain_mesh.grid_res > 0) centre[1] += terrain_height_at(&w->terrain_mesh, centre[0], centre[2], NULL);
+        if (gr->terrain->grid_res > 0) centre[1] += terrain_height_at(gr->terrain, centre[0], centre[2], NULL);
         if (c->type == SCENE_COLLIDER_BOX) {
             memcpy(half, c->half_extents, sizeof half);
         } else {
@@ -66,12 +66,12 @@ static int static_boxes(const world_t *w, gi_object_t *out)
     return n;
 }
 
-bool world_gi_make(world_t *w)
+bool grass_gi_make(grass_t *gr)
 {
-    const scene_grass_desc_t *g = &w->scene.grass;
-    const terrain_mesh_t *t = &w->terrain_mesh;
+    const scene_grass_desc_t *g = &gr->scene->grass;
+    const terrain_mesh_t *t = gr->terrain;
     app_gi_src_t src = {.terrain = t};
-    src.have_layout = world_extent_layout(w, &src.lay, &src.gen);
+    src.have_layout = grass_extent_layout(gr, &src.lay, &src.gen);
     gi_object_t boxes[SCENE_MAX_COLLIDERS];
     float grass_height = 0.5f * (g->population.height[0] + g->population.height[1]);
     gi_scene_t scene = {.height = gi_height,
@@ -82,7 +82,7 @@ bool world_gi_make(world_t *w)
                         .grass_extinction =
                             0.5f * g->population.density * 0.5f * (g->population.width[0] + g->population.width[1]),
                         .objects = boxes,
-                        .object_count = static_boxes(w, boxes)};
+                        .object_count = static_boxes(gr, boxes)};
     gi_volume_desc_t desc = {
         .lo = {t->aabb_min[0], t->aabb_min[1], t->aabb_min[2]},
         .hi = {t->aabb_max[0], t->aabb_max[1] + g->population.height[1] + APP_GI_TOP, t->aabb_max[2]}};
@@ -90,13 +90,13 @@ bool world_gi_make(world_t *w)
     bool ok = gi_volume_make(&v, &desc, &scene);
     if (src.have_layout) bb_layout_free(&src.lay);
     if (!ok) return false;
-    ok = gi_gpu_make(&w->gi, &v);
+    ok = gi_gpu_make(&gr->gi, &v);
     if (ok)
         core_log_info("gi: %dx%dx%d ambient-occlusion and irradiance volumes over %.0f x %.1f x %.0f m in %.1f ms",
                       v.res[0], v.res[1], v.res[2], (double)(v.hi[0] - v.lo[0]), (double)(v.hi[1] - v.lo[1]),
                       (double)(v.hi[2] - v.lo[2]), v.build_ms);
     gi_volume_free(&v);
-    w->gi_bind = gi_gpu_bind(ok ? &w->gi : NULL);
-    ground_set_gi(w->ground, w->gi_bind);
+    gr->gi_bind = gi_gpu_bind(ok ? &gr->gi : NULL);
+    ground_set_gi(gr->ground, gr->gi_bind);
     return ok;
 }

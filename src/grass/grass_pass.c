@@ -1,57 +1,63 @@
-/* world_pass: the frame's passes from the mode, the ground, the rasterizer
- * and the reference flag (world_pass.h). GL-free. */
-#include "world/world_pass.h"
+/* grass_pass: grass_draw's passes from the mode, the ground, the
+ * rasterizer and the reference flag (grass_pass.h). GL-free. */
+#include "grass/grass_pass.h"
 
-bool world_pass_wants_billboards(scene_mode_t mode, scene_hybrid_billboards_t hybrid_bb)
+#include "grass/grass.h"
+
+bool grass_pass_wants_billboards(scene_mode_t mode, scene_hybrid_billboards_t hybrid_bb)
 {
     /* a world streams its billboards too (bb_ring.h) */
     if (mode == SCENE_MODE_HYBRID) return hybrid_bb == SCENE_HYBRID_BILLBOARDS_RING;
     return mode == SCENE_MODE_BILLBOARD;
 }
 
-bool world_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLADE || mode == SCENE_MODE_HYBRID; }
+bool grass_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLADE || mode == SCENE_MODE_HYBRID; }
 
-bool world_pass_uses_tiles(scene_mode_t mode, world_ground_t ground, bool reference)
+bool grass_pass_uses_tiles(scene_mode_t mode, grass_ground_t ground, bool reference)
 {
     if (reference) return false;
-    if (ground == WORLD_GROUND_WORLD) return world_pass_wants_blades(mode);
-    return mode == SCENE_MODE_HYBRID && ground == WORLD_GROUND_HEIGHTFIELD;
+    if (ground == GRASS_GROUND_WORLD) return grass_pass_wants_blades(mode);
+    return mode == SCENE_MODE_HYBRID && ground == GRASS_GROUND_HEIGHTFIELD;
 }
 
-int world_pass_list(const world_pass_desc_t *d, world_pass_t out[WORLD_PASS_KINDS])
+float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground)
+{
+    if (ground != GRASS_GROUND_WORLD || mode != SCENE_MODE_BLADE) return g->switch_distance;
+    return g->blade_distance > 0.0f ? g->blade_distance : GRASS_BLADE_DISTANCE;
+}
+
+int grass_pass_list(const grass_pass_desc_t *d, grass_pass_t out[GRASS_PASS_KINDS])
 {
     int n = 0;
-    out[n++] = (world_pass_t){.kind = WORLD_PASS_TERRAIN};
-    if (d->have_characters) out[n++] = (world_pass_t){.kind = WORLD_PASS_CHARACTERS};
-    if (d->compute) out[n++] = (world_pass_t){.kind = WORLD_PASS_RASTER_BEGIN};
-    if (d->have_tiles && world_pass_uses_tiles(d->mode, d->ground, d->reference))
-        out[n++] = (world_pass_t){.kind = WORLD_PASS_TILES, .compute = d->compute};
-    else if (d->have_blades && (world_pass_wants_blades(d->mode) || d->reference))
-        out[n++] = (world_pass_t){.kind = WORLD_PASS_BLADES, .compute = d->compute};
-    if (d->have_billboards && world_pass_wants_billboards(d->mode, d->billboards) && !d->reference)
-        out[n++] = (world_pass_t){.kind = WORLD_PASS_BILLBOARDS, .compute = d->compute};
-    if (d->compute) out[n++] = (world_pass_t){.kind = WORLD_PASS_RASTER_END};
+    out[n++] = (grass_pass_t){.kind = GRASS_PASS_GROUND};
+    if (d->compute) out[n++] = (grass_pass_t){.kind = GRASS_PASS_RASTER_BEGIN};
+    if (d->have_tiles && grass_pass_uses_tiles(d->mode, d->ground, d->reference))
+        out[n++] = (grass_pass_t){.kind = GRASS_PASS_TILES, .compute = d->compute};
+    else if (d->have_blades && (grass_pass_wants_blades(d->mode) || d->reference))
+        out[n++] = (grass_pass_t){.kind = GRASS_PASS_BLADES, .compute = d->compute};
+    if (d->have_billboards && grass_pass_wants_billboards(d->mode, d->billboards) && !d->reference)
+        out[n++] = (grass_pass_t){.kind = GRASS_PASS_BILLBOARDS, .compute = d->compute};
+    if (d->compute) out[n++] = (grass_pass_t){.kind = GRASS_PASS_RASTER_END};
     return n;
 }
 
-bool world_pass_has(const world_pass_t *passes, int n, world_pass_kind_t k)
+bool grass_pass_has(const grass_pass_t *passes, int n, grass_pass_kind_t k)
 {
     for (int i = 0; i < n; i++)
         if (passes[i].kind == k) return true;
     return false;
 }
 
-const char *world_pass_name(world_pass_kind_t k)
+const char *grass_pass_name(grass_pass_kind_t k)
 {
     switch (k) {
-    case WORLD_PASS_TERRAIN: return "terrain";
-    case WORLD_PASS_CHARACTERS: return "characters";
-    case WORLD_PASS_RASTER_BEGIN: return "raster_begin";
-    case WORLD_PASS_TILES: return "tiles";
-    case WORLD_PASS_BLADES: return "blades";
-    case WORLD_PASS_BILLBOARDS: return "billboards";
-    case WORLD_PASS_RASTER_END: return "raster_end";
-    case WORLD_PASS_KINDS: break;
+    case GRASS_PASS_GROUND: return "ground";
+    case GRASS_PASS_RASTER_BEGIN: return "raster_begin";
+    case GRASS_PASS_TILES: return "tiles";
+    case GRASS_PASS_BLADES: return "blades";
+    case GRASS_PASS_BILLBOARDS: return "billboards";
+    case GRASS_PASS_RASTER_END: return "raster_end";
+    case GRASS_PASS_KINDS: break;
     }
     return "?";
 }

@@ -189,7 +189,7 @@ void ground_destroy(ground_t *t)
 }
 
 /* One draw per clipmap level around the camera. */
-static void draw_world(const ground_t *t, const core_view_t *v)
+static void draw_world(const ground_t *t, const grass_view_t *v)
 {
     const terrain_clipmap_t *c = &t->clipmap;
     GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
@@ -207,12 +207,12 @@ static void draw_world(const ground_t *t, const core_view_t *v)
     gfx_count_add("terrain.clipmap.triangles", tris);
 }
 
-void ground_draw(const ground_t *t, const core_view_t *v, const float inv_viewproj[16])
+void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewproj[16])
 {
     glUseProgram(t->prog.id);
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
-    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun_dir);
+    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun);
     gi_set_uniforms(t->prog.id, &t->gi);
     bool lod = t->canopy.rows > 1 && t->lod_on;
     bool canopy = t->canopy.rows > 1 && (t->canopy_fade[1] > 0.0f || lod);

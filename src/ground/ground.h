@@ -12,6 +12,7 @@
 
 #include <stdbool.h>
 
+#include "grass/grass_view.h"
 #include "blade/blade_canopy.h"
 #include "blade/blade_lod.h"
 #include "core/core.h"
@@ -48,7 +49,7 @@ void ground_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px
 void ground_set_gi(ground_t *g, gi_bind_t gi);
 /* Draws the ground, then the sky where it left the far plane (inv_viewproj:
  * the inverse of view->viewproj, column-major). */
-void ground_draw(const ground_t *g, const core_view_t *view, const float inv_viewproj[16]);
+void ground_draw(const ground_t *g, const grass_view_t *view, const float inv_viewproj[16]);
 /* Sets the uniforms of common/world_height.glsl (terrain_world_gpu: the
  * noise layers' keys and the amplitude) on p, for world w; p keeps them,
  * so once after making p. Every program that includes world_height.glsl

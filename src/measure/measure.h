@@ -22,7 +22,7 @@ typedef struct measure_seam_frame_t {
  * (whose depth holds the grass's on either path): colour and distance;
  * cls EVAL_SEAM_GROUND where the visible surface is the terrain, else
  * EVAL_SEAM_SKIP (what a background frame needs). */
-bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f);
+bool measure_seam_frame_read(world_t *w, const grass_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f);
 /* Classes of a frame against the background (the same view with no grass):
  * skipped where the background does not show the terrain, grass where the
  * colour differs from it by more than 8 levels in a channel, else ground. */
@@ -30,10 +30,10 @@ void measure_seam_frame_classify(measure_seam_frame_t *f, const measure_seam_fra
 /* Draws the view into t in `mode`, with no grass at all when !grass (the
  * background), and reads it (measure_seam_frame_read). The world's systems are
  * used as they are (nothing is built or simulated) and keep their state. */
-bool measure_seam_frame_draw(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
+bool measure_seam_frame_draw(world_t *w, const grass_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
                          measure_seam_frame_t *f);
 void measure_seam_frame_free(measure_seam_frame_t *f);
-/* The scene's switch distance and the fade band of world_draw. */
+/* The scene's switch distance and the fade band of grass_draw. */
 eval_seam_desc_t measure_seam_desc(world_t *w);
 /* The seam of the hybrid frame of view v (drawn into t again, for its
  * depth), against the same
@@ -41,14 +41,14 @@ eval_seam_desc_t measure_seam_desc(world_t *w);
  * with no grass (which is what t holds afterwards). False when the world is
  * not in hybrid mode or a window of the band shows no grass or fewer than
  * 100 counted pixels (in either frame). */
-bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The same at the canopy's band, the pixels of both images in the band's
  * windows by the terrain's distance: with billboards (grass.canopy_distance
- * +- WORLD_CANOPY_FADE) billboards to the ground canopy against billboards
+ * +- GRASS_CANOPY_FADE) billboards to the ground canopy against billboards
  * to the horizon; without (grass.billboards none; the switch band) the
  * blades to the canopy against the canopy from the camera
  * (world_draw_canopy). False as measure_seam, and without a canopy. */
-bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out);
+bool measure_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The seam's noise floor for this view: the billboards built again with
  * MEASURE_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn
  * billboard-only (undeformed) against the world's own billboard-only frame:
@@ -63,7 +63,7 @@ typedef struct measure_seam_floor_t {
     eval_seam_t mean; /* score, delta_e, delta_l, coverage: means over the placements */
     double score[MEASURE_SEAM_FLOOR_PLACEMENTS];
 } measure_seam_floor_t;
-bool measure_seam_floor(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out);
+bool measure_seam_floor(world_t *w, const grass_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out);
 /* GPU ms to draw `triangles` trivial triangles from a prebuilt buffer into a
  * w x h target with `samples` MSAA (median of 12 draws); -1 on failure. */
 double measure_floor_ms(long triangles, int w, int h, int samples);

@@ -12,7 +12,7 @@
  * rule), ground otherwise. The reference is the same view drawn again with
  * billboards only (no switch; the hybrid world's own billboards at the same
  * time), and eval_image_seam compares the steps of both across the switch
- * band [switch_distance - WORLD_SWITCH_FADE, + WORLD_SWITCH_FADE]. */
+ * band [switch_distance - GRASS_SWITCH_FADE, + GRASS_SWITCH_FADE]. */
 #include "measure/measure.h"
 
 #include <math.h>
@@ -42,7 +42,7 @@ void measure_seam_frame_free(measure_seam_frame_t *f)
     memset(f, 0, sizeof *f);
 }
 
-bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f)
+bool measure_seam_frame_read(world_t *w, const grass_view_t *v, const gfx_target_t *t, measure_seam_frame_t *f)
 {
     memset(f, 0, sizeof *f);
     size_t n = (size_t)t->w * (size_t)t->h;
@@ -63,7 +63,7 @@ bool measure_seam_frame_read(world_t *w, const world_view_t *v, const gfx_target
             vec4 p;
             glm_mat4_mulv((vec4 *)v->inv_viewproj, ndc, p);
             glm_vec3_scale(p, 1.0f / p[3], p);
-            f->dist[i] = glm_vec3_distance(p, (float *)v->frame.camera);
+            f->dist[i] = glm_vec3_distance(p, (float *)v->camera);
             if (p[1] - terrain_height_at(world_info(w).terrain, p[0], p[2], NULL) < MEASURE_SEAM_GROUND_EPS)
                 f->cls[i] = EVAL_SEAM_GROUND;
         }
@@ -82,7 +82,7 @@ void measure_seam_frame_classify(measure_seam_frame_t *f, const measure_seam_fra
     }
 }
 
-bool measure_seam_frame_draw(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
+bool measure_seam_frame_draw(world_t *w, const grass_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass,
                              measure_seam_frame_t *f)
 {
     world_draw_as(w, v, t, mode, grass);
@@ -91,7 +91,7 @@ bool measure_seam_frame_draw(world_t *w, const world_view_t *v, const gfx_target
 
 eval_seam_desc_t measure_seam_desc(world_t *w)
 {
-    return (eval_seam_desc_t){.switch_distance = world_info(w).scene->grass.switch_distance, .fade = WORLD_SWITCH_FADE};
+    return (eval_seam_desc_t){.switch_distance = world_info(w).scene->grass.switch_distance, .fade = GRASS_SWITCH_FADE};
 }
 
 /* eval_image_seam of frame against ref, both classified against bg, at
@@ -130,7 +130,7 @@ static bool seam_counted(measure_seam_frame_t *frame, measure_seam_frame_t *ref,
 }
 
 /* The last frame against it drawn with billboards only, at band d. */
-static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, const eval_seam_desc_t *d,
+static bool world_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, const eval_seam_desc_t *d,
                        bool ground_windows, eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
@@ -144,7 +144,7 @@ static bool world_seam(world_t *w, const world_view_t *v, const gfx_target_t *t,
     return seam_counted(&frame, &ref, &bg, ok, d, ground_windows, out);
 }
 
-bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     eval_seam_desc_t d = measure_seam_desc(w);
     return world_seam(w, v, t, &d, false, out);
@@ -152,7 +152,7 @@ bool measure_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval
 
 /* Where the blades end in the canopy (the hybrid without billboards): the
  * last frame against the canopy drawn from the camera, at the switch band. */
-static bool blades_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+static bool blades_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     world_info_t wi = world_info(w);
     eval_seam_desc_t d = measure_seam_desc(w);
@@ -163,17 +163,17 @@ static bool blades_canopy_seam(world_t *w, const world_view_t *v, const gfx_targ
     return seam_counted(&frame, &ref, &bg, ok, &d, true, out);
 }
 
-bool measure_canopy_seam(world_t *w, const world_view_t *v, const gfx_target_t *t, eval_seam_t *out)
+bool measure_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     memset(out, 0, sizeof *out);
     world_info_t wi = world_info(w);
     if (!wi.tiles || !wi.canopy) return false;
     if (!wi.billboards) return blades_canopy_seam(w, v, t, out);
-    eval_seam_desc_t d = {.switch_distance = wi.scene->grass.canopy_distance, .fade = WORLD_CANOPY_FADE};
+    eval_seam_desc_t d = {.switch_distance = wi.scene->grass.canopy_distance, .fade = GRASS_CANOPY_FADE};
     return world_seam(w, v, t, &d, true, out);
 }
 
-bool measure_seam_floor(world_t *w, const world_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out)
+bool measure_seam_floor(world_t *w, const grass_view_t *v, const gfx_target_t *t, measure_seam_floor_t *out)
 {
     memset(out, 0, sizeof *out);
     world_info_t wi = world_info(w);

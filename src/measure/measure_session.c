@@ -54,7 +54,7 @@ static void session_updated(world_t *w, float t, void *user)
     if (sf->h->frame) sf->h->frame(w, sf->frame, t, sf->h->user);
 }
 
-static void session_drawn(world_t *w, const world_view_t *v, gfx_target_t *target, void *user)
+static void session_drawn(world_t *w, const grass_view_t *v, gfx_target_t *target, void *user)
 {
     (void)w;
     (void)v;

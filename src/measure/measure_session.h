@@ -16,7 +16,7 @@ typedef struct measure_session_desc_t {
     int warmup;       /* frames excluded from timings; default frames/4 */
     int msaa;         /* 0 = the scene's */
     bool reference;   /* the reference rendering (see world_t) */
-    world_tuning_t tuning;
+    grass_tuning_t tuning;
     void (*tweak)(scene_desc_t *s, void *user); /* parameter overrides */
     void *user;
 } measure_session_desc_t;

@@ -39,7 +39,7 @@ int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_s
 /* Jahrmann & Wimmer 2017's ablation (one table, perf_papers.c): blade
  * mode with every feature, without collision (no colliders and no
  * characters), without culling (every BLADE_CULL_* test skipped,
- * world_tuning_t.cull_disable), without each test alone. Run on the papers'
+ * grass_tuning_t.cull_disable), without each test alone. Run on the papers'
  * scenes for costs and culled counts (bench --papers) and on the sweep's
  * scene for image error (the blade_ablation chart). */
 typedef struct perf_ablation_t {

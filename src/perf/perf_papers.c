@@ -4,7 +4,7 @@
  *             (scenes/bench/{orthmann,nature,helicopter,fan128}.json; the
  *             --scene alone outside --report): all features, collision off
  *             (no colliders and no characters), culling off (every
- *             BLADE_CULL_* test skipped, world_tuning_t.cull_disable) and each
+ *             BLADE_CULL_* test skipped, grass_tuning_t.cull_disable) and each
  *             test alone off, the distance test as eq. 19-20 state it
  *             (grass.lod rule LEVELS: the default WIDTH thins nothing on a
  *             field within its 10 m start, the CI's tiny.json), on the

@@ -42,7 +42,7 @@ typedef enum stab_measure_t {
 } stab_measure_t;
 
 /* The three variants of every case: both papers' methods as printed
- * (world_tuning_t.paper), this project's defaults, and settings tuned for the
+ * (grass_tuning_t.paper), this project's defaults, and settings tuned for the
  * case (only where the case names them). */
 enum { VAR_PAPER, VAR_DEFAULT, VAR_TUNED, VAR_COUNT };
 static const char *const variant_names[VAR_COUNT] = {"paper", "default", "tuned"};
@@ -979,7 +979,7 @@ int stability_run(const stability_desc_t *o, const char *out, core_buf_t *md_out
             core_buf_t *t = e ? &mdr : &md;
             core_buf_printf(t, "\n`*` marks a failing value; (constant): the measure did not change over the values "
                                "(the method holds at every value, or the measure does not answer the knob). Variants: paper = both papers' methods as printed "
-                               "(world_tuning_t.paper: explicit Euler, eq. 12's length, the paper's eta, no sweep, no "
+                               "(grass_tuning_t.paper: explicit Euler, eq. 12's length, the paper's eta, no sweep, no "
                                "friction or collision exit; billboards without slide, ground, bend limit or push "
                                "after the spring sweeps), default = this project's defaults, tuned = the settings "
                                "named in the row. Notes per case (mechanism):\n\n");

@@ -2,7 +2,8 @@
  * colliders, characters and the grass systems the mode selects
  * (billboards, blades, tiles). One object, world_t, made by world_load and
  * world_make_gpu, advanced and drawn by world_frame, the one frame sequence
- * of the program (src/app) and the evaluation harness (src/bench). Its
+ * of the program (src/app) and the evaluation harness (src/bench). The
+ * grass is a grass_t (src/grass/grass.h) the world steps and draws. Its
  * struct lives in world_local.h; what only the harness and tests need
  * (tuning knobs, a step or a draw alone) is in world_harness.h.
  * docs/DESIGN.md "Frame structure". */
@@ -20,6 +21,7 @@
 #include "blade/blade_tiles.h"
 #include "character/character.h"
 #include "gfx/gfx.h"
+#include "grass/grass.h"
 #include "raster/raster.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
@@ -45,20 +47,10 @@ typedef struct world_options_t {
     float character_height; /* every character's height (m); 0: the scene's */
 } world_options_t;
 
-/* Per-frame view, shared by every draw: `frame` is what the grass drivers
- * take as it is (core_view_t), the rest what the world's own draws need. */
-typedef struct world_view_t {
-    core_view_t frame; /* view-projection, camera, sun, frustum planes, time */
-    mat4 view, proj, inv_viewproj;
-    float far; /* the camera's far plane (m) */
-    int width, height;
-    float dt;
-    int overlay; /* debug overlay, key O: 0 off, 1 tile/leaf state, 2 LOD, 3 collision strength */
-} world_view_t;
-
-/* Fills the whole per-frame view from a camera and target size; every other
- * field (overlay) is 0 = off. */
-void world_view_make(world_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
+/* The view of a camera on a target of width x height: grass_view_make
+ * with the camera's own position and far plane; overlay and wireframe
+ * off. */
+void world_view_make(grass_view_t *v, const cam_t *cam, int w, int h, float time, float dt);
 
 /* Start-up stages: wall-clock ms from the start of a run to the end of its
  * first frame on the GPU (summary.txt "startup"). The world times its own;
@@ -76,19 +68,6 @@ enum {
 };
 const char *world_stage_name(int stage);
 
-/* Half width (m) of the hybrid cross-fade band around grass.switch_distance:
- * blades fade out and billboards fade in over [switch - it, switch + it]. */
-#define WORLD_SWITCH_FADE 1.0f
-/* Half width (m) of the canopy's band around grass.canopy_distance:
- * billboards fade out and the ground canopy fades in over [canopy - it,
- * canopy + it]. */
-#define WORLD_CANOPY_FADE 4.0f
-/* Blade mode on a world terrain: blades drawn to grass.blade_distance,
- * default this (m); the ground canopy beyond (docs/WORLD.md). */
-#define WORLD_BLADE_DISTANCE 80.0f
-/* Towards the sun (normalised where used): every view's sun_dir, the one
- * the clump bakes (BLADE_CLUMP_SUN) and the canopy's table light with. */
-#define WORLD_SUN_DIR BLADE_CLUMP_SUN
 /* Frames world_frame leaves unfinished on the GPU by default. */
 #define WORLD_FRAMES_IN_FLIGHT 2
 
@@ -165,10 +144,10 @@ typedef struct world_frame_desc_t {
     /* Called after the steps, with t. */
     void (*updated)(world_t *w, float t, void *user);
     bool update_only; /* return after the steps (nothing drawn, nothing paced) */
-    int overlay;      /* world_view_t.overlay */
+    int overlay;      /* grass_view_t.overlay */
     bool wireframe;
     /* Called after the draw, before pacing (HUD, screenshots, present). */
-    void (*drawn)(world_t *w, const world_view_t *v, gfx_target_t *target, void *user);
+    void (*drawn)(world_t *w, const grass_view_t *v, gfx_target_t *target, void *user);
     void *user;    /* for step, updated and drawn */
     int in_flight; /* gfx_frame_end's frames left unfinished; 0: WORLD_FRAMES_IN_FLIGHT */
     /* Non-NULL: plat_time when the frame began and after each of its

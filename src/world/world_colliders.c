@@ -61,13 +61,14 @@ void world_colliders_update(world_colliders_t *c, const terrain_mesh_t *terrain,
     }
 }
 
-void world_colliders_draw(const world_colliders_t *c, const world_view_t *v)
+void world_colliders_draw(const world_colliders_t *c, const grass_view_t *v)
 {
     if (!c->count) return;
+    gfx_timer_begin("colliders");
     glUseProgram(c->prog.id);
-    glUniformMatrix4fv(gfx_uniform(c->prog, "u_viewproj"), 1, GL_FALSE, v->frame.viewproj);
-    glUniform3fv(gfx_uniform(c->prog, "u_sun"), 1, v->frame.sun_dir);
-    glUniform3fv(gfx_uniform(c->prog, "u_camera"), 1, v->frame.camera);
+    glUniformMatrix4fv(gfx_uniform(c->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
+    glUniform3fv(gfx_uniform(c->prog, "u_sun"), 1, v->sun);
+    glUniform3fv(gfx_uniform(c->prog, "u_camera"), 1, v->camera);
     glUniform3f(gfx_uniform(c->prog, "u_albedo"), 0.75f, 0.22f, 0.15f);
     for (int i = 0; i < c->count; i++) {
         const world_collider_t *a = &c->items[i];
@@ -78,4 +79,5 @@ void world_colliders_draw(const world_colliders_t *c, const world_view_t *v)
         glDrawElements(GL_TRIANGLES, (GLsizei)a->mesh.index_count, GL_UNSIGNED_INT, NULL);
     }
     glBindVertexArray(0);
+    gfx_timer_end();
 }

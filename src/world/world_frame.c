@@ -27,16 +27,17 @@ world_frame_result_t world_frame(world_t *w, const world_frame_desc_t *d)
     mark[2] = plat_time();
     if (d->update_only) return WORLD_FRAME_UPDATED;
     if (d->follow_path && s->camera.path.count) cam_path_eval(&s->camera.path, t, d->cam);
-    world_view_t view;
+    grass_view_t view;
     world_view_make(&view, d->cam, d->target->w, d->target->h, t, s->dt);
     view.overlay = d->overlay;
+    view.wireframe = d->wireframe;
     if (!world_fit_target(w, d->target, d->label)) return WORLD_FRAME_NO_TARGET;
     gfx_target_bind(d->target);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     mark[3] = plat_time();
-    world_draw(w, &view, d->target, d->wireframe);
+    world_draw(w, &view, d->target);
     mark[4] = plat_time();
     if (d->drawn) d->drawn(w, &view, d->target, d->user);
     mark[5] = plat_time();
@@ -47,7 +48,7 @@ world_frame_result_t world_frame(world_t *w, const world_frame_desc_t *d)
 /* Draws `view` with each rasterizer into a target of `target`'s size and
  * that path's samples: one warm-up draw, then the least of 5, GL timestamps
  * around the whole draw. */
-static bool calibrate_raster(world_t *w, const world_view_t *view, const gfx_target_t *target, double ms[2])
+static bool calibrate_raster(world_t *w, const grass_view_t *view, const gfx_target_t *target, double ms[2])
 {
     /* Each path draws into the target it would use (world_fit_target). */
     gfx_target_t tg[2] = {{.w = target->w, .h = target->h}, {.w = target->w, .h = target->h}};
@@ -72,7 +73,7 @@ static bool calibrate_raster(world_t *w, const world_view_t *view, const gfx_tar
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             glEnable(GL_DEPTH_TEST);
             glQueryCounter(q[0], GL_TIMESTAMP);
-            world_draw(w, view, &tg[c], false);
+            world_draw(w, view, &tg[c]);
             glQueryCounter(q[1], GL_TIMESTAMP);
             GLuint64 t0 = 0, t1 = 0;
             glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &t0);
@@ -85,7 +86,7 @@ static bool calibrate_raster(world_t *w, const world_view_t *view, const gfx_tar
     gfx_target_destroy(&tg[0]);
     gfx_target_destroy(&tg[1]);
     /* A path that fell back (no compute rasterizer) cannot be chosen. */
-    bool compute = best[1] < best[0] && w->raster_compute;
+    bool compute = best[1] < best[0] && grass_stats(w->grass).compute;
     world_set_raster(w, compute);
     ms[0] = best[0];
     ms[1] = best[1];
@@ -98,7 +99,7 @@ static bool calibrate_raster(world_t *w, const world_view_t *view, const gfx_tar
 bool world_raster_auto(world_t *w, const cam_t *cam, const gfx_target_t *target, double ms[2],
                            double *wall_ms)
 {
-    world_view_t view;
+    grass_view_t view;
     world_view_make(&view, cam, target->w, target->h, 0.0f, w->scene.dt);
     double t0 = plat_time();
     bool compute = calibrate_raster(w, &view, target, ms);

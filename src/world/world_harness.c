@@ -1,33 +1,38 @@
 /* world_harness: what world.h and world_harness.h read of the world
- * (world_info, the colliders, the tuning), the set-up of an offscreen
- * session's world, a step with the harness's own blade sphere proxies, a
- * draw in another mode or without grass, and the billboard field swapped
- * for another placement. */
+ * (world_info, the colliders), the set-up of an offscreen session's world,
+ * a step with the harness's own blade sphere proxies, a draw in another
+ * mode or without grass, and the billboard field swapped for another
+ * placement. */
 #include "world/world_local.h"
 
 #include <string.h>
 
 world_info_t world_info(world_t *w)
 {
-    return (world_info_t){.scene = &w->scene,
-                          .scene_path = w->scene_path,
-                          .terrain = &w->terrain_mesh,
-                          .mode = w->mode,
-                          .reference = w->reference,
-                          .raster_compute = w->raster_compute,
-                          .raster_samples = w->raster_samples,
-                          .canopy = w->ground && ground_has_canopy(w->ground),
-                          .input_error = w->input_error,
-                          .stage_ms = w->stage_ms,
-                          .update_ms = w->update_ms,
-                          .admitted = &w->admitted,
-                          .lod_note = w->lod_note,
-                          .blade_env = &w->blade_env,
-                          .billboards = w->bb,
-                          .blades = w->have_blades ? w->blades : NULL,
-                          .tiles = w->have_tiles ? w->tiles : NULL,
-                          .characters = w->have_chars ? &w->chars : NULL,
-                          .raster = &w->raster};
+    world_info_t i = {.scene = &w->scene,
+                      .scene_path = w->scene_path,
+                      .terrain = &w->terrain_mesh,
+                      .mode = w->mode,
+                      .reference = w->reference,
+                      .raster_compute = w->raster_compute,
+                      .raster_samples = w->raster_samples,
+                      .input_error = w->input_error,
+                      .stage_ms = w->stage_ms,
+                      .update_ms = w->update_ms,
+                      .admitted = &w->admitted,
+                      .lod_note = w->lod_note,
+                      .characters = w->have_chars ? &w->chars : NULL};
+    if (!w->grass) return i;
+    grass_stats_t st = grass_stats(w->grass);
+    grass_drivers_t d = grass_drivers(w->grass);
+    i.raster_compute = st.compute;
+    i.canopy = st.canopy;
+    i.blade_env = d.blade_env;
+    i.billboards = d.billboards;
+    i.blades = d.blades;
+    i.tiles = d.tiles;
+    i.raster = d.raster;
+    return i;
 }
 
 uint32_t world_placement_seed(const world_t *w)
@@ -45,43 +50,36 @@ world_collider_info_t world_collider(const world_t *w, int i)
                                    .bound_radius = c->bound_radius};
 }
 
-void world_set_camera(world_t *w, const float camera[3]) { memcpy(w->camera, camera, sizeof w->camera); }
+void world_set_camera(world_t *w, const float camera[3]) { grass_set_camera(w->grass, camera); }
 
-bb_field_t *world_swap_billboards(world_t *w, bb_field_t *field)
+bb_field_t *world_build_billboards(const world_t *w, uint32_t placement)
 {
-    bb_field_t *old = w->bb;
-    w->bb = field;
-    return old;
+    return grass_build_billboards(w->grass, placement);
 }
 
-void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass)
+bb_field_t *world_swap_billboards(world_t *w, bb_field_t *field) { return grass_swap_billboards(w->grass, field); }
+
+/* world_draw_as and world_draw_canopy: the target bound and cleared, the
+ * world's objects, then the grass as `as` says. */
+static void draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as)
 {
-    scene_mode_t keep = w->mode;
-    bb_field_t *bb = w->bb;
-    bool blades = w->have_blades, tiles = w->have_tiles;
-    w->mode = mode;
-    if (!grass) {
-        w->bb = NULL;
-        w->have_blades = w->have_tiles = false;
-    }
     gfx_target_bind(t);
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    w->grass_depth = true; /* measures read the depth back */
-    world_draw(w, v, t, false);
-    w->grass_depth = false;
-    w->mode = keep;
-    w->bb = bb;
-    w->have_blades = blades;
-    w->have_tiles = tiles;
+    world_colliders_draw(&w->colliders, v);
+    if (w->have_chars) character_set_draw(&w->chars, v->viewproj, v->camera, v->sun);
+    grass_draw_target(w->grass, v, t, as);
 }
 
-void world_draw_canopy(world_t *w, const world_view_t *v, const gfx_target_t *t)
+void world_draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass)
 {
-    w->canopy_all = true;
-    world_draw_as(w, v, t, w->mode, false);
-    w->canopy_all = false;
+    draw_as(w, v, t, &(grass_draw_as_t){.mode = mode, .no_grass = !grass, .depth = true});
+}
+
+void world_draw_canopy(world_t *w, const grass_view_t *v, const gfx_target_t *t)
+{
+    draw_as(w, v, t, &(grass_draw_as_t){.mode = w->mode, .no_grass = true, .canopy_all = true, .depth = true});
 }
 
 bool world_setup(world_t *w, const world_setup_t *setup)
@@ -106,12 +104,8 @@ bool world_setup(world_t *w, const world_setup_t *setup)
 
 void world_update_spheres(world_t *w, float t, float dt, world_spheres_fn spheres, void *user)
 {
+    static blade_sphere_t proxies[BLADE_MAX_SPHERES];
     w->time = t;
     world_colliders_update(&w->colliders, &w->terrain_mesh, t);
-    blade_env_t *env = &w->blade_env;
-    env->dt = dt;
-    env->time = t;
-    collide_begin_set(&w->collide);
-    w->collide.sphere_count = spheres(w, w->collide.spheres, BLADE_MAX_SPHERES, user);
-    blade_gpu_update(w->blades, env, &w->collide);
+    grass_update_spheres(w->grass, proxies, spheres(w, proxies, BLADE_MAX_SPHERES, user), t, dt);
 }

@@ -9,23 +9,7 @@
 
 #include "world/world.h"
 
-/* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
-typedef struct world_tuning_t {
-    int tess_max;           /* blade tessellation level cap; default the blade module's */
-    unsigned cull_disable;  /* BLADE_CULL_* tests to skip */
-    bool blade_cube_proxies; /* blades collide against depth cube maps instead of
-                                sphere proxies (the set's cube proxies; not the tiles) */
-    uint32_t placement_seed; /* seeds where grass stands instead of the scene seed: full-field
-                                blades (blade_seed and the clearing thinning's draw) and
-                                billboards (bb_field_desc_t.placement_seed); terrain,
-                                clearings and clump textures keep the scene seed (not the
-                                hybrid tiles). The image error's noise floor (docs/METRICS.md) */
-    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
-    bool paper;              /* both papers' methods as printed (the stability suite's paper
-                                variant): blade_env_t.paper with eq. 12's length and the
-                                paper's eta gain k = 1, bb_field_desc_t.paper, and no swept
-                                colliders (the collide set's objects do not sweep) */
-} world_tuning_t;
+#include "grass/grass_harness.h"
 
 /* What an offscreen session changes between world_load and world_make_gpu.
  * Zero = keep what the scene and options say. */
@@ -34,7 +18,7 @@ typedef struct world_setup_t {
     bool mode_set;
     int msaa;       /* 0 = the scene's */
     bool reference; /* the reference rendering (world_info_t.reference) */
-    world_tuning_t tuning;
+    grass_tuning_t tuning;
     void (*tweak)(scene_desc_t *s, void *user); /* scene parameter overrides */
     void *user;
 } world_setup_t;
@@ -47,18 +31,18 @@ uint32_t world_placement_seed(const world_t *w);
 /* Simulates one fixed step at simulated time t (what world_frame's steps do). */
 void world_update(world_t *w, float t, float dt);
 /* Draws into `target` (bound by the caller): opaque objects first, then
- * their depth is resolved for the blades' occlusion culling, then grass. */
-void world_draw(world_t *w, const world_view_t *v, const gfx_target_t *target, bool wireframe);
+ * the grass (its occlusion tests read their depth). */
+void world_draw(world_t *w, const grass_view_t *v, const gfx_target_t *target);
 /* Binds and clears t, then draws the view in `mode`, with no grass at all
  * when !grass; the world's systems are used as they are (nothing is built
  * or simulated) and keep their state. The grass's depth is in t's depth on
  * either path (a frame of world_frame on the compute path has the opaque
  * scene's alone). */
-void world_draw_as(world_t *w, const world_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass);
+void world_draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass);
 /* As world_draw_as with no grass, the ground shaded as the canopy from the
  * camera on (no canopy table: the plain ground): the reference of the seam
  * where the blades end in the canopy. */
-void world_draw_canopy(world_t *w, const world_view_t *v, const gfx_target_t *t);
+void world_draw_canopy(world_t *w, const grass_view_t *v, const gfx_target_t *t);
 /* The camera the tiles stream and activate around until the next draw
  * sets it (a step without drawing). */
 void world_set_camera(world_t *w, const float camera[3]);

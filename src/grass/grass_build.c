@@ -1,0 +1,354 @@
+/* grass_build: what grass_make and grass_set_mode make: the layout and
+ * extent map both grass models share, the billboard field, the blade
+ * field or its tiles, the blades' environment, the ground canopy and the
+ * collision cube maps' size. */
+#include "grass/grass_local.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <string.h>
+
+#include "admit/admit.h"
+#include "scene/scene_lod.h"
+
+/* The layout shared by both grass models (so hybrid tiles cover the same
+ * ground): one layout texel per billboard candidate cell over the terrain,
+ * so the extent map's clearings are sized relative to the field. */
+static int layout_for(const grass_t *gr, bb_gen_desc_t *gen)
+{
+    const scene_grass_desc_t *g = &gr->scene->grass;
+    float extent = fmaxf(gr->terrain->aabb_max[0] - gr->terrain->aabb_min[0],
+                         gr->terrain->aabb_max[2] - gr->terrain->aabb_min[2]);
+    int cells = (int)ceilf(extent * sqrtf(g->billboard_density));
+    int layout_size = ((cells + 15) / 16) * 16;
+    layout_size = layout_size < 32 ? 32 : (layout_size > 1024 ? 1024 : layout_size);
+    *gen = bb_gen_desc_defaults(&(bb_gen_desc_t){.spacing = 1.0f / sqrtf(g->billboard_density),
+                                                 .origin = {gr->terrain->aabb_min[0], gr->terrain->aabb_min[2]},
+                                                 .seed = gr->scene->seed});
+    return layout_size;
+}
+
+/* The extent map's clearings (grass.clearings) on the layout of gen's
+ * cells: the blob size in texels, the image stretched over the terrain's
+ * xz box (the layout's origin is its corner). */
+static bb_extent_desc_t extent_desc(const grass_t *gr, const bb_gen_desc_t *gen)
+{
+    static const bb_clearings_t kinds[] = {[SCENE_CLEARINGS_NOISE] = BB_CLEARINGS_NOISE,
+                                           [SCENE_CLEARINGS_NONE] = BB_CLEARINGS_NONE,
+                                           [SCENE_CLEARINGS_IMAGE] = BB_CLEARINGS_IMAGE};
+    const scene_clearings_desc_t *c = &gr->scene->grass.clearings;
+    const float *lo = gr->terrain->aabb_min, *hi = gr->terrain->aabb_max;
+    float texel = gen->spacing * (float)gen->cells_per_texel;
+    bool image = c->type == SCENE_CLEARINGS_IMAGE;
+    return (bb_extent_desc_t){.clearings = kinds[c->type],
+                              .fraction = c->fraction,
+                              .feature = c->size / texel,
+                              .image = image ? &gr->clearings_image : NULL,
+                              .image_texels = {image ? (hi[0] - lo[0]) / texel : 0.0f,
+                                               image ? (hi[2] - lo[2]) / texel : 0.0f}};
+}
+
+/* The shared layout's extent map alone (the clump texture is the billboard
+ * field's business): one tiny clump layer is enough for bb_layout. */
+bool grass_extent_layout(const grass_t *gr, bb_layout_t *lay, bb_gen_desc_t *gen)
+{
+    int size = layout_for(gr, gen);
+    return bb_layout_generate(lay, &(bb_layout_desc_t){.seed = gr->scene->seed, .size = size, .clump_layers = 1,
+                                                        .clump_size = 8, .blades = 1, .extent_only = true,
+                                                        .extent = extent_desc(gr, gen)});
+}
+
+/* Thins seeded blades by the extent map with the billboards' acceptance
+ * rule (accept with probability E/255, see bb_layout.h), so both
+ * representations share clearings and density ratio. A rejected blade gets
+ * height and width 0: the physics and culling skip it like patch padding,
+ * and the patch layout stays intact. */
+static size_t thin_blades_by_extent(const grass_t *gr, const bb_layout_t *lay, const bb_gen_desc_t *g,
+                                    blade_field_t *field)
+{
+    bb_gen_desc_t gen = *g;
+    const core_image_t *ex = &lay->extent;
+    size_t dropped = 0;
+    for (size_t i = 0; i < field->blade_count; i++) {
+        blade_t *b = &field->blades[i];
+        int ix = (int)floorf((b->v0[0] - gen.origin[0]) / gen.spacing);
+        int iz = (int)floorf((b->v0[2] - gen.origin[1]) / gen.spacing);
+        int tx = ((ix / gen.cells_per_texel) % ex->w + ex->w) % ex->w;
+        int tz = ((iz / gen.cells_per_texel) % ex->h + ex->h) % ex->h;
+        uint32_t e = ex->px[(size_t)tz * (size_t)ex->w + (size_t)tx];
+        if (core_hash_u32((uint32_t)i ^ core_hash_u32(grass_placement_seed(gr) ^ 0x5bd1e995u)) % 255u >= e) {
+            b->v1[3] = 0.0f;
+            b->v2[3] = 0.0f;
+            dropped++;
+        }
+    }
+    return dropped;
+}
+
+/* Blade mode's grass-shaded ground (ground_set_lod): the canopy table and
+ * the extent map that thinned the blades (NULL: none, the ground canopy
+ * unthinned). */
+static void blade_mode_canopy(grass_t *gr, const bb_layout_t *lay, const bb_gen_desc_t *gen)
+{
+    blade_canopy_t canopy;
+    if (!blade_canopy_make(&canopy, &(blade_canopy_desc_t){.population = gr->scene->grass.population,
+                                                           .seed = gr->scene->seed,
+                                                           .sun = GRASS_SUN_DIR}))
+        return;
+    float origin[2] = {0.0f, 0.0f}, spacing = 1.0f;
+    if (lay) {
+        gr->blade_extent = gfx_texture_make(&(gfx_texture_desc_t){.w = lay->extent.w, .h = lay->extent.h,
+                                                                 .format = GL_R8, .filter = GL_NEAREST,
+                                                                 .data = lay->extent.px, .upload_format = GL_RED,
+                                                                 .label = "blades.extent"});
+        memcpy(origin, gen->origin, sizeof origin);
+        spacing = gen->spacing * (float)gen->cells_per_texel;
+    }
+    ground_set_canopy(gr->ground, &canopy, gr->blade_extent.id, origin, spacing);
+}
+
+/* The collision cube-map side: grass.cube_resolution, raised (grass.cube_texel
+ * > 0) until the largest collider or character, of bounding radius r, has
+ * texels 2 r / res no larger than cube_texel (large_bb in the stability
+ * suite: a 4 m ball at 16 texels had 0.5 m texels). Capped where the cube
+ * render target (res x 6 res) exceeds the GL's texture size, with a warning. */
+int grass_cube_resolution(const grass_t *gr)
+{
+    const scene_grass_desc_t *g = &gr->scene->grass;
+    int res = g->cube_resolution;
+    if (g->cube_texel <= 0.0f) return res;
+    float r = gr->collider_radius;
+    int want = (int)ceilf(2.0f * r / g->cube_texel);
+    GLint max_size = 4096;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    int cap = max_size / 6;
+    if (want > cap) {
+        core_log_warn("grass.cube_texel %g m needs %d texels per cube face for a collider of radius %g m; the GL "
+                      "allows %d: texels stay %g m",
+                      (double)g->cube_texel, want, (double)r, cap, (double)(2.0f * r / (float)cap));
+        want = cap;
+    }
+    if (want > res) {
+        core_log_info("collision cube maps: %d texels per face (grass.cube_texel %g m, largest collider radius "
+                      "%g m; grass.cube_resolution %d)",
+                      want, (double)g->cube_texel, (double)r, res);
+        res = want;
+    }
+    return res;
+}
+
+/* The billboard field's desc (grass_build_billboards; placement: its
+ * placement seed). */
+static bb_field_desc_t billboard_desc(const grass_t *gr, uint32_t placement)
+{
+    const scene_desc_t *s = gr->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    bb_wind_desc_t wind = {0};
+    float wind_strength = 0.0f; /* the clump bakes' blades settle under its mean */
+    if (s->wind_count && s->wind[0].type == SCENE_WIND_DIRECTIONAL) {
+        const scene_wind_t *sw = &s->wind[0];
+        wind = bb_wind_from_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
+        wind_strength = sw->strength;
+    }
+    bb_gen_desc_t gen;
+    int layout_size = layout_for(gr, &gen);
+    int objects = gr->objects;
+    if (objects > BB_MAX_OBJECTS) objects = BB_MAX_OBJECTS;
+    return (bb_field_desc_t){
+        .terrain = gr->terrain,
+        .seed = s->seed,
+        .placement_seed = placement,
+        .density = g->billboard_density,
+        .size = {g->billboard_size[0], g->billboard_size[1]},
+        .subdiv = {g->subdiv[0], g->subdiv[1]},
+        .gi = g->gi,
+        .occlusion = g->bb_occlusion,
+        .iterations = g->spring_iterations,
+        .paper = gr->tuning.paper,
+        .max_deformed = g->deformed_pool,
+        .cube_res = gr->cube_res,
+        .recover_time = g->recover_time,
+        .max_objects = objects > 0 ? objects : 1,
+        /* a world's ring (bb_ring.h) holds billboards out to the canopy's band */
+        .ring_reach = g->canopy_distance + GRASS_CANOPY_FADE,
+        .wind = wind,
+        .layout = {.size = layout_size,
+                   .blades = bb_clump_blades(g->population.density, g->billboard_density),
+                   .clump = {.population = g->population,
+                             .wind = wind_strength,
+                             .wind_dir = {wind.dir[0], wind.dir[1]}},
+                   .extent = extent_desc(gr, &gen),
+                   .views = {.on = gr->tuning.view_cards}},
+    };
+}
+
+bb_field_t *grass_build_billboards(const grass_t *gr, uint32_t placement)
+{
+    bb_field_desc_t d = billboard_desc(gr, placement);
+    return bb_field_make(&d);
+}
+
+bool grass_make_billboards(grass_t *gr)
+{
+    /* its programs build during its layout (and the raster's during the rest) */
+    bb_field_desc_t bd = billboard_desc(gr, gr->tuning.placement_seed);
+    raster_desc_t rd = {.samples = gr->raster_samples};
+    bb_field_prefetch(&bd, gr->scene->raster != SCENE_RASTER_HW ? &rd : NULL);
+    gr->bb = bb_field_make(&bd);
+    return gr->bb != NULL;
+}
+
+bool grass_make_blades(grass_t *gr)
+{
+    const scene_desc_t *s = gr->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    const terrain_mesh_t *t = gr->terrain;
+    blade_field_t field;
+    blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
+                         .indices = t->indices, .index_count = t->index_count};
+    blade_seed_desc_t sd = {.seed = grass_placement_seed(gr),
+                            .population = g->population,
+                            .max_blades = ADMIT_MAX_FIELD_BLADES};
+    if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
+    bb_gen_desc_t gen;
+    bb_layout_t lay;
+    bool have_layout = gr->scene->terrain.type == TERRAIN_HEIGHTFIELD && grass_extent_layout(gr, &lay, &gen);
+    size_t dropped = have_layout ? thin_blades_by_extent(gr, &lay, &gen, &field) : 0;
+    if (!gr->reference && !ground_has_canopy(gr->ground)) blade_mode_canopy(gr, have_layout ? &lay : NULL, &gen);
+    if (have_layout) bb_layout_free(&lay);
+    blade_gpu_desc_t gd = {.field = &field, .shape = g->population.shape, .label = "blades",
+                           .displacement = g->displacement, .width_correction = g->width_correction,
+                           .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
+                                                                              : BLADE_PATH_PULLING};
+    if (gr->tuning.tess_max) gd.max_tess_level = gr->tuning.tess_max;
+    if (gr->reference) {
+        gd.max_tess_level = 16;
+        gd.no_patch_cull = true;
+    }
+    gr->blades = blade_gpu_make(&gd);
+    gr->have_blades = gr->blades != NULL;
+    core_log_info("blades: %zu blades in %zu patches (%zu in clearings of the extent map)",
+                  field.blade_count - dropped, field.patch_count, dropped);
+    blade_field_free(&field);
+    return gr->have_blades;
+}
+
+_Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the blade physics");
+
+/* The blade environment shared by the full field and the tiles. */
+void grass_make_blade_env(grass_t *gr)
+{
+    const scene_desc_t *s = gr->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    /* A push of a tenth of the mean height counts fully towards eta, and
+     * eta decays over the scene's recover time: a trail stays down about
+     * that long, like the billboards' (departure from the paper's k = 1,
+     * see blade_env_t.collision_gain). */
+    blade_population_t pop = blade_population_defaults(&g->population);
+    float h = 0.5f * (pop.height[0] + pop.height[1]);
+    gr->blade_env = (blade_env_t){.gravity = pop.gravity,
+                                 .collision_gain = 1.0f / (0.01f * h * h),
+                                 .collision_decay = 1.0f / g->recover_time};
+    if (gr->tuning.paper) {
+        gr->blade_env.paper = true;
+        gr->blade_env.length_mode = BLADE_LENGTH_PAPER;
+        gr->blade_env.collision_gain = 1.0f;
+    }
+    for (int i = 0; i < s->wind_count && i < BLADE_MAX_WINDS; i++) {
+        const scene_wind_t *sw = &s->wind[i];
+        gr->blade_env.winds[gr->blade_env.wind_count++] =
+            sw->type == SCENE_WIND_POINT
+                ? blade_wind_point(sw->position, sw->strength, sw->radius)
+                : blade_wind_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
+    }
+}
+
+/* Billboards -> blades hand-over: the deformed billboards of the moment
+ * seed the blades of tiles turning to blades (blade_tiles.h). */
+static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
+{
+    grass_t *gr = user;
+    if (gr->bb) bb_field_add_slopes(gr->bb, grid, sums);
+}
+
+/* The canopy table (GL-free; its rows computed in parallel, 211 ms on 2
+ * cores) runs on a thread of its own while the layout and the tiles are
+ * made. */
+typedef struct canopy_job_t {
+    blade_canopy_desc_t desc;
+    blade_canopy_t canopy;
+    bool ok;
+} canopy_job_t;
+
+static void *canopy_thread(void *user)
+{
+    canopy_job_t *job = user;
+    job->ok = blade_canopy_make(&job->canopy, &job->desc);
+    return NULL;
+}
+
+bool grass_make_tiles(grass_t *gr)
+{
+    const scene_desc_t *s = gr->scene;
+    const scene_grass_desc_t *g = &s->grass;
+    canopy_job_t job = {.desc = {.population = g->population,
+                                 .seed = s->seed,
+                                 .sun = GRASS_SUN_DIR}};
+    pthread_t thread;
+    bool threaded = pthread_create(&thread, NULL, canopy_thread, &job) == 0;
+    blade_tiles_desc_t td = {.terrain = gr->terrain,
+                             .tile_size = g->tile_size,
+                             .population = g->population,
+                             .seed = s->seed,
+                             .switch_distance = grass_tiles_distance(gr),
+                             .pool_slots = g->tile_pool,
+                             .displacement = g->displacement,
+                             .width_correction = g->width_correction,
+                             .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
+                             .wind_count = gr->blade_env.wind_count,
+                             .cull = {.max_distance = grass_tiles_distance(gr) + 1.0f, .lod = g->lod,
+                                      .focal_px = scene_focal(s)},
+                             .slope_recover = g->recover_time,
+                             .label = "tiles"};
+    memcpy(td.winds, gr->blade_env.winds, sizeof td.winds);
+    /* The billboards' extent map thins the tiles too (same clearings). */
+    bb_gen_desc_t gen;
+    bb_layout_t lay;
+    bool have_layout = grass_extent_layout(gr, &lay, &gen);
+    if (have_layout) {
+        td.extent = &lay.extent;
+        memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);
+        td.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
+        td.extent_seed = s->seed;
+    }
+    gr->tiles = blade_tiles_make(&td);
+    gr->have_tiles = gr->tiles != NULL;
+    if (gr->have_tiles) blade_tiles_set_slope_source(gr->tiles, bb_slope_source, gr);
+    /* The ground canopy beyond the billboards, thinned by the tiles' extent
+     * map (its texture). */
+    if (threaded) pthread_join(thread, NULL);
+    else canopy_thread(&job);
+    if (gr->have_tiles && job.ok)
+        ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,
+                               td.extent_origin, td.extent_spacing);
+    if (have_layout) bb_layout_free(&lay);
+    return gr->have_tiles;
+}
+
+/* A world terrain in billboard mode: the ground canopy beyond the
+ * billboard ring (bb_ring.h; the hybrid's comes with its tiles); true
+ * when there is nothing to make. */
+bool grass_ring_make_canopy(grass_t *gr)
+{
+    if (gr->terrain->type != TERRAIN_WORLD || !gr->bb || gr->have_tiles) return true;
+    blade_canopy_t canopy;
+    if (!blade_canopy_make(&canopy, &(blade_canopy_desc_t){.population = gr->scene->grass.population,
+                                                           .seed = gr->scene->seed,
+                                                           .sun = GRASS_SUN_DIR}))
+        return false;
+    bb_field_info_t fi;
+    bb_field_info(gr->bb, &fi);
+    ground_set_canopy(gr->ground, &canopy, fi.extent_texture, fi.gen.origin,
+                      fi.gen.spacing * (float)fi.gen.cells_per_texel);
+    return true;
+}

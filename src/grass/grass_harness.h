@@ -1,0 +1,114 @@
+/* grass_harness: what in-tree hosts (src/world) and the evaluation
+ * harness (src/measure, the tests) take from a grass_t beyond grass.h: a
+ * resolved scene and terrain at grass_make, knobs that are not scene
+ * keys, the drivers it holds for the measures, and draws or steps that
+ * the program does not use. Not part of the installed library. */
+#ifndef MEADOW_GRASS_HARNESS_H
+#define MEADOW_GRASS_HARNESS_H
+
+#include "grass/grass.h"
+
+#include "admit/admit.h"
+#include "billboard/bb.h"
+#include "blade/blade.h"
+#include "blade/blade_tiles.h"
+#include "collide/collide_set.h"
+#include "gfx/gfx.h"
+#include "raster/raster.h"
+#include "scene/scene.h"
+#include "scene/terrain.h"
+
+/* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
+typedef struct grass_tuning_t {
+    int tess_max;            /* blade tessellation level cap; default the blade module's */
+    unsigned cull_disable;   /* BLADE_CULL_* tests to skip */
+    bool blade_cube_proxies; /* blades collide against depth cube maps instead of
+                                sphere proxies (the set's cube proxies; not the tiles) */
+    uint32_t placement_seed; /* seeds where grass stands instead of the scene seed: full-field
+                                blades (blade_seed and the clearing thinning's draw) and
+                                billboards (bb_field_desc_t.placement_seed); terrain,
+                                clearings and clump textures keep the scene seed (not the
+                                hybrid tiles). The image error's noise floor (docs/METRICS.md) */
+    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
+    bool paper;              /* both papers' methods as printed (the stability suite's paper
+                                variant): blade_env_t.paper with eq. 12's length and the
+                                paper's eta gain k = 1, bb_field_desc_t.paper, and no swept
+                                colliders (the collide set's objects do not sweep) */
+} grass_tuning_t;
+
+/* grass_desc_t.host: the scene and terrain the host resolved (both
+ * borrowed for the grass's life; the grass applies grass.lod_table and
+ * run-time mode and rasterizer switches to scene), the knobs, the
+ * reference rendering, and the compute rasterizer's samples. */
+typedef struct grass_host_t {
+    scene_desc_t *scene;
+    const terrain_mesh_t *terrain;
+    const char *scene_path;
+    grass_tuning_t tuning;
+    bool reference; /* blades everywhere, maximum tessellation, no culling */
+    int raster_samples; /* 0: the scene's */
+} grass_host_t;
+
+/* Resource admission (admit.h) of a field once the GL's limits are known,
+ * before any of it is made: the grass's own rules with the host's
+ * colliders and characters. grass_make runs it with desc's colliders when
+ * there is no host; a host runs it itself (again once its characters are
+ * loaded). False after filling err: the field does not fit (bad input). */
+typedef struct grass_admit_t {
+    const scene_desc_t *scene;
+    const terrain_mesh_t *terrain;
+    scene_mode_t mode;
+    bool reference, size_option;
+    int target_samples;
+    float collider_radius;
+    int objects;                  /* colliders and characters */
+    const int *collider_spheres;  /* sphere proxies per scene collider (NULL: none) */
+    const int *character_spheres; /* per character (NULL: none) */
+    int characters;
+} grass_admit_t;
+bool grass_admit(const grass_admit_t *a, admit_t *out, char *err, size_t err_size);
+
+/* Starts building the programs the host's field will take (the compute
+ * rasterizer's, the tiles') on the driver's threads, before the host loads
+ * what it needs of its own (its characters); grass_make takes them. */
+void grass_prefetch(const grass_host_t *host);
+
+/* The drivers a grass_t holds (NULL when it has none), for the measures. */
+typedef struct grass_drivers_t {
+    bb_field_t *billboards;
+    blade_gpu_t *blades;
+    blade_tiles_t *tiles;
+    raster_t *raster; /* the compute rasterizer's buffers (vis.id 0: none yet) */
+    const blade_env_t *blade_env;
+    const collide_set_t *collide; /* the latest step's */
+    const float *camera;          /* the camera the latest step steered by */
+} grass_drivers_t;
+grass_drivers_t grass_drivers(grass_t *g);
+
+/* The samples per pixel of a target for g's path: the scene's msaa with
+ * the hardware path, 1 with the compute rasterizer. */
+int grass_target_samples(const grass_t *g);
+/* The camera the tiles stream and activate around until the next draw. */
+void grass_set_camera(grass_t *g, const float camera[3]);
+/* As grass_draw into an in-tree target, in `mode`, with no grass at all
+ * when !grass (the ground only) and the ground shaded as canopy from the
+ * camera on when canopy_all; depth: the grass writes its depth on the
+ * compute path too (measures read it back). */
+typedef struct grass_draw_as_t {
+    scene_mode_t mode;
+    bool no_grass, canopy_all, depth;
+} grass_draw_as_t;
+void grass_draw_target(grass_t *g, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as);
+/* Takes colliders as where they stood before the next grass_update (its
+ * sweep), without a step; otherwise the first step sweeps nothing. */
+void grass_prime_colliders(grass_t *g, const grass_collider_t *colliders, int count);
+/* One blade step with the spheres given in place of the colliders' (the
+ * full field alone: no billboards, no tiles). */
+void grass_update_spheres(grass_t *g, const collide_sphere_t *spheres, int count, float t, float dt);
+/* A billboard field as g builds its own, for placement seed `placement`
+ * (0: the scene seed); NULL when it cannot be made. */
+bb_field_t *grass_build_billboards(const grass_t *g, uint32_t placement);
+/* Puts `field` in g's place (NULL: none) and returns the field it held. */
+bb_field_t *grass_swap_billboards(grass_t *g, bb_field_t *field);
+
+#endif
