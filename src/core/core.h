@@ -84,9 +84,10 @@ bool core_fs_check_writable_dir(const char *dir, char *err, size_t err_size);
  * process holds it (two runs writing one folder mixed their files). */
 #define CORE_FS_LOCK_NAME ".meadow.lock"
 bool core_fs_lock_dir(const char *dir, char *err, size_t err_size);
-/* Resolves a repository-relative path (e.g. "shaders/gfx/x.vert") by trying,
- * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel. Writes
- * the first that exists into out. Returns false if none exists. */
+/* Resolves a repository-relative path (e.g. "scenes/lawn.json") by trying,
+ * in order: $MEADOW_ROOT/rel, ./rel, the compiled-in source dir/rel, the
+ * installed data dir/rel (share/meadow). Writes the first that exists into
+ * out. Returns false if none exists. */
 bool core_fs_resolve(const char *rel, char *out, size_t out_size);
 
 /* ---- growable buffers ------------------------------------------------------

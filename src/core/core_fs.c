@@ -198,8 +198,8 @@ bool core_fs_lock_dir(const char *dir, char *err, size_t err_size)
 
 bool core_fs_resolve(const char *rel, char *out, size_t out_size)
 {
-    const char *roots[3] = {getenv("MEADOW_ROOT"), ".", MEADOW_SOURCE_DIR};
-    for (int i = 0; i < 3; i++) {
+    const char *roots[4] = {getenv("MEADOW_ROOT"), ".", MEADOW_SOURCE_DIR, MEADOW_DATA_DIR};
+    for (int i = 0; i < 4; i++) {
         if (!roots[i]) continue;
         int n = snprintf(out, out_size, "%s/%s", roots[i], rel);
         if (n >= 0 && (size_t)n < out_size && access(out, R_OK) == 0) return true; /* a cut path is not it */

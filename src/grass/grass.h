@@ -49,7 +49,8 @@ typedef struct grass_io_t {
 
 /* Zero means default throughout. */
 typedef struct grass_desc_t {
-    const char *scene;     /* a scene file (docs/SCENES.md): terrain, grass, wind, lod; default scenes/meadow.json */
+    const char *scene;     /* a scene file (docs/SCENES.md): terrain, grass, wind, lod; a relative path is
+                              also looked for in the installed share/meadow; default scenes/meadow.json */
     uint32_t seed;         /* 0: the scene's */
     grass_mode_t mode;
     int raster;            /* 0: the scene's, 1 hardware, 2 compute rasterizer */
@@ -103,6 +104,8 @@ grass_t *grass_make(const grass_desc_t *desc);
  * grass_make on this thread. */
 int grass_last_error(void);
 void grass_destroy(grass_t *g);
+/* The library's version, "major.minor.patch". */
+const char *grass_version(void);
 
 /* One step of dt s ending at time t: the colliders move, the grass bends
  * and recovers. Steers by the views drawn since the previous step (the
