@@ -1,7 +1,8 @@
 /* test_grass_api: the library's face (grass.h) as a host uses it, on
  * scenes/tiny.json at 96x64, a ball rolling through the grass:
  *   a) two grass_t in one context, stepped and drawn each into its own
- *      framebuffer frame by frame, give the images each gives alone;
+ *      framebuffer frame by frame, give the images each gives alone, and
+ *      so does a field drawn in two parts (grass_draw_part);
  *   b) two views drawn in one frame (the same eye, a second direction)
  *      give the images each view gives when it is the only one;
  *   c) the GL state the header lists is the same before and after
@@ -50,6 +51,7 @@ typedef struct run_t {
     float eye[2][3], at[2][3];
     int views;       /* views drawn per frame: 1 or 2 */
     int only;        /* with views 1: which of the two */
+    bool split;      /* grass_draw_part: the ground, then the grass */
     gfx_target_t target[2];
 } run_t;
 
@@ -76,7 +78,12 @@ static void frame(run_t *r, grass_t *g, int f)
         glClearColor(0, 0, 0, 1);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         grass_target_t ht = host_of(&r->target[which]);
-        grass_draw(g, &v, &ht);
+        if (r->split) {
+            grass_draw_part(g, &v, &ht, GRASS_PART_GROUND);
+            grass_draw_part(g, &v, &ht, GRASS_PART_GRASS);
+        } else {
+            grass_draw(g, &v, &ht);
+        }
     }
 }
 
@@ -122,6 +129,16 @@ static void check_two_fields(void)
     for (int i = 0; i < 2; i++) finish(&r[i], g[i], both[i]);
     expect_same(&alone[0][0], &both[0][0], "the hybrid beside a second field");
     expect_same(&alone[1][0], &both[1][0], "blade mode beside a second field");
+    /* The same frames drawn in two parts, the ground and then the grass. */
+    core_image_t split[2];
+    run_t rs = run_of(GRASS_MODE_HYBRID, 0);
+    rs.split = true;
+    grass_t *gs = start(&rs);
+    for (int f = 0; f < FRAMES; f++) frame(&rs, gs, f);
+    finish(&rs, gs, split);
+    expect_same(&alone[0][0], &split[0], "grass_draw_part: the ground, then the grass");
+    core_image_free(&split[0]);
+    core_image_free(&split[1]);
     for (int i = 0; i < 2; i++)
         for (int k = 0; k < 2; k++) {
             core_image_free(&alone[i][k]);

@@ -163,7 +163,7 @@ int main(int argc, char **argv)
                               .radius = BALL_R, .vao = ball_vao, .index_count = count, .index_type = GL_UNSIGNED_INT,
                               .model = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, ball[0], ball[1], ball[2], 1}};
         grass_update(g, &c, 1, t, dt);
-        /* the host's frame: its opaque ball, then the grass */
+        /* the host's frame: the ground (the first occluder), its opaque ball, then the grass */
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, W, H);
         glClearColor(0.6f, 0.75f, 0.9f, 1);
@@ -172,6 +172,9 @@ int main(int argc, char **argv)
         look_at(view, eye, at);
         grass_view_t v;
         grass_view_make(&v, view, proj, W, H, t);
+        grass_target_t target = {.fbo = fbo, .color_texture = tex[0], .depth_texture = tex[1], .width = W,
+                                 .height = H, .samples = 1};
+        grass_draw_part(g, &v, &target, GRASS_PART_GROUND);
         glUseProgram(prog);
         float mvp[16];
         for (int i = 0; i < 16; i++) mvp[i] = 0;
@@ -181,8 +184,7 @@ int main(int argc, char **argv)
         glUniformMatrix4fv(glGetUniformLocation(prog, "mvp"), 1, GL_FALSE, mvp);
         glBindVertexArray(ball_vao);
         glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, NULL);
-        grass_draw(g, &v, &(grass_target_t){.fbo = fbo, .color_texture = tex[0], .depth_texture = tex[1],
-                                            .width = W, .height = H, .samples = 1});
+        grass_draw_part(g, &v, &target, GRASS_PART_GRASS);
         if (!headless) {
             glBlitNamedFramebuffer(fbo, 0, 0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
             glfwSwapBuffers(win);

@@ -114,6 +114,10 @@ void grass_update(grass_t *g, const grass_collider_t *colliders, int count, floa
 /* Draws the ground and the grass into target after the host's opaque
  * objects (their depth occludes the grass). */
 void grass_draw(grass_t *g, const grass_view_t *view, const grass_target_t *target);
+/* grass_draw in two parts: the ground (terrain and sky) first, so that it
+ * occludes the host's objects drawn next, then the grass over both. */
+typedef enum grass_part_t { GRASS_PART_ALL = 0, GRASS_PART_GROUND = 1, GRASS_PART_GRASS = 2 } grass_part_t;
+void grass_draw_part(grass_t *g, const grass_view_t *view, const grass_target_t *target, grass_part_t part);
 
 /* Switches the mode or the rasterizer at run time, keeping the state. */
 void grass_set_mode(grass_t *g, grass_mode_t mode);

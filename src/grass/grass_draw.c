@@ -150,9 +150,10 @@ static void set_ground_lod(grass_t *gr, const frame_draw_t *f, bool ring, bool f
     ground_set_lod(gr->ground, &f->lod, width, f->focal, f->cull, ring ? f->fade_lo : INFINITY);
 }
 
-/* The passes of grass_pass_list, in order, into the bound target. */
+/* The passes of grass_pass_list that belong to `parts` (grass_part_t; 0:
+ * all), in order, into the bound target. */
 static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *target, scene_mode_t mode,
-                        bool grass)
+                        bool grass, unsigned parts)
 {
     if (gr->views++ == 0) memcpy(gr->view_camera, v->camera, sizeof gr->view_camera);
     memcpy(gr->camera, v->camera, sizeof gr->camera);
@@ -186,7 +187,10 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
     frame_lod(gr, &f);
     set_ground_lod(gr, &f, ring, grass_pass_has(passes, n, GRASS_PASS_BLADES) && !gr->reference);
     if (gr->canopy_all) ground_set_canopy_fade(gr->ground, 0.0f, 1e-3f);
-    for (int i = 0; i < n; i++) run_pass(gr, &f, passes[i].kind);
+    unsigned want = parts ? parts : GRASS_PART_GROUND | GRASS_PART_GRASS;
+    for (int i = 0; i < n; i++)
+        if (want & (passes[i].kind == GRASS_PASS_GROUND ? GRASS_PART_GROUND : GRASS_PART_GRASS))
+            run_pass(gr, &f, passes[i].kind);
     gr->mode = keep;
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
@@ -198,12 +202,12 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
 void grass_draw_target(grass_t *gr, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as)
 {
     if (!as) {
-        draw_passes(gr, v, t, gr->mode, true);
+        draw_passes(gr, v, t, gr->mode, true, 0);
         return;
     }
     gr->canopy_all = as->canopy_all;
     gr->grass_depth = as->depth;
-    draw_passes(gr, v, t, as->mode, !as->no_grass);
+    draw_passes(gr, v, t, as->mode, !as->no_grass, as->parts);
     gr->canopy_all = gr->grass_depth = false;
 }
 
@@ -310,6 +314,11 @@ static bool host_target(grass_t *gr, const grass_target_t *t, gfx_target_t *out)
 
 void grass_draw(grass_t *gr, const grass_view_t *v, const grass_target_t *t)
 {
+    grass_draw_part(gr, v, t, GRASS_PART_ALL);
+}
+
+void grass_draw_part(grass_t *gr, const grass_view_t *v, const grass_target_t *t, grass_part_t part)
+{
     gl_state_t saved;
     state_save(&saved);
     gfx_target_t target;
@@ -321,6 +330,6 @@ void grass_draw(grass_t *gr, const grass_view_t *v, const grass_target_t *t)
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    draw_passes(gr, v, &target, gr->mode, true);
+    draw_passes(gr, v, &target, gr->mode, true, part);
     state_restore(&saved);
 }

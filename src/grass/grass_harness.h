@@ -97,6 +97,7 @@ void grass_set_camera(grass_t *g, const float camera[3]);
 typedef struct grass_draw_as_t {
     scene_mode_t mode;
     bool no_grass, canopy_all, depth;
+    unsigned parts; /* grass_part_t: 0 all, else the ground or the grass alone */
 } grass_draw_as_t;
 void grass_draw_target(grass_t *g, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as);
 /* Takes colliders as where they stood before the next grass_update (its

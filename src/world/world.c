@@ -320,12 +320,20 @@ void world_update(world_t *w, float t, float dt)
     mark = plat_time();
 }
 
-/* The world's opaque objects (colliders, characters), then the grass. */
-void world_draw(world_t *w, const grass_view_t *v, const gfx_target_t *target)
+void world_draw_objects(world_t *w, const grass_view_t *v, const gfx_target_t *target, const grass_draw_as_t *as)
 {
+    grass_draw_as_t part = as ? *as : (grass_draw_as_t){.mode = w->mode};
+    part.parts = GRASS_PART_GROUND;
+    grass_draw_target(w->grass, v, target, &part);
     world_colliders_draw(&w->colliders, v);
     if (w->have_chars) character_set_draw(&w->chars, v->viewproj, v->camera, v->sun);
-    grass_draw_target(w->grass, v, target, NULL);
+    part.parts = GRASS_PART_GRASS;
+    grass_draw_target(w->grass, v, target, &part);
+}
+
+void world_draw(world_t *w, const grass_view_t *v, const gfx_target_t *target)
+{
+    world_draw_objects(w, v, target, NULL);
 }
 
 void world_set_raster(world_t *w, bool compute)

@@ -67,9 +67,7 @@ static void draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, co
     glClearColor(0, 0, 0, 1);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
-    world_colliders_draw(&w->colliders, v);
-    if (w->have_chars) character_set_draw(&w->chars, v->viewproj, v->camera, v->sun);
-    grass_draw_target(w->grass, v, t, as);
+    world_draw_objects(w, v, t, as);
 }
 
 void world_draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, scene_mode_t mode, bool grass)

@@ -67,6 +67,11 @@ struct world_t {
     double update_ms[WORLD_UPDATE_PARTS]; /* world_info_t.update_ms */
 };
 
+/* The ground (the grass's first part, the largest occluder), the world's
+ * opaque objects (colliders, characters), then the grass, drawn as `as`
+ * says (NULL: the world's mode, all of it). */
+void world_draw_objects(world_t *w, const grass_view_t *v, const gfx_target_t *target, const grass_draw_as_t *as);
+
 /* Capsules per character for the blade proxies: 8 keeps a humanoid near 35
  * spheres (see character_proxy_spheres). */
 #define WORLD_CHARACTER_CAPSULES 8
