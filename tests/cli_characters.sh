@@ -2,8 +2,10 @@
 # cli_characters: the character options from the command line: --list-clips
 # (clips, durations, keys; exit 0), a wrong clip (one error line naming the
 # available clips, exit 2), --clip/--character-height without characters,
-# --character-height reported in summary.txt, and texture problems (a
-# Windows path, a corrupt PNG) as warnings of a run that exits 0.
+# --character-height reported in summary.txt, texture problems (a
+# Windows path, a corrupt PNG) as warnings of a run that exits 0, named
+# clip ranges from the scene and --clip, and the fallback from a clip
+# without duration.
 # Usage: cli_characters.sh MEADOW_BINARY
 set -u
 bin=$1
@@ -62,4 +64,18 @@ scene "$tmp/keys.json" '{"model": "models/humanoid.gltf", "up": "+y", "forward":
 expect0 "height 1.200 m" --headless --scene "$tmp/keys.json" --frames 1 --size 64x48 --screenshot-every 0 --out "$tmp/out"
 grep -q "^character 0: models/humanoid.gltf: height 1.200 m, .*up +y: scene; forward +x: scene" "$tmp/out/summary.txt" ||
   { echo "FAIL: summary.txt of the scene keys"; grep character "$tmp/out/summary.txt"; fail=1; }
+# named ranges of one clip (characters[].clips) play by name from the scene
+# and from --clip; a clip without duration (the clips fixture's first) gives
+# way to the next that moves, with one warning naming both
+scene "$tmp/range.json" '{"model": "models/humanoid.gltf", "clips": {"stride": [250, 750]}, "clip": "stride"}'
+expect0 "character 0: models/humanoid.gltf" --headless --scene "$tmp/range.json" --frames 1 --size 64x48 \
+  --screenshot-every 0 --out "$tmp/out"
+scene "$tmp/range_run.json" '{"model": "models/humanoid.gltf", "clips": {"stride": [250, 750]}, "clip": "run"}'
+expect2 "no clip \"run\" .*its scene ranges: 'stride'" --headless --scene "$tmp/range_run.json" --frames 1 \
+  --size 64x48 --screenshot-every 0 --out "$tmp/out"
+expect0 "character 0: models/humanoid.gltf" --headless --scene "$tmp/range_run.json" --clip stride --frames 1 \
+  --size 64x48 --screenshot-every 0 --out "$tmp/out"
+expect0 "warning: character 0: clip 'pose' of .*clips.gltf has no duration (one frame); playing 'grow'" "${run[@]}" \
+  --character tests/data/models/clips.gltf
+[ "$(grep -c "playing 'grow'" "$tmp/stderr")" = 1 ] || { echo "FAIL: the fallback warned more than once"; fail=1; }
 exit $fail

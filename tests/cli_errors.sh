@@ -89,6 +89,33 @@ expect2 "--out: 1105 bytes, more than the 1023 this program keeps" --out "$long"
 expect2 "--scene: 1105 bytes, more than the 1023" --scene "$long"
 expect2 "--character: 305 bytes, more than the 255" --character "${long:0:305}"
 expect2 "--clip: 100 bytes, more than the 63" --clip "$(printf 'c%.0s' $(seq 100))"
+# clip ranges: START:END on --clip and named ranges (characters[].clips) that
+# are reversed, negative, past the timeline (the walk's 1000 ticks), not
+# numbers, or too many names
+tiny=(--headless --scene "$root/scenes/tiny.json" --frames 1 --size 64x36 --screenshot-every 0)
+expect2 'clip range "5:2" in .*humanoid.gltf: end 2 is not after start 5' "${tiny[@]}" \
+  --character models/humanoid.gltf --clip 5:2
+expect2 'clip range "-1:5" in .*: start -1 is negative' "${tiny[@]}" --character models/humanoid.gltf --clip -1:5
+expect2 "clip range \"0:5000\" in .*: end 5000 is past the timeline's 1000 ticks (clip 0 'walk')" "${tiny[@]}" \
+  --character models/humanoid.gltf --clip 0:5000
+expect2 'no clip "a:b" in .*humanoid.gltf' "${tiny[@]}" --character models/humanoid.gltf --clip a:b
+clips_scene() { # clips_scene FILE CLIPS_JSON: one humanoid playing "walk" of CLIPS_JSON
+  printf '{ "characters": [ { "model": "models/humanoid.gltf", "clip": "walk",\n  "clips": %s } ] }\n' "$2" >"$1"
+}
+clips_scene "$tmp/clips_past.json" '{ "walk": [1, 5000] }'
+expect2 "character 0: clips.walk \[1, 5000\] in .*: end 5000 is past the timeline's 1000 ticks" \
+  --headless --scene "$tmp/clips_past.json"
+clips_scene "$tmp/clips_reversed.json" '{ "walk": [14, 1] }'
+expect2 'clips_reversed.json:2: field "characters\[0\].clips.walk": end 1 is not after start 14' \
+  --headless --scene "$tmp/clips_reversed.json"
+clips_scene "$tmp/clips_negative.json" '{ "walk": [-1, 14] }'
+expect2 'field "characters\[0\].clips.walk\[0\]": -1 is out of range \[0, 1e+07\]' \
+  --headless --scene "$tmp/clips_negative.json"
+clips_scene "$tmp/clips_text.json" '{ "walk": ["1", 14] }'
+expect2 'field "characters\[0\].clips.walk\[0\]": expected number, got string' --headless --scene "$tmp/clips_text.json"
+clips_scene "$tmp/clips_many.json" "{ $(for n in a b c d e f g h i; do printf '"%s": [0, 1], ' $n; done)\"j\": [0, 1] }"
+expect2 'field "characters\[0\].clips": 10 names, more than the maximum 8 (SCENE_MAX_CLIP_RANGES)' \
+  --headless --scene "$tmp/clips_many.json"
 expect2 "--perf: 1105 bytes, more than the 1023" bench --perf "$long"
 printf '{ "terrain": { "type": "mesh", "mesh": "%s" } }\n' "${long:0:300}" >"$tmp/longmesh.json"
 expect2 'longmesh.json:1: field "terrain.mesh": string of 300 bytes is longer than the maximum 255' \

@@ -2,7 +2,10 @@
  * character_skin_cpu for the humanoid and the quadruped at several
  * animation times; the billboard object's bounding sphere holds every
  * skinned vertex; 8 characters share 2 models and update without GL errors;
- * bad model files and unknown clips fail with exactly one error line; a
+ * bad model files, unknown clips and ranges off the timeline fail with
+ * exactly one error line; named ranges play as clips; a clip without
+ * duration gives way to the next; morph targets reach the GPU skinning
+ * (the clips fixture, also compared with the CPU above); a
  * 128x128 golden image of the humanoid mid-stride (character_walk.png);
  * the animation level of detail (character_set_view): a character is
  * posed every character_pose_step-th update, its skinned vertices then
@@ -62,7 +65,9 @@ static void check_skinning(const char *model)
     CHECK(max_pos < 1e-4);
     CHECK(max_nrm < 1e-3);
     CHECK(max_out <= 1e-4);
-    CHECK(inst->radius < 1.5f); /* not absurdly loose: models are < 1.8 m */
+    /* not absurdly loose: models are < 1.8 m; the 1 x 1 quad's bone sphere
+     * (0.71 m) grows by how far its targets reach (0.5 + 0.5 m) */
+    CHECK(inst->radius < (m->morph_count ? 1.75f : 1.5f));
     character_object_t obj;
     character_bb_object(inst, &obj);
     CHECK(obj.vao == inst->vao && obj.index_count == m->index_count && obj.index_type == GL_UNSIGNED_INT);
@@ -105,6 +110,59 @@ static void check_errors(void)
     CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1, .clip_override = "idle"}));
     CHECK(set.count == 1 && set.items[0].clip == 1);
     character_set_destroy(&set);
+}
+
+/* Named ranges ("clips") and the fallback from a clip without duration:
+ * the range plays as its own clip; a range past the timeline is one error
+ * line and nothing left; the clips fixture's clip 0 has no duration (one
+ * warning naming it and "grow"), and "grow"'s morph targets reach the GPU
+ * skinning (the quad's box grows as the weights say). */
+static void check_clip_ranges_and_morphs(void)
+{
+    scene_character_t c = walker("models/humanoid.gltf", 0, 0, 1, 0);
+    snprintf(c.clip_name, sizeof c.clip_name, "stride");
+    c.clip_index = -1;
+    c.clip_range_count = 1;
+    c.clip_ranges[0] = (scene_clip_range_t){.name = "stride", .range = {250, 750}};
+    character_set_t set;
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    if (set.count) {
+        const character_clip_t *clip = &set.assets[0].model.clips[set.items[0].clip];
+        CHECK(!strcmp(clip->name, "stride") && clip->cut[0] == 250 && clip->cut[1] == 750);
+        CHECK_NEAR(clip->duration, 0.5, 1e-6);
+        character_set_destroy(&set);
+    }
+    c.clip_ranges[0].range[1] = 5000; /* the walk has 1000 ticks */
+    int before = core_log_error_count();
+    CHECK(!character_set_make(&set, &(character_set_desc_t){.characters = &c, .count = 1}));
+    CHECK_NEAR(core_log_error_count() - before, 1, 0);
+    CHECK(gfx_live_objects() == 0);
+
+    scene_character_t q = {.speed = 1.2f, .scale = 1.0f}; /* stands: clip time = time */
+    snprintf(q.model, sizeof q.model, "tests/data/models/clips.gltf");
+    int warns = core_log_warn_count();
+    CHECK(character_set_make(&set, &(character_set_desc_t){.characters = &q, .count = 1}));
+    CHECK(core_log_warn_count() > warns);
+    if (!set.count) return;
+    const character_instance_t *inst = &set.items[0];
+    const character_model_t *m = &set.assets[0].model;
+    CHECK(inst->clip == 1 && !strcmp(m->clips[1].name, "grow") && inst->morphed != NULL);
+    character_skinned_vertex_t gpu[4];
+    const float want[3][3] = {{0.5f, 1, 1.25f}, {1, 1, 1.5f}, {1.5f, 1.25f, 1.25f}}; /* t, width, height */
+    for (int i = 0; i < 3 && m->vertex_count == 4; i++) {
+        character_set_update(&set, want[i][0], 1.0f / 60.0f);
+        gfx_buffer_read(inst->skinned, 0, sizeof gpu, gpu);
+        float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+        for (int v = 0; v < 4; v++)
+            for (int k = 0; k < 2; k++) lo[k] = fminf(lo[k], gpu[v].pos[k]), hi[k] = fmaxf(hi[k], gpu[v].pos[k]);
+        printf("clips.gltf at %.1f s: morph weights %.3f %.3f, GPU box %.4f x %.4f m\n", (double)want[i][0],
+               (double)inst->pose.morph[0], (double)inst->pose.morph[1], (double)(hi[0] - lo[0]),
+               (double)(hi[1] - lo[1]));
+        CHECK_NEAR(hi[0] - lo[0], want[i][1], 1e-5);
+        CHECK_NEAR(hi[1] - lo[1], want[i][2], 1e-5);
+    }
+    character_set_destroy(&set);
+    CHECK(gfx_live_objects() == 0);
 }
 
 static void check_eight(void)
@@ -261,7 +319,9 @@ int main(void)
     check_lod();
     check_skinning("models/humanoid.gltf");
     check_skinning("models/quadruped.gltf");
+    check_skinning("tests/data/models/clips.gltf");
     check_errors();
+    check_clip_ranges_and_morphs();
     check_eight();
     check_golden();
     CHECK(test_gl_shutdown() == 0);

@@ -1,7 +1,9 @@
 /* test_character_load: the assimp loader's repairs and fallbacks: the
  * deliberately inconsistent fixture tests/data/models/broken.gltf (written by
- * meadow_gen_models), rigid OBJ objects checked against their analytic
- * surfaces, a file without vertices, missing/present textures. */
+ * meadow_gen_models), the morph and clip fixture tests/data/models/clips.gltf
+ * (morph targets through assimp, a clip without duration), rigid OBJ
+ * objects checked against their analytic surfaces, a file without
+ * vertices, missing/present textures. */
 #include "character/character_ref.h"
 #include "core/core.h"
 #include "test.h"
@@ -76,6 +78,54 @@ static void test_broken_fixture(void)
     character_skin_cpu(&m, &pose, p, NULL);
     for (int v = 0; v < 4; v++)
         for (int k = 0; k < 3; k++) CHECK_NEAR(p[3 * v + k], m.vertices[v].pos[k], 1e-6);
+    character_pose_free(&pose);
+    character_model_free(&m);
+}
+
+/* The skinned box's extent along x and y (width, height). */
+static void extent_xy(const float *p, int n, float *w, float *h)
+{
+    float lo[2] = {1e9f, 1e9f}, hi[2] = {-1e9f, -1e9f};
+    for (int v = 0; v < n; v++)
+        for (int k = 0; k < 2; k++) lo[k] = fminf(lo[k], p[3 * v + k]), hi[k] = fmaxf(hi[k], p[3 * v + k]);
+    *w = hi[0] - lo[0], *h = hi[1] - lo[1];
+}
+
+/* tests/data/models/clips.gltf: a 1 x 1 quad whose morph targets lift the
+ * top edge (target 0) and move the right edge (target 1) by 0.5; clip 0
+ * "pose" has no duration, clip 1 "grow" weighs (0,0) -> (1,0) -> (0,1) over
+ * 2 s, through assimp's aiAnimMesh and aiMeshMorphAnim. */
+static void test_clips_fixture(void)
+{
+    char path[1024], err[256];
+    CHECK(core_fs_resolve("tests/data/models/clips.gltf", path, sizeof path));
+    character_model_t m;
+    CHECK(character_load(&m, path, err, sizeof err));
+    CHECK(!m.rigid && m.vertex_count == 4 && m.morph_count == 2 && m.clip_count == 2);
+    if (m.morph_count != 2 || m.clip_count != 2 || m.vertex_count != 4) {
+        if (m.bone_count) character_model_free(&m);
+        return;
+    }
+    CHECK(!strcmp(m.clips[0].name, "pose") && m.clips[0].still && !m.clips[1].still);
+    CHECK(character_clip_playable(&m, 0) == 1 && character_clip_playable(&m, 1) == 1);
+    CHECK(m.morphs[0].target == 0 && m.morphs[1].target == 1 && m.morphs[0].max_weight == 1.0f);
+    CHECK(m.clips[1].morph_count == 2 && m.clips[1].morph[0].count == 3 && m.clips[1].morph[1].count == 3);
+    CHECK_NEAR(m.clips[1].duration, 2.0, 1e-6);
+    character_pose_t pose;
+    CHECK(character_pose_init(&pose, &m));
+    float p[12], w, h;
+    /* t (s), weights, width, height */
+    const float want[4][5] = {{0, 0, 0, 1, 1}, {0.5f, 0.5f, 0, 1, 1.25f}, {1, 1, 0, 1, 1.5f}, {1.5f, 0.5f, 0.5f, 1.25f, 1.25f}};
+    for (int i = 0; i < 4; i++) {
+        character_sample_clip(&m, 1, want[i][0], false, &pose);
+        character_pose_globals(&m, &pose);
+        character_skin_cpu(&m, &pose, p, NULL);
+        extent_xy(p, 4, &w, &h);
+        CHECK_NEAR(pose.morph[0], want[i][1], 1e-6);
+        CHECK_NEAR(pose.morph[1], want[i][2], 1e-6);
+        CHECK_NEAR(w, want[i][3], 1e-6);
+        CHECK_NEAR(h, want[i][4], 1e-6);
+    }
     character_pose_free(&pose);
     character_model_free(&m);
 }
@@ -176,6 +226,7 @@ int main(void)
 {
     core_log_set_quiet(true);
     test_broken_fixture();
+    test_clips_fixture();
     test_rigid_objects();
     test_errors_and_textures();
     TEST_END();

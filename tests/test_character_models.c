@@ -322,9 +322,14 @@ static void test_generator_matches_committed(void)
         CHECK(core_fs_resolve(files[i], b, sizeof b));
         CHECK_MSG(same_file(a, b), "%s differs from the generator's output; rerun meadow_gen_models", files[i]);
     }
-    snprintf(a, sizeof a, "%s/fixtures/broken.gltf", dir);
-    CHECK(core_fs_resolve("tests/data/models/broken.gltf", b, sizeof b));
-    CHECK_MSG(same_file(a, b), "broken.gltf differs from the generator's output");
+    static const char *const fixtures[] = {"broken.gltf", "clips.gltf"};
+    for (size_t i = 0; i < sizeof fixtures / sizeof fixtures[0]; i++) {
+        char rel[256];
+        snprintf(a, sizeof a, "%s/fixtures/%s", dir, fixtures[i]);
+        snprintf(rel, sizeof rel, "tests/data/models/%s", fixtures[i]);
+        CHECK(core_fs_resolve(rel, b, sizeof b));
+        CHECK_MSG(same_file(a, b), "%s differs from the generator's output", fixtures[i]);
+    }
 }
 
 int main(void)

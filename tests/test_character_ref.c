@@ -1,6 +1,7 @@
 /* test_character_ref: clip sampling, hierarchy, skinning, capsules, bounds,
- * clip repair and clip selection on tiny in-memory models with hand-computed
- * expected values. */
+ * clip repair, clip selection (names, indices, ranges and their errors,
+ * the fallback from a clip without duration) and morph targets before
+ * skinning on tiny in-memory models with hand-computed expected values. */
 #include "character/character_ref.h"
 #include "core/core.h"
 #include "test.h"
@@ -253,6 +254,108 @@ static void test_clip_find(void)
     character_model_free(&m);
 }
 
+/* Ranges of clip 0's timeline (10 ticks at 10 per second): the reasons
+ * of bad ones, named ranges made once per name and range; a clip without
+ * duration gives way to the next one that moves. */
+static void test_clip_ranges(void)
+{
+    character_model_t m;
+    build_arm(&m);
+    char why[160];
+    double a = 0, b = 0;
+    CHECK(character_clip_parse_range("1:2.5", &a, &b) && a == 1 && b == 2.5);
+    CHECK(!character_clip_parse_range("a:2", &a, &b) && !character_clip_parse_range(":2", &a, &b));
+    CHECK(!character_clip_parse_range("1:", &a, &b) && !character_clip_parse_range("1:2x", &a, &b));
+    CHECK(!character_clip_parse_range("walk", &a, &b));
+    CHECK(!character_clip_range_check(&m, -1, 3, why, sizeof why));
+    CHECK_MSG(strstr(why, "start -1 is negative") != NULL, "%s", why);
+    CHECK(!character_clip_range_check(&m, 5, 2, why, sizeof why));
+    CHECK_MSG(strstr(why, "end 2 is not after start 5") != NULL, "%s", why);
+    CHECK(!character_clip_range_check(&m, 0, 11, why, sizeof why));
+    CHECK_MSG(strstr(why, "end 11 is past the timeline's 10 ticks (clip 0 'bend')") != NULL, "%s", why);
+    CHECK(character_clip_range_check(&m, 0, 10, why, sizeof why));
+    CHECK(character_clip_find(&m, "5:2") == -1 && character_clip_find(&m, "-1:3") == -1);
+    CHECK(character_clip_find(&m, "0:11") == -1 && m.clip_count == 1);
+    CHECK(character_clip_range(&m, "walk", 0, 11) == -1 && m.clip_count == 1);
+    int walk = character_clip_range(&m, "walk", 2, 6);
+    CHECK(walk == 1 && character_clip_range(&m, "walk", 2, 6) == 1 && m.clip_count == 2);
+    int other = character_clip_range(&m, "walk", 0, 10); /* another character's "walk" */
+    CHECK(other == 2 && m.clip_count == 3);
+    if (walk == 1 && other == 2) {
+        CHECK(!strcmp(m.clips[1].name, "walk") && m.clips[1].cut[0] == 2 && m.clips[1].cut[1] == 6);
+        CHECK_NEAR(m.clips[1].duration, 0.4, 1e-6);
+        CHECK_NEAR(m.clips[2].duration, 1.0, 1e-6);
+    }
+    /* playback falls back from a still clip to the next that moves, wrapping */
+    CHECK(character_clip_playable(&m, 0) == 0);
+    m.clips[1].still = true;
+    CHECK(character_clip_playable(&m, 1) == 2);
+    m.clips[2].still = true;
+    CHECK(character_clip_playable(&m, 1) == 0);
+    m.clips[0].still = true;
+    CHECK(character_clip_playable(&m, 1) == 1); /* none moves: itself */
+    character_model_free(&m);
+}
+
+/* Morph targets before skinning: vertex A (1,1,0) on "upper" with a delta
+ * of (0, 0.5, 0) and a normal delta of (-1, 1, 0). Weight keys 0 -> 1 over
+ * the clip, default 0.25. At t = 0.5 (w 0.5, upper turned 90 degrees,
+ * global T(1,1,0) Rz(90)): A = (1, 1.25, 0) -> bone space (1, 0.25, 0) ->
+ * (0.75, 2, 0); the normal (0.5, 0.5, 0) -> (-0.5, 0.5, 0), normalised. */
+static void test_morph(void)
+{
+    character_model_t m;
+    build_arm(&m);
+    m.morphs = calloc(1, sizeof *m.morphs);
+    m.morph_count = 1;
+    m.morphs[0] = (character_morph_t){.node = 1, .first = 0, .count = 1, .weight = 0.25f, .max_weight = 1.0f};
+    m.morphs[0].delta = calloc(1, sizeof *m.morphs[0].delta);
+    const float d[6] = {0, 0.5f, 0, -1, 1, 0};
+    memcpy(m.morphs[0].delta[0], d, sizeof d);
+    character_clip_t *c = &m.clips[0];
+    c->morph_count = 1;
+    c->morph = calloc(1, sizeof *c->morph);
+    const float times[2] = {0.0f, 1.0f}, w[2][4] = {{0, 0, 0, 0}, {1, 0, 0, 0}};
+    set_track(&c->morph[0], 2, times, w);
+    character_pose_t pose;
+    CHECK(character_pose_init(&pose, &m));
+    CHECK(pose.morph_count == 1 && pose.morph[0] == 0.25f);
+    float p[6], n[6];
+    character_skin_cpu(&m, &pose, p, n); /* bind: the default weight */
+    CHECK_NEAR(p[0], 1.0, 1e-6); CHECK_NEAR(p[1], 1.125, 1e-6); CHECK_NEAR(p[3], 0.5, 1e-6);
+    character_sample_clip(&m, 0, 0.5f, false, &pose);
+    CHECK_NEAR(pose.morph[0], 0.5, 1e-6);
+    character_pose_globals(&m, &pose);
+    character_skin_cpu(&m, &pose, p, n);
+    CHECK_NEAR(p[0], 0.75, 1e-5); CHECK_NEAR(p[1], 2.0, 1e-5); CHECK_NEAR(p[2], 0.0, 1e-6);
+    CHECK_NEAR(n[0], -sqrt(0.5), 1e-5); CHECK_NEAR(n[1], sqrt(0.5), 1e-5);
+    /* B, outside the morph's range, is skinned as before */
+    CHECK_NEAR(p[3], 1.25, 1e-5); CHECK_NEAR(p[4], 1.25, 1e-5);
+    character_vertex_t out[2];
+    character_morph_apply(&m, &pose, out);
+    CHECK(out[0].pos[0] == 1.0f && out[0].pos[1] == 1.25f && out[0].normal[0] == 0.5f && out[0].normal[1] == 0.5f);
+    CHECK(memcmp(&out[1], &m.vertices[1], sizeof out[1]) == 0);
+    CHECK_NEAR(character_morph_reach(&m, 0), 0.5, 1e-6);
+    CHECK(character_morph_reach(&m, 1) == 0.0f);
+    /* a range of the clip carries the weights: ticks 0..5 (0..0.5 s) */
+    int half = character_clip_range(&m, "half", 0, 5);
+    CHECK(half == 1);
+    if (half == 1) {
+        character_sample_clip(&m, half, 0.25f, false, &pose);
+        CHECK_NEAR(pose.morph[0], 0.25, 1e-6);
+    }
+    /* a clip whose only keys are morph weights moves (not still) */
+    character_clip_t only = {.name = "weights", .duration = 0.0f, .morph_count = 1};
+    only.channels = calloc(3, sizeof *only.channels);
+    only.morph = calloc(1, sizeof *only.morph);
+    set_track(&only.morph[0], 2, times, w);
+    CHECK(character_clip_fixup(&only, 3, "test") == 1 && !only.still); /* the duration is repaired */
+    CHECK_NEAR(only.duration, 1.0, 0);
+    free(only.morph[0].keys), free(only.morph), free(only.channels);
+    character_pose_free(&pose);
+    character_model_free(&m);
+}
+
 /* Capsule on a cylinder of points along X (radius 0.3, x in [0,2]) owned by
  * one bone, and a second cluster on another bone; then merge to one. */
 static void test_capsules_and_bounds(void)
@@ -319,6 +422,8 @@ int main(void)
     test_slerp();
     test_fixup();
     test_clip_find();
+    test_clip_ranges();
+    test_morph();
     test_capsules_and_bounds();
     TEST_END();
 }

@@ -531,6 +531,57 @@ static void test_zero_rule(void)
     CHECK_MSG(checked > 30, "only %d keys took 0", checked);
 }
 
+/* characters[].clips: named ranges (frames of the model's first clip) and
+ * every bad one refused with its field. */
+static void test_clip_ranges(void)
+{
+    if (parse_ok("{\"characters\": [{\"model\": \"m\", \"clip\": \"walk\", "
+                 "\"clips\": {\"walk\": [1, 14], \"run\": [14.5, 30]}}, {\"model\": \"m\"}]}")) {
+        const scene_character_t *c = &desc.characters[0];
+        CHECK(c->clip_range_count == 2 && !strcmp(c->clip_ranges[0].name, "walk"));
+        CHECK(c->clip_ranges[0].range[0] == 1 && c->clip_ranges[0].range[1] == 14);
+        CHECK(!strcmp(c->clip_ranges[1].name, "run") && c->clip_ranges[1].range[0] == 14.5f);
+        CHECK(!strcmp(c->clip_name, "walk") && desc.characters[1].clip_range_count == 0);
+    }
+    if (parse_ok("{\"characters\": [{\"model\": \"m\", \"clips\": {}}]}")) CHECK(desc.characters[0].clip_range_count == 0);
+    const char *head = "{\"characters\": [{\"model\": \"m\",\n \"clips\": ";
+    static const struct {
+        const char *clips, *what, *sub1, *sub2;
+    } bad[] = {
+        {"{\"walk\": [14, 1]}", "reversed", "inline.json:2: field \"characters[0].clips.walk\"",
+         "end 1 is not after start 14"},
+        {"{\"walk\": [3, 3]}", "empty", "field \"characters[0].clips.walk\"", "end 3 is not after start 3"},
+        {"{\"walk\": [-1, 14]}", "negative", "field \"characters[0].clips.walk[0]\"",
+         "-1 is out of range [0, 1e+07]"},
+        {"{\"walk\": [0, 2e7]}", "too far", "field \"characters[0].clips.walk[1]\"", "out of range [0, 1e+07]"},
+        {"{\"walk\": [\"a\", 14]}", "not a number", "field \"characters[0].clips.walk[0]\"",
+         "expected number, got string"},
+        {"{\"walk\": [1, 14, 20]}", "three", "field \"characters[0].clips.walk\"", "expected an array of 2 numbers"},
+        {"{\"walk\": 14}", "not an array", "field \"characters[0].clips.walk\"", "expected array, got number"},
+        {"[[1, 14]]", "not an object", "field \"characters[0].clips\"", "expected object, got array"},
+        {"{\"\": [1, 14]}", "no name", "field \"characters[0].clips.\"", "a range needs a name"},
+        {"{\"2\": [1, 14]}", "index name", "field \"characters[0].clips.2\"", "reads as a clip index"},
+        {"{\"1:4\": [1, 14]}", "range name", "field \"characters[0].clips.1:4\"", "reads as a clip range"},
+        {"{\"a\": [0, 1], \"b\": [0, 1], \"c\": [0, 1], \"d\": [0, 1], \"e\": [0, 1], \"f\": [0, 1], "
+         "\"g\": [0, 1], \"h\": [0, 1], \"i\": [0, 1]}",
+         "too many names", "field \"characters[0].clips\"", "9 names, more than the maximum 8 (SCENE_MAX_CLIP_RANGES)"},
+        {"{\"walk\": [1, 2], \"walk\": [3, 4]}", "twice", "duplicate key \"walk\"", NULL},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char text[512];
+        snprintf(text, sizeof text, "%s%s}]}", head, bad[i].clips);
+        expect_parse_fail(text, bad[i].what, bad[i].sub1, bad[i].sub2);
+    }
+    char text[512], name[80];
+    memset(name, 'n', sizeof name - 1);
+    name[sizeof name - 1] = 0;
+    snprintf(text, sizeof text, "%s{\"%s\": [1, 2]}}]}", head, name);
+    expect_parse_fail(text, "long name", "name of 79 bytes is longer than the maximum 63", NULL);
+    /* the table's limit is the parser's */
+    const scene_field_t *row = scene_field_find(SCENE_SEC_CHARACTER, "clips");
+    CHECK(row && row->hi == 1e7 && !strcmp(row->limit, "SCENE_MAX_CLIP_RANGES") && strstr(row->doc, "at most 8 names"));
+}
+
 int main(void)
 {
     core_log_set_quiet(true);
@@ -544,5 +595,6 @@ int main(void)
     test_subdiv_bounds();
     test_keys_doc();
     test_zero_rule();
+    test_clip_ranges();
     TEST_END();
 }

@@ -32,7 +32,8 @@ static void asset_free(character_asset_t *a)
     memset(a, 0, sizeof *a);
 }
 
-/* Per bone: a sphere around every vertex it influences, in bind model space.
+/* Per bone: a sphere around every vertex it influences, in bind model space,
+ * grown by how far its morph targets can move it (character_morph_reach).
  * A skinned vertex is a convex combination of S_i p over its bones, so the
  * spheres moved by S_i bound the skinned mesh (see instance_bounds). */
 static bool asset_bone_spheres(character_asset_t *a)
@@ -65,7 +66,7 @@ static bool asset_bone_spheres(character_asset_t *a)
             float *bs = a->bone_spheres[m->vertices[v].joints[k]];
             const float *p = m->vertices[v].pos;
             float d = sqrtf((p[0] - bs[0]) * (p[0] - bs[0]) + (p[1] - bs[1]) * (p[1] - bs[1]) +
-                            (p[2] - bs[2]) * (p[2] - bs[2]));
+                            (p[2] - bs[2]) * (p[2] - bs[2])) + character_morph_reach(m, v);
             bs[3] = fmaxf(bs[3], d * 1.0001f + 1e-6f);
         }
     free(sum);
@@ -151,6 +152,58 @@ static int asset_get(character_set_t *set, const char *path, const character_imp
 }
 
 /* ---- instances ------------------------------------------------------------------ */
+/* The clip `spec` names for a character of model m (file `path`): a name of
+ * its scene entry's "clips" (a range of clip 0), else a clip of the file
+ * (character_clip_find); a still clip (duration 0) gives way to the next
+ * one that moves, with a warning. False after one error line: an unknown
+ * clip (the message lists the model's clips and the scene's ranges) or a
+ * range off the model's timeline. */
+static bool instance_clip(character_instance_t *inst, int index, character_model_t *m, const char *path,
+                          const char *spec)
+{
+    const scene_character_t *d = &inst->desc;
+    char why[192];
+    double a, b;
+    inst->clip = -1;
+    for (int i = 0; i < d->clip_range_count && inst->clip < 0; i++) {
+        const scene_clip_range_t *r = &d->clip_ranges[i];
+        if (strcmp(r->name, spec) != 0) continue;
+        if (!character_clip_range_check(m, r->range[0], r->range[1], why, sizeof why)) {
+            core_log_error("character %d: clips.%s [%g, %g] in %s: %s", index, r->name, (double)r->range[0],
+                           (double)r->range[1], path, why);
+            return false;
+        }
+        inst->clip = character_clip_range(m, r->name, r->range[0], r->range[1]);
+        if (inst->clip < 0) return false; /* out of memory, logged */
+    }
+    if (inst->clip < 0 && character_clip_parse_range(spec, &a, &b) &&
+        !character_clip_range_check(m, a, b, why, sizeof why)) {
+        core_log_error("character %d: clip range \"%s\" in %s: %s", index, spec, path, why);
+        return false;
+    }
+    if (inst->clip < 0) inst->clip = character_clip_find(m, spec);
+    if (inst->clip < 0) {
+        char list[768], ranges[SCENE_MAX_CLIP_RANGES * (SCENE_NAME_MAX + 4)] = "";
+        size_t n = 0;
+        for (int i = 0; i < d->clip_range_count && n < sizeof ranges; i++) {
+            int w = snprintf(ranges + n, sizeof ranges - n, "%s'%s'", i ? ", " : "; its scene ranges: ",
+                             d->clip_ranges[i].name);
+            n += w > 0 ? (size_t)w : 0;
+        }
+        character_clip_list(m, list, sizeof list);
+        core_log_error("character %d: no clip \"%s\" in %s; its clips: %s%s", index, spec, path, list, ranges);
+        return false;
+    }
+    int play = character_clip_playable(m, inst->clip);
+    if (play != inst->clip) {
+        core_log_warn("character %d: clip '%s' of %s has no duration (one frame); playing '%s', the next clip "
+                      "that moves",
+                      index, m->clips[inst->clip].name, path, m->clips[play].name);
+        inst->clip = play;
+    }
+    return true;
+}
+
 static bool instance_make(character_set_t *set, character_instance_t *inst, int index, const char *clip_override)
 {
     character_asset_t *a = &set->assets[inst->asset];
@@ -161,14 +214,8 @@ static bool instance_make(character_set_t *set, character_instance_t *inst, int 
     else snprintf(spec, sizeof spec, "%d", inst->desc.clip_index);
     if (m->clip_count == 0) {
         inst->clip = -1; /* rigid or unanimated: bind pose */
-    } else {
-        inst->clip = character_clip_find(m, spec);
-        if (inst->clip < 0) {
-            char list[768];
-            character_clip_list(m, list, sizeof list);
-            core_log_error("character %d: no clip \"%s\" in %s; its clips: %s", index, spec, a->path, list);
-            return false;
-        }
+    } else if (!instance_clip(inst, index, m, a->path, spec)) {
+        return false;
     }
     if (inst->clip >= 0) character_clip_stride(m, inst->clip, &inst->stride);
     inst->rate = character_walk_rate(&inst->stride, inst->desc.speed, inst->desc.scale);
@@ -181,6 +228,16 @@ static bool instance_make(character_set_t *set, character_instance_t *inst, int 
         .size = (size_t)m->vertex_count * sizeof(character_skinned_vertex_t),
         .label = "character.skinned"});
     if (!inst->bones.id || !inst->skinned.id) return false;
+    if (m->morph_count) {
+        inst->morphed = malloc((size_t)m->vertex_count * sizeof *inst->morphed);
+        inst->morph_vertices = gfx_buffer_make(&(gfx_buffer_desc_t){
+            .size = (size_t)m->vertex_count * sizeof(character_vertex_t), .dynamic = true,
+            .label = "character.morph_vertices"});
+        if (!inst->morphed || !inst->morph_vertices.id) {
+            core_log_error("character %d: out of memory for %d morphed vertices", index, m->vertex_count);
+            return false;
+        }
+    }
     inst->vao = gfx_vertex_array_make("character.vao");
     glVertexArrayVertexBuffer(inst->vao, 0, inst->skinned.id, 0, sizeof(character_skinned_vertex_t));
     glVertexArrayVertexBuffer(inst->vao, 1, a->vertices.id, 0, sizeof(character_vertex_t));
@@ -228,6 +285,8 @@ static void instance_free(character_instance_t *inst)
     character_pose_free(&inst->pose);
     gfx_buffer_destroy(&inst->bones);
     gfx_buffer_destroy(&inst->skinned);
+    gfx_buffer_destroy(&inst->morph_vertices);
+    free(inst->morphed);
     if (inst->vao) gfx_vertex_array_destroy(&inst->vao);
     free(inst->capsules);
     free(inst->capsule_first_sphere);
@@ -420,6 +479,11 @@ void character_set_update(character_set_t *set, float time, float dt)
         else character_pose_bind(m, &inst->pose);
         character_pose_globals(m, &inst->pose);
         gfx_buffer_update(inst->bones, 0, (size_t)m->bone_count * 16 * sizeof(float), inst->pose.skin);
+        if (inst->morphed) {
+            character_morph_apply(m, &inst->pose, inst->morphed);
+            gfx_buffer_update(inst->morph_vertices, 0, (size_t)m->vertex_count * sizeof *inst->morphed,
+                              inst->morphed);
+        }
         instance_spheres(inst, inst->have_previous && dt > 0.0f);
         inst->have_previous = true;
         instance_bounds(set, inst);
@@ -434,7 +498,8 @@ void character_set_update(character_set_t *set, float time, float dt)
         const character_asset_t *a = &set->assets[inst->asset];
         if (!inst->posed) continue;
         glUniform1ui(loc, (GLuint)a->model.vertex_count);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_VERTICES, a->vertices.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_VERTICES,
+                         inst->morphed ? inst->morph_vertices.id : a->vertices.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_BONES, inst->bones.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CHARACTER_BIND_SKINNED, inst->skinned.id);
         glDispatchCompute((GLuint)(a->model.vertex_count + 63) / 64, 1, 1);

@@ -98,6 +98,8 @@ typedef struct character_instance_t {
     character_pose_t pose;
     gfx_buffer_t bones;   /* pose.skin, bone_count mat4 */
     gfx_buffer_t skinned; /* character_skinned_vertex_t per vertex */
+    character_vertex_t *morphed;  /* models with morph targets: the bind vertices */
+    gfx_buffer_t morph_vertices;  /* with this pose's weights (character_morph_apply), skin.comp's input */
     GLuint vao;
     GLsizei index_count;
     int capsule_count;

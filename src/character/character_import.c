@@ -112,6 +112,15 @@ static bool apply(character_model_t *m, const float c[16], float scale)
             n[i] = (c[i] * vx->normal[0] + c[4 + i] * vx->normal[1] + c[8 + i] * vx->normal[2]) / scale;
         memcpy(vx->normal, n, sizeof n);
     }
+    for (int k = 0; k < m->morph_count; k++)
+        for (int v = 0; v < m->morphs[k].count; v++) {
+            float *d = m->morphs[k].delta[v], r[6];
+            for (int i = 0; i < 3; i++) {
+                r[i] = c[i] * d[0] + c[4 + i] * d[1] + c[8 + i] * d[2];
+                r[3 + i] = (c[i] * d[3] + c[4 + i] * d[4] + c[8 + i] * d[5]) / scale;
+            }
+            memcpy(d, r, sizeof r);
+        }
     for (int b = 0; b < m->bone_count; b++) {
         character_bone_t *bone = &m->bones[b];
         character_mat4_mul(bone->inverse_bind, inv, bone->inverse_bind);

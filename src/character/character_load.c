@@ -73,9 +73,13 @@ void character_model_free(character_model_t *model)
             free(clip->channels[b].scale.keys);
         }
         free(clip->channels);
+        for (int k = 0; clip->morph && k < clip->morph_count; k++) free(clip->morph[k].keys);
+        free(clip->morph);
         free(clip->name);
     }
     free(model->clips);
+    for (int k = 0; k < model->morph_count; k++) free(model->morphs[k].delta);
+    free(model->morphs);
     free(model->bones);
     free(model->vertices);
     free(model->indices);
@@ -149,6 +153,10 @@ int character_clip_fixup(character_clip_t *clip, int bone_count, const char *con
         fix_track(&ch->scale, false, &fc);
         keys += ch->pos.count + ch->rot.count + ch->scale.count;
     }
+    for (int k = 0; clip->morph && k < clip->morph_count; k++) {
+        fix_track(&clip->morph[k], false, &fc);
+        keys += clip->morph[k].count;
+    }
     const char *name = clip->name ? clip->name : "?";
     int fixes = 0;
     if (fc.nan) core_log_warn("%s: clip '%s': dropped %d key(s) with a NaN/inf time or value", context, name, fc.nan);
@@ -201,37 +209,85 @@ static bool slice_track(const character_track_t *src, bool rot, float t0, float 
     return true;
 }
 
-static int clip_from_range(character_model_t *model, const char *spec, double a, double b)
+bool character_clip_parse_range(const char *spec, double *a, double *b)
 {
+    const char *colon = spec ? strchr(spec, ':') : NULL;
+    if (!colon) return false;
+    char *e1, *e2;
+    *a = strtod(spec, &e1);
+    *b = strtod(colon + 1, &e2);
+    return e1 == colon && e1 != spec && e2 != colon + 1 && *e2 == 0;
+}
+
+bool character_clip_range_check(const character_model_t *model, double a, double b, char *why, size_t why_size)
+{
+    if (model->clip_count == 0) {
+        snprintf(why, why_size, "the model has no clips");
+        return false;
+    }
+    const character_clip_t *src = &model->clips[0];
+    double tps = src->ticks_per_second > 0.0f ? src->ticks_per_second : 1.0, ticks = src->duration * tps;
+    if (!isfinite(a) || !isfinite(b)) snprintf(why, why_size, "%g:%g is not a pair of finite numbers", a, b);
+    else if (a < 0.0) snprintf(why, why_size, "start %g is negative", a);
+    else if (!(b > a)) snprintf(why, why_size, "end %g is not after start %g", b, a);
+    else if (b > ticks * (1.0 + 1e-5) + 1e-6)
+        snprintf(why, why_size, "end %g is past the timeline's %.6g ticks (clip 0 '%s')", b, ticks, src->name);
+    else return true;
+    return false;
+}
+
+static bool slice_tracks(const character_track_t *src, int n, bool rot, float t0, float t1, character_track_t *dst)
+{
+    bool ok = true;
+    for (int i = 0; i < n; i++) ok &= slice_track(&src[i], rot, t0, t1, &dst[i]);
+    return ok;
+}
+
+int character_clip_range(character_model_t *model, const char *name, double a, double b)
+{
+    char why[160];
+    if (!character_clip_range_check(model, a, b, why, sizeof why)) return -1;
+    for (int i = 0; i < model->clip_count; i++) {
+        const character_clip_t *c = &model->clips[i];
+        if ((c->cut[0] != 0.0f || c->cut[1] != 0.0f) && c->cut[0] == (float)a && c->cut[1] == (float)b &&
+            !strcmp(c->name, name))
+            return i;
+    }
     const character_clip_t *src = &model->clips[0];
     float tps = src->ticks_per_second > 0.0f ? src->ticks_per_second : 1.0f;
-    float t0 = (float)(a / tps), t1 = (float)(b / tps);
-    if (t0 < 0.0f) t0 = 0.0f;
-    if (t1 > src->duration) {
-        core_log_warn("character: frame range '%s' ends past the timeline (%g ticks); clamped", spec,
-                      (double)(src->duration * tps));
-        t1 = src->duration;
-    }
-    if (!(t1 > t0)) return -1;
+    float t0 = (float)(a / tps), t1 = fminf((float)(b / tps), src->duration);
     character_clip_t *grown = realloc(model->clips, sizeof *grown * (size_t)(model->clip_count + 1));
     if (!grown) return -1;
     model->clips = grown;
     src = &model->clips[0];
     character_clip_t *c = &model->clips[model->clip_count];
     memset(c, 0, sizeof *c);
-    c->name = dup_str(spec);
+    c->name = dup_str(name);
     c->duration = t1 - t0;
     c->ticks_per_second = src->ticks_per_second;
+    c->cut[0] = (float)a, c->cut[1] = (float)b;
     c->channels = calloc((size_t)model->bone_count, sizeof *c->channels);
-    bool ok = c->name && c->channels;
+    c->morph_count = src->morph_count;
+    c->morph = calloc((size_t)c->morph_count + 1, sizeof *c->morph);
+    bool ok = c->name && c->channels && c->morph;
     for (int i = 0; ok && i < model->bone_count; i++) {
         ok &= slice_track(&src->channels[i].pos, false, t0, t1, &c->channels[i].pos);
         ok &= slice_track(&src->channels[i].rot, true, t0, t1, &c->channels[i].rot);
         ok &= slice_track(&src->channels[i].scale, false, t0, t1, &c->channels[i].scale);
     }
+    ok = ok && slice_tracks(src->morph, c->morph_count, false, t0, t1, c->morph);
     model->clip_count++;
-    if (!ok) core_log_error("%s:%d: out of memory slicing clip '%s'", __FILE__, __LINE__, spec);
+    if (!ok) core_log_error("%s:%d: out of memory slicing clip '%s'", __FILE__, __LINE__, name);
     return ok ? model->clip_count - 1 : -1;
+}
+
+int character_clip_playable(const character_model_t *model, int clip)
+{
+    for (int k = 0; k < model->clip_count; k++) {
+        int j = (clip + k) % model->clip_count;
+        if (!model->clips[j].still) return j;
+    }
+    return clip;
 }
 
 int character_clip_find(character_model_t *model, const char *spec)
@@ -250,12 +306,8 @@ int character_clip_find(character_model_t *model, const char *spec)
     if (end != spec && *end == 0) {
         return idx >= 0 && idx < model->clip_count ? (int)idx : -1;
     }
-    const char *colon = strchr(spec, ':');
-    if (colon && model->clip_count > 0) {
-        char *e1, *e2;
-        double a = strtod(spec, &e1), b = strtod(colon + 1, &e2);
-        if (e1 == colon && e2 != colon + 1 && *e2 == 0) return clip_from_range(model, spec, a, b);
-    }
+    double a, b;
+    if (character_clip_parse_range(spec, &a, &b)) return character_clip_range(model, spec, a, b);
     return -1;
 }
 
@@ -264,6 +316,7 @@ int character_clip_keys(const character_clip_t *clip, int bone_count)
     int keys = 0;
     for (int b = 0; b < bone_count; b++)
         keys += clip->channels[b].pos.count + clip->channels[b].rot.count + clip->channels[b].scale.count;
+    for (int k = 0; clip->morph && k < clip->morph_count; k++) keys += clip->morph[k].count;
     return keys;
 }
 
@@ -505,6 +558,35 @@ static bool hl1_restore_parents(load_ctx_t *ctx, character_model_t *m)
     return true;
 }
 
+/* A morph weight channel (named after the node whose meshes it drives) into
+ * the weight track of each of that node's morph targets; a target the key
+ * does not list has weight 0 there. False when out of memory. */
+static bool load_morph_channel(load_ctx_t *ctx, character_model_t *m, character_clip_t *c,
+                               const struct aiMeshMorphAnim *ch, double tps)
+{
+    int node = character_bone_find(m, ch->mName.data), used = 0;
+    for (int k = 0; node >= 0 && k < m->morph_count; k++) {
+        character_morph_t *mo = &m->morphs[k];
+        character_track_t *t = &c->morph[k];
+        if (mo->node != node || t->count) continue;
+        used++;
+        t->keys = calloc(ch->mNumKeys + 1, sizeof *t->keys);
+        if (!t->keys) return false;
+        for (unsigned j = 0; ch->mKeys && j < ch->mNumKeys; j++) {
+            const struct aiMeshMorphKey *key = &ch->mKeys[j];
+            character_key_t *out = &t->keys[t->count++];
+            *out = (character_key_t){.time = (float)(key->mTime / tps)};
+            for (unsigned v = 0; key->mValues && key->mWeights && v < key->mNumValuesAndWeights; v++)
+                if ((int)key->mValues[v] == mo->target) out->v[0] = (float)key->mWeights[v];
+            if (isfinite(out->v[0])) mo->max_weight = fmaxf(mo->max_weight, fabsf(out->v[0]));
+        }
+    }
+    if (!used)
+        core_log_warn("%s: clip '%s': morph channel for '%s' drives no morph target; ignored", ctx->path, c->name,
+                      ch->mName.data);
+    return true;
+}
+
 static bool load_clips(load_ctx_t *ctx, character_model_t *m)
 {
     const struct aiScene *sc = ctx->scene;
@@ -523,9 +605,14 @@ static bool load_clips(load_ctx_t *ctx, character_model_t *m)
          * frame rate, in ticks of one frame: fps times too long */
         c->duration = (float)(an->mDuration / tps / (ctx->hl1 ? tps : 1.0));
         c->channels = calloc((size_t)m->bone_count, sizeof *c->channels);
-        if (!c->name || !c->channels) return false;
-        if (an->mNumMeshChannels || an->mNumMorphMeshChannels)
-            core_log_warn("%s: clip '%s': mesh/morph animation channels are ignored", ctx->path, c->name);
+        c->morph_count = m->morph_count;
+        c->morph = calloc((size_t)m->morph_count + 1, sizeof *c->morph);
+        if (!c->name || !c->channels || !c->morph) return false;
+        if (an->mNumMeshChannels)
+            core_log_warn("%s: clip '%s': %u mesh (vertex) animation channel(s) ignored: assimp delivers no frames",
+                          ctx->path, c->name, an->mNumMeshChannels);
+        for (unsigned i = 0; an->mMorphMeshChannels && i < an->mNumMorphMeshChannels; i++)
+            if (!load_morph_channel(ctx, m, c, an->mMorphMeshChannels[i], tps)) return false;
         for (unsigned i = 0; i < an->mNumChannels; i++) {
             const struct aiNodeAnim *na = an->mChannels[i];
             int b = character_bone_find(m, na->mNodeName.data);
@@ -601,10 +688,57 @@ static void load_offsets(load_ctx_t *ctx, character_model_t *m)
     }
 }
 
-/* Appends one mesh instance (mesh on node n) and adds to the warning
- * counters. */
-static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, int *dropped,
-                      int *unbound, int *bad_weights)
+/* The morph targets (aiAnimMesh) of the mesh instance whose vertices start
+ * at base, as deltas from its vertices before any rebinding (raw: the
+ * file's positions and normals); `to_bind` is the rebinding of the
+ * vertices flagged in rebound, applied to both ends of each delta.
+ * False when out of memory. */
+static bool load_morphs(character_model_t *m, int n, const struct aiMesh *mesh, int base, const float *to_bind,
+                        const bool *rebound, const char *path)
+{
+    int nv = (int)mesh->mNumVertices, skipped = 0;
+    for (unsigned a = 0; a < mesh->mNumAnimMeshes; a++) {
+        const struct aiAnimMesh *am = mesh->mAnimMeshes[a];
+        if (!am || !am->mVertices || (int)am->mNumVertices != nv) {
+            skipped++;
+            continue;
+        }
+        character_morph_t *grown = realloc(m->morphs, sizeof *grown * (size_t)(m->morph_count + 1));
+        if (!grown) return false;
+        m->morphs = grown;
+        character_morph_t *mo = &m->morphs[m->morph_count];
+        *mo = (character_morph_t){.node = n, .target = (int)a, .first = base, .count = nv,
+                                  .weight = isfinite(am->mWeight) ? am->mWeight : 0.0f};
+        mo->max_weight = fabsf(mo->weight);
+        mo->delta = calloc((size_t)nv, sizeof *mo->delta);
+        if (!mo->delta) return false;
+        m->morph_count++;
+        for (int v = 0; v < nv; v++) {
+            const struct aiVector3D *p0 = &mesh->mVertices[v], *p1 = &am->mVertices[v];
+            float a0[3] = {p0->x, p0->y, p0->z}, a1[3] = {p1->x, p1->y, p1->z}, n0[3] = {0, 0, 0}, n1[3];
+            if (mesh->mNormals) n0[0] = mesh->mNormals[v].x, n0[1] = mesh->mNormals[v].y, n0[2] = mesh->mNormals[v].z;
+            memcpy(n1, n0, sizeof n1);
+            if (am->mNormals) n1[0] = am->mNormals[v].x, n1[1] = am->mNormals[v].y, n1[2] = am->mNormals[v].z;
+            if (rebound[v]) {
+                character_mat4_point(to_bind, a0, a0), character_mat4_point(to_bind, a1, a1);
+                transform_normal(to_bind, n0, n0), transform_normal(to_bind, n1, n1);
+            }
+            for (int k = 0; k < 3; k++) {
+                mo->delta[v][k] = isfinite(a1[k] - a0[k]) ? a1[k] - a0[k] : 0.0f;
+                mo->delta[v][3 + k] = isfinite(n1[k] - n0[k]) ? n1[k] - n0[k] : 0.0f;
+            }
+        }
+    }
+    if (skipped)
+        core_log_warn("%s: mesh '%s': %d morph target(s) without positions for every vertex ignored", path,
+                      mesh->mName.data, skipped);
+    return true;
+}
+
+/* Appends one mesh instance (mesh on node n) with its morph targets and
+ * adds to the warning counters. False when out of memory. */
+static bool load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, int *dropped,
+                      int *unbound, int *bad_weights, const char *path)
 {
     int base = m->vertex_count;
     for (unsigned v = 0; v < mesh->mNumVertices; v++) {
@@ -619,7 +753,7 @@ static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, in
         if (mesh->mTextureCoords[0])
             vx->uv[0] = mesh->mTextureCoords[0][v].x, vx->uv[1] = mesh->mTextureCoords[0][v].y;
     }
-    bool *dropped_v = calloc(mesh->mNumVertices, sizeof(bool));
+    bool *dropped_v = calloc(mesh->mNumVertices, sizeof(bool)), *rebound = calloc(mesh->mNumVertices, sizeof(bool));
     for (unsigned bi = 0; bi < mesh->mNumBones; bi++) {
         const struct aiBone *bone = mesh->mBones[bi];
         int b = character_bone_find(m, bone->mName.data);
@@ -654,6 +788,7 @@ static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, in
             continue;
         }
         if (mesh->mNumBones) (*unbound)++;
+        if (rebound) rebound[v] = true;
         float p[3], nn[3];
         character_mat4_point(to_bind, vx->pos, p);
         transform_normal(to_bind, vx->normal, nn);
@@ -664,6 +799,8 @@ static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, in
         vx->weights[0] = 1.0f;
     }
     free(dropped_v);
+    bool morphs_ok = rebound && load_morphs(m, n, mesh, base, to_bind, rebound, path);
+    free(rebound);
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
         if (face->mNumIndices != 3) continue;
@@ -673,9 +810,11 @@ static void load_mesh(character_model_t *m, int n, const struct aiMesh *mesh, in
         for (int k = 0; k < 3; k++) m->indices[m->index_count++] = (uint32_t)base + face->mIndices[k];
     }
     m->vertex_count += (int)mesh->mNumVertices;
+    return morphs_ok;
 }
 
-/* No clips: bake the bind pose (skinned) into the vertices, keep one bone. */
+/* No clips: bake the bind pose (skinned, morph targets at their default
+ * weights) into the vertices, keep one bone. */
 static bool collapse_to_rigid(character_model_t *m)
 {
     character_pose_t pose;
@@ -687,6 +826,10 @@ static bool collapse_to_rigid(character_model_t *m)
     }
     character_skin_cpu(m, &pose, p, n);
     character_pose_free(&pose);
+    for (int k = 0; k < m->morph_count; k++) free(m->morphs[k].delta);
+    free(m->morphs);
+    m->morphs = NULL;
+    m->morph_count = 0;
     for (int v = 0; v < m->vertex_count; v++) {
         character_vertex_t *vx = &m->vertices[v];
         memcpy(vx->pos, p + 3 * v, sizeof vx->pos);
@@ -837,12 +980,12 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
         int dropped = 0, unbound = 0, bad = 0;
         bool material = false;
         for (int n = 0; ok && n < nn; n++)
-            for (unsigned mi = 0; mi < ctx.nodes[n]->mNumMeshes; mi++) {
+            for (unsigned mi = 0; ok && mi < ctx.nodes[n]->mNumMeshes; mi++) {
                 const struct aiMesh *mesh = sc->mMeshes[ctx.nodes[n]->mMeshes[mi]];
                 if (!is_triangle_mesh(mesh)) continue;
                 if (!material) load_material(model, sc, mesh, path);
                 material = true;
-                load_mesh(model, n, mesh, &dropped, &unbound, &bad);
+                ok = load_mesh(model, n, mesh, &dropped, &unbound, &bad, path);
             }
         if (dropped)
             core_log_warn("%s: %d vertices had more than %d influences; kept the largest", path, dropped,
@@ -867,8 +1010,9 @@ bool character_load(character_model_t *model, const char *path, char *err, size_
         character_model_free(model);
         return fail(err, err_size, path, "%s", "out of memory");
     }
-    core_log_info("%s: %d vertices, %d triangles, %d bones, %d clips%s", path, model->vertex_count,
-                  model->index_count / 3, model->bone_count, model->clip_count, model->rigid ? " (rigid)" : "");
+    core_log_info("%s: %d vertices, %d triangles, %d bones, %d morph targets, %d clips%s", path, model->vertex_count,
+                  model->index_count / 3, model->bone_count, model->morph_count, model->clip_count,
+                  model->rigid ? " (rigid)" : "");
     return true;
 }
 

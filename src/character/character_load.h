@@ -63,7 +63,24 @@ typedef struct character_clip_t {
     float ticks_per_second;  /* the file's timeline rate (frame ranges) */
     bool still;              /* a single frame: no keys, or all at time 0 with no duration stated */
     character_channel_t *channels; /* bone_count entries */
+    int morph_count;         /* the model's morph_count (0 without morph targets) */
+    character_track_t *morph; /* per morph target its weight track (v[0]); empty: the default weight */
+    float cut[2];            /* ticks a..b of clip 0 this clip was cut from (character_clip_range); 0, 0: the file's */
 } character_clip_t;
+
+/* A morph target (blend shape) of one mesh instance: assimp's aiAnimMesh,
+ * driven by the aiMeshMorphAnim channels named after its node. A vertex v
+ * of the range [first, first + count) is drawn at
+ * pos + sum_k weight_k * delta_k[v - first] (normals likewise) before
+ * skinning; deltas are in the same space as the vertices. */
+typedef struct character_morph_t {
+    int node;             /* bone (node) whose morph channel drives it */
+    int target;           /* index among that node's targets (aiMeshMorphKey mValues) */
+    int first, count;     /* the mesh instance's vertices */
+    float weight;         /* default weight (the mesh's, glTF mesh.weights) */
+    float max_weight;     /* largest |weight| over the default and every key */
+    float (*delta)[6];    /* count entries: position delta xyz, normal delta xyz */
+} character_morph_t;
 
 /* What the file states about its units and axes (assimp's scene metadata:
  * UnitScaleFactor or OriginalUnitScaleFactor, UpAxis/UpAxisSign,
@@ -93,6 +110,8 @@ typedef struct character_model_t {
     int bone_count;
     character_clip_t *clips;
     int clip_count;
+    character_morph_t *morphs;
+    int morph_count;
     float base_color[4];      /* from the first mesh's material; default 0.8 grey */
     char texture_path[1024];  /* diffuse/base-colour texture file, "" when none */
     character_image_t texture_embedded; /* data NULL when none; wins over texture_path */
@@ -126,23 +145,39 @@ int character_bone_find(const character_model_t *model, const char *name);
  *                  the last '|' (assimp writes "Armature|walk" for FBX)
  *   "N"            clip index N
  *   "A:B"          frames/ticks A..B of the first clip (files with a single
- *                  timeline); a new clip named "A:B" is appended (once),
- *                  which may move model->clips (re-read pointers after)
+ *                  timeline): character_clip_range(model, spec, A, B)
  * Returns the clip index, or -1 (nothing logged: the caller names the
- * available clips with character_clip_list). A range that ends past the
- * timeline is clamped with a warning. */
+ * available clips with character_clip_list, or a bad range's reason with
+ * character_clip_range_check). */
 int character_clip_find(character_model_t *model, const char *spec);
+/* "A:B" with two numbers into a and b; false when spec is not of that form. */
+bool character_clip_parse_range(const char *spec, double *a, double *b);
+/* Whether ticks a..b lie on clip 0's timeline: 0 <= a < b <= its ticks
+ * (duration * ticks_per_second). False with the reason in why ("start -1
+ * is negative", "end 3 is not after start 5", "end 40 is past the
+ * timeline's 25 ticks", "the model has no clips"). */
+bool character_clip_range_check(const character_model_t *model, double a, double b, char *why, size_t why_size);
+/* A clip called name holding ticks a..b of clip 0 (a named range of one long
+ * clip, or "A:B"), appended once per name and range, which may move
+ * model->clips (re-read pointers after). -1 when the range fails
+ * character_clip_range_check or memory runs out (logged). */
+int character_clip_range(character_model_t *model, const char *name, double a, double b);
+/* The clip to play for `clip`: itself unless it is still (a duration of 0,
+ * or no keys), else the next clip after it (wrapping) that is not; itself
+ * when none is. */
+int character_clip_playable(const character_model_t *model, int clip);
 /* `meadow --list-clips`: loads the (repository-relative or absolute) model
  * and prints each clip's index, name, duration (s), key count and timeline
  * ticks (for A:B ranges) to out. false after one error line. */
 bool character_print_clips(const char *path, FILE *out);
-/* Keys of a clip over all tracks. */
+/* Keys of a clip over all tracks (bones' and morph weights'). */
 int character_clip_keys(const character_clip_t *clip, int bone_count);
 /* "0 'walk' (1 s), 1 'idle' (2 s), or a range A:B of clip 0's 25 ticks"
  * into buf (truncated to size). Returns the length written. */
 size_t character_clip_list(const character_model_t *model, char *buf, size_t size);
 
-/* Repairs one clip in place: drops keys with NaN time or value and zero
+/* Repairs one clip in place (its bone tracks and its clip->morph_count
+ * morph weight tracks): drops keys with NaN time or value and zero
  * quaternions, clamps negative times to 0, sorts keys by time, normalises
  * quaternions, and extends the duration to cover the last key (a duration
  * <= 0 becomes the last key time, or 1 s if that is 0 too). Logs one warning

@@ -151,7 +151,9 @@ bool character_pose_init(character_pose_t *pose, const character_model_t *model)
     pose->s = calloc(n, sizeof *pose->s);
     pose->global = calloc(n, sizeof *pose->global);
     pose->skin = calloc(n, sizeof *pose->skin);
-    if (!pose->t || !pose->r || !pose->s || !pose->global || !pose->skin) {
+    pose->morph_count = model->morph_count;
+    pose->morph = calloc((size_t)model->morph_count + 1, sizeof *pose->morph);
+    if (!pose->t || !pose->r || !pose->s || !pose->global || !pose->skin || !pose->morph) {
         core_log_error("%s:%d: out of memory for a pose of %d bones", __FILE__, __LINE__, model->bone_count);
         character_pose_free(pose);
         return false;
@@ -163,7 +165,7 @@ bool character_pose_init(character_pose_t *pose, const character_model_t *model)
 
 void character_pose_free(character_pose_t *pose)
 {
-    free(pose->t), free(pose->r), free(pose->s), free(pose->global), free(pose->skin);
+    free(pose->t), free(pose->r), free(pose->s), free(pose->global), free(pose->skin), free(pose->morph);
     memset(pose, 0, sizeof *pose);
 }
 
@@ -176,6 +178,8 @@ void character_pose_bind(const character_model_t *model, character_pose_t *pose)
         memcpy(pose->r[i], b->bind_r, sizeof pose->r[i]);
         memcpy(pose->s[i], b->bind_s, sizeof pose->s[i]);
     }
+    assert(pose->morph_count == model->morph_count);
+    for (int k = 0; k < model->morph_count; k++) pose->morph[k] = model->morphs[k].weight;
 }
 
 void character_sample_clip(const character_model_t *model, int clip, float time, bool loop,
@@ -205,6 +209,12 @@ void character_sample_clip(const character_model_t *model, int clip, float time,
             memcpy(pose->s[i], v, sizeof pose->s[i]);
         }
     }
+    for (int k = 0; k < c->morph_count && k < pose->morph_count; k++) {
+        float v[4];
+        if (!c->morph[k].count) continue;
+        character_track_sample(&c->morph[k], time, false, v);
+        pose->morph[k] = v[0];
+    }
 }
 
 void character_pose_globals(const character_model_t *model, character_pose_t *pose)
@@ -222,11 +232,49 @@ void character_pose_globals(const character_model_t *model, character_pose_t *po
 }
 
 /* ---- skinning --------------------------------------------------------------- */
+/* Vertex v with the pose's morph weights: position and normal. */
+static void morph_vertex(const character_model_t *model, const character_pose_t *pose, int v, float pos[3],
+                         float normal[3])
+{
+    const character_vertex_t *vx = &model->vertices[v];
+    memcpy(pos, vx->pos, sizeof vx->pos);
+    memcpy(normal, vx->normal, sizeof vx->normal);
+    for (int k = 0; k < model->morph_count; k++) {
+        const character_morph_t *mo = &model->morphs[k];
+        float w = pose->morph[k];
+        if (w == 0.0f || v < mo->first || v >= mo->first + mo->count) continue;
+        const float *d = mo->delta[v - mo->first];
+        for (int e = 0; e < 3; e++) pos[e] += w * d[e], normal[e] += w * d[3 + e];
+    }
+}
+
+void character_morph_apply(const character_model_t *model, const character_pose_t *pose, character_vertex_t *out)
+{
+    for (int v = 0; v < model->vertex_count; v++) {
+        out[v] = model->vertices[v];
+        morph_vertex(model, pose, v, out[v].pos, out[v].normal);
+    }
+}
+
+float character_morph_reach(const character_model_t *model, int v)
+{
+    float r = 0.0f;
+    for (int k = 0; k < model->morph_count; k++) {
+        const character_morph_t *mo = &model->morphs[k];
+        if (v < mo->first || v >= mo->first + mo->count) continue;
+        const float *d = mo->delta[v - mo->first];
+        r += mo->max_weight * sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    }
+    return r;
+}
+
 void character_skin_cpu(const character_model_t *model, const character_pose_t *pose, float *out_positions,
                         float *out_normals)
 {
     for (int v = 0; v < model->vertex_count; v++) {
         const character_vertex_t *vx = &model->vertices[v];
+        float pos[3], normal[3];
+        morph_vertex(model, pose, v, pos, normal);
         float m[16] = {0};
         for (int k = 0; k < CHARACTER_MAX_INFLUENCES; k++) {
             float w = vx->weights[k];
@@ -234,11 +282,11 @@ void character_skin_cpu(const character_model_t *model, const character_pose_t *
             const float *s = pose->skin[vx->joints[k]];
             for (int e = 0; e < 16; e++) m[e] += w * s[e];
         }
-        character_mat4_point(m, vx->pos, out_positions + 3 * v);
+        character_mat4_point(m, pos, out_positions + 3 * v);
         if (out_normals) {
             float *n = out_normals + 3 * v, len = 0.0f;
             for (int k = 0; k < 3; k++) {
-                n[k] = m[k] * vx->normal[0] + m[4 + k] * vx->normal[1] + m[8 + k] * vx->normal[2];
+                n[k] = m[k] * normal[0] + m[4 + k] * normal[1] + m[8 + k] * normal[2];
                 len += n[k] * n[k];
             }
             len = sqrtf(len);

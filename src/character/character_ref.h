@@ -21,18 +21,23 @@ typedef struct character_pose_t {
     float (*s)[3];       /* local scale */
     float (*global)[16]; /* model space */
     float (*skin)[16];   /* global * inverse_bind */
+    int morph_count;
+    float *morph;        /* weight of each morph target (character_morph_t) */
 } character_pose_t;
 
 /* Allocates a pose for model and sets it to the bind pose (globals
  * included). Returns false (and logs) when out of memory. */
 bool character_pose_init(character_pose_t *pose, const character_model_t *model);
 void character_pose_free(character_pose_t *pose);
-/* Locals = bind TRS. Call character_pose_globals afterwards. */
+/* Locals = bind TRS, morph weights = their defaults. Call
+ * character_pose_globals afterwards. */
 void character_pose_bind(const character_model_t *model, character_pose_t *pose);
 
-/* Samples clip at time (seconds) into the locals. loop wraps time into
- * [0, duration); otherwise it is clamped to [0, duration]. Bones without
- * keys in a track keep their bind value. Call character_pose_globals next. */
+/* Samples clip at time (seconds) into the locals and the morph weights
+ * (lerped). loop wraps time into [0, duration); otherwise it is clamped to
+ * [0, duration]. Bones without keys in a track keep their bind value,
+ * morph targets without keys their default weight. Call
+ * character_pose_globals next. */
 void character_sample_clip(const character_model_t *model, int clip, float time, bool loop,
                            character_pose_t *pose);
 /* globals (parents first) and skinning matrices from the locals. */
@@ -55,11 +60,20 @@ bool character_mat4_invert(const float m[16], float out[16]);
 void character_mat4_point(const float m[16], const float p[3], float out[3]);
 
 /* Linear blend skinning of every vertex: out_positions and out_normals hold
- * 3 * vertex_count floats. Normals use the blended matrix's upper 3x3 and
- * are renormalised (exact for rotations and uniform scale). out_normals may
- * be NULL. */
+ * 3 * vertex_count floats. The morph targets come first: a vertex is
+ * pos + sum_k pose.morph[k] * delta_k (normals likewise), then skinned.
+ * Normals use the blended matrix's upper 3x3 and are renormalised (exact
+ * for rotations and uniform scale). out_normals may be NULL. */
 void character_skin_cpu(const character_model_t *model, const character_pose_t *pose, float *out_positions,
                         float *out_normals);
+
+/* The model's vertices with the pose's morph weights applied (the input
+ * of the GPU skinning when the model has morph targets): out holds
+ * vertex_count entries; normals are not renormalised (skinning does it). */
+void character_morph_apply(const character_model_t *model, const character_pose_t *pose, character_vertex_t *out);
+/* The farthest vertex v can move from its bind position through the morph
+ * targets at any weight the file uses (sum_k max_weight_k |delta_k|). */
+float character_morph_reach(const character_model_t *model, int v);
 
 /* A capsule: segment a-b and radius, in model space for the pose it was
  * fitted in, plus the same end points in the space of `bone` so that

@@ -538,6 +538,40 @@ static bool parse_colliders(sp_t *sp, const json_t *arr, scene_desc_t *d)
     return true;
 }
 
+/* "clips": {"name": [start, end], ...} into c's named ranges: at most
+ * SCENE_MAX_CLIP_RANGES, each name a word (not empty, not an index nor a
+ * START:END range), start < end within the row's bounds. */
+static bool parse_clip_ranges(sp_t *sp, const json_t *v, const char *field, scene_character_t *c)
+{
+    const scene_field_t *row = scene_field_find(SCENE_SEC_CHARACTER, "clips");
+    const scene_field_t ends = {.type = SCENE_FIELD_FLOATS, .n = 2, .lo = row->lo, .hi = row->hi};
+    if (!want(sp, v, field, SCENE_JSON_OBJECT)) return false;
+    if (v->count > SCENE_MAX_CLIP_RANGES)
+        return sp_fail(sp, v->line, field, "%d names, more than the maximum %d (%s)", v->count, SCENE_MAX_CLIP_RANGES,
+                       row->limit);
+    for (const json_t *m = v->child; m; m = m->next) {
+        char mf[F_SIZE], *end;
+        scene_clip_range_t *r = &c->clip_ranges[c->clip_range_count];
+        field_join(mf, sizeof mf, field, m->key, 0);
+        size_t len = strlen(m->key);
+        if (!len) return sp_fail(sp, m->key_line, mf, "a range needs a name");
+        if (len >= sizeof r->name)
+            return sp_fail(sp, m->key_line, mf, "name of %zu bytes is longer than the maximum %zu", len,
+                           sizeof r->name - 1);
+        (void)strtol(m->key, &end, 10);
+        if (!*end || strchr(m->key, ':'))
+            return sp_fail(sp, m->key_line, mf, "\"%s\" reads as a clip %s; name the range with a word", m->key,
+                           *end ? "range START:END" : "index");
+        if (!get_numbers(sp, m, mf, &ends, r->range, NULL)) return false;
+        if (!(r->range[1] > r->range[0]))
+            return sp_fail(sp, m->line, mf, "end %g is not after start %g", (double)r->range[1],
+                           (double)r->range[0]);
+        memcpy(r->name, m->key, len + 1);
+        c->clip_range_count++;
+    }
+    return true;
+}
+
 static bool parse_characters(sp_t *sp, const json_t *arr, scene_desc_t *d)
 {
     static const scene_field_t waypoint = {.type = SCENE_FIELD_FLOATS, .n = 2, .lo = -SCENE_COORD_MAX,
@@ -570,6 +604,7 @@ static bool parse_characters(sp_t *sp, const json_t *arr, scene_desc_t *d)
                 return sp_fail(sp, v->line, f, "expected string or number, got %s", scene_json_type_name(v->type));
             }
         }
+        if ((v = MEMBER(e, p, "clips")) && !parse_clip_ranges(sp, v, f, c)) return false;
         if ((v = MEMBER(e, p, "path"))) {
             if (!get_array(sp, v, f, scene_field_find(SCENE_SEC_CHARACTER, "path"), &c->waypoint_count))
                 return false;

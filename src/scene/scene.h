@@ -39,6 +39,7 @@
  * SCENE_MAX_PATH_KEYS (64) keys or waypoints; see path.h. */
 #define SCENE_PATH_MAX 256 /* bytes of a file path, including the NUL */
 #define SCENE_NAME_MAX 64  /* bytes of a clip name, including the NUL */
+#define SCENE_MAX_CLIP_RANGES 8 /* named ranges per character ("clips") */
 
 typedef enum scene_mode_t {
     SCENE_MODE_HYBRID = 0, /* "hybrid" (default): blades near, billboards far */
@@ -174,14 +175,25 @@ typedef struct scene_collider_t {
     bool loop;         /* default false; see scene_path_eval */
 } scene_collider_t;
 
-/* "characters" array entry. Keys: model (required), clip, speed, scale,
- * height, up, forward, rotation, path, loop. up and forward are
+/* A named range of frames of a model's first clip ("clips": {"walk": [1, 14]}):
+ * ticks of that clip's timeline (frames for frame-based formats; what
+ * `meadow --list-clips` prints), start < end, each in [0, 1e7]. Whether the
+ * range lies on the model's timeline is checked when the model is loaded. */
+typedef struct scene_clip_range_t {
+    char name[SCENE_NAME_MAX]; /* not empty, not an index ("3") nor a range ("1:2") */
+    float range[2];            /* start, end */
+} scene_clip_range_t;
+
+/* "characters" array entry. Keys: model (required), clip, clips, speed,
+ * scale, height, up, forward, rotation, path, loop. up and forward are
  * SCENE_AXIS_* indices into "auto", "+x", "-x", "+y", "-y", "+z", "-z"
  * (scene_axis_code turns them into character_import's axis codes). */
 typedef struct scene_character_t {
     char model[SCENE_PATH_MAX];    /* model file, e.g. "models/humanoid.gltf" */
     char clip_name[SCENE_NAME_MAX]; /* "clip": "walk" -> name, clip_index = -1 */
     int clip_index;                /* "clip": 2 -> index [0, 1000]; default 0 (first clip) */
+    int clip_range_count;          /* "clips": named ranges, at most SCENE_MAX_CLIP_RANGES */
+    scene_clip_range_t clip_ranges[SCENE_MAX_CLIP_RANGES];
     float speed;                   /* walking speed m/s [0, 100]; default 1.2 */
     float scale;                   /* uniform scale on top of the import [0, 1000]; default 1 */
     float height;                  /* fit the bind pose to this height m [0, 1000]; 0 = automatic */

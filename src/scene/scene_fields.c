@@ -283,7 +283,16 @@ const scene_field_t scene_fields[] = {
       .flags = SCENE_FIELD_REQUIRED | SCENE_FIELD_NO_DEFAULT,
       .doc = "model file, repository-relative (e.g. models/humanoid.gltf); not empty"},
     {CHARACTER(clip_index), .key = "clip", .type = SCENE_FIELD_CUSTOM, .hi = 1000, .flags = SCENE_FIELD_NO_DEFAULT,
-      .doc = "walk clip by name, or by index in [0, 1000]", .type_doc = "string or integer", .def_doc = "0 (the first clip)"},
+      .doc = "walk clip by name (a name of `clips` first, then the file's clips), or by index in [0, 1000]; "
+             "`--clip` overrides it (the same names, or START:END)",
+      .type_doc = "string or integer", .def_doc = "0 (the first clip)"},
+    {CHARACTER(clip_ranges), .key = "clips", .type = SCENE_FIELD_CUSTOM, .hi = 1e7, .flags = SCENE_FIELD_NO_DEFAULT,
+      .limit = "SCENE_MAX_CLIP_RANGES",
+      .doc = "named ranges of one long clip, e.g. {\"walk\": [1, 14]}: frames (ticks of the model's first clip, "
+             "as `meadow --list-clips` prints them; glTF: 1000 per second) start < end, at most 8 names "
+             "(SCENE_MAX_CLIP_RANGES), none empty, an index or START:END; an end past the model's timeline is "
+             "refused when it loads",
+      .type_doc = "object of [start, end]", .def_doc = "none"},
     {CHARACTER(speed), .key = "speed", .type = SCENE_FIELD_FLOAT, .hi = 100, .def = {SCENE_DEFAULT_WALK_SPEED},
       .doc = "walking speed (m/s)"},
     {CHARACTER(scale), .key = "scale", .type = SCENE_FIELD_FLOAT, .hi = 1000,

@@ -1,10 +1,12 @@
 /* meadow_gen_models: writes the generated models under models/ and the
- * deliberately inconsistent loader fixture under tests/data/models/.
+ * loader fixtures under tests/data/models/.
  *
  *   models/humanoid.gltf   skinned humanoid, 15 joints, clips "walk", "idle"
  *   models/quadruped.gltf  dog-like animal, 17 joints, clip "walk"
  *   models/torus.obj       torus, major radius 2 m, minor radius 0.8 m
  *   models/sphere.obj      sphere, radius 2 m
+ *   tests/data/models/clips.gltf   a quad with two morph targets, a clip of
+ *                                  duration 0 first, then a morph clip
  *   tests/data/models/broken.gltf  unsorted/NaN/negative key times, a
  *                                  zero quaternion, a zero-weight vertex
  *
@@ -742,7 +744,30 @@ static bool write_obj(const char *path, const char *name, gen_surface_fn fn, int
     return ok;
 }
 
-/* ---- loader fixture ------------------------------------------------------------ */
+/* ---- loader fixtures ------------------------------------------------------------ */
+/* The fixtures' unit quad in the XY plane, facing +Z: positions (with their
+ * bounds) and normals as two accessors; its triangles are g_quad_indices. */
+static const uint16_t g_quad_indices[6] = {0, 1, 2, 0, 2, 3};
+
+static void fixture_quad(gltf_t *g, int *a_pos, int *a_nor)
+{
+    const float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const float nor[4][3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    float mn[3], mx[3];
+    minmax(&pos[0][0], 4, 3, 3, mn, mx);
+    *a_pos = gltf_accessor(g, pos, 4, GL_FLOAT, "VEC3", 3, mn, mx);
+    *a_nor = gltf_accessor(g, nor, 4, GL_FLOAT, "VEC3", 3, NULL, NULL);
+}
+
+/* gltf_finish for a fixture, announced on stdout. */
+static bool fixture_finish(gltf_t *g, core_buf_t *body, const char *path, const char *what)
+{
+    bool ok = gltf_finish(g, body, path);
+    printf("%s: %s\n", path, what);
+    core_buf_free(body);
+    return ok;
+}
+
 /* Two joints ("root", "arm"), one skinned triangle pair and one animation whose
  * key data is inconsistent on purpose: the rotation times are unsorted and one
  * is NaN, one rotation is the zero quaternion, the translation times start
@@ -750,18 +775,13 @@ static bool write_obj(const char *path, const char *name, gen_surface_fn fn, int
 static bool write_broken_fixture(const char *path)
 {
     gltf_t g = {0};
-    const float pos[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    const float nor[4][3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     const uint16_t jt[4][4] = {{0, 0, 0, 0}, {0, 1, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}};
     const float wt[4][4] = {{1, 0, 0, 0}, {0.5f, 0.5f, 0, 0}, {1, 0, 0, 0}, {0, 0, 0, 0}};
-    const uint16_t idx[6] = {0, 1, 2, 0, 2, 3};
-    float mn[3], mx[3];
-    minmax(&pos[0][0], 4, 3, 3, mn, mx);
-    int a_pos = gltf_accessor(&g, pos, 4, GL_FLOAT, "VEC3", 3, mn, mx);
-    int a_nor = gltf_accessor(&g, nor, 4, GL_FLOAT, "VEC3", 3, NULL, NULL);
+    int a_pos, a_nor;
+    fixture_quad(&g, &a_pos, &a_nor);
     int a_jt = gltf_accessor(&g, jt, 4, GL_USHORT, "VEC4", 4, NULL, NULL);
     int a_wt = gltf_accessor(&g, wt, 4, GL_FLOAT, "VEC4", 4, NULL, NULL);
-    int a_idx = gltf_accessor(&g, idx, 6, GL_USHORT, "SCALAR", 1, NULL, NULL);
+    int a_idx = gltf_accessor(&g, g_quad_indices, 6, GL_USHORT, "SCALAR", 1, NULL, NULL);
     const float ibm[2][16] = {{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},
                               {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1}};
     int a_ibm = gltf_accessor(&g, ibm, 2, GL_FLOAT, "MAT4", 16, NULL, NULL);
@@ -792,10 +812,47 @@ static bool write_broken_fixture(const char *path)
                            "\"channels\":[{\"sampler\":0,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
                            "{\"sampler\":1,\"target\":{\"node\":1,\"path\":\"translation\"}}]}]",
                     a_rt, a_rq, a_tt, a_tv);
-    bool ok = gltf_finish(&g, &body, path);
-    printf("%s: loader fixture\n", path);
-    core_buf_free(&body);
-    return ok;
+    return fixture_finish(&g, &body, path, "loader fixture");
+}
+
+/* One unskinned quad ("body", 1 x 1 in the XY plane) with two morph targets
+ * (0 lifts the top edge by 0.5 in y, 1 moves the right edge by 0.5 in x)
+ * and two animations: "pose", a single translation key at t = 0 (a clip of
+ * duration 0), then "grow", the morph weights (0, 0) -> (1, 0) -> (0, 1)
+ * over 2 s. */
+static bool write_clips_fixture(const char *path)
+{
+    gltf_t g = {0};
+    const float lift[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0.5f, 0}, {0, 0.5f, 0}};
+    const float widen[4][3] = {{0, 0, 0}, {0.5f, 0, 0}, {0.5f, 0, 0}, {0, 0, 0}};
+    float mn[3], mx[3];
+    int a_pos, a_nor;
+    fixture_quad(&g, &a_pos, &a_nor);
+    int a_idx = gltf_accessor(&g, g_quad_indices, 6, GL_USHORT, "SCALAR", 1, NULL, NULL);
+    minmax(&lift[0][0], 4, 3, 3, mn, mx);
+    int a_lift = gltf_accessor(&g, lift, 4, GL_FLOAT, "VEC3", 3, mn, mx);
+    minmax(&widen[0][0], 4, 3, 3, mn, mx);
+    int a_widen = gltf_accessor(&g, widen, 4, GL_FLOAT, "VEC3", 3, mn, mx);
+    const float t0[1] = {0}, v0[1][3] = {{0, 0, 0}};
+    int a_t0 = gltf_accessor(&g, t0, 1, GL_FLOAT, "SCALAR", 1, t0, t0);
+    int a_v0 = gltf_accessor(&g, v0, 1, GL_FLOAT, "VEC3", 3, NULL, NULL);
+    const float tw[3] = {0, 1, 2}, ww[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    int a_tw = gltf_accessor(&g, tw, 3, GL_FLOAT, "SCALAR", 1, &tw[0], &tw[2]);
+    int a_ww = gltf_accessor(&g, ww, 6, GL_FLOAT, "SCALAR", 1, NULL, NULL);
+
+    core_buf_t body = {0};
+    core_buf_printf(&body, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"meadow_gen_models (clips fixture)\"},"
+                           "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"name\":\"body\",\"mesh\":0}],"
+                           "\"meshes\":[{\"weights\":[0,0],\"primitives\":[{\"attributes\":{\"POSITION\":%d,"
+                           "\"NORMAL\":%d},\"indices\":%d,\"targets\":[{\"POSITION\":%d},{\"POSITION\":%d}]}]}],",
+                    a_pos, a_nor, a_idx, a_lift, a_widen);
+    core_buf_printf(&body, "\"animations\":[{\"name\":\"pose\",\"samplers\":[{\"input\":%d,\"output\":%d,"
+                           "\"interpolation\":\"LINEAR\"}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,"
+                           "\"path\":\"translation\"}}]},"
+                           "{\"name\":\"grow\",\"samplers\":[{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}],"
+                           "\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"weights\"}}]}]",
+                    a_t0, a_v0, a_tw, a_ww);
+    return fixture_finish(&g, &body, path, "clips fixture");
 }
 
 int main(int argc, char **argv)
@@ -828,5 +885,7 @@ int main(int argc, char **argv)
     ok &= write_obj(path, "sphere", sphere_fn, 32, 16, true);
     snprintf(path, sizeof path, "%s/broken.gltf", fixtures);
     ok &= write_broken_fixture(path);
+    snprintf(path, sizeof path, "%s/clips.gltf", fixtures);
+    ok &= write_clips_fixture(path);
     return ok ? 0 : 1;
 }
