@@ -281,6 +281,7 @@ static void test_clip_ranges(void)
     CHECK(walk == 1 && character_clip_range(&m, "walk", 2, 6) == 1 && m.clip_count == 2);
     int other = character_clip_range(&m, "walk", 0, 10); /* another character's "walk" */
     CHECK(other == 2 && m.clip_count == 3);
+    CHECK(character_clip_find(&m, "walk") == -1); /* a named range is no file clip */
     if (walk == 1 && other == 2) {
         CHECK(!strcmp(m.clips[1].name, "walk") && m.clips[1].cut[0] == 2 && m.clips[1].cut[1] == 6);
         CHECK_NEAR(m.clips[1].duration, 0.4, 1e-6);

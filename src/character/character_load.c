@@ -243,15 +243,17 @@ static bool slice_tracks(const character_track_t *src, int n, bool rot, float t0
     return ok;
 }
 
+/* A clip character_clip_range cut: reached through its range only, so that
+ * a character sharing the model never gets another one's named range. */
+static bool clip_is_cut(const character_clip_t *c) { return c->cut[0] != 0.0f || c->cut[1] != 0.0f; }
+
 int character_clip_range(character_model_t *model, const char *name, double a, double b)
 {
     char why[160];
     if (!character_clip_range_check(model, a, b, why, sizeof why)) return -1;
     for (int i = 0; i < model->clip_count; i++) {
         const character_clip_t *c = &model->clips[i];
-        if ((c->cut[0] != 0.0f || c->cut[1] != 0.0f) && c->cut[0] == (float)a && c->cut[1] == (float)b &&
-            !strcmp(c->name, name))
-            return i;
+        if (clip_is_cut(c) && c->cut[0] == (float)a && c->cut[1] == (float)b && !strcmp(c->name, name)) return i;
     }
     const character_clip_t *src = &model->clips[0];
     float tps = src->ticks_per_second > 0.0f ? src->ticks_per_second : 1.0f;
@@ -294,12 +296,12 @@ int character_clip_find(character_model_t *model, const char *spec)
 {
     if (!spec || !*spec) return model->clip_count > 0 ? 0 : -1;
     for (int i = 0; i < model->clip_count; i++)
-        if (!strcmp(model->clips[i].name, spec)) return i;
+        if (!clip_is_cut(&model->clips[i]) && !strcmp(model->clips[i].name, spec)) return i;
     for (int i = 0; i < model->clip_count; i++)
-        if (!strcasecmp(model->clips[i].name, spec)) return i;
+        if (!clip_is_cut(&model->clips[i]) && !strcasecmp(model->clips[i].name, spec)) return i;
     for (int i = 0; i < model->clip_count; i++) {
         const char *bar = strrchr(model->clips[i].name, '|');
-        if (bar && !strcasecmp(bar + 1, spec)) return i;
+        if (!clip_is_cut(&model->clips[i]) && bar && !strcasecmp(bar + 1, spec)) return i;
     }
     char *end;
     long idx = strtol(spec, &end, 10);

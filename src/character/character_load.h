@@ -142,7 +142,9 @@ int character_bone_find(const character_model_t *model, const char *name);
 /* Clip selection. spec may be:
  *   NULL or ""     the first clip
  *   a name         exact match, then case-insensitive, then the part after
- *                  the last '|' (assimp writes "Armature|walk" for FBX)
+ *                  the last '|' (assimp writes "Armature|walk" for FBX);
+ *                  clips cut by character_clip_range are not matched by
+ *                  name (another character's named range stays its own)
  *   "N"            clip index N
  *   "A:B"          frames/ticks A..B of the first clip (files with a single
  *                  timeline): character_clip_range(model, spec, A, B)
