@@ -14,6 +14,7 @@
  *    (the three views go to test_out_dir() as side_*.png).
  * 3. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
+#include "measure/measure.h"
 #include "world/world_harness.h"
 #include "app/app.h"
 #include "measure/measure_session.h"
@@ -175,21 +176,21 @@ int main(void)
     world_options_t wo = app_world_options(&o);
     CHECK(world_load(&wo, &w) == 0);
     CHECK(world_make_gpu(w));
-    CHECK(world_info(w).tiles && world_info(w).billboards && !world_info(w).blades);
+    CHECK(measure_drivers(w).tiles && measure_drivers(w).billboards && !measure_drivers(w).blades);
     world_set_mode(w, SCENE_MODE_BLADE);
-    CHECK(world_info(w).blades);
+    CHECK(measure_drivers(w).blades);
     int f = 0;
     for (int i = 0; i < 10; i++, f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
-    size_t n = blade_gpu_info(world_info(w).blades).padded_count;
+    size_t n = blade_gpu_info(measure_drivers(w).blades).padded_count;
     blade_t *a = malloc(n * sizeof *a), *b = malloc(n * sizeof *b);
-    blade_gpu_read_blades(world_info(w).blades, a, NULL);
+    blade_gpu_read_blades(measure_drivers(w).blades, a, NULL);
     static const scene_mode_t seq[4] = {SCENE_MODE_BILLBOARD, SCENE_MODE_HYBRID, SCENE_MODE_BLADE,
                                         SCENE_MODE_BILLBOARD};
     for (int k = 0; k < 4; k++) {
         world_set_mode(w, seq[k]);
         for (int i = 0; i < 20; i++, f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     }
-    blade_gpu_read_blades(world_info(w).blades, b, NULL);
+    blade_gpu_read_blades(measure_drivers(w).blades, b, NULL);
     int moved = 0, bad = 0;
     for (size_t i = 0; i < n; i++) {
         if (a[i].v1[3] <= 0.0f) continue;

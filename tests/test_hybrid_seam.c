@@ -121,7 +121,7 @@ int main(void)
     /* 4. No billboards: the blades end in the canopy at the switch. */
     w = make_world(true);
     eval_seam_t c;
-    CHECK(world_info(w).billboards == NULL && world_info(w).canopy);
+    CHECK(measure_drivers(w).billboards == NULL && world_info(w).canopy);
     CHECK(measure_canopy_seam(w, &v, &t, &c));
     double far_de = 0.0, near_de = 0.0;
     for (int k = 0; k < 3; k++) {

@@ -5,6 +5,7 @@
  * absolute difference between consecutive frames in hybrid mode is compared
  * with the same dolly in blade-only mode (no switch). Both maxima are
  * printed (the per-frame series too). */
+#include "measure/measure.h"
 #include "world/world_harness.h"
 #include "eval/eval.h"
 #include "test.h"
@@ -76,7 +77,7 @@ static void first_update_near_tiles(void)
     CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = camera_over_corner}));
     CHECK(world_make_gpu(w));
     world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
-    const hybrid_grid_t *g = blade_tiles_info(world_info(w).tiles).grid;
+    const hybrid_grid_t *g = blade_tiles_info(measure_drivers(w).tiles).grid;
     int under = hybrid_tile_at(g, 3.0f, 3.0f);
     CHECK(under >= 0);
     printf("first update: tile under the camera drawn as %s\n",

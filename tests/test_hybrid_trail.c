@@ -15,6 +15,7 @@
  *   d) the blades of the trail's cells are still pressed down after coming
  *      back, against their undisturbed pose.
  * With keep_state (no hand-over) the tile would keep its slot instead. */
+#include "measure/measure.h"
 #include "world/world_harness.h"
 #include "eval/eval.h"
 #include "test.h"
@@ -31,7 +32,7 @@ static int g_source_calls;
 static void capture_source(void *user, const hybrid_slope_grid_t *grid, gfx_buffer_t sums)
 {
     world_t *w = user;
-    bb_field_add_slopes(world_info(w).billboards, grid, sums);
+    bb_field_add_slopes(measure_drivers(w).billboards, grid, sums);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gfx_buffer_read(sums, 0, (size_t)grid->nx * grid->nz * sizeof(hybrid_slope_sum_t), g_bb_sums);
     g_source_calls++;
@@ -47,7 +48,7 @@ static double up_height(const blade_t *b)
 /* Mean tip height over blade height of a slot's real blades. */
 static double mean_height(world_t *w, int slot)
 {
-    blade_tiles_t *bt = world_info(w).tiles;
+    blade_tiles_t *bt = measure_drivers(w).tiles;
     uint32_t B = blade_tiles_info(bt).template_blades;
     blade_t *b = malloc(B * sizeof *b);
     blade_tiles_read_slot(bt, slot, b, NULL);
@@ -131,8 +132,8 @@ int main(void)
                      &w) == 0);
     CHECK(world_setup(w, &(world_setup_t){.tweak = ball_once}));
     CHECK(world_make_gpu(w));
-    CHECK(world_info(w).tiles);
-    blade_tiles_t *bt = world_info(w).tiles;
+    CHECK(measure_drivers(w).tiles);
+    blade_tiles_t *bt = measure_drivers(w).tiles;
     blade_tiles_info_t bi = blade_tiles_info(bt);
     const hybrid_slope_grid_t *sg = &bi.slope_grid;
     size_t ncells = (size_t)sg->nx * sg->nz;
@@ -263,7 +264,7 @@ int main(void)
                         (ref.v2[2] - ref.v0[2]) * (ref.v2[2] - ref.v0[2]));
             hybrid_slope_apply(dir, f, &use, wgt, nd);
             for (int q = 0; q < 3; q++) ref.v2[q] = ref.v0[q] + len * nd[q];
-            blade_ref_validate(&ref, world_info(w).blade_env->length_mode);
+            blade_ref_validate(&ref, measure_drivers(w).blade_env->length_mode);
             eta_ref = wgt * eta0;
             moved += wgt * use.m > 0.05f;
         }

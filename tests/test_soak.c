@@ -13,6 +13,7 @@
  * every 50 frames.
  * MEADOW_SOAK_FRAMES sets the length (default 2000, the CI version; the long
  * version is MEADOW_SOAK_FRAMES=100000). */
+#include "measure/measure.h"
 #include "world/world_harness.h"
 #include "test.h"
 #include "test_gl.h"
@@ -86,7 +87,7 @@ int main(void)
     glFinish();
     /* No NaN anywhere the simulation writes. */
     int bad = 0;
-    blade_gpu_t *blades = world_info(w).blades;
+    blade_gpu_t *blades = measure_drivers(w).blades;
     size_t n = blades ? blade_gpu_info(blades).padded_count : 0;
     if (n) {
         blade_t *b = malloc(n * sizeof *b);
@@ -96,7 +97,7 @@ int main(void)
         free(b);
         free(eta);
     }
-    blade_tiles_t *tiles = world_info(w).tiles;
+    blade_tiles_t *tiles = measure_drivers(w).tiles;
     if (tiles) {
         blade_tiles_info_t ti = blade_tiles_info(tiles);
         size_t pool = (size_t)ti.desc.pool_slots * ti.template_blades;
@@ -105,7 +106,7 @@ int main(void)
         bad += non_finite((const float *)b, pool * 16);
         free(b);
     }
-    bb_field_t *bb = world_info(w).billboards;
+    bb_field_t *bb = measure_drivers(w).billboards;
     if (bb) {
         bb_field_info_t fi;
         bb_field_info(bb, &fi);

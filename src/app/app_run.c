@@ -239,8 +239,8 @@ static int summary_startup(const app_t *app, const measure_stats_t *st, char *bu
         n += snprintf(buf + n, size - (size_t)n, "  %-12s %9.1f", world_stage_name(k), s[k]);
         if (k == WORLD_STAGE_BILLBOARDS && st->billboards > 0) {
             n += snprintf(buf + n, size - (size_t)n, "  (");
-            for (int b = 0; b < BB_MAKE_STAGES; b++)
-                n += snprintf(buf + n, size - (size_t)n, "%s%s %.1f", b ? ", " : "", bb_make_stage_name(b),
+            for (int b = 0; b < MEASURE_BB_STAGES; b++)
+                n += snprintf(buf + n, size - (size_t)n, "%s%s %.1f", b ? ", " : "", measure_bb_stage_name(b),
                               st->bb_make_stage_ms[b]);
             n += snprintf(buf + n, size - (size_t)n, ")");
         }
@@ -356,25 +356,11 @@ static int summary_work(char *buf, size_t size)
     return n < (int)size ? n : (int)size - 1;
 }
 
-/* A world's billboard ring (bb_ring.h): its cells, reach and memory. */
-static int summary_ring(bb_field_t *bb, char *buf, size_t size)
-{
-    bb_field_info_t fi;
-    bb_field_info(bb, &fi);
-    float cell = (float)fi.ring_cand * fi.gen.spacing;
-    int n = snprintf(buf, size,
-                     "billboard ring: %d x %d cells of %.2f m (%d x %d candidates) around the camera, to %.1f m; "
-                     "%d billboards, %.1f MiB; cells generated %ld\n",
-                     fi.ring_side, fi.ring_side, (double)cell, fi.ring_cand, fi.ring_cand,
-                     (double)fi.desc.ring_reach, fi.capacity,
-                     (double)fi.capacity * (double)sizeof(bb_point_t) / 1048576.0, fi.ring_generated);
-    return n < 0 ? 0 : (n < (int)size ? n : (int)size - 1);
-}
-
 /* What the world holds: the admission estimate, the hybrid's distances, a
  * world's tile window, the compute rasterizer's buffers, the characters. */
-static int summary_world(world_info_t wi, char *buf, size_t size)
+static int summary_world(world_t *w, char *buf, size_t size)
 {
+    world_info_t wi = world_info(w);
     const admit_t *ad = wi.admitted;
     int n = snprintf(buf, size, "gpu_memory_estimate_mb: %.1f (admission, before allocating:",
                      ad->gpu_total / (1024.0 * 1024.0));
@@ -383,32 +369,11 @@ static int summary_world(world_info_t wi, char *buf, size_t size)
             n += snprintf(buf + n, size - (size_t)n, " %s %.1f", admit_part_name(k),
                           ad->gpu[k] / (1024.0 * 1024.0));
     n += snprintf(buf + n, size - (size_t)n, ")\n");
-    bool world = wi.terrain->type == TERRAIN_WORLD;
-    if (world && wi.billboards) n += summary_ring(wi.billboards, buf + n, size - (size_t)n);
     if (wi.scene->mode == SCENE_MODE_HYBRID)
         n += snprintf(buf + n, size - (size_t)n, "hybrid distances: switch %.1f m, canopy %.1f m (%s)\n",
                       wi.scene->grass.switch_distance, wi.scene->grass.canopy_distance,
                       wi.lod_note[0] ? wi.lod_note : "the scene's; no grass.lod_table");
-    if (world && wi.tiles) {
-        blade_tiles_info_t ti = blade_tiles_info(wi.tiles);
-        blade_tiles_stats_t ts = blade_tiles_stats(wi.tiles, false);
-        n += snprintf(buf + n, size - (size_t)n,
-                      "world: %.0f m, a window of %d x %d tiles of %.0f m around the camera (blades to %.1f m); "
-                      "tiles streamed in %ld; touched tiles that left it recovering %ld, back %ld\n",
-                      wi.terrain->world.size, ti.desc.window, ti.desc.window, ti.desc.tile_size,
-                      ti.desc.switch_distance, ts.streamed_total, ts.detached_total, ts.reattached_total);
-    }
-    raster_t *r = wi.raster;
-    if (r->vis.id) {
-        raster_stats_t rs;
-        raster_read_stats(r, &rs);
-        n += snprintf(buf + n, size - (size_t)n,
-                      "raster_buffers_mb: %.1f (visibility %dx%d x %d samples, %s; triangle queues)\n"
-                      "raster_queued (last draw): medium %u, large %u, not drawn (queue full) %u\n",
-                      (double)(r->vis.size + r->queue.size + r->args.size) / (1024.0 * 1024.0), r->desc.w, r->desc.h,
-                      r->desc.samples, r->atomic64 ? "64-bit atomics" : "two-pass 32-bit", rs.medium, rs.large,
-                      rs.overflow);
-    }
+    n += measure_grass_lines(w, buf + n, size - (size_t)n);
     if (wi.characters && n < (int)size) {
         character_set_describe(wi.characters, buf + n, size - (size_t)n);
         n += (int)strlen(buf + n);
@@ -470,7 +435,7 @@ static bool write_summary(app_t *app, double wall_s)
                   st.bb_make_ms, st.characters, st.tiles_blade,
                   st.tiles_active, st.tiles_recovering, st.tile_slots_used, st.tile_slots_total,
                   st.tile_blades_simulated, st.tile_handovers, st.tile_seeded, st.triangles);
-    n += summary_world(wi, buf + n, sizeof buf - (size_t)n);
+    n += summary_world(app->world, buf + n, sizeof buf - (size_t)n);
     n += summary_frame_times(app, buf + n, sizeof buf - (size_t)n);
     n += summary_startup(app, &st, buf + n, sizeof buf - (size_t)n);
     n += summary_work(buf + n, sizeof buf - (size_t)n);

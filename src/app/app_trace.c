@@ -16,6 +16,7 @@
 #include "app/app_trace.h"
 
 #include "app/app.h"
+#include "measure/measure.h"
 #include "world/world.h"
 
 #include "core/core.h"
@@ -28,7 +29,7 @@
 /* Frames a GPU timer result may trail its pass (gfx_timer_last_ms). */
 #define TRACE_GPU_LAG 3
 
-/* The blade tiles' work of the frame's update (blade_tiles_stats_t). */
+/* The blade tiles' work of the frame's update (measure_grass_t). */
 static const char *const stat_names[] = {"tiles_active", "tiles_recovering", "slots_simulated", "blades_simulated",
                                          "tiles_streamed"};
 #define TRACE_STATS (int)(sizeof stat_names / sizeof stat_names[0])
@@ -54,7 +55,7 @@ struct app_trace_t {
     char path[1100];
     trace_row_t *rows; /* a ring of APP_FRAME_HISTORY */
     long count;        /* rows added */
-    long streamed_last; /* blade_tiles_stats_t.streamed_total of the previous row */
+    long streamed_last; /* measure_grass_t.tiles_streamed_total of the previous row */
 };
 
 app_trace_t *app_trace_open(const char *out)
@@ -76,14 +77,13 @@ void app_trace_row(app_trace_t *tr, world_t *w, const app_trace_frame_t *fr)
     trace_row_t *r = &tr->rows[tr->count % APP_FRAME_HISTORY];
     tr->count++;
     world_info_t info = world_info(w);
-    blade_tiles_t *tiles = info.tiles;
-    blade_tiles_stats_t ts = {0};
-    if (tiles) ts = blade_tiles_stats(tiles, false);
+    measure_grass_t ts;
+    measure_grass(w, false, &ts);
     *r = (trace_row_t){.frame = fr->frame, .screenshot = fr->screenshot,
                        .ms = {fr->wall_ms, fr->submit_ms, fr->thread_ms},
-                       .stats = {ts.active, ts.recovering, ts.slots_dispatched, (long)ts.blades_dispatched,
-                                 ts.streamed_total - tr->streamed_last}};
-    tr->streamed_last = ts.streamed_total;
+                       .stats = {ts.tiles_active, ts.tiles_recovering, ts.tile_slots_dispatched,
+                                 ts.tile_blades_dispatched, ts.tiles_streamed_total - tr->streamed_last}};
+    tr->streamed_last = ts.tiles_streamed_total;
     for (int k = 0; k < WORLD_FRAME_MARKS - 1; k++)
         r->step_ms[k] = fr->marks ? (float)((fr->marks[k + 1] - fr->marks[k]) * 1e3) : 0.0f;
     for (int k = 0; k < WORLD_UPDATE_PARTS; k++) r->step_ms[WORLD_FRAME_MARKS - 1 + k] = (float)info.update_ms[k];

@@ -158,7 +158,7 @@ typedef struct sweep_run_t {
 
 /* Sphere proxies of the blade_proxies sweep for box colliders (other
  * colliders get their bounding sphere). */
-static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
+static int proxy_spheres(world_t *w, collide_sphere_t *out, int max, void *user)
 {
     const bench_config_t *c = ((const sweep_run_t *)user)->c;
     int n = 0;
@@ -166,12 +166,12 @@ static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
         const world_collider_info_t k = world_collider(w, i);
         const float *p = k.position;
         if (k.desc.type != SCENE_COLLIDER_BOX || c->proxy == PROXY_BOUND) {
-            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], k.bound_radius}};
+            out[n++] = (collide_sphere_t){.centre_radius = {p[0], p[1], p[2], k.bound_radius}};
             continue;
         }
         const float *h = k.desc.half_extents;
         if (c->proxy == PROXY_INSCRIBED) {
-            out[n++] = (blade_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
+            out[n++] = (collide_sphere_t){.centre_radius = {p[0], p[1], p[2], fminf(h[0], fminf(h[1], h[2]))}};
             continue;
         }
         float cell[3] = {h[0] / (float)c->grid[0], h[1] / (float)c->grid[1], h[2] / (float)c->grid[2]};
@@ -180,7 +180,7 @@ static int proxy_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
         for (int a = 0; a < c->grid[0]; a++)
             for (int b = 0; b < c->grid[1]; b++)
                 for (int d = 0; d < c->grid[2] && n < max; d++)
-                    out[n++] = (blade_sphere_t){.centre_radius = {p[0] - h[0] + cell[0] * (2 * a + 1),
+                    out[n++] = (collide_sphere_t){.centre_radius = {p[0] - h[0] + cell[0] * (2 * a + 1),
                                                                   p[1] - h[1] + cell[1] * (2 * b + 1),
                                                                   p[2] - h[2] + cell[2] * (2 * d + 1), r}};
     }
@@ -757,9 +757,10 @@ static void sweep_frame(world_t *w, int f, float t, void *user)
         measure_metrics(w, &m, &x);
         if (m.penetration_max >= 0.0) r->depths[r->nd++] = r->tested ? x.tested_max : m.penetration_max;
     }
-    blade_gpu_t *g = world_info(w).blades;
-    if (!r->overpush || !g || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
-    uint32_t padded = blade_gpu_info(g).padded_count;
+    if (!r->overpush || !world_info(w).blades || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
+    measure_grass_t mg;
+    measure_grass(w, false, &mg);
+    uint32_t padded = mg.blade_padded;
     if (!r->eta_prev) r->eta_prev = calloc(padded, sizeof(float));
     if (r->np + (long)padded > r->push_cap) {
         long cap = r->np + (long)padded * 4;

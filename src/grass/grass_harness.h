@@ -7,6 +7,7 @@
 #define MEADOW_GRASS_HARNESS_H
 
 #include "grass/grass.h"
+#include "grass/grass_tuning.h"
 
 #include "admit/admit.h"
 #include "billboard/bb.h"
@@ -17,24 +18,6 @@
 #include "raster/raster.h"
 #include "scene/scene.h"
 #include "scene/terrain.h"
-
-/* Knobs that are not scene-file fields (bench sweeps). Zero = default. */
-typedef struct grass_tuning_t {
-    int tess_max;            /* blade tessellation level cap; default the blade module's */
-    unsigned cull_disable;   /* BLADE_CULL_* tests to skip */
-    bool blade_cube_proxies; /* blades collide against depth cube maps instead of
-                                sphere proxies (the set's cube proxies; not the tiles) */
-    uint32_t placement_seed; /* seeds where grass stands instead of the scene seed: full-field
-                                blades (blade_seed and the clearing thinning's draw) and
-                                billboards (bb_field_desc_t.placement_seed); terrain,
-                                clearings and clump textures keep the scene seed (not the
-                                hybrid tiles). The image error's noise floor (docs/METRICS.md) */
-    bool view_cards;         /* billboards' view-dependent clump cards (bb_view_desc_t.on) */
-    bool paper;              /* both papers' methods as printed (the stability suite's paper
-                                variant): blade_env_t.paper with eq. 12's length and the
-                                paper's eta gain k = 1, bb_field_desc_t.paper, and no swept
-                                colliders (the collide set's objects do not sweep) */
-} grass_tuning_t;
 
 /* grass_desc_t.host: the scene and terrain the host resolved (both
  * borrowed for the grass's life; the grass applies grass.lod_table and

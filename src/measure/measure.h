@@ -3,12 +3,19 @@
  * switch and canopy bands and its noise floor (measure_seam.c,
  * docs/METRICS.md "Hybrid seam"), and the hardware and compute floors of
  * trivial triangles (measure_floor.c), the counts of a frame (measure_stats.c).
- * Through world.h and world_harness.h only. */
+ * Through world.h and world_harness.h, and grass_harness.h for the grass's
+ * drivers: the program and the harness (app, bench, perf, stability) reach
+ * the drivers through measure alone. */
 #ifndef MEADOW_MEASURE_H
 #define MEADOW_MEASURE_H
 
 #include "eval/eval_image.h"
+#include "grass/grass_harness.h"
 #include "world/world_harness.h"
+
+/* The drivers of w's grass (all NULL before world_make_gpu): the one door
+ * from the measures to the billboards, blades, tiles and rasterizer. */
+grass_drivers_t measure_drivers(world_t *w);
 
 /* ---- hybrid seam (measure_seam.c, docs/METRICS.md "Hybrid seam") ------------------ */
 /* A frame for eval_image_seam: colour, distance to the visible surface and
@@ -93,5 +100,26 @@ typedef struct measure_stats_t {
 
 /* Counts of the last frame (blocking reads: for summaries, not the frame). */
 void measure_stats(world_t *w, measure_stats_t *st);
+/* The name of billboard start-up stage k < MEASURE_BB_STAGES
+ * (measure_stats_t.bb_make_stage_ms). */
+#define MEASURE_BB_STAGES BB_MAKE_STAGES
+const char *measure_bb_stage_name(int k);
+
+/* What the harness and the program's logs read of the grass beyond
+ * measure_stats, without waiting on the GPU (wait: the tiles' counters of
+ * this frame, blocking): sizes the measures' buffers need and the tiles'
+ * work. Zero where the grass lacks the system. */
+typedef struct measure_grass_t {
+    uint32_t blade_padded;    /* the blade field's blades with padding */
+    long blades_total;        /* the blade field's real blades */
+    int bb_billboards, bb_mesh_vertices;
+    long bb_leaves_colliding, bb_leaves_recovering; /* octree leaves in those states */
+    int tiles_active, tiles_recovering, tile_slots_dispatched;
+    long tile_blades_dispatched, tiles_streamed_total;
+} measure_grass_t;
+void measure_grass(world_t *w, bool wait, measure_grass_t *out);
+/* summary.txt's lines on a world's billboard ring and tile window and on
+ * the compute rasterizer's buffers, into buf; the characters written. */
+int measure_grass_lines(world_t *w, char *buf, size_t size);
 
 #endif

@@ -20,6 +20,8 @@
  * structural stretch and the folded cells of each deformed billboard. */
 #include "measure/measure_metrics.h"
 
+#include "measure/measure.h"
+
 #include "collide/collide_shape.h"
 
 #include <math.h>
@@ -156,7 +158,7 @@ static bool blade_finite(const blade_t *b)
 static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, measure_metrics_t *m,
                           measure_metrics_ext_t *x)
 {
-    blade_gpu_t *g = world_info(w).blades;
+    blade_gpu_t *g = measure_drivers(w).blades;
     const terrain_mesh_t *terrain = world_info(w).terrain;
     bool heightfield = world_info(w).scene->terrain.type == TERRAIN_HEIGHTFIELD;
     uint32_t count = blade_gpu_info(g).padded_count;
@@ -208,7 +210,7 @@ static void blade_metrics(world_t *w, const exact_t *ex, int n, pen_acc_t *acc, 
 /* The world's billboard field and what it holds (NULL without one). */
 static bb_field_t *bb_of(world_t *w, bb_field_info_t *fi)
 {
-    bb_field_t *f = world_info(w).billboards;
+    bb_field_t *f = measure_drivers(w).billboards;
     if (f) bb_field_info(f, fi);
     return f;
 }
@@ -336,8 +338,8 @@ void measure_metrics(world_t *w, measure_metrics_t *m, measure_metrics_ext_t *x)
     pen_acc_t acc = {0};
     scene_mode_t mode = world_info(w).mode;
     bool reference = world_info(w).reference;
-    bool blades = world_info(w).blades && (mode != SCENE_MODE_BILLBOARD || reference);
-    bool bbs = world_info(w).billboards && mode != SCENE_MODE_BLADE && !reference;
+    bool blades = measure_drivers(w).blades && (mode != SCENE_MODE_BILLBOARD || reference);
+    bool bbs = measure_drivers(w).billboards && mode != SCENE_MODE_BLADE && !reference;
     if (blades) blade_metrics(w, ex, n, &acc, m, x);
     if (bbs) bb_metrics(w, ex, n, &acc, m, x);
     if (blades || bbs) {
@@ -358,7 +360,7 @@ static blade_t *read_blades(blade_gpu_t *g)
 
 double measure_blade_offset(world_t *w, world_t *twin, float *prev, bool *primed, double *jitter)
 {
-    blade_gpu_t *gw = world_info(w).blades, *gt = world_info(twin).blades;
+    blade_gpu_t *gw = measure_drivers(w).blades, *gt = measure_drivers(twin).blades;
     uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
     if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *a = read_blades(gw), *b = read_blades(gt);
@@ -392,7 +394,7 @@ double measure_blade_coverage(world_t *w, world_t *twin, const float a[2], const
                                     float radius, float frac, uint8_t *ever, long *corridor)
 {
     *corridor = 0;
-    blade_gpu_t *gw = world_info(w).blades, *gt = world_info(twin).blades;
+    blade_gpu_t *gw = measure_drivers(w).blades, *gt = measure_drivers(twin).blades;
     uint32_t count = gw ? blade_gpu_info(gw).padded_count : 0;
     if (!gw || !gt || count != blade_gpu_info(gt).padded_count) return 0;
     blade_t *x = read_blades(gw), *y = read_blades(gt);
@@ -553,7 +555,7 @@ void measure_bb_distortion(world_t *w, measure_bb_distortion_t *out)
 long measure_roots_in(world_t *w, const float lo[3], const float hi[3])
 {
     long n = 0;
-    blade_gpu_t *g = world_info(w).blades;
+    blade_gpu_t *g = measure_drivers(w).blades;
     bb_field_info_t fi;
     bb_field_t *f = bb_of(w, &fi);
     if (world_info(w).mode == SCENE_MODE_BLADE && g) {
@@ -741,7 +743,7 @@ double measure_bb_pose_deviation(const measure_bb_pose_t *a, const measure_bb_po
 
 long measure_blade_overpush(world_t *w, float *eta_prev, bool primed, double *dist)
 {
-    blade_gpu_t *g = world_info(w).blades;
+    blade_gpu_t *g = measure_drivers(w).blades;
     if (!g) return 0;
     uint32_t count = blade_gpu_info(g).padded_count;
     blade_t *b = malloc(sizeof *b * count);

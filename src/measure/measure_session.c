@@ -36,7 +36,7 @@ typedef struct session_frame_t {
     int frame;
 } session_frame_t;
 
-static int session_spheres(world_t *w, blade_sphere_t *out, int max, void *user)
+static int session_spheres(world_t *w, collide_sphere_t *out, int max, void *user)
 {
     const session_frame_t *sf = user;
     return sf->h->blade_spheres(w, out, max, sf->h->user);

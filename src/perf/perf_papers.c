@@ -170,12 +170,11 @@ static void papers_frame(world_t *w, int frame, float t, void *user)
 {
     (void)t;
     papers_probe_t *p = user;
-    bb_field_t *bb = world_info(w).billboards;
-    if (bb && frame >= p->warmup) {
-        bb_stats_t st;
-        bb_field_stats(bb, false, &st);
-        p->run->leaves += st.leaves[BB_NODE_COLLIDING];
-        p->run->recovering += st.leaves[BB_NODE_RECOVERING];
+    if (world_info(w).billboards && frame >= p->warmup) {
+        measure_grass_t mg;
+        measure_grass(w, false, &mg);
+        p->run->leaves += mg.bb_leaves_colliding;
+        p->run->recovering += mg.bb_leaves_recovering;
         p->samples++;
     }
     if (frame != p->last) return;

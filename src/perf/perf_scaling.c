@@ -81,13 +81,13 @@ static void last_frame(world_t *w, int frame, float t, void *user)
     (void)t;
     scaling_run_t *r = user;
     if (frame + 1 < r->point->frames) return;
-    blade_tiles_t *tiles = world_info(w).tiles;
+    measure_grass_t mg;
+    measure_grass(w, !r->full, &mg);
     if (r->full) {
-        r->point->full_blades = blade_gpu_stats(world_info(w).blades, false).total;
-    } else if (tiles) {
-        blade_tiles_stats_t st = blade_tiles_stats(tiles, true);
-        r->point->slots = st.slots_dispatched;
-        r->point->blades = st.blades_dispatched;
+        r->point->full_blades = mg.blades_total;
+    } else if (world_info(w).tiles) {
+        r->point->slots = mg.tile_slots_dispatched;
+        r->point->blades = mg.tile_blades_dispatched;
     }
 }
 

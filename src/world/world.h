@@ -15,14 +15,9 @@
 #include <stdint.h>
 
 #include "admit/admit.h"
-#include "billboard/bb.h"
-#include "blade/blade.h"
-#include "blade/blade_clump.h"
-#include "blade/blade_tiles.h"
 #include "character/character.h"
 #include "gfx/gfx.h"
 #include "grass/grass.h"
-#include "raster/raster.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
 #include "scene/terrain.h"
@@ -95,12 +90,9 @@ typedef struct world_info_t {
     const double *stage_ms;  /* WORLD_STAGES entries; the context and first frame are the caller's */
     const admit_t *admitted; /* the memory and work estimate the run was admitted with */
     const char *lod_note;    /* grass.lod_table: what was chosen and why; "" without one */
-    const blade_env_t *blade_env;
-    bb_field_t *billboards;
-    blade_gpu_t *blades;
-    blade_tiles_t *tiles;
+    bool billboards, blades, tiles; /* the grass holds a billboard field, a blade field, tiles */
     character_set_t *characters;
-    raster_t *raster; /* the compute rasterizer's buffers (vis.id 0: none yet) */
+    grass_t *grass; /* NULL before world_make_gpu; its drivers: grass_harness.h (the measures) */
     /* CPU wall ms of the frame's simulation steps by part, WORLD_UPDATE_PARTS
      * entries: colliders and characters, billboards, blade spheres, blades
      * and tiles (cleared by each world_frame; the frame log). */

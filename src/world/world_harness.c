@@ -27,11 +27,10 @@ world_info_t world_info(world_t *w)
     grass_drivers_t d = grass_drivers(w->grass);
     i.raster_compute = st.compute;
     i.canopy = st.canopy;
-    i.blade_env = d.blade_env;
-    i.billboards = d.billboards;
-    i.blades = d.blades;
-    i.tiles = d.tiles;
-    i.raster = d.raster;
+    i.billboards = d.billboards != NULL;
+    i.blades = d.blades != NULL;
+    i.tiles = d.tiles != NULL;
+    i.grass = w->grass;
     return i;
 }
 
@@ -102,7 +101,7 @@ bool world_setup(world_t *w, const world_setup_t *setup)
 
 void world_update_spheres(world_t *w, float t, float dt, world_spheres_fn spheres, void *user)
 {
-    static blade_sphere_t proxies[BLADE_MAX_SPHERES];
+    static collide_sphere_t proxies[BLADE_MAX_SPHERES];
     w->time = t;
     world_colliders_update(&w->colliders, &w->terrain_mesh, t);
     grass_update_spheres(w->grass, proxies, spheres(w, proxies, BLADE_MAX_SPHERES, user), t, dt);

@@ -9,7 +9,8 @@
 
 #include "world/world.h"
 
-#include "grass/grass_harness.h"
+#include "collide/collide_set.h"
+#include "grass/grass_tuning.h"
 
 /* What an offscreen session changes between world_load and world_make_gpu.
  * Zero = keep what the scene and options say. */
@@ -49,7 +50,7 @@ void world_set_camera(world_t *w, const float camera[3]);
 
 /* Blade sphere proxies that replace the world's: writes at most max, returns
  * the count. */
-typedef int (*world_spheres_fn)(world_t *w, blade_sphere_t *out, int max, void *user);
+typedef int (*world_spheres_fn)(world_t *w, collide_sphere_t *out, int max, void *user);
 /* world_update of a world with blades only (no billboards, characters or
  * tiles) with the spheres of `spheres` in place of the world's (same order:
  * colliders, then one blade step). */
@@ -66,6 +67,7 @@ world_collider_info_t world_collider(const world_t *w, int i);
 
 /* A billboard field as the world builds its own, for placement seed
  * `placement_seed` (0: the scene seed); NULL when it cannot be made. */
+typedef struct bb_field_t bb_field_t; /* billboard/bb.h */
 bb_field_t *world_build_billboards(const world_t *w, uint32_t placement_seed);
 /* Puts `field` in the world's place (NULL: none) and returns the field it
  * held; the caller owns what it gets back. */
