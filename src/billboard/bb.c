@@ -66,10 +66,11 @@ void bb_point_frame(const bb_point_t *p, vec3 right, vec3 up)
 
 void bb_set_wind(GLuint prog, const bb_wind_desc_t *w)
 {
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_wind.dir"), w->dir[0], w->dir[1]);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.strength"), w->strength);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.omega"), w->omega);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_wind.wavenumber"), w->wavenumber);
+    gfx_program_t gp = {.id = prog};
+    glProgramUniform2f(prog, gfx_uniform(gp, "u_wind.dir"), w->dir[0], w->dir[1]);
+    glProgramUniform1f(prog, gfx_uniform(gp, "u_wind.strength"), w->strength);
+    glProgramUniform1f(prog, gfx_uniform(gp, "u_wind.omega"), w->omega);
+    glProgramUniform1f(prog, gfx_uniform(gp, "u_wind.wavenumber"), w->wavenumber);
 }
 
 static void setup_points_vao(GLuint vao, GLuint buffer)

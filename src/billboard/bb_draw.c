@@ -8,11 +8,12 @@
 /* The view-dependent cards' uniforms (shaders/billboard/bb_view.glsl). */
 static void set_views(const bb_field_t *f, GLuint prog)
 {
-    glProgramUniform2i(prog, glGetUniformLocation(prog, "u_views"), f->views.elevations, f->views.azimuths);
-    glProgramUniform1f(prog, glGetUniformLocation(prog, "u_view_elevation_max"), f->views.elevation_max);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_layers"), (GLint)f->gen.layers);
-    glProgramUniform2f(prog, glGetUniformLocation(prog, "u_view_wind"), f->desc.wind.dir[0], f->desc.wind.dir[1]);
-    glProgramUniform1i(prog, glGetUniformLocation(prog, "u_view_lit"), f->views.on);
+    gfx_program_t gp = {.id = prog};
+    glProgramUniform2i(prog, gfx_uniform(gp, "u_views"), f->views.elevations, f->views.azimuths);
+    glProgramUniform1f(prog, gfx_uniform(gp, "u_view_elevation_max"), f->views.elevation_max);
+    glProgramUniform1i(prog, gfx_uniform(gp, "u_view_layers"), (GLint)f->gen.layers);
+    glProgramUniform2f(prog, gfx_uniform(gp, "u_view_wind"), f->desc.wind.dir[0], f->desc.wind.dir[1]);
+    glProgramUniform1i(prog, gfx_uniform(gp, "u_view_lit"), f->views.on);
 }
 
 void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc_t *dd)

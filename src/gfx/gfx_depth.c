@@ -32,7 +32,10 @@ static bool depth_init(void)
 
 void gfx_depth_shutdown(void)
 {
-    if (g_depth.prog) glDeleteProgram(g_depth.prog);
+    if (g_depth.prog) {
+        gfx_uniforms_forget(g_depth.prog);
+        glDeleteProgram(g_depth.prog);
+    }
     memset(&g_depth, 0, sizeof g_depth);
 }
 
@@ -47,9 +50,10 @@ bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out)
     float *tmp = malloc(sizeof(float) * n);
     bool ok = buf.id && tmp;
     if (ok) {
+        gfx_program_t gp = {.id = g_depth.prog};
         glUseProgram(g_depth.prog);
         glBindTextureUnit(GFX_TEX_DEPTH, t->depth.id);
-        glUniform1i(glGetUniformLocation(g_depth.prog, "u_samples"), t->samples);
+        glUniform1i(gfx_uniform(gp, "u_samples"), t->samples);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GFX_BIND_NEAREST, buf.id);
         glDispatchCompute(((GLuint)t->w + 7u) / 8u, ((GLuint)t->h + 7u) / 8u, 1);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

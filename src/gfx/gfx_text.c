@@ -46,7 +46,10 @@ static bool text_init(void)
 
 void gfx_text_shutdown(void)
 {
-    if (g_text.prog) glDeleteProgram(g_text.prog);
+    if (g_text.prog) {
+        gfx_uniforms_forget(g_text.prog);
+        glDeleteProgram(g_text.prog);
+    }
     if (g_text.vao) glDeleteVertexArrays(1, &g_text.vao);
     if (g_text.vbo) glDeleteBuffers(1, &g_text.vbo);
     memset(&g_text, 0, sizeof g_text);
@@ -72,9 +75,10 @@ void gfx_text_draw(const char *text, float x, float y, float scale, const float 
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
     gfx_upload_raw(g_text.vbo, 0, (size_t)nv * 2 * sizeof(float), tris);
+    gfx_program_t gp = {.id = g_text.prog};
     glUseProgram(g_text.prog);
-    glUniform2f(glGetUniformLocation(g_text.prog, "u_viewport"), (float)vp[2], (float)vp[3]);
-    glUniform4fv(glGetUniformLocation(g_text.prog, "u_color"), 1, rgba);
+    glUniform2f(gfx_uniform(gp, "u_viewport"), (float)vp[2], (float)vp[3]);
+    glUniform4fv(gfx_uniform(gp, "u_color"), 1, rgba);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(g_text.vao);
     glDrawArrays(GL_TRIANGLES, 0, nv);

@@ -67,12 +67,13 @@ gi_bind_t gi_gpu_bind(const gi_gpu_t *g)
 
 void gi_set_uniforms(GLuint p, const gi_bind_t *b)
 {
+    gfx_program_t gp = {.id = p};
     bool on = b && b->ao;
-    glUniform1i(glGetUniformLocation(p, "u_gi_on"), on);
+    glUniform1i(gfx_uniform(gp, "u_gi_on"), on);
     if (!on) return;
-    glUniform3fv(glGetUniformLocation(p, "u_gi_lo"), 1, b->lo);
-    glUniform3fv(glGetUniformLocation(p, "u_gi_inv_size"), 1, b->inv_size);
-    glUniform3fv(glGetUniformLocation(p, "u_gi_bounce"), 1, b->bounce);
+    glUniform3fv(gfx_uniform(gp, "u_gi_lo"), 1, b->lo);
+    glUniform3fv(gfx_uniform(gp, "u_gi_inv_size"), 1, b->inv_size);
+    glUniform3fv(gfx_uniform(gp, "u_gi_bounce"), 1, b->bounce);
     glBindTextureUnit(GI_TEX_AO, b->ao);
     for (int t = 0; t < 3; t++) glBindTextureUnit(GI_TEX_IRR0 + (GLuint)t, b->irr[t]);
 }
