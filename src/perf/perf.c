@@ -338,6 +338,17 @@ const perf_run_t *perf_find(const perf_t *p, const char *name)
     return NULL;
 }
 
+/* The run of r's scene and mode through the other rasterizer
+ * ("<scene>/<mode>/hw" <-> ".../compute"); NULL when the perf.json has none. */
+static const perf_run_t *run_twin(const perf_t *p, const perf_run_t *r)
+{
+    size_t len = strlen(r->name), tail = strlen(r->raster);
+    if (len <= tail || strcmp(r->name + len - tail, r->raster) != 0) return NULL;
+    char name[80];
+    snprintf(name, sizeof name, "%.*s%s", (int)(len - tail), r->name, strcmp(r->raster, "hw") == 0 ? "compute" : "hw");
+    return perf_find(p, name);
+}
+
 static double pass_sum(const perf_run_t *r, const char *const *names)
 {
     double s = 0;
@@ -397,26 +408,26 @@ static void write_section(core_buf_t *b, const perf_t *p)
                     p->frames, p->quick ? " (--quick: CI sizes, not the bench scenes)" : "", p->frames / 4);
     if (strstr(p->renderer, "llvmpipe"))
         core_buf_printf(b, "GPU times from llvmpipe are not meaningful (CPU rasteriser); rerun on a GPU.\n\n");
-    core_buf_printf(b, "### Per run\n\nfloor: the hardware floor (measure_floor.c); compute floor: the same triangles "
-                       "through the compute rasterizer with trivial shading, its start and composite included.\n\n"
-                       "| run | size, MSAA | grass | frame ms (sum) | floor ms | frame/floor | compute floor ms | "
-                       "frame/compute floor | GPU memory | CPU ms/frame |\n"
-                       "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+    core_buf_printf(b, "### Per run\n\n"
+                       "| run | size, MSAA | grass | frame ms (sum) | compute/hw | floor ms | frame/floor | "
+                       "compute floor ms | frame/compute floor | GPU memory | CPU ms/frame |\n"
+                       "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
-        const perf_run_t *r = &p->runs[i];
-        char grass[128] = "", fl[32], ratio[32] = "-", cfl[32], cratio[32] = "-";
+        const perf_run_t *r = &p->runs[i], *hw = strcmp(r->raster, "compute") == 0 ? run_twin(p, r) : NULL;
+        char grass[128] = "", vs[32] = "-", fl[32], ratio[32] = "-", cfl[32], cratio[32] = "-";
         int n = 0;
         if (r->blades) n += snprintf(grass + n, sizeof grass - (size_t)n, "%ld blades, %ld drawn", r->blades,
                                      r->blades_drawn);
         if (r->billboards && n < (int)sizeof grass)
             n += snprintf(grass + n, sizeof grass - (size_t)n, "%s%ld billboards", n ? "; " : "", r->billboards);
+        if (hw && hw->frame_ms > 0) snprintf(vs, sizeof vs, "%.2f", r->frame_ms / hw->frame_ms);
         cell(fl, sizeof fl, r->floor_ms, "");
         if (r->floor_ms > 0) snprintf(ratio, sizeof ratio, "%.2f", r->frame_ms / r->floor_ms);
         cell(cfl, sizeof cfl, r->compute_floor_ms, "");
         if (r->compute_floor_ms > 0) snprintf(cratio, sizeof cratio, "%.2f", r->frame_ms / r->compute_floor_ms);
-        core_buf_printf(b, "| %s%s | %dx%d, %dx | %s | **%.3f** | %s | %s | %s | %s | %.1f MB | %.2f |\n", r->name,
-                        r->fell_back ? " (fell back to hw)" : "", r->size[0], r->size[1], r->msaa,
-                        grass[0] ? grass : "-", r->frame_ms, fl, ratio, cfl, cratio, r->memory_mb, r->cpu_ms);
+        core_buf_printf(b, "| %s%s | %dx%d, %dx | %s | **%.3f** | %s | %s | %s | %s | %s | %.1f MB | %.2f |\n",
+                        r->name, r->fell_back ? " (fell back to hw)" : "", r->size[0], r->size[1], r->msaa,
+                        grass[0] ? grass : "-", r->frame_ms, vs, fl, ratio, cfl, cratio, r->memory_mb, r->cpu_ms);
     }
     core_buf_printf(b, "\n### Pass medians (ms)\n\n| run | passes |\n| --- | --- |\n");
     for (int i = 0; i < p->run_count; i++) {
@@ -425,19 +436,6 @@ static void write_section(core_buf_t *b, const perf_t *p)
         for (int k = 0; k < r->pass_count; k++)
             core_buf_printf(b, "%s %s %.4f", k ? "," : "", r->pass_name[k], r->pass_ms[k]);
         core_buf_printf(b, " |\n");
-    }
-    core_buf_printf(b, "\n### Hardware vs compute rasterizer\n\n| scene/mode | hw frame ms | compute frame ms | "
-                       "compute/hw |\n| --- | --- | --- | --- |\n");
-    for (int i = 0; i < p->run_count; i++) {
-        const perf_run_t *hw = &p->runs[i];
-        if (strcmp(hw->raster, "hw") != 0) continue;
-        char name[80];
-        snprintf(name, sizeof name, "%.*s/compute", (int)(strlen(hw->name) - 3), hw->name);
-        const perf_run_t *cs = perf_find(p, name);
-        if (!cs) continue;
-        core_buf_printf(b, "| %.*s | %.3f | %.3f%s | %.2f |\n", (int)(strlen(hw->name) - 3), hw->name, hw->frame_ms,
-                        cs->frame_ms, cs->fell_back ? " (fell back to hw)" : "",
-                        hw->frame_ms > 0 ? cs->frame_ms / hw->frame_ms : 0.0);
     }
     bool header = false;
     for (int i = 0; i < (int)(sizeof targets / sizeof targets[0]); i++) {
@@ -478,11 +476,8 @@ static void write_summary(core_buf_t *b, const perf_t *p)
     bool first = true;
     for (int i = 0; i < p->run_count; i++) {
         const perf_run_t *hw = &p->runs[i];
-        size_t len = strlen(hw->name);
-        if (strcmp(hw->raster, "hw") != 0 || strncmp(hw->name, scene, strlen(scene)) != 0 || len < 3) continue;
-        char name[80];
-        snprintf(name, sizeof name, "%.*s/compute", (int)(len - 3), hw->name);
-        const perf_run_t *cs = perf_find(p, name);
+        if (strcmp(hw->raster, "hw") != 0 || strncmp(hw->name, scene, strlen(scene)) != 0) continue;
+        const perf_run_t *cs = run_twin(p, hw);
         if (!cs) continue;
         if (first)
             core_buf_printf(b, "%.*s at %dx%d on `%s` (%s), frame = sum of the GL pass medians, hardware -> "
