@@ -2,8 +2,9 @@
  * #include works, an MSAA FBO resolves and reads back (colour, depth, the
  * nearest depth sample per pixel), timers report, a
  * readback ring returns its copies in order, gfx_uniform's cached
- * locations follow a program deleted and its name reused, and nothing
- * leaks. */
+ * locations follow a program deleted and its name reused, a second gfx
+ * context keeps its objects, programs and cached locations apart from the
+ * first's and releases them when destroyed, and nothing leaks. */
 #include "test.h"
 #include "test_gl.h"
 
@@ -42,11 +43,31 @@ static void check_uniform_cache(void)
     gfx_program_destroy(&q);
 }
 
+/* Two gfx contexts: what one makes the other does not hold. */
+static void check_contexts(void)
+{
+    gfx_ctx_t *first = gfx_ctx_current();
+    int live = gfx_live_objects();
+    gfx_ctx_t *second = gfx_ctx_make(NULL);
+    CHECK(second != NULL && gfx_ctx_current() == first);
+    gfx_ctx_bind(second);
+    CHECK(gfx_live_objects() == 0 && gfx_objects_made() == 0);
+    gfx_buffer_t b = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 256, .label = "test.second_ctx"});
+    gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){.cs = "tests/uniforms.comp"});
+    CHECK(b.id && p.id && gfx_live_objects() == 2 && gfx_uniform(p, "u_b") == 7 && gfx_uniforms_cached(p.id) == 1);
+    gfx_ctx_bind(first);
+    CHECK(gfx_live_objects() == live && gfx_uniforms_cached(p.id) == 0);
+    GLuint buffer = b.id;
+    gfx_ctx_destroy(second, false); /* releases what it still holds */
+    CHECK(gfx_ctx_current() == first && !glIsBuffer(buffer) && gfx_live_objects() == live);
+}
+
 int main(void)
 {
     test_gl_init();
     CHECK(epoxy_gl_version() >= 45);
     check_uniform_cache();
+    check_contexts();
 
     /* Compile error: logged with file and line, program id 0. */
     int errs_before = core_log_error_count();

@@ -2,24 +2,14 @@
  * with MSAA resolve, vertex arrays, queries and screenshots. */
 #include "gfx/gfx_local.h"
 
+/* This file's state in the current context (gfx_local.h). */
+#define G (gfx_cur->registry)
+#define U (gfx_cur->upload)
+
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct gfx_obj_t {
-    GLenum kind;
-    GLuint id;
-    size_t bytes; /* buffers and textures: storage allocated */
-    char label[64];
-} gfx_obj_t;
-
-static struct {
-    gfx_obj_t *objs;
-    int count, cap;
-    long made;       /* objects tracked since gfx_init */
-    int max_samples; /* GL_MAX_SAMPLES, read once (0: not yet) */
-} g;
 
 /* A desc field's value: the field, else the environment variable when
  * set and not empty, else NULL. */
@@ -39,7 +29,7 @@ gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc)
 
 bool gfx_init_desc(const gfx_desc_t *desc)
 {
-    memset(&g, 0, sizeof g);
+    memset(&G, 0, sizeof G);
     gfx_uniforms_forget(0);
     gfx_desc_t d = gfx_desc_defaults(desc);
     gfx_shader_setup(&d);
@@ -48,18 +38,47 @@ bool gfx_init_desc(const gfx_desc_t *desc)
 
 bool gfx_init(void) { return gfx_init_desc(NULL); }
 
+/* ---- contexts ---- */
+static gfx_ctx_t default_ctx = {.count = GFX_COUNT_INITIAL, .timer = GFX_TIMER_INITIAL};
+gfx_ctx_t *gfx_cur = &default_ctx;
+
+gfx_ctx_t *gfx_ctx_current(void) { return gfx_cur; }
+void gfx_ctx_bind(gfx_ctx_t *c) { gfx_cur = c ? c : &default_ctx; }
+
+gfx_ctx_t *gfx_ctx_make(const gfx_desc_t *desc)
+{
+    gfx_ctx_t *c = malloc(sizeof *c);
+    if (!c) return NULL;
+    *c = (gfx_ctx_t){.count = GFX_COUNT_INITIAL, .timer = GFX_TIMER_INITIAL};
+    gfx_ctx_t *prev = gfx_cur;
+    gfx_cur = c;
+    gfx_init_desc(desc);
+    gfx_cur = prev;
+    return c;
+}
+
+void gfx_ctx_destroy(gfx_ctx_t *c, bool report_leaks)
+{
+    if (!c || c == &default_ctx) return;
+    gfx_ctx_t *prev = gfx_cur == c ? &default_ctx : gfx_cur;
+    gfx_cur = c;
+    gfx_shutdown(report_leaks);
+    gfx_cur = prev;
+    free(c);
+}
+
 void gfx_track(GLenum kind, GLuint id, const char *label)
 {
     if (!id) return;
-    if (g.count == g.cap) {
-        int cap = g.cap ? g.cap * 2 : 256;
-        gfx_obj_t *grown = realloc(g.objs, (size_t)cap * sizeof *grown);
+    if (G.count == G.cap) {
+        int cap = G.cap ? G.cap * 2 : 256;
+        gfx_obj_t *grown = realloc(G.objs, (size_t)cap * sizeof *grown);
         if (!grown) abort();
-        g.objs = grown;
-        g.cap = cap;
+        G.objs = grown;
+        G.cap = cap;
     }
-    gfx_obj_t *o = &g.objs[g.count++];
-    g.made++;
+    gfx_obj_t *o = &G.objs[G.count++];
+    G.made++;
     o->kind = kind;
     o->id = id;
     o->bytes = 0;
@@ -69,9 +88,9 @@ void gfx_track(GLenum kind, GLuint id, const char *label)
 
 void gfx_untrack(GLenum kind, GLuint id)
 {
-    for (int i = g.count - 1; i >= 0; i--) {
-        if (g.objs[i].kind == kind && g.objs[i].id == id) {
-            g.objs[i] = g.objs[--g.count];
+    for (int i = G.count - 1; i >= 0; i--) {
+        if (G.objs[i].kind == kind && G.objs[i].id == id) {
+            G.objs[i] = G.objs[--G.count];
             return;
         }
     }
@@ -102,14 +121,14 @@ static void release(GLenum kind, GLuint id)
 }
 
 static bool upload_ring_alive(void);
-int gfx_live_objects(void) { return g.count - (upload_ring_alive() ? 1 : 0); }
-long gfx_objects_made(void) { return g.made; }
+int gfx_live_objects(void) { return G.count - (upload_ring_alive() ? 1 : 0); }
+long gfx_objects_made(void) { return G.made; }
 
 static void set_bytes(GLenum kind, GLuint id, size_t bytes)
 {
-    for (int i = g.count - 1; i >= 0; i--)
-        if (g.objs[i].kind == kind && g.objs[i].id == id) {
-            g.objs[i].bytes = bytes;
+    for (int i = G.count - 1; i >= 0; i--)
+        if (G.objs[i].kind == kind && G.objs[i].id == id) {
+            G.objs[i].bytes = bytes;
             return;
         }
 }
@@ -117,7 +136,7 @@ static void set_bytes(GLenum kind, GLuint id, size_t bytes)
 size_t gfx_memory_bytes(void)
 {
     size_t total = 0;
-    for (int i = 0; i < g.count; i++) total += g.objs[i].bytes;
+    for (int i = 0; i < G.count; i++) total += G.objs[i].bytes;
     return total;
 }
 
@@ -144,14 +163,14 @@ void gfx_shutdown(bool report_leaks)
     gfx_count_shutdown();
     int unused = gfx_programs_prefetch_drop();
     if (report_leaks && unused) core_log_warn("gfx: %d prefetched programs never made", unused);
-    if (report_leaks && g.count)
-        for (int i = 0; i < g.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", g.objs[i].label);
-    while (g.count) {
-        gfx_obj_t o = g.objs[--g.count];
+    if (report_leaks && G.count)
+        for (int i = 0; i < G.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", G.objs[i].label);
+    while (G.count) {
+        gfx_obj_t o = G.objs[--G.count];
         gfx_delete_object(o.kind, o.id);
     }
-    free(g.objs);
-    memset(&g, 0, sizeof g);
+    free(G.objs);
+    memset(&G, 0, sizeof G);
     gfx_uniforms_forget(0);
 }
 
@@ -219,36 +238,25 @@ void gfx_buffer_destroy(gfx_buffer_t *buf)
  * must be a whole ring of uploads behind) before it is written again, so
  * callers need not pace their frames. */
 #define UPLOAD_RING_BYTES ((size_t)8 << 20)
-#define UPLOAD_SEGMENTS 16
-#define UPLOAD_SEGMENT (UPLOAD_RING_BYTES / UPLOAD_SEGMENTS)
+#define UPLOAD_SEGMENT (UPLOAD_RING_BYTES / GFX_UPLOAD_SEGMENTS)
 #define UPLOAD_ALIGN 256
-
-static struct {
-    GLuint id;
-    uint8_t *map;
-    size_t head; /* next free byte */
-    int seg;     /* segment holding head */
-    GLsync fence[UPLOAD_SEGMENTS];
-    bool failed; /* the ring could not be made: direct glNamedBufferSubData */
-    long waits;
-} u;
 
 static bool upload_ring_ready(void)
 {
-    if (u.id || u.failed) return u.id != 0;
+    if (U.id || U.failed) return U.id != 0;
     const GLbitfield flags = GL_MAP_WRITE_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
-    glCreateBuffers(1, &u.id);
-    glNamedBufferStorage(u.id, (GLsizeiptr)UPLOAD_RING_BYTES, NULL, flags);
-    u.map = glMapNamedBufferRange(u.id, 0, (GLsizeiptr)UPLOAD_RING_BYTES, flags);
-    if (!u.map) {
+    glCreateBuffers(1, &U.id);
+    glNamedBufferStorage(U.id, (GLsizeiptr)UPLOAD_RING_BYTES, NULL, flags);
+    U.map = glMapNamedBufferRange(U.id, 0, (GLsizeiptr)UPLOAD_RING_BYTES, flags);
+    if (!U.map) {
         core_log_warn("gfx: cannot map the upload ring; buffer updates use glNamedBufferSubData");
-        glDeleteBuffers(1, &u.id);
-        u.id = 0;
-        u.failed = true;
+        glDeleteBuffers(1, &U.id);
+        U.id = 0;
+        U.failed = true;
         return false;
     }
-    gfx_track(GL_BUFFER, u.id, "gfx.upload_ring");
-    set_bytes(GL_BUFFER, u.id, UPLOAD_RING_BYTES);
+    gfx_track(GL_BUFFER, U.id, "gfx.upload_ring");
+    set_bytes(GL_BUFFER, U.id, UPLOAD_RING_BYTES);
     return true;
 }
 
@@ -256,13 +264,13 @@ static bool upload_ring_ready(void)
  * copies when the GPU has not done them yet. */
 static void upload_next_segment(void)
 {
-    u.fence[u.seg] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
-    u.seg = (u.seg + 1) % UPLOAD_SEGMENTS;
-    GLsync f = u.fence[u.seg];
+    U.fence[U.seg] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    U.seg = (U.seg + 1) % GFX_UPLOAD_SEGMENTS;
+    GLsync f = U.fence[U.seg];
     if (f) {
         GLenum r = glClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
         if (r == GL_TIMEOUT_EXPIRED) {
-            u.waits++;
+            U.waits++;
             for (int tries = 0; r == GL_TIMEOUT_EXPIRED && tries < 6; tries++)
                 r = glClientWaitSync(f, GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
         }
@@ -271,9 +279,9 @@ static void upload_next_segment(void)
             glFinish();
         }
         glDeleteSync(f);
-        u.fence[u.seg] = 0;
+        U.fence[U.seg] = 0;
     }
-    u.head = (size_t)u.seg * UPLOAD_SEGMENT;
+    U.head = (size_t)U.seg * UPLOAD_SEGMENT;
 }
 
 void gfx_upload_raw(GLuint dst, size_t offset, size_t size, const void *data)
@@ -285,10 +293,10 @@ void gfx_upload_raw(GLuint dst, size_t offset, size_t size, const void *data)
     const uint8_t *src = data;
     while (size > 0) {
         size_t n = size < UPLOAD_SEGMENT ? size : UPLOAD_SEGMENT;
-        if (u.head + n > (size_t)(u.seg + 1) * UPLOAD_SEGMENT) upload_next_segment();
-        memcpy(u.map + u.head, src, n);
-        glCopyNamedBufferSubData(u.id, dst, (GLintptr)u.head, (GLintptr)offset, (GLsizeiptr)n);
-        u.head += (n + UPLOAD_ALIGN - 1) & ~(size_t)(UPLOAD_ALIGN - 1);
+        if (U.head + n > (size_t)(U.seg + 1) * UPLOAD_SEGMENT) upload_next_segment();
+        memcpy(U.map + U.head, src, n);
+        glCopyNamedBufferSubData(U.id, dst, (GLintptr)U.head, (GLintptr)offset, (GLsizeiptr)n);
+        U.head += (n + UPLOAD_ALIGN - 1) & ~(size_t)(UPLOAD_ALIGN - 1);
         src += n;
         offset += n;
         size -= n;
@@ -297,17 +305,17 @@ void gfx_upload_raw(GLuint dst, size_t offset, size_t size, const void *data)
 
 static void upload_shutdown(void)
 {
-    for (int i = 0; i < UPLOAD_SEGMENTS; i++)
-        if (u.fence[i]) glDeleteSync(u.fence[i]);
-    if (u.id) {
-        glUnmapNamedBuffer(u.id);
-        release(GL_BUFFER, u.id);
+    for (int i = 0; i < GFX_UPLOAD_SEGMENTS; i++)
+        if (U.fence[i]) glDeleteSync(U.fence[i]);
+    if (U.id) {
+        glUnmapNamedBuffer(U.id);
+        release(GL_BUFFER, U.id);
     }
-    memset(&u, 0, sizeof u);
+    memset(&U, 0, sizeof U);
 }
 
-static bool upload_ring_alive(void) { return u.id != 0; }
-long gfx_upload_waits(void) { return u.waits; }
+static bool upload_ring_alive(void) { return U.id != 0; }
+long gfx_upload_waits(void) { return U.waits; }
 
 void gfx_buffer_update(gfx_buffer_t buf, size_t offset, size_t size, const void *data)
 {
@@ -453,12 +461,12 @@ gfx_limits_t gfx_limits(void)
 int gfx_target_samples(int requested)
 {
     int samples = requested > 0 ? requested : 4;
-    if (g.max_samples == 0) {
+    if (G.max_samples == 0) {
         GLint max_samples = 1;
         glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-        g.max_samples = max_samples > 0 ? max_samples : 1;
+        G.max_samples = max_samples > 0 ? max_samples : 1;
     }
-    return samples < g.max_samples ? samples : g.max_samples;
+    return samples < G.max_samples ? samples : G.max_samples;
 }
 
 gfx_target_t gfx_target_make(const gfx_target_desc_t *d)

@@ -32,6 +32,21 @@ gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc);
 bool gfx_init_desc(const gfx_desc_t *desc);
 /* gfx_init_desc(NULL). */
 bool gfx_init(void);
+/* Every gfx call works on the current context: the live objects, the
+ * programs and their uniform cache, the timers and counters, the upload
+ * ring. A process starts with a default one (what gfx_init starts);
+ * another GL context, or a library that must not share the host's state,
+ * makes its own and binds it around its calls. */
+typedef struct gfx_ctx_t gfx_ctx_t;
+/* A context for the GL context current on this thread (gfx_init_desc in
+ * it); the current context stays as it was. NULL when out of memory. */
+gfx_ctx_t *gfx_ctx_make(const gfx_desc_t *desc);
+/* Makes c current (NULL: the default context). */
+void gfx_ctx_bind(gfx_ctx_t *c);
+gfx_ctx_t *gfx_ctx_current(void);
+/* gfx_shutdown in c, then frees it; the current context stays current,
+ * or the default one when c was current. The default context is not freed. */
+void gfx_ctx_destroy(gfx_ctx_t *c, bool report_leaks);
 /* Releases every object still alive (logging each label in debug builds when
  * `report_leaks`), then the gfx-internal objects. */
 void gfx_shutdown(bool report_leaks);

@@ -5,38 +5,36 @@
  * released by gfx_shutdown. */
 #include "gfx/gfx_local.h"
 
+/* This file's state in the current context (gfx_local.h). */
+#define DEPTH (gfx_cur->depth)
+
 #include <stdlib.h>
 #include <string.h>
 
 #include "common/bindings_gfx.glsl"
 
-static struct {
-    GLuint prog;
-    bool failed;
-} g_depth;
-
 static bool depth_init(void)
 {
-    if (g_depth.prog || g_depth.failed) return !g_depth.failed;
+    if (DEPTH.prog || DEPTH.failed) return !DEPTH.failed;
     gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){.cs = "gfx/depth_nearest.comp",
                                                              .label = "gfx.depth_nearest.program"});
     if (!p.id) {
-        g_depth.failed = true;
+        DEPTH.failed = true;
         return false;
     }
     /* Internal: keep out of the user object count. */
     gfx_untrack(GL_PROGRAM, p.id);
-    g_depth.prog = p.id;
+    DEPTH.prog = p.id;
     return true;
 }
 
 void gfx_depth_shutdown(void)
 {
-    if (g_depth.prog) {
-        gfx_uniforms_forget(g_depth.prog);
-        glDeleteProgram(g_depth.prog);
+    if (DEPTH.prog) {
+        gfx_uniforms_forget(DEPTH.prog);
+        glDeleteProgram(DEPTH.prog);
     }
-    memset(&g_depth, 0, sizeof g_depth);
+    memset(&DEPTH, 0, sizeof DEPTH);
 }
 
 bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out)
@@ -50,8 +48,8 @@ bool gfx_target_read_depth_nearest(const gfx_target_t *t, float *out)
     float *tmp = malloc(sizeof(float) * n);
     bool ok = buf.id && tmp;
     if (ok) {
-        gfx_program_t gp = {.id = g_depth.prog};
-        glUseProgram(g_depth.prog);
+        gfx_program_t gp = {.id = DEPTH.prog};
+        glUseProgram(DEPTH.prog);
         glBindTextureUnit(GFX_TEX_DEPTH, t->depth.id);
         glUniform1i(gfx_uniform(gp, "u_samples"), t->samples);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GFX_BIND_NEAREST, buf.id);

@@ -13,31 +13,26 @@
  * refused entry is compiled and rewritten. */
 #include "gfx/gfx_local.h"
 
+/* This file's state in the current context (gfx_local.h). */
+#define SH (gfx_cur->shader)
+#define PREFETCH (gfx_cur->prefetch)
+#define UNI (gfx_cur->uniforms)
+#define STATS (gfx_cur->program_stats)
+
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#define MAX_FORMATS 16
-
-/* gfx_shader_setup's settings. */
-static struct {
-    char dir[CORE_PATH_MAX];   /* the shader folder; "" = the built-in table */
-    char cache[CORE_PATH_MAX]; /* the cache folder; "" = none named */
-    bool cache_on;             /* named, writable and the driver has binary formats */
-    GLint formats[MAX_FORMATS];
-    int nformats;
-    uint64_t driver[2]; /* hash of GL_VENDOR, GL_RENDERER, GL_VERSION */
-} sh;
 
 /* The text of shaders/<rel>: from the shader folder, else the built-in
  * table. NULL with a reason in why. */
 static char *source_read(const char *rel, char *why, size_t why_size)
 {
-    if (sh.dir[0]) {
+    if (SH.dir[0]) {
         char path[CORE_PATH_MAX + 256];
-        snprintf(path, sizeof path, "%s/%s", sh.dir, rel);
+        snprintf(path, sizeof path, "%s/%s", SH.dir, rel);
         return core_fs_read(path, NULL, why, why_size);
     }
     for (int i = 0; i < gfx_shader_file_count; i++) {
@@ -162,8 +157,6 @@ static void log_shader_errors(const pp_t *pp, const char *log, const char *what)
     }
 }
 
-static gfx_program_stats_t stats;
-
 static double now_ms(void)
 {
     struct timespec ts;
@@ -174,17 +167,17 @@ static double now_ms(void)
 /* One make (a batch counts its programs, under its first label +N). */
 static void stats_add(const char *label, int programs, double ms)
 {
-    stats.count += programs;
-    stats.ms += ms;
+    STATS.count += programs;
+    STATS.ms += ms;
     int at = GFX_PROGRAM_SLOWEST;
-    while (at > 0 && stats.slowest[at - 1].ms < ms) at--;
+    while (at > 0 && STATS.slowest[at - 1].ms < ms) at--;
     if (at == GFX_PROGRAM_SLOWEST) return;
-    memmove(&stats.slowest[at + 1], &stats.slowest[at], (GFX_PROGRAM_SLOWEST - 1 - at) * sizeof stats.slowest[0]);
-    snprintf(stats.slowest[at].label, sizeof stats.slowest[at].label, "%s", label);
-    stats.slowest[at].ms = ms;
+    memmove(&STATS.slowest[at + 1], &STATS.slowest[at], (GFX_PROGRAM_SLOWEST - 1 - at) * sizeof STATS.slowest[0]);
+    snprintf(STATS.slowest[at].label, sizeof STATS.slowest[at].label, "%s", label);
+    STATS.slowest[at].ms = ms;
 }
 
-gfx_program_stats_t gfx_program_stats(void) { return stats; }
+gfx_program_stats_t gfx_program_stats(void) { return STATS; }
 
 /* d's stage files in pipeline order (NULL: no such stage); returns the
  * first, NULL when there is none. */
@@ -280,41 +273,41 @@ static void key_add(uint64_t key[2], const char *str)
 
 void gfx_shader_setup(const gfx_desc_t *desc)
 {
-    memset(&sh, 0, sizeof sh);
-    stats.cache_on = false;
-    snprintf(sh.dir, sizeof sh.dir, "%s", desc->shader_dir ? desc->shader_dir : "");
-    if (sh.dir[0]) core_log_info("gfx: shaders read from %s instead of the built-in table", sh.dir);
+    memset(&SH, 0, sizeof SH);
+    STATS.cache_on = false;
+    snprintf(SH.dir, sizeof SH.dir, "%s", desc->shader_dir ? desc->shader_dir : "");
+    if (SH.dir[0]) core_log_info("gfx: shaders read from %s instead of the built-in table", SH.dir);
     if (!desc->shader_cache) return;
-    snprintf(sh.cache, sizeof sh.cache, "%s", desc->shader_cache);
-    sh.driver[1] = 0x9e3779b97f4a7c15ull;
-    key_add(sh.driver, "meadow program cache 1");
+    snprintf(SH.cache, sizeof SH.cache, "%s", desc->shader_cache);
+    SH.driver[1] = 0x9e3779b97f4a7c15ull;
+    key_add(SH.driver, "meadow program cache 1");
     const GLenum strings[3] = {GL_VENDOR, GL_RENDERER, GL_VERSION};
-    for (int i = 0; i < 3; i++) key_add(sh.driver, (const char *)glGetString(strings[i]));
+    for (int i = 0; i < 3; i++) key_add(SH.driver, (const char *)glGetString(strings[i]));
     GLint n = 0;
     glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &n);
     if (n <= 0) {
-        core_log_info("gfx: program cache %s unused: the driver offers no program binary formats", sh.cache);
+        core_log_info("gfx: program cache %s unused: the driver offers no program binary formats", SH.cache);
         return;
     }
     char err[512];
-    if (!core_fs_check_writable_dir(sh.cache, err, sizeof err)) {
+    if (!core_fs_check_writable_dir(SH.cache, err, sizeof err)) {
         core_log_warn("gfx: program cache: %s; running without it", err);
         return;
     }
     GLint *all = calloc((size_t)n, sizeof *all);
     if (!all) return;
     glGetIntegerv(GL_PROGRAM_BINARY_FORMATS, all);
-    sh.nformats = n < MAX_FORMATS ? n : MAX_FORMATS;
-    memcpy(sh.formats, all, (size_t)sh.nformats * sizeof *all);
+    SH.nformats = n < GFX_SHADER_FORMATS_MAX ? n : GFX_SHADER_FORMATS_MAX;
+    memcpy(SH.formats, all, (size_t)SH.nformats * sizeof *all);
     free(all);
-    sh.cache_on = stats.cache_on = true;
+    SH.cache_on = STATS.cache_on = true;
 }
 
 /* d's key from its preprocessed stage sources. */
 static void cache_key(const gfx_program_desc_t *d, char *const srcs[6], uint64_t key[2])
 {
-    key[0] = sh.driver[0];
-    key[1] = sh.driver[1];
+    key[0] = SH.driver[0];
+    key[1] = SH.driver[1];
     char *dk = desc_key(d);
     key_add(key, dk);
     free(dk);
@@ -323,13 +316,13 @@ static void cache_key(const gfx_program_desc_t *d, char *const srcs[6], uint64_t
 
 static void entry_path(const uint64_t key[2], char *out, size_t size)
 {
-    snprintf(out, size, "%s/%016llx%016llx.bin", sh.cache, (unsigned long long)key[0], (unsigned long long)key[1]);
+    snprintf(out, size, "%s/%016llx%016llx.bin", SH.cache, (unsigned long long)key[0], (unsigned long long)key[1]);
 }
 
 static bool format_known(GLenum format)
 {
-    for (int i = 0; i < sh.nformats; i++)
-        if ((GLenum)sh.formats[i] == format) return true;
+    for (int i = 0; i < SH.nformats; i++)
+        if ((GLenum)SH.formats[i] == format) return true;
     return false;
 }
 
@@ -344,7 +337,7 @@ static bool cache_load(pending_t *pd, const gfx_program_desc_t *d, char *const s
     size_t size = 0;
     char *data = core_fs_read(path, &size, why, sizeof why);
     if (!data) {
-        stats.cache_misses++;
+        STATS.cache_misses++;
         return false;
     }
     GLenum format = 0;
@@ -357,12 +350,12 @@ static bool cache_load(pending_t *pd, const gfx_program_desc_t *d, char *const s
     }
     free(data);
     if (linked) {
-        stats.cache_hits++;
+        STATS.cache_hits++;
         pd->cached = true;
         return true;
     }
-    stats.cache_misses++;
-    stats.cache_refused++;
+    STATS.cache_misses++;
+    STATS.cache_refused++;
     core_log_info("gfx: program cache entry %s refused (truncated, corrupt or not this driver's); compiling %s",
                   path, desc_label(d));
     glDeleteProgram(pd->prog);
@@ -384,8 +377,8 @@ static void cache_store(const pending_t *pd)
     char path[CORE_PATH_MAX + 64];
     entry_path(pd->key, path, sizeof path);
     gfx_shader_cache_entry_header(buf, pd->key, format, buf + GFX_CACHE_HEADER, (size_t)got);
-    if (got > 0 && core_fs_write_atomic(path, buf, GFX_CACHE_HEADER + (size_t)got)) stats.cache_stored++;
-    else if (got > 0) sh.cache_on = stats.cache_on = false;
+    if (got > 0 && core_fs_write_atomic(path, buf, GFX_CACHE_HEADER + (size_t)got)) STATS.cache_stored++;
+    else if (got > 0) SH.cache_on = STATS.cache_on = false;
     free(buf);
 }
 
@@ -409,7 +402,7 @@ static bool stages_preprocess(const gfx_program_desc_t *d, pp_t pp[6], char *src
 
 bool gfx_shader_cache_path(const gfx_program_desc_t *d, char *out, size_t out_size)
 {
-    if (!sh.cache[0]) return false;
+    if (!SH.cache[0]) return false;
     pp_t *pp = calloc(6, sizeof *pp);
     char *srcs[6] = {0};
     bool ok = pp && stages_preprocess(d, pp, srcs);
@@ -431,7 +424,7 @@ static void program_issue(pending_t *pd, const gfx_program_desc_t *d)
     char *srcs[6];
     pd->prog = glCreateProgram();
     pd->ok = stages_preprocess(d, pd->pp, srcs);
-    bool loaded = pd->ok && sh.cache_on && cache_load(pd, d, srcs);
+    bool loaded = pd->ok && SH.cache_on && cache_load(pd, d, srcs);
     for (int i = 0; i < 6 && !loaded; i++) {
         if (!srcs[i]) continue;
         pd->shaders[i] = glCreateShader(stage[i]);
@@ -496,7 +489,7 @@ static gfx_program_t program_check(pending_t *pd, const gfx_program_desc_t *d)
         glDeleteProgram(pd->prog);
         return (gfx_program_t){0};
     }
-    if (pd->keyed && !pd->cached && sh.cache_on) cache_store(pd);
+    if (pd->keyed && !pd->cached && SH.cache_on) cache_store(pd);
     gfx_track(GL_PROGRAM, pd->prog, desc_label(d));
     return (gfx_program_t){pd->prog};
 }
@@ -512,12 +505,6 @@ static void threads_on(void)
 
 /* Programs issued by gfx_programs_prefetch, by their desc's key (every
  * field but the label). */
-#define PREFETCH_MAX 32
-static struct {
-    int count;
-    char *key[PREFETCH_MAX];
-    pending_t *pd[PREFETCH_MAX];
-} prefetched;
 
 void gfx_programs_prefetch(int n, const gfx_program_desc_t *descs)
 {
@@ -525,32 +512,32 @@ void gfx_programs_prefetch(int n, const gfx_program_desc_t *descs)
     for (int i = 0; i < n; i++) {
         char *key = desc_key(&descs[i]);
         bool have = false;
-        for (int k = 0; k < prefetched.count && !have; k++) have = key && strcmp(prefetched.key[k], key) == 0;
-        pending_t *pd = have || !key || prefetched.count == PREFETCH_MAX ? NULL : calloc(1, sizeof *pd);
+        for (int k = 0; k < PREFETCH.count && !have; k++) have = key && strcmp(PREFETCH.key[k], key) == 0;
+        pending_t *pd = have || !key || PREFETCH.count == GFX_PREFETCH_MAX ? NULL : calloc(1, sizeof *pd);
         if (!pd) { /* already issued, or no room: the make builds it then */
             free(key);
             continue;
         }
         program_issue(pd, &descs[i]);
-        stats.prefetched++;
-        prefetched.key[prefetched.count] = key;
-        prefetched.pd[prefetched.count++] = pd;
+        STATS.prefetched++;
+        PREFETCH.key[PREFETCH.count] = key;
+        PREFETCH.pd[PREFETCH.count++] = pd;
     }
 }
 
 /* The prefetched program with d's key, taken out of the table (NULL: none). */
 static pending_t *prefetch_take(const gfx_program_desc_t *d)
 {
-    if (!prefetched.count) return NULL;
+    if (!PREFETCH.count) return NULL;
     char *key = desc_key(d);
     pending_t *pd = NULL;
-    for (int k = 0; k < prefetched.count && key && !pd; k++) {
-        if (strcmp(prefetched.key[k], key) != 0) continue;
-        pd = prefetched.pd[k];
-        free(prefetched.key[k]);
-        prefetched.count--;
-        prefetched.key[k] = prefetched.key[prefetched.count];
-        prefetched.pd[k] = prefetched.pd[prefetched.count];
+    for (int k = 0; k < PREFETCH.count && key && !pd; k++) {
+        if (strcmp(PREFETCH.key[k], key) != 0) continue;
+        pd = PREFETCH.pd[k];
+        free(PREFETCH.key[k]);
+        PREFETCH.count--;
+        PREFETCH.key[k] = PREFETCH.key[PREFETCH.count];
+        PREFETCH.pd[k] = PREFETCH.pd[PREFETCH.count];
     }
     free(key);
     return pd;
@@ -558,16 +545,16 @@ static pending_t *prefetch_take(const gfx_program_desc_t *d)
 
 int gfx_programs_prefetch_drop(void)
 {
-    int n = prefetched.count;
+    int n = PREFETCH.count;
     for (int k = 0; k < n; k++) {
-        pending_t *pd = prefetched.pd[k];
+        pending_t *pd = PREFETCH.pd[k];
         for (int i = 0; i < 6; i++)
             if (pd->shaders[i]) glDeleteShader(pd->shaders[i]);
         glDeleteProgram(pd->prog);
         free(pd);
-        free(prefetched.key[k]);
+        free(PREFETCH.key[k]);
     }
-    prefetched.count = 0;
+    PREFETCH.count = 0;
     return n;
 }
 
@@ -586,7 +573,7 @@ bool gfx_programs_make(int n, const gfx_program_desc_t *descs, gfx_program_t *ou
         if (taken) {
             pd[i] = *taken;
             free(taken);
-            stats.taken++;
+            STATS.taken++;
         } else {
             program_issue(&pd[i], &descs[i]);
         }
@@ -622,31 +609,17 @@ void gfx_program_destroy(gfx_program_t *p)
  * table of (program, name) -> location answers every ask after the first;
  * deleting a program drops its entries (program names are reused), and a
  * table three-quarters full or a shutdown starts it afresh. */
-#define UNIFORM_SLOTS 4096 /* a power of 2 */
-#define UNIFORM_NAME_MAX 48
-
-typedef struct uniform_slot_t {
-    GLuint prog; /* 0: never used */
-    bool dead;   /* its program was deleted: skipped by searches, reused by inserts */
-    GLint loc;
-    char name[UNIFORM_NAME_MAX];
-} uniform_slot_t;
-
-static struct {
-    uniform_slot_t slot[UNIFORM_SLOTS];
-    int taken; /* slots with prog != 0 or dead */
-} uni;
 
 GLint gfx_uniform(gfx_program_t p, const char *name)
 {
     size_t len = strlen(name);
-    if (!p.id || len >= UNIFORM_NAME_MAX) return glGetUniformLocation(p.id, name);
+    if (!p.id || len >= GFX_UNIFORM_NAME_MAX) return glGetUniformLocation(p.id, name);
     uint64_t h64 = core_hash_bytes(name, len, core_hash_bytes(&p.id, sizeof p.id, 0));
     uint32_t h = (uint32_t)(h64 ^ h64 >> 32);
     int insert = -1;
-    for (uint32_t i = 0; i < UNIFORM_SLOTS; i++) {
-        int k = (int)((h + i) & (UNIFORM_SLOTS - 1));
-        uniform_slot_t *s = &uni.slot[k];
+    for (uint32_t i = 0; i < GFX_UNIFORM_SLOTS; i++) {
+        int k = (int)((h + i) & (GFX_UNIFORM_SLOTS - 1));
+        gfx_uniform_slot_t *s = &UNI.slot[k];
         if (s->dead) {
             if (insert < 0) insert = k;
         } else if (!s->prog) {
@@ -657,13 +630,13 @@ GLint gfx_uniform(gfx_program_t p, const char *name)
         }
     }
     GLint loc = glGetUniformLocation(p.id, name);
-    if (insert < 0 || (!uni.slot[insert].dead && uni.taken >= UNIFORM_SLOTS / 4 * 3)) {
-        memset(&uni, 0, sizeof uni);
-        insert = (int)(h & (UNIFORM_SLOTS - 1));
+    if (insert < 0 || (!UNI.slot[insert].dead && UNI.taken >= GFX_UNIFORM_SLOTS / 4 * 3)) {
+        memset(&UNI, 0, sizeof UNI);
+        insert = (int)(h & (GFX_UNIFORM_SLOTS - 1));
     }
-    uniform_slot_t *s = &uni.slot[insert];
-    if (!s->dead) uni.taken++;
-    *s = (uniform_slot_t){.prog = p.id, .loc = loc};
+    gfx_uniform_slot_t *s = &UNI.slot[insert];
+    if (!s->dead) UNI.taken++;
+    *s = (gfx_uniform_slot_t){.prog = p.id, .loc = loc};
     snprintf(s->name, sizeof s->name, "%s", name);
     return loc;
 }
@@ -671,16 +644,16 @@ GLint gfx_uniform(gfx_program_t p, const char *name)
 void gfx_uniforms_forget(GLuint prog)
 {
     if (!prog) {
-        memset(&uni, 0, sizeof uni);
+        memset(&UNI, 0, sizeof UNI);
         return;
     }
-    for (int k = 0; k < UNIFORM_SLOTS; k++)
-        if (uni.slot[k].prog == prog) uni.slot[k] = (uniform_slot_t){.dead = true};
+    for (int k = 0; k < GFX_UNIFORM_SLOTS; k++)
+        if (UNI.slot[k].prog == prog) UNI.slot[k] = (gfx_uniform_slot_t){.dead = true};
 }
 
 int gfx_uniforms_cached(GLuint prog)
 {
     int n = 0;
-    for (int k = 0; k < UNIFORM_SLOTS; k++) n += prog && uni.slot[k].prog == prog;
+    for (int k = 0; k < GFX_UNIFORM_SLOTS; k++) n += prog && UNI.slot[k].prog == prog;
     return n;
 }

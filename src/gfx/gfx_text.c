@@ -3,6 +3,9 @@
  * labelled, created on first use, released by gfx_shutdown. */
 #include "gfx/gfx_local.h"
 
+/* This file's state in the current context (gfx_local.h). */
+#define TEXT (gfx_cur->text)
+
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,44 +18,39 @@
 
 #define MAX_CHARS 4096
 
-static struct {
-    GLuint prog, vao, vbo;
-    bool failed;
-} g_text;
-
 static bool text_init(void)
 {
-    if (g_text.prog || g_text.failed) return !g_text.failed;
+    if (TEXT.prog || TEXT.failed) return !TEXT.failed;
     gfx_program_t p = gfx_program_make(&(gfx_program_desc_t){
         .vs = "gfx/text.vert", .fs = "gfx/text.frag", .label = "gfx.text.program"});
     if (!p.id) {
-        g_text.failed = true;
+        TEXT.failed = true;
         return false;
     }
     /* Internal: keep out of the user object count. */
     gfx_untrack(GL_PROGRAM, p.id);
-    g_text.prog = p.id;
-    glCreateVertexArrays(1, &g_text.vao);
-    glObjectLabel(GL_VERTEX_ARRAY, g_text.vao, -1, "gfx.text.vao");
-    glCreateBuffers(1, &g_text.vbo);
-    glNamedBufferStorage(g_text.vbo, MAX_CHARS * 6 * 2 * sizeof(float) * 6, NULL, GL_DYNAMIC_STORAGE_BIT);
-    glObjectLabel(GL_BUFFER, g_text.vbo, -1, "gfx.text.vbo");
-    glVertexArrayVertexBuffer(g_text.vao, 0, g_text.vbo, 0, 2 * sizeof(float));
-    glEnableVertexArrayAttrib(g_text.vao, 0);
-    glVertexArrayAttribFormat(g_text.vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(g_text.vao, 0, 0);
+    TEXT.prog = p.id;
+    glCreateVertexArrays(1, &TEXT.vao);
+    glObjectLabel(GL_VERTEX_ARRAY, TEXT.vao, -1, "gfx.text.vao");
+    glCreateBuffers(1, &TEXT.vbo);
+    glNamedBufferStorage(TEXT.vbo, MAX_CHARS * 6 * 2 * sizeof(float) * 6, NULL, GL_DYNAMIC_STORAGE_BIT);
+    glObjectLabel(GL_BUFFER, TEXT.vbo, -1, "gfx.text.vbo");
+    glVertexArrayVertexBuffer(TEXT.vao, 0, TEXT.vbo, 0, 2 * sizeof(float));
+    glEnableVertexArrayAttrib(TEXT.vao, 0);
+    glVertexArrayAttribFormat(TEXT.vao, 0, 2, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(TEXT.vao, 0, 0);
     return true;
 }
 
 void gfx_text_shutdown(void)
 {
-    if (g_text.prog) {
-        gfx_uniforms_forget(g_text.prog);
-        glDeleteProgram(g_text.prog);
+    if (TEXT.prog) {
+        gfx_uniforms_forget(TEXT.prog);
+        glDeleteProgram(TEXT.prog);
     }
-    if (g_text.vao) glDeleteVertexArrays(1, &g_text.vao);
-    if (g_text.vbo) glDeleteBuffers(1, &g_text.vbo);
-    memset(&g_text, 0, sizeof g_text);
+    if (TEXT.vao) glDeleteVertexArrays(1, &TEXT.vao);
+    if (TEXT.vbo) glDeleteBuffers(1, &TEXT.vbo);
+    memset(&TEXT, 0, sizeof TEXT);
 }
 
 void gfx_text_draw(const char *text, float x, float y, float scale, const float rgba[4])
@@ -74,13 +72,13 @@ void gfx_text_draw(const char *text, float x, float y, float scale, const float 
     if (!nv) return;
     GLint vp[4];
     glGetIntegerv(GL_VIEWPORT, vp);
-    gfx_upload_raw(g_text.vbo, 0, (size_t)nv * 2 * sizeof(float), tris);
-    gfx_program_t gp = {.id = g_text.prog};
-    glUseProgram(g_text.prog);
+    gfx_upload_raw(TEXT.vbo, 0, (size_t)nv * 2 * sizeof(float), tris);
+    gfx_program_t gp = {.id = TEXT.prog};
+    glUseProgram(TEXT.prog);
     glUniform2f(gfx_uniform(gp, "u_viewport"), (float)vp[2], (float)vp[3]);
     glUniform4fv(gfx_uniform(gp, "u_color"), 1, rgba);
     glDisable(GL_DEPTH_TEST);
-    glBindVertexArray(g_text.vao);
+    glBindVertexArray(TEXT.vao);
     glDrawArrays(GL_TRIANGLES, 0, nv);
     glBindVertexArray(0);
     glEnable(GL_DEPTH_TEST);

@@ -9,6 +9,9 @@
  * pass begins after glFinish: the frame is slower, each pass's time is its
  * own (docs/PERFORMANCE.md). */
 #include "gfx/gfx_local.h"
+
+/* This file's state in the current context (gfx_local.h). */
+#define T (gfx_cur->timer)
 #include "platform/plat.h"
 
 #include <assert.h>
@@ -18,55 +21,28 @@
 
 #define GFX_HANG_TRIES 3 /* of 10 s each */
 
-#define HISTORY 256
-
-typedef struct pass_t {
-    char name[32];
-    GLuint q[GFX_TIMER_LATENCY];
-    bool pending[GFX_TIMER_LATENCY];
-    int frame_of[GFX_TIMER_LATENCY]; /* frame each slot's query ran in */
-    int last_frame;                  /* frame the pass last began in */
-    double last, sum, max;
-    long n;
-    double hist[HISTORY];
-    int hist_n, hist_i;
-    double cpu_ms, cpu_t0; /* CPU wall ms inside the pass this frame; its latest begin (s) */
-} pass_t;
-
-static struct {
-    pass_t passes[GFX_TIMER_MAX_PASSES];
-    int count;
-    int frame;
-    int open;
-    int cpu_open; /* the pass between begin and end on the CPU clock, else -1 */
-    int first_frame; /* samples of earlier frames are not recorded */
-    GLsync fences[GFX_TIMER_LATENCY]; /* gfx_frame_end, oldest first */
-    int fence_count;
-    bool warned_full;
-    int sync; /* -1 unread, else MEADOW_TIMER_SYNC */
-} t = {.open = -1, .cpu_open = -1, .sync = -1};
 
 bool gfx_timer_sync(void)
 {
-    if (t.sync < 0) {
+    if (T.sync < 0) {
         const char *e = getenv("MEADOW_TIMER_SYNC");
-        t.sync = e && strcmp(e, "1") == 0;
+        T.sync = e && strcmp(e, "1") == 0;
     }
-    return t.sync == 1;
+    return T.sync == 1;
 }
 
-static void record(pass_t *p, double ms)
+static void record(gfx_timer_pass_t *p, double ms)
 {
     p->last = ms;
     p->max = ms > p->max ? ms : p->max;
     p->sum += ms;
     p->n++;
     p->hist[p->hist_i] = ms;
-    p->hist_i = (p->hist_i + 1) % HISTORY;
-    if (p->hist_n < HISTORY) p->hist_n++;
+    p->hist_i = (p->hist_i + 1) % GFX_TIMER_HISTORY;
+    if (p->hist_n < GFX_TIMER_HISTORY) p->hist_n++;
 }
 
-static void harvest(pass_t *p, int slot, bool wait)
+static void harvest(gfx_timer_pass_t *p, int slot, bool wait)
 {
     if (!p->pending[slot]) return;
     GLint avail = 0;
@@ -75,20 +51,20 @@ static void harvest(pass_t *p, int slot, bool wait)
     GLuint64 ns = 0;
     glGetQueryObjectui64v(p->q[slot], GL_QUERY_RESULT, &ns);
     p->pending[slot] = false;
-    if (p->frame_of[slot] >= t.first_frame) record(p, (double)ns * 1e-6);
+    if (p->frame_of[slot] >= T.first_frame) record(p, (double)ns * 1e-6);
 }
 
 void gfx_timer_frame_begin(void)
 {
     gfx_count_frame();
-    t.frame++;
-    int slot = t.frame % GFX_TIMER_LATENCY;
-    for (int i = 0; i < t.count; i++) {
-        t.passes[i].cpu_ms = 0.0;
+    T.frame++;
+    int slot = T.frame % GFX_TIMER_LATENCY;
+    for (int i = 0; i < T.count; i++) {
+        T.passes[i].cpu_ms = 0.0;
         for (int s = 0; s < GFX_TIMER_LATENCY; s++)
-            if (s != slot) harvest(&t.passes[i], s, false);
+            if (s != slot) harvest(&T.passes[i], s, false);
         /* The slot about to be reused: its result is LATENCY frames old. */
-        harvest(&t.passes[i], slot, false);
+        harvest(&T.passes[i], slot, false);
     }
 }
 
@@ -97,55 +73,55 @@ void gfx_timer_begin(const char *pass)
     if (gfx_timer_sync()) glFinish();
     gfx_count_pass_begin(pass);
     int i;
-    for (i = 0; i < t.count; i++)
-        if (strcmp(t.passes[i].name, pass) == 0) break;
-    if (i == t.count) {
-        if (t.count == GFX_TIMER_MAX_PASSES) {
-            if (!t.warned_full) core_log_warn("gfx: more than %d timed passes; '%s' not timed", GFX_TIMER_MAX_PASSES, pass);
-            t.warned_full = true;
+    for (i = 0; i < T.count; i++)
+        if (strcmp(T.passes[i].name, pass) == 0) break;
+    if (i == T.count) {
+        if (T.count == GFX_TIMER_MAX_PASSES) {
+            if (!T.warned_full) core_log_warn("gfx: more than %d timed passes; '%s' not timed", GFX_TIMER_MAX_PASSES, pass);
+            T.warned_full = true;
             return;
         }
-        pass_t *p = &t.passes[t.count++];
+        gfx_timer_pass_t *p = &T.passes[T.count++];
         memset(p, 0, sizeof *p);
         snprintf(p->name, sizeof p->name, "%s", pass);
         glGenQueries(GFX_TIMER_LATENCY, p->q);
     }
-    int slot = t.frame % GFX_TIMER_LATENCY;
-    pass_t *p = &t.passes[i];
-    p->last_frame = t.frame;
+    int slot = T.frame % GFX_TIMER_LATENCY;
+    gfx_timer_pass_t *p = &T.passes[i];
+    p->last_frame = T.frame;
     p->cpu_t0 = plat_time();
-    t.cpu_open = i;
+    T.cpu_open = i;
     if (p->pending[slot]) {
         /* Still in flight after LATENCY frames: drop this frame's sample
          * rather than stall. */
         return;
     }
     glBeginQuery(GL_TIME_ELAPSED, p->q[slot]);
-    p->frame_of[slot] = t.frame;
-    t.open = i;
+    p->frame_of[slot] = T.frame;
+    T.open = i;
 }
 
 void gfx_timer_end(void)
 {
     gfx_count_pass_end();
-    if (t.cpu_open >= 0) {
-        pass_t *c = &t.passes[t.cpu_open];
+    if (T.cpu_open >= 0) {
+        gfx_timer_pass_t *c = &T.passes[T.cpu_open];
         c->cpu_ms += (plat_time() - c->cpu_t0) * 1e3;
-        t.cpu_open = -1;
+        T.cpu_open = -1;
     }
-    if (t.open < 0) return;
+    if (T.open < 0) return;
     glEndQuery(GL_TIME_ELAPSED);
-    t.passes[t.open].pending[t.frame % GFX_TIMER_LATENCY] = true;
-    t.open = -1;
+    T.passes[T.open].pending[T.frame % GFX_TIMER_LATENCY] = true;
+    T.open = -1;
 }
 
-int gfx_timer_count(void) { return t.count; }
-const char *gfx_timer_name(int i) { return t.passes[i].name; }
-double gfx_timer_last_ms(int i) { return t.passes[i].last; }
-double gfx_timer_cpu_ms(int i) { return t.passes[i].cpu_ms; }
-int gfx_timer_frames_since(int i) { return t.frame - t.passes[i].last_frame; }
-double gfx_timer_max_ms(int i) { return t.passes[i].max; }
-double gfx_timer_avg_ms(int i) { return t.passes[i].n ? t.passes[i].sum / (double)t.passes[i].n : 0.0; }
+int gfx_timer_count(void) { return T.count; }
+const char *gfx_timer_name(int i) { return T.passes[i].name; }
+double gfx_timer_last_ms(int i) { return T.passes[i].last; }
+double gfx_timer_cpu_ms(int i) { return T.passes[i].cpu_ms; }
+int gfx_timer_frames_since(int i) { return T.frame - T.passes[i].last_frame; }
+double gfx_timer_max_ms(int i) { return T.passes[i].max; }
+double gfx_timer_avg_ms(int i) { return T.passes[i].n ? T.passes[i].sum / (double)T.passes[i].n : 0.0; }
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -155,9 +131,9 @@ static int cmp_double(const void *a, const void *b)
 
 double gfx_timer_median_ms(int i)
 {
-    pass_t *p = &t.passes[i];
+    gfx_timer_pass_t *p = &T.passes[i];
     if (!p->hist_n) return 0.0;
-    double tmp[HISTORY];
+    double tmp[GFX_TIMER_HISTORY];
     memcpy(tmp, p->hist, sizeof(double) * (size_t)p->hist_n);
     qsort(tmp, (size_t)p->hist_n, sizeof(double), cmp_double);
     return tmp[p->hist_n / 2];
@@ -171,39 +147,39 @@ static const char *frame_pass_names(int frame)
     names[0] = 0;
     size_t len = 0;
     int slot = frame % GFX_TIMER_LATENCY;
-    for (int i = 0; i < t.count && len < sizeof names; i++)
-        if (t.passes[i].frame_of[slot] == frame)
-            len += (size_t)snprintf(names + len, sizeof names - len, "%s%s", len ? ", " : "", t.passes[i].name);
+    for (int i = 0; i < T.count && len < sizeof names; i++)
+        if (T.passes[i].frame_of[slot] == frame)
+            len += (size_t)snprintf(names + len, sizeof names - len, "%s%s", len ? ", " : "", T.passes[i].name);
     return names[0] ? names : "(unknown)";
 }
 
 double gfx_frame_end(int in_flight)
 {
     assert(in_flight >= 1 && in_flight <= GFX_TIMER_LATENCY);
-    if (t.fence_count == GFX_TIMER_LATENCY) {
-        glDeleteSync(t.fences[0]);
-        memmove(t.fences, t.fences + 1, sizeof t.fences[0] * (GFX_TIMER_LATENCY - 1));
-        t.fence_count--;
+    if (T.fence_count == GFX_TIMER_LATENCY) {
+        glDeleteSync(T.fences[0]);
+        memmove(T.fences, T.fences + 1, sizeof T.fences[0] * (GFX_TIMER_LATENCY - 1));
+        T.fence_count--;
     }
-    t.fences[t.fence_count++] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    T.fences[T.fence_count++] = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
     double t0 = plat_time();
     int waits = 0;
-    while (t.fence_count > in_flight - 1) {
+    while (T.fence_count > in_flight - 1) {
         /* 10 s per try; a frame still unfinished after GFX_HANG_TRIES tries
          * is a hung GPU (or a lost context): give up instead of waiting forever. */
-        GLenum r = glClientWaitSync(t.fences[0], GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
+        GLenum r = glClientWaitSync(T.fences[0], GL_SYNC_FLUSH_COMMANDS_BIT, 10000000000ull);
         if (r == GL_TIMEOUT_EXPIRED || r == GL_WAIT_FAILED) {
             if (++waits < GFX_HANG_TRIES && r == GL_TIMEOUT_EXPIRED) {
                 core_log_warn("gfx: a frame has not finished on the GPU after %d s", 10 * waits);
                 continue;
             }
             core_log_error("gfx: a frame did not finish on the GPU (%s after %d s); passes timed this frame: %s",
-                           r == GL_WAIT_FAILED ? "wait failed" : "timeout", 10 * waits, frame_pass_names(t.frame - t.fence_count + 1));
+                           r == GL_WAIT_FAILED ? "wait failed" : "timeout", 10 * waits, frame_pass_names(T.frame - T.fence_count + 1));
             return -1.0;
         }
-        glDeleteSync(t.fences[0]);
-        memmove(t.fences, t.fences + 1, sizeof t.fences[0] * (size_t)(t.fence_count - 1));
-        t.fence_count--;
+        glDeleteSync(T.fences[0]);
+        memmove(T.fences, T.fences + 1, sizeof T.fences[0] * (size_t)(T.fence_count - 1));
+        T.fence_count--;
     }
     return plat_time() - t0;
 }
@@ -211,14 +187,14 @@ double gfx_frame_end(int in_flight)
 void gfx_timer_flush(void)
 {
     gfx_count_flush();
-    for (int i = 0; i < t.count; i++)
-        for (int s = 0; s < GFX_TIMER_LATENCY; s++) harvest(&t.passes[i], s, true);
+    for (int i = 0; i < T.count; i++)
+        for (int s = 0; s < GFX_TIMER_LATENCY; s++) harvest(&T.passes[i], s, true);
 }
 
 static void clear_stats(void)
 {
-    for (int i = 0; i < t.count; i++) {
-        pass_t *p = &t.passes[i];
+    for (int i = 0; i < T.count; i++) {
+        gfx_timer_pass_t *p = &T.passes[i];
         p->sum = p->max = 0;
         p->n = 0;
         p->hist_n = p->hist_i = 0;
@@ -234,13 +210,13 @@ void gfx_timer_reset_stats(void)
 void gfx_timer_skip_warmup(void)
 {
     clear_stats();
-    t.first_frame = t.frame + 1;
+    T.first_frame = T.frame + 1;
 }
 
 void gfx_timer_shutdown(void)
 {
-    for (int k = 0; k < t.fence_count; k++) glDeleteSync(t.fences[k]);
-    for (int i = 0; i < t.count; i++) glDeleteQueries(GFX_TIMER_LATENCY, t.passes[i].q);
-    memset(&t, 0, sizeof t);
-    t.open = -1;
+    for (int k = 0; k < T.fence_count; k++) glDeleteSync(T.fences[k]);
+    for (int i = 0; i < T.count; i++) glDeleteQueries(GFX_TIMER_LATENCY, T.passes[i].q);
+    memset(&T, 0, sizeof T);
+    T.open = -1;
 }

@@ -19,6 +19,15 @@ _Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the 
 static _Thread_local int last_error;
 int grass_last_error(void) { return last_error; }
 
+gfx_ctx_t *grass_enter(const grass_t *g)
+{
+    gfx_ctx_t *prev = gfx_ctx_current();
+    if (g->gfx) gfx_ctx_bind(g->gfx);
+    return prev;
+}
+
+void grass_leave(gfx_ctx_t *prev) { gfx_ctx_bind(prev); }
+
 grass_ground_t grass_ground_of(const grass_t *g)
 {
     if (g->terrain->type == TERRAIN_WORLD) return GRASS_GROUND_WORLD;
@@ -201,7 +210,14 @@ grass_t *grass_make(const grass_desc_t *d)
         g->collider_radius = d->collider_radius;
         g->objects = d->max_colliders > 0 ? d->max_colliders : 1;
     } else {
+        /* A host of the library: gfx state of its own, not the host's. */
+        if (!(g->gfx = gfx_ctx_make(NULL))) {
+            free(g);
+            return NULL;
+        }
+        gfx_ctx_t *prev = grass_enter(g);
         int rc = load_own(g, d);
+        grass_leave(prev);
         if (rc) {
             grass_destroy(g);
             last_error = rc;
@@ -212,7 +228,10 @@ grass_t *grass_make(const grass_desc_t *d)
     g->mode = g->scene->mode;
     g->raster_samples = h && h->raster_samples ? h->raster_samples : g->scene->raster_samples;
     double stage_ms[3] = {0};
-    if (!make_gpu(g, stage_ms)) {
+    gfx_ctx_t *prev = grass_enter(g);
+    bool made = make_gpu(g, stage_ms);
+    grass_leave(prev);
+    if (!made) {
         int rc = last_error;
         grass_destroy(g);
         last_error = rc;
@@ -232,6 +251,7 @@ void grass_destroy(grass_t *g)
 {
     if (!g) return;
     if (g->io.log) core_log_set_sink(NULL, NULL);
+    gfx_ctx_t *prev = grass_enter(g);
     bb_field_destroy(g->bb);
     blade_gpu_destroy(g->blades);
     gfx_texture_destroy(&g->blade_extent);
@@ -242,18 +262,22 @@ void grass_destroy(grass_t *g)
     ground_destroy(g->ground);
     if (g->terrain == &g->own_terrain) terrain_free(&g->own_terrain);
     core_image_free(&g->clearings_image);
+    grass_leave(prev);
+    gfx_ctx_destroy(g->gfx, false);
     free(g);
 }
 
 void grass_set_mode(grass_t *g, grass_mode_t mode)
 {
     if (mode == GRASS_MODE_SCENE) return;
+    gfx_ctx_t *prev = grass_enter(g);
     g->mode = g->scene->mode = (scene_mode_t)(mode - 1);
     if (grass_pass_wants_billboards(g->mode, g->scene->grass.billboards) && !g->bb && !g->reference &&
         grass_make_billboards(g))
         grass_ring_make_canopy(g);
     if (grass_uses_tiles(g) && !g->have_tiles) grass_make_tiles(g);
     else if (grass_pass_wants_blades(g->mode) && !grass_uses_tiles(g) && !g->have_blades) grass_make_blades(g);
+    grass_leave(prev);
 }
 
 void grass_set_raster(grass_t *g, bool compute)

@@ -319,11 +319,13 @@ void grass_draw(grass_t *gr, const grass_view_t *v, const grass_target_t *t)
 
 void grass_draw_part(grass_t *gr, const grass_view_t *v, const grass_target_t *t, grass_part_t part)
 {
+    gfx_ctx_t *prev = grass_enter(gr);
     gl_state_t saved;
     state_save(&saved);
     gfx_target_t target;
     if (!host_target(gr, t, &target)) {
         core_log_error("grass_draw: cannot make a %dx%d depth copy of the host's framebuffer", t->width, t->height);
+        grass_leave(prev);
         return;
     }
     gfx_target_bind(&target);
@@ -332,4 +334,5 @@ void grass_draw_part(grass_t *gr, const grass_view_t *v, const grass_target_t *t
     glDepthMask(GL_TRUE);
     draw_passes(gr, v, &target, gr->mode, true, part);
     state_restore(&saved);
+    grass_leave(prev);
 }

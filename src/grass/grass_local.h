@@ -14,6 +14,7 @@
 #include "ground/ground.h"
 
 struct grass_t {
+    gfx_ctx_t *gfx; /* its own gfx context (a host of the library), else NULL: the current one */
     scene_desc_t *scene;           /* the host's, or own_scene */
     const terrain_mesh_t *terrain; /* the host's, or own_terrain */
     scene_desc_t own_scene;
@@ -82,6 +83,11 @@ bool grass_extent_layout(const grass_t *g, bb_layout_t *lay, bb_gen_desc_t *gen)
 bool grass_ring_make_canopy(grass_t *g);
 /* grass_gi.c: the global illumination volumes into g->gi and the ground's bind. */
 bool grass_gi_make(grass_t *g);
+
+/* Binds g's own gfx context around a call of the API: grass_enter returns
+ * the context to give back to grass_leave. */
+gfx_ctx_t *grass_enter(const grass_t *g);
+void grass_leave(gfx_ctx_t *prev);
 
 grass_ground_t grass_ground_of(const grass_t *g);
 bool grass_uses_tiles(const grass_t *g);
