@@ -7,9 +7,12 @@
  *   budget is refused naming the key that deviates most from its default,
  *   and the value it names fits while 5 % beyond it does not; the cube
  *   maps of a huge character name grass.cube_texel; a GL limit (geometry-
- *   shader output) names grass.subdiv, the texture size a size that fits. */
+ *   shader output) names grass.subdiv, the texture size a size that fits;
+ *   the blade physics' sphere proxies past ADMIT_MAX_SPHERES name the
+ *   characters or the capsule that takes them, 16 humanoids fit. */
 #include "app/app.h"
 #include "admit/admit.h"
+#include "collide/collide_shape.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -152,9 +155,68 @@ static void check_gl_free(void)
     CHECK_MSG(strstr(err, "the largest size of this shape that fits is [4096, 512]"), "%s", err);
 }
 
+/* The blade physics' sphere proxies: 16 humanoids (38 each, 608; refused
+ * at 512 before the buffers grew with the scene) fit; past
+ * ADMIT_MAX_SPHERES the refusal names the key that takes them, and a
+ * capsule of radius 0 (COLLIDE_PACK_SATURATED spheres) overflows nothing. */
+static void check_spheres(void)
+{
+    scene_desc_t s;
+    terrain_mesh_t t;
+    admit_world_t w;
+    char err[512];
+    int chars[16], colliders[2] = {1, 1};
+    base_scene(&s, &t, &w);
+    for (int i = 0; i < 16; i++) chars[i] = 38;
+    s.collider_count = 1;
+    s.colliders[0] = (scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = 0.4f};
+    w.collider_spheres = colliders;
+    w.character_spheres = chars;
+    w.characters = 16;
+    w.objects = 17;
+    CHECK_MSG(admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err), "%s", err);
+
+    /* characters of 300 spheres each: 13 fit beside the collider */
+    for (int i = 0; i < 16; i++) chars[i] = 300;
+    CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
+    CHECK_MSG(strstr(err, "characters: 16 characters take 4800 of the blade physics' sphere proxies, 4801") == err &&
+                  strstr(err, "more than its 4096: the most characters that fit is 13"),
+              "%s", err);
+
+    /* a thin capsule beside 16 humanoids: its length is the key */
+    for (int i = 0; i < 16; i++) chars[i] = 38;
+    s.colliders[0] = (scene_collider_t){.type = SCENE_COLLIDER_CAPSULE, .radius = 0.01f, .length = 50.0f};
+    colliders[0] = 5001;
+    CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
+    const char *largest = "5609 with the rest, more than its 4096: the largest colliders[0].length that fits is ";
+    const char *at = strstr(err, largest);
+    CHECK_MSG(strstr(err, "colliders[0].length 50 over radius 0.01 takes 5001") == err && at, "%s", err);
+    float fits = 0.0f;
+    CHECK(at && sscanf(at + strlen(largest), "%f", &fits) == 1 && fits > 34.8f);
+    for (int more = 0; more < 2; more++) {
+        s.colliders[0].length = fits + (float)more * 5e-3f;
+        colliders[0] = collide_pack_spheres(&s.colliders[0], (float[3]){0}, NULL, 0);
+        CHECK_MSG(admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err) == !more, "%g: %s",
+                  (double)s.colliders[0].length, err);
+    }
+
+    /* radius 0: saturated, refused (two of them overflowed an int sum) */
+    s.collider_count = 2;
+    s.colliders[0].radius = 0.0f;
+    s.colliders[1] = s.colliders[0];
+    colliders[0] = colliders[1] = 1 + COLLIDE_PACK_SATURATED;
+    CHECK(collide_pack_spheres(&s.colliders[0], (float[3]){0}, NULL, 0) == colliders[0]);
+    w.objects = 18;
+    CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
+    CHECK_MSG(strstr(err, "colliders: 2 colliders and the characters need 2000000610 sphere proxies") == err &&
+                  strstr(err, "the most colliders that fit is 0"),
+              "%s", err);
+}
+
 int main(void)
 {
     check_gl_free();
+    check_spheres();
     test_gl_require_context();
     check_against_gfx();
     TEST_END();

@@ -91,14 +91,19 @@ void cube_exit_straight(inout Blade b)
  * results). Reach: twice the farthest tip or midpoint from its root after
  * the forces, plus five radii (one sphere moves v2 by at most its radius
  * plus four times the midpoint's penetration). fan128 (128 balls): each
- * blade tested every ball before. */
+ * blade tested every ball before. The set has no fixed size (the buffer
+ * grows with the scene, blade_gpu_update): it is masked LIST_MAX spheres
+ * at a time, and a group with more than LIST_MAX near spheres tests every
+ * sphere of the set instead (a far sphere adds nothing: the same results
+ * as the list, slower). */
 #define GROUP_SIZE 256
-#define SPHERE_WORDS 16 /* BLADE_MAX_SPHERES / 32 (static assert in blade.c) */
+#define LIST_WORDS 16 /* one chunk of the mask: LIST_MAX spheres */
+#define LIST_MAX (LIST_WORDS * 32)
 shared uint s_lo[3], s_hi[3]; /* root box, floats as order-preserving uints */
 shared uint s_reach;          /* float bits, >= 0 */
-shared uint s_mask[SPHERE_WORDS];
-shared uint s_count;
-shared uint s_list[SPHERE_WORDS * 32];
+shared uint s_mask[LIST_WORDS];
+shared uint s_count;          /* near spheres; > LIST_MAX: the list is full, every sphere is tested */
+shared uint s_list[LIST_MAX];
 
 uint float_key(float f)
 {
@@ -119,8 +124,11 @@ void list_near_spheres(bool live, Blade b)
         s_lo[l] = 0xffffffffu;
         s_hi[l] = 0u;
     }
-    if (l == 0u) s_reach = 0u;
-    if (l < uint(SPHERE_WORDS)) s_mask[l] = 0u;
+    if (l == 0u) {
+        s_reach = 0u;
+        s_count = 0u;
+    }
+    if (l < uint(LIST_WORDS)) s_mask[l] = 0u;
     barrier();
     if (live) {
         vec3 v0 = b.v0.xyz;
@@ -135,28 +143,44 @@ void list_near_spheres(bool live, Blade b)
     vec3 lo = vec3(key_float(s_lo[0]), key_float(s_lo[1]), key_float(s_lo[2]));
     vec3 hi = vec3(key_float(s_hi[0]), key_float(s_hi[1]), key_float(s_hi[2]));
     float reach = 2.0 * uintBitsToFloat(s_reach);
-    if (s_lo[0] <= s_hi[0]) {
-        for (uint k = l; k < uint(u_sphere_count); k += uint(GROUP_SIZE)) {
+    bool any = s_lo[0] <= s_hi[0];
+    uint count = uint(u_sphere_count);
+    for (uint base = 0u; base < count; base += uint(LIST_MAX)) {
+        uint end = min(base + uint(LIST_MAX), count);
+        for (uint k = base + l; any && k < end; k += uint(GROUP_SIZE)) {
             BladeSphere s = spheres[k];
             vec3 c0 = s.centre_radius.xyz, c1 = c0 + s.sweep.xyz;
             float m = reach + 5.0 * s.centre_radius.w;
             if (all(lessThanEqual(min(c0, c1) - m, hi)) && all(greaterThanEqual(max(c0, c1) + m, lo)))
-                atomicOr(s_mask[k >> 5u], 1u << (k & 31u));
+                atomicOr(s_mask[(k - base) >> 5u], 1u << (k & 31u));
         }
-    }
-    barrier();
-    if (l == 0u) {
-        uint n = 0u;
-        for (int w = 0; w < SPHERE_WORDS; w++) {
-            uint bits = s_mask[w];
-            while (bits != 0u) {
-                s_list[n++] = uint(w) * 32u + uint(findLSB(bits));
-                bits &= bits - 1u;
+        barrier();
+        if (l == 0u) {
+            uint n = s_count;
+            for (int w = 0; w < LIST_WORDS; w++) {
+                uint bits = s_mask[w];
+                s_mask[w] = 0u;
+                while (bits != 0u) {
+                    if (n < uint(LIST_MAX)) s_list[n] = base + uint(w) * 32u + uint(findLSB(bits));
+                    n++;
+                    bits &= bits - 1u;
+                }
             }
+            s_count = n;
         }
-        s_count = n;
+        barrier();
     }
-    barrier();
+}
+
+/* The number of spheres a blade of the group loops over, and the j-th. */
+uint near_count()
+{
+    return s_count <= uint(LIST_MAX) ? s_count : uint(u_sphere_count);
+}
+
+BladeSphere near_sphere(uint j)
+{
+    return spheres[s_count <= uint(LIST_MAX) ? s_list[j] : j];
 }
 
 void main()
@@ -183,9 +207,9 @@ void main()
     }
     list_near_spheres(live, b);
     if (!live) return;
-    uint ns = s_count;
+    uint ns = near_count();
     vec3 d = vec3(0.0);
-    for (uint j = 0u; j < ns; j++) d = d + blade_collide_sphere(b, spheres[s_list[j]], u_length_mode, rescale);
+    for (uint j = 0u; j < ns; j++) d = d + blade_collide_sphere(b, near_sphere(j), u_length_mode, rescale);
 #ifdef BLADE_CUBES
     for (int k = 0; k < u_cube_count; k++) d = d + blade_collide_cube(b, u_cube_tex, cubes[k], cube_of(k));
 #endif
@@ -194,7 +218,7 @@ void main()
     } else if (dot(d, d) > 0.0) {
         blade_revalidate(b, u_length_mode, rescale);
         bool held = false;
-        for (uint j = 0u; j < ns && !held; j++) held = blade_sphere_holds(start, spheres[s_list[j]]);
+        for (uint j = 0u; j < ns && !held; j++) held = blade_sphere_holds(start, near_sphere(j));
 #ifdef BLADE_CUBES
         for (int k = 0; k < u_cube_count && !held; k++) {
             bb_cube c = cube_of(k);
@@ -205,12 +229,12 @@ void main()
         if (!held) blade_friction(b, start, d, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (uint j = 0u; j < ns; j++) {
-                BladeSphere s = spheres[s_list[j]];
+                BladeSphere s = near_sphere(j);
                 blade_exit_rotate(b, s, b.v2.xyz);
                 blade_exit_rotate(b, s, blade_midpoint(b));
             }
         }
-        for (uint j = 0u; j < ns; j++) blade_exit_straight(b, spheres[s_list[j]]);
+        for (uint j = 0u; j < ns; j++) blade_exit_straight(b, near_sphere(j));
 #ifdef BLADE_CUBES
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (int k = 0; k < u_cube_count; k++) {

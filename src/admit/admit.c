@@ -350,46 +350,49 @@ static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit
 }
 
 /* The blade physics' sphere proxies: a capsule takes 1 + ceil(length /
- * radius) (collide_pack_spheres), so one thin capsule can take them all;
- * a humanoid takes 38, so 16 characters (the scene's most) do too. */
+ * radius) (collide_pack_spheres), so one thin capsule can take them all; a
+ * humanoid takes 38, 16 of them (the scene's most) 608. The physics'
+ * buffers grow to what a step packs; the collide set holds at most
+ * ADMIT_MAX_SPHERES. Counted in long long: a capsule of radius 0 needs
+ * COLLIDE_PACK_SATURATED. On a world the host packs only the characters
+ * near the tile window and may leave them out here (the grass counts and
+ * warns what a step cannot take). */
 static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *err, size_t size)
 {
-    /* On a world only the characters near the tile window pack spheres
-     * (world.c character_spheres); more than fit there is warned. */
-    if (s->terrain.type == TERRAIN_WORLD) return true;
     if (!w->full_field && !w->tiles) return true;
-    int colliders = 0, characters = 0, worst = -1;
+    long long colliders = 0, characters = 0;
+    int worst = -1;
     for (int i = 0; w->collider_spheres && i < s->collider_count; i++) {
         colliders += w->collider_spheres[i];
         if (worst < 0 || w->collider_spheres[i] > w->collider_spheres[worst]) worst = i;
     }
     for (int i = 0; w->character_spheres && i < w->characters; i++) characters += w->character_spheres[i];
-    int total = colliders + characters;
-    if (total <= ADMIT_MAX_SPHERES) return true;
-    if (characters > ADMIT_MAX_SPHERES || worst < 0) {
+    long long total = colliders + characters, most = ADMIT_MAX_SPHERES;
+    if (total <= most) return true;
+    if (characters > most || worst < 0) {
         int fit = 0;
-        for (int n = colliders; fit < w->characters && n + w->character_spheres[fit] <= ADMIT_MAX_SPHERES; fit++)
+        for (long long n = colliders; fit < w->characters && n + w->character_spheres[fit] <= most; fit++)
             n += w->character_spheres[fit];
-        snprintf(err, size, "characters: %d characters take %d of the blade physics' sphere proxies, %d with the "
-                 "colliders', more than its %d: the most characters that fit is %d", w->characters, characters, total,
-                 ADMIT_MAX_SPHERES, fit);
+        snprintf(err, size, "characters: %d characters take %lld of the blade physics' sphere proxies, %lld with the "
+                 "colliders', more than its %lld: the most characters that fit is %d", w->characters, characters,
+                 total, most, fit);
         return false;
     }
     const scene_collider_t *c = &s->colliders[worst];
-    int room = ADMIT_MAX_SPHERES - (total - w->collider_spheres[worst]);
+    long long room = most - (total - w->collider_spheres[worst]);
     if (c->type == SCENE_COLLIDER_CAPSULE && room >= 2) {
         snprintf(err, size, "colliders[%d].length %g over radius %g takes %d of the blade physics' sphere proxies, "
-                 "%d with the rest, more than its %d: the largest colliders[%d].length that fits is %.3g", worst,
-                 (double)c->length, (double)c->radius, w->collider_spheres[worst], total, ADMIT_MAX_SPHERES,
-                 worst, floor((room - 1) * (double)c->radius * 1e3) / 1e3);
+                 "%lld with the rest, more than its %lld: the largest colliders[%d].length that fits is %g", worst,
+                 (double)c->length, (double)c->radius, w->collider_spheres[worst], total, most, worst,
+                 floor((double)(room - 1) * (double)c->radius * 1e3) / 1e3);
         return false;
     }
     int fit = 0;
-    for (int n = characters; fit < s->collider_count && n + w->collider_spheres[fit] <= ADMIT_MAX_SPHERES; fit++)
+    for (long long n = characters; fit < s->collider_count && n + w->collider_spheres[fit] <= most; fit++)
         n += w->collider_spheres[fit];
-    snprintf(err, size, "colliders: %d colliders and the characters need %d sphere proxies in the blade physics "
-             "(characters %d), more than its %d: the most colliders that fit is %d", s->collider_count, total,
-             characters, ADMIT_MAX_SPHERES, fit);
+    snprintf(err, size, "colliders: %d colliders and the characters need %lld sphere proxies in the blade physics "
+             "(characters %lld), more than its %lld: the most colliders that fit is %d", s->collider_count, total,
+             characters, most, fit);
     return false;
 }
 

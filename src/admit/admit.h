@@ -88,9 +88,10 @@ typedef struct admit_t {
 /* Most colliders and characters together (COLLIDE_MAX_OBJECTS, a collide
  * set's; world.c asserts they agree). */
 #define ADMIT_MAX_OBJECTS 128
-/* Most sphere proxies of the blade physics (BLADE_MAX_SPHERES; asserted
- * in world.c). */
-#define ADMIT_MAX_SPHERES 512
+/* Most sphere proxies of the blade physics in one step (BLADE_MAX_SPHERES,
+ * a collide set's; grass.c asserts they agree): a scene whose colliders and
+ * characters pack more is refused, naming the key. */
+#define ADMIT_MAX_SPHERES 4096
 /* Most bytes of one GL buffer: Mesa refuses a larger one with
  * GL_OUT_OF_MEMORY (its resource sizes are 32-bit); the compute
  * rasterizer's visibility buffer is the one that reaches it (16384 x 16384

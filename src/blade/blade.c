@@ -13,8 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-_Static_assert(BLADE_MAX_SPHERES == 512, "blade_physics.comp lists near spheres in a 512-bit mask (SPHERE_WORDS)");
-
 /* g->counters, uint words (blade_patch.glsl's Counters): culled per test,
  * the patch test's culled blades and listed patches, blade_cull.comp's
  * indirect dispatch (x, y, z, invocations), the distance buckets. The
@@ -95,7 +93,8 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades);
     g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta);
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
-    g->spheres = make_buffer(g, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
+    g->sphere_capacity = BLADE_SPHERES_FIRST;
+    g->spheres = make_buffer(g, "spheres", (size_t)g->sphere_capacity * sizeof(blade_sphere_t), NULL);
     g->survivors = make_buffer(g, "survivors", nb * 2 * sizeof(uint32_t), NULL); /* index, width factor */
     g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL);
     uint32_t cmd[4];
@@ -207,20 +206,42 @@ blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g)
                               .patch_size = g->patch_size};
 }
 
+bool blade_sphere_buffer_fit(gfx_buffer_t *buf, int *capacity, int count, const char *label)
+{
+    if (count <= *capacity) return true;
+    int cap = *capacity > 0 ? *capacity : BLADE_SPHERES_FIRST;
+    while (cap < count) cap *= 2;
+    char name[128];
+    snprintf(name, sizeof name, "%s.spheres", label);
+    gfx_buffer_t grown = gfx_buffer_make(&(gfx_buffer_desc_t){
+        .size = (size_t)cap * sizeof(blade_sphere_t), .dynamic = true, .label = name});
+    if (!grown.id) {
+        core_log_error("%s: cannot grow the sphere buffer to %d spheres", label, cap);
+        return false;
+    }
+    if (buf->id) gfx_buffer_destroy(buf);
+    *buf = grown;
+    *capacity = cap;
+    return true;
+}
+
 void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_t *colliders)
 {
     blade_env_t e = blade_env_defaults(env);
     static const collide_set_t none;
     const collide_set_t *c = colliders ? colliders : &none;
     assert(c->sphere_count >= 0 && c->sphere_count <= BLADE_MAX_SPHERES);
+    int sphere_count = c->sphere_count;
+    if (!blade_sphere_buffer_fit(&g->spheres, &g->sphere_capacity, sphere_count, g->desc.label))
+        sphere_count = g->sphere_capacity;
     assert(c->cube_count >= 0 && c->cube_count <= BLADE_MAX_CUBES);
     assert(c->cube_count == 0 || (c->cube_texture && c->cube_res > 0));
     int cubes = c->cube_texture ? c->cube_count : 0;
     if (cubes) gfx_buffer_update(g->cube_objects, 0, (size_t)cubes * sizeof(collide_cube_proxy_t), c->cubes);
     gfx_timer_begin("blade.physics");
     if (e.wind_count) gfx_buffer_update(g->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
-    if (c->sphere_count)
-        gfx_buffer_update(g->spheres, 0, (size_t)c->sphere_count * sizeof(blade_sphere_t), c->spheres);
+    if (sphere_count) gfx_buffer_update(g->spheres, 0, (size_t)sphere_count * sizeof(blade_sphere_t), c->spheres);
+    g->sphere_count = sphere_count;
     gfx_program_t p = cubes ? g->physics_cubes : g->physics;
     glUseProgram(p.id);
     glUniform1ui(gfx_uniform(p, "u_blade_count"), g->padded_count);
@@ -232,7 +253,7 @@ void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_
     glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
     glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);
     glUniform1i(gfx_uniform(p, "u_wind_count"), e.wind_count);
-    glUniform1i(gfx_uniform(p, "u_sphere_count"), c->sphere_count);
+    glUniform1i(gfx_uniform(p, "u_sphere_count"), sphere_count);
     glUniform1i(gfx_uniform(p, "u_length_mode"), e.length_mode);
     glUniform1i(gfx_uniform(p, "u_paper"), e.paper ? 1 : 0);
     if (cubes) {
@@ -504,6 +525,14 @@ void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (out) gfx_buffer_read(g->blades, 0, g->padded_count * sizeof(blade_t), out);
     if (eta_out) gfx_buffer_read(g->eta, 0, g->padded_count * sizeof(float), eta_out);
+}
+
+int blade_gpu_read_spheres(const blade_gpu_t *g, blade_sphere_t *out, int max)
+{
+    int n = g->sphere_count < max ? g->sphere_count : max;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (n > 0) gfx_buffer_read(g->spheres, 0, (size_t)n * sizeof(blade_sphere_t), out);
+    return g->sphere_count;
 }
 
 uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *ids, float *factors)

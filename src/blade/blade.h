@@ -133,7 +133,9 @@ void blade_gpu_destroy(blade_gpu_t *g);
 blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g);
 
 /* One physics step of every blade (timer "blade.physics") against the
- * spheres and cube proxies of `colliders` (NULL: none; its cube_texture
+ * spheres and cube proxies of `colliders` (NULL: none; any number of
+ * spheres up to BLADE_MAX_SPHERES: the sphere buffer grows to hold them,
+ * from 512, doubling; its cube_texture
  * holds cubes[k]'s faces in layers 6k .. 6k+5 as collide_cube.h describes,
  * e.g. bb_field_t's cube array or blade_gpu_upload_cubes'; its cube_maps
  * are not read). env is resolved with blade_env_defaults. */
@@ -193,6 +195,10 @@ uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *ids, float *fa
  * holds patch_count); returns its length, 0 without the patch test
  * (no_patch_cull) or before the first cull. */
 uint32_t blade_gpu_read_patches(const blade_gpu_t *g, uint32_t *out);
+/* Blocking read of the sphere proxies the latest update's physics read
+ * (its buffer, as the GPU holds it): writes at most max and returns their
+ * count. */
+int blade_gpu_read_spheres(const blade_gpu_t *g, blade_sphere_t *out, int max);
 /* Blocking read of the indirect command {count, instanceCount, first, base}. */
 void blade_gpu_read_command(const blade_gpu_t *g, uint32_t out[4]);
 /* Replaces the blade state (tests): padded_count blades and eta (NULL: 0). */

@@ -12,11 +12,16 @@
 
 #define BLADE_GPU_READBACK_SLOTS 3
 #define BLADE_TILES_READBACK_SLOTS 4
+/* Spheres the physics' sphere buffers hold at make time; a step with more
+ * doubles them (blade_sphere_buffer_fit), up to BLADE_MAX_SPHERES. */
+#define BLADE_SPHERES_FIRST 512
 
 struct blade_gpu_t {
     blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
     uint32_t blade_count, padded_count, patch_count, patch_size;
     gfx_buffer_t blades, eta, winds, spheres, survivors, command;
+    int sphere_capacity; /* spheres the sphere buffer holds (blade_sphere_buffer_fit) */
+    int sphere_count;    /* spheres the latest update put in it */
     gfx_buffer_t counters; /* blade_patch.glsl's Counters: per-test counts, patch test, dispatch, buckets */
     gfx_buffer_t patches, patch_boxes, patch_keys; /* the patch test's list, boxes (made once), keys */
     raster_program_t raster; /* made on the first blade_gpu_raster */
@@ -61,6 +66,8 @@ struct blade_tiles_t {
     float time;
     gfx_buffer_t templates, pool, eta, motion, winds, spheres, slot_spheres, slot_list, init_list,
         tile_list, drawn, drawn_ids, command;
+    int sphere_capacity; /* spheres the sphere buffer holds (blade_sphere_buffer_fit) */
+    int sphere_count;    /* spheres the latest update put in it */
     gfx_readback_t motion_ring, draw_ring; /* BLADE_TILES_READBACK_SLOTS deep */
     int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
     float *slot_motion;                            /* latest read back, per slot */
@@ -79,6 +86,12 @@ struct blade_tiles_t {
     blade_tiles_stats_t stats;
     bool culled_once, warned_overflow;
 };
+
+/* Makes *buf (labelled "<label>.spheres", *capacity spheres) hold count
+ * spheres: past its capacity it is remade, doubled until they fit (its
+ * contents are not kept). False (logged) when the GL cannot make it; *buf
+ * and *capacity are then unchanged. */
+bool blade_sphere_buffer_fit(gfx_buffer_t *buf, int *capacity, int count, const char *label);
 
 /* The surface of drawn blades (blade_geom.glsl uniforms). */
 typedef struct blade_surface_t {

@@ -153,7 +153,7 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */
               + S * sizeof(uint32_t) * (1 + SLOT_STRIDE + 1 + 2)       /* motion, sphere lists, slot / init lists */
-              + BLADE_MAX_WINDS * sizeof(blade_wind_t) + BLADE_MAX_SPHERES * sizeof(blade_sphere_t)
+              + BLADE_MAX_WINDS * sizeof(blade_wind_t) + BLADE_SPHERES_FIRST * sizeof(blade_sphere_t)
               + (size_t)l.draw_tiles * 2 * sizeof(uint32_t)            /* tile list */
               + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
               + TILES_COMMAND_WORDS * sizeof(uint32_t)                  /* draw commands */
@@ -339,7 +339,8 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->slot_list = make_buffer(t, "slot_list", S * sizeof(uint32_t), NULL);
     t->init_list = make_buffer(t, "init_list", S * 2 * sizeof(uint32_t), NULL);
     t->winds = make_buffer(t, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
-    t->spheres = make_buffer(t, "spheres", BLADE_MAX_SPHERES * sizeof(blade_sphere_t), NULL);
+    t->sphere_capacity = BLADE_SPHERES_FIRST;
+    t->spheres = make_buffer(t, "spheres", (size_t)t->sphere_capacity * sizeof(blade_sphere_t), NULL);
     t->tile_list = make_buffer(t, "tile_list", (size_t)l->draw_tiles * 2 * sizeof(uint32_t), NULL);
     t->drawn = make_buffer(t, "drawn", (size_t)t->draw_capacity * sizeof(blade_t), NULL);
     t->drawn_ids = make_buffer(t, "drawn_ids", (size_t)t->draw_capacity * sizeof(uint32_t), NULL);
@@ -728,6 +729,9 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     const collide_set_t *c = colliders ? colliders : &none;
     const collide_sphere_t *spheres = c->spheres;
     int sphere_count = c->sphere_count;
+    assert(sphere_count >= 0 && sphere_count <= BLADE_MAX_SPHERES);
+    if (!blade_sphere_buffer_fit(&t->spheres, &t->sphere_capacity, sphere_count, t->desc.label))
+        sphere_count = t->sphere_capacity;
     blade_env_t e = blade_env_defaults(env);
     if (e.wind_count == 0) {
         memcpy(e.winds, t->env.winds, sizeof e.winds);
@@ -814,6 +818,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     gfx_timer_begin("tiles.physics");
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * sizeof(collide_sphere_t), spheres);
+    t->sphere_count = sphere_count;
     if (nhand) hand_over(t, handover, nhand);
     if (ninit) init_slots(t, init, ninit, nseed);
     uint32_t zero = 0;
@@ -1146,6 +1151,14 @@ void blade_tiles_set_slope_source(blade_tiles_t *t, blade_tiles_slope_source_fn 
 {
     t->source = fn;
     t->source_user = user;
+}
+
+int blade_tiles_read_spheres(const blade_tiles_t *t, blade_sphere_t *out, int max)
+{
+    int n = t->sphere_count < max ? t->sphere_count : max;
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (n > 0) gfx_buffer_read(t->spheres, 0, (size_t)n * sizeof(blade_sphere_t), out);
+    return t->sphere_count;
 }
 
 void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out)

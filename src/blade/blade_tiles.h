@@ -222,7 +222,8 @@ void blade_tiles_destroy(blade_tiles_t *t);
 void blade_tiles_set_slope_source(blade_tiles_t *t, blade_tiles_slope_source_fn fn, void *user);
 
 /* One frame: representation from camera, activation from the spheres of
- * `colliders` (NULL: none; its objects and cube proxies are not read),
+ * `colliders` (NULL: none; its objects and cube proxies are not read; any
+ * number up to BLADE_MAX_SPHERES: the sphere buffer grows to hold them),
  * motion read back without stalling, slot initialisation, and one physics
  * step over the active and recovering slots (timer "tiles.physics"). env:
  * dt, time, gravity, collision and length settings (resolved with
@@ -274,6 +275,9 @@ void blade_tiles_read_pool(const blade_tiles_t *t, blade_t *out);
  * draw_capacity): the solid blades, then those of a split cull's fade list;
  * ids (may be NULL) receives tile * template_blades + blade per survivor. */
 uint32_t blade_tiles_read_drawn(const blade_tiles_t *t, blade_t *out, uint32_t *ids);
+/* The sphere proxies the latest update's physics read (its buffer, as the
+ * GPU holds it): writes at most max and returns their count. */
+int blade_tiles_read_spheres(const blade_tiles_t *t, blade_sphere_t *out, int max);
 /* The slope cells (slope_grid.nx * slope_grid.nz). */
 void blade_tiles_read_slopes(const blade_tiles_t *t, hybrid_slope_cell_t *out);
 /* Replaces the slope cells (slope_grid.nx * slope_grid.nz); zeroed cells

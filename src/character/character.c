@@ -539,15 +539,20 @@ void character_set_draw(const character_set_t *set, const float viewproj[16], co
 }
 
 /* ---- proxies ------------------------------------------------------------------ */
+/* Spheres a caller's array had no room for: counted
+ * ("character.spheres_dropped") and warned at every call that drops some. */
+static void report_dropped(const char *what, int needed, int max)
+{
+    if (needed <= max) return;
+    gfx_count_add("character.spheres_dropped", needed - max);
+    core_log_warn("%s: %d proxy spheres needed, room for %d: %d left out", what, needed, max, needed - max);
+}
+
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max)
 {
-    static bool warned;
     int n = inst->sphere_count < max ? inst->sphere_count : max;
     if (n > 0) memcpy(out, inst->spheres, (size_t)n * sizeof *out);
-    if (inst->sphere_count > max && !warned) {
-        core_log_warn("character: %d proxy spheres needed, room for %d (logged once)", inst->sphere_count, max);
-        warned = true;
-    }
+    report_dropped("character", inst->sphere_count, max);
     return inst->sphere_count;
 }
 
@@ -559,7 +564,6 @@ int character_set_spheres(const character_set_t *set, float (*out)[4], int max)
 int character_set_spheres_near(const character_set_t *set, const float centre[3], float reach, float (*out)[4],
                                int max)
 {
-    static bool warned;
     int total = 0;
     for (int i = 0; i < set->count; i++) {
         const character_instance_t *inst = &set->items[i];
@@ -571,10 +575,7 @@ int character_set_spheres_near(const character_set_t *set, const float centre[3]
         if (n > 0) memcpy(out + total, inst->spheres, (size_t)n * sizeof *out);
         total += inst->sphere_count;
     }
-    if (total > max && !warned) {
-        core_log_warn("characters: %d proxy spheres needed, room for %d (logged once)", total, max);
-        warned = true;
-    }
+    report_dropped("characters", total, max);
     return total;
 }
 

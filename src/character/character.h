@@ -167,7 +167,8 @@ void character_set_destroy(character_set_t *set);
 
 /* Blade proxies of one character: spheres (xyz centre, radius) compatible
  * with blade_sphere_t. Writes at most max and returns the number needed;
- * when that exceeds max a warning is logged (once per process). */
+ * every call that needs more than max logs a warning and adds what it left
+ * out to the count "character.spheres_dropped" (gfx_count_add). */
 int character_proxy_spheres(const character_instance_t *inst, float (*out)[4], int max);
 /* The same for every character of the set, concatenated. */
 int character_set_spheres(const character_set_t *set, float (*out)[4], int max);

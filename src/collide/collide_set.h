@@ -14,8 +14,12 @@
 #include "collide/collide_cube.h"
 
 #define COLLIDE_MAX_OBJECTS 128 /* colliders and characters per step */
-#define COLLIDE_MAX_SPHERES 512 /* sphere proxies per step */
-#define COLLIDE_MAX_CUBES 16    /* cube proxies per step */
+/* Sphere proxies per step: 16 characters (a scene's most) of 256 each, or
+ * one capsule 4095 radii long; admission (admit.h) refuses a scene that
+ * packs more. The blade physics' buffers grow to the step's count
+ * (blade_gpu_update), so a set this full costs only its 128 KiB here. */
+#define COLLIDE_MAX_SPHERES 4096
+#define COLLIDE_MAX_CUBES 16 /* cube proxies per step */
 
 /* One collider or character this step. The builder fills model, centre,
  * radius and the mesh; collide_add_object fills position, prev_position

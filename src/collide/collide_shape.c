@@ -138,9 +138,12 @@ int collide_pack_spheres(const scene_collider_t *c, const float position[3], flo
 {
     int k = 1;
     float r = collide_bounding_radius(c), step = 0;
-    if (c->type == SCENE_COLLIDER_CAPSULE) {
+    if (c->type == SCENE_COLLIDER_CAPSULE && c->length > 0.0f) {
         r = c->radius;
-        k = 1 + (int)ceilf(c->length / r);
+        /* a radius far below the length (0 included) needs more than any
+         * set holds: the count saturates */
+        float q = r > 0.0f ? c->length / r : INFINITY;
+        k = 1 + (q < (float)COLLIDE_PACK_SATURATED ? (int)ceilf(q) : COLLIDE_PACK_SATURATED);
         step = c->length / (float)(k - 1);
     }
     for (int j = 0; j < k && j < max; j++) {

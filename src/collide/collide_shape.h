@@ -39,8 +39,12 @@ void collide_render_shape(collide_cubemap_t *cube, const scene_collider_t *c);
 /* Sphere proxies (xyz centre, radius) of the collider centred at `position`
  * (world): a sphere exactly; a capsule as 1 + ceil(length / radius)
  * spheres of its radius evenly along the axis (ends on the cap centres,
- * overlapping); a box by its bounding sphere (conservative). Writes at most
- * max and returns the number needed. */
+ * overlapping; one sphere when length is 0, at most
+ * 1 + COLLIDE_PACK_SATURATED, which a radius of 0 takes); a box by its
+ * bounding sphere (conservative). Writes at most max and returns the number
+ * needed. */
+#define COLLIDE_PACK_SATURATED 1000000000
+
 int collide_pack_spheres(const scene_collider_t *c, const float position[3], float (*out)[4], int max);
 
 #endif

@@ -58,14 +58,17 @@ static bool near_camera(const grass_t *g, const grass_collider_t *c, float reach
 
 /* Sphere proxies for the blade physics: each shape packed by
  * collide_pack_spheres with its object's sweep, each sphere set within
- * reach of the camera as it is. Admission (grass_admit) keeps them within
- * BLADE_MAX_SPHERES. */
-static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, collide_sphere_t *out, int max)
+ * reach of the camera as it is. Admission (grass_admit) keeps a scene's
+ * within BLADE_MAX_SPHERES; past them (a world's characters, which it
+ * cannot count: only those near the camera are packed) the rest is
+ * counted in *dropped. */
+static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, collide_sphere_t *out, int max,
+                         int *dropped)
 {
     static float packed[BLADE_MAX_SPHERES][4];
     float reach = grass_collider_reach(g);
     int n = 0;
-    for (int i = 0; i < count && n < max; i++) {
+    for (int i = 0; i < count; i++) {
         if (c[i].shape == GRASS_SHAPE_SPHERES) {
             if (!near_camera(g, &c[i], reach)) continue;
             int got = c[i].sphere_count < max - n ? c[i].sphere_count : max - n;
@@ -73,6 +76,7 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
                 out[n + k] = (collide_sphere_t){.centre_radius = {c[i].spheres[k][0], c[i].spheres[k][1],
                                                                   c[i].spheres[k][2], c[i].spheres[k][3]}};
             n += got;
+            *dropped += c[i].sphere_count - got;
             continue;
         }
         scene_collider_t s = shape_of(&c[i]);
@@ -85,8 +89,21 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
             out[n + k].sweep[3] = 0.0f;
         }
         n += got;
+        *dropped += want - got;
     }
     return n;
+}
+
+/* Sphere proxies that did not fit this step: counted
+ * ("grass.spheres_dropped", summary.txt's counts) and warned at every
+ * step that drops some. */
+static void report_dropped(int dropped, int kept)
+{
+    if (dropped <= 0) return;
+    gfx_count_add("grass.spheres_dropped", dropped);
+    core_log_warn("grass: %d of %d sphere proxies left out of this step's blade physics (it takes at most %d, "
+                  "BLADE_MAX_SPHERES): the colliders or characters near the camera beyond them bend no blades",
+                  dropped, dropped + kept, BLADE_MAX_SPHERES);
 }
 
 /* Cube-map proxies of the blade physics (tuning.blade_cube_proxies; beyond
@@ -96,7 +113,7 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
  * rasterised once on the CPU (collide_render_shape) at the cube
  * resolution, the first BLADE_MAX_CUBES of them; further colliders by
  * their bounding sphere and sphere sets as they are. */
-static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count)
+static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count, int *dropped)
 {
     collide_set_t *set = &g->collide;
     if (g->bb) {
@@ -125,11 +142,20 @@ static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count)
     }
     set->cube_texture = g->blade_cubes;
     set->cube_res = g->cube_res;
-    for (int k = nc; k < count && set->sphere_count < BLADE_MAX_SPHERES; k++) {
+    for (int k = nc; k < count; k++) {
         if (c[k].shape == GRASS_SHAPE_SPHERES) {
-            for (int s = 0; s < c[k].sphere_count && set->sphere_count < BLADE_MAX_SPHERES; s++)
+            for (int s = 0; s < c[k].sphere_count; s++) {
+                if (set->sphere_count == BLADE_MAX_SPHERES) {
+                    ++*dropped;
+                    continue;
+                }
                 set->spheres[set->sphere_count++] = (collide_sphere_t){
                     .centre_radius = {c[k].spheres[s][0], c[k].spheres[s][1], c[k].spheres[s][2], c[k].spheres[s][3]}};
+            }
+            continue;
+        }
+        if (set->sphere_count == BLADE_MAX_SPHERES) {
+            ++*dropped;
             continue;
         }
         const collide_object_t *o = &set->objects[k];
@@ -182,8 +208,10 @@ void grass_update(grass_t *g, const grass_collider_t *colliders, int count, floa
         blade_env_t *env = &g->blade_env;
         env->dt = dt;
         env->time = t;
-        if (g->tuning.blade_cube_proxies && g->have_blades) blade_cube_proxies(g, colliders, count);
-        else set->sphere_count = blade_spheres(g, colliders, count, set->spheres, BLADE_MAX_SPHERES);
+        int dropped = 0;
+        if (g->tuning.blade_cube_proxies && g->have_blades) blade_cube_proxies(g, colliders, count, &dropped);
+        else set->sphere_count = blade_spheres(g, colliders, count, set->spheres, BLADE_MAX_SPHERES, &dropped);
+        report_dropped(dropped, set->sphere_count);
         update_part(g, 1, &mark);
         if (g->have_blades) blade_gpu_update(g->blades, env, set);
         if (g->have_tiles) blade_tiles_update(g->tiles, g->camera, set, env);
@@ -198,6 +226,7 @@ void grass_update_spheres(grass_t *g, const collide_sphere_t *spheres, int count
     env->time = t;
     collide_begin_set(&g->collide);
     g->collide.sphere_count = count < BLADE_MAX_SPHERES ? count : BLADE_MAX_SPHERES;
+    report_dropped(count - g->collide.sphere_count, g->collide.sphere_count);
     memcpy(g->collide.spheres, spheres, (size_t)g->collide.sphere_count * sizeof *spheres);
     blade_gpu_update(g->blades, env, &g->collide);
 }
