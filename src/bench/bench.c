@@ -213,6 +213,7 @@ static void keep_timing(measure_metrics_t *to, const measure_metrics_t *from)
 {
     to->frame_ms = from->frame_ms;
     to->cpu_ms = from->cpu_ms;
+    to->gpu_mb = from->gpu_mb;
     to->pass_count = from->pass_count;
     memcpy(to->pass_ms, from->pass_ms, sizeof to->pass_ms);
     memcpy(to->pass_name, from->pass_name, sizeof to->pass_name);
@@ -660,11 +661,14 @@ static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *o
 static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
 
 /* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
- * the hybrid row of least wall time (row_wall) whose image error is within
- * the noise floor of the least error any row of the path measured (blade
- * mode's included; else the least error, "met": false), with or without
- * billboards: a tier stays only where it is cheaper at equal error. Rows that leave a distance at 0 take
- * the scene's. Nothing when the run holds no such rows. */
+ * among the hybrid rows whose GPU memory is within BENCH_LOD_GPU_MB, the
+ * row of least wall time (row_wall) whose image error is within the noise
+ * floor of the least error any row of the path measured (blade mode's
+ * included; else the least error of those rows, "met": false; no row
+ * within the memory: the least error of all), with or without billboards:
+ * a tier stays only where it is cheaper at equal error. Rows that leave a
+ * distance at 0 take the scene's. Nothing when the run holds no such rows. */
+#define BENCH_LOD_GPU_MB 400.0 /* the default chain's GPU memory at most (MiB) */
 /* A row's wall time per frame: the larger of its GPU pass sum and its
  * CPU's wall clock, so a CPU-bound configuration counts as slow. */
 static double row_wall(const measure_metrics_t *m) { return fmax(m->frame_ms, m->cpu_ms); }
@@ -696,13 +700,15 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
                     b->frames);
     int written = 0;
     for (int path_k = 0; path_k < 2; path_k++) {
-        int blade = -1, best = -1, least = -1, candidates = 0;
+        int blade = -1, best = -1, least = -1, least_fit = -1, candidates = 0;
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k)) continue;
             if (b->cfg[i].mode == SCENE_MODE_BLADE) blade = i;
             if (b->cfg[i].mode != SCENE_MODE_HYBRID) continue;
             candidates++;
             if (least < 0 || b->err[i] < b->err[least]) least = i;
+            bool fits = b->met[i].gpu_mb <= BENCH_LOD_GPU_MB;
+            if (fits && (least_fit < 0 || b->err[i] < b->err[least_fit])) least_fit = i;
         }
         if (blade < 0 || least < 0) continue;
         double budget = b->err[least];
@@ -710,10 +716,12 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
             if (lod_row(b, i, path_k)) budget = fmin(budget, b->err[i]);
         budget += R->floor;
         for (int i = 0; i < b->n; i++) {
-            if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget) continue;
+            if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget ||
+                b->met[i].gpu_mb > BENCH_LOD_GPU_MB)
+                continue;
             if (best < 0 || row_wall(&b->met[i]) < row_wall(&b->met[best])) best = i;
         }
-        int pick = best >= 0 ? best : least;
+        int pick = best >= 0 ? best : least_fit >= 0 ? least_fit : least;
         const bench_config_t *c = &b->cfg[pick];
         float sw = c->switch_distance > 0 ? c->switch_distance : s.grass.switch_distance;
         float cd = c->canopy_distance > 0 ? c->canopy_distance : s.grass.canopy_distance;
@@ -722,12 +730,13 @@ static bool write_lod(const char *out, const app_options_t *o, const bench_run_t
         core_buf_printf(&json,
                         "%s\n    \"%s\": {\"switch_distance\": %g, \"canopy_distance\": %g, \"billboards\": \"%s\", "
                         "\"wall_ms\": %.4f, \"gpu_ms\": %.4f, \"image_error\": %.6f, \"budget\": %.6f, \"met\": %s, "
-                        "\"label\": \"%s\", \"candidates\": %d, \"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, "
-                        "\"blade_error\": %.6f}",
+                        "\"gpu_mb\": %.1f, \"memory_budget_mb\": %g, \"label\": \"%s\", \"candidates\": %d, "
+                        "\"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, \"blade_error\": %.6f, \"blade_gpu_mb\": %.1f}",
                         written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd,
                         bb == SCENE_HYBRID_BILLBOARDS_NONE ? "none" : "ring", row_wall(&b->met[pick]),
-                        b->met[pick].frame_ms, b->err[pick], budget, best >= 0 ? "true" : "false", c->label,
-                        candidates, row_wall(&b->met[blade]), b->met[blade].frame_ms, b->err[blade]);
+                        b->met[pick].frame_ms, b->err[pick], budget, best >= 0 ? "true" : "false",
+                        b->met[pick].gpu_mb, BENCH_LOD_GPU_MB, c->label, candidates, row_wall(&b->met[blade]),
+                        b->met[blade].frame_ms, b->err[blade], b->met[blade].gpu_mb);
         written++;
     }
     core_buf_printf(&json, "\n  }\n}\n");
@@ -972,14 +981,14 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
         core_buf_printf(&json,
                         "    { \"group\": \"%s\", \"label\": \"%s\", \"scene\": \"%s\", \"mode\": \"%s\", "
                         "\"gpu_ms\": %.4f, "
-                        "\"cpu_ms\": %.3f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
+                        "\"cpu_ms\": %.3f, \"gpu_mb\": %.1f, \"image_error\": %.6f, \"image_ssim_error\": %.6f, "
                         "\"image_terms\": {\"colour\": %.4f, \"coverage\": %.4f, \"structure\": %.4f}, "
                         "\"penetration_fraction\": %.6f, "
                         "\"penetration_max\": %.6f, \"blade_length_error\": %.6f, \"spring_error\": %.6f, "
                         "\"depth_p95\": %.6f, \"shape_deviation\": %.6f, \"overpush_p95\": %.6f, "
                         "\"image_error_spread\": %.6f, \"passes\": {",
                         c->group, c->label, c->scene ? c->scene : o->scene ? o->scene : "scenes/meadow.json",
-                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, b->err[i], b->ssim_err[i],
+                        scene_mode_name(c->mode), m->frame_ms, m->cpu_ms, m->gpu_mb, b->err[i], b->ssim_err[i],
                         b->terms[i].colour, b->terms[i].coverage, b->terms[i].structure,
                         m->penetration_fraction, m->penetration_max, m->blade_length_error, m->spring_error,
                         a->y[Y_PEN_MAX], a->y[Y_SPRING], a->y[Y_OVERPUSH], espread);

@@ -16,6 +16,7 @@ typedef struct measure_metrics_t {
     char pass_name[GFX_TIMER_MAX_PASSES][32];
     int pass_count;
     double cpu_ms;           /* mean CPU time per frame (wall clock) */
+    double gpu_mb;           /* GPU storage gfx holds at the session's end, target included (MiB) */
     bool raster_compute;     /* the grass went through the compute rasterizer */
     /* Accuracy (filled by the systems that exist in the scene; -1 = n/a). */
     double penetration_fraction; /* grass sample points inside colliders */

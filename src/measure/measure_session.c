@@ -128,6 +128,7 @@ int measure_session_run_hooks(const measure_session_desc_t *d, const measure_ses
         memset(m, 0, sizeof *m);
         m->cpu_ms = cpu * 1000.0 / (frames - warmup > 0 ? frames - warmup : 1);
         m->raster_compute = world_info(w).raster_compute;
+        m->gpu_mb = (double)gfx_memory_bytes() / (1024.0 * 1024.0);
         m->pass_count = gfx_timer_count();
         for (int i = 0; i < m->pass_count; i++) {
             m->pass_ms[i] = gfx_timer_median_ms(i);
