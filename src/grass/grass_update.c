@@ -183,6 +183,7 @@ static void update_part(grass_t *g, int k, double *mark)
 
 void grass_update(grass_t *g, const grass_collider_t *colliders, int count, float t, float dt)
 {
+    gfx_ctx_t *prev = grass_enter(g);
     double mark = plat_time();
     if (g->views > 0) {
         for (int k = 0; k < 3; k++) g->camera[k] = g->view_camera[k];
@@ -217,6 +218,7 @@ void grass_update(grass_t *g, const grass_collider_t *colliders, int count, floa
         if (g->have_tiles) blade_tiles_update(g->tiles, g->camera, set, env);
     }
     update_part(g, 2, &mark);
+    grass_leave(prev);
 }
 
 void grass_update_spheres(grass_t *g, const collide_sphere_t *spheres, int count, float t, float dt)
