@@ -119,7 +119,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     glDepthMask(GL_TRUE);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
-    gfx_timer_begin("bb.render");
+    gfx_timer_begin(GFX_PASS_BB_RENDER);
     int nr = f->ring_on ? bb_ring_ranges(f, dd, BB_NODE_MASK(BB_NODE_IDLE))
                         : drawn_ranges(f, BB_NODE_MASK(BB_NODE_IDLE), dd);
     if (nr > 0) {
@@ -140,7 +140,7 @@ void bb_field_draw(bb_field_t *f, const bb_draw_desc_t *dd)
     }
     gfx_timer_end();
     if (f->desc.occlusion) {
-        gfx_timer_begin("bb.occlusion");
+        gfx_timer_begin(GFX_PASS_BB_OCCLUSION);
         bb_occlusion_query(f, dd);
         gfx_timer_end();
     }
@@ -167,7 +167,7 @@ static void bind_raster(gfx_program_t p, void *user)
 bool bb_field_raster(bb_field_t *f, raster_t *r, const bb_draw_desc_t *dd)
 {
     bb_field_follow(f, dd->view.camera);
-    gfx_timer_begin("bb.raster");
+    gfx_timer_begin(GFX_PASS_BB_RASTER);
     raster_program_t *prog = &f->raster_prog;
     bool ok = raster_program_ensure(r, prog, "billboard/bb_raster.comp", f->defines, "bb.raster");
     if (ok && f->billboards > 0) {

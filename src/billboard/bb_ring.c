@@ -164,7 +164,7 @@ void bb_ring_follow(bb_field_t *f, const float camera[3])
 {
     int n = bb_ring_window_plan(&f->ring, camera, f->ring_slots, f->ring_coords, f->ring_dropped);
     if (n == 0) return;
-    gfx_timer_begin("bb.ring");
+    gfx_timer_begin(GFX_PASS_BB_RING);
     for (int q = 0; q < n; q++)
         if (f->ring_dropped[q]) release_slot(f, f->ring_slots[q]);
     ring_uniforms(f);

@@ -164,7 +164,7 @@ static void render_cubes(bb_field_t *f, const collide_object_t *objs, int count,
     GLint fbo = 0, vp[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
     glGetIntegerv(GL_VIEWPORT, vp);
-    gfx_timer_begin("bb.cubemaps");
+    gfx_timer_begin(GFX_PASS_BB_CUBEMAPS);
     glBindFramebuffer(GL_FRAMEBUFFER, f->cube_target.fbo);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
@@ -217,7 +217,7 @@ static bool collide(bb_field_t *f, int ncol, const collide_object_t *objs, int c
     f->batches_last = planned ? f->plan.count : 0;
     bool gpu_work = false;
     if (f->batches_last > 0) {
-        gfx_timer_begin("bb.collide");
+        gfx_timer_begin(GFX_PASS_BB_COLLIDE);
         gpu_work = bb_collide_batches(f, gpu);
         gfx_timer_end();
     }
@@ -243,7 +243,7 @@ static void recover(bb_field_t *f, int nrec, float time, float dt)
     glUniform1i(gfx_uniform(p, "u_range_count"), nr);
     glUniform1ui(gfx_uniform(p, "u_threads"), threads);
     bb_set_wind(p.id, &f->desc.wind);
-    gfx_timer_begin("bb.recover");
+    gfx_timer_begin(GFX_PASS_BB_RECOVER);
     gfx_buffer_update(f->recover_range_buf, 0, (size_t)nr * 16, f->recover_ranges);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_POOL, f->pool.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BB_BIND_MESHES, f->meshes.id);

@@ -238,7 +238,7 @@ void blade_gpu_update(blade_gpu_t *g, const blade_env_t *env, const collide_set_
     assert(c->cube_count == 0 || (c->cube_texture && c->cube_res > 0));
     int cubes = c->cube_texture ? c->cube_count : 0;
     if (cubes) gfx_buffer_update(g->cube_objects, 0, (size_t)cubes * sizeof(collide_cube_proxy_t), c->cubes);
-    gfx_timer_begin("blade.physics");
+    gfx_timer_begin(GFX_PASS_BLADE_PHYSICS);
     if (e.wind_count) gfx_buffer_update(g->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (sphere_count) gfx_buffer_update(g->spheres, 0, (size_t)sphere_count * sizeof(blade_sphere_t), c->spheres);
     g->sphere_count = sphere_count;
@@ -329,7 +329,7 @@ static void list_patches(blade_gpu_t *g, const blade_cull_desc_t *d)
 void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture)
 {
     blade_cull_desc_t d = desc ? blade_cull_desc_defaults(desc) : g->desc.cull;
-    gfx_timer_begin("blade.cull");
+    gfx_timer_begin(GFX_PASS_BLADE_CULL);
     bool use_patches = !g->desc.no_patch_cull;
     /* reset: the command's counted field and the counters (blade_patch.glsl),
      * each its own command before the dispatches */
@@ -438,7 +438,7 @@ static blade_surface_t surface_of(const blade_gpu_desc_t *d)
 
 void blade_gpu_draw(blade_gpu_t *g, const blade_draw_desc_t *desc)
 {
-    gfx_timer_begin("blade.draw");
+    gfx_timer_begin(GFX_PASS_BLADE_DRAW);
     if (!g->culled_once) {
         gfx_timer_end();
         return;
@@ -511,7 +511,7 @@ bool blade_raster_list(raster_t *r, raster_program_t *prog, const blade_surface_
 
 bool blade_gpu_raster(blade_gpu_t *g, raster_t *r, const blade_draw_desc_t *desc)
 {
-    gfx_timer_begin("blade.raster");
+    gfx_timer_begin(GFX_PASS_BLADE_RASTER);
     blade_surface_t surf = surface_of(&g->desc);
     bool ok = !g->culled_once ||
               blade_raster_list(r, &g->raster, &surf, desc, g->blades, g->survivors, g->command,

@@ -815,7 +815,7 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     t->stats.handovers_total += nhand;
     t->stats.seeded_total += nseed;
 
-    gfx_timer_begin("tiles.physics");
+    gfx_timer_begin(GFX_PASS_TILES_PHYSICS);
     if (e.wind_count) gfx_buffer_update(t->winds, 0, (size_t)e.wind_count * sizeof(blade_wind_t), e.winds);
     if (sphere_count) gfx_buffer_update(t->spheres, 0, (size_t)sphere_count * sizeof(collide_sphere_t), spheres);
     t->sphere_count = sphere_count;
@@ -867,7 +867,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
 {
     const blade_cull_desc_t *c = &t->desc.cull;
     uint32_t B = t->template_blades;
-    gfx_timer_begin("tiles.cull");
+    gfx_timer_begin(GFX_PASS_TILES_CULL);
     int ntiles = t->grid.nx * t->grid.nz, n = 0;
     uint32_t *list = t->scratch, tile_culled = 0;
     for (int i = 0; i < ntiles; i++) {
@@ -998,7 +998,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
     bool fade = desc->fade_end > desc->fade_start, tess = t->desc.tessellate;
     cull_tiles(t, desc, fade, depth_texture);
     uint32_t B = t->template_blades;
-    gfx_timer_begin("tiles.draw");
+    gfx_timer_begin(GFX_PASS_TILES_DRAW);
     if (t->overlay) {
         int ntiles_all = t->grid.nx * t->grid.nz;
         uint32_t *info = malloc((size_t)ntiles_all * sizeof(uint32_t));
@@ -1038,7 +1038,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
 bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc, GLuint depth_texture)
 {
     cull_tiles(t, desc, false, depth_texture);
-    gfx_timer_begin("tiles.raster");
+    gfx_timer_begin(GFX_PASS_TILES_RASTER);
     blade_surface_t surf = tiles_surface(t);
     bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command,
                                 CMD_SOLID + (uint32_t)t->count_word, t->draw_capacity);

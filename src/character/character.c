@@ -490,7 +490,7 @@ void character_set_update(character_set_t *set, float time, float dt)
     }
     set->updates++;
     gfx_count_add("character.posed", (double)posed);
-    gfx_timer_begin("character.skin");
+    gfx_timer_begin(GFX_PASS_CHARACTER_SKIN);
     glUseProgram(set->skin_prog.id);
     GLint loc = gfx_uniform(set->skin_prog, "u_vertex_count");
     for (int i = 0; i < set->count; i++) {
@@ -517,7 +517,7 @@ void character_set_draw(const character_set_t *set, const float viewproj[16], co
                         const float sun[3])
 {
     if (!set->count) return;
-    gfx_timer_begin("character.draw");
+    gfx_timer_begin(GFX_PASS_CHARACTER_DRAW);
     gfx_program_t p = set->draw_prog;
     glUseProgram(p.id);
     glUniformMatrix4fv(gfx_uniform(p, "u_viewproj"), 1, GL_FALSE, viewproj);

@@ -313,13 +313,45 @@ int gfx_readback_latest(gfx_readback_t *r, bool wait);
 void gfx_readback_read(const gfx_readback_t *r, int slot, size_t offset, size_t size, void *out);
 
 /* ---- GPU timers ------------------------------------------------------------
- * Named passes timed with GL_TIME_ELAPSED queries. Results are read
+ * Passes of a kind (gfx_pass_t) timed with GL_TIME_ELAPSED queries. Results are read
  * GFX_TIMER_LATENCY frames later, only when available: no stall. Passes may
  * not nest. Each pass also runs the work-counter queries (see below). */
+/* The kinds of pass a frame times (gfx_timer_begin) and counts (gfx_count):
+ * every GPU pass of meadow is one of these, named by gfx_pass_name in
+ * summary.txt, the frame log and the bench. */
+typedef enum gfx_pass_t {
+    GFX_PASS_TERRAIN,
+    GFX_PASS_COLLIDERS,
+    GFX_PASS_CHARACTER_SKIN,
+    GFX_PASS_CHARACTER_DRAW,
+    GFX_PASS_BB_CUBEMAPS,
+    GFX_PASS_BB_COLLIDE,
+    GFX_PASS_BB_RECOVER,
+    GFX_PASS_BB_OCCLUSION,
+    GFX_PASS_BB_RING,
+    GFX_PASS_BB_RENDER,
+    GFX_PASS_BB_RASTER,
+    GFX_PASS_BLADE_PHYSICS,
+    GFX_PASS_BLADE_CULL,
+    GFX_PASS_BLADE_DRAW,
+    GFX_PASS_BLADE_RASTER,
+    GFX_PASS_TILES_PHYSICS,
+    GFX_PASS_TILES_CULL,
+    GFX_PASS_TILES_DRAW,
+    GFX_PASS_TILES_RASTER,
+    GFX_PASS_RASTER_INIT,
+    GFX_PASS_RASTER_COMPOSITE,
+    GFX_PASS_TEST,
+    GFX_PASS_KINDS
+} gfx_pass_t;
+/* "terrain", "colliders", "character.skin", ..., "raster.composite",
+ * "test" (tests' own passes). */
+const char *gfx_pass_name(gfx_pass_t kind);
 #define GFX_TIMER_MAX_PASSES 32
+_Static_assert(GFX_PASS_KINDS <= GFX_TIMER_MAX_PASSES, "every pass kind has a timer");
 #define GFX_TIMER_LATENCY 4
 void gfx_timer_frame_begin(void);
-void gfx_timer_begin(const char *pass);
+void gfx_timer_begin(gfx_pass_t pass);
 void gfx_timer_end(void);
 int gfx_timer_count(void);
 const char *gfx_timer_name(int i);

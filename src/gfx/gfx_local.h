@@ -133,7 +133,6 @@ typedef struct gfx_timer_pass_t {
     double cpu_ms, cpu_t0; /* CPU wall ms inside the pass this frame; its latest begin (s) */
 } gfx_timer_pass_t;
 
-
 typedef struct gfx_timer_state_t {
     gfx_timer_pass_t passes[GFX_TIMER_MAX_PASSES];
     int count;
@@ -143,7 +142,6 @@ typedef struct gfx_timer_state_t {
     int first_frame; /* samples of earlier frames are not recorded */
     GLsync fences[GFX_TIMER_LATENCY]; /* gfx_frame_end, oldest first */
     int fence_count;
-    bool warned_full;
     int sync; /* -1 unread, else MEADOW_TIMER_SYNC */
 } gfx_timer_state_t;
 #define GFX_TIMER_INITIAL {.open = -1, .cpu_open = -1, .sync = -1}

@@ -68,19 +68,21 @@ void gfx_timer_frame_begin(void)
     }
 }
 
-void gfx_timer_begin(const char *pass)
+const char *gfx_pass_name(gfx_pass_t kind)
 {
+    static const char *const names[GFX_PASS_KINDS] = {"terrain", "colliders", "character.skin", "character.draw", "bb.cubemaps", "bb.collide", "bb.recover", "bb.occlusion", "bb.ring", "bb.render", "bb.raster", "blade.physics", "blade.cull", "blade.draw", "blade.raster", "tiles.physics", "tiles.cull", "tiles.draw", "tiles.raster", "raster.init", "raster.composite", "test"};
+    return kind >= 0 && kind < GFX_PASS_KINDS ? names[kind] : "?";
+}
+
+void gfx_timer_begin(gfx_pass_t kind)
+{
+    const char *pass = gfx_pass_name(kind);
     if (gfx_timer_sync()) glFinish();
     gfx_count_pass_begin(pass);
     int i;
     for (i = 0; i < T.count; i++)
         if (strcmp(T.passes[i].name, pass) == 0) break;
-    if (i == T.count) {
-        if (T.count == GFX_TIMER_MAX_PASSES) {
-            if (!T.warned_full) core_log_warn("gfx: more than %d timed passes; '%s' not timed", GFX_TIMER_MAX_PASSES, pass);
-            T.warned_full = true;
-            return;
-        }
+    if (i == T.count) { /* a kind's first pass: room by GFX_PASS_KINDS <= GFX_TIMER_MAX_PASSES */
         gfx_timer_pass_t *p = &T.passes[T.count++];
         memset(p, 0, sizeof *p);
         snprintf(p->name, sizeof p->name, "%s", pass);

@@ -119,7 +119,7 @@ static void run_pass(grass_t *gr, frame_draw_t *f, grass_pass_kind_t kind)
 {
     switch (kind) {
     case GRASS_PASS_GROUND:
-        gfx_timer_begin("terrain");
+        gfx_timer_begin(GFX_PASS_TERRAIN);
         ground_draw(gr->ground, f->v, f->v->inv_viewproj);
         gfx_timer_end();
         break;

@@ -185,7 +185,7 @@ static void set_frame_uniforms(const raster_t *r, gfx_program_t p)
 
 void raster_begin(raster_t *r, const gfx_target_t *target)
 {
-    gfx_timer_begin("raster.init");
+    gfx_timer_begin(GFX_PASS_RASTER_INIT);
     bool ms = target->samples > 1;
     gfx_program_t p = ms ? r->init_ms : r->init;
     glUseProgram(p.id);
@@ -263,7 +263,7 @@ void raster_draw(raster_t *r, const raster_program_t *p, const raster_items_t *i
 
 void raster_end(raster_t *r, const gfx_target_t *target)
 {
-    gfx_timer_begin("raster.composite");
+    gfx_timer_begin(GFX_PASS_RASTER_COMPOSITE);
     glBindFramebuffer(GL_FRAMEBUFFER, target->fbo);
     glViewport(0, 0, target->w, target->h);
     glUseProgram(r->composite.id);
@@ -291,7 +291,7 @@ void raster_end_color(raster_t *r, const gfx_target_t *target)
         raster_end(r, target);
         return;
     }
-    gfx_timer_begin("raster.composite");
+    gfx_timer_begin(GFX_PASS_RASTER_COMPOSITE);
     glUseProgram(p.id);
     set_frame_uniforms(r, p);
     if (ms) glUniform1i(gfx_uniform(p, "u_target_samples"), target->color.samples);

@@ -64,7 +64,7 @@ void world_colliders_update(world_colliders_t *c, const terrain_mesh_t *terrain,
 void world_colliders_draw(const world_colliders_t *c, const grass_view_t *v)
 {
     if (!c->count) return;
-    gfx_timer_begin("colliders");
+    gfx_timer_begin(GFX_PASS_COLLIDERS);
     glUseProgram(c->prog.id);
     glUniformMatrix4fv(gfx_uniform(c->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
     glUniform3fv(gfx_uniform(c->prog, "u_sun"), 1, v->sun);
