@@ -467,7 +467,7 @@ static const stab_case_t cases[] = {
      .tune = tune_mesh6},
     {"many_blade", SCENE_MODE_BLADE, "resting r 0.12 m balls", {1, 4, 16, 17, 32, 128}, MEASURE_STATIC,
      "depth p95 m", "95th percentile over frames and seeds of the deepest sample > 0.1 x blade height (0.0425 m)",
-     "BLADE_MAX_SPHERES (512) sphere proxies per step", setup_many, judge_depth_blade,
+     "BLADE_MAX_SPHERES (4096) sphere proxies per step, admission-checked", setup_many, judge_depth_blade,
      .limit = "128: the billboards' BB_MAX_OBJECTS, for a like-for-like row"},
     {"bb_border", SCENE_MODE_BILLBOARD,
      "ball radius m (billboards 0.6 x 0.4 m, mesh 4 x 4, 1.5 /m^2 at the border)",
