@@ -1,10 +1,9 @@
 /* host_glfw: a host of libmeadow, built against the installed package:
  *   cc host_glfw.c $(pkg-config --cflags --libs meadow epoxy glfw3 egl) -lm
  * Its own window (GLFW), camera, framebuffer and a ball the arrow keys
- * roll through the grass. With --headless --frames N it renders N frames
- * through an EGL context of its own, writes --out (PNG) and exits 0.
- * Options: --scene PATH (default scenes/lawn.json), --headless, --frames
- * N, --out FILE. docs/LIBRARY.md. */
+ * roll through the grass. --headless --frames N renders N frames through
+ * its own EGL context and writes --out (PNG). --scene PATH (default
+ * scenes/lawn.json). docs/LIBRARY.md. */
 #include <grass/grass.h>
 
 #include <epoxy/gl.h>
@@ -176,8 +175,7 @@ int main(int argc, char **argv)
                                  .height = H, .samples = 1};
         grass_draw_part(g, &v, &target, GRASS_PART_GROUND);
         glUseProgram(prog);
-        float mvp[16];
-        for (int i = 0; i < 16; i++) mvp[i] = 0;
+        float mvp[16] = {0};
         for (int cidx = 0; cidx < 4; cidx++)
             for (int r = 0; r < 4; r++)
                 for (int k = 0; k < 4; k++) mvp[cidx * 4 + r] += v.viewproj[k * 4 + r] * c.model[cidx * 4 + k];
