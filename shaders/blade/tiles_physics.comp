@@ -4,8 +4,9 @@
  * and collision exit included) for
  * the blades of the listed pool slots only (Fan et al. 2015: simulate what
  * the scene needs). Invocation i: slot list[i / B] & 0x7fffffff, blade
- * i % B. Each slot tests only the spheres of its tile's object list
- * (slot_spheres[slot * S] = count, then sphere indices; S = u_slot_stride).
+ * i % B. Each slot tests only the spheres of its tile's object list,
+ * every one (slot_spheres[2 slot] = the list's first word,
+ * slot_spheres[2 slot + 1] = its length; the words are sphere indices).
  * Slots flagged recovering (bit 31) also write their motion:
  * atomicMax(motion[slot], bits of |v2 - P(t)|), P the procedural pose
  * (tiles_common.glsl); non-negative floats order like their bits. */
@@ -21,7 +22,6 @@ layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uint list
 layout(std430, binding = BLADE_TILES_BIND_MOTION) buffer Motion { uint motion[]; };
 
 uniform uint u_count; /* slots * B */
-uniform uint u_slot_stride;
 uniform float u_dt;
 uniform float u_collision_decay;
 uniform float u_collision_gain;
@@ -36,8 +36,8 @@ void main()
     Blade b = pool[idx];
     float h = b.v1.w;
     if (h <= 0.0) return;
-    uint sbase = slot * u_slot_stride;
-    int ns = int(slot_spheres[sbase]);
+    uint sbase = slot_spheres[2u * slot];
+    int ns = int(slot_spheres[2u * slot + 1u]);
     float e = eta[idx];
     Blade start = b;
     vec3 r = blade_recovery(b, e);
@@ -47,21 +47,21 @@ void main()
     float rescale = blade_validate(b, u_length_mode);
     vec3 d = vec3(0.0);
     for (int k = 0; k < ns; k++)
-        d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + 1u + uint(k)]], u_length_mode, rescale);
+        d = d + blade_collide_sphere(b, spheres[slot_spheres[sbase + uint(k)]], u_length_mode, rescale);
     if (dot(d, d) > 0.0) {
         blade_revalidate(b, u_length_mode, rescale);
         bool held = false;
         for (int k = 0; k < ns && !held; k++)
-            held = blade_sphere_holds(start, spheres[slot_spheres[sbase + 1u + uint(k)]]);
+            held = blade_sphere_holds(start, spheres[slot_spheres[sbase + uint(k)]]);
         if (!held) blade_friction(b, start, d, u_length_mode);
         for (int round = 0; round < BLADE_EXIT_ROUNDS; round++) {
             for (int k = 0; k < ns; k++) {
-                BladeSphere s = spheres[slot_spheres[sbase + 1u + uint(k)]];
+                BladeSphere s = spheres[slot_spheres[sbase + uint(k)]];
                 blade_exit_rotate(b, s, b.v2.xyz);
                 blade_exit_rotate(b, s, blade_midpoint(b));
             }
         }
-        for (int k = 0; k < ns; k++) blade_exit_straight(b, spheres[slot_spheres[sbase + 1u + uint(k)]]);
+        for (int k = 0; k < ns; k++) blade_exit_straight(b, spheres[slot_spheres[sbase + uint(k)]]);
     }
     e = e + u_collision_gain * dot(d, d) * (u_dt > 0.0 ? BLADE_ETA_DT / u_dt : 1.0);
     eta[idx] = min(max(e - u_collision_decay * u_dt, 0.0), 1.0); /* clamp as blade_ref_step_one */

@@ -68,6 +68,8 @@ struct blade_tiles_t {
         tile_list, drawn, drawn_ids, command;
     int sphere_capacity; /* spheres the sphere buffer holds (blade_sphere_buffer_fit) */
     int sphere_count;    /* spheres the latest update put in it */
+    uint32_t *slot_words;    /* slot_spheres' CPU twin: list heads, then the lists (blade_tiles.c) */
+    int slot_words_capacity; /* words both hold (grown to each update's need) */
     gfx_readback_t motion_ring, draw_ring; /* BLADE_TILES_READBACK_SLOTS deep */
     int *motion_owner[BLADE_TILES_READBACK_SLOTS]; /* recovering slot owners at copy time, else -1 */
     float *slot_motion;                            /* latest read back, per slot */

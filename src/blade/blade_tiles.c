@@ -16,7 +16,12 @@
 #include <string.h>
 
 
-#define SLOT_STRIDE (1 + HYBRID_TILE_MAX_OBJECTS) /* per-slot sphere list: count, indices */
+/* t->slot_spheres, uint words: per slot its list's first word and length
+ * (2 slot, 2 slot + 1), then the dispatched slots' lists end to end: every
+ * sphere of its tile's object list (hybrid), however many. The buffer holds
+ * 2 S + SLOT_LISTS_FIRST words at make time and doubles to what a step
+ * needs (fit_slot_lists). */
+#define SLOT_LISTS_FIRST 2048
 #define NO_SLOT 0xffffffffu
 /* t->command, uint words: the solid blades' draw (count, instanceCount,
  * first, baseInstance), appends past the capacity, appends tried, the
@@ -152,7 +157,8 @@ static layout_t layout_of(const blade_tiles_desc_t *d, float field_size, int gri
     size_t S = (size_t)d->pool_slots, B = l.blades, side = grid_res > 0 ? (size_t)grid_res + 1 : 0;
     l.bytes = (size_t)d->template_count * B * sizeof(blade_t)          /* templates */
               + S * B * (sizeof(blade_t) + sizeof(float))              /* pool + eta */
-              + S * sizeof(uint32_t) * (1 + SLOT_STRIDE + 1 + 2)       /* motion, sphere lists, slot / init lists */
+              + S * sizeof(uint32_t) * (1 + 2 + 1 + 2)                 /* motion, list heads, slot / init lists */
+              + SLOT_LISTS_FIRST * sizeof(uint32_t)                    /* per-slot sphere lists (grow) */
               + BLADE_MAX_WINDS * sizeof(blade_wind_t) + BLADE_SPHERES_FIRST * sizeof(blade_sphere_t)
               + (size_t)l.draw_tiles * 2 * sizeof(uint32_t)            /* tile list */
               + (size_t)l.draw_capacity * (sizeof(blade_t) + sizeof(uint32_t)) /* drawn blades + ids */
@@ -335,7 +341,9 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     t->pool = make_buffer(t, "pool", S * B * sizeof(blade_t), NULL);
     t->eta = make_buffer(t, "eta", S * B * sizeof(float), NULL);
     t->motion = make_buffer(t, "motion", S * sizeof(uint32_t), NULL);
-    t->slot_spheres = make_buffer(t, "slot_spheres", S * SLOT_STRIDE * sizeof(uint32_t), NULL);
+    t->slot_words_capacity = 2 * (int)S + SLOT_LISTS_FIRST;
+    t->slot_spheres = make_buffer(t, "slot_spheres", (size_t)t->slot_words_capacity * sizeof(uint32_t), NULL);
+    t->slot_words = malloc((size_t)t->slot_words_capacity * sizeof(uint32_t));
     t->slot_list = make_buffer(t, "slot_list", S * sizeof(uint32_t), NULL);
     t->init_list = make_buffer(t, "init_list", S * 2 * sizeof(uint32_t), NULL);
     t->winds = make_buffer(t, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
@@ -352,7 +360,8 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
         else c[0] = blade_strip_vertices(d->max_level, d->displacement); /* vertices of one strip */
     }
     t->command = make_buffer(t, "command", sizeof cmd, cmd);
-    bool ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_list.id &&
+    bool ok = t->templates.id && t->pool.id && t->eta.id && t->motion.id && t->slot_spheres.id && t->slot_words &&
+              t->slot_list.id &&
               t->init_list.id && t->winds.id && t->spheres.id && t->tile_list.id && t->drawn.id &&
               t->drawn_ids.id && t->command.id;
     char label[128];
@@ -510,7 +519,7 @@ static bool tiles_init(blade_tiles_t *t, const blade_tiles_desc_t *desc)
     t->away_mark = calloc((size_t)d->pool_slots, 1);
     t->slot_motion = malloc((size_t)d->pool_slots * sizeof(float));
     t->tile_motion = malloc((size_t)(ntiles > 0 ? ntiles : 1) * sizeof(float));
-    t->scratch = malloc((size_t)(d->pool_slots * (SLOT_STRIDE + 5) + 2 * l.draw_tiles) * sizeof(uint32_t));
+    t->scratch = malloc((size_t)(d->pool_slots * 5 + 2 * l.draw_tiles) * sizeof(uint32_t));
     t->order = malloc((size_t)(l.draw_tiles > 0 ? l.draw_tiles : 1) * sizeof(blade_order_key_t));
     t->ground_cpu = t->world ? NULL : malloc(side * side * 4 * sizeof(float));
     for (int i = 0; i < BLADE_TILES_READBACK_SLOTS; i++) {
@@ -561,6 +570,7 @@ static void release(blade_tiles_t *t)
     free(t->slot_motion);
     free(t->tile_motion);
     free(t->scratch);
+    free(t->slot_words);
     free(t->order);
     free(t->template_cpu);
     free(t->ground_cpu);
@@ -722,6 +732,30 @@ static void init_slots(blade_tiles_t *t, const uint32_t *entries, int n, int nse
     }
 }
 
+/* Makes t->slot_spheres and its CPU twin t->slot_words hold `words`:
+ * past their capacity both are remade, doubled until they fit. False
+ * (logged, every time) when the GL or the heap cannot; they are then
+ * unchanged. */
+static bool fit_slot_lists(blade_tiles_t *t, int words)
+{
+    if (words <= t->slot_words_capacity) return true;
+    int cap = t->slot_words_capacity;
+    while (cap < words) cap *= 2;
+    uint32_t *cpu = malloc((size_t)cap * sizeof *cpu);
+    gfx_buffer_t grown = cpu ? make_buffer(t, "slot_spheres", (size_t)cap * sizeof(uint32_t), NULL) : (gfx_buffer_t){0};
+    if (!grown.id) {
+        free(cpu);
+        core_log_error("%s: cannot grow the per-slot sphere lists to %d words", t->desc.label, cap);
+        return false;
+    }
+    gfx_buffer_destroy(&t->slot_spheres);
+    free(t->slot_words);
+    t->slot_spheres = grown;
+    t->slot_words = cpu;
+    t->slot_words_capacity = cap;
+    return true;
+}
+
 void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_set_t *colliders,
                         const blade_env_t *env)
 {
@@ -770,9 +804,15 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
             t->slot_motion[s] = FLT_MAX;
         }
     }
-    uint32_t *slot_spheres = t->scratch, *init = t->scratch + S * SLOT_STRIDE;
+    /* the slots' sphere lists: heads, then each slotted tile's whole list */
+    int words = 2 * S;
+    for (int i = 0; i < ntiles; i++)
+        if (t->grid.tiles[i].slot >= 0) words += t->grid.tiles[i].object_count;
+    if (!fit_slot_lists(t, words)) gfx_count_add("tiles.spheres_unlisted", words - t->slot_words_capacity);
+    uint32_t *slot_spheres = t->slot_words, *init = t->scratch;
     uint32_t *list = init + 2 * S, *handover = list + S;
-    int ninit = 0, nslots = 0, nhand = 0, nseed = 0;
+    memset(slot_spheres, 0, 2 * (size_t)S * sizeof *slot_spheres);
+    int ninit = 0, nslots = 0, nhand = 0, nseed = 0, at = 2 * S;
     for (int i = 0; i < ntiles; i++) {
         hybrid_tile_t *tile = &t->grid.tiles[i];
         if (tile->handover_slot >= 0) {
@@ -797,15 +837,16 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
             nseed += tile->seed;
         }
         list[nslots++] = (uint32_t)s | (tile->state == HYBRID_RECOVERING ? RECOVERING_BIT : 0u);
-        uint32_t *ss = &slot_spheres[s * SLOT_STRIDE];
-        ss[0] = (uint32_t)tile->object_count;
-        for (int k = 0; k < tile->object_count; k++) ss[1 + k] = tile->objects[k];
+        int n = tile->object_count < t->slot_words_capacity - at ? tile->object_count : t->slot_words_capacity - at;
+        slot_spheres[2 * s] = (uint32_t)at;
+        slot_spheres[2 * s + 1] = (uint32_t)n;
+        memcpy(&slot_spheres[at], &t->grid.objects[tile->object_first], (size_t)n * sizeof *slot_spheres);
+        at += n;
     }
     /* tiles away from the camera recover on, with no objects */
     for (int k = 0; k < t->grid.away_count; k++) {
         int s = t->grid.away[k].slot;
         list[nslots++] = (uint32_t)s | RECOVERING_BIT;
-        slot_spheres[s * SLOT_STRIDE] = 0;
     }
     uint32_t B = t->template_blades;
     t->stats.slots_dispatched = nslots;
@@ -824,13 +865,12 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
     uint32_t zero = 0;
     glClearNamedBufferData(t->motion.id, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     if (nslots) {
-        gfx_buffer_update(t->slot_spheres, 0, (size_t)S * SLOT_STRIDE * sizeof(uint32_t), slot_spheres);
+        gfx_buffer_update(t->slot_spheres, 0, (size_t)at * sizeof(uint32_t), slot_spheres);
         gfx_buffer_update(t->slot_list, 0, (size_t)nslots * sizeof(uint32_t), list);
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         gfx_program_t p = t->physics;
         set_common(t, p);
         glUniform1ui(gfx_uniform(p, "u_count"), (GLuint)nslots * B);
-        glUniform1ui(gfx_uniform(p, "u_slot_stride"), SLOT_STRIDE);
         glUniform1f(gfx_uniform(p, "u_dt"), e.dt);
         glUniform1f(gfx_uniform(p, "u_collision_decay"), e.collision_decay);
         glUniform1f(gfx_uniform(p, "u_collision_gain"), e.collision_gain);

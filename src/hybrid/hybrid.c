@@ -1,5 +1,6 @@
 /* hybrid: tile representation with hysteresis, Fan et al. 2015 activation
- * with a fixed pool of simulation slots, and per-tile object lists. */
+ * with a fixed pool of simulation slots, and per-tile object lists (one
+ * growable array, every touching object listed). */
 #include "hybrid/hybrid.h"
 
 #include <assert.h>
@@ -85,6 +86,7 @@ void hybrid_grid_free(hybrid_grid_t *g)
     free(g->tiles);
     free(g->free_slots);
     free(g->away);
+    free(g->objects);
     memset(g, 0, sizeof *g);
 }
 
@@ -186,6 +188,65 @@ static void recover_away(hybrid_grid_t *g, float dt)
     }
 }
 
+/* Grows g->objects to hold `total` entries (doubling); out of memory:
+ * logged, then abort(). */
+static void fit_objects(hybrid_grid_t *g, int total)
+{
+    if (total <= g->object_capacity) return;
+    int cap = g->object_capacity > 0 ? g->object_capacity : 256;
+    while (cap < total) cap *= 2;
+    uint32_t *grown = realloc(g->objects, (size_t)cap * sizeof *grown);
+    if (!grown) {
+        core_log_error("hybrid: out of memory for %d per-tile object list entries", cap);
+        abort();
+    }
+    g->objects = grown;
+    g->object_capacity = cap;
+}
+
+/* The per-tile object lists: every object touching a tile, in ascending
+ * order. Two passes over the tiles under each object's bounds (one tile of
+ * margin so spheres touching a tile edge exactly are found by the exact
+ * test): the first counts, a prefix sum places each tile's list in
+ * g->objects (grown to the total), the second fills. Returns the total. */
+static int list_objects(hybrid_grid_t *g, const hybrid_object_t *objects, int count)
+{
+    const hybrid_desc_t *d = &g->desc;
+    int ntiles = g->nx * g->nz, total = 0;
+    for (int i = 0; i < ntiles; i++) g->tiles[i].object_count = 0;
+    int lo[2] = {0, 0}, hi[2] = {g->field_nx - 1, g->field_nz - 1};
+    for (int a = 0; a < 2 && d->window > 0; a++) {
+        lo[a] = g->base[a] > lo[a] ? g->base[a] : lo[a];
+        hi[a] = g->base[a] + d->window - 1 < hi[a] ? g->base[a] + d->window - 1 : hi[a];
+    }
+    for (int pass = 0; pass < 2; pass++) {
+        for (int k = 0; k < count; k++) {
+            const float *s = objects[k].sphere;
+            int i0 = (int)floorf((s[0] - s[3] - d->min_x) / d->tile_size) - 1;
+            int i1 = (int)floorf((s[0] + s[3] - d->min_x) / d->tile_size) + 1;
+            int j0 = (int)floorf((s[2] - s[3] - d->min_z) / d->tile_size) - 1;
+            int j1 = (int)floorf((s[2] + s[3] - d->min_z) / d->tile_size) + 1;
+            for (int j = j0 > lo[1] ? j0 : lo[1]; j <= j1 && j <= hi[1]; j++)
+                for (int i = i0 > lo[0] ? i0 : lo[0]; i <= i1 && i <= hi[0]; i++) {
+                    int ti = index_of(g, i, j);
+                    assert(ti >= 0); /* lo, hi keep (i, j) in the field and the window */
+                    hybrid_tile_t *t = &g->tiles[ti];
+                    if (core_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
+                    if (pass) g->objects[t->object_first + t->object_count] = (uint32_t)k;
+                    t->object_count++;
+                }
+        }
+        if (pass) break;
+        for (int i = 0; i < ntiles; i++) {
+            g->tiles[i].object_first = total;
+            total += g->tiles[i].object_count;
+            g->tiles[i].object_count = 0;
+        }
+        fit_objects(g, total);
+    }
+    return total;
+}
+
 void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt)
 {
@@ -197,34 +258,7 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
         recover_away(g, dt);
         st.away = g->away_count;
     }
-    for (int i = 0; i < ntiles; i++) g->tiles[i].object_count = 0;
-    /* Object lists: visit only the tiles under each object's bounds (one
-     * tile of margin so spheres touching a tile edge exactly are found by
-     * the exact test below). */
-    for (int k = 0; k < count; k++) {
-        const float *s = objects[k].sphere;
-        int i0 = (int)floorf((s[0] - s[3] - d->min_x) / d->tile_size) - 1;
-        int i1 = (int)floorf((s[0] + s[3] - d->min_x) / d->tile_size) + 1;
-        int j0 = (int)floorf((s[2] - s[3] - d->min_z) / d->tile_size) - 1;
-        int j1 = (int)floorf((s[2] + s[3] - d->min_z) / d->tile_size) + 1;
-        int lo[2] = {0, 0}, hi[2] = {g->field_nx - 1, g->field_nz - 1};
-        for (int a = 0; a < 2 && d->window > 0; a++) {
-            lo[a] = g->base[a] > lo[a] ? g->base[a] : lo[a];
-            hi[a] = g->base[a] + d->window - 1 < hi[a] ? g->base[a] + d->window - 1 : hi[a];
-        }
-        for (int j = j0 > lo[1] ? j0 : lo[1]; j <= j1 && j <= hi[1]; j++)
-            for (int i = i0 > lo[0] ? i0 : lo[0]; i <= i1 && i <= hi[0]; i++) {
-                int ti = index_of(g, i, j);
-                assert(ti >= 0); /* lo, hi keep (i, j) in the field and the window */
-                hybrid_tile_t *t = &g->tiles[ti];
-                if (core_box_dist2(s, t->min, t->max) > s[3] * s[3]) continue;
-                if (t->object_count == HYBRID_TILE_MAX_OBJECTS) {
-                    st.list_overflow++;
-                    continue;
-                }
-                t->objects[t->object_count++] = (uint16_t)k;
-            }
-    }
+    st.listed = list_objects(g, objects, count);
     for (int i = 0; i < ntiles; i++) {
         hybrid_tile_t *t = &g->tiles[i];
         if (!t->present) continue; /* a window tile beyond the field's edge */
@@ -297,11 +331,5 @@ void hybrid_grid_update(hybrid_grid_t *g, const float cam[3], const hybrid_objec
                       "(%d slots); raise grass.tile_pool",
                       st.pool_denied, d->pool_slots);
     g->warned_pool = st.pool_denied > 0;
-    if (st.list_overflow > 2 * g->warned_overflow) {
-        core_log_warn("hybrid: %d object(s) left out of per-tile lists full at %d objects (warned again when "
-                      "this doubles)",
-                      st.list_overflow, HYBRID_TILE_MAX_OBJECTS);
-        g->warned_overflow = st.list_overflow;
-    }
     g->stats = st;
 }

@@ -17,7 +17,11 @@
  *   may still carry deformation (memory_left > 0: touched, or handed over,
  *   less than `memory` seconds ago) takes a slot to be seeded from the
  *   slope cells (seed, for that one update) and turns RECOVERING.
- * - Per-tile object lists, built every update.
+ * - Per-tile object lists, built every update: every object that touches
+ *   a tile is listed, however many (a crowd): the lists lie end to end in
+ *   one array of the grid (hybrid_grid_t.objects, tile i's from
+ *   object_first, a prefix sum over the tiles' counts) that grows to the
+ *   step's total, so nothing is left out.
  * - Window (desc.window > 0, the open world, docs/WORLD.md): the grid is a
  *   W x W square of tiles that follows the camera over a field of any size.
  *   Field tile (gi, gj) lives at index (gj mod W) W + (gi mod W) while it
@@ -33,10 +37,6 @@
 
 #include <stdbool.h>
 #include <stdint.h>
-
-/* Objects listed per tile: a walking character is ~35 proxy spheres, so a
- * tile under two characters and a ball needs about 80. */
-#define HYBRID_TILE_MAX_OBJECTS 128
 
 typedef enum hybrid_state_t {
     HYBRID_IDLE = 0,
@@ -63,8 +63,8 @@ typedef struct hybrid_tile_t {
     bool present;           /* inside the field (window tiles beyond its edge are not) */
     bool reattached;        /* window: took back the slot it kept away, this update */
     bool seed;              /* slot taken this update, to be seeded from the slope cells */
-    int object_count;       /* objects touching it this update */
-    uint16_t objects[HYBRID_TILE_MAX_OBJECTS];
+    int object_first;       /* its list's first entry in hybrid_grid_t.objects */
+    int object_count;       /* objects touching it this update: its list's length */
 } hybrid_tile_t;
 
 /* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
@@ -104,7 +104,7 @@ typedef struct hybrid_stats_t {
     int rep_switches;       /* representation changes this update */
     int handovers;          /* tiles handed from blades to billboards this update */
     int seeded;             /* tiles taking a slot to be seeded from billboards this update */
-    int list_overflow;      /* objects left out of full per-tile lists this update */
+    int listed;             /* entries of all the tiles' object lists this update */
     int streamed;           /* window: tiles that entered the window this update */
     int detached;           /* window: tiles that left it holding a slot, this update */
     int reattached;         /* window: tiles that came back to the slot they kept, this update */
@@ -129,8 +129,9 @@ typedef struct hybrid_grid_t {
     hybrid_tile_t *tiles;
     int *free_slots;
     int free_count;
+    uint32_t *objects;      /* the tiles' object lists end to end (object indices, ascending per tile) */
+    int object_capacity;    /* entries objects holds; grown (doubled) to each update's total */
     bool warned_pool;
-    int warned_overflow; /* overflow count last warned about (warns again on doubling) */
     hybrid_stats_t stats;
 } hybrid_grid_t;
 
@@ -146,7 +147,8 @@ typedef struct hybrid_object_t {
 bool hybrid_grid_make(hybrid_grid_t *g, const hybrid_desc_t *desc);
 void hybrid_grid_free(hybrid_grid_t *g);
 /* One update: representation from the camera (eye distance to the tile's box,
- * its nearest point), object lists and activation. `motion` (may be NULL) gives
+ * its nearest point), object lists (every touching object; out of memory:
+ * logged, then abort(), as core's growable buffers) and activation. `motion` (may be NULL) gives
  * the measured motion per tile from the last simulation step. */
 void hybrid_grid_update(hybrid_grid_t *g, const float camera[3], const hybrid_object_t *objects, int count,
                         const float *motion, float dt);
