@@ -67,7 +67,7 @@ static void test_billboards(const scene_grass_desc_t *g)
     CHECK_MSG(z.depth == 1.5707963f / (g->billboard_size[0] * g->billboard_density), "clump depth %g", z.depth);
     /* The scene accepts exactly the subdivisions bb_field_make accepts. */
     const scene_field_t *subdiv = scene_field_find(SCENE_SEC_GRASS, "subdiv");
-    CHECK(subdiv && subdiv->lo == SCENE_SUBDIV_MIN && subdiv->hi == SCENE_SUBDIV_MAX);
+    CHECK(subdiv && subdiv->lo == BB_SUBDIV_MIN && subdiv->hi == BB_SUBDIV_MAX);
     CHECK(subdiv && (subdiv->flags & SCENE_FIELD_ZERO_OK));
 }
 
@@ -85,7 +85,7 @@ static void test_blades(const scene_grass_desc_t *g)
     CHECK(td.switch_distance == g->switch_distance);
     CHECK_MSG(td.slope_recover == g->recover_time, "blade_tiles slope_recover %g, scene recover_time %g",
               td.slope_recover, g->recover_time);
-    CHECK(td.motion_epsilon == SCENE_DEFAULT_MOTION_EPSILON);
+    CHECK(td.motion_epsilon == HYBRID_DEFAULT_MOTION_EPSILON);
 }
 
 static void test_hybrid(const scene_grass_desc_t *g)

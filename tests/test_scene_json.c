@@ -383,7 +383,7 @@ static void test_all_truncations(void)
 }
 
 /* The billboard module's subdivision range is the scene's: 0 (default) or
- * [SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX]. */
+ * [BB_SUBDIV_MIN, BB_SUBDIV_MAX]. */
 static void test_subdiv_bounds(void)
 {
     expect_parse_fail("{\"grass\": {\"subdiv\": [1, 4]}}", "subdiv 1", "field \"grass.subdiv[0]\"",
@@ -391,8 +391,8 @@ static void test_subdiv_bounds(void)
     expect_parse_fail("{\"grass\": {\"subdiv\": [4, 9]}}", "subdiv 9", "field \"grass.subdiv[1]\"",
                       "9 is out of range [2, 8]");
     if (parse_ok("{\"grass\": {\"subdiv\": [0, 8]}}"))
-        CHECK(desc.grass.subdiv[0] == SCENE_DEFAULT_SUBDIV && desc.grass.subdiv[1] == SCENE_SUBDIV_MAX);
-    if (parse_ok("{\"grass\": {\"subdiv\": [2, 2]}}")) CHECK(desc.grass.subdiv[0] == SCENE_SUBDIV_MIN);
+        CHECK(desc.grass.subdiv[0] == BB_DEFAULT_SUBDIV && desc.grass.subdiv[1] == BB_SUBDIV_MAX);
+    if (parse_ok("{\"grass\": {\"subdiv\": [2, 2]}}")) CHECK(desc.grass.subdiv[0] == BB_SUBDIV_MIN);
 }
 
 /* docs/SCENES.md equals `meadow --scene-keys` (regenerate with

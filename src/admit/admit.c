@@ -340,7 +340,7 @@ static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit
     int max_verts = lim->max_gs_vertices, max_comps = lim->max_gs_components;
     if (w->billboards && max_verts > 0 && max_comps > 0 && (verts > max_verts || verts * 16 > max_comps)) {
         int fm = m;
-        while (fm > SCENE_SUBDIV_MIN && ((fm - 1) * 2 * n > max_verts || (fm - 1) * 2 * n * 16 > max_comps)) fm--;
+        while (fm > BB_SUBDIV_MIN && ((fm - 1) * 2 * n > max_verts || (fm - 1) * 2 * n * 16 > max_comps)) fm--;
         snprintf(err, size, "grass.subdiv [%d, %d] needs %d geometry-shader output vertices (%d components), this GL "
                  "allows %d (%d): the largest that fits is [%d, %d]", n, m, verts, verts * 16, max_verts, max_comps,
                  n, fm);

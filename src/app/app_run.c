@@ -14,6 +14,7 @@
 #include "measure/measure.h"
 #include "platform/plat.h"
 #include "scene/scene.h"
+#include "scene/scene_fields.h"
 
 /* ---- frame times ---------------------------------------------------------- */
 #define APP_WARMUP_FRAMES 60

@@ -26,16 +26,16 @@ int bb_pass_objects(const bb_field_t *f) { return pass_objects(&f->desc); }
 bb_field_desc_t bb_field_desc_defaults(const bb_field_desc_t *desc)
 {
     bb_field_desc_t d = desc ? *desc : (bb_field_desc_t){0};
-    if (d.density <= 0) d.density = SCENE_DEFAULT_BILLBOARD_DENSITY;
-    if (d.size[0] <= 0) d.size[0] = SCENE_DEFAULT_BILLBOARD_WIDTH;
-    if (d.size[1] <= 0) d.size[1] = SCENE_DEFAULT_BILLBOARD_HEIGHT;
-    if (d.subdiv[0] <= 0) d.subdiv[0] = SCENE_DEFAULT_SUBDIV;
-    if (d.subdiv[1] <= 0) d.subdiv[1] = SCENE_DEFAULT_SUBDIV;
-    if (d.iterations <= 0) d.iterations = SCENE_DEFAULT_SPRING_ITERATIONS;
+    if (d.density <= 0) d.density = BB_DEFAULT_DENSITY;
+    if (d.size[0] <= 0) d.size[0] = BB_DEFAULT_WIDTH;
+    if (d.size[1] <= 0) d.size[1] = BB_DEFAULT_HEIGHT;
+    if (d.subdiv[0] <= 0) d.subdiv[0] = BB_DEFAULT_SUBDIV;
+    if (d.subdiv[1] <= 0) d.subdiv[1] = BB_DEFAULT_SUBDIV;
+    if (d.iterations <= 0) d.iterations = BB_DEFAULT_SPRING_ITERATIONS;
     if (d.r1 <= 0) d.r1 = 1.0f;
     if (d.r2 <= 0) d.r2 = 0.5f;
-    if (d.cube_res <= 0) d.cube_res = SCENE_DEFAULT_CUBE_RESOLUTION;
-    if (d.recover_time <= 0) d.recover_time = SCENE_DEFAULT_RECOVER_TIME;
+    if (d.cube_res <= 0) d.cube_res = BB_DEFAULT_CUBE_RESOLUTION;
+    if (d.recover_time <= 0) d.recover_time = BB_DEFAULT_RECOVER_TIME;
     if (d.max_objects <= 0) d.max_objects = 8;
     if (d.max_deformed <= 0) d.max_deformed = 4096;
     if (d.octree_depth <= 0) d.octree_depth = 4;
@@ -114,12 +114,12 @@ static void stage_done(bb_field_t *f, int stage, double *mark)
  * candidate cells; *render_verts: bb_render.geom's output vertices. */
 static bool check_limits(const bb_field_desc_t *d, int *tile, int *render_verts, bool quiet)
 {
-    if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < SCENE_SUBDIV_MIN || d->subdiv[0] > SCENE_SUBDIV_MAX ||
-        d->subdiv[1] < SCENE_SUBDIV_MIN || d->subdiv[1] > SCENE_SUBDIV_MAX || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
+    if (d->max_objects > BB_MAX_OBJECTS || d->subdiv[0] < BB_SUBDIV_MIN || d->subdiv[0] > BB_SUBDIV_MAX ||
+        d->subdiv[1] < BB_SUBDIV_MIN || d->subdiv[1] > BB_SUBDIV_MAX || d->octree_depth > BB_OCTREE_MAX_DEPTH) {
         if (!quiet)
             core_log_error("bb_field_make: max_objects %d (at most %d), subdiv %dx%d (%d..%d), octree depth %d "
                            "(at most %d) out of range", d->max_objects, BB_MAX_OBJECTS, d->subdiv[0], d->subdiv[1],
-                           SCENE_SUBDIV_MIN, SCENE_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
+                           BB_SUBDIV_MIN, BB_SUBDIV_MAX, d->octree_depth, BB_OCTREE_MAX_DEPTH);
         return false;
     }
     int n = d->subdiv[0], m = d->subdiv[1];

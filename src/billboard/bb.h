@@ -39,7 +39,7 @@
 #include "gi/gi.h"
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
-#include "scene/scene_fields.h"
+#include "billboard/bb_defaults.h"
 #include "scene/terrain.h"
 
 /* Objects one field can collide against per update (desc.max_objects; the
@@ -67,16 +67,16 @@ typedef struct bb_field_desc_t {
     uint32_t placement_seed;       /* seeds the generation rule (where billboards stand)
                                       instead of `seed` when non-zero; the layout
                                       textures (clearings, clumps) keep `seed` */
-    /* Defaults marked (scene) are the program's, SCENE_DEFAULT_* of
-     * scene/scene_fields.h (scene key in brackets). */
+    /* Defaults marked (scene) are BB_DEFAULT_* of bb_defaults.h, which the
+     * scene keys in brackets share. */
     float density;                 /* candidate billboards per m^2 (the extent map
                                       accepts a fraction), default 6 (scene,
                                       grass.billboard_density) */
     float size[2];                 /* base width, height in m, default 1.0 x 0.6
                                       (scene, grass.billboard_size) */
     int subdiv[2];                 /* refined mesh N columns x M rows, default 4 x 4
-                                      (scene, grass.subdiv), each in [SCENE_SUBDIV_MIN,
-                                      SCENE_SUBDIV_MAX] = [2, 8], limited by the GPU's
+                                      (scene, grass.subdiv), each in [BB_SUBDIV_MIN,
+                                      BB_SUBDIV_MAX] = [2, 8], limited by the GPU's
                                       geometry shader output (checked, logged) */
     bool occlusion;                /* occlusion culling of leaf batches (bb_occlude.c;
                                       scene, grass.bb_occlusion); default off */

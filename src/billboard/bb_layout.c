@@ -5,7 +5,7 @@
 #include "billboard/bb_layout.h"
 
 #include "billboard/bb_view.h"
-#include "scene/scene_fields.h"
+#include "billboard/bb_defaults.h"
 
 #include <assert.h>
 #include <math.h>
@@ -31,7 +31,7 @@ bb_layout_desc_t bb_layout_desc_defaults(const bb_layout_desc_t *desc)
     if (d.clump_size == 0) d.clump_size = 128;
     if (d.clump_layers == 0) d.clump_layers = 4;
     d.clump = blade_clump_desc_defaults(&d.clump);
-    if (d.blades == 0) d.blades = bb_clump_blades(d.clump.population.density, SCENE_DEFAULT_BILLBOARD_DENSITY);
+    if (d.blades == 0) d.blades = bb_clump_blades(d.clump.population.density, BB_DEFAULT_DENSITY);
     d.views = bb_view_desc_defaults(&d.views);
     return d;
 }

@@ -9,19 +9,18 @@
 #include <string.h>
 
 #include "core/core.h"
-#include "scene/scene_fields.h"
 
 hybrid_desc_t hybrid_desc_defaults(const hybrid_desc_t *in)
 {
     hybrid_desc_t d = *in;
-    if (d.tile_size <= 0) d.tile_size = SCENE_DEFAULT_TILE_SIZE;
+    if (d.tile_size <= 0) d.tile_size = HYBRID_DEFAULT_TILE_SIZE;
     if (d.grass_height <= 0) d.grass_height = 1.0f;
-    if (d.switch_distance <= 0) d.switch_distance = SCENE_DEFAULT_SWITCH_DISTANCE;
+    if (d.switch_distance <= 0) d.switch_distance = HYBRID_DEFAULT_SWITCH_DISTANCE;
     if (d.hysteresis <= 0) d.hysteresis = 1.0f;
     if (d.recover_timeout <= 0) d.recover_timeout = 5.0f;
-    if (d.motion_epsilon <= 0) d.motion_epsilon = SCENE_DEFAULT_MOTION_EPSILON;
-    if (d.pool_slots <= 0) d.pool_slots = 64;
-    if (d.memory <= 0) d.memory = SCENE_DEFAULT_RECOVER_TIME;
+    if (d.motion_epsilon <= 0) d.motion_epsilon = HYBRID_DEFAULT_MOTION_EPSILON;
+    if (d.pool_slots <= 0) d.pool_slots = HYBRID_DEFAULT_POOL_SLOTS;
+    if (d.memory <= 0) d.memory = HYBRID_DEFAULT_MEMORY;
     return d;
 }
 

@@ -38,6 +38,16 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+/* The tiles' defaults (what a zero hybrid_desc_t field takes, and the
+ * scene keys' defaults, scene/scene_fields.h). */
+#define HYBRID_DEFAULT_TILE_SIZE 4.0f        /* m (grass.tile_size) */
+#define HYBRID_DEFAULT_SWITCH_DISTANCE 12.0f /* m (grass.switch_distance) */
+#define HYBRID_DEFAULT_POOL_SLOTS 64         /* tiles with per-blade state (grass.tile_pool) */
+#define HYBRID_DEFAULT_MEMORY 3.0f           /* s a trail is remembered (grass.recover_time) */
+/* Not a scene key: the motion (m) below which a RECOVERING tile goes IDLE
+ * (hybrid_desc_t, blade_tiles_desc_t). */
+#define HYBRID_DEFAULT_MOTION_EPSILON 2e-3f
+
 typedef enum hybrid_state_t {
     HYBRID_IDLE = 0,
     HYBRID_ACTIVE,
@@ -67,8 +77,8 @@ typedef struct hybrid_tile_t {
     int object_count;       /* objects touching it this update: its list's length */
 } hybrid_tile_t;
 
-/* Zero means default; (scene) marks the program's value, SCENE_DEFAULT_* of
- * scene/scene_fields.h. */
+/* Zero means default; (scene) marks HYBRID_DEFAULT_* above, which the scene
+ * keys share. */
 typedef struct hybrid_desc_t {
     float min_x, min_z;       /* field origin (m); required */
     float size_x, size_z;     /* field extent (m); required */

@@ -24,6 +24,7 @@
 #include <time.h>
 
 #include "platform/plat.h"
+#include "scene/scene_fields.h"
 #include "scene/scene_json.h"
 
 #define PERF_BEGIN "<!-- perf:begin -->"

@@ -20,6 +20,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "billboard/bb_defaults.h"
+#include "hybrid/hybrid.h"
+
 /* ---- defaults and bounds shared with the modules ------------------------ */
 
 /* Top level. */
@@ -38,26 +41,12 @@
 #define SCENE_TERRAIN_RESOLUTION_MAX 4096 /* also terrain_make_heightfield's limit */
 
 /* "grass": blades: BLADE_DEFAULT_* of blade/blade_population.h. */
-/* "grass": billboards (bb_field_desc_t). */
-#define SCENE_DEFAULT_BILLBOARD_DENSITY 6.0f
-#define SCENE_DEFAULT_BILLBOARD_WIDTH 1.0f
-#define SCENE_DEFAULT_BILLBOARD_HEIGHT 0.6f
-#define SCENE_DEFAULT_SUBDIV 4
-#define SCENE_SUBDIV_MIN 2 /* the billboard geometry shader's output limits */
-#define SCENE_SUBDIV_MAX 8
-#define SCENE_DEFAULT_SPRING_ITERATIONS 2
-#define SCENE_DEFAULT_DEFORMED_POOL 4096
-#define SCENE_DEFAULT_TILE_POOL 64
-#define SCENE_DEFAULT_CUBE_RESOLUTION 32
-/* "grass": both (hybrid, blade_tiles; recover_time also drives the blades'
- * collision decay and the hand-over memory). */
-#define SCENE_DEFAULT_SWITCH_DISTANCE 12.0f
+/* "grass": billboards: BB_DEFAULT_* of billboard/bb_defaults.h; the hybrid's
+ * tiles: HYBRID_DEFAULT_* of hybrid/hybrid.h. */
 #define SCENE_DEFAULT_CANOPY_DISTANCE 60.0f
-#define SCENE_DEFAULT_TILE_SIZE 4.0f
-#define SCENE_DEFAULT_RECOVER_TIME 3.0f
-/* Not a scene key: the motion (m) below which a RECOVERING tile goes IDLE
- * (hybrid_desc_t, blade_tiles_desc_t). */
-#define SCENE_DEFAULT_MOTION_EPSILON 2e-3f
+/* recover_time drives the billboards' recovery, the blades' collision decay
+ * and the hand-over memory: one default. */
+#define SCENE_DEFAULT_RECOVER_TIME BB_DEFAULT_RECOVER_TIME
 
 /* "camera" (cam_defaults). */
 #define SCENE_DEFAULT_FOV 60.0f
