@@ -89,8 +89,7 @@ typedef struct grass_collider_t {
      * vec3 position at attribute 0 and normal at 1, drawn with
      * glDrawElements(GL_TRIANGLES, index_count, index_type, 0) under model
      * (rigid, uniform scale; centre: the bounding sphere's in the model's
-     * space). vao 0: grass draws the shape itself (not GRASS_SHAPE_SPHERES,
-     * which then bends blades only). */
+     * space). vao 0: the blades alone feel the collider. */
     uint32_t vao, index_type;
     int32_t index_count;
     float model[16], centre[3];
