@@ -1,10 +1,12 @@
 /* host_glfw: a host of libmeadow, built against the installed package:
  *   cc host_glfw.c $(pkg-config --cflags --libs meadow epoxy glfw3 egl) -lm
- * Its own window (GLFW), camera, framebuffer and a ball the arrow keys
- * roll through the grass. --headless --frames N renders N frames through
- * its own EGL context and writes --out (PNG). --scene PATH (default
+ * Its own window (GLFW), camera, framebuffer, a ball the arrow keys roll
+ * through the grass, and a skinned character walking a square (the
+ * library's loader). --headless --frames N renders N frames through its own
+ * EGL context and writes --out (PNG). --scene PATH (default
  * scenes/lawn.json). docs/LIBRARY.md. */
 #include <grass/grass.h>
+#include <grass/grass_character.h>
 
 #include <epoxy/gl.h>
 #include <EGL/egl.h>
@@ -48,8 +50,7 @@ static int egl_context(void)
 static GLuint shader(GLenum type, const char *src)
 {
     GLuint s = glCreateShader(type);
-    glShaderSource(s, 1, &src, NULL);
-    glCompileShader(s);
+    glShaderSource(s, 1, &src, NULL), glCompileShader(s);
     return s;
 }
 
@@ -73,18 +74,15 @@ static GLuint ball_mesh(GLsizei *count)
             for (int i = 0; i < 6; i++) idx[m++] = q[i];
         }
     GLuint vao, buf[2];
-    glCreateVertexArrays(1, &vao);
-    glCreateBuffers(2, buf);
-    glNamedBufferStorage(buf[0], sizeof v, v, 0);
-    glNamedBufferStorage(buf[1], sizeof idx, idx, 0);
+    glCreateVertexArrays(1, &vao), glCreateBuffers(2, buf);
+    glNamedBufferStorage(buf[0], sizeof v, v, 0), glNamedBufferStorage(buf[1], sizeof idx, idx, 0);
     glVertexArrayVertexBuffer(vao, 0, buf[0], 0, 3 * sizeof(float));
     glVertexArrayElementBuffer(vao, buf[1]);
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
-    glEnableVertexArrayAttrib(vao, 1); /* the normal of a sphere about its centre is its position */
-    glVertexArrayAttribFormat(vao, 1, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 1, 0);
+    for (GLuint a = 0; a < 2; a++) { /* position, and the normal: a sphere's about its centre is its position */
+        glEnableVertexArrayAttrib(vao, a);
+        glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, a, 0);
+    }
     *count = m;
     return vao;
 }
@@ -125,8 +123,7 @@ int main(int argc, char **argv)
         if (!egl_context()) return fprintf(stderr, "host_glfw: no EGL OpenGL 4.5 context\n"), 1;
     } else {
         if (!glfwInit()) return fprintf(stderr, "host_glfw: no display\n"), 1;
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
-        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4), glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
         if (!(win = glfwCreateWindow(W, H, "meadow host", NULL, NULL))) return 1;
         glfwMakeContextCurrent(win);
@@ -134,16 +131,18 @@ int main(int argc, char **argv)
     grass_t *g = grass_make(&(grass_desc_t){.scene = scene, .width = W, .height = H});
     if (!g) return grass_last_error();
     printf("libmeadow %s: %s\n", grass_version(), scene);
+    static const float square[4][2] = {{-2.5f, -2.5f}, {2.5f, -2.5f}, {2.5f, 2.5f}, {-2.5f, 2.5f}};
+    grass_character_t *walker = grass_character_make(g, &(grass_character_desc_t){
+        .model = "models/humanoid.gltf", .clip = "walk", .height = 1.75f, .waypoints = square, .waypoint_count = 4,
+        .loop = true});
+    if (!walker) return 2;
     GLuint tex[2], fbo;
-    glCreateTextures(GL_TEXTURE_2D, 2, tex);
-    glTextureStorage2D(tex[0], 1, GL_RGBA8, W, H);
-    glTextureStorage2D(tex[1], 1, GL_DEPTH_COMPONENT32F, W, H);
-    glCreateFramebuffers(1, &fbo);
+    glCreateTextures(GL_TEXTURE_2D, 2, tex), glCreateFramebuffers(1, &fbo);
+    glTextureStorage2D(tex[0], 1, GL_RGBA8, W, H), glTextureStorage2D(tex[1], 1, GL_DEPTH_COMPONENT32F, W, H);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, tex[0], 0);
     glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, tex[1], 0);
     GLuint prog = glCreateProgram();
-    glAttachShader(prog, shader(GL_VERTEX_SHADER, vs));
-    glAttachShader(prog, shader(GL_FRAGMENT_SHADER, fs));
+    glAttachShader(prog, shader(GL_VERTEX_SHADER, vs)), glAttachShader(prog, shader(GL_FRAGMENT_SHADER, fs));
     glLinkProgram(prog);
     GLsizei count;
     GLuint ball_vao = ball_mesh(&count);
@@ -158,15 +157,15 @@ int main(int argc, char **argv)
             ball[0] += speed * (float)(glfwGetKey(win, GLFW_KEY_RIGHT) - glfwGetKey(win, GLFW_KEY_LEFT));
             ball[2] += speed * (float)(glfwGetKey(win, GLFW_KEY_DOWN) - glfwGetKey(win, GLFW_KEY_UP));
         }
-        grass_collider_t c = {.shape = GRASS_SHAPE_SPHERE, .position = {ball[0], ball[1], ball[2]},
-                              .radius = BALL_R, .vao = ball_vao, .index_count = count, .index_type = GL_UNSIGNED_INT,
-                              .model = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, ball[0], ball[1], ball[2], 1}};
-        grass_update(g, &c, 1, t, dt);
-        /* the host's frame: the ground (the first occluder), its opaque ball, then the grass */
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-        glViewport(0, 0, W, H);
-        glClearColor(0.6f, 0.75f, 0.9f, 1);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        grass_character_update(walker, t, dt);
+        grass_collider_t c[2] = {{.shape = GRASS_SHAPE_SPHERE, .position = {ball[0], ball[1], ball[2]},
+                                  .radius = BALL_R, .vao = ball_vao, .index_count = count, .index_type = GL_UNSIGNED_INT,
+                                  .model = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, ball[0], ball[1], ball[2], 1}},
+                                 grass_character_collider(walker)};
+        grass_update(g, c, 2, t, dt);
+        /* the host's frame: the ground (the first occluder), its opaque ball and walker, then the grass */
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo), glViewport(0, 0, W, H);
+        glClearColor(0.6f, 0.75f, 0.9f, 1), glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         glEnable(GL_DEPTH_TEST);
         look_at(view, eye, at);
         grass_view_t v;
@@ -178,10 +177,10 @@ int main(int argc, char **argv)
         float mvp[16] = {0};
         for (int cidx = 0; cidx < 4; cidx++)
             for (int r = 0; r < 4; r++)
-                for (int k = 0; k < 4; k++) mvp[cidx * 4 + r] += v.viewproj[k * 4 + r] * c.model[cidx * 4 + k];
+                for (int k = 0; k < 4; k++) mvp[cidx * 4 + r] += v.viewproj[k * 4 + r] * c[0].model[cidx * 4 + k];
         glUniformMatrix4fv(glGetUniformLocation(prog, "mvp"), 1, GL_FALSE, mvp);
-        glBindVertexArray(ball_vao);
-        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, NULL);
+        glBindVertexArray(ball_vao), glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, NULL);
+        grass_character_draw(walker, &v);
         grass_draw_part(g, &v, &target, GRASS_PART_GRASS);
         if (!headless) {
             glBlitNamedFramebuffer(fbo, 0, 0, 0, W, H, 0, 0, W, H, GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -193,6 +192,7 @@ int main(int argc, char **argv)
     glReadPixels(0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, px);
     stbi_flip_vertically_on_write(1);
     int ok = headless ? stbi_write_png(out, W, H, 4, px, W * 4) : 1;
+    grass_character_destroy(walker);
     grass_destroy(g);
     if (win) glfwTerminate();
     if (headless) printf("%s: %d frames\n", ok ? out : "cannot write the PNG", frames);

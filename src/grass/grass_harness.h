@@ -83,6 +83,10 @@ typedef struct grass_draw_as_t {
     unsigned parts; /* grass_part_t: 0 all, else the ground or the grass alone */
 } grass_draw_as_t;
 void grass_draw_target(grass_t *g, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as);
+/* The collider a character instance is to the grass: its proxy spheres
+ * and its skinned mesh (grass_character_collider; the world's characters). */
+struct character_instance_t;
+grass_collider_t grass_character_collider_of(const struct character_instance_t *inst);
 /* Takes colliders as where they stood before the next grass_update (its
  * sweep), without a step; otherwise the first step sweeps nothing. */
 void grass_prime_colliders(grass_t *g, const grass_collider_t *colliders, int count);

@@ -266,22 +266,8 @@ static int grass_colliders(world_t *w, grass_collider_t *out, int max)
         glm_translate_make(m, (float *)c->position);
         memcpy(g->model, m, sizeof g->model);
     }
-    for (int i = 0; w->have_chars && i < w->chars.count && n < max; i++, n++) {
-        const character_instance_t *inst = &w->chars.items[i];
-        character_object_t co;
-        character_bb_object(inst, &co);
-        grass_collider_t *g = &out[n];
-        *g = (grass_collider_t){.shape = GRASS_SHAPE_SPHERES, .spheres = (const float (*)[4])inst->spheres,
-                                .sphere_count = inst->sphere_count, .bound_radius = inst->radius,
-                                .vao = co.vao, .index_type = co.index_type, .index_count = co.index_count};
-        memcpy(g->position, inst->centre, sizeof g->position);
-        memcpy(g->model, co.model, sizeof g->model);
-        /* the collider's centre is in the model's space, the character's in the world */
-        mat4 model, inv;
-        memcpy(model, co.model, sizeof model);
-        glm_mat4_inv(model, inv);
-        glm_mat4_mulv3(inv, co.centre, 1.0f, g->centre);
-    }
+    for (int i = 0; w->have_chars && i < w->chars.count && n < max; i++, n++)
+        out[n] = grass_character_collider_of(&w->chars.items[i]);
     return n;
 }
 
