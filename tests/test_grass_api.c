@@ -1,8 +1,9 @@
 /* test_grass_api: the library's face (grass.h) as a host uses it, on
  * scenes/tiny.json at 96x64, a ball rolling through the grass:
  *   a) two grass_t in one context, stepped and drawn each into its own
- *      framebuffer frame by frame, give the images each gives alone, and
- *      so does a field drawn in two parts (grass_draw_part);
+ *      framebuffer frame by frame, give the images each gives alone; so
+ *      do two in two GL contexts of one process, switched between every
+ *      frame, and a field drawn in two parts (grass_draw_part);
  *   b) two views drawn in one frame (the same eye, a second direction)
  *      give the images each view gives when it is the only one;
  *   c) the GL state the header lists is the same before and after
@@ -12,6 +13,9 @@
 #include "grass/grass.h"
 #include "test.h"
 #include "test_gl.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
 
 #include <cglm/cglm.h>
 #include <math.h>
@@ -113,6 +117,68 @@ static run_t run_of(grass_mode_t mode, uint32_t seed)
                    .views = 1};
 }
 
+/* A GL context of the process and its surfaces (EGL). */
+typedef struct gl_context_t {
+    EGLDisplay dpy;
+    EGLContext ctx;
+    EGLSurface draw, read;
+} gl_context_t;
+
+static gl_context_t gl_current(void)
+{
+    return (gl_context_t){eglGetCurrentDisplay(), eglGetCurrentContext(), eglGetCurrentSurface(EGL_DRAW),
+                          eglGetCurrentSurface(EGL_READ)};
+}
+
+static bool gl_bind(gl_context_t c) { return eglMakeCurrent(c.dpy, c.draw, c.read, c.ctx); }
+
+/* A second GL 4.5 context on the first's display, sharing nothing with it. */
+static gl_context_t gl_second(gl_context_t first)
+{
+    EGLint id = 0, n = 0;
+    EGLConfig cfg = EGL_NO_CONFIG_KHR;
+    eglQueryContext(first.dpy, first.ctx, EGL_CONFIG_ID, &id);
+    EGLint pick[] = {EGL_CONFIG_ID, id, EGL_NONE};
+    if (id && (!eglChooseConfig(first.dpy, pick, &cfg, 1, &n) || n < 1)) cfg = EGL_NO_CONFIG_KHR;
+    EGLint attr[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5, EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    return (gl_context_t){first.dpy, eglCreateContext(first.dpy, cfg, EGL_NO_CONTEXT, attr), EGL_NO_SURFACE,
+                          EGL_NO_SURFACE};
+}
+
+/* The hybrid of run_of(GRASS_MODE_HYBRID, 0) in this context and in a
+ * second one, a frame in each by turns: both equal `alone`. The second's
+ * host targets live in a gfx context of its own. */
+static void check_two_contexts(const core_image_t *alone)
+{
+    gl_context_t one = gl_current(), two = gl_second(one);
+    CHECK(one.ctx != EGL_NO_CONTEXT && two.ctx != EGL_NO_CONTEXT);
+    if (two.ctx == EGL_NO_CONTEXT) return;
+    run_t r[2] = {run_of(GRASS_MODE_HYBRID, 0), run_of(GRASS_MODE_HYBRID, 0)};
+    grass_t *g[2];
+    gfx_ctx_t *host_two = NULL;
+    core_image_t img[2][2];
+    for (int step = 0; step < FRAMES + 2; step++)
+        for (int k = 0; k < 2; k++) {
+            CHECK(gl_bind(k ? two : one));
+            if (k && !host_two) host_two = gfx_ctx_make(NULL);
+            gfx_ctx_bind(k ? host_two : NULL);
+            if (step == 0) g[k] = start(&r[k]);
+            else if (step <= FRAMES) frame(&r[k], g[k], step - 1);
+            else finish(&r[k], g[k], img[k]);
+        }
+    gfx_ctx_destroy(host_two, true);
+    gfx_ctx_bind(NULL);
+    CHECK(gl_bind(one));
+    eglDestroyContext(two.dpy, two.ctx);
+    expect_same(alone, &img[0][0], "the hybrid in the first of two GL contexts");
+    expect_same(alone, &img[1][0], "the hybrid in the second of two GL contexts");
+    for (int k = 0; k < 2; k++) {
+        core_image_free(&img[k][0]);
+        core_image_free(&img[k][1]);
+    }
+}
+
 /* a) two fields, alone and side by side. */
 static void check_two_fields(void)
 {
@@ -129,6 +195,7 @@ static void check_two_fields(void)
     for (int i = 0; i < 2; i++) finish(&r[i], g[i], both[i]);
     expect_same(&alone[0][0], &both[0][0], "the hybrid beside a second field");
     expect_same(&alone[1][0], &both[1][0], "blade mode beside a second field");
+    check_two_contexts(&alone[0][0]);
     /* The same frames drawn in two parts, the ground and then the grass. */
     core_image_t split[2];
     run_t rs = run_of(GRASS_MODE_HYBRID, 0);
