@@ -4,13 +4,12 @@
  * into terrain.frag) against their C twins blade_lod_blade,
  * blade_lod_coverage and blade_canopy_under: 4096 blades at random
  * distances, widths, covers and extents, the uniforms set as the ground
- * sets them (ground_lod_uniforms), for each rule with and without
+ * sets them (blade_lod_uniforms), for each rule with and without
  * compensation and the shrink window; all four values within 1e-4. */
 #include "common/bindings_tests.glsl"
+#include "blade/blade.h"
 #include "blade/blade_canopy.h"
-#include "blade/blade_lod.h"
 #include "gfx/gfx.h"
-#include "ground/ground.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -48,7 +47,7 @@ int main(void)
         blade_lod_t l = blade_lod_defaults(&cases[c]);
         glUseProgram(prog.id);
         glUniform1ui(gfx_uniform(prog, "u_count"), N);
-        ground_lod_uniforms(prog, &l, focal, cull);
+        blade_lod_uniforms(prog, &l, focal, cull);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bi.id);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, bo.id);
         glDispatchCompute((N + 63) / 64, 1, 1);

@@ -8,7 +8,6 @@
  * something). */
 #include "common/bindings_tests.glsl"
 #include "gfx/gfx.h"
-#include "ground/ground.h"
 #include "scene/terrain.h"
 #include "test.h"
 #include "test_gl.h"
@@ -25,7 +24,10 @@ static bool eval_gpu(const terrain_world_t *g)
 {
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){.cs = "tests/world_eval.comp", .label = "world_eval"});
     if (!prog.id) return false;
-    if (g) ground_world_uniforms(prog, g);
+    if (g) {
+        terrain_world_gpu_t w = terrain_world_gpu(g);
+        gfx_world_height_uniforms(prog, w.keys, TERRAIN_WORLD_LAYERS, w.height);
+    }
     gfx_buffer_t bp = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof pts, .data = pts, .label = "world.pts"});
     gfx_buffer_t bo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof got, .label = "world.out"});
     glUseProgram(prog.id);

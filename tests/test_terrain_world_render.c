@@ -68,7 +68,8 @@ static void check_vertex_twin(const terrain_world_t *w, const float eye[3])
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){
         .vs = "ground/terrain_world.vert", .tf_varyings = varyings, .label = "world.vertex_twin"});
     CHECK(prog.id != 0);
-    ground_world_uniforms(prog, w);
+    terrain_world_gpu_t g = terrain_world_gpu(w);
+    gfx_world_height_uniforms(prog, g.keys, TERRAIN_WORLD_LAYERS, g.height);
     terrain_clipmap_t c;
     CHECK(terrain_clipmap_make(&c, &(terrain_clipmap_desc_t){0}));
     size_t bytes = sizeof(float) * 6 * c.vertex_count;

@@ -5,7 +5,6 @@
  * bb_update.c and bb_batch.c, drawing in bb_draw.c (bb_local.h lists the
  * files); bb.h has the overview. */
 #include "billboard/bb_local.h"
-#include "ground/ground.h"
 
 #include <assert.h>
 #include <math.h>
@@ -255,7 +254,10 @@ static bool make_programs(bb_field_t *f, int tile, int render_verts)
     f->cube_prog = progs[2];
     f->slope_prog = progs[3];
     if (!f->ring_on) f->gen_prog = progs[4];
-    if (f->ring_on) ground_world_uniforms(f->collide_prog, &d->terrain->world);
+    if (f->ring_on) {
+        terrain_world_gpu_t w = terrain_world_gpu(&d->terrain->world);
+        gfx_world_height_uniforms(f->collide_prog, w.keys, TERRAIN_WORLD_LAYERS, w.height);
+    }
     return !d->occlusion || bb_occlusion_make(f);
 }
 

@@ -163,7 +163,7 @@ bool bb_ring_make(bb_field_t *f, int tile);
 void bb_ring_follow(bb_field_t *f, const float camera[3]);
 int bb_ring_ranges(bb_field_t *f, const bb_draw_desc_t *dd, uint32_t state_mask);
 /* bb_ring.c: a field's defines with the world's height function
- * (BB_GROUND_WORLD; its uniforms: ground_world_uniforms) into buf; the
+ * (BB_GROUND_WORLD; its uniforms: gfx_world_height_uniforms) into buf; the
  * held slots in state_mask (BB_NODE_MASK bits) as ranges in f->ranges
  * (COLLIDING alone: at most f->ring_collide_slots), returns how many. */
 bool bb_ring_defines(const char *field_defines, char *buf, size_t size);

@@ -21,7 +21,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "ground/ground.h"
 #include "scene/terrain_world.h"
 
 /* Slots one collide pass takes at most (the collide scratch holds their
@@ -99,7 +98,8 @@ bool bb_ring_make(bb_field_t *f, int tile)
     gfx_programs_make(2, pds, progs);
     f->gen_prog = progs[0];
     f->release_prog = progs[1];
-    if (f->gen_prog.id) ground_world_uniforms(f->gen_prog, &f->desc.terrain->world);
+    terrain_world_gpu_t w = terrain_world_gpu(&f->desc.terrain->world);
+    if (f->gen_prog.id) gfx_world_height_uniforms(f->gen_prog, w.keys, TERRAIN_WORLD_LAYERS, w.height);
     core_log_info("bb: ring of %d x %d cells of %d x %d candidates (%.2f m), %d billboards, %.1f MiB", side, side,
                   cand, cand, (double)((float)cand * f->gen.spacing), f->capacity,
                   cap * (double)sizeof(bb_point_t) / 1048576.0);

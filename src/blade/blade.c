@@ -5,7 +5,6 @@
  * papers, depth cube-map colliders in the physics (Orthmann et al. 2009
  * eq. 1-5). GL objects come from gfx only. */
 #include "blade/blade_local.h"
-#include "ground/ground.h"
 
 #include <assert.h>
 #include <math.h>
@@ -297,6 +296,16 @@ GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, in
     return g->own_cubes.id;
 }
 
+void blade_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull)
+{
+    blade_lod_t l = blade_lod_defaults(lod);
+    glUniform1i(gfx_uniform(p, "u_lod_rule"), (int)l.rule);
+    glUniform1i(gfx_uniform(p, "u_lod_levels"), l.levels);
+    glUniform4f(gfx_uniform(p, "u_lod_a"), l.start, l.width_px, l.level_distance, l.max_scale);
+    glUniform4f(gfx_uniform(p, "u_lod_b"), l.shrink, l.fade, l.no_compensation ? 0.0f : 1.0f, focal_px);
+    glUniform1f(gfx_uniform(p, "u_lod_cull"), cull);
+}
+
 /* The patch test on the GPU (blade_patch_cull.comp, blade_patch_list.comp):
  * the visible patches listed nearest bucket first and blade_cull.comp's
  * indirect dispatch written into g->counters. No CPU work per patch. */
@@ -346,7 +355,7 @@ void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, d.view.camera);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, d.view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), d.max_distance);
-    ground_lod_uniforms(p, &d.lod, d.focal_px, d.max_distance);
+    blade_lod_uniforms(p, &d.lod, d.focal_px, d.max_distance);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), d.orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), d.frustum_tolerance);
     glUniform1f(gfx_uniform(p, "u_depth_bias"), d.depth_bias);

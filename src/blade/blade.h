@@ -157,6 +157,11 @@ GLuint blade_gpu_upload_cubes(blade_gpu_t *g, const collide_cubemap_t *cubes, in
  * is a GL_TEXTURE_2D of window depth (single sample, e.g. the resolved
  * depth of the previous frame's opaque pass), 0 for no occlusion test. */
 void blade_gpu_cull(blade_gpu_t *g, const blade_cull_desc_t *desc, GLuint depth_texture);
+/* Sets the u_lod_* uniforms of common/lod.glsl, the GLSL twin of
+ * blade_lod.h, on the bound program p: lod resolved here
+ * (blade_lod_defaults), the frame's focal length, the cull distance (m).
+ * The blade and tile culls and the grass-shaded ground (ground.c) take it. */
+void blade_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull);
 
 /* Draws the survivors of the latest cull into the bound framebuffer (timer
  * "blade.draw"). Depth test on, no face culling (two-sided). Without a fade

@@ -6,7 +6,6 @@
  * See blade_tiles.h. GL objects come from
  * gfx only. */
 #include "blade/blade_local.h"
-#include "ground/ground.h"
 
 #include <assert.h>
 #include <float.h>
@@ -415,8 +414,9 @@ static bool make_objects(blade_tiles_t *t, const layout_t *l)
     if (t->world) {
         /* tiles_common.glsl's ground: the world's height function */
         gfx_program_t world_progs[] = {t->handover, t->init, t->physics, t->cull};
+        terrain_world_gpu_t w = terrain_world_gpu(&t->world_fn);
         for (size_t k = 0; k < sizeof world_progs / sizeof world_progs[0]; k++)
-            ground_world_uniforms(world_progs[k], &t->world_fn);
+            gfx_world_height_uniforms(world_progs[k], w.keys, TERRAIN_WORLD_LAYERS, w.height);
     }
     t->tile_info = make_buffer(t, "tile_info", (size_t)t->grid.nx * (size_t)t->grid.nz * sizeof(uint32_t), NULL);
     ok = ok && t->tile_info.id;
@@ -950,7 +950,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glUniform3fv(gfx_uniform(p, "u_cam_pos"), 1, desc->view.camera);
     glUniformMatrix4fv(gfx_uniform(p, "u_view_proj"), 1, GL_FALSE, desc->view.viewproj);
     glUniform1f(gfx_uniform(p, "u_max_distance"), c->max_distance);
-    ground_lod_uniforms(p, &c->lod, c->focal_px, c->max_distance);
+    blade_lod_uniforms(p, &c->lod, c->focal_px, c->max_distance);
     glUniform1f(gfx_uniform(p, "u_orientation_threshold"), c->orientation_threshold);
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);

@@ -666,3 +666,9 @@ void gfx_transform_feedback_destroy(GLuint *tf)
     release(GL_TRANSFORM_FEEDBACK, *tf);
     *tf = 0;
 }
+
+void gfx_world_height_uniforms(gfx_program_t p, const uint32_t *keys, int layers, float height)
+{
+    glProgramUniform1uiv(p.id, gfx_uniform(p, "u_world_keys"), layers, keys);
+    glProgramUniform1f(p.id, gfx_uniform(p, "u_world_height"), height);
+}

@@ -262,6 +262,13 @@ gfx_program_stats_t gfx_program_stats(void);
 /* glGetUniformLocation, cached per (program, name) after the first ask
  * (names of up to 47 characters; -1 for a name the program lacks). */
 GLint gfx_uniform(gfx_program_t p, const char *name);
+/* Sets the uniforms of shaders/common/world_height.glsl on p (unbound is
+ * fine; p keeps them): u_world_keys, the hash key of each of the `layers`
+ * noise layers, and u_world_height, the amplitude (m); the values of
+ * terrain_world_gpu (scene/terrain_world.h), so gfx needs no scene type.
+ * Every program that includes world_height.glsl takes it once after it
+ * is made (the ground's, the billboard ring's, the tiles' on a world). */
+void gfx_world_height_uniforms(gfx_program_t p, const uint32_t *keys, int layers, float height);
 /* The preprocessed source of a file (tests): #include expanded with #line.
  * A file that is neither in the table nor in the shader folder gives NULL
  * and err "shaders/<file>: cannot read: ...". */

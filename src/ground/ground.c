@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "blade/blade.h"
 #include "common/bindings_ground.glsl"
 #include "scene/terrain_clipmap.h"
 
@@ -90,7 +91,8 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glVertexArrayAttribBinding(t->vao, 0, 0);
     bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
                                                       .label = "terrain.world.program"});
-    if (t->prog.id) ground_world_uniforms(t->prog, &mesh->world);
+    terrain_world_gpu_t w = terrain_world_gpu(&mesh->world);
+    if (t->prog.id) gfx_world_height_uniforms(t->prog, w.keys, TERRAIN_WORLD_LAYERS, w.height);
     return ok && t->vbo.id && t->ibo.id;
 }
 
@@ -157,21 +159,11 @@ void ground_set_lod(ground_t *t, const blade_lod_t *lod, float width, float foca
 {
     t->lod_on = lod && !lod->no_ground;
     if (!t->lod_on) return;
-    t->lod = *lod; /* resolved by ground_lod_uniforms */
+    t->lod = *lod; /* resolved by blade_lod_uniforms */
     t->lod_width = width;
     t->lod_focal = focal_px;
     t->lod_cull = cull;
     t->lod_far = far;
-}
-
-void ground_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull)
-{
-    blade_lod_t l = blade_lod_defaults(lod);
-    glUniform1i(gfx_uniform(p, "u_lod_rule"), (int)l.rule);
-    glUniform1i(gfx_uniform(p, "u_lod_levels"), l.levels);
-    glUniform4f(gfx_uniform(p, "u_lod_a"), l.start, l.width_px, l.level_distance, l.max_scale);
-    glUniform4f(gfx_uniform(p, "u_lod_b"), l.shrink, l.fade, l.no_compensation ? 0.0f : 1.0f, focal_px);
-    glUniform1f(gfx_uniform(p, "u_lod_cull"), cull);
 }
 
 void ground_destroy(ground_t *t)
@@ -218,7 +210,7 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     bool canopy = t->canopy.rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
     glUniform1i(gfx_uniform(t->prog, "u_lod_on"), lod);
     if (lod) {
-        ground_lod_uniforms(t->prog, &t->lod, t->lod_focal, t->lod_cull);
+        blade_lod_uniforms(t->prog, &t->lod, t->lod_focal, t->lod_cull);
         glUniform2f(gfx_uniform(t->prog, "u_lod_ground"), t->lod_width, t->lod_far);
     }
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
@@ -254,11 +246,4 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glBindVertexArray(0);
-}
-
-void ground_world_uniforms(gfx_program_t p, const terrain_world_t *w)
-{
-    terrain_world_gpu_t g = terrain_world_gpu(w);
-    glProgramUniform1uiv(p.id, gfx_uniform(p, "u_world_keys"), TERRAIN_WORLD_LAYERS, g.keys);
-    glProgramUniform1f(p.id, gfx_uniform(p, "u_world_height"), g.height);
 }

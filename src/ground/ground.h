@@ -42,18 +42,9 @@ void ground_set_canopy_fade(ground_t *g, float start, float end);
  * mean width `width` thinned by lod (NULL or lod->no_ground: off) with the
  * frame's focal length and cull distance. Needs a canopy table. */
 void ground_set_lod(ground_t *g, const blade_lod_t *lod, float width, float focal_px, float cull, float far);
-/* Sets the u_lod_* uniforms of common/lod.glsl on the bound program p:
- * lod resolved here, the frame's focal length, the cull distance. */
-void ground_lod_uniforms(gfx_program_t p, const blade_lod_t *lod, float focal_px, float cull);
 /* Global illumination of the ground and its canopy; zero: off. */
 void ground_set_gi(ground_t *g, gi_bind_t gi);
 /* Draws the ground, then the sky where it left the far plane (inv_viewproj:
  * the inverse of view->viewproj, column-major). */
 void ground_draw(const ground_t *g, const grass_view_t *view, const float inv_viewproj[16]);
-/* Sets the uniforms of common/world_height.glsl (terrain_world_gpu: the
- * noise layers' keys and the amplitude) on p, for world w; p keeps them,
- * so once after making p. Every program that includes world_height.glsl
- * (the ground's, the billboard ring's, the tiles' on a world) takes it. */
-void ground_world_uniforms(gfx_program_t p, const terrain_world_t *w);
-
 #endif
