@@ -1285,9 +1285,13 @@ static int write_report(const char *dir, const char *out, const bench_options_t 
 
 int bench_run(const bench_options_t *o)
 {
+    /* what stability and perf take of the program's options */
+    perf_session_desc_t session = {.world = app_world_options(&o->app), .frames = o->app.frames,
+                                   .frames_set = o->app.frames_set, .interrupted = app_interrupted};
     if (o->perf || o->baseline)
-        return perf_main(&(perf_options_t){.app = &o->app, .quick = o->quick, .perf = o->perf, .baseline = o->baseline,
-                                           .perf_from = o->perf_from, .doc = o->doc, .force = o->force});
+        return perf_main(&(perf_options_t){.session = session, .out = o->app.out, .quick = o->quick, .perf = o->perf,
+                                           .baseline = o->baseline, .perf_from = o->perf_from, .doc = o->doc,
+                                           .force = o->force});
     char out[1024], err[1024], path[1200];
     snprintf(out, sizeof out, "%s", o->app.out ? o->app.out : "out/bench");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
@@ -1315,10 +1319,10 @@ int bench_run(const bench_options_t *o)
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
     int rc = sweep ? run_sweep(&o->app, o->chart, o->quick, out, &b) : 0;
-    stability_desc_t sd = {.app = &o->app, .only_case = o->stability_case, .quick = o->quick};
+    stability_desc_t sd = {.world = &session.world, .only_case = o->stability_case, .quick = o->quick};
     if (rc == 0 && stability) rc = stability_run(&sd, out, &md, full ? report : NULL);
-    if (rc == 0 && scaling) rc = perf_scaling_run(&o->app, out, o->quick, &sc, &scaling_md);
-    if (rc == 0 && o->papers) rc = perf_papers_run(&o->app, o->quick, o->papers, full ? &papers_md : NULL);
+    if (rc == 0 && scaling) rc = perf_scaling_run(&session, out, o->quick, &sc, &scaling_md);
+    if (rc == 0 && o->papers) rc = perf_papers_run(&session, o->quick, o->papers, full ? &papers_md : NULL);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();

@@ -94,7 +94,7 @@ static double faster(double a, double b)
     return a < 0.0 ? b : (b < 0.0 ? a : (b < a ? b : a));
 }
 
-static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raster_t raster, int frames,
+static int measure_run(const perf_session_desc_t *o, const perf_case_t *c, scene_raster_t raster, int frames,
                        perf_run_t *r)
 {
     char name[32];
@@ -104,10 +104,10 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     snprintf(r->scene, sizeof r->scene, "%s", c->scene);
     snprintf(r->mode, sizeof r->mode, "%s", scene_mode_name(c->mode));
     snprintf(r->raster, sizeof r->raster, "%s", scene_raster_name(raster));
-    app_options_t oc = *o;
+    world_options_t oc = o->world;
     oc.scene = c->scene;
     oc.raster = 1 + (int)raster;
-    measure_session_desc_t d = {.world = app_world_options(&oc), .mode = c->mode, .mode_set = true, .frames = frames};
+    measure_session_desc_t d = {.world = oc, .mode = c->mode, .mode_set = true, .frames = frames};
     perf_probe_t probe = {.last = frames - 1, .run = r};
     measure_session_hooks_t h = {.frame = probe_frame, .user = &probe};
     measure_metrics_t m;
@@ -142,7 +142,7 @@ static int measure_run(const app_options_t *o, const perf_case_t *c, scene_raste
     return 0;
 }
 
-static int measure(const app_options_t *o, bool quick, perf_t *p)
+static int measure(const perf_session_desc_t *o, bool quick, perf_t *p)
 {
     const perf_case_t *cases = quick ? quick_cases : full_cases;
     int nc = quick ? (int)(sizeof quick_cases / sizeof quick_cases[0])
@@ -157,7 +157,7 @@ static int measure(const app_options_t *o, bool quick, perf_t *p)
     double t0 = plat_time();
     for (int i = 0; i < nc; i++)
         for (int k = 0; k < 2; k++) {
-            if (app_interrupted()) {
+            if (perf_interrupted(o)) {
                 core_log_error("perf: interrupted after %d of %d runs", p->run_count, total);
                 return 1;
             }
@@ -547,7 +547,7 @@ static int update_doc(const perf_t *p, const char *doc)
 static int measure_and_write(const perf_options_t *o, perf_t *p, char *json, size_t json_size)
 {
     char err[1024];
-    const char *dir = o->perf ? o->perf : o->app->out ? o->app->out : "out/bench";
+    const char *dir = o->perf ? o->perf : o->out ? o->out : "out/bench";
     if (!core_fs_check_writable_dir(dir, err, sizeof err) || !core_fs_lock_dir(dir, err, sizeof err)) {
         core_log_error("%s: %s", o->perf ? "--perf" : "--out", err);
         return 2;
@@ -557,7 +557,7 @@ static int measure_and_write(const perf_options_t *o, perf_t *p, char *json, siz
         return 1;
     }
     gfx_init();
-    int rc = measure(o->app, o->quick, p);
+    int rc = measure(&o->session, o->quick, p);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();

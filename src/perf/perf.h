@@ -6,9 +6,24 @@
 #ifndef MEADOW_PERF_H
 #define MEADOW_PERF_H
 
-#include "app/app.h"
 #include "core/core.h"
 #include "gfx/gfx.h"
+#include "world/world.h"
+
+/* What every session of a cost measure starts from: the program's options
+ * as the world takes them (app_world_options; each measure sets its own
+ * scene, mode and raster path over them), the program's frame count
+ * (frames_set: --frames given; else each measure's own default) and
+ * whether the run was asked to stop (app_interrupted; NULL: never). */
+typedef struct perf_session_desc_t {
+    world_options_t world;
+    int frames;
+    bool frames_set;
+    bool (*interrupted)(void);
+} perf_session_desc_t;
+
+/* Ctrl-C or a signal asked the measures to stop after the current session. */
+static inline bool perf_interrupted(const perf_session_desc_t *o) { return o->interrupted && o->interrupted(); }
 
 /* Simulation cost of the tiled blade field (perf_scaling.c): one run. */
 typedef struct perf_scaling_point_t {
@@ -34,7 +49,7 @@ typedef struct perf_scaling_t {
 /* `bench --scaling`: the field and active sweeps; writes scaling.csv, the
  * .dat files and charts into out, fills res and (when non-NULL) md with the
  * table. Needs a current GL context (gfx_init done). Returns 0 or 1. */
-int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_scaling_t *res, core_buf_t *md);
+int perf_scaling_run(const perf_session_desc_t *o, const char *out, bool quick, perf_scaling_t *res, core_buf_t *md);
 
 /* Jahrmann & Wimmer 2017's ablation (one table, perf_papers.c): blade
  * mode with every feature, without collision (no colliders and no
@@ -58,7 +73,7 @@ extern const perf_ablation_t perf_ablations[PERF_ABLATION_COUNT];
  * RESULTS.md section, its chart linked as images/papers_leaves.png. Needs a
  * current GL context (gfx_init done). Returns 0, 1, or 2 (bad folder or
  * scene). */
-int perf_papers_run(const app_options_t *o, bool quick, const char *dir, core_buf_t *md);
+int perf_papers_run(const perf_session_desc_t *o, bool quick, const char *dir, core_buf_t *md);
 
 /* ---- bench --perf / --baseline (perf.c, perf_baseline.c) ------------------ */
 #define PERF_MAX_RUNS 32
@@ -105,13 +120,14 @@ int perf_baseline_check(const perf_t *cur, const perf_t *base, const char *base_
 /* `bench --perf DIR` and `bench --baseline FILE` (dispatched from bench_run).
  * Returns the process exit code. */
 typedef struct perf_options_t {
-    const app_options_t *app; /* the program's options (out, frames, ...) */
-    bool quick;               /* the quick set (CI) */
-    const char *perf;         /* --perf DIR */
-    const char *baseline;     /* --baseline FILE */
-    const char *perf_from;    /* --from FILE */
-    const char *doc;          /* --doc FILE */
-    bool force;               /* --force */
+    perf_session_desc_t session; /* the program's options the sessions start from */
+    const char *out;             /* --out DIR: where perf.json goes without --perf */
+    bool quick;                  /* the quick set (CI) */
+    const char *perf;            /* --perf DIR */
+    const char *baseline;        /* --baseline FILE */
+    const char *perf_from;       /* --from FILE */
+    const char *doc;             /* --doc FILE */
+    bool force;                  /* --force */
 } perf_options_t;
 int perf_main(const perf_options_t *o);
 

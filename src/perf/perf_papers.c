@@ -215,12 +215,12 @@ static void fill_passes(papers_run_t *r, const measure_metrics_t *m)
 }
 
 /* One session of scene `file` in `mode` through the path `compute`. */
-static int papers_session(const app_options_t *o, const char *file, papers_run_t *r, int frames, papers_probe_t *p)
+static int papers_session(const perf_session_desc_t *o, const char *file, papers_run_t *r, int frames, papers_probe_t *p)
 {
-    app_options_t oc = *o;
+    world_options_t oc = o->world;
     oc.scene = file;
     oc.raster = 1 + (r->compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW);
-    measure_session_desc_t d = {.world = app_world_options(&oc), .mode = r->mode, .mode_set = true, .frames = frames,
+    measure_session_desc_t d = {.world = oc, .mode = r->mode, .mode_set = true, .frames = frames,
                               .tweak = papers_tweak, .user = p};
     if (p->ablation) d.tuning.cull_disable = p->ablation->cull_disable;
     p->run = r;
@@ -273,7 +273,7 @@ static const char *plan_run(const papers_t *P, int s, int v, int k, papers_run_t
 /* Figure r (scene s, variant v, path k; plan_run) from PAPERS_RUNS
  * sessions: the first's counters, the median of each timed field, the
  * frame's spread. Returns 0 or the failed session's code. */
-static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v, int k, papers_run_t *r)
+static int papers_figure(const perf_session_desc_t *o, const papers_t *P, int s, int v, int k, papers_run_t *r)
 {
     papers_run_t runs[PAPERS_RUNS];
     for (int n = 0; n < PAPERS_RUNS; n++) {
@@ -304,7 +304,7 @@ static int papers_figure(const app_options_t *o, const papers_t *P, int s, int v
 /* Every figure of the set, in order: per scene its own mode when that is
  * not blade, then the ablations; then the leaves. Interrupted (Ctrl-C):
  * returns 0 with the figures made so far. */
-static int papers_measure(const app_options_t *o, papers_t *P)
+static int papers_measure(const perf_session_desc_t *o, papers_t *P)
 {
     int leaf_n = P->quick ? 2 : MAX_LEAF_RUNS;
     P->planned = 2 * leaf_n;
@@ -316,7 +316,7 @@ static int papers_measure(const app_options_t *o, papers_t *P)
         int v0 = !leaves && P->desc[s].mode != SCENE_MODE_BLADE ? -1 : 0;
         for (int v = v0; v < (leaves ? leaf_n : PERF_ABLATION_COUNT); v++)
             for (int k = 0; k < 2; k++) {
-                if (app_interrupted()) {
+                if (perf_interrupted(o)) {
                     core_log_warn("papers: interrupted after %d of %d figures; writing those", P->run_count,
                                   P->planned);
                     return 0;
@@ -590,7 +590,7 @@ static int papers_scenes(const char *one, papers_t *P)
     return 0;
 }
 
-int perf_papers_run(const app_options_t *o, bool quick, const char *dir, core_buf_t *md)
+int perf_papers_run(const perf_session_desc_t *o, bool quick, const char *dir, core_buf_t *md)
 {
     char err[1024];
     if (!core_fs_mkdirs(dir) || !core_fs_check_writable_dir(dir, err, sizeof err)) {
@@ -608,7 +608,7 @@ int perf_papers_run(const app_options_t *o, bool quick, const char *dir, core_bu
     P->frames = o->frames_set ? o->frames : (quick ? 6 : 120);
     snprintf(P->renderer, sizeof P->renderer, "%s", (const char *)glGetString(GL_RENDERER));
     /* With the report, --scene names the sweep's scene: the set runs the papers'. */
-    int rc = papers_scenes(md ? NULL : o->scene, P);
+    int rc = papers_scenes(md ? NULL : o->world.scene, P);
     if (rc == 0) rc = papers_measure(o, P);
     if (rc == 0 && !(write_json(P, dir) && write_tables(P, dir))) rc = 1;
     bool leaves = false;

@@ -99,10 +99,10 @@ static double pass_median(const measure_metrics_t *m, const char *name)
 }
 
 /* One session: hybrid (tiles) or, with r->full, the full-field blade mode. */
-static int measure(const app_options_t *o, scaling_run_t *r)
+static int measure(const perf_session_desc_t *o, scaling_run_t *r)
 {
     perf_scaling_point_t *p = r->point;
-    measure_session_desc_t d = {.world = app_world_options(o),
+    measure_session_desc_t d = {.world = o->world,
                                 .mode = r->full ? SCENE_MODE_BLADE : SCENE_MODE_HYBRID, .mode_set = true,
                               .frames = p->frames, .tweak = tweak, .user = r};
     measure_session_hooks_t h = {.frame = last_frame, .user = r, .draw_last_only = true};
@@ -126,7 +126,7 @@ static void write_chart(const char *out, const char *name, const char *title, co
     eval_gnuplot_chart(out, name, body);
 }
 
-int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_scaling_t *res, core_buf_t *md)
+int perf_scaling_run(const perf_session_desc_t *o, const char *out, bool quick, perf_scaling_t *res, core_buf_t *md)
 {
     memset(res, 0, sizeof *res);
     snprintf(res->renderer, sizeof res->renderer, "%s", (const char *)glGetString(GL_RENDERER));
@@ -153,7 +153,7 @@ int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_s
             rc = measure(o, &r);
             fprintf(stderr, "\rscaling: %d/%d field %g m full %.4f ms   ", ++done, total, p->side, p->full_ms);
         }
-        if (app_interrupted()) rc = 1;
+        if (perf_interrupted(o)) rc = 1;
     }
     for (int i = 0; i < res->active_count && rc == 0; i++) {
         perf_scaling_point_t *p = &res->active[i];
@@ -162,7 +162,7 @@ int perf_scaling_run(const app_options_t *o, const char *out, bool quick, perf_s
                            .point = p};
         rc = measure(o, &r);
         fprintf(stderr, "\rscaling: %d/%d active %d tiles %.4f ms   ", ++done, total, p->balls, p->physics_ms);
-        if (app_interrupted()) rc = 1;
+        if (perf_interrupted(o)) rc = 1;
     }
     fputc('\n', stderr);
     if (rc) return rc;

@@ -518,7 +518,7 @@ typedef struct stab_run_t {
     int variant;
     uint32_t seed; /* placement seed (0: the scene's) */
     bool twin_wanted, no_colliders;
-    const app_options_t *o;
+    const world_options_t *o;
     world_t *twin;
     float t_exit, t_end, t_prev;
     int frames;
@@ -549,7 +549,7 @@ static void tweak(scene_desc_t *s, void *user)
 
 static measure_session_desc_t session_desc(const stab_run_t *r, int frames)
 {
-    return (measure_session_desc_t){.world = app_world_options(r->o),
+    return (measure_session_desc_t){.world = *r->o,
                                     .mode = r->c->mode, .mode_set = true, .frames = frames,
                                   .tweak = tweak, .user = (void *)r,
                                   .tuning = {.paper = r->variant == VAR_PAPER, .placement_seed = r->seed}};
@@ -704,12 +704,12 @@ static float run_duration(const stab_case_t *c, const scene_desc_t *probe, bool 
     return duration;
 }
 
-static int run_one(const app_options_t *o, stab_run_t *r, bool quick, const char *out, core_image_t *img,
+static int run_one(const world_options_t *o, stab_run_t *r, bool quick, const char *out, core_image_t *img,
                    stab_result_t *res)
 {
     const stab_case_t *c = r->c;
     memset(res, 0, sizeof *res);
-    app_options_t wall = *o;
+    world_options_t wall = *o;
     char scene[1100];
     if (c->setup == setup_wall) {
         if (!write_wall(out, r->v, scene, sizeof scene)) return 1;
@@ -786,7 +786,7 @@ static double p95(const double *v, long n)
  * first failing seed's when one fails) judged with the depth p95 over
  * every seed's frames. first: the variant's run of values[0] (NULL: this
  * is it). */
-static int run_value(const app_options_t *o, const stab_case_t *c, int variant, float v, bool quick, const char *out,
+static int run_value(const world_options_t *o, const stab_case_t *c, int variant, float v, bool quick, const char *out,
                      const stab_result_t *first, core_image_t *img, stab_result_t *res)
 {
     int ns = depth_case(c) && !quick ? STAB_SEEDS : 1, rc = 0;
@@ -867,7 +867,7 @@ typedef struct stab_row_t {
 
 /* One case in one variant over its values: CSV rows, the table row's
  * text, the screenshot (the first failing value's, else the last's). */
-static int run_variant(const app_options_t *o, const stab_case_t *c, int variant, bool quick, const char *out,
+static int run_variant(const world_options_t *o, const stab_case_t *c, int variant, bool quick, const char *out,
                        const char *report, core_buf_t *csv, stab_row_t *row, int *done, int total, double t0)
 {
     int n = case_values(c), runs = quick ? 2 : n, rc = 0;
@@ -961,7 +961,7 @@ int stability_run(const stability_desc_t *o, const char *out, core_buf_t *md_out
         for (int var = 0; var < VAR_COUNT && rc == 0; var++) {
             if (var == VAR_TUNED && (!c->tuned || quick)) continue;
             stab_row_t row;
-            rc = run_variant(o->app, c, var, quick, out, report, &csv, &row, &done, total, t0);
+            rc = run_variant(o->world, c, var, quick, out, report, &csv, &row, &done, total, t0);
             if (rc) break;
             broke = broke || row.broke >= 0;
             if (row.constant)

@@ -6,8 +6,8 @@
 #ifndef MEADOW_STABILITY_H
 #define MEADOW_STABILITY_H
 
-#include "app/app.h"
 #include "core/core.h"
+#include "world/world.h"
 
 /* Stability suite: writes stability.csv, stability.md and
  * stability_<case>.png into out; with report (a folder) the screenshots
@@ -16,9 +16,10 @@
  * Needs a current GL context (gfx_init done). Returns 0 or 1 (1 also for
  * an unknown case name). */
 typedef struct stability_desc_t {
-    const app_options_t *app; /* the program's options every session starts from */
-    const char *only_case;    /* --case NAME: that case alone; NULL: every case */
-    bool quick;               /* two values per case */
+    const world_options_t *world; /* the program's options as the world takes them
+                                     (app_world_options): every session starts from them */
+    const char *only_case;        /* --case NAME: that case alone; NULL: every case */
+    bool quick;                   /* two values per case */
 } stability_desc_t;
 int stability_run(const stability_desc_t *o, const char *out, core_buf_t *md, const char *report);
 
