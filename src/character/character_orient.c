@@ -4,6 +4,7 @@
  * (docs/CHARACTERS.md, test_character_corpus). */
 #include "character/character_orient.h"
 
+#include <ctype.h>
 #include <float.h>
 #include <math.h>
 #include <stdbool.h>
@@ -134,10 +135,51 @@ int character_orient_skeleton_up(const character_model_t *m, const character_pos
     return snap_axis(d, 0, cos_out);
 }
 
+/* Side of the body a bone name marks: +1 left, -1 right, 0 neither.
+ * "left"/"right" anywhere, or a lone l/r between separators or the ends
+ * ("HindLeg_L_01", "Bip01 R Thigh", "foot.l"). */
+static int name_side(const char *name)
+{
+    if (contains_nocase(name, "left")) return 1;
+    if (contains_nocase(name, "right")) return -1;
+    for (size_t i = 0, n = strlen(name); i < n; i++) {
+        char c = (char)(name[i] | 0x20);
+        bool alone = (i == 0 || !isalnum((unsigned char)name[i - 1])) &&
+                     (i + 1 == n || !isalnum((unsigned char)name[i + 1]));
+        if (alone && (c == 'l' || c == 'r')) return c == 'l' ? 1 : -1;
+    }
+    return 0;
+}
+
+/* Forward from the sides: the mean of the skeleton's left bones minus the
+ * mean of its right bones is the model's left, and left x up = forward
+ * (a figure facing +Z with +Y up has its left at +X). */
+static int side_forward(const character_model_t *m, const character_pose_t *pose, int up)
+{
+    double side[2][3] = {{0}};
+    int n[2] = {0, 0};
+    bool *used = skeleton_bones(m);
+    for (int b = 0; used && b < m->bone_count; b++) {
+        int s = used[b] ? name_side(m->bones[b].name) : 0;
+        if (!s) continue;
+        for (int k = 0; k < 3; k++) side[s < 0][k] += pose->global[b][12 + k];
+        n[s < 0]++;
+    }
+    free(used);
+    if (!n[0] || !n[1]) return 0;
+    double left[3], u[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; k++) left[k] = side[0][k] / n[0] - side[1][k] / n[1];
+    u[abs(up) - 1] = up < 0 ? -1.0 : 1.0;
+    double d[3] = {left[1] * u[2] - left[2] * u[1], left[2] * u[0] - left[0] * u[2], left[0] * u[1] - left[1] * u[0]};
+    return snap_axis(d, up, NULL);
+}
+
 int character_orient_skeleton_forward(const character_model_t *m, const character_pose_t *pose, int up)
 {
     double toe[3], heel[3];
-    if (!up || !bones_mean(m, pose, toe_words, toe) || !bones_mean(m, pose, heel_words, heel)) return 0;
+    if (!up) return 0;
+    if (!bones_mean(m, pose, toe_words, toe) || !bones_mean(m, pose, heel_words, heel))
+        return side_forward(m, pose, up);
     double d[3] = {toe[0] - heel[0], toe[1] - heel[1], toe[2] - heel[2]};
     d[abs(up) - 1] = 0.0;
     return snap_axis(d, up, NULL);

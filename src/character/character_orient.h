@@ -5,7 +5,8 @@
  * signed axis of the file (codes as in character_import.h):
  *   skeleton  the mean of the head/neck/spine bones minus the mean of the
  *             leg/foot bones (by name) points up; toe minus heel/ankle/foot
- *             points forward;
+ *             points forward, else left bones minus right bones is the
+ *             model's left and left x up points forward;
  *   geometry  a model stands on its feet: along the true up axis the
  *             vertices within 3% of the bottom spread over more of the
  *             model's horizontal box than along any other axis (a side or
@@ -40,7 +41,9 @@ bool character_orient_box(const character_model_t *model, int clip, float lo[3],
  * from every axis. *cos_out: cosine to the axis chosen. */
 int character_orient_skeleton_up(const character_model_t *model, const character_pose_t *pose, float *cos_out);
 /* Forward from the feet (toe minus heel, ankle or foot), perpendicular to
- * `up`; 0 when the names give none or the direction is diagonal. */
+ * `up`; without toes and heels from the sides (left x up, the left being
+ * the mean of the bones named left minus that of those named right); 0
+ * when the names give none or the direction is diagonal. */
 int character_orient_skeleton_forward(const character_model_t *model, const character_pose_t *pose, int up);
 
 /* Up from the geometry (see the banner). *margin: the winning support over
