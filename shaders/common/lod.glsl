@@ -2,7 +2,7 @@
  * twin of src/blade/blade_lod.c (blade_lod_ -> lod_; the rules, the rank,
  * the shrink window and the widening are documented in blade_lod.h).
  * Parameters travel as the u_lod_* uniforms below, which the host sets
- * from blade_lod_t with ground_lod_uniforms (src/ground: the terrain's
+ * from blade_lod_t with blade_lod_uniforms (src/blade: the terrain's
  * program, blade_cull.comp and tiles_cull.comp). */
 #ifndef LOD_GLSL
 #define LOD_GLSL
