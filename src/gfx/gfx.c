@@ -162,7 +162,9 @@ void gfx_shutdown(bool report_leaks)
     gfx_timer_shutdown();
     gfx_count_shutdown();
     int unused = gfx_programs_prefetch_drop();
-    if (report_leaks && unused) core_log_warn("gfx: %d prefetched programs never made", unused);
+    /* built ahead for a path the run did not take (raster auto chose the
+     * other): news, not a fault */
+    if (report_leaks && unused) core_log_info("gfx: %d prefetched programs never made", unused);
     if (report_leaks && G.count)
         for (int i = 0; i < G.count; i++) core_log_warn("gfx: '%s' still alive at shutdown", G.objs[i].label);
     while (G.count) {
