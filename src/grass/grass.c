@@ -28,11 +28,7 @@ gfx_ctx_t *grass_enter(const grass_t *g)
 
 void grass_leave(gfx_ctx_t *prev) { gfx_ctx_bind(prev); }
 
-grass_ground_t grass_ground_of(const grass_t *g)
-{
-    if (g->terrain->type == TERRAIN_WORLD) return GRASS_GROUND_WORLD;
-    return g->terrain->grid_res > 0 ? GRASS_GROUND_HEIGHTFIELD : GRASS_GROUND_MESH;
-}
+grass_ground_t grass_ground_of(const grass_t *g) { return grass_pass_ground(g->terrain); }
 
 bool grass_uses_tiles(const grass_t *g) { return grass_pass_uses_tiles(g->mode, grass_ground_of(g), g->reference); }
 
@@ -53,12 +49,6 @@ float grass_collider_reach(const grass_t *g)
     return (0.5f * (float)ti.desc.window + 1.0f) * ti.desc.tile_size * 1.4142136f + ti.reach;
 }
 
-static grass_ground_t ground_of_mesh(const terrain_mesh_t *t)
-{
-    if (t->type == TERRAIN_WORLD) return GRASS_GROUND_WORLD;
-    return t->grid_res > 0 ? GRASS_GROUND_HEIGHTFIELD : GRASS_GROUND_MESH;
-}
-
 bool grass_admit(const grass_admit_t *a, admit_t *out, char *err, size_t err_size)
 {
     gfx_limits_t gl = gfx_limits();
@@ -69,7 +59,7 @@ bool grass_admit(const grass_admit_t *a, admit_t *out, char *err, size_t err_siz
                           .max_compute_groups = gl.max_compute_groups,
                           .gpu_bytes = 0.9 * gl.gpu_bytes,
                           .host_bytes = admit_host_bytes()};
-    grass_ground_t ground = ground_of_mesh(a->terrain);
+    grass_ground_t ground = grass_pass_ground(a->terrain);
     bool tiles = grass_pass_uses_tiles(a->mode, ground, a->reference);
     bool blades = grass_pass_wants_blades(a->mode);
     admit_world_t aw = {.terrain = a->terrain,
@@ -90,6 +80,15 @@ bool grass_admit(const grass_admit_t *a, admit_t *out, char *err, size_t err_siz
                         .characters = a->characters};
     admit_estimate(a->scene, &aw, out);
     return admit_check(a->scene, &aw, &lim, err, err_size);
+}
+
+void grass_lod_table_apply(scene_desc_t *s, char *note, size_t note_size)
+{
+    bool compute = s->raster == SCENE_RASTER_COMPUTE;
+    if (s->grass.lod_table[0] && s->mode == SCENE_MODE_HYBRID &&
+        scene_lod_apply(s, (const char *)glGetString(GL_RENDERER), &compute, note, note_size) &&
+        s->raster == SCENE_RASTER_AUTO)
+        s->raster = compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW;
 }
 
 /* A field of its own: the scene file (default scenes/meadow.json) with
@@ -119,11 +118,7 @@ static int load_own(grass_t *g, const grass_desc_t *d)
         return 2;
     }
     g->terrain = &g->own_terrain;
-    bool compute = s->raster == SCENE_RASTER_COMPUTE;
-    if (s->grass.lod_table[0] && s->mode == SCENE_MODE_HYBRID &&
-        scene_lod_apply(s, (const char *)glGetString(GL_RENDERER), &compute, g->lod_note, sizeof g->lod_note) &&
-        s->raster == SCENE_RASTER_AUTO)
-        s->raster = compute ? SCENE_RASTER_COMPUTE : SCENE_RASTER_HW;
+    grass_lod_table_apply(s, g->lod_note, sizeof g->lod_note);
     /* `raster: auto` is the program's measure at start-up; a host that
      * does not choose (desc.raster) gets the hardware path. */
     if (s->raster == SCENE_RASTER_AUTO) s->raster = SCENE_RASTER_HW;
@@ -179,7 +174,7 @@ static bool make_gpu(grass_t *g, double stage_ms[3])
 void grass_prefetch(const grass_host_t *h)
 {
     const scene_desc_t *s = h->scene;
-    grass_ground_t ground = ground_of_mesh(h->terrain);
+    grass_ground_t ground = grass_pass_ground(h->terrain);
     bool tiles = grass_pass_uses_tiles(s->mode, ground, h->reference);
     raster_desc_t rd = {.samples = h->raster_samples ? h->raster_samples : s->raster_samples};
     bool raster = s->raster != SCENE_RASTER_HW;

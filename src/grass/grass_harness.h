@@ -32,6 +32,13 @@ typedef struct grass_host_t {
     int raster_samples; /* 0: the scene's */
 } grass_host_t;
 
+/* grass.lod_table (scene_lod_apply, scene_lod.h) of a hybrid scene on the
+ * current GL's renderer: the table's distances into s and, where s says
+ * `raster: auto`, the path the table chose; note gets what was chosen and
+ * why ("" without a table). grass_make runs it on a scene of its own; a
+ * host runs it on the scene it hands in. */
+void grass_lod_table_apply(scene_desc_t *s, char *note, size_t note_size);
+
 /* Resource admission (admit.h) of a field once the GL's limits are known,
  * before any of it is made: the grass's own rules with the host's
  * colliders and characters. grass_make runs it with desc's colliders when

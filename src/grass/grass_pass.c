@@ -20,6 +20,12 @@ bool grass_pass_uses_tiles(scene_mode_t mode, grass_ground_t ground, bool refere
     return mode == SCENE_MODE_HYBRID && ground == GRASS_GROUND_HEIGHTFIELD;
 }
 
+grass_ground_t grass_pass_ground(const terrain_mesh_t *t)
+{
+    if (t->type == TERRAIN_WORLD) return GRASS_GROUND_WORLD;
+    return t->grid_res > 0 ? GRASS_GROUND_HEIGHTFIELD : GRASS_GROUND_MESH;
+}
+
 float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground)
 {
     if (ground != GRASS_GROUND_WORLD || mode != SCENE_MODE_BLADE) return g->switch_distance;

@@ -36,6 +36,9 @@ typedef enum grass_ground_t {
     GRASS_GROUND_WORLD,
 } grass_ground_t;
 
+/* The ground kind of a terrain mesh. */
+grass_ground_t grass_pass_ground(const terrain_mesh_t *t);
+
 /* What decides the list; zero: hybrid on a heightfield, hardware path,
  * nothing made. A pass whose object the grass lacks is left out; the
  * whole field stands in for missing tiles when the grass has it. */

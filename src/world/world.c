@@ -13,7 +13,6 @@
 #include "collide/collide_shape.h"
 #include "core/core.h"
 #include "platform/plat.h"
-#include "scene/scene_lod.h"
 
 const char *world_stage_name(int stage)
 {
@@ -114,20 +113,12 @@ static float largest_object_radius(world_t *w)
     return r;
 }
 
-static grass_ground_t ground_of(const world_t *w)
-{
-    if (w->terrain_mesh.type == TERRAIN_WORLD) return GRASS_GROUND_WORLD;
-    return w->terrain_mesh.grid_res > 0 ? GRASS_GROUND_HEIGHTFIELD : GRASS_GROUND_MESH;
-}
-
 /* grass.lod_table (scene_lod_apply) in hybrid mode, the reference aside. */
 static void apply_lod_table(world_t *w)
 {
-    if (!w->scene.grass.lod_table[0] || w->mode != SCENE_MODE_HYBRID || w->reference) return;
-    bool compute = w->raster_compute;
-    if (scene_lod_apply(&w->scene, (const char *)glGetString(GL_RENDERER), &compute, w->lod_note, sizeof w->lod_note) &&
-        w->scene.raster == SCENE_RASTER_AUTO)
-        world_set_raster(w, compute);
+    if (w->reference) return;
+    grass_lod_table_apply(&w->scene, w->lod_note, sizeof w->lod_note);
+    w->raster_compute = w->scene.raster == SCENE_RASTER_COMPUTE;
 }
 
 /* Resource admission (grass_admit) once the GL's limits are known, before
@@ -143,9 +134,8 @@ static bool admit(world_t *w)
      * grass_collider_reach): the sphere limit is not a static one there. */
     static int char_spheres[SCENE_MAX_CHARACTERS];
     int characters = 0;
-    for (int i = 0; w->have_chars && ground_of(w) != GRASS_GROUND_WORLD && i < w->chars.count &&
-                    i < SCENE_MAX_CHARACTERS;
-         i++)
+    bool counted = w->have_chars && grass_pass_ground(&w->terrain_mesh) != GRASS_GROUND_WORLD;
+    for (int i = 0; counted && i < w->chars.count && i < SCENE_MAX_CHARACTERS; i++)
         char_spheres[characters++] = w->chars.items[i].sphere_count;
     grass_admit_t a = {.scene = &w->scene,
                        .terrain = &w->terrain_mesh,
@@ -239,7 +229,7 @@ bool world_make_gpu(world_t *w)
  * character at every step. */
 static float character_lod_distance(const world_t *w)
 {
-    if (ground_of(w) != GRASS_GROUND_WORLD) return 0.0f;
+    if (grass_pass_ground(&w->terrain_mesh) != GRASS_GROUND_WORLD) return 0.0f;
     float reach = grass_stats(w->grass).reach;
     if (grass_drivers(w->grass).billboards) reach = fmaxf(reach, w->scene.grass.canopy_distance + GRASS_CANOPY_FADE);
     return reach + WORLD_CHARACTER_LOD_MARGIN;
