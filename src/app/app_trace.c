@@ -78,7 +78,7 @@ void app_trace_row(app_trace_t *tr, world_t *w, const app_trace_frame_t *fr)
     tr->count++;
     world_info_t info = world_info(w);
     measure_grass_t ts;
-    measure_grass(w, false, &ts);
+    measure_grass(w, MEASURE_GRASS_TILES, false, &ts);
     *r = (trace_row_t){.frame = fr->frame, .screenshot = fr->screenshot,
                        .ms = {fr->wall_ms, fr->submit_ms, fr->thread_ms},
                        .stats = {ts.tiles_active, ts.tiles_recovering, ts.tile_slots_dispatched,

@@ -768,7 +768,7 @@ static void sweep_frame(world_t *w, int f, float t, void *user)
     }
     if (!r->overpush || !world_info(w).blades || (phase != 0 && phase != MEASURE_EVERY - 1)) return;
     measure_grass_t mg;
-    measure_grass(w, false, &mg);
+    measure_grass(w, MEASURE_GRASS_SIZES, false, &mg);
     uint32_t padded = mg.blade_padded;
     if (!r->eta_prev) r->eta_prev = calloc(padded, sizeof(float));
     if (r->np + (long)padded > r->push_cap) {

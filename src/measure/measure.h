@@ -106,9 +106,11 @@ void measure_stats(world_t *w, measure_stats_t *st);
 const char *measure_bb_stage_name(int k);
 
 /* What the harness and the program's logs read of the grass beyond
- * measure_stats, without waiting on the GPU (wait: the tiles' counters of
- * this frame, blocking): sizes the measures' buffers need and the tiles'
- * work. Zero where the grass lacks the system. */
+ * measure_stats, the parts asked for (zero where the grass lacks the
+ * system): sizes the measures' buffers need (CPU state), the billboard
+ * octree's leaves by state (a walk over the leaves), the tiles' work
+ * (wait: this frame's counters, blocking; else the latest read back). */
+enum { MEASURE_GRASS_SIZES = 1, MEASURE_GRASS_LEAVES = 2, MEASURE_GRASS_TILES = 4 };
 typedef struct measure_grass_t {
     uint32_t blade_padded;    /* the blade field's blades with padding */
     long blades_total;        /* the blade field's real blades */
@@ -117,7 +119,7 @@ typedef struct measure_grass_t {
     int tiles_active, tiles_recovering, tile_slots_dispatched;
     long tile_blades_dispatched, tiles_streamed_total;
 } measure_grass_t;
-void measure_grass(world_t *w, bool wait, measure_grass_t *out);
+void measure_grass(world_t *w, unsigned parts, bool wait, measure_grass_t *out);
 /* summary.txt's lines on a world's billboard ring and tile window and on
  * the compute rasterizer's buffers, into buf; the characters written. */
 int measure_grass_lines(world_t *w, char *buf, size_t size);

@@ -59,25 +59,28 @@ void measure_stats(world_t *w, measure_stats_t *st)
     st->characters = info.characters ? character_set_count(info.characters) : 0;
 }
 
-void measure_grass(world_t *w, bool wait, measure_grass_t *out)
+void measure_grass(world_t *w, unsigned parts, bool wait, measure_grass_t *out)
 {
     memset(out, 0, sizeof *out);
     grass_drivers_t d = measure_drivers(w);
-    if (d.blades) {
-        out->blade_padded = blade_gpu_info(d.blades).padded_count;
-        out->blades_total = blade_gpu_stats(d.blades, false).total;
+    if (d.blades && (parts & MEASURE_GRASS_SIZES)) {
+        blade_gpu_info_t bi = blade_gpu_info(d.blades);
+        out->blade_padded = bi.padded_count;
+        out->blades_total = bi.blade_count;
     }
-    if (d.billboards) {
+    if (d.billboards && (parts & MEASURE_GRASS_SIZES)) {
         bb_field_info_t fi;
         bb_field_info(d.billboards, &fi);
         out->bb_billboards = fi.billboards;
         out->bb_mesh_vertices = fi.mesh_vertices;
+    }
+    if (d.billboards && (parts & MEASURE_GRASS_LEAVES)) {
         bb_stats_t s;
         bb_field_stats(d.billboards, false, &s);
         out->bb_leaves_colliding = s.leaves[BB_NODE_COLLIDING];
         out->bb_leaves_recovering = s.leaves[BB_NODE_RECOVERING];
     }
-    if (d.tiles) {
+    if (d.tiles && (parts & MEASURE_GRASS_TILES)) {
         blade_tiles_stats_t ts = blade_tiles_stats(d.tiles, wait);
         out->tiles_active = ts.active;
         out->tiles_recovering = ts.recovering;

@@ -172,7 +172,7 @@ static void papers_frame(world_t *w, int frame, float t, void *user)
     papers_probe_t *p = user;
     if (world_info(w).billboards && frame >= p->warmup) {
         measure_grass_t mg;
-        measure_grass(w, false, &mg);
+        measure_grass(w, MEASURE_GRASS_LEAVES, false, &mg);
         p->run->leaves += mg.bb_leaves_colliding;
         p->run->recovering += mg.bb_leaves_recovering;
         p->samples++;

@@ -82,7 +82,7 @@ static void last_frame(world_t *w, int frame, float t, void *user)
     scaling_run_t *r = user;
     if (frame + 1 < r->point->frames) return;
     measure_grass_t mg;
-    measure_grass(w, !r->full, &mg);
+    measure_grass(w, r->full ? MEASURE_GRASS_SIZES : MEASURE_GRASS_TILES, true, &mg);
     if (r->full) {
         r->point->full_blades = mg.blades_total;
     } else if (world_info(w).tiles) {

@@ -563,7 +563,7 @@ static void make_twin(world_t *w, stab_run_t *r)
     measure_session_desc_t d = session_desc(&tw, 0);
     measure_session_world(&d, &r->twin); /* NULL when it cannot be made */
     measure_grass_t mg;
-    measure_grass(w, false, &mg);
+    measure_grass(w, MEASURE_GRASS_SIZES, false, &mg);
     uint32_t padded = mg.blade_padded;
     r->prev = calloc((size_t)padded * 3, sizeof(float));
     r->ever = calloc(padded, 1);
@@ -586,9 +586,11 @@ static void frame_pass(world_t *w, float t, stab_run_t *r)
     long corridor;
     const float a[2] = {PASS_FROM + 0.3f, 0}, b[2] = {PASS_TO - 0.3f, 0};
     if (r->c->mode == SCENE_MODE_BILLBOARD) {
-        measure_grass_t mg;
-        measure_grass(w, false, &mg);
-        if (!r->ever && mg.bb_billboards) r->ever = calloc((size_t)mg.bb_billboards, 1);
+        if (!r->ever) {
+            measure_grass_t mg;
+            measure_grass(w, MEASURE_GRASS_SIZES, false, &mg);
+            if (mg.bb_billboards) r->ever = calloc((size_t)mg.bb_billboards, 1);
+        }
         if (r->ever) r->coverage = measure_bb_coverage(w, a, b, 0.15f, 0.2f, r->ever, &corridor);
     } else if (r->twin && r->ever) {
         r->coverage = measure_blade_coverage(w, r->twin, a, b, 0.15f, 0.2f, r->ever, &corridor);
@@ -631,10 +633,12 @@ static void frame_jump(world_t *w, stab_run_t *r)
     if (r->twin && r->prev) {
         measure_blade_offset(w, r->twin, r->prev, &r->primed, &j);
     } else if (r->c->mode == SCENE_MODE_BILLBOARD) {
-        measure_grass_t mg;
-        measure_grass(w, false, &mg);
-        if (!r->prev && mg.bb_billboards)
-            r->prev = calloc((size_t)mg.bb_billboards * (size_t)mg.bb_mesh_vertices * 3, sizeof(float));
+        if (!r->prev) {
+            measure_grass_t mg;
+            measure_grass(w, MEASURE_GRASS_SIZES, false, &mg);
+            if (mg.bb_billboards)
+                r->prev = calloc((size_t)mg.bb_billboards * (size_t)mg.bb_mesh_vertices * 3, sizeof(float));
+        }
         if (r->prev) j = measure_bb_jump(w, r->prev, &r->primed);
     }
     if (!(j <= r->jump)) r->jump = j;
