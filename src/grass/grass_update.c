@@ -56,6 +56,25 @@ static bool near_camera(const grass_t *g, const grass_collider_t *c, float reach
     return dx * dx + dz * dz <= r * r;
 }
 
+/* A sphere set's spheres into out (at most room of them), unswept; how
+ * many went in. */
+static int copy_spheres(const grass_collider_t *c, collide_sphere_t *out, int room)
+{
+    int got = c->sphere_count < room ? c->sphere_count : room;
+    for (int k = 0; k < got; k++)
+        out[k] = (collide_sphere_t){
+            .centre_radius = {c->spheres[k][0], c->spheres[k][1], c->spheres[k][2], c->spheres[k][3]}};
+    return got;
+}
+
+/* The step's travel of object o backwards (previous - current centre; no
+ * object: none). */
+static void object_sweep(const collide_object_t *o, float sweep[4])
+{
+    for (int a = 0; a < 3; a++) sweep[a] = o ? o->prev_position[a] - o->position[a] : 0.0f;
+    sweep[3] = 0.0f;
+}
+
 /* Sphere proxies for the blade physics: each shape packed by
  * collide_pack_spheres with its object's sweep, each sphere set within
  * reach of the camera as it is. Admission (grass_admit) keeps a scene's
@@ -71,10 +90,7 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
     for (int i = 0; i < count; i++) {
         if (c[i].shape == GRASS_SHAPE_SPHERES) {
             if (!near_camera(g, &c[i], reach)) continue;
-            int got = c[i].sphere_count < max - n ? c[i].sphere_count : max - n;
-            for (int k = 0; k < got; k++)
-                out[n + k] = (collide_sphere_t){.centre_radius = {c[i].spheres[k][0], c[i].spheres[k][1],
-                                                                  c[i].spheres[k][2], c[i].spheres[k][3]}};
+            int got = copy_spheres(&c[i], out + n, max - n);
             n += got;
             *dropped += c[i].sphere_count - got;
             continue;
@@ -85,8 +101,7 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
         const collide_object_t *o = i < g->collide.object_count ? &g->collide.objects[i] : NULL;
         for (int k = 0; k < got; k++) {
             memcpy(out[n + k].centre_radius, packed[k], sizeof packed[k]);
-            for (int a = 0; a < 3; a++) out[n + k].sweep[a] = o ? o->prev_position[a] - o->position[a] : 0.0f;
-            out[n + k].sweep[3] = 0.0f;
+            object_sweep(o, out[n + k].sweep);
         }
         n += got;
         *dropped += want - got;
@@ -144,25 +159,19 @@ static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count,
     set->cube_res = g->cube_res;
     for (int k = nc; k < count; k++) {
         if (c[k].shape == GRASS_SHAPE_SPHERES) {
-            for (int s = 0; s < c[k].sphere_count; s++) {
-                if (set->sphere_count == BLADE_MAX_SPHERES) {
-                    ++*dropped;
-                    continue;
-                }
-                set->spheres[set->sphere_count++] = (collide_sphere_t){
-                    .centre_radius = {c[k].spheres[s][0], c[k].spheres[s][1], c[k].spheres[s][2], c[k].spheres[s][3]}};
-            }
+            int got = copy_spheres(&c[k], set->spheres + set->sphere_count, BLADE_MAX_SPHERES - set->sphere_count);
+            set->sphere_count += got;
+            *dropped += c[k].sphere_count - got;
             continue;
         }
         if (set->sphere_count == BLADE_MAX_SPHERES) {
             ++*dropped;
             continue;
         }
-        const collide_object_t *o = &set->objects[k];
         collide_sphere_t *s = &set->spheres[set->sphere_count++];
         *s = (collide_sphere_t){.centre_radius = {c[k].position[0], c[k].position[1], c[k].position[2],
                                                   bound_radius(&c[k])}};
-        for (int a = 0; a < 3; a++) s->sweep[a] = o->prev_position[a] - o->position[a];
+        object_sweep(&set->objects[k], s->sweep);
     }
 }
 
