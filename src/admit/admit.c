@@ -349,6 +349,14 @@ static bool gl_limits(const scene_desc_t *s, const admit_world_t *w, const admit
     return true;
 }
 
+/* How many of counts[0..n), taken in order after `used`, stay within `most`. */
+static int fit_count(long long used, const int *counts, int n, long long most)
+{
+    int fit = 0;
+    for (; fit < n && used + counts[fit] <= most; fit++) used += counts[fit];
+    return fit;
+}
+
 /* The blade physics' sphere proxies: a capsule takes 1 + ceil(length /
  * radius) (collide_pack_spheres), so one thin capsule can take them all; a
  * humanoid takes 38, 16 of them (the scene's most) 608. The physics'
@@ -370,9 +378,7 @@ static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *er
     long long total = colliders + characters, most = ADMIT_MAX_SPHERES;
     if (total <= most) return true;
     if (characters > most || worst < 0) {
-        int fit = 0;
-        for (long long n = colliders; fit < w->characters && n + w->character_spheres[fit] <= most; fit++)
-            n += w->character_spheres[fit];
+        int fit = fit_count(colliders, w->character_spheres, w->characters, most);
         snprintf(err, size, "characters: %d characters take %lld of the blade physics' sphere proxies, %lld with the "
                  "colliders', more than its %lld: the most characters that fit is %d", w->characters, characters,
                  total, most, fit);
@@ -387,9 +393,7 @@ static bool sphere_limit(const scene_desc_t *s, const admit_world_t *w, char *er
                  floor((double)(room - 1) * (double)c->radius * 1e3) / 1e3);
         return false;
     }
-    int fit = 0;
-    for (long long n = characters; fit < s->collider_count && n + w->collider_spheres[fit] <= most; fit++)
-        n += w->collider_spheres[fit];
+    int fit = fit_count(characters, w->collider_spheres, s->collider_count, most);
     snprintf(err, size, "colliders: %d colliders and the characters need %lld sphere proxies in the blade physics "
              "(characters %lld), more than its %lld: the most colliders that fit is %d", s->collider_count, total,
              characters, most, fit);

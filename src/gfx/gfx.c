@@ -39,7 +39,7 @@ bool gfx_init_desc(const gfx_desc_t *desc)
 bool gfx_init(void) { return gfx_init_desc(NULL); }
 
 /* ---- contexts ---- */
-static gfx_ctx_t default_ctx = {.count = GFX_COUNT_INITIAL, .timer = GFX_TIMER_INITIAL};
+static gfx_ctx_t default_ctx = GFX_CTX_INITIAL;
 gfx_ctx_t *gfx_cur = &default_ctx;
 
 gfx_ctx_t *gfx_ctx_current(void) { return gfx_cur; }
@@ -49,7 +49,7 @@ gfx_ctx_t *gfx_ctx_make(const gfx_desc_t *desc)
 {
     gfx_ctx_t *c = malloc(sizeof *c);
     if (!c) return NULL;
-    *c = (gfx_ctx_t){.count = GFX_COUNT_INITIAL, .timer = GFX_TIMER_INITIAL};
+    *c = (gfx_ctx_t)GFX_CTX_INITIAL;
     gfx_ctx_t *prev = gfx_cur;
     gfx_cur = c;
     gfx_init_desc(desc);

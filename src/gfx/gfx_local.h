@@ -194,6 +194,8 @@ struct gfx_ctx_t {
     gfx_uniform_cache_t uniforms;
     gfx_program_stats_t program_stats;
 };
+/* A context as it starts (gfx_ctx_make, the default one). */
+#define GFX_CTX_INITIAL {.count = GFX_COUNT_INITIAL, .timer = GFX_TIMER_INITIAL}
 /* The context every gfx call works on (gfx_ctx_bind). */
 extern gfx_ctx_t *gfx_cur;
 
