@@ -49,6 +49,7 @@
  *      missing). */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
+#include "terrain_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -60,14 +61,7 @@ static terrain_mesh_t make_terrain(float size, int res, bool flat)
 {
     terrain_mesh_t m;
     CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = size, .resolution = res, .height = 0.4f}, 7));
-    if (flat) {
-        for (uint32_t v = 0; v < m.vertex_count; v++) {
-            m.positions[3 * v + 1] = 0.0f;
-            m.normals[3 * v + 0] = m.normals[3 * v + 2] = 0.0f;
-            m.normals[3 * v + 1] = 1.0f;
-        }
-        m.aabb_min[1] = m.aabb_max[1] = 0.0f;
-    }
+    if (flat) test_terrain_flatten(&m);
     return m;
 }
 

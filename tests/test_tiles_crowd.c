@@ -13,6 +13,7 @@
  *      128th move some of its blades (so a list cut at 128 fails). */
 #include "blade/blade_tiles.h"
 #include "collide_test_util.h"
+#include "terrain_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -73,12 +74,7 @@ static void test_physics(void)
 {
     terrain_mesh_t m;
     CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = 8.0f, .resolution = 8, .height = 0.0f}, 7));
-    for (uint32_t v = 0; v < m.vertex_count; v++) {
-        m.positions[3 * v + 1] = 0.0f;
-        m.normals[3 * v + 0] = m.normals[3 * v + 2] = 0.0f;
-        m.normals[3 * v + 1] = 1.0f;
-    }
-    m.aabb_min[1] = m.aabb_max[1] = 0.0f;
+    test_terrain_flatten(&m);
     blade_tiles_desc_t d = {
         .terrain = &m,
         .tile_size = 4.0f,

@@ -19,6 +19,7 @@
 #include "eval/eval.h"
 #include "platform/plat.h"
 #include "collide_test_util.h"
+#include "terrain_test_util.h"
 #include "test.h"
 #include "test_gl.h"
 
@@ -51,12 +52,7 @@ static double run(float side, int balls, int *slots, uint32_t *blades)
     terrain_mesh_t m;
     CHECK(terrain_make_heightfield(&m, &(terrain_desc_t){.size = side, .resolution = (int)side / 2, .height = 0.1f},
                                    5));
-    for (uint32_t v = 0; v < m.vertex_count; v++) {
-        m.positions[3 * v + 1] = 0.0f;
-        m.normals[3 * v + 0] = m.normals[3 * v + 2] = 0.0f;
-        m.normals[3 * v + 1] = 1.0f;
-    }
-    m.aabb_min[1] = m.aabb_max[1] = 0.0f;
+    test_terrain_flatten(&m);
     blade_tiles_desc_t d = {
         .terrain = &m,
         .tile_size = TILE,
