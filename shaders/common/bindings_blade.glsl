@@ -9,7 +9,7 @@
 #ifndef BINDINGS_BLADE_GLSL
 #define BINDINGS_BLADE_GLSL
 
-/* The full field: physics, patch test, cull, draw (tess, pull), raster */
+/* The full field: seeding, physics, patch test, cull, draw (tess, pull), raster */
 #define BLADE_BIND_BLADES 0
 #define BLADE_BIND_ETA 1       /* physics */
 #define BLADE_BIND_WINDS 2     /* physics */
@@ -25,6 +25,15 @@
 #define BLADE_BIND_RASTER_COUNT 2
 #define BLADE_TEX_CUBES 0 /* physics: the colliders' depth cube maps */
 #define BLADE_TEX_DEPTH 0 /* cull: the previous frame's depth */
+/* The field seeded on the GPU (blade_seed.comp: BLADE_BIND_BLADES out;
+ * blade_seed_boxes.comp: BLADE_BIND_BLADES in, BLADE_BIND_PATCH_BOXES out) */
+#define BLADE_SEED_BIND_POSITIONS 1
+#define BLADE_SEED_BIND_NORMALS 2
+#define BLADE_SEED_BIND_INDICES 3
+#define BLADE_SEED_BIND_ORDER 4
+#define BLADE_SEED_BIND_OFFSETS 5
+#define BLADE_SEED_BIND_THINNED 6
+#define BLADE_SEED_TEX_EXTENT 0
 
 /* The tiles: init, physics, hand-over, resolve, cull, draw */
 #define BLADE_TILES_BIND_TEMPLATES 0

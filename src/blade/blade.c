@@ -62,25 +62,31 @@ static void command_initial(const blade_gpu_t *g, uint32_t cmd[4])
 static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
 {
     const blade_field_t *f = desc->field;
+    const blade_gpu_seed_t *seed = desc->seed;
+    assert((f != NULL) != (seed != NULL));
     g->desc = blade_gpu_desc_defaults(desc);
     g->desc.field = NULL;
+    g->desc.seed = NULL;
     g->desc.cull.depth = NULL;
-    g->blade_count = (uint32_t)f->blade_count;
-    g->padded_count = (uint32_t)f->padded_count;
-    g->patch_count = (uint32_t)f->patch_count;
-    g->patch_size = (uint32_t)(f->patch_size > 0 ? f->patch_size : 1);
-    /* the patch boxes (blade_patch.glsl's PatchBox), lo.w their real blades */
+    const blade_seed_plan_t *plan = seed ? seed->plan : NULL;
+    g->blade_count = (uint32_t)(f ? f->blade_count : plan->blade_count);
+    g->padded_count = (uint32_t)(f ? f->padded_count : plan->padded_count);
+    g->patch_count = (uint32_t)(f ? f->patch_count : plan->patch_count);
+    int ps = f ? f->patch_size : plan->patch_size;
+    g->patch_size = (uint32_t)(ps > 0 ? ps : 1);
+    /* the patch boxes (blade_patch.glsl's PatchBox), lo.w their real blades;
+     * a GPU seeding writes them itself */
     size_t np = g->patch_count ? g->patch_count : 1;
-    float(*boxes)[8] = calloc(np, sizeof *boxes);
-    if (!boxes) {
+    float(*boxes)[8] = f ? calloc(np, sizeof *boxes) : NULL;
+    if (f && !boxes) {
         core_log_error("blade_gpu_make: out of memory (%u patches)", g->patch_count);
         return false;
     }
-    for (uint32_t p = 0; p < g->patch_count; p++) {
+    for (uint32_t p = 0; f && p < g->patch_count; p++) {
         memcpy(boxes[p], f->patch_aabbs[p].min, 3 * sizeof(float));
         memcpy(boxes[p] + 4, f->patch_aabbs[p].max, 3 * sizeof(float));
     }
-    for (uint32_t i = 0; i < g->padded_count; i++) {
+    for (uint32_t i = 0; f && i < g->padded_count; i++) {
         if (f->blades[i].v1[3] <= 0.0f) continue;
         uint32_t real;
         memcpy(&real, &boxes[i / g->patch_size][3], sizeof real);
@@ -89,8 +95,8 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     }
 
     size_t nb = g->padded_count;
-    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f->blades);
-    g->eta = make_buffer(g, "eta", nb * sizeof(float), f->eta);
+    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f ? f->blades : NULL);
+    g->eta = make_buffer(g, "eta", nb * sizeof(float), f ? f->eta : NULL);
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
     g->sphere_capacity = BLADE_SPHERES_FIRST;
     g->spheres = make_buffer(g, "spheres", (size_t)g->sphere_capacity * sizeof(blade_sphere_t), NULL);
@@ -152,6 +158,7 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
         core_log_error("blade_gpu_make: could not create the GL objects of '%s'", g->desc.label);
         return false;
     }
+    if (seed && g->blade_count && !blade_gpu_seed(g, seed)) return false;
     g->stats.total = g->blade_count;
     return true;
 }
@@ -176,7 +183,6 @@ static void release(blade_gpu_t *g)
 
 blade_gpu_t *blade_gpu_make(const blade_gpu_desc_t *desc)
 {
-    assert(desc->field);
     blade_gpu_t *g = calloc(1, sizeof *g);
     if (!g) {
         core_log_error("blade_gpu_make: out of memory");
@@ -200,6 +206,7 @@ blade_gpu_info_t blade_gpu_info(const blade_gpu_t *g)
 {
     return (blade_gpu_info_t){.desc = g->desc,
                               .blade_count = g->blade_count,
+                              .thinned = g->thinned,
                               .padded_count = g->padded_count,
                               .patch_count = g->patch_count,
                               .patch_size = g->patch_size};
@@ -534,6 +541,12 @@ void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     if (out) gfx_buffer_read(g->blades, 0, g->padded_count * sizeof(blade_t), out);
     if (eta_out) gfx_buffer_read(g->eta, 0, g->padded_count * sizeof(float), eta_out);
+}
+
+void blade_gpu_read_patch_boxes(const blade_gpu_t *g, float (*out)[8])
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (g->patch_count) gfx_buffer_read(g->patch_boxes, 0, g->patch_count * 8 * sizeof(float), out);
 }
 
 int blade_gpu_read_spheres(const blade_gpu_t *g, blade_sphere_t *out, int max)

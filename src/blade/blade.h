@@ -31,6 +31,7 @@
 #include "grass/grass_view.h"
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
+#include "blade/blade_seed_plan.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
 #include "raster/raster.h"
@@ -41,8 +42,23 @@ typedef enum blade_render_path_t {
     BLADE_PATH_PULLING = 1,      /* instanced strips, vertex pulling */
 } blade_render_path_t;
 
+/* A field the GPU seeds (blade_seed_plan.h; blade_seed.comp and
+ * blade_seed_boxes.comp, twins of blade_seed_plan_field): the plan and its
+ * mesh (borrowed for the make only) and the extent map that thins it, an
+ * R8 texture with blade_seed_extent_t's origin, spacing and key (texture 0:
+ * no thinning). */
+typedef struct blade_gpu_seed_t {
+    const blade_seed_plan_t *plan;
+    const blade_mesh_t *mesh;
+    GLuint extent_texture;
+    float extent_origin[2], extent_spacing;
+    uint32_t extent_key;
+} blade_gpu_seed_t;
+
 /* Zero means default:
- *   field          required; copied to the GPU (the caller may free it)
+ *   field, seed    exactly one: field (seeded on the CPU, blade_seed.h) is
+ *                  copied to the GPU (the caller may free it); seed is
+ *                  seeded on the GPU, no blade crosses the bus
  *   shape          BLADE_SHAPE_QUADRATIC (the enum's 0)
  *   max_tess_level 8 segments along the blade at the nearest LOD (1..64)
  *   lod_distance   30 m: the level falls linearly from max_tess_level at
@@ -68,6 +84,7 @@ typedef enum blade_render_path_t {
  *   label          "blade" (prefix of every GL object label) */
 typedef struct blade_gpu_desc_t {
     const blade_field_t *field;
+    const blade_gpu_seed_t *seed;
     blade_shape_t shape;
     int max_tess_level;
     float lod_distance;
@@ -97,8 +114,9 @@ typedef struct blade_gpu_t blade_gpu_t;
 
 /* What a made field holds (blade_gpu_info). */
 typedef struct blade_gpu_info_t {
-    blade_gpu_desc_t desc;  /* resolved; desc.field is NULL */
+    blade_gpu_desc_t desc;  /* resolved; desc.field and desc.seed are NULL */
     uint32_t blade_count;   /* real blades */
+    uint32_t thinned;       /* real blades a GPU seeding's extent map thinned to height 0 */
     uint32_t padded_count;  /* blades in the GPU arrays (padding has height 0): the length of
                                blade_gpu_read_blades' arrays */
     uint32_t patch_count, patch_size;
@@ -195,6 +213,9 @@ blade_gpu_stats_t blade_gpu_stats(blade_gpu_t *g, bool wait);
  * the count. */
 void blade_gpu_read_blades(const blade_gpu_t *g, blade_t *out, float *eta_out);
 uint32_t blade_gpu_read_survivors(const blade_gpu_t *g, uint32_t *ids, float *factors);
+/* Blocking read of the patch boxes (patch_count x 8 floats: min xyz, real
+ * blades as uint bits, max xyz, 0), as the patch test reads them. */
+void blade_gpu_read_patch_boxes(const blade_gpu_t *g, float (*out)[8]);
 /* Blocking read of the patch list of the latest cull as the GPU wrote it
  * (in nondecreasing blade_ref_patch_bucket, any order within a bucket; out
  * holds patch_count); returns its length, 0 without the patch test

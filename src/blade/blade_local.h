@@ -19,6 +19,7 @@
 struct blade_gpu_t {
     blade_gpu_desc_t desc; /* resolved; desc.field is NULL after make */
     uint32_t blade_count, padded_count, patch_count, patch_size;
+    uint32_t thinned; /* blade_gpu_info_t.thinned */
     gfx_buffer_t blades, eta, winds, spheres, survivors, command;
     int sphere_capacity; /* spheres the sphere buffer holds (blade_sphere_buffer_fit) */
     int sphere_count;    /* spheres the latest update put in it */
@@ -88,6 +89,11 @@ struct blade_tiles_t {
     blade_tiles_stats_t stats;
     bool culled_once, warned_overflow;
 };
+
+/* Seeds g's blades and patch boxes (made, zeroed) from seed on the GPU
+ * (blade_seed_gpu.c) and reads back the thinned count; false (logged) when
+ * a program or buffer cannot be made. */
+bool blade_gpu_seed(blade_gpu_t *g, const blade_gpu_seed_t *seed);
 
 /* Makes *buf (labelled "<label>.spheres", *capacity spheres) hold count
  * spheres: past its capacity it is remade, doubled until they fit (its

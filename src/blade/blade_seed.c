@@ -171,6 +171,21 @@ static void closest_bary(const blade_mesh_t *m, size_t tri, const float p[3], fl
     bary[0] = 1.0f - bary[1] - bary[2];
 }
 
+void blade_seed_rest(blade_t *b, const float v0[3], const float up[3], float height, float width, float stiffness,
+                     float angle)
+{
+    for (int k = 0; k < 3; k++) {
+        b->v0[k] = v0[k];
+        b->v1[k] = v0[k] + up[k] * height;
+        b->v2[k] = v0[k] + up[k] * height;
+        b->up[k] = up[k];
+    }
+    b->v0[3] = angle;
+    b->v1[3] = height;
+    b->v2[3] = width;
+    b->up[3] = stiffness;
+}
+
 static void make_blade(blade_t *b, const float v0[3], const float up[3], core_rng_t *rng,
                        const blade_seed_desc_t *d)
 {
@@ -178,16 +193,7 @@ static void make_blade(blade_t *b, const float v0[3], const float up[3], core_rn
     float w = core_rng_range(rng, d->population.width[0], d->population.width[1]);
     float s = core_rng_range(rng, d->population.stiffness[0], d->population.stiffness[1]);
     float a = core_rng_range(rng, d->angle_min, d->angle_max);
-    for (int k = 0; k < 3; k++) {
-        b->v0[k] = v0[k];
-        b->v1[k] = v0[k] + up[k] * h;
-        b->v2[k] = v0[k] + up[k] * h;
-        b->up[k] = up[k];
-    }
-    b->v0[3] = a;
-    b->v1[3] = h;
-    b->v2[3] = w;
-    b->up[3] = s;
+    blade_seed_rest(b, v0, up, h, w, s, a);
 }
 
 /* ---- Poisson-disk tuft centres ------------------------------------------ */
@@ -257,11 +263,6 @@ uint64_t blade_seed_morton(const blade_field_t *f, const float p[3])
     return spread21(q[0]) | spread21(q[1]) << 1 | spread21(q[2]) << 2;
 }
 
-typedef struct sort_key_t {
-    uint64_t code;
-    uint32_t index;
-} sort_key_t;
-
 static int cmp_order(const void *a, const void *b)
 {
     const blade_order_key_t *x = a, *y = b;
@@ -280,13 +281,13 @@ void blade_order_sort(blade_order_key_t *keys, size_t n)
  * n keys. Passes whose digit is the same in every key are skipped. */
 enum { RADIX_BITS = 11, RADIX = 1 << RADIX_BITS, RADIX_PASSES = (64 + RADIX_BITS - 1) / RADIX_BITS };
 
-static void sort_keys(sort_key_t *keys, sort_key_t *tmp, size_t n)
+void blade_seed_sort(blade_seed_key_t *keys, blade_seed_key_t *tmp, size_t n)
 {
     size_t(*count)[RADIX] = calloc(RADIX_PASSES, sizeof *count);
     assert(count);
     for (size_t i = 0; i < n; i++)
         for (int p = 0; p < RADIX_PASSES; p++) count[p][(keys[i].code >> (p * RADIX_BITS)) & (RADIX - 1)]++;
-    sort_key_t *from = keys, *to = tmp;
+    blade_seed_key_t *from = keys, *to = tmp;
     for (int p = 0; p < RADIX_PASSES; p++) {
         size_t *c = count[p], sum = 0;
         bool one_digit = false;
@@ -298,7 +299,7 @@ static void sort_keys(sort_key_t *keys, sort_key_t *tmp, size_t n)
         }
         if (one_digit) continue;
         for (size_t i = 0; i < n; i++) to[c[(from[i].code >> (p * RADIX_BITS)) & (RADIX - 1)]++] = from[i];
-        sort_key_t *t = from;
+        blade_seed_key_t *t = from;
         from = to;
         to = t;
     }
@@ -386,18 +387,29 @@ static void seed_tuft(const sampler_t *s, const blade_seed_desc_t *d, core_rng_t
     }
 }
 
-static void build_patches(blade_field_t *f, const blade_t *unsorted, const float lo[3], float extent)
+void blade_seed_frame(const blade_mesh_t *mesh, blade_field_t *f)
 {
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < mesh->index_count; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], mesh->positions[3 * (size_t)mesh->indices[i] + (size_t)k]);
+            hi[k] = fmaxf(hi[k], mesh->positions[3 * (size_t)mesh->indices[i] + (size_t)k]);
+        }
+    float extent = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), fmaxf(hi[2] - lo[2], 1e-6f));
     memcpy(f->morton_origin, lo, sizeof f->morton_origin);
     f->morton_scale = MORTON_CELLS / extent;
+}
+
+static void build_patches(blade_field_t *f, const blade_t *unsorted)
+{
     size_t n = f->blade_count;
-    sort_key_t *keys = malloc((n ? n : 1) * sizeof *keys), *tmp = malloc((n ? n : 1) * sizeof *tmp);
+    blade_seed_key_t *keys = malloc((n ? n : 1) * sizeof *keys), *tmp = malloc((n ? n : 1) * sizeof *tmp);
     assert(keys && tmp);
     for (size_t i = 0; i < n; i++) {
         keys[i].code = blade_seed_morton(f, unsorted[i].v0);
         keys[i].index = (uint32_t)i;
     }
-    sort_keys(keys, tmp, n);
+    blade_seed_sort(keys, tmp, n);
     for (size_t i = 0; i < n; i++) f->blades[i] = unsorted[keys[i].index];
     free(tmp);
     free(keys);
@@ -409,6 +421,11 @@ static void build_patches(blade_field_t *f, const blade_t *unsorted, const float
         b->v1[3] = 0.0f;
         b->v2[3] = 0.0f;
     }
+    blade_seed_patch_boxes(f);
+}
+
+void blade_seed_patch_boxes(blade_field_t *f)
+{
     size_t ps = (size_t)f->patch_size;
     for (size_t p = 0; p < f->patch_count; p++) {
         blade_aabb_t *box = &f->patch_aabbs[p];
@@ -447,13 +464,6 @@ bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, bl
         s.area += tri_area(mesh, t, NULL);
         s.cdf[t] = s.area;
     }
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < mesh->index_count; i++)
-        for (int k = 0; k < 3; k++) {
-            lo[k] = fminf(lo[k], mesh->positions[3 * (size_t)mesh->indices[i] + (size_t)k]);
-            hi[k] = fmaxf(hi[k], mesh->positions[3 * (size_t)mesh->indices[i] + (size_t)k]);
-        }
-    float extent = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), fmaxf(hi[2] - lo[2], 1e-6f));
 
     core_rng_t rng;
     core_rng_seed(&rng, d.seed, 0x626c616465ULL);
@@ -503,7 +513,8 @@ bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, bl
     out->eta = calloc(out->padded_count, sizeof *out->eta);
     out->patch_aabbs = malloc(out->patch_count * sizeof *out->patch_aabbs);
     assert(out->blades && out->eta && out->patch_aabbs);
-    build_patches(out, unsorted, lo, extent);
+    blade_seed_frame(mesh, out);
+    build_patches(out, unsorted);
     free(unsorted);
     return true;
 }

