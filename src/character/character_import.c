@@ -163,8 +163,8 @@ float character_import_evidence(const char *from)
         float c;
     } table[] = {{"scene", 1.0f},           {"skeleton, geometry", 0.95f}, {"metadata, geometry", 0.9f},
                  {"walk", 0.9f},            {"skeleton", 0.8f},            {"geometry", 0.7f},
-                 {"metadata", 0.6f},        {"geometry (weak)", 0.5f},     {"format", 0.3f},
-                 {"default", 0.2f}};
+                 {"metadata", 0.6f},        {"geometry (weak)", 0.5f},     {"geometry (head)", 0.4f},
+                 {"format", 0.3f},          {"default", 0.2f}};
     for (size_t i = 0; i < sizeof table / sizeof table[0]; i++)
         if (!strcmp(from, table[i].from)) return table[i].c;
     return 0.0f;
@@ -205,16 +205,18 @@ static void choose_up(const character_model_t *m, const character_import_desc_t 
 /* forward (file axis) perpendicular to up; the walk (character_walk_face)
  * may still turn it. */
 static void choose_forward(const character_model_t *m, const character_import_desc_t *d,
-                           const character_pose_t *pose, character_import_t *o)
+                           const character_pose_t *pose, const float *p, character_import_t *o)
 {
     static const char *const face_x[] = {"mdl", "md2", "md3", "md5mesh", "smd", "iqm", NULL};
     static const char *const face_neg_z[] = {"b3d", "ms3d", NULL};
     static const char *const face_neg_y[] = {"3ds", "ase", "blend", NULL};
     const char *fmt = m->file.format;
     int sk = character_orient_skeleton_forward(m, pose, o->up);
+    int body;
     if (d->forward) o->forward = d->forward, o->forward_from = "scene";
     else if (sk) o->forward = sk, o->forward_from = "skeleton";
     else if (m->file.front && abs(m->file.front) != abs(o->up)) o->forward = m->file.front, o->forward_from = "metadata";
+    else if ((body = character_orient_body_forward(m, p, o->up))) o->forward = body, o->forward_from = "geometry (head)";
     else if (format_is(fmt, face_x)) o->forward = 1, o->forward_from = "format";
     else if (format_is(fmt, face_neg_z)) o->forward = -3, o->forward_from = "format";
     else if (format_is(fmt, face_neg_y)) o->forward = -2, o->forward_from = "format";
@@ -284,7 +286,7 @@ bool character_import(character_model_t *model, const char *path, const characte
     }
     character_orient_pose(model, o.pose_clip, &pose, p);
     choose_up(model, desc, &pose, p, &o);
-    choose_forward(model, desc, &pose, &o);
+    choose_forward(model, desc, &pose, p, &o);
     character_pose_free(&pose);
     bool ok = false;
     float lo, hi, c[16];

@@ -10,7 +10,9 @@
  *   up:      desc.up; the file's metadata (UpAxis/UpAxisSign); +Z for formats
  *            that are Z-up by convention and that assimp leaves so (3ds, ase,
  *            blend, mdl, md2, smd); +Y.
- *   forward: desc.forward; the metadata (FrontAxis/FrontAxisSign); +X for
+ *   forward: desc.forward; the skeleton; the metadata
+ *            (FrontAxis/FrontAxisSign); the body (a quadruped's or a
+ *            spider's head end, character_orient_body_forward); +X for
  *            Quake/Valve formats (mdl, md2, md3, md5mesh, smd); -Z for b3d
  *            (left-handed, mirrored by assimp); -Y for 3ds, ase and blend;
  *            +Z (glTF's convention).

@@ -253,3 +253,84 @@ int character_orient_geometry_up(const character_model_t *m, const float *p, flo
     if (margin) *margin = second > 0.0 ? (float)(best[win] / second) : best[win] > 0.0 ? 1e3f : 1.0f;
     return sign[win] * (win + 1);
 }
+
+/* Cells per axis of the grid over the box that body_forward mirrors. */
+#define MIRROR_CELLS 24
+
+static int cell_of(float x, float lo, float hi)
+{
+    return hi > lo ? (int)((x - lo) / (hi - lo) * (MIRROR_CELLS - 1) + 0.5f) : 0;
+}
+
+/* Marks the grid cells the triangles' surface passes through, sampling
+ * each triangle finer than a cell. */
+static void fill_cells(const character_model_t *m, const float *p, const float lo[3], const float hi[3],
+                       unsigned char *grid)
+{
+    for (int t = 0; t + 2 < m->index_count; t += 3) {
+        const float *q[3] = {p + 3 * m->indices[t], p + 3 * m->indices[t + 1], p + 3 * m->indices[t + 2]};
+        float edge = 0.0f;
+        for (int e = 0; e < 3; e++)
+            for (int k = 0; k < 3; k++)
+                if (hi[k] > lo[k])
+                    edge = fmaxf(edge, fabsf(q[(e + 1) % 3][k] - q[e][k]) / (hi[k] - lo[k]) * (MIRROR_CELLS - 1));
+        int n = (int)fminf(ceilf(edge), MIRROR_CELLS);
+        if (n < 1) n = 1;
+        for (int i = 0; i <= n; i++)
+            for (int j = 0; i + j <= n; j++) {
+                float u = (float)i / (float)n, w = (float)j / (float)n;
+                int c[3];
+                for (int k = 0; k < 3; k++)
+                    c[k] = cell_of((1.0f - u - w) * q[0][k] + u * q[1][k] + w * q[2][k], lo[k], hi[k]);
+                grid[(c[0] * MIRROR_CELLS + c[1]) * MIRROR_CELLS + c[2]] = 1;
+            }
+    }
+}
+
+/* Fraction of the filled cells whose mirror across the middle of axis a
+ * (or a cell beside it along a) is empty: 0 for a shape symmetric across
+ * that plane. */
+static double mirror_miss(const unsigned char *grid, int a)
+{
+    int filled = 0, missed = 0;
+    for (int i = 0; i < MIRROR_CELLS * MIRROR_CELLS * MIRROR_CELLS; i++) {
+        if (!grid[i]) continue;
+        int c[3] = {i / (MIRROR_CELLS * MIRROR_CELLS), i / MIRROR_CELLS % MIRROR_CELLS, i % MIRROR_CELLS};
+        int mirror = MIRROR_CELLS - 1 - c[a];
+        bool found = false;
+        for (int d = -1; d <= 1 && !found; d++) {
+            c[a] = mirror + d;
+            if (c[a] >= 0 && c[a] < MIRROR_CELLS) found = grid[(c[0] * MIRROR_CELLS + c[1]) * MIRROR_CELLS + c[2]];
+        }
+        filled++;
+        missed += !found;
+    }
+    return filled ? (double)missed / filled : 0.0;
+}
+
+int character_orient_body_forward(const character_model_t *m, const float *p, int up)
+{
+    float lo[3] = {FLT_MAX, FLT_MAX, FLT_MAX}, hi[3] = {-FLT_MAX, -FLT_MAX, -FLT_MAX};
+    for (int v = 0; v < m->vertex_count; v++)
+        for (int k = 0; k < 3; k++) lo[k] = fminf(lo[k], p[3 * v + k]), hi[k] = fmaxf(hi[k], p[3 * v + k]);
+    int u = abs(up) - 1, a = (u + 1) % 3, b = (u + 2) % 3;
+    unsigned char *grid = calloc((size_t)MIRROR_CELLS * MIRROR_CELLS * MIRROR_CELLS, 1);
+    if (!up || !grid) {
+        free(grid);
+        return 0;
+    }
+    fill_cells(m, p, lo, hi, grid);
+    double miss_a = mirror_miss(grid, a), miss_b = mirror_miss(grid, b);
+    free(grid);
+    /* the body's length: the axis the mirror does not map onto itself */
+    int len_axis = miss_a > miss_b ? a : b;
+    double side = fmin(miss_a, miss_b), length = fmax(miss_a, miss_b);
+    float len = hi[len_axis] - lo[len_axis], height = hi[u] - lo[u];
+    if (side > CHARACTER_ORIENT_MIRROR || length < 2.0 * CHARACTER_ORIENT_MIRROR || !(height > 0.0f) || len < height)
+        return 0;
+    double mean = 0.0;
+    for (int v = 0; v < m->vertex_count; v++) mean += p[3 * v + len_axis];
+    double off = (mean / m->vertex_count - 0.5 * (lo[len_axis] + hi[len_axis])) / len;
+    if (fabs(off) < 0.03) return 0;
+    return (off < 0.0 ? -1 : 1) * (len_axis + 1);
+}

@@ -11,7 +11,13 @@
  *             vertices within 3% of the bottom spread over more of the
  *             model's horizontal box than along any other axis (a side or
  *             an end touches the ground in a strip or a point); the area
- *             centroid breaks a tie between the two ends of an axis.
+ *             centroid breaks a tie between the two ends of an axis;
+ *   body      a model that lies along a horizontal axis (a quadruped, a
+ *             spider) is mirror-symmetric across the other one (its left
+ *             and right), and its head is the end of its length that holds
+ *             more vertices (eyes, mouth, horns, fangs: where a modeller
+ *             spends them; the bulk is no guide, a bull's big end is its
+ *             head, a spider's its abdomen).
  * character_import weighs these against the file's metadata and the format
  * (docs/CHARACTERS.md, "Import: units, axes, height"). */
 #ifndef MEADOW_CHARACTER_ORIENT_H
@@ -49,5 +55,19 @@ int character_orient_skeleton_forward(const character_model_t *model, const char
 /* Up from the geometry (see the banner). *margin: the winning support over
  * the best support of another axis (>= 1; 1 = no preference, a cube). */
 int character_orient_geometry_up(const character_model_t *model, const float *positions, float *margin);
+
+/* A horizontal axis counts as the body's left-right when mirroring the
+ * drawn surface across the box's middle along it leaves at most this
+ * fraction of the surface's cells unmatched; the body's length must leave
+ * at least twice this fraction unmatched. */
+#define CHARACTER_ORIENT_MIRROR 0.2f
+
+/* Forward from the body (see the banner), perpendicular to `up`: the
+ * horizontal axis the model is not mirror-symmetric along, when the other
+ * one is (CHARACTER_ORIENT_MIRROR) and the model is at least as long along
+ * it as it is tall, towards the end whose vertices' mean lies at least 3%
+ * of the length beyond the middle; 0 otherwise (a standing figure, a box,
+ * a sphere, a sheet) or when out of memory. */
+int character_orient_body_forward(const character_model_t *model, const float *positions, int up);
 
 #endif
