@@ -8,7 +8,10 @@
  *      give the images each view gives when it is the only one;
  *   c) the GL state the header lists is the same before and after
  *      grass_draw, from a host state unlike grass's own; the comparison
- *      finds a binding the test changes itself (it can fail).
+ *      finds a binding the test changes itself (it can fail);
+ *   d) GRASS_MAX_COLLIDERS colliders step without a word through io.log;
+ *      two more give one warning naming the count and the limit, not
+ *      repeated while the count stays, again when it changes.
  * The host's framebuffers are the test kit's gfx targets. */
 #include "grass/grass.h"
 #include "test.h"
@@ -341,6 +344,46 @@ static void check_gl_state(void)
     finish(&r, g, NULL);
 }
 
+/* io.log's warnings from grass_update, the last one kept. */
+typedef struct heard_t {
+    int warnings;
+    char last[512];
+} heard_t;
+
+static void hear(int level, const char *line, void *user)
+{
+    heard_t *h = user;
+    if (level != 1 || strncmp(line, "grass_update:", 13)) return;
+    h->warnings++;
+    snprintf(h->last, sizeof h->last, "%s", line);
+}
+
+static void check_collider_limit(void)
+{
+    heard_t heard = {0};
+    run_t r = run_of(GRASS_MODE_HYBRID, 0);
+    r.desc.io = (grass_io_t){.log = hear, .user = &heard};
+    grass_t *g = start(&r);
+    grass_collider_t c[GRASS_MAX_COLLIDERS + 3];
+    for (int i = 0; i < GRASS_MAX_COLLIDERS + 3; i++)
+        c[i] = (grass_collider_t){.shape = GRASS_SHAPE_SPHERE,
+                                  .position = {-3.5f + 0.5f * (float)(i % 15), 0.1f, -3.5f + 0.5f * (float)(i / 15)},
+                                  .radius = 0.1f};
+    const int counts[] = {GRASS_MAX_COLLIDERS, GRASS_MAX_COLLIDERS + 2, GRASS_MAX_COLLIDERS + 2,
+                          GRASS_MAX_COLLIDERS + 3, GRASS_MAX_COLLIDERS};
+    const int heard_after[] = {0, 1, 1, 2, 2};
+    for (int s = 0; s < 5; s++) {
+        grass_update(g, c, counts[s], (float)(s + 1) * DT, DT);
+        CHECK_MSG(heard.warnings == heard_after[s], "step %d, %d colliders: %d warnings, expected %d", s, counts[s],
+                  heard.warnings, heard_after[s]);
+        if (s == 1)
+            CHECK_MSG(strstr(heard.last, "130 colliders given, the collide set holds 128") &&
+                          strstr(heard.last, "colliders 129..130 bend blades only"),
+                      "warning: %s", heard.last);
+    }
+    finish(&r, g, NULL);
+}
+
 int main(void)
 {
     test_gl_init();
@@ -348,6 +391,7 @@ int main(void)
     check_two_fields();
     check_two_views();
     check_gl_state();
+    check_collider_limit();
     CHECK(test_gl_shutdown() == 0);
     TEST_END();
 }

@@ -13,6 +13,7 @@
 
 _Static_assert(ADMIT_RASTER_QUEUE_LAYERS == RASTER_QUEUE_LAYERS, "admit's raster queue estimate");
 _Static_assert(ADMIT_MAX_OBJECTS == COLLIDE_MAX_OBJECTS, "admit's object count is a collide set's");
+_Static_assert(GRASS_MAX_COLLIDERS == COLLIDE_MAX_OBJECTS, "grass.h's collider count is a collide set's");
 _Static_assert(ADMIT_MAX_SPHERES == BLADE_MAX_SPHERES, "admit's sphere count is the blade physics'");
 _Static_assert(SCENE_MAX_WIND <= BLADE_MAX_WINDS, "every scene wind reaches the blade physics");
 

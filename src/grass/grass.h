@@ -71,7 +71,12 @@ typedef struct grass_target_t {
 } grass_target_t;
 
 /* One collider of a step, in the order the host keeps from step to step
- * (the previous step's collider at the same index gives the sweep). */
+ * (the previous step's collider at the same index gives the sweep). A step
+ * takes the first GRASS_MAX_COLLIDERS into its collide set (billboards'
+ * cube maps, sweeps); the blades alone feel the rest, as sphere proxies
+ * without a sweep, and grass_update warns through io.log once each time
+ * the count past the limit changes. */
+#define GRASS_MAX_COLLIDERS 128
 typedef enum grass_shape_t {
     GRASS_SHAPE_SPHERE,  /* radius */
     GRASS_SHAPE_CAPSULE, /* radius, length between the end centres, along y */

@@ -65,6 +65,7 @@ struct grass_t {
     /* The colliders of the latest step, taken by every grass system. */
     collide_set_t collide;
     bool stepped;
+    int colliders_warned; /* the collider count last warned past GRASS_MAX_COLLIDERS; 0: none */
     double update_ms[3], make_ms[3]; /* grass_stats_t's */
     /* In-tree draws (grass_draw_as_t): the ground as canopy from the
      * camera on; the compute path's composite writes the grass's depth. */

@@ -1,7 +1,8 @@
 /* grass_update: one step of the grass. The host's colliders become the
- * step's collide set (objects for the billboards' cube maps, sphere
- * proxies for the blades), then every grass system takes it: the
- * billboards, the blade field or its tiles. */
+ * step's collide set (objects for the billboards' cube maps, the first
+ * GRASS_MAX_COLLIDERS, with a warning past them; sphere proxies for the
+ * blades), then every grass system takes it: the billboards, the blade
+ * field or its tiles. */
 #include "grass/grass_local.h"
 
 #include <string.h>
@@ -28,12 +29,12 @@ static float bound_radius(const grass_collider_t *c)
 }
 
 /* The step's objects: each collider with its mesh (vao 0: none, the blades
- * alone take it). The set keeps the previous step's at the same index for
- * the sweep. */
+ * alone take it), the first GRASS_MAX_COLLIDERS. The set keeps the
+ * previous step's at the same index for the sweep. */
 static void add_objects(grass_t *g, const grass_collider_t *c, int count, float dt)
 {
     collide_set_t *set = &g->collide;
-    for (int i = 0; i < count && i < COLLIDE_MAX_OBJECTS; i++) {
+    for (int i = 0; i < count && i < GRASS_MAX_COLLIDERS; i++) {
         collide_object_t o = {.radius = bound_radius(&c[i]), .vao = c[i].vao, .index_count = c[i].index_count,
                               .index_type = c[i].index_type};
         if (c[i].vao) {
@@ -46,6 +47,21 @@ static void add_objects(grass_t *g, const grass_collider_t *c, int count, float 
         }
         collide_add_object(set, &o, dt);
     }
+}
+
+/* Colliders past the collide set: warned once per count past it (a host
+ * that keeps giving 130 hears it once, again when it gives 131). */
+static void report_over(grass_t *g, int count)
+{
+    if (count <= GRASS_MAX_COLLIDERS) {
+        g->colliders_warned = 0;
+        return;
+    }
+    if (count == g->colliders_warned) return;
+    g->colliders_warned = count;
+    core_log_warn("grass_update: %d colliders given, the collide set holds %d (GRASS_MAX_COLLIDERS); colliders "
+                  "%d..%d bend blades only (sphere proxies without a sweep), not billboards",
+                  count, GRASS_MAX_COLLIDERS, GRASS_MAX_COLLIDERS + 1, count);
 }
 
 /* Within reach of the camera (horizontally; reach 0: everywhere)? */
@@ -171,7 +187,7 @@ static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count,
         collide_sphere_t *s = &set->spheres[set->sphere_count++];
         *s = (collide_sphere_t){.centre_radius = {c[k].position[0], c[k].position[1], c[k].position[2],
                                                   bound_radius(&c[k])}};
-        object_sweep(&set->objects[k], s->sweep);
+        object_sweep(k < set->object_count ? &set->objects[k] : NULL, s->sweep);
     }
 }
 
@@ -201,6 +217,7 @@ void grass_update(grass_t *g, const grass_collider_t *colliders, int count, floa
     collide_set_t *set = &g->collide;
     collide_begin_set(set);
     add_objects(g, colliders, count, dt);
+    report_over(g, count);
     g->stepped = true;
     /* The papers' colliders stand where they are at each step (no sweep). */
     for (int i = 0; i < set->object_count && g->tuning.paper; i++)
