@@ -17,7 +17,7 @@ typedef struct test_mesh_t {
     GLuint vao;
 } test_mesh_t;
 
-static inline void test_mesh_make(test_mesh_t *m, const scene_collider_t *c)
+static inline void test_mesh_make(test_mesh_t *m, const collide_shape_t *c)
 {
     collide_make_mesh(&m->shape, c);
     m->pos = gfx_buffer_make(&(gfx_buffer_desc_t){.size = 12 * (size_t)m->shape.vertex_count,

@@ -2,7 +2,7 @@
 #ifndef MEADOW_TERRAIN_TEST_UTIL_H
 #define MEADOW_TERRAIN_TEST_UTIL_H
 
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 /* Flattens a heightfield made by terrain_make_heightfield to y = 0, normals
  * up, its box with it (the grid and the triangles kept). */

@@ -195,7 +195,8 @@ static void check_spheres(void)
     CHECK(at && sscanf(at + strlen(largest), "%f", &fits) == 1 && fits > 34.8f);
     for (int more = 0; more < 2; more++) {
         s.colliders[0].length = fits + (float)more * 5e-3f;
-        colliders[0] = collide_pack_spheres(&s.colliders[0], (float[3]){0}, NULL, 0);
+        collide_shape_t shape = scene_collider_shape(&s.colliders[0]);
+        colliders[0] = collide_pack_spheres(&shape, (float[3]){0}, NULL, 0);
         CHECK_MSG(admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err) == !more, "%g: %s",
                   (double)s.colliders[0].length, err);
     }
@@ -205,7 +206,8 @@ static void check_spheres(void)
     s.colliders[0].radius = 0.0f;
     s.colliders[1] = s.colliders[0];
     colliders[0] = colliders[1] = 1 + COLLIDE_PACK_SATURATED;
-    CHECK(collide_pack_spheres(&s.colliders[0], (float[3]){0}, NULL, 0) == colliders[0]);
+    collide_shape_t zero_radius = scene_collider_shape(&s.colliders[0]);
+    CHECK(collide_pack_spheres(&zero_radius, (float[3]){0}, NULL, 0) == colliders[0]);
     w.objects = 18;
     CHECK(!admit_check(&s, &w, &(admit_limits_t){0}, err, sizeof err));
     CHECK_MSG(strstr(err, "colliders: 2 colliders and the characters need 2000000610 sphere proxies") == err &&

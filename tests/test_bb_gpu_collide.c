@@ -33,7 +33,7 @@ static int compare(const bb_field_t *f, const collide_cubemap_t *cube, const flo
     test_readback_read(f, &rb, true);
     mat4 w2c;
     glm_translate_make(w2c, (vec3){-centre[0], -centre[1], -centre[2]});
-    scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius};
+    collide_shape_t sph = {.type = COLLIDE_SHAPE_SPHERE, .radius = radius};
     int deformed = 0, sum_n = 0;
     *max_err = 0, *mean_err = 0, *deepest = 0, *cpu_hits = 0, *below = 0;
     for (int i = 0; i < n; i++) {
@@ -316,7 +316,7 @@ int main(void)
 
     check_swept(&x, check_cpu_cube(&x));
     check_lend(&x);
-    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = x.radius};
+    collide_shape_t sc = {.type = COLLIDE_SHAPE_SPHERE, .radius = x.radius};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
     float *tex = check_gpu_cube(&x, &mesh);

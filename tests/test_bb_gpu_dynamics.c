@@ -172,7 +172,7 @@ int main(void)
                                                      .cube_res = 32, .recover_time = T, .max_deformed = 512,
                                                      .layout = {.size = 32, .clump_size = 32}});
     CHECK(f);
-    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.45f};
+    collide_shape_t sc = {.type = COLLIDE_SHAPE_SPHERE, .radius = 0.45f};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
     float time = 0;

@@ -109,7 +109,7 @@ static bb_point_t *check_many(const bb_field_desc_t *desc, const collide_cubemap
             if (v < d->subdiv[0] || test_on_ground(d, &g[4 * v], &below)) continue;
             for (int k = 0; k < OBJECTS; k++) {
                 float rel[3] = {g[4 * v] - centre[k][0], g[4 * v + 1] - centre[k][1], g[4 * v + 2] - centre[k][2]};
-                scene_collider_t sph = {.type = SCENE_COLLIDER_SPHERE, .radius = radius[k]};
+                collide_shape_t sph = {.type = COLLIDE_SHAPE_SPHERE, .radius = radius[k]};
                 double sd = collide_signed_distance(&sph, rel);
                 deepest = fmin(deepest, sd);
                 worst = fmin(worst, sd / (2.0 * radius[k] / RES));

@@ -45,7 +45,7 @@ int main(void)
     desc.recover_time = 30;
     bb_field_t *f = bb_field_make(&desc);
     CHECK(f);
-    scene_collider_t sc = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
+    collide_shape_t sc = {.type = COLLIDE_SHAPE_SPHERE, .radius = 0.5f};
     test_mesh_t mesh;
     test_mesh_make(&mesh, &sc);
     float time = 0;

@@ -175,7 +175,7 @@ static void check_collision(bb_field_t *f, const terrain_mesh_t *t)
     bb_point_t *before = malloc(sizeof *before * n), *pts = malloc(sizeof *pts * n);
     CHECK(bb_field_read(f, BB_DATA_POINTS, 0, n, before));
     test_mesh_t ball;
-    test_mesh_make(&ball, &(scene_collider_t){.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f});
+    test_mesh_make(&ball, &(collide_shape_t){.type = COLLIDE_SHAPE_SPHERE, .radius = 0.5f});
     for (int k = 0; k < 10; k++) {
         float c[3] = {at[0] + 0.1f * (float)k, ground + 0.35f, at[1]};
         collide_object_t o = test_object(&ball, c, 0.5f);

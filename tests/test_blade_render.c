@@ -12,7 +12,7 @@
  * (test_gi). Golden images: MEADOW_UPDATE_GOLDEN=1. */
 #include "blade/blade.h"
 #include "gi_test_util.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #include "test.h"
 #include "test_gl.h"
 

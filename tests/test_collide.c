@@ -158,7 +158,7 @@ static void test_box_capsule_map(void)
 }
 
 
-static void check_mesh(const scene_collider_t *c)
+static void check_mesh(const collide_shape_t *c)
 {
     collide_mesh_t m;
     CHECK(collide_make_mesh(&m, c));
@@ -190,7 +190,7 @@ static void check_mesh(const scene_collider_t *c)
 
 static void test_pack_render(void)
 {
-    scene_collider_t cap = {.type = SCENE_COLLIDER_CAPSULE, .radius = 0.3f, .length = 1.0f};
+    collide_shape_t cap = {.type = COLLIDE_SHAPE_CAPSULE, .radius = 0.3f, .length = 1.0f};
     float sp[8][4], pos[3] = {1, 2, 3};
     int n = collide_pack_spheres(&cap, pos, sp, 8);
     CHECK(n == 1 + 4); /* 1 + ceil(1 / 0.3) */
@@ -198,7 +198,7 @@ static void test_pack_render(void)
     CHECK_NEAR(sp[n - 1][1], 2.5, 1e-6);
     CHECK(sp[2][3] == 0.3f && sp[2][0] == 1.0f && sp[2][2] == 3.0f);
     CHECK(collide_pack_spheres(&cap, pos, sp, 2) == n); /* too small: full count back */
-    scene_collider_t box = {.type = SCENE_COLLIDER_BOX, .half_extents = {0.5f, 0.25f, 1.0f}};
+    collide_shape_t box = {.type = COLLIDE_SHAPE_BOX, .half_extents = {0.5f, 0.25f, 1.0f}};
     CHECK(collide_pack_spheres(&box, pos, sp, 8) == 1 && sp[0][3] == collide_bounding_radius(&box));
     /* the CPU cube map of a collider is its shape's rasterisation */
     collide_cubemap_t a, b;
@@ -242,9 +242,9 @@ int main(void)
     test_face_basis();
     test_sphere_map();
     test_box_capsule_map();
-    scene_collider_t s = {.type = SCENE_COLLIDER_SPHERE, .radius = 0.5f};
-    scene_collider_t cap = {.type = SCENE_COLLIDER_CAPSULE, .radius = 0.3f, .length = 1.0f};
-    scene_collider_t box = {.type = SCENE_COLLIDER_BOX, .half_extents = {0.5f, 0.25f, 1.0f}};
+    collide_shape_t s = {.type = COLLIDE_SHAPE_SPHERE, .radius = 0.5f};
+    collide_shape_t cap = {.type = COLLIDE_SHAPE_CAPSULE, .radius = 0.3f, .length = 1.0f};
+    collide_shape_t box = {.type = COLLIDE_SHAPE_BOX, .half_extents = {0.5f, 0.25f, 1.0f}};
     check_mesh(&s);
     check_mesh(&cap);
     check_mesh(&box);

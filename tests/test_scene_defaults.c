@@ -107,7 +107,7 @@ static void test_terrain_camera(void)
     CHECK(t.type == scene.terrain.type && t.size == scene.terrain.size);
     CHECK(t.resolution == scene.terrain.resolution && t.height == scene.terrain.height);
     CHECK(t.scale == scene.terrain.scale);
-    CHECK(scene_field_find(SCENE_SEC_TERRAIN, "resolution")->hi == SCENE_TERRAIN_RESOLUTION_MAX);
+    CHECK(scene_field_find(SCENE_SEC_TERRAIN, "resolution")->hi == TERRAIN_RESOLUTION_MAX);
 
     cam_t cam = {0};
     cam_defaults(&cam);

@@ -8,7 +8,7 @@
 #include <unistd.h>
 
 #include "core/core.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #include "test.h"
 
 /* Independent reference: highest triangle under (x, z) by testing every

@@ -14,8 +14,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "scene/terrain.h"
-#include "scene/terrain_clipmap.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_clipmap.h"
 #include "test.h"
 
 typedef struct edge_t {

@@ -9,7 +9,7 @@
 
 #include "core/core.h"
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #include "test.h"
 
 static terrain_world_t world(float size, float height, uint64_t seed)

@@ -8,7 +8,7 @@
  * something). */
 #include "common/bindings_tests.glsl"
 #include "gfx/gfx.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #include "test.h"
 #include "test_gl.h"
 

@@ -11,8 +11,8 @@
  * to $MEADOW_TEST_OUT/world_walk.png. */
 #include "ground/ground.h"
 #include "platform/plat.h"
-#include "scene/terrain.h"
-#include "scene/terrain_clipmap.h"
+#include "terrain/terrain.h"
+#include "terrain/terrain_clipmap.h"
 #include "test.h"
 #include "test_gl.h"
 

@@ -12,7 +12,7 @@
 
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #include "test.h"
 
 enum { WALK, RUN, LOW, HIGH, REGIMES };

@@ -17,7 +17,7 @@
 #include "blade/blade_tiles.h"
 #include "hybrid/hybrid.h"
 #include "scene/scene_fields.h"
-#include "scene/terrain_clipmap.h"
+#include "terrain/terrain_clipmap.h"
 
 #define MIB (1024.0 * 1024.0)
 #define BLADE_BYTES 64.0   /* sizeof(blade_t) */

@@ -22,7 +22,7 @@
 #include <stddef.h>
 
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 /* The GL's limits (0: unknown, not checked) and the memory a run may use. */
 typedef struct admit_limits_t {

@@ -29,7 +29,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "grass/grass_view.h"
+#include "grass_view/grass_view.h"
 #include "billboard/bb_layout.h"
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
@@ -40,7 +40,7 @@
 #include "raster/raster.h"
 #include "hybrid/hybrid_slope.h"
 #include "billboard/bb_defaults.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 /* Objects one field can collide against per update (desc.max_objects; the
  * cube-map array holds 6 layers for each). */

@@ -21,7 +21,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "scene/terrain_world.h"
+#include "terrain/terrain_world.h"
 
 /* Slots one collide pass takes at most (the collide scratch holds their
  * points): 32 cells of 8 m, 16 walkers touching two cells each. */

@@ -28,14 +28,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "grass/grass_view.h"
+#include "grass_view/grass_view.h"
 #include "blade/blade_ref.h"
 #include "blade/blade_seed.h"
 #include "blade/blade_seed_plan.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
 #include "raster/raster.h"
-#include "scene/scene.h"
+#include "terrain/terrain.h"
 
 typedef enum blade_render_path_t {
     BLADE_PATH_TESSELLATION = 0, /* the desc's zero; the program passes grass.blade_render (pull by default) */

@@ -27,7 +27,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "grass/grass_view.h"
+#include "grass_view/grass_view.h"
 #include "blade/blade_lod.h"
 #include "blade/blade_population.h"
 #include "collide/collide_set.h"

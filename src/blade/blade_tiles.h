@@ -36,7 +36,7 @@
 #include "blade/blade.h"
 #include "hybrid/hybrid.h"
 #include "hybrid/hybrid_slope.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 #define BLADE_TILES_MAX_TEMPLATES 8
 /* Defaults the scene shares (its SCENE_DEFAULT_* of scene/scene_fields.h

@@ -21,7 +21,7 @@
 #include "character/character_ref.h"
 #include "gfx/gfx.h"
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 #define CHARACTER_DEFAULT_CAPSULES 16
 #define CHARACTER_MAX_FEET 8

@@ -6,7 +6,7 @@
 
 #include "character/character_ref.h"
 #include "core/core.h"
-#include "scene/mesh_import.h"
+#include "mesh/mesh_import.h"
 
 #include <assimp/cimport.h>
 #include <assimp/material.h>

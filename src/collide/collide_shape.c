@@ -74,11 +74,11 @@ static bool make_box(collide_mesh_t *m, const float he[3])
     return true;
 }
 
-bool collide_make_mesh(collide_mesh_t *m, const scene_collider_t *c)
+bool collide_make_mesh(collide_mesh_t *m, const collide_shape_t *c)
 {
     switch (c->type) {
-    case SCENE_COLLIDER_CAPSULE: return make_round(m, c->radius, c->length * 0.5f);
-    case SCENE_COLLIDER_BOX: return make_box(m, c->half_extents);
+    case COLLIDE_SHAPE_CAPSULE: return make_round(m, c->radius, c->length * 0.5f);
+    case COLLIDE_SHAPE_BOX: return make_box(m, c->half_extents);
     default: return make_round(m, c->radius, 0.0f);
     }
 }
@@ -91,15 +91,15 @@ void collide_free_mesh(collide_mesh_t *m)
     memset(m, 0, sizeof *m);
 }
 
-float collide_signed_distance(const scene_collider_t *c, const float p[3])
+float collide_signed_distance(const collide_shape_t *c, const float p[3])
 {
     switch (c->type) {
-    case SCENE_COLLIDER_CAPSULE: {
+    case COLLIDE_SHAPE_CAPSULE: {
         float h = c->length * 0.5f;
         float y = p[1] > h ? p[1] - h : (p[1] < -h ? p[1] + h : 0.0f);
         return sqrtf(p[0] * p[0] + y * y + p[2] * p[2]) - c->radius;
     }
-    case SCENE_COLLIDER_BOX: {
+    case COLLIDE_SHAPE_BOX: {
         float q[3], out = 0.0f, in = -INFINITY;
         for (int i = 0; i < 3; i++) {
             q[i] = fabsf(p[i]) - c->half_extents[i];
@@ -112,33 +112,33 @@ float collide_signed_distance(const scene_collider_t *c, const float p[3])
     }
 }
 
-float collide_bounding_radius(const scene_collider_t *c)
+float collide_bounding_radius(const collide_shape_t *c)
 {
     switch (c->type) {
-    case SCENE_COLLIDER_CAPSULE: return c->radius + c->length * 0.5f;
-    case SCENE_COLLIDER_BOX:
+    case COLLIDE_SHAPE_CAPSULE: return c->radius + c->length * 0.5f;
+    case COLLIDE_SHAPE_BOX:
         return sqrtf(c->half_extents[0] * c->half_extents[0] + c->half_extents[1] * c->half_extents[1] +
                      c->half_extents[2] * c->half_extents[2]);
     default: return c->radius;
     }
 }
 
-void collide_render_shape(collide_cubemap_t *cube, const scene_collider_t *c)
+void collide_render_shape(collide_cubemap_t *cube, const collide_shape_t *c)
 {
     switch (c->type) {
-    case SCENE_COLLIDER_CAPSULE:
+    case COLLIDE_SHAPE_CAPSULE:
         collide_render_capsule(cube, (vec3){0, -0.5f * c->length, 0}, (vec3){0, 0.5f * c->length, 0}, c->radius);
         break;
-    case SCENE_COLLIDER_BOX: collide_render_box(cube, (vec3){0, 0, 0}, (float *)c->half_extents); break;
+    case COLLIDE_SHAPE_BOX: collide_render_box(cube, (vec3){0, 0, 0}, (float *)c->half_extents); break;
     default: collide_render_sphere(cube, (vec3){0, 0, 0}, c->radius); break;
     }
 }
 
-int collide_pack_spheres(const scene_collider_t *c, const float position[3], float (*out)[4], int max)
+int collide_pack_spheres(const collide_shape_t *c, const float position[3], float (*out)[4], int max)
 {
     int k = 1;
     float r = collide_bounding_radius(c), step = 0;
-    if (c->type == SCENE_COLLIDER_CAPSULE && c->length > 0.0f) {
+    if (c->type == COLLIDE_SHAPE_CAPSULE && c->length > 0.0f) {
         r = c->radius;
         /* a radius far below the length (0 included) needs more than any
          * set holds: the count saturates */

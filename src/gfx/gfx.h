@@ -265,7 +265,7 @@ GLint gfx_uniform(gfx_program_t p, const char *name);
 /* Sets the uniforms of shaders/common/world_height.glsl on p (unbound is
  * fine; p keeps them): u_world_keys, the hash key of each of the `layers`
  * noise layers, and u_world_height, the amplitude (m); the values of
- * terrain_world_gpu (scene/terrain_world.h), so gfx needs no scene type.
+ * terrain_world_gpu (terrain/terrain_world.h), so gfx needs no scene type.
  * Every program that includes world_height.glsl takes it once after it
  * is made (the ground's, the billboard ring's, the tiles' on a world). */
 void gfx_world_height_uniforms(gfx_program_t p, const uint32_t *keys, int layers, float height);

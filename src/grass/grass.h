@@ -21,10 +21,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "grass/grass_view.h"
+#include "grass_view.h" /* src/grass_view in the tree, beside grass.h when installed */
 
 typedef struct grass_t grass_t;
 struct grass_host_t; /* in-tree hosts only (grass_harness.h) */
+
+/* Fills v from the host's view and proj (column-major), the target's
+ * width x height pixels and the draw's time: the rest of grass_view_t. */
+void grass_view_make(grass_view_t *v, const float view[16], const float proj[16], int width, int height, float time);
 
 /* Where the tiles of a world terrain draw blades in blade mode when the
  * scene sets no grass.blade_distance (m). */

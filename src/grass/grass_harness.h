@@ -17,7 +17,7 @@
 #include "gfx/gfx.h"
 #include "raster/raster.h"
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 /* grass_desc_t.host: the scene and terrain the host resolved (both
  * borrowed for the grass's life; the grass applies grass.lod_table and

@@ -11,12 +11,12 @@
 #include "platform/plat.h"
 
 /* The analytic shape of a collider (no path: it stands at its position). */
-static scene_collider_t shape_of(const grass_collider_t *c)
+static collide_shape_t shape_of(const grass_collider_t *c)
 {
-    static const scene_collider_type_t types[] = {[GRASS_SHAPE_SPHERE] = SCENE_COLLIDER_SPHERE,
-                                                  [GRASS_SHAPE_CAPSULE] = SCENE_COLLIDER_CAPSULE,
-                                                  [GRASS_SHAPE_BOX] = SCENE_COLLIDER_BOX};
-    scene_collider_t s = {.type = types[c->shape], .radius = c->radius, .length = c->length};
+    static const collide_shape_type_t types[] = {[GRASS_SHAPE_SPHERE] = COLLIDE_SHAPE_SPHERE,
+                                                 [GRASS_SHAPE_CAPSULE] = COLLIDE_SHAPE_CAPSULE,
+                                                 [GRASS_SHAPE_BOX] = COLLIDE_SHAPE_BOX};
+    collide_shape_t s = {.type = types[c->shape], .radius = c->radius, .length = c->length};
     memcpy(s.half_extents, c->half_extents, sizeof s.half_extents);
     return s;
 }
@@ -24,7 +24,7 @@ static scene_collider_t shape_of(const grass_collider_t *c)
 static float bound_radius(const grass_collider_t *c)
 {
     if (c->shape == GRASS_SHAPE_SPHERES) return c->bound_radius;
-    scene_collider_t s = shape_of(c);
+    collide_shape_t s = shape_of(c);
     return collide_bounding_radius(&s);
 }
 
@@ -111,7 +111,7 @@ static int blade_spheres(grass_t *g, const grass_collider_t *c, int count, colli
             *dropped += c[i].sphere_count - got;
             continue;
         }
-        scene_collider_t s = shape_of(&c[i]);
+        collide_shape_t s = shape_of(&c[i]);
         int want = collide_pack_spheres(&s, c[i].position, packed, max - n);
         int got = want < max - n ? want : max - n;
         const collide_object_t *o = i < g->collide.object_count ? &g->collide.objects[i] : NULL;
@@ -157,7 +157,7 @@ static void blade_cube_proxies(grass_t *g, const grass_collider_t *c, int count,
         collide_cubemap_t cubes[BLADE_MAX_CUBES];
         int made = 0;
         for (; made < nc; made++) {
-            scene_collider_t s = shape_of(&c[made]);
+            collide_shape_t s = shape_of(&c[made]);
             if (!collide_init_cubemap(&cubes[made], g->cube_res, (vec3){0, 0, 0}, bound_radius(&c[made]))) break;
             collide_render_shape(&cubes[made], &s);
         }

@@ -1,6 +1,6 @@
 /* ground: uploads a terrain mesh and draws it (lit soil-and-grass ground),
  * and draws the sky gradient behind everything (ground.h). A world terrain
- * (no vertices) is drawn as a clipmap (scene/terrain_clipmap.h): one vertex
+ * (no vertices) is drawn as a clipmap (terrain/terrain_clipmap.h): one vertex
  * grid of integer coordinates, five index ranges, a draw per level of
  * terrain_world.vert, displaced by world_height; the same terrain.frag. */
 #include "ground/ground.h"
@@ -10,7 +10,7 @@
 
 #include "blade/blade.h"
 #include "common/bindings_ground.glsl"
-#include "scene/terrain_clipmap.h"
+#include "terrain/terrain_clipmap.h"
 
 /* The terrain, and in the hybrid the ground canopy it is shaded as beyond
  * the billboards. */

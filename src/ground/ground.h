@@ -1,7 +1,7 @@
 /* ground: the terrain as drawn and the sky behind it (ground.c). A terrain
  * mesh is uploaded and lit as soil and grass (ground/terrain.vert,
  * ground/terrain.frag); a world terrain (no vertices) is drawn as a clipmap
- * (scene/terrain_clipmap.h): one grid of integer coordinates, five index
+ * (terrain/terrain_clipmap.h): one grid of integer coordinates, five index
  * ranges, a draw per level of ground/terrain_world.vert displaced by the
  * world's height, the same fragment shader. Beyond the billboards the
  * ground is shaded as the ground canopy (blade_canopy.h,
@@ -12,13 +12,13 @@
 
 #include <stdbool.h>
 
-#include "grass/grass_view.h"
+#include "grass_view/grass_view.h"
 #include "blade/blade_canopy.h"
 #include "blade/blade_lod.h"
 #include "core/core.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 typedef struct ground_t ground_t;
 

@@ -32,7 +32,7 @@
 #define MAX_EXACT (SCENE_MAX_COLLIDERS + BLADE_MAX_SPHERES)
 
 typedef struct exact_t {
-    scene_collider_t shape;
+    collide_shape_t shape;
     vec3 pos;
     float reach; /* bounding radius */
 } exact_t;
@@ -42,7 +42,7 @@ static int gather_exact(world_t *w, exact_t *out)
     int n = 0;
     for (int i = 0; i < world_collider_count(w); i++) {
         world_collider_info_t c = world_collider(w, i);
-        out[n].shape = c.desc;
+        out[n].shape = scene_collider_shape(&c.desc);
         glm_vec3_copy(c.position, out[n].pos);
         out[n].reach = c.bound_radius;
         n++;
@@ -53,7 +53,7 @@ static int gather_exact(world_t *w, exact_t *out)
         int k = s ? character_set_spheres(chars, s, BLADE_MAX_SPHERES) : 0;
         if (k > BLADE_MAX_SPHERES) k = BLADE_MAX_SPHERES;
         for (int i = 0; i < k; i++, n++) {
-            out[n] = (exact_t){.shape = {.type = SCENE_COLLIDER_SPHERE, .radius = s[i][3]}, .reach = s[i][3]};
+            out[n] = (exact_t){.shape = {.type = COLLIDE_SHAPE_SPHERE, .radius = s[i][3]}, .reach = s[i][3]};
             glm_vec3_copy(s[i], out[n].pos);
         }
         free(s);

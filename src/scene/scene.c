@@ -148,6 +148,17 @@ bool scene_raster_parse(const char *name, scene_raster_t *out)
         }
     return false;
 }
+
+collide_shape_t scene_collider_shape(const scene_collider_t *c)
+{
+    static const collide_shape_type_t types[] = {[SCENE_COLLIDER_SPHERE] = COLLIDE_SHAPE_SPHERE,
+                                                 [SCENE_COLLIDER_CAPSULE] = COLLIDE_SHAPE_CAPSULE,
+                                                 [SCENE_COLLIDER_BOX] = COLLIDE_SHAPE_BOX};
+    collide_shape_t s = {.type = types[c->type], .radius = c->radius, .length = c->length};
+    memcpy(s.half_extents, c->half_extents, sizeof s.half_extents);
+    return s;
+}
+
 const char *scene_blade_shape_name(blade_shape_t shape)
 {
     return names_of(SCENE_SEC_GRASS, "shape")[shape];

@@ -27,9 +27,10 @@
 
 #include "blade/blade_lod.h"
 #include "blade/blade_population.h"
+#include "collide/collide_shape.h"
 #include "scene/camera.h"
 #include "scene/path.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 /* The blade physics's wind fields (BLADE_MAX_WINDS; world.c asserts it). */
 #define SCENE_MAX_WIND 8
@@ -174,6 +175,9 @@ typedef struct scene_collider_t {
     scene_path_t path; /* centre over time */
     bool loop;         /* default false; see scene_path_eval */
 } scene_collider_t;
+
+/* The collider's shape as the grass's collision takes it (collide_shape.h). */
+collide_shape_t scene_collider_shape(const scene_collider_t *c);
 
 /* A named range of frames of a model's first clip ("clips": {"walk": [1, 14]}):
  * ticks of that clip's timeline (frames for frame-based formats; what

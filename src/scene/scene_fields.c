@@ -85,15 +85,15 @@ const scene_field_t scene_fields[] = {
     /* ---- terrain ---- */
     {TERRAIN(type), .key = "type", .type = SCENE_FIELD_ENUM, .names = terrain_names,
       .doc = "procedural heightfield, an imported mesh, or the open world's height function (docs/WORLD.md)"},
-    {TERRAIN(size), .key = "size", .variants = HEIGHTFIELD | WORLD, .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {SCENE_DEFAULT_TERRAIN_SIZE},
+    {TERRAIN(size), .key = "size", .variants = HEIGHTFIELD | WORLD, .type = SCENE_FIELD_FLOAT, .hi = 10000, .def = {TERRAIN_DEFAULT_SIZE},
       .doc = "heightfield or world side (m), square; a world's at most 8192 (TERRAIN_WORLD_SIZE_MAX)"},
-    {TERRAIN(resolution), .key = "resolution", .variants = HEIGHTFIELD, .type = SCENE_FIELD_INT, .hi = SCENE_TERRAIN_RESOLUTION_MAX,
-      .def = {SCENE_DEFAULT_TERRAIN_RESOLUTION}, .doc = "heightfield grid cells per side"},
+    {TERRAIN(resolution), .key = "resolution", .variants = HEIGHTFIELD, .type = SCENE_FIELD_INT, .hi = TERRAIN_RESOLUTION_MAX,
+      .def = {TERRAIN_DEFAULT_RESOLUTION}, .doc = "heightfield grid cells per side"},
     {TERRAIN(height), .key = "height", .variants = HEIGHTFIELD | WORLD, .type = SCENE_FIELD_FLOAT, .hi = 1000,
-      .def = {SCENE_DEFAULT_TERRAIN_HEIGHT}, .doc = "heightfield or world amplitude: heights in [-height, height] (m)"},
+      .def = {TERRAIN_DEFAULT_HEIGHT}, .doc = "heightfield or world amplitude: heights in [-height, height] (m)"},
     {TERRAIN(mesh), .key = "mesh", .variants = MESH, .type = SCENE_FIELD_STRING, .flags = SCENE_FIELD_NO_DEFAULT,
       .doc = "mesh file, repository-relative; required when type is \"mesh\""},
-    {TERRAIN(scale), .key = "scale", .variants = MESH, .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {SCENE_DEFAULT_TERRAIN_SCALE},
+    {TERRAIN(scale), .key = "scale", .variants = MESH, .type = SCENE_FIELD_FLOAT, .hi = 1e6, .def = {TERRAIN_DEFAULT_SCALE},
       .doc = "uniform scale of the mesh"},
 
     /* ---- grass ---- */

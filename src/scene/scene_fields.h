@@ -33,12 +33,7 @@
 #define SCENE_DEFAULT_MSAA 4
 #define SCENE_DEFAULT_RASTER_SAMPLES 4
 
-/* "terrain" (terrain_desc_defaults). */
-#define SCENE_DEFAULT_TERRAIN_SIZE 40.0f
-#define SCENE_DEFAULT_TERRAIN_RESOLUTION 64
-#define SCENE_DEFAULT_TERRAIN_HEIGHT 1.5f
-#define SCENE_DEFAULT_TERRAIN_SCALE 1.0f
-#define SCENE_TERRAIN_RESOLUTION_MAX 4096 /* also terrain_make_heightfield's limit */
+/* "terrain": TERRAIN_DEFAULT_* of terrain/terrain.h. */
 
 /* "grass": blades: BLADE_DEFAULT_* of blade/blade_population.h. */
 /* "grass": billboards: BB_DEFAULT_* of billboard/bb_defaults.h; the hybrid's

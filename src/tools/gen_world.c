@@ -16,7 +16,7 @@
 
 #include "core/core.h"
 #include "scene/camera.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 #define WORLD_SEED 32u
 #define WORLD_HEIGHT 30.0f

@@ -104,7 +104,10 @@ int world_load(const world_options_t *o, world_t **out)
 static float largest_object_radius(world_t *w)
 {
     float r = 0.0f;
-    for (int i = 0; i < w->scene.collider_count; i++) r = fmaxf(r, collide_bounding_radius(&w->scene.colliders[i]));
+    for (int i = 0; i < w->scene.collider_count; i++) {
+        collide_shape_t s = scene_collider_shape(&w->scene.colliders[i]);
+        r = fmaxf(r, collide_bounding_radius(&s));
+    }
     if (w->have_chars) {
         character_object_t co[COLLIDE_MAX_OBJECTS];
         int n = character_set_objects(&w->chars, co, COLLIDE_MAX_OBJECTS);
@@ -128,8 +131,10 @@ static bool admit(world_t *w)
 {
     static int spheres[SCENE_MAX_COLLIDERS];
     static float packed[BLADE_MAX_SPHERES][4];
-    for (int i = 0; i < w->scene.collider_count; i++)
-        spheres[i] = collide_pack_spheres(&w->scene.colliders[i], (float[3]){0}, packed, BLADE_MAX_SPHERES);
+    for (int i = 0; i < w->scene.collider_count; i++) {
+        collide_shape_t s = scene_collider_shape(&w->scene.colliders[i]);
+        spheres[i] = collide_pack_spheres(&s, (float[3]){0}, packed, BLADE_MAX_SPHERES);
+    }
     /* On a world only the characters near the camera pack spheres (see
      * grass_collider_reach): the sphere limit is not a static one there. */
     static int char_spheres[SCENE_MAX_CHARACTERS];

@@ -20,7 +20,7 @@
 #include "grass/grass.h"
 #include "scene/camera.h"
 #include "scene/scene.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 
 typedef struct world_t world_t;
 

@@ -11,7 +11,8 @@ bool world_colliders_make(world_colliders_t *c, const scene_desc_t *s)
     for (int i = 0; i < c->count; i++) {
         world_collider_t *a = &c->items[i];
         a->desc = s->colliders[i];
-        if (!collide_make_mesh(&a->mesh, &a->desc)) return false;
+        collide_shape_t shape = scene_collider_shape(&a->desc);
+        if (!collide_make_mesh(&a->mesh, &shape)) return false;
         size_t nv = a->mesh.vertex_count;
         float *vn = malloc(nv * 6 * sizeof(float));
         if (!vn) return false;
@@ -32,7 +33,7 @@ bool world_colliders_make(world_colliders_t *c, const scene_desc_t *s)
             glVertexArrayAttribFormat(a->vao, k, 3, GL_FLOAT, GL_FALSE, k * 3 * sizeof(float));
             glVertexArrayAttribBinding(a->vao, k, 0);
         }
-        a->bound_radius = collide_bounding_radius(&a->desc);
+        a->bound_radius = collide_bounding_radius(&shape);
     }
     c->prog = gfx_program_make(&(gfx_program_desc_t){.vs = "world/object.vert", .fs = "world/object.frag",
                                                      .label = "collider.program"});

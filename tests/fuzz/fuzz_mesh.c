@@ -18,7 +18,7 @@
 #include <assimp/scene.h>
 
 #include "core/core.h"
-#include "scene/terrain.h"
+#include "terrain/terrain.h"
 #ifdef MEADOW_FUZZ_CHARACTER
 #include "character/character_load.h"
 #include "character/character_ref.h"

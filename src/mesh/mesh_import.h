@@ -4,8 +4,8 @@
  * and faces with no indices or indices past the vertex count (post-processing
  * asserts or reads out of bounds). The file is imported without
  * post-processing, checked, and only then post-processed. */
-#ifndef MEADOW_SCENE_MESH_IMPORT_H
-#define MEADOW_SCENE_MESH_IMPORT_H
+#ifndef MEADOW_MESH_IMPORT_H
+#define MEADOW_MESH_IMPORT_H
 
 #include <stddef.h>
 

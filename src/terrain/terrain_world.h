@@ -18,8 +18,8 @@
  * and seed. The world is centred on the origin, the square
  * [-size/2, size/2]^2; the function is defined (and continuous) beyond it.
  * GL-free. */
-#ifndef MEADOW_SCENE_TERRAIN_WORLD_H
-#define MEADOW_SCENE_TERRAIN_WORLD_H
+#ifndef MEADOW_TERRAIN_WORLD_H
+#define MEADOW_TERRAIN_WORLD_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -16,8 +16,8 @@
  * continuous in the camera position (no popping). The height is sampled at
  * the morphed position. terrain_clipmap_vertex is the CPU twin of
  * shaders/ground/terrain_world.vert. GL-free. */
-#ifndef MEADOW_SCENE_TERRAIN_CLIPMAP_H
-#define MEADOW_SCENE_TERRAIN_CLIPMAP_H
+#ifndef MEADOW_TERRAIN_CLIPMAP_H
+#define MEADOW_TERRAIN_CLIPMAP_H
 
 #include <stdbool.h>
 #include <stddef.h>

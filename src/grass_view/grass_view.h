@@ -1,8 +1,9 @@
 /* grass_view: the one view type of meadow, from the host's grass_draw
  * down to every driver (billboards, blades, tiles, ground) and their CPU
  * references: the host's view and projection, and what grass_view_make
- * derives from them. Part of the library's public headers (grass.h
- * includes it); no other dependency. */
+ * (grass.h) derives from them. A module of this header alone, below the
+ * drivers and the library; installed beside grass.h (grass.h includes
+ * it); no other dependency. */
 #ifndef MEADOW_GRASS_VIEW_H
 #define MEADOW_GRASS_VIEW_H
 
@@ -27,6 +28,5 @@ typedef struct grass_view_t {
     int overlay;        /* debug: 0 off, 1 tile and leaf state, 2 LOD, 3 collision strength */
     bool wireframe;     /* debug: the grass as lines, on the hardware path */
 } grass_view_t;
-void grass_view_make(grass_view_t *v, const float view[16], const float proj[16], int width, int height, float time);
 
 #endif

@@ -1,7 +1,7 @@
 /* terrain_clipmap: the clipmap's vertex grid, its five index ranges, the
  * per-frame placement of each level and the morphed vertex position (the
  * CPU twin of shaders/ground/terrain_world.vert). See terrain_clipmap.h. */
-#include "scene/terrain_clipmap.h"
+#include "terrain/terrain_clipmap.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,8 +1,8 @@
 /* terrain_world: the open world's height function and its analytic normal
  * (see terrain_world.h). Every expression here has its twin, in the same
  * order of operations, in shaders/common/world_height.glsl; change both. */
-#include "scene/terrain_world.h"
-#include "scene/terrain.h"
+#include "terrain/terrain_world.h"
+#include "terrain/terrain.h"
 
 #include <math.h>
 #include <stdio.h>

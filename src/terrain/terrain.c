@@ -1,9 +1,8 @@
 /* terrain: procedural value-noise fBm heightfield, assimp mesh loading, and
  * ground-height queries (barycentric on the grid, vertical ray casts through a
  * uniform 2D triangle grid for meshes). See terrain.h. */
-#include "scene/terrain.h"
-#include "scene/mesh_import.h"
-#include "scene/scene_fields.h"
+#include "terrain/terrain.h"
+#include "mesh/mesh_import.h"
 
 #include <assert.h>
 #include <assimp/cimport.h>
@@ -40,10 +39,10 @@ static void normalize_or_up(float *n)
 terrain_desc_t terrain_desc_defaults(const terrain_desc_t *d)
 {
     terrain_desc_t r = *d;
-    if (r.size <= 0) r.size = SCENE_DEFAULT_TERRAIN_SIZE;
-    if (r.resolution <= 0) r.resolution = SCENE_DEFAULT_TERRAIN_RESOLUTION;
-    if (r.height <= 0) r.height = SCENE_DEFAULT_TERRAIN_HEIGHT;
-    if (r.scale <= 0) r.scale = SCENE_DEFAULT_TERRAIN_SCALE;
+    if (r.size <= 0) r.size = TERRAIN_DEFAULT_SIZE;
+    if (r.resolution <= 0) r.resolution = TERRAIN_DEFAULT_RESOLUTION;
+    if (r.height <= 0) r.height = TERRAIN_DEFAULT_HEIGHT;
+    if (r.scale <= 0) r.scale = TERRAIN_DEFAULT_SCALE;
     return r;
 }
 
@@ -141,9 +140,9 @@ bool terrain_make_heightfield(terrain_mesh_t *mesh, const terrain_desc_t *desc, 
     if (desc->type == TERRAIN_WORLD) return terrain_make_world(mesh, desc, seed);
     memset(mesh, 0, sizeof *mesh);
     terrain_desc_t d = terrain_desc_defaults(desc);
-    if (d.resolution > SCENE_TERRAIN_RESOLUTION_MAX) {
-        core_log_error("terrain: resolution %d exceeds the maximum %d (SCENE_TERRAIN_RESOLUTION_MAX)", d.resolution,
-                       SCENE_TERRAIN_RESOLUTION_MAX);
+    if (d.resolution > TERRAIN_RESOLUTION_MAX) {
+        core_log_error("terrain: resolution %d exceeds the maximum %d (TERRAIN_RESOLUTION_MAX)", d.resolution,
+                       TERRAIN_RESOLUTION_MAX);
         return false;
     }
     uint32_t res = (uint32_t)d.resolution, side = res + 1;

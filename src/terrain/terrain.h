@@ -5,8 +5,8 @@
  * (exact barycentric lookup on the heightfield grid; downward ray cast through
  * a uniform 2D grid of triangles for meshes; the function itself for worlds).
  * GL-free. */
-#ifndef MEADOW_SCENE_TERRAIN_H
-#define MEADOW_SCENE_TERRAIN_H
+#ifndef MEADOW_TERRAIN_H
+#define MEADOW_TERRAIN_H
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -14,9 +14,16 @@
 
 #include <cglm/cglm.h>
 
-#include "scene/terrain_world.h"
+#include "terrain/terrain_world.h"
 
 #define TERRAIN_PATH_MAX 256 /* bytes of a mesh path, including the NUL */
+
+/* Keys terrain.size, resolution, height and scale. */
+#define TERRAIN_DEFAULT_SIZE 40.0f
+#define TERRAIN_DEFAULT_RESOLUTION 64
+#define TERRAIN_DEFAULT_HEIGHT 1.5f
+#define TERRAIN_DEFAULT_SCALE 1.0f
+#define TERRAIN_RESOLUTION_MAX 4096 /* also terrain_make_heightfield's limit */
 
 typedef enum terrain_type_t {
     TERRAIN_HEIGHTFIELD = 0, /* default */
@@ -24,8 +31,9 @@ typedef enum terrain_type_t {
     TERRAIN_WORLD, /* terrain_world_t: a height function, drawn as a clipmap */
 } terrain_type_t;
 
-/* Zero means default: the program's, SCENE_DEFAULT_TERRAIN_* of
- * scene/scene_fields.h. resolution is at most SCENE_TERRAIN_RESOLUTION_MAX (4096). */
+/* Zero means default: the TERRAIN_DEFAULT_* below (the scene keys'
+ * defaults too, scene/scene_fields.c). resolution is at most
+ * TERRAIN_RESOLUTION_MAX (4096; the key's range too). */
 typedef struct terrain_desc_t {
     terrain_type_t type;         /* default heightfield */
     float size;                  /* heightfield or world side, metres, square; default 40

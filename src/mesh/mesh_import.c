@@ -1,5 +1,5 @@
 /* mesh_import: guarded assimp import (see mesh_import.h). */
-#include "scene/mesh_import.h"
+#include "mesh/mesh_import.h"
 
 #include <assimp/cimport.h>
 #include <assimp/scene.h>
