@@ -1,16 +1,27 @@
 /* test_bench_cli: `meadow bench` and `meadow compare` parse their own
- * options (bench_parse_options) and hand the program's to app_parse_option;
- * each bad value or combination gets one line naming the option; the
- * harness's options are known as its own (bench_is_option). */
+ * options (bench_parse_options) and hand the program's to the program's
+ * parser (app_parse_option, as src/main.c gives it); each bad value or
+ * combination gets one line naming the option; the harness's options are
+ * known as its own (bench_is_option). */
+#include "app/app.h"
 #include "bench/bench.h"
 #include "test.h"
 
 #include <string.h>
 
+static app_options_t app;
+
+static int program_option(int argc, char **argv, int *i, void *opts, char *err, size_t err_size)
+{
+    return (int)app_parse_option(argc, argv, i, opts, err, err_size);
+}
+
 static int parse(bench_options_t *o, char *err, int n, char **argv)
 {
     err[0] = 0;
-    return bench_parse_options(n, argv, o, err, 256);
+    memset(&app, 0, sizeof app);
+    bench_program_t program = {.option = program_option, .usage = app_print_options, .user = &app};
+    return bench_parse_options(n, argv, &program, o, err, 256);
 }
 
 int main(void)
@@ -19,9 +30,9 @@ int main(void)
     char err[256];
     char *quick[] = {"meadow", "bench", "--quick", "--frames", "10", "--scene", "s.json", "--chart", "modes"};
     CHECK(parse(&o, err, 9, quick) == 0 && !o.compare && o.quick && strcmp(o.chart, "modes") == 0);
-    CHECK(o.app.frames == 10 && o.app.frames_set && strcmp(o.app.scene, "s.json") == 0);
+    CHECK(app.frames == 10 && app.frames_set && strcmp(app.scene, "s.json") == 0);
     char *video[] = {"meadow", "compare", "--video", "--mode", "blade"};
-    CHECK(parse(&o, err, 5, video) == 0 && o.compare && o.video && o.app.mode == APP_MODE_BLADE);
+    CHECK(parse(&o, err, 5, video) == 0 && o.compare && o.video && app.mode == APP_MODE_BLADE);
     char *perf[] = {"meadow", "bench", "--perf", "p", "--baseline", "b.json", "--from", "f.json", "--force"};
     CHECK(parse(&o, err, 9, perf) == 0 && strcmp(o.perf, "p") == 0 && strcmp(o.baseline, "b.json") == 0 &&
           strcmp(o.perf_from, "f.json") == 0 && o.force);

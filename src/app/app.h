@@ -84,9 +84,10 @@ void app_signal_install(void);
 bool app_interrupted(void);
 
 /* What --montage ends a headless run with, in the run's GL context: the
- * `meadow compare` montage of frame `frames` into `out` (bench_compare_write,
+ * `meadow compare` montage of the world of the run's options
+ * (app_world_options), frame `frames`, into `out` (bench_compare_write,
  * src/bench). Returns 0 or 1. */
-typedef int (*app_montage_fn)(const app_options_t *opts, const char *out, int frames);
+typedef int (*app_montage_fn)(const world_options_t *world, const char *out, int frames);
 
 /* The HUD's pass timings (app_hud.c): one line per pass that ran within
  * the last APP_HUD_STALE_FRAMES frames; passes that no longer run (after a

@@ -624,7 +624,7 @@ int app_run(const app_options_t *o, app_montage_fn montage)
          * reference), side by side: compare.png in the output folder. */
         int mframes = app.frames < 120 ? app.frames : 120;
         core_log_info("montage: rendering frame %d in every mode", mframes);
-        if (montage(o, app.out, mframes) != 0) rc = 1;
+        if (montage(&wo, app.out, mframes) != 0) rc = 1;
     }
     world_destroy(w);
     gfx_target_destroy(&app.target);

@@ -682,7 +682,7 @@ static bool lod_row(const bench_run_t *b, int i, int path_k)
     return strcmp(c->group, "hybrid_canopy_distance") == 0 && compute == (path_k == 1) && b->err[i] >= 0.0;
 }
 
-static bool write_lod(const char *out, const app_options_t *o, const bench_run_t *b)
+static bool write_lod(const char *out, const world_options_t *o, const bench_run_t *b)
 {
     int first = 0;
     while (first < b->n && strcmp(b->cfg[first].group, "hybrid_canopy_distance") != 0) first++;
@@ -795,12 +795,12 @@ static double p95_copy(const double *v, long n)
 /* The references of R's scene (one per placement seed), its grass-free
  * background and its noise floor: each reference against the next's
  * placement, mean and half range over the SWEEP_RUNS pairs. */
-static int make_references(const app_options_t *oh, int frames, const char *out, bench_refs_t *R)
+static int make_references(const world_options_t *oh, int frames, const char *out, bench_refs_t *R)
 {
     char path[1200];
-    app_options_t os = *oh;
+    world_options_t os = *oh;
     if (R->scene) os.scene = R->scene;
-    measure_session_desc_t rd = {.world = app_world_options(&os),
+    measure_session_desc_t rd = {.world = os,
                                  .mode = SCENE_MODE_BLADE, .mode_set = true, .frames = frames,
                                .reference = true, .msaa = 8};
     core_log_info("bench: %d reference renderings of %s (%d frames, one per placement seed) and the grass-free view",
@@ -841,13 +841,13 @@ static int make_references(const app_options_t *oh, int frames, const char *out,
 
 /* Configuration i's SWEEP_RUNS runs: timings from the fastest, accuracy
  * of the first run in b->met, every chart measure per run and pooled. */
-static int run_config(const app_options_t *oh, bench_run_t *b, int i, const char *out)
+static int run_config(const world_options_t *oh, bench_run_t *b, int i, const char *out)
 {
     bench_config_t *c = &b->cfg[i];
     bench_acc_t *acc = &b->acc[i];
     const bench_refs_t *R = refs_of(b, c);
     const core_image_t *refs = R->img, *bg = &R->bg;
-    app_options_t oc = *oh;
+    world_options_t oc = *oh;
     if (c->scene) oc.scene = c->scene;
     if (c->blade_render) oc.blade_render = c->blade_render;
     if (c->raster) oc.raster = c->raster;
@@ -865,7 +865,7 @@ static int run_config(const app_options_t *oh, bench_run_t *b, int i, const char
     for (int y = 0; y < Y_COUNT; y++)
         for (int k = 0; k < SWEEP_RUNS; k++) acc->y_runs[y][k] = -1.0;
     for (int k = 0; k < SWEEP_RUNS && rc == 0; k++) {
-        measure_session_desc_t d = {.world = app_world_options(&oc),
+        measure_session_desc_t d = {.world = oc,
                                     .mode = c->mode, .mode_set = true, .frames = b->frames,
                                   .tweak = tweak, .user = c, .tuning = c->tuning};
         d.tuning.placement_seed = placements[k];
@@ -949,7 +949,7 @@ static int filter_chart(const char *chart, bench_run_t *b)
 /* bench.csv, bench.json, lod.json and one data file and chart per chart
  * entry (x GPU ms, y its measure, both with their spreads); warns of
  * charts whose accuracy is identical between configurations. */
-static int write_sweep(const app_options_t *o, const char *out, const bench_run_t *b)
+static int write_sweep(const world_options_t *o, const char *out, const bench_run_t *b)
 {
     char path[1200];
     int rc = 0, n = b->n;
@@ -1036,8 +1036,11 @@ static int write_sweep(const app_options_t *o, const char *out, const bench_run_
     return rc;
 }
 
-static int run_sweep(const app_options_t *o, const char *chart, bool quick, const char *out, bench_run_t *b)
+static int run_sweep(const bench_options_t *bo, const char *out, bench_run_t *b)
 {
+    const world_options_t *o = &bo->world;
+    const char *chart = bo->chart;
+    bool quick = bo->quick;
     b->cfg = calloc(MAX_CONFIGS, sizeof *b->cfg);
     b->met = calloc(MAX_CONFIGS, sizeof *b->met);
     b->err = calloc(MAX_CONFIGS, sizeof(double));
@@ -1054,11 +1057,11 @@ static int run_sweep(const app_options_t *o, const char *chart, bool quick, cons
     b->refs[1] = (bench_refs_t){.scene = CANOPY_SCENE, .tag = "canopy_"};
     /* Every row names its rasterizer path: hw unless the row or --raster
      * says otherwise (the scene default, auto, would pick one by timing). */
-    app_options_t oh = *o;
+    world_options_t oh = *o;
     if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
     if (chart && filter_chart(chart, b)) return 2;
     int n = b->n;
-    b->frames = o->frames_set ? o->frames : (quick ? 8 : 120);
+    b->frames = bo->frames_set ? bo->frames : (quick ? 8 : 120);
     int rc = 0;
     for (int r = 0; r < REF_SETS && rc == 0; r++) {
         bool used = false;
@@ -1067,7 +1070,7 @@ static int run_sweep(const app_options_t *o, const char *chart, bool quick, cons
     }
     double t0 = plat_time();
     for (int i = 0; i < n && rc == 0; i++) {
-        if (app_interrupted()) {
+        if (bo->interrupted()) {
             core_log_warn("bench: interrupted after %d of %d configurations; writing those", i, n);
             b->n = n = i;
             break;
@@ -1190,7 +1193,7 @@ static void report_charts(core_buf_t *r, const char *dir, const char *out, const
 static int write_report(const char *dir, const char *out, const bench_options_t *bo, const bench_run_t *b,
                         const char *stability_md, const char *scaling_md, const char *papers_md)
 {
-    const app_options_t *o = &bo->app;
+    const world_options_t *o = &bo->world;
     char path[1200], to[1200];
     snprintf(path, sizeof path, "%s/images", dir);
     if (!core_fs_mkdirs(path)) return 1;
@@ -1286,14 +1289,14 @@ static int write_report(const char *dir, const char *out, const bench_options_t 
 int bench_run(const bench_options_t *o)
 {
     /* what stability and perf take of the program's options */
-    perf_session_desc_t session = {.world = app_world_options(&o->app), .frames = o->app.frames,
-                                   .frames_set = o->app.frames_set, .interrupted = app_interrupted};
+    perf_session_desc_t session = {.world = o->world, .frames = o->frames, .frames_set = o->frames_set,
+                                   .interrupted = o->interrupted};
     if (o->perf || o->baseline)
-        return perf_main(&(perf_options_t){.session = session, .out = o->app.out, .quick = o->quick, .perf = o->perf,
+        return perf_main(&(perf_options_t){.session = session, .out = o->out, .quick = o->quick, .perf = o->perf,
                                            .baseline = o->baseline, .perf_from = o->perf_from, .doc = o->doc,
                                            .force = o->force});
     char out[1024], err[1024], path[1200];
-    snprintf(out, sizeof out, "%s", o->app.out ? o->app.out : "out/bench");
+    snprintf(out, sizeof out, "%s", o->out ? o->out : "out/bench");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
@@ -1318,7 +1321,7 @@ int bench_run(const bench_options_t *o)
         snprintf(path, sizeof path, "%s/images", report);
         if (!core_fs_mkdirs(path)) core_log_warn("report: cannot create %s", path);
     }
-    int rc = sweep ? run_sweep(&o->app, o->chart, o->quick, out, &b) : 0;
+    int rc = sweep ? run_sweep(o, out, &b) : 0;
     stability_desc_t sd = {.world = &session.world, .only_case = o->stability_case, .quick = o->quick};
     if (rc == 0 && stability) rc = stability_run(&sd, out, &md, full ? report : NULL);
     if (rc == 0 && scaling) rc = perf_scaling_run(&session, out, o->quick, &sc, &scaling_md);
@@ -1333,7 +1336,7 @@ int bench_run(const bench_options_t *o)
     if (rc == 0 && full) {
         bench_options_t oc = *o;
         snprintf(path, sizeof path, "%s/compare", out);
-        oc.app.out = path;
+        oc.out = path;
         if (!core_fs_mkdirs(path)) rc = 1;
         if (rc == 0) rc = bench_compare(&oc);
         if (rc == 0) rc = write_report(report, out, o, &b, md.data, scaling_md.data, papers_md.data);

@@ -7,13 +7,22 @@
 #ifndef MEADOW_BENCH_H
 #define MEADOW_BENCH_H
 
-#include "app/app.h"
+#include <stdbool.h>
+#include <stddef.h>
 
-/* The command line of `meadow bench` and `meadow compare`: the program's
- * options (scene, frames, size, mode, out, ...) and the harness's own.
- * Zero means "not given". Parsed by bench_parse_options (bench_cli.c). */
+#include "world/world.h"
+
+/* The command line of `meadow bench` and `meadow compare`: what the
+ * harness takes of the program's options (scene, size, mode, frames, out,
+ * ...), which the caller fills from the program's parser (src/main.c:
+ * app_world_options), and the harness's own, which bench_parse_options
+ * (bench_cli.c) fills. Zero means "not given". */
 typedef struct bench_options_t {
-    app_options_t app;
+    world_options_t world;     /* what every session's world starts from */
+    int frames;                /* --frames, with frames_set */
+    bool frames_set;
+    const char *out;           /* --out; default out/bench (bench), out (compare) */
+    bool (*interrupted)(void); /* the program's interrupt check (Ctrl-C): long runs stop and write */
     bool compare;               /* `meadow compare` (else `meadow bench`) */
     bool quick;                 /* --quick: small sweep for CI */
     bool stability;             /* --stability: the stability suite only */
@@ -30,13 +39,24 @@ typedef struct bench_options_t {
     const char *papers;         /* --papers DIR: ablations, leaves figure, papers table into DIR (and --report) */
 } bench_options_t;
 
+/* The program's options, which both commands take beside their own
+ * (src/main.c gives the program's parser, app_parse_option): option reads
+ * the one at argv[*i] into user and returns 0 (taken; *i at its value if
+ * it has one), 1 (--help or --scene-keys printed: exit 0), 2 (bad: err
+ * holds one line) or 3 (not one of the program's: nothing changed);
+ * usage prints them (`meadow bench --help` lists them after its own). */
+typedef struct bench_program_t {
+    int (*option)(int argc, char **argv, int *i, void *user, char *err, size_t err_size);
+    void (*usage)(void);
+    void *user;
+} bench_program_t;
+
 /* argv[1] is "bench" or "compare"; parses argv[2..], the harness's options
- * and (through app_parse_option) the program's, and checks how they
+ * into *o and every other through program->option, and checks how they
  * combine. Returns 0 to run, 1 when --help or --scene-keys printed, 2 on a
  * bad argument (err holds one line saying which and why). */
-int bench_parse_options(int argc, char **argv, bench_options_t *o, char *err, size_t err_size);
-/* `meadow bench --help`: the harness's options, then the program's. */
-void bench_print_usage(void);
+int bench_parse_options(int argc, char **argv, const bench_program_t *program, bench_options_t *o, char *err,
+                        size_t err_size);
 /* Whether arg is one of the harness's own options (src/main.c names it so
  * when it is given without `bench` or `compare`). */
 bool bench_is_option(const char *arg);
@@ -49,6 +69,6 @@ int bench_compare(const bench_options_t *o);
 /* The montage of `meadow compare` in the current context: the scene's frame
  * `frames` rendered in every mode and as the reference, written to `out`
  * (`meadow --montage` ends a headless run with it; see app_run). */
-int bench_compare_write(const app_options_t *o, const char *out, int frames);
+int bench_compare_write(const world_options_t *world, const char *out, int frames);
 
 #endif

@@ -1,7 +1,7 @@
 /* bench_cli: the command line of `meadow bench` and `meadow compare`. The
  * harness's own options are a table here; every other option goes to the
- * program's parser (app_parse_option), so both commands take --scene,
- * --frames, --size, --mode, --out and the rest. Bad values and options
+ * program's parser (bench_program_t: app_parse_option, from src/main.c), so
+ * both commands take --scene, --frames, --size, --mode, --out and the rest. Bad values and options
  * that do not combine get one line naming them (exit 2). */
 #include "bench/bench.h"
 
@@ -34,7 +34,8 @@ static const struct {
 };
 #define BENCH_OPT_COUNT (int)(sizeof bench_opts / sizeof bench_opts[0])
 
-void bench_print_usage(void)
+/* `meadow bench --help`: the harness's options, then the program's. */
+static void print_usage(const bench_program_t *program)
 {
     printf("usage: meadow bench [options]     speed-vs-accuracy sweep, stability, scaling, report\n"
            "       meadow compare [options]   the same frame in every mode against the reference\n"
@@ -57,7 +58,7 @@ void bench_print_usage(void)
            "                        DIR (with --report: the paper scenes, into RESULTS.md too; else --scene: that\n"
            "                        scene's ablations alone)\n"
            "and the program's options (--out default: out/bench for bench, out for compare):\n");
-    app_print_options();
+    program->usage();
 }
 
 static int find_option(const char *arg)
@@ -97,22 +98,22 @@ static int check_options(const bench_options_t *o, char *err, size_t err_size)
     return 2;
 }
 
-int bench_parse_options(int argc, char **argv, bench_options_t *o, char *err, size_t err_size)
+int bench_parse_options(int argc, char **argv, const bench_program_t *program, bench_options_t *o, char *err,
+                        size_t err_size)
 {
     memset(o, 0, sizeof *o);
     o->compare = strcmp(argv[1], "compare") == 0;
     for (int i = 2; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            bench_print_usage();
+            print_usage(program);
             return 1;
         }
         int k = find_option(a);
         if (k < 0) {
-            app_option_status_t st = app_parse_option(argc, argv, &i, &o->app, err, err_size);
-            if (st == APP_OPTION_EXIT) return 1;
-            if (st == APP_OPTION_BAD) return 2;
-            if (st == APP_OPTION_UNKNOWN) {
+            int st = program->option(argc, argv, &i, program->user, err, err_size);
+            if (st == 1 || st == 2) return st;
+            if (st == 3) {
                 snprintf(err, err_size, "unknown option '%s' (see --help)", a);
                 return 2;
             }

@@ -25,13 +25,12 @@ static void no_grass(scene_desc_t *s, void *user)
 
 /* `meadow compare --video`: the scene in billboard, blade and hybrid modes as
  * PNG frames and an H.264 clip per mode (ffmpeg), written to `out`. */
-static int write_clips(const app_options_t *o, const char *out, int frames);
+static int write_clips(const world_options_t *o, const char *out, int frames);
 
 int bench_compare(const bench_options_t *bo)
 {
-    const app_options_t *o = &bo->app;
     char out[1024], err[1024];
-    snprintf(out, sizeof out, "%s", o->out ? o->out : "out");
+    snprintf(out, sizeof out, "%s", bo->out ? bo->out : "out");
     if (!core_fs_check_writable_dir(out, err, sizeof err) || !core_fs_lock_dir(out, err, sizeof err)) {
         core_log_error("--out: %s", err);
         return 2;
@@ -41,8 +40,8 @@ int bench_compare(const bench_options_t *bo)
         return 1;
     }
     gfx_init();
-    int rc = bo->video ? write_clips(o, out, o->frames_set ? o->frames : 120)
-                      : bench_compare_write(o, out, o->frames_set ? o->frames : 60);
+    int rc = bo->video ? write_clips(&bo->world, out, bo->frames_set ? bo->frames : 120)
+                      : bench_compare_write(&bo->world, out, bo->frames_set ? bo->frames : 60);
     gfx_shutdown(true);
     int gl_errors = plat_gl_error_count();
     plat_shutdown();
@@ -53,7 +52,7 @@ int bench_compare(const bench_options_t *bo)
     return rc;
 }
 
-int bench_compare_write(const app_options_t *o, const char *out, int frames)
+int bench_compare_write(const world_options_t *o, const char *out, int frames)
 {
     char path[1200];
     static const struct {
@@ -66,13 +65,13 @@ int bench_compare_write(const app_options_t *o, const char *out, int frames)
                         {"reference", SCENE_MODE_BLADE, true}};
     core_image_t img[PANELS] = {0}, empty = {0};
     measure_metrics_t met[PANELS];
-    int rc = measure_session_run(&(measure_session_desc_t){.world = app_world_options(o),
+    int rc = measure_session_run(&(measure_session_desc_t){.world = *o,
                                                            .mode = SCENE_MODE_BLADE, .mode_set = true,
                                                        .frames = frames, .reference = true, .msaa = 8, .tweak = no_grass},
                                &empty, NULL);
     for (int i = 0; i < PANELS && rc == 0; i++) {
         core_log_info("compare: %d/%d %s (%d frames)", i + 1, PANELS, panels[i].name, frames);
-        measure_session_desc_t d = {.world = app_world_options(o),
+        measure_session_desc_t d = {.world = *o,
                                     .mode = panels[i].mode, .mode_set = true, .frames = frames,
                                   .reference = panels[i].reference, .msaa = panels[i].reference ? 8 : 0};
         rc = measure_session_run(&d, &img[i], &met[i]);
@@ -148,7 +147,7 @@ static void clip_frame(const gfx_target_t *target, int frame, void *user)
     core_image_free(&img);
 }
 
-static int write_clips(const app_options_t *o, const char *out, int frames)
+static int write_clips(const world_options_t *o, const char *out, int frames)
 {
     if (system("ffmpeg -version >/dev/null 2>&1") != 0) {
         core_log_error("compare --video: ffmpeg not found (install the Debian package ffmpeg)");
@@ -163,7 +162,7 @@ static int write_clips(const app_options_t *o, const char *out, int frames)
         snprintf(c.dir, sizeof c.dir, "%s/clip-%s", out, modes[i].name);
         if (!core_fs_mkdirs(c.dir)) return 1;
         core_log_info("clip %d/3: %s, %d frames", i + 1, modes[i].name, frames);
-        measure_session_desc_t d = {.world = app_world_options(o),
+        measure_session_desc_t d = {.world = *o,
                                     .mode = modes[i].mode, .mode_set = true, .frames = frames};
         measure_session_hooks_t h = {.drawn = clip_frame, .user = &c};
         int rc = measure_session_run_hooks(&d, &h, NULL, NULL);
