@@ -5,7 +5,8 @@
  *   a) the plan: the field holds round(density * area) blades, every
  *      triangle its area's share to within one, triangles in Morton order;
  *   b) every GPU blade equals the CPU twin's (1e-5 m, 1e-5 rad), the same
- *      blades thinned, the same thinned count;
+ *      blades thinned, the same thinned count, every eta 0 (the buffers
+ *      start poisoned with 0xff: gfx_desc_t.poison);
  *   c) the patch boxes and their real-blade counts equal the twin's, and
  *      every real blade lies in its patch's box;
  *   d) invariants: no NaN, unit up, heights and widths in their ranges,

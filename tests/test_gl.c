@@ -19,7 +19,7 @@ void test_gl_init(void)
 {
     make_context();
     plat_install_debug_callback();
-    gfx_init();
+    gfx_init_desc(&(gfx_desc_t){.poison = true});
 }
 
 void test_gl_require_context(void)

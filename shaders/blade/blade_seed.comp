@@ -6,6 +6,8 @@
  * index in it) and writes the rest pose; padding copies the last real
  * blade at height 0. With u_extent on, the extent map thins it as
  * blade_seed_extent_keeps does and the thinned real blades are counted.
+ * Every blade and its collision strength (0) is written: the buffers
+ * start uninitialized (gfx_buffer_desc_t.uninitialized).
  * Grid-stride over u_padded_count, so any field fits the dispatch limit. */
 #include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
@@ -14,6 +16,7 @@
 layout(local_size_x = 256) in;
 
 layout(std430, binding = BLADE_BIND_BLADES) writeonly buffer Blades { Blade blades[]; };
+layout(std430, binding = BLADE_BIND_ETA) writeonly buffer Eta { float eta[]; };
 layout(std430, binding = BLADE_SEED_BIND_POSITIONS) readonly buffer Positions { float positions[]; };
 layout(std430, binding = BLADE_SEED_BIND_NORMALS) readonly buffer Normals { float normals[]; };
 layout(std430, binding = BLADE_SEED_BIND_INDICES) readonly buffer Indices { uint indices[]; };
@@ -119,5 +122,6 @@ void main()
             atomicAdd(thinned, 1u);
         }
         blades[i] = bl;
+        eta[i] = 0.0;
     }
 }

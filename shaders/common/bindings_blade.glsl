@@ -25,14 +25,15 @@
 #define BLADE_BIND_RASTER_COUNT 2
 #define BLADE_TEX_CUBES 0 /* physics: the colliders' depth cube maps */
 #define BLADE_TEX_DEPTH 0 /* cull: the previous frame's depth */
-/* The field seeded on the GPU (blade_seed.comp: BLADE_BIND_BLADES out;
- * blade_seed_boxes.comp: BLADE_BIND_BLADES in, BLADE_BIND_PATCH_BOXES out) */
-#define BLADE_SEED_BIND_POSITIONS 1
-#define BLADE_SEED_BIND_NORMALS 2
-#define BLADE_SEED_BIND_INDICES 3
-#define BLADE_SEED_BIND_ORDER 4
-#define BLADE_SEED_BIND_OFFSETS 5
-#define BLADE_SEED_BIND_THINNED 6
+/* The field seeded on the GPU (blade_seed.comp: BLADE_BIND_BLADES and
+ * BLADE_BIND_ETA out; blade_seed_boxes.comp: BLADE_BIND_BLADES in,
+ * BLADE_BIND_PATCH_BOXES out) */
+#define BLADE_SEED_BIND_POSITIONS 2
+#define BLADE_SEED_BIND_NORMALS 3
+#define BLADE_SEED_BIND_INDICES 4
+#define BLADE_SEED_BIND_ORDER 5
+#define BLADE_SEED_BIND_OFFSETS 6
+#define BLADE_SEED_BIND_THINNED 7
 #define BLADE_SEED_TEX_EXTENT 0
 
 /* The tiles: init, physics, hand-over, resolve, cull, draw */

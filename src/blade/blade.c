@@ -32,12 +32,18 @@ blade_gpu_desc_t blade_gpu_desc_defaults(const blade_gpu_desc_t *desc)
     return d;
 }
 
-static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t size, const void *data)
+static gfx_buffer_t make_store(const blade_gpu_t *g, const char *what, size_t size, const void *data,
+                               bool uninitialized)
 {
     char label[128];
     snprintf(label, sizeof label, "%s.%s", g->desc.label, what);
     return gfx_buffer_make(&(gfx_buffer_desc_t){.size = size ? size : 16, .data = data, .dynamic = true,
-                                                .label = label});
+                                                .uninitialized = uninitialized, .label = label});
+}
+
+static gfx_buffer_t make_buffer(const blade_gpu_t *g, const char *what, size_t size, const void *data)
+{
+    return make_store(g, what, size, data, false);
 }
 
 uint32_t blade_strip_vertices(int max_level, float displacement)
@@ -95,12 +101,14 @@ static bool gpu_init(blade_gpu_t *g, const blade_gpu_desc_t *desc)
     }
 
     size_t nb = g->padded_count;
-    g->blades = make_buffer(g, "blades", nb * sizeof(blade_t), f ? f->blades : NULL);
-    g->eta = make_buffer(g, "eta", nb * sizeof(float), f ? f->eta : NULL);
+    /* a GPU seeding writes every blade and eta; the cull writes the
+     * survivors that the draws read */
+    g->blades = make_store(g, "blades", nb * sizeof(blade_t), f ? f->blades : NULL, seed != NULL);
+    g->eta = make_store(g, "eta", nb * sizeof(float), f ? f->eta : NULL, seed != NULL);
     g->winds = make_buffer(g, "winds", BLADE_MAX_WINDS * sizeof(blade_wind_t), NULL);
     g->sphere_capacity = BLADE_SPHERES_FIRST;
     g->spheres = make_buffer(g, "spheres", (size_t)g->sphere_capacity * sizeof(blade_sphere_t), NULL);
-    g->survivors = make_buffer(g, "survivors", nb * 2 * sizeof(uint32_t), NULL); /* index, width factor */
+    g->survivors = make_store(g, "survivors", nb * 2 * sizeof(uint32_t), NULL, true); /* index, width factor */
     g->cube_objects = make_buffer(g, "cube_objects", BLADE_MAX_CUBES * sizeof(collide_cube_proxy_t), NULL);
     uint32_t cmd[4];
     command_initial(g, cmd);

@@ -63,6 +63,7 @@ bool blade_gpu_seed(blade_gpu_t *g, const blade_gpu_seed_t *seed)
         glUniform1ui(gfx_uniform(p, "u_extent_key"), seed->extent_key);
         glBindTextureUnit(BLADE_SEED_TEX_EXTENT, seed->extent_texture);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_BLADES, g->blades.id);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, BLADE_BIND_ETA, g->eta.id);
         static const GLuint binds[6] = {BLADE_SEED_BIND_POSITIONS, BLADE_SEED_BIND_NORMALS, BLADE_SEED_BIND_INDICES,
                                         BLADE_SEED_BIND_ORDER,     BLADE_SEED_BIND_OFFSETS, BLADE_SEED_BIND_THINNED};
         for (int k = 0; k < 6; k++) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binds[k], bufs[k].id);

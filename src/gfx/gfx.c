@@ -32,6 +32,7 @@ bool gfx_init_desc(const gfx_desc_t *desc)
     memset(&G, 0, sizeof G);
     gfx_uniforms_forget(0);
     gfx_desc_t d = gfx_desc_defaults(desc);
+    G.poison = d.poison;
     gfx_shader_setup(&d);
     return true;
 }
@@ -208,9 +209,13 @@ gfx_buffer_t gfx_buffer_make(const gfx_buffer_desc_t *desc)
     }
     /* Without data the store starts as zeros, not as whatever memory the
      * driver recycled (a new world in a process that freed another one). */
-    if (!desc->data && desc->size > 0) {
+    if (!desc->data && !desc->uninitialized && desc->size > 0) {
         static const uint8_t zero = 0;
         glClearNamedBufferData(b.id, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &zero);
+    }
+    if (!desc->data && desc->uninitialized && G.poison && desc->size > 0) {
+        static const uint8_t ones = 0xff;
+        glClearNamedBufferData(b.id, GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, &ones);
     }
     b.size = desc->size;
     b.readable = desc->readable;

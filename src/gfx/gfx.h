@@ -24,6 +24,9 @@ typedef struct gfx_desc_t {
                                  when set and not empty, else the built-in table */
     const char *shader_cache; /* program-binary cache folder (created when missing); default:
                                  $MEADOW_SHADER_CACHE when set and not empty, else no cache */
+    bool poison;              /* fill buffers made uninitialized (gfx_buffer_desc_t) with 0xff bytes:
+                                 NaN floats, 0xffffffff uints, so a kernel that leaves part of one
+                                 unwritten shows in a test (the GL tests' contexts); default off */
 } gfx_desc_t;
 /* The desc with its defaults filled in (the environment read). */
 gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc);
@@ -82,6 +85,9 @@ typedef struct gfx_buffer_t {
 typedef struct gfx_buffer_desc_t {
     size_t size;        /* bytes, required */
     const void *data;   /* initial contents, optional (default: zeros) */
+    bool uninitialized; /* without data: no zero fill, for a store the GPU writes whole before
+                           any read (clearing blade mode's 660 MB blade buffer on meadow_large
+                           took 0.65 s of the H200's start-up) */
     bool dynamic;       /* GL_DYNAMIC_STORAGE_BIT (glNamedBufferSubData) */
     bool persistent;    /* mapped coherent for the buffer's life: for writing, or for
                            reading when readable (gfx_readback) */

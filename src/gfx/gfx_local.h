@@ -65,6 +65,7 @@ typedef struct gfx_registry_t {
     int count, cap;
     long made;       /* objects tracked since gfx_init */
     int max_samples; /* GL_MAX_SAMPLES, read once (0: not yet) */
+    bool poison;     /* gfx_desc_t.poison */
 } gfx_registry_t;
 
 

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "admit/admit.h"
+#include "platform/plat.h"
 #include "scene/scene_lod.h"
 
 /* The layout shared by both grass models (so hybrid tiles cover the same
@@ -193,6 +194,8 @@ bool grass_make_blades(grass_t *gr)
                             .max_blades = ADMIT_MAX_FIELD_BLADES};
     /* blade mode's grass-shaded ground (ground_set_lod): the canopy table,
      * thinned by the extent map that thins the blades */
+    double mark[4];
+    mark[0] = plat_time();
     bool shade = !gr->reference && !ground_has_canopy(gr->ground);
     canopy_job_t job = {.desc = {.population = g->population, .seed = s->seed, .sun = GRASS_SUN_DIR}};
     pthread_t thread;
@@ -215,6 +218,7 @@ bool grass_make_blades(grass_t *gr)
         seed.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
         bb_layout_free(&lay);
     }
+    mark[1] = plat_time();
     blade_gpu_desc_t gd = {.seed = &seed, .shape = g->population.shape, .label = "blades",
                            .displacement = g->displacement, .width_correction = g->width_correction,
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
@@ -226,15 +230,19 @@ bool grass_make_blades(grass_t *gr)
     }
     gr->blades = planned ? blade_gpu_make(&gd) : NULL;
     gr->have_blades = gr->blades != NULL;
+    mark[2] = plat_time();
     if (shade) {
         canopy_finish(&job, thread, threaded);
         if (job.ok) ground_set_canopy(gr->ground, &job.canopy, seed.extent_texture, seed.extent_origin,
                                       seed.extent_spacing);
     }
+    mark[3] = plat_time();
     if (gr->blades) {
         blade_gpu_info_t info = blade_gpu_info(gr->blades);
-        core_log_info("blades: %u blades in %u patches (%u in clearings of the extent map), seeded on the GPU",
-                      info.blade_count - info.thinned, info.patch_count, info.thinned);
+        core_log_info("blades: %u blades in %u patches (%u in clearings of the extent map), seeded on the GPU; "
+                      "plan and extent map %.1f ms, programs and seeding %.1f ms, then the canopy table %.1f ms",
+                      info.blade_count - info.thinned, info.patch_count, info.thinned, (mark[1] - mark[0]) * 1e3,
+                      (mark[2] - mark[1]) * 1e3, (mark[3] - mark[2]) * 1e3);
     }
     blade_seed_plan_free(&plan);
     return gr->have_blades;
