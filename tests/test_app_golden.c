@@ -1,16 +1,21 @@
 /* test_app_golden: the whole program renders scenes/tiny.json headless at a
  * fixed seed, time, camera and size; the frame matches the golden image, and
- * a second run gives a byte-identical frame (determinism). It skips only when
+ * a second run gives a byte-identical frame (determinism); every pixel is
+ * drawn (new targets start magenta). It skips only when
  * no GL 4.5 context can be made; once one can, any non-zero exit of app_run
  * (renderer failure, GL errors) fails the test. */
 #include "app/app.h"
 #include "test.h"
 #include "test_gl.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 static bool render(const char *dir, core_image_t *img)
 {
+    /* new targets start magenta (gfx_desc_t.poison): a pixel the frame does
+     * not draw (world_frame clears only the depth) fails the golden */
+    setenv("MEADOW_GFX_POISON", "1", 1);
     char frames[] = "4", size[] = "160x96", every[] = "4", out[512], mode[] = "hybrid";
     snprintf(out, sizeof out, "%s", dir);
     char *argv[] = {"meadow", "--headless", "--quiet", "--scene", "scenes/tiny.json", "--frames", frames,

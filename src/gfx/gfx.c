@@ -24,6 +24,8 @@ gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc)
     gfx_desc_t d = desc ? *desc : (gfx_desc_t){0};
     d.shader_dir = desc_or_env(d.shader_dir, "MEADOW_SHADER_DIR");
     d.shader_cache = desc_or_env(d.shader_cache, "MEADOW_SHADER_CACHE");
+    const char *poison = getenv("MEADOW_GFX_POISON");
+    d.poison = d.poison || (poison && *poison && strcmp(poison, "0") != 0);
     return d;
 }
 
@@ -499,6 +501,9 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
                                                          .samples = t.samples, .format = GL_DEPTH_COMPONENT32F,
                                                          .filter = GL_NEAREST, .label = name});
     }
+    /* poisoned: a frame that leaves a pixel undrawn shows magenta */
+    static const float magenta[4] = {1.0f, 0.0f, 1.0f, 1.0f};
+    if (G.poison && t.color.id) glClearTexImage(t.color.id, 0, GL_RGBA, GL_FLOAT, magenta);
     t.fbo = make_fbo(d->label, "fbo", t.color.id, t.depth.id);
     if (ms) {
         snprintf(name, sizeof name, "%s.resolve_color", d->label);

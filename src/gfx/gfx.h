@@ -24,9 +24,11 @@ typedef struct gfx_desc_t {
                                  when set and not empty, else the built-in table */
     const char *shader_cache; /* program-binary cache folder (created when missing); default:
                                  $MEADOW_SHADER_CACHE when set and not empty, else no cache */
-    bool poison;              /* fill buffers made uninitialized (gfx_buffer_desc_t) with 0xff bytes:
-                                 NaN floats, 0xffffffff uints, so a kernel that leaves part of one
-                                 unwritten shows in a test (the GL tests' contexts); default off */
+    bool poison;              /* fill buffers made uninitialized (gfx_buffer_desc_t) with 0xff bytes
+                                 (NaN floats, 0xffffffff uints) and new targets' colour with magenta,
+                                 so a kernel or frame that leaves part of one unwritten shows in a
+                                 test (the GL tests' contexts); default: $MEADOW_GFX_POISON set,
+                                 not empty and not "0" */
 } gfx_desc_t;
 /* The desc with its defaults filled in (the environment read). */
 gfx_desc_t gfx_desc_defaults(const gfx_desc_t *desc);
@@ -354,11 +356,13 @@ typedef enum gfx_pass_t {
     GFX_PASS_TILES_RASTER,
     GFX_PASS_RASTER_INIT,
     GFX_PASS_RASTER_COMPOSITE,
+    GFX_PASS_TARGET_CLEAR,   /* the frame's target cleared (world_frame) */
+    GFX_PASS_DEPTH_RESOLVE,  /* a multisampled depth resolved for occlusion culling */
     GFX_PASS_TEST,
     GFX_PASS_KINDS
 } gfx_pass_t;
 /* "terrain", "colliders", "character.skin", ..., "raster.composite",
- * "test" (tests' own passes). */
+ * "target.clear", "depth.resolve", "test" (tests' own passes). */
 const char *gfx_pass_name(gfx_pass_t kind);
 #define GFX_TIMER_MAX_PASSES 32
 _Static_assert(GFX_PASS_KINDS <= GFX_TIMER_MAX_PASSES, "every pass kind has a timer");

@@ -55,6 +55,15 @@ static void frame_lod(const grass_t *gr, frame_draw_t *f)
                                                  gr->terrain->aabb_max);
 }
 
+/* The target's depth resolved for the hardware path's occlusion tests. */
+static void resolve_depth(const gfx_target_t *target)
+{
+    if (target->resolve_fbo == target->fbo) return;
+    gfx_timer_begin(GFX_PASS_DEPTH_RESOLVE);
+    gfx_target_resolve_depth(target);
+    gfx_timer_end();
+}
+
 static void draw_tiles(grass_t *gr, frame_draw_t *f)
 {
     const grass_view_t *v = f->v;
@@ -66,7 +75,7 @@ static void draw_tiles(grass_t *gr, frame_draw_t *f)
     if (f->raster) {
         f->raster_ok = blade_tiles_raster(gr->tiles, f->raster, &dd, f->raster->opaque_depth.id) && f->raster_ok;
     } else {
-        gfx_target_resolve_depth(f->target);
+        resolve_depth(f->target);
         blade_tiles_draw(gr->tiles, &dd, f->target->resolve_depth.id);
     }
 }
@@ -76,7 +85,7 @@ static void draw_blades(grass_t *gr, frame_draw_t *f)
     const gfx_target_t *target = f->target;
     /* Occlusion culling reads the resolved depth of the opaque pass (the
      * compute path: the farthest opaque sample, from raster_begin). */
-    if (!f->raster) gfx_target_resolve_depth(target);
+    if (!f->raster) resolve_depth(target);
     /* Thinned by the scene's grass.lod to the frame's cull distance
      * (frame_lod, docs/BLADES.md). */
     bool hybrid = gr->mode == SCENE_MODE_HYBRID;
