@@ -221,6 +221,7 @@ bool grass_make_blades(grass_t *gr)
     mark[1] = plat_time();
     blade_gpu_desc_t gd = {.seed = &seed, .shape = g->population.shape, .label = "blades",
                            .displacement = g->displacement, .width_correction = g->width_correction,
+                           .width_printed = {g->width_printed[0], g->width_printed[1]},
                            .path = g->blade_render == SCENE_BLADE_RENDER_TESS ? BLADE_PATH_TESSELLATION
                                                                               : BLADE_PATH_PULLING};
     if (gr->tuning.tess_max) gd.max_tess_level = gr->tuning.tess_max;
@@ -303,6 +304,7 @@ bool grass_make_tiles(grass_t *gr)
                              .pool_slots = g->tile_pool,
                              .displacement = g->displacement,
                              .width_correction = g->width_correction,
+                             .width_printed = {g->width_printed[0], g->width_printed[1]},
                              .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
                              .wind_count = gr->blade_env.wind_count,
                              .cull = {.max_distance = grass_tiles_distance(gr) + 1.0f, .lod = g->lod,

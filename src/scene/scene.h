@@ -104,6 +104,8 @@ typedef struct scene_grass_desc_t {
     scene_blade_render_t blade_render; /* default pull */
     float displacement;      /* eq. 23 as printed, times this [0, 4]; default 0 (off) */
     float width_correction;  /* eq. 24 step (this project's reading) [0, 1]; default 0 (off) */
+    vec2 width_printed;      /* eq. 24 as printed: [w_min, w_span] px, each [0, 100]; w_span 0: off
+                                (default [0, 0]) */
     int subdiv[2];           /* billboard mesh subdivision [N, M], each 0 or [2, 8]; default [4, 4] */
     int spring_iterations;   /* billboard spring relaxation iterations [0, 64]; default 2 */
     int deformed_pool;       /* billboards' deformed-mesh pool slots [0, 262144]; default 4096 */

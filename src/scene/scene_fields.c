@@ -134,6 +134,11 @@ const scene_field_t scene_fields[] = {
       .doc = "blades seen edge-on widened by 1 / max(|n.view|, this), at most 4x: the eq. 24 step as this project "
              "reads it (docs/BLADES.md); blade mode and the hybrid's tiles; 0: off",
       .def_doc = "0 (off)"},
+    {GRASS(width_printed), .key = "width_printed", .type = SCENE_FIELD_FLOATS, .n = 2, .hi = 100,
+      .doc = "[w_min, w_span] px: Jahrmann & Wimmer 2017 eq. 24 as printed, the variant of width_correction: a "
+             "blade thinner on screen than w_min pixels is drawn as a quad, its shape back over w_span more "
+             "(docs/BLADES.md); blade mode and the hybrid's tiles; w_span 0: off",
+      .def_doc = "[0, 0] (off)"},
     {GRASS(subdiv), .key = "subdiv", .type = SCENE_FIELD_INTS, .n = 2, .lo = BB_SUBDIV_MIN,
       .hi = BB_SUBDIV_MAX, .def = {BB_DEFAULT_SUBDIV, BB_DEFAULT_SUBDIV}, .flags = SCENE_FIELD_ZERO_OK,
       .doc = "deformable billboard mesh [N columns, M rows]"},
