@@ -189,4 +189,20 @@ static inline bb_draw_desc_t test_draw_desc(const mat4 vp, const vec3 eye, float
     return d;
 }
 
+/* Field f drawn with d into tgt cleared to the soil colour: by the
+ * compute rasterizer r, or the hardware path when r is NULL. */
+static inline void test_draw_path(bb_field_t *f, const gfx_target_t *tgt, raster_t *r, const bb_draw_desc_t *d)
+{
+    gfx_target_bind(tgt);
+    glClearColor(0.33f, 0.27f, 0.2f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (r) {
+        raster_begin(r, tgt);
+        CHECK(bb_field_raster(f, r, d));
+        raster_end(r, tgt);
+    } else {
+        bb_field_draw(f, d);
+    }
+}
+
 #endif

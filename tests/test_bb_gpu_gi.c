@@ -19,16 +19,7 @@ static void draw(bb_field_t *f, const gfx_target_t *tgt, raster_t *r, const gi_b
     test_view(eye, vp);
     bb_draw_desc_t d = test_draw_desc(vp, eye, 0.5f);
     d.gi = *gi;
-    gfx_target_bind(tgt);
-    glClearColor(0.33f, 0.27f, 0.2f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    if (r) {
-        raster_begin(r, tgt);
-        CHECK(bb_field_raster(f, r, &d));
-        raster_end(r, tgt);
-    } else {
-        bb_field_draw(f, &d);
-    }
+    test_draw_path(f, tgt, r, &d);
     CHECK(gfx_target_read(tgt, out));
 }
 

@@ -3,8 +3,9 @@
  * geometry shader (vertex pulling): six vertices per billboard read the
  * point from the points buffer and build the same wind-animated quad as
  * bb_render.geom (two upper vertices moved by bb_wind_vertex). Idle leaves
- * hold no deformed billboard; a point that does, or that lies wholly nearer
- * than the hybrid fade band, is emitted degenerate. The top edge takes the
+ * hold no deformed billboard; a point that does, that its thinning with
+ * distance culls (bb_lod.glsl; else it is drawn wider) or that lies wholly
+ * nearer than the hybrid fade band, is emitted degenerate. The top edge takes the
  * handed-over slope of its cell (bb_slope.glsl); the normal is the moved
  * quad's (bb_plain_normal); with BB_GI the vertex takes the global
  * illumination's ambient light (bb_vertex_ambient, Orthmann et al. sec.
@@ -14,6 +15,7 @@
 #include "common/bb.glsl"
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_slope.glsl"
+#include "billboard/bb_lod.glsl"
 #include "common/grass_shade.glsl"
 
 layout(std430, binding = BB_BIND_POINTS) readonly buffer Points { bb_point points[]; };
@@ -42,8 +44,10 @@ void main()
     bb_point p = points[gl_VertexID / 6];
     const int corners[6] = int[](0, 1, 2, 2, 1, 3);
     int c = corners[gl_VertexID % 6];
+    float k;
+    bool culled = !bb_lod_thin(p, u_camera, k);
     bool near = bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end) || bb_far_dropped(p, u_camera, u_far_end);
-    if (p.pad0 != BB_NO_SLOT || near) {
+    if (p.pad0 != BB_NO_SLOT || culled || near) {
         g_world = vec3(0.0);
         g_normal = vec3(0.0, 1.0, 0.0);
         g_uvl = vec3(0.0);

@@ -1,7 +1,8 @@
 #version 450
 /* bb_raster.comp: billboards of Orthmann et al. 2009 drawn by the compute
  * rasterizer, the twin of bb_render.geom + bb_render.frag. One thread per
- * billboard: frustum test of its bounding sphere, the hybrid near drop,
+ * billboard: its thinning with distance (bb_lod.glsl: culled, or drawn
+ * wider), frustum test of its bounding sphere, the hybrid near drop,
  * then a plain quad (top edge in the wind pose, slope hand-over shift) or
  * its deformed N x M mesh (normals from central differences), 2 or
  * 2 (N-1)(M-1) triangles. Texels come from the clump array at the level of
@@ -27,6 +28,7 @@
 #include "common/grass_shade.glsl"
 #include "common/hash.glsl"
 #include "billboard/bb_view.glsl"
+#include "billboard/bb_lod.glsl"
 #define RASTER_PIXEL_RATE 1
 #define RASTER_NO_MEDIUM 1
 #define RASTER_GROUP_SCAN 1
@@ -78,9 +80,11 @@ vec3 g_amb[3][2]; /* per vertex: global illumination of the two faces (bb_vertex
 bool bb_setup(uint prim)
 {
     g_p = points[prim];
+    float k;
+    bool kept = bb_lod_thin(g_p, u_camera, k);
     bb_point p = g_p;
 #ifndef RASTER_BIG
-    if (p.size.y <= 0.0) return false;
+    if (!kept || p.size.y <= 0.0) return false;
     float r = 0.5 * length(vec2(p.size.x, p.size.y)) + u_wind.strength;
     vec3 centre = p.position + 0.5 * p.size.y * p.growth;
     for (int i = 0; i < 6; i++)
@@ -110,6 +114,7 @@ bool bb_setup(uint prim)
         g_plain_n = bb_plain_normal(a, b, g_corner[2], g_corner[3]);
     } else {
         bb_load_mesh(p.pad0);
+        bb_lod_mesh(p.position, g_right, k);
         if (u_slope_on != 0) bb_slope_mesh(p, ta, tb);
     }
     return true;

@@ -1,6 +1,7 @@
 #version 450
 /* bb_render.geom: billboard rendering of Orthmann et al. 2009. A plain
- * billboard becomes a quad whose two upper vertices follow the procedural
+ * billboard, thinned with distance (bb_lod.glsl: culled, or drawn wider),
+ * becomes a quad whose two upper vertices follow the procedural
  * wind (bb_wind_vertex, h = 1); a deformed one (pool slot set) draws its
  * stored N x M mesh as M-1 triangle strips with normals from central
  * differences. Billboards wholly nearer than the hybrid fade band are
@@ -13,6 +14,7 @@
 #include "billboard/bb_points.glsl"
 #include "billboard/bb_pool.glsl"
 #include "billboard/bb_slope.glsl"
+#include "billboard/bb_lod.glsl"
 #include "common/grass_shade.glsl"
 
 layout(points) in;
@@ -54,6 +56,8 @@ void put(vec3 pos, vec3 n, float u, float h, float layer)
 void main()
 {
     bb_point p = bb_load_point();
+    float k;
+    if (!bb_lod_thin(p, u_camera, k)) return;
     if (bb_fade_dropped(p, u_camera, u_fade_start, u_fade_end) || bb_far_dropped(p, u_camera, u_far_end)) return;
     vec3 right, up;
     bb_frame(p, right, up);
@@ -79,6 +83,7 @@ void main()
         return;
     }
     bb_load_mesh(p.pad0);
+    bb_lod_mesh(p.position, right, k);
     g_card = 0.0;
     if (u_slope_on != 0) {
         vec3 a, b, ta, tb;

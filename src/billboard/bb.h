@@ -33,6 +33,7 @@
 #include "billboard/bb_layout.h"
 #include "billboard/bb_octree.h"
 #include "billboard/bb_ref.h"
+#include "blade/blade_lod.h"
 #include "collide/collide_set.h"
 #include "core/core.h"
 #include "gfx/gfx.h"
@@ -127,6 +128,10 @@ typedef struct bb_draw_desc_t {
     float slope_recover;
     gi_bind_t gi;        /* global illumination (common/gi.glsl); zero: off; read only
                             by a field made with desc.gi */
+    const blade_lod_t *lod; /* the cards thinned with distance by this rule, the
+                               kept ones widened (bb_lod.h; scene, grass.bb_lod
+                               with grass.lod); NULL: off, every card drawn */
+    float focal_px;      /* with lod: pixels per unit tangent (blade_lod_focal) */
 } bb_draw_desc_t;
 
 /* Stages of bb_field_make, timed with a wall clock: layout textures (CPU)

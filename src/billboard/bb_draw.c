@@ -39,6 +39,8 @@ void bb_render_uniforms(const bb_field_t *f, gfx_program_t p, const bb_draw_desc
     glUniform2i(gfx_uniform(p, "u_slope_dims"), g->nx, g->nz);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, HYBRID_BIND_SLOPE_MAP, dd->slope_map.id);
     gi_set_uniforms(p.id, f->desc.gi ? &dd->gi : NULL); /* without BB_GI no vertex carries it */
+    blade_lod_t lod = bb_lod_rule(dd->lod);
+    blade_lod_uniforms(p, &lod, dd->focal_px, BB_LOD_CULL);
 }
 
 void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer_t sums)

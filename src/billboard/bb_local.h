@@ -16,7 +16,9 @@
 #define MEADOW_BB_LOCAL_H
 
 #include "billboard/bb.h"
+#include "billboard/bb_lod.h"
 #include "billboard/bb_ring.h"
+#include "blade/blade.h"
 #include "common/bindings_billboard.glsl"
 #include "common/bindings_hybrid.glsl"
 

@@ -110,7 +110,14 @@ static void draw_blades(grass_t *gr, frame_draw_t *f)
 static void draw_billboards(grass_t *gr, frame_draw_t *f)
 {
     const grass_view_t *v = f->v;
-    bb_draw_desc_t d = {.view = *f->v, .overlay = v->overlay == 1, .gi = gr->gi_bind};
+    const scene_grass_desc_t *g = &gr->scene->grass;
+    blade_lod_t lod = g->lod; /* the cards' rule: grass.lod's, its width_px grass.bb_lod_width_px's */
+    if (g->bb_lod_width_px > 0.0f) lod.width_px = g->bb_lod_width_px;
+    bb_draw_desc_t d = {.view = *f->v,
+                        .overlay = v->overlay == 1,
+                        .gi = gr->gi_bind,
+                        .lod = g->bb_lod ? &lod : NULL,
+                        .focal_px = f->focal};
     if (gr->mode == SCENE_MODE_HYBRID) {
         d.fade_start = f->fade_lo;
         d.fade_end = f->fade_hi;

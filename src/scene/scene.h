@@ -122,6 +122,10 @@ typedef struct scene_grass_desc_t {
     bool gi;                 /* Orthmann sec. 6.1 global illumination volumes; default false */
     bool bb_occlusion;       /* occlusion queries per billboard leaf batch (Orthmann sec. 6);
                                 default false */
+    bool bb_lod;             /* billboard cards thinned by grass.lod's rule, the kept ones
+                                widened (billboard/bb_lod.h); default false */
+    float bb_lod_width_px;   /* with bb_lod: the width rule's width_px for the cards;
+                                default 0: grass.lod.width_px */
     scene_hybrid_billboards_t billboards; /* hybrid on a world terrain; default ring */
     char lod_table[SCENE_PATH_MAX]; /* hybrid: switch distances measured by the bench for a GL
                                        renderer (scene_lod.h), repository-relative; default "": the

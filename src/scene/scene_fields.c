@@ -176,6 +176,14 @@ const scene_field_t scene_fields[] = {
     {GRASS(bb_occlusion), .key = "bb_occlusion", .type = SCENE_FIELD_BOOL,
       .doc = "occlusion culling of billboard batches (Orthmann et al. 2009 sec. 6): an occlusion query per octree "
              "leaf's box; a leaf whose box was hidden last frame is not drawn (hardware path, docs/BILLBOARDS.md)"},
+    {GRASS(bb_lod), .key = "bb_lod", .type = SCENE_FIELD_BOOL,
+      .doc = "billboard cards thin with distance by the `grass.lod.*` rule, the card's width in place of the "
+             "blade's: fewer cards, each narrowing to nothing before it is culled, the kept ones widened so the "
+             "covered area stays (both rasterizer paths; no end fade; docs/BILLBOARDS.md)"},
+    {GRASS(bb_lod_width_px), .key = "bb_lod_width_px", .type = SCENE_FIELD_FLOAT, .hi = 1000,
+      .doc = "with bb_lod, the width rule: cards thin where they are this narrow on screen (px); a 1 m card at "
+             "1.5 px (grass.lod.width_px's default) is over 400 m away at 720 rows, at 24 px 26 m",
+      .def_doc = "0: grass.lod.width_px"},
     {GRASS(billboards), .key = "billboards", .type = SCENE_FIELD_ENUM, .names = hybrid_billboards_names,
       .doc = "hybrid: `ring` draws billboards between the blades and the ground canopy (a world streams them "
              "around the camera); `none` shades the ground as canopy from the switch distance, where the thinned "
