@@ -12,6 +12,10 @@
  *    the billboards' grass fraction is within SIDE_COVERAGE of the
  *    blades' and their mean grass colour within CIE76 Delta E SIDE_DELTA_E
  *    (the three views go to test_out_dir() as side_*.png).
+ *    With grass.width_printed (eq. 24 as printed: blades under 6 px drawn
+ *    as quads) over 5 % of the blade view's pixels move by more than 8
+ *    levels: the key reaches the blades (the grass fraction, 0.87, is
+ *    saturated there).
  * 3. Switching modes at run time resets nothing: blade state keeps evolving
  *    across billboard -> blade -> hybrid, with no NaN, roots fixed. */
 #include "measure/measure.h"
@@ -23,6 +27,7 @@
 #include "test_gl.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static void top_down(scene_desc_t *s, void *user)
@@ -47,6 +52,14 @@ static void no_grass(scene_desc_t *s, void *user)
 {
     (void)user;
     s->grass.population.density = 1e-7f;
+}
+
+/* Eq. 24 as printed from 6 px over 2 px (grass.width_printed). */
+static void width_printed(scene_desc_t *s, void *user)
+{
+    (void)user;
+    s->grass.width_printed[0] = 6.0f;
+    s->grass.width_printed[1] = 2.0f;
 }
 
 /* Over the pixels where bg shows the ground (not the sky: blue below
@@ -79,10 +92,21 @@ static void side_view(void)
     CHECK(measure_session_run(&d, &bg, NULL) == 0);
     d.tweak = NULL;
     CHECK(measure_session_run(&d, &bl, NULL) == 0);
+    core_image_t bp;
+    d.tweak = width_printed;
+    CHECK(measure_session_run(&d, &bp, NULL) == 0);
+    d.tweak = NULL;
     d.mode = SCENE_MODE_BILLBOARD;
     CHECK(measure_session_run(&d, &bb, NULL) == 0);
     double lb[3], ll[3];
     double cb = side_grass(&bb, &bg, lb), cl = side_grass(&bl, &bg, ll);
+    size_t moved = 0, npx = (size_t)bl.w * (size_t)bl.h;
+    for (size_t i = 0; i < npx; i++)
+        moved += abs(bl.px[4 * i] - bp.px[4 * i]) > 8 || abs(bl.px[4 * i + 1] - bp.px[4 * i + 1]) > 8 ||
+                 abs(bl.px[4 * i + 2] - bp.px[4 * i + 2]) > 8;
+    printf("side view: grass.width_printed [6, 2] moves %zu of %zu pixels by more than 8 levels\n", moved, npx);
+    CHECK(moved > npx / 20);
+    core_image_free(&bp);
     double de = sqrt((lb[0] - ll[0]) * (lb[0] - ll[0]) + (lb[1] - ll[1]) * (lb[1] - ll[1]) +
                      (lb[2] - ll[2]) * (lb[2] - ll[2]));
     printf("side view: grass fraction billboard %.3f, blade %.3f; grass colour L*a*b* billboard (%.1f %.1f %.1f), "
