@@ -1,7 +1,7 @@
 #version 450
 /* blade_seed.comp: blade mode's field seeded on the GPU, the GLSL twin of
- * blade_seed_plan_blade (src/blade/blade_seed_plan.h) statement by
- * statement: invocation i finds its ordered triangle by binary search of
+ * blade_seed_plan_blade (src/blade/blade_seed_plan.h, with blade_seed.h's
+ * blade_seed_point and blade_seed_normal for the root and its up): invocation i finds its ordered triangle by binary search of
  * the plan's offsets, draws its six uniforms from the stream of (triangle,
  * index in it) and writes the rest pose; padding copies the last real
  * blade at height 0. With u_extent on, the extent map thins it as

@@ -86,13 +86,13 @@ static size_t pick_triangle(const sampler_t *s, core_rng_t *rng)
     return lo;
 }
 
-static void point_at(const blade_mesh_t *m, size_t tri, const float bary[3], float p[3])
+void blade_seed_point(const blade_mesh_t *m, size_t tri, const float bary[3], float p[3])
 {
     for (int k = 0; k < 3; k++)
         p[k] = bary[0] * vpos(m, tri, 0)[k] + bary[1] * vpos(m, tri, 1)[k] + bary[2] * vpos(m, tri, 2)[k];
 }
 
-static void normal_at(const blade_mesh_t *m, size_t tri, const float bary[3], float n[3])
+void blade_seed_normal(const blade_mesh_t *m, size_t tri, const float bary[3], float n[3])
 {
     float fn[3];
     tri_area(m, tri, fn);
@@ -323,8 +323,8 @@ static void seed_uniform(const sampler_t *s, const blade_seed_desc_t *d, core_rn
         size_t tri = pick_triangle(s, rng);
         float bary[3], p[3], n[3];
         random_bary(rng, bary);
-        point_at(s->mesh, tri, bary, p);
-        normal_at(s->mesh, tri, bary, n);
+        blade_seed_point(s->mesh, tri, bary, p);
+        blade_seed_normal(s->mesh, tri, bary, n);
         make_blade(&blades[i], p, n, rng, d);
     }
 }
@@ -348,7 +348,7 @@ static size_t tuft_centres(const sampler_t *s, const blade_seed_desc_t *d, core_
         size_t tri = pick_triangle(s, rng);
         float bary[3], p[3];
         random_bary(rng, bary);
-        point_at(s->mesh, tri, bary, p);
+        blade_seed_point(s->mesh, tri, bary, p);
         if (!grid_far_enough(&g, c, p, d->tuft_min_distance)) continue;
         memcpy(c[accepted].p, p, sizeof p);
         c[accepted].tri = tri;
@@ -381,8 +381,8 @@ static void seed_tuft(const sampler_t *s, const blade_seed_desc_t *d, core_rng_t
         }
         if (!inside) closest_bary(s->mesh, c->tri, p, bary);
         float root[3], up[3];
-        point_at(s->mesh, c->tri, bary, root);
-        normal_at(s->mesh, c->tri, bary, up);
+        blade_seed_point(s->mesh, c->tri, bary, root);
+        blade_seed_normal(s->mesh, c->tri, bary, up);
         make_blade(&blades[i], root, up, rng, d);
     }
 }

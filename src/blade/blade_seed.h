@@ -119,6 +119,11 @@ typedef struct blade_seed_key_t {
  * than qsort on 12M blades); tmp holds n keys. */
 void blade_seed_sort(blade_seed_key_t *keys, blade_seed_key_t *tmp, size_t n);
 
+/* The point of triangle tri at barycentrics bary, and the unit up there:
+ * the interpolated vertex normal, else (no normals, or they cancel) the
+ * face normal, else +Y (a degenerate triangle). */
+void blade_seed_point(const blade_mesh_t *mesh, size_t tri, const float bary[3], float p[3]);
+void blade_seed_normal(const blade_mesh_t *mesh, size_t tri, const float bary[3], float n[3]);
 /* Writes the rest pose v1 = v2 = v0 + up * height and the blade's
  * attributes (blade_t's w components). */
 void blade_seed_rest(blade_t *b, const float v0[3], const float up[3], float height, float width, float stiffness,

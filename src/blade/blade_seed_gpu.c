@@ -19,10 +19,10 @@ bool blade_gpu_seed(blade_gpu_t *g, const blade_gpu_seed_t *seed)
 {
     const blade_seed_plan_t *plan = seed->plan;
     const blade_mesh_t *mesh = seed->mesh;
-    char labels[7][128];
-    static const char *const what[7] = {"seed", "seed_boxes", "seed.positions", "seed.normals",
-                                        "seed.indices", "seed.order", "seed.offsets"};
-    for (int k = 0; k < 7; k++) snprintf(labels[k], sizeof labels[k], "%s.%s", g->desc.label, what[k]);
+    char labels[8][128];
+    static const char *const what[8] = {"seed",        "seed_boxes", "seed.positions", "seed.normals",
+                                        "seed.indices", "seed.order", "seed.offsets",   "seed.thinned"};
+    for (int k = 0; k < 8; k++) snprintf(labels[k], sizeof labels[k], "%s.%s", g->desc.label, what[k]);
     char buckets[64]; /* blade_patch.glsl's Counters, as blade.c builds the patch test */
     snprintf(buckets, sizeof buckets, "#define BLADE_PATCH_BUCKETS %d\n", BLADE_PATCH_BUCKETS);
     gfx_program_desc_t pds[2] = {{.cs = "blade/blade_seed.comp", .label = labels[0]},
@@ -39,9 +39,7 @@ bool blade_gpu_seed(blade_gpu_t *g, const blade_gpu_seed_t *seed)
                                                        .label = labels[2 + k]});
         ok = ok && bufs[k].id;
     }
-    char thinned_label[160];
-    snprintf(thinned_label, sizeof thinned_label, "%s.seed.thinned", g->desc.label);
-    bufs[5] = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint32_t), .label = thinned_label});
+    bufs[5] = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof(uint32_t), .label = labels[7]});
     ok = ok && bufs[5].id;
     if (ok) {
         const blade_seed_desc_t *d = &plan->desc;

@@ -124,27 +124,9 @@ void blade_seed_plan_blade(const blade_seed_plan_t *p, const blade_mesh_t *mesh,
     uint32_t s = core_hash_u32(core_hash_u32(p->key ^ core_hash_u32(t)) + j);
     float r = sqrtf(plan_draw(s, 0)), u1 = plan_draw(s, 1);
     float bary[3] = {1.0f - r, r * (1.0f - u1), r * u1};
-    const float *a = corner(mesh, t, 0), *b = corner(mesh, t, 1), *c = corner(mesh, t, 2);
-    float v0[3], up[3] = {0.0f, 0.0f, 0.0f};
-    for (int q = 0; q < 3; q++) v0[q] = bary[0] * a[q] + bary[1] * b[q] + bary[2] * c[q];
-    float len = 0.0f;
-    if (mesh->normals) {
-        for (int q = 0; q < 3; q++)
-            for (int v = 0; v < 3; v++) up[q] += bary[v] * mesh->normals[3 * (size_t)mesh->indices[3 * (size_t)t + (size_t)v] + (size_t)q];
-        len = sqrtf(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-    }
-    if (len < 1e-12f) {
-        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-        up[0] = e1[1] * e2[2] - e1[2] * e2[1];
-        up[1] = e1[2] * e2[0] - e1[0] * e2[2];
-        up[2] = e1[0] * e2[1] - e1[1] * e2[0];
-        len = sqrtf(up[0] * up[0] + up[1] * up[1] + up[2] * up[2]);
-        if (len < 1e-12f) {
-            up[0] = 0.0f; up[1] = 1.0f; up[2] = 0.0f;
-            len = 1.0f;
-        }
-    }
-    for (int q = 0; q < 3; q++) up[q] /= len;
+    float v0[3], up[3];
+    blade_seed_point(mesh, t, bary, v0);
+    blade_seed_normal(mesh, t, bary, up);
     const blade_population_t *pop = &p->desc.population;
     float h = pop->height[0] + (pop->height[1] - pop->height[0]) * plan_draw(s, 2);
     float w = pop->width[0] + (pop->width[1] - pop->width[0]) * plan_draw(s, 3);

@@ -55,7 +55,8 @@ static void frame_lod(const grass_t *gr, frame_draw_t *f)
                                                  gr->terrain->aabb_max);
 }
 
-/* The target's depth resolved for the hardware path's occlusion tests. */
+/* The target's depth resolved for the hardware path's occlusion tests; a
+ * single-sampled target has nothing to resolve, and no pass is timed. */
 static void resolve_depth(const gfx_target_t *target)
 {
     if (target->resolve_fbo == target->fbo) return;
