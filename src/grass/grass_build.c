@@ -75,8 +75,13 @@ static void *canopy_thread(void *user)
     return NULL;
 }
 
-static bool canopy_start(canopy_job_t *job, pthread_t *thread)
+/* Starts the scene's canopy table on a thread; false: it was not started
+ * (canopy_finish then computes it). */
+static bool canopy_start(const grass_t *gr, canopy_job_t *job, pthread_t *thread)
 {
+    *job = (canopy_job_t){.desc = {.population = gr->scene->grass.population,
+                                   .seed = gr->scene->seed,
+                                   .sun = GRASS_SUN_DIR}};
     return pthread_create(thread, NULL, canopy_thread, job) == 0;
 }
 
@@ -192,14 +197,14 @@ bool grass_make_blades(grass_t *gr)
     blade_seed_desc_t sd = {.seed = grass_placement_seed(gr),
                             .population = g->population,
                             .max_blades = ADMIT_MAX_FIELD_BLADES};
-    /* blade mode's grass-shaded ground (ground_set_lod): the canopy table,
-     * thinned by the extent map that thins the blades */
     double mark[4];
     mark[0] = plat_time();
+    /* blade mode's grass-shaded ground (ground_set_lod): the canopy table,
+     * thinned by the extent map that thins the blades */
     bool shade = !gr->reference && !ground_has_canopy(gr->ground);
-    canopy_job_t job = {.desc = {.population = g->population, .seed = s->seed, .sun = GRASS_SUN_DIR}};
+    canopy_job_t job;
     pthread_t thread;
-    bool threaded = shade && canopy_start(&job, &thread);
+    bool threaded = shade && canopy_start(gr, &job, &thread);
     blade_seed_plan_t plan;
     bool planned = blade_seed_plan_make(&mesh, &sd, &plan);
     bb_gen_desc_t gen;
@@ -291,11 +296,9 @@ bool grass_make_tiles(grass_t *gr)
 {
     const scene_desc_t *s = gr->scene;
     const scene_grass_desc_t *g = &s->grass;
-    canopy_job_t job = {.desc = {.population = g->population,
-                                 .seed = s->seed,
-                                 .sun = GRASS_SUN_DIR}};
+    canopy_job_t job;
     pthread_t thread;
-    bool threaded = canopy_start(&job, &thread);
+    bool threaded = canopy_start(gr, &job, &thread);
     blade_tiles_desc_t td = {.terrain = gr->terrain,
                              .tile_size = g->tile_size,
                              .population = g->population,
