@@ -489,6 +489,7 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
         core_log_warn("gfx: target '%s' asks for %dx MSAA, this GL offers at most %dx: using %dx", d->label, asked,
                       t.samples, t.samples);
     GLenum cf = d->color_format ? d->color_format : GL_RGBA8;
+    GLenum df = d->depth_format ? d->depth_format : GL_DEPTH_COMPONENT24;
     char name[96];
     bool ms = t.samples > 1;
     GLenum target = ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D;
@@ -498,7 +499,7 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
     if (!d->no_depth) {
         snprintf(name, sizeof name, "%s.depth", d->label);
         t.depth = gfx_texture_make(&(gfx_texture_desc_t){.target = target, .w = t.w, .h = t.h,
-                                                         .samples = t.samples, .format = GL_DEPTH_COMPONENT32F,
+                                                         .samples = t.samples, .format = df,
                                                          .filter = GL_NEAREST, .label = name});
     }
     /* poisoned: a frame that leaves a pixel undrawn shows magenta */
@@ -511,7 +512,7 @@ gfx_target_t gfx_target_make(const gfx_target_desc_t *d)
         if (!d->no_depth) {
             snprintf(name, sizeof name, "%s.resolve_depth", d->label);
             t.resolve_depth = gfx_texture_make(&(gfx_texture_desc_t){
-                .w = t.w, .h = t.h, .format = GL_DEPTH_COMPONENT32F, .filter = GL_NEAREST, .label = name});
+                .w = t.w, .h = t.h, .format = df, .filter = GL_NEAREST, .label = name});
         }
         t.resolve_fbo = make_fbo(d->label, "resolve", t.resolve_color.id, t.resolve_depth.id);
     } else {
