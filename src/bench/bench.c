@@ -236,16 +236,16 @@ static int add_paper_configs(bench_config_t *c, int n, bool quick)
 /* The tiers of the field on both rasterizer paths, on canopy_scene (NULL:
  * the sweep's): blade mode with its thinning drawn to the field's edge
  * (grass.blade_distance's default: the budget), the tiles thinned to D
- * and then the canopy without billboards (D = 40, 60, 80 m), the hybrid
+ * and then the canopy without billboards (D = 40, 50, 60, 80 m), the hybrid
  * with billboards to a canopy at 60 m (at the scene's billboard density and
  * at half of it) and at 90 m, then billboard mode. Returns the new count. */
 static int add_canopy_configs(bench_config_t *c, int n, bool quick, const char *canopy_scene)
 {
-    static const float tiles_to[] = {40, 60, 80};
+    static const float tiles_to[] = {40, 50, 60, 80};
     static const struct {
         float canopy, bb_scale;
     } ring[] = {{60, 1}, {60, 0.5f}, {90, 1}};
-    int ntiles = quick ? 1 : 3, nring = quick ? 1 : 3;
+    int ntiles = quick ? 1 : 4, nring = quick ? 1 : 3;
     for (int r = 0; r < (quick ? 1 : 2); r++) {
         const char *path = r ? "_compute" : "";
         int raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
@@ -661,14 +661,15 @@ static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *o
 static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
 
 /* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
- * among the hybrid rows whose GPU memory is within BENCH_LOD_GPU_MB, the
- * row of least wall time (row_wall) whose image error is within the noise
- * floor of the least error any row of the path measured (blade mode's
- * included; else the least error of those rows, "met": false; no row
- * within the memory: the least error of all), with or without billboards:
- * a tier stays only where it is cheaper at equal error. Rows that leave a
- * distance at 0 take the scene's. Nothing when the run holds no such rows. */
+ * among the hybrid rows within BENCH_LOD_GPU_MB of GPU memory and
+ * BENCH_LOD_ERROR of image error, the row of least wall time (row_wall),
+ * with or without billboards: a tier stays only where it is cheaper within
+ * the error budget. No row within both: the least error of the rows within
+ * the memory ("met": false; none within the memory: the least error of
+ * all). Rows that leave a distance at 0 take the scene's. Nothing when the
+ * run holds no such rows. */
 #define BENCH_LOD_GPU_MB 400.0 /* the default chain's GPU memory at most (MiB) */
+#define BENCH_LOD_ERROR 0.35   /* the default chain's image error at most (eval_image units) */
 /* A row's wall time per frame: the larger of its GPU pass sum and its
  * CPU's wall clock, so a CPU-bound configuration counts as slow. */
 static double row_wall(const measure_metrics_t *m) { return fmax(m->frame_ms, m->cpu_ms); }
@@ -694,10 +695,10 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
     if (!scene_load(&s, scene_path, err, sizeof err)) return false;
     core_buf_t json = {0};
     core_buf_printf(&json, "{\n  \"renderer\": \"%s\",\n  \"scene\": \"%s\",\n  \"size\": [%d, %d],\n"
-                           "  \"frames\": %d,\n  \"budget\": \"the least image error of the path's rows + the noise floor\",\n"
+                           "  \"frames\": %d,\n  \"budget\": \"the least wall time within an image error of %g and %g MiB\",\n"
                            "  \"paths\": {",
                     b->renderer, scene_path, o->width ? o->width : s.size[0], o->width ? o->height : s.size[1],
-                    b->frames);
+                    b->frames, BENCH_LOD_ERROR, BENCH_LOD_GPU_MB);
     int written = 0;
     for (int path_k = 0; path_k < 2; path_k++) {
         int blade = -1, best = -1, least = -1, least_fit = -1, candidates = 0;
@@ -711,10 +712,7 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
             if (fits && (least_fit < 0 || b->err[i] < b->err[least_fit])) least_fit = i;
         }
         if (blade < 0 || least < 0) continue;
-        double budget = b->err[least];
-        for (int i = 0; i < b->n; i++)
-            if (lod_row(b, i, path_k)) budget = fmin(budget, b->err[i]);
-        budget += R->floor;
+        double budget = BENCH_LOD_ERROR;
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget ||
                 b->met[i].gpu_mb > BENCH_LOD_GPU_MB)

@@ -120,11 +120,11 @@ bool scene_lod_apply(scene_desc_t *s, const char *renderer, bool *compute, char 
     g->billboards = p->billboards;
     bool ring = p->billboards == SCENE_HYBRID_BILLBOARDS_RING;
     snprintf(note, note_size,
-             "%s path%s, from %.200s: %s; %.3f ms wall (%.3f ms GPU) at image error %.3f, %s budget %.3f (the least "
-             "error measured + noise floor); the cheapest within it of %d hybrid configurations",
+             "%s path%s, from %.200s: %s; %.3f ms wall (%.3f ms GPU) at image error %.3f, %s budget %.3f; the "
+             "cheapest within it of %d hybrid configurations",
              *compute ? "compute" : "hw", auto_path ? " (the table's cheaper)" : "", g->lod_table,
              ring ? "blades, billboards, canopy" : "blades, canopy (no billboards)", p->wall_ms, p->gpu_ms,
-             p->image_error, p->met ? "within its" : "NOT within its (the least error measured)", p->budget,
+             p->image_error, p->met ? "within its" : "NOT within its (the least error within the memory instead)", p->budget,
              p->candidates);
     core_log_info("lod: switch %.1f m, canopy %.1f m, %s", g->switch_distance,
                   ring ? g->canopy_distance : g->switch_distance, note);

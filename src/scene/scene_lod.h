@@ -2,9 +2,9 @@
  * --chart hybrid_canopy_distance` writes lod.json: per rasterizer path, of
  * the hybrid configurations it measured (switch and canopy distance, with
  * or without billboards), the one of least wall time whose image error
- * against the all-blade reference stays within the least error measured on
- * that path plus the noise floor (docs/HYBRID.md, "Switch distances by
- * measurement"). A scene names such a
+ * against the all-blade reference and GPU memory stay within the bench's
+ * budgets (docs/HYBRID.md, "Switch distances by measurement"). A scene
+ * names such a
  * table (grass.lod_table); the program reads it here and takes its choice
  * for the path it draws with, or with raster auto the cheaper path's, when
  * the table was measured on the same GL renderer (GL-free: the caller
@@ -31,8 +31,8 @@ typedef struct scene_lod_pick_t {
     scene_hybrid_billboards_t billboards; /* "billboards": "ring" or "none" (absent: ring) */
     double wall_ms;               /* measured wall time per frame (absent: gpu_ms) */
     double gpu_ms, image_error;   /* measured at these distances */
-    double budget;                /* the least image error measured on the path + the noise floor */
-    bool met;                     /* image_error <= budget (else: the least error measured) */
+    double budget;                /* the image error allowed (bench: BENCH_LOD_ERROR) */
+    bool met;                     /* image_error <= budget (else: the least error within the memory) */
     int candidates;               /* hybrid configurations compared */
     char label[48];
 } scene_lod_pick_t;
