@@ -13,6 +13,7 @@
  * DIR/RESULTS.md), --perf and --baseline (perf.c, perf_baseline.c) and
  * --papers DIR (perf_papers.c) run the other parts of the harness. */
 #include "bench/bench_local.h"
+#include "bench/bench_lod.h"
 
 #include <assert.h>
 #include <math.h>
@@ -660,16 +661,6 @@ static int identical_rows(const bench_run_t *b, const bench_chart_t *ch, char *o
 
 static const char *front_name(int front) { return front == 1 ? "hardware" : front == 2 ? "compute" : "-"; }
 
-/* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
- * among the hybrid rows within BENCH_LOD_GPU_MB of GPU memory and
- * BENCH_LOD_ERROR of image error, the row of least wall time (row_wall),
- * with or without billboards: a tier stays only where it is cheaper within
- * the error budget. No row within both: the least error of the rows within
- * the memory ("met": false; none within the memory: the least error of
- * all). Rows that leave a distance at 0 take the scene's. Nothing when the
- * run holds no such rows. */
-#define BENCH_LOD_GPU_MB 400.0 /* the default chain's GPU memory at most (MiB) */
-#define BENCH_LOD_ERROR 0.35   /* the default chain's image error at most (eval_image units) */
 /* A row's wall time per frame: the larger of its GPU pass sum and its
  * CPU's wall clock, so a CPU-bound configuration counts as slow. */
 static double row_wall(const measure_metrics_t *m) { return fmax(m->frame_ms, m->cpu_ms); }
@@ -683,6 +674,10 @@ static bool lod_row(const bench_run_t *b, int i, int path_k)
     return strcmp(c->group, "hybrid_canopy_distance") == 0 && compute == (path_k == 1) && b->err[i] >= 0.0;
 }
 
+/* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
+ * bench_lod_pick over its rows, with BENCH_LOD_ERROR and BENCH_LOD_GPU_MB.
+ * Rows that leave a distance at 0 take the scene's. Nothing when the run
+ * holds no such rows. */
 static bool write_lod(const char *out, const world_options_t *o, const bench_run_t *b)
 {
     int first = 0;
@@ -701,25 +696,22 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
                     b->frames, BENCH_LOD_ERROR, BENCH_LOD_GPU_MB);
     int written = 0;
     for (int path_k = 0; path_k < 2; path_k++) {
-        int blade = -1, best = -1, least = -1, least_fit = -1, candidates = 0;
+        int blade = -1, candidates = 0, idx[MAX_CONFIGS], m = 0;
+        bench_lod_row_t rows[MAX_CONFIGS];
         for (int i = 0; i < b->n; i++) {
             if (!lod_row(b, i, path_k)) continue;
             if (b->cfg[i].mode == SCENE_MODE_BLADE) blade = i;
-            if (b->cfg[i].mode != SCENE_MODE_HYBRID) continue;
-            candidates++;
-            if (least < 0 || b->err[i] < b->err[least]) least = i;
-            bool fits = b->met[i].gpu_mb <= BENCH_LOD_GPU_MB;
-            if (fits && (least_fit < 0 || b->err[i] < b->err[least_fit])) least_fit = i;
+            bool hybrid = b->cfg[i].mode == SCENE_MODE_HYBRID;
+            candidates += hybrid;
+            idx[m] = i;
+            rows[m++] = (bench_lod_row_t){.candidate = hybrid, .wall_ms = row_wall(&b->met[i]), .error = b->err[i],
+                                          .gpu_mb = b->met[i].gpu_mb};
         }
-        if (blade < 0 || least < 0) continue;
+        bool met = false;
+        int k = bench_lod_pick(rows, m, BENCH_LOD_ERROR, BENCH_LOD_GPU_MB, &met);
+        if (blade < 0 || k < 0) continue;
+        int pick = idx[k];
         double budget = BENCH_LOD_ERROR;
-        for (int i = 0; i < b->n; i++) {
-            if (!lod_row(b, i, path_k) || b->cfg[i].mode != SCENE_MODE_HYBRID || b->err[i] > budget ||
-                b->met[i].gpu_mb > BENCH_LOD_GPU_MB)
-                continue;
-            if (best < 0 || row_wall(&b->met[i]) < row_wall(&b->met[best])) best = i;
-        }
-        int pick = best >= 0 ? best : least_fit >= 0 ? least_fit : least;
         const bench_config_t *c = &b->cfg[pick];
         float sw = c->switch_distance > 0 ? c->switch_distance : s.grass.switch_distance;
         float cd = c->canopy_distance > 0 ? c->canopy_distance : s.grass.canopy_distance;
@@ -732,7 +724,7 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
                         "\"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, \"blade_error\": %.6f, \"blade_gpu_mb\": %.1f}",
                         written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd,
                         bb == SCENE_HYBRID_BILLBOARDS_NONE ? "none" : "ring", row_wall(&b->met[pick]),
-                        b->met[pick].frame_ms, b->err[pick], budget, best >= 0 ? "true" : "false",
+                        b->met[pick].frame_ms, b->err[pick], budget, met ? "true" : "false",
                         b->met[pick].gpu_mb, BENCH_LOD_GPU_MB, c->label, candidates, row_wall(&b->met[blade]),
                         b->met[blade].frame_ms, b->err[blade], b->met[blade].gpu_mb);
         written++;
