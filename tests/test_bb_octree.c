@@ -3,7 +3,10 @@
  * the hierarchical collision/recovery state machine must match a flat
  * brute-force computation frame by frame over a scripted path; collect must
  * list exactly the non-empty leaves in the requested states and frustum;
- * sort_near_first must order them by their parent cell's distance. */
+ * sort_near_first must order them by their parent cell's distance; planes
+ * moved out by the cards' widening (bb_lod_reach) keep the leaves the
+ * widened cards reach. */
+#include "billboard/bb_lod.h"
 #include "billboard/bb_octree.h"
 #include "core/core.h"
 #include "test.h"
@@ -15,6 +18,36 @@
 
 static const bb_octree_desc_t desc = {
     .min = {-50.0f, -2.0f, -50.0f}, .max = {50.0f, 8.0f, 50.0f}, .max_depth = 4, .margin = 1.0f};
+
+/* The non-empty leaves whose boxes grown by margin are not outside any
+ * plane, in leaf order, checked against got[0..n); returns their count and
+ * sets *all to the non-empty leaves. */
+static int frustum_brute(const bb_octree_t *t, const vec4 planes[6], float margin, const bb_range_t *got, int n,
+                         int *all)
+{
+    int want = 0;
+    *all = 0;
+    for (int k = 0; k < t->leaf_count; k++) {
+        int node = bb_octree_leaf_node(t, (uint32_t)k);
+        if (!t->count[node]) continue;
+        (*all)++;
+        bool culled = false;
+        for (int p = 0; p < 6 && !culled; p++) {
+            bool all_out = true;
+            for (int c = 0; c < 8; c++) {
+                float x = (c & 1) ? t->hi[node][0] + margin : t->lo[node][0] - margin;
+                float y = (c & 2) ? t->hi[node][1] + margin : t->lo[node][1] - margin;
+                float z = (c & 4) ? t->hi[node][2] + margin : t->lo[node][2] - margin;
+                if (planes[p][0] * x + planes[p][1] * y + planes[p][2] * z + planes[p][3] >= 0.0f) all_out = false;
+            }
+            culled = all_out;
+        }
+        if (culled) continue;
+        if (want < n) CHECK(got[want].leaf == (uint32_t)k);
+        want++;
+    }
+    return want;
+}
 
 static void leaf_coords(uint32_t leaf, int depth, int c[3])
 {
@@ -198,29 +231,25 @@ static void test_states(void)
     vec4 planes[6];
     glm_frustum_planes(vp, planes);
     int got = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, ranges, t.leaf_count);
-    int want = 0, all = 0;
-    for (int k = 0; k < t.leaf_count; k++) {
-        int node = bb_octree_leaf_node(&t, (uint32_t)k);
-        if (!t.count[node]) continue;
-        all++;
-        bool culled = false;
-        for (int p = 0; p < 6 && !culled; p++) {
-            bool all_out = true;
-            for (int c = 0; c < 8; c++) {
-                float x = (c & 1) ? t.hi[node][0] + 1.0f : t.lo[node][0] - 1.0f;
-                float y = (c & 2) ? t.hi[node][1] + 1.0f : t.lo[node][1] - 1.0f;
-                float z = (c & 4) ? t.hi[node][2] + 1.0f : t.lo[node][2] - 1.0f;
-                if (planes[p][0] * x + planes[p][1] * y + planes[p][2] * z + planes[p][3] >= 0.0f) all_out = false;
-            }
-            culled = all_out;
-        }
-        if (culled) continue;
-        if (want < got) CHECK(ranges[want].leaf == (uint32_t)k);
-        want++;
-    }
+    int all = 0, want = frustum_brute(&t, planes, 1.0f, ranges, got, &all);
     printf("frustum: %d of %d non-empty leaves visible (brute %d)\n", got, all, want);
     CHECK(got == want);
     CHECK(got > 10 && got < all / 2);
+    /* Cards widened by the thinning: the planes moved out by bb_lod_reach
+     * keep the leaves whose boxes grown by the margin plus the reach are
+     * in the frustum (cards up to 1.2 m wide drawn up to 8 times as wide:
+     * 4.8 m from the root, the margin's 0.6 m plus 4.2 m). */
+    blade_lod_t rule = bb_lod_rule(&(blade_lod_t){.rule = BLADE_LOD_WIDTH, .max_scale = 8.0f});
+    float reach = bb_lod_reach(&rule, 1.0f), grown[6][4];
+    CHECK(fabsf(reach - 4.2f) < 1e-5f);
+    CHECK(bb_lod_reach(&(blade_lod_t){.rule = BLADE_LOD_OFF}, 1.0f) == 0.0f);
+    CHECK(bb_lod_reach(&(blade_lod_t){.rule = BLADE_LOD_WIDTH, .max_scale = 8.0f, .no_compensation = true}, 1.0f) == 0.0f);
+    bb_lod_grow_planes((const float (*)[4])planes, reach, grown);
+    int wide = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])grown, ranges, t.leaf_count);
+    int wide_want = frustum_brute(&t, planes, 1.0f + reach, ranges, wide, &all);
+    printf("frustum, cards widened: %d leaves visible (brute %d)\n", wide, wide_want);
+    CHECK(wide == wide_want && wide > got);
+    CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, ranges, t.leaf_count) == got);
 
     /* Nearest first: the same leaves, by the distance from the eye to their
      * parent's box (computed here from the leaf coordinates), ties in leaf

@@ -62,12 +62,19 @@ void bb_field_add_slopes(bb_field_t *f, const hybrid_slope_grid_t *g, gfx_buffer
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
-/* The leaves in state_mask that this draw shows (in the frustum, nearer
- * than far_end when set, not occluded), nearest first, merged into draw
+/* The leaves in state_mask that this draw shows (in the frustum, their
+ * boxes grown by the widest card the thinning draws, nearer than far_end
+ * when set, not occluded), nearest first, merged into draw
  * ranges f->firsts / f->counts_gl; returns how many. */
 static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t *dd)
 {
     const float(*planes)[4] = (const float (*)[4])dd->view.planes;
+    blade_lod_t lod = bb_lod_rule(dd->lod);
+    float reach = bb_lod_reach(&lod, f->desc.size[0]), grown[6][4];
+    if (reach > 0.0f) {
+        bb_lod_grow_planes(planes, reach, grown);
+        planes = (const float (*)[4])grown;
+    }
     int n = bb_octree_collect(&f->tree, state_mask, planes, f->ranges, f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->view.camera, dd->far_end, f->ranges, n);
     if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->view.camera);
