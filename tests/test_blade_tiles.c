@@ -65,7 +65,7 @@ static terrain_mesh_t make_terrain(float size, int res, bool flat)
     return m;
 }
 
-static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int pool, float speed)
+static blade_tiles_desc_t tiles_desc(const terrain_mesh_t *m, int pool, float speed)
 {
     blade_tiles_desc_t d = {
         .terrain = m,
@@ -77,6 +77,12 @@ static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int pool, float speed)
         .cull = {.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_FRUSTUM | BLADE_CULL_DISTANCE}};
     d.winds[0] = blade_wind_wave(1.0f, 0.4f, 1.5f, 6.0f, speed);
     d.wind_count = 1;
+    return d;
+}
+
+static blade_tiles_t *make_tiles(const terrain_mesh_t *m, int pool, float speed)
+{
+    blade_tiles_desc_t d = tiles_desc(m, pool, speed);
     return blade_tiles_make(&d);
 }
 
@@ -647,6 +653,46 @@ static void test_draw_lists(void)
     CHECK(listed > 4 && unordered == 0);
     CHECK(same);
     CHECK(near > 0 && near < n_split && misplaced == 0);
+
+    /* Grouped per workgroup (the compute rasterizer's cull): the same
+     * blades. A draw buffer a third as large, placed either way, holds a
+     * third of the survivors, each once and each a survivor, and counts
+     * the rest. */
+    blade_draw_desc_t cd = {0};
+    mat4 vp;
+    view_proj(cam, vp);
+    memcpy(cd.view.viewproj, vp, sizeof cd.view.viewproj);
+    memcpy(cd.view.camera, cam, sizeof cd.view.camera);
+    blade_tiles_cull(t, &cd, 0, true);
+    uint32_t n_grouped = blade_tiles_read_drawn(t, drawn, ids_split);
+    qsort(ids_split, n_grouped, sizeof *ids_split, cmp_u32);
+    bool same_grouped = n_grouped == n && memcmp(ids, ids_split, n * sizeof *ids) == 0;
+    printf("h) grouped: %u blades drawn, same ids: %s\n", n_grouped, same_grouped ? "yes" : "no");
+    CHECK(same_grouped);
+    blade_tiles_desc_t dc = tiles_desc(&m, 8, 0.0f);
+    dc.draw_capacity = n / 3;
+    blade_tiles_t *tc = blade_tiles_make(&dc);
+    CHECK(tc);
+    core_log_set_quiet(true);
+    blade_tiles_update(tc, cam, NULL, &env);
+    for (int grouped = 0; grouped < 2; grouped++) {
+        cd.fade_start = fade_start, cd.fade_end = fade_start + 2.0f;
+        blade_tiles_cull(tc, &cd, 0, grouped);
+        uint32_t n_cap = blade_tiles_read_drawn(tc, drawn, ids_split), strangers = 0, twice = 0;
+        blade_tiles_stats_t sc = blade_tiles_stats(tc, true);
+        qsort(ids_split, n_cap, sizeof *ids_split, cmp_u32);
+        for (uint32_t i = 0; i < n_cap; i++) {
+            twice += i > 0 && ids_split[i] == ids_split[i - 1];
+            strangers += bsearch(&ids_split[i], ids, n, sizeof *ids, cmp_u32) == NULL;
+        }
+        printf("h) %s, draw capacity %u of %u survivors: %u drawn, %u counted over, %u twice, %u not survivors\n",
+               grouped ? "grouped" : "a place per blade, split", dc.draw_capacity, n, n_cap, sc.draw_overflow, twice,
+               strangers);
+        CHECK(n_cap == dc.draw_capacity && sc.draw_overflow == n - n_cap && sc.blades_drawn == n_cap);
+        CHECK(twice == 0 && strangers == 0);
+    }
+    blade_tiles_destroy(tc);
+    core_log_set_quiet(false);
     free(list);
     free(drawn);
     free(ids);

@@ -23,13 +23,14 @@
  * instance per blade) or 0 (count: the tessellation path, one patch vertex
  * per blade). Front and end cannot meet, as each append first took one of
  * the u_capacity places in cmd.total. Past the capacity it is dropped and
- * counted in cmd.overflow. The host zeroes the counted words before the
+ * counted in cmd.overflow (u_group_append: counted and placed per
+ * workgroup, below). The host zeroes the counted words before the
  * dispatch. */
 #include "blade/tiles_common.glsl"
 #include "common/extent.glsl"
 #include "common/lod.glsl"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = 256) in; /* CULL_GROUP */
 
 layout(std430, binding = BLADE_TILES_BIND_POOL) readonly buffer Pool { Blade pool[]; };
 layout(std430, binding = BLADE_TILES_BIND_LIST) readonly buffer List { uvec2 list[]; };
@@ -115,39 +116,117 @@ uint cull(Blade b, vec3 view_ground, float d, vec2 lod)
     return BLADE_CULL_VISIBLE;
 }
 
-void main()
+/* The culled counts are summed in the workgroup and added to cmd once
+ * per workgroup (one global atomic per test and workgroup instead of one
+ * per culled blade, all of a test at one address). With u_group_append
+ * (the compute rasterizer's cull) the survivors' places are taken so too:
+ * in invocation order (a prefix sum over the workgroup), one atomic per
+ * list and workgroup. The hardware draw keeps one atomic per blade: its
+ * blades then lie in the order their warps reached the counter, and drawn
+ * in that order they cost the H200 0.5 ms less on meadow_large than
+ * grouped by workgroup. */
+#define CULL_GROUP 256u
+uniform bool u_group_append;
+shared uint s_culled[4];
+shared uint s_scan[CULL_GROUP]; /* solid | fade << 16, inclusive prefix sums */
+shared uint s_solid, s_fade, s_solid_base, s_fade_base, s_kept;
+
+/* Blade i's state and id; false when it is culled (counted in s_culled)
+ * or thinned away by the extent map. */
+bool survives(uint i, out Blade b, out uint id, out float d)
 {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= u_count) return;
     uvec2 e = list[i / u_template_blades];
     uint k = i % u_template_blades;
-    Blade b;
+    id = e.x * u_template_blades + k;
+    d = 0.0;
     if (e.y != TILES_NO_SLOT) {
         b = pool[e.y * u_template_blades + k];
     } else {
         b = tiles_rest(e.x, k);
-        if (b.v1.w <= 0.0) return;
+        if (b.v1.w <= 0.0) return false;
         b = tiles_pose(b);
     }
-    if (b.v1.w <= 0.0) return;
+    if (b.v1.w <= 0.0) return false;
     vec3 view_ground = ground_view(b);
-    float d = grass_distance(b.v0.xyz, u_cam_pos);
+    d = grass_distance(b.v0.xyz, u_cam_pos);
     vec2 lod = vec2(1.0);
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u && d <= u_max_distance) lod = lod_blade(k, d, b.v2.w);
     uint why = cull(b, view_ground, d, lod);
     if (why != BLADE_CULL_VISIBLE) {
-        atomicAdd(cmd.culled[findLSB(why)], 1u);
-        return;
+        atomicAdd(s_culled[findLSB(why)], 1u);
+        return false;
     }
-    if (u_extent_on && !extent_keep(b.v0.xyz, e.x * u_template_blades + k)) return;
+    if (u_extent_on && !extent_keep(b.v0.xyz, id)) return false;
     b.v2.w *= lod.x * lod.y;
+    return true;
+}
+
+/* Blade b's place in `drawn` taken alone, one atomic per blade; false
+ * past the capacity. */
+bool place_alone(bool fade, out uint slot)
+{
+    slot = 0u;
     if (atomicAdd(cmd.total, 1u) >= u_capacity) {
         atomicAdd(cmd.overflow, 1u);
-        return;
+        return false;
     }
-    uint slot = u_split && d > u_fade_start
-                    ? u_capacity - 1u - atomicAdd(cmd.fade[u_count_word], 1u)
-                    : atomicAdd(cmd.solid[u_count_word], 1u);
+    slot = fade ? u_capacity - 1u - atomicAdd(cmd.fade[u_count_word], 1u) : atomicAdd(cmd.solid[u_count_word], 1u);
+    return true;
+}
+
+/* The workgroup's survivors placed together (u_group_append); false for
+ * this invocation's blade when it is not live or past the capacity. */
+bool place_grouped(bool live, bool fade, out uint slot)
+{
+    uint li = gl_LocalInvocationIndex;
+    uint mine = live ? (fade ? 1u << 16 : 1u) : 0u;
+    s_scan[li] = mine;
+    barrier();
+    for (uint o = 1u; o < CULL_GROUP; o <<= 1) {
+        uint add = li >= o ? s_scan[li - o] : 0u;
+        barrier();
+        s_scan[li] += add;
+        barrier();
+    }
+    uint before = s_scan[li] - mine, all = s_scan[CULL_GROUP - 1u];
+    uint survivors = (all & 0xffffu) + (all >> 16), j = (before & 0xffffu) + (before >> 16);
+    if (li == 0u) {
+        uint base = survivors > 0u ? atomicAdd(cmd.total, survivors) : 0u;
+        s_kept = min(base < u_capacity ? u_capacity - base : 0u, survivors);
+        if (survivors > s_kept) atomicAdd(cmd.overflow, survivors - s_kept);
+    }
+    barrier();
+    /* the kept survivors are the first s_kept in order, so a kept blade's
+     * place among its list's kept blades is its prefix */
+    bool kept = live && j < s_kept;
+    if (kept && fade) atomicAdd(s_fade, 1u);
+    if (kept && !fade) atomicAdd(s_solid, 1u);
+    barrier();
+    if (li == 0u) {
+        s_solid_base = s_solid > 0u ? atomicAdd(cmd.solid[u_count_word], s_solid) : 0u;
+        s_fade_base = s_fade > 0u ? atomicAdd(cmd.fade[u_count_word], s_fade) : 0u;
+    }
+    barrier();
+    slot = fade ? u_capacity - 1u - (s_fade_base + (before >> 16)) : s_solid_base + (before & 0xffffu);
+    return kept;
+}
+
+void main()
+{
+    uint li = gl_LocalInvocationIndex;
+    if (li < 4u) s_culled[li] = 0u;
+    if (li == 0u) s_solid = s_fade = 0u;
+    barrier();
+    Blade b;
+    uint id = 0u, slot = 0u;
+    float d = 0.0;
+    bool live = gl_GlobalInvocationID.x < u_count && survives(gl_GlobalInvocationID.x, b, id, d);
+    bool fade = live && u_split && d > u_fade_start;
+    barrier();
+    if (li < 4u && s_culled[li] > 0u) atomicAdd(cmd.culled[li], s_culled[li]);
+    if (u_group_append) live = place_grouped(live, fade, slot);
+    else live = live && place_alone(fade, slot);
+    if (!live) return;
     drawn[slot] = b;
-    drawn_ids[slot] = e.x * u_template_blades + k;
+    drawn_ids[slot] = id;
 }

@@ -902,8 +902,10 @@ void blade_tiles_update(blade_tiles_t *t, const float camera[3], const collide_s
  * to the front and the solid one; without it all go to the front. The
  * tile list goes nearest first (blade_order_sort), so the blades are
  * appended roughly front to back and the depth test rejects more of the
- * hidden ones (docs/PERFORMANCE.md). */
-static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split, GLuint depth)
+ * hidden ones (docs/PERFORMANCE.md). With `grouped` (the compute
+ * rasterizer's cull) each workgroup places its survivors together, in
+ * order (tiles_cull.comp, u_group_append). */
+static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool split, bool grouped, GLuint depth)
 {
     const blade_cull_desc_t *c = &t->desc.cull;
     uint32_t B = t->template_blades;
@@ -955,6 +957,7 @@ static void cull_tiles(blade_tiles_t *t, const blade_draw_desc_t *desc, bool spl
     glUniform1f(gfx_uniform(p, "u_frustum_tolerance"), c->frustum_tolerance);
     glUniform1ui(gfx_uniform(p, "u_disable"), c->disable);
     glUniform1i(gfx_uniform(p, "u_split"), split);
+    glUniform1i(gfx_uniform(p, "u_group_append"), grouped);
     glUniform1f(gfx_uniform(p, "u_fade_start"), desc->fade_start);
     glUniform1ui(gfx_uniform(p, "u_count_word"), (GLuint)t->count_word);
     glUniform1i(gfx_uniform(p, "u_use_depth"), depth != 0);
@@ -1036,7 +1039,7 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
 {
     if (!draw_programs(t)) return;
     bool fade = desc->fade_end > desc->fade_start, tess = t->desc.tessellate;
-    cull_tiles(t, desc, fade, depth_texture);
+    cull_tiles(t, desc, fade, false, depth_texture);
     uint32_t B = t->template_blades;
     gfx_timer_begin(GFX_PASS_TILES_DRAW);
     if (t->overlay) {
@@ -1075,9 +1078,14 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
     gfx_timer_end();
 }
 
+void blade_tiles_cull(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint depth_texture, bool grouped)
+{
+    cull_tiles(t, desc, !grouped && desc->fade_end > desc->fade_start, grouped, depth_texture);
+}
+
 bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc, GLuint depth_texture)
 {
-    cull_tiles(t, desc, false, depth_texture);
+    cull_tiles(t, desc, false, true, depth_texture);
     gfx_timer_begin(GFX_PASS_TILES_RASTER);
     blade_surface_t surf = tiles_surface(t);
     bool ok = blade_raster_list(r, &t->raster, &surf, desc, t->drawn, (gfx_buffer_t){0}, t->command,

@@ -251,6 +251,13 @@ void blade_tiles_draw(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint de
  * raster_begin and raster_end. Debug overlays are drawn by the hardware
  * path only. False when the raster program cannot be made (logged). */
 bool blade_tiles_raster(blade_tiles_t *t, raster_t *r, const blade_draw_desc_t *desc, GLuint depth_texture);
+/* The culling alone (timer "tiles.cull"), read back with
+ * blade_tiles_read_drawn: as blade_tiles_draw runs it (grouped false: a
+ * place per blade, the blades in the order they reach the counter; split
+ * at desc->fade_start when desc->fade_end is beyond it) or as
+ * blade_tiles_raster does (grouped true: each workgroup's survivors placed
+ * together, in order; never split). */
+void blade_tiles_cull(blade_tiles_t *t, const blade_draw_desc_t *desc, GLuint depth_texture, bool grouped);
 
 /* Statistics; blades_drawn without stalling unless wait (tests). */
 /* The blades -> billboards slope hand-over the billboards draw with
