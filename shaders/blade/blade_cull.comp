@@ -8,7 +8,7 @@
  * (blade_lod_orientation). Weight 0 is a distance cull.
  * Tests in order: orientation, frustum, distance, occlusion; the first that
  * fails culls the blade and increments its counter (counts.culled[0..3]
- * in that order, blade_patch.glsl). A survivor appends its index to
+ * in that order, blade_patch.glsl; summed per workgroup first). A survivor appends its index to
  * `survivors` and increments the draw command: instanceCount when
  * u_count_instances != 0 (one instance per blade, count = vertices per
  * blade set by the host), else count (one vertex / patch per blade,
@@ -100,23 +100,28 @@ uint cull(Blade b, uint index, out float factor)
     return BLADE_CULL_VISIBLE;
 }
 
+/* The culled counts of the workgroup, added to counts.culled once per
+ * workgroup (one atomic per culled blade put every blade of a test on one
+ * address; the tiles' cull took half the time without it on the H200). */
+shared uint s_culled[4];
+
 void main()
 {
+    uint li = gl_LocalInvocationIndex;
+    if (li < 4u) s_culled[li] = 0u;
+    barrier();
     uint i = gl_GlobalInvocationID.x;
-    if (i >= (u_use_patches != 0 ? counts.dispatch[3] : u_blade_count)) return;
-    if (u_use_patches != 0) i = patches[i / u_patch_size] * u_patch_size + i % u_patch_size;
-    float factor;
-    uint why = cull(blades[i], i, factor);
-    if (why == BLADE_CULL_VISIBLE) {
-        uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);
-        survivors[slot] = uvec2(i, floatBitsToUint(factor));
-    } else if (why == BLADE_CULL_ORIENTATION) {
-        atomicAdd(counts.culled[0], 1u);
-    } else if (why == BLADE_CULL_FRUSTUM) {
-        atomicAdd(counts.culled[1], 1u);
-    } else if (why == BLADE_CULL_DISTANCE) {
-        atomicAdd(counts.culled[2], 1u);
-    } else if (why == BLADE_CULL_OCCLUSION) {
-        atomicAdd(counts.culled[3], 1u);
+    if (i < (u_use_patches != 0 ? counts.dispatch[3] : u_blade_count)) {
+        if (u_use_patches != 0) i = patches[i / u_patch_size] * u_patch_size + i % u_patch_size;
+        float factor;
+        uint why = cull(blades[i], i, factor);
+        if (why == BLADE_CULL_VISIBLE) {
+            uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);
+            survivors[slot] = uvec2(i, floatBitsToUint(factor));
+        } else if (why != BLADE_CULL_PADDING) {
+            atomicAdd(s_culled[findLSB(why)], 1u);
+        }
     }
+    barrier();
+    if (li < 4u && s_culled[li] > 0u) atomicAdd(counts.culled[li], s_culled[li]);
 }
