@@ -66,19 +66,37 @@ int main(void)
         float f[NF];
         memcpy(f, w, sizeof f);
         for (int k = 0; k < NF; k++) finite = finite && isfinite(f[k]);
-        /* ao in [0.45, 1], u in [0, 1], v in [0, 1]: each product below its ao */
-        in_range = in_range && w->cover >= 0 && w->cover <= 1 && w->ao >= 0.45f - 1e-6f && w->ao <= 1.0f + 1e-6f &&
-                   w->u_ao >= 0 && w->u_ao <= w->ao + 1e-6f && w->v_ao >= 0 && w->v_ao <= w->ao + 1e-6f &&
-                   w->vu_ao >= 0 && w->vu_ao <= w->v_ao + 1e-6f && w->sun[0][1] <= w->sun[0][0] + 1e-6f;
+        /* ao in [0.45, 1], v in [0, 1], the normal's parts in [-1, 1]: each
+         * moment within its ao's */
+        in_range = in_range && w->cover >= 0 && w->cover <= 1 && w->ao[0] >= 0.45f - 1e-6f &&
+                   w->ao[0] <= 1.0f + 1e-6f && w->v_ao[0] >= 0 && w->v_ao[0] <= w->ao[0] + 1e-6f;
+        for (int m = 1; m < 4; m++)
+            in_range = in_range && fabsf(w->ao[m]) <= w->ao[0] + 1e-6f && fabsf(w->v_ao[m]) <= w->v_ao[0] + 1e-6f;
+        for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+            for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
+                in_range = in_range && w->sun[k][j][0] >= 0 && w->sun[k][j][0] <= 1.0f + 1e-6f &&
+                           w->sun[k][j][1] >= 0 && w->sun[k][j][1] <= w->sun[k][j][0] + 1e-6f;
     }
     CHECK(finite && in_range);
     CHECK(c.row[0].cover > 0.99f);                   /* along the ground: all grass */
     CHECK(c.row[c.rows - 1].cover < c.row[4].cover); /* from above: ground between the blades */
     /* grazing rays meet the blades' upper parts (mean v = E[v ao] / E[ao]) */
-    CHECK(c.row[1].v_ao / c.row[1].ao > c.row[8].v_ao / c.row[8].ao);
+    CHECK(c.row[1].v_ao[0] / c.row[1].ao[0] > c.row[8].v_ao[0] / c.row[8].ao[0]);
+    /* the desc's sun is one of the table's elevations; the sun overhead is one
+     * whatever the azimuth */
+    int ks = (int)lroundf((asinf(0.8f / sqrtf(0.45f * 0.45f + 0.8f * 0.8f + 0.35f * 0.35f)) - c.sun0) /
+                          BLADE_CANOPY_SUN_STEP);
+    CHECK(c.sun0 <= -1.5707963f && c.sun0 + (BLADE_CANOPY_SUNS - 1) * BLADE_CANOPY_SUN_STEP >= 1.5707963f);
+    CHECK_NEAR(c.sun0 + (float)ks * BLADE_CANOPY_SUN_STEP, asinf(0.8f / sqrtf(0.9650f)), 1e-6);
     /* the faces a viewer sees are lit with the sun behind the viewer (azimuth
      * 0), backlit with the sun ahead */
-    CHECK(c.row[2].sun[0][0] > 2.0f * c.row[2].sun[BLADE_CANOPY_AZIMUTHS - 1][0]);
+    CHECK(c.row[2].sun[ks][0][0] > 2.0f * c.row[2].sun[ks][BLADE_CANOPY_AZIMUTHS - 1][0]);
+    /* seen from straight above the faces met look up: a sun below the ground
+     * (the first elevation, at or past the nadir) barely lights them */
+    const blade_canopy_row_t *top = &c.row[c.rows - 1];
+    CHECK(top->sun[0][0][0] < 0.25f * top->sun[ks][0][0]);
+    /* the normals' mean leans towards the viewer and up */
+    CHECK(c.row[4].ao[1] > 0.0f && top->ao[2] > 0.0f);
 
     /* the Boolean model, at the rows whose gap is measurable */
     int compared = 0;
@@ -89,8 +107,8 @@ int main(void)
         if (want > 0.97) continue;
         double err = fabs(c.row[r].cover - want);
         printf("elevation %5.1f deg: cover %.3f, Boolean model %.3f, mean v %.2f, sun behind / ahead %.2f / %.2f\n",
-               e * 57.29578f, c.row[r].cover, want, c.row[r].v_ao / c.row[r].ao, c.row[r].sun[0][0],
-               c.row[r].sun[BLADE_CANOPY_AZIMUTHS - 1][0]);
+               e * 57.29578f, c.row[r].cover, want, c.row[r].v_ao[0] / c.row[r].ao[0], c.row[r].sun[ks][0][0],
+               c.row[r].sun[ks][BLADE_CANOPY_AZIMUTHS - 1][0]);
         worst = fmax(worst, err);
         compared++;
     }
@@ -103,6 +121,38 @@ int main(void)
     CHECK(blade_canopy_make(&dense,
                             &(blade_canopy_desc_t){.seed = 3, .population = {.density = 400.0f}, .sun = {0, 1, 0}}));
     CHECK(dense.row[c.rows - 1].cover > c.row[c.rows - 1].cover + 0.05f);
+
+    /* Flat ground lit by the desc's sun: the colour the table gave before it
+     * was in the ground's frame (one sun elevation, the ambient's moments in
+     * world up), printed by that table's blade_canopy_color for this seed:
+     * the same within float rounding. */
+    static const struct {
+        float e, phi, rgbc[4];
+    } before[] = {
+        {0.05f, 0.2f, {0.2050041f, 0.3179236f, 0.09432796f, 1.0f}},
+        {0.05f, 1.3f, {0.1485427f, 0.2356416f, 0.07277186f, 1.0f}},
+        {0.05f, 2.9f, {0.08196926f, 0.1386697f, 0.04735731f, 1.0f}},
+        {0.30f, 0.2f, {0.1644544f, 0.2675467f, 0.07525511f, 0.9948999f}},
+        {0.30f, 1.3f, {0.1102004f, 0.1840228f, 0.05433178f, 0.9948999f}},
+        {0.30f, 2.9f, {0.05842819f, 0.1043919f, 0.03436898f, 0.9948999f}},
+        {0.80f, 0.2f, {0.133748f, 0.2290114f, 0.06138906f, 0.8550678f}},
+        {0.80f, 1.3f, {0.08761715f, 0.1536674f, 0.04339475f, 0.8550678f}},
+        {0.80f, 2.9f, {0.04548073f, 0.08505315f, 0.02696826f, 0.8550678f}},
+        {1.50f, 0.2f, {0.126133f, 0.2160765f, 0.06054408f, 0.1735907f}},
+        {1.50f, 1.3f, {0.1067757f, 0.1817749f, 0.05286689f, 0.1735907f}},
+        {1.50f, 2.9f, {0.08281945f, 0.1417334f, 0.04347918f, 0.1735907f}},
+    };
+    static const float root[3] = {0.10f, 0.25f, 0.05f}, tip[3] = {0.45f, 0.65f, 0.20f};
+    double flat_worst = 0.0;
+    for (size_t i = 0; i < sizeof before / sizeof before[0]; i++) {
+        float rgbc[4];
+        blade_canopy_view_t v = {.elevation = before[i].e, .sun_elevation = asinf(0.8f / sqrtf(0.9650f)),
+                                 .azimuth = before[i].phi, .up = {0.0f, 1.0f, 0.0f}};
+        blade_canopy_color(&c, &v, root, tip, rgbc, &rgbc[3]);
+        for (int k = 0; k < 4; k++) flat_worst = fmax(flat_worst, fabs(rgbc[k] - before[i].rgbc[k]));
+    }
+    printf("flat ground: worst |colour - the flat table's| %.2g\n", flat_worst);
+    CHECK(flat_worst < 2e-6);
 
     blade_canopy_row_t mid = blade_canopy_at(&c, 0.5f * (c.elevation[3] + c.elevation[4]));
     CHECK_NEAR(mid.cover, 0.5f * (c.row[3].cover + c.row[4].cover), 1e-5);

@@ -1,12 +1,17 @@
 /* test_canopy_gpu: the ground canopy's colour in GLSL (canopy_color of
- * common/canopy.glsl, which terrain.frag shades the far ground with)
- * against its C twin blade_canopy_color: 256 cameras and suns at random
- * elevations and azimuths over a flat ground point, the table of the
- * default blades uploaded as the terrain uploads it (blade_canopy_pack);
- * colour and cover within 1e-3 (a quarter of an 8-bit step; the angles
- * come from float dot products, ill-conditioned near 0 and pi). The twin's inputs (elevation, azimuth of
- * the sun from the direction to the viewer) are computed here from the
- * same vectors. */
+ * common/canopy.glsl, which the terrain shades the far ground with) against
+ * its C twin blade_canopy_color, the table of the default blades uploaded
+ * as the terrain uploads it (blade_canopy_pack, a texture): 512 ground
+ * points, a quarter flat, the rest on slopes up to 50 degrees facing any
+ * way, each seen from a camera and lit by a sun at random elevations over
+ * its ground (the sun from 80 degrees below to 80 above it) and azimuths.
+ * The twin's inputs are the angles the camera and sun were built from in
+ * the ground's frame (t towards the viewer, the normal g, s = g x t) and
+ * world up in that frame, so a shader that took the sun's elevation over
+ * flat ground or the ambient's world up in the wrong frame fails. Colour
+ * and cover within 1e-3 (a quarter of an 8-bit step; the shader's angles
+ * come from float dot products, ill-conditioned near 0 and pi). */
+#include "common/bindings_ground.glsl"
 #include "common/bindings_tests.glsl"
 #include "blade/blade_canopy.h"
 #include "gfx/gfx.h"
@@ -15,62 +20,101 @@
 
 #include <string.h>
 
-enum { N = 256 };
+enum { N = 512 };
+
+typedef struct item_t {
+    float pos[4], normal[4], camera[4];
+} item_t;
+
+static void cross3(const float a[3], const float b[3], float out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static void normalize3(float v[3])
+{
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; k++) v[k] /= l;
+}
 
 int main(void)
 {
     test_gl_init();
-    blade_canopy_t c;
+    static blade_canopy_t c;
     CHECK(blade_canopy_make(&c, &(blade_canopy_desc_t){.seed = 9, .rays = 1024, .sun = {0.45f, 0.8f, 0.35f}}));
-    blade_canopy_uniforms_t u;
-    blade_canopy_pack(&c, &u);
+    static blade_canopy_texture_t tex;
+    blade_canopy_pack(&c, &tex);
     static const float root[3] = {0.10f, 0.25f, 0.05f}, tip[3] = {0.45f, 0.65f, 0.20f};
-    float cams[N][4], suns[N][4], want[N][4], got[N][4];
+    static item_t items[N];
+    static float suns[N][4], want[N][4], got[N][4];
     core_rng_t rng;
     core_rng_seed(&rng, 11, 2);
     for (int i = 0; i < N; i++) {
-        float e = core_rng_range(&rng, 0.01f, 1.56f), a = core_rng_range(&rng, -3.14f, 3.14f);
-        float se = core_rng_range(&rng, 0.1f, 1.4f), phi = core_rng_range(&rng, 0.0f, 3.14f);
+        item_t *it = &items[i];
+        float tilt = i < N / 4 ? 0.0f : core_rng_range(&rng, 0.05f, 0.87f), ta = core_rng_range(&rng, -3.14f, 3.14f);
+        float g[3] = {sinf(tilt) * cosf(ta), cosf(tilt), sinf(tilt) * sinf(ta)};
+        /* t: a random direction across the ground, s = g x t */
+        float a = core_rng_range(&rng, -3.14f, 3.14f), s[3];
+        float t[3] = {cosf(a), core_rng_range(&rng, -1.0f, 1.0f), sinf(a)};
+        float td = t[0] * g[0] + t[1] * g[1] + t[2] * g[2];
+        for (int k = 0; k < 3; k++) t[k] -= td * g[k];
+        normalize3(t);
+        cross3(g, t, s);
+        float e = core_rng_range(&rng, 0.01f, 1.56f), se = core_rng_range(&rng, -1.4f, 1.4f);
+        float phi = core_rng_range(&rng, 0.0f, 3.14f), side = core_rng_float(&rng) < 0.5f ? -1.0f : 1.0f;
         float dist = core_rng_range(&rng, 5.0f, 200.0f);
-        cams[i][0] = dist * cosf(e) * cosf(a);
-        cams[i][1] = dist * sinf(e);
-        cams[i][2] = dist * cosf(e) * sinf(a);
-        suns[i][0] = cosf(se) * cosf(a + phi);
-        suns[i][1] = sinf(se);
-        suns[i][2] = cosf(se) * sinf(a + phi);
-        cams[i][3] = suns[i][3] = 0.0f;
-        blade_canopy_color(&c, e, phi, root, tip, want[i], &want[i][3]);
+        for (int k = 0; k < 3; k++) {
+            it->pos[k] = core_rng_range(&rng, -50.0f, 50.0f);
+            it->normal[k] = g[k];
+            it->camera[k] = it->pos[k] + dist * (cosf(e) * t[k] + sinf(e) * g[k]);
+            suns[i][k] = cosf(se) * (cosf(phi) * t[k] + side * sinf(phi) * s[k]) + sinf(se) * g[k];
+        }
+        it->pos[3] = it->normal[3] = it->camera[3] = suns[i][3] = 0.0f;
+        blade_canopy_view_t v = {.elevation = e, .sun_elevation = se, .azimuth = phi, .up = {t[1], g[1], s[1]}};
+        blade_canopy_color(&c, &v, root, tip, want[i], &want[i][3]);
     }
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){.cs = "tests/canopy_eval.comp", .label = "canopy"});
     CHECK(prog.id != 0);
-    gfx_buffer_t bc = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof cams, .data = cams, .label = "canopy.cams"});
+    gfx_texture_t table = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS, .h = tex.rows,
+                                                                 .format = GL_RGBA32F, .filter = GL_NEAREST,
+                                                                 .data = tex.texel, .upload_type = GL_FLOAT,
+                                                                 .label = "canopy.table"});
+    CHECK(table.id != 0);
+    gfx_buffer_t bi =
+        gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof items, .data = items, .label = "canopy.items"});
     gfx_buffer_t bs = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof suns, .data = suns, .label = "canopy.suns"});
     gfx_buffer_t bo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof got, .label = "canopy.out"});
     glUseProgram(prog.id);
     glUniform1ui(gfx_uniform(prog, "u_count"), N);
-    glUniform1i(gfx_uniform(prog, "u_canopy_rows"), u.rows);
-    glUniform1fv(gfx_uniform(prog, "u_canopy_cover"), u.rows, u.cover);
-    glUniform4fv(gfx_uniform(prog, "u_canopy_amb"), u.rows, &u.amb[0][0]);
-    glUniform2fv(gfx_uniform(prog, "u_canopy_sun"), u.rows * BLADE_CANOPY_AZIMUTHS, &u.sun[0][0]);
+    glUniform1i(gfx_uniform(prog, "u_canopy_rows"), tex.rows);
+    glUniform1f(gfx_uniform(prog, "u_canopy_sun0"), tex.sun0);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_root"), 1, root);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_tip"), 1, tip);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bc.id);
+    glBindTextureUnit(GROUND_TEX_CANOPY, table.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN, bi.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_IN2, bs.id);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, TEST_BIND_OUT, bo.id);
     glDispatchCompute((N + 63) / 64, 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     memset(got, 0, sizeof got);
     CHECK(gfx_buffer_read(bo, 0, sizeof got, got));
-    double worst = 0.0, spread = 0.0;
+    double worst = 0.0, worst_flat = 0.0, spread = 0.0;
     for (int i = 0; i < N; i++)
         for (int k = 0; k < 4; k++) {
-            worst = fmax(worst, fabs(got[i][k] - want[i][k]));
+            double err = fabs(got[i][k] - want[i][k]);
+            worst = fmax(worst, err);
+            if (i < N / 4) worst_flat = fmax(worst_flat, err);
             spread = fmax(spread, fabs(want[i][k] - want[0][k]));
         }
-    printf("canopy colour and cover, GLSL vs C twin (%d views): worst %.2g (values spread %.3f)\n", N, worst, spread);
+    printf("canopy colour and cover, GLSL vs C twin (%d views, %d flat): worst %.2g, flat %.2g (values spread "
+           "%.3f)\n",
+           N, N / 4, worst, worst_flat, spread);
     CHECK(worst < 1e-3); /* a quarter of an 8-bit step: acos / asin of float dots near +-1 */
     CHECK(spread > 0.1); /* the views differ: the comparison compares something */
-    gfx_buffer_destroy(&bc);
+    gfx_texture_destroy(&table);
+    gfx_buffer_destroy(&bi);
     gfx_buffer_destroy(&bs);
     gfx_buffer_destroy(&bo);
     gfx_program_destroy(&prog);

@@ -11,5 +11,8 @@
  * hashes, repeating) */
 #define GROUND_TEX_NOISE 1
 #define GROUND_NOISE_SIZE 256
+/* terrain.vert, terrain_world.vert: the ground canopy's table
+ * (common/canopy.glsl, blade_canopy_pack) */
+#define GROUND_TEX_CANOPY 2
 
 #endif

@@ -8,8 +8,8 @@
 // mixed towards the canopy by the share of it the removed blades covered
 // (canopy_under), so blades and ground keep the full field's mean colour.
 // Ground and canopy take the global illumination's ambient light per
-// fragment when it is on (common/gi.glsl; the canopy's table is linear in
-// the blade normals' height, so it takes the ambient facing down and up).
+// fragment when it is on (common/gi.glsl; the canopy per vertex, its table
+// taking any ambient linear in the blade normals: ground/terrain_canopy.glsl).
 #version 450 core
 #include "common/bindings_ground.glsl"
 #include "common/lighting.glsl"

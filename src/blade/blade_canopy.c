@@ -6,7 +6,8 @@
  * binned once more, shifted by the patch side), and a ray tests the
  * triangles of its strip in the periodic copies along x that its x span
  * crosses, copy by copy, nearest first, until a hit lies before the next
- * copy can begin. Intersection: Moller-Trumbore. */
+ * copy can begin. Intersection: Moller-Trumbore. The rays' frame is the
+ * ground's (blade_canopy_row_t): t = -x, g = +y, s = +z. */
 #include "blade/blade_canopy.h"
 
 #include "blade/blade_ref.h"
@@ -162,32 +163,37 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_ou
     return tris;
 }
 
+/* The suns of the table in the rays' frame: elevation k, azimuth j. */
+typedef float canopy_suns_t[BLADE_CANOPY_SUNS][BLADE_CANOPY_AZIMUTHS][3];
+
 /* Sums over the points a row's rays meet (blade_canopy.h). */
 typedef struct canopy_acc_t {
-    double ao, u_ao, v_ao, vu_ao;
-    double sun[BLADE_CANOPY_AZIMUTHS][2];
+    double ao[4], v_ao[4];
+    double sun[BLADE_CANOPY_SUNS][BLADE_CANOPY_AZIMUTHS][2];
 } canopy_acc_t;
 
 /* Adds a met point of blade parameter v and normal n (unit, flipped to the
- * viewer); suns[k]: the sun at azimuth k in the rays' frame. */
-static void accumulate(canopy_acc_t *a, float v, const float n[3], const float suns[][3])
+ * viewer, in the rays' frame). */
+static void accumulate(canopy_acc_t *a, float v, const float n[3], const canopy_suns_t *suns)
 {
-    double ao = 0.45 + 0.55 * v, u = 0.5 * n[1] + 0.5;
-    a->ao += ao;
-    a->u_ao += u * ao;
-    a->v_ao += v * ao;
-    a->vu_ao += v * u * ao;
-    for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
-        double d = fmax(n[0] * suns[k][0] + n[1] * suns[k][1] + n[2] * suns[k][2], 0.0);
-        a->sun[k][0] += d;
-        a->sun[k][1] += v * d;
+    double ao = 0.45 + 0.55 * v, m[4] = {ao, -n[0] * ao, n[1] * ao, n[2] * ao};
+    for (int c = 0; c < 4; c++) {
+        a->ao[c] += m[c];
+        a->v_ao[c] += v * m[c];
     }
+    for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+        for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
+            const float *l = (*suns)[k][j];
+            double d = fmax(n[0] * l[0] + n[1] * l[1] + n[2] * l[2], 0.0);
+            a->sun[k][j][0] += d;
+            a->sun[k][j][1] += v * d;
+        }
 }
 
 /* The first surface ray (o, dir) meets in strip s between the copies its x
  * span [x0, x1] crosses, shaded into acc; true on a hit. */
 static bool cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch, const float o[3],
-                 const float dir[3], float x0, float x1, const float suns[][3], canopy_acc_t *acc)
+                 const float dir[3], float x0, float x1, const canopy_suns_t *suns, canopy_acc_t *acc)
 {
     if (s->count == 0) return false;
     int k0 = (int)ceilf((x0 - s->xhi) / patch), k1 = (int)floorf((x1 - s->xlo) / patch);
@@ -227,7 +233,7 @@ typedef struct canopy_rows_t {
     const canopy_strip_t *strips;
     const canopy_tri_t *tris;
     float top;
-    const float (*suns)[3];
+    const canopy_suns_t *suns;
     int side;
 } canopy_rows_t;
 
@@ -256,15 +262,16 @@ static void canopy_rows(void *user, int begin, int end)
         double inv = hits ? 1.0 / hits : 0.0;
         blade_canopy_row_t *row = &job->out->row[r];
         job->out->elevation[r] = e;
-        *row = (blade_canopy_row_t){.cover = (float)hits / (float)rays,
-                                    .ao = (float)(acc.ao * inv),
-                                    .u_ao = (float)(acc.u_ao * inv),
-                                    .v_ao = (float)(acc.v_ao * inv),
-                                    .vu_ao = (float)(acc.vu_ao * inv)};
-        for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
-            row->sun[k][0] = (float)(acc.sun[k][0] * inv);
-            row->sun[k][1] = (float)(acc.sun[k][1] * inv);
+        row->cover = (float)hits / (float)rays;
+        for (int c = 0; c < 4; c++) {
+            row->ao[c] = (float)(acc.ao[c] * inv);
+            row->v_ao[c] = (float)(acc.v_ao[c] * inv);
         }
+        for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+            for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
+                row->sun[k][j][0] = (float)(acc.sun[k][j][0] * inv);
+                row->sun[k][j][1] = (float)(acc.sun[k][j][1] * inv);
+            }
     }
 }
 
@@ -290,19 +297,25 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
     canopy_strip_t strips[CANOPY_STRIPS] = {{0}};
     bool ok = tris != NULL;
     for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(strips, &tris[i], (uint32_t)i, d.patch);
-    /* The sun at azimuth k from the direction towards the viewer, -x. */
-    float sl = sqrtf(d.sun[0] * d.sun[0] + d.sun[1] * d.sun[1] + d.sun[2] * d.sun[2]);
-    float sy = sl > 0.0f ? d.sun[1] / sl : 1.0f, sh = sqrtf(fmaxf(1.0f - sy * sy, 0.0f));
-    float suns[BLADE_CANOPY_AZIMUTHS][3];
-    for (int k = 0; k < BLADE_CANOPY_AZIMUTHS; k++) {
-        float phi = 3.1415927f * (float)k / (float)(BLADE_CANOPY_AZIMUTHS - 1);
-        suns[k][0] = -sh * cosf(phi);
-        suns[k][1] = sy;
-        suns[k][2] = sh * sinf(phi);
-    }
+    /* The sun at elevation k over the ground, from sun0 (at or below -pi / 2)
+     * up in steps through the desc's sun's elevation (so that flat ground
+     * lit by it needs no interpolation between elevations) to pi / 2 or
+     * beyond, and at azimuth j from the direction towards the viewer, -x. */
+    double sl = sqrt((double)d.sun[0] * d.sun[0] + (double)d.sun[1] * d.sun[1] + (double)d.sun[2] * d.sun[2]);
+    double sun_e = asin(fmin(fmax(d.sun[1] / sl, -1.0), 1.0));
+    double sun0 = sun_e - BLADE_CANOPY_SUN_STEP * ceil((sun_e + 1.5707963267948966) / BLADE_CANOPY_SUN_STEP);
+    canopy_suns_t suns;
+    for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+        for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
+            double el = sun0 + k * (double)BLADE_CANOPY_SUN_STEP;
+            double phi = 3.141592653589793 * j / (BLADE_CANOPY_AZIMUTHS - 1);
+            suns[k][j][0] = (float)(-cos(el) * cos(phi));
+            suns[k][j][1] = (float)sin(el);
+            suns[k][j][2] = (float)(cos(el) * sin(phi));
+        }
     if (ok) {
         canopy_rows_t job = {.d = &d, .out = out, .strips = strips, .tris = tris, .top = top,
-                             .suns = (const float(*)[3])suns, .side = (int)ceilf(sqrtf((float)d.rays))};
+                             .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)d.rays))};
         core_parallel_for(d.rows, canopy_rows, &job);
     }
     for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
@@ -312,6 +325,7 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
         return false;
     }
     out->rows = d.rows;
+    out->sun0 = (float)sun0;
     out->blades = blades;
     return true;
 }
@@ -333,38 +347,62 @@ blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation)
     return out;
 }
 
-void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_uniforms_t *out)
+void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
 {
     memset(out, 0, sizeof *out);
     out->rows = c->rows;
+    out->sun0 = c->sun0;
     for (int r = 0; r < c->rows; r++) {
         const blade_canopy_row_t *w = &c->row[r];
-        out->cover[r] = w->cover;
-        out->amb[r][0] = w->ao;
-        out->amb[r][1] = w->u_ao;
-        out->amb[r][2] = w->v_ao;
-        out->amb[r][3] = w->vu_ao;
-        memcpy(out->sun[r * BLADE_CANOPY_AZIMUTHS], w->sun, sizeof w->sun);
+        float(*t)[4] = out->texel[r];
+        t[0][0] = w->cover;
+        memcpy(t[1], w->ao, sizeof w->ao);
+        memcpy(t[2], w->v_ao, sizeof w->v_ao);
+        for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+            for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
+                memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w->sun[k][j], sizeof w->sun[k][j]);
     }
 }
 
-void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float root[3], const float tip[3],
-                        float rgb[3], float *cover)
+/* The point of x in [0, n - 1] (clamped) between nodes i and i + 1: i and
+ * the weight of i + 1. */
+static int canopy_node(float x, int n, float *f)
+{
+    x = fminf(fmaxf(x, 0.0f), (float)(n - 1));
+    int i = (int)floorf(x);
+    i = i < n - 1 ? i : n - 2;
+    *f = x - (float)i;
+    return i;
+}
+
+void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
+                        const float tip[3], float rgb[3], float *cover)
 {
     static const float sun_color[3] = BLADE_CANOPY_SUN_COLOR, down[3] = BLADE_CANOPY_AMBIENT_DOWN,
                        up[3] = BLADE_CANOPY_AMBIENT_UP;
-    blade_canopy_row_t r = blade_canopy_at(c, e);
-    float y = fminf(fmaxf(phi / 3.1415927f, 0.0f), 1.0f) * (float)(BLADE_CANOPY_AZIMUTHS - 1);
-    int j = (int)floorf(y);
-    j = j < BLADE_CANOPY_AZIMUTHS - 1 ? j : BLADE_CANOPY_AZIMUTHS - 2;
-    float g = y - (float)j;
-    float d = r.sun[j][0] + g * (r.sun[j + 1][0] - r.sun[j][0]);
-    float vd = r.sun[j][1] + g * (r.sun[j + 1][1] - r.sun[j][1]);
-    for (int k = 0; k < 3; k++) {
-        float dt = tip[k] - root[k];
-        rgb[k] = sun_color[k] * BLADE_CANOPY_SUN_DIFFUSE * (root[k] * d + dt * vd) +
-                 root[k] * (down[k] * r.ao + (up[k] - down[k]) * r.u_ao) +
-                 dt * (down[k] * r.v_ao + (up[k] - down[k]) * r.vu_ao);
+    blade_canopy_row_t r = blade_canopy_at(c, v->elevation);
+    float h, g;
+    int k = canopy_node((v->sun_elevation - c->sun0) / BLADE_CANOPY_SUN_STEP, BLADE_CANOPY_SUNS, &h);
+    int j = canopy_node(v->azimuth / 3.1415927f * (float)(BLADE_CANOPY_AZIMUTHS - 1), BLADE_CANOPY_AZIMUTHS, &g);
+    float s[2];
+    for (int m = 0; m < 2; m++) {
+        float lo = r.sun[k][j][m] + g * (r.sun[k][j + 1][m] - r.sun[k][j][m]);
+        float hi = r.sun[k + 1][j][m] + g * (r.sun[k + 1][j + 1][m] - r.sun[k + 1][j][m]);
+        s[m] = lo + h * (hi - lo);
+    }
+    /* shade()'s ambient mix(DOWN, UP, u), u = n.y / 2 + 1 / 2 with n.y the
+     * normal's world height: n . up in the ground's frame */
+    const float q[4] = {0.5f, 0.5f * v->up[0], 0.5f * v->up[1], 0.5f * v->up[2]};
+    float u_ao = 0.0f, vu_ao = 0.0f;
+    for (int m = 0; m < 4; m++) {
+        u_ao += q[m] * r.ao[m];
+        vu_ao += q[m] * r.v_ao[m];
+    }
+    for (int m = 0; m < 3; m++) {
+        float dt = tip[m] - root[m];
+        rgb[m] = sun_color[m] * BLADE_CANOPY_SUN_DIFFUSE * (root[m] * s[0] + dt * s[1]) +
+                 root[m] * (down[m] * r.ao[0] + (up[m] - down[m]) * u_ao) +
+                 dt * (down[m] * r.v_ao[0] + (up[m] - down[m]) * vu_ao);
     }
     *cover = r.cover;
 }

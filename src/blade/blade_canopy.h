@@ -11,8 +11,10 @@
  * blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21 with
  * the scene's shape). Per row the table keeps the cover (rays that meet a
  * blade before the ground) and the means of the ambient-occlusion and sun
- * terms of blade_shade over the points met, from which the mean colour is
- * exact; thinned by the extent map to a fraction E, the ground shows
+ * terms of blade_shade over the points met, in the ground's frame (blades
+ * grow along the ground's normal, so on a slope the canopy is the flat one
+ * rotated), from which the mean colour is exact on any slope and for any
+ * sun; thinned by the extent map to a fraction E, the ground shows
  * through as (1 - cover)^E. The table's terms and the colour formula:
  * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
@@ -25,6 +27,8 @@
 
 #define BLADE_CANOPY_MAX_ROWS 32
 #define BLADE_CANOPY_AZIMUTHS 9
+#define BLADE_CANOPY_SUNS 14            /* sun elevations over the ground */
+#define BLADE_CANOPY_SUN_STEP 0.2617994f /* between them: 15 degrees */
 #define BLADE_CANOPY_SEGMENTS 8
 
 /* Zero means default. */
@@ -38,18 +42,26 @@ typedef struct blade_canopy_desc_t {
     int rays;           /* rays per row, default 4096 */
     float patch;        /* side of the periodic patch, m, default 2, smaller where
                            the density puts more than BLADE_CANOPY_PATCH_BLADES in it */
-    float sun[3];       /* towards the sun, required (unit: normalised here) */
+    float sun[3];       /* towards the sun over flat ground, required (unit: normalised
+                           here): one of the table's sun elevations is its elevation */
 } blade_canopy_desc_t;
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);
 
+/* A row's moments are over the points met, their normal n (flipped to the
+ * viewer) in the ground's frame: n = (n_t, n_g, n_s) along the horizontal
+ * direction towards the viewer t, the ground normal g and the side s = g x t. */
 typedef struct blade_canopy_row_t {
-    float cover, ao, u_ao, v_ao, vu_ao;
-    float sun[BLADE_CANOPY_AZIMUTHS][2]; /* E[D], E[v D] */
+    float cover;
+    float ao[4];   /* E[ao], E[n_t ao], E[n_g ao], E[n_s ao] */
+    float v_ao[4]; /* the same times v */
+    float sun[BLADE_CANOPY_SUNS][BLADE_CANOPY_AZIMUTHS][2]; /* E[D], E[v D] */
 } blade_canopy_row_t;
 
 typedef struct blade_canopy_t {
     int rows;
     float elevation[BLADE_CANOPY_MAX_ROWS]; /* radians, the rays' (row 0: 1 degree) */
+    float sun0; /* radians, the first sun elevation (<= -pi / 2); sun elevation k is
+                   sun0 + k BLADE_CANOPY_SUN_STEP, the desc's sun one of them */
     blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS];
     int blades; /* in the patch */
 } blade_canopy_t;
@@ -61,16 +73,17 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc);
  * rows spaced pi / (2 (rows - 1)) apart: the lookup canopy.glsl does. */
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation);
 
-/* The table as canopy.glsl's uniform arrays take it: u_canopy_cover[row],
- * u_canopy_amb[row] (ao, u_ao, v_ao, vu_ao) and u_canopy_sun[row *
- * BLADE_CANOPY_AZIMUTHS + azimuth]. */
-typedef struct blade_canopy_uniforms_t {
+/* The table as canopy.glsl's texture takes it (RGBA32F, texelFetch):
+ * texel (x, row) is (cover, 0, 0, 0) at x 0, the row's ao at 1, v_ao at 2,
+ * and (E[D], E[v D], 0, 0) of sun elevation k and azimuth j at
+ * 3 + k BLADE_CANOPY_AZIMUTHS + j. */
+#define BLADE_CANOPY_TEXELS (3 + BLADE_CANOPY_SUNS * BLADE_CANOPY_AZIMUTHS)
+typedef struct blade_canopy_texture_t {
     int rows;
-    float cover[BLADE_CANOPY_MAX_ROWS];
-    float amb[BLADE_CANOPY_MAX_ROWS][4];
-    float sun[BLADE_CANOPY_MAX_ROWS * BLADE_CANOPY_AZIMUTHS][2];
-} blade_canopy_uniforms_t;
-void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_uniforms_t *out);
+    float sun0;
+    float texel[BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
+} blade_canopy_texture_t;
+void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out);
 
 /* The terms of common/lighting.glsl's shade() the mean colour uses. */
 #define BLADE_CANOPY_SUN_DIFFUSE 0.85f
@@ -78,12 +91,21 @@ void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_uniforms_t *out);
 #define BLADE_CANOPY_AMBIENT_DOWN {0.18f, 0.17f, 0.14f}
 #define BLADE_CANOPY_AMBIENT_UP {0.35f, 0.42f, 0.55f}
 
-/* The canopy's mean colour (unfogged) and cover seen at elevation e and
- * with the sun at azimuth phi in [0, pi] from the direction towards the
- * viewer (both radians), blades of albedo mix(root, tip, v): the C twin of
- * canopy_color in common/canopy.glsl (bilinear in e and phi). */
-void blade_canopy_color(const blade_canopy_t *c, float e, float phi, const float root[3], const float tip[3],
-                        float rgb[3], float *cover);
+/* Where a canopy point is seen from and lit from, in its ground's frame
+ * (blade_canopy_row_t): the view's elevation over the ground, the sun's
+ * elevation over it (radians, clamped to the table's) and azimuth in
+ * [0, pi] from t, and world up (t.y, g.y, s.y). Flat ground: up (0, 1, 0). */
+typedef struct blade_canopy_view_t {
+    float elevation, sun_elevation, azimuth;
+    float up[3];
+} blade_canopy_view_t;
+
+/* The canopy's mean colour (unfogged) and cover seen and lit as v, blades
+ * of albedo mix(root, tip, v): the C twin of canopy_table_color in
+ * common/canopy.glsl (linear in the view elevation, the sun's elevation and
+ * its azimuth). */
+void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
+                        const float tip[3], float rgb[3], float *cover);
 
 /* Cover of the canopy thinned to a fraction e in [0, 1] of its density:
  * 1 - max(1 - cover, 1e-6)^e (a gap of 0 would make e = 0 undefined in

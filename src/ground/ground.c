@@ -25,9 +25,12 @@ struct ground_t {
     terrain_clipmap_t clipmap;
     gfx_program_t prog, sky;
     gfx_texture_t noise; /* terrain.frag's value noise lattice (make_noise) */
-    /* Ground canopy: its table, the extent map that thins it (borrowed),
-     * and this frame's fade (start, end; end 0: none). */
-    blade_canopy_uniforms_t canopy;
+    /* Ground canopy: its table (blade_canopy_pack's texture, its rows and
+     * first sun elevation), the extent map that thins it (borrowed), and
+     * this frame's fade (start, end; end 0: none). */
+    gfx_texture_t canopy;
+    int canopy_rows;
+    float canopy_sun0;
     GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
@@ -139,13 +142,25 @@ ground_t *ground_make(const terrain_mesh_t *mesh)
 
 void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing)
 {
-    blade_canopy_pack(c, &t->canopy);
+    blade_canopy_texture_t *tex = malloc(sizeof *tex);
+    gfx_texture_destroy(&t->canopy);
+    t->canopy_rows = 0;
+    if (tex) {
+        blade_canopy_pack(c, tex);
+        t->canopy = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS, .h = tex->rows,
+                                                           .format = GL_RGBA32F, .filter = GL_NEAREST,
+                                                           .data = tex->texel, .upload_type = GL_FLOAT,
+                                                           .label = "terrain.canopy.table"});
+        t->canopy_rows = t->canopy.id ? tex->rows : 0;
+        t->canopy_sun0 = tex->sun0;
+        free(tex);
+    }
     t->extent = extent;
     memcpy(t->extent_origin, origin, sizeof t->extent_origin);
     t->extent_spacing = spacing;
 }
 
-bool ground_has_canopy(const ground_t *t) { return t->canopy.rows > 1; }
+bool ground_has_canopy(const ground_t *t) { return t->canopy_rows > 1; }
 
 void ground_set_canopy_fade(ground_t *t, float start, float end)
 {
@@ -176,6 +191,7 @@ void ground_destroy(ground_t *t)
     gfx_program_destroy(&t->prog);
     gfx_program_destroy(&t->sky);
     gfx_texture_destroy(&t->noise);
+    gfx_texture_destroy(&t->canopy);
     terrain_clipmap_free(&t->clipmap);
     free(t);
 }
@@ -206,8 +222,8 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
     glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun);
     gi_set_uniforms(t->prog.id, &t->gi);
-    bool lod = t->canopy.rows > 1 && t->lod_on;
-    bool canopy = t->canopy.rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
+    bool lod = t->canopy_rows > 1 && t->lod_on;
+    bool canopy = t->canopy_rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
     glUniform1i(gfx_uniform(t->prog, "u_lod_on"), lod);
     if (lod) {
         blade_lod_uniforms(t->prog, &t->lod, t->lod_focal, t->lod_cull);
@@ -218,11 +234,9 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glUniform1i(gfx_uniform(t->prog, "u_canopy_on"), canopy);
     if (canopy) {
         static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
-        const blade_canopy_uniforms_t *u = &t->canopy;
-        glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), u->rows);
-        glUniform1fv(gfx_uniform(t->prog, "u_canopy_cover"), u->rows, u->cover);
-        glUniform4fv(gfx_uniform(t->prog, "u_canopy_amb"), u->rows, &u->amb[0][0]);
-        glUniform2fv(gfx_uniform(t->prog, "u_canopy_sun"), u->rows * BLADE_CANOPY_AZIMUTHS, &u->sun[0][0]);
+        glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), t->canopy_rows);
+        glUniform1f(gfx_uniform(t->prog, "u_canopy_sun0"), t->canopy_sun0);
+        glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
         glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);

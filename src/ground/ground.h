@@ -28,8 +28,9 @@ typedef struct ground_t ground_t;
 ground_t *ground_make(const terrain_mesh_t *mesh);
 /* Releases every object and g itself (NULL: nothing). */
 void ground_destroy(ground_t *g);
-/* The canopy's table and the extent map that thins it (an R8 texture the
- * caller owns, 0: none; common/extent.glsl says which texel). */
+/* The canopy's table (uploaded here, blade_canopy_pack's texture) and the
+ * extent map that thins it (an R8 texture the caller owns, 0: none;
+ * common/extent.glsl says which texel). */
 void ground_set_canopy(ground_t *g, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing);
 /* A canopy table was set (more than one row). */
 bool ground_has_canopy(const ground_t *g);
