@@ -6,7 +6,8 @@
  * of blades seeded and settled apart from the table's (own generator, own
  * integration, no ray casting). Also: values in range and finite, cover
  * falling as the view rises, cover growing with density, the same seed
- * giving the same table, the lookup and the thinning rule. */
+ * giving the same table, the blades' segments, the lookup and the
+ * thinning rule. */
 #include "blade/blade_canopy.h"
 #include "blade/blade_ref.h"
 #include "core/core.h"
@@ -124,8 +125,10 @@ int main(void)
 
     /* Flat ground lit by the desc's sun: the colour the table gave before it
      * was in the ground's frame (one sun elevation, the ambient's moments in
-     * world up), printed by that table's blade_canopy_color for this seed:
-     * the same within float rounding. */
+     * world up), printed by that table's blade_canopy_color for this seed
+     * and its one patch: the same within float rounding. */
+    blade_canopy_t one;
+    CHECK(blade_canopy_make(&one, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}, .patches = 1}));
     static const struct {
         float e, phi, rgbc[4];
     } before[] = {
@@ -148,7 +151,7 @@ int main(void)
         float rgbc[4];
         blade_canopy_view_t v = {.elevation = before[i].e, .sun_elevation = asinf(0.8f / sqrtf(0.9650f)),
                                  .azimuth = before[i].phi, .up = {0.0f, 1.0f, 0.0f}};
-        blade_canopy_color(&c, &v, root, tip, rgbc, &rgbc[3]);
+        blade_canopy_color(&one, &v, root, tip, rgbc, &rgbc[3]);
         for (int k = 0; k < 4; k++) flat_worst = fmax(flat_worst, fabs(rgbc[k] - before[i].rgbc[k]));
     }
     printf("flat ground: worst |colour - the flat table's| %.2g\n", flat_worst);
@@ -161,6 +164,11 @@ int main(void)
     CHECK_NEAR(blade_canopy_thinned(0.75f, 1.0f), 0.75f, 1e-6);
     CHECK(blade_canopy_thinned(0.75f, 0.0f) == 0.0f);
     CHECK(blade_canopy_thinned(1.0f, 0.0f) == 0.0f); /* full cover in a clearing: no grass, not NaN */
+    /* the blades cut as the tiles draw them where the canopy takes over */
+    CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}, .segments = 2}));
+    CHECK(again.row[2].ao[0] != c.row[2].ao[0]);
+    CHECK(!blade_canopy_make(&again,
+                             &(blade_canopy_desc_t){.segments = BLADE_CANOPY_MAX_SEGMENTS + 1, .sun = {0, 1, 0}}));
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.rows = 1, .sun = {0, 1, 0}}));
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3})); /* no sun */
     TEST_END();

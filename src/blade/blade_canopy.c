@@ -13,7 +13,9 @@
 #include "blade/blade_ref.h"
 #include "core/core.h"
 
+#include <assert.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,6 +44,8 @@ blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
     d.population = blade_population_defaults(&d.population);
     if (d.rows <= 0) d.rows = 16;
     if (d.rays <= 0) d.rays = 4096;
+    if (d.segments <= 0) d.segments = BLADE_CANOPY_SEGMENTS;
+    if (d.patches <= 0) d.patches = BLADE_CANOPY_PATCHES;
     /* A denser field gets a smaller patch of at most BLADE_CANOPY_PATCH_BLADES
      * blades: every ray meets the blades of its strip, so the bake grew with
      * the density (10,000 blades/m^2 took 47 s on 2 cores for 2 m). */
@@ -113,15 +117,16 @@ static float intersect(const canopy_tri_t *tr, float sx, float sz, const float o
 }
 
 /* Seeds and settles the patch's blades and cuts them into triangles. */
-static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_out, int *tri_count, float *top)
+static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t stream, int *blades_out, int *tri_count,
+                                    float *top)
 {
     int blades = (int)lroundf(d->population.density * d->patch * d->patch);
     blades = blades < 1 ? 1 : blades;
-    int per = 2 * BLADE_CANOPY_SEGMENTS;
+    int segs = d->segments, per = 2 * segs;
     canopy_tri_t *tris = malloc(sizeof *tris * (size_t)blades * (size_t)per);
     if (!tris) return NULL;
     core_rng_t rng;
-    core_rng_seed(&rng, d->seed, 0xca90u);
+    core_rng_seed(&rng, d->seed, 0xca90u + stream);
     blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = BLADE_SETTLE_DT, .gravity = d->population.gravity});
     *top = 0.0f;
     for (int n = 0; n < blades; n++) {
@@ -133,14 +138,13 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_ou
         blade_t b = {.v0 = {x, 0.0f, z, angle}, .v1 = {x, h, z, h}, .v2 = {x, h, z, w}, .up = {0.0f, 1.0f, 0.0f, s}};
         float eta = 0.0f;
         for (int i = 0; i < CANOPY_SETTLE_STEPS; i++) blade_ref_step_one(&b, &eta, &env, NULL);
-        float p[BLADE_CANOPY_SEGMENTS + 1][2][3], nrm[BLADE_CANOPY_SEGMENTS + 1][2][3];
-        for (int i = 0; i <= BLADE_CANOPY_SEGMENTS; i++)
+        float p[BLADE_CANOPY_MAX_SEGMENTS + 1][2][3], nrm[BLADE_CANOPY_MAX_SEGMENTS + 1][2][3];
+        for (int i = 0; i <= segs; i++)
             for (int u = 0; u < 2; u++) {
-                blade_ref_surface(&b, d->population.shape, (float)u, (float)i / BLADE_CANOPY_SEGMENTS, p[i][u],
-                                  nrm[i][u]);
+                blade_ref_surface(&b, d->population.shape, (float)u, (float)i / (float)segs, p[i][u], nrm[i][u]);
                 *top = fmaxf(*top, p[i][u][1]);
             }
-        for (int i = 0; i < BLADE_CANOPY_SEGMENTS; i++) {
+        for (int i = 0; i < segs; i++) {
             /* (i,0) (i,1) (i+1,0) and (i,1) (i+1,1) (i+1,0), as the clumps */
             static const int corner[2][3][2] = {{{0, 0}, {0, 1}, {1, 0}}, {{0, 1}, {1, 1}, {1, 0}}};
             for (int k = 0; k < 2; k++) {
@@ -151,7 +155,7 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, int *blades_ou
                     int row = i + corner[k][c][0], side = corner[k][c][1];
                     memcpy(t->p[c], p[row][side], sizeof t->p[c]);
                     memcpy(t->n[c], nrm[row][side], sizeof t->n[c]);
-                    t->v[c] = (float)row / BLADE_CANOPY_SEGMENTS;
+                    t->v[c] = (float)row / (float)segs;
                     t->xlo = fminf(t->xlo, t->p[c][0]);
                     t->xhi = fmaxf(t->xhi, t->p[c][0]);
                 }
@@ -234,7 +238,8 @@ typedef struct canopy_rows_t {
     const canopy_tri_t *tris;
     float top;
     const canopy_suns_t *suns;
-    int side;
+    int side, rays; /* the patch's rays, side x side stratified */
+    uint64_t stream;
 } canopy_rows_t;
 
 static void canopy_rows(void *user, int begin, int end)
@@ -244,13 +249,13 @@ static void canopy_rows(void *user, int begin, int end)
     int side = job->side;
     for (int r = begin; r < end; r++) {
         core_rng_t rng;
-        core_rng_seed(&rng, d->seed, 0xca91u + (uint64_t)r);
+        core_rng_seed(&rng, d->seed, 0xca91u + job->stream + (uint64_t)r);
         float e = fmaxf((float)r / (float)(d->rows - 1) * 1.5707963f, 0.0174533f);
         float dir[3] = {cosf(e), -sinf(e), 0.0f}, h = job->top + 0.01f, along = h / sinf(e);
         canopy_acc_t acc = {0};
         int hits = 0, rays = 0;
         for (int j = 0; j < side; j++)
-            for (int i = 0; i < side && rays < d->rays; i++, rays++) {
+            for (int i = 0; i < side && rays < job->rays; i++, rays++) {
                 /* stratified ground points of the patch */
                 float gx = ((float)i + core_rng_float(&rng)) / (float)side * d->patch;
                 float gz = ((float)j + core_rng_float(&rng)) / (float)side * d->patch;
@@ -275,6 +280,30 @@ static void canopy_rows(void *user, int begin, int end)
     }
 }
 
+/* One patch of blades (random streams offset by `stream`) cast into
+ * out's rows, its share of the rays; *blades: its blades. False: out of
+ * memory. */
+static bool canopy_patch(const blade_canopy_desc_t *d, const canopy_suns_t *suns, uint64_t stream,
+                         blade_canopy_t *out, int *blades)
+{
+    int ntri = 0;
+    float top = 0.0f;
+    canopy_tri_t *tris = make_triangles(d, stream, blades, &ntri, &top);
+    canopy_strip_t strips[CANOPY_STRIPS] = {{0}};
+    bool ok = tris != NULL;
+    for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(strips, &tris[i], (uint32_t)i, d->patch);
+    if (ok) {
+        int rays = (d->rays + d->patches - 1) / d->patches;
+        canopy_rows_t job = {.d = d, .out = out, .strips = strips, .tris = tris, .top = top,
+                             .suns = suns, .side = (int)ceilf(sqrtf((float)rays)), .rays = rays,
+                             .stream = stream};
+        core_parallel_for(d->rows, canopy_rows, &job);
+    }
+    for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
+    free(tris);
+    return ok;
+}
+
 bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
 {
     blade_canopy_desc_t d = blade_canopy_desc_defaults(desc);
@@ -284,19 +313,15 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
         return false;
     }
     const blade_population_t *b = &d.population;
-    if (d.rows < 2 || d.rows > BLADE_CANOPY_MAX_ROWS || b->height[0] > b->height[1] || b->width[0] > b->width[1] ||
-        b->density < 0.0f || b->density * d.patch * d.patch > 1e6f) {
-        core_log_error("blade_canopy_make: rows %d (2..%d), height [%g, %g], width [%g, %g], %g blades per patch",
-                       d.rows, BLADE_CANOPY_MAX_ROWS, b->height[0], b->height[1], b->width[0], b->width[1],
-                       b->density * d.patch * d.patch);
+    if (d.rows < 2 || d.rows > BLADE_CANOPY_MAX_ROWS || d.segments > BLADE_CANOPY_MAX_SEGMENTS ||
+        b->height[0] > b->height[1] || b->width[0] > b->width[1] || b->density < 0.0f ||
+        b->density * d.patch * d.patch > 1e6f) {
+        core_log_error("blade_canopy_make: rows %d (2..%d), segments %d (at most %d), height [%g, %g], width "
+                       "[%g, %g], %g blades per patch",
+                       d.rows, BLADE_CANOPY_MAX_ROWS, d.segments, BLADE_CANOPY_MAX_SEGMENTS, b->height[0],
+                       b->height[1], b->width[0], b->width[1], b->density * d.patch * d.patch);
         return false;
     }
-    int blades = 0, ntri = 0;
-    float top = 0.0f;
-    canopy_tri_t *tris = make_triangles(&d, &blades, &ntri, &top);
-    canopy_strip_t strips[CANOPY_STRIPS] = {{0}};
-    bool ok = tris != NULL;
-    for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(strips, &tris[i], (uint32_t)i, d.patch);
     /* The sun at elevation k over the ground, from sun0 (at or below -pi / 2)
      * up in steps through the desc's sun's elevation (so that flat ground
      * lit by it needs no interpolation between elevations) to pi / 2 or
@@ -313,16 +338,31 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
             suns[k][j][1] = (float)sin(el);
             suns[k][j][2] = (float)(cos(el) * sin(phi));
         }
-    if (ok) {
-        canopy_rows_t job = {.d = &d, .out = out, .strips = strips, .tris = tris, .top = top,
-                             .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)d.rays))};
-        core_parallel_for(d.rows, canopy_rows, &job);
+    /* Per row, the hits of every patch pooled: the cover is the patches'
+     * mean, each mean over the met points their hit-weighted mean. */
+    enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
+    static_assert(offsetof(blade_canopy_row_t, cover) == 0, "the cover leads the row");
+    double sum[BLADE_CANOPY_MAX_ROWS][N] = {{0}};
+    int blades = 0;
+    for (int p = 0; p < d.patches; p++) {
+        blade_canopy_t one;
+        if (!canopy_patch(&d, (const canopy_suns_t *)&suns, (uint64_t)p << 16, &one, &blades)) {
+            core_log_error("blade_canopy_make: out of memory");
+            return false;
+        }
+        for (int r = 0; r < d.rows; r++) {
+            float f[N];
+            memcpy(f, &one.row[r], sizeof f);
+            sum[r][0] += f[0];
+            for (int k = 1; k < N; k++) sum[r][k] += (double)f[0] * f[k];
+            out->elevation[r] = one.elevation[r];
+        }
     }
-    for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
-    free(tris);
-    if (!ok) {
-        core_log_error("blade_canopy_make: out of memory");
-        return false;
+    for (int r = 0; r < d.rows; r++) {
+        float f[N];
+        f[0] = (float)(sum[r][0] / d.patches);
+        for (int k = 1; k < N; k++) f[k] = sum[r][0] > 0.0 ? (float)(sum[r][k] / sum[r][0]) : 0.0f;
+        memcpy(&out->row[r], f, sizeof f);
     }
     out->rows = d.rows;
     out->sun0 = (float)sun0;

@@ -7,15 +7,16 @@
  * A periodic square patch of blades, seeded as blade_seed seeds them and
  * settled under gravity by the blade physics (blade_ref_step_one,
  * eq. 3-16, no wind), is ray-cast orthographically at `rows` view
- * elevations (row i at 90 i / (rows - 1) degrees, row 0 at 1 degree). Each
- * blade is BLADE_CANOPY_SEGMENTS quads of blade_ref_surface (eq. 21 with
- * the scene's shape). Per row the table keeps the cover (rays that meet a
- * blade before the ground) and the means of the ambient-occlusion and sun
- * terms of blade_shade over the points met, in the ground's frame (blades
- * grow along the ground's normal, so on a slope the canopy is the flat one
- * rotated), from which the mean colour is exact on any slope and for any
- * sun; thinned by the extent map to a fraction E, the ground shows
- * through as (1 - cover)^E. The table's terms and the colour formula:
+ * elevations (row i at 90 i / (rows - 1) degrees, row 0 at 1 degree), the
+ * hits of `patches` such patches pooled. Each blade is `segments` quads of
+ * blade_ref_surface (eq. 21 with the scene's shape). Per row the table
+ * keeps the cover (rays that meet a blade before the ground) and the
+ * means of the ambient-occlusion and sun terms of blade_shade over the
+ * points met, in the ground's frame (blades grow along the ground's
+ * normal, so on a slope the canopy is the flat one rotated), from which
+ * the mean colour is exact on any slope and for any sun; thinned by the
+ * extent map to a fraction E, the ground shows through as (1 - cover)^E.
+ * The table's terms and the colour formula:
  * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
 #define MEADOW_BLADE_CANOPY_H
@@ -30,6 +31,8 @@
 #define BLADE_CANOPY_SUNS 14            /* sun elevations over the ground */
 #define BLADE_CANOPY_SUN_STEP 0.2617994f /* between them: 15 degrees */
 #define BLADE_CANOPY_SEGMENTS 8
+#define BLADE_CANOPY_MAX_SEGMENTS 64
+#define BLADE_CANOPY_PATCHES 4
 
 /* Zero means default. */
 #define BLADE_CANOPY_PATCH_BLADES 2048.0f
@@ -44,6 +47,12 @@ typedef struct blade_canopy_desc_t {
                            the density puts more than BLADE_CANOPY_PATCH_BLADES in it */
     float sun[3];       /* towards the sun over flat ground, required (unit: normalised
                            here): one of the table's sun elevations is its elevation */
+    int segments;       /* quads along a blade, default BLADE_CANOPY_SEGMENTS, at most
+                           BLADE_CANOPY_MAX_SEGMENTS: the drawn blades' level of detail
+                           where the canopy takes over (blade_tiles_segments_at) */
+    int patches;        /* independent patches (seeds) whose hits are pooled, sharing the
+                           rays, default BLADE_CANOPY_PATCHES: one patch's blades moved
+                           the mean colour by 0.9 L* (sd over seeds, 7.5 degrees) */
 } blade_canopy_desc_t;
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);
 
@@ -63,7 +72,7 @@ typedef struct blade_canopy_t {
     float sun0; /* radians, the first sun elevation (<= -pi / 2); sun elevation k is
                    sun0 + k BLADE_CANOPY_SUN_STEP, the desc's sun one of them */
     blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS];
-    int blades; /* in the patch */
+    int blades; /* in a patch */
 } blade_canopy_t;
 
 /* Measures the table. False (and logs) on bad input or out of memory. */
