@@ -177,6 +177,14 @@ static float field_side(const blade_tiles_desc_t *d, const terrain_mesh_t *m, in
     return world ? m->world.size : m->grid_size;
 }
 
+int blade_tiles_segments_at(const blade_tiles_desc_t *desc, float distance)
+{
+    blade_tiles_desc_t d = blade_tiles_desc_defaults(desc);
+    float f = fminf(fmaxf(distance / d.lod_distance, 0.0f), 1.0f);
+    float hi = (float)d.max_level, lo = (float)(d.max_level / 4 > 1 ? d.max_level / 4 : 1);
+    return (int)floorf(hi + f * (lo - hi) + 0.5f);
+}
+
 size_t blade_tiles_estimate_bytes(const blade_tiles_desc_t *desc, uint32_t *template_blades_out)
 {
     assert(desc->terrain && (desc->terrain->grid_res > 0 || desc->terrain->type == TERRAIN_WORLD));

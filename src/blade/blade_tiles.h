@@ -273,6 +273,12 @@ void blade_tiles_set_cull(blade_tiles_t *t, const blade_cull_desc_t *cull);
  * and the frame's focal length (blade_lod_focal; 0: 1000 px). */
 void blade_tiles_set_lod(blade_tiles_t *t, const blade_lod_t *lod, float focal_px);
 
+/* The segments the hardware path draws along a blade rooted `distance`
+ * from the camera (C twin of blade_lod in blade_geom.glsl): max_level at
+ * the camera, falling linearly to max(max_level / 4, 1) at lod_distance
+ * and beyond (the desc's defaults resolved). */
+int blade_tiles_segments_at(const blade_tiles_desc_t *desc, float distance);
+
 /* ---- test helpers (blocking) ---------------------------------------------- */
 /* The template_blades blades (and eta, may be NULL) of a pool slot. */
 void blade_tiles_read_slot(const blade_tiles_t *t, int slot, blade_t *out, float *eta_out);

@@ -75,13 +75,15 @@ static void *canopy_thread(void *user)
     return NULL;
 }
 
-/* Starts the scene's canopy table on a thread; false: it was not started
+/* Starts the scene's canopy table on a thread, its blades cut into
+ * `segments` quads (0: the default); false: it was not started
  * (canopy_finish then computes it). */
-static bool canopy_start(const grass_t *gr, canopy_job_t *job, pthread_t *thread)
+static bool canopy_start(const grass_t *gr, int segments, canopy_job_t *job, pthread_t *thread)
 {
     *job = (canopy_job_t){.desc = {.population = gr->scene->grass.population,
                                    .seed = gr->scene->seed,
-                                   .sun = GRASS_SUN_DIR}};
+                                   .sun = GRASS_SUN_DIR,
+                                   .segments = segments}};
     return pthread_create(thread, NULL, canopy_thread, job) == 0;
 }
 
@@ -204,7 +206,7 @@ bool grass_make_blades(grass_t *gr)
     bool shade = !gr->reference && !ground_has_canopy(gr->ground);
     canopy_job_t job;
     pthread_t thread;
-    bool threaded = shade && canopy_start(gr, &job, &thread);
+    bool threaded = shade && canopy_start(gr, 0, &job, &thread);
     blade_seed_plan_t plan;
     bool planned = blade_seed_plan_make(&mesh, &sd, &plan);
     bb_gen_desc_t gen;
@@ -296,9 +298,6 @@ bool grass_make_tiles(grass_t *gr)
 {
     const scene_desc_t *s = gr->scene;
     const scene_grass_desc_t *g = &s->grass;
-    canopy_job_t job;
-    pthread_t thread;
-    bool threaded = canopy_start(gr, &job, &thread);
     blade_tiles_desc_t td = {.terrain = gr->terrain,
                              .tile_size = g->tile_size,
                              .population = g->population,
@@ -315,6 +314,13 @@ bool grass_make_tiles(grass_t *gr)
                              .slope_recover = g->recover_time,
                              .label = "tiles"};
     memcpy(td.winds, gr->blade_env.winds, sizeof td.winds);
+    /* Without billboards the canopy continues the tiles' blades where they
+     * end: its blades have the segments the tiles draw there (the hardware
+     * path's level of detail; docs/HYBRID.md "Ground canopy"). */
+    bool ring = grass_pass_wants_billboards(gr->mode, g->billboards);
+    canopy_job_t job;
+    pthread_t thread;
+    bool threaded = canopy_start(gr, ring ? 0 : blade_tiles_segments_at(&td, td.switch_distance), &job, &thread);
     /* The billboards' extent map thins the tiles too (same clearings). */
     bb_gen_desc_t gen;
     bb_layout_t lay;
