@@ -28,8 +28,10 @@ int main(void)
 {
     bench_options_t o;
     char err[256];
-    char *quick[] = {"meadow", "bench", "--quick", "--frames", "10", "--scene", "s.json", "--chart", "modes"};
-    CHECK(parse(&o, err, 9, quick) == 0 && !o.compare && o.quick && strcmp(o.chart, "modes") == 0);
+    char *quick[] = {"meadow", "bench", "--quick", "--frames", "10", "--scene", "s.json", "--chart", "modes",
+                     "--rows", "tiles,blade"};
+    CHECK(parse(&o, err, 11, quick) == 0 && !o.compare && o.quick && strcmp(o.chart, "modes") == 0 &&
+          strcmp(o.rows, "tiles,blade") == 0);
     CHECK(app.frames == 10 && app.frames_set && strcmp(app.scene, "s.json") == 0);
     char *video[] = {"meadow", "compare", "--video", "--mode", "blade"};
     CHECK(parse(&o, err, 5, video) == 0 && o.compare && o.video && app.mode == APP_MODE_BLADE);
@@ -50,6 +52,7 @@ int main(void)
         {5, {"meadow", "bench", "--perf", "p", "--scaling"}, "cannot be combined"},
         {4, {"meadow", "bench", "--case", "resting_blade"}, "--case needs `meadow bench --stability`"},
         {5, {"meadow", "bench", "--chart", "modes", "--stability"}, "--chart needs `meadow bench` without"},
+        {4, {"meadow", "bench", "--rows", "tiles"}, "--rows needs --chart"},
         {6, {"meadow", "bench", "--papers", "d", "--chart", "modes"}, "--papers needs `meadow bench` without"},
         {3, {"meadow", "bench", "--report"}, "option --report needs a value"},
         {4, {"meadow", "compare", "--chart", "modes"}, "--chart needs `meadow bench`"},

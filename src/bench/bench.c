@@ -675,9 +675,10 @@ static bool lod_row(const bench_run_t *b, int i, int path_k)
 }
 
 /* lod.json (scene_lod.h) from the hybrid_canopy_distance rows: per path,
- * bench_lod_pick over its rows, with BENCH_LOD_ERROR and BENCH_LOD_GPU_MB.
- * Rows that leave a distance at 0 take the scene's. Nothing when the run
- * holds no such rows. */
+ * bench_lod_pick over its rows, with BENCH_LOD_ERROR and BENCH_LOD_GPU_MB,
+ * and blade mode's figures when the run has its row. Rows that leave a
+ * distance at 0 take the scene's. Nothing when the run holds no such
+ * rows. */
 static bool write_lod(const char *out, const world_options_t *o, const bench_run_t *b)
 {
     int first = 0;
@@ -709,7 +710,7 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
         }
         bool met = false;
         int k = bench_lod_pick(rows, m, BENCH_LOD_ERROR, BENCH_LOD_GPU_MB, &met);
-        if (blade < 0 || k < 0) continue;
+        if (k < 0) continue;
         int pick = idx[k];
         double budget = BENCH_LOD_ERROR;
         const bench_config_t *c = &b->cfg[pick];
@@ -720,13 +721,16 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
         core_buf_printf(&json,
                         "%s\n    \"%s\": {\"switch_distance\": %g, \"canopy_distance\": %g, \"billboards\": \"%s\", "
                         "\"wall_ms\": %.4f, \"gpu_ms\": %.4f, \"image_error\": %.6f, \"budget\": %.6f, \"met\": %s, "
-                        "\"gpu_mb\": %.1f, \"memory_budget_mb\": %g, \"label\": \"%s\", \"candidates\": %d, "
-                        "\"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, \"blade_error\": %.6f, \"blade_gpu_mb\": %.1f}",
+                        "\"gpu_mb\": %.1f, \"memory_budget_mb\": %g, \"label\": \"%s\", \"candidates\": %d",
                         written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd,
                         bb == SCENE_HYBRID_BILLBOARDS_NONE ? "none" : "ring", row_wall(&b->met[pick]),
-                        b->met[pick].frame_ms, b->err[pick], budget, met ? "true" : "false",
-                        b->met[pick].gpu_mb, BENCH_LOD_GPU_MB, c->label, candidates, row_wall(&b->met[blade]),
-                        b->met[blade].frame_ms, b->err[blade], b->met[blade].gpu_mb);
+                        b->met[pick].frame_ms, b->err[pick], budget, met ? "true" : "false", b->met[pick].gpu_mb,
+                        BENCH_LOD_GPU_MB, c->label, candidates);
+        if (blade >= 0)
+            core_buf_printf(&json,
+                            ", \"blade_wall_ms\": %.4f, \"blade_ms\": %.4f, \"blade_error\": %.6f, \"blade_gpu_mb\": %.1f",
+                            row_wall(&b->met[blade]), b->met[blade].frame_ms, b->err[blade], b->met[blade].gpu_mb);
+        core_buf_printf(&json, "}");
         written++;
     }
     core_buf_printf(&json, "\n  }\n}\n");
@@ -936,6 +940,32 @@ static int filter_chart(const char *chart, bench_run_t *b)
     return 0;
 }
 
+/* Keeps the configurations whose label starts with one of the
+ * comma-separated prefixes of `rows`; 2 (logged, with the labels) when
+ * none does. */
+static int filter_rows(const char *rows, bench_run_t *b)
+{
+    int k = 0;
+    for (int i = 0; i < b->n; i++) {
+        bool keep = false;
+        for (const char *p = rows; *p && !keep;) {
+            size_t len = strcspn(p, ",");
+            keep = len > 0 && strncmp(b->cfg[i].label, p, len) == 0;
+            p += len + (p[len] == ',');
+        }
+        if (keep) b->cfg[k++] = b->cfg[i];
+    }
+    if (k == 0) {
+        core_buf_t names = {0};
+        for (int i = 0; i < b->n; i++) core_buf_printf(&names, "%s%s", i ? ", " : "", b->cfg[i].label);
+        core_log_error("--rows '%s': no label of the chart starts with one of them (labels: %s)", rows, names.data);
+        core_buf_free(&names);
+        return 2;
+    }
+    b->n = k;
+    return 0;
+}
+
 /* bench.csv, bench.json, lod.json and one data file and chart per chart
  * entry (x GPU ms, y its measure, both with their spreads); warns of
  * charts whose accuracy is identical between configurations. */
@@ -1050,6 +1080,7 @@ static int run_sweep(const bench_options_t *bo, const char *out, bench_run_t *b)
     world_options_t oh = *o;
     if (!oh.raster) oh.raster = 1 + SCENE_RASTER_HW;
     if (chart && filter_chart(chart, b)) return 2;
+    if (bo->rows && filter_rows(bo->rows, b)) return 2;
     int n = b->n;
     b->frames = bo->frames_set ? bo->frames : (quick ? 8 : 120);
     int rc = 0;

@@ -28,6 +28,7 @@ typedef struct bench_options_t {
     bool stability;             /* --stability: the stability suite only */
     const char *stability_case; /* --stability --case NAME: only that case of the suite */
     const char *chart;          /* --chart NAME: only that chart's configurations of the sweep */
+    const char *rows;           /* --rows P1,P2: with --chart, only configurations whose label starts with one */
     bool scaling;               /* --scaling: tile simulation vs field size and active tiles only */
     bool video;                 /* compare --video: a clip per mode (ffmpeg) */
     const char *report;         /* --report DIR: sweep + stability + compare, RESULTS.md into DIR */

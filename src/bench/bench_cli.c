@@ -22,6 +22,7 @@ static const struct {
     {"--stability", NULL, offsetof(bench_options_t, stability)},
     {"--case", "case name", offsetof(bench_options_t, stability_case)},
     {"--chart", "chart name", offsetof(bench_options_t, chart)},
+    {"--rows", "label prefixes", offsetof(bench_options_t, rows)},
     {"--scaling", NULL, offsetof(bench_options_t, scaling)},
     {"--video", NULL, offsetof(bench_options_t, video)},
     {"--report", "folder name", offsetof(bench_options_t, report)},
@@ -44,6 +45,7 @@ static void print_usage(const bench_program_t *program)
            "  --stability           bench: run the stability suite (where each method breaks)\n"
            "  --case NAME           bench --stability: run only the case NAME (e.g. resting_blade)\n"
            "  --chart NAME          bench: run only the sweep's configurations of chart NAME (e.g. modes)\n"
+           "  --rows P1,P2          bench --chart: only its configurations whose label starts with P1 or P2\n"
            "  --scaling             bench: tile simulation time vs field size and vs active tiles\n"
            "  --report DIR          bench: sweep + stability + scaling + compare, charts and RESULTS.md into DIR\n"
            "  --perf DIR            bench: bench scenes x {hw, compute}, pass medians to DIR/perf.json,\n"
@@ -87,6 +89,8 @@ static int check_options(const bench_options_t *o, char *err, size_t err_size)
         why = "--force needs --baseline (see --help)";
     else if (o->stability_case && (!bench || !o->stability))
         why = "--case needs `meadow bench --stability` (see --help)";
+    else if (o->rows && !o->chart)
+        why = "--rows needs --chart (see --help)";
     else if (o->chart && (!bench || o->stability || o->scaling || o->report || perf))
         why = "--chart needs `meadow bench` without --stability, --scaling, --report or --perf";
     else if (o->papers && (!bench || perf || o->chart))
