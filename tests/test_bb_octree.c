@@ -3,9 +3,9 @@
  * the hierarchical collision/recovery state machine must match a flat
  * brute-force computation frame by frame over a scripted path; collect must
  * list exactly the non-empty leaves in the requested states and frustum;
- * sort_near_first must order them by their parent cell's distance; planes
- * moved out by the cards' widening (bb_lod_reach) keep the leaves the
- * widened cards reach. */
+ * sort_near_first must order them by their parent cell's distance; boxes
+ * grown by the cards' widening (bb_lod_reach) keep the leaves the widened
+ * cards reach. */
 #include "billboard/bb_lod.h"
 #include "billboard/bb_octree.h"
 #include "core/core.h"
@@ -197,7 +197,7 @@ static void test_states(void)
         recover_frames += nr > 0;
         /* collect == brute list of non-empty leaves in the mask, in Morton order. */
         uint32_t mask = BB_NODE_MASK(BB_NODE_COLLIDING) | BB_NODE_MASK(BB_NODE_RECOVERING);
-        int got = bb_octree_collect(&t, mask, NULL, ranges, t.leaf_count);
+        int got = bb_octree_collect(&t, mask, NULL, 0.0f, ranges, t.leaf_count);
         int want = 0;
         for (int k = 0; k < t.leaf_count; k++) {
             int node = bb_octree_leaf_node(&t, (uint32_t)k);
@@ -230,26 +230,28 @@ static void test_states(void)
     glm_mat4_mul(proj, view, vp);
     vec4 planes[6];
     glm_frustum_planes(vp, planes);
-    int got = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, ranges, t.leaf_count);
+    int got = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, 0.0f, ranges,
+                                t.leaf_count);
     int all = 0, want = frustum_brute(&t, planes, 1.0f, ranges, got, &all);
     printf("frustum: %d of %d non-empty leaves visible (brute %d)\n", got, all, want);
     CHECK(got == want);
     CHECK(got > 10 && got < all / 2);
-    /* Cards widened by the thinning: the planes moved out by bb_lod_reach
-     * keep the leaves whose boxes grown by the margin plus the reach are
-     * in the frustum (cards up to 1.2 m wide drawn up to 8 times as wide:
+    /* Cards widened by the thinning: collect grown by bb_lod_reach keeps
+     * the leaves whose boxes grown by the margin plus the reach are in the
+     * frustum (cards up to 1.2 m wide drawn up to 8 times as wide:
      * 4.8 m from the root, the margin's 0.6 m plus 4.2 m). */
     blade_lod_t rule = bb_lod_rule(&(blade_lod_t){.rule = BLADE_LOD_WIDTH, .max_scale = 8.0f});
-    float reach = bb_lod_reach(&rule, 1.0f), grown[6][4];
+    float reach = bb_lod_reach(&rule, 1.0f);
     CHECK(fabsf(reach - 4.2f) < 1e-5f);
     CHECK(bb_lod_reach(&(blade_lod_t){.rule = BLADE_LOD_OFF}, 1.0f) == 0.0f);
     CHECK(bb_lod_reach(&(blade_lod_t){.rule = BLADE_LOD_WIDTH, .max_scale = 8.0f, .no_compensation = true}, 1.0f) == 0.0f);
-    bb_lod_grow_planes((const float (*)[4])planes, reach, grown);
-    int wide = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])grown, ranges, t.leaf_count);
+    int wide = bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, reach, ranges,
+                                 t.leaf_count);
     int wide_want = frustum_brute(&t, planes, 1.0f + reach, ranges, wide, &all);
     printf("frustum, cards widened: %d leaves visible (brute %d)\n", wide, wide_want);
     CHECK(wide == wide_want && wide > got);
-    CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, ranges, t.leaf_count) == got);
+    CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), (const float (*)[4])planes, 0.0f, ranges,
+                            t.leaf_count) == got);
 
     /* Nearest first: the same leaves, by the distance from the eye to their
      * parent's box (computed here from the leaf coordinates), ties in leaf
@@ -308,7 +310,7 @@ static void test_states(void)
     free(near);
     /* No silent cap: a short output array logs and reports the full count. */
     int warns = core_log_warn_count();
-    CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), NULL, ranges, 5) == all);
+    CHECK(bb_octree_collect(&t, BB_NODE_MASK(BB_NODE_IDLE), NULL, 0.0f, ranges, 5) == all);
     CHECK(core_log_warn_count() == warns + 1);
     free(bs);
     free(bt);

@@ -70,12 +70,8 @@ static int drawn_ranges(bb_field_t *f, uint32_t state_mask, const bb_draw_desc_t
 {
     const float(*planes)[4] = (const float (*)[4])dd->view.planes;
     blade_lod_t lod = bb_lod_rule(dd->lod);
-    float reach = bb_lod_reach(&lod, f->desc.size[0]), grown[6][4];
-    if (reach > 0.0f) {
-        bb_lod_grow_planes(planes, reach, grown);
-        planes = (const float (*)[4])grown;
-    }
-    int n = bb_octree_collect(&f->tree, state_mask, planes, f->ranges, f->tree.leaf_count);
+    int n = bb_octree_collect(&f->tree, state_mask, planes, bb_lod_reach(&lod, f->desc.size[0]), f->ranges,
+                              f->tree.leaf_count);
     if (dd->far_end > 0.0f) n = bb_octree_keep_near(&f->tree, dd->view.camera, dd->far_end, f->ranges, n);
     if (f->desc.occlusion) n = bb_occlusion_filter(f, f->ranges, n, dd->view.camera);
     if (n <= 0) return 0;

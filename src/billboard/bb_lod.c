@@ -24,11 +24,3 @@ float bb_lod_reach(const blade_lod_t *rule, float card_width)
     if (rule->rule == BLADE_LOD_OFF || rule->no_compensation || rule->max_scale <= 1.0f) return 0.0f;
     return 0.6f * card_width * (rule->max_scale - 1.0f);
 }
-
-void bb_lod_grow_planes(const float (*planes)[4], float grow, float (*out)[4])
-{
-    for (int p = 0; p < 6; p++) {
-        for (int a = 0; a < 3; a++) out[p][a] = planes[p][a];
-        out[p][3] = planes[p][3] + grow * (fabsf(planes[p][0]) + fabsf(planes[p][1]) + fabsf(planes[p][2]));
-    }
-}

@@ -42,13 +42,9 @@ blade_lod_draw_t bb_lod_card(const blade_lod_t *rule, const bb_point_t *p, const
  * (bb_field_desc_t.size[0]; cards are up to 1.2 times as wide) can reach
  * from its root when the rule widens it: 0.6 card_width (max_scale - 1),
  * 0 with the rule off or without compensation. The hardware path grows the
- * octree's leaf boxes by it when it culls leaves against the frustum, so a
- * widened card at the screen's edge is not culled with its leaf. */
+ * octree's leaf boxes by it when it culls leaves against the frustum
+ * (bb_octree_collect), so a widened card at the screen's edge is not
+ * culled with its leaf. */
 float bb_lod_reach(const blade_lod_t *rule, float card_width);
-
-/* The 6 frustum planes (a, b, c, d: inside where a x + b y + c z + d >= 0)
- * moved out so that a box grown by `grow` on every side is outside a moved
- * plane exactly when the box is outside the plane. */
-void bb_lod_grow_planes(const float (*planes)[4], float grow, float (*out)[4]);
 
 #endif

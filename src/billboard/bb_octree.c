@@ -271,14 +271,14 @@ static bool bb_box_outside_planes(const float lo[3], const float hi[3], float ma
 }
 
 static void bb_collect_node(const bb_octree_t *tree, int level, uint32_t k, uint32_t state_mask,
-                            const float (*planes)[4], bb_range_t *out, int max_out, int *found)
+                            const float (*planes)[4], float margin, bb_range_t *out, int max_out, int *found)
 {
     int node = tree->level_start[level] + (int)k;
     if (tree->count[node] == 0 || !(tree->mask[node] & state_mask)) return;
-    if (planes && bb_box_outside_planes(tree->lo[node], tree->hi[node], tree->desc.margin, planes)) return;
+    if (planes && bb_box_outside_planes(tree->lo[node], tree->hi[node], margin, planes)) return;
     if (level < tree->depth) {
         for (uint32_t c = 0; c < 8; c++)
-            bb_collect_node(tree, level + 1, 8 * k + c, state_mask, planes, out, max_out, found);
+            bb_collect_node(tree, level + 1, 8 * k + c, state_mask, planes, margin, out, max_out, found);
         return;
     }
     if (*found < max_out)
@@ -287,11 +287,11 @@ static void bb_collect_node(const bb_octree_t *tree, int level, uint32_t k, uint
     (*found)++;
 }
 
-int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float (*planes)[4],
+int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float (*planes)[4], float grow,
                       bb_range_t *out, int max_out)
 {
     int found = 0;
-    bb_collect_node(tree, 0, 0, state_mask, planes, out, max_out, &found);
+    bb_collect_node(tree, 0, 0, state_mask, planes, tree->desc.margin + grow, out, max_out, &found);
     if (found > max_out)
         core_log_warn("bb_octree_collect: %d ranges match but only %d fit; rest dropped", found, max_out);
     return found;

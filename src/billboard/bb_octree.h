@@ -96,12 +96,13 @@ void bb_octree_update(bb_octree_t *tree, const bb_bound_t *objects, int n, float
                       float recover_time);
 
 /* Writes up to max_out ranges of non-empty leaves whose state is in
- * state_mask (BB_NODE_MASK bits) and whose margin-grown box is not outside
- * any of the 6 planes (planes may be NULL: no culling; a point p is inside
- * plane (a,b,c,d) when a*px + b*py + c*pz + d >= 0). Returns the number of
- * matching ranges; when that exceeds max_out, logs a warning and writes the
- * first max_out only. */
-int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float (*planes)[4],
+ * state_mask (BB_NODE_MASK bits) and whose box grown by the margin plus
+ * `grow` (m; the widest card's reach past the margin, bb_lod_reach) is not
+ * outside any of the 6 planes (planes may be NULL: no culling; a point p
+ * is inside plane (a,b,c,d) when a*px + b*py + c*pz + d >= 0). Returns the
+ * number of matching ranges; when that exceeds max_out, logs a warning and
+ * writes the first max_out only. */
+int bb_octree_collect(const bb_octree_t *tree, uint32_t state_mask, const float (*planes)[4], float grow,
                       bb_range_t *out, int max_out);
 
 /* Orders ranges[0..n) nearest first: by the distance from eye to the cell

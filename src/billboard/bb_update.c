@@ -261,7 +261,7 @@ static void recover(bb_field_t *f, int nrec, float time, float dt)
 static int collect(bb_field_t *f, uint32_t state_mask)
 {
     if (f->ring_on) return bb_ring_collect(f, state_mask);
-    return bb_octree_collect(&f->tree, state_mask, NULL, f->ranges, f->tree.leaf_count);
+    return bb_octree_collect(&f->tree, state_mask, NULL, 0.0f, f->ranges, f->tree.leaf_count);
 }
 
 void bb_field_update(bb_field_t *f, const collide_set_t *colliders, float time, float dt)
