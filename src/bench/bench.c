@@ -712,7 +712,6 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
         int k = bench_lod_pick(rows, m, BENCH_LOD_ERROR, BENCH_LOD_GPU_MB, &met);
         if (k < 0) continue;
         int pick = idx[k];
-        double budget = BENCH_LOD_ERROR;
         const bench_config_t *c = &b->cfg[pick];
         float sw = c->switch_distance > 0 ? c->switch_distance : s.grass.switch_distance;
         float cd = c->canopy_distance > 0 ? c->canopy_distance : s.grass.canopy_distance;
@@ -724,7 +723,7 @@ static bool write_lod(const char *out, const world_options_t *o, const bench_run
                         "\"gpu_mb\": %.1f, \"memory_budget_mb\": %g, \"label\": \"%s\", \"candidates\": %d",
                         written ? "," : "", path_k ? "compute" : "hw", (double)sw, (double)cd,
                         bb == SCENE_HYBRID_BILLBOARDS_NONE ? "none" : "ring", row_wall(&b->met[pick]),
-                        b->met[pick].frame_ms, b->err[pick], budget, met ? "true" : "false", b->met[pick].gpu_mb,
+                        b->met[pick].frame_ms, b->err[pick], BENCH_LOD_ERROR, met ? "true" : "false", b->met[pick].gpu_mb,
                         BENCH_LOD_GPU_MB, c->label, candidates);
         if (blade >= 0)
             core_buf_printf(&json,

@@ -370,12 +370,21 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
     return true;
 }
 
+/* The point of x in [0, n - 1] (clamped) between nodes i and i + 1: i and
+ * the weight of i + 1. */
+static int canopy_node(float x, int n, float *f)
+{
+    x = fminf(fmaxf(x, 0.0f), (float)(n - 1));
+    int i = (int)floorf(x);
+    i = i < n - 1 ? i : n - 2;
+    *f = x - (float)i;
+    return i;
+}
+
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation)
 {
-    float x = fminf(fmaxf(elevation / 1.5707963f, 0.0f), 1.0f) * (float)(c->rows - 1);
-    int i = (int)floorf(x);
-    i = i < c->rows - 1 ? i : c->rows - 2;
-    float f = x - (float)i;
+    float f;
+    int i = canopy_node(elevation / 1.5707963f * (float)(c->rows - 1), c->rows, &f);
     /* the row is floats only: blend them one by one */
     enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
     float a[N], b[N], m[N];
@@ -402,17 +411,6 @@ void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
             for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
                 memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w->sun[k][j], sizeof w->sun[k][j]);
     }
-}
-
-/* The point of x in [0, n - 1] (clamped) between nodes i and i + 1: i and
- * the weight of i + 1. */
-static int canopy_node(float x, int n, float *f)
-{
-    x = fminf(fmaxf(x, 0.0f), (float)(n - 1));
-    int i = (int)floorf(x);
-    i = i < n - 1 ? i : n - 2;
-    *f = x - (float)i;
-    return i;
 }
 
 void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],

@@ -154,6 +154,8 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
         t->canopy_rows = t->canopy.id ? tex->rows : 0;
         t->canopy_sun0 = tex->sun0;
         free(tex);
+    } else {
+        core_log_error("ground: no memory for the canopy table; the ground is drawn without it");
     }
     t->extent = extent;
     memcpy(t->extent_origin, origin, sizeof t->extent_origin);
