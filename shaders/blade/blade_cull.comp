@@ -27,6 +27,7 @@
 #include "common/blade.glsl"
 #include "blade/blade_patch.glsl"
 #include "common/lod.glsl"
+#include "blade/cull_counts.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -100,15 +101,9 @@ uint cull(Blade b, uint index, out float factor)
     return BLADE_CULL_VISIBLE;
 }
 
-/* The culled counts of the workgroup, added to counts.culled once per
- * workgroup (one atomic per culled blade put every blade of a test on one
- * address; the tiles' cull took half the time without it on the H200). */
-shared uint s_culled[4];
-
 void main()
 {
-    uint li = gl_LocalInvocationIndex;
-    if (li < 4u) s_culled[li] = 0u;
+    cull_counts_clear();
     barrier();
     uint i = gl_GlobalInvocationID.x;
     if (i < (u_use_patches != 0 ? counts.dispatch[3] : u_blade_count)) {
@@ -119,9 +114,10 @@ void main()
             uint slot = u_count_instances != 0 ? atomicAdd(cmd.instanceCount, 1u) : atomicAdd(cmd.count, 1u);
             survivors[slot] = uvec2(i, floatBitsToUint(factor));
         } else if (why != BLADE_CULL_PADDING) {
-            atomicAdd(s_culled[findLSB(why)], 1u);
+            cull_counts_add(why);
         }
     }
     barrier();
-    if (li < 4u && s_culled[li] > 0u) atomicAdd(counts.culled[li], s_culled[li]);
+    uint mine = cull_counts_mine();
+    if (mine > 0u) atomicAdd(counts.culled[gl_LocalInvocationIndex], mine);
 }

@@ -29,6 +29,7 @@
 #include "blade/tiles_common.glsl"
 #include "common/extent.glsl"
 #include "common/lod.glsl"
+#include "blade/cull_counts.glsl"
 
 layout(local_size_x = 256) in; /* CULL_GROUP */
 
@@ -116,18 +117,16 @@ uint cull(Blade b, vec3 view_ground, float d, vec2 lod)
     return BLADE_CULL_VISIBLE;
 }
 
-/* The culled counts are summed in the workgroup and added to cmd once
- * per workgroup (one global atomic per test and workgroup instead of one
- * per culled blade, all of a test at one address). With u_group_append
- * (the compute rasterizer's cull) the survivors' places are taken so too:
- * in invocation order (a prefix sum over the workgroup), one atomic per
- * list and workgroup. The hardware draw keeps one atomic per blade: its
- * blades then lie in the order their warps reached the counter, and drawn
- * in that order they cost the H200 0.5 ms less on meadow_large than
+/* The culled counts are summed per workgroup (blade/cull_counts.glsl).
+ * With u_group_append (the compute rasterizer's cull) the survivors'
+ * places are taken per workgroup too: in invocation order (a prefix sum
+ * over the workgroup), one atomic per list and workgroup. The hardware
+ * draw keeps one atomic per blade, taken before the workgroup's barrier:
+ * its blades then lie in the order their warps reached the counter, and
+ * drawn in that order they cost the H200 0.5 ms less on meadow_large than
  * grouped by workgroup. */
 #define CULL_GROUP 256u
 uniform bool u_group_append;
-shared uint s_culled[4];
 shared uint s_scan[CULL_GROUP]; /* solid | fade << 16, inclusive prefix sums */
 shared uint s_solid, s_fade, s_solid_base, s_fade_base, s_kept;
 
@@ -153,7 +152,7 @@ bool survives(uint i, out Blade b, out uint id, out float d)
     if ((u_disable & BLADE_CULL_DISTANCE) == 0u && d <= u_max_distance) lod = lod_blade(k, d, b.v2.w);
     uint why = cull(b, view_ground, d, lod);
     if (why != BLADE_CULL_VISIBLE) {
-        atomicAdd(s_culled[findLSB(why)], 1u);
+        cull_counts_add(why);
         return false;
     }
     if (u_extent_on && !extent_keep(b.v0.xyz, id)) return false;
@@ -197,10 +196,13 @@ bool place_grouped(bool live, bool fade, out uint slot)
     }
     barrier();
     /* the kept survivors are the first s_kept in order, so a kept blade's
-     * place among its list's kept blades is its prefix */
+     * place among its list's kept blades is its prefix, and the last kept
+     * one's inclusive prefix counts the kept blades of each list */
     bool kept = live && j < s_kept;
-    if (kept && fade) atomicAdd(s_fade, 1u);
-    if (kept && !fade) atomicAdd(s_solid, 1u);
+    if (kept && j + 1u == s_kept) {
+        s_solid = s_scan[li] & 0xffffu;
+        s_fade = s_scan[li] >> 16;
+    }
     barrier();
     if (li == 0u) {
         s_solid_base = s_solid > 0u ? atomicAdd(cmd.solid[u_count_word], s_solid) : 0u;
@@ -214,7 +216,7 @@ bool place_grouped(bool live, bool fade, out uint slot)
 void main()
 {
     uint li = gl_LocalInvocationIndex;
-    if (li < 4u) s_culled[li] = 0u;
+    cull_counts_clear();
     if (li == 0u) s_solid = s_fade = 0u;
     barrier();
     Blade b;
@@ -222,10 +224,11 @@ void main()
     float d = 0.0;
     bool live = gl_GlobalInvocationID.x < u_count && survives(gl_GlobalInvocationID.x, b, id, d);
     bool fade = live && u_split && d > u_fade_start;
+    if (!u_group_append) live = live && place_alone(fade, slot);
     barrier();
-    if (li < 4u && s_culled[li] > 0u) atomicAdd(cmd.culled[li], s_culled[li]);
+    uint mine = cull_counts_mine();
+    if (mine > 0u) atomicAdd(cmd.culled[li], mine);
     if (u_group_append) live = place_grouped(live, fade, slot);
-    else live = live && place_alone(fade, slot);
     if (!live) return;
     drawn[slot] = b;
     drawn_ids[slot] = id;

@@ -237,16 +237,16 @@ static int add_paper_configs(bench_config_t *c, int n, bool quick)
 /* The tiers of the field on both rasterizer paths, on canopy_scene (NULL:
  * the sweep's): blade mode with its thinning drawn to the field's edge
  * (grass.blade_distance's default: the budget), the tiles thinned to D
- * and then the canopy without billboards (D = 40, 50, 60, 80 m), the hybrid
+ * and then the canopy without billboards (D = 40, 50, 55, 60, 80 m), the hybrid
  * with billboards to a canopy at 60 m (at the scene's billboard density and
  * at half of it) and at 90 m, then billboard mode. Returns the new count. */
 static int add_canopy_configs(bench_config_t *c, int n, bool quick, const char *canopy_scene)
 {
-    static const float tiles_to[] = {40, 50, 60, 80};
+    static const float tiles_to[] = {40, 50, 55, 60, 80};
     static const struct {
         float canopy, bb_scale;
     } ring[] = {{60, 1}, {60, 0.5f}, {90, 1}};
-    int ntiles = quick ? 1 : 4, nring = quick ? 1 : 3;
+    int ntiles = quick ? 1 : (int)(sizeof tiles_to / sizeof tiles_to[0]), nring = quick ? 1 : 3;
     for (int r = 0; r < (quick ? 1 : 2); r++) {
         const char *path = r ? "_compute" : "";
         int raster = r ? 1 + SCENE_RASTER_COMPUTE : 1 + SCENE_RASTER_HW;
