@@ -4,10 +4,12 @@
  * a blade's area projected along dir (over sin e: the ground area of roots
  * whose blade the ray crosses), e the elevation, here integrated over blade_ref_surface
  * of blades seeded and settled apart from the table's (own generator, own
- * integration, no ray casting). Also: values in range and finite, cover
- * falling as the view rises, cover growing with density, the same seed
- * giving the same table, the blades' segments, the lookup and the
- * thinning rule. */
+ * integration, no ray casting), and the same below the cut heights (the
+ * blades' area below the cut). Also: values in range and finite, cover
+ * falling as the view rises, cover growing with density, cover below a cut
+ * growing with the cut to the whole column's, the same seed giving the same
+ * table, the blades' segments, the lookups, the thinning rule and the
+ * overhang rule. */
 #include "blade/blade_canopy.h"
 #include "blade/blade_ref.h"
 #include "core/core.h"
@@ -17,8 +19,9 @@
 #include <string.h>
 
 /* Mean area of a settled default blade projected along dir (unit), over
- * n blades, by the midpoint rule on 32 x 4 surface cells. */
-static double projected_area(const float dir[3], int n)
+ * n blades, by the midpoint rule on 32 x 4 surface cells: of the cells
+ * whose centre lies below `below` (m). */
+static double projected_area(const float dir[3], int n, float below)
 {
     core_rng_t rng;
     core_rng_seed(&rng, 7u, 3u);
@@ -47,7 +50,8 @@ static double projected_area(const float dir[3], int n)
                 c[0] = d1[1] * d2[2] - d1[2] * d2[1];
                 c[1] = d1[2] * d2[0] - d1[0] * d2[2];
                 c[2] = d1[0] * d2[1] - d1[1] * d2[0];
-                sum += 0.5 * fabs(c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2]);
+                if (p[0][1] + p[1][1] + p[2][1] + p[3][1] < 4.0f * below)
+                    sum += 0.5 * fabs(c[0] * dir[0] + c[1] * dir[1] + c[2] * dir[2]);
             }
     }
     return sum / n;
@@ -104,7 +108,7 @@ int main(void)
     double worst = 0.0;
     for (int r = 1; r < c.rows; r++) {
         float e = c.elevation[r], dir[3] = {cosf(e), -sinf(e), 0.0f};
-        double want = 1.0 - exp(-200.0 * projected_area(dir, 400) / sin(e));
+        double want = 1.0 - exp(-200.0 * projected_area(dir, 400, INFINITY) / sin(e));
         if (want > 0.97) continue;
         double err = fabs(c.row[r].cover - want);
         printf("elevation %5.1f deg: cover %.3f, Boolean model %.3f, mean v %.2f, sun behind / ahead %.2f / %.2f\n",
@@ -116,6 +120,61 @@ int main(void)
     printf("%d rows compared, worst |cover - model| %.3f\n", compared, worst);
     CHECK(compared >= 5);
     CHECK(worst < 0.04);
+
+    /* The cuts: a ray entering at the cut height meets the blades' parts
+     * below it, a Boolean model of their area below the cut. The cover
+     * below a cut grows with it to the whole column's, and the points met
+     * lie lower on the blades (mean v) than the whole column's. */
+    printf("top of the blades %.3f m\n", c.top);
+    CHECK(c.top > 0.3f && c.top <= 0.7f);
+    bool monotone = true, lower = true;
+    double worst_cut = 0.0;
+    int cuts_compared = 0;
+    for (int r = 1; r < c.rows; r++) {
+        for (int k = 0; k < BLADE_CANOPY_CUTS; k++) {
+            float next = k + 1 < BLADE_CANOPY_CUTS ? c.below[r][k + 1].cover : c.row[r].cover;
+            monotone = monotone && c.below[r][k].cover <= next;
+        }
+        const blade_canopy_row_t *low = &c.below[r][0];
+        lower = lower && low->v_ao[0] / low->ao[0] < c.row[r].v_ao[0] / c.row[r].ao[0];
+        if (r % 3 != 0) continue; /* the model's integral is slow under the sanitizers */
+        float e = c.elevation[r], dir[3] = {cosf(e), -sinf(e), 0.0f};
+        for (int k = 2; k < BLADE_CANOPY_CUTS; k += 2) { /* the model's cells are 1-2 cm: above them */
+            float h = ldexpf(c.top, k - BLADE_CANOPY_CUTS);
+            double want = 1.0 - exp(-200.0 * projected_area(dir, 100, h) / sin(e));
+            if (want > 0.97) continue;
+            printf("elevation %5.1f deg, cut %.2f m: cover %.3f, Boolean model %.3f\n", e * 57.29578f, h,
+                   c.below[r][k].cover, want);
+            worst_cut = fmax(worst_cut, fabs(c.below[r][k].cover - want));
+            cuts_compared++;
+        }
+    }
+    printf("%d cuts compared, worst |cover - model| %.3f\n", cuts_compared, worst_cut);
+    CHECK(monotone && lower);
+    CHECK(cuts_compared >= 6);
+    CHECK(worst_cut < 0.05);
+    float e7 = 0.13f; /* 7.5 degrees, the seam scenes' */
+    blade_canopy_row_t whole = blade_canopy_at(&c, e7);
+    CHECK(blade_canopy_at_cut(&c, e7, c.top).cover == whole.cover);
+    CHECK(blade_canopy_at_cut(&c, e7, 5.0f).cover == whole.cover);
+    CHECK(blade_canopy_at_cut(&c, e7, 1e-6f).cover < 1e-4f);
+    float step = ldexpf(c.top, -BLADE_CANOPY_CUTS), prev = 0.0f; /* the lowest cut */
+    bool grows = true;
+    for (int i = 1; i <= 40; i++) {
+        float cover = blade_canopy_at_cut(&c, e7, (float)i / 40.0f * c.top).cover;
+        grows = grows && cover >= prev;
+        prev = cover;
+    }
+    CHECK(grows);
+    printf("7.5 degrees: cover %.3f, below the cuts", whole.cover);
+    for (int k = 0; k < BLADE_CANOPY_CUTS; k++) printf(" %.3f", blade_canopy_at_cut(&c, e7, ldexpf(step, k)).cover);
+    printf("\n");
+    CHECK(blade_canopy_at_cut(&c, e7, step).cover < whole.cover - 0.2f);
+    /* half way between levels: linear below the lowest cut, log2 above */
+    blade_canopy_row_t a = blade_canopy_at_cut(&c, e7, step), b = blade_canopy_at_cut(&c, e7, 2.0f * step);
+    CHECK_NEAR(blade_canopy_at_cut(&c, e7, 0.5f * step).cover, 0.5f * a.cover, 1e-5);
+    CHECK_NEAR(blade_canopy_at_cut(&c, e7, sqrtf(2.0f) * step).cover, 0.5f * (a.cover + b.cover), 1e-5);
+    CHECK_NEAR(blade_canopy_at_cut(&c, e7, sqrtf(2.0f) * step).ao[0], 0.5f * (a.ao[0] + b.ao[0]), 1e-5);
 
     CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}}));
     CHECK(memcmp(&c, &again, sizeof c) == 0);
@@ -164,6 +223,23 @@ int main(void)
     CHECK_NEAR(blade_canopy_thinned(0.75f, 1.0f), 0.75f, 1e-6);
     CHECK(blade_canopy_thinned(0.75f, 0.0f) == 0.0f);
     CHECK(blade_canopy_thinned(1.0f, 0.0f) == 0.0f); /* full cover in a clearing: no grass, not NaN */
+    /* The overhang: every blade drawn leaves the cut column; a cut at the
+     * ground (cover 0) the whole column thinned as blade_canopy_under thins
+     * it; no blade drawn the whole column. */
+    const float full[4] = {0.2f, 0.3f, 0.1f, 0.9f}, cut[4] = {0.1f, 0.15f, 0.05f, 0.4f}, none[4] = {0.1f, 0.1f,
+                                                                                                    0.1f, 0.0f};
+    float o[4];
+    blade_canopy_overhang(full, cut, 1.0f, o);
+    for (int k = 0; k < 4; k++) CHECK_NEAR(o[k], cut[k], 1e-6);
+    blade_canopy_overhang(full, cut, 0.0f, o);
+    for (int k = 0; k < 4; k++) CHECK_NEAR(o[k], full[k], 1e-6);
+    blade_canopy_overhang(full, none, 0.3f, o);
+    for (int k = 0; k < 3; k++) CHECK_NEAR(o[k], full[k], 1e-6);
+    CHECK_NEAR(o[3], blade_canopy_under(full[3], 1.0f, 0.3f), 1e-5);
+    blade_canopy_overhang(full, cut, 0.5f, o);
+    CHECK(o[3] > cut[3] && o[3] < full[3]);
+    blade_canopy_overhang(cut, cut, 0.5f, o); /* a cut at the top: nothing above it */
+    for (int k = 0; k < 4; k++) CHECK_NEAR(o[k], cut[k], 1e-6);
     /* the blades cut as the tiles draw them where the canopy takes over */
     CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}, .segments = 2}));
     CHECK(again.row[2].ao[0] != c.row[2].ao[0]);

@@ -4,7 +4,11 @@
  * as the terrain uploads it (blade_canopy_pack, a texture): 512 ground
  * points, a quarter flat, the rest on slopes up to 50 degrees facing any
  * way, each seen from a camera and lit by a sun at random elevations over
- * its ground (the sun from 80 degrees below to 80 above it) and azimuths.
+ * its ground (the sun from 80 degrees below to 80 above it) and azimuths,
+ * three in four of the columns cut at a random height (up to 1.2 times the
+ * table's top), and the overhang of the whole column over the cut one
+ * (canopy_overhang against blade_canopy_overhang) with random blades kept.
+ * A shader that ignored the cut fails on the cut columns' cover.
  * The twin's inputs are the angles the camera and sun were built from in
  * the ground's frame (t towards the viewer, the normal g, s = g x t) and
  * world up in that frame, so a shader that took the sun's elevation over
@@ -44,11 +48,12 @@ int main(void)
     test_gl_init();
     static blade_canopy_t c;
     CHECK(blade_canopy_make(&c, &(blade_canopy_desc_t){.seed = 9, .rays = 1024, .sun = {0.45f, 0.8f, 0.35f}}));
+    CHECK(c.top > 0.3f && c.top < 0.7f);
     static blade_canopy_texture_t tex;
     blade_canopy_pack(&c, &tex);
     static const float root[3] = {0.10f, 0.25f, 0.05f}, tip[3] = {0.45f, 0.65f, 0.20f};
     static item_t items[N];
-    static float suns[N][4], want[N][4], got[N][4];
+    static float suns[N][4], want[N][2][4], got[N][2][4], whole[N][4];
     core_rng_t rng;
     core_rng_seed(&rng, 11, 2);
     for (int i = 0; i < N; i++) {
@@ -71,13 +76,20 @@ int main(void)
             it->camera[k] = it->pos[k] + dist * (cosf(e) * t[k] + sinf(e) * g[k]);
             suns[i][k] = cosf(se) * (cosf(phi) * t[k] + side * sinf(phi) * s[k]) + sinf(se) * g[k];
         }
-        it->pos[3] = it->normal[3] = it->camera[3] = suns[i][3] = 0.0f;
+        float cut = core_rng_float(&rng) < 0.25f ? 0.0f : core_rng_range(&rng, 0.0f, 1.2f * c.top);
+        it->pos[3] = it->normal[3] = 0.0f;
+        it->camera[3] = cut;
+        suns[i][3] = core_rng_float(&rng); /* blades kept */
         blade_canopy_view_t v = {.elevation = e, .sun_elevation = se, .azimuth = phi, .up = {t[1], g[1], s[1]}};
-        blade_canopy_color(&c, &v, root, tip, want[i], &want[i][3]);
+        blade_canopy_color(&c, &v, root, tip, whole[i], &whole[i][3]);
+        v.cut = cut;
+        blade_canopy_color(&c, &v, root, tip, want[i][0], &want[i][0][3]);
+        blade_canopy_overhang(whole[i], want[i][0], suns[i][3], want[i][1]);
     }
     gfx_program_t prog = gfx_program_make(&(gfx_program_desc_t){.cs = "tests/canopy_eval.comp", .label = "canopy"});
     CHECK(prog.id != 0);
-    gfx_texture_t table = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS, .h = tex.rows,
+    gfx_texture_t table = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS,
+                                                                 .h = tex.rows * BLADE_CANOPY_LEVELS,
                                                                  .format = GL_RGBA32F, .filter = GL_NEAREST,
                                                                  .data = tex.texel, .upload_type = GL_FLOAT,
                                                                  .label = "canopy.table"});
@@ -90,6 +102,7 @@ int main(void)
     glUniform1ui(gfx_uniform(prog, "u_count"), N);
     glUniform1i(gfx_uniform(prog, "u_canopy_rows"), tex.rows);
     glUniform1f(gfx_uniform(prog, "u_canopy_sun0"), tex.sun0);
+    glUniform1f(gfx_uniform(prog, "u_canopy_top"), tex.top);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_root"), 1, root);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_tip"), 1, tip);
     glBindTextureUnit(GROUND_TEX_CANOPY, table.id);
@@ -100,19 +113,29 @@ int main(void)
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     memset(got, 0, sizeof got);
     CHECK(gfx_buffer_read(bo, 0, sizeof got, got));
-    double worst = 0.0, worst_flat = 0.0, spread = 0.0;
-    for (int i = 0; i < N; i++)
+    double worst = 0.0, worst_flat = 0.0, worst_cut = 0.0, worst_overhang = 0.0, spread = 0.0, cut_spread = 0.0;
+    int cuts = 0;
+    for (int i = 0; i < N; i++) {
+        bool cut = items[i].camera[3] > 0.0f && items[i].camera[3] < c.top;
+        cuts += cut;
         for (int k = 0; k < 4; k++) {
-            double err = fabs(got[i][k] - want[i][k]);
+            double err = fabs(got[i][0][k] - want[i][0][k]);
             worst = fmax(worst, err);
             if (i < N / 4) worst_flat = fmax(worst_flat, err);
-            spread = fmax(spread, fabs(want[i][k] - want[0][k]));
+            if (cut) worst_cut = fmax(worst_cut, err);
+            worst_overhang = fmax(worst_overhang, fabs(got[i][1][k] - want[i][1][k]));
+            spread = fmax(spread, fabs(want[i][0][k] - want[0][0][k]));
         }
-    printf("canopy colour and cover, GLSL vs C twin (%d views, %d flat): worst %.2g, flat %.2g (values spread "
-           "%.3f)\n",
-           N, N / 4, worst, worst_flat, spread);
+        /* the cut's cover against the whole column's */
+        if (cut) cut_spread = fmax(cut_spread, whole[i][3] - want[i][0][3]);
+    }
+    printf("canopy colour and cover, GLSL vs C twin (%d views, %d flat, %d cut below the top): worst %.2g, flat "
+           "%.2g, cut %.2g, overhang %.2g (values spread %.3f)\n",
+           N, N / 4, cuts, worst, worst_flat, worst_cut, worst_overhang, spread);
     CHECK(worst < 1e-3); /* a quarter of an 8-bit step: acos / asin of float dots near +-1 */
+    CHECK(worst_overhang < 1e-3);
     CHECK(spread > 0.1); /* the views differ: the comparison compares something */
+    CHECK(cuts > N / 2 && cut_spread > 0.1); /* some cuts take much of the column's cover away */
     gfx_texture_destroy(&table);
     gfx_buffer_destroy(&bi);
     gfx_buffer_destroy(&bs);

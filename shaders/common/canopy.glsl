@@ -6,12 +6,17 @@
  * (blades grow along its normal): by the view's elevation over the ground,
  * the sun's elevation over it and its azimuth from the direction towards
  * the viewer, and the ambient moments of the blade normals in that frame,
- * which give the mean of any ambient light linear in the normal. GLSL twin of
- * blade_canopy_color and blade_canopy_thinned (docs/HYBRID.md "Ground
- * canopy"). The table is a texture (blade_canopy_pack): row i the view
- * elevation 90 i / (u_canopy_rows - 1) degrees; sun elevation k the angle
- * u_canopy_sun0 + k CANOPY_SUN_STEP, azimuth j 180 j / (CANOPY_AZIMUTHS - 1)
- * degrees. */
+ * which give the mean of any ambient light linear in the normal; and the
+ * same of the hits below a cut height, which the drawn blades' overhang
+ * leaves to the canopy just past the hybrid's switch. GLSL twin of
+ * blade_canopy_color, blade_canopy_overhang and blade_canopy_thinned
+ * (docs/HYBRID.md "Ground canopy"). The table is a texture
+ * (blade_canopy_pack): row i + l u_canopy_rows the view elevation
+ * 90 i / (u_canopy_rows - 1) degrees at cut level l (0 at the ground, l in
+ * 1..CANOPY_CUTS at u_canopy_top 2^(l - 1 - CANOPY_CUTS) over it, the last
+ * the whole column); sun
+ * elevation k the angle u_canopy_sun0 + k CANOPY_SUN_STEP, azimuth j
+ * 180 j / (CANOPY_AZIMUTHS - 1) degrees. */
 #ifndef CANOPY_GLSL
 #define CANOPY_GLSL
 
@@ -20,11 +25,13 @@
 
 #define CANOPY_AZIMUTHS 9
 #define CANOPY_SUNS 14
+#define CANOPY_CUTS 5 /* BLADE_CANOPY_CUTS */
 const float CANOPY_SUN_STEP = 0.2617994; /* BLADE_CANOPY_SUN_STEP */
 uniform int u_canopy_rows;
 uniform float u_canopy_sun0;
-/* texel (x, row): x 0 (cover), 1 (E[ao], E[n_t ao], E[n_g ao], E[n_s ao]),
- * 2 (the same times v), 3 + k CANOPY_AZIMUTHS + j (E[D], E[v D]) */
+uniform float u_canopy_top; /* m, the cuts' scale (blade_canopy_t.top) */
+/* texel (x, row + level rows): x 0 (cover), 1 (E[ao], E[n_t ao], E[n_g ao],
+ * E[n_s ao]), 2 (the same times v), 3 + k CANOPY_AZIMUTHS + j (E[D], E[v D]) */
 layout(binding = GROUND_TEX_CANOPY) uniform sampler2D u_canopy_table;
 uniform vec3 u_canopy_albedo_root;
 uniform vec3 u_canopy_albedo_tip;
@@ -44,27 +51,74 @@ float canopy_under(float cover, float e, float kept)
     return max(full - left, 0.0) / max(1.0 - left, 1e-4);
 }
 
-/* Texel x of table row `row`. */
-vec4 canopy_texel(int x, int row)
+/* blade_canopy_overhang: the canopy past the switch under the overhang of
+ * the blades drawn before it, thinned to `kept` (1: all drawn): full and
+ * cut are (colour, cover) of the whole column and of the column cut at the
+ * overhang's height. */
+vec4 canopy_overhang(vec4 full, vec4 cut, float kept)
 {
-    return texelFetch(u_canopy_table, ivec2(x, row), 0);
+    float t_cut = 1.0 - cut.w, t_above = min(max(1.0 - full.w, 0.0) / max(t_cut, 1e-6), 1.0);
+    float left = clamp(1.0 - kept, 0.0, 1.0), t_left = pow(max(t_above, 1e-6), left);
+    float share = t_above < 1.0 - 1e-6 ? (1.0 - t_left) / (1.0 - t_above) : left;
+    float cover = 1.0 - t_left * t_cut;
+    vec3 above = full.w * full.rgb - t_above * cut.w * cut.rgb; /* premultiplied */
+    vec3 p = max(share * above + t_left * cut.w * cut.rgb, 0.0);
+    return vec4(cover > 1e-6 ? p / cover : full.rgb, cover);
 }
 
-/* The sun moments (E[D], E[v D]) of table row `row` at sun elevation node k
- * and azimuth node j, g of the way to j + 1. */
-vec2 canopy_sun(int row, int k, int j, float g)
+/* canopy_node of blade_canopy.c: the point of x in [0, n - 1] (clamped)
+ * between nodes i and i + 1: i, and f the weight of i + 1. */
+int canopy_node(float x, int n, out float f)
+{
+    x = clamp(x, 0.0, float(n - 1));
+    int i = min(int(floor(x)), n - 2);
+    f = x - float(i);
+    return i;
+}
+
+/* canopy_cut_level of blade_canopy.c: the cut level of a cut (m; 0: the
+ * whole column), linear below the lowest cut, log2 above. */
+float canopy_cut_level(float cut)
+{
+    float h1 = ldexp(max(u_canopy_top, 1e-6), -CANOPY_CUTS);
+    if (cut <= 0.0) return float(CANOPY_CUTS + 1);
+    return cut < h1 ? cut / h1 : 1.0 + log2(cut / h1);
+}
+
+/* Where the table is read: rows i, i + 1 (f of the way) at cut levels l,
+ * l + 1 (g of the way). */
+struct canopy_at_t {
+    int i, l;
+    float f, g;
+};
+
+/* Texel x of the table at a, bilinear: between the rows, then the levels
+ * (blade_canopy_at_cut's order). */
+vec4 canopy_texel(int x, canopy_at_t a)
+{
+    int r0 = a.i + a.l * u_canopy_rows, r1 = r0 + u_canopy_rows;
+    vec4 lo = mix(texelFetch(u_canopy_table, ivec2(x, r0), 0), texelFetch(u_canopy_table, ivec2(x, r0 + 1), 0), a.f);
+    vec4 hi = mix(texelFetch(u_canopy_table, ivec2(x, r1), 0), texelFetch(u_canopy_table, ivec2(x, r1 + 1), 0), a.f);
+    return mix(lo, hi, a.g);
+}
+
+/* The sun moments (E[D], E[v D]) at a, sun elevation node k and azimuth
+ * node j, g of the way to j + 1. */
+vec2 canopy_sun(canopy_at_t a, int k, int j, float g)
 {
     int x = 3 + k * CANOPY_AZIMUTHS + j;
-    return mix(canopy_texel(x, row).xy, canopy_texel(x + 1, row).xy, g);
+    return mix(canopy_texel(x, a).xy, canopy_texel(x + 1, a).xy, g);
 }
 
 /* Where a canopy point is seen from and lit from (blade_canopy_view_t):
  * the view's elevation e over the ground, the sun's elevation se over it
- * and azimuth phi from t (radians), and the ground's frame: t the
- * horizontal direction towards the viewer, g the ground normal, s = g x t. */
+ * and azimuth phi from t (radians), the ground's frame: t the horizontal
+ * direction towards the viewer, g the ground normal, s = g x t; and the cut
+ * (m; 0: the whole column). */
 struct canopy_view_t {
     float e, se, phi;
     vec3 t, g, s;
+    float cut;
 };
 
 /* The view of ground point pos of unit normal gn from camera, lit by the
@@ -84,6 +138,7 @@ canopy_view_t canopy_view(vec3 pos, vec3 gn, vec3 camera, vec3 sun)
     v.g = gn;
     v.s = cross(gn, v.t);
     v.phi = !down && dot(sh, sh) > 1e-12 ? acos(clamp(dot(v.t, normalize(sh)), -1.0, 1.0)) : 0.0;
+    v.cut = 0.0;
     return v;
 }
 
@@ -93,21 +148,15 @@ canopy_view_t canopy_view(vec3 pos, vec3 gn, vec3 camera, vec3 sun)
  * its change along t, g and s. */
 vec3 canopy_table_color(canopy_view_t v, vec3 amb0, mat3 amb_n, out float cover)
 {
-    float x = clamp(v.e / 1.5707963, 0.0, 1.0) * float(u_canopy_rows - 1);
-    int i = min(int(floor(x)), u_canopy_rows - 2);
-    float f = x - float(i);
-    float z = clamp((v.se - u_canopy_sun0) / CANOPY_SUN_STEP, 0.0, float(CANOPY_SUNS - 1));
-    int k = min(int(floor(z)), CANOPY_SUNS - 2);
-    float h = z - float(k);
-    float y = clamp(v.phi / 3.1415927, 0.0, 1.0) * float(CANOPY_AZIMUTHS - 1);
-    int j = min(int(floor(y)), CANOPY_AZIMUTHS - 2);
-    float g = y - float(j);
-    vec2 s0 = mix(canopy_sun(i, k, j, g), canopy_sun(i + 1, k, j, g), f);
-    vec2 s1 = mix(canopy_sun(i, k + 1, j, g), canopy_sun(i + 1, k + 1, j, g), f);
-    vec2 s = mix(s0, s1, h);
-    vec4 ao = mix(canopy_texel(1, i), canopy_texel(1, i + 1), f);
-    vec4 v_ao = mix(canopy_texel(2, i), canopy_texel(2, i + 1), f);
-    cover = mix(canopy_texel(0, i).x, canopy_texel(0, i + 1).x, f);
+    canopy_at_t a;
+    a.i = canopy_node(v.e / 1.5707963 * float(u_canopy_rows - 1), u_canopy_rows, a.f);
+    a.l = canopy_node(canopy_cut_level(v.cut), CANOPY_CUTS + 2, a.g);
+    float h, g;
+    int k = canopy_node((v.se - u_canopy_sun0) / CANOPY_SUN_STEP, CANOPY_SUNS, h);
+    int j = canopy_node(v.phi / 3.1415927 * float(CANOPY_AZIMUTHS - 1), CANOPY_AZIMUTHS, g);
+    vec2 s = mix(canopy_sun(a, k, j, g), canopy_sun(a, k + 1, j, g), h);
+    vec4 ao = canopy_texel(1, a), v_ao = canopy_texel(2, a);
+    cover = canopy_texel(0, a).x;
     vec3 r = u_canopy_albedo_root, dt = u_canopy_albedo_tip - u_canopy_albedo_root;
     return SUN_COLOR * SUN_DIFFUSE * (r * s.x + dt * s.y) + r * (amb0 * ao.x + amb_n * ao.yzw) +
            dt * (amb0 * v_ao.x + amb_n * v_ao.yzw);
@@ -116,10 +165,12 @@ vec3 canopy_table_color(canopy_view_t v, vec3 amb0, mat3 amb_n, out float cover)
 /* The canopy's colour (unfogged) and cover at ground point pos of unit
  * ground normal gn, seen from camera, lit by the sun (unit) and the
  * hemispheric ambient: mix(AMBIENT_DOWN, AMBIENT_UP, n.y / 2 + 1 / 2), n.y
- * = n . (t.y, g.y, s.y) in the ground's frame. */
-vec3 canopy_color(vec3 pos, vec3 gn, vec3 camera, vec3 sun, out float cover)
+ * = n . (t.y, g.y, s.y) in the ground's frame; of the hits below cut (m;
+ * 0: the whole column). */
+vec3 canopy_color(vec3 pos, vec3 gn, vec3 camera, vec3 sun, float cut, out float cover)
 {
     canopy_view_t v = canopy_view(pos, gn, camera, sun);
+    v.cut = cut;
     vec3 half_up = 0.5 * (AMBIENT_UP - AMBIENT_DOWN);
     mat3 amb_n = mat3(half_up * v.t.y, half_up * v.g.y, half_up * v.s.y);
     return canopy_table_color(v, 0.5 * (AMBIENT_UP + AMBIENT_DOWN), amb_n, cover);

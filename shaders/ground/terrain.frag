@@ -7,6 +7,10 @@
 // nearer, under blades thinned with distance (common/lod.glsl), the ground
 // mixed towards the canopy by the share of it the removed blades covered
 // (canopy_under), so blades and ground keep the full field's mean colour.
+// Where the canopy continues the tiles' blades (u_canopy_switch, no
+// billboards between), one rule does both and the fade: the canopy stands
+// for the blades not drawn, under the overhang of those drawn before the
+// switch (canopy_overhang of the whole column and the cut one).
 // Ground and canopy take the global illumination's ambient light per
 // fragment when it is on (common/gi.glsl; the canopy per vertex, its table
 // taking any ambient linear in the blade normals: ground/terrain_canopy.glsl).
@@ -21,6 +25,7 @@
 in vec3 v_pos;
 in vec3 v_normal;
 in vec4 v_canopy; /* the canopy's colour and cover, per vertex (ground/terrain_canopy.glsl) */
+in vec4 v_canopy_cut; /* the same below the overhang's cut (terrain_canopy's cut) */
 uniform vec2 u_canopy_fade;
 uniform bool u_lod_on;
 uniform vec2 u_lod_ground; /* blades' mean width (m), the distance where the thinned blades end (m) */
@@ -58,7 +63,12 @@ void main()
     vec3 albedo = mix(soil, turf, smoothstep(0.3, 0.7, noise));
     vec3 c = shade_lit(albedo, n, u_sun, 1.0, grass_ambient(v_pos, n));
     vec3 to_frag = v_pos - u_camera;
-    if (u_canopy_on) {
+    if (u_canopy_on && u_canopy_switch.x > 0.0) {
+        /* the drawn blades thinned as at their roots, to the switch */
+        float d = min(grass_distance(v_pos, u_camera), u_canopy_switch.x);
+        vec4 k = canopy_overhang(v_canopy, v_canopy_cut, u_lod_on ? lod_coverage(d, u_lod_ground.x) : 1.0);
+        if (k.w > 0.0) c = mix(c, k.rgb, canopy_thinned(k.w, extent_at(v_pos.xz)));
+    } else if (u_canopy_on) {
         float d = grass_distance(v_pos, u_camera);
         float ramp = u_canopy_fade.y > 0.0
                          ? clamp((d - u_canopy_fade.x) / max(u_canopy_fade.y - u_canopy_fade.x, 1e-6), 0.0, 1.0)

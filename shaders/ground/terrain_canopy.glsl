@@ -3,7 +3,10 @@
  * common/canopy.glsl under the ambient of common/gi.glsl, linear in the
  * normal (the hemisphere, or the volumes' a + B n), taken along the
  * ground's frame (t, g, s) as its value at n = 0 and its changes along
- * them. The colour follows the view's and the sun's angles, which change
+ * them; the whole column's, and where the canopy continues the hybrid's
+ * blades (u_canopy_switch), the column cut at the height below which the
+ * drawn blades' overhang leaves the ray to the canopy (terrain.frag joins
+ * the two with canopy_overhang). The colour follows the view's and the sun's angles, which change
  * slowly across a triangle wherever the canopy shows (beyond the
  * thinning's start), so it is computed per vertex and interpolated: per
  * pixel it took 0.23 of meadow_large's 0.95 ms terrain pass (H200, compute
@@ -13,19 +16,48 @@
 
 #include "common/canopy.glsl"
 #include "common/gi.glsl"
+#include "common/switch.glsl"
 
 uniform bool u_canopy_on;
+/* The tiles' switch distance and the half width of its fade band (m), where
+ * the canopy continues the blades (no billboards between); x 0: nowhere. */
+uniform vec2 u_canopy_switch;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
 
-vec4 terrain_canopy(vec3 pos, vec3 normal)
+/* The height (m) over a ground point at eye distance d, seen at elevation
+ * e, below which the blades rooted past the switch meet the ray: the
+ * ground the ray crosses past the switch, d - s, times tan e, with the
+ * blades' fade (blade_fade_ramp: alpha 1 - smoothstep over s +- w by the
+ * root's distance) integrated along it: 2 w (T^3 - T^4 / 2), T = (d - s +
+ * w) / (2 w), in the band; 0 nearer than s - w. */
+float terrain_canopy_cut(float d, float e)
 {
+    float x = d - u_canopy_switch.x, w = u_canopy_switch.y;
+    float t = w > 0.0 ? clamp((x + w) / (2.0 * w), 0.0, 1.0) : 0.0;
+    float past = x >= w ? x : 2.0 * w * t * t * t * (1.0 - 0.5 * t);
+    return past * tan(min(e, 1.5));
+}
+
+/* The canopy's (colour, cover) at pos: the whole column's, and in cut the
+ * cut column's (the whole column's where the canopy does not continue the
+ * blades; cover 0 nearer than the switch's band). */
+vec4 terrain_canopy(vec3 pos, vec3 normal, out vec4 cut)
+{
+    cut = vec4(0.0);
     if (!u_canopy_on) return vec4(0.0);
     float cover;
     canopy_view_t v = canopy_view(pos, normalize(normal), u_camera, u_sun);
     vec3 up = grass_ambient(pos, v.g), down = grass_ambient(pos, -v.g), amb0 = 0.5 * (up + down);
     mat3 amb_n = mat3(grass_ambient(pos, v.t) - amb0, 0.5 * (up - down), grass_ambient(pos, v.s) - amb0);
-    return vec4(canopy_table_color(v, amb0, amb_n, cover), cover);
+    vec4 full = vec4(canopy_table_color(v, amb0, amb_n, cover), cover);
+    float h = u_canopy_switch.x > 0.0 ? terrain_canopy_cut(grass_distance(pos, u_camera), v.e) : u_canopy_top;
+    cut = h <= 0.0 ? vec4(full.rgb, 0.0) : full;
+    if (h > 0.0 && h < u_canopy_top) {
+        v.cut = h;
+        cut = vec4(canopy_table_color(v, amb0, amb_n, cover), cover);
+    }
+    return full;
 }
 
 #endif

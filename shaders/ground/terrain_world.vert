@@ -5,7 +5,7 @@
 // Chebyshev distance to the camera, then displaced by world_height
 // (common/world_height.glsl, configured by terrain_world_defines). Passes
 // terrain.frag what terrain.vert does: world position, unit normal and the
-// ground canopy at the vertex (ground/terrain_canopy.glsl).
+// ground canopy at the vertex, whole and cut (ground/terrain_canopy.glsl).
 #version 450 core
 #include "common/world_height.glsl"
 #include "ground/terrain_canopy.glsl"
@@ -17,6 +17,7 @@ uniform vec2 u_morph; /* distance where the morph starts, 1 / (end - start) */
 out vec3 v_pos;
 out vec3 v_normal;
 out vec4 v_canopy;
+out vec4 v_canopy_cut;
 void main()
 {
     vec2 g = vec2(a_grid);
@@ -27,6 +28,6 @@ void main()
     vec3 e = world_eval(xz);
     v_pos = vec3(xz.x, e.x, xz.y);
     v_normal = normalize(vec3(-e.y, 1.0, -e.z));
-    v_canopy = terrain_canopy(v_pos, v_normal);
+    v_canopy = terrain_canopy(v_pos, v_normal, v_canopy_cut);
     gl_Position = u_viewproj * vec4(v_pos, 1.0);
 }

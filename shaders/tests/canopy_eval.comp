@@ -1,9 +1,12 @@
 #version 450
-/* canopy_eval.comp: canopy_color of common/canopy.glsl for test_canopy_gpu
- * (CPU twin: blade_canopy_color): item i is a ground point at
- * items[i].pos.xyz of unit normal items[i].normal.xyz seen from a camera at
- * items[i].camera.xyz and lit by a sun towards suns[i].xyz; out[i] =
- * (colour, cover). */
+/* canopy_eval.comp: canopy_color and canopy_overhang of common/canopy.glsl
+ * for test_canopy_gpu (CPU twins: blade_canopy_color,
+ * blade_canopy_overhang): item i is a ground point at items[i].pos.xyz of
+ * unit normal items[i].normal.xyz seen from a camera at items[i].camera.xyz
+ * and lit by a sun towards suns[i].xyz; out[2 i] = (colour, cover) of the
+ * column cut at items[i].camera.w (m; 0: the whole column), out[2 i + 1]
+ * the overhang of the whole column over that cut with blades kept
+ * suns[i].w. */
 #include "common/canopy.glsl"
 
 layout(local_size_x = 64) in;
@@ -22,8 +25,10 @@ void main()
 {
     uint i = gl_GlobalInvocationID.x;
     if (i >= u_count) return;
-    float cover;
+    float cover, whole;
     item_t it = items[i];
-    vec3 c = canopy_color(it.pos.xyz, it.normal.xyz, it.camera.xyz, suns[i].xyz, cover);
-    result[i] = vec4(c, cover);
+    vec3 c = canopy_color(it.pos.xyz, it.normal.xyz, it.camera.xyz, suns[i].xyz, it.camera.w, cover);
+    vec3 w = canopy_color(it.pos.xyz, it.normal.xyz, it.camera.xyz, suns[i].xyz, 0.0, whole);
+    result[2 * i] = vec4(c, cover);
+    result[2 * i + 1] = canopy_overhang(vec4(w, whole), vec4(c, cover), suns[i].w);
 }

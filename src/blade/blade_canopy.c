@@ -7,7 +7,10 @@
  * triangles of its strip in the periodic copies along x that its x span
  * crosses, copy by copy, nearest first, until a hit lies before the next
  * copy can begin. Intersection: Moller-Trumbore. The rays' frame is the
- * ground's (blade_canopy_row_t): t = -x, g = +y, s = +z. */
+ * ground's (blade_canopy_row_t): t = -x, g = +y, s = +z. A ray keeps the
+ * nearest hit of every cut level (the hits past the point where it sinks
+ * below the cut); the copies before the highest cut still open are
+ * skipped. */
 #include "blade/blade_canopy.h"
 
 #include "blade/blade_ref.h"
@@ -24,18 +27,21 @@
 
 typedef struct canopy_tri_t {
     float p[3][3], n[3][3], v[3];
-    float xlo, xhi;
+    float xlo, xhi, ylo, yhi;
 } canopy_tri_t;
 
+/* A triangle in a strip, with its bounds along x and y (scanned without
+ * touching the triangle). */
 typedef struct canopy_entry_t {
     uint32_t tri;
-    float zshift;
+    float zshift, xlo, xhi, ylo, yhi;
 } canopy_entry_t;
 
+/* Its entries sorted by xlo once binned (patch_make). */
 typedef struct canopy_strip_t {
     canopy_entry_t *e;
     int count, cap;
-    float xlo, xhi; /* over its entries */
+    float xlo, xhi, span; /* over its entries; span: the widest xhi - xlo */
 } canopy_strip_t;
 
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
@@ -62,10 +68,31 @@ static bool strip_add(canopy_strip_t *s, uint32_t tri, float zshift, const canop
         s->e = e;
         s->cap = cap;
     }
-    s->e[s->count++] = (canopy_entry_t){tri, zshift};
+    s->e[s->count++] = (canopy_entry_t){tri, zshift, t->xlo, t->xhi, t->ylo, t->yhi};
     s->xlo = s->count == 1 ? t->xlo : fminf(s->xlo, t->xlo);
     s->xhi = s->count == 1 ? t->xhi : fmaxf(s->xhi, t->xhi);
+    s->span = fmaxf(s->span, t->xhi - t->xlo);
     return true;
+}
+
+static int entry_order(const void *a, const void *b)
+{
+    const canopy_entry_t *x = a, *y = b;
+    if (x->xlo != y->xlo) return x->xlo < y->xlo ? -1 : 1;
+    if (x->tri != y->tri) return x->tri < y->tri ? -1 : 1;
+    return (x->zshift > y->zshift) - (x->zshift < y->zshift);
+}
+
+/* The first entry of s whose xlo is at least x (s sorted). */
+static int strip_first(const canopy_strip_t *s, float x)
+{
+    int lo = 0, hi = s->count;
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (s->e[mid].xlo < x) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo;
 }
 
 /* Bins triangle i into the strips its z range covers, in the patch and in
@@ -149,8 +176,8 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t strea
             static const int corner[2][3][2] = {{{0, 0}, {0, 1}, {1, 0}}, {{0, 1}, {1, 1}, {1, 0}}};
             for (int k = 0; k < 2; k++) {
                 canopy_tri_t *t = &tris[(size_t)n * (size_t)per + (size_t)(2 * i + k)];
-                t->xlo = INFINITY;
-                t->xhi = -INFINITY;
+                t->xlo = t->ylo = INFINITY;
+                t->xhi = t->yhi = -INFINITY;
                 for (int c = 0; c < 3; c++) {
                     int row = i + corner[k][c][0], side = corner[k][c][1];
                     memcpy(t->p[c], p[row][side], sizeof t->p[c]);
@@ -158,6 +185,8 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t strea
                     t->v[c] = (float)row / (float)segs;
                     t->xlo = fminf(t->xlo, t->p[c][0]);
                     t->xhi = fmaxf(t->xhi, t->p[c][0]);
+                    t->ylo = fminf(t->ylo, t->p[c][1]);
+                    t->yhi = fmaxf(t->yhi, t->p[c][1]);
                 }
             }
         }
@@ -176,57 +205,112 @@ typedef struct canopy_acc_t {
     double sun[BLADE_CANOPY_SUNS][BLADE_CANOPY_AZIMUTHS][2];
 } canopy_acc_t;
 
+/* The cut levels a ray keeps a hit of: the cuts, then the whole column. */
+enum { CANOPY_LEVELS = BLADE_CANOPY_CUTS + 1 };
+
 /* Adds a met point of blade parameter v and normal n (unit, flipped to the
- * viewer, in the rays' frame). */
-static void accumulate(canopy_acc_t *a, float v, const float n[3], const canopy_suns_t *suns)
+ * viewer, in the rays' frame) to acc[0 .. count). */
+static void accumulate(canopy_acc_t *acc, int count, float v, const float n[3], const canopy_suns_t *suns)
 {
+    canopy_acc_t one;
     double ao = 0.45 + 0.55 * v, m[4] = {ao, -n[0] * ao, n[1] * ao, n[2] * ao};
     for (int c = 0; c < 4; c++) {
-        a->ao[c] += m[c];
-        a->v_ao[c] += v * m[c];
+        one.ao[c] = m[c];
+        one.v_ao[c] = v * m[c];
     }
     for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
         for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
             const float *l = (*suns)[k][j];
-            double d = fmax(n[0] * l[0] + n[1] * l[1] + n[2] * l[2], 0.0);
-            a->sun[k][j][0] += d;
-            a->sun[k][j][1] += v * d;
+            double d = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+            d = d > 0.0 ? d : 0.0;
+            one.sun[k][j][0] = d;
+            one.sun[k][j][1] = v * d;
         }
+    enum { N = sizeof(canopy_acc_t) / sizeof(double) };
+    const double *src = (const double *)&one;
+    for (int a = 0; a < count; a++) {
+        double *dst = (double *)&acc[a];
+        for (int k = 0; k < N; k++) dst[k] += src[k];
+    }
 }
 
+/* The nearest hit of one cut level: t along the ray, its triangle and
+ * barycentrics. */
+typedef struct canopy_hit_t {
+    float t, b1, b2;
+    const canopy_tri_t *tri;
+} canopy_hit_t;
+
 /* The first surface ray (o, dir) meets in strip s between the copies its x
- * span [x0, x1] crosses, shaded into acc; true on a hit. */
-static bool cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch, const float o[3],
-                 const float dir[3], float x0, float x1, const canopy_suns_t *suns, canopy_acc_t *acc)
+ * span [x0, x1] crosses, past t_cut[l] for every level l (ascending: the
+ * cuts from the top down), shaded into acc[l]; hits[l] counts them. */
+static void cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch, const float o[3],
+                 const float dir[3], float x0, float x1, const float t_cut[CANOPY_LEVELS], const canopy_suns_t *suns,
+                 canopy_acc_t acc[CANOPY_LEVELS], int hits[CANOPY_LEVELS])
 {
-    if (s->count == 0) return false;
-    int k0 = (int)ceilf((x0 - s->xhi) / patch), k1 = (int)floorf((x1 - s->xlo) / patch);
-    float best = INFINITY, bb1 = 0.0f, bb2 = 0.0f;
-    const canopy_tri_t *hit = NULL;
-    for (int k = k0; k <= k1; k++) {
+    if (s->count == 0) return;
+    canopy_hit_t best[CANOPY_LEVELS];
+    for (int l = 0; l < CANOPY_LEVELS; l++) best[l] = (canopy_hit_t){INFINITY, 0.0f, 0.0f, NULL};
+    /* Levels settle from the top down (a hit below a lower cut is one below
+     * a higher cut): open is the first level not settled. */
+    int open = 0, k = (int)ceilf((x0 - s->xhi) / patch), k1 = (int)floorf((x1 - s->xlo) / patch);
+    float from = x0, slope = dir[1] / dir[0]; /* the ray's height o[1] + (x - o[0]) slope */
+    while (k <= k1) {
         float sx = (float)k * patch;
-        for (int i = 0; i < s->count; i++) {
-            const canopy_tri_t *t = &tris[s->e[i].tri];
-            if (t->xhi + sx < x0 || t->xlo + sx > x1) continue;
-            float b1 = 0.0f, b2 = 0.0f, th = intersect(t, sx, s->e[i].zshift, o, dir, &b1, &b2);
-            if (th < best) best = th, bb1 = b1, bb2 = b2, hit = t;
+        for (int i = strip_first(s, from - sx - s->span); i < s->count; i++) {
+            const canopy_entry_t *en = &s->e[i];
+            float lo = en->xlo + sx, hi = en->xhi + sx;
+            if (lo > x1) break;
+            /* before the span, or the ray above or below the triangle all along its x */
+            if (hi < from || o[1] + (hi - o[0]) * slope > en->yhi + 1e-5f ||
+                o[1] + (lo - o[0]) * slope < en->ylo - 1e-5f)
+                continue;
+            const canopy_tri_t *t = &tris[en->tri];
+            float b1 = 0.0f, b2 = 0.0f, th = intersect(t, sx, en->zshift, o, dir, &b1, &b2);
+            for (int l = open; l < CANOPY_LEVELS && th >= t_cut[l]; l++)
+                if (th < best[l].t) best[l] = (canopy_hit_t){th, b1, b2, t};
         }
         /* Copies further along x begin at s->xlo + (k + 1) patch. */
-        if (hit && o[0] + best * dir[0] < s->xlo + (float)(k + 1) * patch) break;
+        float next = s->xlo + (float)(k + 1) * patch;
+        while (open < CANOPY_LEVELS && best[open].tri && o[0] + best[open].t * dir[0] < next) open++;
+        if (open == CANOPY_LEVELS) break;
+        from = fmaxf(x0, o[0] + t_cut[open] * dir[0]);
+        k = k + 1 > (int)ceilf((from - s->xhi) / patch) ? k + 1 : (int)ceilf((from - s->xhi) / patch);
     }
-    if (!hit) return false;
-    float b0 = 1.0f - bb1 - bb2, n[3], len = 0.0f;
-    for (int c = 0; c < 3; c++) {
-        n[c] = b0 * hit->n[0][c] + bb1 * hit->n[1][c] + bb2 * hit->n[2][c];
-        len += n[c] * n[c];
+    for (int l = 0; l < CANOPY_LEVELS;) {
+        const canopy_hit_t *h = &best[l];
+        if (!h->tri) break; /* no hit here, none below */
+        int same = l + 1;
+        while (same < CANOPY_LEVELS && best[same].tri == h->tri && best[same].t == h->t) same++;
+        float b0 = 1.0f - h->b1 - h->b2, n[3], len = 0.0f;
+        for (int c = 0; c < 3; c++) {
+            n[c] = b0 * h->tri->n[0][c] + h->b1 * h->tri->n[1][c] + h->b2 * h->tri->n[2][c];
+            len += n[c] * n[c];
+        }
+        len = sqrtf(len) > 1e-12f ? sqrtf(len) : 1.0f;
+        /* flipped to face the viewer, as blade_shade flips it */
+        float facing = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) > 0.0f ? -1.0f : 1.0f;
+        for (int c = 0; c < 3; c++) n[c] *= facing / len;
+        float v = b0 * h->tri->v[0] + h->b1 * h->tri->v[1] + h->b2 * h->tri->v[2];
+        accumulate(&acc[l], same - l, v, n, suns);
+        for (int a = l; a < same; a++) hits[a]++;
+        l = same;
     }
-    len = sqrtf(len) > 1e-12f ? sqrtf(len) : 1.0f;
-    /* flipped to face the viewer, as blade_shade flips it */
-    float facing = (n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2]) > 0.0f ? -1.0f : 1.0f;
-    for (int c = 0; c < 3; c++) n[c] *= facing / len;
-    accumulate(acc, b0 * hit->v[0] + bb1 * hit->v[1] + bb2 * hit->v[2], n, suns);
-    return true;
 }
+
+/* Row r of c at cut level l (blade_canopy_at_cut's levels less level 0):
+ * the cuts from the lowest, then the whole column. */
+static blade_canopy_row_t *level_row(const blade_canopy_t *c, int r, int l)
+{
+    return (blade_canopy_row_t *)(l < BLADE_CANOPY_CUTS ? &c->below[r][l] : &c->row[r]);
+}
+
+/* A patch of blades cut into triangles and binned into strips. */
+typedef struct canopy_patch_t {
+    canopy_tri_t *tris;
+    canopy_strip_t strips[CANOPY_STRIPS];
+    float top;
+} canopy_patch_t;
 
 /* Rows [begin, end) of the table (core_parallel_for): each row casts its
  * rays from a random stream of its own (seed, row), so the table does not
@@ -234,9 +318,8 @@ static bool cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch,
 typedef struct canopy_rows_t {
     const blade_canopy_desc_t *d;
     blade_canopy_t *out;
-    const canopy_strip_t *strips;
-    const canopy_tri_t *tris;
-    float top;
+    const canopy_patch_t *patch;
+    float top; /* the table's: the cuts' heights are fractions of it */
     const canopy_suns_t *suns;
     int side, rays; /* the patch's rays, side x side stratified */
     uint64_t stream;
@@ -252,8 +335,13 @@ static void canopy_rows(void *user, int begin, int end)
         core_rng_seed(&rng, d->seed, 0xca91u + job->stream + (uint64_t)r);
         float e = fmaxf((float)r / (float)(d->rows - 1) * 1.5707963f, 0.0174533f);
         float dir[3] = {cosf(e), -sinf(e), 0.0f}, h = job->top + 0.01f, along = h / sinf(e);
-        canopy_acc_t acc = {0};
-        int hits = 0, rays = 0;
+        /* cast()'s levels: the whole column, then the cuts from the top down */
+        float t_cut[CANOPY_LEVELS] = {0.0f};
+        for (int l = 1; l < CANOPY_LEVELS; l++)
+            t_cut[l] = (h - ldexpf(job->top, -l)) / sinf(e);
+        canopy_acc_t acc[CANOPY_LEVELS];
+        memset(acc, 0, sizeof acc);
+        int hits[CANOPY_LEVELS] = {0}, rays = 0;
         for (int j = 0; j < side; j++)
             for (int i = 0; i < side && rays < job->rays; i++, rays++) {
                 /* stratified ground points of the patch */
@@ -262,46 +350,45 @@ static void canopy_rows(void *user, int begin, int end)
                 float o[3] = {gx - dir[0] * along, h, gz};
                 int s = (int)(gz / d->patch * CANOPY_STRIPS);
                 s = s < CANOPY_STRIPS ? s : CANOPY_STRIPS - 1;
-                hits += cast(&job->strips[s], job->tris, d->patch, o, dir, o[0], gx, job->suns, &acc);
+                cast(&job->patch->strips[s], job->patch->tris, d->patch, o, dir, o[0], gx, t_cut, job->suns, acc,
+                     hits);
             }
-        double inv = hits ? 1.0 / hits : 0.0;
-        blade_canopy_row_t *row = &job->out->row[r];
         job->out->elevation[r] = e;
-        row->cover = (float)hits / (float)rays;
-        for (int c = 0; c < 4; c++) {
-            row->ao[c] = (float)(acc.ao[c] * inv);
-            row->v_ao[c] = (float)(acc.v_ao[c] * inv);
-        }
-        for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
-            for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
-                row->sun[k][j][0] = (float)(acc.sun[k][j][0] * inv);
-                row->sun[k][j][1] = (float)(acc.sun[k][j][1] * inv);
+        for (int l = 0; l < CANOPY_LEVELS; l++) {
+            double inv = hits[l] ? 1.0 / hits[l] : 0.0;
+            blade_canopy_row_t *row = level_row(job->out, r, l ? BLADE_CANOPY_CUTS - l : BLADE_CANOPY_CUTS);
+            row->cover = (float)hits[l] / (float)rays;
+            for (int c = 0; c < 4; c++) {
+                row->ao[c] = (float)(acc[l].ao[c] * inv);
+                row->v_ao[c] = (float)(acc[l].v_ao[c] * inv);
             }
+            for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+                for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++) {
+                    row->sun[k][j][0] = (float)(acc[l].sun[k][j][0] * inv);
+                    row->sun[k][j][1] = (float)(acc[l].sun[k][j][1] * inv);
+                }
+        }
     }
 }
 
-/* One patch of blades (random streams offset by `stream`) cast into
- * out's rows, its share of the rays; *blades: its blades. False: out of
- * memory. */
-static bool canopy_patch(const blade_canopy_desc_t *d, const canopy_suns_t *suns, uint64_t stream,
-                         blade_canopy_t *out, int *blades)
+/* One patch of blades (random streams offset by `stream`), cut and
+ * binned; *blades: its blades. False: out of memory. */
+static bool patch_make(const blade_canopy_desc_t *d, uint64_t stream, canopy_patch_t *p, int *blades)
 {
     int ntri = 0;
-    float top = 0.0f;
-    canopy_tri_t *tris = make_triangles(d, stream, blades, &ntri, &top);
-    canopy_strip_t strips[CANOPY_STRIPS] = {{0}};
-    bool ok = tris != NULL;
-    for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(strips, &tris[i], (uint32_t)i, d->patch);
-    if (ok) {
-        int rays = (d->rays + d->patches - 1) / d->patches;
-        canopy_rows_t job = {.d = d, .out = out, .strips = strips, .tris = tris, .top = top,
-                             .suns = suns, .side = (int)ceilf(sqrtf((float)rays)), .rays = rays,
-                             .stream = stream};
-        core_parallel_for(d->rows, canopy_rows, &job);
-    }
-    for (int s = 0; s < CANOPY_STRIPS; s++) free(strips[s].e);
-    free(tris);
+    memset(p, 0, sizeof *p);
+    p->tris = make_triangles(d, stream, blades, &ntri, &p->top);
+    bool ok = p->tris != NULL;
+    for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(p->strips, &p->tris[i], (uint32_t)i, d->patch);
+    for (int k = 0; ok && k < CANOPY_STRIPS; k++)
+        qsort(p->strips[k].e, (size_t)p->strips[k].count, sizeof *p->strips[k].e, entry_order);
     return ok;
+}
+
+static void patch_free(canopy_patch_t *p)
+{
+    for (int s = 0; s < CANOPY_STRIPS; s++) free(p->strips[s].e);
+    free(p->tris);
 }
 
 bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
@@ -338,34 +425,55 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
             suns[k][j][1] = (float)sin(el);
             suns[k][j][2] = (float)(cos(el) * sin(phi));
         }
-    /* Per row, the hits of every patch pooled: the cover is the patches'
-     * mean, each mean over the met points their hit-weighted mean. */
+    /* Every patch first: the cuts are fractions of the tallest blade of all. */
     enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
     static_assert(offsetof(blade_canopy_row_t, cover) == 0, "the cover leads the row");
-    double sum[BLADE_CANOPY_MAX_ROWS][N] = {{0}};
+    canopy_patch_t *patches = calloc((size_t)d.patches, sizeof *patches);
+    blade_canopy_t *one = calloc(1, sizeof *one);
+    double(*sum)[CANOPY_LEVELS][N] = calloc(BLADE_CANOPY_MAX_ROWS, sizeof *sum);
+    bool ok = patches && one && sum;
     int blades = 0;
-    for (int p = 0; p < d.patches; p++) {
-        blade_canopy_t one;
-        if (!canopy_patch(&d, (const canopy_suns_t *)&suns, (uint64_t)p << 16, &one, &blades)) {
-            core_log_error("blade_canopy_make: out of memory");
-            return false;
-        }
-        for (int r = 0; r < d.rows; r++) {
-            float f[N];
-            memcpy(f, &one.row[r], sizeof f);
-            sum[r][0] += f[0];
-            for (int k = 1; k < N; k++) sum[r][k] += (double)f[0] * f[k];
-            out->elevation[r] = one.elevation[r];
-        }
+    float top = 0.0f;
+    for (int p = 0; ok && p < d.patches; p++) {
+        ok = patch_make(&d, (uint64_t)p << 16, &patches[p], &blades);
+        top = fmaxf(top, patches[p].top);
     }
-    for (int r = 0; r < d.rows; r++) {
-        float f[N];
-        f[0] = (float)(sum[r][0] / d.patches);
-        for (int k = 1; k < N; k++) f[k] = sum[r][0] > 0.0 ? (float)(sum[r][k] / sum[r][0]) : 0.0f;
-        memcpy(&out->row[r], f, sizeof f);
+    /* Per row and level, the hits of every patch pooled: the cover is the
+     * patches' mean, each mean over the met points their hit-weighted mean. */
+    for (int p = 0; ok && p < d.patches; p++) {
+        int rays = (d.rays + d.patches - 1) / d.patches;
+        canopy_rows_t job = {.d = &d, .out = one, .patch = &patches[p], .top = top,
+                             .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)rays)),
+                             .rays = rays, .stream = (uint64_t)p << 16};
+        core_parallel_for(d.rows, canopy_rows, &job);
+        for (int r = 0; r < d.rows; r++)
+            for (int l = 0; l < CANOPY_LEVELS; l++) {
+                float f[N];
+                memcpy(f, level_row(one, r, l), sizeof f);
+                sum[r][l][0] += f[0];
+                for (int k = 1; k < N; k++) sum[r][l][k] += (double)f[0] * f[k];
+            }
+        memcpy(out->elevation, one->elevation, sizeof out->elevation);
+    }
+    for (int r = 0; ok && r < d.rows; r++)
+        for (int l = 0; l < CANOPY_LEVELS; l++) {
+            float f[N];
+            f[0] = (float)(sum[r][l][0] / d.patches);
+            for (int k = 1; k < N; k++) f[k] = sum[r][l][0] > 0.0 ? (float)(sum[r][l][k] / sum[r][l][0]) : 0.0f;
+            memcpy(level_row(out, r, l), f, sizeof f);
+        }
+    for (int p = 0; patches && p < d.patches; p++) patch_free(&patches[p]);
+    free(patches);
+    free(one);
+    free(sum);
+    if (!ok) {
+        core_log_error("blade_canopy_make: out of memory");
+        memset(out, 0, sizeof *out);
+        return false;
     }
     out->rows = d.rows;
     out->sun0 = (float)sun0;
+    out->top = top;
     out->blades = blades;
     return true;
 }
@@ -381,19 +489,51 @@ static int canopy_node(float x, int n, float *f)
     return i;
 }
 
+/* a + f (b - a), float by float (the row is floats only). */
+static blade_canopy_row_t row_mix(const blade_canopy_row_t *a, const blade_canopy_row_t *b, float f)
+{
+    enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
+    float x[N], y[N];
+    memcpy(x, a, sizeof x);
+    memcpy(y, b, sizeof y);
+    for (int k = 0; k < N; k++) x[k] += f * (y[k] - x[k]);
+    blade_canopy_row_t out;
+    memcpy(&out, x, sizeof out);
+    return out;
+}
+
+/* Row r at blade_canopy_at_cut's level l (0: the cut at 0). */
+static blade_canopy_row_t level_at(const blade_canopy_t *c, int r, int l)
+{
+    blade_canopy_row_t w = *level_row(c, r, l > 0 ? l - 1 : 0);
+    if (l == 0) w.cover = 0.0f;
+    return w;
+}
+
+/* blade_canopy_at_cut's level q of a cut (0: the whole column). */
+static float canopy_cut_level(float cut, float top)
+{
+    float h1 = ldexpf(fmaxf(top, 1e-6f), -BLADE_CANOPY_CUTS);
+    if (cut <= 0.0f) return (float)(BLADE_CANOPY_LEVELS - 1);
+    return cut < h1 ? cut / h1 : 1.0f + log2f(cut / h1);
+}
+
+blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, float elevation, float cut)
+{
+    float f, g;
+    int i = canopy_node(elevation / 1.5707963f * (float)(c->rows - 1), c->rows, &f);
+    int l = canopy_node(canopy_cut_level(cut, c->top), BLADE_CANOPY_LEVELS, &g);
+    blade_canopy_row_t a = level_at(c, i, l), b = level_at(c, i + 1, l);
+    blade_canopy_row_t lo = row_mix(&a, &b, f);
+    a = level_at(c, i, l + 1);
+    b = level_at(c, i + 1, l + 1);
+    blade_canopy_row_t hi = row_mix(&a, &b, f);
+    return row_mix(&lo, &hi, g);
+}
+
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation)
 {
-    float f;
-    int i = canopy_node(elevation / 1.5707963f * (float)(c->rows - 1), c->rows, &f);
-    /* the row is floats only: blend them one by one */
-    enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
-    float a[N], b[N], m[N];
-    memcpy(a, &c->row[i], sizeof a);
-    memcpy(b, &c->row[i + 1], sizeof b);
-    for (int k = 0; k < N; k++) m[k] = a[k] + f * (b[k] - a[k]);
-    blade_canopy_row_t out;
-    memcpy(&out, m, sizeof out);
-    return out;
+    return blade_canopy_at_cut(c, elevation, 0.0f);
 }
 
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
@@ -401,16 +541,18 @@ void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
     memset(out, 0, sizeof *out);
     out->rows = c->rows;
     out->sun0 = c->sun0;
-    for (int r = 0; r < c->rows; r++) {
-        const blade_canopy_row_t *w = &c->row[r];
-        float(*t)[4] = out->texel[r];
-        t[0][0] = w->cover;
-        memcpy(t[1], w->ao, sizeof w->ao);
-        memcpy(t[2], w->v_ao, sizeof w->v_ao);
-        for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
-            for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
-                memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w->sun[k][j], sizeof w->sun[k][j]);
-    }
+    out->top = c->top;
+    for (int l = 0; l < BLADE_CANOPY_LEVELS; l++)
+        for (int r = 0; r < c->rows; r++) {
+            blade_canopy_row_t w = level_at(c, r, l);
+            float(*t)[4] = out->texel[r + l * c->rows];
+            t[0][0] = w.cover;
+            memcpy(t[1], w.ao, sizeof w.ao);
+            memcpy(t[2], w.v_ao, sizeof w.v_ao);
+            for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+                for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
+                    memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w.sun[k][j], sizeof w.sun[k][j]);
+        }
 }
 
 void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
@@ -418,7 +560,7 @@ void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, c
 {
     static const float sun_color[3] = BLADE_CANOPY_SUN_COLOR, down[3] = BLADE_CANOPY_AMBIENT_DOWN,
                        up[3] = BLADE_CANOPY_AMBIENT_UP;
-    blade_canopy_row_t r = blade_canopy_at(c, v->elevation);
+    blade_canopy_row_t r = blade_canopy_at_cut(c, v->elevation, v->cut);
     float h, g;
     int k = canopy_node((v->sun_elevation - c->sun0) / BLADE_CANOPY_SUN_STEP, BLADE_CANOPY_SUNS, &h);
     int j = canopy_node(v->azimuth / 3.1415927f * (float)(BLADE_CANOPY_AZIMUTHS - 1), BLADE_CANOPY_AZIMUTHS, &g);
@@ -454,4 +596,20 @@ float blade_canopy_under(float cover, float e, float kept)
 {
     float full = blade_canopy_thinned(cover, e), left = blade_canopy_thinned(cover, e * kept);
     return fmaxf(full - left, 0.0f) / fmaxf(1.0f - left, 1e-4f);
+}
+
+void blade_canopy_overhang(const float full[4], const float cut[4], float kept, float out[4])
+{
+    /* transmittance of the cut column, above the cut, and of the blades
+     * above it that are not drawn */
+    float t_cut = 1.0f - cut[3], t_above = fminf(fmaxf(1.0f - full[3], 0.0f) / fmaxf(t_cut, 1e-6f), 1.0f);
+    float left = fminf(fmaxf(1.0f - kept, 0.0f), 1.0f), t_left = powf(fmaxf(t_above, 1e-6f), left);
+    /* the not drawn's share of the hits above the cut */
+    float share = t_above < 1.0f - 1e-6f ? (1.0f - t_left) / (1.0f - t_above) : left;
+    out[3] = 1.0f - t_left * t_cut;
+    for (int m = 0; m < 3; m++) {
+        float above = full[3] * full[m] - t_above * cut[3] * cut[m]; /* premultiplied */
+        float p = fmaxf(share * above + t_left * cut[3] * cut[m], 0.0f);
+        out[m] = out[3] > 1e-6f ? p / out[3] : full[m];
+    }
 }

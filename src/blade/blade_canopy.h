@@ -16,6 +16,10 @@
  * normal, so on a slope the canopy is the flat one rotated), from which
  * the mean colour is exact on any slope and for any sun; thinned by the
  * extent map to a fraction E, the ground shows through as (1 - cover)^E.
+ * The same rays also give the rows cut at BLADE_CANOPY_CUTS heights: the
+ * cover and means of each ray's first hit below the cut, the ray reaching
+ * it unobstructed; just past the hybrid's switch the drawn blades' overhang
+ * takes the part above (blade_canopy_overhang).
  * The table's terms and the colour formula:
  * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
@@ -33,6 +37,10 @@
 #define BLADE_CANOPY_SEGMENTS 8
 #define BLADE_CANOPY_MAX_SEGMENTS 64
 #define BLADE_CANOPY_PATCHES 4
+/* Cut k at top 2^(k - BLADE_CANOPY_CUTS), halving down from top / 2: at a
+ * low view the cover below a cut rises within centimetres (at 7.5 degrees
+ * to 0.5 by top / 32). */
+#define BLADE_CANOPY_CUTS 5
 
 /* Zero means default. */
 #define BLADE_CANOPY_PATCH_BLADES 2048.0f
@@ -71,7 +79,10 @@ typedef struct blade_canopy_t {
     float elevation[BLADE_CANOPY_MAX_ROWS]; /* radians, the rays' (row 0: 1 degree) */
     float sun0; /* radians, the first sun elevation (<= -pi / 2); sun elevation k is
                    sun0 + k BLADE_CANOPY_SUN_STEP, the desc's sun one of them */
-    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS];
+    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS]; /* the whole column */
+    /* the first hits below cut k, at height top 2^(k - BLADE_CANOPY_CUTS) */
+    blade_canopy_row_t below[BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_CUTS];
+    float top; /* m, the tallest blade point of the patches */
     int blades; /* in a patch */
 } blade_canopy_t;
 
@@ -82,15 +93,25 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc);
  * rows spaced pi / (2 (rows - 1)) apart: the lookup canopy.glsl does. */
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation);
 
+/* The same of the hits below height `cut` (m over the ground; 0: no cut,
+ * the whole column), between cut levels: level 0 a cut at 0 (cover 0, the
+ * means of level 1), level k in 1..BLADE_CANOPY_CUTS the cut at h_k = top
+ * 2^(k - 1 - BLADE_CANOPY_CUTS), the last the whole column (at the top and
+ * above); at level q = cut / h_1 below h_1, 1 + log2(cut / h_1) above,
+ * linear in q between levels. */
+blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, float elevation, float cut);
+
 /* The table as canopy.glsl's texture takes it (RGBA32F, texelFetch):
- * texel (x, row) is (cover, 0, 0, 0) at x 0, the row's ao at 1, v_ao at 2,
- * and (E[D], E[v D], 0, 0) of sun elevation k and azimuth j at
+ * texel (x, row + level rows), the row at cut level `level`
+ * (blade_canopy_at_cut's), is (cover, 0, 0, 0) at x 0, the row's ao at 1,
+ * v_ao at 2, and (E[D], E[v D], 0, 0) of sun elevation k and azimuth j at
  * 3 + k BLADE_CANOPY_AZIMUTHS + j. */
 #define BLADE_CANOPY_TEXELS (3 + BLADE_CANOPY_SUNS * BLADE_CANOPY_AZIMUTHS)
+#define BLADE_CANOPY_LEVELS (BLADE_CANOPY_CUTS + 2)
 typedef struct blade_canopy_texture_t {
-    int rows;
-    float sun0;
-    float texel[BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
+    int rows; /* texels high: rows BLADE_CANOPY_LEVELS */
+    float sun0, top;
+    float texel[BLADE_CANOPY_LEVELS * BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
 } blade_canopy_texture_t;
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out);
 
@@ -103,10 +124,13 @@ void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out);
 /* Where a canopy point is seen from and lit from, in its ground's frame
  * (blade_canopy_row_t): the view's elevation over the ground, the sun's
  * elevation over it (radians, clamped to the table's) and azimuth in
- * [0, pi] from t, and world up (t.y, g.y, s.y). Flat ground: up (0, 1, 0). */
+ * [0, pi] from t, and world up (t.y, g.y, s.y). Flat ground: up (0, 1, 0).
+ * cut: only the hits below this height count (m, blade_canopy_at_cut;
+ * 0: the whole column). */
 typedef struct blade_canopy_view_t {
     float elevation, sun_elevation, azimuth;
     float up[3];
+    float cut;
 } blade_canopy_view_t;
 
 /* The canopy's mean colour (unfogged) and cover seen and lit as v, blades
@@ -115,6 +139,17 @@ typedef struct blade_canopy_view_t {
  * its azimuth). */
 void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
                         const float tip[3], float rgb[3], float *cover);
+
+/* The canopy that stands for the blades past the hybrid's switch under
+ * the overhang of those drawn before it, thinned to `kept` of the field
+ * (blade_lod_coverage; 1: all drawn): full and cut are (colour, cover) of
+ * the whole column and of the column cut at the overhang's height
+ * (blade_canopy_color). The cut's hits, and of the hits above the cut
+ * (transmittance (1 - full) / (1 - cut)) the share of the blades not
+ * drawn, 1 - kept, in front: out = (colour, cover). kept 1: the cut; cut
+ * cover 0: the whole column thinned to 1 - kept (blade_canopy_under's
+ * cover with e 1). */
+void blade_canopy_overhang(const float full[4], const float cut[4], float kept, float out[4]);
 
 /* Cover of the canopy thinned to a fraction e in [0, 1] of its density:
  * 1 - max(1 - cover, 1e-6)^e (a gap of 0 would make e = 0 undefined in

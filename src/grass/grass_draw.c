@@ -200,10 +200,11 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
     bool ring = (f.tiles || world) && grass_pass_has(passes, n, GRASS_PASS_BILLBOARDS);
     f.far_lo = !ring ? f.fade_lo : gr->scene->grass.canopy_distance - GRASS_CANOPY_FADE;
     f.far_hi = !ring ? f.fade_hi : gr->scene->grass.canopy_distance + GRASS_CANOPY_FADE;
-    ground_set_canopy_fade(gr->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f);
+    ground_set_canopy_fade(gr->ground, f.tiles || ring ? f.far_lo : 0.0f, f.tiles || ring ? f.far_hi : 0.0f,
+                           f.tiles && !ring);
     frame_lod(gr, &f);
     set_ground_lod(gr, &f, ring, grass_pass_has(passes, n, GRASS_PASS_BLADES) && !gr->reference);
-    if (gr->canopy_all) ground_set_canopy_fade(gr->ground, 0.0f, 1e-3f);
+    if (gr->canopy_all) ground_set_canopy_fade(gr->ground, 0.0f, 1e-3f, false);
     unsigned want = parts ? parts : GRASS_PART_GROUND | GRASS_PART_GRASS;
     for (int i = 0; i < n; i++)
         if (want & (passes[i].kind == GRASS_PASS_GROUND ? GRASS_PART_GROUND : GRASS_PART_GRASS))

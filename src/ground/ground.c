@@ -25,15 +25,17 @@ struct ground_t {
     terrain_clipmap_t clipmap;
     gfx_program_t prog, sky;
     gfx_texture_t noise; /* terrain.frag's value noise lattice (make_noise) */
-    /* Ground canopy: its table (blade_canopy_pack's texture, its rows and
-     * first sun elevation), the extent map that thins it (borrowed), and
-     * this frame's fade (start, end; end 0: none). */
+    /* Ground canopy: its table (blade_canopy_pack's texture, its rows,
+     * first sun elevation and top), the extent map that thins it
+     * (borrowed), and this frame's fade (start, end; end 0: none) and
+     * whether it continues the tiles' blades under their overhang. */
     gfx_texture_t canopy;
     int canopy_rows;
-    float canopy_sun0;
+    float canopy_sun0, canopy_top;
     GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
+    bool canopy_overhang;
     /* Grass-shaded ground under thinned blades (ground_set_lod): on, the
      * rule, its frame values and where it ends. */
     bool lod_on;
@@ -147,12 +149,14 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
     t->canopy_rows = 0;
     if (tex) {
         blade_canopy_pack(c, tex);
-        t->canopy = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS, .h = tex->rows,
+        t->canopy = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS,
+                                                           .h = tex->rows * BLADE_CANOPY_LEVELS,
                                                            .format = GL_RGBA32F, .filter = GL_NEAREST,
                                                            .data = tex->texel, .upload_type = GL_FLOAT,
                                                            .label = "terrain.canopy.table"});
         t->canopy_rows = t->canopy.id ? tex->rows : 0;
         t->canopy_sun0 = tex->sun0;
+        t->canopy_top = tex->top;
         free(tex);
     } else {
         core_log_error("ground: no memory for the canopy table; the ground is drawn without it");
@@ -164,10 +168,11 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
 
 bool ground_has_canopy(const ground_t *t) { return t->canopy_rows > 1; }
 
-void ground_set_canopy_fade(ground_t *t, float start, float end)
+void ground_set_canopy_fade(ground_t *t, float start, float end, bool overhang)
 {
     t->canopy_fade[0] = start;
     t->canopy_fade[1] = end;
+    t->canopy_overhang = overhang;
 }
 
 void ground_set_gi(ground_t *t, gi_bind_t gi) { t->gi = gi; }
@@ -234,10 +239,15 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
                 canopy ? t->canopy_fade[1] : 0.0f);
     glUniform1i(gfx_uniform(t->prog, "u_canopy_on"), canopy);
+    bool overhang = canopy && t->canopy_overhang && t->canopy_fade[1] > 0.0f;
+    glUniform2f(gfx_uniform(t->prog, "u_canopy_switch"),
+                overhang ? 0.5f * (t->canopy_fade[0] + t->canopy_fade[1]) : 0.0f,
+                overhang ? 0.5f * (t->canopy_fade[1] - t->canopy_fade[0]) : 0.0f);
     if (canopy) {
         static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
         glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), t->canopy_rows);
         glUniform1f(gfx_uniform(t->prog, "u_canopy_sun0"), t->canopy_sun0);
+        glUniform1f(gfx_uniform(t->prog, "u_canopy_top"), t->canopy_top);
         glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);

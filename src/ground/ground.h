@@ -35,8 +35,11 @@ void ground_set_canopy(ground_t *g, const blade_canopy_t *c, GLuint extent, cons
 /* A canopy table was set (more than one row). */
 bool ground_has_canopy(const ground_t *g);
 /* This frame's canopy band: none nearer than start, fully shaded beyond
- * end (m from the camera); end 0: no canopy drawn. */
-void ground_set_canopy_fade(ground_t *g, float start, float end);
+ * end (m from the camera); end 0: no canopy drawn. overhang: the band is
+ * the tiles' switch and the canopy continues their blades, standing for
+ * the part of the blade column below the overhang of the last drawn ones
+ * (common/canopy.glsl's cut; else the whole column, faded in). */
+void ground_set_canopy_fade(ground_t *g, float start, float end, bool overhang);
 /* Grass-shaded ground under thinned blades (blade_canopy_under with the
  * coverage blade_lod_coverage keeps): from this frame on, nearer than far
  * (m; beyond, only the canopy band of ground_set_canopy_fade), blades of
