@@ -93,12 +93,15 @@ struct canopy_at_t {
 };
 
 /* Texel x of the table at a, bilinear: between the rows, then the levels
- * (blade_canopy_at_cut's order). */
+ * (blade_canopy_at_cut's order). On level l + 1 (the whole column, which
+ * most of the ground reads) the level below is not fetched: its weight is
+ * 0, and mix(lo, hi, 1) is hi. */
 vec4 canopy_texel(int x, canopy_at_t a)
 {
-    int r0 = a.i + a.l * u_canopy_rows, r1 = r0 + u_canopy_rows;
-    vec4 lo = mix(texelFetch(u_canopy_table, ivec2(x, r0), 0), texelFetch(u_canopy_table, ivec2(x, r0 + 1), 0), a.f);
+    int r1 = a.i + (a.l + 1) * u_canopy_rows, r0 = r1 - u_canopy_rows;
     vec4 hi = mix(texelFetch(u_canopy_table, ivec2(x, r1), 0), texelFetch(u_canopy_table, ivec2(x, r1 + 1), 0), a.f);
+    if (a.g >= 1.0) return hi;
+    vec4 lo = mix(texelFetch(u_canopy_table, ivec2(x, r0), 0), texelFetch(u_canopy_table, ivec2(x, r0 + 1), 0), a.f);
     return mix(lo, hi, a.g);
 }
 
