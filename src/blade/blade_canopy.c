@@ -381,7 +381,8 @@ static bool patch_make(const blade_canopy_desc_t *d, uint64_t stream, canopy_pat
     bool ok = p->tris != NULL;
     for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(p->strips, &p->tris[i], (uint32_t)i, d->patch);
     for (int k = 0; ok && k < CANOPY_STRIPS; k++)
-        qsort(p->strips[k].e, (size_t)p->strips[k].count, sizeof *p->strips[k].e, entry_order);
+        if (p->strips[k].count > 1) /* an empty strip has no array */
+            qsort(p->strips[k].e, (size_t)p->strips[k].count, sizeof *p->strips[k].e, entry_order);
     return ok;
 }
 
