@@ -51,8 +51,10 @@
 #                (billboard and blade mode drawn as far, the hybrid at each
 #                canopy distance, both paths; $LARGE_FRAMES frames, default
 #                40; lod.json), the tiles' pull/tess A/B (hw, 200 frames),
-#                and the switch and canopy seams every 30th frame of
-#                meadow_large and meadow.json on both paths
+#                and the switch and canopy seams every 30th frame 30-300
+#                ($SEAM_FRAMES) of meadow_large and meadow.json on both
+#                paths: the canopy seam's colour score, the switch seam's
+#                score and its floor
 #                -> $OUT/large_chart.tgz (bench.csv/json, lod.json, .dat/.gp),
 #                three of the chart's frames
 #   papers       `meadow bench --papers` (blade ablations of the four paper scenes
@@ -265,11 +267,14 @@ large() {
     echo "== tiles $br rc=$?: $(grep -E '^  tiles\.(draw|cull)|^gpu_frame_ms' /tmp/ab-$br/summary.txt | tr -s ' ' | tr '\n' ';')"
   done
   for sc in $L scenes/meadow.json; do for r in hw compute; do
-    for fr in ${SEAM_FRAMES:-30 60 90 120 150 180 210 240}; do
+    for fr in ${SEAM_FRAMES:-30 60 90 120 150 180 210 240 270 300}; do
       timeout -k 5 60 $M --headless --quiet --scene $sc --mode hybrid --raster $r --frames $fr --screenshot-every 100000 \
         --out /tmp/seam > /dev/null 2>&1
-      echo "== seam $sc $r frame $fr: $(grep -E '^(hybrid|canopy) seam' /tmp/seam/summary.txt \
-        | sed -e 's/ (.*score/ score/' -e 's/, Delta E.*//' | tr '\n' ' ')"
+      # the canopy seam's colour score (its coverage term compares unlike
+      # things), the switch seam's score and its floor
+      echo "== seam $sc $r frame $fr: $(grep -A3 -E '^(hybrid|canopy) seam' /tmp/seam/summary.txt | grep -E 'seam|floor' \
+        | sed -e 's/ (blades to the ground canopy[^)]*)//' -e 's/ (last frame against[^)]*)//' \
+              -e 's/ (billboards placed[^)]*)//' -e 's/; coverage step.*//' | tr '\n' ' ')"
     done
   done; done
 }
