@@ -441,8 +441,8 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
     }
     /* Per row and level, the hits of every patch pooled: the cover is the
      * patches' mean, each mean over the met points their hit-weighted mean. */
+    int rays = (d.rays + d.patches - 1) / d.patches; /* the patches share the rays */
     for (int p = 0; ok && p < d.patches; p++) {
-        int rays = (d.rays + d.patches - 1) / d.patches;
         canopy_rows_t job = {.d = &d, .out = one, .patch = &patches[p], .top = top,
                              .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)rays)),
                              .rays = rays, .stream = (uint64_t)p << 16};
@@ -454,8 +454,8 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
                 sum[r][l][0] += f[0];
                 for (int k = 1; k < N; k++) sum[r][l][k] += (double)f[0] * f[k];
             }
-        memcpy(out->elevation, one->elevation, sizeof out->elevation);
     }
+    if (ok) memcpy(out->elevation, one->elevation, sizeof out->elevation); /* every patch's rows are these */
     for (int r = 0; ok && r < d.rows; r++)
         for (int l = 0; l < CANOPY_LEVELS; l++) {
             float f[N];
