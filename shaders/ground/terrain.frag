@@ -66,8 +66,13 @@ void main()
     if (u_canopy_on && u_canopy_switch.x > 0.0) {
         /* the drawn blades thinned as at their roots, to the switch */
         float d = min(grass_distance(v_pos, u_camera), u_canopy_switch.x);
-        vec4 k = canopy_overhang(v_canopy, v_canopy_cut, u_lod_on ? lod_coverage(d, u_lod_ground.x) : 1.0);
-        if (k.w > 0.0) c = mix(c, k.rgb, canopy_thinned(k.w, extent_at(v_pos.xz)));
+        float kept = u_lod_on ? lod_coverage(d, u_lod_ground.x) : 1.0;
+        /* every blade drawn and no cut column: canopy_overhang's cover is
+         * 0 (below 1e-5 for kept within 1e-6 of 1) */
+        if (kept < 1.0 - 1e-6 || v_canopy_cut.w > 0.0) {
+            vec4 k = canopy_overhang(v_canopy, v_canopy_cut, kept);
+            if (k.w > 0.0) c = mix(c, k.rgb, canopy_thinned(k.w, extent_at(v_pos.xz)));
+        }
     } else if (u_canopy_on) {
         float d = grass_distance(v_pos, u_camera);
         float ramp = u_canopy_fade.y > 0.0
