@@ -276,12 +276,25 @@ static int summary_seam(app_t *app, char *buf, size_t size)
          * differs from the bare ground and counts as grass, the blades' gaps
          * do not, so the coverage term compares unlike things; the colour
          * term is the seam. */
-        double colour = e.delta_e / eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd}).colour_scale;
-        return snprintf(buf, size,
-                        "canopy seam at %.1f m (blades to the ground canopy, against the canopy from the camera; "
-                        "band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
-                        "L* %+.3f; coverage step %.4f (score with it %.3f: the canopy counts every pixel as grass)\n",
-                        sd, GRASS_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
+        double scale = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd}).colour_scale;
+        double colour = e.delta_e / scale;
+        int n = snprintf(buf, size,
+                         "canopy seam at %.1f m (blades to the ground canopy, against the canopy from the camera; "
+                         "band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
+                         "L* %+.3f; coverage step %.4f (score with it %.3f: the canopy counts every pixel as grass)\n",
+                         sd, GRASS_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
+        if (n < (int)size)
+            n += snprintf(buf + n, size - (size_t)n,
+                          "  grass L*a*b* near | far: frame (%.2f %.2f %.2f) | (%.2f %.2f %.2f), canopy (%.2f %.2f "
+                          "%.2f) | (%.2f %.2f %.2f); pixels %ld | %ld\n"
+                          "  all pixels (grass and ground): colour score %.3f, Delta E %.3f, Delta L* %+.3f; "
+                          "L* near | far: frame %.2f | %.2f, canopy %.2f | %.2f\n",
+                          e.lab[0][0][0], e.lab[0][0][1], e.lab[0][0][2], e.lab[0][1][0], e.lab[0][1][1],
+                          e.lab[0][1][2], e.lab[1][0][0], e.lab[1][0][1], e.lab[1][0][2], e.lab[1][1][0],
+                          e.lab[1][1][1], e.lab[1][1][2], e.pixels[0][0], e.pixels[0][1],
+                          e.delta_e_all / scale, e.delta_e_all, e.delta_l_all, e.lab_all[0][0][0], e.lab_all[0][1][0], e.lab_all[1][0][0],
+                          e.lab_all[1][1][0]);
+        return n < (int)size ? n : (int)size - 1;
     }
     if (app->last_hud)
         return snprintf(buf, size, "hybrid seam at %.1f m: not measured (HUD, wireframe or overlay over the frame)\n",

@@ -208,26 +208,32 @@ eval_seam_desc_t eval_seam_desc_defaults(const eval_seam_desc_t *d)
 }
 
 /* Window statistics of one frame (near, far): CIELAB of the mean colour of
- * the grass pixels, grass fraction, counted pixels. */
+ * the grass pixels and of all counted pixels, grass fraction, counted
+ * pixels. */
 static bool seam_windows(const eval_seam_frame_t *f, const eval_seam_desc_t *d, const double *lut, double lab[2][3],
-                         double grass[2], long pixels[2])
+                         double lab_all[2][3], double grass[2], long pixels[2])
 {
-    double s = d->switch_distance, rgb[2][3] = {{0}}, g[2] = {0}, n[2] = {0};
+    double s = d->switch_distance, rgb[2][3] = {{0}}, all[2][3] = {{0}}, g[2] = {0}, n[2] = {0};
     size_t count = (size_t)f->img->w * (size_t)f->img->h;
     for (size_t i = 0; i < count; i++) {
         double x = f->dist[i];
         if (f->cls[i] == EVAL_SEAM_SKIP || !(fabs(x - s) > d->fade && fabs(x - s) <= d->fade + d->window)) continue;
         int side = x > s;
         n[side] += 1.0;
-        if (f->cls[i] != EVAL_SEAM_GRASS) continue;
         const uint8_t *p = f->img->px + i * (size_t)f->img->channels;
+        for (int c = 0; c < 3; c++) all[side][c] += lut[p[c]];
+        if (f->cls[i] != EVAL_SEAM_GRASS) continue;
         for (int c = 0; c < 3; c++) rgb[side][c] += lut[p[c]];
         g[side] += 1.0;
     }
     for (int side = 0; side < 2; side++) {
         if (g[side] <= 0.0) return false;
-        for (int c = 0; c < 3; c++) rgb[side][c] /= g[side];
+        for (int c = 0; c < 3; c++) {
+            rgb[side][c] /= g[side];
+            all[side][c] /= n[side];
+        }
         eval_linear_to_lab(rgb[side], lab[side]);
+        eval_linear_to_lab(all[side], lab_all[side]);
         grass[side] = g[side] / n[side];
         pixels[side] = (long)n[side];
     }
@@ -244,13 +250,14 @@ bool eval_image_seam(const eval_seam_frame_t *frame, const eval_seam_frame_t *re
         return false;
     double lut[256];
     for (int v = 0; v < 256; v++) lut[v] = eval_srgb_to_linear(v);
-    bool ok = seam_windows(frame, &d, lut, out->lab[0], out->grass[0], out->pixels[0]);
+    bool ok = seam_windows(frame, &d, lut, out->lab[0], out->lab_all[0], out->grass[0], out->pixels[0]);
     if (ok && ref) {
-        ok = seam_windows(ref, &d, lut, out->lab[1], out->grass[1], out->pixels[1]);
+        ok = seam_windows(ref, &d, lut, out->lab[1], out->lab_all[1], out->grass[1], out->pixels[1]);
     } else if (ok) {
         /* No reference: one that does not change across the band. */
         for (int side = 0; side < 2; side++) {
             memcpy(out->lab[1][side], out->lab[0][0], sizeof out->lab[1][side]);
+            memcpy(out->lab_all[1][side], out->lab_all[0][0], sizeof out->lab_all[1][side]);
             out->grass[1][side] = out->grass[0][0];
         }
     }
@@ -258,13 +265,19 @@ bool eval_image_seam(const eval_seam_frame_t *frame, const eval_seam_frame_t *re
         memset(out, 0, sizeof *out);
         return false;
     }
-    double e2 = 0.0;
+    double e2 = 0.0, a2 = 0.0;
     for (int c = 0; c < 3; c++) {
         double v = (out->lab[0][1][c] - out->lab[0][0][c]) - (out->lab[1][1][c] - out->lab[1][0][c]);
+        double va = (out->lab_all[0][1][c] - out->lab_all[0][0][c]) - (out->lab_all[1][1][c] - out->lab_all[1][0][c]);
         e2 += v * v;
-        if (c == 0) out->delta_l = v;
+        a2 += va * va;
+        if (c == 0) {
+            out->delta_l = v;
+            out->delta_l_all = va;
+        }
     }
     out->delta_e = sqrt(e2);
+    out->delta_e_all = sqrt(a2);
     out->coverage = fabs((out->grass[0][1] - out->grass[0][0]) - (out->grass[1][1] - out->grass[1][0]));
     out->score = fmax(out->delta_e / d.colour_scale, out->coverage / d.coverage_scale);
     return true;

@@ -105,6 +105,10 @@ typedef struct eval_seam_t {
     double delta_l;      /* L* of v (negative: the far side darker than the reference says) */
     double coverage;     /* |grass fraction step - the reference's|, 0..1 */
     double lab[2][2][3]; /* [frame, ref][near, far] grass colour in CIELAB */
+    /* The same v over every counted pixel, grass and ground (the mean the
+     * eye sees, gaps included, as the image error's colour term takes it) */
+    double delta_e_all, delta_l_all;
+    double lab_all[2][2][3]; /* [frame, ref][near, far] mean colour of the counted pixels in CIELAB */
     double grass[2][2];  /* [frame, ref][near, far] grass fractions */
     long pixels[2][2];   /* [frame, ref][near, far] counted pixels */
 } eval_seam_t;
