@@ -8,8 +8,9 @@
  * blades' area below the cut). Also: values in range and finite, cover
  * falling as the view rises, cover growing with density, cover below a cut
  * growing with the cut to the whole column's, the same seed giving the same
- * table, the blades' segments, the lookups, the thinning rule and the
- * overhang rule. */
+ * table, the blades' segments, the lookups, the thinning rule, the
+ * overhang rule and the wind poses (rest pose, weights, the undersides of
+ * blades bent towards the viewer darker). */
 #include "blade/blade_canopy.h"
 #include "blade/blade_ref.h"
 #include "core/core.h"
@@ -155,26 +156,26 @@ int main(void)
     CHECK(worst_cut < 0.05);
     float e7 = 0.13f; /* 7.5 degrees, the seam scenes' */
     blade_canopy_row_t whole = blade_canopy_at(&c, e7);
-    CHECK(blade_canopy_at_cut(&c, e7, c.top).cover == whole.cover);
-    CHECK(blade_canopy_at_cut(&c, e7, 5.0f).cover == whole.cover);
-    CHECK(blade_canopy_at_cut(&c, e7, 1e-6f).cover < 1e-4f);
+    CHECK(blade_canopy_at_cut(&c, 0, e7, c.top).cover == whole.cover);
+    CHECK(blade_canopy_at_cut(&c, 0, e7, 5.0f).cover == whole.cover);
+    CHECK(blade_canopy_at_cut(&c, 0, e7, 1e-6f).cover < 1e-4f);
     float step = ldexpf(c.top, -BLADE_CANOPY_CUTS), prev = 0.0f; /* the lowest cut */
     bool grows = true;
     for (int i = 1; i <= 40; i++) {
-        float cover = blade_canopy_at_cut(&c, e7, (float)i / 40.0f * c.top).cover;
+        float cover = blade_canopy_at_cut(&c, 0, e7, (float)i / 40.0f * c.top).cover;
         grows = grows && cover >= prev;
         prev = cover;
     }
     CHECK(grows);
     printf("7.5 degrees: cover %.3f, below the cuts", whole.cover);
-    for (int k = 0; k < BLADE_CANOPY_CUTS; k++) printf(" %.3f", blade_canopy_at_cut(&c, e7, ldexpf(step, k)).cover);
+    for (int k = 0; k < BLADE_CANOPY_CUTS; k++) printf(" %.3f", blade_canopy_at_cut(&c, 0, e7, ldexpf(step, k)).cover);
     printf("\n");
-    CHECK(blade_canopy_at_cut(&c, e7, step).cover < whole.cover - 0.2f);
+    CHECK(blade_canopy_at_cut(&c, 0, e7, step).cover < whole.cover - 0.2f);
     /* half way between levels: linear below the lowest cut, log2 above */
-    blade_canopy_row_t a = blade_canopy_at_cut(&c, e7, step), b = blade_canopy_at_cut(&c, e7, 2.0f * step);
-    CHECK_NEAR(blade_canopy_at_cut(&c, e7, 0.5f * step).cover, 0.5f * a.cover, 1e-5);
-    CHECK_NEAR(blade_canopy_at_cut(&c, e7, sqrtf(2.0f) * step).cover, 0.5f * (a.cover + b.cover), 1e-5);
-    CHECK_NEAR(blade_canopy_at_cut(&c, e7, sqrtf(2.0f) * step).ao[0], 0.5f * (a.ao[0] + b.ao[0]), 1e-5);
+    blade_canopy_row_t a = blade_canopy_at_cut(&c, 0, e7, step), b = blade_canopy_at_cut(&c, 0, e7, 2.0f * step);
+    CHECK_NEAR(blade_canopy_at_cut(&c, 0, e7, 0.5f * step).cover, 0.5f * a.cover, 1e-5);
+    CHECK_NEAR(blade_canopy_at_cut(&c, 0, e7, sqrtf(2.0f) * step).cover, 0.5f * (a.cover + b.cover), 1e-5);
+    CHECK_NEAR(blade_canopy_at_cut(&c, 0, e7, sqrtf(2.0f) * step).ao[0], 0.5f * (a.ao[0] + b.ao[0]), 1e-5);
 
     CHECK(blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3, .sun = {0.45f, 0.8f, 0.35f}}));
     CHECK(memcmp(&c, &again, sizeof c) == 0);
@@ -247,5 +248,51 @@ int main(void)
                              &(blade_canopy_desc_t){.segments = BLADE_CANOPY_MAX_SEGMENTS + 1, .sun = {0, 1, 0}}));
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.rows = 1, .sun = {0, 1, 0}}));
     CHECK(!blade_canopy_make(&again, &(blade_canopy_desc_t){.seed = 3})); /* no sun */
+
+    /* Wind poses: the rest pose is the calm table's; the weights pick the
+     * poses at their nodes and sum to 1 between them; blades bent towards
+     * the viewer show their undersides, darker than bent away. 1,024 rays
+     * and 8 rows keep the nine poses cheap. */
+    static blade_canopy_t calm, windy;
+    blade_canopy_desc_t wd = {.seed = 3, .sun = {0.45f, 0.8f, 0.35f}, .segments = 2, .rays = 1024, .rows = 8};
+    CHECK(blade_canopy_make(&calm, &wd));
+    wd.wind = 1.0f;
+    CHECK(blade_canopy_make(&windy, &wd));
+    CHECK(calm.poses == 1 && calm.windy == NULL && windy.poses == BLADE_CANOPY_POSES && windy.windy);
+    CHECK(memcmp(calm.row, windy.row, sizeof calm.row) == 0 && memcmp(calm.below, windy.below, sizeof calm.below) == 0);
+    float wt[BLADE_CANOPY_POSES];
+    blade_canopy_wind_weights(&windy, 0.0f, 1.0f, wt);
+    CHECK(wt[0] == 1.0f);
+    blade_canopy_wind_weights(&calm, 0.7f, 1.0f, wt); /* no poses: at rest */
+    CHECK(wt[0] == 1.0f);
+    double node_err = 0.0, sum_err = 0.0;
+    for (int m = 0; m < BLADE_CANOPY_WIND_STEPS; m++)
+        for (int k = 0; k < BLADE_CANOPY_WIND_AZIMUTHS; k++) {
+            blade_canopy_wind_weights(&windy, (float)(m + 1) / BLADE_CANOPY_WIND_STEPS, 1.5707963f * (float)k, wt);
+            for (int p = 0; p < BLADE_CANOPY_POSES; p++)
+                node_err = fmax(node_err, fabs(wt[p] - (p == 1 + m * BLADE_CANOPY_WIND_AZIMUTHS + k ? 1.0f : 0.0f)));
+        }
+    for (int i = 0; i < 50; i++) {
+        blade_canopy_wind_weights(&windy, 0.03f * (float)i, 0.37f * (float)i - 3.0f, wt);
+        double sum = 0.0;
+        for (int p = 0; p < BLADE_CANOPY_POSES; p++) sum += wt[p];
+        sum_err = fmax(sum_err, fabs(sum - 1.0));
+    }
+    printf("wind weights: worst at the nodes %.2g, worst |sum - 1| %.2g\n", node_err, sum_err);
+    CHECK(node_err < 1e-5 && sum_err < 1e-5);
+    float lum[3];
+    for (int d = 0; d < 3; d++) {
+        float rgbc[4];
+        blade_canopy_view_t v = {.elevation = 0.13f, .sun_elevation = asinf(0.8f / sqrtf(0.9650f)), .azimuth = 0.5f,
+                                 .up = {0.0f, 1.0f, 0.0f}, .wind = d ? 0.5f : 0.0f,
+                                 .wind_azimuth = d == 2 ? 3.1415927f : 0.0f};
+        blade_canopy_color(&windy, &v, root, tip, rgbc, &rgbc[3]);
+        lum[d] = 0.2126f * rgbc[0] + 0.7152f * rgbc[1] + 0.0722f * rgbc[2];
+    }
+    printf("luminance at 7.5 degrees: at rest %.4f, wind 0.5 towards the viewer %.4f, away %.4f\n", lum[0], lum[1],
+           lum[2]);
+    CHECK(lum[1] < 0.9f * lum[0] && lum[2] > 1.05f * lum[0]);
+    blade_canopy_free(&windy);
+    CHECK(windy.windy == NULL);
     TEST_END();
 }

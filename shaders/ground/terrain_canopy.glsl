@@ -6,14 +6,17 @@
  * them; the whole column's, and where the canopy continues the hybrid's
  * blades (u_canopy_switch), the column cut at the height below which the
  * drawn blades' overhang leaves the ray to the canopy (terrain.frag joins
- * the two with canopy_overhang). The colour follows the view's and the sun's angles, which change
+ * the two with canopy_overhang); under the wind at the vertex (the blade
+ * physics' fields at u_time: common/blade.glsl). The colour follows the
+ * view's and the sun's angles, which change
  * slowly across a triangle wherever the canopy shows (beyond the
  * thinning's start), so it is computed per vertex and interpolated: per
  * pixel it took 0.23 of meadow_large's 0.95 ms terrain pass (H200, compute
- * path). */
+ * path). Vertices of no triangle in view skip it. */
 #ifndef TERRAIN_CANOPY_GLSL
 #define TERRAIN_CANOPY_GLSL
 
+#include "common/blade.glsl"
 #include "common/canopy.glsl"
 #include "common/gi.glsl"
 #include "common/switch.glsl"
@@ -24,6 +27,32 @@ uniform bool u_canopy_on;
 uniform vec2 u_canopy_switch;
 uniform vec3 u_camera;
 uniform vec3 u_sun;
+#define TERRAIN_MAX_WINDS 8 /* BLADE_MAX_WINDS */
+uniform int u_wind_count;
+uniform vec4 u_winds[2 * TERRAIN_MAX_WINDS]; /* blade_wind_t's a and b of each */
+uniform float u_time;
+/* The view frustum's planes (unit normals in, ground.c's frustum_planes)
+ * and the longest triangle edge (m): a vertex outside a plane by more
+ * than that belongs to no triangle the view shows. */
+uniform vec4 u_frustum[6];
+uniform float u_canopy_margin;
+
+bool terrain_canopy_seen(vec3 p)
+{
+    for (int i = 0; i < 6; i++)
+        if (dot(u_frustum[i].xyz, p) + u_frustum[i].w < -u_canopy_margin) return false;
+    return true;
+}
+
+/* The wind force at p: the fields' sum (tiles_wind_sum's); 0 when the
+ * table has no wind poses. */
+vec3 terrain_wind(vec3 p)
+{
+    vec3 w = vec3(0.0);
+    for (int k = 0; u_canopy_poses > 1 && k < u_wind_count; k++)
+        w += blade_wind_field(BladeWind(u_winds[2 * k], u_winds[2 * k + 1]), p, u_time);
+    return w;
+}
 
 /* The height (m) over a ground point at eye distance d, seen at elevation
  * e, below which the blades rooted past the switch meet the ray: the
@@ -45,9 +74,9 @@ float terrain_canopy_cut(float d, float e)
 vec4 terrain_canopy(vec3 pos, vec3 normal, out vec4 cut)
 {
     cut = vec4(0.0);
-    if (!u_canopy_on) return vec4(0.0);
+    if (!u_canopy_on || !terrain_canopy_seen(pos)) return vec4(0.0);
     float cover;
-    canopy_view_t v = canopy_view(pos, normalize(normal), u_camera, u_sun);
+    canopy_view_t v = canopy_view(pos, normalize(normal), u_camera, u_sun, terrain_wind(pos));
     vec3 up = grass_ambient(pos, v.g), down = grass_ambient(pos, -v.g), amb0 = 0.5 * (up + down);
     mat3 amb_n = mat3(grass_ambient(pos, v.t) - amb0, 0.5 * (up - down), grass_ambient(pos, v.s) - amb0);
     vec4 full = vec4(canopy_table_color(v, amb0, amb_n, cover), cover);

@@ -52,6 +52,7 @@ blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
     if (d.rays <= 0) d.rays = 4096;
     if (d.segments <= 0) d.segments = BLADE_CANOPY_SEGMENTS;
     if (d.patches <= 0) d.patches = BLADE_CANOPY_PATCHES;
+    if (d.wind_rays <= 0) d.wind_rays = d.rays / 4 > 64 ? d.rays / 4 : 64;
     /* A denser field gets a smaller patch of at most BLADE_CANOPY_PATCH_BLADES
      * blades: every ray meets the blades of its strip, so the bake grew with
      * the density (10,000 blades/m^2 took 47 s on 2 cores for 2 m). */
@@ -143,39 +144,37 @@ static float intersect(const canopy_tri_t *tr, float sx, float sz, const float o
     return t;
 }
 
-/* Seeds and settles the patch's blades and cuts them into triangles. */
-static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t stream, int *blades_out, int *tri_count,
-                                    float *top)
+/* Blades [begin, end) of a patch settled and cut (core_parallel_for):
+ * each writes its own triangles and top. */
+typedef struct canopy_settle_t {
+    const blade_canopy_desc_t *d;
+    const blade_env_t *env;
+    blade_t *blades;
+    canopy_tri_t *tris;
+    float *tops;
+} canopy_settle_t;
+
+static void settle_blades(void *user, int begin, int end)
 {
-    int blades = (int)lroundf(d->population.density * d->patch * d->patch);
-    blades = blades < 1 ? 1 : blades;
-    int segs = d->segments, per = 2 * segs;
-    canopy_tri_t *tris = malloc(sizeof *tris * (size_t)blades * (size_t)per);
-    if (!tris) return NULL;
-    core_rng_t rng;
-    core_rng_seed(&rng, d->seed, 0xca90u + stream);
-    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = BLADE_SETTLE_DT, .gravity = d->population.gravity});
-    *top = 0.0f;
-    for (int n = 0; n < blades; n++) {
-        float h = core_rng_range(&rng, d->population.height[0], d->population.height[1]);
-        float w = core_rng_range(&rng, d->population.width[0], d->population.width[1]);
-        float s = core_rng_range(&rng, d->population.stiffness[0], d->population.stiffness[1]);
-        float angle = core_rng_range(&rng, 0.0f, 6.2831853f);
-        float x = core_rng_float(&rng) * d->patch, z = core_rng_float(&rng) * d->patch;
-        blade_t b = {.v0 = {x, 0.0f, z, angle}, .v1 = {x, h, z, h}, .v2 = {x, h, z, w}, .up = {0.0f, 1.0f, 0.0f, s}};
-        float eta = 0.0f;
-        for (int i = 0; i < CANOPY_SETTLE_STEPS; i++) blade_ref_step_one(&b, &eta, &env, NULL);
+    const canopy_settle_t *job = user;
+    int segs = job->d->segments, per = 2 * segs;
+    for (int n = begin; n < end; n++) {
+        blade_t b = job->blades[n];
+        float eta = 0.0f, top = 0.0f;
+        for (int i = 0; i < CANOPY_SETTLE_STEPS; i++) blade_ref_step_one(&b, &eta, job->env, NULL);
         float p[BLADE_CANOPY_MAX_SEGMENTS + 1][2][3], nrm[BLADE_CANOPY_MAX_SEGMENTS + 1][2][3];
         for (int i = 0; i <= segs; i++)
             for (int u = 0; u < 2; u++) {
-                blade_ref_surface(&b, d->population.shape, (float)u, (float)i / (float)segs, p[i][u], nrm[i][u]);
-                *top = fmaxf(*top, p[i][u][1]);
+                blade_ref_surface(&b, job->d->population.shape, (float)u, (float)i / (float)segs, p[i][u],
+                                  nrm[i][u]);
+                top = fmaxf(top, p[i][u][1]);
             }
+        job->tops[n] = top;
         for (int i = 0; i < segs; i++) {
             /* (i,0) (i,1) (i+1,0) and (i,1) (i+1,1) (i+1,0), as the clumps */
             static const int corner[2][3][2] = {{{0, 0}, {0, 1}, {1, 0}}, {{0, 1}, {1, 1}, {1, 0}}};
             for (int k = 0; k < 2; k++) {
-                canopy_tri_t *t = &tris[(size_t)n * (size_t)per + (size_t)(2 * i + k)];
+                canopy_tri_t *t = &job->tris[(size_t)n * (size_t)per + (size_t)(2 * i + k)];
                 t->xlo = t->ylo = INFINITY;
                 t->xhi = t->yhi = -INFINITY;
                 for (int c = 0; c < 3; c++) {
@@ -191,6 +190,51 @@ static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t strea
             }
         }
     }
+}
+
+/* Seeds the patch's blades (one random stream, in order), settles them
+ * under the uniform wind force (x, z) in the rays' frame and cuts them
+ * into triangles, the blades shared out over threads. */
+static canopy_tri_t *make_triangles(const blade_canopy_desc_t *d, uint64_t stream, const float wind[2],
+                                    int *blades_out, int *tri_count, float *top)
+{
+    int blades = (int)lroundf(d->population.density * d->patch * d->patch);
+    blades = blades < 1 ? 1 : blades;
+    int per = 2 * d->segments;
+    canopy_tri_t *tris = malloc(sizeof *tris * (size_t)blades * (size_t)per);
+    blade_t *seeded = malloc(sizeof *seeded * (size_t)blades);
+    float *tops = malloc(sizeof *tops * (size_t)blades);
+    if (!tris || !seeded || !tops) {
+        free(tris);
+        free(seeded);
+        free(tops);
+        return NULL;
+    }
+    core_rng_t rng;
+    core_rng_seed(&rng, d->seed, 0xca90u + stream);
+    blade_env_t env = blade_env_defaults(&(blade_env_t){.dt = BLADE_SETTLE_DT, .gravity = d->population.gravity});
+    float m = sqrtf(wind[0] * wind[0] + wind[1] * wind[1]);
+    if (m > 0.0f) {
+        /* uniform: a wave at its mean, half its strength, whose phase moves
+         * 1e-5 radians across the patch */
+        env.winds[0] = blade_wind_wave(wind[0] / m, wind[1] / m, 2.0f * m, 1e6f, 0.0f);
+        env.wind_count = 1;
+    }
+    for (int n = 0; n < blades; n++) {
+        float h = core_rng_range(&rng, d->population.height[0], d->population.height[1]);
+        float w = core_rng_range(&rng, d->population.width[0], d->population.width[1]);
+        float s = core_rng_range(&rng, d->population.stiffness[0], d->population.stiffness[1]);
+        float angle = core_rng_range(&rng, 0.0f, 6.2831853f);
+        float x = core_rng_float(&rng) * d->patch, z = core_rng_float(&rng) * d->patch;
+        seeded[n] = (blade_t){.v0 = {x, 0.0f, z, angle}, .v1 = {x, h, z, h}, .v2 = {x, h, z, w},
+                              .up = {0.0f, 1.0f, 0.0f, s}};
+    }
+    core_parallel_for(blades, settle_blades,
+                      &(canopy_settle_t){.d = d, .env = &env, .blades = seeded, .tris = tris, .tops = tops});
+    *top = 0.0f;
+    for (int n = 0; n < blades; n++) *top = fmaxf(*top, tops[n]);
+    free(seeded);
+    free(tops);
     *blades_out = blades;
     *tri_count = blades * per;
     return tris;
@@ -298,11 +342,25 @@ static void cast(const canopy_strip_t *s, const canopy_tri_t *tris, float patch,
     }
 }
 
-/* Row r of c at cut level l (blade_canopy_at_cut's levels less level 0):
- * the cuts from the lowest, then the whole column. */
-static blade_canopy_row_t *level_row(const blade_canopy_t *c, int r, int l)
+/* Row r of c's pose p at cut level l (blade_canopy_at_cut's levels less
+ * level 0): the cuts from the lowest, then the whole column. */
+static blade_canopy_row_t *level_row(const blade_canopy_t *c, int p, int r, int l)
 {
+    if (p > 0) {
+        blade_canopy_pose_t *w = &c->windy[p - 1];
+        return l < BLADE_CANOPY_CUTS ? &w->below[r][l] : &w->row[r];
+    }
     return (blade_canopy_row_t *)(l < BLADE_CANOPY_CUTS ? &c->below[r][l] : &c->row[r]);
+}
+
+/* The uniform wind force of pose p (1..) in the rays' frame: t is -x, s
+ * is +z. */
+static void pose_wind(const blade_canopy_t *c, int p, float out[2])
+{
+    int k = (p - 1) % BLADE_CANOPY_WIND_AZIMUTHS, m = (p - 1) / BLADE_CANOPY_WIND_AZIMUTHS;
+    float psi = 1.5707963f * (float)k, f = c->wind * (float)(m + 1) / (float)BLADE_CANOPY_WIND_STEPS;
+    out[0] = -f * cosf(psi);
+    out[1] = f * sinf(psi);
 }
 
 /* A patch of blades cut into triangles and binned into strips. */
@@ -356,7 +414,7 @@ static void canopy_rows(void *user, int begin, int end)
         job->out->elevation[r] = e;
         for (int l = 0; l < CANOPY_LEVELS; l++) {
             double inv = hits[l] ? 1.0 / hits[l] : 0.0;
-            blade_canopy_row_t *row = level_row(job->out, r, l ? BLADE_CANOPY_CUTS - l : BLADE_CANOPY_CUTS);
+            blade_canopy_row_t *row = level_row(job->out, 0, r, l ? BLADE_CANOPY_CUTS - l : BLADE_CANOPY_CUTS);
             row->cover = (float)hits[l] / (float)rays;
             for (int c = 0; c < 4; c++) {
                 row->ao[c] = (float)(acc[l].ao[c] * inv);
@@ -371,13 +429,15 @@ static void canopy_rows(void *user, int begin, int end)
     }
 }
 
-/* One patch of blades (random streams offset by `stream`), cut and
- * binned; *blades: its blades. False: out of memory. */
-static bool patch_make(const blade_canopy_desc_t *d, uint64_t stream, canopy_patch_t *p, int *blades)
+/* One patch of blades (random streams offset by `stream`) settled under
+ * wind (blade_canopy_make's), cut and binned; *blades: its blades. False:
+ * out of memory. */
+static bool patch_make(const blade_canopy_desc_t *d, uint64_t stream, const float wind[2], canopy_patch_t *p,
+                       int *blades)
 {
     int ntri = 0;
     memset(p, 0, sizeof *p);
-    p->tris = make_triangles(d, stream, blades, &ntri, &p->top);
+    p->tris = make_triangles(d, stream, wind, blades, &ntri, &p->top);
     bool ok = p->tris != NULL;
     for (int i = 0; ok && i < ntri; i++) ok = bin_triangle(p->strips, &p->tris[i], (uint32_t)i, d->patch);
     for (int k = 0; ok && k < CANOPY_STRIPS; k++)
@@ -426,49 +486,60 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
             suns[k][j][1] = (float)sin(el);
             suns[k][j][2] = (float)(cos(el) * sin(phi));
         }
-    /* Every patch first: the cuts are fractions of the tallest blade of all. */
+    /* Per pose, every patch first: the cuts are fractions of the tallest
+     * blade of all at rest, the same heights in every pose. */
     enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
     static_assert(offsetof(blade_canopy_row_t, cover) == 0, "the cover leads the row");
+    out->wind = d.wind > 0.0f ? d.wind : 0.0f;
+    out->poses = out->wind > 0.0f ? BLADE_CANOPY_POSES : 1;
     canopy_patch_t *patches = calloc((size_t)d.patches, sizeof *patches);
     blade_canopy_t *one = calloc(1, sizeof *one);
     double(*sum)[CANOPY_LEVELS][N] = calloc(BLADE_CANOPY_MAX_ROWS, sizeof *sum);
-    bool ok = patches && one && sum;
+    out->windy = out->poses > 1 ? calloc((size_t)out->poses - 1, sizeof *out->windy) : NULL;
+    bool ok = patches && one && sum && (out->poses == 1 || out->windy);
     int blades = 0;
     float top = 0.0f;
-    for (int p = 0; ok && p < d.patches; p++) {
-        ok = patch_make(&d, (uint64_t)p << 16, &patches[p], &blades);
-        top = fmaxf(top, patches[p].top);
-    }
-    /* Per row and level, the hits of every patch pooled: the cover is the
-     * patches' mean, each mean over the met points their hit-weighted mean. */
-    int rays = (d.rays + d.patches - 1) / d.patches; /* the patches share the rays */
-    for (int p = 0; ok && p < d.patches; p++) {
-        canopy_rows_t job = {.d = &d, .out = one, .patch = &patches[p], .top = top,
-                             .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)rays)),
-                             .rays = rays, .stream = (uint64_t)p << 16};
-        core_parallel_for(d.rows, canopy_rows, &job);
-        for (int r = 0; r < d.rows; r++)
+    for (int pose = 0; ok && pose < out->poses; pose++) {
+        float wind[2] = {0.0f, 0.0f};
+        if (pose > 0) pose_wind(out, pose, wind);
+        for (int p = 0; ok && p < d.patches; p++) {
+            ok = patch_make(&d, (uint64_t)p << 16, wind, &patches[p], &blades);
+            if (pose == 0) top = fmaxf(top, patches[p].top);
+        }
+        /* Per row and level, the hits of every patch pooled: the cover is
+         * the patches' mean, each mean over the met points their
+         * hit-weighted mean. */
+        int rays = ((pose ? d.wind_rays : d.rays) + d.patches - 1) / d.patches; /* the patches share them */
+        memset(sum, 0, BLADE_CANOPY_MAX_ROWS * sizeof *sum);
+        for (int p = 0; ok && p < d.patches; p++) {
+            canopy_rows_t job = {.d = &d, .out = one, .patch = &patches[p], .top = top,
+                                 .suns = (const canopy_suns_t *)&suns, .side = (int)ceilf(sqrtf((float)rays)),
+                                 .rays = rays, .stream = (uint64_t)p << 16};
+            core_parallel_for(d.rows, canopy_rows, &job);
+            for (int r = 0; r < d.rows; r++)
+                for (int l = 0; l < CANOPY_LEVELS; l++) {
+                    float f[N];
+                    memcpy(f, level_row(one, 0, r, l), sizeof f);
+                    sum[r][l][0] += f[0];
+                    for (int k = 1; k < N; k++) sum[r][l][k] += (double)f[0] * f[k];
+                }
+        }
+        if (ok && pose == 0) memcpy(out->elevation, one->elevation, sizeof out->elevation); /* every patch's */
+        for (int r = 0; ok && r < d.rows; r++)
             for (int l = 0; l < CANOPY_LEVELS; l++) {
                 float f[N];
-                memcpy(f, level_row(one, r, l), sizeof f);
-                sum[r][l][0] += f[0];
-                for (int k = 1; k < N; k++) sum[r][l][k] += (double)f[0] * f[k];
+                f[0] = (float)(sum[r][l][0] / d.patches);
+                for (int k = 1; k < N; k++) f[k] = sum[r][l][0] > 0.0 ? (float)(sum[r][l][k] / sum[r][l][0]) : 0.0f;
+                memcpy(level_row(out, pose, r, l), f, sizeof f);
             }
+        for (int p = 0; patches && p < d.patches; p++) patch_free(&patches[p]);
     }
-    if (ok) memcpy(out->elevation, one->elevation, sizeof out->elevation); /* every patch's rows are these */
-    for (int r = 0; ok && r < d.rows; r++)
-        for (int l = 0; l < CANOPY_LEVELS; l++) {
-            float f[N];
-            f[0] = (float)(sum[r][l][0] / d.patches);
-            for (int k = 1; k < N; k++) f[k] = sum[r][l][0] > 0.0 ? (float)(sum[r][l][k] / sum[r][l][0]) : 0.0f;
-            memcpy(level_row(out, r, l), f, sizeof f);
-        }
-    for (int p = 0; patches && p < d.patches; p++) patch_free(&patches[p]);
     free(patches);
     free(one);
     free(sum);
     if (!ok) {
         core_log_error("blade_canopy_make: out of memory");
+        blade_canopy_free(out);
         memset(out, 0, sizeof *out);
         return false;
     }
@@ -477,6 +548,14 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
     out->top = top;
     out->blades = blades;
     return true;
+}
+
+void blade_canopy_free(blade_canopy_t *c)
+{
+    free(c->windy);
+    c->windy = NULL;
+    c->poses = c->poses > 1 ? 1 : c->poses;
+    c->wind = 0.0f;
 }
 
 /* The point of x in [0, n - 1] (clamped) between nodes i and i + 1: i and
@@ -503,10 +582,10 @@ static blade_canopy_row_t row_mix(const blade_canopy_row_t *a, const blade_canop
     return out;
 }
 
-/* Row r at blade_canopy_at_cut's level l (0: the cut at 0). */
-static blade_canopy_row_t level_at(const blade_canopy_t *c, int r, int l)
+/* Row r of pose p at blade_canopy_at_cut's level l (0: the cut at 0). */
+static blade_canopy_row_t level_at(const blade_canopy_t *c, int p, int r, int l)
 {
-    blade_canopy_row_t w = *level_row(c, r, l > 0 ? l - 1 : 0);
+    blade_canopy_row_t w = *level_row(c, p, r, l > 0 ? l - 1 : 0);
     if (l == 0) w.cover = 0.0f;
     return w;
 }
@@ -519,41 +598,65 @@ static float canopy_cut_level(float cut, float top)
     return cut < h1 ? cut / h1 : 1.0f + log2f(cut / h1);
 }
 
-blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, float elevation, float cut)
+blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, int pose, float elevation, float cut)
 {
     float f, g;
+    int p = pose > 0 && pose < c->poses ? pose : 0;
     int i = canopy_node(elevation / 1.5707963f * (float)(c->rows - 1), c->rows, &f);
     int l = canopy_node(canopy_cut_level(cut, c->top), BLADE_CANOPY_LEVELS, &g);
-    blade_canopy_row_t a = level_at(c, i, l), b = level_at(c, i + 1, l);
+    blade_canopy_row_t a = level_at(c, p, i, l), b = level_at(c, p, i + 1, l);
     blade_canopy_row_t lo = row_mix(&a, &b, f);
-    a = level_at(c, i, l + 1);
-    b = level_at(c, i + 1, l + 1);
+    a = level_at(c, p, i, l + 1);
+    b = level_at(c, p, i + 1, l + 1);
     blade_canopy_row_t hi = row_mix(&a, &b, f);
     return row_mix(&lo, &hi, g);
 }
 
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation)
 {
-    return blade_canopy_at_cut(c, elevation, 0.0f);
+    return blade_canopy_at_cut(c, 0, elevation, 0.0f);
+}
+
+void blade_canopy_wind_weights(const blade_canopy_t *c, float wind, float psi, float out[BLADE_CANOPY_POSES])
+{
+    memset(out, 0, sizeof(float) * BLADE_CANOPY_POSES);
+    float q = c->poses > 1 && wind > 0.0f ? fminf(wind / c->wind, 1.0f) * BLADE_CANOPY_WIND_STEPS : 0.0f;
+    if (q <= 0.0f) {
+        out[0] = 1.0f;
+        return;
+    }
+    /* magnitude: between step m - 1 (0: the rest pose) and step m */
+    int m = (int)ceilf(q);
+    float f = q - (float)(m - 1);
+    if (m == 1) out[0] = 1.0f - f;
+    for (int k = 0; k < BLADE_CANOPY_WIND_AZIMUTHS; k++) {
+        float d = psi - 1.5707963f * (float)k;
+        float w = 0.25f * (1.0f + 2.0f * cosf(d) + cosf(2.0f * d));
+        out[1 + (m - 1) * BLADE_CANOPY_WIND_AZIMUTHS + k] += f * w;
+        if (m > 1) out[1 + (m - 2) * BLADE_CANOPY_WIND_AZIMUTHS + k] += (1.0f - f) * w;
+    }
 }
 
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
 {
     memset(out, 0, sizeof *out);
     out->rows = c->rows;
+    out->poses = c->poses;
     out->sun0 = c->sun0;
     out->top = c->top;
-    for (int l = 0; l < BLADE_CANOPY_LEVELS; l++)
-        for (int r = 0; r < c->rows; r++) {
-            blade_canopy_row_t w = level_at(c, r, l);
-            float(*t)[4] = out->texel[r + l * c->rows];
-            t[0][0] = w.cover;
-            memcpy(t[1], w.ao, sizeof w.ao);
-            memcpy(t[2], w.v_ao, sizeof w.v_ao);
-            for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
-                for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
-                    memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w.sun[k][j], sizeof w.sun[k][j]);
-        }
+    out->wind = c->wind;
+    for (int p = 0; p < c->poses; p++)
+        for (int l = 0; l < BLADE_CANOPY_LEVELS; l++)
+            for (int r = 0; r < c->rows; r++) {
+                blade_canopy_row_t w = level_at(c, p, r, l);
+                float(*t)[4] = out->texel[r + (l + p * BLADE_CANOPY_LEVELS) * c->rows];
+                t[0][0] = w.cover;
+                memcpy(t[1], w.ao, sizeof w.ao);
+                memcpy(t[2], w.v_ao, sizeof w.v_ao);
+                for (int k = 0; k < BLADE_CANOPY_SUNS; k++)
+                    for (int j = 0; j < BLADE_CANOPY_AZIMUTHS; j++)
+                        memcpy(t[3 + k * BLADE_CANOPY_AZIMUTHS + j], w.sun[k][j], sizeof w.sun[k][j]);
+            }
 }
 
 void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
@@ -561,7 +664,19 @@ void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, c
 {
     static const float sun_color[3] = BLADE_CANOPY_SUN_COLOR, down[3] = BLADE_CANOPY_AMBIENT_DOWN,
                        up[3] = BLADE_CANOPY_AMBIENT_UP;
-    blade_canopy_row_t r = blade_canopy_at_cut(c, v->elevation, v->cut);
+    float wt[BLADE_CANOPY_POSES];
+    blade_canopy_wind_weights(c, v->wind, v->wind_azimuth, wt);
+    enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
+    float acc[N] = {0};
+    for (int p = 0; p < c->poses; p++) {
+        if (wt[p] == 0.0f) continue;
+        blade_canopy_row_t one = blade_canopy_at_cut(c, p, v->elevation, v->cut);
+        float f[N];
+        memcpy(f, &one, sizeof f);
+        for (int k = 0; k < N; k++) acc[k] += wt[p] * f[k];
+    }
+    blade_canopy_row_t r;
+    memcpy(&r, acc, sizeof r);
     float h, g;
     int k = canopy_node((v->sun_elevation - c->sun0) / BLADE_CANOPY_SUN_STEP, BLADE_CANOPY_SUNS, &h);
     int j = canopy_node(v->azimuth / 3.1415927f * (float)(BLADE_CANOPY_AZIMUTHS - 1), BLADE_CANOPY_AZIMUTHS, &g);
@@ -585,7 +700,7 @@ void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, c
                  root[m] * (down[m] * r.ao[0] + (up[m] - down[m]) * u_ao) +
                  dt * (down[m] * r.v_ao[0] + (up[m] - down[m]) * vu_ao);
     }
-    *cover = r.cover;
+    *cover = fminf(fmaxf(r.cover, 0.0f), 1.0f);
 }
 
 float blade_canopy_thinned(float cover, float e)

@@ -6,7 +6,7 @@
  *
  * A periodic square patch of blades, seeded as blade_seed seeds them and
  * settled under gravity by the blade physics (blade_ref_step_one,
- * eq. 3-16, no wind), is ray-cast orthographically at `rows` view
+ * eq. 3-16; the rest pose: no wind), is ray-cast orthographically at `rows` view
  * elevations (row i at 90 i / (rows - 1) degrees, row 0 at 1 degree), the
  * hits of `patches` such patches pooled. Each blade is `segments` quads of
  * blade_ref_surface (eq. 21 with the scene's shape). Per row the table
@@ -20,6 +20,13 @@
  * cover and means of each ray's first hit below the cut, the ray reaching
  * it unobstructed; just past the hybrid's switch the drawn blades' overhang
  * takes the part above (blade_canopy_overhang).
+ * Under wind (desc.wind > 0) the table has BLADE_CANOPY_POSES poses: the
+ * rest pose, and the patch settled under a uniform wind of BLADE_CANOPY_WIND_STEPS
+ * magnitudes at BLADE_CANOPY_WIND_AZIMUTHS azimuths from the viewer; a
+ * point's wind picks them (blade_canopy_color). Blades bent towards the
+ * viewer show their undersides: seen at 7.5 degrees, the mean luminance
+ * 0.265 at rest falls to 0.154 under a wind of 0.5 towards the viewer and
+ * rises to 0.354 under one away (test_blade_canopy).
  * The table's terms and the colour formula:
  * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
@@ -41,6 +48,12 @@
  * low view the cover below a cut rises within centimetres (at 7.5 degrees
  * to 0.5 by top / 32). */
 #define BLADE_CANOPY_CUTS 5
+/* Wind poses: azimuths k 90 degrees from t towards s (k = 0..3), each at
+ * magnitudes wind (m + 1) / BLADE_CANOPY_WIND_STEPS; pose 0 is the rest
+ * pose, pose 1 + m BLADE_CANOPY_WIND_AZIMUTHS + k the wind's. */
+#define BLADE_CANOPY_WIND_AZIMUTHS 4
+#define BLADE_CANOPY_WIND_STEPS 2
+#define BLADE_CANOPY_POSES (1 + BLADE_CANOPY_WIND_AZIMUTHS * BLADE_CANOPY_WIND_STEPS)
 
 /* Zero means default. */
 #define BLADE_CANOPY_PATCH_BLADES 2048.0f
@@ -61,6 +74,12 @@ typedef struct blade_canopy_desc_t {
     int patches;        /* independent patches (seeds) whose hits are pooled, sharing the
                            rays, default BLADE_CANOPY_PATCHES: one patch's blades moved
                            the mean colour by 0.9 L* (sd over seeds, 7.5 degrees) */
+    float wind;         /* the largest wind force the blades meet (the sum of the scene's
+                           wind strengths; blade_wind_wave), default 0: the rest pose alone */
+    int wind_rays;      /* rays per row of each wind pose, default rays / 4 (at least 64):
+                           bent blades are dearer to cast (their triangles span more of a
+                           strip), and at the rest pose's rays the 8 poses made the table 10
+                           times as slow */
 } blade_canopy_desc_t;
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);
 
@@ -74,23 +93,37 @@ typedef struct blade_canopy_row_t {
     float sun[BLADE_CANOPY_SUNS][BLADE_CANOPY_AZIMUTHS][2]; /* E[D], E[v D] */
 } blade_canopy_row_t;
 
+/* One pose's rows: the whole column, and the first hits below cut k, at
+ * height top 2^(k - BLADE_CANOPY_CUTS). */
+typedef struct blade_canopy_pose_t {
+    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS];
+    blade_canopy_row_t below[BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_CUTS];
+} blade_canopy_pose_t;
+
 typedef struct blade_canopy_t {
     int rows;
     float elevation[BLADE_CANOPY_MAX_ROWS]; /* radians, the rays' (row 0: 1 degree) */
     float sun0; /* radians, the first sun elevation (<= -pi / 2); sun elevation k is
                    sun0 + k BLADE_CANOPY_SUN_STEP, the desc's sun one of them */
-    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS]; /* the whole column */
-    /* the first hits below cut k, at height top 2^(k - BLADE_CANOPY_CUTS) */
+    blade_canopy_row_t row[BLADE_CANOPY_MAX_ROWS]; /* the rest pose's whole column */
+    /* the rest pose's first hits below cut k, at height top 2^(k - BLADE_CANOPY_CUTS) */
     blade_canopy_row_t below[BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_CUTS];
-    float top; /* m, the tallest blade point of the patches */
+    float top; /* m, the tallest blade point of the patches at rest */
     int blades; /* in a patch */
+    float wind; /* the desc's: the wind poses' largest magnitude (0: none) */
+    int poses;  /* 1, or BLADE_CANOPY_POSES with wind */
+    blade_canopy_pose_t *windy; /* poses 1.. (poses - 1 of them; NULL without wind) */
 } blade_canopy_t;
 
-/* Measures the table. False (and logs) on bad input or out of memory. */
+/* Measures the table. False (and logs) on bad input or out of memory.
+ * With wind it takes about BLADE_CANOPY_POSES times as long. */
 bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc);
+/* Releases the wind poses (the table itself is the caller's). */
+void blade_canopy_free(blade_canopy_t *c);
 
-/* The row at elevation e (radians, clamped to [0, pi / 2]), linear between
- * rows spaced pi / (2 (rows - 1)) apart: the lookup canopy.glsl does. */
+/* The rest pose's row at elevation e (radians, clamped to [0, pi / 2]),
+ * linear between rows spaced pi / (2 (rows - 1)) apart: the lookup
+ * canopy.glsl does. */
 blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation);
 
 /* The same of the hits below height `cut` (m over the ground; 0: no cut,
@@ -98,20 +131,30 @@ blade_canopy_row_t blade_canopy_at(const blade_canopy_t *c, float elevation);
  * means of level 1), level k in 1..BLADE_CANOPY_CUTS the cut at h_k = top
  * 2^(k - 1 - BLADE_CANOPY_CUTS), the last the whole column (at the top and
  * above); at level q = cut / h_1 below h_1, 1 + log2(cut / h_1) above,
- * linear in q between levels. */
-blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, float elevation, float cut);
+ * linear in q between levels; of pose p (0: at rest). */
+blade_canopy_row_t blade_canopy_at_cut(const blade_canopy_t *c, int pose, float elevation, float cut);
+
+/* The poses a wind of force `wind` at azimuth psi (radians from t, towards
+ * the sun's side: blade_canopy_view_t) takes and their weights: out[p] for
+ * pose p (BLADE_CANOPY_POSES of them, summing to 1): linear in the
+ * magnitude between the rest pose and the steps (clamped to the largest),
+ * and along the azimuths the trigonometric interpolation through the four
+ * (exact for 1, cos, sin and cos 2 of psi; weights may be negative).
+ * Without wind poses, out[0] = 1. */
+void blade_canopy_wind_weights(const blade_canopy_t *c, float wind, float psi, float out[BLADE_CANOPY_POSES]);
 
 /* The table as canopy.glsl's texture takes it (RGBA32F, texelFetch):
- * texel (x, row + level rows), the row at cut level `level`
- * (blade_canopy_at_cut's), is (cover, 0, 0, 0) at x 0, the row's ao at 1,
- * v_ao at 2, and (E[D], E[v D], 0, 0) of sun elevation k and azimuth j at
- * 3 + k BLADE_CANOPY_AZIMUTHS + j. */
+ * texel (x, row + (level + pose BLADE_CANOPY_LEVELS) rows), the row at cut
+ * level `level` (blade_canopy_at_cut's) of pose `pose`, is (cover, 0, 0, 0)
+ * at x 0, the row's ao at 1, v_ao at 2, and (E[D], E[v D], 0, 0) of sun
+ * elevation k and azimuth j at 3 + k BLADE_CANOPY_AZIMUTHS + j. */
 #define BLADE_CANOPY_TEXELS (3 + BLADE_CANOPY_SUNS * BLADE_CANOPY_AZIMUTHS)
 #define BLADE_CANOPY_LEVELS (BLADE_CANOPY_CUTS + 2)
 typedef struct blade_canopy_texture_t {
-    int rows; /* texels high: rows BLADE_CANOPY_LEVELS */
-    float sun0, top;
-    float texel[BLADE_CANOPY_LEVELS * BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
+    int rows;  /* texels high: rows BLADE_CANOPY_LEVELS poses */
+    int poses; /* the table's */
+    float sun0, top, wind;
+    float texel[BLADE_CANOPY_POSES * BLADE_CANOPY_LEVELS * BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
 } blade_canopy_texture_t;
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out);
 
@@ -131,12 +174,17 @@ typedef struct blade_canopy_view_t {
     float elevation, sun_elevation, azimuth;
     float up[3];
     float cut;
+    float wind, wind_azimuth; /* the wind force's magnitude along the ground and its azimuth
+                                 from t, towards the sun's side (radians; the sun's side is s's
+                                 when the sun's azimuth in the ground is in [0, pi] from t
+                                 towards s, otherwise -s's: the mirror image) */
 } blade_canopy_view_t;
 
 /* The canopy's mean colour (unfogged) and cover seen and lit as v, blades
  * of albedo mix(root, tip, v): the C twin of canopy_table_color in
  * common/canopy.glsl (linear in the view elevation, the sun's elevation and
- * its azimuth). */
+ * its azimuth; the poses mixed by blade_canopy_wind_weights, the cover
+ * clamped to [0, 1]). */
 void blade_canopy_color(const blade_canopy_t *c, const blade_canopy_view_t *v, const float root[3],
                         const float tip[3], float rgb[3], float *cover);
 

@@ -75,6 +75,15 @@ static void *canopy_thread(void *user)
     return NULL;
 }
 
+/* The largest wind force the scene's blades meet: its winds' strengths
+ * summed (the canopy table's wind poses reach it). */
+static float canopy_wind(const scene_desc_t *s)
+{
+    float w = 0.0f;
+    for (int i = 0; i < s->wind_count; i++) w += fmaxf(s->wind[i].strength, 0.0f);
+    return w;
+}
+
 /* Starts the scene's canopy table on a thread, its blades cut into
  * `segments` quads (0: the default); false: it was not started
  * (canopy_finish then computes it). */
@@ -83,7 +92,8 @@ static bool canopy_start(const grass_t *gr, int segments, canopy_job_t *job, pth
     *job = (canopy_job_t){.desc = {.population = gr->scene->grass.population,
                                    .seed = gr->scene->seed,
                                    .sun = GRASS_SUN_DIR,
-                                   .segments = segments}};
+                                   .segments = segments,
+                                   .wind = canopy_wind(gr->scene)}};
     return pthread_create(thread, NULL, canopy_thread, job) == 0;
 }
 
@@ -243,6 +253,7 @@ bool grass_make_blades(grass_t *gr)
         canopy_finish(&job, thread, threaded);
         if (job.ok) ground_set_canopy(gr->ground, &job.canopy, seed.extent_texture, seed.extent_origin,
                                       seed.extent_spacing);
+        blade_canopy_free(&job.canopy);
     }
     mark[3] = plat_time();
     if (gr->blades) {
@@ -284,6 +295,7 @@ void grass_make_blade_env(grass_t *gr)
                 ? blade_wind_point(sw->position, sw->strength, sw->radius)
                 : blade_wind_wave(sw->direction[0], sw->direction[1], sw->strength, sw->wavelength, sw->speed);
     }
+    if (gr->ground) ground_set_winds(gr->ground, gr->blade_env.winds, gr->blade_env.wind_count);
 }
 
 /* Billboards -> blades hand-over: the deformed billboards of the moment
@@ -340,6 +352,7 @@ bool grass_make_tiles(grass_t *gr)
     if (gr->have_tiles && job.ok)
         ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,
                                td.extent_origin, td.extent_spacing);
+    blade_canopy_free(&job.canopy);
     if (have_layout) bb_layout_free(&lay);
     return gr->have_tiles;
 }
@@ -350,14 +363,19 @@ bool grass_make_tiles(grass_t *gr)
 bool grass_ring_make_canopy(grass_t *gr)
 {
     if (gr->terrain->type != TERRAIN_WORLD || !gr->bb || gr->have_tiles) return true;
-    blade_canopy_t canopy;
-    if (!blade_canopy_make(&canopy, &(blade_canopy_desc_t){.population = gr->scene->grass.population,
-                                                           .seed = gr->scene->seed,
-                                                           .sun = GRASS_SUN_DIR}))
+    blade_canopy_t *canopy = malloc(sizeof *canopy); /* 0.4 MB: not on the stack */
+    if (!canopy || !blade_canopy_make(canopy, &(blade_canopy_desc_t){.population = gr->scene->grass.population,
+                                                                     .seed = gr->scene->seed,
+                                                                     .sun = GRASS_SUN_DIR,
+                                                                     .wind = canopy_wind(gr->scene)})) {
+        free(canopy);
         return false;
+    }
     bb_field_info_t fi;
     bb_field_info(gr->bb, &fi);
-    ground_set_canopy(gr->ground, &canopy, fi.extent_texture, fi.gen.origin,
+    ground_set_canopy(gr->ground, canopy, fi.extent_texture, fi.gen.origin,
                       fi.gen.spacing * (float)fi.gen.cells_per_texel);
+    blade_canopy_free(canopy);
+    free(canopy);
     return true;
 }

@@ -18,6 +18,7 @@ struct ground_t {
     gfx_buffer_t vbo, ibo;
     GLuint vao, empty_vao;
     int index_count;
+    float edge; /* m, the mesh's longest triangle edge (the canopy's frustum margin) */
     /* World terrains (TERRAIN_WORLD): the clipmap's levels and index ranges
      * (its arrays freed once uploaded: vbo holds the grid, ibo the ranges);
      * prog is terrain_world.vert with the world's uniforms (terrain_world_gpu). */
@@ -26,12 +27,15 @@ struct ground_t {
     gfx_program_t prog, sky;
     gfx_texture_t noise; /* terrain.frag's value noise lattice (make_noise) */
     /* Ground canopy: its table (blade_canopy_pack's texture, its rows,
-     * first sun elevation and top), the extent map that thins it
-     * (borrowed), and this frame's fade (start, end; end 0: none) and
-     * whether it continues the tiles' blades under their overhang. */
+     * poses, first sun elevation, top and largest wind), the winds that
+     * pick its poses, the extent map that thins it (borrowed), and this
+     * frame's fade (start, end; end 0: none) and whether it continues the
+     * tiles' blades under their overhang. */
     gfx_texture_t canopy;
-    int canopy_rows;
-    float canopy_sun0, canopy_top;
+    int canopy_rows, canopy_poses;
+    float canopy_sun0, canopy_top, canopy_wind;
+    blade_wind_t winds[BLADE_MAX_WINDS];
+    int wind_count;
     GLuint extent;
     float extent_origin[2], extent_spacing;
     float canopy_fade[2];
@@ -118,6 +122,12 @@ static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
     t->ibo = gfx_buffer_make(&(gfx_buffer_desc_t){.size = mesh->index_count * sizeof(uint32_t),
                                                   .data = mesh->indices, .label = "terrain.indices"});
     t->index_count = (int)mesh->index_count;
+    for (uint32_t i = 0; i < mesh->index_count; i++) {
+        const float *a = mesh->positions + 3 * mesh->indices[i];
+        const float *b = mesh->positions + 3 * mesh->indices[i % 3 == 2 ? i - 2 : i + 1];
+        float d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+        t->edge = fmaxf(t->edge, sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    }
     t->vao = gfx_vertex_array_make("terrain.vao");
     glVertexArrayVertexBuffer(t->vao, 0, t->vbo.id, 0, 8 * sizeof(float));
     glVertexArrayElementBuffer(t->vao, t->ibo.id);
@@ -150,13 +160,15 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
     if (tex) {
         blade_canopy_pack(c, tex);
         t->canopy = gfx_texture_make(&(gfx_texture_desc_t){.w = BLADE_CANOPY_TEXELS,
-                                                           .h = tex->rows * BLADE_CANOPY_LEVELS,
+                                                           .h = tex->rows * BLADE_CANOPY_LEVELS * tex->poses,
                                                            .format = GL_RGBA32F, .filter = GL_NEAREST,
                                                            .data = tex->texel, .upload_type = GL_FLOAT,
                                                            .label = "terrain.canopy.table"});
         t->canopy_rows = t->canopy.id ? tex->rows : 0;
+        t->canopy_poses = tex->poses;
         t->canopy_sun0 = tex->sun0;
         t->canopy_top = tex->top;
+        t->canopy_wind = tex->wind;
         free(tex);
     } else {
         core_log_error("ground: no memory for the canopy table; the ground is drawn without it");
@@ -167,6 +179,12 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
 }
 
 bool ground_has_canopy(const ground_t *t) { return t->canopy_rows > 1; }
+
+void ground_set_winds(ground_t *t, const blade_wind_t *winds, int count)
+{
+    t->wind_count = count < BLADE_MAX_WINDS ? (count > 0 ? count : 0) : BLADE_MAX_WINDS;
+    if (t->wind_count) memcpy(t->winds, winds, sizeof *winds * (size_t)t->wind_count);
+}
 
 void ground_set_canopy_fade(ground_t *t, float start, float end, bool overhang)
 {
@@ -203,17 +221,37 @@ void ground_destroy(ground_t *t)
     free(t);
 }
 
+/* The view frustum's six planes (Gribb and Hartmann: the rows of
+ * viewproj, column-major, summed and differenced), unit normals pointing
+ * in: a point p is inside by dot(n, p) + w. */
+static void frustum_planes(const float m[16], float out[6][4])
+{
+    for (int i = 0; i < 6; i++) {
+        int row = i / 2;
+        float sign = i % 2 ? -1.0f : 1.0f, l = 0.0f;
+        for (int k = 0; k < 4; k++) out[i][k] = m[4 * k + 3] + sign * m[4 * k + row];
+        for (int k = 0; k < 3; k++) l += out[i][k] * out[i][k];
+        l = l > 0.0f ? 1.0f / sqrtf(l) : 0.0f;
+        for (int k = 0; k < 4; k++) out[i][k] *= l;
+    }
+}
+
+/* A clipmap triangle's longest edge in cells: a morphed cell's diagonal
+ * (up to 2 sqrt 2) at a slope of up to 2 (63 degrees), times sqrt 5. */
+#define GROUND_WORLD_EDGE 6.4f
+
 /* One draw per clipmap level around the camera. */
 static void draw_world(const ground_t *t, const grass_view_t *v)
 {
     const terrain_clipmap_t *c = &t->clipmap;
     GLint origin = gfx_uniform(t->prog, "u_origin"), cell = gfx_uniform(t->prog, "u_cell"),
-          morph = gfx_uniform(t->prog, "u_morph");
+          morph = gfx_uniform(t->prog, "u_morph"), margin = gfx_uniform(t->prog, "u_canopy_margin");
     double tris = 0.0;
     for (int l = 0; l < c->desc.levels; l++) {
         terrain_clipmap_level_t lv = terrain_clipmap_place(c, l, v->camera[0], v->camera[2]);
         glUniform2fv(origin, 1, lv.origin);
         glUniform1f(cell, lv.cell);
+        glUniform1f(margin, GROUND_WORLD_EDGE * lv.cell);
         glUniform2fv(morph, 1, lv.morph);
         glDrawElements(GL_TRIANGLES, (GLsizei)c->count[lv.range], GL_UNSIGNED_INT,
                        (const void *)(sizeof(uint32_t) * c->first[lv.range]));
@@ -248,6 +286,15 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
         glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), t->canopy_rows);
         glUniform1f(gfx_uniform(t->prog, "u_canopy_sun0"), t->canopy_sun0);
         glUniform1f(gfx_uniform(t->prog, "u_canopy_top"), t->canopy_top);
+        glUniform1i(gfx_uniform(t->prog, "u_canopy_poses"), t->canopy_poses);
+        glUniform1f(gfx_uniform(t->prog, "u_canopy_wind"), t->canopy_wind);
+        glUniform1i(gfx_uniform(t->prog, "u_wind_count"), t->wind_count);
+        if (t->wind_count) glUniform4fv(gfx_uniform(t->prog, "u_winds"), 2 * t->wind_count, t->winds[0].a);
+        glUniform1f(gfx_uniform(t->prog, "u_time"), v->time);
+        float planes[6][4];
+        frustum_planes(v->viewproj, planes);
+        glUniform4fv(gfx_uniform(t->prog, "u_frustum"), 6, planes[0]);
+        glUniform1f(gfx_uniform(t->prog, "u_canopy_margin"), t->edge);
         glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);

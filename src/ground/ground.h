@@ -15,6 +15,7 @@
 #include "grass_view/grass_view.h"
 #include "blade/blade_canopy.h"
 #include "blade/blade_lod.h"
+#include "blade/blade_ref.h"
 #include "core/core.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
@@ -32,6 +33,10 @@ void ground_destroy(ground_t *g);
  * extent map that thins it (an R8 texture the caller owns, 0: none;
  * common/extent.glsl says which texel). */
 void ground_set_canopy(ground_t *g, const blade_canopy_t *c, GLuint extent, const float origin[2], float spacing);
+/* The winds (blade_env_t's, at most BLADE_MAX_WINDS; copied) whose force
+ * at a ground point mixes the canopy table's wind poses; none: the rest
+ * pose. */
+void ground_set_winds(ground_t *g, const blade_wind_t *winds, int count);
 /* A canopy table was set (more than one row). */
 bool ground_has_canopy(const ground_t *g);
 /* This frame's canopy band: none nearer than start, fully shaded beyond
