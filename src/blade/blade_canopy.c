@@ -52,11 +52,17 @@ blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc)
     if (d.rays <= 0) d.rays = 4096;
     if (d.segments <= 0) d.segments = BLADE_CANOPY_SEGMENTS;
     if (d.patches <= 0) d.patches = BLADE_CANOPY_PATCHES;
-    if (d.wind_rays <= 0) d.wind_rays = d.rays / 4 > 64 ? d.rays / 4 : 64;
     /* A denser field gets a smaller patch of at most BLADE_CANOPY_PATCH_BLADES
      * blades: every ray meets the blades of its strip, so the bake grew with
      * the density (10,000 blades/m^2 took 47 s on 2 cores for 2 m). */
     if (d.patch <= 0.0f) d.patch = fminf(2.0f, sqrtf(BLADE_CANOPY_PATCH_BLADES / d.population.density));
+    if (d.wind_rays <= 0) {
+        /* a quarter of the rays, fewer in proportion past 1,024 blades a
+         * patch: a denser patch is dearer per ray */
+        float blades = d.population.density * d.patch * d.patch, r = (float)(d.rays / 4);
+        if (blades > 1024.0f) r *= 1024.0f / blades;
+        d.wind_rays = r > 64.0f ? (int)r : 64;
+    }
     return d;
 }
 
@@ -370,9 +376,9 @@ typedef struct canopy_patch_t {
     float top;
 } canopy_patch_t;
 
-/* Rows [begin, end) of the table (core_parallel_for): each row casts its
- * rays from a random stream of its own (seed, row), so the table does not
- * depend on how the rows are shared out. */
+/* Rows of jobs [begin, end) of the table (core_parallel_for): each row
+ * casts its rays from a random stream of its own (seed, row), so the table
+ * does not depend on how the rows are shared out. */
 typedef struct canopy_rows_t {
     const blade_canopy_desc_t *d;
     blade_canopy_t *out;
@@ -388,7 +394,11 @@ static void canopy_rows(void *user, int begin, int end)
     const canopy_rows_t *job = user;
     const blade_canopy_desc_t *d = job->d;
     int side = job->side;
-    for (int r = begin; r < end; r++) {
+    /* job n is row n / 2 from the bottom when even, from the top when odd:
+     * a band of jobs mixes the dear grazing rows with the cheap steep ones
+     * (in row order the first band took most of the time) */
+    for (int n = begin; n < end; n++) {
+        int r = n % 2 ? d->rows - 1 - n / 2 : n / 2;
         core_rng_t rng;
         core_rng_seed(&rng, d->seed, 0xca91u + job->stream + (uint64_t)r);
         float e = fmaxf((float)r / (float)(d->rows - 1) * 1.5707963f, 0.0174533f);

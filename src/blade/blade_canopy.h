@@ -25,8 +25,8 @@
  * magnitudes at BLADE_CANOPY_WIND_AZIMUTHS azimuths from the viewer; a
  * point's wind picks them (blade_canopy_color). Blades bent towards the
  * viewer show their undersides: seen at 7.5 degrees, the mean luminance
- * 0.265 at rest falls to 0.154 under a wind of 0.5 towards the viewer and
- * rises to 0.354 under one away (test_blade_canopy).
+ * 0.265 at rest falls to 0.150 under a wind of 0.5 towards the viewer and
+ * rises to 0.347 under one away (test_blade_canopy).
  * The table's terms and the colour formula:
  * docs/HYBRID.md ("Ground canopy"). */
 #ifndef MEADOW_BLADE_CANOPY_H
@@ -76,10 +76,10 @@ typedef struct blade_canopy_desc_t {
                            the mean colour by 0.9 L* (sd over seeds, 7.5 degrees) */
     float wind;         /* the largest wind force the blades meet (the sum of the scene's
                            wind strengths; blade_wind_wave), default 0: the rest pose alone */
-    int wind_rays;      /* rays per row of each wind pose, default rays / 4 (at least 64):
-                           bent blades are dearer to cast (their triangles span more of a
-                           strip), and at the rest pose's rays the 8 poses made the table 10
-                           times as slow */
+    int wind_rays;      /* rays per row of each wind pose, default rays / 4, times 1,024 /
+                           the patch's blades past 1,024 (at least 64): bent blades are
+                           dearer to cast (their triangles span more of a strip), and at the
+                           rest pose's rays the 8 poses made the table 10 times as slow */
 } blade_canopy_desc_t;
 blade_canopy_desc_t blade_canopy_desc_defaults(const blade_canopy_desc_t *desc);
 
