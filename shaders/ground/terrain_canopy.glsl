@@ -31,7 +31,7 @@ uniform vec3 u_sun;
 uniform int u_wind_count;
 uniform vec4 u_winds[2 * TERRAIN_MAX_WINDS]; /* blade_wind_t's a and b of each */
 uniform float u_time;
-/* The view frustum's planes (unit normals in, ground.c's frustum_planes)
+/* The view frustum's planes (unit normals in: grass_view_t.planes)
  * and the longest triangle edge (m): a vertex outside a plane by more
  * than that belongs to no triangle the view shows. */
 uniform vec4 u_frustum[6];

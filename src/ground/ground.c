@@ -221,21 +221,6 @@ void ground_destroy(ground_t *t)
     free(t);
 }
 
-/* The view frustum's six planes (Gribb and Hartmann: the rows of
- * viewproj, column-major, summed and differenced), unit normals pointing
- * in: a point p is inside by dot(n, p) + w. */
-static void frustum_planes(const float m[16], float out[6][4])
-{
-    for (int i = 0; i < 6; i++) {
-        int row = i / 2;
-        float sign = i % 2 ? -1.0f : 1.0f, l = 0.0f;
-        for (int k = 0; k < 4; k++) out[i][k] = m[4 * k + 3] + sign * m[4 * k + row];
-        for (int k = 0; k < 3; k++) l += out[i][k] * out[i][k];
-        l = l > 0.0f ? 1.0f / sqrtf(l) : 0.0f;
-        for (int k = 0; k < 4; k++) out[i][k] *= l;
-    }
-}
-
 /* A clipmap triangle's longest edge in cells: a morphed cell's diagonal
  * (up to 2 sqrt 2) at a slope of up to 2 (63 degrees), times sqrt 5. */
 #define GROUND_WORLD_EDGE 6.4f
@@ -291,9 +276,7 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
         glUniform1i(gfx_uniform(t->prog, "u_wind_count"), t->wind_count);
         if (t->wind_count) glUniform4fv(gfx_uniform(t->prog, "u_winds"), 2 * t->wind_count, t->winds[0].a);
         glUniform1f(gfx_uniform(t->prog, "u_time"), v->time);
-        float planes[6][4];
-        frustum_planes(v->viewproj, planes);
-        glUniform4fv(gfx_uniform(t->prog, "u_frustum"), 6, planes[0]);
+        glUniform4fv(gfx_uniform(t->prog, "u_frustum"), 6, v->planes[0]);
         glUniform1f(gfx_uniform(t->prog, "u_canopy_margin"), t->edge);
         glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
         glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
