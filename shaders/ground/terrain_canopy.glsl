@@ -16,6 +16,7 @@
 #ifndef TERRAIN_CANOPY_GLSL
 #define TERRAIN_CANOPY_GLSL
 
+#include "common/bindings_ground.glsl"
 #include "common/blade.glsl"
 #include "common/canopy.glsl"
 #include "common/gi.glsl"
@@ -36,6 +37,13 @@ uniform float u_time;
  * than that belongs to no triangle the view shows. */
 uniform vec4 u_frustum[6];
 uniform float u_canopy_margin;
+
+/* The canopy match's gain (ground.c, canopy_match.comp): a factor per
+ * channel on the canopy's colour as the frame stores it; (1, 1, 1) when
+ * off. The match measures in linear light what the product does, so its
+ * steps take up the difference from a gain in linear light, which would
+ * cost two sRGB conversions a vertex. */
+layout(std140, binding = GROUND_UBO_MATCH) uniform CanopyMatch { vec4 u_match_gain; };
 
 bool terrain_canopy_seen(vec3 p)
 {
@@ -79,12 +87,12 @@ vec4 terrain_canopy(vec3 pos, vec3 normal, out vec4 cut)
     canopy_view_t v = canopy_view(pos, normalize(normal), u_camera, u_sun, terrain_wind(pos));
     vec3 up = grass_ambient(pos, v.g), down = grass_ambient(pos, -v.g), amb0 = 0.5 * (up + down);
     mat3 amb_n = mat3(grass_ambient(pos, v.t) - amb0, 0.5 * (up - down), grass_ambient(pos, v.s) - amb0);
-    vec4 full = vec4(canopy_table_color(v, amb0, amb_n, cover), cover);
+    vec4 full = vec4(u_match_gain.rgb * canopy_table_color(v, amb0, amb_n, cover), cover);
     float h = u_canopy_switch.x > 0.0 ? terrain_canopy_cut(grass_distance(pos, u_camera), v.e) : u_canopy_top;
     cut = h <= 0.0 ? vec4(full.rgb, 0.0) : full;
     if (h > 0.0 && h < u_canopy_top) {
         v.cut = h;
-        cut = vec4(canopy_table_color(v, amb0, amb_n, cover), cover);
+        cut = vec4(u_match_gain.rgb * canopy_table_color(v, amb0, amb_n, cover), cover);
     }
     return full;
 }

@@ -361,6 +361,7 @@ typedef enum gfx_pass_t {
     GFX_PASS_TILES_RASTER,
     GFX_PASS_RASTER_INIT,
     GFX_PASS_RASTER_COMPOSITE,
+    GFX_PASS_CANOPY_MATCH,   /* the canopy match's measure and step (ground_match) */
     GFX_PASS_TARGET_CLEAR,   /* the frame's target cleared (world_frame) */
     GFX_PASS_DEPTH_RESOLVE,  /* a multisampled depth resolved for occlusion culling */
     GFX_PASS_TEST,

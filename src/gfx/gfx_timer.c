@@ -70,7 +70,7 @@ void gfx_timer_frame_begin(void)
 
 const char *gfx_pass_name(gfx_pass_t kind)
 {
-    static const char *const names[GFX_PASS_KINDS] = {"terrain", "colliders", "character.skin", "character.draw", "bb.cubemaps", "bb.collide", "bb.recover", "bb.occlusion", "bb.ring", "bb.render", "bb.raster", "blade.physics", "blade.cull", "blade.draw", "blade.raster", "tiles.physics", "tiles.cull", "tiles.draw", "tiles.raster", "raster.init", "raster.composite", "target.clear", "depth.resolve", "test"};
+    static const char *const names[GFX_PASS_KINDS] = {"terrain", "colliders", "character.skin", "character.draw", "bb.cubemaps", "bb.collide", "bb.recover", "bb.occlusion", "bb.ring", "bb.render", "bb.raster", "blade.physics", "blade.cull", "blade.draw", "blade.raster", "tiles.physics", "tiles.cull", "tiles.draw", "tiles.raster", "raster.init", "raster.composite", "canopy.match", "target.clear", "depth.resolve", "test"};
     return kind >= 0 && kind < GFX_PASS_KINDS ? names[kind] : "?";
 }
 

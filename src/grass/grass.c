@@ -331,6 +331,18 @@ grass_drivers_t grass_drivers(grass_t *g)
 int grass_target_samples(const grass_t *g) { return g->raster_compute ? 1 : g->scene->msaa; }
 void grass_set_camera(grass_t *g, const float camera[3]) { memcpy(g->camera, camera, sizeof g->camera); }
 
+bool grass_canopy_match(const grass_t *g, ground_match_state_t *out)
+{
+    if (!g->ground || !ground_has_canopy(g->ground)) return false;
+    ground_match_state(g->ground, out);
+    return true;
+}
+
+void grass_canopy_match_reset(grass_t *g)
+{
+    if (g->ground) ground_match_reset(g->ground);
+}
+
 bb_field_t *grass_swap_billboards(grass_t *g, bb_field_t *field)
 {
     bb_field_t *old = g->bb;

@@ -396,7 +396,9 @@ bool grass_make_tiles(grass_t *gr)
     gr->have_tiles = gr->tiles != NULL;
     if (gr->have_tiles) blade_tiles_set_slope_source(gr->tiles, bb_slope_source, gr);
     /* The ground canopy beyond the billboards, thinned by the tiles' extent
-     * map (its texture). */
+     * map (its texture); without billboards the canopy match's programs
+     * compile meanwhile. */
+    if (gr->have_tiles && !ring && g->canopy_match == SCENE_CANOPY_MATCH_ON) ground_match_prefetch(gr->ground);
     canopy_finish(&job, thread, threaded);
     if (gr->have_tiles && job.ok)
         ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,

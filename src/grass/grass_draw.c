@@ -153,6 +153,22 @@ static void run_pass(grass_t *gr, frame_draw_t *f, grass_pass_kind_t kind)
     }
 }
 
+/* The canopy match (ground_match) after the grass of a frame's own draw
+ * whose blades end in the canopy (no billboards between), over the opaque
+ * depth they were drawn on: the compute path's, or the hardware path's
+ * resolve (a single-sample target keeps no copy of it: no match). */
+static void match_canopy(grass_t *gr, const frame_draw_t *f, bool ring)
+{
+    if (!gr->match_frame || !f->tiles || ring || gr->reference ||
+        gr->scene->grass.canopy_match != SCENE_CANOPY_MATCH_ON)
+        return;
+    const gfx_target_t *t = f->target;
+    GLuint depth = f->raster ? f->raster->opaque_depth.id : (t->resolve_fbo != t->fbo ? t->resolve_depth.id : 0);
+    gfx_timer_begin(GFX_PASS_CANOPY_MATCH);
+    ground_match(gr->ground, f->v, t, depth, grass_tiles_distance(gr), GRASS_SWITCH_FADE);
+    gfx_timer_end();
+}
+
 /* The grass-shaded ground under the frame's thinned blades: the tiles' (to
  * their switch; with billboards beyond, nearer than them) or blade mode's
  * whole field (to its cull distance); none under billboards alone. */
@@ -209,6 +225,7 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
     for (int i = 0; i < n; i++)
         if (want & (passes[i].kind == GRASS_PASS_GROUND ? GRASS_PART_GROUND : GRASS_PART_GRASS))
             run_pass(gr, &f, passes[i].kind);
+    if (want & GRASS_PART_GRASS) match_canopy(gr, &f, ring);
     gr->mode = keep;
     if (!f.raster_ok) {
         core_log_warn("compute rasterizer shaders unavailable (see above); drawing grass with the hardware path");
@@ -220,13 +237,16 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
 void grass_draw_target(grass_t *gr, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as)
 {
     if (!as) {
+        gr->match_frame = true;
         draw_passes(gr, v, t, gr->mode, true, 0);
+        gr->match_frame = false;
         return;
     }
     gr->canopy_all = as->canopy_all;
     gr->grass_depth = as->depth;
+    gr->match_frame = !as->depth && !as->canopy_all && !as->no_grass && as->mode == gr->mode;
     draw_passes(gr, v, t, as->mode, !as->no_grass, as->parts);
-    gr->canopy_all = gr->grass_depth = false;
+    gr->canopy_all = gr->grass_depth = gr->match_frame = false;
 }
 
 /* ---- the host's framebuffer and its GL state (grass.h's contract) ---- */
@@ -350,7 +370,9 @@ void grass_draw_part(grass_t *gr, const grass_view_t *v, const grass_target_t *t
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    gr->match_frame = true;
     draw_passes(gr, v, &target, gr->mode, true, part);
+    gr->match_frame = false;
     state_restore(&saved);
     grass_leave(prev);
 }

@@ -15,6 +15,7 @@
 #include "blade/blade_tiles.h"
 #include "collide/collide_set.h"
 #include "gfx/gfx.h"
+#include "ground/ground_match.h"
 #include "raster/raster.h"
 #include "scene/scene.h"
 #include "terrain/terrain.h"
@@ -78,6 +79,11 @@ grass_drivers_t grass_drivers(grass_t *g);
 /* The samples per pixel of a target for g's path: the scene's msaa with
  * the hardware path, 1 with the compute rasterizer. */
 int grass_target_samples(const grass_t *g);
+/* The canopy match's state (ground_match.h; a read-back): false when the
+ * grass has no ground canopy. */
+bool grass_canopy_match(const grass_t *g, ground_match_state_t *out);
+/* The canopy match's gain back to 1 (ground_match_reset). */
+void grass_canopy_match_reset(grass_t *g);
 /* The camera the tiles stream and activate around until the next draw. */
 void grass_set_camera(grass_t *g, const float camera[3]);
 /* As grass_draw into an in-tree target, in `mode`, with no grass at all

@@ -68,8 +68,10 @@ struct grass_t {
     int colliders_warned; /* the collider count last warned past GRASS_MAX_COLLIDERS; 0: none */
     double update_ms[3], make_ms[3]; /* grass_stats_t's */
     /* In-tree draws (grass_draw_as_t): the ground as canopy from the
-     * camera on; the compute path's composite writes the grass's depth. */
-    bool canopy_all, grass_depth;
+     * camera on; the compute path's composite writes the grass's depth;
+     * a frame's own draw, which steps the canopy match (measures' draws
+     * do not). */
+    bool canopy_all, grass_depth, match_frame;
 };
 
 /* grass_build.c: what grass_make and grass_set_mode make. */

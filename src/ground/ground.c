@@ -5,8 +5,11 @@
  * terrain_world.vert, displaced by world_height; the same terrain.frag. */
 #include "ground/ground.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "ground/ground_match.h"
 
 #include "blade/blade.h"
 #include "common/bindings_ground.glsl"
@@ -46,7 +49,24 @@ struct ground_t {
     blade_lod_t lod;
     float lod_width, lod_focal, lod_cull, lod_far;
     gi_bind_t gi;
+    /* The canopy match (ground_match): its buffer (gain, then the frame's
+     * and the canopy's sums: canopy_match.comp's layout) and programs (made
+     * by the first ground_match: measure on single- and multisampled
+     * targets, step). */
+    gfx_buffer_t match, match_gain; /* the state; a copy of its gain the terrain reads */
+    gfx_program_t match_measure[2], match_step;
+    /* The terrain's normals for the match: a heightfield's vertex normals
+     * and heights (grid_res > 0; x0, z0 of vertex (0, 0), the cell), or
+     * the world's height function. */
+    gfx_texture_t grid;
+    int grid_res;
+    float grid_box[4];
+    terrain_world_gpu_t world_fn;
+    bool match_tried;
 };
+
+/* The match buffer at rest: gains 1, no sums. */
+static const ground_match_state_t match_rest = {.gain = {1.0f, 1.0f, 1.0f, 1.0f}};
 
 /* The lattice of terrain.frag's value noise: at integer point (i, j) the
  * hash it hashed there per fragment before (core_hash_float of i 73856093
@@ -100,9 +120,34 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     glVertexArrayAttribBinding(t->vao, 0, 0);
     bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain_world.vert", .fs = "ground/terrain.frag",
                                                       .label = "terrain.world.program"});
-    terrain_world_gpu_t w = terrain_world_gpu(&mesh->world);
-    if (t->prog.id) gfx_world_height_uniforms(t->prog, w.keys, TERRAIN_WORLD_LAYERS, w.height);
+    t->world_fn = terrain_world_gpu(&mesh->world);
+    if (t->prog.id) gfx_world_height_uniforms(t->prog, t->world_fn.keys, TERRAIN_WORLD_LAYERS, t->world_fn.height);
     return ok && t->vbo.id && t->ibo.id;
+}
+
+/* A heightfield's vertex normals and heights for the match (the tiles'
+ * ground texture's layout); nothing for other meshes. */
+static bool make_grid(ground_t *t, const terrain_mesh_t *mesh)
+{
+    int res = mesh->grid_res, side = res + 1;
+    if (res <= 0 || mesh->vertex_count != (size_t)side * (size_t)side) return true;
+    float *texels = malloc(sizeof(float) * 4 * (size_t)side * (size_t)side);
+    if (!texels) return false;
+    for (size_t v = 0; v < (size_t)side * (size_t)side; v++) {
+        memcpy(texels + 4 * v, mesh->normals + 3 * v, 3 * sizeof(float));
+        texels[4 * v + 3] = mesh->positions[3 * v + 1];
+    }
+    const float *first = mesh->positions, *last = mesh->positions + 3 * ((size_t)side * (size_t)side - 1);
+    t->grid_box[0] = first[0];
+    t->grid_box[1] = first[2];
+    t->grid_box[2] = (last[0] - first[0]) / (float)res;
+    t->grid_box[3] = (last[2] - first[2]) / (float)res;
+    t->grid = gfx_texture_make(&(gfx_texture_desc_t){.w = side, .h = side, .format = GL_RGBA32F, .filter = GL_NEAREST,
+                                                     .data = texels, .upload_type = GL_FLOAT,
+                                                     .label = "terrain.canopy.match_grid"});
+    free(texels);
+    t->grid_res = t->grid.id ? res : 0;
+    return t->grid.id != 0;
 }
 
 /* A terrain mesh's interleaved vertices, indices and program. */
@@ -140,14 +185,19 @@ static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
     }
     bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain.vert", .fs = "ground/terrain.frag",
                                                       .label = "terrain.program"});
-    return ok && t->vbo.id && t->ibo.id;
+    return ok && t->vbo.id && t->ibo.id && make_grid(t, mesh);
 }
 
 ground_t *ground_make(const terrain_mesh_t *mesh)
 {
     ground_t *t = calloc(1, sizeof *t);
     if (!t) return NULL;
-    if ((mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) && make_noise(t)) return t;
+    t->match = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof match_rest, .data = &match_rest, .dynamic = true,
+                                                    .label = "terrain.canopy.match"});
+    t->match_gain = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof match_rest.gain, .data = match_rest.gain,
+                                                         .dynamic = true, .label = "terrain.canopy.match_gain"});
+    if ((mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) && make_noise(t) && t->match.id && t->match_gain.id)
+        return t;
     ground_destroy(t);
     return NULL;
 }
@@ -217,6 +267,11 @@ void ground_destroy(ground_t *t)
     gfx_program_destroy(&t->sky);
     gfx_texture_destroy(&t->noise);
     gfx_texture_destroy(&t->canopy);
+    gfx_buffer_destroy(&t->match);
+    gfx_buffer_destroy(&t->match_gain);
+    gfx_texture_destroy(&t->grid);
+    for (int k = 0; k < 2; k++) gfx_program_destroy(&t->match_measure[k]);
+    gfx_program_destroy(&t->match_step);
     terrain_clipmap_free(&t->clipmap);
     free(t);
 }
@@ -245,48 +300,60 @@ static void draw_world(const ground_t *t, const grass_view_t *v)
     gfx_count_add("terrain.clipmap.triangles", tris);
 }
 
+/* The canopy table's uniforms and textures (ground/terrain_canopy.glsl,
+ * the extent map of terrain_ground.glsl) for view v in p. */
+static void canopy_uniforms(const ground_t *t, gfx_program_t p, const grass_view_t *v)
+{
+    static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
+    glUniform1i(gfx_uniform(p, "u_canopy_rows"), t->canopy_rows);
+    glUniform1f(gfx_uniform(p, "u_canopy_sun0"), t->canopy_sun0);
+    glUniform1f(gfx_uniform(p, "u_canopy_top"), t->canopy_top);
+    glUniform1i(gfx_uniform(p, "u_canopy_poses"), t->canopy_poses);
+    glUniform1f(gfx_uniform(p, "u_canopy_wind"), t->canopy_wind);
+    glUniform1i(gfx_uniform(p, "u_wind_count"), t->wind_count);
+    if (t->wind_count) glUniform4fv(gfx_uniform(p, "u_winds"), 2 * t->wind_count, t->winds[0].a);
+    glUniform1f(gfx_uniform(p, "u_time"), v->time);
+    glUniform4fv(gfx_uniform(p, "u_frustum"), 6, v->planes[0]);
+    glUniform1f(gfx_uniform(p, "u_canopy_margin"), t->edge);
+    glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
+    glUniform3fv(gfx_uniform(p, "u_canopy_albedo_root"), 1, root);
+    glUniform3fv(gfx_uniform(p, "u_canopy_albedo_tip"), 1, tip);
+    glUniform1i(gfx_uniform(p, "u_extent_on"), t->extent != 0);
+    glUniform2fv(gfx_uniform(p, "u_extent_origin"), 1, t->extent_origin);
+    glUniform1f(gfx_uniform(p, "u_extent_spacing"), t->extent_spacing);
+    glBindTextureUnit(GROUND_TEX_EXTENT, t->extent);
+}
+
+/* What terrain_shade (ground/terrain_ground.glsl) reads for view v, in p
+ * (the terrain's program or the match's): the frame's canopy band, the
+ * thinning under the blades and the canopy's table. */
+static void terrain_uniforms(const ground_t *t, gfx_program_t p, const grass_view_t *v)
+{
+    glUniform3fv(gfx_uniform(p, "u_camera"), 1, v->camera);
+    glUniform3fv(gfx_uniform(p, "u_sun"), 1, v->sun);
+    gi_set_uniforms(p.id, &t->gi);
+    bool lod = t->canopy_rows > 1 && t->lod_on;
+    bool canopy = t->canopy_rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
+    glUniform1i(gfx_uniform(p, "u_lod_on"), lod);
+    if (lod) {
+        blade_lod_uniforms(p, &t->lod, t->lod_focal, t->lod_cull);
+        glUniform2f(gfx_uniform(p, "u_lod_ground"), t->lod_width, t->lod_far);
+    }
+    glUniform2f(gfx_uniform(p, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f, canopy ? t->canopy_fade[1] : 0.0f);
+    glUniform1i(gfx_uniform(p, "u_canopy_on"), canopy);
+    bool overhang = canopy && t->canopy_overhang && t->canopy_fade[1] > 0.0f;
+    glUniform2f(gfx_uniform(p, "u_canopy_switch"), overhang ? 0.5f * (t->canopy_fade[0] + t->canopy_fade[1]) : 0.0f,
+                overhang ? 0.5f * (t->canopy_fade[1] - t->canopy_fade[0]) : 0.0f);
+    if (canopy) canopy_uniforms(t, p, v);
+    glBindTextureUnit(GROUND_TEX_NOISE, t->noise.id);
+    glBindBufferBase(GL_UNIFORM_BUFFER, GROUND_UBO_MATCH, t->match_gain.id);
+}
+
 void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewproj[16])
 {
     glUseProgram(t->prog.id);
     glUniformMatrix4fv(gfx_uniform(t->prog, "u_viewproj"), 1, GL_FALSE, v->viewproj);
-    glUniform3fv(gfx_uniform(t->prog, "u_camera"), 1, v->camera);
-    glUniform3fv(gfx_uniform(t->prog, "u_sun"), 1, v->sun);
-    gi_set_uniforms(t->prog.id, &t->gi);
-    bool lod = t->canopy_rows > 1 && t->lod_on;
-    bool canopy = t->canopy_rows > 1 && (t->canopy_fade[1] > 0.0f || lod);
-    glUniform1i(gfx_uniform(t->prog, "u_lod_on"), lod);
-    if (lod) {
-        blade_lod_uniforms(t->prog, &t->lod, t->lod_focal, t->lod_cull);
-        glUniform2f(gfx_uniform(t->prog, "u_lod_ground"), t->lod_width, t->lod_far);
-    }
-    glUniform2f(gfx_uniform(t->prog, "u_canopy_fade"), canopy ? t->canopy_fade[0] : 0.0f,
-                canopy ? t->canopy_fade[1] : 0.0f);
-    glUniform1i(gfx_uniform(t->prog, "u_canopy_on"), canopy);
-    bool overhang = canopy && t->canopy_overhang && t->canopy_fade[1] > 0.0f;
-    glUniform2f(gfx_uniform(t->prog, "u_canopy_switch"),
-                overhang ? 0.5f * (t->canopy_fade[0] + t->canopy_fade[1]) : 0.0f,
-                overhang ? 0.5f * (t->canopy_fade[1] - t->canopy_fade[0]) : 0.0f);
-    if (canopy) {
-        static const float root[3] = BLADE_DEFAULT_ALBEDO_ROOT, tip[3] = BLADE_DEFAULT_ALBEDO_TIP;
-        glUniform1i(gfx_uniform(t->prog, "u_canopy_rows"), t->canopy_rows);
-        glUniform1f(gfx_uniform(t->prog, "u_canopy_sun0"), t->canopy_sun0);
-        glUniform1f(gfx_uniform(t->prog, "u_canopy_top"), t->canopy_top);
-        glUniform1i(gfx_uniform(t->prog, "u_canopy_poses"), t->canopy_poses);
-        glUniform1f(gfx_uniform(t->prog, "u_canopy_wind"), t->canopy_wind);
-        glUniform1i(gfx_uniform(t->prog, "u_wind_count"), t->wind_count);
-        if (t->wind_count) glUniform4fv(gfx_uniform(t->prog, "u_winds"), 2 * t->wind_count, t->winds[0].a);
-        glUniform1f(gfx_uniform(t->prog, "u_time"), v->time);
-        glUniform4fv(gfx_uniform(t->prog, "u_frustum"), 6, v->planes[0]);
-        glUniform1f(gfx_uniform(t->prog, "u_canopy_margin"), t->edge);
-        glBindTextureUnit(GROUND_TEX_CANOPY, t->canopy.id);
-        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_root"), 1, root);
-        glUniform3fv(gfx_uniform(t->prog, "u_canopy_albedo_tip"), 1, tip);
-        glUniform1i(gfx_uniform(t->prog, "u_extent_on"), t->extent != 0);
-        glUniform2fv(gfx_uniform(t->prog, "u_extent_origin"), 1, t->extent_origin);
-        glUniform1f(gfx_uniform(t->prog, "u_extent_spacing"), t->extent_spacing);
-        glBindTextureUnit(GROUND_TEX_EXTENT, t->extent);
-    }
-    glBindTextureUnit(GROUND_TEX_NOISE, t->noise.id);
+    terrain_uniforms(t, t->prog, v);
     glBindVertexArray(t->vao);
     if (t->world) draw_world(t, v);
     else glDrawElements(GL_TRIANGLES, t->index_count, GL_UNSIGNED_INT, NULL);
@@ -302,4 +369,99 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
     glBindVertexArray(0);
+}
+
+/* The match's programs (measure on single- and multisampled targets, step)
+ * for t's terrain; false on an imported mesh (no terrain normals). */
+static bool match_descs(const ground_t *t, char ms[64], gfx_program_desc_t out[3])
+{
+    if (!t->world && t->grid_res <= 0) return false;
+    const char *world = t->world ? "#define MATCH_WORLD 1\n" : "";
+    snprintf(ms, 64, "%s#define MATCH_MS 1\n", world);
+    out[0] = (gfx_program_desc_t){.cs = "ground/canopy_match.comp", .defines = world, .label = "terrain.canopy.match"};
+    out[1] = (gfx_program_desc_t){.cs = "ground/canopy_match.comp", .defines = ms, .label = "terrain.canopy.match_ms"};
+    out[2] = (gfx_program_desc_t){.cs = "ground/canopy_match_update.comp", .label = "terrain.canopy.match_step"};
+    return true;
+}
+
+void ground_match_prefetch(const ground_t *t)
+{
+    char ms[64];
+    gfx_program_desc_t descs[3];
+    if (match_descs(t, ms, descs)) gfx_programs_prefetch(3, descs);
+}
+
+/* The match's programs, made by its first call (a failure is logged once
+ * and the match stays off). */
+static bool match_programs(ground_t *t)
+{
+    if (t->match_tried) return t->match_step.id != 0;
+    t->match_tried = true;
+    char ms[64];
+    gfx_program_desc_t descs[3];
+    gfx_program_t progs[3];
+    if (!match_descs(t, ms, descs)) return false;
+    if (!gfx_programs_make(3, descs, progs)) {
+        for (int k = 0; k < 3; k++) gfx_program_destroy(&progs[k]);
+        core_log_warn("ground: the canopy match's programs failed; the canopy is drawn unmatched");
+        return false;
+    }
+    t->match_measure[0] = progs[0];
+    t->match_measure[1] = progs[1];
+    t->match_step = progs[2];
+    for (int k = 0; k < 2 && t->world; k++)
+        gfx_world_height_uniforms(t->match_measure[k], t->world_fn.keys, TERRAIN_WORLD_LAYERS, t->world_fn.height);
+    return true;
+}
+
+void ground_match(ground_t *t, const grass_view_t *v, const gfx_target_t *target, GLuint opaque_depth,
+                  float switch_distance, float fade)
+{
+    if (t->canopy_rows <= 1 || t->canopy_fade[1] <= 0.0f || !target->color.id || !opaque_depth || !match_programs(t))
+        return;
+    gfx_program_t p = t->match_measure[target->color.samples > 1];
+    float window[2];
+    ground_match_window(switch_distance, fade, window);
+    glUseProgram(p.id);
+    terrain_uniforms(t, p, v);
+    int stride = target->h > GROUND_MATCH_ROWS ? target->h / GROUND_MATCH_ROWS : 1;
+    glUniform1i(gfx_uniform(p, "u_samples"), target->color.samples > 1 ? target->color.samples : 1);
+    glUniform1i(gfx_uniform(p, "u_stride"), stride);
+    glUniformMatrix4fv(gfx_uniform(p, "u_inv_viewproj"), 1, GL_FALSE, v->inv_viewproj);
+    glUniform2fv(gfx_uniform(p, "u_window"), 1, window);
+    glBindTextureUnit(GROUND_TEX_MATCH_COLOR, target->color.id);
+    glBindTextureUnit(GROUND_TEX_MATCH_DEPTH, opaque_depth);
+    if (!t->world) {
+        glBindTextureUnit(GROUND_TEX_MATCH_GRID, t->grid.id);
+        glUniform1i(gfx_uniform(p, "u_grid_res"), t->grid_res);
+        glUniform4fv(gfx_uniform(p, "u_grid_box"), 1, t->grid_box);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GROUND_BIND_MATCH, t->match.id);
+    glDispatchCompute((GLuint)((target->w + stride - 1) / stride + 7) / 8,
+                      (GLuint)((target->h + stride - 1) / stride + 7) / 8, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(t->match_step.id);
+    glUniform1ui(gfx_uniform(t->match_step, "u_min_pixels"), GROUND_MATCH_MIN_PIXELS);
+    glUniform1f(gfx_uniform(t->match_step, "u_rate"), GROUND_MATCH_RATE);
+    glUniform2f(gfx_uniform(t->match_step, "u_range"), GROUND_MATCH_GAIN_MIN, GROUND_MATCH_GAIN_MAX);
+    glDispatchCompute(1, 1, 1);
+    /* The terrain reads a copy: read as a uniform block while the shaders
+     * store to it, the state cost meadow_large's terrain pass 0.07 ms (H200) */
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+    glCopyNamedBufferSubData(t->match.id, t->match_gain.id, 0, 0, sizeof match_rest.gain);
+    /* the target's textures unbound: drawn into while bound, they cost the
+     * next frame's passes */
+    for (GLuint u = GROUND_TEX_MATCH_COLOR; u <= GROUND_TEX_MATCH_GRID; u++) glBindTextureUnit(u, 0);
+}
+
+void ground_match_reset(ground_t *t)
+{
+    glNamedBufferSubData(t->match.id, 0, sizeof match_rest, &match_rest);
+    glNamedBufferSubData(t->match_gain.id, 0, sizeof match_rest.gain, match_rest.gain);
+}
+
+void ground_match_state(const ground_t *t, ground_match_state_t *out)
+{
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glGetNamedBufferSubData(t->match.id, 0, sizeof *out, out);
 }

@@ -19,6 +19,7 @@
 #include "core/core.h"
 #include "gfx/gfx.h"
 #include "gi/gi.h"
+#include "ground/ground_match.h"
 #include "terrain/terrain.h"
 
 typedef struct ground_t ground_t;
@@ -53,6 +54,24 @@ void ground_set_canopy_fade(ground_t *g, float start, float end, bool overhang);
 void ground_set_lod(ground_t *g, const blade_lod_t *lod, float width, float focal_px, float cull, float far);
 /* Global illumination of the ground and its canopy; zero: off. */
 void ground_set_gi(ground_t *g, gi_bind_t gi);
+/* The canopy match (ground_match.h), after the grass: measures the frame
+ * in target against the canopy from the camera over the near window
+ * before a switch at switch_distance (fade: the half width of its band),
+ * where the opaque depth the grass was drawn over (a single-sample texture
+ * of the target's size) shows the terrain, and steps the gain that the
+ * canopy is drawn with from the next draw on. Nothing without a canopy
+ * band, a colour texture in target or opaque_depth, or on an imported
+ * mesh (no terrain normals to shade the canopy by). */
+void ground_match(ground_t *g, const grass_view_t *view, const gfx_target_t *target, GLuint opaque_depth,
+                  float switch_distance, float fade);
+/* Starts compiling the match's programs (gfx_programs_prefetch), for a
+ * field that will run it. */
+void ground_match_prefetch(const ground_t *g);
+/* The gain back to 1 and the sums to 0 (the match off, or a new view). */
+void ground_match_reset(ground_t *g);
+/* The gains and the sums the next step reads (a read-back: measures and
+ * tests only). */
+void ground_match_state(const ground_t *g, ground_match_state_t *out);
 /* Draws the ground, then the sky where it left the far plane (inv_viewproj:
  * the inverse of view->viewproj, column-major). */
 void ground_draw(const ground_t *g, const grass_view_t *view, const float inv_viewproj[16]);

@@ -79,6 +79,16 @@ void world_draw_canopy(world_t *w, const grass_view_t *v, const gfx_target_t *t)
     draw_as(w, v, t, &(grass_draw_as_t){.mode = w->mode, .no_grass = true, .canopy_all = true, .depth = true});
 }
 
+bool world_canopy_match(world_t *w, ground_match_state_t *out)
+{
+    return w->grass && grass_canopy_match(w->grass, out);
+}
+
+void world_canopy_match_reset(world_t *w)
+{
+    if (w->grass) grass_canopy_match_reset(w->grass);
+}
+
 bool world_setup(world_t *w, const world_setup_t *setup)
 {
     scene_desc_t *s = &w->scene;

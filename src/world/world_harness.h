@@ -11,6 +11,7 @@
 
 #include "collide/collide_set.h"
 #include "grass/grass_tuning.h"
+#include "ground/ground_match.h"
 
 /* What an offscreen session changes between world_load and world_make_gpu.
  * Zero = keep what the scene and options say. */
@@ -44,6 +45,9 @@ void world_draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, sce
  * camera on (no canopy table: the plain ground): the reference of the seam
  * where the blades end in the canopy. */
 void world_draw_canopy(world_t *w, const grass_view_t *v, const gfx_target_t *t);
+/* The canopy match's state (grass_canopy_match). */
+bool world_canopy_match(world_t *w, ground_match_state_t *out);
+void world_canopy_match_reset(world_t *w);
 /* The camera the tiles stream and activate around until the next draw
  * sets it (a step without drawing). */
 void world_set_camera(world_t *w, const float camera[3]);
