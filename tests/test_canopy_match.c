@@ -106,8 +106,10 @@ static void measure_means(world_t *w, const grass_view_t *v, const gfx_target_t 
     memset(r, 0, 3 * sizeof *r);
     for (size_t i = 0; i < (size_t)t->w * (size_t)t->h; i++) {
         if (bg.dist[i] < win[0] || bg.dist[i] >= win[1]) continue;
-        for (int c = 0; c < 3 && frame.cls[i] == EVAL_SEAM_GRASS; c++) f[c] += eval_srgb_to_linear(frame.img.px[4 * i + c]);
-        for (int c = 0; c < 3 && ref.cls[i] == EVAL_SEAM_GRASS; c++) r[c] += eval_srgb_to_linear(ref.img.px[4 * i + c]);
+        for (int c = 0; c < 3 && frame.cls[i] == EVAL_SEAM_GRASS; c++)
+            f[c] += eval_srgb_to_linear(frame.img.px[4 * i + c]);
+        for (int c = 0; c < 3 && ref.cls[i] == EVAL_SEAM_GRASS; c++)
+            r[c] += eval_srgb_to_linear(ref.img.px[4 * i + c]);
         nf += frame.cls[i] == EVAL_SEAM_GRASS;
         nr += ref.cls[i] == EVAL_SEAM_GRASS;
     }

@@ -1,6 +1,7 @@
 /* test_world_prefetch: every program the world prefetches (the tiles',
  * the billboards' and the ring's, the compute rasterizer's) is taken by
- * the make or the draw that needs it, in each mode, on a world terrain
+ * the make or the frame's draw that needs it (the canopy match's, blade
+ * mode's on a world), in each mode, on a world terrain
  * and on a heightfield, on the compute path: none is built twice and
  * none is left to drop. A prefetch whose desc drifts from its make's (a
  * define, a stage, the objects a collide pass takes) fails here. */
@@ -25,7 +26,12 @@ static void run(const char *scene, scene_mode_t mode)
     grass_view_t v;
     world_view_make(&v, &cam, t.w, t.h, 0.0f, 1.0f / 60.0f);
     world_update(w, 1.0f / 60.0f, 1.0f / 60.0f);
-    world_draw_as(w, &v, &t, mode, true);
+    /* a frame's own draw: the canopy match (blades ending in the canopy)
+     * runs in those alone */
+    gfx_target_bind(&t);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_DEPTH_TEST);
+    world_draw(w, &v, &t);
     gfx_program_stats_t after = gfx_program_stats();
     int issued = after.prefetched - before.prefetched, taken = after.taken - before.taken;
     int left = gfx_programs_prefetch_drop();

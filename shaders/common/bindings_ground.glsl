@@ -29,6 +29,6 @@
 /* Its fixed point: a linear-light channel of one pixel summed as
  * round(value GROUND_MATCH_FIXED) (a window of 1080p holds about 10^5
  * pixels: 4 10^8, within a uint) */
-#define GROUND_MATCH_FIXED 4096.0
+#define GROUND_MATCH_FIXED 4096
 
 #endif

@@ -150,7 +150,7 @@ void main()
         barrier();
     }
     if (i < 2u && s_sum[i][0].w > 0.0) {
-        uvec3 v = uvec3(round(s_sum[i][0].rgb * GROUND_MATCH_FIXED));
+        uvec3 v = uvec3(round(s_sum[i][0].rgb * float(GROUND_MATCH_FIXED)));
         uint a = uint(s_sum[i][0].w);
         if (i == 0u) {
             atomicAdd(frame_sum.r, v.r);

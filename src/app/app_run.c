@@ -297,8 +297,8 @@ static int summary_seam(app_t *app, char *buf, size_t size)
         ground_match_state_t m;
         bool matched = wi.scene->grass.canopy_match == SCENE_CANOPY_MATCH_ON && world_canopy_match(w, &m);
         if (n < (int)size && matched)
-            n += snprintf(buf + n, size - (size_t)n,
-                          "  canopy match gain (on the stored colour, rgb): %.4f %.4f %.4f\n", m.gain[0], m.gain[1], m.gain[2]);
+            n += snprintf(buf + n, size - (size_t)n, "  canopy match gain (on the stored colour, rgb): %.4f %.4f %.4f\n",
+                          m.gain[0], m.gain[1], m.gain[2]);
         return n < (int)size ? n : (int)size - 1;
     }
     if (app->last_hud)

@@ -196,8 +196,8 @@ ground_t *ground_make(const terrain_mesh_t *mesh)
                                                     .label = "terrain.canopy.match"});
     t->match_gain = gfx_buffer_make(&(gfx_buffer_desc_t){.size = sizeof match_rest.gain, .data = match_rest.gain,
                                                          .dynamic = true, .label = "terrain.canopy.match_gain"});
-    if ((mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh)) && make_noise(t) && t->match.id && t->match_gain.id)
-        return t;
+    bool made = mesh->type == TERRAIN_WORLD ? make_world(t, mesh) : make_mesh(t, mesh);
+    if (made && make_noise(t) && t->match.id && t->match_gain.id) return t;
     ground_destroy(t);
     return NULL;
 }
