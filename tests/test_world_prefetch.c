@@ -1,7 +1,7 @@
 /* test_world_prefetch: every program the world prefetches (the tiles',
  * the billboards' and the ring's, the compute rasterizer's) is taken by
- * the make or the frame's draw that needs it (the canopy match's, blade
- * mode's on a world), in each mode, on a world terrain
+ * the make or the frame's draw that needs it (the canopy match's), in
+ * each mode, on a world terrain
  * and on a heightfield, on the compute path: none is built twice and
  * none is left to drop. A prefetch whose desc drifts from its make's (a
  * define, a stage, the objects a collide pass takes) fails here. */

@@ -398,7 +398,8 @@ bool grass_make_tiles(grass_t *gr)
     /* The ground canopy beyond the billboards, thinned by the tiles' extent
      * map (its texture); without billboards the canopy match's programs
      * compile meanwhile. */
-    if (gr->have_tiles && !ring && g->canopy_match == SCENE_CANOPY_MATCH_ON) ground_match_prefetch(gr->ground);
+    if (gr->have_tiles && !ring && gr->mode == SCENE_MODE_HYBRID && g->canopy_match == SCENE_CANOPY_MATCH_ON)
+        ground_match_prefetch(gr->ground);
     canopy_finish(&job, thread, threaded);
     if (gr->have_tiles && job.ok)
         ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,

@@ -153,13 +153,16 @@ static void run_pass(grass_t *gr, frame_draw_t *f, grass_pass_kind_t kind)
     }
 }
 
-/* The canopy match (ground_match) after the grass of a frame's own draw
- * whose blades end in the canopy (no billboards between), over the opaque
+/* The canopy match (ground_match) after the grass of a hybrid frame's own
+ * draw whose blades end in the canopy (no billboards between; blade mode on
+ * a world ends in the canopy too, but its match ran into a segmentation
+ * fault inside llvmpipe's compiled code under the sanitizers, not found:
+ * docs/journal/2026-11-29-canopy-match.md), over the opaque
  * depth they were drawn on: the compute path's, or the hardware path's
  * resolve (a single-sample target keeps no copy of it: no match). */
 static void match_canopy(grass_t *gr, const frame_draw_t *f, bool ring)
 {
-    if (!gr->match_frame || !f->tiles || ring || gr->reference ||
+    if (!gr->match_frame || !f->tiles || ring || gr->reference || gr->mode != SCENE_MODE_HYBRID ||
         gr->scene->grass.canopy_match != SCENE_CANOPY_MATCH_ON)
         return;
     const gfx_target_t *t = f->target;

@@ -190,7 +190,7 @@ const scene_field_t scene_fields[] = {
              "around the camera); `none` shades the ground as canopy from the switch distance, where the thinned "
              "blades end (docs/HYBRID.md)"},
     {GRASS(canopy_match), .key = "canopy_match", .type = SCENE_FIELD_ENUM, .names = canopy_match_names,
-      .doc = "where the blades end in the ground canopy (`billboards` none): `on` matches the canopy's colour to the "
+      .doc = "hybrid, where the blades end in the ground canopy (`billboards` none): `on` matches the canopy's colour to the "
              "blades' by a gain per channel measured on each frame, their mean colours in the seam measure's near "
              "window (docs/HYBRID.md \"Canopy match\"); `off` draws the table's colour as it is"},
     {GRASS(lod), .key = "lod", .type = SCENE_FIELD_OBJECT,
