@@ -123,26 +123,26 @@ static void *canopy_thread(void *user)
     return NULL;
 }
 
-/* The largest wind force the scene's blades meet: its winds' strengths
- * summed (the canopy table's wind poses reach it). */
-static float canopy_wind(const scene_desc_t *s)
+/* The scene's canopy table desc, its blades cut into `segments` quads (0:
+ * the default): its population, seed and sun, and as its largest wind the
+ * scene's winds' strengths summed. Zeroed first, padding too: the cache
+ * compares bytes. */
+static void canopy_desc(const scene_desc_t *s, int segments, blade_canopy_desc_t *out)
 {
-    float w = 0.0f;
-    for (int i = 0; i < s->wind_count; i++) w += fmaxf(s->wind[i].strength, 0.0f);
-    return w;
+    memset(out, 0, sizeof *out);
+    out->population = s->grass.population;
+    out->seed = s->seed;
+    memcpy(out->sun, (float[3])GRASS_SUN_DIR, sizeof out->sun);
+    out->segments = segments;
+    for (int i = 0; i < s->wind_count; i++) out->wind += fmaxf(s->wind[i].strength, 0.0f);
 }
 
-/* Starts the scene's canopy table on a thread, its blades cut into
- * `segments` quads (0: the default); false: it was not started
- * (canopy_finish then computes it). */
+/* Starts the scene's canopy table on a thread (canopy_desc); false: it was
+ * not started (canopy_finish then computes it). */
 static bool canopy_start(const grass_t *gr, int segments, canopy_job_t *job, pthread_t *thread)
 {
-    memset(job, 0, sizeof *job); /* padding too: the cache compares bytes */
-    job->desc.population = gr->scene->grass.population;
-    job->desc.seed = gr->scene->seed;
-    memcpy(job->desc.sun, (float[3])GRASS_SUN_DIR, sizeof job->desc.sun);
-    job->desc.segments = segments;
-    job->desc.wind = canopy_wind(gr->scene);
+    memset(job, 0, sizeof *job);
+    canopy_desc(gr->scene, segments, &job->desc);
     return pthread_create(thread, NULL, canopy_thread, job) == 0;
 }
 
@@ -417,11 +417,7 @@ bool grass_ring_make_canopy(grass_t *gr)
     if (gr->terrain->type != TERRAIN_WORLD || !gr->bb || gr->have_tiles) return true;
     blade_canopy_t *canopy = malloc(sizeof *canopy); /* 0.4 MB: not on the stack */
     blade_canopy_desc_t desc;
-    memset(&desc, 0, sizeof desc); /* padding too: the cache compares bytes */
-    desc.population = gr->scene->grass.population;
-    desc.seed = gr->scene->seed;
-    memcpy(desc.sun, (float[3])GRASS_SUN_DIR, sizeof desc.sun);
-    desc.wind = canopy_wind(gr->scene);
+    canopy_desc(gr->scene, 0, &desc);
     if (!canopy || !canopy_make(canopy, &desc)) {
         free(canopy);
         return false;
