@@ -28,6 +28,8 @@
 #include "common/hash.glsl"
 #ifdef TILES_WORLD
 #include "common/world_height.glsl"
+#else
+#include "common/heightfield.glsl"
 #endif
 
 #define TILES_POSE_ITERATIONS 6
@@ -83,21 +85,7 @@ float tiles_ground(float x, float z, out vec3 n)
     n = world_normal(vec2(x, z));
     return world_height(vec2(x, z));
 #else
-    int res = u_grid_res;
-    float cell = (2.0 * u_half) / float(res);
-    float fx = (clamp(x, -u_half, u_half) + u_half) / cell;
-    float fz = (clamp(z, -u_half, u_half) + u_half) / cell;
-    int i = clamp(int(floor(fx)), 0, res - 1);
-    int j = clamp(int(floor(fz)), 0, res - 1);
-    float u = fx - float(i), v = fz - float(j);
-    vec4 p00 = texelFetch(u_ground, ivec2(i, j), 0), p10 = texelFetch(u_ground, ivec2(i + 1, j), 0);
-    vec4 p01 = texelFetch(u_ground, ivec2(i, j + 1), 0), p11 = texelFetch(u_ground, ivec2(i + 1, j + 1), 0);
-    vec4 r;
-    if (v >= u) {
-        r = p00 + u * (p11 - p01) + v * (p01 - p00);
-    } else {
-        r = p00 + u * (p10 - p00) + v * (p11 - p10);
-    }
+    vec4 r = heightfield_at(u_ground, u_grid_res, u_half, vec2(x, z));
     n = blade_safe_normalize(r.xyz);
     return r.w;
 #endif

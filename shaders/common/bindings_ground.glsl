@@ -18,8 +18,8 @@
  * under the grass (one sample) */
 #define GROUND_TEX_MATCH_COLOR 3
 #define GROUND_TEX_MATCH_DEPTH 4
-/* canopy_match.comp on a heightfield: the terrain mesh's vertex normals and
- * heights (RGBA32F, (res + 1)^2, row j the vertices j (res + 1) + i) */
+/* canopy_match.comp on a heightfield: the tiles' ground texture, the
+ * terrain's vertex normals and heights (common/heightfield.glsl) */
 #define GROUND_TEX_MATCH_GRID 5
 /* The canopy match's state (ground.c's match buffer): canopy_match.comp and
  * canopy_match_update.comp write it as a storage buffer, the terrain's

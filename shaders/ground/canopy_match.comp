@@ -13,8 +13,8 @@
  * the measure leaves out what is not ground. The ground point is where the
  * pixel centre's ray meets the terrain as drawn (ground_hit), its normal
  * the terrain's there: a heightfield's vertex normals and heights
- * interpolated over the mesh's triangles (GROUND_TEX_MATCH_GRID,
- * tiles_ground's rule), or the world's function (MATCH_WORLD). Each workgroup sums its pixels and adds them to
+ * interpolated over the mesh's triangles (the tiles' ground texture,
+ * common/heightfield.glsl), or the world's function (MATCH_WORLD). Each workgroup sums its pixels and adds them to
  * the match buffer in fixed point. On large targets a pixel in u_stride^2
  * stands for its block (1080 rows: 1 in 16; the window still holds about
  * 2,000 grass pixels on meadow_large). */
@@ -25,9 +25,10 @@
 #ifdef MATCH_WORLD
 #include "common/world_height.glsl"
 #else
-layout(binding = GROUND_TEX_MATCH_GRID) uniform sampler2D u_grid;
+#include "common/heightfield.glsl"
+layout(binding = GROUND_TEX_MATCH_GRID) uniform sampler2D u_grid; /* the tiles' ground texture */
 uniform int u_grid_res;
-uniform vec4 u_grid_box; /* x0, z0 of vertex (0, 0), the cell's x and z size (m) */
+uniform float u_grid_half; /* the field's half side (m) */
 #endif
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -62,12 +63,7 @@ vec4 ground_at(vec2 xz)
 #ifdef MATCH_WORLD
     return vec4(world_normal(xz), world_height(xz));
 #else
-    vec2 f = (xz - u_grid_box.xy) / u_grid_box.zw;
-    ivec2 c = clamp(ivec2(floor(f)), ivec2(0), ivec2(u_grid_res - 1));
-    float u = f.x - float(c.x), v = f.y - float(c.y);
-    vec4 p00 = texelFetch(u_grid, c, 0), p10 = texelFetch(u_grid, c + ivec2(1, 0), 0);
-    vec4 p01 = texelFetch(u_grid, c + ivec2(0, 1), 0), p11 = texelFetch(u_grid, c + ivec2(1, 1), 0);
-    vec4 r = v >= u ? p00 + u * (p11 - p01) + v * (p01 - p00) : p00 + u * (p10 - p00) + v * (p11 - p10);
+    vec4 r = heightfield_at(u_grid, u_grid_res, u_grid_half, xz);
     return vec4(normalize(r.xyz), r.w);
 #endif
 }
@@ -126,10 +122,10 @@ void main()
     vec4 frame = vec4(0.0), ref = vec4(0.0);
     vec4 g = surface_at(p, size);
     float d = g.w > 0.0 ? grass_distance(g.xyz, u_camera) : 0.0;
-    /* a collider or a character over the ground: not the measure's either
-     * (MEASURE_SEAM_GROUND_EPS, its rule) */
-    bool covered = g.w > 0.0 && g.y - ground_at(g.xz).w >= 0.15;
-    if (g.w > 0.0 && !covered && d >= u_window.x && d < u_window.y) {
+    /* in the window, unless a collider or a character stands over the
+     * ground there: not the measure's either (MEASURE_SEAM_GROUND_EPS, its
+     * rule) */
+    if (g.w > 0.0 && d >= u_window.x && d < u_window.y && g.y - ground_at(g.xz).w < 0.15) {
         vec3 q = ground_hit(g.xyz, p, size), n = ground_at(q.xz).xyz;
         vec4 cut;
         vec4 canopy = terrain_canopy(q, n, cut);

@@ -616,7 +616,10 @@ blade_tiles_info_t blade_tiles_info(const blade_tiles_t *t)
                                .reach = t->reach,
                                .env = t->env,
                                .time = t->time,
-                               .extent_texture = t->extent.id};
+                               .extent_texture = t->extent.id,
+                               .ground_texture = t->ground.id,
+                               .grid_res = t->grid_res,
+                               .field_size = t->field_size};
     memcpy(info.template_real, t->template_real, sizeof info.template_real);
     return info;
 }

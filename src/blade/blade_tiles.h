@@ -199,6 +199,11 @@ typedef struct blade_tiles_info_t {
     float time;                     /* of the latest update (s) */
     GLuint extent_texture;          /* the desc's extent map as an R8 texture (owned by the
                                        field), 0 without one */
+    GLuint ground_texture;          /* a heightfield's vertex normals and heights, RGBA32F (grid_res
+                                       + 1)^2 (common/heightfield.glsl; owned by the field); 0 on a
+                                       world */
+    int grid_res;                   /* its cells a side */
+    float field_size;               /* the heightfield's side (m), centred on the origin */
 } blade_tiles_info_t;
 
 blade_tiles_desc_t blade_tiles_desc_defaults(const blade_tiles_desc_t *desc);

@@ -397,13 +397,14 @@ bool grass_make_tiles(grass_t *gr)
     if (gr->have_tiles) blade_tiles_set_slope_source(gr->tiles, bb_slope_source, gr);
     /* The ground canopy beyond the billboards, thinned by the tiles' extent
      * map (its texture); without billboards the canopy match's programs
-     * compile meanwhile. */
+     * compile meanwhile, on the tiles' ground. */
+    blade_tiles_info_t ti = gr->have_tiles ? blade_tiles_info(gr->tiles) : (blade_tiles_info_t){0};
+    ground_set_grid(gr->ground, ti.ground_texture, ti.grid_res, 0.5f * ti.field_size);
     if (gr->have_tiles && !ring && gr->mode == SCENE_MODE_HYBRID && g->canopy_match == SCENE_CANOPY_MATCH_ON)
         ground_match_prefetch(gr->ground);
     canopy_finish(&job, thread, threaded);
     if (gr->have_tiles && job.ok)
-        ground_set_canopy(gr->ground, &job.canopy, blade_tiles_info(gr->tiles).extent_texture,
-                               td.extent_origin, td.extent_spacing);
+        ground_set_canopy(gr->ground, &job.canopy, ti.extent_texture, td.extent_origin, td.extent_spacing);
     blade_canopy_free(&job.canopy);
     if (have_layout) bb_layout_free(&lay);
     return gr->have_tiles;

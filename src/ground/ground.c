@@ -56,11 +56,12 @@ struct ground_t {
     gfx_buffer_t match, match_gain; /* the state; a copy of its gain the terrain reads */
     gfx_program_t match_measure[2], match_step;
     /* The terrain's normals for the match: a heightfield's vertex normals
-     * and heights (grid_res > 0; x0, z0 of vertex (0, 0), the cell), or
-     * the world's height function. */
-    gfx_texture_t grid;
+     * and heights (the tiles' ground texture, borrowed: ground_set_grid;
+     * its cells a side, the field's half side), or the world's height
+     * function. */
+    GLuint grid;
     int grid_res;
-    float grid_box[4];
+    float grid_half;
     terrain_world_gpu_t world_fn;
     bool match_tried;
 };
@@ -125,31 +126,6 @@ static bool make_world(ground_t *t, const terrain_mesh_t *mesh)
     return ok && t->vbo.id && t->ibo.id;
 }
 
-/* A heightfield's vertex normals and heights for the match (the tiles'
- * ground texture's layout); nothing for other meshes. */
-static bool make_grid(ground_t *t, const terrain_mesh_t *mesh)
-{
-    int res = mesh->grid_res, side = res + 1;
-    if (res <= 0 || mesh->vertex_count != (size_t)side * (size_t)side) return true;
-    float *texels = malloc(sizeof(float) * 4 * (size_t)side * (size_t)side);
-    if (!texels) return false;
-    for (size_t v = 0; v < (size_t)side * (size_t)side; v++) {
-        memcpy(texels + 4 * v, mesh->normals + 3 * v, 3 * sizeof(float));
-        texels[4 * v + 3] = mesh->positions[3 * v + 1];
-    }
-    const float *first = mesh->positions, *last = mesh->positions + 3 * ((size_t)side * (size_t)side - 1);
-    t->grid_box[0] = first[0];
-    t->grid_box[1] = first[2];
-    t->grid_box[2] = (last[0] - first[0]) / (float)res;
-    t->grid_box[3] = (last[2] - first[2]) / (float)res;
-    t->grid = gfx_texture_make(&(gfx_texture_desc_t){.w = side, .h = side, .format = GL_RGBA32F, .filter = GL_NEAREST,
-                                                     .data = texels, .upload_type = GL_FLOAT,
-                                                     .label = "terrain.canopy.match_grid"});
-    free(texels);
-    t->grid_res = t->grid.id ? res : 0;
-    return t->grid.id != 0;
-}
-
 /* A terrain mesh's interleaved vertices, indices and program. */
 static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
 {
@@ -185,7 +161,7 @@ static bool make_mesh(ground_t *t, const terrain_mesh_t *mesh)
     }
     bool ok = make_programs(t, &(gfx_program_desc_t){.vs = "ground/terrain.vert", .fs = "ground/terrain.frag",
                                                       .label = "terrain.program"});
-    return ok && t->vbo.id && t->ibo.id && make_grid(t, mesh);
+    return ok && t->vbo.id && t->ibo.id;
 }
 
 ground_t *ground_make(const terrain_mesh_t *mesh)
@@ -269,7 +245,6 @@ void ground_destroy(ground_t *t)
     gfx_texture_destroy(&t->canopy);
     gfx_buffer_destroy(&t->match);
     gfx_buffer_destroy(&t->match_gain);
-    gfx_texture_destroy(&t->grid);
     for (int k = 0; k < 2; k++) gfx_program_destroy(&t->match_measure[k]);
     gfx_program_destroy(&t->match_step);
     terrain_clipmap_free(&t->clipmap);
@@ -371,8 +346,16 @@ void ground_draw(const ground_t *t, const grass_view_t *v, const float inv_viewp
     glBindVertexArray(0);
 }
 
+void ground_set_grid(ground_t *t, GLuint grid, int res, float half)
+{
+    t->grid = grid;
+    t->grid_res = grid ? res : 0;
+    t->grid_half = half;
+}
+
 /* The match's programs (measure on single- and multisampled targets, step)
- * for t's terrain; false on an imported mesh (no terrain normals). */
+ * for t's terrain; false without terrain normals (a heightfield whose grid
+ * was not set, an imported mesh). */
 static bool match_descs(const ground_t *t, char ms[64], gfx_program_desc_t out[3])
 {
     if (!t->world && t->grid_res <= 0) return false;
@@ -432,9 +415,9 @@ void ground_match(ground_t *t, const grass_view_t *v, const gfx_target_t *target
     glBindTextureUnit(GROUND_TEX_MATCH_COLOR, target->color.id);
     glBindTextureUnit(GROUND_TEX_MATCH_DEPTH, opaque_depth);
     if (!t->world) {
-        glBindTextureUnit(GROUND_TEX_MATCH_GRID, t->grid.id);
+        glBindTextureUnit(GROUND_TEX_MATCH_GRID, t->grid);
         glUniform1i(gfx_uniform(p, "u_grid_res"), t->grid_res);
-        glUniform4fv(gfx_uniform(p, "u_grid_box"), 1, t->grid_box);
+        glUniform1f(gfx_uniform(p, "u_grid_half"), t->grid_half);
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GROUND_BIND_MATCH, t->match.id);
     glDispatchCompute((GLuint)((target->w + stride - 1) / stride + 7) / 8,

@@ -60,10 +60,15 @@ void ground_set_gi(ground_t *g, gi_bind_t gi);
  * where the opaque depth the grass was drawn over (a single-sample texture
  * of the target's size) shows the terrain, and steps the gain that the
  * canopy is drawn with from the next draw on. Nothing without a canopy
- * band, a colour texture in target or opaque_depth, or on an imported
- * mesh (no terrain normals to shade the canopy by). */
+ * band, a colour texture in target or opaque_depth, or terrain normals to
+ * shade the canopy by (a world's function, or ground_set_grid's). */
 void ground_match(ground_t *g, const grass_view_t *view, const gfx_target_t *target, GLuint opaque_depth,
                   float switch_distance, float fade);
+/* A heightfield's vertex normals and heights for the match (a texture the
+ * caller owns, common/heightfield.glsl's layout: the tiles' ground), its
+ * cells a side and the field's half side (m); 0: none, no match on a
+ * heightfield. */
+void ground_set_grid(ground_t *g, GLuint grid, int res, float half);
 /* Starts compiling the match's programs (gfx_programs_prefetch), for a
  * field that will run it. */
 void ground_match_prefetch(const ground_t *g);
