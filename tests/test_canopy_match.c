@@ -32,7 +32,7 @@ static void canopy_at_10(scene_desc_t *s, void *user)
 {
     s->grass.switch_distance = 10.0f;
     s->grass.billboards = SCENE_HYBRID_BILLBOARDS_NONE;
-    if (user) s->grass.canopy_match = SCENE_CANOPY_MATCH_OFF;
+    s->grass.canopy_match = user ? SCENE_CANOPY_MATCH_OFF : SCENE_CANOPY_MATCH_ON;
 }
 
 static world_t *make_world(bool off)

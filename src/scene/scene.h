@@ -72,10 +72,12 @@ typedef enum scene_hybrid_billboards_t {
 } scene_hybrid_billboards_t;
 
 /* grass.canopy_match: where the blades end in the ground canopy, its colour
- * matched to theirs by the frame's own means (ground/ground_match.h). */
+ * matched to theirs by the frame's own means (ground/ground_match.h). Off
+ * by default: against blades drawn across the band it made meadow_large's
+ * worst frames worse (docs/HYBRID.md "Canopy match"). */
 typedef enum scene_canopy_match_t {
-    SCENE_CANOPY_MATCH_ON = 0, /* "on" (default) */
-    SCENE_CANOPY_MATCH_OFF,    /* "off": the table's colour as it is */
+    SCENE_CANOPY_MATCH_OFF = 0, /* "off" (default): the table's colour as it is */
+    SCENE_CANOPY_MATCH_ON,      /* "on" */
 } scene_canopy_match_t;
 
 /* Clearings of the extent map (bb_layout.h, bb_extent_desc_t): where both
@@ -134,7 +136,7 @@ typedef struct scene_grass_desc_t {
     float bb_lod_width_px;   /* with bb_lod: the width rule's width_px for the cards;
                                 default 0: grass.lod.width_px */
     scene_hybrid_billboards_t billboards; /* hybrid on a world terrain; default ring */
-    scene_canopy_match_t canopy_match;    /* default on */
+    scene_canopy_match_t canopy_match;    /* default off */
     char lod_table[SCENE_PATH_MAX]; /* hybrid: switch distances measured by the bench for a GL
                                        renderer (scene_lod.h), repository-relative; default "": the
                                        scene's switch_distance and canopy_distance */

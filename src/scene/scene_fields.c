@@ -15,7 +15,7 @@ static const char *const raster_names[] = {"auto", "hw", "compute", NULL};
 static const char *const shape_names[] = {"quadratic", "quad", "triangle", "triangle_tip", "dandelion", NULL};
 static const char *const blade_render_names[] = {"pull", "tess", NULL};
 static const char *const hybrid_billboards_names[] = {"ring", "none", NULL};
-static const char *const canopy_match_names[] = {"on", "off", NULL};
+static const char *const canopy_match_names[] = {"off", "on", NULL};
 static const char *const terrain_names[] = {"heightfield", "mesh", "world", NULL};
 static const char *const wind_names[] = {"directional", "point", NULL};
 static const char *const collider_names[] = {"sphere", "capsule", "box", NULL};
@@ -192,7 +192,8 @@ const scene_field_t scene_fields[] = {
     {GRASS(canopy_match), .key = "canopy_match", .type = SCENE_FIELD_ENUM, .names = canopy_match_names,
       .doc = "hybrid, where the blades end in the ground canopy (`billboards` none): `on` matches the canopy's colour to the "
              "blades' by a gain per channel measured on each frame, their mean colours in the seam measure's near "
-             "window (docs/HYBRID.md \"Canopy match\"); `off` draws the table's colour as it is"},
+             "window (docs/HYBRID.md \"Canopy match\"); `off` draws the table's colour as it is (the default: against blades "
+             "drawn across the band the match made meadow_large's worst frames worse)"},
     {GRASS(lod), .key = "lod", .type = SCENE_FIELD_OBJECT,
       .doc = "how blades thin with distance (keys `grass.lod.*`)", .def_doc = "width"},
     {GRASS(clearings), .key = "clearings", .type = SCENE_FIELD_OBJECT,
