@@ -10,9 +10,12 @@
  *    MATCH_TOLERANCE with the one the measure's frames give (the frame's
  *    and the canopy's grass pixels in the near window by the terrain's
  *    distance, in linear light), per channel.
- * 3. Frames with a still camera: the canopy seam falls below its value
- *    without the match (grass.canopy_match off, whose gain stays 1 to the
- *    bit) and below SEAM_MATCHED; the near windows' colours meet. */
+ * 3. Frames with a still camera: the near window's canopy from the camera
+ *    meets the frame's blades there, within NEAR_MATCHED per channel and
+ *    closer than without the match (grass.canopy_match off, whose gain
+ *    stays 1 to the bit). The canopy seam against blades across the band
+ *    is printed for both: what the match is for does not follow from it
+ *    (it is off by default, docs/HYBRID.md "Canopy match"). */
 #include "measure/measure.h"
 #include "test.h"
 #include "test_gl.h"
@@ -25,7 +28,7 @@
 #include "ground/ground_match.h"
 
 #define MATCH_TOLERANCE 0.02 /* relative: the depth's samples, 8-bit frames */
-#define SEAM_MATCHED 0.3     /* canopy seam colour score after the frames */
+#define NEAR_MATCHED 0.01    /* relative, the near windows' means after the frames */
 #define FRAMES 10
 
 static void canopy_at_10(scene_desc_t *s, void *user)
@@ -178,13 +181,21 @@ int main(void)
     double scale = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = 10.0f}).colour_scale;
     ground_match_state_t mo;
     CHECK(world_canopy_match(w, &m) && world_canopy_match(off, &mo));
-    printf("canopy seam after %d frames: colour score %.3f with the match (gain %.3f %.3f %.3f), %.3f without; near "
+    printf("canopy seam (against blades across the band) after %d frames: colour score %.3f with the match (gain %.3f %.3f %.3f), %.3f without; near "
            "L* frame %.2f canopy %.2f\n",
            FRAMES, on.delta_e / scale, m.gain[0], m.gain[1], m.gain[2], unmatched.delta_e / scale, on.lab[0][0][0],
            on.lab[1][0][0]);
     CHECK(mo.gain[0] == 1.0f && mo.gain[1] == 1.0f && mo.gain[2] == 1.0f);
-    CHECK(on.delta_e < unmatched.delta_e);
-    CHECK(on.delta_e / scale < SEAM_MATCHED);
+    double near_on = 0.0, near_off = 0.0;
+    measure_means(w, &v, &t, f, r);
+    for (int c = 0; c < 3; c++) near_on = fmax(near_on, fabs(r[c] / f[c] - 1.0));
+    measure_means(off, &v, &t, f, r);
+    for (int c = 0; c < 3; c++) near_off = fmax(near_off, fabs(r[c] / f[c] - 1.0));
+    printf("near window, canopy from the camera against the frame: worst channel %.4f with the match, %.4f "
+           "without\n",
+           near_on, near_off);
+    CHECK(near_on < NEAR_MATCHED);
+    CHECK(near_on < near_off);
     gfx_target_destroy(&t);
     world_destroy(w);
     world_destroy(off);

@@ -18,9 +18,10 @@
  *    billboards beyond the band) 10 % darker in linear light moves Delta L*
  *    down by more than 1.
  * 4. Without billboards (grass.billboards none) the canopy seam compares the
- *    blades ending in the canopy with the canopy from the camera: both
- *    windows are counted, the far windows (canopy in both) agree within a
- *    Delta E of 1, and the near ones (blades against canopy) differ. */
+ *    blades ending in the canopy with blades drawn across the band: both
+ *    windows are counted, the near ones are the frame's own in both, and
+ *    the reference's far window is what a world whose tiles reach past it
+ *    draws there (within CANOPY_REF_DE), farther from the frame's canopy. */
 #include "measure/measure.h"
 #include "test.h"
 #include "test_gl.h"
@@ -30,19 +31,32 @@
 
 /* The hybrid frame's coverage step may not exceed this (score 1). */
 #define SEAM_COVERAGE 0.05
+/* The canopy seam's reference against a world drawing blades that far:
+ * Delta E of their far windows at most this (both idle tiles; measured
+ * 0.000 on llvmpipe). */
+#define CANOPY_REF_DE 0.3
 
-static void switch_at_10(scene_desc_t *s, void *user)
+/* The switch at `distance` m; without billboards (the canopy beyond) when
+ * none. */
+typedef struct tweak_t {
+    float distance;
+    bool none;
+} tweak_t;
+
+static void switch_at(scene_desc_t *s, void *user)
 {
-    s->grass.switch_distance = 10.0f;
-    if (user) s->grass.billboards = SCENE_HYBRID_BILLBOARDS_NONE;
+    const tweak_t *k = user;
+    s->grass.switch_distance = k->distance;
+    if (k->none) s->grass.billboards = SCENE_HYBRID_BILLBOARDS_NONE;
 }
 
-static world_t *make_world(bool no_billboards)
+static world_t *make_world(float distance, bool no_billboards)
 {
     world_t *w;
+    tweak_t k = {distance, no_billboards};
     CHECK(world_load(&(world_options_t){.scene = "tests/data/scenes/metric.json"}, &w) == 0);
-    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = switch_at_10,
-                                          .user = no_billboards ? w : NULL}));
+    CHECK(world_setup(w, &(world_setup_t){.mode = SCENE_MODE_HYBRID, .mode_set = true, .tweak = switch_at,
+                                          .user = &k}));
     CHECK(world_make_gpu(w));
     for (int f = 0; f < 4; f++) world_update(w, (float)(f + 1) / 60.0f, 1.0f / 60.0f);
     return w;
@@ -54,7 +68,7 @@ int main(void)
 {
     test_gl_init();
     core_log_set_quiet(true);
-    world_t *w = make_world(false);
+    world_t *w = make_world(10.0f, false);
     const scene_desc_t *s = world_info(w).scene;
     gfx_target_t t = gfx_target_make(&(gfx_target_desc_t){.w = 320, .h = 180, .samples = s->msaa, .label = "seam"});
     cam_t cam;
@@ -119,21 +133,38 @@ int main(void)
     world_destroy(w);
 
     /* 4. No billboards: the blades end in the canopy at the switch. */
-    w = make_world(true);
+    w = make_world(10.0f, true);
     eval_seam_t c;
     CHECK(measure_drivers(w).billboards == NULL && world_info(w).canopy);
     CHECK(measure_canopy_seam(w, &v, &t, &c));
-    double far_de = 0.0, near_de = 0.0;
+    double near_de = 0.0, far_de = 0.0;
     for (int k = 0; k < 3; k++) {
-        far_de += (c.lab[0][1][k] - c.lab[1][1][k]) * (c.lab[0][1][k] - c.lab[1][1][k]);
         near_de += (c.lab[0][0][k] - c.lab[1][0][k]) * (c.lab[0][0][k] - c.lab[1][0][k]);
+        far_de += (c.lab[0][1][k] - c.lab[1][1][k]) * (c.lab[0][1][k] - c.lab[1][1][k]);
     }
-    printf("blades to canopy: score %.3f, Delta E %.3f, coverage %.4f; frame vs canopy reference Delta E near %.3f, "
-           "far %.3f; pixels %ld | %ld\n",
+    printf("blades to canopy: score %.3f, Delta E %.3f, coverage %.4f; frame vs blades across the band Delta E "
+           "near %.3f, far %.3f; pixels %ld | %ld\n",
            c.score, c.delta_e, c.coverage, sqrt(near_de), sqrt(far_de), c.pixels[0][0], c.pixels[0][1]);
     CHECK(c.pixels[0][0] > 100 && c.pixels[0][1] > 100);
-    CHECK_MSG(sqrt(far_de) < 1.0, "beyond the band both are canopy: Delta E %.3f", sqrt(far_de));
-    CHECK_MSG(sqrt(near_de) > sqrt(far_de), "the near windows (blades, canopy) should differ more than the far");
+    CHECK_MSG(near_de == 0.0, "nearer than the band the reference is the frame: Delta E %.3f", sqrt(near_de));
+    world_destroy(w);
+    /* The same far window in a world whose blades reach past it. */
+    float reach = d.switch_distance + d.fade + d.window + MEASURE_SEAM_REACH;
+    w = make_world(reach, true);
+    measure_seam_frame_t past, past_bg;
+    CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &past));
+    CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, false, &past_bg));
+    measure_seam_frame_classify(&past, &past_bg);
+    eval_seam_t o;
+    CHECK(eval_image_seam(&(eval_seam_frame_t){&past.img, past_bg.dist, past.cls}, NULL, &d, &o));
+    double ref_de = 0.0;
+    for (int k = 0; k < 3; k++) ref_de += (o.lab[0][1][k] - c.lab[1][1][k]) * (o.lab[0][1][k] - c.lab[1][1][k]);
+    printf("far window: blades to %.0f m against the reference Delta E %.3f (the frame's canopy %.3f)\n",
+           (double)reach, sqrt(ref_de), sqrt(far_de));
+    CHECK_MSG(sqrt(ref_de) <= CANOPY_REF_DE, "the reference's far window is not blades: Delta E %.3f", sqrt(ref_de));
+    CHECK(sqrt(far_de) > sqrt(ref_de));
+    measure_seam_frame_free(&past);
+    measure_seam_frame_free(&past_bg);
     gfx_target_destroy(&t);
     world_destroy(w);
     CHECK(test_gl_shutdown() == 0);

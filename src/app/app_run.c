@@ -271,24 +271,25 @@ static int summary_seam(app_t *app, char *buf, size_t size)
     if (!wi.billboards && !app->last_hud && wi.canopy) {
         if (!measure_canopy_seam(w, &app->last_view, &app->target, &e))
             return snprintf(buf, size, "canopy seam at %.1f m: not measured (a side of the band shows no grass or "
-                            "too few pixels)\n", sd);
+                            "too few pixels, or the reference's tiles could not be made)\n", sd);
         /* The canopy blends its cover into its colour: every canopy pixel
          * differs from the bare ground and counts as grass, the blades' gaps
-         * do not, so the coverage term compares unlike things; the colour
+         * need not, so the coverage term compares unlike things; the colour
          * term is the seam. */
-        double scale = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd}).colour_scale;
-        double colour = e.delta_e / scale;
+        eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd});
+        double scale = d.colour_scale, colour = e.delta_e / scale;
+        double reach = sd + GRASS_SWITCH_FADE + d.window + MEASURE_SEAM_REACH;
         int n = snprintf(buf, size,
-                         "canopy seam at %.1f m (blades to the ground canopy, against the canopy from the camera; "
-                         "band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
+                         "canopy seam at %.1f m (blades to the ground canopy, against blades drawn across the band to "
+                         "%.0f m; band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "
                          "L* %+.3f; coverage step %.4f (score with it %.3f: the canopy counts every pixel as grass)\n",
-                         sd, GRASS_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
+                         sd, reach, GRASS_SWITCH_FADE, colour, e.delta_e, e.delta_l, e.coverage, e.score);
         if (n < (int)size)
             n += snprintf(buf + n, size - (size_t)n,
-                          "  grass L*a*b* near | far: frame (%.2f %.2f %.2f) | (%.2f %.2f %.2f), canopy (%.2f %.2f "
+                          "  grass L*a*b* near | far: frame (%.2f %.2f %.2f) | (%.2f %.2f %.2f), blades (%.2f %.2f "
                           "%.2f) | (%.2f %.2f %.2f); pixels %ld | %ld\n"
                           "  all pixels (grass and ground): colour score %.3f, Delta E %.3f, Delta L* %+.3f; "
-                          "L* near | far: frame %.2f | %.2f, canopy %.2f | %.2f\n",
+                          "L* near | far: frame %.2f | %.2f, blades %.2f | %.2f\n",
                           e.lab[0][0][0], e.lab[0][0][1], e.lab[0][0][2], e.lab[0][1][0], e.lab[0][1][1],
                           e.lab[0][1][2], e.lab[1][0][0], e.lab[1][0][1], e.lab[1][0][2], e.lab[1][1][0],
                           e.lab[1][1][1], e.lab[1][1][2], e.pixels[0][0], e.pixels[0][1],

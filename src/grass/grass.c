@@ -343,6 +343,13 @@ void grass_canopy_match_reset(grass_t *g)
     if (g->ground) ground_match_reset(g->ground);
 }
 
+blade_tiles_t *grass_swap_tiles(grass_t *g, blade_tiles_t *tiles)
+{
+    blade_tiles_t *old = g->tiles;
+    g->tiles = tiles;
+    return old;
+}
+
 bb_field_t *grass_swap_billboards(grass_t *g, bb_field_t *field)
 {
     bb_field_t *old = g->bb;

@@ -355,26 +355,46 @@ static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buf
     if (gr->bb) bb_field_add_slopes(gr->bb, grid, sums);
 }
 
-bool grass_make_tiles(grass_t *gr)
+/* The tiles' desc with blades to `distance` (m), without its extent map. */
+static void tiles_desc(const grass_t *gr, float distance, blade_tiles_desc_t *td)
 {
     const scene_desc_t *s = gr->scene;
     const scene_grass_desc_t *g = &s->grass;
-    blade_tiles_desc_t td = {.terrain = gr->terrain,
-                             .tile_size = g->tile_size,
-                             .population = g->population,
-                             .seed = s->seed,
-                             .switch_distance = grass_tiles_distance(gr),
-                             .pool_slots = g->tile_pool,
-                             .displacement = g->displacement,
-                             .width_correction = g->width_correction,
-                             .width_printed = {g->width_printed[0], g->width_printed[1]},
-                             .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
-                             .wind_count = gr->blade_env.wind_count,
-                             .cull = {.max_distance = grass_tiles_distance(gr) + 1.0f, .lod = g->lod,
-                                      .focal_px = scene_focal(s)},
-                             .slope_recover = g->recover_time,
-                             .label = "tiles"};
-    memcpy(td.winds, gr->blade_env.winds, sizeof td.winds);
+    *td = (blade_tiles_desc_t){.terrain = gr->terrain,
+                               .tile_size = g->tile_size,
+                               .population = g->population,
+                               .seed = s->seed,
+                               .switch_distance = distance,
+                               .pool_slots = g->tile_pool,
+                               .displacement = g->displacement,
+                               .width_correction = g->width_correction,
+                               .width_printed = {g->width_printed[0], g->width_printed[1]},
+                               .tessellate = g->blade_render == SCENE_BLADE_RENDER_TESS,
+                               .wind_count = gr->blade_env.wind_count,
+                               .cull = {.max_distance = distance + 1.0f, .lod = g->lod, .focal_px = scene_focal(s)},
+                               .slope_recover = g->recover_time,
+                               .label = "tiles"};
+    memcpy(td->winds, gr->blade_env.winds, sizeof td->winds);
+}
+
+/* The billboards' extent map thins the tiles too (same clearings): the
+ * shared layout's, made into *lay when it returns true (bb_layout_free it). */
+static bool tiles_extent(const grass_t *gr, blade_tiles_desc_t *td, bb_layout_t *lay)
+{
+    bb_gen_desc_t gen;
+    if (!grass_extent_layout(gr, lay, &gen)) return false;
+    td->extent = &lay->extent;
+    memcpy(td->extent_origin, gen.origin, sizeof td->extent_origin);
+    td->extent_spacing = gen.spacing * (float)gen.cells_per_texel;
+    td->extent_seed = gr->scene->seed;
+    return true;
+}
+
+bool grass_make_tiles(grass_t *gr)
+{
+    const scene_grass_desc_t *g = &gr->scene->grass;
+    blade_tiles_desc_t td;
+    tiles_desc(gr, grass_tiles_distance(gr), &td);
     /* Without billboards the canopy continues the tiles' blades where they
      * end: its blades have the segments the tiles draw there (the hardware
      * path's level of detail; docs/HYBRID.md "Ground canopy"). */
@@ -382,16 +402,8 @@ bool grass_make_tiles(grass_t *gr)
     canopy_job_t job;
     pthread_t thread;
     bool threaded = canopy_start(gr, ring ? 0 : blade_tiles_segments_at(&td, td.switch_distance), &job, &thread);
-    /* The billboards' extent map thins the tiles too (same clearings). */
-    bb_gen_desc_t gen;
     bb_layout_t lay;
-    bool have_layout = grass_extent_layout(gr, &lay, &gen);
-    if (have_layout) {
-        td.extent = &lay.extent;
-        memcpy(td.extent_origin, gen.origin, sizeof td.extent_origin);
-        td.extent_spacing = gen.spacing * (float)gen.cells_per_texel;
-        td.extent_seed = s->seed;
-    }
+    bool have_layout = tiles_extent(gr, &td, &lay);
     gr->tiles = blade_tiles_make(&td);
     gr->have_tiles = gr->tiles != NULL;
     if (gr->have_tiles) blade_tiles_set_slope_source(gr->tiles, bb_slope_source, gr);
@@ -408,6 +420,23 @@ bool grass_make_tiles(grass_t *gr)
     blade_canopy_free(&job.canopy);
     if (have_layout) bb_layout_free(&lay);
     return gr->have_tiles;
+}
+
+blade_tiles_t *grass_build_tiles(grass_t *gr, float distance)
+{
+    if (!gr->have_tiles || !(distance > 0.0f)) return NULL;
+    gfx_ctx_t *prev = grass_enter(gr);
+    blade_tiles_desc_t td;
+    tiles_desc(gr, distance, &td);
+    bb_layout_t lay;
+    bool have_layout = tiles_extent(gr, &td, &lay);
+    td.label = "tiles.reach";
+    blade_tiles_t *t = blade_tiles_make(&td);
+    if (have_layout) bb_layout_free(&lay);
+    /* streamed in and posed at the latest step's time, with nothing to push */
+    if (t) blade_tiles_update(t, gr->camera, NULL, &gr->blade_env);
+    grass_leave(prev);
+    return t;
 }
 
 /* A world terrain in billboard mode: the ground canopy beyond the

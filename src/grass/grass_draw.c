@@ -210,8 +210,9 @@ static void draw_passes(grass_t *gr, const grass_view_t *v, const gfx_target_t *
                                                  .billboards = gr->scene->grass.billboards},
                             passes);
     f.tiles = grass_pass_has(passes, n, GRASS_PASS_TILES); /* the hybrid's near blades, and its canopy */
-    f.fade_lo = grass_tiles_distance(gr) - GRASS_SWITCH_FADE;
-    f.fade_hi = grass_tiles_distance(gr) + GRASS_SWITCH_FADE;
+    float reach = gr->tiles_reach > 0.0f ? gr->tiles_reach : grass_tiles_distance(gr);
+    f.fade_lo = reach - GRASS_SWITCH_FADE;
+    f.fade_hi = reach + GRASS_SWITCH_FADE;
     /* The canopy fades in beyond the billboards of the hybrid (or of a
      * world), or, without them (grass.billboards none, blade mode on a
      * world), where the blades fade out. */
@@ -248,8 +249,10 @@ void grass_draw_target(grass_t *gr, const grass_view_t *v, const gfx_target_t *t
     gr->canopy_all = as->canopy_all;
     gr->grass_depth = as->depth;
     gr->match_frame = !as->depth && !as->canopy_all && !as->no_grass && as->mode == gr->mode;
+    gr->tiles_reach = as->tiles_distance;
     draw_passes(gr, v, t, as->mode, !as->no_grass, as->parts);
     gr->canopy_all = gr->grass_depth = gr->match_frame = false;
+    gr->tiles_reach = 0.0f;
 }
 
 /* ---- the host's framebuffer and its GL state (grass.h's contract) ---- */

@@ -89,11 +89,14 @@ void grass_set_camera(grass_t *g, const float camera[3]);
 /* As grass_draw into an in-tree target, in `mode`, with no grass at all
  * when !grass (the ground only) and the ground shaded as canopy from the
  * camera on when canopy_all; depth: the grass writes its depth on the
- * compute path too (measures read it back). */
+ * compute path too (measures read it back); tiles_distance > 0: the tiles
+ * held end there (a field of grass_build_tiles swapped in), not at the
+ * scene's distance, and the canopy beyond. */
 typedef struct grass_draw_as_t {
     scene_mode_t mode;
     bool no_grass, canopy_all, depth;
     unsigned parts; /* grass_part_t: 0 all, else the ground or the grass alone */
+    float tiles_distance;
 } grass_draw_as_t;
 void grass_draw_target(grass_t *g, const grass_view_t *v, const gfx_target_t *t, const grass_draw_as_t *as);
 /* The collider a character instance is to the grass: its proxy spheres
@@ -111,5 +114,13 @@ void grass_update_spheres(grass_t *g, const collide_sphere_t *spheres, int count
 bb_field_t *grass_build_billboards(const grass_t *g, uint32_t placement);
 /* Puts `field` in g's place (NULL: none) and returns the field it held. */
 bb_field_t *grass_swap_billboards(grass_t *g, bb_field_t *field);
+/* A tiles field as g builds its own, but with blades out to `distance` m
+ * (its switch), streamed in and posed at the camera and time of g's latest
+ * step with nothing pushing it (every tile idle); NULL when g has no tiles
+ * or it cannot be made. Drawn swapped in, with grass_draw_as_t's
+ * tiles_distance. */
+blade_tiles_t *grass_build_tiles(grass_t *g, float distance);
+/* Puts `tiles` (not NULL) in g's place and returns the field it held. */
+blade_tiles_t *grass_swap_tiles(grass_t *g, blade_tiles_t *tiles);
 
 #endif

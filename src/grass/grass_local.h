@@ -72,6 +72,7 @@ struct grass_t {
      * a frame's own draw, which steps the canopy match (measures' draws
      * do not). */
     bool canopy_all, grass_depth, match_frame;
+    float tiles_reach; /* grass_draw_as_t.tiles_distance (0: the scene's) */
 };
 
 /* grass_build.c: what grass_make and grass_set_mode make. */

@@ -53,8 +53,14 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
  * windows by the terrain's distance: with billboards (grass.canopy_distance
  * +- GRASS_CANOPY_FADE) billboards to the ground canopy against billboards
  * to the horizon; without (grass.billboards none; the switch band) the
- * blades to the canopy against the canopy from the camera
- * (world_draw_canopy). False as measure_seam, and without a canopy. */
+ * blades to the canopy against blades across the band (world_draw_tiles_to;
+ * nearer than the band's centre the frame itself). False as measure_seam,
+ * without a canopy, and when the reference's tiles cannot be made. */
+/* The canopy seam's reference (without billboards) draws its blades this
+ * far (m) beyond the band's far window: past the fade where they end (1 m)
+ * and the tiles' hysteresis (1 m), as the truth runs' 60 m tiles did for a
+ * 50 m switch (docs/journal/2026-11-29-canopy-seam-truth.md). */
+#define MEASURE_SEAM_REACH 5.0f
 bool measure_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The seam's noise floor for this view: the billboards built again with
  * MEASURE_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn

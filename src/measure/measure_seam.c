@@ -151,15 +151,22 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
 }
 
 /* Where the blades end in the canopy (the hybrid without billboards): the
- * last frame against the canopy drawn from the camera, at the switch band. */
+ * last frame against what the eye would see without the switch, blades
+ * across the band (world_draw_tiles_to, out to MEASURE_SEAM_REACH beyond
+ * its far window). Nearer than the band's centre the reference is the
+ * frame itself: the tiles made for it are all idle, and the frame's near
+ * blades are what both sides share (a trail there would otherwise count). */
 static bool blades_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     world_info_t wi = world_info(w);
-    eval_seam_desc_t d = measure_seam_desc(w);
+    eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = measure_seam_desc(w).switch_distance,
+                                                                     .fade = GRASS_SWITCH_FADE});
     measure_seam_frame_t frame = {0}, ref = {0}, bg = {0};
-    bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame);
-    world_draw_canopy(w, v, t);
-    ok = ok && measure_seam_frame_read(w, v, t, &ref) && measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
+    bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame) &&
+              world_draw_tiles_to(w, v, t, d.switch_distance + d.fade + d.window + MEASURE_SEAM_REACH) &&
+              measure_seam_frame_read(w, v, t, &ref) && measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
+    for (size_t i = 0, n = (size_t)t->w * (size_t)t->h; ok && i < n; i++)
+        if (bg.dist[i] < d.switch_distance) memcpy(ref.img.px + i * 4, frame.img.px + i * 4, 4);
     return seam_counted(&frame, &ref, &bg, ok, &d, true, out);
 }
 

@@ -2,7 +2,7 @@
  * (world_info, the colliders), the set-up of an offscreen session's world,
  * a step with the harness's own blade sphere proxies, a draw in another
  * mode or without grass, and the billboard field swapped for another
- * placement. */
+ * placement, or the tiles for blades drawn farther. */
 #include "world/world_local.h"
 
 #include <string.h>
@@ -77,6 +77,17 @@ void world_draw_as(world_t *w, const grass_view_t *v, const gfx_target_t *t, sce
 void world_draw_canopy(world_t *w, const grass_view_t *v, const gfx_target_t *t)
 {
     draw_as(w, v, t, &(grass_draw_as_t){.mode = w->mode, .no_grass = true, .canopy_all = true, .depth = true});
+}
+
+bool world_draw_tiles_to(world_t *w, const grass_view_t *v, const gfx_target_t *t, float distance)
+{
+    blade_tiles_t *tiles = w->grass ? grass_build_tiles(w->grass, distance) : NULL;
+    if (!tiles) return false;
+    blade_tiles_t *keep = grass_swap_tiles(w->grass, tiles);
+    draw_as(w, v, t, &(grass_draw_as_t){.mode = w->mode, .depth = true, .tiles_distance = distance});
+    grass_swap_tiles(w->grass, keep);
+    blade_tiles_destroy(tiles);
+    return true;
 }
 
 bool world_canopy_match(world_t *w, ground_match_state_t *out)

@@ -76,5 +76,11 @@ bb_field_t *world_build_billboards(const world_t *w, uint32_t placement_seed);
 /* Puts `field` in the world's place (NULL: none) and returns the field it
  * held; the caller owns what it gets back. */
 bb_field_t *world_swap_billboards(world_t *w, bb_field_t *field);
+/* The last frame drawn again (as world_draw_as in the world's mode, grass
+ * depth written) with blades out to `distance` m and the canopy beyond: a
+ * tiles field made for it (grass_build_tiles: every tile idle) in place of
+ * the world's for this draw, then destroyed. False (nothing drawn) without
+ * tiles or when it cannot be made. */
+bool world_draw_tiles_to(world_t *w, const grass_view_t *v, const gfx_target_t *t, float distance);
 
 #endif
