@@ -13,7 +13,9 @@
  * wind force (three in four; up to 1.3 times the table's largest, any
  * azimuth, with a part along the ground normal that the twin leaves out),
  * so a shader that ignored the wind, its azimuth or the sun's side of it
- * fails.
+ * fails; on a slope the blades' gravity along the ground adds to it
+ * (blade_canopy_slope_lean, the twin's wind summed here in the ground's
+ * frame), so a shader without the lean fails too.
  * The twin's inputs are the angles the camera and sun were built from in
  * the ground's frame (t towards the viewer, the normal g, s = g x t) and
  * world up in that frame, so a shader that took the sun's elevation over
@@ -65,7 +67,7 @@ int main(void)
     static const float root[3] = {0.10f, 0.25f, 0.05f}, tip[3] = {0.45f, 0.65f, 0.20f};
     static item_t items[N];
     static float suns[N][4], want[N][4], got[N][3][4], whole[N][4];
-    double wind_spread = 0.0; /* the most the wind moves a colour channel */
+    double wind_spread = 0.0, lean_spread = 0.0; /* the most the wind, the lean moves a colour channel */
     core_rng_t rng;
     core_rng_seed(&rng, 11, 2);
     for (int i = 0; i < N; i++) {
@@ -96,14 +98,26 @@ int main(void)
         it->pos[3] = it->normal[3] = 0.0f;
         it->camera[3] = cut;
         suns[i][3] = core_rng_float(&rng); /* blades kept */
+        /* the wind and the lean along t and along the sun's side of s */
+        float lean[3];
+        blade_canopy_slope_lean(&c, g, lean);
+        float lt = lean[0] * t[0] + lean[1] * t[1] + lean[2] * t[2];
+        float ls = lean[0] * s[0] + lean[1] * s[1] + lean[2] * s[2];
+        float wt = wm * cosf(psi) + lt, ws = side * (wm * sinf(psi) + ls);
         blade_canopy_view_t v = {.elevation = e, .sun_elevation = se, .azimuth = phi, .up = {t[1], g[1], s[1]},
-                                 .wind = wm, .wind_azimuth = side * psi};
+                                 .wind = sqrtf(wt * wt + ws * ws), .wind_azimuth = atan2f(ws, wt)};
         blade_canopy_color(&c, &v, root, tip, whole[i], &whole[i][3]);
-        blade_canopy_view_t calm = v;
+        blade_canopy_view_t calm = v, unlean = v;
         calm.wind = 0.0f;
-        float still[4];
+        unlean.wind = wm;
+        unlean.wind_azimuth = side * psi;
+        float still[4], upright[4];
         blade_canopy_color(&c, &calm, root, tip, still, &still[3]);
-        for (int k = 0; k < 3; k++) wind_spread = fmax(wind_spread, fabs(still[k] - whole[i][k]));
+        blade_canopy_color(&c, &unlean, root, tip, upright, &upright[3]);
+        for (int k = 0; k < 3; k++) {
+            wind_spread = fmax(wind_spread, fabs(still[k] - whole[i][k]));
+            lean_spread = fmax(lean_spread, fabs(upright[k] - whole[i][k]));
+        }
         v.cut = cut;
         blade_canopy_color(&c, &v, root, tip, want[i], &want[i][3]);
     }
@@ -126,6 +140,7 @@ int main(void)
     glUniform1f(gfx_uniform(prog, "u_canopy_top"), tex.top);
     glUniform1i(gfx_uniform(prog, "u_canopy_poses"), tex.poses);
     glUniform1f(gfx_uniform(prog, "u_canopy_wind"), tex.wind);
+    glUniform1f(gfx_uniform(prog, "u_canopy_gravity"), tex.gravity);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_root"), 1, root);
     glUniform3fv(gfx_uniform(prog, "u_canopy_albedo_tip"), 1, tip);
     glBindTextureUnit(GROUND_TEX_CANOPY, table.id);
@@ -160,12 +175,13 @@ int main(void)
     }
     printf("canopy colour and cover, GLSL vs C twin (%d views, %d flat, %d cut below the top): worst %.2g, flat "
            "%.2g, cut %.2g, overhang of the shader's columns %.2g (values spread %.3f; the wind moves a colour by "
-           "up to %.3f)\n",
-           N, N / 4, cuts, worst, worst_flat, worst_cut, worst_overhang, spread, wind_spread);
+           "up to %.3f, the slope's lean by up to %.3f)\n",
+           N, N / 4, cuts, worst, worst_flat, worst_cut, worst_overhang, spread, wind_spread, lean_spread);
     CHECK(worst < 1e-3); /* a quarter of an 8-bit step: acos / asin of float dots near +-1 */
     CHECK(worst_overhang < 1e-4);
     CHECK(spread > 0.1); /* the views differ: the comparison compares something */
     CHECK(wind_spread > 0.01); /* so does the wind */
+    CHECK(lean_spread > 0.01); /* and the lean */
     CHECK(cuts > N / 2 && cut_spread > 0.1); /* some cuts take much of the column's cover away */
     blade_canopy_free(&c);
     gfx_texture_destroy(&table);

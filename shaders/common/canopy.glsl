@@ -35,6 +35,7 @@ const float CANOPY_SUN_STEP = 0.2617994; /* BLADE_CANOPY_SUN_STEP */
 uniform int u_canopy_rows;
 uniform int u_canopy_poses;   /* 1, or 1 + CANOPY_WIND_AZIMUTHS CANOPY_WIND_STEPS */
 uniform float u_canopy_wind;  /* the wind poses' largest force (blade_canopy_t.wind) */
+uniform float u_canopy_gravity; /* the blades' gravity (blade_canopy_t.gravity) */
 uniform float u_canopy_sun0;
 uniform float u_canopy_top; /* m, the cuts' scale (blade_canopy_t.top) */
 /* texel (x, row + level rows): x 0 (cover), 1 (E[ao], E[n_t ao], E[n_g ao],
@@ -133,14 +134,22 @@ struct canopy_view_t {
     float wind, psi;
 };
 
+/* blade_canopy_slope_lean: the blades' gravity along the ground of unit
+ * normal gn, downhill, as a wind force (world). */
+vec3 canopy_slope_lean(vec3 gn)
+{
+    return u_canopy_gravity * (gn.y * gn - vec3(0.0, 1.0, 0.0));
+}
+
 /* The view of ground point pos of unit normal gn from camera, lit by the
- * sun (unit), under the wind force `wind` (world). Seen straight down there
- * is no t: t and s are 0, and the ambient's parts along them, whose
- * moments vanish there by the blades' uniform facings, are left out, as is
- * the wind (the rest pose). */
+ * sun (unit), under the wind force `wind` (world) and the slope's lean
+ * (canopy_slope_lean). Seen straight down there is no t: t and s are 0,
+ * and the ambient's parts along them, whose moments vanish there by the
+ * blades' uniform facings, are left out, as is the wind (the rest pose). */
 canopy_view_t canopy_view(vec3 pos, vec3 gn, vec3 camera, vec3 sun, vec3 wind)
 {
     canopy_view_t v;
+    wind += canopy_slope_lean(gn);
     vec3 to_eye = camera - pos;
     float len = max(length(to_eye), 1e-6);
     v.e = asin(clamp(dot(to_eye, gn) / len, 0.0, 1.0));

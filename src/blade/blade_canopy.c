@@ -501,6 +501,7 @@ bool blade_canopy_make(blade_canopy_t *out, const blade_canopy_desc_t *desc)
     enum { N = sizeof(blade_canopy_row_t) / sizeof(float) };
     static_assert(offsetof(blade_canopy_row_t, cover) == 0, "the cover leads the row");
     out->wind = d.wind > 0.0f ? d.wind : 0.0f;
+    out->gravity = d.population.gravity;
     out->poses = out->wind > 0.0f ? BLADE_CANOPY_POSES : 1;
     canopy_patch_t *patches = calloc((size_t)d.patches, sizeof *patches);
     blade_canopy_t *one = calloc(1, sizeof *one);
@@ -647,6 +648,11 @@ void blade_canopy_wind_weights(const blade_canopy_t *c, float wind, float psi, f
     }
 }
 
+void blade_canopy_slope_lean(const blade_canopy_t *c, const float n[3], float out[3])
+{
+    for (int k = 0; k < 3; k++) out[k] = c->gravity * (n[1] * n[k] - (k == 1 ? 1.0f : 0.0f));
+}
+
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
 {
     memset(out, 0, sizeof *out);
@@ -655,6 +661,7 @@ void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out)
     out->sun0 = c->sun0;
     out->top = c->top;
     out->wind = c->wind;
+    out->gravity = c->gravity;
     for (int p = 0; p < c->poses; p++)
         for (int l = 0; l < BLADE_CANOPY_LEVELS; l++)
             for (int r = 0; r < c->rows; r++) {

@@ -111,6 +111,8 @@ typedef struct blade_canopy_t {
     float top; /* m, the tallest blade point of the patches at rest */
     int blades; /* in a patch */
     float wind; /* the desc's: the wind poses' largest magnitude (0: none) */
+    float gravity; /* the population's (resolved): what pulls blades on a slope downhill
+                      (blade_canopy_slope_lean) */
     int poses;  /* 1, or BLADE_CANOPY_POSES with wind */
     blade_canopy_pose_t *windy; /* poses 1.. (poses - 1 of them; NULL without wind) */
 } blade_canopy_t;
@@ -153,7 +155,7 @@ void blade_canopy_wind_weights(const blade_canopy_t *c, float wind, float psi, f
 typedef struct blade_canopy_texture_t {
     int rows;  /* texels high: rows BLADE_CANOPY_LEVELS poses */
     int poses; /* the table's */
-    float sun0, top, wind;
+    float sun0, top, wind, gravity;
     float texel[BLADE_CANOPY_POSES * BLADE_CANOPY_LEVELS * BLADE_CANOPY_MAX_ROWS][BLADE_CANOPY_TEXELS][4];
 } blade_canopy_texture_t;
 void blade_canopy_pack(const blade_canopy_t *c, blade_canopy_texture_t *out);
@@ -179,6 +181,17 @@ typedef struct blade_canopy_view_t {
                                  when the sun's azimuth in the ground is in [0, pi] from t
                                  towards s, otherwise -s's: the mirror image) */
 } blade_canopy_view_t;
+
+/* The lean of the blades on ground of unit normal n, as a wind force
+ * (world) to add to the wind at the point: the part of their gravity
+ * (c->gravity along -y) along the ground, c->gravity (n.y n - y), of
+ * magnitude gravity sin(slope), downhill. The table settles its blades on
+ * flat ground, gravity along the normal; the tiles' blades grow along the
+ * normal and their gravity pulls straight down, so on a slope they lean
+ * downhill like blades in a wind (the wind poses pick it up; without wind
+ * poses the canopy has no lean). The C twin of canopy_slope_lean in
+ * common/canopy.glsl, which canopy_view adds to its wind. */
+void blade_canopy_slope_lean(const blade_canopy_t *c, const float n[3], float out[3]);
 
 /* The canopy's mean colour (unfogged) and cover seen and lit as v, blades
  * of albedo mix(root, tip, v): the C twin of canopy_table_color in

@@ -36,7 +36,7 @@ struct ground_t {
      * tiles' blades under their overhang. */
     gfx_texture_t canopy;
     int canopy_rows, canopy_poses;
-    float canopy_sun0, canopy_top, canopy_wind;
+    float canopy_sun0, canopy_top, canopy_wind, canopy_gravity;
     blade_wind_t winds[BLADE_MAX_WINDS];
     int wind_count;
     GLuint extent;
@@ -195,6 +195,7 @@ void ground_set_canopy(ground_t *t, const blade_canopy_t *c, GLuint extent, cons
         t->canopy_sun0 = tex->sun0;
         t->canopy_top = tex->top;
         t->canopy_wind = tex->wind;
+        t->canopy_gravity = tex->gravity;
         free(tex);
     } else {
         core_log_error("ground: no memory for the canopy table; the ground is drawn without it");
@@ -285,6 +286,7 @@ static void canopy_uniforms(const ground_t *t, gfx_program_t p, const grass_view
     glUniform1f(gfx_uniform(p, "u_canopy_top"), t->canopy_top);
     glUniform1i(gfx_uniform(p, "u_canopy_poses"), t->canopy_poses);
     glUniform1f(gfx_uniform(p, "u_canopy_wind"), t->canopy_wind);
+    glUniform1f(gfx_uniform(p, "u_canopy_gravity"), t->canopy_gravity);
     glUniform1i(gfx_uniform(p, "u_wind_count"), t->wind_count);
     if (t->wind_count) glUniform4fv(gfx_uniform(p, "u_winds"), 2 * t->wind_count, t->winds[0].a);
     glUniform1f(gfx_uniform(p, "u_time"), v->time);
