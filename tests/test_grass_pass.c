@@ -61,6 +61,9 @@ static void check_reference_and_fallbacks(void)
     CHECK_LIST("ground blades", .mode = SCENE_MODE_BILLBOARD, .reference = true, ALL);
     CHECK_LIST("ground raster_begin blades* raster_end", .mode = SCENE_MODE_HYBRID, .reference = true, ALL,
                .compute = true);
+    /* A world has no whole field: its reference is tiles (GRASS_REFERENCE_REACH). */
+    CHECK_LIST("ground tiles", .mode = SCENE_MODE_BLADE, .ground = GRASS_GROUND_WORLD, .reference = true, ALL);
+    CHECK_LIST("ground tiles", .mode = SCENE_MODE_HYBRID, .ground = GRASS_GROUND_WORLD, .reference = true, ALL);
     /* Tiles wanted but not made: the whole field when the world has it. */
     CHECK_LIST("ground blades billboards", .mode = SCENE_MODE_HYBRID, .have_blades = true, .have_billboards = true);
     CHECK_LIST("ground billboards", .mode = SCENE_MODE_HYBRID, .have_billboards = true);
@@ -84,14 +87,19 @@ static void check_rules(void)
     CHECK(!grass_pass_uses_tiles(SCENE_MODE_HYBRID, GRASS_GROUND_MESH, false));
     CHECK(!grass_pass_uses_tiles(SCENE_MODE_BLADE, GRASS_GROUND_HEIGHTFIELD, false));
     CHECK(grass_pass_uses_tiles(SCENE_MODE_BLADE, GRASS_GROUND_WORLD, false));
-    CHECK(!grass_pass_uses_tiles(SCENE_MODE_HYBRID, GRASS_GROUND_WORLD, true));
+    CHECK(!grass_pass_uses_tiles(SCENE_MODE_HYBRID, GRASS_GROUND_HEIGHTFIELD, true));
+    CHECK(grass_pass_uses_tiles(SCENE_MODE_BLADE, GRASS_GROUND_WORLD, true));
+    CHECK(grass_pass_uses_tiles(SCENE_MODE_HYBRID, GRASS_GROUND_WORLD, true));
     /* The tiles end at the switch, on a world in blade mode at grass.blade_distance. */
     scene_grass_desc_t g = {.switch_distance = 25.0f};
-    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_HYBRID, GRASS_GROUND_WORLD) == 25.0f);
-    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_WORLD) == GRASS_BLADE_DISTANCE);
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_HYBRID, GRASS_GROUND_WORLD, false) == 25.0f);
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_WORLD, false) == GRASS_BLADE_DISTANCE);
     g.blade_distance = 50.0f;
-    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_WORLD) == 50.0f);
-    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_HEIGHTFIELD) == 25.0f);
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_WORLD, false) == 50.0f);
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_HEIGHTFIELD, false) == 25.0f);
+    /* a world's reference: its tiles to GRASS_REFERENCE_REACH in any mode */
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_BLADE, GRASS_GROUND_WORLD, true) == GRASS_REFERENCE_REACH);
+    CHECK(grass_pass_tiles_distance(&g, SCENE_MODE_HYBRID, GRASS_GROUND_WORLD, true) == GRASS_REFERENCE_REACH);
     for (int k = 0; k < GRASS_PASS_KINDS; k++) CHECK(strcmp(grass_pass_name((grass_pass_kind_t)k), "?") != 0);
     grass_pass_t p[GRASS_PASS_KINDS];
     int n = grass_pass_list(&(grass_pass_desc_t){.mode = SCENE_MODE_HYBRID, ALL, .compute = true}, p);

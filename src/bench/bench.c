@@ -194,11 +194,17 @@ static int proxy_spheres(world_t *w, collide_sphere_t *out, int max, void *user)
 #define FLOOR_PLACEMENT_SEED 0x9e3779b9u
 
 /* The reference's grass-free view (the image error's background): a blade
- * field too thin to hold a blade. */
+ * field too thin to hold a blade; on a world, whose reference is tiles (a
+ * tile must hold one), blades a micrometre tall and wide. */
 static void no_grass(scene_desc_t *s, void *user)
 {
     (void)user;
-    s->grass.population.density = 1e-7f;
+    blade_population_t *p = &s->grass.population;
+    if (s->terrain.type != TERRAIN_WORLD) {
+        p->density = 1e-7f;
+        return;
+    }
+    p->height[0] = p->height[1] = p->width[0] = p->width[1] = 1e-6f;
 }
 
 static bench_config_t *add(bench_config_t *c, int *n, const char *group, scene_mode_t mode)

@@ -35,7 +35,7 @@ bool grass_uses_tiles(const grass_t *g) { return grass_pass_uses_tiles(g->mode, 
 
 float grass_tiles_distance(const grass_t *g)
 {
-    return grass_pass_tiles_distance(&g->scene->grass, g->mode, grass_ground_of(g));
+    return grass_pass_tiles_distance(&g->scene->grass, g->mode, grass_ground_of(g), g->reference);
 }
 
 uint32_t grass_placement_seed(const grass_t *g)
@@ -68,8 +68,9 @@ bool grass_admit(const grass_admit_t *a, admit_t *out, char *err, size_t err_siz
                         .billboards = grass_pass_wants_billboards(a->mode, a->scene->grass.billboards) &&
                                       !a->reference,
                         .tiles = tiles,
-                        .tiles_distance = grass_pass_tiles_distance(&a->scene->grass, a->mode, ground),
-                        .full_field = (blades && !tiles) || a->reference,
+                        .tiles_distance = grass_pass_tiles_distance(&a->scene->grass, a->mode, ground,
+                                                                    a->reference),
+                        .full_field = !tiles && (blades || a->reference),
                         .raster = a->scene->raster != SCENE_RASTER_HW,
                         .target_samples = gfx_target_samples(a->target_samples),
                         .size_option = a->size_option,

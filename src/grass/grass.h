@@ -33,6 +33,13 @@ void grass_view_make(grass_view_t *v, const float view[16], const float proj[16]
 /* Where the tiles of a world terrain draw blades in blade mode when the
  * scene sets no grass.blade_distance (m). */
 #define GRASS_BLADE_DISTANCE 80.0f
+/* The reference (grass_host_t.reference, the image error's) on a world,
+ * which has no field of vertices to seed every blade from: the tiles
+ * drawn to this distance (m), no thinning, 16 segments at the camera
+ * falling to 4 here, no orientation or occlusion culling, their templates
+ * seeded by the placement seed; the ground canopy beyond. It bounds what
+ * the image error compares on a world: past it, canopy against canopy. */
+#define GRASS_REFERENCE_REACH 100.0f
 /* Half width (m) of the hybrid's cross-fade around grass.switch_distance. */
 #define GRASS_SWITCH_FADE 1.0f
 /* Half width (m) of the ground canopy's band around grass.canopy_distance. */

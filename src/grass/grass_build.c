@@ -355,6 +355,11 @@ static void bb_slope_source(void *user, const hybrid_slope_grid_t *grid, gfx_buf
     if (gr->bb) bb_field_add_slopes(gr->bb, grid, sums);
 }
 
+/* The reference's tiles (a world's) take their templates from the
+ * placement seed xor this: another placement, another reference (the
+ * image error's noise floor), none of them the drawn tiles' own. */
+#define GRASS_REFERENCE_TILES_SEED 0x27d4eb2fu
+
 /* The tiles' desc with blades to `distance` (m), without its extent map. */
 static void tiles_desc(const grass_t *gr, float distance, blade_tiles_desc_t *td)
 {
@@ -375,6 +380,14 @@ static void tiles_desc(const grass_t *gr, float distance, blade_tiles_desc_t *td
                                .slope_recover = g->recover_time,
                                .label = "tiles"};
     memcpy(td->winds, gr->blade_env.winds, sizeof td->winds);
+    if (gr->reference) { /* a world's (GRASS_REFERENCE_REACH) */
+        td->seed = grass_placement_seed(gr) ^ GRASS_REFERENCE_TILES_SEED;
+        td->max_level = 16;
+        td->lod_distance = distance;
+        td->cull.lod = (blade_lod_t){.rule = BLADE_LOD_OFF};
+        td->cull.disable = BLADE_CULL_ORIENTATION | BLADE_CULL_OCCLUSION;
+        td->label = "tiles.reference";
+    }
 }
 
 /* The billboards' extent map thins the tiles too (same clearings): the

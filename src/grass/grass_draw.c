@@ -47,7 +47,7 @@ static void frame_lod(const grass_t *gr, frame_draw_t *f)
 {
     const grass_view_t *v = f->v;
     bool switch_ends = f->tiles || gr->mode == SCENE_MODE_HYBRID;
-    f->lod = gr->scene->grass.lod;
+    f->lod = gr->reference ? (blade_lod_t){.rule = BLADE_LOD_OFF} : gr->scene->grass.lod;
     f->lod.no_fade = f->lod.no_fade || switch_ends;
     f->focal = blade_lod_focal(f->v->viewproj, f->target->h);
     f->cull = switch_ends ? f->fade_hi

@@ -15,7 +15,7 @@ bool grass_pass_wants_blades(scene_mode_t mode) { return mode == SCENE_MODE_BLAD
 
 bool grass_pass_uses_tiles(scene_mode_t mode, grass_ground_t ground, bool reference)
 {
-    if (reference) return false;
+    if (reference) return ground == GRASS_GROUND_WORLD;
     if (ground == GRASS_GROUND_WORLD) return grass_pass_wants_blades(mode);
     return mode == SCENE_MODE_HYBRID && ground == GRASS_GROUND_HEIGHTFIELD;
 }
@@ -26,8 +26,10 @@ grass_ground_t grass_pass_ground(const terrain_mesh_t *t)
     return t->grid_res > 0 ? GRASS_GROUND_HEIGHTFIELD : GRASS_GROUND_MESH;
 }
 
-float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground)
+float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground,
+                                bool reference)
 {
+    if (reference) return GRASS_REFERENCE_REACH;
     if (ground != GRASS_GROUND_WORLD || mode != SCENE_MODE_BLADE) return g->switch_distance;
     return g->blade_distance > 0.0f ? g->blade_distance : GRASS_BLADE_DISTANCE;
 }

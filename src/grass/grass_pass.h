@@ -46,7 +46,8 @@ typedef struct grass_pass_desc_t {
     scene_mode_t mode;
     grass_ground_t ground;
     bool compute;   /* the compute rasterizer draws the grass this frame */
-    bool reference; /* every blade of the field, no culling, no billboards */
+    bool reference; /* every blade of the field (a world's to GRASS_REFERENCE_REACH), no culling,
+                       no billboards */
     bool have_tiles, have_blades, have_billboards;
     scene_hybrid_billboards_t billboards; /* the hybrid's (grass.billboards) */
 } grass_pass_desc_t;
@@ -61,14 +62,17 @@ const char *grass_pass_name(grass_pass_kind_t k);
 /* The rules behind the list, also what the grass makes: billboards in
  * billboard and hybrid modes (a world's streamed around the camera:
  * bb_ring.h); blades in blade and hybrid modes; the blades from tiles for the
- * hybrid on a heightfield and for blade and hybrid modes on a world, never
- * for the reference. The hybrid has no billboards with grass.billboards
- * none: its blades end in the ground canopy. */
+ * hybrid on a heightfield and for blade and hybrid modes on a world, for
+ * the reference only on a world (GRASS_REFERENCE_REACH). The hybrid has no
+ * billboards with grass.billboards none: its blades end in the ground
+ * canopy. */
 bool grass_pass_wants_billboards(scene_mode_t mode, scene_hybrid_billboards_t hybrid_bb);
 bool grass_pass_wants_blades(scene_mode_t mode);
 bool grass_pass_uses_tiles(scene_mode_t mode, grass_ground_t ground, bool reference);
 /* How far the tiles draw blades (m): grass.switch_distance, or on a world
- * in blade mode grass.blade_distance (default GRASS_BLADE_DISTANCE). */
-float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground);
+ * in blade mode grass.blade_distance (default GRASS_BLADE_DISTANCE), or
+ * for the reference GRASS_REFERENCE_REACH. */
+float grass_pass_tiles_distance(const scene_grass_desc_t *g, scene_mode_t mode, grass_ground_t ground,
+                                bool reference);
 
 #endif
