@@ -8,7 +8,9 @@
  * again. Heights come from terrain_world_height; the keys are then raised
  * where the Catmull-Rom path between them (cam_path_eval) would pass less
  * than WORLD_MIN_CLEARANCE above the ground (test_world_scenes checks
- * >= 1 m at 0.1 s steps). Run from the repository root:
+ * >= 1 m at 0.1 s steps). Blades thinned by the levels rule; world.json
+ * names the lod table measured on it (docs/HYBRID.md). Run from the
+ * repository root:
  *   ./build/src/tools/meadow_gen_world */
 #include <math.h>
 #include <stdio.h>
@@ -161,7 +163,7 @@ static void write_walkers(FILE *f, const terrain_world_t *w)
     fprintf(f, "  ]\n}\n");
 }
 
-static bool write_scene(const char *path, float size)
+static bool write_scene(const char *path, float size, const char *lod_table)
 {
     terrain_world_t w = terrain_world_make(
         &(terrain_desc_t){.type = TERRAIN_WORLD, .size = size, .height = WORLD_HEIGHT}, WORLD_SEED);
@@ -177,9 +179,11 @@ static bool write_scene(const char *path, float size)
     fprintf(f,
             "{\n  \"seed\": %u,\n  \"frames\": %d,\n  \"size\": [1920, 1080],\n  \"msaa\": 4,\n  \"mode\": \"hybrid\",\n"
             "  \"terrain\": {\"type\": \"world\", \"size\": %g, \"height\": %g},\n"
-            "  \"grass\": {\"density\": 250, \"billboard_density\": 20, \"switch_distance\": 25, \"tile_size\": 8,\n"
-            "            \"clearings\": {\"type\": \"noise\", \"fraction\": 0.15, \"size\": 64}},\n",
-            WORLD_SEED, (int)lroundf(end * 60.0f), (double)size, (double)WORLD_HEIGHT);
+            "  \"grass\": {\"density\": 250, \"billboard_density\": 20, \"switch_distance\": 25, \"tile_size\": 8, "
+            "\"lod\": {\"rule\": \"levels\"},\n"
+            "            \"clearings\": {\"type\": \"noise\", \"fraction\": 0.15, \"size\": 64}%s%s%s},\n",
+            WORLD_SEED, (int)lroundf(end * 60.0f), (double)size, (double)WORLD_HEIGHT,
+            lod_table ? ",\n            \"lod_table\": \"" : "", lod_table ? lod_table : "", lod_table ? "\"" : "");
     write_camera(f, &cam);
     fprintf(f, "  \"wind\": [{\"type\": \"directional\", \"direction\": [1, 0.3], \"strength\": 1.0, "
                "\"wavelength\": 10, \"speed\": 2}],\n");
@@ -194,10 +198,11 @@ int main(void)
     static const struct {
         const char *path;
         float size;
-    } worlds[] = {{"scenes/bench/world_1km.json", 1024.0f},
-                  {"scenes/bench/world.json", 2048.0f},
-                  {"scenes/bench/world_4km.json", 4096.0f}};
+        const char *lod_table; /* measured on that scene (docs/HYBRID.md) */
+    } worlds[] = {{"scenes/bench/world_1km.json", 1024.0f, NULL},
+                  {"scenes/bench/world.json", 2048.0f, "docs/perf/lod_h200_world.json"},
+                  {"scenes/bench/world_4km.json", 4096.0f, NULL}};
     for (int i = 0; i < 3; i++)
-        if (!write_scene(worlds[i].path, worlds[i].size)) return 1;
+        if (!write_scene(worlds[i].path, worlds[i].size, worlds[i].lod_table)) return 1;
     return 0;
 }
