@@ -159,7 +159,7 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
 static bool blades_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     world_info_t wi = world_info(w);
-    eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = measure_seam_desc(w).switch_distance,
+    eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = wi.scene->grass.switch_distance,
                                                                      .fade = GRASS_SWITCH_FADE});
     measure_seam_frame_t frame = {0}, ref = {0}, bg = {0};
     bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame) &&
