@@ -149,7 +149,7 @@ int main(void)
     CHECK_MSG(near_de == 0.0, "nearer than the band the reference is the frame: Delta E %.3f", sqrt(near_de));
     world_destroy(w);
     /* The same far window in a world whose blades reach past it. */
-    float reach = d.switch_distance + d.fade + d.window + MEASURE_SEAM_REACH;
+    float reach = measure_canopy_seam_reach(d.switch_distance);
     w = make_world(reach, true);
     measure_seam_frame_t past, past_bg;
     CHECK(measure_seam_frame_draw(w, &v, &t, SCENE_MODE_HYBRID, true, &past));

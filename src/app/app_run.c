@@ -276,9 +276,8 @@ static int summary_seam(app_t *app, char *buf, size_t size)
          * differs from the bare ground and counts as grass, the blades' gaps
          * need not, so the coverage term compares unlike things; the colour
          * term is the seam. */
-        eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd});
-        double scale = d.colour_scale, colour = e.delta_e / scale;
-        double reach = sd + GRASS_SWITCH_FADE + d.window + MEASURE_SEAM_REACH;
+        double scale = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = sd}).colour_scale;
+        double colour = e.delta_e / scale, reach = measure_canopy_seam_reach(sd);
         int n = snprintf(buf, size,
                          "canopy seam at %.1f m (blades to the ground canopy, against blades drawn across the band to "
                          "%.0f m; band +-%.0f m, windows by the terrain's distance): colour score %.3f, Delta E %.3f, Delta "

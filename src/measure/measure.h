@@ -61,6 +61,9 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
  * and the tiles' hysteresis (1 m), as the truth runs' 60 m tiles did for a
  * 50 m switch (docs/journal/2026-11-29-canopy-seam-truth.md). */
 #define MEASURE_SEAM_REACH 5.0f
+/* Where that reference's blades end (m) for a band at switch_distance: its
+ * far window's end (eval_seam_desc_defaults) plus MEASURE_SEAM_REACH. */
+float measure_canopy_seam_reach(float switch_distance);
 bool measure_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out);
 /* The seam's noise floor for this view: the billboards built again with
  * MEASURE_SEAM_FLOOR_PLACEMENTS other placement seeds, each drawn

@@ -150,6 +150,13 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
     return world_seam(w, v, t, &d, false, out);
 }
 
+float measure_canopy_seam_reach(float switch_distance)
+{
+    eval_seam_desc_t d =
+        eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = switch_distance, .fade = GRASS_SWITCH_FADE});
+    return d.switch_distance + d.fade + d.window + MEASURE_SEAM_REACH;
+}
+
 /* Where the blades end in the canopy (the hybrid without billboards): the
  * last frame against what the eye would see without the switch, blades
  * across the band (world_draw_tiles_to, out to MEASURE_SEAM_REACH beyond
@@ -159,11 +166,10 @@ bool measure_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval
 static bool blades_canopy_seam(world_t *w, const grass_view_t *v, const gfx_target_t *t, eval_seam_t *out)
 {
     world_info_t wi = world_info(w);
-    eval_seam_desc_t d = eval_seam_desc_defaults(&(eval_seam_desc_t){.switch_distance = wi.scene->grass.switch_distance,
-                                                                     .fade = GRASS_SWITCH_FADE});
+    eval_seam_desc_t d = measure_seam_desc(w);
     measure_seam_frame_t frame = {0}, ref = {0}, bg = {0};
     bool ok = measure_seam_frame_draw(w, v, t, wi.mode, true, &frame) &&
-              world_draw_tiles_to(w, v, t, d.switch_distance + d.fade + d.window + MEASURE_SEAM_REACH) &&
+              world_draw_tiles_to(w, v, t, measure_canopy_seam_reach(d.switch_distance)) &&
               measure_seam_frame_read(w, v, t, &ref) && measure_seam_frame_draw(w, v, t, wi.mode, false, &bg);
     for (size_t i = 0, n = (size_t)t->w * (size_t)t->h; ok && i < n; i++)
         if (bg.dist[i] < d.switch_distance) memcpy(ref.img.px + i * 4, frame.img.px + i * 4, 4);
